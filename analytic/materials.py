@@ -1,0 +1,104 @@
+"""Material library: elastic, thermal-expansion and thermal properties, each with its source.
+
+Units: E_MPa, nu (-), alpha_per_K at the 20 C reference, dalpha_per_K2 (1/K^2: the instantaneous
+CTE is alpha(T) = alpha_per_K + dalpha_per_K2 * (T - 20 C)), density_kg_m3, conductivity_W_mK,
+specific_heat_J_kgK.
+
+The thermal strain from T_ref to T is the integral of the instantaneous CTE (exact for the linear
+law, so superposition on theta = integral alpha dT stays exact, see DESIGN.md section 2):
+
+    theta(T_ref, T) = alpha_20 (T - T_ref) + dalpha/2 [(T - 20)^2 - (T_ref - 20)^2]
+
+Sources (numbers transcribed, typical handbook values at room temperature):
+  [ASM-440C]  ASM Handbook Vol. 1 / AK Steel 440C product data: E 200 GPa, nu 0.28, CTE
+              10.2e-6/K (0-100 C), k 24.2 W/mK, cp 460 J/kgK, rho 7650 kg/m^3.
+  [CN-9Cr18]  China Aeronautical Materials Handbook, 9Cr18 (95Cr18): E 200 GPa, nu 0.3,
+              CTE 10.5e-6/K (20-100 C), rho 7700, k 24, cp 460.  Seed 000 quotes a CTE
+              difference of about 1.5e-6/K between 9Cr18 and TC4 (fit rates -0.05/+0.07 um/C).
+  [ASM-52100] ASM Handbook Vol. 1, AISI 52100 (GCr15): E 210 GPa, nu 0.30, CTE 11.9e-6/K
+              (20-100 C), rho 7810, k 46.6, cp 475.
+  [M50]       Harris & Kotzalas, Rolling Bearing Analysis 5th ed. Vol. 1 Table 5.x (M50):
+              E 203 GPa, nu 0.28, CTE 11.3e-6/K; rho 7830, k 25.8, cp 460 (Latrobe data sheet).
+  [MIL-TC4]   MIL-HDBK-5J / ASM Ti-6Al-4V annealed: E 113.8 GPa, nu 0.342, rho 4430,
+              k 6.7 W/mK, cp 526; CTE 8.6e-6/K (20-100 C) in ASM, 9.0e-6/K in the Chinese
+              handbook for TC4 (20-100 C); we take 9.0e-6 so that 9Cr18-TC4 = 1.5e-6 as in seed 000.
+              Instantaneous CTE rises with temperature (about 8.0e-6 at -60 C to 9.4e-6 at 100 C
+              in NIST cryogenic data): dalpha 8e-9 /K^2 (assumption fitted to that span).
+  [Si3N4]     Harris & Kotzalas Vol. 1 (hybrid bearings), Cerbec NBD200 data: E 310 GPa,
+              nu 0.27, CTE 3.2e-6/K, rho 3200, k 30, cp 680.
+  [Al2024]    ASM, 2024-T3 (Chinese 2A12): E 73.1 GPa, nu 0.33, CTE 23.2e-6/K (20-100 C),
+              rho 2780, k 121, cp 875.
+  [Al6061]    ASM, 6061-T6: E 68.9 GPa, nu 0.33, CTE 23.6e-6/K (20-100 C), rho 2700, k 167,
+              cp 896.
+  [17-4PH]    AK Steel 17-4PH H1025 data: E 196 GPa, nu 0.272, CTE 10.8e-6/K (21-93 C),
+              rho 7800, k 18.3, cp 460.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+T_CTE_REF_C = 20.0  # temperature at which alpha_per_K is quoted
+
+
+@dataclass(frozen=True)
+class Material:
+    name: str
+    E_MPa: float
+    nu: float
+    alpha_per_K: float
+    density_kg_m3: float
+    conductivity_W_mK: float
+    specific_heat_J_kgK: float
+    dalpha_per_K2: float = 0.0
+    source: str = ""
+
+    def alpha_at(self, T_C):
+        """Instantaneous CTE alpha(T) = alpha_20 + dalpha (T - 20 C), 1/K."""
+        return self.alpha_per_K + self.dalpha_per_K2 * (T_C - T_CTE_REF_C)
+
+    def thermal_strain(self, T_C, T_ref_C):
+        """theta = integral_{T_ref}^{T} alpha(T') dT' (dimensionless), exact for the linear law."""
+        a, b = T_C - T_CTE_REF_C, T_ref_C - T_CTE_REF_C
+        return self.alpha_per_K * (T_C - T_ref_C) + 0.5 * self.dalpha_per_K2 * (a * a - b * b)
+
+    def with_dalpha(self, dalpha_per_K2: float) -> "Material":
+        """Copy with a different CTE slope (used by the cte_nonlinearity effect)."""
+        return Material(**{**self.__dict__, "dalpha_per_K2": dalpha_per_K2})
+
+
+_STEEL_9CR18 = dict(E_MPa=200e3, nu=0.30, alpha_per_K=10.5e-6, density_kg_m3=7700.0,
+                    conductivity_W_mK=24.0, specific_heat_J_kgK=460.0, source="CN-9Cr18")
+_STEEL_52100 = dict(E_MPa=210e3, nu=0.30, alpha_per_K=11.9e-6, density_kg_m3=7810.0,
+                    conductivity_W_mK=46.6, specific_heat_J_kgK=475.0, source="ASM-52100")
+
+MATERIALS: dict[str, Material] = {
+    "9Cr18": Material("9Cr18", **_STEEL_9CR18),
+    "G95Cr18": Material("G95Cr18", **_STEEL_9CR18),
+    "440C": Material("440C", E_MPa=200e3, nu=0.28, alpha_per_K=10.2e-6, density_kg_m3=7650.0,
+                     conductivity_W_mK=24.2, specific_heat_J_kgK=460.0, source="ASM-440C"),
+    "GCr15": Material("GCr15", **_STEEL_52100),
+    "52100": Material("52100", **_STEEL_52100),
+    "M50": Material("M50", E_MPa=203e3, nu=0.28, alpha_per_K=11.3e-6, density_kg_m3=7830.0,
+                    conductivity_W_mK=25.8, specific_heat_J_kgK=460.0, source="M50"),
+    "TC4": Material("TC4", E_MPa=113.8e3, nu=0.342, alpha_per_K=9.0e-6, density_kg_m3=4430.0,
+                    conductivity_W_mK=6.7, specific_heat_J_kgK=526.0, dalpha_per_K2=8e-9,
+                    source="MIL-TC4"),
+    "Si3N4": Material("Si3N4", E_MPa=310e3, nu=0.27, alpha_per_K=3.2e-6, density_kg_m3=3200.0,
+                      conductivity_W_mK=30.0, specific_heat_J_kgK=680.0, source="Si3N4"),
+    "2A12": Material("2A12", E_MPa=73.1e3, nu=0.33, alpha_per_K=23.2e-6, density_kg_m3=2780.0,
+                     conductivity_W_mK=121.0, specific_heat_J_kgK=875.0, source="Al2024"),
+    "6061": Material("6061", E_MPa=68.9e3, nu=0.33, alpha_per_K=23.6e-6, density_kg_m3=2700.0,
+                     conductivity_W_mK=167.0, specific_heat_J_kgK=896.0, source="Al6061"),
+    "17-4PH": Material("17-4PH", E_MPa=196e3, nu=0.272, alpha_per_K=10.8e-6,
+                       density_kg_m3=7800.0, conductivity_W_mK=18.3, specific_heat_J_kgK=460.0,
+                       source="17-4PH"),
+}
+ALIASES = {"Ti-6Al-4V": "TC4", "2024": "2A12", "AISI52100": "52100", "95Cr18": "G95Cr18"}
+
+
+def get_material(name: str) -> Material:
+    """Look a material up by name or alias; KeyError names the known ones."""
+    key = ALIASES.get(name, name)
+    if key not in MATERIALS:
+        raise KeyError(f"unknown material '{name}' (known: {', '.join(sorted(MATERIALS))})")
+    return MATERIALS[key]

@@ -1,0 +1,1 @@
+"""Assembly configurations, the FE -> analytic pipeline, studies, diagnosis and the CLI."""

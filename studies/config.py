@@ -1,0 +1,331 @@
+"""Assembly configuration: a TOML file describing the axisymmetric shaft-bearing-housing stack.
+
+Every key names its unit. Axial positions are derived from the stack, starting at the shaft
+shoulder face (z = 0) and running +z: inner ring A, inner spacer, inner ring B, nut; the housing
+shoulder face is also at z = 0 and the outer stack is outer ring A, outer spacer, outer ring B,
+cover. Bearing A is the one at the lower z. See `studies/configs/*.toml` for annotated examples.
+
+Errors are `ConfigError` with one line: file, key, problem.
+"""
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from analytic.materials import Material, get_material
+
+
+class ConfigError(ValueError):
+    """Bad assembly configuration: the message is one line naming the file, the key and the problem."""
+
+
+@dataclass(frozen=True)
+class Shaft:
+    material: str
+    seat_diameter_mm: float
+    bore_diameter_mm: float          # 0 for a solid shaft
+    shoulder_diameter_mm: float
+    shoulder_width_mm: float
+    extension_mm: float              # free shaft length beyond the nut
+
+
+@dataclass(frozen=True)
+class Housing:
+    material: str
+    bore_diameter_mm: float
+    outer_diameter_mm: float
+    shoulder_diameter_mm: float      # inner diameter of the housing shoulder (< bore)
+    shoulder_width_mm: float
+
+
+@dataclass(frozen=True)
+class Clamp:
+    """Nut (on the shaft) or cover (on the housing): a ring clamping the stack end."""
+    material: str
+    diameter_mm: float               # nut: outer diameter; cover: inner diameter
+    width_mm: float
+
+
+@dataclass(frozen=True)
+class Spacer:
+    material: str
+    diameter_mm: float               # inner spacer: outer diameter; outer spacer: inner diameter
+    length_mm: float
+
+
+@dataclass(frozen=True)
+class BearingSpec:
+    """Bearing internal geometry (Harris & Kotzalas Vol. 1 ch. 2 notation)."""
+    designation: str
+    bore_mm: float
+    outside_diameter_mm: float
+    width_mm: float
+    ball_diameter_mm: float
+    ball_count: int
+    pitch_diameter_mm: float
+    inner_groove_ratio: float        # f_i = r_i / Dw
+    outer_groove_ratio: float        # f_o = r_o / Dw
+    contact_angle_free_deg: float
+    inner_ring_outer_diameter_mm: float   # effective FE section of the inner ring
+    outer_ring_inner_diameter_mm: float   # effective FE section of the outer ring
+    ring_material: str
+    ball_material: str
+
+
+@dataclass(frozen=True)
+class Fits:
+    inner_interference_um: float     # diametral, + interference, - clearance
+    outer_interference_um: float
+    contact: str                     # "frictionless" or "bonded"
+
+
+@dataclass(frozen=True)
+class Preload:
+    kind: str                        # "position" or "spring"
+    assembled_N: float
+
+
+@dataclass(frozen=True)
+class Lubrication:
+    kind: str                        # "solid_film" or "oil"
+    lubricant: str = ""
+    friction_coefficient: float = 0.0
+    viscous_factor_f0: float = 0.0
+    speed_rpm: float = 0.0
+
+
+@dataclass(frozen=True)
+class Limits:
+    max_contact_pressure_MPa: float = math.inf
+    min_static_safety: float = 0.0
+
+
+@dataclass(frozen=True)
+class Mesh:
+    size_mm: float = 1.0             # global element size
+    fit_size_mm: float = 0.25        # size at fits and raceways
+
+
+@dataclass(frozen=True)
+class Assembly:
+    name: str
+    arrangement: str                 # "DB" or "DF"
+    T_ref_C: float
+    shaft: Shaft
+    housing: Housing
+    nut: Clamp
+    cover: Clamp
+    inner_spacer: Spacer
+    outer_spacer: Spacer
+    bearing: BearingSpec
+    fits: Fits
+    preload: Preload
+    lubrication: Lubrication
+    limits: Limits = field(default_factory=Limits)
+    mesh: Mesh = field(default_factory=Mesh)
+    source: str = ""
+
+    def material(self, part: str) -> Material:
+        """Material of a part: shaft, housing, nut, cover, inner_spacer, outer_spacer,
+        inner_ring, outer_ring, ball."""
+        names = {"shaft": self.shaft.material, "housing": self.housing.material,
+                 "nut": self.nut.material, "cover": self.cover.material,
+                 "inner_spacer": self.inner_spacer.material,
+                 "outer_spacer": self.outer_spacer.material,
+                 "inner_ring": self.bearing.ring_material,
+                 "outer_ring": self.bearing.ring_material,
+                 "ball": self.bearing.ball_material}
+        return get_material(names[part])
+
+
+SECTIONS = {
+    "shaft": (Shaft, {"bore_diameter_mm": 0.0, "extension_mm": 0.0}),
+    "housing": (Housing, {}),
+    "nut": (Clamp, {}),
+    "cover": (Clamp, {}),
+    "inner_spacer": (Spacer, {}),
+    "outer_spacer": (Spacer, {}),
+    "bearing": (BearingSpec, {}),
+    "fits": (Fits, {"contact": "frictionless"}),
+    "preload": (Preload, {}),
+    "lubrication": (Lubrication, {"lubricant": "", "friction_coefficient": 0.0,
+                                  "viscous_factor_f0": 0.0, "speed_rpm": 0.0}),
+    "limits": (Limits, {"max_contact_pressure_MPa": math.inf, "min_static_safety": 0.0}),
+    "mesh": (Mesh, {"size_mm": 1.0, "fit_size_mm": 0.25}),
+}
+OPTIONAL_SECTIONS = {"limits", "mesh"}
+STRING_KEYS = {"material", "designation", "ring_material", "ball_material", "contact", "kind",
+               "lubricant"}
+CHOICES = {("fits", "contact"): ("frictionless", "bonded"),
+           ("preload", "kind"): ("position", "spring"),
+           ("lubrication", "kind"): ("solid_film", "oil")}
+# keys allowed to be zero (everything else numeric must be > 0)
+ZERO_OK = {("shaft", "bore_diameter_mm"), ("shaft", "extension_mm"),
+           ("fits", "inner_interference_um"), ("fits", "outer_interference_um"),
+           ("preload", "assembled_N"), ("lubrication", "friction_coefficient"),
+           ("lubrication", "viscous_factor_f0"), ("lubrication", "speed_rpm"),
+           ("limits", "min_static_safety")}
+SIGNED = {("fits", "inner_interference_um"), ("fits", "outer_interference_um")}
+
+
+def _section(path: str, raw: dict, name: str):
+    cls, defaults = SECTIONS[name]
+    table = raw.get(name)
+    if table is None:
+        if name in OPTIONAL_SECTIONS:
+            return cls()
+        raise ConfigError(f"{path}: [{name}]: missing section")
+    if not isinstance(table, dict):
+        raise ConfigError(f"{path}: [{name}]: must be a table")
+    fields = cls.__dataclass_fields__
+    for key in table:
+        if key not in fields:
+            hint = _unit_hint(key, fields)
+            raise ConfigError(f"{path}: {name}.{key}: unknown key{hint}")
+    values = {}
+    for key, f in fields.items():
+        if key in table:
+            v = table[key]
+        elif key in defaults:
+            v = defaults[key]
+        else:
+            raise ConfigError(f"{path}: {name}.{key}: missing key")
+        if key in STRING_KEYS:
+            if not isinstance(v, str):
+                raise ConfigError(f"{path}: {name}.{key}: must be a string, got {v!r}")
+            choices = CHOICES.get((name, key))
+            if choices and v not in choices:
+                raise ConfigError(f"{path}: {name}.{key}: '{v}' is not one of {', '.join(choices)}")
+        elif key == "ball_count":
+            if not isinstance(v, int) or isinstance(v, bool) or v < 3:
+                raise ConfigError(f"{path}: {name}.{key}: must be an integer >= 3, got {v!r}")
+        else:
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or math.isnan(v):
+                raise ConfigError(f"{path}: {name}.{key}: must be a number, got {v!r}")
+            v = float(v)
+            if (name, key) not in SIGNED:
+                if v < 0 or (v == 0 and (name, key) not in ZERO_OK):
+                    raise ConfigError(f"{path}: {name}.{key}: must be positive, got {v:g}")
+        values[key] = v
+    return cls(**values)
+
+
+def _unit_hint(key: str, fields) -> str:
+    stem = key.rsplit("_", 1)[0]
+    for f in fields:
+        if f.rsplit("_", 1)[0] == stem:
+            return f" (wrong unit name? expected '{f}')"
+    return ""
+
+
+def load_assembly(path: str | Path) -> Assembly:
+    """Read and validate an assembly TOML file. Raises ConfigError (one line) on any problem."""
+    path = str(path)
+    try:
+        with open(path, "rb") as fh:
+            raw = tomllib.load(fh)
+    except FileNotFoundError:
+        raise ConfigError(f"{path}: file not found") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise ConfigError(f"{path}: not valid TOML: {exc}") from None
+    return assembly_from_dict(raw, path)
+
+
+def assembly_from_dict(raw: dict, path: str = "<config>") -> Assembly:
+    top = raw.get("assembly")
+    if not isinstance(top, dict):
+        raise ConfigError(f"{path}: [assembly]: missing section")
+    for key in ("name", "arrangement", "T_ref_C"):
+        if key not in top:
+            raise ConfigError(f"{path}: assembly.{key}: missing key")
+    for key in top:
+        if key not in ("name", "arrangement", "T_ref_C", "source"):
+            raise ConfigError(f"{path}: assembly.{key}: unknown key{_unit_hint(key, ['T_ref_C'])}")
+    if top["arrangement"] not in ("DB", "DF"):
+        raise ConfigError(f"{path}: assembly.arrangement: '{top['arrangement']}' is not DB or DF")
+    T_ref = top["T_ref_C"]
+    if isinstance(T_ref, bool) or not isinstance(T_ref, (int, float)) or math.isnan(T_ref):
+        raise ConfigError(f"{path}: assembly.T_ref_C: must be a number, got {T_ref!r}")
+    for name in raw:
+        if name != "assembly" and name not in SECTIONS:
+            raise ConfigError(f"{path}: [{name}]: unknown section")
+    parts = {name: _section(path, raw, name) for name in SECTIONS}
+    asm = Assembly(name=str(top["name"]), arrangement=top["arrangement"], T_ref_C=float(T_ref),
+                   source=str(top.get("source", "")), **parts)
+    _check_materials(asm, path)
+    _check_geometry(asm, path)
+    return asm
+
+
+def _check_materials(a: Assembly, path: str) -> None:
+    keys = {"shaft.material": a.shaft.material, "housing.material": a.housing.material,
+            "nut.material": a.nut.material, "cover.material": a.cover.material,
+            "inner_spacer.material": a.inner_spacer.material,
+            "outer_spacer.material": a.outer_spacer.material,
+            "bearing.ring_material": a.bearing.ring_material,
+            "bearing.ball_material": a.bearing.ball_material}
+    for key, name in keys.items():
+        try:
+            get_material(name)
+        except KeyError as exc:
+            raise ConfigError(f"{path}: {key}: {exc.args[0]}") from None
+
+
+def _check_geometry(a: Assembly, path: str) -> None:
+    """Overlaps, rings that do not touch their seats, and impossible bearing geometry."""
+    s, h, b = a.shaft, a.housing, a.bearing
+
+    def need(cond: bool, key: str, msg: str) -> None:
+        if not cond:
+            raise ConfigError(f"{path}: {key}: {msg}")
+
+    need(s.bore_diameter_mm < s.seat_diameter_mm, "shaft.bore_diameter_mm",
+         f"bore {s.bore_diameter_mm:g} mm must be smaller than the seat {s.seat_diameter_mm:g} mm")
+    need(s.shoulder_diameter_mm > s.seat_diameter_mm, "shaft.shoulder_diameter_mm",
+         "must exceed the seat diameter")
+    need(abs(b.bore_mm - s.seat_diameter_mm) <= 0.01 * b.bore_mm, "bearing.bore_mm",
+         f"inner ring bore {b.bore_mm:g} mm does not sit on the shaft seat {s.seat_diameter_mm:g} mm")
+    need(abs(b.outside_diameter_mm - h.bore_diameter_mm) <= 0.01 * b.outside_diameter_mm,
+         "bearing.outside_diameter_mm",
+         f"outer ring {b.outside_diameter_mm:g} mm does not sit in the housing bore {h.bore_diameter_mm:g} mm")
+    need(b.bore_mm < b.inner_ring_outer_diameter_mm < b.outer_ring_inner_diameter_mm
+         < b.outside_diameter_mm, "bearing.inner_ring_outer_diameter_mm",
+         "ring sections must satisfy bore < inner ring OD < outer ring ID < outside diameter")
+    need(s.shoulder_diameter_mm < b.outer_ring_inner_diameter_mm, "shaft.shoulder_diameter_mm",
+         "shaft shoulder overlaps the outer ring")
+    need(h.shoulder_diameter_mm < h.bore_diameter_mm, "housing.shoulder_diameter_mm",
+         "must be smaller than the housing bore")
+    need(h.shoulder_diameter_mm > b.inner_ring_outer_diameter_mm, "housing.shoulder_diameter_mm",
+         "housing shoulder overlaps the inner ring")
+    need(h.outer_diameter_mm > h.bore_diameter_mm, "housing.outer_diameter_mm",
+         "must exceed the housing bore")
+    need(b.inner_ring_outer_diameter_mm >= a.inner_spacer.diameter_mm > s.seat_diameter_mm,
+         "inner_spacer.diameter_mm", "must lie between the shaft seat and the inner ring OD")
+    need(b.outer_ring_inner_diameter_mm <= a.outer_spacer.diameter_mm < h.bore_diameter_mm,
+         "outer_spacer.diameter_mm", "must lie between the outer ring ID and the housing bore")
+    need(s.seat_diameter_mm < a.nut.diameter_mm < b.outer_ring_inner_diameter_mm,
+         "nut.diameter_mm", "must lie between the shaft seat and the outer ring ID")
+    need(b.inner_ring_outer_diameter_mm < a.cover.diameter_mm < h.bore_diameter_mm,
+         "cover.diameter_mm", "must lie between the inner ring OD and the housing bore")
+    need(b.inner_groove_ratio > 0.5 and b.outer_groove_ratio > 0.5, "bearing.inner_groove_ratio",
+         "groove curvature ratios must exceed 0.5")
+    need(b.contact_angle_free_deg < 90.0, "bearing.contact_angle_free_deg", "must be below 90 deg")
+    Dw, dm = b.ball_diameter_mm, b.pitch_diameter_mm
+    need(b.bore_mm < dm - Dw and dm + Dw < b.outside_diameter_mm, "bearing.pitch_diameter_mm",
+         "balls do not fit between bore and outside diameter")
+    need(b.ball_count * Dw < math.pi * dm, "bearing.ball_count", "balls overlap on the pitch circle")
+
+
+def stack_positions(a: Assembly) -> dict[str, tuple[float, float]]:
+    """Axial extent (z0, z1) in mm of every stack part; shoulder faces at z = 0."""
+    B = a.bearing.width_mm
+    zA, zS, zB = (0.0, B), (B, B + a.inner_spacer.length_mm), None
+    zB = (zS[1], zS[1] + B)
+    oS = (B, B + a.outer_spacer.length_mm)
+    oB = (oS[1], oS[1] + B)
+    return {"inner_ring_A": zA, "inner_spacer": zS, "inner_ring_B": zB,
+            "nut": (zB[1], zB[1] + a.nut.width_mm),
+            "outer_ring_A": (0.0, B), "outer_spacer": oS, "outer_ring_B": oB,
+            "cover": (oB[1], oB[1] + a.cover.width_mm)}
