@@ -1,0 +1,61 @@
+"""The physical inputs of one model evaluation, per row of a conditions table.
+
+This is the seam between the conditions table / effects and the model: the conditions CSV is turned
+into a `PhysicsInputs` (baseline: every part at the ambient temperature unless its own column is
+given), each switched-on effect transforms it (part temperatures, fits, CTE, viscosity law, friction,
+preload), and the pipeline evaluates it. Effects never touch outputs.
+
+All arrays have one entry per row. Units in names: C, um, N, rpm, s, 1/K^2.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+PARTS = ("shaft", "inner_ring", "ball", "outer_ring", "housing", "spacer")
+PART_COLUMNS = {f"T_{p}_C": p for p in PARTS}
+CONDITION_COLUMNS = ("time_s", "T_ambient_C", *PART_COLUMNS, "speed_rpm", "preload_assembled_N",
+                     "axial_load_N")
+
+
+@dataclass
+class PhysicsInputs:
+    """Per-row physical inputs. `T_C[part]` for part in PARTS; `spacer` is both spacers, the nut
+    follows the shaft and the cover follows the housing."""
+    n_rows: int
+    T_C: dict[str, np.ndarray]
+    speed_rpm: np.ndarray
+    preload_assembled_N: np.ndarray
+    axial_load_N: np.ndarray
+    time_s: np.ndarray | None = None
+    T_ambient_C: np.ndarray | None = None
+    interference_inner_um: np.ndarray | None = None   # None -> config value
+    interference_outer_um: np.ndarray | None = None
+    dalpha_per_K2: dict[str, float] = field(default_factory=dict)  # "shaft"/"housing" CTE slope
+    viscosity_slope_factor: float = 1.0
+    friction_coefficient: np.ndarray | None = None     # None -> config value
+    preload_loss_N: np.ndarray | None = None            # permanent preload loss per row
+
+    def copy(self, **changes) -> "PhysicsInputs":
+        """Shallow copy with fields replaced (arrays are never modified in place)."""
+        new = replace(self, T_C=dict(self.T_C), dalpha_per_K2=dict(self.dalpha_per_K2))
+        return replace(new, **changes) if changes else new
+
+
+def baseline_inputs(columns: dict[str, np.ndarray], n_rows: int, T_ref_C: float,
+                    preload_N: float, speed_rpm: float) -> PhysicsInputs:
+    """Baseline: uniform temperature, no lag. A part column overrides the ambient for that part;
+    with no ambient column the reference temperature is used."""
+    amb = columns.get("T_ambient_C")
+    base = amb if amb is not None else np.full(n_rows, T_ref_C)
+    T = {p: np.asarray(columns.get(f"T_{p}_C", base), float) for p in PARTS}
+
+    def col(name, default):
+        v = columns.get(name)
+        return np.asarray(v, float) if v is not None else np.full(n_rows, float(default))
+
+    return PhysicsInputs(n_rows=n_rows, T_C=T, speed_rpm=col("speed_rpm", speed_rpm),
+                         preload_assembled_N=col("preload_assembled_N", preload_N),
+                         axial_load_N=col("axial_load_N", 0.0), time_s=columns.get("time_s"),
+                         T_ambient_C=amb)
