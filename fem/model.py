@@ -1,0 +1,167 @@
+"""The FE model of a section: mesh with fit interfaces unzipped, P2 basis, stiffness, unit loads.
+
+Steps (each a small function):
+1. `unzip`: along every split line the outer-side parts get their own copies of the shared nodes,
+   so a fit can open, close or slide; everything else stays tied (shared nodes).
+2. `StackModel`: scikit-fem MeshTri + vector P2 basis; stiffness K (whole-ring measure 2 pi r);
+   one thermal load vector per part for unit thermal strain; node pairs of each fit (radial and
+   axial DOFs of the inner member = master, of the outer member = slave); Dirichlet DOFs: u_r = 0
+   on the axis, rollers, and one u_z per free-floating body (rigid axial mode, statically
+   determinate, so it adds no stress).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+from skfem import Basis, ElementTriP2, ElementVector, MeshTri, asm
+
+from analytic.materials import Material, get_material
+from fem.forms import elasticity, lame_parameters, thermal_load
+from meshes.section import Section
+from meshes.build import SectionMesh
+
+TOL_MM = 1e-7
+
+
+def unzip(points: np.ndarray, tris: np.ndarray, part_of: np.ndarray, section: Section):
+    """Duplicate the nodes on each split line for the elements of its outer-side parts.
+    Returns new (points, tris). Pure function."""
+    points, tris = points.copy(), tris.copy()
+    for s in section.splits:
+        on = np.flatnonzero((np.abs(points[0] - s.r_mm) < TOL_MM * (1 + s.r_mm))
+                            & (points[1] >= s.z0_mm - TOL_MM) & (points[1] <= s.z1_mm + TOL_MM))
+        outer_el = np.isin(part_of, s.outer_parts)
+        inner_el = np.isin(part_of, s.inner_parts)
+        used_in = np.unique(tris[:, inner_el])
+        used_out = np.unique(tris[:, outer_el])
+        shared = np.intersect1d(np.intersect1d(on, used_in), used_out)
+        if shared.size == 0:
+            continue
+        new_index = np.arange(points.shape[1], points.shape[1] + shared.size)
+        points = np.hstack([points, points[:, shared]])
+        remap = np.arange(points.shape[1])
+        remap[shared] = new_index
+        tris[:, outer_el] = remap[tris[:, outer_el]]
+    return points, tris
+
+
+@dataclass
+class FitPairs:
+    """DOF pairs of one fit, sorted by z. master = inner member, slave = outer member."""
+    name: str
+    key: str
+    r_mm: float
+    length_mm: float
+    z_mm: np.ndarray
+    master_r: np.ndarray
+    slave_r: np.ndarray
+    master_z: np.ndarray
+    slave_z: np.ndarray
+
+
+def _components(tris: np.ndarray, n_nodes: int) -> np.ndarray:
+    """Connected component label per node (elements sharing nodes are connected)."""
+    rows = np.repeat(np.arange(tris.shape[1]), tris.shape[0])
+    inc = sp.csr_matrix((np.ones(rows.size), (tris.T.ravel(), rows)), shape=(n_nodes, tris.shape[1]))
+    adj = inc @ inc.T
+    return sp.csgraph.connected_components(adj, directed=False)[1]
+
+
+class StackModel:
+    """Assembled axisymmetric thermo-elastic model of a section. Units: mm, N, MPa."""
+
+    def __init__(self, section: Section, smesh: SectionMesh, contact: str = "frictionless",
+                 materials: dict[str, Material] | None = None):
+        if contact not in ("frictionless", "bonded"):
+            raise ValueError(f"contact must be 'frictionless' or 'bonded', got '{contact}'")
+        self.section, self.contact = section, contact
+        self.part_names = section.parts()
+        self.part_of = np.asarray(smesh.part_of).astype(str)
+        self.materials = {p: (materials or {}).get(p) or get_material(section.material_of(p))
+                          for p in self.part_names}
+        pts, tris = unzip(smesh.points, smesh.triangles, self.part_of, section)
+        self.mesh = MeshTri(pts, tris)
+        self.basis = Basis(self.mesh, ElementVector(ElementTriP2()))
+        self.sbasis = Basis(self.mesh, ElementTriP2())
+        self.ndofs = self.basis.N
+        nq = self.basis.X.shape[1]
+        E = np.array([self.materials[p].E_MPa for p in self.part_of])
+        nu = np.array([self.materials[p].nu for p in self.part_of])
+        lam, mu = lame_parameters(E, nu)
+        self.lam_e, self.mu_e = lam, mu
+        self.lam_q, self.mu_q = np.repeat(lam[:, None], nq, 1), np.repeat(mu[:, None], nq, 1)
+        self.K = asm(elasticity, self.basis, lam=self.lam_q, mu=self.mu_q).tocsr()
+        self.unit_loads = np.column_stack([self.thermal_load_vector(self._indicator(p))
+                                           for p in self.part_names])
+        self.fits = [self._fit_pairs(f) for f in section.fits]
+        self.dirichlet = self._dirichlet()
+
+    # --- loads -----------------------------------------------------------------------------
+    def _indicator(self, part: str) -> np.ndarray:
+        ind = (self.part_of == part).astype(float)
+        return np.repeat(ind[:, None], self.basis.X.shape[1], 1)
+
+    def thermal_load_vector(self, theta_q: np.ndarray) -> np.ndarray:
+        """Load vector of a thermal strain field theta at the quadrature points (nel, nq)."""
+        return asm(thermal_load, self.basis, lam=self.lam_q, mu=self.mu_q, theta=theta_q)
+
+    def theta_by_part(self, T_C: dict[str, float], T_ref_C: float) -> np.ndarray:
+        """Thermal strain per part (in part order) for uniform part temperatures."""
+        return np.array([self.materials[p].thermal_strain(T_C[p], T_ref_C)
+                         for p in self.part_names])
+
+    # --- constraints -----------------------------------------------------------------------
+    def _fit_pairs(self, f) -> FitPairs:
+        x = self.sbasis.doflocs
+        on = np.flatnonzero((np.abs(x[0] - f.r_mm) < TOL_MM * (1 + f.r_mm))
+                            & (x[1] >= f.z0_mm - TOL_MM) & (x[1] <= f.z1_mm + TOL_MM))
+        el_dofs = self.sbasis.element_dofs
+        inner = np.intersect1d(on, el_dofs[:, self.part_of == f.inner_part])
+        outer = np.intersect1d(on, el_dofs[:, self.part_of == f.outer_part])
+        inner = inner[np.argsort(x[1, inner])]
+        outer = outer[np.argsort(x[1, outer])]
+        if inner.size != outer.size or inner.size < 3 or not np.allclose(x[:, inner], x[:, outer]):
+            raise RuntimeError(f"fit '{f.name}': {inner.size} inner and {outer.size} outer nodes do "
+                               "not pair up (non-conforming interface)")
+        return FitPairs(f.name, f.key, f.r_mm, f.z1_mm - f.z0_mm, x[1, inner],
+                        2 * inner, 2 * outer, 2 * inner + 1, 2 * outer + 1)
+
+    def _dirichlet(self) -> np.ndarray:
+        x = self.sbasis.doflocs
+        fixed = [2 * np.flatnonzero(np.abs(x[0]) < TOL_MM)]          # u_r = 0 on the axis
+        for z in self.section.rollers_z_mm:
+            fixed.append(2 * np.flatnonzero(np.abs(x[1] - z) < TOL_MM * (1 + abs(z))) + 1)
+        fixed_z = np.concatenate(fixed[1:]) if len(fixed) > 1 else np.array([], int)
+        # one axial reference per free-floating body (bonded fits join bodies)
+        n = self.sbasis.N
+        comp = _components(self.sbasis.element_dofs, n)
+        if self.contact == "bonded":
+            links = np.concatenate([[fp.master_r // 2, fp.slave_r // 2] for fp in self.fits], 1) \
+                if self.fits else np.zeros((2, 0), int)
+            g = sp.csr_matrix((np.ones(links.shape[1]), (comp[links[0]], comp[links[1]])),
+                              shape=(comp.max() + 1,) * 2)
+            comp = sp.csgraph.connected_components(g + g.T + sp.eye(comp.max() + 1),
+                                                   directed=False)[1][comp]
+        slaves = set(np.concatenate([fp.slave_z // 2 for fp in self.fits]).tolist()) \
+            if self.fits else set()
+        has_z = set(comp[fixed_z // 2].tolist())
+        for c in np.unique(comp):
+            if c in has_z:
+                continue
+            nodes = [i for i in np.flatnonzero(comp == c) if i not in slaves]
+            i = min(nodes, key=lambda k: (x[1, k], x[0, k]))
+            fixed.append(np.array([2 * i + 1]))
+        return np.unique(np.concatenate(fixed))
+
+    # --- probes ----------------------------------------------------------------------------
+    def probe_matrix(self, pts_rz: np.ndarray) -> sp.csr_matrix:
+        """(2 n_pts, ndofs) matrix mapping the displacement DOFs to (u_r, u_z) at the points,
+        interleaved [u_r(p0), u_z(p0), u_r(p1), ...]."""
+        S = sp.csr_matrix(self.sbasis.probes(np.asarray(pts_rz, float)))
+        rows, cols = S.nonzero()
+        vals = np.asarray(S[rows, cols]).ravel()
+        R = sp.csr_matrix((vals, (2 * rows, 2 * cols)), shape=(2 * S.shape[0], self.ndofs))
+        Z = sp.csr_matrix((vals, (2 * rows + 1, 2 * cols + 1)), shape=(2 * S.shape[0], self.ndofs))
+        return (R + Z).tocsr()
