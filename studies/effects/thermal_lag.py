@@ -1,0 +1,94 @@
+"""thermal_lag: part temperatures follow the ambient (chamber) temperature with a first-order lag.
+
+Physics added: the baseline puts every part without its own temperature column at `T_ambient_C`
+(no lag). With this effect each such part obeys
+
+    tau_s dT/dt = T_ambient(t) - T(t),
+
+one lumped thermal time constant for the whole assembly (Biot number << 1 for thin rings and a
+hollow shaft in a chamber). `T_ambient_C` is taken piecewise linear between the samples and the
+equation is integrated exactly over each interval (no time-step error):
+
+    s_k = (u_{k+1} - u_k) / h_k,   a_k = exp(-h_k / tau_s)
+    T_{k+1} = u_{k+1} - tau_s s_k + a_k (T_k - u_k + tau_s s_k),
+
+starting in equilibrium at the first sample (T_0 = u_0). Parts with their own measured temperature
+(an array different from `T_ambient_C`) are left as they are. Apply it before `radial_gradient`
+(`apply_effects` does).
+
+Parameters:
+    tau_s  thermal time constant, s, bounds [0, 1e5], off 0 (no lag)
+
+Needs: `time_s` (strictly increasing) and `T_ambient_C`.
+
+Source / rationale: lumped-capacitance heating of a body (Incropera, Fundamentals of Heat and Mass
+Transfer, ch. 5); seed 003's housing temperature rises quickly and levels off (a first-order shape);
+thermal-vacuum tests of mechanisms show time constants from minutes to hours. 1e5 s (28 h) bounds
+any laboratory assembly.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from . import Effect
+
+
+def lag_response(t_s: np.ndarray, u: np.ndarray, tau_s: float) -> np.ndarray:
+    """Exact response of tau dy/dt = u - y to u piecewise linear between samples, y(t0) = u(t0)."""
+    t = np.asarray(t_s, float)
+    u = np.asarray(u, float)
+    y = np.empty_like(u)
+    if u.size == 0:
+        return y
+    if tau_s <= 0.0:
+        return u.copy()
+    h = np.diff(t)
+    s = np.diff(u) / h
+    a = np.exp(-h / tau_s)
+    ts = tau_s * s
+    c1 = u[1:] - ts                 # particular solution at the end of each interval
+    c2 = ts - u[:-1]                # T_k - u_k + tau s_k = T_k + c2
+    yk = u[0]
+    y[0] = yk
+    for k in range(h.size):         # linear recursion with varying coefficients
+        yk = c1[k] + a[k] * (yk + c2[k])
+        y[k + 1] = yk
+    return y
+
+
+class ThermalLag(Effect):
+    name = "thermal_lag"
+    parameters = ("tau_s",)
+    units = {"tau_s": "s"}
+    bounds = {"tau_s": (0.0, 1e5)}
+    off = {"tau_s": 0.0}
+    requires = ("time_s", "T_ambient_C")
+    scale = {"tau_s": 60.0}
+    hint = ("vary the rate of temperature change (a faster ramp or a step with a dwell: a lag "
+            "grows with the rate and decays during the dwell) or measure a part temperature")
+
+    def _apply(self, inputs, p, T_ref_C):
+        amb = np.asarray(inputs.T_ambient_C, float)
+        lagged = lag_response(inputs.time_s, amb, p["tau_s"])
+        T = dict(inputs.T_C)
+        for part, arr in T.items():
+            if np.array_equal(np.asarray(arr, float), amb):   # follows the ambient
+                T[part] = lagged.copy()
+        return inputs.copy(T_C=T)
+
+    def steps(self, conditions):
+        t = np.asarray(conditions.get("time_s", [0.0, 600.0]), float)
+        dt = np.diff(t)
+        dt = dt[dt > 0]
+        return {"tau_s": 0.1 * float(np.median(dt)) if dt.size else 60.0}
+
+    def starts(self, conditions, T_ref_C):
+        t = np.asarray(conditions.get("time_s", []), float)
+        if t.size < 3:
+            return []
+        dt = float(np.median(np.diff(t)))
+        span = float(t[-1] - t[0])
+        lo, hi = max(0.3 * dt, 1e-3), min(0.5 * span, self.bounds["tau_s"][1])
+        if hi <= lo:
+            return []
+        return [{"tau_s": float(v)} for v in np.geomspace(lo, hi, 12)]
