@@ -30,8 +30,7 @@ def unzip(points: np.ndarray, tris: np.ndarray, part_of: np.ndarray, section: Se
     Returns new (points, tris). Pure function."""
     points, tris = points.copy(), tris.copy()
     for s in section.splits:
-        on = np.flatnonzero((np.abs(points[0] - s.r_mm) < TOL_MM * (1 + s.r_mm))
-                            & (points[1] >= s.z0_mm - TOL_MM) & (points[1] <= s.z1_mm + TOL_MM))
+        on = _on_line(points, s)
         outer_el = np.isin(part_of, s.outer_parts)
         inner_el = np.isin(part_of, s.inner_parts)
         used_in = np.unique(tris[:, inner_el])
@@ -45,6 +44,29 @@ def unzip(points: np.ndarray, tris: np.ndarray, part_of: np.ndarray, section: Se
         remap[shared] = new_index
         tris[:, outer_el] = remap[tris[:, outer_el]]
     return points, tris
+
+
+def _on_line(x: np.ndarray, s) -> np.ndarray:
+    """Indices of the points x (2, n) on a split line."""
+    i, j = (0, 1) if s.axis == "r" else (1, 0)
+    return np.flatnonzero((np.abs(x[i] - s.at_mm) < TOL_MM * (1 + abs(s.at_mm)))
+                          & (x[j] >= s.lo_mm - TOL_MM) & (x[j] <= s.hi_mm + TOL_MM))
+
+
+def _pairs_on(x: np.ndarray, on: np.ndarray, el_dofs: np.ndarray, part_of: np.ndarray,
+              side_a, side_b) -> tuple[np.ndarray, np.ndarray]:
+    """Scalar DOFs on a line of side-a parts and side-b parts that sit at the same point."""
+    a = np.intersect1d(on, el_dofs[:, np.isin(part_of, side_a)])
+    b = np.intersect1d(on, el_dofs[:, np.isin(part_of, side_b)])
+    a, b = np.setdiff1d(a, b), np.setdiff1d(b, a)     # shared (still tied) nodes are no pairs
+    ka = {tuple(np.round(x[:, i], 9)): i for i in a}
+    pa, pb = [], []
+    for i in b:
+        k = ka.get(tuple(np.round(x[:, i], 9)))
+        if k is not None:
+            pa.append(k)
+            pb.append(i)
+    return np.array(pa, int), np.array(pb, int)
 
 
 @dataclass
@@ -96,6 +118,7 @@ class StackModel:
         self.unit_loads = np.column_stack([self.thermal_load_vector(self._indicator(p))
                                            for p in self.part_names])
         self.fits = [self._fit_pairs(f) for f in section.fits]
+        self.tie_master, self.tie_slave = self._face_ties()
         self.dirichlet = self._dirichlet()
 
     # --- loads -----------------------------------------------------------------------------
@@ -128,6 +151,20 @@ class StackModel:
         return FitPairs(f.name, f.key, f.r_mm, f.z1_mm - f.z0_mm, x[1, inner],
                         2 * inner, 2 * outer, 2 * inner + 1, 2 * outer + 1)
 
+    def _face_ties(self) -> tuple[np.ndarray, np.ndarray]:
+        """u_z DOF pairs (master, slave) across the clamped faces (axis-"z" splits)."""
+        x, el = self.sbasis.doflocs, self.sbasis.element_dofs
+        ms, ss = [], []
+        for s in self.section.splits:
+            if s.axis != "z":
+                continue
+            a, b = _pairs_on(x, _on_line(x, s), el, self.part_of, s.inner_parts, s.outer_parts)
+            ms.append(2 * a + 1)
+            ss.append(2 * b + 1)
+        if not ms:
+            return np.zeros(0, int), np.zeros(0, int)
+        return np.concatenate(ms), np.concatenate(ss)
+
     def _dirichlet(self) -> np.ndarray:
         x = self.sbasis.doflocs
         fixed = [2 * np.flatnonzero(np.abs(x[0]) < TOL_MM)]          # u_r = 0 on the axis
@@ -137,15 +174,18 @@ class StackModel:
         # one axial reference per free-floating body (bonded fits join bodies)
         n = self.sbasis.N
         comp = _components(self.sbasis.element_dofs, n)
+        links = [np.vstack([self.tie_master // 2, self.tie_slave // 2])]
         if self.contact == "bonded":
-            links = np.concatenate([[fp.master_r // 2, fp.slave_r // 2] for fp in self.fits], 1) \
-                if self.fits else np.zeros((2, 0), int)
+            links += [np.vstack([fp.master_r // 2, fp.slave_r // 2]) for fp in self.fits]
+        links = np.hstack(links)
+        if links.size:
+            nc = comp.max() + 1
             g = sp.csr_matrix((np.ones(links.shape[1]), (comp[links[0]], comp[links[1]])),
-                              shape=(comp.max() + 1,) * 2)
-            comp = sp.csgraph.connected_components(g + g.T + sp.eye(comp.max() + 1),
-                                                   directed=False)[1][comp]
-        slaves = set(np.concatenate([fp.slave_z // 2 for fp in self.fits]).tolist()) \
-            if self.fits else set()
+                              shape=(nc, nc))
+            comp = sp.csgraph.connected_components(g + g.T + sp.eye(nc), directed=False)[1][comp]
+        slaves = set((self.tie_slave // 2).tolist())
+        if self.contact == "bonded":
+            slaves |= set(np.concatenate([fp.slave_z // 2 for fp in self.fits]).tolist())
         has_z = set(comp[fixed_z // 2].tolist())
         for c in np.unique(comp):
             if c in has_z:

@@ -80,8 +80,9 @@ def build_mesh(section: Section, refresh: bool = False) -> Path:
             cs = curves_on(f.r_mm, f.z0_mm, f.r_mm, f.z1_mm)
             gmsh.model.setPhysicalName(1, gmsh.model.addPhysicalGroup(1, cs), f.name)
         for s in section.splits:
-            cs = curves_on(s.r_mm, s.z0_mm, s.r_mm, s.z1_mm)
-            gmsh.model.setPhysicalName(1, gmsh.model.addPhysicalGroup(1, cs), s.name)
+            if s.axis == "z":   # clamped faces; seat/bore lines are covered by the fits
+                cs = curves_on(s.lo_mm, s.at_mm, s.hi_mm, s.at_mm)
+                gmsh.model.setPhysicalName(1, gmsh.model.addPhysicalGroup(1, cs), s.name)
 
         gmsh.option.setNumber("Mesh.MeshSizeMax", section.size_mm)
         gmsh.option.setNumber("Mesh.MeshSizeMin", section.fit_size_mm)

@@ -28,12 +28,18 @@ class Rect:
 
 @dataclass(frozen=True)
 class Split:
-    """A radial line r = r_mm, z0..z1 where the `outer_parts` are detached from the `inner_parts`.
-    Node pairs along it are coupled only where a `Fit` says so; elsewhere they are free."""
+    """A line along which the `outer_parts` get their own nodes, detached from the `inner_parts`.
+
+    axis "r": the line r = at_mm, z in [lo_mm, hi_mm] (a seat or bore); node pairs are coupled only
+    where a `Fit` says so, elsewhere they are free (a spacer bore sliding on the shaft).
+    axis "z": the line z = at_mm, r in [lo_mm, hi_mm] (a clamped face: ring/spacer/shoulder/nut/
+    cover); u_z is tied across it (the clamp holds the faces together) and u_r is free (the faces
+    slide radially without friction, as a ring that was pressed on and then clamped does)."""
     name: str
-    r_mm: float
-    z0_mm: float
-    z1_mm: float
+    axis: str
+    at_mm: float
+    lo_mm: float
+    hi_mm: float
     inner_parts: tuple[str, ...]
     outer_parts: tuple[str, ...]
 
@@ -94,6 +100,7 @@ def section_from_assembly(a: Assembly) -> Section:
     """Rectangles of the rotor (shaft, nut, inner rings, inner spacer) and the stator (housing,
     cover, outer rings, outer spacer) from an assembly config. Shoulder faces at z = 0."""
     s, h, b = a.shaft, a.housing, a.bearing
+    B = b.width_mm
     z = stack_positions(a)
     r_seat, r_bore = s.seat_diameter_mm / 2, s.bore_diameter_mm / 2
     r_hb, r_ho = h.bore_diameter_mm / 2, h.outer_diameter_mm / 2
@@ -118,11 +125,29 @@ def section_from_assembly(a: Assembly) -> Section:
         Rect("outer_ring_B", r_ori, r_hb, *z["outer_ring_B"], rings),
         Rect("cover", a.cover.diameter_mm / 2, r_ho, *z["cover"], a.cover.material),
     ]
+    r_isp, r_osp = a.inner_spacer.diameter_mm / 2, a.outer_spacer.diameter_mm / 2
+    zc = z["inner_ring_B"][0]
     splits = (
-        Split("shaft_seat", r_seat, 0.0, z["inner_ring_B"][1], ("shaft", "nut"),
+        Split("shaft_seat", "r", r_seat, 0.0, z["inner_ring_B"][1], ("shaft", "nut"),
               ("inner_ring_A", "inner_spacer", "inner_ring_B")),
-        Split("housing_bore", r_hb, 0.0, z_house_end, ("outer_ring_A", "outer_spacer",
-                                                       "outer_ring_B"), ("housing", "cover")),
+        Split("housing_bore", "r", r_hb, 0.0, z_house_end, ("outer_ring_A", "outer_spacer",
+                                                            "outer_ring_B"), ("housing", "cover")),
+        Split("face_shaft_shoulder", "z", 0.0, r_seat, s.shoulder_diameter_mm / 2, ("shaft",),
+              ("inner_ring_A",)),
+        Split("face_inner_A_spacer", "z", B, r_seat, min(r_iro, r_isp), ("inner_ring_A",),
+              ("inner_spacer",)),
+        Split("face_inner_spacer_B", "z", zc, r_seat, min(r_iro, r_isp), ("inner_spacer",),
+              ("inner_ring_B",)),
+        Split("face_inner_B_nut", "z", z["nut"][0], r_seat, min(r_iro, a.nut.diameter_mm / 2),
+              ("inner_ring_B",), ("nut",)),
+        Split("face_housing_shoulder", "z", 0.0, h.shoulder_diameter_mm / 2, r_hb, ("housing",),
+              ("outer_ring_A",)),
+        Split("face_outer_A_spacer", "z", B, max(r_ori, r_osp), r_hb, ("outer_ring_A",),
+              ("outer_spacer",)),
+        Split("face_outer_spacer_B", "z", z["outer_ring_B"][0], max(r_ori, r_osp), r_hb,
+              ("outer_spacer",), ("outer_ring_B",)),
+        Split("face_outer_B_cover", "z", z["cover"][0], max(r_ori, a.cover.diameter_mm / 2), r_hb,
+              ("outer_ring_B",), ("cover",)),
     )
     fits = tuple(
         [Fit(f"fit_inner_{j}", "shaft", f"inner_ring_{j}", r_seat, *z[f"inner_ring_{j}"], "inner")
@@ -153,7 +178,7 @@ def two_cylinder_section(r_inner_mm: float, r_fit_mm: float, r_outer_mm: float,
     fsize = fit_size_mm if fit_size_mm is not None else size / 2
     rects = (Rect("shaft", r_inner_mm, r_fit_mm, 0.0, L, inner_material),
              Rect("inner_ring_A", r_fit_mm, r_outer_mm, 0.0, Lr, outer_material))
-    splits = (Split("fit", r_fit_mm, 0.0, Lr, ("shaft",), ("inner_ring_A",)),)
+    splits = (Split("fit", "r", r_fit_mm, 0.0, Lr, ("shaft",), ("inner_ring_A",)),)
     fits = (Fit("fit", "shaft", "inner_ring_A", r_fit_mm, 0.0, Lr, "inner"),)
     rollers = (0.0, L) if plane_strain else ()
     return Section(rects, splits, fits, rollers, ((r_fit_mm, 0.0, r_fit_mm, Lr),),
