@@ -205,3 +205,11 @@ class StackModel:
         R = sp.csr_matrix((vals, (2 * rows, 2 * cols)), shape=(2 * S.shape[0], self.ndofs))
         Z = sp.csr_matrix((vals, (2 * rows + 1, 2 * cols + 1)), shape=(2 * S.shape[0], self.ndofs))
         return (R + Z).tocsr()
+
+
+def build_model(section: Section, contact: str = "frictionless",
+                materials: dict[str, Material] | None = None) -> StackModel:
+    """Mesh the section (cached) and assemble its model."""
+    from meshes.build import build_mesh, read_section_mesh
+
+    return StackModel(section, read_section_mesh(build_mesh(section)), contact, materials)

@@ -1,0 +1,97 @@
+"""Field export: VTU files (ParaView) and off-screen pyvista images, one PNG per field.
+
+The r-z section is written as a flat mesh in the x-y plane (x = r, y = z, mm). Point data:
+displacement (mm) and temperature (C); cell data: stresses (MPa) and the part index.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from fem.model import StackModel
+
+
+def vertex_values(model: StackModel, u: np.ndarray) -> np.ndarray:
+    """(n_vertices, 2) displacement at the mesh vertices (P2 nodal DOFs)."""
+    nd = model.basis.nodal_dofs
+    return np.column_stack([u[nd[0]], u[nd[1]]])
+
+
+def write_vtu(path: Path, model: StackModel, u: np.ndarray, cell_data: dict[str, np.ndarray],
+              T_vertex_C: np.ndarray | None = None) -> Path:
+    """Write the deformed-state fields of one solution to a .vtu file (meshio)."""
+    import meshio
+
+    pts = np.column_stack([model.mesh.p.T, np.zeros(model.mesh.p.shape[1])])
+    disp = vertex_values(model, u)
+    point_data = {"displacement_mm": np.column_stack([disp, np.zeros(len(disp))])}
+    if T_vertex_C is not None:
+        point_data["temperature_C"] = T_vertex_C
+    parts = {p: i for i, p in enumerate(model.part_names)}
+    cells = {k: [np.asarray(v, float)] for k, v in cell_data.items()}
+    cells["part"] = [np.array([parts[p] for p in model.part_of], float)]
+    meshio.write(str(path), meshio.Mesh(pts, [("triangle", model.mesh.t.T)],
+                                        point_data=point_data, cell_data=cells))
+    return path
+
+
+def _grid(model: StackModel, pts_xy: np.ndarray):
+    import pyvista as pv
+
+    t = model.mesh.t.T
+    cells = np.hstack([np.full((t.shape[0], 1), 3), t]).ravel()
+    celltypes = np.full(t.shape[0], pv.CellType.TRIANGLE, dtype=np.uint8)
+    return pv.UnstructuredGrid(cells, celltypes, np.column_stack([pts_xy, np.zeros(len(pts_xy))]))
+
+
+def render_fields(out_dir: Path, stem: str, model: StackModel, u: np.ndarray,
+                  cell_data: dict[str, np.ndarray], title: str,
+                  T_vertex_C: np.ndarray | None = None, exaggeration: float | None = None) -> list[Path]:
+    """One PNG per field: temperature (if given), displacement magnitude on the deformed shape
+    (the exaggeration factor is printed in the title), and every cell-data stress field."""
+    import pyvista as pv
+
+    pv.OFF_SCREEN = True
+    try:
+        pv.vtk_verbosity("off")   # no "bad X server connection" chatter when rendering headless
+    except AttributeError:
+        pass
+    out_dir.mkdir(parents=True, exist_ok=True)
+    xy = model.mesh.p.T
+    disp = vertex_values(model, u)
+    umax = float(np.abs(disp).max()) or 1.0
+    extent = float(np.ptp(xy, axis=0).max())
+    if exaggeration is None:
+        exaggeration = float(10 ** np.floor(np.log10(0.05 * extent / umax)))
+    fields = []
+    if T_vertex_C is not None:
+        fields.append(("temperature_C", "point", T_vertex_C, "temperature (C)", xy))
+    fields.append(("displacement_um", "point", 1e3 * np.linalg.norm(disp, axis=1),
+                   f"displacement magnitude (um), shape x{exaggeration:g}", xy + exaggeration * disp))
+    for k, v in cell_data.items():
+        fields.append((k, "cell", v, k.replace("_MPa", " (MPa)"), xy))
+    paths = []
+    for name, kind, values, label, pts in fields:
+        grid = _grid(model, pts)
+        if kind == "point":
+            grid.point_data[name] = values
+        else:
+            grid.cell_data[name] = values
+        p = pv.Plotter(off_screen=True, window_size=(1000, 800))
+        p.add_mesh(grid, scalars=name, cmap="viridis", show_edges=False,
+                   scalar_bar_args={"title": label, "vertical": True, "fmt": "%.3g",
+                                     "position_x": 0.78, "position_y": 0.15, "width": 0.06,
+                                     "height": 0.7, "title_font_size": 16,
+                                     "label_font_size": 14})
+        outline = _grid(model, pts).extract_feature_edges(boundary_edges=True, feature_edges=False,
+                                                          manifold_edges=False)
+        p.add_mesh(outline, color="black", line_width=1)
+        p.add_text(f"{title}: {label}", font_size=10)
+        p.view_xy()
+        p.add_axes(xlabel="r", ylabel="z", zlabel="")
+        path = out_dir / f"{stem}_{name}.png"
+        p.screenshot(str(path))
+        p.close()
+        paths.append(path)
+    return paths

@@ -1,0 +1,100 @@
+"""Post-processing: fit pressures from contact forces, pressure distributions, groove-centre
+shifts, element stresses.
+
+Fit pressures are taken from the contact forces (the reactions of the constraints), never from
+extrapolated stresses: the mean pressure of a fit of radius R and length L is
+
+    p_mean = sum_i lambda_i / (2 pi R L)      (lambda_i: whole-ring nodal contact forces, N)
+
+which converges much faster than an interface stress average (DESIGN.md section 7).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from fem.forms import stress_components, von_mises
+from fem.model import StackModel
+
+
+@dataclass
+class FitResult:
+    name: str
+    mean_pressure_MPa: float
+    total_force_N: float
+    status: str                    # "closed", "open" or "partial"
+    z_mm: np.ndarray               # interface node positions
+    pressure_MPa: np.ndarray       # pressure distribution at those nodes
+
+
+def fit_mean_pressures(model: StackModel, fit_of_pair: np.ndarray, force_N: np.ndarray) -> np.ndarray:
+    """Mean fit pressure (MPa) per fit for states force_N (n_states, n_pairs)."""
+    F = np.atleast_2d(force_N)
+    out = np.empty((F.shape[0], len(model.fits)))
+    for k, f in enumerate(model.fits):
+        out[:, k] = F[:, fit_of_pair == k].sum(axis=1) / (2 * np.pi * f.r_mm * f.length_mm)
+    return out
+
+
+def pressure_distribution(z_mm: np.ndarray, nodal_force_N: np.ndarray, r_mm: float) -> np.ndarray:
+    """Contact pressure p(z) (MPa) at the interface nodes from consistent nodal forces.
+
+    The nodes of a P2 interface alternate vertex, mid-side, vertex along z; the nodal forces are
+    F = M p with the line mass matrix M of the P2 trace (weight 2 pi R), element matrix
+    (2 pi R h / 30) [[4, 2, -1], [2, 16, 2], [-1, 2, 4]] in the order (z0, z_mid, z1)
+    (Zienkiewicz & Taylor Vol. 1, quadratic line element mass matrix)."""
+    n = z_mm.size
+    M = np.zeros((n, n))
+    Me = np.array([[4.0, 2.0, -1.0], [2.0, 16.0, 2.0], [-1.0, 2.0, 4.0]]) / 30.0
+    for e in range(0, n - 2, 2):
+        idx = [e, e + 1, e + 2]
+        M[np.ix_(idx, idx)] += Me * (z_mm[e + 2] - z_mm[e]) * 2 * np.pi * r_mm
+    return np.linalg.solve(M, nodal_force_N)
+
+
+def fit_results(model: StackModel, fit_of_pair: np.ndarray, force_N: np.ndarray) -> list[FitResult]:
+    """Per-fit results of one state: mean pressure, status and pressure distribution."""
+    out = []
+    for k, f in enumerate(model.fits):
+        lam = force_N[fit_of_pair == k]
+        closed = lam > 0
+        status = "closed" if closed.all() else "open" if not closed.any() else "partial"
+        total = lam.sum()
+        out.append(FitResult(f.name, total / (2 * np.pi * f.r_mm * f.length_mm), total, status,
+                             f.z_mm, pressure_distribution(f.z_mm, lam, f.r_mm)))
+    return out
+
+
+def groove_centre_shift(u_point_mm: np.ndarray, theta_ring: np.ndarray,
+                        offset_rz_mm: np.ndarray) -> np.ndarray:
+    """Displacement of a groove curvature centre that lies at `offset_rz_mm` from a raceway point
+    P of the ring: u_c = u(P) + theta_ring * (X_c - P).
+
+    The centre is not a material point of the section (it lies in the ball space); it moves with
+    the raceway as a rigid body plus the ring's own uniform thermal strain of the groove radius
+    (the groove radius f*Dw grows with the ring material, the fit strain over the short distance
+    f*Dw is neglected, O(strain * Dw) ~ 1e-3 um). Units mm."""
+    return np.asarray(u_point_mm) + np.asarray(theta_ring)[..., None] * np.asarray(offset_rz_mm)
+
+
+def element_stresses(model: StackModel, u: np.ndarray, theta_e: np.ndarray) -> dict[str, np.ndarray]:
+    """Element-mean stresses (MPa): sigma_rr, sigma_zz, sigma_tt (hoop), tau_rz, von_mises.
+    theta_e: thermal strain per element (uniform per part)."""
+    b = model.basis
+    uf = b.interpolate(u)
+    r = b.mapping.F(b.quadrature[0])[0]
+    th = np.repeat(theta_e[:, None], r.shape[1], 1)
+    srr, szz, stt, trz = stress_components(uf.grad, uf.value, r, model.lam_q, model.mu_q, th)
+    w = b.dx / b.dx.sum(axis=1, keepdims=True)
+    avg = {k: (v * w).sum(axis=1) for k, v in
+           (("sigma_rr_MPa", srr), ("sigma_zz_MPa", szz), ("sigma_hoop_MPa", stt),
+            ("tau_rz_MPa", trz))}
+    avg["von_mises_MPa"] = (von_mises(srr, szz, stt, trz) * w).sum(axis=1)
+    return avg
+
+
+def theta_per_element(model: StackModel, theta_by_part: np.ndarray) -> np.ndarray:
+    """Expand thermal strain per part (part order of the model) to the elements."""
+    idx = {p: i for i, p in enumerate(model.part_names)}
+    return np.asarray(theta_by_part)[[idx[p] for p in model.part_of]]
