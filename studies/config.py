@@ -329,3 +329,13 @@ def stack_positions(a: Assembly) -> dict[str, tuple[float, float]]:
             "nut": (zB[1], zB[1] + a.nut.width_mm),
             "outer_ring_A": (0.0, B), "outer_spacer": oS, "outer_ring_B": oB,
             "cover": (oB[1], oB[1] + a.cover.width_mm)}
+
+
+CONFIG_DIR = Path(__file__).parent / "configs"
+SHIPPED = {"seed000": "seed000_71807C_TC4.toml", "seed001": "seed001_flywheel_hybrid.toml",
+           "seed003": "seed003_25TAC62B.toml"}
+
+
+def load_shipped(name: str) -> Assembly:
+    """One of the shipped configurations by short name (seed000, seed001, seed003)."""
+    return load_assembly(CONFIG_DIR / SHIPPED[name])
