@@ -27,6 +27,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+from scipy.optimize import brentq
 
 from analytic.lubrication import (csv_sources, fit_vogel, fit_walther, lubricant_library,
                                   walther_transform)
@@ -62,6 +63,7 @@ class HeldOut:
     extended_basis: str
     lsq_walther_mm2_s: float
     vogel_mm2_s: float
+    equivalent_slope_factor: float   # slope factor about 40 C that makes the two-point law exact here
 
     def err(self, v: float) -> float:
         return 100.0 * (v / self.measured_mm2_s - 1.0)
@@ -101,8 +103,10 @@ def leave_one_out() -> list[HeldOut]:
                 continue
             base_name = _two_point_basis(lib, name)
             b = lib[base_name]
-            two = fit_walther([40.0, 100.0], [dict((t, v) for t, v, _ in b.viscosity_points)[t]
-                                              for t in (40.0, 100.0)]).nu_mm2_s(T)
+            two_law = fit_walther([40.0, 100.0], [dict((t, v) for t, v, _ in b.viscosity_points)[t]
+                                                  for t in (40.0, 100.0)])
+            two = two_law.nu_mm2_s(T)
+            s_eq = brentq(lambda s: float(two_law.nu_mm2_s(T, s)) - nu_meas, 0.2, 5.0)
             pool = _points(lib, name, with_sister=True)
             pool.pop(T, None)                      # the held-out point is never used
             # a sister point at the held-out temperature would be the same measurement in disguise
@@ -121,7 +125,7 @@ def leave_one_out() -> list[HeldOut]:
                 baseline_basis=f"{SHORT[base_name]} 40/100 C",
                 two_point_mm2_s=float(two), extended_mm2_s=float(ext),
                 extended_basis=f"{pool[t1][1]} + {pool[t2][1]}",
-                lsq_walther_mm2_s=float(lsq), vogel_mm2_s=vog))
+                lsq_walther_mm2_s=float(lsq), vogel_mm2_s=vog, equivalent_slope_factor=float(s_eq)))
     return out
 
 
@@ -153,14 +157,16 @@ def run(out_dir: Path) -> None:
         w.writerow(["lubricant", "family", "temperature_C", "measured_mm2_s", "source",
                     "two_point_basis", "two_point_mm2_s", "two_point_error_pct",
                     "extended_basis", "extended_mm2_s", "extended_error_pct",
-                    "lsq_walther_mm2_s", "lsq_walther_error_pct", "vogel_mm2_s", "vogel_error_pct"])
+                    "lsq_walther_mm2_s", "lsq_walther_error_pct", "vogel_mm2_s", "vogel_error_pct",
+                    "equivalent_slope_factor"])
         for r in rows:
             w.writerow([r.lubricant, r.family, f"{r.temperature_C:g}", f"{r.measured_mm2_s:g}",
                         r.source, r.baseline_basis, f"{r.two_point_mm2_s:.6g}",
                         f"{r.err(r.two_point_mm2_s):.3f}", r.extended_basis,
                         f"{r.extended_mm2_s:.6g}", f"{r.err(r.extended_mm2_s):.3f}",
                         f"{r.lsq_walther_mm2_s:.6g}", f"{r.err(r.lsq_walther_mm2_s):.3f}",
-                        f"{r.vogel_mm2_s:.6g}", f"{r.err(r.vogel_mm2_s):.3f}"])
+                        f"{r.vogel_mm2_s:.6g}", f"{r.err(r.vogel_mm2_s):.3f}",
+                        f"{r.equivalent_slope_factor:.4f}"])
     with open(out_dir / "predictions.csv", "w", newline="") as fh:
         fh.write("# Every kinematic-viscosity point of the study oils vs the two-point (40/100 C) "
                  "Walther law of the oil (or of its sister, for Brayco 815Z).\n")
@@ -255,6 +261,12 @@ def run(out_dir: Path) -> None:
         f"- Brayco 815Z at −54 C has no 40/100 C data in the CSV; with the Fomblin Z25 line as an "
         f"analog the law gives {br.two_point_mm2_s:.0f} vs {br.measured_mm2_s:.0f} mm²/s, "
         f"{br.err(br.two_point_mm2_s):+.0f} % — the opposite sign.",
+        "- Expressed as the `viscosity_temperature` effect (Walther slope scaled about 40 C), the "
+        "slope factor that would make the two-point law exact at each held-out point is: "
+        + ", ".join(f"{SHORT[r.lubricant]} {r.temperature_C:g} C {r.equivalent_slope_factor:.3f}"
+                    for r in rows)
+        + ". The MAC oil needs a factor below 1 (it thickens more slowly when cold than its "
+        "40/100 C line says); the 815Z point, read against the Z25 line, needs one above 1.",
         "", "## Cause", "",
         "The Walther law is a straight line in (log T, log log(ν+0.7)); two points fix it over "
         "60 K and it is then extrapolated 80–95 K below the lower point. The real curves are not "
