@@ -22,8 +22,10 @@ Sources (numbers transcribed, typical handbook values at room temperature):
   [MIL-TC4]   MIL-HDBK-5J / ASM Ti-6Al-4V annealed: E 113.8 GPa, nu 0.342, rho 4430,
               k 6.7 W/mK, cp 526; CTE 8.6e-6/K (20-100 C) in ASM, 9.0e-6/K in the Chinese
               handbook for TC4 (20-100 C); we take 9.0e-6 so that 9Cr18-TC4 = 1.5e-6 as in seed 000.
-              Instantaneous CTE rises with temperature (about 8.0e-6 at -60 C to 9.4e-6 at 100 C
-              in NIST cryogenic data): dalpha 8e-9 /K^2 (assumption fitted to that span).
+              The instantaneous CTE rises with temperature (NIST cryogenic data suggest about
+              8e-9 /K^2 over -60..100 C); the baseline keeps it constant, as seed 000 does (its
+              fit rates assume a constant CTE difference), and the `cte_nonlinearity` effect
+              switches the slope on.
   [Si3N4]     Harris & Kotzalas Vol. 1 (hybrid bearings), Cerbec NBD200 data: E 310 GPa,
               nu 0.27, CTE 3.2e-6/K, rho 3200, k 30, cp 680.
   [Al2024]    ASM, 2024-T3 (Chinese 2A12): E 73.1 GPa, nu 0.33, CTE 23.2e-6/K (20-100 C),
@@ -81,8 +83,7 @@ MATERIALS: dict[str, Material] = {
     "M50": Material("M50", E_MPa=203e3, nu=0.28, alpha_per_K=11.3e-6, density_kg_m3=7830.0,
                     conductivity_W_mK=25.8, specific_heat_J_kgK=460.0, source="M50"),
     "TC4": Material("TC4", E_MPa=113.8e3, nu=0.342, alpha_per_K=9.0e-6, density_kg_m3=4430.0,
-                    conductivity_W_mK=6.7, specific_heat_J_kgK=526.0, dalpha_per_K2=8e-9,
-                    source="MIL-TC4"),
+                    conductivity_W_mK=6.7, specific_heat_J_kgK=526.0, source="MIL-TC4"),
     "Si3N4": Material("Si3N4", E_MPa=310e3, nu=0.27, alpha_per_K=3.2e-6, density_kg_m3=3200.0,
                       conductivity_W_mK=30.0, specific_heat_J_kgK=680.0, source="Si3N4"),
     "2A12": Material("2A12", E_MPa=73.1e3, nu=0.33, alpha_per_K=23.2e-6, density_kg_m3=2780.0,

@@ -30,7 +30,7 @@ def lame_parameters(E_MPa, nu):
 
 def strains(u, r):
     """(eps_rr, eps_zz, eps_tt, gamma_rz) of a vector field u at radius r."""
-    return u.grad[0, 0], u.grad[1, 1], u.value[0] / r, u.grad[0, 1] + u.grad[1, 0]
+    return u.grad[0, 0], u.grad[1, 1], u[0] / r, u.grad[0, 1] + u.grad[1, 0]
 
 
 @BilinearForm
