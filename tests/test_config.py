@@ -1,0 +1,58 @@
+"""Assembly config validation: every bad input gives one line naming file, key and problem."""
+import tomllib
+
+import pytest
+
+from studies.config import CONFIG_DIR, ConfigError, assembly_from_dict, load_assembly, load_shipped
+
+
+def _raw():
+    with open(CONFIG_DIR / "seed000_71807C_TC4.toml", "rb") as fh:
+        return tomllib.load(fh)
+
+
+def _err(raw):
+    with pytest.raises(ConfigError) as e:
+        assembly_from_dict(raw, "x.toml")
+    msg = str(e.value)
+    assert "\n" not in msg and msg.startswith("x.toml: ")
+    return msg
+
+
+def test_shipped_config_loads():
+    a = load_shipped("seed000")
+    assert a.fits.inner_interference_um == 5.0 and a.fits.outer_interference_um == -1.5
+
+
+@pytest.mark.parametrize("section,key,value,expect", [
+    ("shaft", "seat_diameter_mm", -35.0, "shaft.seat_diameter_mm: must be positive"),
+    ("shaft", "seat_diameter_mm", 0.0, "shaft.seat_diameter_mm: must be positive"),
+    ("housing", "material", "unobtainium", "housing.material: unknown material 'unobtainium'"),
+    ("bearing", "bore_mm", 30.0, "bearing.bore_mm: inner ring bore 30 mm does not sit on the shaft seat"),
+    ("shaft", "shoulder_diameter_mm", 45.0, "shaft.shoulder_diameter_mm: shaft shoulder overlaps the outer ring"),
+    ("fits", "contact", "glued", "fits.contact: 'glued' is not one of"),
+    ("bearing", "ball_count", 2.5, "bearing.ball_count: must be an integer"),
+    ("nut", "width_mm", "5", "nut.width_mm: must be a number"),
+])
+def test_bad_values(section, key, value, expect):
+    raw = _raw()
+    raw[section][key] = value
+    assert expect in _err(raw)
+
+
+def test_missing_key_and_wrong_unit_name():
+    raw = _raw()
+    del raw["housing"]["bore_diameter_mm"]
+    assert "housing.bore_diameter_mm: missing key" in _err(raw)
+    raw = _raw()
+    raw["housing"]["bore_diameter_in"] = raw["housing"].pop("bore_diameter_mm")
+    assert "housing.bore_diameter_in: unknown key (wrong unit name? expected 'bore_diameter_mm')" in _err(raw)
+
+
+def test_missing_file_and_bad_toml(tmp_path):
+    with pytest.raises(ConfigError, match="file not found"):
+        load_assembly(tmp_path / "nope.toml")
+    p = tmp_path / "bad.toml"
+    p.write_text("[shaft\n")
+    with pytest.raises(ConfigError, match="not valid TOML"):
+        load_assembly(p)
