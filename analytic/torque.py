@@ -1,0 +1,326 @@
+"""Friction torque of angular-contact ball bearings: solid-film (MoS2) and oil/grease models.
+
+Units: N, mm, s; torques N*mm, powers N*mm/s unless the name says W; speeds rpm or rad/s as named.
+
+Solid film (seed 000; Jones 1960, Snare 1968, Todd & Stevens ESA/ESTL; Johnson, Contact Mechanics
+1985).  At low speed a film-lubricated bearing's torque is the sum of three dissipations per
+contact, each computed as a friction power and divided by the shaft speed (so the torque is the
+one that balances the dissipated power):
+
+  elastic hysteresis   rolling resistance F_R = alpha_h (3/16) Q b / Rx (Johnson sec. 9.2: the
+                       work the front half of the Hertz pressure does per unit distance rolled is
+                       M_front / Rx, M_front = (3/16) Q b for the ellipsoidal pressure; Johnson's
+                       sphere-on-plane F = alpha (3/16) P a / R is the circular case), times the
+                       speed at which the contact travels over the race;
+  differential (Heathcote) slip
+                       across the major axis the contact surface (radius R_c) is at different
+                       distances from the ball's and the ring's axes; with full sliding outside two
+                       rolling bands at y = +-u_c a, u_c = 2 cos(4 pi/9) = 0.3473 (zero net traction
+                       for the ellipsoidal pressure: u - u^3/3 = 1/3), the slip is
+                       k (y^2 - u_c^2 a^2) / (2 R_c) and the dissipated power
+                       P = C_H mu |k| Q a^2 / R_c, C_H = (3/8) J = 0.0806 (Heathcote 1921;
+                       Johnson sec. 8.6: "0.08 mu a^2/R^2");
+  spin                 full-slip pivoting moment M_s = (3/8) mu Q a E(m) (Johnson sec. 8.? /
+                       Harris Vol. 2: a circular contact gives 3 pi mu Q a / 16) times the spin
+                       rate at the contact.
+
+Ball kinematics (`ball_kinematics`): rolling without slip at the contact centres and the outer-race
+control hypothesis (Jones 1960: no spin at the outer contact; at light load this is the limit the
+seed uses), outer ring fixed, inner ring at omega.  With equal contact angles the cage runs at
+omega (1 - gamma)/2, the inner spin is omega sin(alpha), and the differential-slip rates are
+(omega - omega_c) dm/Dw (inner) and omega_c dm/Dw (outer).
+
+Oil/grease (seeds 001/002; Palmgren 1959, Harris Vol. 2 ch. "friction"): load term
+M1 = f1 P1 dm (or mu P dm/2), viscous term M0 = 1e-7 f0 (nu n)^(2/3) dm^3 for nu n >= 2000 and
+160e-7 f0 dm^3 below (nu in mm^2/s = cSt, n in rpm, dm in mm, M in N*mm), and the
+GB/T 28878.2-2016 Annex B form M = f1 F dm + c f0 (nu n)^(2/3) dm^3.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from math import cos, pi
+
+import numpy as np
+
+RPM_TO_RAD_S = 2.0 * pi / 60.0
+U_C_HEATHCOTE = 2.0 * cos(4.0 * pi / 9.0)     # root of u^3 - 3u + 1 = 0 in (0, 1)
+
+
+def heathcote_coefficient() -> float:
+    """C_H = (3/8) J with J = 2 int_0^1 (1 - u^2) |u^2 - u_c^2| du (closed form of the integral),
+    the coefficient of the differential-slip power P = C_H mu |k| Q a^2 / R_c (~0.0806, Johnson's
+    'about 0.08')."""
+    uc = U_C_HEATHCOTE
+    J = 2.0 * ((2.0 / 15.0 - 2.0 / 3.0 * uc ** 2) + 2.0 * (2.0 / 3.0 * uc ** 3 - 2.0 / 15.0 * uc ** 5))
+    return 0.375 * J
+
+
+C_HEATHCOTE = heathcote_coefficient()
+
+
+# ---------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class BallKinematics:
+    """Rates per unit inner-ring speed (outer ring fixed), cage frame; all dimensionless."""
+    cage: np.ndarray             # omega_c / omega
+    spin_inner: np.ndarray       # |omega_s,i| / omega
+    spin_outer: np.ndarray       # |omega_s,o| / omega (0 under outer-race control)
+    slip_inner: np.ndarray       # |k_i| / omega, differential-slip rate coefficient
+    slip_outer: np.ndarray
+    roll_inner: np.ndarray       # contact speed over the inner race / (omega dm/2)
+    roll_outer: np.ndarray
+
+
+def ball_kinematics(dm_mm, Dw_mm, alpha_i_rad, alpha_o_rad=None) -> BallKinematics:
+    """Kinematics of a ball under outer-race control (Jones 1960; Harris Vol. 2 ch. 2), outer ring
+    fixed, inner ring at unit speed.  Cage frame, ball angular velocity Omega in the r-z plane,
+    contact normals n_j = (cos a_j, sin a_j), tangents t_j = (-sin a_j, cos a_j):
+
+      inner rolling   Omega.t_i + (1 - w_c)(dm/Dw - cos a_i) = 0
+      outer rolling   Omega.t_o + w_c (dm/Dw + cos a_o) = 0
+      outer control   Omega.n_o + w_c sin a_o = 0          (no spin at the outer contact)
+
+    giving w_c [sin a_o sin D + (dm/Dw + cos a_o) cos D + dm/Dw - cos a_i] = dm/Dw - cos a_i,
+    D = a_o - a_i; spin_i = Omega.n_i - (1 - w_c) sin a_i; differential-slip rates
+    k_i = Omega.t_i - (1 - w_c) cos a_i = -(1 - w_c) dm/Dw and k_o = Omega.t_o + w_c cos a_o = -w_c dm/Dw.
+    """
+    ai = np.asarray(alpha_i_rad, float)
+    ao = ai if alpha_o_rad is None else np.asarray(alpha_o_rad, float)
+    q = np.asarray(dm_mm, float) / np.asarray(Dw_mm, float)
+    D = ao - ai
+    si, ci, so, co = np.sin(ai), np.cos(ai), np.sin(ao), np.cos(ao)
+    wc = (q - ci) / (so * np.sin(D) + (q + co) * np.cos(D) + q - ci)
+    # Omega = -wc [sin a_o n_o + (q + cos a_o) t_o]; Omega.n_i with n_o.n_i = cos D, t_o.n_i = -sin D
+    om_ni = -wc * (so * np.cos(D) - (q + co) * np.sin(D))
+    spin_i = om_ni - (1.0 - wc) * si
+    return BallKinematics(cage=wc, spin_inner=np.abs(spin_i), spin_outer=np.zeros_like(spin_i),
+                          slip_inner=(1.0 - wc) * q, slip_outer=wc * q,
+                          roll_inner=(1.0 - wc) * (1.0 - ci / q), roll_outer=wc * (1.0 + co / q))
+
+
+# ---------------------------------------------------------------------------------------------
+# contact-level dissipation (per ball, per contact)
+def contact_surface_radius_mm(Dw_mm, f, ring_compliance_per_MPa=1.0, ball_compliance_per_MPa=1.0):
+    """Transverse radius R_c of the deformed contact surface between a ball (radius Dw/2) and a
+    groove (radius f Dw): curvature 1/R_c = (c_r / R_b + c_b / r_g) / (c_r + c_b), c = (1-nu^2)/E
+    (Hertz: the displacements of the two surfaces are in the ratio of their compliances, Johnson
+    sec. 4.2; equal materials give the mean curvature (1/R_b + 1/r_g)/2).  mm."""
+    Rb = 0.5 * np.asarray(Dw_mm, float)
+    rg = np.asarray(f, float) * np.asarray(Dw_mm, float)
+    cr, cb = ring_compliance_per_MPa, ball_compliance_per_MPa
+    return (cr + cb) / (cr / Rb + cb / rg)
+
+
+def heathcote_power_per_rate(mu, Q_N, a_mm, Rc_mm):
+    """Differential-slip power per unit slip rate |k| (N*mm per rad): C_H mu Q a^2 / R_c
+    (Heathcote 1921; Johnson sec. 8.6), a the semi-major (transverse) axis."""
+    return C_HEATHCOTE * mu * np.asarray(Q_N, float) * np.square(a_mm) / Rc_mm
+
+
+def spin_moment_Nmm(mu, Q_N, a_mm, E_ell):
+    """Full-slip spin (pivoting) moment of a Hertz contact M_s = (3/8) mu Q a E(m), N*mm
+    (integral of mu p r over the ellipse; Harris Vol. 2 'spinning friction'; circle: 3 pi mu Q a/16)."""
+    return 0.375 * mu * np.asarray(Q_N, float) * np.asarray(a_mm, float) * E_ell
+
+
+def hysteresis_rolling_force_N(loss_factor, Q_N, b_mm, Rx_mm):
+    """Elastic-hysteresis rolling resistance F_R = alpha_h (3/16) Q b / Rx, N (Johnson sec. 9.2;
+    b semi-axis along rolling, Rx effective radius along rolling, alpha_h hysteresis loss fraction).
+    Scales as Q^(4/3) through b."""
+    return loss_factor * 0.1875 * np.asarray(Q_N, float) * np.asarray(b_mm, float) / Rx_mm
+
+
+# ---------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class ContactInput:
+    """Per-contact Hertz state for one bearing (arrays over operating points)."""
+    Q_N: np.ndarray
+    a_mm: np.ndarray             # semi-major (transverse) axis
+    b_mm: np.ndarray             # semi-minor (rolling) axis
+    E_ell: np.ndarray            # complete elliptic integral of the second kind
+    Rx_mm: np.ndarray            # effective radius along rolling
+
+
+def solid_film_torque_Nmm(Z: int, Dw_mm: float, dm_mm: float, f_i: float, f_o: float,
+                          alpha_rad, inner: ContactInput, outer: ContactInput, mu,
+                          hysteresis_loss, ring_compliance_per_MPa=1.0,
+                          ball_compliance_per_MPa=1.0) -> dict[str, np.ndarray]:
+    """Friction torque of one solid-film (MoS2) lubricated bearing, N*mm, by components.
+
+    Seed 000 structure (after Todd & Stevens / Snare): inner M_i = M_E,i + M_d,i + M_s,i,
+    outer M_o = M_E,o + M_d,o (outer-race control: no outer spin).  Each component is Z times the
+    contact's dissipated power divided by the inner-ring speed (kinematics from `ball_kinematics`):
+      hysteresis  F_R v_contact / omega = F_R (dm/2) roll_j
+      differential  C_H mu Q a^2 / R_c * slip_j
+      spin        (3/8) mu Q a E(m) * spin_j
+    alpha_rad: contact angle (inner = outer).  Returns keys hysteresis_inner_Nmm, hysteresis_outer_Nmm,
+    differential_inner_Nmm, differential_outer_Nmm, spin_inner_Nmm, spin_outer_Nmm, total_Nmm.
+    """
+    kin = ball_kinematics(dm_mm, Dw_mm, alpha_rad)
+    Rc_i = contact_surface_radius_mm(Dw_mm, f_i, ring_compliance_per_MPa, ball_compliance_per_MPa)
+    Rc_o = contact_surface_radius_mm(Dw_mm, f_o, ring_compliance_per_MPa, ball_compliance_per_MPa)
+    half_dm = 0.5 * dm_mm
+    out = {
+        "hysteresis_inner_Nmm": Z * hysteresis_rolling_force_N(hysteresis_loss, inner.Q_N, inner.b_mm,
+                                                               inner.Rx_mm) * half_dm * kin.roll_inner,
+        "hysteresis_outer_Nmm": Z * hysteresis_rolling_force_N(hysteresis_loss, outer.Q_N, outer.b_mm,
+                                                               outer.Rx_mm) * half_dm * kin.roll_outer,
+        "differential_inner_Nmm": Z * heathcote_power_per_rate(mu, inner.Q_N, inner.a_mm, Rc_i) * kin.slip_inner,
+        "differential_outer_Nmm": Z * heathcote_power_per_rate(mu, outer.Q_N, outer.a_mm, Rc_o) * kin.slip_outer,
+        "spin_inner_Nmm": Z * spin_moment_Nmm(mu, inner.Q_N, inner.a_mm, inner.E_ell) * kin.spin_inner,
+        "spin_outer_Nmm": Z * spin_moment_Nmm(mu, outer.Q_N, outer.a_mm, outer.E_ell) * kin.spin_outer,
+    }
+    out["total_Nmm"] = sum(out.values())
+    return out
+
+
+# ---------------------------------------------------------------------------------------------
+# oil / grease (Palmgren)
+def palmgren_f1_angular_contact(P0_N, C0_N):
+    """Palmgren's load factor for angular-contact ball bearings f1 = 0.001 (P0/C0)^0.33 (-)
+    (Palmgren 1959; Harris Vol. 2 table 'f1 for ball bearings')."""
+    return 0.001 * (np.asarray(P0_N, float) / C0_N) ** 0.33
+
+
+def palmgren_load_torque_Nmm(f1, P1_N, dm_mm):
+    """Load-dependent torque M1 = f1 P1 dm, N*mm (Palmgren 1959; Harris Vol. 2); for an
+    angular-contact bearing under axial load P1 = F_a (minus 0.1 F_r)."""
+    return np.asarray(f1, float) * np.asarray(P1_N, float) * dm_mm
+
+
+def coulomb_load_torque_Nmm(mu, F_N, lever_mm):
+    """Load torque as an equivalent friction coefficient times load times lever, M1 = mu F r,
+    N*mm (SKF's simplified M = 0.5 mu P d with r = dm/2; seed 001's load term, mu = 0.0029)."""
+    return np.asarray(mu, float) * np.asarray(F_N, float) * lever_mm
+
+
+def palmgren_viscous_torque_Nmm(f0, nu_mm2_s, n_rpm, dm_mm):
+    """Viscous (load-independent) torque, N*mm (Palmgren 1959; Harris Vol. 2):
+        M0 = 1e-7 f0 (nu n)^(2/3) dm^3     for nu n >= 2000
+        M0 = 160e-7 f0 dm^3                for nu n <  2000
+    nu kinematic viscosity mm^2/s (cSt), n rpm, dm mm.  The two branches meet within 0.8 %
+    (2000^(2/3) = 158.7)."""
+    vn = np.asarray(nu_mm2_s, float) * np.abs(np.asarray(n_rpm, float))
+    dm3 = np.asarray(dm_mm, float) ** 3
+    return np.where(vn >= 2000.0, 1e-7 * f0 * np.cbrt(vn) ** 2 * dm3, 160e-7 * f0 * dm3)
+
+
+GBT28878_VISCOUS_COEFF = 1e-7
+"""Coefficient c of GB/T 28878.2-2016 eq. (B.4).  The seed's extraction reads '1.42 x 10^?' with the
+exponent lost; until the standard's number is checked we use Palmgren's 1e-7 (N*mm = mN*m units),
+which the standard's form reproduces with f1 F dm as its first term.  Pass c explicitly to use
+another value."""
+
+
+def gbt28878_torque_mNm(f1, F_N, dm_mm, f0, nu_mm2_s, n_rpm, c=GBT28878_VISCOUS_COEFF):
+    """GB/T 28878.2-2016 Annex B eq. (B.4): M = f1 F dm + c f0 (nu n)^(2/3) dm^3, mN*m (= N*mm),
+    F equivalent load N, dm mm, nu mm^2/s, n rpm."""
+    vn = np.asarray(nu_mm2_s, float) * np.abs(np.asarray(n_rpm, float))
+    return (np.asarray(f1, float) * np.asarray(F_N, float) * dm_mm
+            + c * f0 * np.cbrt(vn) ** 2 * np.asarray(dm_mm, float) ** 3)
+
+
+# ---------------------------------------------------------------------------------------------
+def power_W(torque_Nmm, n_rpm):
+    """Dissipated power P = M omega, W (M N*mm, n rpm): 2 pi n/60 * 1e-3 M = 1.047e-4 n M
+    (seed 003 eq. 32)."""
+    return np.asarray(torque_Nmm, float) * np.asarray(n_rpm, float) * RPM_TO_RAD_S * 1e-3
+
+
+def friction_heat_W(components_Nmm: dict[str, np.ndarray], n_rpm) -> dict[str, np.ndarray]:
+    """Heat (W) of each torque component at speed n_rpm for a thermal network; keys renamed
+    *_Nmm -> *_W.  The sliding (differential), spin and hysteresis parts of `solid_film_torque_Nmm`
+    or of `sliding_spin_torque_Nmm` map to seed 003's H_B1 (sliding) and H_B3 (spin); the viscous
+    term of `palmgren_viscous_torque_Nmm` to H_B2."""
+    return {k[:-4] + "_W" if k.endswith("_Nmm") else k + "_W": power_W(v, n_rpm)
+            for k, v in components_Nmm.items()}
+
+
+def sliding_spin_torque_Nmm(Z: int, Dw_mm, dm_mm, f_i, f_o, alpha_rad, inner: ContactInput,
+                            outer: ContactInput, mu_slide, mu_spin=None,
+                            ring_compliance_per_MPa=1.0, ball_compliance_per_MPa=1.0):
+    """Sliding (differential slip) and spin torques of an oil-lubricated bearing with boundary /
+    traction coefficients mu_slide, mu_spin (default mu_slide), N*mm (same contact models as
+    `solid_film_torque_Nmm` without hysteresis).  Multiply by the speed (`friction_heat_W`) for
+    seed 003's sliding and spin heat."""
+    out = solid_film_torque_Nmm(Z, Dw_mm, dm_mm, f_i, f_o, alpha_rad, inner, outer, mu_slide, 0.0,
+                                ring_compliance_per_MPa, ball_compliance_per_MPa)
+    if mu_spin is not None and mu_slide != 0:
+        scale = mu_spin / mu_slide
+        out["spin_inner_Nmm"] = out["spin_inner_Nmm"] * scale
+        out["spin_outer_Nmm"] = out["spin_outer_Nmm"] * scale
+    return {"sliding_inner_Nmm": out["differential_inner_Nmm"],
+            "sliding_outer_Nmm": out["differential_outer_Nmm"],
+            "spin_inner_Nmm": out["spin_inner_Nmm"], "spin_outer_Nmm": out["spin_outer_Nmm"]}
+
+
+# ---------------------------------------------------------------------------------------------
+def _contacts(pair: dict, j: str):
+    cin = ContactInput(pair[f"ball_load_{j}_N"], pair[f"a_inner_{j}_mm"], pair[f"b_inner_{j}_mm"],
+                       pair[f"E_ell_inner_{j}"], pair[f"Rx_inner_{j}_mm"])
+    cout = ContactInput(pair[f"ball_load_{j}_N"], pair[f"a_outer_{j}_mm"], pair[f"b_outer_{j}_mm"],
+                        pair[f"E_ell_outer_{j}"], pair[f"Rx_outer_{j}_mm"])
+    return cin, cout
+
+
+def pair_torque(g, pair: dict, *, model: str = "solid_film", mu=0.02, hysteresis_loss=0.0,
+                speed_rpm=None, f0=0.0, nu_mm2_s=0.0, f1=None, load_term: str = "coulomb"):
+    """Friction torque of a bearing pair from `bearing.solve_pair` outputs, vectorised, N*mm.
+
+    model "solid_film": `solid_film_torque_Nmm` per bearing (mu: film friction coefficient,
+      hysteresis_loss: alpha_h); returns torque_Nmm and torque_{hysteresis,differential,spin}_Nmm
+      (both bearings, inner + outer) and the per-bearing totals torque_A_Nmm, torque_B_Nmm.
+    model "oil": load term per bearing (load_term "coulomb": mu F_a dm/2; "palmgren": f1 F_a dm)
+      plus Palmgren's viscous term per bearing (f0, nu_mm2_s, speed_rpm); returns torque_Nmm,
+      torque_load_Nmm, torque_viscous_Nmm, torque_A_Nmm, torque_B_Nmm.
+    With speed_rpm given, also heat_W (total dissipated power).
+    g: `bearing.BearingGeometry`.
+    """
+    out: dict[str, np.ndarray] = {}
+    per = {}
+    if model == "solid_film":
+        c_ring = (1.0 - g.ring.nu ** 2) / g.ring.E_MPa
+        c_ball = (1.0 - g.ball.nu ** 2) / g.ball.E_MPa
+        acc = {"hysteresis": 0.0, "differential": 0.0, "spin": 0.0}
+        for j in "AB":
+            cin, cout = _contacts(pair, j)
+            alpha = np.radians(pair[f"contact_angle_{j}_deg"])
+            comp = solid_film_torque_Nmm(g.Z, g.Dw_mm, g.dm_mm, g.f_i, g.f_o, alpha, cin, cout,
+                                         mu, hysteresis_loss, c_ring, c_ball)
+            for key in acc:
+                acc[key] = acc[key] + comp[f"{key}_inner_Nmm"] + comp[f"{key}_outer_Nmm"]
+            per[j] = comp["total_Nmm"]
+        for key, v in acc.items():
+            out[f"torque_{key}_Nmm"] = v
+    elif model == "oil":
+        load = 0.0
+        visc = palmgren_viscous_torque_Nmm(f0, nu_mm2_s, 0.0 if speed_rpm is None else speed_rpm,
+                                           g.dm_mm)
+        for j in "AB":
+            Fa = pair[f"axial_force_{j}_N"]
+            if load_term == "coulomb":
+                m1 = coulomb_load_torque_Nmm(mu, Fa, 0.5 * g.dm_mm)
+            elif load_term == "palmgren":
+                m1 = palmgren_load_torque_Nmm(f1, Fa, g.dm_mm)
+            else:
+                raise ValueError(f"load_term must be 'coulomb' or 'palmgren', got {load_term!r}")
+            load = load + m1
+            per[j] = m1 + visc
+        out["torque_load_Nmm"] = load
+        out["torque_viscous_Nmm"] = 2.0 * visc * np.ones_like(load)
+    else:
+        raise ValueError(f"model must be 'solid_film' or 'oil', got {model!r}")
+    out["torque_A_Nmm"], out["torque_B_Nmm"] = per["A"], per["B"]
+    out["torque_Nmm"] = per["A"] + per["B"]
+    if speed_rpm is not None:
+        out["heat_W"] = power_W(out["torque_Nmm"], speed_rpm)
+    return out
+
+
+def evaluate_pair(g, arrangement: str = "DB", *, torque: dict | None = None, **pair_inputs):
+    """`bearing.solve_pair` followed by `pair_torque`: one dict with both sets of outputs.
+    torque: keyword arguments of `pair_torque` (default solid film with mu = 0.02)."""
+    from analytic.bearing import solve_pair
+    pair = solve_pair(g, arrangement, **pair_inputs)
+    pair.update(pair_torque(g, pair, **(torque or {})))
+    return pair
