@@ -698,6 +698,10 @@ class _Engine:
                                f"residuals (adjusted p = {best_desc['p_min_adjusted']:.2g})")
             else:
                 rivals, joint = self.compare(best, fits, cands, names_id)
+                for o in passing:
+                    if o != best and o not in rivals:
+                        cands[o]["reason"] += (f"; but clearly beaten by {best} (chi-square "
+                                               f"{fits[o].chi2 - fits[best].chi2:+.1f})")
                 verdict = "ambiguous" if rivals else "explained"
                 cause = best
                 if rivals:

@@ -243,3 +243,23 @@ def test_speed_budget_with_slow_predict(solid):
     print(f"\n500 rows x 7 candidates: {dt:.2f} s, {out.result['n_predict_calls']} predict calls")
     assert dt < 10.0
     assert out.result["cause"] == "thermal_lag"
+
+
+def test_report_written(solid, tmp_path):
+    from studies.diagnosis_report import write_report
+    cond = cycles(n=300)
+    meas = make_data(solid, cond, {"preload_settling": {"loss_N": 5.0, "threshold_K": 40.0}}, 4)
+    predict, predict_at = solid.predictor(cond)
+    out = diagnose_full(predict, meas, cond, list(EFFECTS.values()), NUISANCE,
+                        predict_at=predict_at)
+    path = write_report(out.result, cond, meas, out.baseline_pred, out.extended_pred, tmp_path)
+    text = path.read_text()
+    assert out.result["cause"] == "preload_settling"
+    assert "Verdict: `explained`" in text and "`loss_N`" in text
+    for c in ("torque_Nmm", "preload_N"):
+        for f in (f"fit_{c}.png", f"residuals_{c}.png"):
+            assert f"({f})" in text and (tmp_path / f).stat().st_size > 1000
+    assert (tmp_path / "candidates.png").exists()
+    # the profiled threshold brackets the true onset (the largest excursion before it)
+    thr = out.result["parameter_uncertainty"]["threshold_K"]["interval"]
+    assert thr[0] - 5 <= 40.0 <= thr[1] + 5

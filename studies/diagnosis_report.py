@@ -1,0 +1,327 @@
+"""Human-readable diagnosis report: `report.md` with PNG plots (matplotlib, Agg, no pyplot state).
+
+`write_report(result, conditions, measured, baseline_pred, extended_pred, out_dir)` writes
+
+- `report.md`: verdict and cause with fitted parameters and uncertainties, held-out gain, what the
+  baseline gets wrong (residual statistics per column), the candidate table, identifiability and
+  look-alikes, the comparison of rivals, the separating test, method and thresholds;
+- `fit_<column>.png`: measured vs baseline vs extended model against time (or row) and against every
+  varying condition;
+- `residuals_<column>.png`: residuals of the baseline and of the extended model, same axes, with
+  the noise band (+-2 sigma);
+- `candidates.png`: delta BIC and held-out RMSE ratio per candidate.
+
+`result` is the dict from `studies.diagnosis.diagnose` (JSON-ready), the predictions come from
+`diagnose_full` (`DiagnosisOutcome.baseline_pred / extended_pred`).
+"""
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Mapping
+
+import numpy as np
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.figure import Figure
+
+MAX_PANELS = 6
+
+
+def _fmt(v, digits=4):
+    if v is None:
+        return "–"
+    if isinstance(v, dict):
+        if "interval" in v:
+            a, b = v["interval"]
+            return f"in [{_fmt(a)}, {_fmt(b)}]"
+        return ", ".join(f"{k} {_fmt(x)}" for k, x in v.items())
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(_fmt(x, digits) for x in v) + "]"
+    if isinstance(v, (bool, np.bool_)):
+        return "yes" if v else "no"
+    if isinstance(v, (int, np.integer)):
+        return str(int(v))
+    if isinstance(v, (float, np.floating)):
+        v = float(v)
+        if v == 0:
+            return "0"
+        if abs(v) >= 1e5 or abs(v) < 1e-3:
+            return f"{v:.{digits - 1}e}"
+        return f"{v:.{digits}g}"
+    return str(v)
+
+
+def _pm(value, unc):
+    if isinstance(unc, dict) or unc is None:
+        return f"{_fmt(value)}" + (f" ({_fmt(unc)})" if unc is not None else " (uncertainty: "
+                                   "not separately identifiable)")
+    return f"{_fmt(value)} ± {_fmt(unc, 2)}"
+
+
+def _save(fig: Figure, path: Path):
+    FigureCanvasAgg(fig)
+    fig.savefig(path, dpi=110)
+
+
+def _axes_keys(conditions: Mapping[str, np.ndarray]) -> tuple[str, list[str]]:
+    xs = "time_s" if "time_s" in conditions else "row"
+    varying = [k for k, v in conditions.items()
+               if k != "time_s" and np.nanstd(np.asarray(v, float)) > 0]
+    return xs, varying[:MAX_PANELS - 1]
+
+
+def _x(conditions, key, n):
+    return np.arange(n) if key == "row" else np.asarray(conditions[key], float)
+
+
+def _plot_fits(col, conditions, measured, base, ext, cause, out: Path, n):
+    xs, varying = _axes_keys(conditions)
+    keys = [xs] + varying
+    fig = Figure(figsize=(5.0 * len(keys), 4.0), layout="constrained")
+    axes = fig.subplots(1, len(keys), squeeze=False)[0]
+    ext_label = f"extended ({cause})" if cause else "extended (= baseline)"
+    for ax, key in zip(axes, keys):
+        x = _x(conditions, key, n)
+        if key == xs:
+            ax.plot(x, measured, ".", ms=3, color="0.55", label="measured")
+            ax.plot(x, base, "-", lw=1.3, color="tab:red", label="baseline (calibrated)")
+            if cause:
+                ax.plot(x, ext, "-", lw=1.3, color="tab:blue", label=ext_label)
+        else:
+            ax.plot(x, measured, ".", ms=3, color="0.55", label="measured")
+            ax.plot(x, base, "x", ms=3, color="tab:red", label="baseline (calibrated)")
+            if cause:
+                ax.plot(x, ext, "+", ms=4, color="tab:blue", label=ext_label)
+        ax.set_xlabel(key)
+        ax.set_ylabel(col)
+        ax.grid(alpha=0.3)
+    axes[0].legend(fontsize=8)
+    fig.suptitle(f"{col}: measured vs baseline vs extended model")
+    _save(fig, out)
+
+
+def _plot_residuals(col, conditions, measured, base, ext, cause, sigma, out: Path, n):
+    xs, varying = _axes_keys(conditions)
+    keys = [xs] + varying
+    fig = Figure(figsize=(5.0 * len(keys), 4.0), layout="constrained")
+    axes = fig.subplots(1, len(keys), squeeze=False)[0]
+    rb = measured - base
+    re = measured - ext
+    for ax, key in zip(axes, keys):
+        x = _x(conditions, key, n)
+        style = "-" if key == xs else "."
+        ax.plot(x, rb, style, lw=0.9, ms=3, color="tab:red", label="baseline residual")
+        if cause:
+            ax.plot(x, re, style, lw=0.9, ms=3, color="tab:blue", alpha=0.8,
+                    label=f"after {cause}")
+        if sigma:
+            ax.axhspan(-2 * sigma, 2 * sigma, color="0.85", zorder=0, label="±2 noise sigma")
+        ax.axhline(0, color="k", lw=0.6)
+        ax.set_xlabel(key)
+        ax.set_ylabel(f"measured - model, {col}")
+        ax.grid(alpha=0.3)
+    axes[0].legend(fontsize=8)
+    fig.suptitle(f"{col}: residuals before and after")
+    _save(fig, out)
+
+
+def _plot_candidates(result, out: Path):
+    cands = [c for c in result["candidates"] if c.get("delta_bic") is not None]
+    if not cands:
+        return False
+    c0 = result["columns"][0]
+    base_ho = result["baseline"]["heldout_rmse"][c0]
+    names = [c["effect"] for c in cands]
+    dbic = [c["delta_bic"] for c in cands]
+    ratio = [c["heldout_rmse"][c0] / base_ho if base_ho else 1.0 for c in cands]
+    colors = ["tab:green" if c["status"] == "passed" else "0.6" for c in cands]
+    fig = Figure(figsize=(10, 0.5 * len(cands) + 1.8), layout="constrained")
+    a1, a2 = fig.subplots(1, 2)
+    y = np.arange(len(cands))[::-1]
+    a1.barh(y, dbic, color=colors)
+    a1.set_yticks(y, names)
+    a1.axvline(0, color="k", lw=0.6)
+    a1.set_xscale("symlog", linthresh=10)
+    a1.set_xlabel("delta BIC vs baseline (negative = better)")
+    a2.barh(y, ratio, color=colors)
+    a2.set_yticks(y, names)
+    a2.axvline(1, color="k", lw=0.6)
+    a2.set_xlabel(f"held-out RMSE / baseline ({c0})")
+    fig.suptitle("candidates (green: passed the tests)")
+    _save(fig, out)
+    return True
+
+
+def write_report(result: dict, conditions: Mapping[str, np.ndarray],
+                 measured: Mapping[str, np.ndarray], baseline_pred: Mapping[str, np.ndarray],
+                 extended_pred: Mapping[str, np.ndarray], out_dir) -> Path:
+    """Write report.md and the PNG plots into out_dir; return the path of report.md."""
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    cols = list(result["columns"])
+    n = int(result.get("n_rows", len(next(iter(measured.values())))))
+    cause = result["cause"]
+    figs = []
+    for c in cols:
+        m = np.asarray(measured[c], float)
+        b = np.asarray(baseline_pred[c], float)
+        e = np.asarray(extended_pred[c], float)
+        safe = c.replace("/", "_")
+        _plot_fits(c, conditions, m, b, e, cause, out / f"fit_{safe}.png", n)
+        _plot_residuals(c, conditions, m, b, e, cause, result["noise_sigma"].get(c),
+                        out / f"residuals_{safe}.png", n)
+        figs.append((c, f"fit_{safe}.png", f"residuals_{safe}.png"))
+    has_cand_plot = _plot_candidates(result, out / "candidates.png")
+
+    L: list[str] = []
+    w = L.append
+    w("# Diagnosis report\n")
+    verdict = result["verdict"]
+    headline = {
+        "no_discrepancy": "**No discrepancy**: the baseline residuals are consistent with the "
+                          "noise level estimated from the data.",
+        "explained": f"**Explained** by `{cause}`.",
+        "ambiguous": f"**Ambiguous**: `{cause}` and "
+                     + ", ".join(f"`{x}`" for x in result["indistinguishable"])
+                     + " explain the data about equally well.",
+        "unexplained": "**Unexplained**: the baseline is clearly wrong, but no candidate effect "
+                       "removes the structure from the residuals.",
+    }[verdict]
+    w(f"Verdict: `{verdict}`. {headline}\n")
+    for r in result.get("reasons", []):
+        w(f"- {r}")
+    w("")
+    if cause:
+        w("## Cause and fitted parameters\n")
+        unc = result.get("parameter_uncertainty", {})
+        w("| parameter | value ± standard uncertainty |")
+        w("| --- | --- |")
+        for p, v in result["parameters"].items():
+            w(f"| `{p}` | {_pm(v, unc.get(p))} |")
+        w("")
+    c0 = cols[0]
+    w("## Gain on held-out data\n")
+    w(f"Held-out RMSE ratio (extended / baseline, `{c0}`): "
+      f"**{_fmt(result['gain']['heldout_rmse_ratio'])}**.\n")
+    w("| column | noise sigma (est.) | baseline RMSE | baseline held-out | extended RMSE | "
+      "extended held-out |")
+    w("| --- | --- | --- | --- | --- | --- |")
+    for c in cols:
+        w(f"| `{c}` | {_fmt(result['noise_sigma'][c])} | {_fmt(result['baseline']['rmse'][c])} | "
+          f"{_fmt(result['baseline']['heldout_rmse'][c])} | {_fmt(result['extended']['rmse'][c])}"
+          f" | {_fmt(result['extended']['heldout_rmse'][c])} |")
+    w("")
+    w(f"Held-out rows: {result['heldout']['blocks']} {result['heldout']['method']}.\n")
+
+    w("## What the baseline gets wrong\n")
+    nu = result["nuisance"]
+    allowed = ", ".join(f"`{k}` in [{_fmt(a)}, {_fmt(b)}]" for k, (a, b) in nu["bounds"].items())
+    w(f"The baseline was allowed the calibration {allowed or '(none)'}; fitted: "
+      + ", ".join(f"`{k}` = {_fmt(v)}" for k, v in nu["baseline"].items())
+      + (f"; with the extended model: " + ", ".join(f"`{k}` = {_fmt(v)}" for k, v in
+                                                     nu["extended"].items()) if cause else "")
+      + ".\n")
+    desc = result["residuals"]["baseline"]["columns"]
+    w("| column | bias | reduced chi² | lag-1 autocorr. (p) | smoother F test p | "
+      "smoother held-out gain | bias p |")
+    w("| --- | --- | --- | --- | --- | --- | --- |")
+    for c in cols:
+        d = desc[c]
+        w(f"| `{c}` | {_fmt(d['bias'])} | {_fmt(d['chi2_reduced'])} | {_fmt(d['lag1_autocorr'], 2)}"
+          f" ({_fmt(d['lag1_p'], 2)}) | {_fmt(d['smoother_p'], 2)} | "
+          f"{_fmt(d['smoother_heldout_gain'], 2)} | {_fmt(d['bias_p'], 2)} |")
+    w("")
+    w(f"Structure beyond noise: **{_fmt(result['residuals']['baseline_structure'])}** "
+      f"(smallest p, Bonferroni-adjusted over tests and columns: "
+      f"{_fmt(result['residuals']['baseline']['p_min_adjusted'], 2)}; threshold "
+      f"{_fmt(result['thresholds']['alpha_structure'])}). The reduced chi² uses the noise level "
+      "estimated from second differences of the residuals; the smoother is a cubic polynomial in "
+      "each varying condition and in time, its gain measured on held-out blocks.\n")
+    ext = result["residuals"].get("extended")
+    if ext:
+        w(f"After `{cause}`: smallest adjusted p of the same tests "
+          f"{_fmt(ext['p_min_adjusted'], 2)} (structure left if below "
+          f"{_fmt(result['thresholds']['alpha_residual'])}).\n")
+    if result.get("best_partial"):
+        bp = result["best_partial"]
+        w(f"Best partial candidate: `{bp['effect']}` ({_fmt(bp['parameters'])}); it leaves "
+          f"structure (adjusted p {_fmt(bp['residuals']['p_min_adjusted'], 2)}).\n")
+    for c, f1, f2 in figs:
+        w(f"![{c}: measured vs models]({f1})\n")
+        w(f"![{c}: residuals]({f2})\n")
+
+    w("## Candidates\n")
+    w("Sorted best first. `delta BIC` is relative to the calibrated baseline (negative = better); "
+      "`p (LR)` is the likelihood-ratio p-value (half-chi-square mixture for parameters with a "
+      "sign), before the Holm correction; the held-out gain is the baseline minus candidate "
+      "held-out RMSE in noise units with its paired block-bootstrap interval.\n")
+    w(f"| effect | status | parameters | delta BIC | p (LR) | held-out RMSE `{c0}` | "
+      "held-out gain [interval] | note |")
+    w("| --- | --- | --- | --- | --- | --- | --- | --- |")
+    for c in result["candidates"]:
+        hg = c.get("heldout_gain")
+        gain = (f"{_fmt(hg['rmse_gain'], 3)} [{_fmt(hg['ci'][0], 3)}, {_fmt(hg['ci'][1], 3)}]"
+                if hg else "–")
+        ho = c["heldout_rmse"][c0] if c.get("heldout_rmse") else None
+        params = ", ".join(f"{k}={_fmt(v)}" for k, v in c["parameters"].items()) or "–"
+        w(f"| `{c['effect']}` | {c['status']} | {params} | {_fmt(c['delta_bic'])} | "
+          f"{_fmt(c.get('p_lr'), 2)} | {_fmt(ho)} | {gain} | {c['reason']} |")
+    w("")
+    if has_cand_plot:
+        w("![candidates](candidates.png)\n")
+    if result.get("not_identifiable"):
+        w("Not testable with this data:\n")
+        for k, v in result["not_identifiable"].items():
+            w(f"- `{k}`: {v}")
+        w("")
+    look = result.get("lookalike") or {}
+    if len(look) > 1:
+        names = list(look)
+        w("### Look-alike matrix\n")
+        w("Cosine of the smallest principal angle between the candidates' sensitivities after "
+          "removing what the baseline calibration can produce (1 = same residual shape; "
+          f"reported as look-alike above {_fmt(result['thresholds']['lookalike_cos'])}).\n")
+        w("| | " + " | ".join(f"`{x}`" for x in names) + " |")
+        w("| --- " * (len(names) + 1) + "|")
+        for a in names:
+            w(f"| `{a}` | " + " | ".join(
+                (f"**{look[a][b]:.2f}**" if a != b and look[a][b] >= result["thresholds"]
+                 ["lookalike_cos"] else f"{look[a][b]:.2f}") for b in names) + " |")
+        w("")
+    if result.get("joint_fits"):
+        w("### Comparison with the best candidate (joint fits)\n")
+        w("| other | chi² best | chi² other | chi² joint | p (add other to best) | "
+          "p (add best to other) | best carries the weight |")
+        w("| --- | --- | --- | --- | --- | --- | --- |")
+        for o, j in result["joint_fits"].items():
+            w(f"| `{o}` | {_fmt(j['chi2_best'])} | {_fmt(j['chi2_other'])} | "
+              f"{_fmt(j['chi2_joint'])} | {_fmt(j['p_add_other_to_best'], 2)} | "
+              f"{_fmt(j['p_add_best_to_other'], 2)} | {_fmt(j['best_carries_weight'])} |")
+        w("")
+    if result.get("separating_test"):
+        w("## Separating test\n")
+        w(result["separating_test"] + "\n")
+        items = [i for i in result.get("separating_tests", []) if i["kind"] != "measured_conditions"]
+        if items:
+            for i in items[:10]:
+                w(f"- {i['text']}")
+            w("")
+    w("## Method and thresholds\n")
+    w("1. Baseline calibrated (nuisance only); noise level per column from second differences of "
+      "the residuals; residual structure tested (bias, lag-1 autocorrelation, smoother F test).")
+    w("2. Each candidate's sensitivity at 'off', with the part the calibration can produce "
+      "projected out: too little left = not identifiable; overlaps = look-alike matrix.")
+    w("3. Bounded least-squares fit of each candidate with the nuisance; likelihood ratio (Holm "
+      "over candidates) and a BIC margin.")
+    w("4. Held-out gain on contiguous blocks with a paired block bootstrap interval excluding 0.")
+    w("5. Several passing: joint fits; ambiguous unless the best clearly carries the weight.\n")
+    w("| threshold | value |")
+    w("| --- | --- |")
+    for k, v in result["thresholds"].items():
+        w(f"| `{k}` | {_fmt(v)} |")
+    w("")
+    w(f"{result['n_rows']} rows, columns compared: {', '.join(f'`{c}`' for c in cols)}; "
+      f"{result['n_predict_calls']} model evaluations, {_fmt(result['seconds']['total'], 3)} s "
+      f"({_fmt(result['seconds']['predict'], 3)} s in the model).\n")
+    path = out / "report.md"
+    path.write_text("\n".join(L), encoding="utf-8")
+    return path
