@@ -69,6 +69,8 @@ class BallKinematics:
     slip_outer: np.ndarray
     roll_inner: np.ndarray       # contact speed over the inner race / (omega dm/2)
     roll_outer: np.ndarray
+    omega_r: np.ndarray          # ball angular velocity, radial component / omega
+    omega_z: np.ndarray          # ball angular velocity, axial component / omega
 
 
 def ball_kinematics(dm_mm, Dw_mm, alpha_i_rad, alpha_o_rad=None) -> BallKinematics:
@@ -95,7 +97,8 @@ def ball_kinematics(dm_mm, Dw_mm, alpha_i_rad, alpha_o_rad=None) -> BallKinemati
     spin_i = om_ni - (1.0 - wc) * si
     return BallKinematics(cage=wc, spin_inner=np.abs(spin_i), spin_outer=np.zeros_like(spin_i),
                           slip_inner=(1.0 - wc) * q, slip_outer=wc * q,
-                          roll_inner=(1.0 - wc) * (1.0 - ci / q), roll_outer=wc * (1.0 + co / q))
+                          roll_inner=(1.0 - wc) * (1.0 - ci / q), roll_outer=wc * (1.0 + co / q),
+                          omega_r=wc * q * so, omega_z=-wc * (1.0 + q * co))
 
 
 # ---------------------------------------------------------------------------------------------
