@@ -406,8 +406,13 @@ class _Engine:
             zc = z - z.mean()
             same = seg[1:] == seg[:-1]
             den = float(zc @ zc) or 1.0
-            r1 = float(np.sum(zc[1:][same] * zc[:-1][same]) / den)
-            auto_p = float(stats.norm.sf(r1 * math.sqrt(max(same.sum(), 1))))
+            num = float(np.sum(zc[1:][same] * zc[:-1][same]))
+            r1 = num / den
+            npairs = max(int(same.sum()), 1)
+            # significant only if it is both (self-normalised autocorrelation, and the lag-1
+            # product sum in units of the noise level: structure far below the noise is none)
+            auto_p = float(max(stats.norm.sf(r1 * math.sqrt(npairs)),
+                               stats.norm.sf(num / math.sqrt(npairs))))
             # smoother: polynomials in the varying conditions (and time / row order)
             X = X_all[m]
             A = np.column_stack([np.ones(nn), X])
@@ -417,7 +422,11 @@ class _Engine:
             p_feat = q.shape[1] - 1
             if p_feat > 0 and nn - p_feat - 1 > 0 and ss1 > 0:
                 Fst = ((den - ss1) / p_feat) / (ss1 / (nn - p_feat - 1))
-                F_p = float(stats.f.sf(Fst, p_feat, nn - p_feat - 1))
+                F_p = float(max(stats.f.sf(Fst, p_feat, nn - p_feat - 1),
+                                stats.chi2.sf(den - ss1, p_feat)))     # F and known-sigma
+            elif p_feat > 0 and nn - p_feat - 1 > 0:
+                Fst = math.inf
+                F_p = float(stats.chi2.sf(den - ss1, p_feat))
             else:
                 Fst, F_p = 0.0, 1.0
             # smoother's held-out gain (block cross-validation)

@@ -263,3 +263,25 @@ def test_report_written(solid, tmp_path):
     # the profiled threshold brackets the true onset (the largest excursion before it)
     thr = out.result["parameter_uncertainty"]["threshold_K"]["interval"]
     assert thr[0] - 5 <= 40.0 <= thr[1] + 5
+
+
+def test_noiseless_data(solid):
+    # simulate without noise: the noise level is estimated as (almost) zero; round-off residuals
+    # of the right effect are not "structure"
+    cond = cycles(n=300)
+    truth = solid.evaluate(cond, {"thermal_lag": {"tau_s": 500.0}}, {"mu_scale": 1.0})
+    res = run(solid, cond, {c: truth[c] for c in SIGMA})
+    assert (res["verdict"], res["cause"]) == ("explained", "thermal_lag")
+    assert res["parameters"]["tau_s"] == pytest.approx(500.0, rel=1e-6)
+    base = solid.evaluate(cond, {}, {"mu_scale": 1.2})
+    assert run(solid, cond, {c: base[c] for c in SIGMA})["verdict"] == "no_discrepancy"
+
+
+def test_missing_values_and_given_blocks(solid):
+    cond = cycles(n=300)
+    meas = make_data(solid, cond, {"cte_nonlinearity": {"dalpha_per_K": 1e-8}}, seed=1)
+    meas["torque_Nmm"][::7] = np.nan             # torque not logged in some rows
+    res = run(solid, cond, meas, blocks=np.arange(300) // 60)      # 5 test segments
+    assert (res["verdict"], res["cause"]) == ("explained", "cte_nonlinearity")
+    assert res["heldout"]["blocks"] == 5
+    assert res["parameters"]["dalpha_per_K"] == pytest.approx(1e-8, rel=0.1)
