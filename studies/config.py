@@ -94,6 +94,8 @@ class Lubrication:
     friction_coefficient: float = 0.0
     viscous_factor_f0: float = 0.0
     speed_rpm: float = 0.0
+    hysteresis_loss_factor: float = 0.0   # solid film: elastic hysteresis loss factor alpha_h
+    load_term: str = "coulomb"            # oil: "coulomb" (mu F dm/2) or "palmgren" (f1 F dm)
 
 
 @dataclass(frozen=True)
@@ -151,21 +153,24 @@ SECTIONS = {
     "fits": (Fits, {"contact": "frictionless"}),
     "preload": (Preload, {}),
     "lubrication": (Lubrication, {"lubricant": "", "friction_coefficient": 0.0,
-                                  "viscous_factor_f0": 0.0, "speed_rpm": 0.0}),
+                                  "viscous_factor_f0": 0.0, "speed_rpm": 0.0,
+                                  "hysteresis_loss_factor": 0.0, "load_term": "coulomb"}),
     "limits": (Limits, {"max_contact_pressure_MPa": math.inf, "min_static_safety": 0.0}),
     "mesh": (Mesh, {"size_mm": 1.0, "fit_size_mm": 0.25}),
 }
 OPTIONAL_SECTIONS = {"limits", "mesh"}
 STRING_KEYS = {"material", "designation", "ring_material", "ball_material", "contact", "kind",
-               "lubricant"}
+               "lubricant", "load_term"}
 CHOICES = {("fits", "contact"): ("frictionless", "bonded"),
            ("preload", "kind"): ("position", "spring"),
-           ("lubrication", "kind"): ("solid_film", "oil")}
+           ("lubrication", "kind"): ("solid_film", "oil"),
+           ("lubrication", "load_term"): ("coulomb", "palmgren")}
 # keys allowed to be zero (everything else numeric must be > 0)
 ZERO_OK = {("shaft", "bore_diameter_mm"), ("shaft", "extension_mm"),
            ("fits", "inner_interference_um"), ("fits", "outer_interference_um"),
            ("preload", "assembled_N"), ("lubrication", "friction_coefficient"),
            ("lubrication", "viscous_factor_f0"), ("lubrication", "speed_rpm"),
+           ("lubrication", "hysteresis_loss_factor"),
            ("limits", "min_static_safety")}
 SIGNED = {("fits", "inner_interference_um"), ("fits", "outer_interference_um")}
 
@@ -256,6 +261,12 @@ def assembly_from_dict(raw: dict, path: str = "<config>") -> Assembly:
                    source=str(top.get("source", "")), **parts)
     _check_materials(asm, path)
     _check_geometry(asm, path)
+    if asm.lubrication.kind == "oil":
+        from analytic.lubrication import get_lubricant
+        try:
+            get_lubricant(asm.lubrication.lubricant)
+        except (KeyError, ValueError) as exc:
+            raise ConfigError(f"{path}: lubrication.lubricant: {exc.args[0]}") from None
     return asm
 
 

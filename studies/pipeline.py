@@ -1,0 +1,234 @@
+"""The FE -> analytic pipeline: conditions -> part temperatures and fits -> FE (fit pressures,
+groove-centre shifts) -> bearing pair (preload, contact angle, Hertz) -> friction torque.
+
+The FE runs through `fem.solver.Superposition`: unit solutions per part thermal strain and per fit,
+combined exactly for every row (the contact active set is solved per row on the condensed
+interface), so a sweep costs little per point. `direct=True` solves every row with a full FE solve
+instead; tests hold the two equal.
+
+Where an FE result feeds the bearing model, the closed-form value is carried beside it:
+`fit_pressure_inner_lame_MPa` (two-cylinder Lamé, plane stress, shaft and inner ring only) and
+`raceway_u_r_inner_A_lame_um` (Lamé ring expansion + free thermal growth).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from analytic import lame
+from analytic.bearing import BearingGeometry, solve_pair
+from analytic.lubrication import get_lubricant
+from analytic.torque import pair_torque
+from fem.model import build_model
+from fem.post import fit_mean_pressures
+from fem.solver import FitSolver, Superposition
+from meshes.section import section_from_assembly
+from studies.config import Assembly
+from studies.effects import resolve_friction_coefficient, resolve_interference_um
+from studies.inputs import PhysicsInputs
+
+#: which temperature of `PhysicsInputs.T_C` each FE part takes
+FE_PART_GROUP = {"shaft": "shaft", "nut": "shaft", "inner_ring_A": "inner_ring",
+                 "inner_ring_B": "inner_ring", "inner_spacer": "spacer", "outer_spacer": "spacer",
+                 "outer_ring_A": "outer_ring", "outer_ring_B": "outer_ring", "housing": "housing",
+                 "cover": "housing"}
+RINGS = ("inner_ring_A", "inner_ring_B", "outer_ring_A", "outer_ring_B")
+SIGNS = {"DB": (1.0, -1.0), "DF": (-1.0, 1.0)}
+
+
+@dataclass
+class FEState:
+    """Per-row FE results (arrays of length n)."""
+    fit_pressure_MPa: np.ndarray        # (n, n_fits) mean pressure per fit
+    interference_um: np.ndarray         # (n, 2) free diametral overlap at temperature: inner, outer
+    dr_mm: np.ndarray                   # (2, n) inner minus outer groove-centre radial shift, A/B
+    dz_mm: np.ndarray                   # (2, n) axial
+    raceway_u_mm: np.ndarray            # (n, 8) u_r, u_z at the raceway points of RINGS
+
+
+class Pipeline:
+    """One assembly: mesh, FE model, unit solutions and bearing geometry, built once."""
+
+    def __init__(self, asm: Assembly, mesh_factor: float = 1.0, progress=None):
+        say = progress or (lambda s: None)
+        self.asm = asm
+        self.section = section_from_assembly(asm).scaled(mesh_factor)
+        say(f"meshing and assembling the FE model of {asm.name} ...")
+        self.model = build_model(self.section, asm.fits.contact)
+        self.solver = FitSolver(self.model)
+        pts = np.array([self.section.raceway_points[r] for r in RINGS]).T
+        self.probe = self.model.probe_matrix(pts)
+        say(f"unit solutions ({self.model.ndofs} DOF) ...")
+        self.sup = Superposition(self.solver, self.probe)
+        self.geom = BearingGeometry.from_spec(asm.bearing)
+        self._centre_offsets(pts)
+        self.lubricant = get_lubricant(asm.lubrication.lubricant) if asm.lubrication.kind == "oil" else None
+
+    # ------------------------------------------------------------------ geometry
+    def _centre_offsets(self, pts: np.ndarray) -> None:
+        """Groove-centre position minus raceway point, per ring (r, z), mm.
+        Inner centre: r = dm/2 + (f_i - 1/2) Dw cos a0, z = z_mid + s_j (f_i - 1/2) Dw sin a0;
+        outer centre: r = dm/2 - (f_o - 1/2) Dw cos a0, z = z_mid - s_j (f_o - 1/2) Dw sin a0
+        (Harris & Kotzalas Vol. 1 ch. 2: both centres on the contact line through the ball
+        centre; s_j the arrangement sign of bearing j)."""
+        g = self.geom
+        a0 = np.radians(g.alpha0_deg)
+        s = SIGNS[self.asm.arrangement]
+        off = np.zeros((4, 2))
+        for k, ring in enumerate(RINGS):
+            j = 0 if ring.endswith("A") else 1
+            inner = ring.startswith("inner")
+            f = g.f_i if inner else g.f_o
+            sgn = 1.0 if inner else -1.0
+            rc = g.dm_mm / 2 + sgn * (f - 0.5) * g.Dw_mm * np.cos(a0)
+            zc = pts[1, k] + sgn * s[j] * (f - 0.5) * g.Dw_mm * np.sin(a0)
+            off[k] = (rc - pts[0, k], zc - pts[1, k])
+        self.centre_offset_mm = off
+
+    # ------------------------------------------------------------------ FE
+    def thetas(self, inputs: PhysicsInputs) -> np.ndarray:
+        """(n, n_parts) thermal strain per FE part; the cte_nonlinearity effect changes the CTE
+        slope of the shaft (and nut) and housing (and cover)."""
+        cols = []
+        for part in self.model.part_names:
+            group = FE_PART_GROUP[part]
+            mat = self.model.materials[part]
+            if group in inputs.dalpha_per_K2:
+                mat = mat.with_dalpha(inputs.dalpha_per_K2[group])
+            cols.append(mat.thermal_strain(np.asarray(inputs.T_C[group], float), self.asm.T_ref_C))
+        return np.column_stack(cols)
+
+    def fits_um(self, inputs: PhysicsInputs) -> tuple[np.ndarray, np.ndarray]:
+        f = self.asm.fits
+        return resolve_interference_um(inputs, f.inner_interference_um, f.outer_interference_um)
+
+    def deltas_mm(self, inner_um: np.ndarray, outer_um: np.ndarray) -> np.ndarray:
+        """(n, n_fits) radial interference (mm) per FE fit."""
+        return np.column_stack([(inner_um if f.key == "inner" else outer_um) / 2000.0
+                                for f in self.model.fits])
+
+    def fe(self, inputs: PhysicsInputs, direct: bool = False) -> FEState:
+        theta = self.thetas(inputs)
+        inner_um, outer_um = self.fits_um(inputs)
+        delta = self.deltas_mm(inner_um, outer_um)
+        if direct:
+            force, probe = [], []
+            for i in range(inputs.n_rows):
+                sol = self.solver.solve(self.model.unit_loads @ theta[i], delta[i])
+                force.append(sol.force_N)
+                probe.append(self.probe @ sol.u)
+            force, probe = np.array(force), np.array(probe)
+        else:
+            res = self.sup.evaluate(theta, delta)
+            force, probe = res["force_N"], res["probe"]
+        p = fit_mean_pressures(self.model, self.solver.fit_of_pair, force)
+        # groove-centre shifts: raceway displacement + ring thermal strain x offset
+        idx = {p: i for i, p in enumerate(self.model.part_names)}
+        centre = np.empty((inputs.n_rows, 4, 2))
+        for k, ring in enumerate(RINGS):
+            th = theta[:, idx[ring]]
+            centre[:, k, :] = probe[:, 2 * k:2 * k + 2] + th[:, None] * self.centre_offset_mm[k]
+        dr = np.stack([centre[:, 0, 0] - centre[:, 2, 0], centre[:, 1, 0] - centre[:, 3, 0]])
+        dz = np.stack([centre[:, 0, 1] - centre[:, 2, 1], centre[:, 1, 1] - centre[:, 3, 1]])
+        a = self.asm
+        d_seat, d_bore = a.shaft.seat_diameter_mm, a.housing.bore_diameter_mm
+        interf = np.column_stack([
+            inner_um + (theta[:, idx["shaft"]] - theta[:, idx["inner_ring_A"]]) * d_seat * 1e3,
+            outer_um + (theta[:, idx["outer_ring_A"]] - theta[:, idx["housing"]]) * d_bore * 1e3])
+        return FEState(p, interf, dr, dz, probe)
+
+    def lame_beside(self, fe: FEState, inputs: PhysicsInputs) -> dict[str, np.ndarray]:
+        """Closed-form neighbours of the FE values (two-cylinder Lamé, plane stress)."""
+        a, b = self.asm, self.asm.bearing
+        ms, mr, mh = (self.model.materials[p] for p in ("shaft", "inner_ring_A", "housing"))
+        inner = dict(r_inner_mm=a.shaft.bore_diameter_mm / 2, r_fit_mm=a.shaft.seat_diameter_mm / 2,
+                     r_outer_mm=b.inner_ring_outer_diameter_mm / 2, E_inner_MPa=ms.E_MPa,
+                     nu_inner=ms.nu, E_outer_MPa=mr.E_MPa, nu_outer=mr.nu)
+        outer = dict(r_inner_mm=b.outer_ring_inner_diameter_mm / 2,
+                     r_fit_mm=a.housing.bore_diameter_mm / 2,
+                     r_outer_mm=a.housing.outer_diameter_mm / 2, E_inner_MPa=mr.E_MPa,
+                     nu_inner=mr.nu, E_outer_MPa=mh.E_MPa, nu_outer=mh.nu)
+        th_ring = mr.thermal_strain(np.asarray(inputs.T_C["inner_ring"], float), a.T_ref_C)
+        r_race = b.inner_ring_outer_diameter_mm / 2
+        u_lame = lame.fit_displacement_mm(r_race, "outer", **inner,
+                                          interference_um=fe.interference_um[:, 0]) + th_ring * r_race
+        return {"fit_pressure_inner_lame_MPa": lame.fit_pressure_MPa(**inner, interference_um=fe.interference_um[:, 0]),
+                "fit_pressure_outer_lame_MPa": lame.fit_pressure_MPa(**outer, interference_um=fe.interference_um[:, 1]),
+                "raceway_u_r_inner_A_um": 1e3 * fe.raceway_u_mm[:, 0],
+                "raceway_u_r_inner_A_lame_um": 1e3 * u_lame}
+
+    # ------------------------------------------------------------------ whole chain
+    def run(self, inputs: PhysicsInputs, direct: bool = False,
+            compliance_mm_per_N: float = 0.0) -> dict[str, np.ndarray]:
+        """All outputs per row (spec columns first, then the rest)."""
+        a = self.asm
+        fe = self.fe(inputs, direct)
+        # reference (assembly) state of every row: T_ref everywhere, the row's as-built fits
+        ref_inputs = inputs.copy(T_C={k: np.full(inputs.n_rows, a.T_ref_C) for k in inputs.T_C},
+                                 dalpha_per_K2={})
+        fe_ref = self.fe(ref_inputs, direct)
+        preload = np.asarray(inputs.preload_assembled_N, float)
+        if inputs.preload_loss_N is not None:
+            preload = np.maximum(preload - np.asarray(inputs.preload_loss_N, float), 0.0)
+        pair = solve_pair(self.geom, a.arrangement, dr_mm=fe.dr_mm, dz_mm=fe.dz_mm,
+                          T_inner_ring_C=inputs.T_C["inner_ring"],
+                          T_outer_ring_C=inputs.T_C["outer_ring"], T_ball_C=inputs.T_C["ball"],
+                          T_ref_C=a.T_ref_C, preload_kind=a.preload.kind,
+                          preload_assembled_N=preload, axial_load_N=inputs.axial_load_N,
+                          dr_ref_mm=fe_ref.dr_mm, dz_ref_mm=fe_ref.dz_mm,
+                          compliance_mm_per_N=compliance_mm_per_N)
+        mu = resolve_friction_coefficient(inputs, a.lubrication.friction_coefficient)
+        torque = self.torque(pair, inputs, mu)
+        nf = len(self.model.fits)
+        names = [f.name for f in self.model.fits]
+        p_in = fe.fit_pressure_MPa[:, [k for k in range(nf) if names[k].startswith("fit_inner")]]
+        p_out = fe.fit_pressure_MPa[:, [k for k in range(nf) if names[k].startswith("fit_outer")]]
+        out = {"torque_Nmm": torque.pop("torque_Nmm"), "preload_N": pair["preload_N"],
+               "contact_angle_deg": _weighted_angle(pair),
+               "interference_inner_um": fe.interference_um[:, 0],
+               "interference_outer_um": fe.interference_um[:, 1],
+               "fit_pressure_inner_MPa": p_in.mean(axis=1),
+               "fit_pressure_outer_MPa": p_out.mean(axis=1),
+               "max_contact_pressure_MPa": pair["max_contact_pressure_MPa"]}
+        out.update(torque)
+        for k, name in enumerate(names):
+            out[f"{name.replace('fit_', 'fit_pressure_')}_MPa"] = fe.fit_pressure_MPa[:, k]
+        out.update(self.lame_beside(fe, inputs))
+        for j, J in enumerate("AB"):
+            out[f"groove_shift_dr_{J}_um"] = 1e3 * fe.dr_mm[j]
+            out[f"groove_shift_dz_{J}_um"] = 1e3 * fe.dz_mm[j]
+        for key in ("axial_force_A_N", "axial_force_B_N", "contact_angle_A_deg",
+                    "contact_angle_B_deg", "ball_load_A_N", "ball_load_B_N",
+                    "axial_stiffness_N_per_um"):
+            out[key] = pair[key]
+        out["preload_lost"] = pair["preload_lost"].astype(float)
+        out["friction_coefficient"] = mu
+        return out
+
+    def torque(self, pair: dict, inputs: PhysicsInputs, mu: np.ndarray) -> dict[str, np.ndarray]:
+        """Friction torque of the pair (analytic/torque.py). Oil: viscosity of the configured
+        lubricant (ASTM D341 fit of its datasheet points, slope scaled by the
+        viscosity_temperature effect) at the mean of the ring and ball temperatures."""
+        lub = self.asm.lubrication
+        speed = np.asarray(inputs.speed_rpm, float)
+        if lub.kind == "solid_film":
+            return pair_torque(self.geom, pair, model="solid_film", mu=mu,
+                               hysteresis_loss=lub.hysteresis_loss_factor, speed_rpm=speed)
+        T_oil = (np.asarray(inputs.T_C["inner_ring"], float) + inputs.T_C["outer_ring"]
+                 + inputs.T_C["ball"]) / 3.0
+        nu = self.lubricant.nu_mm2_s(T_oil, slope_factor=inputs.viscosity_slope_factor)
+        out = pair_torque(self.geom, pair, model="oil", mu=mu, speed_rpm=speed,
+                          f0=lub.viscous_factor_f0, nu_mm2_s=nu, load_term=lub.load_term)
+        out["viscosity_mm2_s"] = nu
+        return out
+
+
+def _weighted_angle(pair: dict) -> np.ndarray:
+    """Contact angle of the pair (deg): the axial-force-weighted mean of bearings A and B (equal
+    weights when both are unloaded). Continuous, unlike "the angle of the more loaded bearing",
+    which jumps between two values when the forces are equal up to round-off."""
+    FA, FB = pair["axial_force_A_N"], pair["axial_force_B_N"]
+    tot = FA + FB
+    wA = np.where(tot > 0, FA / np.where(tot > 0, tot, 1.0), 0.5)
+    return wA * pair["contact_angle_A_deg"] + (1 - wA) * pair["contact_angle_B_deg"]

@@ -1,0 +1,111 @@
+"""Conditions / measured CSV tables: strict reading with one-line errors, atomic writing.
+
+Format (shared/spec/cli.md): header row, comma separated, `#` lines are comments. Every value
+numeric and finite; `time_s` strictly increasing when present.
+"""
+from __future__ import annotations
+
+import csv
+import math
+import os
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from studies.inputs import CONDITION_COLUMNS
+
+
+class TableError(ValueError):
+    """Bad table: one line naming the file, the row or column, and the problem."""
+
+
+def read_table(path: Path, allowed: set[str] | None = None,
+               required_any: tuple[str, ...] = ()) -> dict[str, np.ndarray]:
+    """Read a numeric CSV into column arrays. `allowed`: known column names (others are an
+    error). Rows are numbered as in the file (1-based line numbers)."""
+    path = Path(path)
+    if not path.exists():
+        raise TableError(f"{path}: file not found")
+    header, rows, lines = None, [], []
+    with open(path, newline="") as fh:
+        for lineno, line in enumerate(fh, start=1):
+            s = line.strip()
+            if not s or s.startswith("#"):
+                continue
+            fields = next(csv.reader([line]))
+            if header is None:
+                header = [f.strip() for f in fields]
+                for col in header:
+                    if not col:
+                        raise TableError(f"{path}: line {lineno}: empty column name in the header")
+                    if allowed is not None and col not in allowed:
+                        raise TableError(f"{path}: column '{col}': unknown column")
+                dup = {c for c in header if header.count(c) > 1}
+                if dup:
+                    raise TableError(f"{path}: column '{sorted(dup)[0]}': appears twice")
+                continue
+            if len(fields) != len(header):
+                raise TableError(f"{path}: line {lineno}: {len(fields)} values for "
+                                 f"{len(header)} columns")
+            vals = []
+            for col, f in zip(header, fields):
+                try:
+                    v = float(f)
+                except ValueError:
+                    raise TableError(f"{path}: line {lineno}, column '{col}': "
+                                     f"'{f.strip()}' is not a number") from None
+                if not math.isfinite(v):
+                    raise TableError(f"{path}: line {lineno}, column '{col}': value is {f.strip()}")
+                vals.append(v)
+            rows.append(vals)
+            lines.append(lineno)
+    if header is None:
+        raise TableError(f"{path}: empty table (no header)")
+    if not rows:
+        raise TableError(f"{path}: empty table (no data rows)")
+    data = np.array(rows, float)
+    cols = {c: data[:, i] for i, c in enumerate(header)}
+    if "time_s" in cols:
+        bad = np.flatnonzero(np.diff(cols["time_s"]) <= 0)
+        if bad.size:
+            raise TableError(f"{path}: line {lines[bad[0] + 1]}, column 'time_s': time not "
+                             "increasing")
+    if required_any and not any(c in cols for c in required_any):
+        raise TableError(f"{path}: needs at least one of the columns {', '.join(required_any)}")
+    cols["_line"] = np.array(lines)
+    return cols
+
+
+def read_conditions(path: Path) -> dict[str, np.ndarray]:
+    """A conditions table: only the condition columns of the spec."""
+    return read_table(path, allowed=set(CONDITION_COLUMNS))
+
+
+def write_table(path: Path, columns: dict[str, np.ndarray], comment: str = "") -> None:
+    """Write columns to CSV atomically (temporary file in the same folder, then rename)."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    names = [c for c in columns if not c.startswith("_")]
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
+    try:
+        with os.fdopen(fd, "w", newline="") as fh:
+            for line in comment.splitlines():
+                fh.write(f"# {line}\n")
+            w = csv.writer(fh)
+            w.writerow(names)
+            arrays = [np.asarray(columns[c]) for c in names]
+            for i in range(len(arrays[0]) if arrays else 0):
+                w.writerow([_fmt(a[i]) for a in arrays])
+        os.replace(tmp, path)
+    except BaseException:
+        os.unlink(tmp)
+        raise
+
+
+def _fmt(v) -> str:
+    if isinstance(v, (bool, np.bool_)):
+        return "1" if v else "0"
+    if isinstance(v, (str, np.str_)):
+        return str(v)
+    return f"{float(v):.10g}"
