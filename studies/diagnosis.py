@@ -82,6 +82,10 @@ class DiagnosisError(ValueError):
     """Unusable input to the engine (one-line message)."""
 
 
+class ModelFailure(RuntimeError):
+    """The model could not be evaluated (exception or non-finite output) at some parameters."""
+
+
 # ============================================================================ small utilities
 def _jsonable(x):
     if isinstance(x, dict):
@@ -178,7 +182,10 @@ class _Model:
             self.cache.move_to_end(key)
             return hit
         t0 = time.perf_counter()
-        raw = self.predict({e: dict(p) for e, p in effects.items()}, dict(nuisance))
+        try:
+            raw = self.predict({e: dict(p) for e, p in effects.items()}, dict(nuisance))
+        except Exception as exc:  # the model's own failure at these parameters
+            raise ModelFailure(f"{type(exc).__name__}: {exc}") from exc
         self.seconds += time.perf_counter() - t0
         self.calls += 1
         out = {}
@@ -321,7 +328,10 @@ class _Engine:
         for c in self.columns:
             m = self.valid[c]
             parts.append((self.measured[c][m] - pred[c][m]) / self.sigma[c])
-        return np.concatenate(parts)
+        z = np.concatenate(parts)
+        if not np.all(np.isfinite(z)):
+            raise ModelFailure("the model returned non-finite values")
+        return z
 
     def residual_columns(self, pred) -> dict[str, np.ndarray]:
         return {c: self.measured[c] - pred[c] for c in self.columns}
@@ -363,8 +373,14 @@ class _Engine:
         u0 = np.clip(u0, lo + 1e-10 * np.maximum(span, 1), hi - 1e-10 * np.maximum(span, 1))
         dim = u0.size
 
+        big = np.full(self.N, 1e6)
+        self.eval(space, u0)              # the start must evaluate (else ModelFailure)
+
         def fun(u):
-            return self.eval(space, u)[0]
+            try:
+                return self.eval(space, u)[0]
+            except ModelFailure:          # outside the model's range: steer the optimiser back
+                return big
 
         res = optimize.least_squares(fun, u0, bounds=(lo, hi), method="trf", diff_step=1e-3,
                                      x_scale=1.0, ftol=1e-9, xtol=1e-9, gtol=1e-9,
@@ -493,7 +509,10 @@ class _Engine:
                 du = np.zeros(0)
             sse0 = float(z @ z)
             for damp in (1.0, 0.5):
-                zz, _ = self.eval(sp, sp.clip(fit.u + damp * du))
+                try:
+                    zz, _ = self.eval(sp, sp.clip(fit.u + damp * du))
+                except ModelFailure:
+                    continue
                 if float(zz[tr] @ zz[tr]) <= sse0 * (1 + 1e-9):
                     break
             else:
@@ -518,7 +537,7 @@ class _Engine:
                 if best is None or sse < best[0]:
                     best = (sse, g, x)
             _, g, du = best
-            zz, _ = self.eval(g["space"], g["u0"] + du)
+            zz, _ = self.eval(g["space"], g["u0"] + du)     # ModelFailure -> candidate fails
             z_ho[te] = zz[te]
             chosen.append(g["value"])
         return z_ho, chosen
@@ -586,7 +605,11 @@ class _Engine:
                 info.update(status="not_applicable", reason=why)
                 continue
             fixed = {p: float(np.median(grid[p])) for p in e.profile}
-            Jc, names = self.sensitivity(e, base_nuis, base.pred, fixed)
+            try:
+                Jc, names = self.sensitivity(e, base_nuis, base.pred, fixed)
+            except ModelFailure as exc:
+                info.update(status="model_failed", reason=f"model failed with the effect on: {exc}")
+                continue
             Jp = Jc - Qn @ (Qn.T @ Jc)
             raw = np.linalg.norm(Jc, axis=0)
             left = np.linalg.norm(Jp, axis=0)
@@ -624,13 +647,18 @@ class _Engine:
 
         # ---- 3. fits
         fits: dict[str, _Fit] = {}
-        for name in names_id:
+        for name in list(names_id):
             e = self._effect(name)
             info = cands[name]
-            if e.profile:
-                fits[name] = self.fit_profiled(e, info, base, base_nuis)
-            else:
-                fits[name] = self.fit_candidate(e, info, base)
+            try:
+                if e.profile:
+                    fits[name] = self.fit_profiled(e, info, base, base_nuis)
+                else:
+                    fits[name] = self.fit_candidate(e, info, base)
+            except ModelFailure as exc:
+                info.update(status="model_failed", reason=f"fit failed: {exc}")
+                names_id.remove(name)
+                continue
             f = fits[name]
             lr = max(base.chi2 - f.chi2, 0.0)
             r = info["rank"]
@@ -659,13 +687,18 @@ class _Engine:
 
         # ---- 4. held-out gains
         ho = {}
-        for name in names_id:
+        for name in list(names_id):
             e = self._effect(name)
-            if e.profile:
-                ho[name], chosen = self.heldout_profile(fits[name].extra["grid_lin"], e)
-                cands[name]["heldout_profile_values"] = chosen
-            else:
-                ho[name] = self.heldout_linear(fits[name])
+            try:
+                if e.profile:
+                    ho[name], chosen = self.heldout_profile(fits[name].extra["grid_lin"], e)
+                    cands[name]["heldout_profile_values"] = chosen
+                else:
+                    ho[name] = self.heldout_linear(fits[name])
+            except ModelFailure as exc:
+                # no honest held-out number: the candidate cannot pass
+                cands[name]["heldout_failed"] = str(exc)
+                ho[name] = base_ho.copy()
             cands[name]["heldout_rmse"] = self.col_rmse(ho[name])
             cands[name]["heldout_gain"] = self.bootstrap_gain(base_ho, ho[name])
         passing = []
@@ -696,6 +729,11 @@ class _Engine:
                 reasons.append("the baseline residuals show structure beyond noise "
                                f"(adjusted p = {desc_base['p_min_adjusted']:.2g}) but no "
                                "candidate passes")
+                cols = desc_base["columns"].values()
+                if all(d["smoother_heldout_gain"] <= 0 and d["bias_p"] > 0.01 for d in cols):
+                    reasons.append("the structure is serial correlation that the conditions do "
+                                   "not predict on held-out blocks: correlated noise, a drift or "
+                                   "a disturbance in time rather than a missing physical effect")
             else:
                 reasons.append("the baseline residuals are consistent with the noise estimated "
                                "from the data and no candidate passes")
@@ -814,7 +852,10 @@ class _Engine:
         best = None
         for uu in starts:
             uu = space.clip(uu)
-            z, _ = self.eval(space, uu)
+            try:
+                z, _ = self.eval(space, uu)
+            except ModelFailure:
+                continue
             if nq:
                 dn, *_ = np.linalg.lstsq(Jn, -z, rcond=None)
                 uu = space.clip(np.concatenate([uu[:k], uu[k:] + dn]))
@@ -824,6 +865,8 @@ class _Engine:
             sse = float(zc @ zc)
             if best is None or sse < best[0]:
                 best = (sse, uu)
+        if best is None:
+            raise ModelFailure("the model fails at every starting point")
         f = self.fit(space, best[1])
         if f.chi2 > base.chi2:           # never worse than the baseline (off is admissible)
             f2 = self.fit(space, np.concatenate([np.zeros(k), base.u]))
@@ -854,26 +897,41 @@ class _Engine:
             return {"value": value, "space": space, "J": J, "z": base.z, "u0": u0, "lo": lo,
                     "hi": hi, "sse": sse, "du": x}
 
+        def lin_safe(value):
+            try:
+                return lin(value)
+            except ModelFailure:
+                return None
+
         if len(values) > 40:
             coarse_idx = np.unique(np.linspace(0, len(values) - 1, 24).round().astype(int))
-            lins = {i: lin(values[i]) for i in coarse_idx}
-            ib = min(lins, key=lambda i: lins[i]["sse"])
-            pos = list(coarse_idx).index(ib)
-            lo_i = coarse_idx[max(pos - 1, 0)]
-            hi_i = coarse_idx[min(pos + 1, len(coarse_idx) - 1)]
-            for i in range(lo_i, hi_i + 1):
-                if i not in lins:
-                    lins[i] = lin(values[i])
-            grid_lin = [lins[i] for i in sorted(lins)]
+            lins = {i: lin_safe(values[i]) for i in coarse_idx}
+            ok = [i for i in lins if lins[i] is not None]
+            if ok:
+                ib = min(ok, key=lambda i: lins[i]["sse"])
+                pos = list(coarse_idx).index(ib)
+                lo_i = coarse_idx[max(pos - 1, 0)]
+                hi_i = coarse_idx[min(pos + 1, len(coarse_idx) - 1)]
+                for i in range(lo_i, hi_i + 1):
+                    if i not in lins:
+                        lins[i] = lin_safe(values[i])
+            grid_lin = [lins[i] for i in sorted(lins) if lins[i] is not None]
         else:
-            grid_lin = [lin(v) for v in values]
+            grid_lin = [g for g in map(lin_safe, values) if g is not None]
+        if not grid_lin:
+            raise ModelFailure(f"the model fails for every {pp} on the grid")
         ranked = sorted(grid_lin, key=lambda g: g["sse"])
         best = None
         for g in ranked[:2]:
-            f = self.fit(g["space"], g["u0"] + g["du"])
+            try:
+                f = self.fit(g["space"], g["u0"] + g["du"])
+            except ModelFailure:
+                continue
             if best is None or f.chi2 < best.chi2:
                 best = f
                 best.extra["value"] = g["value"]
+        if best is None:
+            raise ModelFailure(f"the fits at the best values of {pp} fail")
         # profile interval: values whose linearised chi-square is within 1 of the best
         sse_min = min(g["sse"] for g in grid_lin)
         near = [g["value"] for g in grid_lin if g["sse"] <= sse_min + 1.0]
@@ -927,9 +985,19 @@ class _Engine:
             ko = fo.space.k
             starts = [np.concatenate([fb.u[:kb], np.zeros(ko), fb.u[kb:]]),
                       np.concatenate([np.zeros(kb), fo.u[:ko], fo.u[ko:]])]
-            zs = [self.eval(space, s)[0] for s in starts]
-            u0 = starts[int(np.argmin([z @ z for z in zs]))]
-            fj = self.fit(space, u0)
+            try:
+                zs = []
+                for s0 in starts:
+                    try:
+                        z0 = self.eval(space, s0)[0]
+                        zs.append(float(z0 @ z0))
+                    except ModelFailure:
+                        zs.append(math.inf)
+                fj = self.fit(space, starts[int(np.argmin(zs))])
+            except ModelFailure as exc:    # cannot show that best carries the weight
+                joint[o] = {"error": str(exc), "best_carries_weight": False}
+                rivals.append(o)
+                continue
             chi_j = min(fj.chi2, fb.chi2, fo.chi2)
             lr_o_given_b = max(fb.chi2 - chi_j, 0.0)
             lr_b_given_o = max(fo.chi2 - chi_j, 0.0)
@@ -1014,6 +1082,9 @@ class _Engine:
                     try:
                         pb = self.predict_at(eb_eff, eb_nuis, cond)
                         po = self.predict_at(eo_eff, eo_nuis, cond)
+                        if not all(np.all(np.isfinite(np.asarray(x[c], float)))
+                                   for x in (pb, po) for c in self.columns):
+                            raise ValueError("non-finite prediction")
                     except Exception as exc:  # a probe outside the model's range: skip it
                         self.notes.append(f"probe skipped ({text}): {exc}")
                         continue

@@ -285,3 +285,20 @@ def test_missing_values_and_given_blocks(solid):
     assert (res["verdict"], res["cause"]) == ("explained", "cte_nonlinearity")
     assert res["heldout"]["blocks"] == 5
     assert res["parameters"]["dalpha_per_K"] == pytest.approx(1e-8, rel=0.1)
+
+
+def test_model_failure_marks_candidate_only(solid):
+    cond = cycles(n=300)
+    meas = make_data(solid, cond, {"friction_temperature": {"dmu_per_K": 3e-5}}, seed=1)
+
+    def predict(effects, nuisance):
+        if effects.get("cte_nonlinearity", {}).get("dalpha_per_K", 0.0) != 0.0:
+            raise RuntimeError("CTE slope not supported")
+        out = solid.evaluate(cond, effects, nuisance)
+        if effects.get("thermal_lag", {}).get("tau_s", 0.0) > 2000.0:
+            out["torque_Nmm"] = out["torque_Nmm"] * np.nan      # outside the model's range
+        return out
+    res = diagnose(predict, meas, cond, list(EFFECTS.values()), NUISANCE)
+    assert (res["verdict"], res["cause"]) == ("explained", "friction_temperature")
+    c = next(c for c in res["candidates"] if c["effect"] == "cte_nonlinearity")
+    assert c["status"] == "model_failed" and "CTE slope not supported" in c["reason"]
