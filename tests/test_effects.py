@@ -192,7 +192,7 @@ def test_lag_ramp_exact_and_steady_value():
     t2 = np.concatenate([t, 6000 + np.linspace(100, 20000, 50)])
     u2 = np.concatenate([r * t, np.full(50, r * 6000)])
     y2 = lag_response(t2, u2, tau)
-    assert abs(y2[-1] - r * 6000) < 1e-12 * 0 + 1e-6 * r * 6000
+    assert abs(y2[-1] - r * 6000) < 1e-9          # lag r tau decays as exp(-19900/500)
 
 
 def test_thermal_lag_acts_on_ambient_following_parts_only():
