@@ -283,10 +283,9 @@ def approach_for_force(g: BearingGeometry, F_N, dr_mm=0.0, tg: ThermalGeometry |
         cs_new = contact_stiffness(g, tg, alpha)
         done = _kn_converged(cs_new, cs, alpha, alpha_lin, tol)
         cs, alpha_lin = cs_new, alpha
-        if done:
+        if done:      # X carries F with a K_n model matching the exact K_n at alpha to tol
             break
-    X = _solve_X_for_force(F, Y, A_T, cs, g.Z, alpha_lin)
-    return X - g.A0_mm * np.sin(a0), np.arctan2(X, Y), cs
+    return X - g.A0_mm * np.sin(a0), alpha, cs
 
 
 def bearing_axial_force(g: BearingGeometry, approach_mm, dr_mm=0.0, tg: ThermalGeometry | None = None):
@@ -372,7 +371,7 @@ def solve_pair(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.0, dz_mm=
                T_inner_ring_C=None, T_outer_ring_C=None, T_ball_C=None, T_ref_C: float = 20.0,
                preload_kind: str = "position", preload_assembled_N=100.0, axial_load_N=0.0,
                dr_ref_mm=0.0, dz_ref_mm=0.0, compliance_mm_per_N=0.0,
-               tol: float = 1e-14, max_outer: int = 30) -> dict[str, np.ndarray]:
+               tol: float = 1e-14, max_outer: int = 30, chunk: int = 8192) -> dict[str, np.ndarray]:
     """Equilibrium of a preloaded pair of identical bearings, vectorised over N operating points.
 
     Inputs (mm, C, N), scalars or arrays of shape (N,) (both bearings) or (2, N) (A, B):
@@ -386,20 +385,36 @@ def solve_pair(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.0, dz_mm=
       compliance_mm_per_N   axial compliance c of the preload path (position preload)
     Conventions and formulas: module docstring.
 
-    Returns a dict of (N,) arrays: preload_N (= min(F_A, F_B)), axial_force_A_N, axial_force_B_N,
-    contact_angle_A_deg, contact_angle_B_deg, contact_angle_deg (of the more loaded bearing),
+    Returns a dict of (N,) arrays: preload_N (= min(F_A, F_B), 0 when lost), axial_force_A_N,
+    axial_force_B_N, contact_angle_A_deg, contact_angle_B_deg (for an unloaded bearing: the angle
+    of its groove-centre line, no contact), contact_angle_deg (of the more loaded bearing),
     ball_load_A_N, ball_load_B_N, delta_A_mm, delta_B_mm, for j in A, B and c in inner, outer:
     a_{c}_{j}_mm, b_{c}_{j}_mm, p_max_{c}_{j}_MPa, E_ell_{c}_{j} (second-kind elliptic integral),
     Rx_{c}_{j}_mm; max_contact_pressure_MPa, axial_stiffness_A_N_per_um, axial_stiffness_B_N_per_um,
     axial_stiffness_N_per_um (pair), preload_lost (bool), x_mm, preload_offset_mm (e; NaN for a
     spring), approach_A_mm, approach_B_mm.
+
+    Large N is processed in blocks of `chunk` points (working arrays stay in cache; the result
+    does not depend on it).
     """
     if arrangement not in SIGNS:
         raise ValueError(f"arrangement must be 'DB' or 'DF', got {arrangement!r}")
     if preload_kind not in ("position", "spring"):
         raise ValueError(f"preload_kind must be 'position' or 'spring', got {preload_kind!r}")
-    N = _n_points(dr_mm, dz_mm, T_inner_ring_C, T_outer_ring_C, T_ball_C, preload_assembled_N,
-                  axial_load_N, dr_ref_mm, dz_ref_mm, compliance_mm_per_N)
+    args = dict(dr_mm=dr_mm, dz_mm=dz_mm, T_inner_ring_C=T_inner_ring_C,
+                T_outer_ring_C=T_outer_ring_C, T_ball_C=T_ball_C,
+                preload_assembled_N=preload_assembled_N, axial_load_N=axial_load_N,
+                dr_ref_mm=dr_ref_mm, dz_ref_mm=dz_ref_mm, compliance_mm_per_N=compliance_mm_per_N)
+    N = _n_points(*args.values())
+    if N > chunk:
+        parts = []
+        for i0 in range(0, N, chunk):
+            sl = slice(i0, min(N, i0 + chunk))
+            sub = {k: (np.asarray(v)[..., sl] if v is not None and np.ndim(v) >= 1
+                       and np.shape(v)[-1] == N else v) for k, v in args.items()}
+            parts.append(solve_pair(g, arrangement, T_ref_C=T_ref_C, preload_kind=preload_kind,
+                                    tol=tol, max_outer=max_outer, chunk=chunk, **sub))
+        return {k: np.concatenate([p[k] for p in parts], axis=-1) for k in parts[0]}
     s = SIGNS[arrangement][:, None]
     a0 = np.radians(g.alpha0_deg)
     X0, Y0 = g.A0_mm * np.sin(a0), g.A0_mm * np.cos(a0)
@@ -440,8 +455,8 @@ def solve_pair(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.0, dz_mm=
             cs, alpha_lin = cs_new, alpha
             if done:
                 break
-        x = _newton_increasing(residual, x, step0=scale)
-        X = _effective_X(X0 + s * (dz + x) + e, Y, A_T, cs, Z, c, alpha_lin)
+        # converged: x solves the equilibrium with a K_n model that matches the exact K_n at the
+        # final angle to tol, so the state below (exact K_n) balances the load to tol
         e_out = e
     else:
         FA = s[0, 0] * Fext + P

@@ -261,3 +261,26 @@ def test_free_radial_clearance_relation():
     assert st.F_N == 0.0
     st, _ = bearing_axial_force(G, -A0 * np.sin(ALPHA0), G.radial_clearance_mm + 1e-3)
     assert st.delta_mm == pytest.approx(1e-3, rel=1e-9) and st.F_N == 0.0
+
+
+def test_chunked_evaluation_equals_one_block():
+    rng = np.random.default_rng(11)
+    N = 9
+    kw = dict(dr_mm=rng.uniform(-1e-3, 1e-3, (2, N)), dz_mm=rng.uniform(-2e-3, 2e-3, (2, N)),
+              T_inner_ring_C=rng.uniform(-60, 80, N), axial_load_N=rng.uniform(-300, 300, N),
+              preload_assembled_N=100.0)
+    one = solve_pair(G, "DB", **kw)
+    many = solve_pair(G, "DB", chunk=4, **kw)
+    for k, v in one.items():
+        assert np.allclose(many[k], v, rtol=1e-12, atol=1e-15, equal_nan=True), k
+
+
+def test_pair_with_clearance_everywhere_is_unloaded_not_an_error():
+    """Inner groove centres pulled 20 um apart axially (DB): both bearings lose contact without
+    external load; with a load one of them takes it all."""
+    dz = np.array([[-0.02, -0.02], [0.02, 0.02]])
+    out = solve_pair(G, "DB", preload_assembled_N=100.0, dz_mm=dz, axial_load_N=[0.0, 50.0])
+    assert out["preload_lost"].all()
+    assert out["axial_force_A_N"][0] == 0.0 and out["axial_force_B_N"][0] == 0.0
+    assert out["axial_force_A_N"][1] == pytest.approx(50.0, rel=1e-12)
+    assert out["axial_stiffness_N_per_um"][0] == 0.0
