@@ -156,7 +156,7 @@ class StackModel:
         x, el = self.sbasis.doflocs, self.sbasis.element_dofs
         ms, ss = [], []
         for s in self.section.splits:
-            if s.axis != "z":
+            if s.axis != "z" or not s.tied:
                 continue
             a, b = _pairs_on(x, _on_line(x, s), el, self.part_of, s.inner_parts, s.outer_parts)
             ms.append(2 * a + 1)

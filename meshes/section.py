@@ -42,6 +42,7 @@ class Split:
     hi_mm: float
     inner_parts: tuple[str, ...]
     outer_parts: tuple[str, ...]
+    tied: bool = True                # axis "z" only: False = a compliant clamp, faces not tied
 
 
 @dataclass(frozen=True)
@@ -139,7 +140,7 @@ def section_from_assembly(a: Assembly) -> Section:
         Split("face_inner_spacer_B", "z", zc, r_seat, min(r_iro, r_isp), ("inner_spacer",),
               ("inner_ring_B",)),
         Split("face_inner_B_nut", "z", z["nut"][0], r_seat, min(r_iro, a.nut.diameter_mm / 2),
-              ("inner_ring_B",), ("nut",)),
+              ("inner_ring_B",), ("nut",), a.nut.clamp == "rigid"),
         Split("face_housing_shoulder", "z", 0.0, h.shoulder_diameter_mm / 2, r_hb, ("housing",),
               ("outer_ring_A",)),
         Split("face_outer_A_spacer", "z", B, max(r_ori, r_osp), r_hb, ("outer_ring_A",),
@@ -147,7 +148,7 @@ def section_from_assembly(a: Assembly) -> Section:
         Split("face_outer_spacer_B", "z", z["outer_ring_B"][0], max(r_ori, r_osp), r_hb,
               ("outer_spacer",), ("outer_ring_B",)),
         Split("face_outer_B_cover", "z", z["cover"][0], max(r_ori, a.cover.diameter_mm / 2), r_hb,
-              ("outer_ring_B",), ("cover",)),
+              ("outer_ring_B",), ("cover",), a.cover.clamp == "rigid"),
     )
     fits = tuple(
         [Fit(f"fit_inner_{j}", "shaft", f"inner_ring_{j}", r_seat, *z[f"inner_ring_{j}"], "inner")

@@ -46,6 +46,9 @@ class Clamp:
     material: str
     diameter_mm: float               # nut: outer diameter; cover: inner diameter
     width_mm: float
+    clamp: str = "rigid"             # "rigid": the clamped face is tied axially (the clamp sets
+    #                                  the stack length); "compliant": the face is not tied (a
+    #                                  soft clamp: the stack keeps its own length)
 
 
 @dataclass(frozen=True)
@@ -145,8 +148,8 @@ class Assembly:
 SECTIONS = {
     "shaft": (Shaft, {"bore_diameter_mm": 0.0, "extension_mm": 0.0}),
     "housing": (Housing, {}),
-    "nut": (Clamp, {}),
-    "cover": (Clamp, {}),
+    "nut": (Clamp, {"clamp": "rigid"}),
+    "cover": (Clamp, {"clamp": "rigid"}),
     "inner_spacer": (Spacer, {}),
     "outer_spacer": (Spacer, {}),
     "bearing": (BearingSpec, {}),
@@ -160,11 +163,12 @@ SECTIONS = {
 }
 OPTIONAL_SECTIONS = {"limits", "mesh"}
 STRING_KEYS = {"material", "designation", "ring_material", "ball_material", "contact", "kind",
-               "lubricant", "load_term"}
+               "lubricant", "load_term", "clamp"}
 CHOICES = {("fits", "contact"): ("frictionless", "bonded"),
            ("preload", "kind"): ("position", "spring"),
            ("lubrication", "kind"): ("solid_film", "oil"),
-           ("lubrication", "load_term"): ("coulomb", "palmgren")}
+           ("lubrication", "load_term"): ("coulomb", "palmgren"),
+           ("nut", "clamp"): ("rigid", "compliant"), ("cover", "clamp"): ("rigid", "compliant")}
 # keys allowed to be zero (everything else numeric must be > 0)
 ZERO_OK = {("shaft", "bore_diameter_mm"), ("shaft", "extension_mm"),
            ("fits", "inner_interference_um"), ("fits", "outer_interference_um"),

@@ -333,9 +333,6 @@ class _Engine:
             raise ModelFailure("the model returned non-finite values")
         return z
 
-    def residual_columns(self, pred) -> dict[str, np.ndarray]:
-        return {c: self.measured[c] - pred[c] for c in self.columns}
-
     # ------------------------------------------------------------------ spaces
     def space(self, effects: Sequence, fixed: dict | None = None) -> _Space:
         """Space fitting the non-profile parameters of `effects` (effect objects) + nuisance;
@@ -390,6 +387,8 @@ class _Engine:
 
     # ------------------------------------------------------------------ describe residuals
     def features(self) -> np.ndarray:
+        if getattr(self, "_features", None) is not None:
+            return self._features
         cols = []
         keys = [k for k in self.conditions if np.nanstd(self.conditions[k]) > 0]
         if "time_s" not in keys:
@@ -401,7 +400,8 @@ class _Engine:
             x = (x - np.mean(x)) / (np.std(x) or 1.0)
             for d in range(1, deg + 1):
                 F.append(x ** d)
-        return np.array(F).T if F else np.zeros((self.n, 0))
+        self._features = np.array(F).T if F else np.zeros((self.n, 0))
+        return self._features
 
     def describe(self, pred: dict, n_params: int) -> dict:
         """Residual statistics per column and the structure decision inputs."""
@@ -592,7 +592,7 @@ class _Engine:
         cands = {}
         proj = {}
         for e in self.candidates:
-            info = {"effect": e.name, "parameters": {}, "delta_bic": None, "heldout_rmse": None,
+            info = {"effect": e.name, "parameters": {}, "delta_bic": None, "heldout_rmse": {},
                     "status": None, "reason": ""}
             cands[e.name] = info
             why = e.applicable(self.conditions)
@@ -815,6 +815,7 @@ class _Engine:
                         "refitted on the other blocks (one Gauss-Newton step from the full fit); "
                         "paired block bootstrap of the RMSE difference"},
             "thresholds": dict(th),
+            "notes": list(self.notes),
             "n_rows": int(self.n),
             "n_predict_calls": int(self.model.calls),
             "seconds": {"total": time.perf_counter() - self.t0, "predict": self.model.seconds},

@@ -1,0 +1,62 @@
+"""Small helpers shared by the studies: plots (matplotlib, Agg), markdown tables, field images."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+
+def line_plot(path: Path, x, series: dict, xlabel: str, ylabel: str, title: str = "",
+              markers: bool = False, vlines: dict | None = None) -> Path:
+    """One PNG with several labelled curves sharing an x axis."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(6.4, 4.2))
+    for label, y in series.items():
+        xs, ys = (y if isinstance(y, tuple) else (x, y))
+        ax.plot(xs, ys, "o-" if markers else "-", ms=3, label=label)
+    for label, xv in (vlines or {}).items():
+        ax.axvline(xv, color="grey", ls="--", lw=0.8)
+        ax.text(xv, ax.get_ylim()[1], f" {label}", va="top", fontsize=7, color="grey")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    if title:
+        ax.set_title(title, fontsize=10)
+    ax.grid(alpha=0.3)
+    if len(series) > 1:
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path
+
+
+def md_table(header: list[str], rows: list[list]) -> str:
+    def fmt(v):
+        if isinstance(v, float):
+            return f"{v:.4g}"
+        return str(v)
+    out = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    out += ["| " + " | ".join(fmt(v) for v in r) + " |" for r in rows]
+    return "\n".join(out)
+
+
+def field_images(out_dir: Path, pipeline, T_C: float, stem: str, title: str) -> list[Path]:
+    """VTU + PNG field images of the stack at a uniform temperature (nominal fits)."""
+    from fem.fields import render_fields, write_vtu
+    from fem.post import element_stresses, theta_per_element
+    from studies.inputs import baseline_inputs
+
+    a = pipeline.asm
+    inp = baseline_inputs({"T_ambient_C": np.array([T_C])}, 1, a.T_ref_C, a.preload.assembled_N,
+                          a.lubrication.speed_rpm)
+    theta = pipeline.thetas(inp)[0]
+    delta = pipeline.deltas_mm(*pipeline.fits_um(inp))[0]
+    u = pipeline.sup.field(theta, delta)
+    model = pipeline.model
+    stresses = element_stresses(model, u, theta_per_element(model, theta))
+    T_vertex = np.full(model.mesh.p.shape[1], T_C)
+    write_vtu(out_dir / f"{stem}.vtu", model, u, stresses, T_vertex)
+    return render_fields(out_dir, stem, model, u, stresses, title, T_vertex_C=T_vertex)
