@@ -14,14 +14,14 @@ a_j of bearing j,
     D_j = sqrt(X_j^2 + Y_j^2),  alpha_j = atan2(X_j, Y_j)
     A_T = Dw [f_i (1 + theta_ir) + f_o (1 + theta_or) - (1 + theta_b)]   (r_i + r_o - Dw, grown)
     delta_j = D_j - A_T                       (inner + outer contact deformation in series)
-    Q_j = K_n(alpha_j) delta_j^1.5,  F_j = Z Q_j sin(alpha_j)   (Harris Vol. 1 eq. 7.5, 7.16)
+    Q_j = K_n(alpha_j) delta_j^1.5,  F_j = Z Q_j sin(alpha_j)   (Harris Vol. 1 ch. 7)
 
 theta = Material.thermal_strain(T, T_ref) of the inner ring, outer ring and ball.  K_n combines the
 inner and outer Hertz stiffnesses in series (`hertz.series_stiffness_N_per_mm15`), each from the
 exact Hertz solution at the current contact angle and the thermally grown Dw, groove radii and pitch
 diameter.  delta <= 0 means the bearing is unloaded (Q = 0), not an error.  Without dr and thermal
 strain, F = Z K_n A0^1.5 (cos alpha0/cos alpha - 1)^1.5 sin alpha: Harris's axial-load equation
-(Vol. 1 eq. 7.18); the tests hold the two equal.
+(Vol. 1 ch. 7, thrust-loaded bearing); the tests hold the two equal.
 
 Pair conventions (fixed; other code relies on them).  Bearings A (lower z) and B (higher z),
 arrangement "DB" (back-to-back, s_A = +1, s_B = -1) or "DF" (face-to-face, s_A = -1, s_B = +1):
@@ -89,12 +89,12 @@ class BearingGeometry:
 
     @property
     def A0_mm(self) -> float:
-        """Free distance of the groove curvature centres A0 = (f_i + f_o - 1) Dw (Harris eq. 2.7)."""
+        """Free distance of the groove curvature centres A0 = (f_i + f_o - 1) Dw (Harris Vol. 1 ch. 2)."""
         return (self.f_i + self.f_o - 1.0) * self.Dw_mm
 
     @property
     def radial_clearance_mm(self) -> float:
-        """Free radial clearance Pd/2 = A0 (1 - cos alpha0) (Harris Vol. 1 eq. 2.9 rearranged), mm."""
+        """Free radial clearance Pd/2 = A0 (1 - cos alpha0) (Harris Vol. 1 ch. 2: cos alpha0 = 1 - Pd/(2 A0)), mm."""
         return self.A0_mm * (1.0 - np.cos(np.radians(self.alpha0_deg)))
 
     @property
@@ -143,11 +143,11 @@ class ContactStiffness:
     E_ell: np.ndarray            # second-kind elliptic integral, (2, ...)
     Rx_mm: np.ndarray            # (2, ...)
     R_mm: np.ndarray             # 1/curvature sum, (2, ...)
-    u: np.ndarray                # ln kappa, (2, ...), for warm starts
+    u: np.ndarray                # ln kappa, (2, ...)
 
 
 def contact_stiffness(g: BearingGeometry, tg: ThermalGeometry, alpha_rad) -> ContactStiffness:
-    """K_n(alpha) = [K_i^(-2/3) + K_o^(-2/3)]^(-3/2) (Harris Vol. 1 eq. 7.5) from the exact Hertz
+    """K_n(alpha) = [K_i^(-2/3) + K_o^(-2/3)]^(-3/2) (Harris Vol. 1 ch. 7) from the exact Hertz
     stiffness of each contact (`hertz.stiffness_from_kappa`) with the ball/raceway radii of
     `hertz.ball_raceway_radii_mm` at gamma = Dw cos(alpha)/dm, and its exact derivative in alpha
     (implicit differentiation of the ellipticity equation; d K/dm = (E - (1-m) K)/(2m(1-m)),
@@ -188,7 +188,7 @@ class BearingState:
 
 def axial_state(X_mm, Y_mm, A_T_mm, Kn, Z: int, dlnKn_dalpha=None, alpha_lin=None) -> BearingState:
     """F = Z K_n delta^1.5 sin(alpha) with delta = sqrt(X^2 + Y^2) - A_T, alpha = atan2(X, Y)
-    (Harris Vol. 1 eq. 7.16 with the centre distance written in components).  A bearing whose
+    (Harris Vol. 1 ch. 7 with the centre distance written in components).  A bearing whose
     contact angle would be <= 0 carries no axial load (F = 0, k = 0).
 
     With dlnKn_dalpha and alpha_lin given, K_n is taken as K_n exp(dlnKn_dalpha (alpha - alpha_lin))
@@ -306,7 +306,6 @@ class _LinearKn:
     """First-order model of K_n(alpha) about some angle (the solvers' working copy)."""
     Kn: np.ndarray
     dlnKn_dalpha: np.ndarray
-    u: np.ndarray
 
 
 def _reference_state(g: BearingGeometry, s, P, c, dr_ref, dz_ref, tol):
@@ -328,7 +327,7 @@ def _reference_state(g: BearingGeometry, s, P, c, dr_ref, dz_ref, tol):
     a_nom = a_ref + c * P
     e = 0.5 * (a_nom[0] + a_nom[1] - s[0, 0] * (dz_ref[0] - dz_ref[1]))
     x = s[0, 0] * (a_nom[0] - e) - dz_ref[0]
-    lin = _LinearKn(cs_u.Kn[:, inv], cs_u.dlnKn_dalpha[:, inv], cs_u.u[:, :, inv])
+    lin = _LinearKn(cs_u.Kn[:, inv], cs_u.dlnKn_dalpha[:, inv])
     return e, x, alpha_u[:, inv], lin
 
 

@@ -11,7 +11,7 @@ curvature sum and curvature difference are
     sum_rho = 1/Rx + 1/Ry                       [1/mm]
     F(rho)  = |1/Rx - 1/Ry| / (1/Rx + 1/Ry)     [-]
 
-Exact solution (Hertz 1882; Harris Vol. 1 eq. 6.25-6.34; Hamrock & Brewe 1983 eq. 1-9).  With
+Exact solution (Hertz 1882; Harris & Kotzalas Vol. 1 ch. 6; Hamrock & Brewe 1983).  With
 kappa = a/b >= 1 the ellipticity (a semi-major axis, along the direction of the larger effective
 radius), m = 1 - 1/kappa^2 the parameter of the complete elliptic integrals K(m), E(m) (scipy's
 convention: argument m = k^2), the ellipticity solves
@@ -20,7 +20,7 @@ convention: argument m = k^2), the ellipticity solves
     Ry/Rx  = (kappa^2 E - K) / (K - E)                         (Ry >= Rx)
 
 and, with R = 1/sum_rho and the contact modulus E* = [(1-nu1^2)/E1 + (1-nu2^2)/E2]^-1
-(Johnson eq. 4.22; Hamrock's E' = 2 E*):
+(Johnson 1985 ch. 4; Hamrock's E' = 2 E*):
 
     a     = (3 kappa^2 E Q R / (pi E*))^(1/3)
     b     = (3 E Q R / (pi kappa E*))^(1/3)
@@ -28,7 +28,7 @@ and, with R = 1/sum_rho and the contact modulus E* = [(1-nu1^2)/E1 + (1-nu2^2)/E
     p_max = 3 Q / (2 pi a b)
     Q     = K_c delta^1.5,   K_c = 2 pi kappa E* sqrt(2 E R / (9 K^3))
 
-For a sphere on a flat (kappa = 1, K = E = pi/2) these reduce to Johnson's eq. 4.22-4.23:
+For a sphere on a flat (kappa = 1, K = E = pi/2) these reduce to Johnson's (1985, ch. 4)
 a = (3 Q R' / (4 E*))^(1/3), delta = a^2 / R' with R' the sphere radius (R = R'/2).
 
 Numerics.  The root equation is rewritten with Carlson's symmetric integral R_D (DLMF 19.25.1):
@@ -45,6 +45,8 @@ same solver from Hamrock & Brewe's kappa = (Ry/Rx)^(2/pi)), so one step usually 
 
 Approximations (each its own function, for comparison and for speed where accuracy allows):
 Brewe & Hamrock (1977), Hamrock & Brewe (1983), and Greenwood's (1985) near-circular asymptote.
+The Moes / Antoine et al. (2006) explicit fit is not included: its coefficients could not be
+checked against the paper here, and an unverified fit is worse than none.
 """
 from __future__ import annotations
 
@@ -209,8 +211,8 @@ def solve_ellipticity(radius_ratio: ArrayLike, u0: ArrayLike | None = None,
     """Exact Hertz ellipticity from the ratio of effective radii rho = Ry/Rx >= 1 (a ratio below 1
     is inverted: the semi-major axis always lies along the larger radius).
 
-    Solves Ry/Rx = (kappa^2 E - K)/(K - E) (Harris Vol. 1 eq. 6.27 rearranged; Hamrock & Brewe
-    1983 eq. 6) by safeguarded Newton on u = ln kappa; see the module docstring for the
+    Solves Ry/Rx = (kappa^2 E - K)/(K - E) (Harris Vol. 1 ch. 6, rearranged; Hamrock & Brewe
+    1983) by safeguarded Newton on u = ln kappa; see the module docstring for the
     cancellation-free form used near a circular contact.
 
     Returns (kappa, K, E, u): ellipticity a/b (-), complete elliptic integrals of the first and
@@ -231,7 +233,7 @@ def ellipticity(radius_ratio: ArrayLike) -> np.ndarray:
 
 def curvature_difference_from_kappa(kappa: ArrayLike) -> np.ndarray:
     """Forward Hertz relation F(rho) = [(kappa^2+1) E - 2K] / [(kappa^2-1) E] (Harris Vol. 1
-    eq. 6.27), evaluated directly with scipy's ellipk/ellipe (the textbook route; it loses digits
+    ch. 6), evaluated directly with scipy's ellipk/ellipe (the textbook route; it loses digits
     as kappa -> 1, which is why the solver does not use it).  kappa > 1."""
     k2 = np.asarray(kappa, dtype=float) ** 2
     m = 1.0 - 1.0 / k2
@@ -242,17 +244,17 @@ def curvature_difference_from_kappa(kappa: ArrayLike) -> np.ndarray:
 # ---------------------------------------------------------------------------------------------
 def contact_modulus_MPa(E1_MPa: ArrayLike, nu1: ArrayLike, E2_MPa: ArrayLike, nu2: ArrayLike):
     """Contact (plane-strain) modulus E* = [(1-nu1^2)/E1 + (1-nu2^2)/E2]^-1, MPa (Johnson,
-    Contact Mechanics, eq. 4.22; Hamrock's effective modulus E' = 2 E*)."""
+    Contact Mechanics 1985, ch. 4; Hamrock's effective modulus E' = 2 E*)."""
     return 1.0 / ((1.0 - np.square(nu1)) / E1_MPa + (1.0 - np.square(nu2)) / E2_MPa)
 
 
 def curvature_sum_per_mm(Rx_mm: ArrayLike, Ry_mm: ArrayLike) -> np.ndarray:
-    """Curvature sum sum_rho = 1/Rx + 1/Ry, 1/mm (Harris Vol. 1 eq. 2.26)."""
+    """Curvature sum sum_rho = 1/Rx + 1/Ry, 1/mm (Harris Vol. 1 ch. 2)."""
     return 1.0 / np.asarray(Rx_mm, float) + 1.0 / np.asarray(Ry_mm, float)
 
 
 def curvature_difference(Rx_mm: ArrayLike, Ry_mm: ArrayLike) -> np.ndarray:
-    """Curvature difference F(rho) = |1/Rx - 1/Ry| / (1/Rx + 1/Ry), - (Harris Vol. 1 eq. 2.27)."""
+    """Curvature difference F(rho) = |1/Rx - 1/Ry| / (1/Rx + 1/Ry), - (Harris Vol. 1 ch. 2)."""
     cx, cy = 1.0 / np.asarray(Rx_mm, float), 1.0 / np.asarray(Ry_mm, float)
     return np.abs(cx - cy) / (cx + cy)
 
@@ -261,10 +263,10 @@ def ball_raceway_radii_mm(Dw_mm: ArrayLike, dm_mm: ArrayLike, alpha_deg: ArrayLi
                           f: ArrayLike, race: str):
     """Effective radii (Rx along rolling, Ry transverse), mm, of a ball on a raceway groove.
 
-    Harris Vol. 1 ch. 2 (eq. 2.29-2.40) with gamma = Dw cos(alpha) / dm and groove ratio
+    Harris Vol. 1 ch. 2 with gamma = Dw cos(alpha) / dm and groove ratio
     f = r_groove / Dw:  inner race  1/Rx = (2/Dw) / (1 - gamma),  outer race 1/Rx = (2/Dw) / (1 + gamma),
     both 1/Ry = 2/Dw - 1/(f Dw) = (2 f - 1)/(f Dw).  Hence Rx_i = Dw (1 - gamma)/2,
-    Rx_o = Dw (1 + gamma)/2, Ry = f Dw / (2 f - 1) (Hamrock 1983 eq. for ball bearings).
+    Rx_o = Dw (1 + gamma)/2, Ry = f Dw / (2 f - 1) (Hamrock 1983, ball-bearing radii).
     race: "inner" or "outer".
     """
     Dw = np.asarray(Dw_mm, float)
@@ -282,7 +284,7 @@ def ball_raceway_radii_mm(Dw_mm: ArrayLike, dm_mm: ArrayLike, alpha_deg: ArrayLi
 
 def ball_raceway_curvature(Dw_mm, dm_mm, alpha_deg, f, race: str):
     """Harris's curvature sum (1/mm) and curvature difference F(rho) (-) of a ball/raceway contact
-    (Harris Vol. 1 eq. 2.36-2.39): inner F = (1/f + 2g/(1-g)) / (4 - 1/f + 2g/(1-g)),
+    (Harris Vol. 1 ch. 2): inner F = (1/f + 2g/(1-g)) / (4 - 1/f + 2g/(1-g)),
     outer F = (1/f - 2g/(1+g)) / (4 - 1/f - 2g/(1+g)), sum_rho = (4 - 1/f +- 2g/(1 -+ g)) / Dw."""
     Rx, Ry = ball_raceway_radii_mm(Dw_mm, dm_mm, alpha_deg, f, race)
     return curvature_sum_per_mm(Rx, Ry), curvature_difference(Rx, Ry)
@@ -303,22 +305,22 @@ class HertzContact:
 
 def stiffness_from_kappa(R_mm, E_star_MPa, kappa, K, E):
     """Contact stiffness K_c = 2 pi kappa E* sqrt(2 E R / (9 K^3)), N/mm^1.5, with R = 1/sum_rho
-    (Hamrock & Brewe 1983 eq. 8 solved for Q; Harris Vol. 1 eq. 6.42-6.43 in other notation)."""
+    (Hamrock & Brewe 1983, approach solved for Q; Harris Vol. 1 ch. 6 in other notation)."""
     return 2.0 * pi * kappa * E_star_MPa * np.sqrt(2.0 * E * R_mm / (9.0 * K ** 3))
 
 
-def contact_stiffness_N_per_mm15(Rx_mm, Ry_mm, E_star_MPa, u0=None):
-    """Hertz contact stiffness K_c (N/mm^1.5, Q = K_c delta^1.5) of a point contact; also returns
-    u = ln kappa for warm starts.  Formula: `stiffness_from_kappa`."""
+def contact_stiffness_N_per_mm15(Rx_mm, Ry_mm, E_star_MPa):
+    """Hertz contact stiffness K_c (N/mm^1.5, Q = K_c delta^1.5) of a point contact with effective
+    radii Rx_mm, Ry_mm and contact modulus E_star_MPa.  Formula: `stiffness_from_kappa`."""
     Rx, Ry = np.asarray(Rx_mm, float), np.asarray(Ry_mm, float)
-    kappa, K, E, u = solve_ellipticity(Ry / Rx, u0)
+    kappa, K, E, _ = solve_ellipticity(Ry / Rx)
     R = 1.0 / (1.0 / Rx + 1.0 / Ry)
-    return stiffness_from_kappa(R, E_star_MPa, kappa, K, E), u
+    return stiffness_from_kappa(R, E_star_MPa, kappa, K, E)
 
 
 def hertz_from_kappa(Q_N, R_mm, E_star_MPa, kappa, K, E) -> HertzContact:
     """Semi-axes, approach, maximum pressure and stiffness for a known ellipticity (Hamrock &
-    Brewe 1983 eq. 1-9 with E' = 2 E*; Harris Vol. 1 eq. 6.38-6.44).  Q_N >= 0; Q = 0 gives zeros."""
+    Brewe 1983 with E' = 2 E*; Harris Vol. 1 ch. 6).  Q_N >= 0; Q = 0 gives zeros."""
     Q = np.maximum(np.asarray(Q_N, float), 0.0)
     c = Q * R_mm / (pi * E_star_MPa)
     a = np.cbrt(3.0 * kappa ** 2 * E * c)
@@ -343,7 +345,7 @@ def hertz_point_contact(Q_N, Rx_mm, Ry_mm, E_star_MPa) -> HertzContact:
 
 def series_stiffness_N_per_mm15(K_i, K_o):
     """Stiffness of two Hertz contacts in series (inner + outer through one ball):
-    K_n = [K_i^(-2/3) + K_o^(-2/3)]^(-3/2), N/mm^1.5 (Harris Vol. 1 eq. 7.5: delta = delta_i + delta_o)."""
+    K_n = [K_i^(-2/3) + K_o^(-2/3)]^(-3/2), N/mm^1.5 (Harris Vol. 1 ch. 7: delta = delta_i + delta_o)."""
     return (np.asarray(K_i, float) ** (-2.0 / 3.0) + np.asarray(K_o, float) ** (-2.0 / 3.0)) ** -1.5
 
 

@@ -7,8 +7,9 @@ Solid film (seed 000; Jones 1960, Snare 1968, Todd & Stevens ESA/ESTL; Johnson, 
 contact, each computed as a friction power and divided by the shaft speed (so the torque is the
 one that balances the dissipated power):
 
-  elastic hysteresis   rolling resistance F_R = alpha_h (3/16) Q b / Rx (Johnson sec. 9.2: the
-                       work the front half of the Hertz pressure does per unit distance rolled is
+  elastic hysteresis   rolling resistance F_R = alpha_h (3/16) Q b / Rx (Johnson 1985 ch. 9,
+                       hysteresis losses: the work the front half of the Hertz pressure does per
+                       unit distance rolled is
                        M_front / Rx, M_front = (3/16) Q b for the ellipsoidal pressure; Johnson's
                        sphere-on-plane F = alpha (3/16) P a / R is the circular case), times the
                        speed at which the contact travels over the race;
@@ -19,8 +20,8 @@ one that balances the dissipated power):
                        for the ellipsoidal pressure: u - u^3/3 = 1/3), the slip is
                        k (y^2 - u_c^2 a^2) / (2 R_c) and the dissipated power
                        P = C_H mu |k| Q a^2 / R_c, C_H = (3/8) J = 0.0806 (Heathcote 1921;
-                       Johnson sec. 8.6: "0.08 mu a^2/R^2");
-  spin                 full-slip pivoting moment M_s = (3/8) mu Q a E(m) (Johnson sec. 8.? /
+                       Johnson 1985 ch. 8, ball in a conforming groove: "about 0.08");
+  spin                 full-slip pivoting moment M_s = (3/8) mu Q a E(m) (Johnson 1985 ch. 8;
                        Harris Vol. 2: a circular contact gives 3 pi mu Q a / 16) times the spin
                        rate at the contact.
 
@@ -29,6 +30,11 @@ control hypothesis (Jones 1960: no spin at the outer contact; at light load this
 seed uses), outer ring fixed, inner ring at omega.  With equal contact angles the cage runs at
 omega (1 - gamma)/2, the inner spin is omega sin(alpha), and the differential-slip rates are
 (omega - omega_c) dm/Dw (inner) and omega_c dm/Dw (outer).
+
+The contact-level formulas are checked in tests/test_torque.py by integrating the dissipation over
+the Hertz ellipse numerically.  What the bearing-level sum leaves out: cage friction, film
+shear/ploughing of the MoS2 transfer film, and the interaction of spin and differential slip
+(each is computed as if it acted alone, as in Todd & Stevens' additive model).
 
 Oil/grease (seeds 001/002; Palmgren 1959, Harris Vol. 2 ch. "friction"): load term
 M1 = f1 P1 dm (or mu P dm/2), viscous term M0 = 1e-7 f0 (nu n)^(2/3) dm^3 for nu n >= 2000 and
@@ -107,7 +113,7 @@ def contact_surface_radius_mm(Dw_mm, f, ring_compliance_per_MPa=1.0, ball_compli
     """Transverse radius R_c of the deformed contact surface between a ball (radius Dw/2) and a
     groove (radius f Dw): curvature 1/R_c = (c_r / R_b + c_b / r_g) / (c_r + c_b), c = (1-nu^2)/E
     (Hertz: the displacements of the two surfaces are in the ratio of their compliances, Johnson
-    sec. 4.2; equal materials give the mean curvature (1/R_b + 1/r_g)/2).  mm."""
+    1985 ch. 4; equal materials give the mean curvature (1/R_b + 1/r_g)/2).  mm."""
     Rb = 0.5 * np.asarray(Dw_mm, float)
     rg = np.asarray(f, float) * np.asarray(Dw_mm, float)
     cr, cb = ring_compliance_per_MPa, ball_compliance_per_MPa
@@ -116,7 +122,7 @@ def contact_surface_radius_mm(Dw_mm, f, ring_compliance_per_MPa=1.0, ball_compli
 
 def heathcote_power_per_rate(mu, Q_N, a_mm, Rc_mm):
     """Differential-slip power per unit slip rate |k| (N*mm per rad): C_H mu Q a^2 / R_c
-    (Heathcote 1921; Johnson sec. 8.6), a the semi-major (transverse) axis."""
+    (Heathcote 1921; Johnson 1985 ch. 8), a the semi-major (transverse) axis."""
     return C_HEATHCOTE * mu * np.asarray(Q_N, float) * np.square(a_mm) / Rc_mm
 
 
@@ -127,7 +133,7 @@ def spin_moment_Nmm(mu, Q_N, a_mm, E_ell):
 
 
 def hysteresis_rolling_force_N(loss_factor, Q_N, b_mm, Rx_mm):
-    """Elastic-hysteresis rolling resistance F_R = alpha_h (3/16) Q b / Rx, N (Johnson sec. 9.2;
+    """Elastic-hysteresis rolling resistance F_R = alpha_h (3/16) Q b / Rx, N (Johnson 1985 ch. 9;
     b semi-axis along rolling, Rx effective radius along rolling, alpha_h hysteresis loss fraction).
     Scales as Q^(4/3) through b."""
     return loss_factor * 0.1875 * np.asarray(Q_N, float) * np.asarray(b_mm, float) / Rx_mm

@@ -17,16 +17,16 @@ A0, ALPHA0 = G.A0_mm, np.radians(G.alpha0_deg)
 
 
 def kn_direct(g, alpha, Dw=None, dm=None, f_i=None, f_o=None):
-    """K_n written out from the Hertz primitives (Harris Vol. 1 eq. 2.29-2.40 radii, exact Hertz
-    stiffness per contact, two contacts in series, eq. 7.5), independent of bearing.py."""
+    """K_n written out from the Hertz primitives (Harris Vol. 1 ch. 2 radii, exact Hertz
+    stiffness per contact, two contacts in series, ch. 7), independent of bearing.py."""
     Dw = g.Dw_mm if Dw is None else Dw
     dm = g.dm_mm if dm is None else dm
     f_i = g.f_i if f_i is None else f_i
     f_o = g.f_o if f_o is None else f_o
     Es = hertz.contact_modulus_MPa(g.ring.E_MPa, g.ring.nu, g.ball.E_MPa, g.ball.nu)
     deg = np.degrees(alpha)
-    Ki, _ = hertz.contact_stiffness_N_per_mm15(*hertz.ball_raceway_radii_mm(Dw, dm, deg, f_i, "inner"), Es)
-    Ko, _ = hertz.contact_stiffness_N_per_mm15(*hertz.ball_raceway_radii_mm(Dw, dm, deg, f_o, "outer"), Es)
+    Ki = hertz.contact_stiffness_N_per_mm15(*hertz.ball_raceway_radii_mm(Dw, dm, deg, f_i, "inner"), Es)
+    Ko = hertz.contact_stiffness_N_per_mm15(*hertz.ball_raceway_radii_mm(Dw, dm, deg, f_o, "outer"), Es)
     return hertz.series_stiffness_N_per_mm15(Ki, Ko)
 
 
@@ -42,8 +42,8 @@ def force_direct(g, approach, dr=0.0):
 
 @pytest.mark.parametrize("load", [0.0, 150.0, -80.0, 400.0])
 def test_harris_axial_load_equation(load):
-    """Harris Vol. 1 eq. 7.18: Fa = Z K_n A^1.5 (cos a0/cos a - 1)^1.5 sin a, and the axial
-    deflection delta_a = A sin(a - a0)/cos a (eq. 7.17), for each loaded bearing of the pair."""
+    """Harris Vol. 1 ch. 7 (thrust-loaded bearing): Fa = Z K_n A^1.5 (cos a0/cos a - 1)^1.5 sin a, and the axial
+    deflection delta_a = A sin(a - a0)/cos a (same chapter), for each loaded bearing of the pair."""
     out = solve_pair(G, "DB", preload_assembled_N=120.0, axial_load_N=load)
     for j in "AB":
         F = out[f"axial_force_{j}_N"][0]
@@ -253,7 +253,7 @@ def test_from_spec_matches_config():
 
 
 def test_free_radial_clearance_relation():
-    """Harris Vol. 1 eq. 2.9: cos a0 = 1 - Pd/(2 A0).  With the axial component removed (X = 0),
+    """Harris Vol. 1 ch. 2: cos a0 = 1 - Pd/(2 A0).  With the axial component removed (X = 0),
     taking up the free radial clearance Pd/2 = A0 (1 - cos a0) brings the balls just into contact
     at zero contact angle: delta = 0, no axial force."""
     st, _ = bearing_axial_force(G, -A0 * np.sin(ALPHA0), G.radial_clearance_mm)

@@ -14,13 +14,13 @@ E_STAR = float(hertz.contact_modulus_MPa(E_STEEL, NU_STEEL, E_STEEL, NU_STEEL))
 
 
 def test_contact_modulus_identical_materials():
-    # Johnson eq. 4.22 with equal bodies: E* = E / (2 (1 - nu^2))
+    # Johnson (1985, ch. 4) with equal bodies: E* = E / (2 (1 - nu^2))
     assert E_STAR == pytest.approx(E_STEEL / (2 * (1 - NU_STEEL ** 2)), rel=1e-15)
 
 
 @pytest.mark.parametrize("Q", [1.0, 100.0, 5000.0])
 def test_sphere_on_flat_equals_johnson(Q):
-    """Johnson, Contact Mechanics eq. 4.22-4.23 (sphere radius R on a flat, Rx = Ry = R):
+    """Johnson, Contact Mechanics (1985) ch. 4 (sphere radius R on a flat, Rx = Ry = R):
     a = (3 Q R / (4 E*))^(1/3), delta = a^2 / R, p0 = 3 Q / (2 pi a^2)."""
     R = 5.0
     h = hertz.hertz_point_contact(Q, R, R, E_STAR)
@@ -52,7 +52,7 @@ def test_near_circular_contact_is_continuous(eps):
 
 @pytest.mark.parametrize("ratio", [1.0 + 1e-3, 1.5, 4.0, 10.0, 30.0, 300.0, 1e4])
 def test_ellipticity_solves_hertz_equation_by_quadrature(ratio):
-    """(kappa^2 E - K)/(K - E) = Ry/Rx (Harris Vol. 1 eq. 6.27 rearranged), with K and E
+    """(kappa^2 E - K)/(K - E) = Ry/Rx (Harris Vol. 1 ch. 6, rearranged), with K and E
     recomputed from their defining integrals by adaptive quadrature; the returned K and E equal
     those integrals."""
     kappa, K, E, _ = hertz.solve_ellipticity(ratio)
@@ -69,7 +69,7 @@ def test_ellipticity_solves_hertz_equation_by_quadrature(ratio):
 
 def test_forward_equation_round_trip():
     """Harris's F(rho) = [(kappa^2+1)E - 2K]/[(kappa^2-1)E] evaluated from the solved kappa equals
-    the curvature difference (Ry - Rx)/(Ry + Rx) that went in (Harris Vol. 1 eq. 2.27)."""
+    the curvature difference (Ry - Rx)/(Ry + Rx) that went in (Harris Vol. 1 ch. 2)."""
     ratio = np.array([1.2, 2.0, 7.5, 25.0, 120.0])
     kappa = hertz.ellipticity(ratio)
     assert np.allclose(hertz.curvature_difference_from_kappa(kappa), (ratio - 1) / (ratio + 1),
@@ -78,7 +78,7 @@ def test_forward_equation_round_trip():
 
 def _boussinesq_displacement(x0, y0, a, b, p0, E_star, n_theta=1024):
     """Combined normal surface displacement at (x0, y0) under p = p0 sqrt(1 - x^2/b^2 - y^2/a^2):
-    w = 1/(pi E*) int int p / r dA (Johnson eq. 3.20 summed over both bodies).  Polar coordinates
+    w = 1/(pi E*) int int p / r dA (Johnson 1985 ch. 3, point load on a half-space, summed over both bodies).  Polar coordinates
     about (x0, y0): the radial integral of sqrt(quadratic) is done in closed form, the angular one
     by the trapezoidal rule (spectrally accurate for a smooth periodic integrand)."""
     th = np.linspace(0, 2 * np.pi, n_theta, endpoint=False)
@@ -96,7 +96,7 @@ def _boussinesq_displacement(x0, y0, a, b, p0, E_star, n_theta=1024):
 @pytest.mark.parametrize("Rx,Ry", [(5.0, 5.0), (4.0, 6.8), (1.8, 45.0)])
 def test_surface_displacement_matches_gap_condition(Rx, Ry):
     """Inside the contact the surfaces conform: w(x, y) = delta - x^2/(2Rx) - y^2/(2Ry) (Johnson
-    sec. 4.2, eq. 3.x), with w from the Boussinesq integral of the Hertz pressure.  This checks the
+    1985 ch. 4), with w from the Boussinesq integral of the Hertz pressure.  This checks the
     approach delta, the semi-axes and p_max without any elliptic integral."""
     Q = 80.0
     h = hertz.hertz_point_contact(Q, Rx, Ry, E_STAR)
@@ -108,7 +108,7 @@ def test_surface_displacement_matches_gap_condition(Rx, Ry):
 
 
 def test_ball_raceway_curvature_matches_harris():
-    """Harris Vol. 1 eq. 2.36-2.39 written out: inner F = (1/f + 2g/(1-g))/(4 - 1/f + 2g/(1-g)),
+    """Harris Vol. 1 ch. 2 written out: inner F = (1/f + 2g/(1-g))/(4 - 1/f + 2g/(1-g)),
     outer F = (1/f - 2g/(1+g))/(4 - 1/f - 2g/(1+g)), sum_rho = (4 - 1/f +- 2g/(1 -+ g))/Dw."""
     Dw, dm, alpha, f = 3.969, 41.0, np.array([0.0, 15.0, 40.0]), 0.52
     g = Dw * np.cos(np.radians(alpha)) / dm
@@ -171,7 +171,7 @@ def test_greenwood_asymptote_is_first_order_exact():
 
 
 def test_series_stiffness_is_two_springs_in_series():
-    """delta = delta_i + delta_o at the same Q (Harris Vol. 1 eq. 7.5)."""
+    """delta = delta_i + delta_o at the same Q (Harris Vol. 1 ch. 7)."""
     Ki, Ko, Q = 5.0e5, 3.0e5, 40.0
     Kn = hertz.series_stiffness_N_per_mm15(Ki, Ko)
     assert (Q / Kn) ** (2 / 3) == pytest.approx((Q / Ki) ** (2 / 3) + (Q / Ko) ** (2 / 3), rel=1e-14)

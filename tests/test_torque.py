@@ -82,7 +82,7 @@ def test_hysteresis_scales_with_load_to_four_thirds():
 
 
 def test_hysteresis_force_is_work_of_front_half_pressure():
-    """Johnson sec. 9.2: the work per unit distance rolled is the moment of the front half of the
+    """Johnson 1985 ch. 9: the work per unit distance rolled is the moment of the front half of the
     pressure about the contact centre over Rx; the moment integrated numerically equals (3/16) Q b."""
     a, b, Q = 0.25, 0.03, 15.0
     p0 = 1.5 * Q / (np.pi * a * b)
@@ -141,7 +141,7 @@ def test_spin_moment_by_direct_integration(ratio):
 
 
 def test_contact_surface_radius_limits():
-    """Equal compliances: mean curvature (1/R_b + 1/r_g)/2 (Johnson sec. 4.2); a rigid ball keeps
+    """Equal compliances: mean curvature (1/R_b + 1/r_g)/2 (Johnson 1985 ch. 4); a rigid ball keeps
     its own radius."""
     Dw, f = 4.0, 0.52
     Rc = torque.contact_surface_radius_mm(Dw, f, 1.0, 1.0)
@@ -209,3 +209,17 @@ def test_oil_pair_torque_terms():
     M0 = torque.palmgren_viscous_torque_Nmm(1.7, 30.0, 6000.0, hyb.dm_mm)
     assert np.allclose(t["torque_viscous_Nmm"], 2 * M0, rtol=1e-14)
     assert np.allclose(t["torque_Nmm"], t["torque_load_Nmm"] + t["torque_viscous_Nmm"], rtol=1e-14)
+
+
+def test_sliding_spin_heat_for_thermal_network():
+    """Oil-bearing sliding and spin parts are the solid-film differential and spin parts with the
+    traction coefficient (no hysteresis); mu_spin rescales only the spin; heat = torque x speed."""
+    base = _solid(40.0, 20.0, mu=0.04, loss=0.0)
+    cin, cout = _contact(40.0, 20.0, "inner"), _contact(40.0, 20.0, "outer")
+    oil = torque.sliding_spin_torque_Nmm(G.Z, G.Dw_mm, G.dm_mm, G.f_i, G.f_o, np.radians(20.0),
+                                         cin, cout, mu_slide=0.04, mu_spin=0.02)
+    assert oil["sliding_inner_Nmm"] == pytest.approx(base["differential_inner_Nmm"], rel=1e-14)
+    assert oil["sliding_outer_Nmm"] == pytest.approx(base["differential_outer_Nmm"], rel=1e-14)
+    assert oil["spin_inner_Nmm"] == pytest.approx(0.5 * base["spin_inner_Nmm"], rel=1e-14)
+    heat = torque.friction_heat_W(oil, 1500.0)
+    assert heat["spin_inner_W"] == pytest.approx(oil["spin_inner_Nmm"] * 1500 * 2 * np.pi / 60e3, rel=1e-14)
