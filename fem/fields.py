@@ -68,7 +68,7 @@ def render_fields(out_dir: Path, stem: str, model: StackModel, u: np.ndarray,
     if T_vertex_C is not None:
         fields.append(("temperature_C", "point", T_vertex_C, "temperature (C)", xy))
     fields.append(("displacement_um", "point", 1e3 * np.linalg.norm(disp, axis=1),
-                   f"displacement magnitude (um), shape x{exaggeration:g}", xy + exaggeration * disp))
+                   "displacement (um)", xy + exaggeration * disp))
     for k, v in cell_data.items():
         fields.append((k, "cell", v, k.replace("_MPa", " (MPa)"), xy))
     paths = []
@@ -87,7 +87,8 @@ def render_fields(out_dir: Path, stem: str, model: StackModel, u: np.ndarray,
         outline = _grid(model, pts).extract_feature_edges(boundary_edges=True, feature_edges=False,
                                                           manifold_edges=False)
         p.add_mesh(outline, color="black", line_width=1)
-        p.add_text(f"{title}: {label}", font_size=10)
+        shape = f", deformed shape x{exaggeration:g}" if name == "displacement_um" else ""
+        p.add_text(f"{title}: {label}{shape}", font_size=10)
         p.view_xy()
         p.add_axes(xlabel="r", ylabel="z", zlabel="")
         path = out_dir / f"{stem}_{name}.png"

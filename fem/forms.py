@@ -53,6 +53,12 @@ def thermal_load(v, w):
     return TWO_PI * r * (3 * w.lam + 2 * w.mu) * w.theta * (ev[0] + ev[1] + ev[2])
 
 
+@LinearForm
+def axial_traction(v, w):
+    """int 1 * v_z 2 pi r ds: unit axial traction (MPa) on a boundary (its integral is the force)."""
+    return TWO_PI * w.x[0] * v[1]
+
+
 @BilinearForm
 def conduction(T, v, w):
     """int k grad T . grad v 2 pi r dA (k in W/(mm K) gives W)."""

@@ -88,6 +88,8 @@ class Fits:
 class Preload:
     kind: str                        # "position" or "spring"
     assembled_N: float
+    path_compliance: str = "fe"      # "fe": axial compliance of spacers/nut/housing from the FE
+    #                                  enters the pair equilibrium; "rigid": none
 
 
 @dataclass(frozen=True)
@@ -154,7 +156,7 @@ SECTIONS = {
     "outer_spacer": (Spacer, {}),
     "bearing": (BearingSpec, {}),
     "fits": (Fits, {"contact": "frictionless"}),
-    "preload": (Preload, {}),
+    "preload": (Preload, {"path_compliance": "fe"}),
     "lubrication": (Lubrication, {"lubricant": "", "friction_coefficient": 0.0,
                                   "viscous_factor_f0": 0.0, "speed_rpm": 0.0,
                                   "hysteresis_loss_factor": 0.0, "load_term": "coulomb"}),
@@ -163,9 +165,10 @@ SECTIONS = {
 }
 OPTIONAL_SECTIONS = {"limits", "mesh"}
 STRING_KEYS = {"material", "designation", "ring_material", "ball_material", "contact", "kind",
-               "lubricant", "load_term", "clamp"}
+               "lubricant", "load_term", "clamp", "path_compliance"}
 CHOICES = {("fits", "contact"): ("frictionless", "bonded"),
            ("preload", "kind"): ("position", "spring"),
+           ("preload", "path_compliance"): ("fe", "rigid"),
            ("lubrication", "kind"): ("solid_film", "oil"),
            ("lubrication", "load_term"): ("coulomb", "palmgren"),
            ("nut", "clamp"): ("rigid", "compliant"), ("cover", "clamp"): ("rigid", "compliant")}

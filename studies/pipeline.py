@@ -64,6 +64,8 @@ class Pipeline:
         self.geom = BearingGeometry.from_spec(asm.bearing)
         self._centre_offsets(pts)
         self.lubricant = get_lubricant(asm.lubrication.lubricant) if asm.lubrication.kind == "oil" else None
+        self.compliance_mm_per_N = (self.preload_path_compliance()
+                                    if asm.preload.path_compliance == "fe" else 0.0)
 
     # ------------------------------------------------------------------ geometry
     def _centre_offsets(self, pts: np.ndarray) -> None:
@@ -85,6 +87,37 @@ class Pipeline:
             zc = pts[1, k] + sgn * s[j] * (f - 0.5) * g.Dw_mm * np.sin(a0)
             off[k] = (rc - pts[0, k], zc - pts[1, k])
         self.centre_offset_mm = off
+
+    def preload_path_compliance(self) -> float:
+        """Axial compliance of the preload path per bearing (mm/N), from the FE.
+
+        The balls push on each ring's raceway: on inner ring j with -s_j F, on outer ring j with
+        +s_j F (axial, uniformly spread over the raceway line). With 1 N per bearing, the loss of
+        bearing j's approach is -s_j d(dz_j); c is the mean over A and B. Linear on top of the
+        assembled contact state (its active set held fixed). It enters the pair model as
+        a_j = s_j (dz_j + x) + e - c F_j (analytic/bearing.py)."""
+        from skfem import FacetBasis, asm
+
+        from fem.forms import axial_traction
+        from fem.thermal import _facets_on, boundary_lines
+
+        m, s = self.model, SIGNS[self.asm.arrangement]
+        lines = boundary_lines(self.section)
+        F = np.zeros(m.ndofs)
+        for ring in RINGS:
+            j = 0 if ring.endswith("A") else 1
+            sign = (-1.0 if ring.startswith("inner") else 1.0) * s[j]
+            fb = FacetBasis(m.mesh, m.basis.elem, facets=_facets_on(m, lines[f"raceway_{ring}"]))
+            f = asm(axial_traction, fb)
+            F += sign * f / f.sum()
+        inner_um, outer_um = self.asm.fits.inner_interference_um, self.asm.fits.outer_interference_um
+        delta = self.deltas_mm(np.array([inner_um]), np.array([outer_um]))[0]
+        closed = self.solver.solve(np.zeros(m.ndofs), delta).closed
+        u = self.solver.solve_status(closed, F, np.zeros(len(m.fits)))[:, 0] \
+            - self.solver.solve_status(closed, np.zeros(m.ndofs), np.zeros(len(m.fits)))[:, 0]
+        pz = (self.probe @ u)[1::2]                         # u_z at the 4 raceway points
+        d_dz = np.array([pz[0] - pz[2], pz[1] - pz[3]])     # inner minus outer, A and B
+        return float(np.mean(-np.array(s) * d_dz))
 
     # ------------------------------------------------------------------ FE
     def thetas(self, inputs: PhysicsInputs) -> np.ndarray:
@@ -160,7 +193,7 @@ class Pipeline:
 
     # ------------------------------------------------------------------ whole chain
     def run(self, inputs: PhysicsInputs, direct: bool = False,
-            compliance_mm_per_N: float = 0.0) -> dict[str, np.ndarray]:
+            compliance_mm_per_N: float | None = None) -> dict[str, np.ndarray]:
         """All outputs per row (spec columns first, then the rest)."""
         a = self.asm
         fe = self.fe(inputs, direct)
@@ -177,7 +210,8 @@ class Pipeline:
                           T_ref_C=a.T_ref_C, preload_kind=a.preload.kind,
                           preload_assembled_N=preload, axial_load_N=inputs.axial_load_N,
                           dr_ref_mm=fe_ref.dr_mm, dz_ref_mm=fe_ref.dz_mm,
-                          compliance_mm_per_N=compliance_mm_per_N)
+                          compliance_mm_per_N=self.compliance_mm_per_N if compliance_mm_per_N is None
+                          else compliance_mm_per_N)
         mu = resolve_friction_coefficient(inputs, a.lubrication.friction_coefficient)
         torque = self.torque(pair, inputs, mu)
         nf = len(self.model.fits)
