@@ -315,6 +315,7 @@ class _Engine:
         self.user_sigma = dict(noise_sigma_ or {})
         self.sigma = {c: self._initial_sigma(c) for c in self.columns}
         self.notes: list[str] = []
+        self.calls_by_phase: dict[str, int] = {}
 
     # ------------------------------------------------------------------ residuals
     def _initial_sigma(self, c):
@@ -380,7 +381,7 @@ class _Engine:
                 return big
 
         res = optimize.least_squares(fun, u0, bounds=(lo, hi), method="trf", diff_step=1e-3,
-                                     x_scale=1.0, ftol=1e-9, xtol=1e-9, gtol=1e-9,
+                                     x_scale=1.0, ftol=1e-8, xtol=1e-8, gtol=1e-8,
                                      max_nfev=max_nfev or 40 * (dim + 1))
         z, pred = self.eval(space, res.x)
         return _Fit(space, res.x, z, np.asarray(res.jac, float), float(z @ z), pred)
@@ -588,6 +589,7 @@ class _Engine:
         base_ho = self.heldout_linear(base)
         Qn = _orth(base.J)
 
+        self._phase("baseline")
         # ---- 2. sensitivities, identifiability, look-alikes
         cands = {}
         proj = {}
@@ -645,11 +647,13 @@ class _Engine:
                         if proj[a].shape[1] and proj[b].shape[1] else 0.0)
                     for b in names_id} for a in names_id}
 
+        self._phase("sensitivities")
         # ---- 3. fits
         fits: dict[str, _Fit] = {}
         for name in list(names_id):
             e = self._effect(name)
             info = cands[name]
+            calls0 = self.model.calls
             try:
                 if e.profile:
                     fits[name] = self.fit_profiled(e, info, base, base_nuis)
@@ -660,6 +664,7 @@ class _Engine:
                 names_id.remove(name)
                 continue
             f = fits[name]
+            info["predict_calls_fit"] = self.model.calls - calls0
             lr = max(base.chi2 - f.chi2, 0.0)
             r = info["rank"]
             n_two = sum(1 for p in e.parameters if p not in e.profile and e.sign(p) == 0)
@@ -685,6 +690,7 @@ class _Engine:
             still = ok
             cands[name]["lr_significant"] = bool(ok)
 
+        self._phase("fits")
         # ---- 4. held-out gains
         ho = {}
         for name in list(names_id):
@@ -719,6 +725,7 @@ class _Engine:
             if not reasons:
                 passing.append(name)
 
+        self._phase("heldout")
         # ---- 5. decide
         verdict, cause, rivals, best_desc, joint = "no_discrepancy", None, [], None, {}
         best = min(passing, key=lambda n: cands[n]["delta_bic"]) if passing else None
@@ -758,11 +765,13 @@ class _Engine:
                     reasons.append(f"{best} beats the baseline on held-out blocks and clearly "
                                    "beats every other candidate")
         self.verdict, self.cause, self.best = verdict, cause, best
+        self._phase("compare")
         # ---- separating test
         sep, sep_items = None, []
         if verdict == "ambiguous":
             sep, sep_items = self.separating(best, rivals, fits, base)
 
+        self._phase("separating")
         # ---- assemble
         ext_fit = fits[cause] if cause else base
         ext_ho = ho[cause] if cause else base_ho
@@ -818,12 +827,17 @@ class _Engine:
             "notes": list(self.notes),
             "n_rows": int(self.n),
             "n_predict_calls": int(self.model.calls),
+            "predict_calls_by_phase": dict(self.calls_by_phase),
             "seconds": {"total": time.perf_counter() - self.t0, "predict": self.model.seconds},
         }
         self.base_fit, self.ext_fit, self.fits = base, ext_fit, fits
         return _jsonable(result)
 
     # ------------------------------------------------------------------ pieces of run
+    def _phase(self, label):
+        done = sum(self.calls_by_phase.values())
+        self.calls_by_phase[label] = self.model.calls - done
+
     def _effect(self, name):
         return next(e for e in self.candidates if e.name == name)
 
@@ -904,26 +918,33 @@ class _Engine:
             except ModelFailure:
                 return None
 
-        if len(values) > 40:
-            coarse_idx = np.unique(np.linspace(0, len(values) - 1, 24).round().astype(int))
-            lins = {i: lin_safe(values[i]) for i in coarse_idx}
-            ok = [i for i in lins if lins[i] is not None]
-            if ok:
+        if len(values) > 16:
+            # coarse grid, then bisect towards the best onset on both sides
+            lins = {int(i): lin_safe(values[i])
+                    for i in np.unique(np.linspace(0, len(values) - 1, 12).round().astype(int))}
+            while True:
+                ok = sorted(i for i in lins if lins[i] is not None)
+                if not ok:
+                    break
                 ib = min(ok, key=lambda i: lins[i]["sse"])
-                pos = list(coarse_idx).index(ib)
-                lo_i = coarse_idx[max(pos - 1, 0)]
-                hi_i = coarse_idx[min(pos + 1, len(coarse_idx) - 1)]
-                for i in range(lo_i, hi_i + 1):
-                    if i not in lins:
-                        lins[i] = lin_safe(values[i])
+                left = max([i for i in lins if i < ib], default=None)
+                right = min([i for i in lins if i > ib], default=None)
+                new = [m for m in ((None if left is None else (left + ib) // 2),
+                                   (None if right is None else (ib + right + 1) // 2))
+                       if m is not None and m not in lins]
+                if not new:
+                    break
+                for m in new:
+                    lins[m] = lin_safe(values[m])
             grid_lin = [lins[i] for i in sorted(lins) if lins[i] is not None]
         else:
             grid_lin = [g for g in map(lin_safe, values) if g is not None]
         if not grid_lin:
             raise ModelFailure(f"the model fails for every {pp} on the grid")
         ranked = sorted(grid_lin, key=lambda g: g["sse"])
+        ranked = [g for g in ranked[:2] if g["sse"] <= ranked[0]["sse"] + 1.0]
         best = None
-        for g in ranked[:2]:
+        for g in ranked:
             try:
                 f = self.fit(g["space"], g["u0"] + g["du"])
             except ModelFailure:

@@ -91,4 +91,4 @@ class ThermalLag(Effect):
         lo, hi = max(0.3 * dt, 1e-3), min(0.5 * span, self.bounds["tau_s"][1])
         if hi <= lo:
             return []
-        return [{"tau_s": float(v)} for v in np.geomspace(lo, hi, 12)]
+        return [{"tau_s": float(v)} for v in np.geomspace(lo, hi, 8)]
