@@ -50,7 +50,8 @@ class FEState:
 class Pipeline:
     """One assembly: mesh, FE model, unit solutions and bearing geometry, built once."""
 
-    def __init__(self, asm: Assembly, mesh_factor: float = 1.0, progress=None):
+    def __init__(self, asm: Assembly, mesh_factor: float = 1.0, progress=None,
+                 superpose: bool = True):
         say = progress or (lambda s: None)
         self.asm = asm
         self.section = section_from_assembly(asm).scaled(mesh_factor)
@@ -59,8 +60,10 @@ class Pipeline:
         self.solver = FitSolver(self.model)
         pts = np.array([self.section.raceway_points[r] for r in RINGS]).T
         self.probe = self.model.probe_matrix(pts)
-        say(f"unit solutions ({self.model.ndofs} DOF) ...")
-        self.sup = Superposition(self.solver, self.probe)
+        self.sup = None
+        if superpose:
+            say(f"unit solutions ({self.model.ndofs} DOF) ...")
+            self.sup = Superposition(self.solver, self.probe)
         self.geom = BearingGeometry.from_spec(asm.bearing)
         self._centre_offsets(pts)
         self.lubricant = get_lubricant(asm.lubrication.lubricant) if asm.lubrication.kind == "oil" else None
@@ -145,7 +148,7 @@ class Pipeline:
         theta = self.thetas(inputs)
         inner_um, outer_um = self.fits_um(inputs)
         delta = self.deltas_mm(inner_um, outer_um)
-        if direct:
+        if direct or self.sup is None:
             force, probe = [], []
             for i in range(inputs.n_rows):
                 sol = self.solver.solve(self.model.unit_loads @ theta[i], delta[i])
@@ -193,8 +196,9 @@ class Pipeline:
 
     # ------------------------------------------------------------------ whole chain
     def run(self, inputs: PhysicsInputs, direct: bool = False,
-            compliance_mm_per_N: float | None = None) -> dict[str, np.ndarray]:
-        """All outputs per row (spec columns first, then the rest)."""
+            compliance_mm_per_N: float | None = None, return_pair: bool = False):
+        """All outputs per row (spec columns first, then the rest); with `return_pair`, also the
+        raw pair-equilibrium dict of analytic/bearing.py (contact ellipses for heat models)."""
         a = self.asm
         fe = self.fe(inputs, direct)
         # reference (assembly) state of every row: T_ref everywhere, the row's as-built fits
@@ -238,7 +242,7 @@ class Pipeline:
             out[key] = pair[key]
         out["preload_lost"] = pair["preload_lost"].astype(float)
         out["friction_coefficient"] = mu
-        return out
+        return (out, pair) if return_pair else out
 
     def torque(self, pair: dict, inputs: PhysicsInputs, mu: np.ndarray) -> dict[str, np.ndarray]:
         """Friction torque of the pair (analytic/torque.py). Oil: viscosity of the configured

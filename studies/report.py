@@ -33,10 +33,10 @@ def line_plot(path: Path, x, series: dict, xlabel: str, ylabel: str, title: str 
     return path
 
 
-def md_table(header: list[str], rows: list[list]) -> str:
+def md_table(header: list[str], rows: list[list], digits: int = 4) -> str:
     def fmt(v):
         if isinstance(v, float):
-            return f"{v:.4g}"
+            return f"{v:.{digits}g}"
         return str(v)
     out = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     out += ["| " + " | ".join(fmt(v) for v in r) + " |" for r in rows]
