@@ -1,0 +1,102 @@
+"""`bearingfem diagnose`: the real model behind the diagnosis engine.
+
+The measured CSV holds condition columns (spec) and output columns the model predicts; every
+output column present in both is compared. The baseline is allowed one nuisance calibration a
+user would accept: a scale on the friction coefficient (`mu_scale`, 0.3..3), because the film or
+traction coefficient of a real bearing is never known to better than that. Every listed effect is
+a candidate (those whose required conditions are missing are reported as not applicable).
+"""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+
+from studies.config import load_assembly
+from studies.diagnosis import diagnose_full
+from studies.diagnosis_report import write_report
+from studies.effects import EFFECTS, ORDER, apply_effects, resolve_friction_coefficient
+from studies.inputs import CONDITION_COLUMNS, baseline_inputs
+from studies.pipeline import Pipeline
+from studies.table import TableError, read_table
+
+#: output columns `diagnose` can compare (what `simulate` writes and a rig can measure)
+COMPARABLE = ("torque_Nmm", "preload_N", "contact_angle_deg", "interference_inner_um",
+              "interference_outer_um", "fit_pressure_inner_MPa", "fit_pressure_outer_MPa",
+              "max_contact_pressure_MPa", "axial_stiffness_N_per_um")
+NUISANCE = {"mu_scale": (0.3, 3.0, 1.0, 0.05)}
+
+
+class ModelPredictor:
+    """predict(effects, nuisance) on fixed conditions, with the pipeline built once."""
+
+    def __init__(self, pipeline: Pipeline, conditions: dict[str, np.ndarray], columns):
+        self.pl, self.columns = pipeline, tuple(columns)
+        self.conditions = conditions
+        a = pipeline.asm
+        n = len(next(iter(conditions.values())))
+        self.base = baseline_inputs(conditions, n, a.T_ref_C, a.preload.assembled_N,
+                                    a.lubrication.speed_rpm)
+        self.calls = 0
+
+    def inputs(self, effects, nuisance, base=None):
+        a = self.pl.asm
+        inp = apply_effects(base or self.base, effects, a.T_ref_C)
+        scale = float((nuisance or {}).get("mu_scale", 1.0))
+        mu0 = a.lubrication.friction_coefficient
+        mu = resolve_friction_coefficient(inp, mu0) * scale
+        return inp.copy(friction_coefficient=mu - mu0)
+
+    def __call__(self, effects, nuisance):
+        self.calls += 1
+        out = self.pl.run(self.inputs(effects, nuisance))
+        return {c: out[c] for c in self.columns}
+
+    def at(self, effects, nuisance, conditions):
+        a = self.pl.asm
+        n = len(next(iter(conditions.values())))
+        base = baseline_inputs(conditions, n, a.T_ref_C, a.preload.assembled_N, a.lubrication.speed_rpm)
+        out = self.pl.run(self.inputs(effects, nuisance, base))
+        return {c: out[c] for c in self.columns}
+
+
+def read_measured(path: Path) -> tuple[dict, dict]:
+    """Conditions and measured outputs from one CSV; one-line errors."""
+    cols = read_table(path, allowed=set(CONDITION_COLUMNS) | set(COMPARABLE))
+    measured = {c: cols[c] for c in COMPARABLE if c in cols}
+    if not measured:
+        raise TableError(f"{path}: no output column to compare (need one of {', '.join(COMPARABLE)})")
+    conditions = {c: cols[c] for c in CONDITION_COLUMNS if c in cols}
+    if not conditions:
+        raise TableError(f"{path}: no condition column (need e.g. T_ambient_C or time_s)")
+    if len(cols["_line"]) < 8:
+        raise TableError(f"{path}: {len(cols['_line'])} rows: too few to diagnose (need at least 8)")
+    return conditions, measured
+
+
+def diagnose_files(assembly_path: Path, measured_path: Path, out_dir: Path, progress=print,
+                   pipeline: Pipeline | None = None) -> dict:
+    asm = load_assembly(assembly_path)
+    conditions, measured = read_measured(measured_path)
+    pl = pipeline or Pipeline(asm, progress=progress)
+    predict = ModelPredictor(pl, conditions, measured.keys())
+    candidates = [EFFECTS[name] for name in ORDER]
+    progress(f"diagnosing {len(next(iter(measured.values())))} rows, columns "
+             f"{', '.join(measured)}, {len(candidates)} candidate effects ...")
+    outcome = diagnose_full(predict, measured, conditions, candidates, NUISANCE,
+                            T_ref_C=asm.T_ref_C, predict_at=predict.at)
+    result = outcome.result
+    result.setdefault("nuisance_calibration", "mu_scale: scale on the friction coefficient (0.3..3)")
+    result["model_calls"] = predict.calls
+    (out_dir / "diagnosis.json").write_text(json.dumps(result, indent=2, default=_json_default))
+    write_report(result, conditions, measured, outcome.baseline_pred, outcome.extended_pred, out_dir)
+    return result
+
+
+def _json_default(x):
+    if isinstance(x, (np.floating, np.integer)):
+        return x.item()
+    if isinstance(x, np.ndarray):
+        return x.tolist()
+    raise TypeError(f"not JSON serialisable: {type(x)}")
