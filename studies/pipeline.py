@@ -19,6 +19,7 @@ import numpy as np
 from analytic import lame
 from analytic.bearing import BearingGeometry, solve_pair
 from analytic.lubrication import get_lubricant
+from analytic.safety import static_safety_from_contact_pressure
 from analytic.torque import pair_torque
 from fem.model import build_model
 from fem.post import fit_mean_pressures
@@ -241,6 +242,7 @@ class Pipeline:
                     "axial_stiffness_N_per_um"):
             out[key] = pair[key]
         out["preload_lost"] = pair["preload_lost"].astype(float)
+        out["static_safety"] = static_safety_from_contact_pressure(pair["max_contact_pressure_MPa"])
         out["friction_coefficient"] = mu
         return (out, pair) if return_pair else out
 

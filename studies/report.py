@@ -60,3 +60,21 @@ def field_images(out_dir: Path, pipeline, T_C: float, stem: str, title: str) -> 
     T_vertex = np.full(model.mesh.p.shape[1], T_C)
     write_vtu(out_dir / f"{stem}.vtu", model, u, stresses, T_vertex)
     return render_fields(out_dir, stem, model, u, stresses, title, T_vertex_C=T_vertex)
+
+
+def safety_section(asm, out: dict, film_parameter=None, title: str = "over the study's operating points") -> str:
+    """Markdown table of the safety flags (analytic/safety.py) at the worst operating point."""
+    from analytic.safety import evaluate_safety
+
+    flags = evaluate_safety(preload_N=out["preload_N"],
+                            fit_pressure_inner_MPa=out["fit_pressure_inner_MPa"],
+                            fit_pressure_outer_MPa=out["fit_pressure_outer_MPa"],
+                            max_contact_pressure_MPa=out["max_contact_pressure_MPa"],
+                            contact_pressure_limit_MPa=asm.limits.max_contact_pressure_MPa,
+                            static_safety=out["static_safety"],
+                            min_static_safety=asm.limits.min_static_safety,
+                            film_parameter=film_parameter, lubrication_kind=asm.lubrication.kind)
+    rows = [[f.name, f"{f.value:.4g} {f.unit}".strip(), f"{f.limit:.4g}", "ok" if f.ok else "NO",
+             f.message] for f in flags]
+    return "\n".join([f"## Safety checks ({title})", "",
+                      md_table(["check", "worst value", "limit", "ok", "message"], rows), ""])

@@ -22,7 +22,7 @@ from studies.config import load_shipped
 from studies.effects import apply_effects
 from studies.inputs import baseline_inputs
 from studies.pipeline import Pipeline
-from studies.report import field_images, line_plot, md_table
+from studies.report import field_images, line_plot, md_table, safety_section
 from studies.table import write_table
 
 SEED = {"rate_inner_um_per_C": -0.05, "rate_outer_um_per_C": 0.07, "outer_closes_C": 41.0,
@@ -233,6 +233,7 @@ def write_report(out: Path, pl, ts, tq, cy, images) -> None:
         "that left the fit expansion of the raceway out of the preload) would let the axial part "
         "dominate. We do not tune the geometry to force the seed's sign.", "",
         "![preload](preload_vs_temperature.png)", "", "![shifts](raceway_shift_vs_temperature.png)", "",
+        safety_section(a, res, title="-60..80 C sweep"),
         "## Friction torque", "",
         f"Torque ranges over the seed's test ranges: preload 0..350 N: {rng['preload']:.3f} N mm; "
         f"temperature 0..80 C at 100 N: {rng['temperature']:.3f} N mm; inner interference 0..10 um: "

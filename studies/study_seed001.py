@@ -19,7 +19,7 @@ from analytic.torque import coulomb_load_torque_Nmm, palmgren_viscous_torque_Nmm
 from studies.config import load_shipped
 from studies.inputs import baseline_inputs
 from studies.pipeline import Pipeline
-from studies.report import line_plot, md_table
+from studies.report import line_plot, md_table, safety_section
 from studies.table import write_table
 
 SEED_RATIO_COLD = (1.333, 1.50)     # torque(-20 C) / torque(20 C): +33.3..50 %
@@ -147,6 +147,7 @@ def run(out: Path, progress=print) -> None:
         f"(DESIGN.md section 6). Palmgren's viscous term with f0 = {a.lubrication.viscous_factor_f0:g} (oil bath) "
         "is 100x the load term and follows the viscosity of the MAC oil (x25 from 20 to -20 C), so the "
         "configured model changes far more than the seed measured.", "",
+        safety_section(a, b, film_parameter=b["film_parameter"], title=f"-20..60 C at {n0:.0f} rpm"),
         "![torque](torque_vs_temperature.png)", "", "![preload](preload_vs_temperature.png)", "",
         "![lambda](film_parameter.png)", "",
         "## Which explanation the seed's ratios need", "",

@@ -23,7 +23,7 @@ from analytic.torque import ContactInput, friction_heat_W, palmgren_viscous_torq
 from studies.config import load_shipped
 from studies.inputs import baseline_inputs
 from studies.pipeline import Pipeline
-from studies.report import line_plot, md_table
+from studies.report import line_plot, md_table, safety_section
 from studies.table import write_table
 
 SPEEDS_RPM = (1000.0, 1500.0)
@@ -206,6 +206,7 @@ def run(out: Path, progress=print) -> None:
                   "with the network's gradient (N)", "contact angle 25 C (deg)",
                   "contact angle steady (deg)", "inner fit (MPa)", "outer fit (MPa)"], fb), "",
         gradient_text(results, fb), "",
+        safety_section(a, results[SPEEDS_RPM[-1]]["steady_out"], title=f"steady state at {SPEEDS_RPM[-1]:.0f} rpm"),
         "![housing](housing_temperature.png)", ""]
     for n in SPEEDS_RPM:
         lines += [f"![temperatures {n:.0f}](temperatures_{n:.0f}rpm.png) ![heat {n:.0f}](heat_split_{n:.0f}rpm.png)", ""]
