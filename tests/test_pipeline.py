@@ -1,0 +1,138 @@
+"""The FE -> bearing pipeline: superposed vs direct FE, closed-form uniform expansion, the
+simulate command's contract."""
+import csv
+import dataclasses
+
+import numpy as np
+import pytest
+
+from analytic.materials import get_material
+from studies.cli import main
+from studies.config import CONFIG_DIR, load_shipped
+from studies.inputs import baseline_inputs
+from studies.pipeline import Pipeline
+
+CFG = str(CONFIG_DIR / "seed000_71807C_TC4.toml")
+
+
+@pytest.fixture(scope="module")
+def pl000():
+    return Pipeline(load_shipped("seed000"), mesh_factor=2.0)
+
+
+def _inp(asm, T, **cols):
+    cols = {"T_ambient_C": np.asarray(T, float), **{k: np.asarray(v, float) for k, v in cols.items()}}
+    return baseline_inputs(cols, len(cols["T_ambient_C"]), asm.T_ref_C, asm.preload.assembled_N,
+                           asm.lubrication.speed_rpm)
+
+
+def test_superposed_pipeline_equals_direct_fe_across_the_outer_fit_closing(pl000):
+    T = np.linspace(-60.0, 80.0, 8)            # the outer clearance closes near 41 C
+    inp = _inp(pl000.asm, T)
+    sup, direct = pl000.run(inp), pl000.run(inp, direct=True)
+    assert direct["fit_pressure_outer_MPa"][0] == 0 and direct["fit_pressure_outer_MPa"][-1] > 0
+    for k in ("torque_Nmm", "preload_N", "contact_angle_deg", "fit_pressure_inner_MPa",
+              "fit_pressure_outer_MPa", "groove_shift_dr_A_um", "groove_shift_dz_B_um"):
+        scale = np.abs(direct[k]).max()
+        assert np.abs(sup[k] - direct[k]).max() <= 1e-8 * scale, k
+
+
+def test_free_interference_follows_the_cte_difference(pl000):
+    a = pl000.asm
+    T = np.array([-60.0, 0.0, 80.0])
+    out = pl000.run(_inp(a, T))
+    ti, ring, th = get_material("TC4"), get_material("9Cr18"), get_material("TC4")
+    expect_i = a.fits.inner_interference_um + (ti.thermal_strain(T, 20) - ring.thermal_strain(T, 20)) * 35e3
+    expect_o = a.fits.outer_interference_um + (ring.thermal_strain(T, 20) - th.thermal_strain(T, 20)) * 47e3
+    assert np.allclose(out["interference_inner_um"], expect_i, rtol=1e-12)
+    assert np.allclose(out["interference_outer_um"], expect_o, rtol=1e-12)
+
+
+def test_uniform_expansion_of_a_one_material_stack_is_a_pure_scale_change():
+    """All parts 9Cr18, no fits: the FE must move every groove centre by theta * position, so
+    dr = theta (r_ci - r_co) and dz_j = s_j theta A0 sin(a0) exactly (closed form), and the preload
+    changes only by the scale of the geometry (e is fixed in mm)."""
+    a = load_shipped("seed000")
+    same = {f: dataclasses.replace(getattr(a, f), material="9Cr18") for f in
+            ("shaft", "housing", "nut", "cover", "inner_spacer", "outer_spacer")}
+    a = dataclasses.replace(a, fits=dataclasses.replace(a.fits, inner_interference_um=0.0,
+                                                        outer_interference_um=0.0), **same)
+    pl = Pipeline(a, mesh_factor=2.0)
+    T = np.array([-40.0, 20.0, 70.0])
+    out = pl.run(_inp(a, T))
+    g = pl.geom
+    th = get_material("9Cr18").thermal_strain(T, 20.0)
+    a0 = np.radians(g.alpha0_deg)
+    assert np.allclose(out["groove_shift_dr_A_um"], 1e3 * th * g.A0_mm * np.cos(a0), atol=1e-9)
+    assert np.allclose(out["groove_shift_dz_A_um"], 1e3 * th * g.A0_mm * np.sin(a0), atol=1e-9)
+    assert np.allclose(out["groove_shift_dz_B_um"], -1e3 * th * g.A0_mm * np.sin(a0), atol=1e-9)
+    assert np.abs(out["fit_pressure_inner_MPa"]).max() < 1e-9       # round-off of a zero fit
+    assert abs(out["preload_N"][0] / 100.0 - 1) < 0.01 and abs(out["preload_N"][2] / 100.0 - 1) < 0.01
+
+
+def test_part_columns_override_the_ambient(pl000):
+    a = pl000.asm
+    both = pl000.run(_inp(a, [20.0, 20.0], T_shaft_C=[20.0, 60.0]))
+    hot = pl000.run(_inp(a, [60.0]))
+    # a hot shaft in a cold ring tightens the inner fit; a uniform 60 C loosens it (TC4 < 9Cr18)
+    assert both["interference_inner_um"][1] > both["interference_inner_um"][0] > hot["interference_inner_um"][0]
+
+
+def _csv(path, header, rows):
+    path.write_text(",".join(header) + "\n" + "\n".join(",".join(map(str, r)) for r in rows) + "\n")
+
+
+def _read(path):
+    with open(path) as fh:
+        return list(csv.DictReader(line for line in fh if not line.startswith("#")))
+
+
+def test_simulate_command_writes_every_spec_column(tmp_path, capsys):
+    cond = tmp_path / "c.csv"
+    _csv(cond, ["T_ambient_C", "speed_rpm"], [[-60, 60], [20, 60], [80, 60]])
+    out = tmp_path / "o.csv"
+    assert main(["simulate", CFG, str(cond), "-o", str(out)]) == 0
+    rows = _read(out)
+    for col in ("T_ambient_C", "speed_rpm", "torque_Nmm", "preload_N", "contact_angle_deg",
+                "interference_inner_um", "interference_outer_um", "fit_pressure_inner_MPa",
+                "fit_pressure_outer_MPa", "max_contact_pressure_MPa"):
+        assert col in rows[0]
+    assert float(rows[1]["preload_N"]) == pytest.approx(100.0, rel=1e-9)   # assembled at 20 C
+    # an effect at its off value is the baseline exactly
+    out2 = tmp_path / "o2.csv"
+    assert main(["simulate", CFG, str(cond), "-o", str(out2), "--effect", "radial_gradient:dT_K=0"]) == 0
+    assert [r["torque_Nmm"] for r in _read(out2)] == [r["torque_Nmm"] for r in rows]
+
+
+@pytest.mark.parametrize("content,effect,expect", [
+    ("T_ambient_C,bogus\n1,2\n", None, "column 'bogus': unknown column"),
+    ("T_ambient_C\n1\nabc\n", None, "line 3, column 'T_ambient_C': 'abc' is not a number"),
+    ("T_ambient_C\n1\nnan\n", None, "value is nan"),
+    ("time_s,T_ambient_C\n0,1\n0,2\n", None, "time not increasing"),
+    ("# only a comment\n", None, "empty table"),
+    ("T_ambient_C\n20\n", "nope:x=1", "unknown effect 'nope'"),
+    ("T_ambient_C\n20\n", "radial_gradient:dT_K=999", "outside physical bounds"),
+    ("T_ambient_C\n20\n", "radial_gradient:bad=1", "unknown parameter 'bad'"),
+    ("T_ambient_C\n20\n", "thermal_lag:tau_s=10", "needs the condition column time_s"),
+])
+def test_simulate_bad_input_exits_2_with_one_line_and_no_output(tmp_path, capsys, content, effect, expect):
+    cond = tmp_path / "c.csv"
+    cond.write_text(content)
+    out = tmp_path / "o.csv"
+    argv = ["simulate", CFG, str(cond), "-o", str(out)] + (["--effect", effect] if effect else [])
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and expect in err[0], err
+    assert not out.exists() and not list(tmp_path.glob(".o.csv*"))
+
+
+def test_missing_and_bad_config_exit_2(tmp_path, capsys):
+    cond = tmp_path / "c.csv"
+    cond.write_text("T_ambient_C\n20\n")
+    assert main(["simulate", str(tmp_path / "none.toml"), str(cond), "-o", str(tmp_path / "o.csv")]) == 2
+    assert "file not found" in capsys.readouterr().err
+    bad = tmp_path / "bad.toml"
+    bad.write_text(open(CFG).read().replace('material = "TC4"                   # [seed]\nseat',
+                                            'material = "Unobtainium"\nseat'))
+    assert main(["simulate", str(bad), str(cond), "-o", str(tmp_path / "o.csv")]) == 2
+    assert "shaft.material: unknown material 'Unobtainium'" in capsys.readouterr().err
