@@ -1,0 +1,53 @@
+"""End to end: `bearingfem verify` per the spec, and the studies write their reports, plots and
+field images (the numbers inside are tested where they are computed)."""
+import json
+
+import pytest
+
+from studies.cli import main
+from studies.verify import TOLERANCE
+
+LAME_INPUTS = {"r_inner_mm", "r_fit_mm", "r_outer_mm", "E_inner_MPa", "nu_inner", "E_outer_MPa",
+               "nu_outer", "interference_um", "assumption"}
+
+
+def test_verify_command_contract_and_tolerance(tmp_path):
+    out = tmp_path / "v"
+    assert main(["verify", "--out", str(out)]) == 0
+    cases = json.loads((out / "verification.json").read_text())["cases"]
+    lame = [c for c in cases if c["kind"] == "lame_fit"]
+    assert len(lame) >= 8
+    for c in lame:
+        assert LAME_INPUTS <= set(c["inputs"]) and "fit_pressure_MPa" in c["fe"] \
+            and "fit_pressure_MPa" in c["closed_form"]
+        assert c["rel_error"] <= TOLERANCE, c["name"]
+    conv = [c for c in cases if c["kind"] == "mesh_convergence"]
+    assert conv and all("observed_order" in q and "gci_fine" in q
+                        for c in conv for q in c["quantities"].values())
+    smooth = next(c for c in conv if "lame" in c["name"])
+    # P2 on the smooth Lamé case: fit pressure error falls at least as h^2 (quadratic elements)
+    assert min(smooth["quantities"]["fit_pressure_MPa"]["order_vs_exact"]) > 1.8
+    assert (out / "verification.md").exists() and (out / "mesh_convergence.png").exists()
+
+
+@pytest.mark.parametrize("name,expect", [
+    ("seed000", ["fits_vs_temperature.png", "preload_vs_temperature.png", "torque_vs_preload.png",
+                 "cycles.png", "field_-60C_von_mises_MPa.png", "field_+80C_displacement_um.png",
+                 "field_+20C.vtu", "temperature_sweep.csv"]),
+    ("seed001", ["torque_vs_temperature.png", "ratio_map.png", "film_parameter.png"]),
+    ("seed003", ["temperatures_1000rpm.png", "heat_split_1500rpm.png", "housing_temperature.png"]),
+])
+def test_study_writes_report_plots_and_images(tmp_path, name, expect):
+    out = tmp_path / name
+    assert main(["study", name, "--out", str(out)]) == 0
+    report = (out / "report.md").read_text()
+    assert "seed" in report.lower() and "| quantity |" in report
+    for f in expect:
+        assert (out / f).stat().st_size > 1000, f
+    assert not list(tmp_path.glob(f".{name}.*"))      # no temporary folder left behind
+
+
+def test_unknown_study_exits_2(tmp_path, capsys):
+    assert main(["study", "nope", "--out", str(tmp_path / "x")]) == 2
+    assert "unknown" in capsys.readouterr().err
+    assert not (tmp_path / "x").exists()
