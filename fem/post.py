@@ -85,7 +85,7 @@ def element_stresses(model: StackModel, u: np.ndarray, theta_e: np.ndarray) -> d
     uf = b.interpolate(u)
     r = b.mapping.F(b.quadrature[0])[0]
     th = np.repeat(theta_e[:, None], r.shape[1], 1)
-    srr, szz, stt, trz = stress_components(uf.grad, uf.value, r, model.lam_q, model.mu_q, th)
+    srr, szz, stt, trz = stress_components(uf.grad, np.asarray(uf), r, model.lam_q, model.mu_q, th)
     w = b.dx / b.dx.sum(axis=1, keepdims=True)
     avg = {k: (v * w).sum(axis=1) for k, v in
            (("sigma_rr_MPa", srr), ("sigma_zz_MPa", szz), ("sigma_hoop_MPa", stt),

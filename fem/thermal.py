@@ -158,7 +158,7 @@ class ConductionModel:
     def theta_field(self, T_dofs: np.ndarray, T_ref_C: float) -> np.ndarray:
         """Thermal strain at the quadrature points (nel, nq), per element material."""
         m = self.model
-        Tq = m.sbasis.interpolate(T_dofs).value
+        Tq = np.asarray(m.sbasis.interpolate(T_dofs))
         out = np.empty_like(Tq)
         for p in m.part_names:
             sel = m.part_of == p

@@ -70,6 +70,22 @@ def sweep(asm):
               f"{len(res['closed_sets'])} distinct contact active sets)")
 
 
+def pipeline_sweep(asm):
+    """The whole chain (FE superposition + pair equilibrium + Hertz + torque) per sweep point."""
+    from studies.inputs import baseline_inputs
+    from studies.pipeline import Pipeline
+
+    pl, t_build = _t(Pipeline, asm)
+    print(f"pipeline set-up (mesh from cache, assembly, unit solutions, compliance): {t_build:.3f} s once")
+    for n in (11, 1401):
+        T = np.linspace(-60, 80, n)
+        inp = baseline_inputs({"T_ambient_C": T}, n, asm.T_ref_C, asm.preload.assembled_N,
+                              asm.lubrication.speed_rpm)
+        pl.sup._chol.clear()
+        _, t = _t(pl.run, inp)
+        print(f"{n:5d}-point pipeline sweep: {t:.4f} s ({1e3 * t / n:.3f} ms/point)")
+
+
 def main(quick: bool = False) -> None:
     from studies.config import load_shipped
 
@@ -86,9 +102,11 @@ def main(quick: bool = False) -> None:
               f"{t:.3f} s for mesh + assembly + factorisation + solve")
     print("== superposition sweeps (default mesh) ==")
     sweep(asm)
+    print("== full pipeline sweeps (default mesh) ==")
+    pipeline_sweep(asm)
     try:
         from studies import bench_analytic
     except ImportError:
         return
     print("== analytic pair model ==")
-    bench_analytic.main()
+    bench_analytic.main([])

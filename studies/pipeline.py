@@ -242,7 +242,8 @@ class Pipeline:
                     "axial_stiffness_N_per_um"):
             out[key] = pair[key]
         out["preload_lost"] = pair["preload_lost"].astype(float)
-        out["static_safety"] = static_safety_from_contact_pressure(pair["max_contact_pressure_MPa"])
+        with np.errstate(divide="ignore"):      # an unloaded pair has infinite static safety
+            out["static_safety"] = static_safety_from_contact_pressure(pair["max_contact_pressure_MPa"])
         out["friction_coefficient"] = mu
         return (out, pair) if return_pair else out
 
