@@ -278,7 +278,8 @@ def pair_torque(g, pair: dict, *, model: str = "solid_film", mu=0.02, hysteresis
 
     model "solid_film": `solid_film_torque_Nmm` per bearing (mu: film friction coefficient,
       hysteresis_loss: alpha_h); returns torque_Nmm and torque_{hysteresis,differential,spin}_Nmm
-      (both bearings, inner + outer) and the per-bearing totals torque_A_Nmm, torque_B_Nmm.
+      (both bearings, inner + outer), torque_{inner,outer}_contacts_Nmm (all components of the
+      inner or of the outer contacts) and the per-bearing totals torque_A_Nmm, torque_B_Nmm.
     model "oil": load term per bearing (load_term "coulomb": mu F_a dm/2; "palmgren": f1 F_a dm)
       plus Palmgren's viscous term per bearing (f0, nu_mm2_s, speed_rpm); returns torque_Nmm,
       torque_load_Nmm, torque_viscous_Nmm, torque_A_Nmm, torque_B_Nmm.
@@ -291,6 +292,7 @@ def pair_torque(g, pair: dict, *, model: str = "solid_film", mu=0.02, hysteresis
         c_ring = (1.0 - g.ring.nu ** 2) / g.ring.E_MPa
         c_ball = (1.0 - g.ball.nu ** 2) / g.ball.E_MPa
         acc = {"hysteresis": 0.0, "differential": 0.0, "spin": 0.0}
+        side = {"inner": 0.0, "outer": 0.0}
         for j in "AB":
             cin, cout = _contacts(pair, j)
             alpha = np.radians(pair[f"contact_angle_{j}_deg"])
@@ -298,9 +300,13 @@ def pair_torque(g, pair: dict, *, model: str = "solid_film", mu=0.02, hysteresis
                                          mu, hysteresis_loss, c_ring, c_ball)
             for key in acc:
                 acc[key] = acc[key] + comp[f"{key}_inner_Nmm"] + comp[f"{key}_outer_Nmm"]
+                for c in side:
+                    side[c] = side[c] + comp[f"{key}_{c}_Nmm"]
             per[j] = comp["total_Nmm"]
         for key, v in acc.items():
             out[f"torque_{key}_Nmm"] = v
+        for c, v in side.items():
+            out[f"torque_{c}_contacts_Nmm"] = v
     elif model == "oil":
         load = 0.0
         visc = palmgren_viscous_torque_Nmm(f0, nu_mm2_s, 0.0 if speed_rpm is None else speed_rpm,
