@@ -118,9 +118,13 @@ def build_mesh(section: Section, refresh: bool = False) -> Path:
 def read_section_mesh(path: Path) -> SectionMesh:
     """Read a section .msh with meshio: corner nodes of the triangle6 cells, the part of each
     triangle (physical surface names) and the named physical curves (line3 -> corner pairs)."""
+    import contextlib
+    import io
+
     import meshio
 
-    m = meshio.read(str(path))
+    with contextlib.redirect_stdout(io.StringIO()):      # meshio prints a stray blank line
+        m = meshio.read(str(path))
     id_to_name = {int(v[0]): k for k, v in m.field_data.items()}
     tris, part, lines = [], [], {}
     for block, phys in zip(m.cells, m.cell_data["gmsh:physical"]):
