@@ -623,7 +623,7 @@ class _Engine:
                 reach = max(reach, left[i] * max(abs(hi - e.off[p]), abs(lo - e.off[p])) / h)
             info["identifiability"] = {"remaining_fraction": dict(zip(names, frac)),
                                        "reach_sigma": float(reach)}
-            if not np.any(raw > 0):
+            if not np.any(raw > 1e-9):
                 info.update(status="not_identifiable",
                             reason="the measured outputs do not depend on it here")
                 continue
@@ -864,7 +864,7 @@ class _Engine:
             vals = [s.get(p, e.off[p]) for (_, p) in space.eff_params]
             uu = np.concatenate([(np.array(vals) - space.origin[:k]) / space.scale[:k], u_nuis])
             starts.append(uu)
-        best = None
+        scored = []
         for uu in starts:
             uu = space.clip(uu)
             try:
@@ -877,12 +877,24 @@ class _Engine:
                 zc = z + Jn @ dn
             else:
                 zc = z
-            sse = float(zc @ zc)
-            if best is None or sse < best[0]:
-                best = (sse, uu)
-        if best is None:
+            scored.append((float(zc @ zc), len(scored), uu))
+        if not scored:
             raise ModelFailure("the model fails at every starting point")
-        f = self.fit(space, best[1])
+        scored.sort(key=lambda t: t[:2])
+        # local optimisation from the two most promising starts (fits that open or close, lags
+        # and thresholds make the problem non-convex)
+        f = None
+        for sse0, _, uu in scored[:2]:
+            if f is not None and sse0 > f.chi2 + max(10.0, 0.2 * (base.chi2 - f.chi2)):
+                break                     # the second start is not promising enough
+            try:
+                fi = self.fit(space, uu)
+            except ModelFailure:
+                continue
+            if f is None or fi.chi2 < f.chi2:
+                f = fi
+        if f is None:
+            raise ModelFailure("the fits fail from every starting point")
         if f.chi2 > base.chi2:           # never worse than the baseline (off is admissible)
             f2 = self.fit(space, np.concatenate([np.zeros(k), base.u]))
             f = f2 if f2.chi2 < f.chi2 else f

@@ -35,6 +35,12 @@ class InterferenceError(Effect):
             "the reference temperature; an interference error does not depend on speed or on the "
             "rate of temperature change")
 
+    def starts(self, conditions, T_ref_C):
+        """A 3 x 3 grid of starting points: a fit that opens or closes inside the test makes the
+        least-squares problem non-convex (zero sensitivity while the fit is open)."""
+        return [{"inner_um": a, "outer_um": b} for a in (-5.0, 0.0, 5.0) for b in (-5.0, 0.0, 5.0)
+                if (a, b) != (0.0, 0.0)]
+
     def _apply(self, inputs, p, T_ref_C):
         n = inputs.n_rows
 

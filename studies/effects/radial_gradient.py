@@ -40,6 +40,10 @@ class RadialGradient(Effect):
     hint = ("measure the inner-ring (or shaft) temperature beside the outer-ring temperature, or "
             "repeat the test at a second speed (the gradient grows with speed)")
 
+    def starts(self, conditions, T_ref_C):
+        """Larger gradients as extra starting points (a fit may open or close on the way)."""
+        return [{"dT_K": 5.0}, {"dT_K": 15.0}]
+
     def _apply(self, inputs, p, T_ref_C):
         dT = p["dT_K"] + p["dT_per_krpm_K"] * np.asarray(inputs.speed_rpm, float) / 1000.0
         T = dict(inputs.T_C)
