@@ -92,6 +92,11 @@ class ConductionModel:
         self.tie_s = np.concatenate(ss) if ss else np.zeros(0, int)
         self.lines = boundary_lines(model.section)
 
+    def area_mm2(self, name: str) -> float:
+        """Area of a named boundary line swept around the axis, int 2 pi r ds (mm^2)."""
+        fb = FacetBasis(self.model.mesh, self.model.sbasis.elem, facets=_facets_on(self.model, self._spec(name)))
+        return float(asm(boundary_flux, fb, q=1.0).sum())
+
     def _mean_vector(self, name: str) -> np.ndarray:
         """Vector a with a . T = area-weighted mean temperature on a boundary line."""
         fb = FacetBasis(self.model.mesh, self.model.sbasis.elem, facets=_facets_on(self.model, self.lines[name]))

@@ -175,6 +175,26 @@ class Pipeline:
             outer_um + (theta[:, idx["outer_ring_A"]] - theta[:, idx["housing"]]) * d_bore * 1e3])
         return FEState(p, interf, dr, dz, probe)
 
+    def fe_field(self, theta_q: np.ndarray, inputs: PhysicsInputs):
+        """One state with a non-uniform thermal strain field (nel, nq) from a conduction solution:
+        a direct FE solve (not superposed). The groove-centre offsets take each ring's mean
+        thermal strain. Returns (FEState, displacement vector)."""
+        m = self.model
+        inner_um, outer_um = self.fits_um(inputs)
+        delta = self.deltas_mm(inner_um, outer_um)[0]
+        sol = self.solver.solve(m.thermal_load_vector(theta_q), delta)
+        probe = self.probe @ sol.u
+        p = fit_mean_pressures(m, self.solver.fit_of_pair, sol.force_N)
+        centre = np.empty((4, 2))
+        w = m.basis.dx
+        for k, ring in enumerate(RINGS):
+            sel = m.part_of == ring
+            th = float((theta_q[sel] * w[sel]).sum() / w[sel].sum())
+            centre[k] = probe[2 * k:2 * k + 2] + th * self.centre_offset_mm[k]
+        dr = np.array([[centre[0, 0] - centre[2, 0]], [centre[1, 0] - centre[3, 0]]])
+        dz = np.array([[centre[0, 1] - centre[2, 1]], [centre[1, 1] - centre[3, 1]]])
+        return FEState(p, np.full((1, 2), np.nan), dr, dz, probe[None, :]), sol.u
+
     def lame_beside(self, fe: FEState, inputs: PhysicsInputs) -> dict[str, np.ndarray]:
         """Closed-form neighbours of the FE values (two-cylinder Lamé, plane stress)."""
         a, b = self.asm, self.asm.bearing
