@@ -16,8 +16,8 @@ Method (DESIGN.md section 5):
    contiguous blocks, robustly trimmed (they cancel any smooth model error). Residuals of all
    compared columns are standardised by these levels and stacked. Describe the residuals: bias
    (t test), reduced chi-square, lag-1 autocorrelation (von Neumann type test in row order),
-   and a smoother (cubic polynomials in every varying condition and in time) with its F test and
-   its held-out (block cross-validated) gain. Structure = any of these tests significant after
+   and a smoother (cubic polynomials in every varying condition and in time, plus the rates of
+   change of the conditions) with its F test and its held-out (block cross-validated) gain. Structure = any of these tests significant after
    Bonferroni over tests and columns.
 2. For every candidate, the finite-difference sensitivity of the predictions to its parameters at
    "off"; the part the baseline's calibration can produce (span of the nuisance Jacobian) is
@@ -401,6 +401,16 @@ class _Engine:
             x = (x - np.mean(x)) / (np.std(x) or 1.0)
             for d in range(1, deg + 1):
                 F.append(x ** d)
+        # rates of change (history effects: lags, hysteresis), linear terms only
+        if "time_s" in self.conditions and self.n >= 12 * 4 * len(cols) + 10:
+            t = self.conditions["time_s"]
+            if np.all(np.diff(t) > 0):
+                for k, x in cols:
+                    if k in ("time_s", "row"):
+                        continue
+                    g = np.gradient(x, t)
+                    if np.std(g) > 0:
+                        F.append((g - g.mean()) / g.std())
         self._features = np.array(F).T if F else np.zeros((self.n, 0))
         return self._features
 
@@ -738,9 +748,10 @@ class _Engine:
                                "candidate passes")
                 cols = desc_base["columns"].values()
                 if all(d["smoother_heldout_gain"] <= 0 and d["bias_p"] > 0.01 for d in cols):
-                    reasons.append("the structure is serial correlation that the conditions do "
-                                   "not predict on held-out blocks: correlated noise, a drift or "
-                                   "a disturbance in time rather than a missing physical effect")
+                    reasons.append("the structure is serial correlation that a smooth function "
+                                   "of the conditions does not predict on held-out blocks: it may "
+                                   "be correlated noise, a drift in time or a history effect "
+                                   "outside the candidate list")
             else:
                 reasons.append("the baseline residuals are consistent with the noise estimated "
                                "from the data and no candidate passes")

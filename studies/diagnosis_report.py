@@ -235,7 +235,8 @@ def write_report(result: dict, conditions: Mapping[str, np.ndarray],
       f"{_fmt(result['residuals']['baseline']['p_min_adjusted'], 2)}; threshold "
       f"{_fmt(result['thresholds']['alpha_structure'])}). The reduced chi² uses the noise level "
       "estimated from second differences of the residuals; the smoother is a cubic polynomial in "
-      "each varying condition and in time, its gain measured on held-out blocks.\n")
+      "each varying condition and in time plus the rates of change of the conditions, its gain "
+      "measured on held-out blocks.\n")
     ext = result["residuals"].get("extended")
     if ext:
         w(f"After `{cause}`: smallest adjusted p of the same tests "
