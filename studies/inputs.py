@@ -6,6 +6,15 @@ given), each switched-on effect transforms it (part temperatures, fits, CTE, vis
 preload), and the pipeline evaluates it. Effects never touch outputs.
 
 All arrays have one entry per row. Units in names: C, um, N, rpm, s, 1/K^2.
+
+Conventions for the fields effects write (see studies/effects/__init__.py):
+- `interference_inner_um` / `interference_outer_um`: offset from the config's nominal diametral
+  fit at T_ref (um); None = no offset; offsets add up.
+- `friction_coefficient`: change from the config's coefficient per row; None = no change; the
+  resolved coefficient is clipped at 0.
+- `dalpha_per_K2["shaft"|"housing"]`: CTE slope of those parts (and nut / cover).
+- `viscosity_slope_factor`: Walther slope factor about 40 C (1 = nominal).
+- `preload_loss_N`: permanent loss subtracted from the assembled preload per row.
 """
 from __future__ import annotations
 
