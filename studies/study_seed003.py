@@ -36,7 +36,7 @@ DURATION_S = 3 * 3600.0
 
 def _network(pl, pair):
     a, b, g = pl.asm, pl.asm.bearing, pl.geom
-    mr, mb, ms, mh = (pl.model.materials[p] for p in ("inner_ring_A", "inner_ring_A", "shaft", "housing"))
+    mr, ms, mh = (pl.model.materials[p] for p in ("inner_ring_A", "shaft", "housing"))
     mb = g.ball
     B2 = 2 * b.width_mm
     cap = {"inner_ring": tn.heat_capacity_J_K(tn.ring_mass_kg(b.bore_mm, b.inner_ring_outer_diameter_mm, B2, mr), mr),
@@ -294,12 +294,10 @@ def conduction_check(pl, res, speed, out: Path):
             ["FE conduction field (balls at the network's temperature)", mean["raceway_inner_ring_A"],
              mean["raceway_outer_ring_A"], mean["housing_outer"], 1e3 * float(fe.dr_mm[0, 0]),
              float(pair["preload_N"][0])]]
-    idx = {p: i for i, p in enumerate(pl.model.part_names)}
     theta_e = (theta_q * pl.model.basis.dx).sum(1) / pl.model.basis.dx.sum(1)
     st = element_stresses(pl.model, u, theta_e)
     Tv = cm.vertex_temperatures(T)
     write_vtu(out / f"conduction_{speed:.0f}rpm.vtu", pl.model, u, st, Tv)
     imgs = render_fields(out, f"conduction_{speed:.0f}rpm", pl.model, u,
                          {"von_mises_MPa": st["von_mises_MPa"]}, f"seed003 {speed:.0f} rpm steady", T_vertex_C=Tv)
-    del idx
     return rows, imgs
