@@ -195,8 +195,8 @@ def run(out: Path, progress=print) -> None:
                    "rises and levels off; 63 % of the rise at " + ", ".join(t63)],
                   ["hottest node", "balls", tn.NODES[int(np.argmax(results[SPEEDS_RPM[0]]["steady"]))]],
                   ["inner vs outer ring", "inner ring warmer",
-                   "inner ring warmer" if results[SPEEDS_RPM[0]]["steady"][3] > results[SPEEDS_RPM[0]]["steady"][1]
-                   else "outer ring warmer"],
+                   f"lumped network: inner - outer = {results[SPEEDS_RPM[0]]['steady'][3] - results[SPEEDS_RPM[0]]['steady'][1]:+.2f} K; "
+                   f"FE conduction field: {cond_rows[1][1] - cond_rows[1][2]:+.1f} K (see below)"],
                   ["heat split", "sliding, viscous, spin", ", ".join(
                       f"{k} {100 * float(results[SPEEDS_RPM[0]]['steady_heat'][k + '_W'][0]) / rows[0][-1]:.0f} %"
                       for k in ("sliding", "viscous", "spin")) + f" at {SPEEDS_RPM[0]:.0f} rpm"]]), "",
