@@ -894,10 +894,13 @@ class _Engine:
         scored.sort(key=lambda t: t[:2])
         # local optimisation from the two most promising starts (fits that open or close, lags
         # and thresholds make the problem non-convex)
+        # the Gauss-Newton step from "off" (index 0) is always refined too: a grid start can sit
+        # where a fit is open and the outputs do not depend on a parameter (a flat local minimum)
+        gn = [t for t in scored if t[1] == 0 and t not in scored[:2]]
         f = None
-        for sse0, _, uu in scored[:2]:
-            if f is not None and sse0 > f.chi2 + max(10.0, 0.2 * (base.chi2 - f.chi2)):
-                break                     # the second start is not promising enough
+        for sse0, idx, uu in scored[:2] + gn:
+            if f is not None and idx != 0 and sse0 > f.chi2 + max(10.0, 0.2 * (base.chi2 - f.chi2)):
+                continue                  # not promising enough
             try:
                 fi = self.fit(space, uu)
             except ModelFailure:

@@ -281,11 +281,6 @@ def test_hidden_effect_is_named(pipelines, name, params, seed_name, design, sigm
         assert candidate(res, "viscosity_temperature")["status"] == "not_identifiable"
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "engine: since f0294c8 (extra 3 x 3 starts for interference_error) the fit ends at the start "
-    "inner = outer = -5 um (outer fit open at every row: no gradient in outer_um) with chi-square "
-    "~3800 against ~250 at the true parameters, and the verdict is `unexplained`; f0294c8~1 gives "
-    "`explained` (chi-square ~256). Remove this marker when the engine is fixed."))
 def test_interference_error_in_preload_sweep_local_minimum(pl000):
     """A tighter inner fit (-2.4 um) and a nearly nominal outer fit in a preload sweep, rig friction
     0.85 x the config: found by the slow hit-rate test (2 of 4 sweep datasets missed)."""
