@@ -283,7 +283,9 @@ def test_hidden_effect_is_named(pipelines, name, params, seed_name, design, sigm
 
 def test_interference_error_in_preload_sweep_local_minimum(pl000):
     """A tighter inner fit (-2.4 um) and a nearly nominal outer fit in a preload sweep, rig friction
-    0.85 x the config: found by the slow hit-rate test (2 of 4 sweep datasets missed)."""
+    0.85 x the config. Regression test: the slow hit-rate test found the fit stuck at the start
+    inner = outer = -5 um (outer fit open in every row, so no gradient in outer_um; chi-square
+    ~3800 against ~250 at the truth, verdict `unexplained`) after f0294c8; fixed in 69dc0f4."""
     cond = preload_sweep(rep=4)
     params = {"inner_um": -2.4, "outer_um": 0.1}
     sigma = {"torque_Nmm": 0.13, "preload_N": 3.3}
