@@ -345,9 +345,7 @@ class _Engine:
             steps = e.steps(self.conditions)
             fx[e.name] = dict(e.off)
             fx[e.name].update(fixed.get(e.name, {}))
-            for p in e.parameters:
-                if p in e.profile:
-                    continue
+            for p in self.free_params(e):
                 s = float(steps.get(p, e.scale[p]))
                 eff_params.append((e.name, p))
                 origin.append(e.off[p]), scale.append(s)
@@ -478,14 +476,18 @@ class _Engine:
         return {"columns": out, "p_min_adjusted": p_adj}
 
     # ------------------------------------------------------------------ sensitivities
+    def free_params(self, e) -> list[str]:
+        """Parameters fitted by gradients: not profiled, not held at "off" for these conditions
+        (e.g. a speed-proportional part when every row has the same speed)."""
+        held = set(e.held_fixed(self.conditions))
+        return [p for p in e.parameters if p not in e.profile and p not in held]
+
     def sensitivity(self, e, base_nuis: dict, base_pred: dict, fixed: dict | None = None):
         """d(pred)/sigma per unit step of each non-profile parameter at off (N x k, stacked)."""
         steps = e.steps(self.conditions)
         cols = []
         names = []
-        for p in e.parameters:
-            if p in e.profile:
-                continue
+        for p in self.free_params(e):
             params = dict(e.off)
             params.update(fixed or {})
             lo, hi = e.bounds[p]
@@ -677,7 +679,7 @@ class _Engine:
             info["predict_calls_fit"] = self.model.calls - calls0
             lr = max(base.chi2 - f.chi2, 0.0)
             r = info["rank"]
-            n_two = sum(1 for p in e.parameters if p not in e.profile and e.sign(p) == 0)
+            n_two = sum(1 for p in self.free_params(e) if e.sign(p) == 0)
             n_free = min(r, n_two) + len(e.profile)
             n_bound = r - min(r, n_two)
             k_eff = r + len(e.profile)
@@ -688,6 +690,9 @@ class _Engine:
             info["k"] = k_eff
             eff_vals, nuis_vals = f.space.unpack(f.u)
             info["parameters"] = {p: eff_vals[name][p] for p in e.parameters}
+            held = list(e.held_fixed(self.conditions))
+            if held:
+                info["held_at_off"] = {p: e.off[p] for p in held}
             info["nuisance"] = nuis_vals
             info["uncertainty"] = self.uncertainty(f, e)
             info["rmse"] = self.col_rmse(f.z)

@@ -264,8 +264,12 @@ def write_report(result: dict, conditions: Mapping[str, np.ndarray],
                 if hg else "–")
         ho = c["heldout_rmse"][c0] if c.get("heldout_rmse") else None
         params = ", ".join(f"{k}={_fmt(v)}" for k, v in c["parameters"].items()) or "–"
+        note = c["reason"]
+        if c.get("held_at_off"):
+            note += ("; " if note else "") + "held at its off value (not separable in this data): " \
+                + ", ".join(c["held_at_off"])
         w(f"| `{c['effect']}` | {c['status']} | {params} | {_fmt(c['delta_bic'])} | "
-          f"{_fmt(c.get('p_lr'), 2)} | {_fmt(ho)} | {gain} | {c['reason']} |")
+          f"{_fmt(c.get('p_lr'), 2)} | {_fmt(ho)} | {gain} | {note} |")
     w("")
     if has_cand_plot:
         w("![candidates](candidates.png)\n")

@@ -140,6 +140,11 @@ class Effect:
                 return f"needs the condition column {f}"
         return None
 
+    def held_fixed(self, conditions: Mapping[str, np.ndarray]) -> tuple[str, ...]:
+        """Parameters these conditions cannot separate from the others: held at `off` in a fit
+        (default: none)."""
+        return ()
+
     def steps(self, conditions: Mapping[str, np.ndarray]) -> dict[str, float]:
         """Finite-difference step per (non-profile) parameter, in parameter units."""
         return dict(self.scale)
