@@ -38,19 +38,19 @@ def fit_mean_pressures(model: StackModel, fit_of_pair: np.ndarray, force_N: np.n
 
 
 def pressure_distribution(z_mm: np.ndarray, nodal_force_N: np.ndarray, r_mm: float) -> np.ndarray:
-    """Contact pressure p(z) (MPa) at the interface nodes from consistent nodal forces.
+    """Contact pressure p(z) (MPa) at the interface nodes from the nodal contact forces.
 
-    The nodes of a P2 interface alternate vertex, mid-side, vertex along z; the nodal forces are
-    F = M p with the line mass matrix M of the P2 trace (weight 2 pi R), element matrix
-    (2 pi R h / 30) [[4, 2, -1], [2, 16, 2], [-1, 2, 4]] in the order (z0, z_mid, z1)
-    (Zienkiewicz & Taylor Vol. 1, quadratic line element mass matrix)."""
+    The nodes of a P2 interface alternate vertex, mid-side, vertex along z. Each nodal force is
+    divided by its tributary area 2 pi R w_i, with w_i the row sums of the quadratic line mass
+    matrix (Simpson weights h/6, 4h/6, h/6 per element; Zienkiewicz & Taylor Vol. 1, lumped
+    mass). Unlike inverting the consistent mass matrix this cannot oscillate: p >= 0 wherever the
+    contact forces are compressive, and sum(p w) 2 pi R is the total force exactly."""
     n = z_mm.size
-    M = np.zeros((n, n))
-    Me = np.array([[4.0, 2.0, -1.0], [2.0, 16.0, 2.0], [-1.0, 2.0, 4.0]]) / 30.0
+    w = np.zeros(n)
     for e in range(0, n - 2, 2):
-        idx = [e, e + 1, e + 2]
-        M[np.ix_(idx, idx)] += Me * (z_mm[e + 2] - z_mm[e]) * 2 * np.pi * r_mm
-    return np.linalg.solve(M, nodal_force_N)
+        h = z_mm[e + 2] - z_mm[e]
+        w[[e, e + 1, e + 2]] += np.array([1.0, 4.0, 1.0]) * h / 6.0
+    return nodal_force_N / (2 * np.pi * r_mm * w)
 
 
 def fit_results(model: StackModel, fit_of_pair: np.ndarray, force_N: np.ndarray) -> list[FitResult]:

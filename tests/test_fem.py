@@ -123,3 +123,16 @@ def test_fit_rates_follow_the_cte_difference():
     eff = [lame.interference_at_temperature_um(5.0, 35.0, a, b, T, 20.0) for T in (0.0, 40.0)]
     expect = [_lame(12.5, 17.5, 18.9, "TC4", "9Cr18", e, "plane_stress") for e in eff]
     assert ps == pytest.approx(expect, rel=1e-5)
+
+
+def test_pressure_distribution_of_a_lame_fit_is_uniform_and_sums_to_the_force():
+    """Plane-stress Lamé: uniform pressure along the fit; the tributary areas add to 2 pi R L."""
+    from fem.post import fit_results
+
+    sec, model, solver = _two(12.5, 17.5, 18.9, "TC4", "9Cr18")
+    sol = solver.solve(np.zeros(model.ndofs), [5.0 / 2000])
+    fr = fit_results(model, solver.fit_of_pair, sol.force_N)[0]
+    p_lame = _lame(12.5, 17.5, 18.9, "TC4", "9Cr18", 5.0, "plane_stress")
+    assert fr.status == "closed"
+    assert np.allclose(fr.pressure_MPa, p_lame, rtol=5e-4)    # nodal tractions of a P2 solution: ~1.5e-4 here
+    assert fr.mean_pressure_MPa == pytest.approx(p_lame, rel=1e-6)
