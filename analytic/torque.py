@@ -208,10 +208,12 @@ def palmgren_viscous_torque_Nmm(f0, nu_mm2_s, n_rpm, dm_mm):
         M0 = 1e-7 f0 (nu n)^(2/3) dm^3     for nu n >= 2000
         M0 = 160e-7 f0 dm^3                for nu n <  2000
     nu kinematic viscosity mm^2/s (cSt), n rpm, dm mm.  The two branches meet within 0.8 %
-    (2000^(2/3) = 158.7)."""
-    vn = np.asarray(nu_mm2_s, float) * np.abs(np.asarray(n_rpm, float))
+    (2000^(2/3) = 158.7). Both are running torques: a bearing at rest (n = 0) has none."""
+    n = np.abs(np.asarray(n_rpm, float))
+    vn = np.asarray(nu_mm2_s, float) * n
     dm3 = np.asarray(dm_mm, float) ** 3
-    return np.where(vn >= 2000.0, 1e-7 * f0 * np.cbrt(vn) ** 2 * dm3, 160e-7 * f0 * dm3)
+    M = np.where(vn >= 2000.0, 1e-7 * f0 * np.cbrt(vn) ** 2 * dm3, 160e-7 * f0 * dm3)
+    return np.where(n > 0, M, 0.0)
 
 
 GBT28878_VISCOUS_COEFF = 1e-7
@@ -231,9 +233,9 @@ def gbt28878_torque_mNm(f1, F_N, dm_mm, f0, nu_mm2_s, n_rpm, c=GBT28878_VISCOUS_
 
 # ---------------------------------------------------------------------------------------------
 def power_W(torque_Nmm, n_rpm):
-    """Dissipated power P = M omega, W (M N*mm, n rpm): 2 pi n/60 * 1e-3 M = 1.047e-4 n M
-    (seed 003 eq. 32)."""
-    return np.asarray(torque_Nmm, float) * np.asarray(n_rpm, float) * RPM_TO_RAD_S * 1e-3
+    """Dissipated power P = M |omega|, W (M N*mm, n rpm): 2 pi n/60 * 1e-3 M = 1.047e-4 n M
+    (seed 003 eq. 32); the sign of n is only the direction of rotation."""
+    return np.asarray(torque_Nmm, float) * np.abs(np.asarray(n_rpm, float)) * RPM_TO_RAD_S * 1e-3
 
 
 def friction_heat_W(components_Nmm: dict[str, np.ndarray], n_rpm) -> dict[str, np.ndarray]:

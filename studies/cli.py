@@ -25,13 +25,30 @@ def progress(msg: str) -> None:
     print(msg, file=sys.stderr, flush=True)
 
 
+MARKER = ".bearingfem-output"
+
+
 @contextmanager
 def atomic_dir(out: Path):
     """Yield a temporary folder beside `out`; move it to `out` only when the block succeeds.
-    An existing `out` is replaced only then (its previous content is kept on failure)."""
-    out = Path(out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", dir=out.parent))
+
+    An existing `out` is replaced only if it is empty or was written by bearingfem (it holds the
+    marker file); any other existing folder is refused, so nothing the user keeps there is lost.
+    On failure the previous content stays untouched and the temporary folder is removed."""
+    out = Path(out).resolve()
+    if out.exists():
+        if not out.is_dir():
+            raise UserError(f"{out}: exists and is not a folder")
+        if any(out.iterdir()) and not (out / MARKER).exists():
+            raise UserError(f"{out}: folder exists and was not written by bearingfem; choose a new "
+                            "or empty folder (nothing was changed)")
+    try:
+        out.parent.mkdir(parents=True, exist_ok=True)
+        tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", dir=out.parent))
+    except OSError as exc:
+        raise UserError(f"{out}: cannot create the output folder ({exc.strerror})") from None
+    tmp.chmod(0o755)
+    (tmp / MARKER).write_text("written by bearingfem; this folder is replaced by the next run\n")
     try:
         yield tmp
     except BaseException:

@@ -1,6 +1,7 @@
 """Implementations of `bearingfem simulate`, `study` and `diagnose` (argument parsing: cli.py)."""
 from __future__ import annotations
 
+import os
 import sys
 from pathlib import Path
 
@@ -22,10 +23,26 @@ def _user_errors():
     from fem.solver import SolveError
     from meshes.build import MeshError
     from studies.config import ConfigError
+    from studies.diagnosis import DiagnosisError, ModelFailure
     from studies.effects import EffectError
+    from studies.pipeline import ModelError
     from studies.table import TableError
 
-    return (ConfigError, TableError, EffectError, MeshError, SolveError)
+    return (ConfigError, TableError, EffectError, MeshError, SolveError, ModelError,
+            DiagnosisError, ModelFailure)
+
+
+def check_output_file(path: Path) -> None:
+    """Refuse an output path that cannot be written, before any work is done."""
+    path = Path(path)
+    if path.is_dir():
+        raise UserError(f"{path}: is a folder; -o needs a file name")
+    parent = path.resolve().parent
+    probe = parent
+    while not probe.exists():
+        probe = probe.parent
+    if not probe.is_dir() or not os.access(probe, os.W_OK):
+        raise UserError(f"{path}: cannot write there ({probe} is not a writable folder)")
 
 
 def simulate_table(asm, columns: dict, effects: dict | None = None, direct: bool = False,
@@ -48,6 +65,7 @@ def cmd_simulate(args) -> None:
     from studies.table import read_conditions, write_table
 
     try:
+        check_output_file(args.out)
         asm = _load(args.assembly)
         cond = read_conditions(args.conditions)
         effects = {}

@@ -214,8 +214,11 @@ def _section(path: str, raw: dict, name: str):
             if not isinstance(v, int) or isinstance(v, bool) or v < 3:
                 raise ConfigError(f"{path}: {name}.{key}: must be an integer >= 3, got {v!r}")
         else:
-            if isinstance(v, bool) or not isinstance(v, (int, float)) or math.isnan(v):
-                raise ConfigError(f"{path}: {name}.{key}: must be a number, got {v!r}")
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+                if (name, key) == ("limits", "max_contact_pressure_MPa") and v == math.inf:
+                    values[key] = v
+                    continue
+                raise ConfigError(f"{path}: {name}.{key}: must be a finite number, got {v!r}")
             v = float(v)
             if (name, key) not in SIGNED:
                 if v < 0 or (v == 0 and (name, key) not in ZERO_OK):
@@ -240,8 +243,10 @@ def load_assembly(path: str | Path) -> Assembly:
             raw = tomllib.load(fh)
     except FileNotFoundError:
         raise ConfigError(f"{path}: file not found") from None
-    except tomllib.TOMLDecodeError as exc:
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
         raise ConfigError(f"{path}: not valid TOML: {exc}") from None
+    except OSError as exc:
+        raise ConfigError(f"{path}: cannot read ({exc.strerror})") from None
     return assembly_from_dict(raw, path)
 
 
@@ -258,8 +263,9 @@ def assembly_from_dict(raw: dict, path: str = "<config>") -> Assembly:
     if top["arrangement"] not in ("DB", "DF"):
         raise ConfigError(f"{path}: assembly.arrangement: '{top['arrangement']}' is not DB or DF")
     T_ref = top["T_ref_C"]
-    if isinstance(T_ref, bool) or not isinstance(T_ref, (int, float)) or math.isnan(T_ref):
-        raise ConfigError(f"{path}: assembly.T_ref_C: must be a number, got {T_ref!r}")
+    if isinstance(T_ref, bool) or not isinstance(T_ref, (int, float)) or not -150 <= T_ref <= 300:
+        raise ConfigError(f"{path}: assembly.T_ref_C: must be a number in -150..300 C "
+                          f"(range of the material data), got {T_ref!r}")
     for name in raw:
         if name != "assembly" and name not in SECTIONS:
             raise ConfigError(f"{path}: [{name}]: unknown section")
@@ -334,6 +340,16 @@ def _check_geometry(a: Assembly, path: str) -> None:
     need(b.bore_mm < dm - Dw and dm + Dw < b.outside_diameter_mm, "bearing.pitch_diameter_mm",
          "balls do not fit between bore and outside diameter")
     need(b.ball_count * Dw < math.pi * dm, "bearing.ball_count", "balls overlap on the pitch circle")
+    for key, val, d in (("fits.inner_interference_um", a.fits.inner_interference_um, s.seat_diameter_mm),
+                        ("fits.outer_interference_um", a.fits.outer_interference_um, h.bore_diameter_mm)):
+        # 2 per mille of the diameter is far beyond any bearing fit (ISO 286 n6/P7 at 35 mm:
+        # about 40 um) and would yield a hardened ring
+        need(abs(val) <= 2.0 * d, key, f"{val:g} um is beyond 2 per mille of the {d:g} mm diameter")
+    need(a.lubrication.friction_coefficient <= 1.0, "lubrication.friction_coefficient",
+         "must not exceed 1")
+    need(a.mesh.fit_size_mm <= a.mesh.size_mm, "mesh.fit_size_mm", "must not exceed mesh.size_mm")
+    need(a.mesh.size_mm <= b.width_mm, "mesh.size_mm",
+         f"must not exceed the bearing width ({b.width_mm:g} mm): the rings would not be resolved")
 
 
 def stack_positions(a: Assembly) -> dict[str, tuple[float, float]]:

@@ -19,13 +19,25 @@ from studies.diagnosis_report import write_report
 from studies.effects import EFFECTS, ORDER, apply_effects, resolve_friction_coefficient
 from studies.inputs import CONDITION_COLUMNS, baseline_inputs
 from studies.pipeline import Pipeline
-from studies.table import TableError, read_table
+from studies.table import TableError, check_ranges, read_table
 
 #: output columns `diagnose` can compare (what `simulate` writes and a rig can measure)
 COMPARABLE = ("torque_Nmm", "preload_N", "contact_angle_deg", "interference_inner_um",
               "interference_outer_um", "fit_pressure_inner_MPa", "fit_pressure_outer_MPa",
               "max_contact_pressure_MPa", "axial_stiffness_N_per_um")
 NUISANCE = {"mu_scale": (0.3, 3.0, 1.0, 0.05)}
+#: every column `simulate` may write besides the comparable ones (accepted, not compared)
+OUTPUT_NAMES = {
+    "torque_hysteresis_Nmm", "torque_differential_Nmm", "torque_spin_Nmm", "torque_inner_contacts_Nmm",
+    "torque_outer_contacts_Nmm", "torque_A_Nmm", "torque_B_Nmm", "torque_load_Nmm",
+    "torque_viscous_Nmm", "viscosity_mm2_s", "heat_W", "fit_pressure_inner_A_MPa",
+    "fit_pressure_inner_B_MPa", "fit_pressure_outer_A_MPa", "fit_pressure_outer_B_MPa",
+    "fit_pressure_inner_lame_MPa", "fit_pressure_inner_lame_plane_strain_MPa",
+    "fit_pressure_outer_lame_MPa", "fit_pressure_outer_lame_plane_strain_MPa",
+    "raceway_u_r_inner_A_um", "raceway_u_r_inner_A_lame_um", "groove_shift_dr_A_um",
+    "groove_shift_dz_A_um", "groove_shift_dr_B_um", "groove_shift_dz_B_um", "axial_force_A_N",
+    "axial_force_B_N", "contact_angle_A_deg", "contact_angle_B_deg", "ball_load_A_N",
+    "ball_load_B_N", "preload_lost", "friction_coefficient", "static_safety"}
 
 
 class ModelPredictor:
@@ -61,9 +73,12 @@ class ModelPredictor:
         return {c: out[c] for c in self.columns}
 
 
-def read_measured(path: Path) -> tuple[dict, dict]:
-    """Conditions and measured outputs from one CSV; one-line errors."""
-    cols = read_table(path, allowed=set(CONDITION_COLUMNS) | set(COMPARABLE))
+def read_measured(path: Path, known_outputs: set[str] | None = None) -> tuple[dict, dict]:
+    """Conditions and measured outputs from one CSV; one-line errors. Columns the model writes but
+    `diagnose` does not compare (e.g. a `simulate` file's extra outputs) are allowed and ignored."""
+    allowed = set(CONDITION_COLUMNS) | set(COMPARABLE) | set(known_outputs or ())
+    cols = read_table(path, allowed=allowed)
+    check_ranges(path, cols)
     measured = {c: cols[c] for c in COMPARABLE if c in cols}
     if not measured:
         raise TableError(f"{path}: no output column to compare (need one of {', '.join(COMPARABLE)})")
@@ -78,8 +93,9 @@ def read_measured(path: Path) -> tuple[dict, dict]:
 def diagnose_files(assembly_path: Path, measured_path: Path, out_dir: Path, progress=print,
                    pipeline: Pipeline | None = None) -> dict:
     asm = load_assembly(assembly_path)
-    conditions, measured = read_measured(measured_path)
+    read_measured(measured_path, OUTPUT_NAMES)           # fail fast, before the FE is built
     pl = pipeline or Pipeline(asm, progress=progress)
+    conditions, measured = read_measured(measured_path, OUTPUT_NAMES)
     predict = ModelPredictor(pl, conditions, measured.keys())
     candidates = [EFFECTS[name] for name in ORDER]
     progress(f"diagnosing {len(next(iter(measured.values())))} rows, columns "

@@ -131,9 +131,11 @@ def noise_sigma(r: np.ndarray, seg: np.ndarray) -> float:
     d2 = r[a[same]] - 2 * r[b[same]] + r[c[same]]
     if d2.size < 5:
         return float(np.std(r[ok], ddof=1))
-    s_rob = 1.4826 * np.median(np.abs(d2 - np.median(d2))) / math.sqrt(6.0)
+    d2 = d2 - np.median(d2)            # a steady curvature of the residuals is not noise
+    s_rob = 1.4826 * np.median(np.abs(d2)) / math.sqrt(6.0)
     if s_rob > 0:
-        d2 = d2[np.abs(d2) <= 4.0 * math.sqrt(6.0) * s_rob]
+        kept = d2[np.abs(d2) <= 4.0 * math.sqrt(6.0) * s_rob]
+        d2 = kept if kept.size >= 5 else d2
     trunc = 1.0 - 2 * 4.0 * stats.norm.pdf(4.0) / (1 - 2 * stats.norm.sf(4.0))
     return float(math.sqrt(np.mean(d2 ** 2) / 6.0 / (trunc if s_rob > 0 else 1.0)))
 

@@ -27,39 +27,43 @@ def read_table(path: Path, allowed: set[str] | None = None,
     path = Path(path)
     if not path.exists():
         raise TableError(f"{path}: file not found")
+    try:
+        with open(path, newline="", encoding="utf-8") as fh:
+            text = fh.read().splitlines(keepends=True)
+    except UnicodeDecodeError as exc:
+        raise TableError(f"{path}: not a UTF-8 text file ({exc.reason} at byte {exc.start})") from None
+    except OSError as exc:
+        raise TableError(f"{path}: cannot read ({exc.strerror})") from None
     header, rows, lines = None, [], []
-    with open(path, newline="") as fh:
-        for lineno, line in enumerate(fh, start=1):
-            s = line.strip()
-            if not s or s.startswith("#"):
-                continue
-            fields = next(csv.reader([line]))
-            if header is None:
-                header = [f.strip() for f in fields]
-                for col in header:
-                    if not col:
-                        raise TableError(f"{path}: line {lineno}: empty column name in the header")
-                    if allowed is not None and col not in allowed:
-                        raise TableError(f"{path}: column '{col}': unknown column")
-                dup = {c for c in header if header.count(c) > 1}
-                if dup:
-                    raise TableError(f"{path}: column '{sorted(dup)[0]}': appears twice")
-                continue
-            if len(fields) != len(header):
-                raise TableError(f"{path}: line {lineno}: {len(fields)} values for "
-                                 f"{len(header)} columns")
-            vals = []
-            for col, f in zip(header, fields):
-                try:
-                    v = float(f)
-                except ValueError:
-                    raise TableError(f"{path}: line {lineno}, column '{col}': "
-                                     f"'{f.strip()}' is not a number") from None
-                if not math.isfinite(v):
-                    raise TableError(f"{path}: line {lineno}, column '{col}': value is {f.strip()}")
-                vals.append(v)
-            rows.append(vals)
-            lines.append(lineno)
+    for lineno, line in enumerate(text, start=1):
+        if not line.strip() or line.lstrip().startswith("#"):
+            continue
+        fields = next(csv.reader([line]))
+        if header is None:
+            header = [f.strip() for f in fields]
+            for col in header:
+                if not col:
+                    raise TableError(f"{path}: line {lineno}: empty column name in the header")
+                if allowed is not None and col not in allowed:
+                    raise TableError(f"{path}: column '{col}': unknown column")
+            dup = {c for c in header if header.count(c) > 1}
+            if dup:
+                raise TableError(f"{path}: column '{sorted(dup)[0]}': appears twice")
+            continue
+        if len(fields) != len(header):
+            raise TableError(f"{path}: line {lineno}: {len(fields)} values for {len(header)} columns")
+        vals = []
+        for col, f in zip(header, fields):
+            try:
+                v = float(f)
+            except ValueError:
+                raise TableError(f"{path}: line {lineno}, column '{col}': "
+                                 f"'{f.strip()}' is not a number") from None
+            if not math.isfinite(v):
+                raise TableError(f"{path}: line {lineno}, column '{col}': value is {f.strip()}")
+            vals.append(v)
+        rows.append(vals)
+        lines.append(lineno)
     if header is None:
         raise TableError(f"{path}: empty table (no header)")
     if not rows:
@@ -77,17 +81,38 @@ def read_table(path: Path, allowed: set[str] | None = None,
     return cols
 
 
+#: physical ranges of condition columns: the material and lubricant data hold from -150 to 300 C
+#: (beyond, CTE and viscosity laws are extrapolations the model does not stand behind)
+RANGES = {**{c: (-150.0, 300.0, "C") for c in CONDITION_COLUMNS if c.startswith("T_")},
+          "speed_rpm": (0.0, 1e5, "rpm"), "preload_assembled_N": (0.0, 1e5, "N")}
+
+
+def check_ranges(path: Path, cols: dict[str, np.ndarray]) -> None:
+    """One-line error for the first value outside its column's physical range."""
+    for c, (lo, hi, unit) in RANGES.items():
+        if c in cols:
+            bad = np.flatnonzero((cols[c] < lo) | (cols[c] > hi))
+            if bad.size:
+                raise TableError(f"{path}: line {cols['_line'][bad[0]]}, column '{c}': "
+                                 f"{cols[c][bad[0]]:g} outside {lo:g}..{hi:g} {unit}")
+
+
 def read_conditions(path: Path) -> dict[str, np.ndarray]:
-    """A conditions table: only the condition columns of the spec."""
-    return read_table(path, allowed=set(CONDITION_COLUMNS))
+    """A conditions table: only the condition columns of the spec, values in range."""
+    cols = read_table(path, allowed=set(CONDITION_COLUMNS))
+    check_ranges(path, cols)
+    return cols
 
 
 def write_table(path: Path, columns: dict[str, np.ndarray], comment: str = "") -> None:
     """Write columns to CSV atomically (temporary file in the same folder, then rename)."""
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
     names = [c for c in columns if not c.startswith("_")]
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
+    except OSError as exc:
+        raise TableError(f"{path}: cannot write ({exc.strerror})") from None
     try:
         with os.fdopen(fd, "w", newline="") as fh:
             for line in comment.splitlines():

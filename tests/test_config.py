@@ -32,7 +32,7 @@ def test_shipped_config_loads():
     ("shaft", "shoulder_diameter_mm", 45.0, "shaft.shoulder_diameter_mm: shaft shoulder overlaps the outer ring"),
     ("fits", "contact", "glued", "fits.contact: 'glued' is not one of"),
     ("bearing", "ball_count", 2.5, "bearing.ball_count: must be an integer"),
-    ("nut", "width_mm", "5", "nut.width_mm: must be a number"),
+    ("nut", "width_mm", "5", "nut.width_mm: must be a finite number"),
 ])
 def test_bad_values(section, key, value, expect):
     raw = _raw()

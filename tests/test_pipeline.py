@@ -136,3 +136,24 @@ def test_missing_and_bad_config_exit_2(tmp_path, capsys):
                                             'material = "Unobtainium"\nseat'))
     assert main(["simulate", str(bad), str(cond), "-o", str(tmp_path / "o.csv")]) == 2
     assert "shaft.material: unknown material 'Unobtainium'" in capsys.readouterr().err
+
+
+def test_diagnose_accepts_every_column_simulate_writes(pl000):
+    """`diagnose` must read a `simulate` file: every output is comparable or a known extra."""
+    from studies.diagnose_cli import COMPARABLE, OUTPUT_NAMES
+
+    out = pl000.run(_inp(pl000.asm, [20.0]))
+    assert set(out) <= set(COMPARABLE) | OUTPUT_NAMES, set(out) - set(COMPARABLE) - OUTPUT_NAMES
+
+
+def test_out_folder_not_written_by_bearingfem_is_refused(tmp_path, capsys):
+    keep = tmp_path / "mine"
+    keep.mkdir()
+    (keep / "notes.txt").write_text("precious")
+    assert main(["study", "lubricant_viscosity", "--out", str(keep)]) == 2
+    assert "was not written by bearingfem" in capsys.readouterr().err
+    assert (keep / "notes.txt").read_text() == "precious"
+    out = tmp_path / "new"
+    assert main(["study", "lubricant_viscosity", "--out", str(out)]) == 0
+    assert main(["study", "lubricant_viscosity", "--out", str(out)]) == 0   # its own folder: replaced
+    assert (out / "report.md").exists()

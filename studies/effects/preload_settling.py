@@ -37,10 +37,7 @@ def excursion(T: np.ndarray, T_ref_C: float) -> np.ndarray:
 
 
 def _state_from_conditions(conditions) -> np.ndarray | None:
-    if "T_ambient_C" in conditions:
-        return np.asarray(conditions["T_ambient_C"], float)
-    rings = [conditions[c] for c in ("T_inner_ring_C", "T_outer_ring_C") if c in conditions]
-    return np.mean(np.asarray(rings, float), axis=0) if rings else None
+    return np.asarray(conditions["T_ambient_C"], float) if "T_ambient_C" in conditions else None
 
 
 class PreloadSettling(Effect):
@@ -49,7 +46,7 @@ class PreloadSettling(Effect):
     units = {"loss_N": "N", "threshold_K": "K"}
     bounds = {"loss_N": (0.0, 2000.0), "threshold_K": (1.0, 150.0)}
     off = {"loss_N": 0.0, "threshold_K": 20.0}
-    requires = ("time_s",)
+    requires = ("time_s", "T_ambient_C")     # the excursion is of the environment temperature
     scale = {"loss_N": 5.0, "threshold_K": 5.0}
     profile = ("threshold_K",)
     hint = ("measure the preload (or torque) at the reference temperature before and after the "
@@ -59,11 +56,7 @@ class PreloadSettling(Effect):
         return ("loss_N",)
 
     def _apply(self, inputs, p, T_ref_C):
-        if inputs.T_ambient_C is not None:
-            T = np.asarray(inputs.T_ambient_C, float)
-        else:
-            T = 0.5 * (np.asarray(inputs.T_C["inner_ring"], float)
-                       + np.asarray(inputs.T_C["outer_ring"], float))
+        T = np.asarray(inputs.T_ambient_C, float)
         settled = excursion(T, T_ref_C) > p["threshold_K"]
         loss = np.where(settled, p["loss_N"], 0.0)
         if inputs.preload_loss_N is not None:
