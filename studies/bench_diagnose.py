@@ -26,25 +26,14 @@ from pathlib import Path  # noqa: E402
 
 import numpy as np  # noqa: E402
 
+from studies.designs import cycles  # noqa: E402
+
 N_ROWS = 500
 SIGMA = {"torque_Nmm": 0.02, "preload_N": 0.5}
 MU_TRUE = 1.25
 DATASETS = {"no effect": {}, "thermal_lag tau_s=300": {"thermal_lag": {"tau_s": 300.0}},
             "preload_settling loss_N=5 threshold_K=50":
                 {"preload_settling": {"loss_N": 5.0, "threshold_K": 50.0}}}
-
-
-def cycles(n: int = N_ROWS, dt: float = 60.0) -> dict[str, np.ndarray]:
-    """Alternating -60 <-> 80 C from 20 C: 2 K/min ramps, one-hour dwells, a sample every dt s."""
-    t = np.arange(n) * dt
-    leg = [(80.0, 30), (80.0, 60), (-60.0, 70), (-60.0, 60), (80.0, 70), (80.0, 60), (20.0, 30),
-           (20.0, 30)]
-    kt, kT = [0.0], [20.0]
-    while kt[-1] < t[-1]:
-        for T, minutes in leg:
-            kt.append(kt[-1] + 60.0 * minutes)
-            kT.append(T)
-    return {"time_s": t, "T_ambient_C": np.interp(t, kt, kT)}
 
 
 def main(argv=None) -> None:
@@ -63,7 +52,7 @@ def main(argv=None) -> None:
     t0 = time.perf_counter()
     pl = Pipeline(asm, mesh_factor=args.mesh_factor)
     t_setup = time.perf_counter() - t0
-    cond = cycles()
+    cond = cycles(N_ROWS, 60.0)
     print(f"diagnose benchmark: seed000, {N_ROWS} rows (cycles -60..80 C), columns "
           f"{', '.join(SIGMA)}, {len(ORDER)} candidates, mesh factor {args.mesh_factor:g} "
           f"({pl.model.ndofs} DOF), OPENBLAS_NUM_THREADS={os.environ.get('OPENBLAS_NUM_THREADS')}, "

@@ -217,7 +217,7 @@ def write_report(result: dict, conditions: Mapping[str, np.ndarray],
     allowed = ", ".join(f"`{k}` in [{_fmt(a)}, {_fmt(b)}]" for k, (a, b) in nu["bounds"].items())
     w(f"The baseline was allowed the calibration {allowed or '(none)'}; fitted: "
       + ", ".join(f"`{k}` = {_fmt(v)}" for k, v in nu["baseline"].items())
-      + (f"; with the extended model: " + ", ".join(f"`{k}` = {_fmt(v)}" for k, v in
+      + ("; with the extended model: " + ", ".join(f"`{k}` = {_fmt(v)}" for k, v in
                                                      nu["extended"].items()) if cause else "")
       + ".\n")
     desc = result["residuals"]["baseline"]["columns"]

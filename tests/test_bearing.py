@@ -7,27 +7,13 @@ independent of shifts, one bearing unloading is reported, not an error)."""
 import numpy as np
 import pytest
 
-from analytic import hertz
 from analytic.bearing import (BearingGeometry, SIGNS, approach_for_force, bearing_axial_force,
                               solve_pair, thermal_geometry)
 from analytic.materials import get_material
+from bearing_reference import kn_direct
 
 G = BearingGeometry.from_catalogue("71807C")
 A0, ALPHA0 = G.A0_mm, np.radians(G.alpha0_deg)
-
-
-def kn_direct(g, alpha, Dw=None, dm=None, f_i=None, f_o=None):
-    """K_n written out from the Hertz primitives (Harris Vol. 1 ch. 2 radii, exact Hertz
-    stiffness per contact, two contacts in series, ch. 7), independent of bearing.py."""
-    Dw = g.Dw_mm if Dw is None else Dw
-    dm = g.dm_mm if dm is None else dm
-    f_i = g.f_i if f_i is None else f_i
-    f_o = g.f_o if f_o is None else f_o
-    Es = hertz.contact_modulus_MPa(g.ring.E_MPa, g.ring.nu, g.ball.E_MPa, g.ball.nu)
-    deg = np.degrees(alpha)
-    Ki = hertz.contact_stiffness_N_per_mm15(*hertz.ball_raceway_radii_mm(Dw, dm, deg, f_i, "inner"), Es)
-    Ko = hertz.contact_stiffness_N_per_mm15(*hertz.ball_raceway_radii_mm(Dw, dm, deg, f_o, "outer"), Es)
-    return hertz.series_stiffness_N_per_mm15(Ki, Ko)
 
 
 def force_direct(g, approach, dr=0.0):

@@ -26,7 +26,6 @@ pipeline, so the mesh error is not a model error here.
 from __future__ import annotations
 
 import json
-import math
 import time
 from pathlib import Path
 
@@ -39,6 +38,7 @@ from studies.diagnose_cli import NUISANCE, ModelPredictor
 from studies.diagnosis import diagnose_full
 from studies.effects import EFFECTS, ORDER
 from studies.pipeline import Pipeline
+from studies.designs import cycles
 
 MESH_FACTOR = 2.0
 MU_TRUE = 1.25          # the rig's friction coefficient / the configured one (nuisance, unknown)
@@ -65,18 +65,6 @@ VERDICTS = {"no_discrepancy", "explained", "ambiguous", "unexplained"}
 
 
 # ============================================================================ test designs
-def cycles(n=240, dt=120.0):
-    """Seed 000 style: alternating -60 <-> 80 C from 20 C, ramps of 2 K/min and one-hour dwells,
-    sampled every `dt` s (240 x 120 s = 8 h, a bit more than one cycle)."""
-    t = np.arange(n) * dt
-    leg = [(80.0, 30), (80.0, 60), (-60.0, 70), (-60.0, 60), (80.0, 70), (80.0, 60), (20.0, 30),
-           (20.0, 30)]                                     # (set point C, minutes to reach / hold)
-    kt, kT = [0.0], [20.0]
-    while kt[-1] < t[-1]:
-        for T, minutes in leg:
-            kt.append(kt[-1] + 60.0 * minutes)
-            kT.append(T)
-    return {"time_s": t, "T_ambient_C": np.interp(t, kt, kT)}
 
 
 def temp_steps(levels=(-60, -40, -20, 0, 20, 40, 60, 80), per=20, dt=60.0, rate_K_min=2.0,

@@ -26,7 +26,7 @@ import numpy as np
 import pytest
 
 from studies.config import load_shipped
-from studies.effects import EFFECTS, ORDER
+from studies.effects import ORDER
 from studies.pipeline import Pipeline
 
 from test_diagnose_pipeline import (MESH_FACTOR, cycles, diagnose_real, largest_change_sigma,
@@ -210,7 +210,7 @@ def test_sensor_drift_claim_rate(pipelines):
                      res["indistinguishable"]))
     claims = sum(v in ("explained", "ambiguous") for _, _, v, *_ in rows)
     verdicts = dict(zip(*np.unique([r[2] for r in rows], return_counts=True)))
-    print(f"\nDRIFT (torque sensor, linear in time): " + _rate_line("cause claimed", claims, N_DRIFT)
+    print("\nDRIFT (torque sensor, linear in time): " + _rate_line("cause claimed", claims, N_DRIFT)
           + f"; verdicts {verdicts}")
     for kind, d, v, c, ind in rows:
         if v in ("explained", "ambiguous"):
