@@ -78,7 +78,7 @@ class BearingGeometry:
 
     @classmethod
     def from_spec(cls, spec) -> "BearingGeometry":
-        """From a `studies.config.BearingSpec`."""
+        """From a `studies.model.config.BearingSpec`."""
         return cls(Dw_mm=spec.ball_diameter_mm, Z=int(spec.ball_count),
                    dm_mm=spec.pitch_diameter_mm, f_i=spec.inner_groove_ratio,
                    f_o=spec.outer_groove_ratio, alpha0_deg=spec.contact_angle_free_deg,

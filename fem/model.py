@@ -19,7 +19,7 @@ from skfem import Basis, ElementTriP2, ElementVector, MeshTri, asm
 
 from analytic.materials import Material, get_material
 from fem.forms import elasticity, lame_parameters, thermal_load
-from meshes.section import Section
+from meshes.section import Section, Split
 from meshes.build import SectionMesh
 
 TOL_MM = 1e-7
@@ -30,7 +30,7 @@ def unzip(points: np.ndarray, tris: np.ndarray, part_of: np.ndarray, section: Se
     Returns new (points, tris). Pure function."""
     points, tris = points.copy(), tris.copy()
     for s in section.splits:
-        on = _on_line(points, s)
+        on = nodes_on_line(points, s)
         outer_el = np.isin(part_of, s.outer_parts)
         inner_el = np.isin(part_of, s.inner_parts)
         used_in = np.unique(tris[:, inner_el])
@@ -46,14 +46,14 @@ def unzip(points: np.ndarray, tris: np.ndarray, part_of: np.ndarray, section: Se
     return points, tris
 
 
-def _on_line(x: np.ndarray, s) -> np.ndarray:
+def nodes_on_line(x: np.ndarray, s) -> np.ndarray:
     """Indices of the points x (2, n) on a split line."""
     i, j = (0, 1) if s.axis == "r" else (1, 0)
     return np.flatnonzero((np.abs(x[i] - s.at_mm) < TOL_MM * (1 + abs(s.at_mm)))
                           & (x[j] >= s.lo_mm - TOL_MM) & (x[j] <= s.hi_mm + TOL_MM))
 
 
-def _pairs_on(x: np.ndarray, on: np.ndarray, el_dofs: np.ndarray, part_of: np.ndarray,
+def node_pairs_on(x: np.ndarray, on: np.ndarray, el_dofs: np.ndarray, part_of: np.ndarray,
               side_a, side_b) -> tuple[np.ndarray, np.ndarray]:
     """Scalar DOFs on a line of side-a parts and side-b parts that sit at the same point."""
     a = np.intersect1d(on, el_dofs[:, np.isin(part_of, side_a)])
@@ -158,7 +158,7 @@ class StackModel:
         for s in self.section.splits:
             if s.axis != "z" or not s.tied:
                 continue
-            a, b = _pairs_on(x, _on_line(x, s), el, self.part_of, s.inner_parts, s.outer_parts)
+            a, b = node_pairs_on(x, nodes_on_line(x, s), el, self.part_of, s.inner_parts, s.outer_parts)
             ms.append(2 * a + 1)
             ss.append(2 * b + 1)
         if not ms:
@@ -205,6 +205,21 @@ class StackModel:
         R = sp.csr_matrix((vals, (2 * rows, 2 * cols)), shape=(2 * S.shape[0], self.ndofs))
         Z = sp.csr_matrix((vals, (2 * rows + 1, 2 * cols + 1)), shape=(2 * S.shape[0], self.ndofs))
         return (R + Z).tocsr()
+
+
+def line_split(name, spec) -> Split:
+    """A (axis, at, lo, hi) boundary line of `meshes.section.boundary_lines` as a `Split`."""
+    axis, at, lo, hi = spec
+    return Split(name, axis, at, lo, hi, (), ())
+
+
+def facets_on_line(model: StackModel, spec) -> np.ndarray:
+    """Boundary facets whose both end vertices lie on the line."""
+    m = model.mesh
+    bf = m.boundary_facets()
+    on = np.zeros(m.p.shape[1], bool)
+    on[nodes_on_line(m.p, line_split("", spec))] = True
+    return bf[on[m.facets[0, bf]] & on[m.facets[1, bf]]]
 
 
 def build_model(section: Section, contact: str = "frictionless",

@@ -23,8 +23,8 @@ from scipy.sparse.linalg import splu
 from skfem import FacetBasis, asm
 
 from fem.forms import boundary_flux, conduction, convection
-from fem.model import StackModel, _on_line, _pairs_on
-from meshes.section import Section, Split
+from fem.model import StackModel, facets_on_line, line_split, node_pairs_on, nodes_on_line
+from meshes.section import boundary_lines
 
 
 @dataclass
@@ -34,42 +34,6 @@ class ThermalLoads:
     fixed_C: dict[str, float] = field(default_factory=dict)
     heat_W: dict[str, float] = field(default_factory=dict)
     ball_conductance_W_K: dict[str, float] = field(default_factory=dict)      # "A" / "B"
-
-
-def boundary_lines(section: Section) -> dict[str, tuple[str, float, float, float]]:
-    """Named outer boundary lines of a stack section: (axis, at, lo, hi) like a `Split`.
-    Raceway lines are the ring surfaces facing the balls."""
-    lines = {}
-    by_part = {}
-    for rc in section.rects:
-        by_part.setdefault(rc.part, []).append(rc)
-    for ring, rp in section.raceway_points.items():
-        rc = by_part[ring][0]
-        lines[f"raceway_{ring}"] = ("r", rp[0], rc.z0_mm, rc.z1_mm)
-    if "housing" in by_part:
-        h = max(by_part["housing"], key=lambda r: r.r1_mm)
-        lines["housing_outer"] = ("r", h.r1_mm, h.z0_mm, h.z1_mm)
-    if "shaft" in by_part:
-        s = by_part["shaft"][0]
-        if s.r0_mm > 0:
-            lines["shaft_bore"] = ("r", s.r0_mm, s.z0_mm, s.z1_mm)
-        zs = max(r.z1_mm for r in by_part["shaft"])
-        lines["shaft_end"] = ("z", zs, s.r0_mm, s.r1_mm)
-    return lines
-
-
-def _line(name, spec) -> Split:
-    axis, at, lo, hi = spec
-    return Split(name, axis, at, lo, hi, (), ())
-
-
-def _facets_on(model: StackModel, spec) -> np.ndarray:
-    """Boundary facets whose both end vertices lie on the line."""
-    m = model.mesh
-    bf = m.boundary_facets()
-    on = np.zeros(m.p.shape[1], bool)
-    on[_on_line(m.p, _line("", spec))] = True
-    return bf[on[m.facets[0, bf]] & on[m.facets[1, bf]]]
 
 
 class ConductionModel:
@@ -84,7 +48,7 @@ class ConductionModel:
         x = b.doflocs
         ms, ss = [], []
         for s in model.section.splits:
-            a, c = _pairs_on(x, _on_line(x, s), b.element_dofs, model.part_of, s.inner_parts,
+            a, c = node_pairs_on(x, nodes_on_line(x, s), b.element_dofs, model.part_of, s.inner_parts,
                              s.outer_parts)
             ms.append(a)
             ss.append(c)
@@ -94,12 +58,12 @@ class ConductionModel:
 
     def area_mm2(self, name: str) -> float:
         """Area of a named boundary line swept around the axis, int 2 pi r ds (mm^2)."""
-        fb = FacetBasis(self.model.mesh, self.model.sbasis.elem, facets=_facets_on(self.model, self._spec(name)))
+        fb = FacetBasis(self.model.mesh, self.model.sbasis.elem, facets=facets_on_line(self.model, self._spec(name)))
         return float(asm(boundary_flux, fb, q=1.0).sum())
 
     def _mean_vector(self, name: str) -> np.ndarray:
         """Vector a with a . T = area-weighted mean temperature on a boundary line."""
-        fb = FacetBasis(self.model.mesh, self.model.sbasis.elem, facets=_facets_on(self.model, self.lines[name]))
+        fb = FacetBasis(self.model.mesh, self.model.sbasis.elem, facets=facets_on_line(self.model, self.lines[name]))
         a = asm(boundary_flux, fb, q=1.0)
         return a / a.sum()
 
@@ -111,7 +75,7 @@ class ConductionModel:
         A = self.K.copy()
         f = np.zeros(N)
         for name, (h, T_inf) in loads.convection.items():
-            fb = FacetBasis(m.mesh, b.elem, facets=_facets_on(m, self._spec(name)))
+            fb = FacetBasis(m.mesh, b.elem, facets=facets_on_line(m, self._spec(name)))
             A = A + asm(convection, fb, h=h / 1e6)
             f += asm(boundary_flux, fb, q=h / 1e6 * T_inf)
         for name, Q in loads.heat_W.items():
@@ -123,7 +87,7 @@ class ConductionModel:
         fixed = np.zeros(N, bool)
         T_fix = np.zeros(N)
         for name, T in loads.fixed_C.items():
-            dofs = _on_line(b.doflocs, _line(name, self._spec(name)))
+            dofs = nodes_on_line(b.doflocs, line_split(name, self._spec(name)))
             fixed[dofs] = True
             T_fix[dofs] = T
         # elimination: tied slaves follow their masters; fixed DOFs are known

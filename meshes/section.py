@@ -13,7 +13,6 @@ import hashlib
 import json
 from dataclasses import asdict, dataclass, field
 
-from studies.config import Assembly, stack_positions
 
 
 @dataclass(frozen=True)
@@ -93,77 +92,6 @@ class Section:
                        self.raceway_points, self.size_mm * factor, self.fit_size_mm * factor)
 
 
-ROTOR = ("shaft", "nut", "inner_ring_A", "inner_spacer", "inner_ring_B")
-STATOR = ("housing", "cover", "outer_ring_A", "outer_spacer", "outer_ring_B")
-
-
-def section_from_assembly(a: Assembly) -> Section:
-    """Rectangles of the rotor (shaft, nut, inner rings, inner spacer) and the stator (housing,
-    cover, outer rings, outer spacer) from an assembly config. Shoulder faces at z = 0."""
-    s, h, b = a.shaft, a.housing, a.bearing
-    B = b.width_mm
-    z = stack_positions(a)
-    r_seat, r_bore = s.seat_diameter_mm / 2, s.bore_diameter_mm / 2
-    r_hb, r_ho = h.bore_diameter_mm / 2, h.outer_diameter_mm / 2
-    z_nut_end = z["nut"][1]
-    z_shaft_end = z_nut_end + s.extension_mm
-    z_house_end = z["outer_ring_B"][1]
-    r_iro, r_ori = b.inner_ring_outer_diameter_mm / 2, b.outer_ring_inner_diameter_mm / 2
-    rings = b.ring_material
-    rects = [
-        Rect("shaft", r_bore, r_seat, -s.shoulder_width_mm, z_shaft_end, s.material),
-        Rect("shaft", r_seat, s.shoulder_diameter_mm / 2, -s.shoulder_width_mm, 0.0, s.material),
-        Rect("inner_ring_A", r_seat, r_iro, *z["inner_ring_A"], rings),
-        Rect("inner_spacer", r_seat, a.inner_spacer.diameter_mm / 2, *z["inner_spacer"],
-             a.inner_spacer.material),
-        Rect("inner_ring_B", r_seat, r_iro, *z["inner_ring_B"], rings),
-        Rect("nut", r_seat, a.nut.diameter_mm / 2, *z["nut"], a.nut.material),
-        Rect("housing", r_hb, r_ho, -h.shoulder_width_mm, z_house_end, h.material),
-        Rect("housing", h.shoulder_diameter_mm / 2, r_hb, -h.shoulder_width_mm, 0.0, h.material),
-        Rect("outer_ring_A", r_ori, r_hb, *z["outer_ring_A"], rings),
-        Rect("outer_spacer", a.outer_spacer.diameter_mm / 2, r_hb, *z["outer_spacer"],
-             a.outer_spacer.material),
-        Rect("outer_ring_B", r_ori, r_hb, *z["outer_ring_B"], rings),
-        Rect("cover", a.cover.diameter_mm / 2, r_ho, *z["cover"], a.cover.material),
-    ]
-    r_isp, r_osp = a.inner_spacer.diameter_mm / 2, a.outer_spacer.diameter_mm / 2
-    zc = z["inner_ring_B"][0]
-    splits = (
-        Split("shaft_seat", "r", r_seat, 0.0, z["inner_ring_B"][1], ("shaft", "nut"),
-              ("inner_ring_A", "inner_spacer", "inner_ring_B")),
-        Split("housing_bore", "r", r_hb, 0.0, z_house_end, ("outer_ring_A", "outer_spacer",
-                                                            "outer_ring_B"), ("housing", "cover")),
-        Split("face_shaft_shoulder", "z", 0.0, r_seat, s.shoulder_diameter_mm / 2, ("shaft",),
-              ("inner_ring_A",)),
-        Split("face_inner_A_spacer", "z", B, r_seat, min(r_iro, r_isp), ("inner_ring_A",),
-              ("inner_spacer",)),
-        Split("face_inner_spacer_B", "z", zc, r_seat, min(r_iro, r_isp), ("inner_spacer",),
-              ("inner_ring_B",)),
-        Split("face_inner_B_nut", "z", z["nut"][0], r_seat, min(r_iro, a.nut.diameter_mm / 2),
-              ("inner_ring_B",), ("nut",), a.nut.clamp == "rigid"),
-        Split("face_housing_shoulder", "z", 0.0, h.shoulder_diameter_mm / 2, r_hb, ("housing",),
-              ("outer_ring_A",)),
-        Split("face_outer_A_spacer", "z", B, max(r_ori, r_osp), r_hb, ("outer_ring_A",),
-              ("outer_spacer",)),
-        Split("face_outer_spacer_B", "z", z["outer_ring_B"][0], max(r_ori, r_osp), r_hb,
-              ("outer_spacer",), ("outer_ring_B",)),
-        Split("face_outer_B_cover", "z", z["cover"][0], max(r_ori, a.cover.diameter_mm / 2), r_hb,
-              ("outer_ring_B",), ("cover",), a.cover.clamp == "rigid"),
-    )
-    fits = tuple(
-        [Fit(f"fit_inner_{j}", "shaft", f"inner_ring_{j}", r_seat, *z[f"inner_ring_{j}"], "inner")
-         for j in "AB"]
-        + [Fit(f"fit_outer_{j}", f"outer_ring_{j}", "housing", r_hb, *z[f"outer_ring_{j}"], "outer")
-           for j in "AB"])
-    refine = tuple((f.r_mm, f.z0_mm, f.r_mm, f.z1_mm) for f in fits) + tuple(
-        (r, z[f"{ring}_{j}"][0], r, z[f"{ring}_{j}"][1])
-        for ring, r in (("inner_ring", r_iro), ("outer_ring", r_ori)) for j in "AB")
-    raceways = {f"inner_ring_{j}": (r_iro, sum(z[f"inner_ring_{j}"]) / 2) for j in "AB"}
-    raceways.update({f"outer_ring_{j}": (r_ori, sum(z[f"outer_ring_{j}"]) / 2) for j in "AB"})
-    return Section(tuple(rects), splits, fits, (), refine, raceways, a.mesh.size_mm,
-                   a.mesh.fit_size_mm)
-
-
 def two_cylinder_section(r_inner_mm: float, r_fit_mm: float, r_outer_mm: float,
                          inner_material: str, outer_material: str, length_mm: float,
                          ring_length_mm: float | None = None, plane_strain: bool = False,
@@ -184,3 +112,25 @@ def two_cylinder_section(r_inner_mm: float, r_fit_mm: float, r_outer_mm: float,
     rollers = (0.0, L) if plane_strain else ()
     return Section(rects, splits, fits, rollers, ((r_fit_mm, 0.0, r_fit_mm, Lr),),
                    {"inner_ring_A": (r_outer_mm, Lr / 2)}, size, fsize)
+
+
+def boundary_lines(section: Section) -> dict[str, tuple[str, float, float, float]]:
+    """Named outer boundary lines of a stack section: (axis, at, lo, hi) like a `Split`.
+    Raceway lines are the ring surfaces facing the balls."""
+    lines = {}
+    by_part = {}
+    for rc in section.rects:
+        by_part.setdefault(rc.part, []).append(rc)
+    for ring, rp in section.raceway_points.items():
+        rc = by_part[ring][0]
+        lines[f"raceway_{ring}"] = ("r", rp[0], rc.z0_mm, rc.z1_mm)
+    if "housing" in by_part:
+        h = max(by_part["housing"], key=lambda r: r.r1_mm)
+        lines["housing_outer"] = ("r", h.r1_mm, h.z0_mm, h.z1_mm)
+    if "shaft" in by_part:
+        s = by_part["shaft"][0]
+        if s.r0_mm > 0:
+            lines["shaft_bore"] = ("r", s.r0_mm, s.z0_mm, s.z1_mm)
+        zs = max(r.z1_mm for r in by_part["shaft"])
+        lines["shaft_end"] = ("z", zs, s.r0_mm, s.r1_mm)
+    return lines

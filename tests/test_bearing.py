@@ -228,7 +228,7 @@ def test_single_bearing_inversion_round_trip():
 
 def test_from_spec_matches_config():
     from pathlib import Path
-    from studies.config import load_assembly
+    from studies.model.config import load_assembly
     cfg = Path(__file__).parents[1] / "studies" / "configs" / "seed000_71807C_TC4.toml"
     spec = load_assembly(cfg).bearing
     g = BearingGeometry.from_spec(spec)

@@ -4,8 +4,8 @@ import json
 
 import pytest
 
-from studies.cli import main
-from studies.verify import TOLERANCE
+from studies.app.cli import main
+from studies.runs.verify import TOLERANCE
 
 LAME_INPUTS = {"r_inner_mm", "r_fit_mm", "r_outer_mm", "E_inner_MPa", "nu_inner", "E_outer_MPa",
                "nu_outer", "interference_um", "assumption"}

@@ -3,7 +3,7 @@ import tomllib
 
 import pytest
 
-from studies.config import CONFIG_DIR, ConfigError, assembly_from_dict, load_assembly, load_shipped
+from studies.model.config import CONFIG_DIR, ConfigError, assembly_from_dict, load_assembly, load_shipped
 
 
 def _raw():

@@ -1,5 +1,5 @@
 """Hidden effects in data made by the REAL model (FE -> bearing pair -> torque), diagnosed by the
-engine with the real predictor (`studies.diagnose_cli.ModelPredictor`), issue 5 "Tests that hide an
+engine with the real predictor (`studies.diagnosis.files.ModelPredictor`), issue 5 "Tests that hide an
 effect".
 
 Measured data are made the way a rig would produce them: the shipped configuration is run on a
@@ -33,12 +33,12 @@ import numpy as np
 import pytest
 from scipy import optimize
 
-from studies.config import load_shipped
-from studies.diagnose_cli import NUISANCE, ModelPredictor
-from studies.diagnosis import diagnose_full
-from studies.effects import EFFECTS, ORDER
-from studies.pipeline import Pipeline
-from studies.designs import cycles
+from studies.model.config import load_shipped
+from studies.diagnosis.files import NUISANCE, ModelPredictor
+from studies.diagnosis.engine import diagnose_full
+from studies.model.effects import EFFECTS, ORDER
+from studies.model.pipeline import Pipeline
+from studies.diagnosis.designs import cycles
 
 MESH_FACTOR = 2.0
 MU_TRUE = 1.25          # the rig's friction coefficient / the configured one (nuisance, unknown)
@@ -196,8 +196,8 @@ def onset_row(T, T_ref, threshold):
 # ============================================================================ the data route
 def test_predictor_is_simulate(pl000):
     """The data of these tests (ModelPredictor at mu_scale = 1) is what `simulate --effect` writes
-    (`studies.commands.simulate_table`): same conditions, same effects, same numbers."""
-    from studies.commands import simulate_table
+    (`studies.app.commands.simulate_table`): same conditions, same effects, same numbers."""
+    from studies.app.commands import simulate_table
 
     cond = cycles(n=60)
     eff = {"thermal_lag": {"tau_s": 300.0}, "friction_temperature": {"dmu_per_K": 2e-5}}
@@ -411,14 +411,14 @@ CFG_000 = Path(__file__).resolve().parents[1] / "studies" / "configs" / "seed000
 
 
 def _write_csv(path, cols):
-    from studies.table import write_table
+    from studies.model.table import write_table
     write_table(path, cols, comment="test data")
 
 
 def test_cli_diagnose_end_to_end(tmp_path, capsys):
     """simulate --effect (CLI) -> noise -> diagnose (CLI): exit 0, the spec's JSON, a report."""
-    from studies.cli import main
-    from studies.table import read_table
+    from studies.app.cli import main
+    from studies.model.table import read_table
 
     cond = cycles(n=200)
     _write_csv(tmp_path / "conditions.csv", cond)
@@ -515,7 +515,7 @@ def _bad_inputs(tmp):
 
 
 def test_cli_diagnose_bad_input_exits_2(tmp_path, capsys):
-    from studies.cli import main
+    from studies.app.cli import main
 
     for label, path, must in _bad_inputs(tmp_path):
         out = tmp_path / "runs" / f"out_{label.replace(' ', '_')}"

@@ -25,9 +25,9 @@ import zlib
 import numpy as np
 import pytest
 
-from studies.config import load_shipped
-from studies.effects import ORDER
-from studies.pipeline import Pipeline
+from studies.model.config import load_shipped
+from studies.model.effects import ORDER
+from studies.model.pipeline import Pipeline
 
 from test_diagnose_pipeline import (MESH_FACTOR, cycles, diagnose_real, largest_change_sigma,
                                     measured, oil_speed_steps_001, oil_speed_steps_003,

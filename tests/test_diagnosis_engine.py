@@ -21,10 +21,10 @@ import time
 import numpy as np
 import pytest
 
-from studies.diagnosis import chibar_pvalue, diagnose, diagnose_full, noise_sigma
-from studies.effects import (EFFECTS, apply_effects, resolve_friction_coefficient,
+from studies.diagnosis.engine import chibar_pvalue, diagnose, diagnose_full, noise_sigma
+from studies.model.effects import (EFFECTS, apply_effects, resolve_friction_coefficient,
                              resolve_interference_um)
-from studies.inputs import baseline_inputs
+from studies.model.inputs import baseline_inputs
 
 T_REF = 20.0
 NUISANCE = {"mu_scale": (0.2, 5.0, 1.0)}
@@ -246,7 +246,7 @@ def test_speed_budget_with_slow_predict(solid):
 
 
 def test_report_written(solid, tmp_path):
-    from studies.diagnosis_report import write_report
+    from studies.diagnosis.report import write_report
     cond = cycles(n=300)
     meas = make_data(solid, cond, {"preload_settling": {"loss_N": 5.0, "threshold_K": 40.0}}, 4)
     predict, predict_at = solid.predictor(cond)

@@ -23,8 +23,8 @@ import numpy as np
 import pytest
 from scipy import optimize
 
-from studies.diagnosis import diagnose
-from studies.effects import EFFECTS
+from studies.diagnosis.engine import diagnose
+from studies.model.effects import EFFECTS
 
 from test_diagnosis_engine import NUISANCE, SIGMA, T_REF, ToyBearing, cycles, speed_steps
 
@@ -34,14 +34,14 @@ class PipelineModel:
     """The real FE -> bearing pipeline behind the toy model's interface."""
 
     def __init__(self, config_path):
-        from studies.config import load_assembly
-        from studies.pipeline import Pipeline
+        from studies.model.config import load_assembly
+        from studies.model.pipeline import Pipeline
         self.asm = load_assembly(config_path)
         self.pipeline = Pipeline(self.asm)
 
     def evaluate(self, conditions, effects, nuisance):
-        from studies.effects import apply_effects
-        from studies.inputs import baseline_inputs
+        from studies.model.effects import apply_effects
+        from studies.model.inputs import baseline_inputs
         a = self.asm
         n = len(next(iter(conditions.values())))
         pi = baseline_inputs(conditions, n, a.T_ref_C, a.preload.assembled_N,

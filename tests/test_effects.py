@@ -9,11 +9,11 @@ import math
 import numpy as np
 import pytest
 
-from studies.effects import (EFFECTS, ORDER, EffectError, apply_effects, get_effect,
+from studies.model.effects import (EFFECTS, ORDER, EffectError, apply_effects, get_effect,
                              parse_effect_arg, resolve_friction_coefficient,
                              resolve_interference_um)
-from studies.effects.thermal_lag import lag_response
-from studies.inputs import PARTS, PhysicsInputs, baseline_inputs
+from studies.model.effects.thermal_lag import lag_response
+from studies.model.inputs import PARTS, PhysicsInputs, baseline_inputs
 
 T_REF = 20.0
 SPEC_PARAMETERS = {  # spec/cli.md, exactly

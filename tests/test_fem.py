@@ -10,9 +10,10 @@ from analytic.materials import get_material
 from fem.model import build_model
 from fem.post import element_stresses, fit_mean_pressures, theta_per_element
 from fem.solver import FitSolver, Superposition
-from meshes.section import section_from_assembly, two_cylinder_section
-from studies.config import load_shipped
-from studies.verify import lame_cases, short_ring_case
+from meshes.section import two_cylinder_section
+from studies.model.stack import section_from_assembly
+from studies.model.config import load_shipped
+from studies.runs.verify import lame_cases, short_ring_case
 
 
 def _two(ri, rf, ro, mi, mo, plane_strain=False, contact="frictionless", factor=1.0):

@@ -3,8 +3,8 @@ import meshio
 import numpy as np
 
 from meshes.build import build_mesh, read_section_mesh
-from meshes.section import section_from_assembly
-from studies.config import load_shipped
+from studies.model.stack import section_from_assembly
+from studies.model.config import load_shipped
 
 
 def test_named_groups_quadratic_and_cached():

@@ -7,10 +7,10 @@ import numpy as np
 import pytest
 
 from analytic.materials import get_material
-from studies.cli import main
-from studies.config import CONFIG_DIR, load_shipped
-from studies.inputs import baseline_inputs
-from studies.pipeline import Pipeline
+from studies.app.cli import main
+from studies.model.config import CONFIG_DIR, load_shipped
+from studies.model.inputs import baseline_inputs
+from studies.model.pipeline import Pipeline
 
 CFG = str(CONFIG_DIR / "seed000_71807C_TC4.toml")
 
@@ -140,7 +140,7 @@ def test_missing_and_bad_config_exit_2(tmp_path, capsys):
 
 def test_diagnose_accepts_every_column_simulate_writes(pl000):
     """`diagnose` must read a `simulate` file: every output is comparable or a known extra."""
-    from studies.diagnose_cli import COMPARABLE, OUTPUT_NAMES
+    from studies.diagnosis.files import COMPARABLE, OUTPUT_NAMES
 
     out = pl000.run(_inp(pl000.asm, [20.0]))
     assert set(out) <= set(COMPARABLE) | OUTPUT_NAMES, set(out) - set(COMPARABLE) - OUTPUT_NAMES

@@ -1,7 +1,7 @@
 """Benchmark of `bearingfem diagnose` (issue 5 performance goal: a 500-row dataset with all seven
 candidate effects diagnosed in under 10 s on 2 cores). Prints, never asserts.
 
-Run: `.venv/bin/python -m studies.bench_diagnose` (add `--mesh-factor 2` for the coarser mesh of
+Run: `.venv/bin/python -m studies.runs.bench_diagnose` (add `--mesh-factor 2` for the coarser mesh of
 the tests).
 
 Dataset: seed 000 (the shipped `seed000_71807C_TC4.toml`, full mesh as the CLI builds it),
@@ -26,7 +26,7 @@ from pathlib import Path  # noqa: E402
 
 import numpy as np  # noqa: E402
 
-from studies.designs import cycles  # noqa: E402
+from studies.diagnosis.designs import cycles  # noqa: E402
 
 N_ROWS = 500
 SIGMA = {"torque_Nmm": 0.02, "preload_N": 0.5}
@@ -37,12 +37,12 @@ DATASETS = {"no effect": {}, "thermal_lag tau_s=300": {"thermal_lag": {"tau_s": 
 
 
 def main(argv=None) -> None:
-    from studies.config import CONFIG_DIR, SHIPPED, load_shipped
-    from studies.diagnose_cli import NUISANCE, ModelPredictor, diagnose_files
-    from studies.diagnosis import diagnose_full
-    from studies.effects import EFFECTS, ORDER
-    from studies.pipeline import Pipeline
-    from studies.table import write_table
+    from studies.model.config import CONFIG_DIR, SHIPPED, load_shipped
+    from studies.diagnosis.files import NUISANCE, ModelPredictor, diagnose_files
+    from studies.diagnosis.engine import diagnose_full
+    from studies.model.effects import EFFECTS, ORDER
+    from studies.model.pipeline import Pipeline
+    from studies.model.table import write_table
 
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--mesh-factor", type=float, default=1.0)

@@ -10,7 +10,7 @@ Parameters (diametral, um):
     outer_um  offset of the outer fit, bounds [-20, 20], off 0
 
 Convention: written into `PhysicsInputs.interference_inner_um/outer_um` as offsets from the
-config's nominal fit (see `studies.effects`); existing offsets are added to.
+config's nominal fit (see `studies.model.effects`); existing offsets are added to.
 
 Source / rationale: ISO 286 tolerance grades for bearing seats (IT5 at 30-50 mm: 11 um band) plus
 the bearing bore/outside-diameter tolerances (P4/P5: 5-8 um) and form errors give as-built fits that

@@ -25,7 +25,8 @@ from analytic.materials import get_material
 from fem.model import build_model
 from fem.post import element_stresses, fit_mean_pressures, theta_per_element
 from fem.solver import FitSolver
-from meshes.section import section_from_assembly, two_cylinder_section
+from meshes.section import two_cylinder_section
+from studies.model.stack import section_from_assembly
 
 TOLERANCE = 0.005          # issue 2: every Lamé case within 0.5 % on the default mesh
 REL_FLOOR_MPa = 1e-9
@@ -310,7 +311,7 @@ def plot_convergence(path: Path, cases: list[dict]) -> Path:
 
 def run(out_dir: Path, progress=print) -> list[dict]:
     """All verification cases into out_dir (verification.json, verification.md, PNG)."""
-    from studies.config import load_shipped
+    from studies.model.config import load_shipped
 
     out_dir.mkdir(parents=True, exist_ok=True)
     progress("Lamé cases ...")

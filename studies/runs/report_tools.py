@@ -47,7 +47,7 @@ def field_images(out_dir: Path, pipeline, T_C: float, stem: str, title: str) -> 
     """VTU + PNG field images of the stack at a uniform temperature (nominal fits)."""
     from fem.fields import render_fields, write_vtu
     from fem.post import element_stresses, theta_per_element
-    from studies.inputs import baseline_inputs
+    from studies.model.inputs import baseline_inputs
 
     a = pipeline.asm
     inp = baseline_inputs({"T_ambient_C": np.array([T_C])}, 1, a.T_ref_C, a.preload.assembled_N,

@@ -11,12 +11,12 @@ from pathlib import Path
 
 import numpy as np
 
-from studies.config import load_shipped
-from studies.inputs import baseline_inputs
-from studies.pipeline import Pipeline
-from studies.report import md_table
-from studies.table import write_table
-from studies.verify import _convergence, plot_convergence
+from studies.model.config import load_shipped
+from studies.model.inputs import baseline_inputs
+from studies.model.pipeline import Pipeline
+from studies.runs.report_tools import md_table
+from studies.model.table import write_table
+from studies.runs.verify import _convergence, plot_convergence
 
 FACTORS = (4.0, 2.0, 1.0, 0.5, 0.25)
 T_STATES_C = (-60.0, 80.0)

@@ -138,7 +138,7 @@ def _walther_slopes(lib, name):
             for i in range(len(pts) - 1)]
 
 
-def run(out_dir: Path) -> None:
+def run(out_dir: Path, progress=print) -> None:
     """Write predictions.csv, leave_one_out.csv, curves.csv, viscosity_temperature.png and
     report.md into out_dir."""
     import matplotlib

@@ -16,11 +16,11 @@ import numpy as np
 from analytic import lubrication as lub
 from analytic.bearing import solve_pair
 from analytic.torque import coulomb_load_torque_Nmm, palmgren_viscous_torque_Nmm
-from studies.config import load_shipped
-from studies.inputs import baseline_inputs
-from studies.pipeline import Pipeline
-from studies.report import line_plot, md_table, safety_section
-from studies.table import write_table
+from studies.model.config import load_shipped
+from studies.model.inputs import baseline_inputs
+from studies.model.pipeline import Pipeline
+from studies.runs.report_tools import line_plot, md_table, safety_section
+from studies.model.table import write_table
 
 SEED_RATIO_COLD = (1.333, 1.50)     # torque(-20 C) / torque(20 C): +33.3..50 %
 SEED_RATIO_HOT = 0.75               # torque(60 C) / torque(20 C): -25 %

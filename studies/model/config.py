@@ -352,20 +352,7 @@ def _check_geometry(a: Assembly, path: str) -> None:
          f"must not exceed the bearing width ({b.width_mm:g} mm): the rings would not be resolved")
 
 
-def stack_positions(a: Assembly) -> dict[str, tuple[float, float]]:
-    """Axial extent (z0, z1) in mm of every stack part; shoulder faces at z = 0."""
-    B = a.bearing.width_mm
-    zA, zS, zB = (0.0, B), (B, B + a.inner_spacer.length_mm), None
-    zB = (zS[1], zS[1] + B)
-    oS = (B, B + a.outer_spacer.length_mm)
-    oB = (oS[1], oS[1] + B)
-    return {"inner_ring_A": zA, "inner_spacer": zS, "inner_ring_B": zB,
-            "nut": (zB[1], zB[1] + a.nut.width_mm),
-            "outer_ring_A": (0.0, B), "outer_spacer": oS, "outer_ring_B": oB,
-            "cover": (oB[1], oB[1] + a.cover.width_mm)}
-
-
-CONFIG_DIR = Path(__file__).parent / "configs"
+CONFIG_DIR = Path(__file__).parents[1] / "configs"
 SHIPPED = {"seed000": "seed000_71807C_TC4.toml", "seed001": "seed001_flywheel_hybrid.toml",
            "seed003": "seed003_25TAC62B.toml"}
 

@@ -7,13 +7,12 @@ from pathlib import Path
 
 import numpy as np
 
-from studies.cli import UserError, atomic_dir, progress
-
-STUDIES = ("seed000", "seed001", "seed003", "mesh_convergence", "lubricant_viscosity")
+from studies.app.output import UserError, atomic_dir, progress
+from studies.runs import STUDIES, study_module
 
 
 def _load(assembly_path: Path):
-    from studies.config import load_assembly
+    from studies.model.config import load_assembly
 
     return load_assembly(assembly_path)
 
@@ -22,11 +21,11 @@ def _user_errors():
     """Exception types that are the user's input problems (exit 2, one line)."""
     from fem.solver import SolveError
     from meshes.build import MeshError
-    from studies.config import ConfigError
-    from studies.diagnosis import DiagnosisError, ModelFailure
-    from studies.effects import EffectError
-    from studies.pipeline import ModelError
-    from studies.table import TableError
+    from studies.model.config import ConfigError
+    from studies.diagnosis.engine import DiagnosisError, ModelFailure
+    from studies.model.effects import EffectError
+    from studies.model.pipeline import ModelError
+    from studies.model.table import TableError
 
     return (ConfigError, TableError, EffectError, MeshError, SolveError, ModelError,
             DiagnosisError, ModelFailure)
@@ -48,9 +47,9 @@ def check_output_file(path: Path) -> None:
 def simulate_table(asm, columns: dict, effects: dict | None = None, direct: bool = False,
                    pipeline=None) -> dict[str, np.ndarray]:
     """Model outputs for a conditions table (column arrays), effects switched on by name."""
-    from studies.effects import apply_effects
-    from studies.inputs import baseline_inputs
-    from studies.pipeline import Pipeline
+    from studies.model.effects import apply_effects
+    from studies.model.inputs import baseline_inputs
+    from studies.model.pipeline import Pipeline
 
     n = len(next(iter(v for k, v in columns.items() if not k.startswith("_"))))
     inputs = baseline_inputs(columns, n, asm.T_ref_C, asm.preload.assembled_N,
@@ -61,8 +60,8 @@ def simulate_table(asm, columns: dict, effects: dict | None = None, direct: bool
 
 
 def cmd_simulate(args) -> None:
-    from studies.effects import parse_effect_arg
-    from studies.table import read_conditions, write_table
+    from studies.model.effects import parse_effect_arg
+    from studies.model.table import read_conditions, write_table
 
     try:
         check_output_file(args.out)
@@ -89,20 +88,17 @@ def cmd_simulate(args) -> None:
 def cmd_study(args) -> None:
     if args.name not in STUDIES:
         raise UserError(f"study '{args.name}': unknown (known: {', '.join(STUDIES)})")
-    import importlib
-
-    mod = importlib.import_module(f"studies.study_{args.name}" if args.name != "lubricant_viscosity"
-                                  else "studies.lubricant_viscosity")
+    mod = study_module(args.name)
     try:
         with atomic_dir(args.out) as tmp:
-            mod.run(tmp) if args.name == "lubricant_viscosity" else mod.run(tmp, progress=progress)
+            mod.run(tmp, progress=progress)
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
     print(f"study {args.name}: report in {args.out}/report.md")
 
 
 def cmd_diagnose(args) -> None:
-    from studies.diagnose_cli import diagnose_files
+    from studies.diagnosis.files import diagnose_files
 
     try:
         with atomic_dir(args.out) as tmp:
@@ -111,3 +107,20 @@ def cmd_diagnose(args) -> None:
         raise UserError(str(exc)) from None
     print(f"diagnosis: {result['verdict']}" + (f" ({result['cause']})" if result.get("cause") else "")
           + f"; report in {args.out}/report.md", file=sys.stdout)
+
+
+def cmd_verify(args) -> None:
+    from studies.runs import verify
+
+    with atomic_dir(args.out) as tmp:
+        cases = verify.run(tmp, progress=progress)
+    bad = [c["name"] for c in cases if c["kind"] in ("lame_fit", "lame_displacement", "free_thermal")
+           and c["rel_error"] > verify.TOLERANCE]
+    print(f"verification: {len(cases)} cases written to {args.out}/verification.md"
+          + (f"; OUTSIDE tolerance: {', '.join(bad)}" if bad else "; all Lamé cases within 0.5 %"))
+
+
+def cmd_bench(args) -> None:
+    from studies.runs import bench
+
+    bench.main(quick=args.quick)

@@ -20,11 +20,11 @@ import numpy as np
 
 from analytic import thermal_network as tn
 from analytic.torque import ContactInput, friction_heat_W, palmgren_viscous_torque_Nmm, sliding_spin_torque_Nmm
-from studies.config import load_shipped
-from studies.inputs import baseline_inputs
-from studies.pipeline import Pipeline
-from studies.report import line_plot, md_table, safety_section
-from studies.table import write_table
+from studies.model.config import load_shipped
+from studies.model.inputs import baseline_inputs
+from studies.model.pipeline import Pipeline
+from studies.runs.report_tools import line_plot, md_table, safety_section
+from studies.model.table import write_table
 
 SPEEDS_RPM = (1000.0, 1500.0)
 H_HOUSING_W_M2K = 15.0       # assumption: natural convection + radiation on the housing

@@ -13,7 +13,7 @@ Parameters:
     dmu_per_K  slope of the friction coefficient, 1/K, bounds [-1e-3, 1e-3], off 0
 
 Convention: written into `PhysicsInputs.friction_coefficient` as the *change* from the config's
-coefficient per row (added to any change already present), see `studies.effects`.
+coefficient per row (added to any change already present), see `studies.model.effects`.
 
 Source / rationale: sputtered MoS2 friction coefficients of 0.01-0.05 change by tens of percent over
 -60..80 C (ESTL / ESA tribology handbook data); seed 001 quotes mu = 0.0029 at 20 C for an oil. A

@@ -18,12 +18,12 @@ from pathlib import Path
 import numpy as np
 
 from analytic.bearing import solve_pair
-from studies.config import load_shipped
-from studies.effects import apply_effects
-from studies.inputs import baseline_inputs
-from studies.pipeline import Pipeline
-from studies.report import field_images, line_plot, md_table, safety_section
-from studies.table import write_table
+from studies.model.config import load_shipped
+from studies.model.effects import apply_effects
+from studies.model.inputs import baseline_inputs
+from studies.model.pipeline import Pipeline
+from studies.runs.report_tools import field_images, line_plot, md_table, safety_section
+from studies.model.table import write_table
 
 SEED = {"rate_inner_um_per_C": -0.05, "rate_outer_um_per_C": 0.07, "outer_closes_C": 41.0,
         "preload_change_N": (-40.0, 40.0), "cycle_max_change_Nmm": -1.7, "cycle_min_change_Nmm": 0.9}

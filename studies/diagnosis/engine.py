@@ -4,7 +4,7 @@ how much the extended model gains on held-out data. Model-agnostic statistical e
 The engine only sees a `predict(effects, nuisance) -> {column: array}` callable that evaluates the
 model on the measured conditions with the given effects switched on (`{name: {param: value}}`) and
 the nuisance calibration (`{name: value}`, e.g. a friction scale `mu_scale`), the measured outputs,
-the conditions table, the candidate effect objects (`studies.effects`), the nuisance bounds and the
+the conditions table, the candidate effect objects (`studies.model.effects`), the nuisance bounds and the
 held-out block labels. It returns a JSON-ready dict with the keys of `spec/cli.md` (`verdict`,
 `cause`, `parameters`, `indistinguishable`, `separating_test`, `baseline`, `extended`, `gain`,
 `candidates`) plus diagnostics.
@@ -1201,7 +1201,7 @@ def diagnose_full(predict: Callable[[dict, dict], Mapping[str, np.ndarray]],
     predict(effects, nuisance) -> {column: array(n_rows)} on the measured conditions.
     measured: {output column: array(n_rows)} (NaN = not measured in that row).
     conditions: {condition column: array(n_rows)} (used for residual structure, profiles, probes).
-    candidates: effect objects (`studies.effects.EFFECTS[name]`).
+    candidates: effect objects (`studies.model.effects.EFFECTS[name]`).
     nuisance: {name: (lo, hi[, start[, scale]])}, refitted with every model (e.g. mu_scale).
     blocks: held-out block label per row (contiguous time or test segments); None -> n_blocks
         contiguous blocks in row order.

@@ -1,6 +1,6 @@
 """Candidate model extensions ("effects"): registry, common behaviour and conventions.
 
-An effect is a small object that transforms a `studies.inputs.PhysicsInputs` (part temperatures,
+An effect is a small object that transforms a `studies.model.inputs.PhysicsInputs` (part temperatures,
 fits, CTE slope, viscosity law, friction coefficient, preload loss); it never touches model outputs.
 One module per effect, each with a docstring giving the physics it adds, its parameters (units in
 the names), their physical bounds and the source or rationale. Every effect has a null setting
@@ -34,7 +34,7 @@ from typing import Mapping
 
 import numpy as np
 
-from studies.inputs import PhysicsInputs
+from studies.model.inputs import PhysicsInputs
 
 
 class EffectError(ValueError):

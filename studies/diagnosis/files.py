@@ -13,13 +13,13 @@ from pathlib import Path
 
 import numpy as np
 
-from studies.config import load_assembly
-from studies.diagnosis import diagnose_full
-from studies.diagnosis_report import write_report
-from studies.effects import EFFECTS, ORDER, apply_effects, resolve_friction_coefficient
-from studies.inputs import CONDITION_COLUMNS, baseline_inputs
-from studies.pipeline import Pipeline
-from studies.table import TableError, check_ranges, read_table
+from studies.model.config import load_assembly
+from studies.diagnosis.engine import diagnose_full
+from studies.diagnosis.report import write_report
+from studies.model.effects import EFFECTS, ORDER, apply_effects, resolve_friction_coefficient
+from studies.model.inputs import CONDITION_COLUMNS, baseline_inputs
+from studies.model.pipeline import Pipeline
+from studies.model.table import TableError, check_ranges, read_table
 
 #: output columns `diagnose` can compare (what `simulate` writes and a rig can measure)
 COMPARABLE = ("torque_Nmm", "preload_N", "contact_angle_deg", "interference_inner_um",

@@ -24,13 +24,14 @@ from analytic.bearing import SIGNS, BearingGeometry, solve_pair
 from analytic.lubrication import get_lubricant
 from analytic.safety import static_load_rating_C0_N, static_safety_from_contact_pressure
 from analytic.torque import palmgren_f1_angular_contact, pair_torque
+from fem.compliance import preload_path_compliance_mm_per_N
 from fem.model import build_model
-from fem.post import fit_mean_pressures
+from fem.post import fit_mean_pressures, groove_centre_shift
 from fem.solver import FitSolver, Superposition
-from meshes.section import section_from_assembly
-from studies.config import Assembly
-from studies.effects import resolve_friction_coefficient, resolve_interference_um
-from studies.inputs import PhysicsInputs
+from studies.model.stack import section_from_assembly
+from studies.model.config import Assembly
+from studies.model.effects import resolve_friction_coefficient, resolve_interference_um
+from studies.model.inputs import PhysicsInputs
 
 #: which temperature of `PhysicsInputs.T_C` each FE part takes
 FE_PART_GROUP = {"shaft": "shaft", "nut": "shaft", "inner_ring_A": "inner_ring",
@@ -103,35 +104,12 @@ class Pipeline:
         self.centre_offset_mm = off
 
     def preload_path_compliance(self) -> float:
-        """Axial compliance of the preload path per bearing (mm/N), from the FE.
-
-        The balls push on each ring's raceway: on inner ring j with -s_j F, on outer ring j with
-        +s_j F (axial, uniformly spread over the raceway line). With 1 N per bearing, the loss of
-        bearing j's approach is -s_j d(dz_j); c is the mean over A and B. Linear on top of the
-        assembled contact state (its active set held fixed). It enters the pair model as
-        a_j = s_j (dz_j + x) + e - c F_j (analytic/bearing.py)."""
-        from skfem import FacetBasis, asm
-
-        from fem.forms import axial_traction
-        from fem.thermal import _facets_on, boundary_lines
-
-        m, s = self.model, SIGNS[self.asm.arrangement]
-        lines = boundary_lines(self.section)
-        F = np.zeros(m.ndofs)
-        for ring in RINGS:
-            j = 0 if ring.endswith("A") else 1
-            sign = (-1.0 if ring.startswith("inner") else 1.0) * s[j]
-            fb = FacetBasis(m.mesh, m.basis.elem, facets=_facets_on(m, lines[f"raceway_{ring}"]))
-            f = asm(axial_traction, fb)
-            F += sign * f / f.sum()
-        inner_um, outer_um = self.asm.fits.inner_interference_um, self.asm.fits.outer_interference_um
-        delta = self.deltas_mm(np.array([inner_um]), np.array([outer_um]))[0]
-        closed = self.solver.solve(np.zeros(m.ndofs), delta).closed
-        u = self.solver.solve_status(closed, F, np.zeros(len(m.fits)))[:, 0] \
-            - self.solver.solve_status(closed, np.zeros(m.ndofs), np.zeros(len(m.fits)))[:, 0]
-        pz = (self.probe @ u)[1::2]                         # u_z at the 4 raceway points
-        d_dz = np.array([pz[0] - pz[2], pz[1] - pz[3]])     # inner minus outer, A and B
-        return float(np.mean(-s * d_dz))
+        """Axial compliance of the preload path per bearing (mm/N), from the FE at the assembled
+        fits (`fem.compliance`)."""
+        f = self.asm.fits
+        delta = self.deltas_mm(np.array([f.inner_interference_um]), np.array([f.outer_interference_um]))[0]
+        return preload_path_compliance_mm_per_N(self.solver, self.probe, SIGNS[self.asm.arrangement],
+                                                delta)
 
     # ------------------------------------------------------------------ FE
     def thetas(self, inputs: PhysicsInputs) -> np.ndarray:
@@ -188,8 +166,8 @@ class Pipeline:
         idx = {p: i for i, p in enumerate(self.model.part_names)}
         centre = np.empty((n, 4, 2))
         for k, ring in enumerate(RINGS):
-            th = theta[:, idx[ring]]
-            centre[:, k, :] = probe[:, 2 * k:2 * k + 2] + th[:, None] * self.centre_offset_mm[k]
+            centre[:, k, :] = groove_centre_shift(probe[:, 2 * k:2 * k + 2], theta[:, idx[ring]],
+                                                  self.centre_offset_mm[k])
         dr = np.stack([centre[:, 0, 0] - centre[:, 2, 0], centre[:, 1, 0] - centre[:, 3, 0]])
         dz = np.stack([centre[:, 0, 1] - centre[:, 2, 1], centre[:, 1, 1] - centre[:, 3, 1]])
         a = self.asm
@@ -214,7 +192,7 @@ class Pipeline:
         for k, ring in enumerate(RINGS):
             sel = m.part_of == ring
             th = float((theta_q[sel] * w[sel]).sum() / w[sel].sum())
-            centre[k] = probe[2 * k:2 * k + 2] + th * self.centre_offset_mm[k]
+            centre[k] = groove_centre_shift(probe[2 * k:2 * k + 2], th, self.centre_offset_mm[k])
         dr = np.array([[centre[0, 0] - centre[2, 0]], [centre[1, 0] - centre[3, 0]]])
         dz = np.array([[centre[0, 1] - centre[2, 1]], [centre[1, 1] - centre[3, 1]]])
         return FEState(p, np.full((1, 2), np.nan), dr, dz, probe[None, :]), sol.u

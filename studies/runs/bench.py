@@ -23,7 +23,7 @@ def fe_levels(asm, factors, T_C=-60.0):
     from fem.post import fit_mean_pressures
     from fem.solver import FitSolver
     from meshes.build import build_mesh, read_section_mesh
-    from meshes.section import section_from_assembly
+    from studies.model.stack import section_from_assembly
 
     base = section_from_assembly(asm)
     rows = []
@@ -51,7 +51,7 @@ def fe_levels(asm, factors, T_C=-60.0):
 def sweep(asm):
     from fem.model import build_model
     from fem.solver import FitSolver, Superposition
-    from meshes.section import section_from_assembly
+    from studies.model.stack import section_from_assembly
 
     sec = section_from_assembly(asm)
     model = build_model(sec, asm.fits.contact)
@@ -72,8 +72,8 @@ def sweep(asm):
 
 def pipeline_sweep(asm):
     """The whole chain (FE superposition + pair equilibrium + Hertz + torque) per sweep point."""
-    from studies.inputs import baseline_inputs
-    from studies.pipeline import Pipeline
+    from studies.model.inputs import baseline_inputs
+    from studies.model.pipeline import Pipeline
 
     pl, t_build = _t(Pipeline, asm)
     print(f"pipeline set-up (mesh from cache, assembly, unit solutions, compliance): {t_build:.3f} s once")
@@ -87,12 +87,12 @@ def pipeline_sweep(asm):
 
 
 def main(quick: bool = False) -> None:
-    from studies.config import load_shipped
+    from studies.model.config import load_shipped
 
     asm = load_shipped("seed000")
     print("== FE per mesh level (seed 000 stack, -60 C, direct solve with exact contact) ==")
     rows = fe_levels(asm, (4.0, 2.0, 1.0) if quick else (4.0, 2.0, 1.0, 0.5, 0.25))
-    from studies.verify import richardson
+    from studies.runs.verify import richardson
 
     ext = richardson([r[2] for r in rows])["extrapolated"]
     conv = [r for r in rows if abs(r[2] - ext) / abs(ext) < 1e-3]
@@ -105,7 +105,7 @@ def main(quick: bool = False) -> None:
     print("== full pipeline sweeps (default mesh) ==")
     pipeline_sweep(asm)
     try:
-        from studies import bench_analytic
+        from studies.runs import bench_analytic
     except ImportError:
         return
     print("== analytic pair model ==")

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from studies.inputs import CONDITION_COLUMNS
+from studies.model.inputs import CONDITION_COLUMNS
 
 
 class TableError(ValueError):

@@ -1,0 +1,73 @@
+"""The `bearingfem` command line (contract: shared/spec/cli.md).
+
+Bad input exits 2 with one line on stderr naming the file, row or column and the problem; no
+traceback and no partial output (results are written to a temporary folder/file and renamed).
+"""
+from __future__ import annotations
+
+import os
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # small dense solves: threads only cost here
+
+import argparse  # noqa: E402
+import sys  # noqa: E402
+from pathlib import Path  # noqa: E402
+
+from studies.app import commands  # noqa: E402
+from studies.app.output import UserError  # noqa: E402
+from studies.runs import STUDIES  # noqa: E402
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="bearingfem", description=(
+        "Thermal-structural FE + analytic bearing model of a preloaded angular-contact ball "
+        "bearing pair on a shaft in a housing."))
+    sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND")
+
+    s = sub.add_parser("simulate", help="run the model on a conditions table")
+    s.add_argument("assembly", type=Path)
+    s.add_argument("conditions", type=Path)
+    s.add_argument("-o", "--out", type=Path, required=True)
+    s.add_argument("--effect", action="append", default=[], metavar="NAME:key=value[,key=value]")
+    s.add_argument("--direct", action="store_true",
+                   help="direct FE solve per row instead of superposed unit solutions")
+
+    d = sub.add_parser("diagnose", help="find what the model gets wrong in measured data")
+    d.add_argument("assembly", type=Path)
+    d.add_argument("measured", type=Path)
+    d.add_argument("--out", type=Path, required=True)
+
+    v = sub.add_parser("verify", help="FE against closed forms, mesh convergence")
+    v.add_argument("--out", type=Path, required=True)
+
+    st = sub.add_parser("study", help=f"run a named study ({', '.join(STUDIES)})")
+    st.add_argument("name")
+    st.add_argument("--out", type=Path, required=True)
+
+    b = sub.add_parser("bench", help="print FE and analytic timings on this machine")
+    b.add_argument("--quick", action="store_true", help="fewer mesh levels")
+    return p
+
+
+#: the one dispatch table: subcommand -> implementation (studies/app/commands.py)
+COMMANDS = {"simulate": commands.cmd_simulate, "diagnose": commands.cmd_diagnose,
+            "verify": commands.cmd_verify, "study": commands.cmd_study, "bench": commands.cmd_bench}
+
+
+def main(argv=None) -> int:
+    args = build_parser().parse_args(argv)
+    from studies.model.config import ConfigError
+
+    try:
+        COMMANDS[args.command](args)
+    except (UserError, ConfigError) as exc:
+        print(f"bearingfem {args.command}: {exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("bearingfem: interrupted", file=sys.stderr)
+        return 130
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,92 @@
+"""Assembly config -> the r-z section the FE meshes: where every part of the stack sits.
+
+The rotor (shaft, inner rings, inner spacer, nut) and the stator (housing, outer rings, outer
+spacer, cover) as named rectangles, the radial split lines (fits, sliding bores), the clamped
+faces and the raceway points. `meshes/` knows only sections; this is the one place that reads an
+assembly to make one. Units: mm.
+"""
+from __future__ import annotations
+
+from meshes.section import Fit, Rect, Section, Split
+from studies.model.config import Assembly
+
+
+def stack_positions(a: Assembly) -> dict[str, tuple[float, float]]:
+    """Axial extent (z0, z1) in mm of every stack part; shoulder faces at z = 0."""
+    B = a.bearing.width_mm
+    zA, zS, zB = (0.0, B), (B, B + a.inner_spacer.length_mm), None
+    zB = (zS[1], zS[1] + B)
+    oS = (B, B + a.outer_spacer.length_mm)
+    oB = (oS[1], oS[1] + B)
+    return {"inner_ring_A": zA, "inner_spacer": zS, "inner_ring_B": zB,
+            "nut": (zB[1], zB[1] + a.nut.width_mm),
+            "outer_ring_A": (0.0, B), "outer_spacer": oS, "outer_ring_B": oB,
+            "cover": (oB[1], oB[1] + a.cover.width_mm)}
+
+
+
+def section_from_assembly(a: Assembly) -> Section:
+    """Rectangles of the rotor (shaft, nut, inner rings, inner spacer) and the stator (housing,
+    cover, outer rings, outer spacer) from an assembly config. Shoulder faces at z = 0."""
+    s, h, b = a.shaft, a.housing, a.bearing
+    B = b.width_mm
+    z = stack_positions(a)
+    r_seat, r_bore = s.seat_diameter_mm / 2, s.bore_diameter_mm / 2
+    r_hb, r_ho = h.bore_diameter_mm / 2, h.outer_diameter_mm / 2
+    z_nut_end = z["nut"][1]
+    z_shaft_end = z_nut_end + s.extension_mm
+    z_house_end = z["outer_ring_B"][1]
+    r_iro, r_ori = b.inner_ring_outer_diameter_mm / 2, b.outer_ring_inner_diameter_mm / 2
+    rings = b.ring_material
+    rects = [
+        Rect("shaft", r_bore, r_seat, -s.shoulder_width_mm, z_shaft_end, s.material),
+        Rect("shaft", r_seat, s.shoulder_diameter_mm / 2, -s.shoulder_width_mm, 0.0, s.material),
+        Rect("inner_ring_A", r_seat, r_iro, *z["inner_ring_A"], rings),
+        Rect("inner_spacer", r_seat, a.inner_spacer.diameter_mm / 2, *z["inner_spacer"],
+             a.inner_spacer.material),
+        Rect("inner_ring_B", r_seat, r_iro, *z["inner_ring_B"], rings),
+        Rect("nut", r_seat, a.nut.diameter_mm / 2, *z["nut"], a.nut.material),
+        Rect("housing", r_hb, r_ho, -h.shoulder_width_mm, z_house_end, h.material),
+        Rect("housing", h.shoulder_diameter_mm / 2, r_hb, -h.shoulder_width_mm, 0.0, h.material),
+        Rect("outer_ring_A", r_ori, r_hb, *z["outer_ring_A"], rings),
+        Rect("outer_spacer", a.outer_spacer.diameter_mm / 2, r_hb, *z["outer_spacer"],
+             a.outer_spacer.material),
+        Rect("outer_ring_B", r_ori, r_hb, *z["outer_ring_B"], rings),
+        Rect("cover", a.cover.diameter_mm / 2, r_ho, *z["cover"], a.cover.material),
+    ]
+    r_isp, r_osp = a.inner_spacer.diameter_mm / 2, a.outer_spacer.diameter_mm / 2
+    zc = z["inner_ring_B"][0]
+    splits = (
+        Split("shaft_seat", "r", r_seat, 0.0, z["inner_ring_B"][1], ("shaft", "nut"),
+              ("inner_ring_A", "inner_spacer", "inner_ring_B")),
+        Split("housing_bore", "r", r_hb, 0.0, z_house_end, ("outer_ring_A", "outer_spacer",
+                                                            "outer_ring_B"), ("housing", "cover")),
+        Split("face_shaft_shoulder", "z", 0.0, r_seat, s.shoulder_diameter_mm / 2, ("shaft",),
+              ("inner_ring_A",)),
+        Split("face_inner_A_spacer", "z", B, r_seat, min(r_iro, r_isp), ("inner_ring_A",),
+              ("inner_spacer",)),
+        Split("face_inner_spacer_B", "z", zc, r_seat, min(r_iro, r_isp), ("inner_spacer",),
+              ("inner_ring_B",)),
+        Split("face_inner_B_nut", "z", z["nut"][0], r_seat, min(r_iro, a.nut.diameter_mm / 2),
+              ("inner_ring_B",), ("nut",), a.nut.clamp == "rigid"),
+        Split("face_housing_shoulder", "z", 0.0, h.shoulder_diameter_mm / 2, r_hb, ("housing",),
+              ("outer_ring_A",)),
+        Split("face_outer_A_spacer", "z", B, max(r_ori, r_osp), r_hb, ("outer_ring_A",),
+              ("outer_spacer",)),
+        Split("face_outer_spacer_B", "z", z["outer_ring_B"][0], max(r_ori, r_osp), r_hb,
+              ("outer_spacer",), ("outer_ring_B",)),
+        Split("face_outer_B_cover", "z", z["cover"][0], max(r_ori, a.cover.diameter_mm / 2), r_hb,
+              ("outer_ring_B",), ("cover",), a.cover.clamp == "rigid"),
+    )
+    fits = tuple(
+        [Fit(f"fit_inner_{j}", "shaft", f"inner_ring_{j}", r_seat, *z[f"inner_ring_{j}"], "inner")
+         for j in "AB"]
+        + [Fit(f"fit_outer_{j}", f"outer_ring_{j}", "housing", r_hb, *z[f"outer_ring_{j}"], "outer")
+           for j in "AB"])
+    refine = tuple((f.r_mm, f.z0_mm, f.r_mm, f.z1_mm) for f in fits) + tuple(
+        (r, z[f"{ring}_{j}"][0], r, z[f"{ring}_{j}"][1])
+        for ring, r in (("inner_ring", r_iro), ("outer_ring", r_ori)) for j in "AB")
+    raceways = {f"inner_ring_{j}": (r_iro, sum(z[f"inner_ring_{j}"]) / 2) for j in "AB"}
+    raceways.update({f"outer_ring_{j}": (r_ori, sum(z[f"outer_ring_{j}"]) / 2) for j in "AB"})
+    return Section(tuple(rects), splits, fits, (), refine, raceways, a.mesh.size_mm,
+                   a.mesh.fit_size_mm)
