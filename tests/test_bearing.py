@@ -258,7 +258,10 @@ def test_chunked_evaluation_equals_one_block():
     one = solve_pair(G, "DB", **kw)
     many = solve_pair(G, "DB", chunk=4, **kw)
     for k, v in one.items():
-        assert np.allclose(many[k], v, rtol=1e-12, atol=1e-15, equal_nan=True), k
+        # Round-off is relative to the largest term of the same output over the rows (a force
+        # that is zero in one row is ~1e-14 N next to a 1e3 N force in another).
+        scale = np.nanmax(np.abs(v)) if np.any(np.isfinite(v)) else 0.0
+        assert np.allclose(many[k], v, rtol=1e-12, atol=1e-12 * scale, equal_nan=True), k
 
 
 def test_pair_with_clearance_everywhere_is_unloaded_not_an_error():
