@@ -266,7 +266,9 @@ def sliding_spin_torque_Nmm(Z: int, Dw_mm, dm_mm, f_i, f_o, alpha_rad, inner: Co
 
 
 # ---------------------------------------------------------------------------------------------
-def _contacts(pair: dict, j: str):
+def contact_inputs(pair: dict, j: str) -> tuple[ContactInput, ContactInput]:
+    """Inner and outer `ContactInput` of bearing j ("A" or "B") from `bearing.solve_pair`
+    outputs (ball load N, ellipse semi-axes mm, E(e), Rx mm)."""
     cin = ContactInput(pair[f"ball_load_{j}_N"], pair[f"a_inner_{j}_mm"], pair[f"b_inner_{j}_mm"],
                        pair[f"E_ell_inner_{j}"], pair[f"Rx_inner_{j}_mm"])
     cout = ContactInput(pair[f"ball_load_{j}_N"], pair[f"a_outer_{j}_mm"], pair[f"b_outer_{j}_mm"],
@@ -296,7 +298,7 @@ def pair_torque(g, pair: dict, *, model: str = "solid_film", mu=0.02, hysteresis
         acc = {"hysteresis": 0.0, "differential": 0.0, "spin": 0.0}
         side = {"inner": 0.0, "outer": 0.0}
         for j in "AB":
-            cin, cout = _contacts(pair, j)
+            cin, cout = contact_inputs(pair, j)
             alpha = np.radians(pair[f"contact_angle_{j}_deg"])
             comp = solid_film_torque_Nmm(g.Z, g.Dw_mm, g.dm_mm, g.f_i, g.f_o, alpha, cin, cout,
                                          mu, hysteresis_loss, c_ring, c_ball)
@@ -332,12 +334,3 @@ def pair_torque(g, pair: dict, *, model: str = "solid_film", mu=0.02, hysteresis
     if speed_rpm is not None:
         out["heat_W"] = power_W(out["torque_Nmm"], speed_rpm)
     return out
-
-
-def evaluate_pair(g, arrangement: str = "DB", *, torque: dict | None = None, **pair_inputs):
-    """`bearing.solve_pair` followed by `pair_torque`: one dict with both sets of outputs.
-    torque: keyword arguments of `pair_torque` (default solid film with mu = 0.02)."""
-    from analytic.bearing import solve_pair
-    pair = solve_pair(g, arrangement, **pair_inputs)
-    pair.update(pair_torque(g, pair, **(torque or {})))
-    return pair

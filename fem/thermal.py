@@ -56,13 +56,18 @@ class ConductionModel:
         self.tie_s = np.concatenate(ss) if ss else np.zeros(0, int)
         self.lines = boundary_lines(model.section)
 
+    def mean_temperature_C(self, T: np.ndarray, name: str) -> float:
+        """Area-weighted mean of nodal temperatures T (C) on a named boundary line, C."""
+        return float(self.mean_vector(name) @ T)
+
     def area_mm2(self, name: str) -> float:
         """Area of a named boundary line swept around the axis, int 2 pi r ds (mm^2)."""
         fb = FacetBasis(self.model.mesh, self.model.sbasis.elem, facets=facets_on_line(self.model, self._spec(name)))
         return float(asm(boundary_flux, fb, q=1.0).sum())
 
-    def _mean_vector(self, name: str) -> np.ndarray:
-        """Vector a with a . T = area-weighted mean temperature on a boundary line."""
+    def mean_vector(self, name: str) -> np.ndarray:
+        """Vector a with a . T = area-weighted mean temperature (C) on a boundary line, for nodal
+        temperatures T (C): a = int N 2 pi r ds / int 2 pi r ds."""
         fb = FacetBasis(self.model.mesh, self.model.sbasis.elem, facets=facets_on_line(self.model, self.lines[name]))
         a = asm(boundary_flux, fb, q=1.0)
         return a / a.sum()
@@ -79,9 +84,9 @@ class ConductionModel:
             A = A + asm(convection, fb, h=h / 1e6)
             f += asm(boundary_flux, fb, q=h / 1e6 * T_inf)
         for name, Q in loads.heat_W.items():
-            f += Q * self._mean_vector(name)
+            f += Q * self.mean_vector(name)
         for j, G in loads.ball_conductance_W_K.items():
-            d = self._mean_vector(f"raceway_inner_ring_{j}") - self._mean_vector(f"raceway_outer_ring_{j}")
+            d = self.mean_vector(f"raceway_inner_ring_{j}") - self.mean_vector(f"raceway_outer_ring_{j}")
             d = sp.csr_matrix(d[None, :])
             A = A + G * (d.T @ d)
         fixed = np.zeros(N, bool)

@@ -43,7 +43,7 @@ def test_heat_input_leaves_through_convection():
     cm = _model()
     h, T_inf, Q = 50.0, 20.0, 5.0
     T = cm.solve(ThermalLoads(convection={"raceway_inner_ring_A": (h, T_inf)}, heat_W={"shaft_bore": Q}))
-    mean_out = cm._mean_vector("raceway_inner_ring_A") @ T
+    mean_out = cm.mean_vector("raceway_inner_ring_A") @ T
     area_mm2 = 2 * np.pi * RO * 10.0
     assert h / 1e6 * area_mm2 * (mean_out - T_inf) == pytest.approx(Q, rel=1e-9)
 

@@ -51,6 +51,24 @@ class PhysicsInputs:
         new = replace(self, T_C=dict(self.T_C), dalpha_per_K2=dict(self.dalpha_per_K2))
         return replace(new, **changes) if changes else new
 
+    def take(self, rows: np.ndarray) -> "PhysicsInputs":
+        """The inputs of the given rows (an index array; rows may repeat), e.g. to evaluate the
+        same operating points under several model settings in one run."""
+        rows = np.asarray(rows, int)
+
+        def pick(v):
+            return None if v is None else np.asarray(v)[rows]
+
+        return replace(self, n_rows=rows.size, T_C={k: np.asarray(v)[rows] for k, v in self.T_C.items()},
+                       speed_rpm=pick(self.speed_rpm), preload_assembled_N=pick(self.preload_assembled_N),
+                       axial_load_N=pick(self.axial_load_N), time_s=pick(self.time_s),
+                       T_ambient_C=pick(self.T_ambient_C),
+                       interference_inner_um=pick(self.interference_inner_um),
+                       interference_outer_um=pick(self.interference_outer_um),
+                       friction_coefficient=pick(self.friction_coefficient),
+                       preload_loss_N=pick(self.preload_loss_N),
+                       dalpha_per_K2=dict(self.dalpha_per_K2))
+
 
 def baseline_inputs(columns: dict[str, np.ndarray], n_rows: int, T_ref_C: float,
                     preload_N: float, speed_rpm: float) -> PhysicsInputs:

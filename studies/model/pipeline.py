@@ -15,7 +15,7 @@ between them, seed 000's inner fit is 5 % above the plane-strain value) and
 from __future__ import annotations
 
 import hashlib
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -39,10 +39,6 @@ FE_PART_GROUP = {"shaft": "shaft", "nut": "shaft", "inner_ring_A": "inner_ring",
                  "outer_ring_A": "outer_ring", "outer_ring_B": "outer_ring", "housing": "housing",
                  "cover": "housing"}
 RINGS = ("inner_ring_A", "inner_ring_B", "outer_ring_A", "outer_ring_B")
-SPEC_OUTPUTS = ("torque_Nmm", "preload_N", "contact_angle_deg", "interference_inner_um",
-                "interference_outer_um", "fit_pressure_inner_MPa", "fit_pressure_outer_MPa",
-                "max_contact_pressure_MPa")
-
 
 class ModelError(ValueError):
     """The model cannot give a finite answer for these inputs (one line: row and output)."""
@@ -56,6 +52,12 @@ class FEState:
     dr_mm: np.ndarray                   # (2, n) inner minus outer groove-centre radial shift, A/B
     dz_mm: np.ndarray                   # (2, n) axial
     raceway_u_mm: np.ndarray            # (n, 8) u_r, u_z at the raceway points of RINGS
+
+    def with_shifts(self, dr_mm: np.ndarray | None = None, dz_mm: np.ndarray | None = None) -> "FEState":
+        """The same state with the radial and/or axial groove-centre shifts replaced (studies
+        split the preload change into its radial and axial causes this way)."""
+        return replace(self, dr_mm=self.dr_mm if dr_mm is None else dr_mm,
+                       dz_mm=self.dz_mm if dz_mm is None else dz_mm)
 
 
 class Pipeline:
@@ -223,16 +225,34 @@ class Pipeline:
                 "raceway_u_r_inner_A_lame_um": 1e3 * u_lame}
 
     # ------------------------------------------------------------------ whole chain
+    def reference_inputs(self, inputs: PhysicsInputs) -> PhysicsInputs:
+        """The assembly state of every row: T_ref everywhere, the row's as-built fits."""
+        T_ref = self.asm.T_ref_C
+        return inputs.copy(T_C={k: np.full(inputs.n_rows, T_ref) for k in inputs.T_C},
+                           dalpha_per_K2={})
+
     def run(self, inputs: PhysicsInputs, direct: bool = False,
-            compliance_mm_per_N: float | None = None, return_pair: bool = False):
-        """All outputs per row (spec columns first, then the rest); with `return_pair`, also the
-        raw pair-equilibrium dict of analytic/bearing.py (contact ellipses for heat models)."""
-        a = self.asm
+            compliance_mm_per_N=None, viscous_factor_f0: float | None = None,
+            return_pair: bool = False):
+        """All outputs per row (spec columns first, then the rest): the FE at the rows' states and
+        at their assembly states, then `run_from_fe` (which documents the keyword arguments)."""
         fe = self.fe(inputs, direct)
-        # reference (assembly) state of every row: T_ref everywhere, the row's as-built fits
-        ref_inputs = inputs.copy(T_C={k: np.full(inputs.n_rows, a.T_ref_C) for k in inputs.T_C},
-                                 dalpha_per_K2={})
-        fe_ref = self.fe(ref_inputs, direct)
+        fe_ref = self.fe(self.reference_inputs(inputs), direct)
+        return self.run_from_fe(inputs, fe, fe_ref, compliance_mm_per_N, viscous_factor_f0,
+                                return_pair)
+
+    def run_from_fe(self, inputs: PhysicsInputs, fe: FEState, fe_ref: FEState,
+                    compliance_mm_per_N=None, viscous_factor_f0: float | None = None,
+                    return_pair: bool = False):
+        """Bearing pair, torque and checks from given FE states (the rows' and their assembly
+        states). Studies use it to switch parts of the FE answer off (e.g. only the radial
+        groove-centre shifts) or to feed a non-uniform temperature field (`fe_field`).
+
+        compliance_mm_per_N: preload-path compliance per bearing (mm/N; scalar or one per row);
+        default the assembly's (`[preload] path_compliance`). viscous_factor_f0: Palmgren's f0 in
+        place of the assembly's (oil lubrication). With `return_pair`, also the raw
+        pair-equilibrium dict of analytic/bearing.py (contact ellipses for heat models)."""
+        a = self.asm
         preload = np.asarray(inputs.preload_assembled_N, float)
         if inputs.preload_loss_N is not None:
             preload = np.maximum(preload - np.asarray(inputs.preload_loss_N, float), 0.0)
@@ -245,7 +265,7 @@ class Pipeline:
                           compliance_mm_per_N=self.compliance_mm_per_N if compliance_mm_per_N is None
                           else compliance_mm_per_N)
         mu = resolve_friction_coefficient(inputs, a.lubrication.friction_coefficient)
-        torque = self.torque(pair, inputs, mu)
+        torque = self.torque(pair, inputs, mu, viscous_factor_f0)
         nf = len(self.model.fits)
         names = [f.name for f in self.model.fits]
         p_in = fe.fit_pressure_MPa[:, [k for k in range(nf) if names[k].startswith("fit_inner")]]
@@ -274,7 +294,8 @@ class Pipeline:
         out["friction_coefficient"] = mu
         return (out, pair) if return_pair else out
 
-    def torque(self, pair: dict, inputs: PhysicsInputs, mu: np.ndarray) -> dict[str, np.ndarray]:
+    def torque(self, pair: dict, inputs: PhysicsInputs, mu: np.ndarray,
+               viscous_factor_f0: float | None = None) -> dict[str, np.ndarray]:
         """Friction torque of the pair (analytic/torque.py). Oil: viscosity of the configured
         lubricant (ASTM D341 fit of its datasheet points, slope scaled by the
         viscosity_temperature effect) at the mean of the ring and ball temperatures."""
@@ -295,7 +316,8 @@ class Pipeline:
             P0 = np.maximum(pair["axial_force_A_N"], pair["axial_force_B_N"])
             f1 = palmgren_f1_angular_contact(P0, C0)
         out = pair_torque(self.geom, pair, model="oil", mu=mu, speed_rpm=speed,
-                          f0=lub.viscous_factor_f0, nu_mm2_s=nu, load_term=lub.load_term, f1=f1)
+                          f0=lub.viscous_factor_f0 if viscous_factor_f0 is None else viscous_factor_f0,
+                          nu_mm2_s=nu, load_term=lub.load_term, f1=f1)
         out["viscosity_mm2_s"] = nu
         return out
 

@@ -17,7 +17,6 @@ from pathlib import Path
 
 import numpy as np
 
-from analytic.bearing import solve_pair
 from studies.model.config import load_shipped
 from studies.model.effects import apply_effects
 from studies.model.inputs import baseline_inputs
@@ -34,15 +33,6 @@ def _inputs(asm, n, **cols):
     return baseline_inputs(cols, n, asm.T_ref_C, asm.preload.assembled_N, asm.lubrication.speed_rpm)
 
 
-def _pair(pl, inputs, fe, fe_ref):
-    a = pl.asm
-    return solve_pair(pl.geom, a.arrangement, dr_mm=fe.dr_mm, dz_mm=fe.dz_mm,
-                      T_inner_ring_C=inputs.T_C["inner_ring"], T_outer_ring_C=inputs.T_C["outer_ring"],
-                      T_ball_C=inputs.T_C["ball"], T_ref_C=a.T_ref_C, preload_kind=a.preload.kind,
-                      preload_assembled_N=inputs.preload_assembled_N,
-                      dr_ref_mm=fe_ref.dr_mm, dz_ref_mm=fe_ref.dz_mm)
-
-
 def temperature_sweep(pl, out: Path, say) -> dict:
     a = pl.asm
     T = np.arange(-60.0, 80.0 + 1e-9, 1.0)
@@ -57,16 +47,12 @@ def temperature_sweep(pl, out: Path, say) -> dict:
     T_close_free = float(T[k[0]] - io[k[0]] * (T[k[0] + 1] - T[k[0]]) / (io[k[0] + 1] - io[k[0]])) if k.size else float("nan")
     touch = np.flatnonzero(res["fit_pressure_outer_MPa"] > 0)
     T_touch_fe = float(T[touch[0]]) if touch.size else float("nan")
-    # preload decomposition: radial-only / axial-only groove-centre shifts
-    fe = pl.fe(inp)
-    ref_inp = inp.copy(T_C={k2: np.full(T.size, a.T_ref_C) for k2 in inp.T_C})
-    fe_ref = pl.fe(ref_inp)
-    full = _pair(pl, inp, fe, fe_ref)
-    radial = _pair(pl, inp, type(fe)(fe.fit_pressure_MPa, fe.interference_um, fe.dr_mm,
-                                     fe_ref.dz_mm, fe.raceway_u_mm), fe_ref)
-    axial = _pair(pl, inp, type(fe)(fe.fit_pressure_MPa, fe.interference_um, fe_ref.dr_mm,
-                                    fe.dz_mm, fe.raceway_u_mm), fe_ref)
-    P0 = a.preload.assembled_N
+    # preload decomposition: the same pipeline run with only the radial / only the axial
+    # groove-centre shifts of the FE (the other set held at its assembly value)
+    fe, fe_ref = pl.fe(inp), pl.fe(pl.reference_inputs(inp))
+    full = res
+    radial = pl.run_from_fe(inp, fe.with_shifts(dz_mm=fe_ref.dz_mm), fe_ref)
+    axial = pl.run_from_fe(inp, fe.with_shifts(dr_mm=fe_ref.dr_mm), fe_ref)
     decomp = {"T_C": T, "preload_N": full["preload_N"],
               "preload_radial_shifts_only_N": radial["preload_N"],
               "preload_axial_shifts_only_N": axial["preload_N"]}
@@ -87,7 +73,7 @@ def temperature_sweep(pl, out: Path, say) -> dict:
               {"FE-coupled model": full["preload_N"],
                "radial shifts only (fits, ring growth)": radial["preload_N"],
                "axial shifts only (stack lengths)": axial["preload_N"]},
-              "temperature (C)", "preload (N)", f"Preload vs temperature (assembled {P0:g} N at "
+              "temperature (C)", "preload (N)", f"Preload vs temperature (assembled {a.preload.assembled_N:g} N at "
               f"{a.T_ref_C:g} C)")
     line_plot(out / "raceway_shift_vs_temperature.png", T,
               {"dr A (inner - outer centre, radial)": res["groove_shift_dr_A_um"],

@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from analytic import thermal_network as tn
-from analytic.torque import ContactInput, friction_heat_W, palmgren_viscous_torque_Nmm, sliding_spin_torque_Nmm
+from analytic.heat import pair_heat_W
 from studies.model.config import load_shipped
 from studies.model.inputs import baseline_inputs
 from studies.model.pipeline import Pipeline
@@ -64,29 +64,11 @@ def _network(pl, pair):
 
 
 def _heat(pl, inputs):
-    """Contact heat (W) of the pair at the given part temperatures: sliding, spin, viscous, and
-    the inner / outer contact totals."""
+    """Pipeline outputs and the pair's heat (`analytic.heat.PairHeat`, W) at the given part
+    temperatures."""
     out, pair = pl.run(inputs, return_pair=True)
-    g = pl.geom
-    n = np.asarray(inputs.speed_rpm, float)
-    parts = {"sliding_inner": 0.0, "sliding_outer": 0.0, "spin_inner": 0.0, "spin_outer": 0.0}
-    for j in "AB":
-        cin = ContactInput(pair[f"ball_load_{j}_N"], pair[f"a_inner_{j}_mm"], pair[f"b_inner_{j}_mm"],
-                           pair[f"E_ell_inner_{j}"], pair[f"Rx_inner_{j}_mm"])
-        cout = ContactInput(pair[f"ball_load_{j}_N"], pair[f"a_outer_{j}_mm"], pair[f"b_outer_{j}_mm"],
-                            pair[f"E_ell_outer_{j}"], pair[f"Rx_outer_{j}_mm"])
-        t = sliding_spin_torque_Nmm(g.Z, g.Dw_mm, g.dm_mm, g.f_i, g.f_o,
-                                    np.radians(pair[f"contact_angle_{j}_deg"]), cin, cout, MU_TRACTION)
-        for k in parts:
-            parts[k] = parts[k] + t[f"{k}_Nmm"]
-    visc = 2 * palmgren_viscous_torque_Nmm(pl.asm.lubrication.viscous_factor_f0, out["viscosity_mm2_s"],
-                                           n, g.dm_mm)
-    heat = friction_heat_W({"sliding_Nmm": parts["sliding_inner"] + parts["sliding_outer"],
-                            "spin_Nmm": parts["spin_inner"] + parts["spin_outer"],
-                            "viscous_Nmm": visc}, n)
-    inner = friction_heat_W({"x_Nmm": parts["sliding_inner"] + parts["spin_inner"] + 0.5 * visc}, n)["x_W"]
-    outer = friction_heat_W({"x_Nmm": parts["sliding_outer"] + parts["spin_outer"] + 0.5 * visc}, n)["x_W"]
-    return heat, inner, outer, out, pair
+    heat = pair_heat_W(pl.geom, pair, inputs.speed_rpm, MU_TRACTION, out["torque_viscous_Nmm"])
+    return heat, out, pair
 
 
 def _inputs(pl, T_nodes, speed):
@@ -103,22 +85,22 @@ def heat_up(pl, speed, progress) -> dict:
     a = pl.asm
     T_amb = a.T_ref_C
     T = np.full(5, T_amb)
-    _, _, _, _, pair0 = _heat(pl, _inputs(pl, T, speed))
+    _, _, pair0 = _heat(pl, _inputs(pl, T, speed))
     net, cap, R = _network(pl, pair0)
     t = np.concatenate([np.linspace(0, 600, 21), np.linspace(660, DURATION_S, 90)])
     hist = {"time_s": [0.0], **{f"T_{n}_C": [T_amb] for n in tn.NODES},
             "heat_sliding_W": [], "heat_spin_W": [], "heat_viscous_W": [], "preload_N": [],
             "contact_angle_deg": []}
     for k in range(t.size - 1):
-        heat, qi, qo, out, _ = _heat(pl, _inputs(pl, T, speed))
-        P = tn.bearing_heat_W(qi, qo)[0]
+        heat, out, _ = _heat(pl, _inputs(pl, T, speed))
+        P = tn.bearing_heat_W(heat.inner_W, heat.outer_W)[0]
         res = tn.simulate_transient(net, t[k:k + 2], P, T_amb, T_initial_C=T)
         T = res.T_C[-1]
         hist["time_s"].append(t[k + 1])
         for i, n in enumerate(tn.NODES):
             hist[f"T_{n}_C"].append(T[i])
         for key in ("sliding", "spin", "viscous"):
-            hist[f"heat_{key}_W"].append(float(heat[f"{key}_W"][0]))
+            hist[f"heat_{key}_W"].append(float(getattr(heat, f"{key}_W")[0]))
         hist["preload_N"].append(float(out["preload_N"][0]))
         hist["contact_angle_deg"].append(float(out["contact_angle_deg"][0]))
     for key in ("heat_sliding_W", "heat_spin_W", "heat_viscous_W", "preload_N", "contact_angle_deg"):
@@ -127,8 +109,8 @@ def heat_up(pl, speed, progress) -> dict:
     # steady state of the coupled problem (fixed point on the heat)
     Ts = T.copy()
     for _ in range(30):
-        heat, qi, qo, out, _ = _heat(pl, _inputs(pl, Ts, speed))
-        Tn = tn.steady_state_C(net, tn.bearing_heat_W(qi, qo)[0], T_amb)
+        heat, out, _ = _heat(pl, _inputs(pl, Ts, speed))
+        Tn = tn.steady_state_C(net, tn.bearing_heat_W(heat.inner_W, heat.outer_W)[0], T_amb)
         if np.abs(Tn - Ts).max() < 1e-6:
             Ts = Tn
             break
@@ -169,9 +151,9 @@ def run(out: Path, progress=print) -> None:
                    float(amb["contact_angle_deg"][0]), float(o["contact_angle_deg"][0]),
                    float(o["fit_pressure_inner_MPa"][0]), float(o["fit_pressure_outer_MPa"][0])])
         heat = r["steady_heat"]
-        tot = sum(float(heat[f"{k}_W"][0]) for k in ("sliding", "spin", "viscous"))
         rows.append([f"{n:.0f}"] + [float(x) for x in r["steady"]]
-                    + [float(heat[f"{k}_W"][0]) for k in ("sliding", "spin", "viscous")] + [tot])
+                    + [float(heat.sliding_W[0]), float(heat.spin_W[0]), float(heat.viscous_W[0]),
+                       float(heat.total_W[0])])
     R = results[SPEEDS_RPM[0]]["R"]
     cap = results[SPEEDS_RPM[0]]["cap"]
     t63 = []
@@ -198,7 +180,7 @@ def run(out: Path, progress=print) -> None:
                    f"lumped network: inner - outer = {results[SPEEDS_RPM[0]]['steady'][3] - results[SPEEDS_RPM[0]]['steady'][1]:+.2f} K; "
                    f"FE conduction field: {cond_rows[1][1] - cond_rows[1][2]:+.1f} K (see below)"],
                   ["heat split", "sliding, viscous, spin", ", ".join(
-                      f"{k} {100 * float(results[SPEEDS_RPM[0]]['steady_heat'][k + '_W'][0]) / rows[0][-1]:.0f} %"
+                      f"{k} {100 * float(getattr(results[SPEEDS_RPM[0]]['steady_heat'], k + '_W')[0]) / rows[0][-1]:.0f} %"
                       for k in ("sliding", "viscous", "spin")) + f" at {SPEEDS_RPM[0]:.0f} rpm"]]), "",
         "## Steady state", "",
         md_table(["speed (rpm)", "housing (C)", "outer ring", "balls", "inner ring", "shaft",
@@ -258,13 +240,13 @@ def gradient_text(results, fb) -> str:
 
 def conduction_check(pl, res, speed, out: Path):
     """FE steady conduction with the network's steady heat; compare with uniform-per-part."""
-    from analytic.bearing import solve_pair
     from fem.fields import render_fields, write_vtu
     from fem.post import element_stresses
     from fem.thermal import ConductionModel, ThermalLoads
 
     a = pl.asm
-    heat, qi, qo, o_uni, _ = _heat(pl, _inputs(pl, res["steady"], speed))
+    heat, o_uni, _ = _heat(pl, _inputs(pl, res["steady"], speed))
+    qi, qo = heat.inner_W, heat.outer_W
     G_ball = 1.0 / (res["R"]["outer_ring_ball"] + res["R"]["ball_inner_ring"]) / 2   # per bearing
     cm = ConductionModel(pl.model)
     # the FE section is only the local stack: its housing and shaft-end surfaces get the network's
@@ -280,20 +262,19 @@ def conduction_check(pl, res, speed, out: Path):
     theta_q = cm.theta_field(T, a.T_ref_C)
     inp = _inputs(pl, res["steady"], speed)
     fe, u = pl.fe_field(theta_q, inp)
-    fe_ref = pl.fe(inp.copy(T_C={k: np.full(1, a.T_ref_C) for k in inp.T_C}))
-    mean = {k: float(cm._mean_vector(k) @ T) for k in ("raceway_inner_ring_A", "raceway_outer_ring_A", "housing_outer")}
-    T_ball = float(res["steady"][2])
-    pair = solve_pair(pl.geom, a.arrangement, dr_mm=fe.dr_mm, dz_mm=fe.dz_mm,
-                      T_inner_ring_C=mean["raceway_inner_ring_A"], T_outer_ring_C=mean["raceway_outer_ring_A"],
-                      T_ball_C=T_ball, T_ref_C=a.T_ref_C, preload_kind=a.preload.kind,
-                      preload_assembled_N=a.preload.assembled_N, dr_ref_mm=fe_ref.dr_mm,
-                      dz_ref_mm=fe_ref.dz_mm, compliance_mm_per_N=pl.compliance_mm_per_N)
+    fe_ref = pl.fe(pl.reference_inputs(inp))
+    mean = {k: cm.mean_temperature_C(T, k) for k in ("raceway_inner_ring_A", "raceway_outer_ring_A",
+                                                     "housing_outer")}
+    # the bearing sees the rings at their raceway temperatures, the balls at the network's
+    T_C = dict(inp.T_C, inner_ring=np.array([mean["raceway_inner_ring_A"]]),
+               outer_ring=np.array([mean["raceway_outer_ring_A"]]))
+    field_out = pl.run_from_fe(inp.copy(T_C=T_C), fe, fe_ref)
     Ts = res["steady"]
     rows = [["network, uniform per part", float(Ts[3]), float(Ts[1]), float(Ts[0]),
              float(o_uni["groove_shift_dr_A_um"][0]), float(o_uni["preload_N"][0])],
             ["FE conduction field (balls at the network's temperature)", mean["raceway_inner_ring_A"],
              mean["raceway_outer_ring_A"], mean["housing_outer"], 1e3 * float(fe.dr_mm[0, 0]),
-             float(pair["preload_N"][0])]]
+             float(field_out["preload_N"][0])]]
     theta_e = (theta_q * pl.model.basis.dx).sum(1) / pl.model.basis.dx.sum(1)
     st = element_stresses(pl.model, u, theta_e)
     Tv = cm.vertex_temperatures(T)
