@@ -30,6 +30,7 @@ def test_verify_command_contract_and_tolerance(tmp_path):
     assert (out / "verification.md").exists() and (out / "mesh_convergence.png").exists()
 
 
+@pytest.mark.slow          # the coarse-mesh runs in test_studies_equal_simulate.py cover the default suite
 @pytest.mark.parametrize("name,expect", [
     ("seed000", ["fits_vs_temperature.png", "preload_vs_temperature.png", "torque_vs_preload.png",
                  "cycles.png", "field_-60C_von_mises_MPa.png", "field_+80C_displacement_um.png",
