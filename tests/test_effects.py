@@ -96,8 +96,10 @@ def test_on_never_mutates_input(name):
     out = EFFECTS[name].apply(base, ON[name], T_REF)
     for p in PARTS:
         np.testing.assert_array_equal(base.T_C[p], snapshot[p])
-    assert base.interference_inner_um is None and base.friction_coefficient is None
-    assert base.preload_loss_N is None and base.dalpha_per_K2 == {}
+    for f in ("interference_inner_um", "interference_outer_um", "friction_coefficient",
+              "preload_loss_N"):
+        assert not np.any(getattr(base, f)), f                 # the baseline's zero changes
+    assert base.dalpha_per_K2 == {"shaft": 0.0, "housing": 0.0}
     assert base.viscosity_slope_factor == 1.0
     assert out is not base
 

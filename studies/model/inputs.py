@@ -9,10 +9,11 @@ All arrays have one entry per row. Units in names: C, um, N, rpm, s, 1/K^2.
 
 Conventions for the fields effects write (see studies/effects/__init__.py):
 - `interference_inner_um` / `interference_outer_um`: offset from the config's nominal diametral
-  fit at T_ref (um); None = no offset; offsets add up.
-- `friction_coefficient`: change from the config's coefficient per row; None = no change; the
+  fit at T_ref (um); zero in the baseline; offsets add up.
+- `friction_coefficient`: change from the config's coefficient per row; zero in the baseline; the
   resolved coefficient is clipped at 0.
-- `dalpha_per_K2["shaft"|"housing"]`: CTE slope of those parts (and nut / cover).
+- `dalpha_per_K2["shaft"|"housing"]`: CTE slope of those parts (and nut / cover); zero in the
+  baseline.
 - `viscosity_slope_factor`: Walther slope factor about 40 C (1 = nominal).
 - `preload_loss_N`: permanent loss subtracted from the assembled preload per row.
 """
@@ -24,6 +25,8 @@ import numpy as np
 
 PARTS = ("shaft", "inner_ring", "ball", "outer_ring", "housing", "spacer")
 PART_COLUMNS = {f"T_{p}_C": p for p in PARTS}
+#: CTE slope (1/K^2) of the shaft (and nut) and housing (and cover) in the baseline
+NO_CTE_SLOPE = {"shaft": 0.0, "housing": 0.0}
 CONDITION_COLUMNS = ("time_s", "T_ambient_C", *PART_COLUMNS, "speed_rpm", "preload_assembled_N",
                      "axial_load_N")
 
@@ -31,20 +34,22 @@ CONDITION_COLUMNS = ("time_s", "T_ambient_C", *PART_COLUMNS, "speed_rpm", "prelo
 @dataclass
 class PhysicsInputs:
     """Per-row physical inputs. `T_C[part]` for part in PARTS; `spacer` is both spacers, the nut
-    follows the shaft and the cover follows the housing."""
+    follows the shaft and the cover follows the housing. The fields effects write are changes from
+    the configuration, zero in the baseline, so that an effect at its off value adds exactly zero
+    (see the module docstring)."""
     n_rows: int
     T_C: dict[str, np.ndarray]
     speed_rpm: np.ndarray
     preload_assembled_N: np.ndarray
     axial_load_N: np.ndarray
+    interference_inner_um: np.ndarray                  # offset from the config's fit (um)
+    interference_outer_um: np.ndarray
+    friction_coefficient: np.ndarray                   # change from the config's coefficient
+    preload_loss_N: np.ndarray                         # permanent preload loss per row (N)
     time_s: np.ndarray | None = None
     T_ambient_C: np.ndarray | None = None
-    interference_inner_um: np.ndarray | None = None   # None -> config value
-    interference_outer_um: np.ndarray | None = None
-    dalpha_per_K2: dict[str, float] = field(default_factory=dict)  # "shaft"/"housing" CTE slope
+    dalpha_per_K2: dict[str, float] = field(default_factory=lambda: dict(NO_CTE_SLOPE))
     viscosity_slope_factor: float = 1.0
-    friction_coefficient: np.ndarray | None = None     # None -> config value
-    preload_loss_N: np.ndarray | None = None            # permanent preload loss per row
 
     def copy(self, **changes) -> "PhysicsInputs":
         """Shallow copy with fields replaced (arrays are never modified in place)."""
@@ -84,5 +89,7 @@ def baseline_inputs(columns: dict[str, np.ndarray], n_rows: int, T_ref_C: float,
 
     return PhysicsInputs(n_rows=n_rows, T_C=T, speed_rpm=col("speed_rpm", speed_rpm),
                          preload_assembled_N=col("preload_assembled_N", preload_N),
-                         axial_load_N=col("axial_load_N", 0.0), time_s=columns.get("time_s"),
-                         T_ambient_C=amb)
+                         axial_load_N=col("axial_load_N", 0.0),
+                         interference_inner_um=np.zeros(n_rows), interference_outer_um=np.zeros(n_rows),
+                         friction_coefficient=np.zeros(n_rows), preload_loss_N=np.zeros(n_rows),
+                         time_s=columns.get("time_s"), T_ambient_C=amb)

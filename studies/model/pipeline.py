@@ -31,7 +31,7 @@ from fem.solver import FitSolver, Superposition
 from studies.model.stack import section_from_assembly
 from studies.model.config import Assembly
 from studies.model.effects import resolve_friction_coefficient, resolve_interference_um
-from studies.model.inputs import PhysicsInputs
+from studies.model.inputs import NO_CTE_SLOPE, PhysicsInputs
 
 #: which temperature of `PhysicsInputs.T_C` each FE part takes
 FE_PART_GROUP = {"shaft": "shaft", "nut": "shaft", "inner_ring_A": "inner_ring",
@@ -121,7 +121,7 @@ class Pipeline:
         for part in self.model.part_names:
             group = FE_PART_GROUP[part]
             mat = self.model.materials[part]
-            if group in inputs.dalpha_per_K2:
+            if group in inputs.dalpha_per_K2:          # shaft (and nut), housing (and cover)
                 mat = mat.with_dalpha(inputs.dalpha_per_K2[group])
             cols.append(mat.thermal_strain(np.asarray(inputs.T_C[group], float), self.asm.T_ref_C))
         return np.column_stack(cols)
@@ -229,7 +229,7 @@ class Pipeline:
         """The assembly state of every row: T_ref everywhere, the row's as-built fits."""
         T_ref = self.asm.T_ref_C
         return inputs.copy(T_C={k: np.full(inputs.n_rows, T_ref) for k in inputs.T_C},
-                           dalpha_per_K2={})
+                           dalpha_per_K2=dict(NO_CTE_SLOPE))
 
     def run(self, inputs: PhysicsInputs, direct: bool = False,
             compliance_mm_per_N=None, viscous_factor_f0: float | None = None,
@@ -253,9 +253,8 @@ class Pipeline:
         place of the assembly's (oil lubrication). With `return_pair`, also the raw
         pair-equilibrium dict of analytic/bearing.py (contact ellipses for heat models)."""
         a = self.asm
-        preload = np.asarray(inputs.preload_assembled_N, float)
-        if inputs.preload_loss_N is not None:
-            preload = np.maximum(preload - np.asarray(inputs.preload_loss_N, float), 0.0)
+        preload = np.maximum(np.asarray(inputs.preload_assembled_N, float)
+                             - np.asarray(inputs.preload_loss_N, float), 0.0)
         pair = solve_pair(self.geom, a.arrangement, dr_mm=fe.dr_mm, dz_mm=fe.dz_mm,
                           T_inner_ring_C=inputs.T_C["inner_ring"],
                           T_outer_ring_C=inputs.T_C["outer_ring"], T_ball_C=inputs.T_C["ball"],

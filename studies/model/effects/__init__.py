@@ -121,11 +121,10 @@ class Effect:
     # ------------------------------------------------------------------ physics
     def apply(self, inputs: PhysicsInputs, params: Mapping[str, float] | None,
               T_ref_C: float) -> PhysicsInputs:
-        """Return new inputs with the effect applied (validated parameters; off -> a copy of the
-        baseline, equal field by field)."""
+        """Return new inputs with the effect applied (validated parameters). Every effect runs its
+        own code at every parameter value; at `off` that code returns the inputs unchanged field
+        by field (a test holds each one to it)."""
         p = self.validate(params)
-        if self.is_off(p):
-            return inputs.copy()
         self.check_requires(inputs)
         return self._apply(inputs, p, float(T_ref_C))
 
@@ -172,19 +171,15 @@ def resolve_interference_um(inputs: PhysicsInputs, inner_config_um: float,
                             outer_config_um: float) -> tuple[np.ndarray, np.ndarray]:
     """As-built diametral fits (um, at the reference temperature) per row: config + offsets."""
     n = inputs.n_rows
-    di = inputs.interference_inner_um
-    do = inputs.interference_outer_um
-    inner = np.full(n, float(inner_config_um)) + (0.0 if di is None else np.asarray(di, float))
-    outer = np.full(n, float(outer_config_um)) + (0.0 if do is None else np.asarray(do, float))
+    inner = np.full(n, float(inner_config_um)) + np.asarray(inputs.interference_inner_um, float)
+    outer = np.full(n, float(outer_config_um)) + np.asarray(inputs.interference_outer_um, float)
     return inner, outer
 
 
 def resolve_friction_coefficient(inputs: PhysicsInputs, mu_config: float) -> np.ndarray:
     """Friction coefficient per row: config value + change written by effects, clipped at 0."""
     mu = np.full(inputs.n_rows, float(mu_config))
-    if inputs.friction_coefficient is not None:
-        mu = np.maximum(mu + np.asarray(inputs.friction_coefficient, float), 0.0)
-    return mu
+    return np.maximum(mu + np.asarray(inputs.friction_coefficient, float), 0.0)
 
 
 # ---------------------------------------------------------------------- registry

@@ -35,5 +35,5 @@ class CteNonlinearity(Effect):
     def _apply(self, inputs, p, T_ref_C):
         d = dict(inputs.dalpha_per_K2)
         for part in PARTS:
-            d[part] = float(d.get(part, 0.0)) + p["dalpha_per_K"]
+            d[part] = d[part] + p["dalpha_per_K"]
         return inputs.copy(dalpha_per_K2=d)

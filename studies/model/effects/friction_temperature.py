@@ -40,6 +40,4 @@ class FrictionTemperature(Effect):
         T_rings = 0.5 * (np.asarray(inputs.T_C["inner_ring"], float)
                          + np.asarray(inputs.T_C["outer_ring"], float))
         d = p["dmu_per_K"] * (T_rings - T_ref_C)
-        if inputs.friction_coefficient is not None:
-            d = np.asarray(inputs.friction_coefficient, float) + d
-        return inputs.copy(friction_coefficient=d)
+        return inputs.copy(friction_coefficient=np.asarray(inputs.friction_coefficient, float) + d)

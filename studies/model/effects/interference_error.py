@@ -42,15 +42,6 @@ class InterferenceError(Effect):
                 if (a, b) != (0.0, 0.0)]
 
     def _apply(self, inputs, p, T_ref_C):
-        n = inputs.n_rows
-
-        def add(old, d):
-            base = np.zeros(n) if old is None else np.asarray(old, float)
-            return base + d
-
-        changes = {}
-        if p["inner_um"] != 0.0:
-            changes["interference_inner_um"] = add(inputs.interference_inner_um, p["inner_um"])
-        if p["outer_um"] != 0.0:
-            changes["interference_outer_um"] = add(inputs.interference_outer_um, p["outer_um"])
-        return inputs.copy(**changes)
+        return inputs.copy(
+            interference_inner_um=np.asarray(inputs.interference_inner_um, float) + p["inner_um"],
+            interference_outer_um=np.asarray(inputs.interference_outer_um, float) + p["outer_um"])

@@ -59,9 +59,7 @@ class PreloadSettling(Effect):
         T = np.asarray(inputs.T_ambient_C, float)
         settled = excursion(T, T_ref_C) > p["threshold_K"]
         loss = np.where(settled, p["loss_N"], 0.0)
-        if inputs.preload_loss_N is not None:
-            loss = np.asarray(inputs.preload_loss_N, float) + loss
-        return inputs.copy(preload_loss_N=loss)
+        return inputs.copy(preload_loss_N=np.asarray(inputs.preload_loss_N, float) + loss)
 
     def steps(self, conditions):
         return {"loss_N": self.scale["loss_N"]}
