@@ -41,11 +41,6 @@ class CatalogueEntry:
     sources: dict[str, str] = field(default_factory=dict)
     note: str = ""
 
-    def fill_factor(self) -> float:
-        """Z Dw / (pi dm): fraction of the pitch circle occupied by balls (-)."""
-        from math import pi
-        return self.ball_count * self.ball_diameter_mm / (pi * self.pitch_diameter_mm)
-
 
 CATALOGUE: dict[str, CatalogueEntry] = {
     "NSK 71807C": CatalogueEntry(

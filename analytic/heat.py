@@ -29,11 +29,11 @@ class PairHeat:
         return self.sliding_W + self.spin_W + self.viscous_W
 
 
-def pair_heat_W(g, pair: dict, speed_rpm, mu_traction: float, viscous_torque_Nmm) -> PairHeat:
+def pair_heat_W(g, pair, speed_rpm, mu_traction: float, viscous_torque_Nmm) -> PairHeat:
     """Heat generated in the pair at speed_rpm (rpm), W.
 
-    g: `bearing.BearingGeometry`; pair: `bearing.solve_pair` outputs (ball loads N, contact angles
-    deg, Hertz ellipses mm); mu_traction: traction coefficient for sliding and spin (-);
+    g: `bearing.BearingGeometry`; pair: `bearing.PairState` (ball loads N, contact angles deg,
+    Hertz ellipses mm); mu_traction: traction coefficient for sliding and spin (-);
     viscous_torque_Nmm: viscous torque of the pair (both bearings), N*mm.
     Sliding and spin torques per contact: Harris & Kotzalas Vol. 2 ch. 6 (Heathcote slip and spin
     moment over the Hertz ellipse), via `torque.sliding_spin_torque_Nmm`; power P = M |omega|.
@@ -41,11 +41,10 @@ def pair_heat_W(g, pair: dict, speed_rpm, mu_traction: float, viscous_torque_Nmm
     """
     n = np.asarray(speed_rpm, float)
     part = {"sliding_inner": 0.0, "sliding_outer": 0.0, "spin_inner": 0.0, "spin_outer": 0.0}
-    for j in "AB":
+    for j in (0, 1):
         cin, cout = contact_inputs(pair, j)
         t = sliding_spin_torque_Nmm(g.Z, g.Dw_mm, g.dm_mm, g.f_i, g.f_o,
-                                    np.radians(pair[f"contact_angle_{j}_deg"]), cin, cout,
-                                    mu_traction)
+                                    np.radians(pair.contact_angle_deg[j]), cin, cout, mu_traction)
         for k in part:
             part[k] = part[k] + t[f"{k}_Nmm"]
     visc = np.asarray(viscous_torque_Nmm, float)

@@ -142,17 +142,19 @@ def _newton(rho: np.ndarray, u: np.ndarray, tol: float, max_iter: int, quadratic
         size = np.abs(du) / np.maximum(u, 1e-300)
         if np.all(size <= tol):
             # converged: the values at u are exact to the size of this last step
-            return np.exp(u), K, E, u, A, B, dg, m1
+            return EllipticityState(np.exp(u), K, E, u, A, B, dg, m1, np.ones(u.shape, bool))
         if quadratic_exit and np.all(size <= 1e-7):
             t = 2.0 * m1 * du                   # dm along the step
-            return (np.exp(new), K + 0.5 * B * t, E - 0.5 * A * t, new, A + dA * t, B + dB * t,
-                    dg, np.exp(-2.0 * new))
+            return EllipticityState(np.exp(new), K + 0.5 * B * t, E - 0.5 * A * t, new, A + dA * t,
+                                    B + dB * t, dg, np.exp(-2.0 * new), np.ones(u.shape, bool))
         u = new
+    # out of iterations: the last iterate, flagged where its step was not yet small
     m1 = np.exp(-2.0 * u)
     m = -np.expm1(-2.0 * u)
     A, B, dA, dB, K, E = _AB(m, m1)
     dg = (dB / B - dA / A) * 2.0 * m1
-    return np.exp(u), K, E, u, A, B, dg, m1
+    return EllipticityState(np.exp(u), K, E, u, A, B, dg, m1,
+                            (size <= (1e-7 if quadratic_exit else tol)) & np.isfinite(u))
 
 
 # Starting values: u(ln rho) tabulated once (cubic Hermite with exact slopes du/dln(rho) = 1/g'),
@@ -167,8 +169,8 @@ def _start_table() -> np.ndarray:
     global _table
     if _table is None:
         t = np.arange(0.0, _TABLE_T_MAX + 2 * _TABLE_H, _TABLE_H)
-        _, _, _, u, _, _, dg, _ = _newton(np.exp(t), (2.0 / pi) * t, 1e-15, 80, False)
-        d = _TABLE_H / dg
+        st = _newton(np.exp(t), (2.0 / pi) * t, 1e-15, 80, False)
+        u, d = st.u, _TABLE_H / st.dg_du
         u0, u1, d0, d1 = u[:-1], u[1:], d[:-1], d[1:]
         _table = np.column_stack([u0, d0, 3 * (u1 - u0) - 2 * d0 - d1, 2 * (u0 - u1) + d0 + d1])
     return _table
@@ -185,10 +187,29 @@ def _start(ln_rho: np.ndarray) -> np.ndarray:
                                                               (2.0 / pi) * ln_rho)
 
 
-def _solve(rho: np.ndarray, u0=None, tol: float = 1e-15, max_iter: int = 60):
-    """Ellipticity for flat arrays: returns kappa, K, E, u, A, B, dg/du, 1-m (see `_newton`).
-    Fast path: from the tabulated start one Newton step, values moved along it to first order;
-    anything else goes to the safeguarded loop."""
+@dataclass(frozen=True)
+class EllipticityState:
+    """Solution of the ellipticity equation per contact (flat arrays, dimensionless), with the
+    pieces the bearing model differentiates: kappa = a/b, K_ell and E_ell the complete elliptic
+    integrals at m = 1 - 1/kappa^2, u = ln kappa, A = (K - E)/m, B = (E - (1-m) K)/(m (1-m)),
+    dg_du the derivative of g(u) = ln(B/A) - ln(rho), m1 = 1 - m, and `converged` per entry."""
+    kappa: np.ndarray
+    K_ell: np.ndarray
+    E_ell: np.ndarray
+    u: np.ndarray
+    A: np.ndarray
+    B: np.ndarray
+    dg_du: np.ndarray
+    m1: np.ndarray
+    converged: np.ndarray
+
+
+def ellipticity_state(rho: np.ndarray, u0=None, tol: float = 1e-15,
+                      max_iter: int = 60) -> EllipticityState:
+    """Ellipticity for a flat array of radius ratios rho = Ry/Rx >= 1 (-): Ry/Rx = B/A, i.e.
+    (kappa^2 E - K)/(K - E) (Harris Vol. 1 ch. 6; Hamrock & Brewe 1983). Fast path: from the
+    tabulated start one Newton step, the values moved along it to first order; anything else goes
+    to the safeguarded loop (`_newton`), whose convergence is reported per entry."""
     ln_rho = np.log(rho)
     u = _start(ln_rho) if u0 is None else np.broadcast_to(np.asarray(u0, float), rho.shape).ravel()
     m1 = np.exp(-2.0 * u)
@@ -201,8 +222,9 @@ def _solve(rho: np.ndarray, u0=None, tol: float = 1e-15, max_iter: int = 60):
         du = -g / dg
         if np.all((dg > 0) & (np.abs(du) <= 1e-7 * u)):
             t = 2.0 * m1 * du
-            return (np.exp(u) * (1.0 + du), K + 0.5 * B * t, E - 0.5 * A * t, u + du,
-                    A + dA * t, B + dB * t, dg, m1 * (1.0 - 2.0 * du))
+            return EllipticityState(np.exp(u) * (1.0 + du), K + 0.5 * B * t, E - 0.5 * A * t,
+                                    u + du, A + dA * t, B + dB * t, dg, m1 * (1.0 - 2.0 * du),
+                                    np.ones(u.shape, bool))
     return _newton(rho, u, tol, max_iter, True)
 
 
@@ -222,8 +244,8 @@ def solve_ellipticity(radius_ratio: ArrayLike, u0: ArrayLike | None = None,
     rho = np.asarray(radius_ratio, dtype=float)
     rho = np.where(rho < 1.0, 1.0 / rho, rho)
     shape = rho.shape
-    kappa, K, E, u, *_ = _solve(np.atleast_1d(rho).ravel(), u0, tol, max_iter)
-    return kappa.reshape(shape), K.reshape(shape), E.reshape(shape), u.reshape(shape)
+    st = ellipticity_state(np.atleast_1d(rho).ravel(), u0, tol, max_iter)
+    return st.kappa.reshape(shape), st.K_ell.reshape(shape), st.E_ell.reshape(shape), st.u.reshape(shape)
 
 
 def ellipticity(radius_ratio: ArrayLike) -> np.ndarray:

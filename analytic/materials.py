@@ -54,10 +54,6 @@ class Material:
     dalpha_per_K2: float = 0.0
     source: str = ""
 
-    def alpha_at(self, T_C):
-        """Instantaneous CTE alpha(T) = alpha_20 + dalpha (T - 20 C), 1/K."""
-        return self.alpha_per_K + self.dalpha_per_K2 * (T_C - T_CTE_REF_C)
-
     def thermal_strain(self, T_C, T_ref_C):
         """theta = integral_{T_ref}^{T} alpha(T') dT' (dimensionless), exact for the linear law."""
         a, b = T_C - T_CTE_REF_C, T_ref_C - T_CTE_REF_C

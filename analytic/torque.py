@@ -266,19 +266,17 @@ def sliding_spin_torque_Nmm(Z: int, Dw_mm, dm_mm, f_i, f_o, alpha_rad, inner: Co
 
 
 # ---------------------------------------------------------------------------------------------
-def contact_inputs(pair: dict, j: str) -> tuple[ContactInput, ContactInput]:
-    """Inner and outer `ContactInput` of bearing j ("A" or "B") from `bearing.solve_pair`
-    outputs (ball load N, ellipse semi-axes mm, E(e), Rx mm)."""
-    cin = ContactInput(pair[f"ball_load_{j}_N"], pair[f"a_inner_{j}_mm"], pair[f"b_inner_{j}_mm"],
-                       pair[f"E_ell_inner_{j}"], pair[f"Rx_inner_{j}_mm"])
-    cout = ContactInput(pair[f"ball_load_{j}_N"], pair[f"a_outer_{j}_mm"], pair[f"b_outer_{j}_mm"],
-                        pair[f"E_ell_outer_{j}"], pair[f"Rx_outer_{j}_mm"])
-    return cin, cout
+def contact_inputs(pair, j: int) -> tuple[ContactInput, ContactInput]:
+    """Inner and outer `ContactInput` of bearing j (0 = A, 1 = B) of a `bearing.PairState`
+    (ball load N, ellipse semi-axes mm, E(e), Rx mm)."""
+    Q = pair.ball_load_N[j]
+    return tuple(ContactInput(Q, c.a_mm[j], c.b_mm[j], c.E_ell[j], c.Rx_mm[j])
+                 for c in (pair.inner, pair.outer))
 
 
-def pair_torque(g, pair: dict, *, model: str = "solid_film", mu=0.02, hysteresis_loss=0.0,
+def pair_torque(g, pair, *, model: str = "solid_film", mu=0.02, hysteresis_loss=0.0,
                 speed_rpm=None, f0=0.0, nu_mm2_s=0.0, f1=None, load_term: str = "coulomb"):
-    """Friction torque of a bearing pair from `bearing.solve_pair` outputs, vectorised, N*mm.
+    """Friction torque of a bearing pair from its `bearing.PairState`, vectorised, N*mm.
 
     model "solid_film": `solid_film_torque_Nmm` per bearing (mu: film friction coefficient,
       hysteresis_loss: alpha_h); returns torque_Nmm and torque_{hysteresis,differential,spin}_Nmm
@@ -298,8 +296,8 @@ def pair_torque(g, pair: dict, *, model: str = "solid_film", mu=0.02, hysteresis
         acc = {"hysteresis": 0.0, "differential": 0.0, "spin": 0.0}
         side = {"inner": 0.0, "outer": 0.0}
         for j in "AB":
-            cin, cout = contact_inputs(pair, j)
-            alpha = np.radians(pair[f"contact_angle_{j}_deg"])
+            cin, cout = contact_inputs(pair, "AB".index(j))
+            alpha = np.radians(pair.contact_angle_deg["AB".index(j)])
             comp = solid_film_torque_Nmm(g.Z, g.Dw_mm, g.dm_mm, g.f_i, g.f_o, alpha, cin, cout,
                                          mu, hysteresis_loss, c_ring, c_ball)
             for key in acc:
@@ -316,7 +314,7 @@ def pair_torque(g, pair: dict, *, model: str = "solid_film", mu=0.02, hysteresis
         visc = palmgren_viscous_torque_Nmm(f0, nu_mm2_s, 0.0 if speed_rpm is None else speed_rpm,
                                            g.dm_mm)
         for j in "AB":
-            Fa = pair[f"axial_force_{j}_N"]
+            Fa = pair.axial_force_N["AB".index(j)]
             if load_term == "coulomb":
                 m1 = coulomb_load_torque_Nmm(mu, Fa, 0.5 * g.dm_mm)
             elif load_term == "palmgren":

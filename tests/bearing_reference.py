@@ -16,3 +16,25 @@ def kn_direct(g, alpha, Dw=None, dm=None, f_i=None, f_o=None):
     Ki = hertz.contact_stiffness_N_per_mm15(*hertz.ball_raceway_radii_mm(Dw, dm, deg, f_i, "inner"), Es)
     Ko = hertz.contact_stiffness_N_per_mm15(*hertz.ball_raceway_radii_mm(Dw, dm, deg, f_o, "outer"), Es)
     return hertz.series_stiffness_N_per_mm15(Ki, Ko)
+
+
+def flat(state) -> dict:
+    """Every array of a `bearing.PairState` under one name, for element-wise comparisons between
+    solver paths: "preload_N", "axial_force_N[A]", "inner.p_max_MPa[B]", "radial.rho_mm",
+    "radial.ball_loads_N[A]" (Z, N), ... plus "loaded_contact_angle_deg"."""
+    out = {}
+
+    def walk(obj, prefix):
+        for name in obj.__dataclass_fields__:
+            v = getattr(obj, name)
+            if v is None:
+                continue
+            if hasattr(v, "__dataclass_fields__"):
+                walk(v, f"{prefix}{name}.")
+            elif np.ndim(v) >= 2 and np.shape(v)[0] == 2:
+                out[f"{prefix}{name}[A]"], out[f"{prefix}{name}[B]"] = v[0], v[1]
+            else:
+                out[f"{prefix}{name}"] = np.asarray(v)
+    walk(state, "")
+    out["loaded_contact_angle_deg"] = state.loaded_contact_angle_deg
+    return out

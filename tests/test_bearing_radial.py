@@ -15,7 +15,13 @@ from scipy.special import gamma
 
 from analytic.bearing import (BearingGeometry, SIGNS, ball_azimuths_rad, solve_pair,
                               thermal_geometry)
-from bearing_reference import kn_direct
+from bearing_reference import flat, kn_direct
+
+
+def solve(*args, **kwargs):
+    """`bearing.solve_pair`, every array of its state under one name (`bearing_reference.flat`)."""
+    return flat(solve_pair(*args, **kwargs))
+
 
 G = BearingGeometry.from_catalogue("71807C")          # Z = 24, alpha0 = 15 deg
 
@@ -67,40 +73,40 @@ def test_zero_radial_load_is_the_axial_solver(case):
     carries the axial solver's ball load; a mixed call leaves its zero-radial points identical."""
     case = dict(case)
     arr = case.pop("arrangement")
-    ref = solve_pair(G, arr, **case)
+    ref = solve(G, arr, **case)
     n = ref["x_mm"].size
     for fr in (0.0, np.zeros(n)):
-        out = solve_pair(G, arr, radial_load_N=fr, **case)
+        out = solve(G, arr, radial_load_N=fr, **case)
         assert list(out) == list(ref)
         for k in ref:
             assert np.array_equal(out[k], ref[k], equal_nan=True), k
-    ext = solve_pair(G, arr, return_ball_loads=True, **case)
+    ext = solve(G, arr, return_ball_loads=True, **case)
     for k in ref:
         assert np.array_equal(ext[k], ref[k], equal_nan=True), k
-    assert np.all(ext["rho_mm"] == 0.0)
+    assert np.all(ext["radial.rho_mm"] == 0.0)
     for j in "AB":
-        assert np.allclose(ext[f"ball_loads_{j}_N"], ref[f"ball_load_{j}_N"], rtol=1e-12, atol=0)
-        assert np.array_equal(ext[f"max_ball_load_{j}_N"], np.max(ext[f"ball_loads_{j}_N"], axis=0))
-        assert np.array_equal(ext[f"loaded_zone_{j}"], (ref[f"ball_load_{j}_N"] > 0).astype(float))
+        assert np.allclose(ext[f"radial.ball_loads_N[{j}]"], ref[f"ball_load_N[{j}]"], rtol=1e-12, atol=0)
+        assert np.array_equal(ext[f"radial.max_ball_load_N[{j}]"], np.max(ext[f"radial.ball_loads_N[{j}]"], axis=0))
+        assert np.array_equal(ext[f"radial.loaded_zone[{j}]"], (ref[f"ball_load_N[{j}]"] > 0).astype(float))
     fr = np.zeros(n)
     fr[0] = 300.0
-    mixed = solve_pair(G, arr, radial_load_N=fr, **case)
+    mixed = solve(G, arr, radial_load_N=fr, **case)
     for k in ref:
         assert np.array_equal(mixed[k][1:], ref[k][1:], equal_nan=True), k
-    assert mixed["rho_mm"][0] > 0 and np.all(mixed["rho_mm"][1:] == 0)
+    assert mixed["radial.rho_mm"][0] > 0 and np.all(mixed["radial.rho_mm"][1:] == 0)
 
 
 def test_tiny_radial_load_is_continuous_with_the_axial_solver():
     """A radial load of 1e-6 N moves the solution by O(1e-6 N / k_r): the outputs agree with the
     axial-only solver to 1e-8 relative (the path change itself is invisible)."""
     kw = dict(preload_assembled_N=100.0, axial_load_N=[-60.0, 0.0, 80.0], dr_mm=3e-4, T_ball_C=35.0)
-    ref = solve_pair(G, "DB", **kw)
-    out = solve_pair(G, "DB", radial_load_N=1e-6, **kw)
-    for k in ("preload_N", "axial_force_A_N", "axial_force_B_N", "contact_angle_A_deg",
-              "ball_load_A_N", "ball_load_B_N", "p_max_inner_A_MPa", "x_mm",
-              "axial_stiffness_N_per_um", "axial_stiffness_A_N_per_um"):
+    ref = solve(G, "DB", **kw)
+    out = solve(G, "DB", radial_load_N=1e-6, **kw)
+    for k in ("preload_N", "axial_force_N[A]", "axial_force_N[B]", "contact_angle_deg[A]",
+              "ball_load_N[A]", "ball_load_N[B]", "inner.p_max_MPa[A]", "x_mm",
+              "pair_axial_stiffness_N_per_um", "axial_stiffness_N_per_um[A]"):
         assert np.allclose(out[k], ref[k], rtol=1e-8, atol=1e-12), k
-    assert np.all(out["loaded_zone_A"] == 1.0)
+    assert np.all(out["radial.loaded_zone[A]"] == 1.0)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -137,22 +143,22 @@ def test_zero_clearance_radial_bearing_stribeck():
     with zero load) are loaded."""
     g = BearingGeometry(**{**G.__dict__, "alpha0_deg": 0.0})
     Fr = np.array([20.0, 500.0, 4000.0])
-    out = solve_pair(g, "DB", preload_assembled_N=0.0, radial_load_N=Fr, return_ball_loads=True)
+    out = solve(g, "DB", preload_assembled_N=0.0, radial_load_N=Fr, return_ball_loads=True)
     psi = ball_azimuths_rad(g.Z)
     cpos = np.clip(np.cos(psi), 0.0, None)
     S = np.sum(cpos ** 2.5)
     for j in "AB":
-        Q = out[f"ball_loads_{j}_N"]
-        assert np.allclose(out[f"radial_force_{j}_N"], Fr / 2, rtol=1e-12)
-        assert np.allclose(out[f"max_ball_load_{j}_N"], Fr / 2 / S, rtol=1e-9)
-        assert np.allclose(Q, out[f"max_ball_load_{j}_N"] * cpos[:, None] ** 1.5, rtol=0,
+        Q = out[f"radial.ball_loads_N[{j}]"]
+        assert np.allclose(out[f"radial.radial_force_N[{j}]"], Fr / 2, rtol=1e-12)
+        assert np.allclose(out[f"radial.max_ball_load_N[{j}]"], Fr / 2 / S, rtol=1e-9)
+        assert np.allclose(Q, out[f"radial.max_ball_load_N[{j}]"] * cpos[:, None] ** 1.5, rtol=0,
                            atol=1e-9 * Fr.max())
         # A_T = r_i + r_o - Dw and A0 = (f_i + f_o - 1) Dw differ by rounding: the balls touch at
         # X = sqrt(A_T^2 - A0^2) ~ 1e-8 mm, i.e. a contact angle of a few 1e-6 deg (cos = 1 - 1e-15)
-        assert np.allclose(out[f"ball_contact_angles_{j}_deg"], 0.0, atol=1e-4)
-        assert np.all(out[f"loaded_zone_{j}"] == 11 / 24)
-    assert np.allclose(out["max_ball_load_A_N"], kn_direct(g, 0.0) * out["rho_mm"] ** 1.5, rtol=1e-9)
-    stribeck = g.Z * out["max_ball_load_A_N"] / (Fr / 2)
+        assert np.allclose(out[f"radial.ball_contact_angles_deg[{j}]"], 0.0, atol=1e-4)
+        assert np.all(out[f"radial.loaded_zone[{j}]"] == 11 / 24)
+    assert np.allclose(out["radial.max_ball_load_N[A]"], kn_direct(g, 0.0) * out["radial.rho_mm"] ** 1.5, rtol=1e-9)
+    stribeck = g.Z * out["radial.max_ball_load_N[A]"] / (Fr / 2)
     assert np.allclose(stribeck, g.Z / S, rtol=1e-9)
     assert np.allclose(stribeck, STRIBECK, atol=5e-3)
     assert np.allclose(stribeck, 1 / SJOVALL_JR_HALF, rtol=2e-3)      # Z = 24 vs the continuum
@@ -169,23 +175,23 @@ def test_radial_bearing_with_clearance_sjovall(Fr):
     the zone edge, ~ (ball spacing / loaded half-arc)^2.5 (< 1e-4 here).  The discrete form of the
     same sum, sum_k Q_max [1 - (1 - cos psi_k)/(2 eps)]_+^1.5 cos psi_k = Fr/2, holds to 1e-9."""
     g = BearingGeometry(**{**G.__dict__, "Z": 720})
-    out = solve_pair(g, "DB", preload_kind="spring", preload_assembled_N=0.0, radial_load_N=Fr,
+    out = solve(g, "DB", preload_kind="spring", preload_assembled_N=0.0, radial_load_N=Fr,
                      return_ball_loads=True)
     half_pd = g.radial_clearance_mm
-    rho = out["rho_mm"][0]
+    rho = out["radial.rho_mm"][0]
     assert rho > half_pd
-    assert np.allclose(out["ball_contact_angles_A_deg"], 0.0, atol=1e-9)
-    Qmax = out["max_ball_load_A_N"][0]
+    assert np.allclose(out["radial.ball_contact_angles_deg[A]"], 0.0, atol=1e-9)
+    Qmax = out["radial.max_ball_load_N[A]"][0]
     assert Qmax == pytest.approx(float(kn_direct(g, 0.0)) * (rho - half_pd) ** 1.5, rel=1e-9)
     eps = 0.5 * (1 - half_pd / rho)
     psi = ball_azimuths_rad(g.Z)
     shape = np.clip(1 - (1 - np.cos(psi)) / (2 * eps), 0.0, None) ** 1.5
     assert Qmax * np.sum(shape * np.cos(psi)) == pytest.approx(Fr / 2, rel=1e-9)
-    assert np.allclose(out["ball_loads_A_N"][:, 0], Qmax * shape, rtol=0, atol=1e-9 * Qmax)
+    assert np.allclose(out["radial.ball_loads_N[A]"][:, 0], Qmax * shape, rtol=0, atol=1e-9 * Qmax)
     assert Fr / 2 / (g.Z * Qmax) == pytest.approx(sjovall_jr(eps), rel=1e-4)
     # loaded arc 2 psi_l with cos psi_l = Pd / (2 rho) (Harris Vol. 1 ch. 7)
     psi_l = np.arccos(half_pd / rho)
-    assert out["loaded_zone_A"][0] == pytest.approx(psi_l / np.pi, abs=2 / g.Z)
+    assert out["radial.loaded_zone[A]"][0] == pytest.approx(psi_l / np.pi, abs=2 / g.Z)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -212,15 +218,15 @@ def test_equilibrium_residuals(arrangement, kind, c, temps):
     if temps is not None:
         kw.update(T_inner_ring_C=temps[0], T_outer_ring_C=temps[1], T_ball_C=temps[2])
         tg = thermal_geometry(G, *temps, 20.0)
-    out = solve_pair(G, arrangement, return_ball_loads=True, **kw)
+    out = solve(G, arrangement, return_ball_loads=True, **kw)
     for i in range(Fa.size):
         sumA = sumR = 0.0
         F = []
         for j, name in enumerate("AB"):
-            Q, alpha, psi = ball_loads_direct(G, out[f"approach_{name}_mm"][i], out["rho_mm"][i],
+            Q, alpha, psi = ball_loads_direct(G, out[f"approach_mm[{name}]"][i], out["radial.rho_mm"][i],
                                               dr[j, 0], tg)
             scale = max(abs(Fa[i]), Fr[i], 110.0)
-            assert np.allclose(out[f"ball_loads_{name}_N"][:, i], Q, rtol=1e-9, atol=1e-12 * scale)
+            assert np.allclose(out[f"radial.ball_loads_N[{name}]"][:, i], Q, rtol=1e-9, atol=1e-12 * scale)
             sumA += s[j] * np.sum(Q * np.sin(alpha))
             sumR += np.sum(Q * np.cos(alpha) * np.cos(psi))
             F.append(np.sum(Q * np.sin(alpha)))
@@ -231,7 +237,7 @@ def test_equilibrium_residuals(arrangement, kind, c, temps):
             e, x = out["preload_offset_mm"][i], out["x_mm"][i]
             for j, name in enumerate("AB"):
                 nominal = s[j] * (dz[j, 0] + x) + e
-                assert out[f"approach_{name}_mm"][i] + c * F[j] == pytest.approx(
+                assert out[f"approach_mm[{name}]"][i] + c * F[j] == pytest.approx(
                     nominal, abs=1e-9 * c * scale + 1e-15)
         else:
             assert F[1] == pytest.approx(110.0, rel=1e-9)
@@ -248,12 +254,12 @@ def test_stiffness_matches_solver_finite_difference(kind, c):
               dz_mm=np.array([[2e-4], [-1e-4]]), T_ball_C=40.0)
     for Fr0, Fa0 in ((300.0, 50.0), (2500.0, -30.0)):
         h = 1e-2
-        out = solve_pair(G, "DB", radial_load_N=[Fr0 - h, Fr0, Fr0 + h, Fr0, Fr0],
+        out = solve(G, "DB", radial_load_N=[Fr0 - h, Fr0, Fr0 + h, Fr0, Fr0],
                          axial_load_N=[Fa0, Fa0, Fa0, Fa0 - h, Fa0 + h], **kw)
-        kr = 2 * h / (out["rho_mm"][2] - out["rho_mm"][0]) * 1e-3
+        kr = 2 * h / (out["radial.rho_mm"][2] - out["radial.rho_mm"][0]) * 1e-3
         ka = 2 * h / (out["x_mm"][4] - out["x_mm"][3]) * 1e-3
-        assert out["radial_stiffness_N_per_um"][1] == pytest.approx(kr, rel=1e-6)
-        assert out["axial_stiffness_N_per_um"][1] == pytest.approx(ka, rel=1e-6)
+        assert out["radial.radial_stiffness_N_per_um"][1] == pytest.approx(kr, rel=1e-6)
+        assert out["pair_axial_stiffness_N_per_um"][1] == pytest.approx(ka, rel=1e-6)
 
 
 def test_radial_stiffness_against_direct_perturbation():
@@ -263,12 +269,12 @@ def test_radial_stiffness_against_direct_perturbation():
     k_r = K_rr - K_rx K_xr / K_xx.  Also K_rr alone (x held) against the fixed-x solve."""
     s = SIGNS["DB"]
     dr, dz = np.array([3e-4, -1e-4]), np.array([1e-4, -2e-4])
-    out = solve_pair(G, "DB", preload_assembled_N=120.0, axial_load_N=80.0,
+    out = solve(G, "DB", preload_assembled_N=120.0, axial_load_N=80.0,
                      radial_load_N=[200.0, 1200.0, 4000.0], dr_mm=dr[:, None], dz_mm=dz[:, None])
     e = out["preload_offset_mm"][0]
     h = 1e-7
     for i in range(3):
-        x, rho = out["x_mm"][i], out["rho_mm"][i]
+        x, rho = out["x_mm"][i], out["radial.rho_mm"][i]
         fa0, fr0 = pair_forces_direct(G, s, x, rho, e, dz, dr)
         assert fa0 == pytest.approx(80.0, rel=1e-9)
         assert fr0 == pytest.approx([200.0, 1200.0, 4000.0][i], rel=1e-9)
@@ -277,9 +283,9 @@ def test_radial_stiffness_against_direct_perturbation():
         Kxr, Krr = (np.subtract(pair_forces_direct(G, s, x, rho + h, e, dz, dr),
                                 pair_forces_direct(G, s, x, rho - h, e, dz, dr)) / (2 * h))
         kr = (Krr - Krx * Kxr / Kxx) * 1e-3
-        assert out["radial_stiffness_N_per_um"][i] == pytest.approx(kr, rel=1e-6)
+        assert out["radial.radial_stiffness_N_per_um"][i] == pytest.approx(kr, rel=1e-6)
         assert Krx == pytest.approx(Kxr, rel=1e-3)      # K_n(alpha) makes it only nearly symmetric
-        assert out["axial_stiffness_N_per_um"][i] == pytest.approx((Kxx - Kxr * Krx / Krr) * 1e-3, rel=1e-6)
+        assert out["pair_axial_stiffness_N_per_um"][i] == pytest.approx((Kxx - Kxr * Krx / Krr) * 1e-3, rel=1e-6)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -293,25 +299,25 @@ def test_load_distribution_symmetric_about_load_direction(Z):
     g = BearingGeometry(**{**G.__dict__, "Z": Z})
     Fr = np.array([100.0, 1000.0, 5000.0])
     kw = dict(preload_assembled_N=100.0, axial_load_N=[30.0, -120.0, 500.0], return_ball_loads=True)
-    out = solve_pair(g, "DB", radial_load_N=Fr, **kw)
+    out = solve(g, "DB", radial_load_N=Fr, **kw)
     k = np.arange(Z)
     for j in "AB":
-        Q = out[f"ball_loads_{j}_N"]
+        Q = out[f"radial.ball_loads_N[{j}]"]
         tol = 1e-12 * Q.max(axis=0)
         assert np.all(np.abs(Q - Q[(Z - k) % Z]) <= tol)
         assert np.all(np.argmax(Q, axis=0) == 0)
         assert np.all(np.diff(Q[: Z // 2 + 1], axis=0) <= tol)      # decreasing from psi = 0 to 180 deg
-    rev = solve_pair(g, "DB", radial_load_N=-Fr, **kw)
+    rev = solve(g, "DB", radial_load_N=-Fr, **kw)
     if Z % 2 == 0:
-        assert np.allclose(rev["rho_mm"], -out["rho_mm"], rtol=1e-12)
+        assert np.allclose(rev["radial.rho_mm"], -out["radial.rho_mm"], rtol=1e-12)
         for j in "AB":
-            Q = out[f"ball_loads_{j}_N"]
-            assert np.allclose(rev[f"ball_loads_{j}_N"], Q[(k + Z // 2) % Z], rtol=0,
+            Q = out[f"radial.ball_loads_N[{j}]"]
+            assert np.allclose(rev[f"radial.ball_loads_N[{j}]"], Q[(k + Z // 2) % Z], rtol=0,
                                atol=1e-12 * Q.max())
     else:
-        assert np.all(rev["rho_mm"] < 0)
+        assert np.all(rev["radial.rho_mm"] < 0)
         for j in "AB":
-            Q = rev[f"ball_loads_{j}_N"]
+            Q = rev[f"radial.ball_loads_N[{j}]"]
             tol = 1e-12 * Q.max(axis=0)
             assert np.all(np.abs(Q - Q[(Z - k) % Z]) <= tol)
             assert np.allclose(Q.max(axis=0), Q[Z // 2], rtol=1e-12)
@@ -324,8 +330,8 @@ def test_chunked_combined_equals_one_block():
               T_inner_ring_C=rng.uniform(-40, 60, N), axial_load_N=rng.uniform(-200, 200, N),
               radial_load_N=np.where(np.arange(N) % 3 == 0, 0.0, rng.uniform(10, 3000, N)),
               preload_assembled_N=100.0, return_ball_loads=True)
-    one = solve_pair(G, "DB", **kw)
-    many = solve_pair(G, "DB", chunk=3, **kw)
+    one = solve(G, "DB", **kw)
+    many = solve(G, "DB", chunk=3, **kw)
     assert list(one) == list(many)
     for k, v in one.items():
         # Round-off is relative to the largest term of the same output over the rows (a force

@@ -114,6 +114,7 @@ def test_simulate_command_writes_every_spec_column(tmp_path, capsys):
     ("T_ambient_C\n20\n", "radial_gradient:dT_K=999", "outside physical bounds"),
     ("T_ambient_C\n20\n", "radial_gradient:bad=1", "unknown parameter 'bad'"),
     ("T_ambient_C\n20\n", "thermal_lag:tau_s=10", "needs the condition column time_s"),
+    ("T_ambient_C,axial_load_N\n20,0\n20,1e300\n", None, "row 2: the bearing equilibrium did not converge"),
 ])
 def test_simulate_bad_input_exits_2_with_one_line_and_no_output(tmp_path, capsys, content, effect, expect):
     cond = tmp_path / "c.csv"

@@ -191,7 +191,7 @@ def test_pair_torque_of_symmetric_pair_is_twice_one_bearing():
     pair = solve_pair(G, "DB", preload_assembled_N=np.array([50.0, 200.0]))
     t = torque.pair_torque(G, pair, mu=0.02, hysteresis_loss=0.01, speed_rpm=60.0)
     assert np.allclose(t["torque_A_Nmm"], t["torque_B_Nmm"], rtol=1e-12)
-    one = [_solid(pair["ball_load_A_N"][i], pair["contact_angle_A_deg"][i])["total_Nmm"] for i in range(2)]
+    one = [_solid(pair.ball_load_N[0][i], pair.contact_angle_deg[0][i])["total_Nmm"] for i in range(2)]
     assert np.allclose(t["torque_Nmm"], 2 * np.array(one, float).ravel(), rtol=1e-9)
     parts = t["torque_hysteresis_Nmm"] + t["torque_differential_Nmm"] + t["torque_spin_Nmm"]
     assert np.allclose(parts, t["torque_Nmm"], rtol=1e-14)

@@ -5,6 +5,7 @@ are written to a temporary folder and renamed, so no partial output is left behi
 """
 from __future__ import annotations
 
+import os
 import shutil
 import sys
 import tempfile
@@ -17,7 +18,10 @@ class UserError(Exception):
 
 
 def progress(msg: str) -> None:
-    print(msg, file=sys.stderr, flush=True)
+    """Progress of long work, to stderr when a person watches it (a terminal, or BEARINGFEM_VERBOSE
+    set); scripts and schedulers reading stderr see only warnings and the one-line errors."""
+    if sys.stderr.isatty() or os.environ.get("BEARINGFEM_VERBOSE"):
+        print(msg, file=sys.stderr, flush=True)
 
 
 MARKER = ".bearingfem-output"

@@ -20,7 +20,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from analytic import lame
-from analytic.bearing import SIGNS, BearingGeometry, solve_pair
+from analytic.bearing import SIGNS, BearingGeometry, PairState, solve_pair
 from analytic.lubrication import get_lubricant
 from analytic.safety import static_load_rating_C0_N, static_safety_from_contact_pressure
 from analytic.torque import palmgren_f1_angular_contact, pair_torque
@@ -42,6 +42,28 @@ RINGS = ("inner_ring_A", "inner_ring_B", "outer_ring_A", "outer_ring_B")
 
 class ModelError(ValueError):
     """The model cannot give a finite answer for these inputs (one line: row and output)."""
+
+
+#: outputs that must be finite in every row (the interferences of a conduction-field state are
+#: not defined and are NaN by design)
+CHECKED_OUTPUTS = ("torque_Nmm", "preload_N", "contact_angle_deg", "fit_pressure_inner_MPa",
+                   "fit_pressure_outer_MPa", "max_contact_pressure_MPa")
+
+
+def check_answers(out: dict[str, np.ndarray], converged: np.ndarray) -> None:
+    """Raise ModelError naming the first row (1-based, as in the conditions table) whose bearing
+    equilibrium did not converge or whose output is not finite; never a silent NaN."""
+    bad = ~np.asarray(converged, bool)
+    if bad.any():
+        i = int(np.flatnonzero(bad)[0])
+        raise ModelError(f"row {i + 1}: the bearing equilibrium did not converge "
+                         f"({int(bad.sum())} row(s)); check the loads and fits of that row")
+    for k in CHECKED_OUTPUTS:
+        v = np.asarray(out[k], float)
+        if not np.all(np.isfinite(v)):
+            i = int(np.flatnonzero(~np.isfinite(v))[0])
+            raise ModelError(f"row {i + 1}: {k} is not finite ({v[i]}); the model has no answer "
+                             "for these inputs")
 
 
 @dataclass
@@ -251,31 +273,32 @@ class Pipeline:
         compliance_mm_per_N: preload-path compliance per bearing (mm/N; scalar or one per row);
         default the assembly's (`[preload] path_compliance`). viscous_factor_f0: Palmgren's f0 in
         place of the assembly's (oil lubrication). With `return_pair`, also the raw
-        pair-equilibrium dict of analytic/bearing.py (contact ellipses for heat models)."""
+        pair state (`analytic.bearing.PairState`: contact ellipses for heat models)."""
         a = self.asm
         preload = np.maximum(np.asarray(inputs.preload_assembled_N, float)
                              - np.asarray(inputs.preload_loss_N, float), 0.0)
-        pair = solve_pair(self.geom, a.arrangement, dr_mm=fe.dr_mm, dz_mm=fe.dz_mm,
-                          T_inner_ring_C=inputs.T_C["inner_ring"],
-                          T_outer_ring_C=inputs.T_C["outer_ring"], T_ball_C=inputs.T_C["ball"],
-                          T_ref_C=a.T_ref_C, preload_kind=a.preload.kind,
-                          preload_assembled_N=preload, axial_load_N=inputs.axial_load_N,
-                          dr_ref_mm=fe_ref.dr_mm, dz_ref_mm=fe_ref.dz_mm,
-                          compliance_mm_per_N=self.compliance_mm_per_N if compliance_mm_per_N is None
-                          else compliance_mm_per_N)
-        mu = resolve_friction_coefficient(inputs, a.lubrication.friction_coefficient)
-        torque = self.torque(pair, inputs, mu, viscous_factor_f0)
+        with np.errstate(all="ignore"):     # a row without an answer is reported below, by name
+            pair = solve_pair(self.geom, a.arrangement, dr_mm=fe.dr_mm, dz_mm=fe.dz_mm,
+                              T_inner_ring_C=inputs.T_C["inner_ring"],
+                              T_outer_ring_C=inputs.T_C["outer_ring"], T_ball_C=inputs.T_C["ball"],
+                              T_ref_C=a.T_ref_C, preload_kind=a.preload.kind,
+                              preload_assembled_N=preload, axial_load_N=inputs.axial_load_N,
+                              dr_ref_mm=fe_ref.dr_mm, dz_ref_mm=fe_ref.dz_mm,
+                              compliance_mm_per_N=self.compliance_mm_per_N
+                              if compliance_mm_per_N is None else compliance_mm_per_N)
+            mu = resolve_friction_coefficient(inputs, a.lubrication.friction_coefficient)
+            torque = self.torque(pair, inputs, mu, viscous_factor_f0)
         nf = len(self.model.fits)
         names = [f.name for f in self.model.fits]
         p_in = fe.fit_pressure_MPa[:, [k for k in range(nf) if names[k].startswith("fit_inner")]]
         p_out = fe.fit_pressure_MPa[:, [k for k in range(nf) if names[k].startswith("fit_outer")]]
-        out = {"torque_Nmm": torque.pop("torque_Nmm"), "preload_N": pair["preload_N"],
+        out = {"torque_Nmm": torque.pop("torque_Nmm"), "preload_N": pair.preload_N,
                "contact_angle_deg": _weighted_angle(pair),
                "interference_inner_um": fe.interference_um[:, 0],
                "interference_outer_um": fe.interference_um[:, 1],
                "fit_pressure_inner_MPa": p_in.mean(axis=1),
                "fit_pressure_outer_MPa": p_out.mean(axis=1),
-               "max_contact_pressure_MPa": pair["max_contact_pressure_MPa"]}
+               "max_contact_pressure_MPa": pair.max_contact_pressure_MPa}
         out.update(torque)
         for k, name in enumerate(names):
             out[f"{name.replace('fit_', 'fit_pressure_')}_MPa"] = fe.fit_pressure_MPa[:, k]
@@ -283,17 +306,21 @@ class Pipeline:
         for j, J in enumerate("AB"):
             out[f"groove_shift_dr_{J}_um"] = 1e3 * fe.dr_mm[j]
             out[f"groove_shift_dz_{J}_um"] = 1e3 * fe.dz_mm[j]
-        for key in ("axial_force_A_N", "axial_force_B_N", "contact_angle_A_deg",
-                    "contact_angle_B_deg", "ball_load_A_N", "ball_load_B_N",
-                    "axial_stiffness_N_per_um"):
-            out[key] = pair[key]
-        out["preload_lost"] = pair["preload_lost"].astype(float)
+        for j, J in enumerate("AB"):
+            out[f"axial_force_{J}_N"] = pair.axial_force_N[j]
+        for j, J in enumerate("AB"):
+            out[f"contact_angle_{J}_deg"] = pair.contact_angle_deg[j]
+        for j, J in enumerate("AB"):
+            out[f"ball_load_{J}_N"] = pair.ball_load_N[j]
+        out["axial_stiffness_N_per_um"] = pair.pair_axial_stiffness_N_per_um
+        out["preload_lost"] = pair.preload_lost.astype(float)
         with np.errstate(divide="ignore"):      # an unloaded pair has infinite static safety
-            out["static_safety"] = static_safety_from_contact_pressure(pair["max_contact_pressure_MPa"])
+            out["static_safety"] = static_safety_from_contact_pressure(pair.max_contact_pressure_MPa)
         out["friction_coefficient"] = mu
+        check_answers(out, pair.converged)
         return (out, pair) if return_pair else out
 
-    def torque(self, pair: dict, inputs: PhysicsInputs, mu: np.ndarray,
+    def torque(self, pair: PairState, inputs: PhysicsInputs, mu: np.ndarray,
                viscous_factor_f0: float | None = None) -> dict[str, np.ndarray]:
         """Friction torque of the pair (analytic/torque.py). Oil: viscosity of the configured
         lubricant (ASTM D341 fit of its datasheet points, slope scaled by the
@@ -312,7 +339,7 @@ class Pipeline:
             # more loaded bearing (a pure axial preload)
             g = self.geom
             C0 = static_load_rating_C0_N(g.Z, g.Dw_mm, g.dm_mm, g.alpha0_deg)
-            P0 = np.maximum(pair["axial_force_A_N"], pair["axial_force_B_N"])
+            P0 = pair.axial_force_N.max(axis=0)
             f1 = palmgren_f1_angular_contact(P0, C0)
         out = pair_torque(self.geom, pair, model="oil", mu=mu, speed_rpm=speed,
                           f0=lub.viscous_factor_f0 if viscous_factor_f0 is None else viscous_factor_f0,
@@ -321,11 +348,11 @@ class Pipeline:
         return out
 
 
-def _weighted_angle(pair: dict) -> np.ndarray:
+def _weighted_angle(pair: PairState) -> np.ndarray:
     """Contact angle of the pair (deg): the axial-force-weighted mean of bearings A and B (equal
     weights when both are unloaded). Continuous, unlike "the angle of the more loaded bearing",
     which jumps between two values when the forces are equal up to round-off."""
-    FA, FB = pair["axial_force_A_N"], pair["axial_force_B_N"]
+    FA, FB = pair.axial_force_N
     tot = FA + FB
     wA = np.where(tot > 0, FA / np.where(tot > 0, tot, 1.0), 0.5)
-    return wA * pair["contact_angle_A_deg"] + (1 - wA) * pair["contact_angle_B_deg"]
+    return wA * pair.contact_angle_deg[0] + (1 - wA) * pair.contact_angle_deg[1]

@@ -27,11 +27,11 @@ def make_inputs(n: int, seed: int = 0) -> dict:
                 T_ref_C=20.0, preload_assembled_N=100.0, axial_load_N=rng.uniform(-150, 150, n))
 
 
-def evaluate(g: BearingGeometry, inputs: dict) -> dict:
+def evaluate(g: BearingGeometry, inputs: dict):
+    """Pair state and torque components of the pair (`bearing.solve_pair`, `torque.pair_torque`)."""
     pair = solve_pair(g, "DB", **inputs)
-    pair.update(pair_torque(g, pair, model="solid_film", mu=0.02, hysteresis_loss=0.01,
-                            speed_rpm=60.0))
-    return pair
+    return pair, pair_torque(g, pair, model="solid_film", mu=0.02, hysteresis_loss=0.01,
+                             speed_rpm=60.0)
 
 
 def _chunk(inputs: dict, sl: slice) -> dict:

@@ -52,8 +52,8 @@ def _network(pl, pair):
     R = {"housing_outer_ring": tn.cylinder_conduction_resistance_K_W(dmid_o, b.outside_diameter_mm, B2, k_r)
          + tn.film_resistance_K_W(H_FIT_W_M2K, np.pi * b.outside_diameter_mm * B2)
          + tn.cylinder_conduction_resistance_K_W(a.housing.bore_diameter_mm, 0.5 * (a.housing.bore_diameter_mm + a.housing.outer_diameter_mm), B2, mh.conductivity_W_mK),
-         "outer_ring_ball": float(np.mean(tn.ball_raceway_resistance_K_W(pair["a_outer_A_mm"], pair["b_outer_A_mm"], k_b, k_r, 2 * g.Z))),
-         "ball_inner_ring": float(np.mean(tn.ball_raceway_resistance_K_W(pair["a_inner_A_mm"], pair["b_inner_A_mm"], k_b, k_r, 2 * g.Z))),
+         "outer_ring_ball": float(np.mean(tn.ball_raceway_resistance_K_W(pair.outer.a_mm[0], pair.outer.b_mm[0], k_b, k_r, 2 * g.Z))),
+         "ball_inner_ring": float(np.mean(tn.ball_raceway_resistance_K_W(pair.inner.a_mm[0], pair.inner.b_mm[0], k_b, k_r, 2 * g.Z))),
          "inner_ring_shaft": tn.cylinder_conduction_resistance_K_W(b.bore_mm, dmid_i, B2, k_r)
          + tn.film_resistance_K_W(H_FIT_W_M2K, np.pi * b.bore_mm * B2),
          "housing_ambient": tn.film_resistance_K_W(H_HOUSING_W_M2K, np.pi * a.housing.outer_diameter_mm * 120.0

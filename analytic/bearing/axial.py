@@ -1,0 +1,216 @@
+"""The pair under axial load (and thermal and fit shifts of the groove centres): the axial-only
+equilibrium of `solve_pair` (module docstring of `analytic.bearing` for the model and conventions).
+Harris & Kotzalas Vol. 1 ch. 7 (axial-load equation); Jones 1960. Units: mm, N; radians inside."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from analytic.bearing.contact import ContactStiffness, axial_state, contact_stiffness
+from analytic.bearing.geometry import (SIGNS, BearingGeometry, ThermalGeometry, pair_array,
+                                       thermal_geometry)
+from analytic.bearing.roots import Root, newton_increasing
+from analytic.bearing.state import PairState, contact_ellipses, pair_state
+
+
+@dataclass(frozen=True)
+class Approach:
+    """Axial approach of a bearing carrying a given axial force (`approach_for_force`)."""
+    a_mm: np.ndarray
+    alpha_rad: np.ndarray
+    cs: ContactStiffness
+    converged: np.ndarray
+
+
+def _onset_X(Y, A_T):
+    """Axial centre-distance component at first contact, sqrt(A_T^2 - Y^2) (0 if radially loaded)."""
+    return np.sqrt(np.maximum(A_T * A_T - Y * Y, 0.0))
+
+
+def _solve_X_for_force(F_N, Y, A_T, cs: "ContactStiffness", Z, alpha_lin):
+    """X with Z K_n(alpha) delta^1.5 sin(alpha) = F, K_n linearised about alpha_lin."""
+    Xc = _onset_X(Y, A_T)
+    sa = np.sin(np.maximum(alpha_lin, 0.05))
+    d_est = (np.maximum(F_N, 0.0) / (Z * cs.Kn * sa)) ** (2.0 / 3.0)
+    x0 = Xc + d_est / sa
+
+    def fun(X):
+        st = axial_state(X, Y, A_T, cs.Kn, Z, cs.dlnKn_dalpha, alpha_lin)
+        return st.F_N - F_N, st.k_N_per_mm
+    return newton_increasing(fun, x0, lo=Xc, step0=np.maximum(d_est, 1e-6))
+
+
+def _kn_converged(cs_new: "ContactStiffness", cs_old: "ContactStiffness", alpha, alpha_lin, tol):
+    """Exact K_n at the new angle against its linear model about the old one."""
+    lin = cs_old.Kn * np.exp(cs_old.dlnKn_dalpha * (alpha - alpha_lin))
+    return bool(np.all(np.abs(cs_new.Kn / lin - 1.0) <= tol))
+
+
+def approach_for_force(g: BearingGeometry, F_N, dr_mm=0.0, tg: ThermalGeometry | None = None,
+                       tol: float = 1e-14, max_outer: int = 30, alpha_start=None):
+    """Axial approach a (mm) at which one bearing carries the axial force F_N, with radial centre
+    shift dr_mm and grown geometry tg (default: free geometry at T_ref).  Harris's equation solved
+    for the contact angle with the radial shift kept: returns an `Approach` (a_mm, alpha_rad,
+    ContactStiffness, converged)."""
+    tg = tg or thermal_geometry(g)
+    a0 = np.radians(g.alpha0_deg)
+    F = np.asarray(F_N, float)
+    Y = g.A0_mm * np.cos(a0) + np.asarray(dr_mm, float)
+    shape = np.broadcast_shapes(F.shape, Y.shape, np.shape(tg.A_T_mm))
+    F, Y = np.broadcast_to(F, shape), np.broadcast_to(Y, shape)
+    A_T = np.broadcast_to(tg.A_T_mm, shape)
+    alpha_lin = np.full(shape, a0) if alpha_start is None else np.broadcast_to(alpha_start, shape)
+    cs = contact_stiffness(g, tg, alpha_lin)
+    for _ in range(max_outer):
+        root = _solve_X_for_force(F, Y, A_T, cs, g.Z, alpha_lin)
+        X = root.x
+        alpha = np.arctan2(X, Y)
+        cs_new = contact_stiffness(g, tg, alpha)
+        done = _kn_converged(cs_new, cs, alpha, alpha_lin, tol)
+        cs, alpha_lin = cs_new, alpha
+        if done:      # X carries F with a K_n model matching the exact K_n at alpha to tol
+            break
+    ok = root.converged & cs.converged & done
+    return Approach(X - g.A0_mm * np.sin(a0), alpha, cs, ok)
+
+
+def bearing_axial_force(g: BearingGeometry, approach_mm, dr_mm=0.0, tg: ThermalGeometry | None = None):
+    """Axial force (N) of one bearing at axial approach a (mm) and radial centre shift dr (mm),
+    K_n evaluated exactly at the resulting contact angle: returns (BearingState, ContactStiffness)."""
+    tg = tg or thermal_geometry(g)
+    a0 = np.radians(g.alpha0_deg)
+    X = g.A0_mm * np.sin(a0) + np.asarray(approach_mm, float)
+    Y = g.A0_mm * np.cos(a0) + np.asarray(dr_mm, float)
+    X, Y = np.broadcast_arrays(X, Y)
+    cs = contact_stiffness(g, tg, np.arctan2(X, Y))
+    return axial_state(X, Y, tg.A_T_mm, cs.Kn, g.Z), cs
+
+
+# ---------------------------------------------------------------------------------------------
+@dataclass
+class _LinearKn:
+    """First-order model of K_n(alpha) about some angle (the solvers' working copy)."""
+    Kn: np.ndarray
+    dlnKn_dalpha: np.ndarray
+
+
+def _reference_state(g: BearingGeometry, s, P, c, dr_ref, dz_ref, tol):
+    """Position-preload offset e and rotor position x at the reference state (free geometry at
+    T_ref, shifts dr_ref/dz_ref, no external load, F_A = F_B = P):
+        a_j* = approach of bearing j carrying P;  a_j* + c P = s_j (dz_j + x) + e
+    Two equations for e and x (s_A = -s_B):  e = (a_A + a_B - s_A (dz_A - dz_B))/2 + c P.
+    Computed once per distinct (P, dr_ref) combination (usually one)."""
+    N = P.shape[0]
+    keys = np.column_stack([P, dr_ref[0], dr_ref[1]])
+    if np.all(keys == keys[0]):
+        uniq, inv = keys[:1], np.zeros(N, dtype=int)
+    else:
+        uniq, inv = np.unique(keys, axis=0, return_inverse=True)
+        inv = inv.ravel()
+    tg_ref = thermal_geometry(g)
+    ap = approach_for_force(g, uniq[:, 0][None, :], uniq[:, 1:].T, tg_ref, tol)
+    a_u, alpha_u, cs_u = ap.a_mm, ap.alpha_rad, ap.cs
+    a_ref = a_u[:, inv]
+    a_nom = a_ref + c * P
+    e = 0.5 * (a_nom[0] + a_nom[1] - s[0, 0] * (dz_ref[0] - dz_ref[1]))
+    x = s[0, 0] * (a_nom[0] - e) - dz_ref[0]
+    lin = _LinearKn(cs_u.Kn[:, inv], cs_u.dlnKn_dalpha[:, inv])
+    return e, x, alpha_u[:, inv], lin, ap.converged.all(axis=0)[inv]
+
+
+
+def _effective_X(Xnom, Y, A_T, cs, Z, c, alpha_lin) -> Root:
+    """Solve X + c F(X) = X_nom (compliance c in series with the bearing; F increasing in X)."""
+    if np.all(c == 0.0):
+        return Root(Xnom, np.ones(np.shape(Xnom), bool))
+    F0 = axial_state(Xnom, Y, A_T, cs.Kn, Z, cs.dlnKn_dalpha, alpha_lin).F_N
+
+    def fun(X):
+        st = axial_state(X, Y, A_T, cs.Kn, Z, cs.dlnKn_dalpha, alpha_lin)
+        return X + c * st.F_N - Xnom, 1.0 + c * st.k_N_per_mm
+    return newton_increasing(fun, Xnom, lo=Xnom - c * F0, hi=Xnom)
+
+
+
+def solve_pair_axial(g: BearingGeometry, arrangement: str, N: int, *, dr_mm, dz_mm,
+                     T_inner_ring_C, T_outer_ring_C, T_ball_C, T_ref_C: float, preload_kind: str,
+                     preload_assembled_N, axial_load_N, dr_ref_mm, dz_ref_mm,
+                     compliance_mm_per_N, tol: float, max_outer: int) -> PairState:
+    """Axial-only equilibrium of the pair at N points (inputs as `analytic.bearing.solve_pair`)."""
+    s = SIGNS[arrangement][:, None]
+    a0 = np.radians(g.alpha0_deg)
+    X0, Y0 = g.A0_mm * np.sin(a0), g.A0_mm * np.cos(a0)
+    Z = g.Z
+    P = np.broadcast_to(np.asarray(preload_assembled_N, float), (N,))
+    Fext = np.broadcast_to(np.asarray(axial_load_N, float), (N,))
+    c = np.broadcast_to(np.asarray(compliance_mm_per_N, float), (N,))
+    dr, dz = pair_array(dr_mm, N), pair_array(dz_mm, N)
+    T_ref = float(T_ref_C)
+    temps = [None if T is None else pair_array(T, N)
+             for T in (T_inner_ring_C, T_outer_ring_C, T_ball_C)]
+    tg = thermal_geometry(g, *temps, T_ref_C=T_ref)
+    tg = ThermalGeometry(*(np.broadcast_to(v, (2, N)) for v in
+                           (tg.A_T_mm, tg.Dw_mm, tg.f_i, tg.f_o, tg.dm_mm)))
+    Y = Y0 + dr
+    A_T = tg.A_T_mm
+
+    if preload_kind == "position":
+        e, x, alpha_lin, cs, ok = _reference_state(g, s, P, c, pair_array(dr_ref_mm, N),
+                                                   pair_array(dz_ref_mm, N), tol)
+        # operating state: K_n linearised about alpha_lin (first pass: the reference state's),
+        # refreshed at the operating geometry until the linear model is exact to tol
+        scale = 1e-3 * g.Dw_mm
+
+        def residual(xx):
+            Xn = X0 + s * (dz + xx) + e
+            Xe = _effective_X(Xn, Y, A_T, cs, Z, c, alpha_lin).x
+            st = axial_state(Xe, Y, A_T, cs.Kn, Z, cs.dlnKn_dalpha, alpha_lin)
+            keff = st.k_N_per_mm / (1.0 + c * st.k_N_per_mm)
+            return (s * st.F_N).sum(axis=0) - Fext, keff.sum(axis=0)
+
+        for _ in range(max_outer):
+            root = newton_increasing(residual, x, step0=scale)
+            x = root.x
+            eff = _effective_X(X0 + s * (dz + x) + e, Y, A_T, cs, Z, c, alpha_lin)
+            X = eff.x
+            alpha = np.arctan2(X, Y)
+            cs_new = contact_stiffness(g, tg, alpha)
+            done = _kn_converged(cs_new, cs, alpha, alpha_lin, tol)
+            cs, alpha_lin = cs_new, alpha
+            if done:
+                break
+        ok = ok & root.converged & eff.converged.all(axis=0) & cs.converged.all(axis=0) & done
+        # converged: x solves the equilibrium with a K_n model that matches the exact K_n at the
+        # final angle to tol, so the state below (exact K_n) balances the load to tol
+        e_out = e
+    else:
+        FA = s[0, 0] * Fext + P
+        lost_spring = FA < 0.0
+        Freq = np.stack([np.maximum(FA, 0.0), P])
+        ap = approach_for_force(g, Freq, dr, tg, tol)
+        a_op, alpha_lin, cs, ok = ap.a_mm, ap.alpha_rad, ap.cs, ap.converged.all(axis=0)
+        X = X0 + a_op
+        x = s[0, 0] * a_op[0] - dz[0]                  # rotor position implied by bearing A (e = 0)
+        e_out = np.full(N, np.nan)
+
+    # final state with K_n exact at alpha_lin (converged: alpha = alpha_lin to tol) and the full
+    # axial stiffness dF/dX including dK_n/dalpha
+    st = axial_state(X, Y, A_T, cs.Kn, Z, cs.dlnKn_dalpha, alpha_lin)
+    alpha = st.alpha_rad
+    k_full = st.k_N_per_mm
+    if preload_kind == "position":
+        k_eff = k_full / (1.0 + c * k_full)
+        k_pair = k_eff.sum(axis=0)
+        lost = (st.F_N <= 0.0).any(axis=0)
+    else:
+        k_eff = k_full
+        k_pair = np.where(st.F_N[0] > 0.0, k_full[0], 0.0)   # the spring side adds ~nothing
+        lost = lost_spring | (st.F_N[0] <= 0.0)
+
+    inner, outer = (contact_ellipses(g, cs, st.Q_N, side) for side in (0, 1))
+    return pair_state(F_N=st.F_N, alpha_rad=alpha, Q_N=st.Q_N, delta_mm=st.delta_mm, inner=inner,
+                      outer=outer,
+                      max_contact_pressure_MPa=np.maximum(inner.p_max_MPa, outer.p_max_MPa).max(axis=0),
+                      k_bearing_N_per_mm=k_eff, k_pair_N_per_mm=k_pair, lost=lost, x_mm=x,
+                      offset_mm=e_out, approach_mm=X - X0, converged=ok & np.isfinite(st.F_N).all(axis=0))

@@ -1,0 +1,289 @@
+"""The pair under combined axial and radial load: the quasi-static load distribution around the
+ball set (Harris & Kotzalas Vol. 1 ch. 7; Jones 1960; module docstring of `analytic.bearing`).
+Units: mm, N; radians inside."""
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from analytic.bearing.axial import solve_pair_axial
+from analytic.bearing.contact import BallSetState, ball_azimuths_rad, ball_set_state, contact_stiffness
+from analytic.bearing.geometry import (SIGNS, BearingGeometry, ThermalGeometry, n_points,
+                                       pair_array, thermal_geometry)
+from analytic.bearing.roots import newton_minimise
+from analytic.bearing.state import (ContactEllipses, PairState, RadialLoadState, contact_ellipses,
+                                    pair_state, with_rows)
+
+
+class CombinedProblem:
+    """Unknowns u (n, N) and total potential of the pair under combined load, one preload mode:
+
+      "rigid"     position preload, c = 0:  u = (x, rho),  a_j = s_j (dz_j + x) + e
+                  Pi = V - Fa x - Fr rho
+      "compliant" position preload, c > 0:  u = (x, rho, a_A, a_B),  a_j^nom = s_j (dz_j + x) + e
+                  Pi = V + sum_j (a_j - a_j^nom)^2 / (2c) - Fa x - Fr rho
+      "spring"    spring preload:  u = (a_A, a_B, rho)
+                  Pi = V - sum_j F_j^req a_j - Fr rho,  F_A^req = max(s_A Fa + P, 0), F_B^req = P
+
+    V = sum of the ball energies (`ball_set_state`).  Stationarity of Pi is the equilibrium of the
+    module docstring with the radial equation added: sum_j s_j F_j = Fa, sum_j Fr_j = Fr (and
+    a_j = a_j^nom - c F_j, or F_j = F_j^req).  With K_n frozen Pi is convex (delta is a norm minus
+    a constant, V an increasing convex function of it, the maps to X, Y affine)."""
+
+    def __init__(self, mode, s, X0, Ynom, A_T, cos_psi, Fa, Fr, dz, e=None, c=None, Freq=None):
+        self.mode, self.s, self.X0, self.Ynom, self.A_T = mode, s, X0, Ynom, A_T
+        self.cos_psi, self.Fa, self.Fr, self.dz, self.e, self.c, self.Freq = (
+            cos_psi, Fa, Fr, dz, e, c, Freq)
+        self.n = {"rigid": 2, "compliant": 4, "spring": 3}[mode]
+        self.i_ax, self.i_rad = {"rigid": (0, 1), "compliant": (0, 1), "spring": (0, 2)}[mode]
+
+    def split(self, u):
+        """(a (2, N), rho (N,), x (N,))."""
+        s = self.s
+        if self.mode == "rigid":
+            x, rho = u[0], u[1]
+            return s * (self.dz + x) + self.e, rho, x
+        if self.mode == "compliant":
+            return u[2:4], u[1], u[0]
+        a = u[0:2]
+        return a, u[2], s[0, 0] * a[0] - self.dz[0]
+
+    def state(self, u, Kn, dlnKn_dalpha=None) -> BallSetState:
+        a, rho, _ = self.split(u)
+        return ball_set_state(self.X0 + a, self.Ynom, rho, self.A_T, Kn, self.cos_psi, dlnKn_dalpha)
+
+    def alpha(self, u):
+        """Angle of every ball's groove-centre line, atan2(X, Y), (2, Z, N)."""
+        a, rho, _ = self.split(u)
+        Y = self.Ynom[:, None, :] + rho[None, None, :] * self.cos_psi[None, :, None]
+        return np.arctan2(np.broadcast_to((self.X0 + a)[:, None, :], Y.shape), Y)
+
+    def assemble(self, u, st: BallSetState):
+        """Pi, a magnitude scale of its terms, gradient (n, N) and Hessian/tangent (n, n, N)."""
+        s, N = self.s, u.shape[1]
+        a, rho, x = self.split(u)
+        H = np.zeros((self.n, self.n, N))
+        V, QD = st.V_Nmm.sum(axis=0), st.QD_Nmm.sum(axis=0)
+        Rsum = st.Fr_N.sum(axis=0) - self.Fr
+        krr = st.k_rr.sum(axis=0)
+        if self.mode == "rigid":
+            Pi_ext = self.Fa * x + self.Fr * rho
+            Pi, Pabs = V - Pi_ext, QD + np.abs(self.Fa * x) + np.abs(self.Fr * rho)
+            g = np.stack([(s * st.F_N).sum(axis=0) - self.Fa, Rsum])
+            H[0, 0] = st.k_aa.sum(axis=0)
+            H[0, 1] = (s * st.k_ar).sum(axis=0)
+            H[1, 0] = (s * st.k_ra).sum(axis=0)
+            H[1, 1] = krr
+        elif self.mode == "compliant":
+            c = self.c
+            gap = a - (s * (self.dz + x) + self.e)
+            Es = (gap * gap).sum(axis=0) / (2.0 * c)
+            Pi = V + Es - self.Fa * x - self.Fr * rho
+            Pabs = QD + Es + np.abs(self.Fa * x) + np.abs(self.Fr * rho)
+            g = np.stack([-(s * gap).sum(axis=0) / c - self.Fa, Rsum,
+                          st.F_N[0] + gap[0] / c, st.F_N[1] + gap[1] / c])
+            H[0, 0] = 2.0 / c
+            for j in range(2):
+                H[0, 2 + j] = H[2 + j, 0] = -s[j, 0] / c
+                H[2 + j, 2 + j] = st.k_aa[j] + 1.0 / c
+                H[2 + j, 1] = st.k_ar[j]
+                H[1, 2 + j] = st.k_ra[j]
+            H[1, 1] = krr
+        else:
+            work = (self.Freq * a).sum(axis=0) + self.Fr * rho
+            Pi = V - work
+            Pabs = QD + np.abs(self.Freq * a).sum(axis=0) + np.abs(self.Fr * rho)
+            g = np.stack([st.F_N[0] - self.Freq[0], st.F_N[1] - self.Freq[1], Rsum])
+            for j in range(2):
+                H[j, j] = st.k_aa[j]
+                H[j, 2] = st.k_ar[j]
+                H[2, j] = st.k_ra[j]
+            H[2, 2] = krr
+        return Pi, Pabs, g, H
+
+
+
+def _combined_group(g: BearingGeometry, mode: str, s, dr, dz, tg: ThermalGeometry, Fa, Fr, c, e,
+                    Freq, lost_spring, u0, tol, max_outer, solve=True, ball_loads=False):
+    """Solve (or, with solve=False, only evaluate at u0) one group of points of one preload mode
+    and return their `PairState` (with its `radial` part)."""
+    a0 = np.radians(g.alpha0_deg)
+    X0, Y0 = g.A0_mm * np.sin(a0), g.A0_mm * np.cos(a0)
+    psi = ball_azimuths_rad(g.Z)
+    prob = CombinedProblem(mode, s, X0, Y0 + dr, tg.A_T_mm, np.cos(psi), Fa, Fr, dz, e, c, Freq)
+    tg3 = ThermalGeometry(*(v[:, None, :] for v in
+                            (tg.A_T_mm, tg.Dw_mm, tg.f_i, tg.f_o, tg.dm_mm)))
+    u = u0
+    cs = contact_stiffness(g, tg3, prob.alpha(u))
+    ok = np.ones(u.shape[1], bool)
+    if solve:
+        cap = 0.1 * g.A0_mm
+
+        for _ in range(max_outer):
+            Kn = cs.Kn
+            root = newton_minimise(lambda uu: prob.assemble(uu, prob.state(uu, Kn)), u, cap)
+            u = root.x
+            cs_new = contact_stiffness(g, tg3, prob.alpha(u))
+            done = bool(np.all(np.abs(cs_new.Kn / cs.Kn - 1.0) <= tol))
+            cs = cs_new
+            if done:      # u solves the equilibrium with K_n matching the exact K_n at its angles to tol
+                break
+        ok = root.converged & done
+    # final state: K_n exact at the final angles, full tangent (with dK_n/dalpha)
+    st = prob.state(u, cs.Kn, cs.dlnKn_dalpha)
+    _, _, _, J = prob.assemble(u, st)
+    a, rho, x = prob.split(u)
+    Jm = np.moveaxis(J, -1, 0)
+
+    def condensed(i):
+        """d(load)/d(u_i) with the other unknowns free: J_ii - J_ir J_rr^+ J_ri (= 1/(J^-1)_ii;
+        the pseudo-inverse gives 0 along a displacement no loaded ball resists)."""
+        r = [m for m in range(prob.n) if m != i]
+        Jrr = Jm[:, r][:, :, r]
+        return Jm[:, i, i] - np.einsum("nr,nrs,ns->n", Jm[:, i, r], np.linalg.pinv(Jrr), Jm[:, r, i])
+    k_ax, k_rad = condensed(prob.i_ax), condensed(prob.i_rad)
+
+    Q, alpha, delta = st.Q_N, st.alpha_rad, st.delta_mm
+    FA_, FB_ = st.F_N
+    if mode == "spring":
+        lost = lost_spring | (FA_ <= 0.0)
+        k_eff = st.k_aa
+        k_pair = np.where(FA_ > 0.0, k_ax, 0.0)
+        e_out = np.full(u.shape[1], np.nan)
+    else:
+        lost = (st.F_N <= 0.0).any(axis=0)
+        cc = 0.0 if mode == "rigid" else c
+        k_eff = st.k_aa / (1.0 + cc * st.k_aa)
+        k_pair = k_ax
+        e_out = e
+    im = np.argmax(Q, axis=1)[:, None, :]
+
+    def top(v):                               # value at the most loaded ball of each bearing
+        return np.take_along_axis(np.broadcast_to(v, Q.shape), im, axis=1)[:, 0, :]
+
+    loaded = delta > 1e-12 * tg3.A_T_mm
+    radial = RadialLoadState(
+        rho_mm=rho, radial_force_N=st.Fr_N, max_ball_load_N=Q.max(axis=1),
+        loaded_zone=loaded.mean(axis=1), radial_stiffness_N_per_um=1e-3 * k_rad,
+        ball_loads_N=Q if ball_loads else None,
+        ball_contact_angles_deg=np.degrees(alpha) if ball_loads else None)
+    inner, outer = (contact_ellipses(g, cs, Q, side) for side in (0, 1))
+    top_inner, top_outer = (ContactEllipses(*(top(getattr(c, f)) for f in ContactEllipses.__dataclass_fields__))
+                            for c in (inner, outer))
+    return pair_state(F_N=st.F_N, alpha_rad=top(alpha), Q_N=top(Q), delta_mm=top(delta),
+                      inner=top_inner, outer=top_outer,
+                      max_contact_pressure_MPa=np.maximum(inner.p_max_MPa, outer.p_max_MPa).max(axis=(0, 1)),
+                      k_bearing_N_per_mm=k_eff, k_pair_N_per_mm=k_pair, lost=lost, x_mm=x,
+                      offset_mm=e_out, approach_mm=a,
+                      converged=ok & cs.converged.all(axis=(0, 1)) & np.isfinite(st.F_N).all(axis=0),
+                      radial=radial)
+
+
+def solve_pair_combined(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.0, dz_mm=0.0,
+                        T_inner_ring_C=None, T_outer_ring_C=None, T_ball_C=None,
+                        T_ref_C: float = 20.0, preload_kind: str = "position",
+                        preload_assembled_N=100.0, axial_load_N=0.0, radial_load_N=0.0,
+                        dr_ref_mm=0.0, dz_ref_mm=0.0, compliance_mm_per_N=0.0,
+                        tol: float = 1e-14, max_outer: int = 30, chunk: int = 8192,
+                        return_ball_loads: bool = False) -> PairState:
+    """Pair equilibrium under combined axial and radial load with the quasi-static load
+    distribution around the ball set (Harris & Kotzalas Vol. 1 ch. 7; Jones 1960), vectorised
+    over N operating points.  `analytic.bearing.solve_pair` calls this when a radial load is given.
+
+    Model: each bearing j has Z balls at psi_k = 2 pi k / Z from the radial load direction.  The
+    rigid rotor moves radially by rho (mm, along psi = 0, common to both bearings; no tilt, so the
+    radial load is shared according to that common displacement) and axially by x:
+
+        X_jk = A0 sin(a0) + a_j,  Y_jk = A0 cos(a0) + dr_j + rho cos(psi_k)
+        delta_jk = sqrt(X^2 + Y^2) - A_T,  Q_jk = K_n(alpha_jk) delta_jk^1.5 (0 if delta <= 0)
+        sum_j s_j sum_k Q_jk sin(alpha_jk) = axial_load_N
+        sum_j sum_k Q_jk cos(alpha_jk) cos(psi_k) = radial_load_N
+
+    with a_j, e, c and the spring preload exactly as in `solve_pair` (module docstring), K_n of
+    every ball at its own contact angle.  No centrifugal or gyroscopic ball loads, rigid rings.
+
+    Solution: with K_n of every ball frozen the equations are the stationarity conditions of a
+    convex potential (`CombinedProblem`), minimised by Newton's method with a capped step and
+    Armijo backtracking (`roots.newton_minimise`); an outer loop refreshes K_n at the new contact
+    angles until it changes by less than tol.  Start: the axial-only solution
+    (`axial.solve_pair_axial`, which also gives the position-preload offset e), rho = 0.
+
+    Inputs: those of `solve_pair`, plus radial_load_N (N, scalar or (N,); negative values point
+    to psi = 180 deg).  Points with zero radial load keep the axial-only state unchanged (the
+    radial part evaluated at that state, rho = 0).
+
+    Returns a `PairState` whose per-bearing ball quantities (ball load, deflection, contact angle,
+    ellipses) refer to the most loaded ball of that bearing, axial_force_N = sum_k Q sin(alpha),
+    axial_stiffness_N_per_um = dF_j/da_j at fixed rho, pair_axial_stiffness_N_per_um = dF_ext/dx
+    at constant radial load, max_contact_pressure_MPa the largest over all balls and both
+    contacts; and its `radial` part (`RadialLoadState`): rho_mm, radial_force_N, max_ball_load_N,
+    loaded_zone (fraction of balls with delta > 1e-12 A_T), radial_stiffness_N_per_um (dF_r/drho
+    at constant axial load, x free, including dK_n/dalpha) and, with return_ball_loads,
+    ball_loads_N and ball_contact_angles_deg of shape (2, Z, N), ball k at
+    `contact.ball_azimuths_rad(Z)[k]`.
+
+    Note: `torque.pair_torque` multiplies one ball's friction by Z; under a radial load it then
+    treats every ball as the most loaded one (an upper bound), not the load distribution.
+    """
+    N = n_points(dr_mm, dz_mm, T_inner_ring_C, T_outer_ring_C, T_ball_C, preload_assembled_N,
+                 axial_load_N, dr_ref_mm, dz_ref_mm, compliance_mm_per_N, radial_load_N)
+    base = solve_pair_axial(g, arrangement, N, dr_mm=dr_mm, dz_mm=dz_mm,
+                            T_inner_ring_C=T_inner_ring_C, T_outer_ring_C=T_outer_ring_C,
+                            T_ball_C=T_ball_C, T_ref_C=T_ref_C, preload_kind=preload_kind,
+                            preload_assembled_N=preload_assembled_N,
+                            axial_load_N=np.broadcast_to(np.asarray(axial_load_N, float), (N,)),
+                            dr_ref_mm=dr_ref_mm, dz_ref_mm=dz_ref_mm,
+                            compliance_mm_per_N=compliance_mm_per_N, tol=tol, max_outer=max_outer)
+    Fr = np.broadcast_to(np.asarray(radial_load_N, float), (N,))
+    s = SIGNS[arrangement][:, None]
+    P = np.broadcast_to(np.asarray(preload_assembled_N, float), (N,))
+    Fa = np.broadcast_to(np.asarray(axial_load_N, float), (N,))
+    c = np.broadcast_to(np.asarray(compliance_mm_per_N, float), (N,))
+    dr, dz = pair_array(dr_mm, N), pair_array(dz_mm, N)
+    temps = [None if T is None else pair_array(T, N)
+             for T in (T_inner_ring_C, T_outer_ring_C, T_ball_C)]
+    tg = thermal_geometry(g, *temps, T_ref_C=float(T_ref_C))
+    tg = ThermalGeometry(*(np.broadcast_to(v, (2, N)) for v in
+                           (tg.A_T_mm, tg.Dw_mm, tg.f_i, tg.f_o, tg.dm_mm)))
+    e = base.preload_offset_mm
+    x0 = base.x_mm
+    ap0 = base.approach_mm
+    if preload_kind == "spring":
+        FA_req = s[0, 0] * Fa + P
+        Freq = np.stack([np.maximum(FA_req, 0.0), P])
+        lost_spring = FA_req < 0.0
+        modes = {"spring": np.ones(N, bool)}
+    else:
+        Freq, lost_spring = None, None
+        modes = {"rigid": c == 0.0, "compliant": c != 0.0}
+
+    Zb = (2, g.Z, N)
+    out = replace(base, radial=RadialLoadState(
+        rho_mm=np.zeros(N), radial_force_N=np.zeros((2, N)), max_ball_load_N=np.zeros((2, N)),
+        loaded_zone=np.zeros((2, N)), radial_stiffness_N_per_um=np.zeros(N),
+        ball_loads_N=np.zeros(Zb) if return_ball_loads else None,
+        ball_contact_angles_deg=np.zeros(Zb) if return_ball_loads else None))
+    for mode, mmask in modes.items():
+        for solve, smask in ((False, Fr == 0.0), (True, Fr != 0.0)):
+            ids = np.flatnonzero(mmask & smask)
+            for i0 in range(0, ids.size, chunk):
+                ii = ids[i0:i0 + chunk]
+                zero = np.zeros(ii.size)
+                if mode == "rigid":
+                    u0 = np.stack([x0[ii], zero])
+                elif mode == "compliant":
+                    u0 = np.stack([x0[ii], zero, ap0[0, ii], ap0[1, ii]])
+                else:
+                    u0 = np.stack([ap0[0, ii], ap0[1, ii], zero])
+                res = _combined_group(
+                    g, mode, s, dr[:, ii], dz[:, ii],
+                    ThermalGeometry(*(v[:, ii] for v in (tg.A_T_mm, tg.Dw_mm, tg.f_i, tg.f_o, tg.dm_mm))),
+                    Fa[ii], Fr[ii], c[ii], e[ii], None if Freq is None else Freq[:, ii],
+                    None if lost_spring is None else lost_spring[ii], u0, tol, max_outer,
+                    solve=solve, ball_loads=return_ball_loads)
+                if solve:
+                    out = with_rows(out, ii, res)
+                else:           # the axial solution stands; add the radial outputs at it
+                    out = replace(out, radial=with_rows(out.radial, ii, res.radial))
+    return out

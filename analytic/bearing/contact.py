@@ -1,0 +1,162 @@
+"""Contact of the balls with both raceways: the load-deflection stiffness K_n(alpha) from exact
+Hertz, the axial state of a bearing at given groove-centre distances, and the state of every ball
+of a bearing under a radial displacement (Harris & Kotzalas Vol. 1 ch. 6-7; Jones 1960).
+Units: mm, N; angles in radians."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from analytic import hertz
+from analytic.bearing.geometry import BearingGeometry, ThermalGeometry
+
+
+@dataclass
+class ContactStiffness:
+    """K_n of a bearing at a contact angle, with the pieces the torque model reuses."""
+    Kn: np.ndarray               # N/mm^1.5, inner and outer contact in series
+    dlnKn_dalpha: np.ndarray     # 1/rad
+    K_i: np.ndarray              # inner contact stiffness N/mm^1.5
+    K_o: np.ndarray
+    kappa: np.ndarray            # shape (2, ...): [inner, outer]
+    K_ell: np.ndarray            # first-kind elliptic integral, (2, ...)
+    E_ell: np.ndarray            # second-kind elliptic integral, (2, ...)
+    Rx_mm: np.ndarray            # (2, ...)
+    R_mm: np.ndarray             # 1/curvature sum, (2, ...)
+    u: np.ndarray                # ln kappa, (2, ...)
+    converged: np.ndarray        # both ellipticity solves converged, (...)
+
+
+def contact_stiffness(g: BearingGeometry, tg: ThermalGeometry, alpha_rad) -> ContactStiffness:
+    """K_n(alpha) = [K_i^(-2/3) + K_o^(-2/3)]^(-3/2) (Harris Vol. 1 ch. 7) from the exact Hertz
+    stiffness of each contact (`hertz.stiffness_from_kappa`) with the ball/raceway radii of
+    `hertz.ball_raceway_radii_mm` at gamma = Dw cos(alpha)/dm, and its exact derivative in alpha
+    (implicit differentiation of the ellipticity equation; d K/dm = (E - (1-m) K)/(2m(1-m)),
+    d E/dm = (E - K)/(2m), DLMF 19.4.1)."""
+    alpha = np.asarray(alpha_rad, float)
+    Dw, dm = tg.Dw_mm, tg.dm_mm
+    gamma = Dw * np.cos(alpha) / dm
+    Rx = np.stack(np.broadcast_arrays(0.5 * Dw * (1.0 - gamma), 0.5 * Dw * (1.0 + gamma)))
+    f = np.stack(np.broadcast_arrays(tg.f_i * np.ones_like(gamma), tg.f_o * np.ones_like(gamma)))
+    Ry = f * Dw / (2.0 * f - 1.0)
+    rho = Ry / Rx
+    shape = rho.shape
+    ell = hertz.ellipticity_state(rho.ravel())
+    kappa, K, E, u, A, B, dgdu, m1, ok = (v.reshape(shape) for v in (
+        ell.kappa, ell.K_ell, ell.E_ell, ell.u, ell.A, ell.B, ell.dg_du, ell.m1, ell.converged))
+    R = 1.0 / (1.0 / Rx + 1.0 / Ry)
+    Es = g.E_star_MPa
+    Kc = hertz.stiffness_from_kappa(R, Es, kappa, K, E)
+    # d ln Kc / d ln Rx: ln Kc = u + ln E/2 + ln R/2 - 3/2 ln K + const, du = -dlnRx / (dg/du)
+    dlnK_dlnRx = -(1.0 - 0.5 * A * m1 / E - 1.5 * B * m1 / K) / dgdu + 0.5 * R / Rx
+    tan_a = np.tan(alpha)
+    dlnRx_da = np.stack([gamma * tan_a / (1.0 - gamma), -gamma * tan_a / (1.0 + gamma)])
+    dlnK_da = dlnK_dlnRx * dlnRx_da
+    w = Kc ** (-2.0 / 3.0)
+    Kn = (w[0] + w[1]) ** -1.5
+    dlnKn = (w[0] * dlnK_da[0] + w[1] * dlnK_da[1]) / (w[0] + w[1])
+    return ContactStiffness(Kn, dlnKn, Kc[0], Kc[1], kappa, K, E, Rx, R, u, ok.all(axis=0))
+
+
+@dataclass
+class BearingState:
+    """Axial state of one bearing (or of both, on a leading axis) at given centre distances."""
+    F_N: np.ndarray              # axial force carried, >= 0
+    Q_N: np.ndarray              # ball load
+    delta_mm: np.ndarray         # total contact deformation (inner + outer), >= 0
+    alpha_rad: np.ndarray        # contact angle
+    k_N_per_mm: np.ndarray       # dF/dX at fixed K_n
+
+
+def axial_state(X_mm, Y_mm, A_T_mm, Kn, Z: int, dlnKn_dalpha=None, alpha_lin=None) -> BearingState:
+    """F = Z K_n delta^1.5 sin(alpha) with delta = sqrt(X^2 + Y^2) - A_T, alpha = atan2(X, Y)
+    (Harris Vol. 1 ch. 7 with the centre distance written in components).  A bearing whose
+    contact angle would be <= 0 carries no axial load (F = 0, k = 0).
+
+    With dlnKn_dalpha and alpha_lin given, K_n is taken as K_n exp(dlnKn_dalpha (alpha - alpha_lin))
+    (first-order model of its contact-angle dependence, used inside the solvers) and k includes
+    its derivative; otherwise K_n is held fixed in k."""
+    X, Y = np.asarray(X_mm, float), np.asarray(Y_mm, float)
+    D = np.hypot(X, Y)
+    delta = np.maximum(D - A_T_mm, 0.0)
+    s = np.maximum(X, 0.0) / D
+    c = Y / D
+    alpha = np.arctan2(X, Y)
+    if dlnKn_dalpha is not None:
+        Kn = Kn * np.exp(dlnKn_dalpha * (alpha - alpha_lin))
+    sd = np.sqrt(delta)
+    Q = Kn * delta * sd
+    F = Z * Q * s
+    k = Z * Kn * (1.5 * sd * s * s + delta * sd * c * c / D)
+    if dlnKn_dalpha is not None:
+        k = k + F * dlnKn_dalpha * c / D
+    return BearingState(F, Q, delta, alpha, k)
+
+
+def ball_azimuths_rad(Z: int) -> np.ndarray:
+    """Ball azimuths psi_k = 2 pi k / Z, k = 0..Z-1 (rad), measured from the direction of the
+    radial load (ball 0 sits in the load direction)."""
+    return 2.0 * np.pi * np.arange(Z) / Z
+
+
+@dataclass
+class BallSetState:
+    """Ball loads of both bearings at given groove-centre distances (`ball_set_state`).
+    Per ball: shape (2, Z, N); per bearing: (2, N)."""
+    Q_N: np.ndarray              # ball load
+    delta_mm: np.ndarray         # contact deformation (inner + outer), >= 0
+    alpha_rad: np.ndarray        # contact angle atan2(X, Y)
+    F_N: np.ndarray              # axial force of each bearing, sum_k Q sin(alpha)
+    Fr_N: np.ndarray             # radial force of each bearing, sum_k Q cos(alpha) cos(psi)
+    V_Nmm: np.ndarray            # elastic energy (2/5) sum_k K_n delta^2.5 (K_n as given)
+    k_aa: np.ndarray             # dF/da      (a: axial approach of the bearing)
+    k_ar: np.ndarray             # dF/drho    (rho: radial displacement of the rotor)
+    k_ra: np.ndarray             # dFr/da
+    k_rr: np.ndarray             # dFr/drho
+    QD_Nmm: np.ndarray           # sum_k Q D: scale of the rounding error of V (delta = D - A_T)
+
+
+def ball_set_state(X_mm, Y_mm, rho_mm, A_T_mm, Kn, cos_psi, dlnKn_dalpha=None) -> BallSetState:
+    """Loads of every ball of both bearings under a rotor radial displacement rho (Harris &
+    Kotzalas Vol. 1 ch. 7, Jones 1960, rigid rings, no centrifugal or gyroscopic terms):
+
+        X_jk = X_j,  Y_jk = Y_j + rho cos(psi_k),  D = sqrt(X^2 + Y^2),  alpha = atan2(X, Y)
+        delta_jk = D - A_T (0 if negative),  Q_jk = K_n,jk delta_jk^1.5
+        F_j = sum_k Q sin(alpha),  Fr_j = sum_k Q cos(alpha) cos(psi_k)
+
+    X_mm, Y_mm, A_T_mm: (2, N) (bearing axial and radial groove-centre distance components without
+    rho); rho_mm: (N,); Kn: (2, Z, N) (or broadcastable); cos_psi: (Z,).  The ball force Q (sin a,
+    cos a) is the gradient of V = (2/5) K_n delta^2.5 in (X, Y) at fixed K_n, so the loads derive
+    from a convex potential (used by the solver).  The tangent in (X, Y) per ball is
+    1.5 K_n delta^0.5 n n^T + (Q/D) t t^T with n = (sin a, cos a), t = (cos a, -sin a); with
+    dlnKn_dalpha given it also contains (Q/D) dlnK_n/dalpha n t^T (the contact-angle dependence of
+    K_n; K_n itself is used as given).  A ball with X < 0 is taken to touch the other side of the
+    groove at the negative angle (full groove); `axial_state` instead gives such a bearing no axial
+    force.  They differ only for a bearing withdrawn beyond zero contact angle with radial
+    interference."""
+    X = np.asarray(X_mm, float)[:, None, :]
+    cpsi = np.asarray(cos_psi, float)[None, :, None]
+    Y = np.asarray(Y_mm, float)[:, None, :] + np.asarray(rho_mm, float)[None, None, :] * cpsi
+    X = np.broadcast_to(X, Y.shape)
+    A_T = np.asarray(A_T_mm, float)[:, None, :]
+    D = np.hypot(X, Y)
+    delta = np.maximum(D - A_T, 0.0)
+    nX, nY = X / D, Y / D
+    sd = np.sqrt(delta)
+    Q = Kn * delta * sd
+    kn = 1.5 * Kn * sd
+    kt = Q / D
+    MXX = kn * nX * nX + kt * nY * nY
+    MXY = (kn - kt) * nX * nY
+    MYX = MXY
+    MYY = kn * nY * nY + kt * nX * nX
+    if dlnKn_dalpha is not None:
+        w = kt * dlnKn_dalpha
+        MXX, MXY, MYX, MYY = (MXX + w * nX * nY, MXY - w * nX * nX, MYX + w * nY * nY,
+                              MYY - w * nX * nY)
+    return BallSetState(Q, delta, np.arctan2(X, Y), (Q * nX).sum(axis=1),
+                        (Q * nY * cpsi).sum(axis=1), (0.4 * Q * delta).sum(axis=1),
+                        MXX.sum(axis=1), (MXY * cpsi).sum(axis=1), (MYX * cpsi).sum(axis=1),
+                        (MYY * cpsi * cpsi).sum(axis=1), (Q * D).sum(axis=1))
+

@@ -1,0 +1,85 @@
+"""Vectorised root finders of the bearing solvers. Each returns the solution and, per point,
+whether it converged; a solver never hands back an unconverged iterate silently."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Root:
+    """Solution per point and its convergence flag (bool, same trailing shape)."""
+    x: np.ndarray
+    converged: np.ndarray
+
+
+def newton_increasing(fun, x0, lo=None, hi=None, step0=1e-3, xtol=1e-15, max_iter=200) -> Root:
+    """Vectorised root of an increasing function: fun(x) -> (r, dr/dx).  Newton's method inside a
+    bracket kept from the residual signs; bisection when Newton leaves it; doubling steps away
+    from a flat (dr = 0) side while one bracket end is still open.  A point has converged when
+    its step is below xtol (1 + |x|) (a point whose residual is exactly zero stops there)."""
+    x = np.array(x0, dtype=float, copy=True)
+    lo = np.full_like(x, -np.inf) if lo is None else np.array(np.broadcast_to(lo, x.shape), float)
+    hi = np.full_like(x, np.inf) if hi is None else np.array(np.broadcast_to(hi, x.shape), float)
+    step = np.array(np.broadcast_to(step0, x.shape), float)
+    done = np.zeros(x.shape, bool)
+    for _ in range(max_iter):
+        r, dr = fun(x)
+        lo = np.where(r <= 0.0, np.maximum(lo, x), lo)
+        hi = np.where(r >= 0.0, np.minimum(hi, x), hi)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            cand = x - r / dr
+        ok = (dr > 0.0) & np.isfinite(cand) & (cand >= lo) & (cand <= hi)
+        both = np.isfinite(lo) & np.isfinite(hi)
+        new = np.where(ok, cand, np.where(both, 0.5 * (lo + hi),
+                                          np.where(r < 0.0, x + step, x - step)))
+        step = np.where(ok | both, step, 2.0 * step)
+        new = np.where(r == 0.0, x, new)
+        done = np.abs(new - x) <= xtol * (1.0 + np.abs(x))
+        x = new
+        if np.all(done):
+            break
+    return Root(x, done & np.isfinite(x))
+
+
+def newton_minimise(fun, u0, cap, max_iter: int = 200) -> Root:
+    """Vectorised minimisation of convex functions fun(u) -> (Pi, |terms|, grad, Hessian), u of
+    shape (n, N): Newton steps on the Hessian (plus 1e-12 of its largest diagonal and 1e-6 N/mm,
+    so that flat directions without contact still give a step), capped to `cap` mm per component,
+    with Armijo backtracking on Pi (decreases below the rounding level of Pi, 1e-13 of the sum of
+    the magnitudes of its terms, are accepted).  A point is converged when a full Newton step is
+    accepted that is below 1e-15 (1 + max|u|) mm, or when no step decreases Pi any more (at the
+    rounding level of Pi: the minimum to machine precision); `converged` is False for points still
+    moving after max_iter iterations."""
+    u = np.array(u0, float, copy=True)
+    n, N = u.shape
+    Pi, Pabs, g, H = fun(u)
+    done = np.zeros(N, bool)
+    eye = np.eye(n)
+    for _ in range(max_iter):
+        A = np.moveaxis(H, -1, 0)
+        lam = 1e-12 * np.abs(np.diagonal(A, axis1=1, axis2=2)).max(axis=1) + 1e-6
+        d = -np.linalg.solve(A + lam[:, None, None] * eye, np.moveaxis(g, -1, 0)[..., None])[..., 0].T
+        step = np.abs(d).max(axis=0)
+        full = step <= cap
+        d = d * np.where(full, 1.0, cap / np.where(full, 1.0, step))
+        d[:, done] = 0.0
+        slope = (g * d).sum(axis=0)
+        t = np.ones(N)
+        pending = ~done
+        for _ls in range(60):
+            trial = u + t * d
+            Pt, Pat, gt, Ht = fun(trial)
+            ok = pending & (Pt <= Pi + 1e-4 * t * slope + 1e-13 * (Pabs + Pat))
+            u[:, ok], Pi[ok], Pabs[ok], g[:, ok], H[..., ok] = trial[:, ok], Pt[ok], Pat[ok], gt[:, ok], Ht[..., ok]
+            pending &= ~ok
+            if not pending.any():
+                break
+            t = np.where(pending, 0.5 * t, t)
+        small = full & (t == 1.0) & (step <= 1e-15 * (1.0 + np.abs(u).max(axis=0)))
+        done |= small | pending
+        if done.all():
+            break
+    return Root(u, done & np.isfinite(u).all(axis=0))
+
