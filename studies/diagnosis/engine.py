@@ -60,6 +60,8 @@ from typing import Callable, Mapping, Sequence
 import numpy as np
 from scipy import optimize, stats
 
+from studies.diagnosis.candidate import Candidate
+
 DEFAULT_THRESHOLDS = {
     "alpha_structure": 0.01,    # residual-structure tests, Bonferroni over tests x columns
     "alpha_lr": 0.01,           # likelihood-ratio test, Holm over the candidates tested
@@ -608,8 +610,7 @@ class _Engine:
         cands = {}
         proj = {}
         for e in self.candidates:
-            info = {"effect": e.name, "parameters": {}, "delta_bic": None, "heldout_rmse": {},
-                    "status": None, "reason": ""}
+            info = Candidate(e.name)
             cands[e.name] = info
             why = e.applicable(self.conditions)
             grid = {}
@@ -618,13 +619,13 @@ class _Engine:
                 if any(len(v) == 0 for v in grid.values()):
                     why = "no value of " + ", ".join(e.profile) + " changes the prediction here"
             if why is not None:
-                info.update(status="not_applicable", reason=why)
+                info.set_status("not_applicable", why)
                 continue
             fixed = {p: float(np.median(grid[p])) for p in e.profile}
             try:
                 Jc, names = self.sensitivity(e, base_nuis, base.pred, fixed)
             except ModelFailure as exc:
-                info.update(status="model_failed", reason=f"model failed with the effect on: {exc}")
+                info.set_status("model_failed", f"model failed with the effect on: {exc}")
                 continue
             Jp = Jc - Qn @ (Qn.T @ Jc)
             raw = np.linalg.norm(Jc, axis=0)
@@ -635,27 +636,27 @@ class _Engine:
                 lo, hi = e.bounds[p]
                 h = float(e.steps(self.conditions).get(p, e.scale[p]))
                 reach = max(reach, left[i] * max(abs(hi - e.off[p]), abs(lo - e.off[p])) / h)
-            info["identifiability"] = {"remaining_fraction": dict(zip(names, frac)),
+            info.identifiability = {"remaining_fraction": dict(zip(names, frac)),
                                        "reach_sigma": float(reach)}
             if not np.any(raw > 1e-9):
-                info.update(status="not_identifiable",
-                            reason="the measured outputs do not depend on it here")
+                info.set_status("not_identifiable",
+                                "the measured outputs do not depend on it here")
                 continue
             if frac.max() < th["min_remaining"]:
-                info.update(status="not_identifiable",
-                            reason="the baseline calibration (" + ", ".join(self.nuis_names)
-                            + ") absorbs it")
+                info.set_status("not_identifiable",
+                                "the baseline calibration (" + ", ".join(self.nuis_names)
+                                + ") absorbs it")
                 continue
             if reach < th["min_reach_sigma"]:
-                info.update(status="not_identifiable",
-                            reason="too small inside its physical bounds to be seen at this noise")
+                info.set_status("not_identifiable",
+                                "too small inside its physical bounds to be seen at this noise")
                 continue
             Q = _orth(Jp, 1e-6)
             proj[e.name] = Q
-            info["_Jc"] = Jc
-            info["_fixed"] = fixed
-            info["_grid"] = grid
-            info["rank"] = int(Q.shape[1])
+            info.sensitivity = Jc
+            info.profile_fixed = fixed
+            info.profile_grid = grid
+            info.rank = int(Q.shape[1])
         names_id = list(proj)
         look = {a: {b: (float(np.linalg.svd(proj[a].T @ proj[b], compute_uv=False).max())
                         if proj[a].shape[1] and proj[b].shape[1] else 0.0)
@@ -674,38 +675,38 @@ class _Engine:
                 else:
                     fits[name] = self.fit_candidate(e, info, base)
             except ModelFailure as exc:
-                info.update(status="model_failed", reason=f"fit failed: {exc}")
+                info.set_status("model_failed", f"fit failed: {exc}")
                 names_id.remove(name)
                 continue
             f = fits[name]
-            info["predict_calls_fit"] = self.model.calls - calls0
+            info.predict_calls_fit = self.model.calls - calls0
             lr = max(base.chi2 - f.chi2, 0.0)
-            r = info["rank"]
+            r = info.rank
             n_two = sum(1 for p in self.free_params(e) if e.sign(p) == 0)
             n_free = min(r, n_two) + len(e.profile)
             n_bound = r - min(r, n_two)
             k_eff = r + len(e.profile)
-            info["lr"] = lr
-            info["df"] = {"free": n_free, "on_bound": n_bound}
-            info["p_lr"] = chibar_pvalue(lr, n_free, n_bound)
-            info["delta_bic"] = -lr + k_eff * lnN
-            info["k"] = k_eff
+            info.lr = lr
+            info.df = {"free": n_free, "on_bound": n_bound}
+            info.p_lr = chibar_pvalue(lr, n_free, n_bound)
+            info.delta_bic = -lr + k_eff * lnN
+            info.k = k_eff
             eff_vals, nuis_vals = f.space.unpack(f.u)
-            info["parameters"] = {p: eff_vals[name][p] for p in e.parameters}
+            info.parameters = {p: eff_vals[name][p] for p in e.parameters}
             held = list(e.held_fixed(self.conditions))
             if held:
-                info["held_at_off"] = {p: e.off[p] for p in held}
-            info["nuisance"] = nuis_vals
-            info["uncertainty"] = self.uncertainty(f, e)
-            info["rmse"] = self.col_rmse(f.z)
+                info.held_at_off = {p: e.off[p] for p in held}
+            info.nuisance = nuis_vals
+            info.uncertainty = self.uncertainty(f, e)
+            info.rmse = self.col_rmse(f.z)
         # Holm over the identifiable candidates
-        order = sorted(names_id, key=lambda n: cands[n]["p_lr"])
+        order = sorted(names_id, key=lambda n: cands[n].p_lr)
         m = len(order)
         still = True
         for j, name in enumerate(order):
-            ok = still and cands[name]["p_lr"] <= th["alpha_lr"] / (m - j)
+            ok = still and cands[name].p_lr <= th["alpha_lr"] / (m - j)
             still = ok
-            cands[name]["lr_significant"] = bool(ok)
+            cands[name].lr_significant = bool(ok)
 
         self._phase("fits")
         # ---- 4. held-out gains
@@ -715,29 +716,29 @@ class _Engine:
             try:
                 if e.profile:
                     ho[name], chosen = self.heldout_profile(fits[name].extra["grid_lin"], e)
-                    cands[name]["heldout_profile_values"] = chosen
+                    cands[name].heldout_profile_values = chosen
                 else:
                     ho[name] = self.heldout_linear(fits[name])
             except ModelFailure as exc:
                 # no honest held-out number: the candidate cannot pass
-                cands[name]["heldout_failed"] = str(exc)
+                cands[name].heldout_failed = str(exc)
                 ho[name] = base_ho.copy()
-            cands[name]["heldout_rmse"] = self.col_rmse(ho[name])
-            cands[name]["heldout_gain"] = self.bootstrap_gain(base_ho, ho[name])
+            cands[name].heldout_rmse = self.col_rmse(ho[name])
+            cands[name].heldout_gain = self.bootstrap_gain(base_ho, ho[name])
         passing = []
         for name in names_id:
             c = cands[name]
             reasons = []
-            if not c["lr_significant"]:
-                reasons.append(f"likelihood ratio not significant (p = {c['p_lr']:.2g}, Holm)")
-            if not c["delta_bic"] < -th["bic_margin"]:
-                reasons.append(f"BIC not better than the baseline (delta {c['delta_bic']:.1f})")
-            if not c["heldout_gain"]["excludes_zero"]:
+            if not c.lr_significant:
+                reasons.append(f"likelihood ratio not significant (p = {c.p_lr:.2g}, Holm)")
+            if not c.delta_bic < -th["bic_margin"]:
+                reasons.append(f"BIC not better than the baseline (delta {c.delta_bic:.1f})")
+            if not c.heldout_gain["excludes_zero"]:
                 reasons.append("no held-out gain beyond noise (bootstrap interval "
-                               f"[{c['heldout_gain']['ci'][0]:.3g}, "
-                               f"{c['heldout_gain']['ci'][1]:.3g}] includes 0)")
-            c["status"] = "passed" if not reasons else "rejected"
-            c["reason"] = "; ".join(reasons) if reasons else "beats the baseline in sample and " \
+                               f"[{c.heldout_gain['ci'][0]:.3g}, "
+                               f"{c.heldout_gain['ci'][1]:.3g}] includes 0)")
+            c.status = "passed" if not reasons else "rejected"
+            c.reason = "; ".join(reasons) if reasons else "beats the baseline in sample and " \
                                                              "on held-out blocks"
             if not reasons:
                 passing.append(name)
@@ -745,7 +746,7 @@ class _Engine:
         self._phase("heldout")
         # ---- 5. decide
         verdict, cause, rivals, best_desc, joint = "no_discrepancy", None, [], None, {}
-        best = min(passing, key=lambda n: cands[n]["delta_bic"]) if passing else None
+        best = min(passing, key=lambda n: cands[n].delta_bic) if passing else None
         reasons = []
         if best is None:
             if structure:
@@ -763,7 +764,7 @@ class _Engine:
                 reasons.append("the baseline residuals are consistent with the noise estimated "
                                "from the data and no candidate passes")
         else:
-            best_desc = self.describe(fits[best].pred, n_nuis + cands[best]["k"])
+            best_desc = self.describe(fits[best].pred, n_nuis + cands[best].k)
             if best_desc["p_min_adjusted"] < th["alpha_residual"]:
                 verdict = "unexplained"
                 reasons.append(f"the best candidate, {best}, passes but leaves structure in the "
@@ -772,7 +773,7 @@ class _Engine:
                 rivals, joint = self.compare(best, fits, cands, names_id)
                 for o in passing:
                     if o != best and o not in rivals:
-                        cands[o]["reason"] += (f"; but clearly beaten by {best} (chi-square "
+                        cands[o].reason += (f"; but clearly beaten by {best} (chi-square "
                                                f"{fits[o].chi2 - fits[best].chi2:+.1f})")
                 verdict = "ambiguous" if rivals else "explained"
                 cause = best
@@ -798,17 +799,14 @@ class _Engine:
         c0 = self.columns[0]
         ratio = ext_ho_rmse[c0] / base_ho_rmse[c0] if base_ho_rmse[c0] > 0 else 1.0
 
-        def public(c):
-            d = {k: v for k, v in c.items() if not k.startswith("_")}
-            return d
-        fitted = sorted((n for n in cands if cands[n]["delta_bic"] is not None),
-                        key=lambda n: (n not in passing, cands[n]["delta_bic"]))
-        rest = [n for n in cands if cands[n]["delta_bic"] is None]
-        cand_list = [public(cands[n]) for n in fitted + rest]
+        fitted = sorted((n for n in cands if cands[n].fitted),
+                        key=lambda n: (n not in passing, cands[n].delta_bic))
+        rest = [n for n in cands if not cands[n].fitted]
+        cand_list = [cands[n].to_json() for n in fitted + rest]
         result = {
             "verdict": verdict,
             "cause": cause,
-            "parameters": dict(cands[cause]["parameters"]) if cause else {},
+            "parameters": dict(cands[cause].parameters) if cause else {},
             "indistinguishable": list(rivals),
             "separating_test": sep,
             "baseline": {"rmse": base_rmse, "heldout_rmse": base_ho_rmse},
@@ -816,7 +814,7 @@ class _Engine:
             "gain": {"heldout_rmse_ratio": float(ratio)},
             "candidates": cand_list,
             # ---- extras
-            "parameter_uncertainty": dict(cands[cause]["uncertainty"]) if cause else {},
+            "parameter_uncertainty": dict(cands[cause].uncertainty) if cause else {},
             "reasons": reasons,
             "columns": list(self.columns),
             "noise_sigma": dict(self.sigma),
@@ -827,17 +825,17 @@ class _Engine:
                          "bounds": {n: [float(a), float(b)] for n, a, b in
                                     zip(self.nuis_names, self.nuis_lo, self.nuis_hi)},
                          "baseline": base_nuis,
-                         "extended": (cands[cause]["nuisance"] if cause else base_nuis)},
+                         "extended": (cands[cause].nuisance if cause else base_nuis)},
             "residuals": {"baseline": desc_base, "extended": best_desc if cause else None,
                           "baseline_structure": bool(structure)},
             "best_partial": (None if verdict != "unexplained" or best is None else
-                             {"effect": best, "parameters": cands[best]["parameters"],
+                             {"effect": best, "parameters": cands[best].parameters,
                               "residuals": best_desc}),
             "lookalike": look,
             "joint_fits": joint,
             "separating_tests": sep_items,
-            "not_identifiable": {n: cands[n]["reason"] for n in cands
-                                 if cands[n]["status"] in ("not_identifiable", "not_applicable")},
+            "not_identifiable": {n: cands[n].reason for n in cands
+                                 if cands[n].status in ("not_identifiable", "not_applicable")},
             "heldout": {"blocks": int(self.n_blocks), "method": "contiguous blocks; parameters "
                         "refitted on the other blocks (one Gauss-Newton step from the full fit); "
                         "paired block bootstrap of the RMSE difference"},
@@ -871,7 +869,7 @@ class _Engine:
         k = space.k
         nq = len(self.nuis_names)
         Jn = base.J                       # d z / d u_nuisance at the baseline
-        Jc = -info["_Jc"]                 # d z / d u_effect at off (sensitivity is -dz)
+        Jc = -info.sensitivity                 # d z / d u_effect at off (sensitivity is -dz)
         u_nuis = base.u
         starts = []
         # Gauss-Newton step from off
@@ -925,7 +923,7 @@ class _Engine:
         """Profile the `profile` parameter (one) over its grid with a linearised inner fit, then
         refine the best value with a full bounded least-squares fit."""
         (pp,) = e.profile
-        values = list(info["_grid"][pp])
+        values = list(info.profile_grid[pp])
         nq = len(self.nuis_names)
 
         def lin(value):
@@ -991,7 +989,7 @@ class _Engine:
         sse_min = min(g["sse"] for g in grid_lin)
         near = [g["value"] for g in grid_lin if g["sse"] <= sse_min + 1.0]
         best.extra.update(grid_lin=grid_lin, interval=[min(near), max(near)])
-        info["profile"] = {pp: {"grid_size": len(values), "evaluated": len(grid_lin),
+        info.profile = {pp: {"grid_size": len(values), "evaluated": len(grid_lin),
                                 "interval_chi2_1": [min(near), max(near)]}}
         return best
 
@@ -1064,7 +1062,7 @@ class _Engine:
                         "best_carries_weight": bool(beaten)}
             if not beaten:
                 rivals.append(o)
-        rivals.sort(key=lambda n: cands[n]["delta_bic"])
+        rivals.sort(key=lambda n: cands[n].delta_bic)
         return rivals, joint
 
     # ------------------------------------------------------------------ separating test
@@ -1172,7 +1170,7 @@ class _Engine:
 
 
 def _df(c):
-    return {"n_free": c["df"]["free"], "n_bound": c["df"]["on_bound"]}
+    return {"n_free": c.df["free"], "n_bound": c.df["on_bound"]}
 
 
 def _rng(a):
