@@ -20,7 +20,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from studies.diagnosis.engine import chibar_pvalue, diagnose, diagnose_full, noise_sigma
+from studies.diagnosis.engine import diagnose, diagnose_full
+from studies.diagnosis.stats import chibar_pvalue, noise_sigma
 from studies.model.effects import (EFFECTS, apply_effects, resolve_friction_coefficient,
                              resolve_interference_um)
 from studies.model.inputs import baseline_inputs

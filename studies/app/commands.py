@@ -22,7 +22,7 @@ def _user_errors():
     from fem.solver import SolveError
     from meshes.build import MeshError
     from studies.model.config import ConfigError
-    from studies.diagnosis.engine import DiagnosisError, ModelFailure
+    from studies.diagnosis.core import DiagnosisError, ModelFailure
     from studies.model.effects import EffectError
     from studies.model.pipeline import ModelError
     from studies.model.table import TableError

@@ -53,205 +53,25 @@ from __future__ import annotations
 
 import math
 import time
-from collections import OrderedDict
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Callable, Mapping, Sequence
 
 import numpy as np
 from scipy import optimize, stats
 
-from studies.diagnosis.candidate import Candidate
-
-DEFAULT_THRESHOLDS = {
-    "alpha_structure": 0.01,    # residual-structure tests, Bonferroni over tests x columns
-    "alpha_lr": 0.01,           # likelihood-ratio test, Holm over the candidates tested
-    "bic_margin": 0.0,          # a candidate needs delta_bic < -bic_margin
-    "heldout_quantile": 0.025,  # lower bootstrap quantile of the held-out RMSE gain must be > 0
-    "n_boot": 2000,             # bootstrap resamples of the blocks
-    "min_remaining": 0.10,      # share of the sensitivity left after projecting out the nuisance
-    "min_reach_sigma": 3.0,     # projected change reachable inside the bounds (noise units, norm)
-    "alpha_joint": 0.01,        # conditional likelihood-ratio tests of the joint fits
-    "clear_chi2": 25.0,         # a rival whose chi-square is this much worse is beaten outright
-    "alpha_residual": 0.001,    # structure left behind by the best candidate
-    "lookalike_cos": 0.95,      # cosine above which two candidates are reported as look-alikes
-    "n_blocks": 10,             # automatic contiguous blocks when no labels are given
-}
-
-FIRST_COLUMNS = ("torque_Nmm",)
+from studies.diagnosis.core import (DEFAULT_THRESHOLDS, FIRST_COLUMNS, Baseline, CachedModel,
+                                    Decision, DiagnosisError, Fit, ModelFailure, Screening, Space,
+                                    jsonable)
+from studies.diagnosis.decision import DecisionPhase
+from studies.diagnosis.fitting import FittingPhase
+from studies.diagnosis.heldout import HeldoutPhase
+from studies.diagnosis.screening import ScreeningPhase
+from studies.diagnosis.stats import auto_blocks, noise_sigma, orth
 
 
-class DiagnosisError(ValueError):
-    """Unusable input to the engine (one-line message)."""
+class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
+    """One diagnosis: the data, the cached model and the phases (mixins, one module each)."""
 
-
-class ModelFailure(RuntimeError):
-    """The model could not be evaluated (exception or non-finite output) at some parameters."""
-
-
-# ============================================================================ small utilities
-def _jsonable(x):
-    if isinstance(x, dict):
-        return {str(k): _jsonable(v) for k, v in x.items()}
-    if isinstance(x, (list, tuple)):
-        return [_jsonable(v) for v in x]
-    if isinstance(x, np.ndarray):
-        return [_jsonable(v) for v in x.tolist()]
-    if isinstance(x, (np.bool_, bool)):
-        return bool(x)
-    if isinstance(x, (np.integer,)):
-        return int(x)
-    if isinstance(x, (float, np.floating)):
-        x = float(x)
-        return x if math.isfinite(x) else None
-    return x
-
-
-def chibar_pvalue(lr: float, n_free: int, n_bound: int) -> float:
-    """P(chi-bar-square > lr): n_free unconstrained directions plus n_bound directions on a bound
-    (each half chi-square with one df, taken as independent: binomial weights)."""
-    lr = max(float(lr), 0.0)
-    if n_free + n_bound == 0:
-        return 1.0
-    p = 0.0
-    for j in range(n_bound + 1):
-        w = math.comb(n_bound, j) / 2.0 ** n_bound
-        df = n_free + j
-        p += w * (stats.chi2.sf(lr, df) if df > 0 else (0.0 if lr > 0 else 1.0))
-    return float(min(p, 1.0))
-
-
-def noise_sigma(r: np.ndarray, seg: np.ndarray) -> float:
-    """Noise standard deviation from second differences within segments (robustly trimmed at 4
-    sigma; unbiased for white noise, blind to smooth structure, insensitive to a few steps)."""
-    r = np.asarray(r, float)
-    ok = np.isfinite(r)
-    idx = np.flatnonzero(ok)
-    if idx.size < 3:
-        return float(np.nanstd(r)) if idx.size > 1 else 0.0
-    a, b, c = idx[:-2], idx[1:-1], idx[2:]
-    same = (seg[a] == seg[b]) & (seg[b] == seg[c])
-    d2 = r[a[same]] - 2 * r[b[same]] + r[c[same]]
-    if d2.size < 5:
-        return float(np.std(r[ok], ddof=1))
-    d2 = d2 - np.median(d2)            # a steady curvature of the residuals is not noise
-    s_rob = 1.4826 * np.median(np.abs(d2)) / math.sqrt(6.0)
-    if s_rob > 0:
-        kept = d2[np.abs(d2) <= 4.0 * math.sqrt(6.0) * s_rob]
-        d2 = kept if kept.size >= 5 else d2
-    trunc = 1.0 - 2 * 4.0 * stats.norm.pdf(4.0) / (1 - 2 * stats.norm.sf(4.0))
-    return float(math.sqrt(np.mean(d2 ** 2) / 6.0 / (trunc if s_rob > 0 else 1.0)))
-
-
-def _auto_blocks(n: int, k: int) -> np.ndarray:
-    k = max(2, min(k, n // 8 if n >= 16 else 2))
-    return np.minimum((np.arange(n) * k) // n, k - 1)
-
-
-def _orth(A: np.ndarray, rtol: float = 1e-8) -> np.ndarray:
-    if A.size == 0 or A.shape[1] == 0:
-        return np.zeros((A.shape[0], 0))
-    U, s, _ = np.linalg.svd(A, full_matrices=False)
-    if s.size == 0 or s[0] == 0:
-        return np.zeros((A.shape[0], 0))
-    return U[:, s > rtol * s[0]]
-
-
-def _blsq(A: np.ndarray, b: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
-    """min ||A x - b|| subject to lo <= x <= hi (small dense problems; exact active set)."""
-    x, *_ = np.linalg.lstsq(A, b, rcond=None)
-    if np.all(x >= lo) and np.all(x <= hi):
-        return x
-    hi = np.maximum(hi, lo + 1e-15)
-    return optimize.lsq_linear(A, b, bounds=(lo, hi), method="bvls").x
-
-
-# ============================================================================ the model wrapper
-class _Model:
-    """predict() with a call counter and a small LRU cache."""
-
-    def __init__(self, predict, n_rows, maxsize=512):
-        self.predict = predict
-        self.n = n_rows
-        self.calls = 0
-        self.seconds = 0.0
-        self.cache: OrderedDict = OrderedDict()
-        self.maxsize = maxsize
-
-    def __call__(self, effects: dict, nuisance: dict) -> dict[str, np.ndarray]:
-        key = (tuple(sorted((e, tuple(sorted((k, float(v)) for k, v in p.items())))
-                            for e, p in effects.items())),
-               tuple(sorted((k, float(v)) for k, v in nuisance.items())))
-        hit = self.cache.get(key)
-        if hit is not None:
-            self.cache.move_to_end(key)
-            return hit
-        t0 = time.perf_counter()
-        try:
-            raw = self.predict({e: dict(p) for e, p in effects.items()}, dict(nuisance))
-        except Exception as exc:  # the model's own failure at these parameters
-            raise ModelFailure(f"{type(exc).__name__}: {exc}") from exc
-        self.seconds += time.perf_counter() - t0
-        self.calls += 1
-        out = {}
-        for k, v in raw.items():
-            a = np.asarray(v, dtype=float) if not isinstance(v, str) else None
-            if a is not None and a.ndim == 1 and a.size == self.n:
-                out[k] = a
-        self.cache[key] = out
-        if len(self.cache) > self.maxsize:
-            self.cache.popitem(last=False)
-        return out
-
-
-# ============================================================================ parameter spaces
-@dataclass
-class _Space:
-    """Fitted parameters in scaled coordinates u: value = origin + scale * u."""
-    eff_params: list[tuple[str, str]]          # (effect name, parameter)
-    fixed: dict[str, dict[str, float]]        # effect -> all its parameters at their fixed values
-    nuis: list[str]
-    origin: np.ndarray
-    scale: np.ndarray
-    lo: np.ndarray
-    hi: np.ndarray
-
-    def unpack(self, u) -> tuple[dict, dict]:
-        v = self.origin + self.scale * np.asarray(u, float)
-        v = np.clip(v, self.lo * self.scale + self.origin, self.hi * self.scale + self.origin)
-        effects = {e: dict(p) for e, p in self.fixed.items()}
-        k = len(self.eff_params)
-        for (e, p), x in zip(self.eff_params, v[:k]):
-            effects[e][p] = float(x)
-        nuis = {n: float(x) for n, x in zip(self.nuis, v[k:])}
-        return effects, nuis
-
-    def values(self, u) -> np.ndarray:
-        return self.origin + self.scale * np.asarray(u, float)
-
-    def to_u(self, values) -> np.ndarray:
-        return (np.asarray(values, float) - self.origin) / self.scale
-
-    def clip(self, u) -> np.ndarray:
-        return np.clip(u, self.lo, self.hi)
-
-    @property
-    def k(self):
-        return len(self.eff_params)
-
-
-@dataclass
-class _Fit:
-    space: _Space
-    u: np.ndarray
-    z: np.ndarray               # standardised residual (stacked), at u
-    J: np.ndarray               # d z / d u at u
-    chi2: float
-    pred: dict
-    extra: dict = field(default_factory=dict)
-
-
-# ============================================================================ the engine
-class _Engine:
     def __init__(self, predict, measured, conditions, candidates, nuisance, blocks, noise_sigma_,
                  T_ref_C, predict_at, th, seed, columns):
         self.t0 = time.perf_counter()
@@ -286,7 +106,7 @@ class _Engine:
             lo.append(l), hi.append(h), x0.append(x), sc.append(s)
         self.nuis_lo, self.nuis_hi = np.array(lo), np.array(hi)
         self.nuis_x0, self.nuis_scale = np.array(x0), np.array(sc)
-        self.model = _Model(predict, self.n)
+        self.model = CachedModel(predict, self.n)
         # first call: which columns can be compared
         pred0 = self.model({}, dict(zip(self.nuis_names, self.nuis_x0)))
         common = [c for c in meas if c in pred0]
@@ -300,7 +120,7 @@ class _Engine:
         self.measured = {c: meas[c] for c in self.columns}
         # blocks (held-out) and segments (where differences are taken)
         if blocks is None:
-            self.blocks = _auto_blocks(self.n, int(th["n_blocks"]))
+            self.blocks = auto_blocks(self.n, int(th["n_blocks"]))
         else:
             b = np.asarray(blocks)
             if b.size != self.n:
@@ -339,7 +159,7 @@ class _Engine:
         return z
 
     # ------------------------------------------------------------------ spaces
-    def space(self, effects: Sequence, fixed: dict | None = None) -> _Space:
+    def space(self, effects: Sequence, fixed: dict | None = None) -> Space:
         """Space fitting the non-profile parameters of `effects` (effect objects) + nuisance;
         `fixed` gives values for profiled parameters."""
         fixed = fixed or {}
@@ -358,14 +178,14 @@ class _Engine:
         scale += list(self.nuis_scale)
         lo += list((self.nuis_lo - self.nuis_x0) / self.nuis_scale)
         hi += list((self.nuis_hi - self.nuis_x0) / self.nuis_scale)
-        return _Space(eff_params, fx, list(self.nuis_names), np.array(origin, float),
+        return Space(eff_params, fx, list(self.nuis_names), np.array(origin, float),
                       np.array(scale, float), np.array(lo, float), np.array(hi, float))
 
-    def eval(self, space: _Space, u) -> tuple[np.ndarray, dict]:
+    def eval(self, space: Space, u) -> tuple[np.ndarray, dict]:
         pred = self.model(*space.unpack(space.clip(u)))
         return self.zvec(pred), pred
 
-    def fit(self, space: _Space, u0, max_nfev=None) -> _Fit:
+    def fit(self, space: Space, u0, max_nfev=None) -> Fit:
         u0 = space.clip(np.asarray(u0, float))
         # strictly inside the bounds for trf
         lo, hi = space.lo, space.hi
@@ -386,7 +206,7 @@ class _Engine:
                                      x_scale=1.0, ftol=1e-8, xtol=1e-8, gtol=1e-8,
                                      max_nfev=max_nfev or 40 * (dim + 1))
         z, pred = self.eval(space, res.x)
-        return _Fit(space, res.x, z, np.asarray(res.jac, float), float(z @ z), pred)
+        return Fit(space, res.x, z, np.asarray(res.jac, float), float(z @ z), pred)
 
     # ------------------------------------------------------------------ describe residuals
     def features(self) -> np.ndarray:
@@ -445,7 +265,7 @@ class _Engine:
             # smoother: polynomials in the varying conditions (and time / row order)
             X = X_all[m]
             A = np.column_stack([np.ones(nn), X])
-            q = _orth(A)
+            q = orth(A)
             fitted = q @ (q.T @ zc)
             ss1 = float(np.sum((zc - fitted) ** 2))
             p_feat = q.shape[1] - 1
@@ -480,103 +300,6 @@ class _Engine:
         return {"columns": out, "p_min_adjusted": p_adj}
 
     # ------------------------------------------------------------------ sensitivities
-    def free_params(self, e) -> list[str]:
-        """Parameters fitted by gradients: not profiled, not held at "off" for these conditions
-        (e.g. a speed-proportional part when every row has the same speed)."""
-        held = set(e.held_fixed(self.conditions))
-        return [p for p in e.parameters if p not in e.profile and p not in held]
-
-    def sensitivity(self, e, base_nuis: dict, base_pred: dict, fixed: dict | None = None):
-        """d(pred)/sigma per unit step of each non-profile parameter at off (N x k, stacked)."""
-        steps = e.steps(self.conditions)
-        cols = []
-        names = []
-        for p in self.free_params(e):
-            params = dict(e.off)
-            params.update(fixed or {})
-            lo, hi = e.bounds[p]
-            h = float(steps.get(p, e.scale[p]))
-            if e.off[p] + h > hi:
-                h = -h
-            params[p] = e.off[p] + h
-            pred = self.model({e.name: params}, base_nuis)
-            # d(pred)/sigma per unit scaled step in the +u direction
-            cols.append(-(self.zvec(pred) - self.zvec(base_pred)) * np.sign(h))
-            names.append(p)
-        return (np.column_stack(cols) if cols else np.zeros((self.N, 0))), names
-
-    # ------------------------------------------------------------------ held-out
-    def heldout_linear(self, fit: _Fit) -> np.ndarray:
-        """Held-out standardised residual per stacked entry: per fold, one bounded Gauss-Newton
-        step from `fit` on the training entries (halved once if it does not lower the training
-        chi-square), then a real model call."""
-        z_ho = np.empty(self.N)
-        sp = fit.space
-        for b in range(self.n_blocks):
-            te = self.entry_block == b
-            tr = ~te
-            if not te.any():
-                continue
-            J, z = fit.J[tr], fit.z[tr]
-            if J.shape[1]:
-                lo = np.minimum(sp.lo - fit.u, 0.0)
-                hi = np.maximum(sp.hi - fit.u, 0.0)
-                du = _blsq(J, -z, lo, hi)
-            else:
-                du = np.zeros(0)
-            sse0 = float(z @ z)
-            for damp in (1.0, 0.5):
-                try:
-                    zz, _ = self.eval(sp, sp.clip(fit.u + damp * du))
-                except ModelFailure:
-                    continue
-                if float(zz[tr] @ zz[tr]) <= sse0 * (1 + 1e-9):
-                    break
-            else:
-                zz = fit.z             # keep the full-data fit (no better training fit found)
-            z_ho[te] = zz[te]
-        return z_ho
-
-    def heldout_profile(self, grid_lin: list[dict], e) -> tuple[np.ndarray, list]:
-        """Held-out residuals for a profiled candidate: re-select the profiled value per fold from
-        the linearisations stored for every grid value."""
-        z_ho = np.empty(self.N)
-        chosen = []
-        for b in range(self.n_blocks):
-            te = self.entry_block == b
-            tr = ~te
-            if not te.any():
-                continue
-            best = None
-            for g in grid_lin:
-                x = _blsq(g["J"][tr], -g["z"][tr], g["lo"], g["hi"])
-                sse = float(np.sum((g["z"][tr] + g["J"][tr] @ x) ** 2))
-                if best is None or sse < best[0]:
-                    best = (sse, g, x)
-            _, g, du = best
-            zz, _ = self.eval(g["space"], g["u0"] + du)     # ModelFailure -> candidate fails
-            z_ho[te] = zz[te]
-            chosen.append(g["value"])
-        return z_ho, chosen
-
-    def bootstrap_gain(self, z_base_ho, z_cand_ho) -> dict:
-        """Paired block bootstrap of RMSE(baseline) - RMSE(candidate), standardised, held-out."""
-        B = int(self.th["n_boot"])
-        sb = np.bincount(self.entry_block, weights=z_base_ho ** 2, minlength=self.n_blocks)
-        sc = np.bincount(self.entry_block, weights=z_cand_ho ** 2, minlength=self.n_blocks)
-        nb = np.bincount(self.entry_block, minlength=self.n_blocks).astype(float)
-        idx = self.rng.integers(0, self.n_blocks, size=(B, self.n_blocks))
-        cnt = np.zeros((B, self.n_blocks))
-        np.add.at(cnt, (np.repeat(np.arange(B), self.n_blocks), idx.ravel()), 1.0)
-        nn = cnt @ nb
-        d = np.sqrt(cnt @ sb / nn) - np.sqrt(cnt @ sc / nn)
-        q = float(self.th["heldout_quantile"])
-        point = math.sqrt(sb.sum() / nb.sum()) - math.sqrt(sc.sum() / nb.sum())
-        lo, hi = np.quantile(d, [q, 1 - q])
-        return {"rmse_gain": float(point), "ci": [float(lo), float(hi)],
-                "blocks_improved": int(np.sum(sb > sc)), "n_blocks": int(self.n_blocks),
-                "excludes_zero": bool(lo > 0)}
-
     def col_rmse(self, z_stacked) -> dict[str, float]:
         out = {}
         for j, c in enumerate(self.columns):
@@ -585,10 +308,27 @@ class _Engine:
         return out
 
     # ------------------------------------------------------------------ run
-    def run(self):
-        th = self.th
-        # ---- 1. baseline calibration (two passes: sigma from the measured data, then from the
-        #         baseline residuals)
+    def run(self) -> dict:
+        """The diagnosis in its phases (module docstring); returns the JSON-ready result."""
+        b = self.calibrate_baseline()
+        self._phase("baseline")
+        s = self.screen(b)
+        self._phase("sensitivities")
+        fits = self.fit_all(s, b)
+        self._phase("fits")
+        ho, passing = self.validate(s, fits, b)
+        self._phase("heldout")
+        d = self.decide(s, fits, passing, b)
+        self.verdict, self.cause, self.best = d.verdict, d.cause, d.best
+        self._phase("compare")
+        sep, sep_items = (self.separating(d.best, d.rivals, fits, b.fit)
+                          if d.verdict == "ambiguous" else (None, []))
+        self._phase("separating")
+        return self.assemble(b, s, fits, ho, passing, d, sep, sep_items)
+
+    def calibrate_baseline(self) -> Baseline:
+        """Phase 1: nuisance-only fit in two passes (noise from the measured data, then from the
+        baseline residuals), its residual description and held-out residuals."""
         bspace = self.space([])
         base = self.fit(bspace, np.zeros(bspace.k + len(self.nuis_names)))
         for c in self.columns:
@@ -600,198 +340,20 @@ class _Engine:
         base_nuis = bspace.unpack(base.u)[1]
         n_nuis = len(self.nuis_names)
         desc_base = self.describe(base.pred, n_nuis)
-        structure = desc_base["p_min_adjusted"] < th["alpha_structure"]
-        lnN = math.log(self.N)
+        structure = desc_base["p_min_adjusted"] < self.th["alpha_structure"]
         base_ho = self.heldout_linear(base)
-        Qn = _orth(base.J)
+        Qn = orth(base.J)
+        return Baseline(base, base_nuis, desc_base, bool(structure), base_ho, Qn)
 
-        self._phase("baseline")
-        # ---- 2. sensitivities, identifiability, look-alikes
-        cands = {}
-        proj = {}
-        for e in self.candidates:
-            info = Candidate(e.name)
-            cands[e.name] = info
-            why = e.applicable(self.conditions)
-            grid = {}
-            if why is None and e.profile:
-                grid = e.grid(self.conditions, self.T_ref_C)
-                if any(len(v) == 0 for v in grid.values()):
-                    why = "no value of " + ", ".join(e.profile) + " changes the prediction here"
-            if why is not None:
-                info.set_status("not_applicable", why)
-                continue
-            fixed = {p: float(np.median(grid[p])) for p in e.profile}
-            try:
-                Jc, names = self.sensitivity(e, base_nuis, base.pred, fixed)
-            except ModelFailure as exc:
-                info.set_status("model_failed", f"model failed with the effect on: {exc}")
-                continue
-            Jp = Jc - Qn @ (Qn.T @ Jc)
-            raw = np.linalg.norm(Jc, axis=0)
-            left = np.linalg.norm(Jp, axis=0)
-            frac = np.where(raw > 0, left / np.where(raw > 0, raw, 1.0), 0.0)
-            reach = 0.0
-            for i, p in enumerate(names):
-                lo, hi = e.bounds[p]
-                h = float(e.steps(self.conditions).get(p, e.scale[p]))
-                reach = max(reach, left[i] * max(abs(hi - e.off[p]), abs(lo - e.off[p])) / h)
-            info.identifiability = {"remaining_fraction": dict(zip(names, frac)),
-                                       "reach_sigma": float(reach)}
-            if not np.any(raw > 1e-9):
-                info.set_status("not_identifiable",
-                                "the measured outputs do not depend on it here")
-                continue
-            if frac.max() < th["min_remaining"]:
-                info.set_status("not_identifiable",
-                                "the baseline calibration (" + ", ".join(self.nuis_names)
-                                + ") absorbs it")
-                continue
-            if reach < th["min_reach_sigma"]:
-                info.set_status("not_identifiable",
-                                "too small inside its physical bounds to be seen at this noise")
-                continue
-            Q = _orth(Jp, 1e-6)
-            proj[e.name] = Q
-            info.sensitivity = Jc
-            info.profile_fixed = fixed
-            info.profile_grid = grid
-            info.rank = int(Q.shape[1])
-        names_id = list(proj)
-        look = {a: {b: (float(np.linalg.svd(proj[a].T @ proj[b], compute_uv=False).max())
-                        if proj[a].shape[1] and proj[b].shape[1] else 0.0)
-                    for b in names_id} for a in names_id}
-
-        self._phase("sensitivities")
-        # ---- 3. fits
-        fits: dict[str, _Fit] = {}
-        for name in list(names_id):
-            e = self._effect(name)
-            info = cands[name]
-            calls0 = self.model.calls
-            try:
-                if e.profile:
-                    fits[name] = self.fit_profiled(e, info, base, base_nuis)
-                else:
-                    fits[name] = self.fit_candidate(e, info, base)
-            except ModelFailure as exc:
-                info.set_status("model_failed", f"fit failed: {exc}")
-                names_id.remove(name)
-                continue
-            f = fits[name]
-            info.predict_calls_fit = self.model.calls - calls0
-            lr = max(base.chi2 - f.chi2, 0.0)
-            r = info.rank
-            n_two = sum(1 for p in self.free_params(e) if e.sign(p) == 0)
-            n_free = min(r, n_two) + len(e.profile)
-            n_bound = r - min(r, n_two)
-            k_eff = r + len(e.profile)
-            info.lr = lr
-            info.df = {"free": n_free, "on_bound": n_bound}
-            info.p_lr = chibar_pvalue(lr, n_free, n_bound)
-            info.delta_bic = -lr + k_eff * lnN
-            info.k = k_eff
-            eff_vals, nuis_vals = f.space.unpack(f.u)
-            info.parameters = {p: eff_vals[name][p] for p in e.parameters}
-            held = list(e.held_fixed(self.conditions))
-            if held:
-                info.held_at_off = {p: e.off[p] for p in held}
-            info.nuisance = nuis_vals
-            info.uncertainty = self.uncertainty(f, e)
-            info.rmse = self.col_rmse(f.z)
-        # Holm over the identifiable candidates
-        order = sorted(names_id, key=lambda n: cands[n].p_lr)
-        m = len(order)
-        still = True
-        for j, name in enumerate(order):
-            ok = still and cands[name].p_lr <= th["alpha_lr"] / (m - j)
-            still = ok
-            cands[name].lr_significant = bool(ok)
-
-        self._phase("fits")
-        # ---- 4. held-out gains
-        ho = {}
-        for name in list(names_id):
-            e = self._effect(name)
-            try:
-                if e.profile:
-                    ho[name], chosen = self.heldout_profile(fits[name].extra["grid_lin"], e)
-                    cands[name].heldout_profile_values = chosen
-                else:
-                    ho[name] = self.heldout_linear(fits[name])
-            except ModelFailure as exc:
-                # no honest held-out number: the candidate cannot pass
-                cands[name].heldout_failed = str(exc)
-                ho[name] = base_ho.copy()
-            cands[name].heldout_rmse = self.col_rmse(ho[name])
-            cands[name].heldout_gain = self.bootstrap_gain(base_ho, ho[name])
-        passing = []
-        for name in names_id:
-            c = cands[name]
-            reasons = []
-            if not c.lr_significant:
-                reasons.append(f"likelihood ratio not significant (p = {c.p_lr:.2g}, Holm)")
-            if not c.delta_bic < -th["bic_margin"]:
-                reasons.append(f"BIC not better than the baseline (delta {c.delta_bic:.1f})")
-            if not c.heldout_gain["excludes_zero"]:
-                reasons.append("no held-out gain beyond noise (bootstrap interval "
-                               f"[{c.heldout_gain['ci'][0]:.3g}, "
-                               f"{c.heldout_gain['ci'][1]:.3g}] includes 0)")
-            c.status = "passed" if not reasons else "rejected"
-            c.reason = "; ".join(reasons) if reasons else "beats the baseline in sample and " \
-                                                             "on held-out blocks"
-            if not reasons:
-                passing.append(name)
-
-        self._phase("heldout")
-        # ---- 5. decide
-        verdict, cause, rivals, best_desc, joint = "no_discrepancy", None, [], None, {}
-        best = min(passing, key=lambda n: cands[n].delta_bic) if passing else None
-        reasons = []
-        if best is None:
-            if structure:
-                verdict = "unexplained"
-                reasons.append("the baseline residuals show structure beyond noise "
-                               f"(adjusted p = {desc_base['p_min_adjusted']:.2g}) but no "
-                               "candidate passes")
-                cols = desc_base["columns"].values()
-                if all(d["smoother_heldout_gain"] <= 0 and d["bias_p"] > 0.01 for d in cols):
-                    reasons.append("the structure is serial correlation that a smooth function "
-                                   "of the conditions does not predict on held-out blocks: it may "
-                                   "be correlated noise, a drift in time or a history effect "
-                                   "outside the candidate list")
-            else:
-                reasons.append("the baseline residuals are consistent with the noise estimated "
-                               "from the data and no candidate passes")
-        else:
-            best_desc = self.describe(fits[best].pred, n_nuis + cands[best].k)
-            if best_desc["p_min_adjusted"] < th["alpha_residual"]:
-                verdict = "unexplained"
-                reasons.append(f"the best candidate, {best}, passes but leaves structure in the "
-                               f"residuals (adjusted p = {best_desc['p_min_adjusted']:.2g})")
-            else:
-                rivals, joint = self.compare(best, fits, cands, names_id)
-                for o in passing:
-                    if o != best and o not in rivals:
-                        cands[o].reason += (f"; but clearly beaten by {best} (chi-square "
-                                               f"{fits[o].chi2 - fits[best].chi2:+.1f})")
-                verdict = "ambiguous" if rivals else "explained"
-                cause = best
-                if rivals:
-                    reasons.append(f"{best} and {', '.join(rivals)} explain the data about "
-                                   "equally well")
-                else:
-                    reasons.append(f"{best} beats the baseline on held-out blocks and clearly "
-                                   "beats every other candidate")
-        self.verdict, self.cause, self.best = verdict, cause, best
-        self._phase("compare")
-        # ---- separating test
-        sep, sep_items = None, []
-        if verdict == "ambiguous":
-            sep, sep_items = self.separating(best, rivals, fits, base)
-
-        self._phase("separating")
-        # ---- assemble
+    def assemble(self, b: Baseline, s: Screening, fits, ho, passing, d: Decision, sep,
+                 sep_items) -> dict:
+        """The result dict: spec keys first, then the diagnostics."""
+        th, cands = self.th, s.candidates
+        base, base_ho, base_nuis, desc_base, structure = (b.fit, b.heldout_z, b.nuisance,
+                                                          b.residuals, b.structure)
+        verdict, cause, best, rivals, best_desc, joint, reasons = (
+            d.verdict, d.cause, d.best, d.rivals, d.best_residuals, d.joint_fits, d.reasons)
+        look = s.lookalike
         ext_fit = fits[cause] if cause else base
         ext_ho = ho[cause] if cause else base_ho
         base_rmse, base_ho_rmse = self.col_rmse(base.z), self.col_rmse(base_ho)
@@ -847,9 +409,8 @@ class _Engine:
             "seconds": {"total": time.perf_counter() - self.t0, "predict": self.model.seconds},
         }
         self.base_fit, self.ext_fit, self.fits = base, ext_fit, fits
-        return _jsonable(result)
+        return jsonable(result)
 
-    # ------------------------------------------------------------------ pieces of run
     def _phase(self, label):
         done = sum(self.calls_by_phase.values())
         self.calls_by_phase[label] = self.model.calls - done
@@ -857,325 +418,6 @@ class _Engine:
     def _effect(self, name):
         return next(e for e in self.candidates if e.name == name)
 
-    def _nuis_correct(self, z, Jn):
-        """Residual after the best linear nuisance correction (for choosing starts)."""
-        if Jn.shape[1] == 0:
-            return z
-        d, *_ = np.linalg.lstsq(Jn, -z, rcond=None)
-        return z + Jn @ d
-
-    def fit_candidate(self, e, info, base: _Fit) -> _Fit:
-        space = self.space([e])
-        k = space.k
-        nq = len(self.nuis_names)
-        Jn = base.J                       # d z / d u_nuisance at the baseline
-        Jc = -info.sensitivity                 # d z / d u_effect at off (sensitivity is -dz)
-        u_nuis = base.u
-        starts = []
-        # Gauss-Newton step from off
-        A = np.column_stack([Jc, Jn])
-        d, *_ = np.linalg.lstsq(A, -base.z, rcond=None)
-        starts.append(np.concatenate([d[:k], u_nuis + d[k:]]))
-        for s in e.starts(self.conditions, self.T_ref_C):
-            vals = [s.get(p, e.off[p]) for (_, p) in space.eff_params]
-            uu = np.concatenate([(np.array(vals) - space.origin[:k]) / space.scale[:k], u_nuis])
-            starts.append(uu)
-        scored = []
-        for uu in starts:
-            uu = space.clip(uu)
-            try:
-                z, _ = self.eval(space, uu)
-            except ModelFailure:
-                continue
-            if nq:
-                dn, *_ = np.linalg.lstsq(Jn, -z, rcond=None)
-                uu = space.clip(np.concatenate([uu[:k], uu[k:] + dn]))
-                zc = z + Jn @ dn
-            else:
-                zc = z
-            scored.append((float(zc @ zc), len(scored), uu))
-        if not scored:
-            raise ModelFailure("the model fails at every starting point")
-        scored.sort(key=lambda t: t[:2])
-        # local optimisation from the two most promising starts (fits that open or close, lags
-        # and thresholds make the problem non-convex)
-        # the Gauss-Newton step from "off" (index 0) is always refined too: a grid start can sit
-        # where a fit is open and the outputs do not depend on a parameter (a flat local minimum)
-        gn = [t for t in scored if t[1] == 0 and t not in scored[:2]]
-        f = None
-        for sse0, idx, uu in scored[:2] + gn:
-            if f is not None and idx != 0 and sse0 > f.chi2 + max(10.0, 0.2 * (base.chi2 - f.chi2)):
-                continue                  # not promising enough
-            try:
-                fi = self.fit(space, uu)
-            except ModelFailure:
-                continue
-            if f is None or fi.chi2 < f.chi2:
-                f = fi
-        if f is None:
-            raise ModelFailure("the fits fail from every starting point")
-        if f.chi2 > base.chi2:           # never worse than the baseline (off is admissible)
-            f2 = self.fit(space, np.concatenate([np.zeros(k), base.u]))
-            f = f2 if f2.chi2 < f.chi2 else f
-        return f
-
-    def fit_profiled(self, e, info, base: _Fit, base_nuis) -> _Fit:
-        """Profile the `profile` parameter (one) over its grid with a linearised inner fit, then
-        refine the best value with a full bounded least-squares fit."""
-        (pp,) = e.profile
-        values = list(info.profile_grid[pp])
-        nq = len(self.nuis_names)
-
-        def lin(value):
-            space = self.space([e], fixed={e.name: {pp: value}})
-            k = space.k
-            cols = []
-            for i in range(k):
-                du = np.zeros(k + nq)
-                du[i] = 1.0 if space.hi[i] >= 1.0 else -1.0
-                z, _ = self.eval(space, np.concatenate([du[:k], base.u]))
-                cols.append((z - base.z) / du[i])
-            J = np.column_stack(cols + [base.J])
-            u0 = np.concatenate([np.zeros(k), base.u])
-            lo, hi = space.lo - u0, space.hi - u0
-            x = _blsq(J, -base.z, lo, hi)
-            sse = float(np.sum((base.z + J @ x) ** 2))
-            return {"value": value, "space": space, "J": J, "z": base.z, "u0": u0, "lo": lo,
-                    "hi": hi, "sse": sse, "du": x}
-
-        def lin_safe(value):
-            try:
-                return lin(value)
-            except ModelFailure:
-                return None
-
-        if len(values) > 16:
-            # coarse grid, then bisect towards the best onset on both sides
-            lins = {int(i): lin_safe(values[i])
-                    for i in np.unique(np.linspace(0, len(values) - 1, 12).round().astype(int))}
-            while True:
-                ok = sorted(i for i in lins if lins[i] is not None)
-                if not ok:
-                    break
-                ib = min(ok, key=lambda i: lins[i]["sse"])
-                left = max([i for i in lins if i < ib], default=None)
-                right = min([i for i in lins if i > ib], default=None)
-                new = [m for m in ((None if left is None else (left + ib) // 2),
-                                   (None if right is None else (ib + right + 1) // 2))
-                       if m is not None and m not in lins]
-                if not new:
-                    break
-                for m in new:
-                    lins[m] = lin_safe(values[m])
-            grid_lin = [lins[i] for i in sorted(lins) if lins[i] is not None]
-        else:
-            grid_lin = [g for g in map(lin_safe, values) if g is not None]
-        if not grid_lin:
-            raise ModelFailure(f"the model fails for every {pp} on the grid")
-        ranked = sorted(grid_lin, key=lambda g: g["sse"])
-        ranked = [g for g in ranked[:2] if g["sse"] <= ranked[0]["sse"] + 1.0]
-        best = None
-        for g in ranked:
-            try:
-                f = self.fit(g["space"], g["u0"] + g["du"])
-            except ModelFailure:
-                continue
-            if best is None or f.chi2 < best.chi2:
-                best = f
-                best.extra["value"] = g["value"]
-        if best is None:
-            raise ModelFailure(f"the fits at the best values of {pp} fail")
-        # profile interval: values whose linearised chi-square is within 1 of the best
-        sse_min = min(g["sse"] for g in grid_lin)
-        near = [g["value"] for g in grid_lin if g["sse"] <= sse_min + 1.0]
-        best.extra.update(grid_lin=grid_lin, interval=[min(near), max(near)])
-        info.profile = {pp: {"grid_size": len(values), "evaluated": len(grid_lin),
-                                "interval_chi2_1": [min(near), max(near)]}}
-        return best
-
-    def uncertainty(self, f: _Fit, e) -> dict:
-        """Standard uncertainty of the fitted effect parameters (linearised, scaled by the
-        reduced chi-square when above 1); None when not separately identifiable."""
-        J = f.J
-        dof = max(self.N - J.shape[1], 1)
-        s2 = max(1.0, f.chi2 / dof)
-        out = {}
-        U, s, Vt = np.linalg.svd(J, full_matrices=False)
-        tiny = s < 1e-8 * (s[0] if s.size else 1.0)
-        with np.errstate(divide="ignore"):
-            inv = np.where(tiny, np.inf, 1.0 / np.where(tiny, 1.0, s) ** 2)
-        for i, (en, p) in enumerate(f.space.eff_params):
-            v = Vt[:, i]
-            if np.any(tiny & (np.abs(v) > 1e-6)):
-                out[p] = None
-            else:
-                out[p] = float(math.sqrt(s2 * np.sum(v ** 2 * np.where(tiny, 0.0, inv)))
-                               * f.space.scale[i])
-        if "interval" in f.extra:
-            for p in e.profile:
-                out[p] = {"interval": f.extra["interval"]}
-        return out
-
-    def compare(self, best, fits, cands, names_id):
-        """Rivals of `best`: fitted candidates it does not clearly beat (joint fits)."""
-        th = self.th
-        rivals, joint = [], {}
-        eb = self._effect(best)
-        fb = fits[best]
-        for o in names_id:
-            if o == best:
-                continue
-            fo = fits[o]
-            if fo.chi2 - fb.chi2 > th["clear_chi2"]:
-                continue
-            eo = self._effect(o)
-            fixed = {}
-            for e, f in ((eb, fb), (eo, fo)):
-                if e.profile:
-                    fixed[e.name] = {p: f.extra["value"] for p in e.profile}
-            space = self.space([eb, eo], fixed)
-            kb = fb.space.k
-            ko = fo.space.k
-            starts = [np.concatenate([fb.u[:kb], np.zeros(ko), fb.u[kb:]]),
-                      np.concatenate([np.zeros(kb), fo.u[:ko], fo.u[ko:]])]
-            try:
-                zs = []
-                for s0 in starts:
-                    try:
-                        z0 = self.eval(space, s0)[0]
-                        zs.append(float(z0 @ z0))
-                    except ModelFailure:
-                        zs.append(math.inf)
-                fj = self.fit(space, starts[int(np.argmin(zs))])
-            except ModelFailure as exc:    # cannot show that best carries the weight
-                joint[o] = {"error": str(exc), "best_carries_weight": False}
-                rivals.append(o)
-                continue
-            chi_j = min(fj.chi2, fb.chi2, fo.chi2)
-            lr_o_given_b = max(fb.chi2 - chi_j, 0.0)
-            lr_b_given_o = max(fo.chi2 - chi_j, 0.0)
-            p_o = chibar_pvalue(lr_o_given_b, **_df(cands[o]))
-            p_b = chibar_pvalue(lr_b_given_o, **_df(cands[best]))
-            beaten = p_b < th["alpha_joint"] and p_o >= th["alpha_joint"]
-            joint[o] = {"chi2_best": fb.chi2, "chi2_other": fo.chi2, "chi2_joint": chi_j,
-                        "p_add_other_to_best": p_o, "p_add_best_to_other": p_b,
-                        "best_carries_weight": bool(beaten)}
-            if not beaten:
-                rivals.append(o)
-        rivals.sort(key=lambda n: cands[n].delta_bic)
-        return rivals, joint
-
-    # ------------------------------------------------------------------ separating test
-    def probes(self):
-        c = self.conditions
-        T0 = self.T_ref_C
-        out = []
-        for col, label in (("speed_rpm", "speed"), ("preload_assembled_N", "preload"),
-                           ("axial_load_N", "axial load")):
-            if col in c and np.any(c[col] != 0):
-                for f in (0.5, 2.0):
-                    d = dict(c)
-                    d[col] = c[col] * f
-                    out.append((f"repeat at {f:g} x the {label} ({col} {_rng(d[col])})", d))
-        if "T_ambient_C" in c:
-            d = dict(c)
-            d["T_ambient_C"] = T0 + 1.5 * (c["T_ambient_C"] - T0)
-            out.append(("extend the temperature range by 50 % about the reference temperature "
-                        f"(T_ambient_C {_rng(d['T_ambient_C'])})", d))
-            d = dict(c)
-            d["T_ambient_C"] = T0 - (c["T_ambient_C"] - T0)
-            out.append(("mirror the temperature programme about the reference temperature "
-                        f"(T_ambient_C {_rng(d['T_ambient_C'])})", d))
-        if "time_s" in c:
-            for f, txt in ((0.25, "4 x faster"), (4.0, "4 x slower")):
-                d = dict(c)
-                d["time_s"] = c["time_s"][0] + f * (c["time_s"] - c["time_s"][0])
-                out.append((f"run the temperature programme {txt} (time_s scaled by {f:g})", d))
-        return out
-
-    def separating(self, best, rivals, fits, base):
-        items = []
-        fb = fits[best]
-        eb_eff, eb_nuis = fb.space.unpack(fb.u)
-        for o in rivals:
-            fo = fits[o]
-            eo_eff, eo_nuis = fo.space.unpack(fo.u)
-            # a) within the measured conditions
-            zb = fb.pred
-            zo = fo.pred
-            best_row, best_d, best_col = None, -1.0, None
-            for c in self.columns:
-                d = np.abs(zb[c] - zo[c]) / self.sigma[c]
-                i = int(np.argmax(d))
-                if d[i] > best_d:
-                    best_row, best_d, best_col = i, float(d[i]), c
-            items.append({"pair": [best, o], "kind": "measured_conditions",
-                          "max_diff_sigma": best_d, "column": best_col,
-                          "at": {k: float(v[best_row]) for k, v in self.conditions.items()},
-                          "text": f"within the measured conditions {best} and {o} differ by at "
-                                  f"most {best_d:.2g} sigma in {best_col}"})
-            # b) unmeasured outputs
-            for c in zb:
-                if c in self.columns or c not in zo or c not in base.pred:
-                    continue
-                d = np.abs(zb[c] - zo[c])
-                ref = np.abs(base.pred[c])
-                mag = max(float(np.max(ref)), 1e-12)
-                if d.max() > 0.01 * mag:
-                    i = int(np.argmax(d))
-                    items.append({"pair": [best, o], "kind": "unmeasured_output", "column": c,
-                                  "max_diff": float(d[i]), "relative": float(d[i] / mag),
-                                  "at": {k: float(v[i]) for k, v in self.conditions.items()},
-                                  "text": f"measure {c}: {best} and {o} predict values that "
-                                          f"differ by up to {d[i]:.3g} ({100 * d[i] / mag:.0f} % "
-                                          "of its size)"})
-            # c) probe conditions
-            if self.predict_at is not None:
-                for text, cond in self.probes():
-                    try:
-                        pb = self.predict_at(eb_eff, eb_nuis, cond)
-                        po = self.predict_at(eo_eff, eo_nuis, cond)
-                        if not all(np.all(np.isfinite(np.asarray(x[c], float)))
-                                   for x in (pb, po) for c in self.columns):
-                            raise ValueError("non-finite prediction")
-                    except Exception as exc:  # a probe outside the model's range: skip it
-                        self.notes.append(f"probe skipped ({text}): {exc}")
-                        continue
-                    dmax, col = 0.0, None
-                    for c in self.columns:
-                        d = float(np.max(np.abs(np.asarray(pb[c], float)
-                                                - np.asarray(po[c], float))) / self.sigma[c])
-                        if d > dmax:
-                            dmax, col = d, c
-                    items.append({"pair": [best, o], "kind": "probe", "max_diff_sigma": dmax,
-                                  "column": col, "text": f"{text}: {best} and {o} then differ "
-                                  f"by up to {dmax:.2g} sigma in {col}"})
-        # summary text: best probe, best unmeasured output, the physics hints
-        parts = []
-        probes = sorted((i for i in items if i["kind"] == "probe"),
-                        key=lambda i: -i["max_diff_sigma"])
-        if probes and probes[0]["max_diff_sigma"] >= 2.0:
-            parts.append(probes[0]["text"])
-        unmeas = sorted((i for i in items if i["kind"] == "unmeasured_output"),
-                        key=lambda i: -i["relative"])
-        if unmeas:
-            parts.append(unmeas[0]["text"])
-        hints = [f"{n}: {self._effect(n).hint}" for n in [best] + list(rivals)
-                 if self._effect(n).hint]
-        if not parts:
-            meas = [i for i in items if i["kind"] == "measured_conditions"]
-            parts.append(meas[0]["text"] + " (not separable with this test design)")
-        text = "; or ".join(parts) + ". Physics: " + " | ".join(hints)
-        return text, items
-
-
-def _df(c):
-    return {"n_free": c.df["free"], "n_bound": c.df["on_bound"]}
-
-
-def _rng(a):
-    a = np.asarray(a, float)
-    return f"{a.min():.4g}..{a.max():.4g}" if a.min() != a.max() else f"{a.min():.4g}"
 
 
 # ============================================================================ public API

@@ -1,0 +1,63 @@
+"""What a candidate is: one effect tried as the cause, and everything the phases learn about it.
+
+The screening phase fills the identifiability and the sensitivity, the fit phase the fitted
+parameters and the likelihood-ratio statistics, the held-out phase the out-of-sample numbers, the
+decision its status and reason. `to_json` gives the candidate's entry of `diagnosis.json` (keys of
+docs/cli.md first; a field never set is left out); the working arrays never reach the file.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field, fields
+
+import numpy as np
+
+#: keys every candidate entry carries, set or not (docs/cli.md), then status and reason
+ALWAYS = ("effect", "parameters", "delta_bic", "heldout_rmse", "status", "reason")
+#: working state of the phases, not part of the result file
+WORKING = ("sensitivity", "profile_fixed", "profile_grid")
+
+
+@dataclass
+class Candidate:
+    effect: str
+    parameters: dict = field(default_factory=dict)          # fitted values (effect units)
+    delta_bic: float | None = None                          # BIC(candidate) - BIC(baseline)
+    heldout_rmse: dict = field(default_factory=dict)        # column -> held-out RMSE
+    status: str | None = None       # not_applicable | model_failed | not_identifiable | passed | rejected
+    reason: str = ""
+    identifiability: dict | None = None                     # remaining_fraction, reach_sigma
+    rank: int | None = None                                 # rank of the projected sensitivity
+    profile: dict | None = None                             # profiled parameters: grid sizes
+    predict_calls_fit: int | None = None
+    lr: float | None = None                                 # likelihood ratio vs the baseline
+    df: dict | None = None                                  # free / on_bound directions
+    p_lr: float | None = None                               # chi-bar-square p value
+    k: int | None = None                                    # parameters counted by the BIC
+    held_at_off: dict | None = None                         # parameters the design cannot separate
+    nuisance: dict | None = None                            # refitted nuisance values
+    uncertainty: dict | None = None                         # parameter standard errors
+    rmse: dict | None = None                                # in-sample RMSE per column
+    lr_significant: bool | None = None                      # after Holm over the candidates
+    heldout_profile_values: list | None = None
+    heldout_failed: str | None = None
+    heldout_gain: dict | None = None                        # paired block bootstrap
+    # working state (WORKING): d(prediction)/d(parameter) at off, profiled parameters' values
+    sensitivity: np.ndarray | None = field(default=None, repr=False)
+    profile_fixed: dict | None = None
+    profile_grid: dict | None = None
+
+    def set_status(self, status: str, reason: str) -> None:
+        self.status, self.reason = status, reason
+
+    @property
+    def fitted(self) -> bool:
+        return self.delta_bic is not None
+
+    def to_json(self) -> dict:
+        out = {}
+        for f in fields(self):
+            v = getattr(self, f.name)
+            if f.name in WORKING or (v is None and f.name not in ALWAYS):
+                continue
+            out[f.name] = v
+        return out

@@ -1,0 +1,172 @@
+"""The small typed core of the diagnosis: its errors, thresholds, the cached model, a parameter
+space, a fit, and what the phases hand to each other (`Baseline`, `Screening`, `Decision`).
+A candidate is `studies.diagnosis.candidate.Candidate`."""
+from __future__ import annotations
+
+import math
+import time
+from collections import OrderedDict
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from studies.diagnosis.candidate import Candidate
+
+DEFAULT_THRESHOLDS = {
+    "alpha_structure": 0.01,    # residual-structure tests, Bonferroni over tests x columns
+    "alpha_lr": 0.01,           # likelihood-ratio test, Holm over the candidates tested
+    "bic_margin": 0.0,          # a candidate needs delta_bic < -bic_margin
+    "heldout_quantile": 0.025,  # lower bootstrap quantile of the held-out RMSE gain must be > 0
+    "n_boot": 2000,             # bootstrap resamples of the blocks
+    "min_remaining": 0.10,      # share of the sensitivity left after projecting out the nuisance
+    "min_reach_sigma": 3.0,     # projected change reachable inside the bounds (noise units, norm)
+    "alpha_joint": 0.01,        # conditional likelihood-ratio tests of the joint fits
+    "clear_chi2": 25.0,         # a rival whose chi-square is this much worse is beaten outright
+    "alpha_residual": 0.001,    # structure left behind by the best candidate
+    "lookalike_cos": 0.95,      # cosine above which two candidates are reported as look-alikes
+    "n_blocks": 10,             # automatic contiguous blocks when no labels are given
+}
+
+FIRST_COLUMNS = ("torque_Nmm",)
+
+
+class DiagnosisError(ValueError):
+    """Unusable input to the engine (one-line message)."""
+
+
+class ModelFailure(RuntimeError):
+    """The model could not be evaluated (exception or non-finite output) at some parameters."""
+
+
+
+def jsonable(x):
+    """Numbers, arrays and containers as plain JSON values (non-finite floats -> null)."""
+    if isinstance(x, dict):
+        return {str(k): jsonable(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [jsonable(v) for v in x]
+    if isinstance(x, np.ndarray):
+        return [jsonable(v) for v in x.tolist()]
+    if isinstance(x, (np.bool_, bool)):
+        return bool(x)
+    if isinstance(x, (np.integer,)):
+        return int(x)
+    if isinstance(x, (float, np.floating)):
+        x = float(x)
+        return x if math.isfinite(x) else None
+    return x
+
+
+
+class CachedModel:
+    """predict() with a call counter and a small LRU cache."""
+
+    def __init__(self, predict, n_rows, maxsize=512):
+        self.predict = predict
+        self.n = n_rows
+        self.calls = 0
+        self.seconds = 0.0
+        self.cache: OrderedDict = OrderedDict()
+        self.maxsize = maxsize
+
+    def __call__(self, effects: dict, nuisance: dict) -> dict[str, np.ndarray]:
+        key = (tuple(sorted((e, tuple(sorted((k, float(v)) for k, v in p.items())))
+                            for e, p in effects.items())),
+               tuple(sorted((k, float(v)) for k, v in nuisance.items())))
+        hit = self.cache.get(key)
+        if hit is not None:
+            self.cache.move_to_end(key)
+            return hit
+        t0 = time.perf_counter()
+        try:
+            raw = self.predict({e: dict(p) for e, p in effects.items()}, dict(nuisance))
+        except Exception as exc:  # the model's own failure at these parameters
+            raise ModelFailure(f"{type(exc).__name__}: {exc}") from exc
+        self.seconds += time.perf_counter() - t0
+        self.calls += 1
+        out = {}
+        for k, v in raw.items():
+            a = np.asarray(v, dtype=float) if not isinstance(v, str) else None
+            if a is not None and a.ndim == 1 and a.size == self.n:
+                out[k] = a
+        self.cache[key] = out
+        if len(self.cache) > self.maxsize:
+            self.cache.popitem(last=False)
+        return out
+
+
+@dataclass
+class Space:
+    """Fitted parameters in scaled coordinates u: value = origin + scale * u."""
+    eff_params: list[tuple[str, str]]          # (effect name, parameter)
+    fixed: dict[str, dict[str, float]]        # effect -> all its parameters at their fixed values
+    nuis: list[str]
+    origin: np.ndarray
+    scale: np.ndarray
+    lo: np.ndarray
+    hi: np.ndarray
+
+    def unpack(self, u) -> tuple[dict, dict]:
+        v = self.origin + self.scale * np.asarray(u, float)
+        v = np.clip(v, self.lo * self.scale + self.origin, self.hi * self.scale + self.origin)
+        effects = {e: dict(p) for e, p in self.fixed.items()}
+        k = len(self.eff_params)
+        for (e, p), x in zip(self.eff_params, v[:k]):
+            effects[e][p] = float(x)
+        nuis = {n: float(x) for n, x in zip(self.nuis, v[k:])}
+        return effects, nuis
+
+    def values(self, u) -> np.ndarray:
+        return self.origin + self.scale * np.asarray(u, float)
+
+    def to_u(self, values) -> np.ndarray:
+        return (np.asarray(values, float) - self.origin) / self.scale
+
+    def clip(self, u) -> np.ndarray:
+        return np.clip(u, self.lo, self.hi)
+
+    @property
+    def k(self):
+        return len(self.eff_params)
+
+
+@dataclass
+class Fit:
+    space: Space
+    u: np.ndarray
+    z: np.ndarray               # standardised residual (stacked), at u
+    J: np.ndarray               # d z / d u at u
+    chi2: float
+    pred: dict
+    extra: dict = field(default_factory=dict)
+
+
+@dataclass
+class Baseline:
+    """Phase 1: the calibrated baseline."""
+    fit: Fit
+    nuisance: dict               # fitted nuisance values
+    residuals: dict              # `describe` of its residuals
+    structure: bool              # residual structure beyond noise
+    heldout_z: np.ndarray        # held-out standardised residuals
+    nuisance_span: np.ndarray    # orthonormal basis of what the calibration can produce
+
+
+@dataclass
+class Screening:
+    """Phase 2: every candidate with its identifiability; the identifiable ones in order."""
+    candidates: dict[str, Candidate]
+    identifiable: list[str]
+    lookalike: dict[str, dict[str, float]]
+
+
+@dataclass
+class Decision:
+    """Phase 5: the verdict."""
+    verdict: str
+    cause: str | None
+    best: str | None
+    rivals: list
+    best_residuals: dict | None
+    joint_fits: dict
+    reasons: list[str]

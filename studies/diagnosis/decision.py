@@ -1,0 +1,223 @@
+"""Phase 5 of the diagnosis: the verdict. The best passing candidate is compared with every
+rival by joint fits; ambiguous causes get a separating test (module docstring of
+`studies.diagnosis.engine`, step 5)."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from studies.diagnosis.core import Baseline, Decision, Fit, ModelFailure, Screening
+from studies.diagnosis.stats import chibar_pvalue
+
+
+class DecisionPhase:
+    def decide(self, s: Screening, fits: dict[str, Fit], passing: list[str], b: Baseline) -> Decision:
+        th = self.th
+        cands, names_id = s.candidates, s.identifiable
+        desc_base, structure, n_nuis = b.residuals, b.structure, len(self.nuis_names)
+        verdict, cause, rivals, best_desc, joint = "no_discrepancy", None, [], None, {}
+        best = min(passing, key=lambda n: cands[n].delta_bic) if passing else None
+        reasons = []
+        if best is None:
+            if structure:
+                verdict = "unexplained"
+                reasons.append("the baseline residuals show structure beyond noise "
+                               f"(adjusted p = {desc_base['p_min_adjusted']:.2g}) but no "
+                               "candidate passes")
+                cols = desc_base["columns"].values()
+                if all(d["smoother_heldout_gain"] <= 0 and d["bias_p"] > 0.01 for d in cols):
+                    reasons.append("the structure is serial correlation that a smooth function "
+                                   "of the conditions does not predict on held-out blocks: it may "
+                                   "be correlated noise, a drift in time or a history effect "
+                                   "outside the candidate list")
+            else:
+                reasons.append("the baseline residuals are consistent with the noise estimated "
+                               "from the data and no candidate passes")
+        else:
+            best_desc = self.describe(fits[best].pred, n_nuis + cands[best].k)
+            if best_desc["p_min_adjusted"] < th["alpha_residual"]:
+                verdict = "unexplained"
+                reasons.append(f"the best candidate, {best}, passes but leaves structure in the "
+                               f"residuals (adjusted p = {best_desc['p_min_adjusted']:.2g})")
+            else:
+                rivals, joint = self.compare(best, fits, cands, names_id)
+                for o in passing:
+                    if o != best and o not in rivals:
+                        cands[o].reason += (f"; but clearly beaten by {best} (chi-square "
+                                               f"{fits[o].chi2 - fits[best].chi2:+.1f})")
+                verdict = "ambiguous" if rivals else "explained"
+                cause = best
+                if rivals:
+                    reasons.append(f"{best} and {', '.join(rivals)} explain the data about "
+                                   "equally well")
+                else:
+                    reasons.append(f"{best} beats the baseline on held-out blocks and clearly "
+                                   "beats every other candidate")
+        return Decision(verdict, cause, best, rivals, best_desc, joint, reasons)
+
+    def compare(self, best, fits, cands, names_id):
+        """Rivals of `best`: fitted candidates it does not clearly beat (joint fits)."""
+        th = self.th
+        rivals, joint = [], {}
+        eb = self._effect(best)
+        fb = fits[best]
+        for o in names_id:
+            if o == best:
+                continue
+            fo = fits[o]
+            if fo.chi2 - fb.chi2 > th["clear_chi2"]:
+                continue
+            eo = self._effect(o)
+            fixed = {}
+            for e, f in ((eb, fb), (eo, fo)):
+                if e.profile:
+                    fixed[e.name] = {p: f.extra["value"] for p in e.profile}
+            space = self.space([eb, eo], fixed)
+            kb = fb.space.k
+            ko = fo.space.k
+            starts = [np.concatenate([fb.u[:kb], np.zeros(ko), fb.u[kb:]]),
+                      np.concatenate([np.zeros(kb), fo.u[:ko], fo.u[ko:]])]
+            try:
+                zs = []
+                for s0 in starts:
+                    try:
+                        z0 = self.eval(space, s0)[0]
+                        zs.append(float(z0 @ z0))
+                    except ModelFailure:
+                        zs.append(math.inf)
+                fj = self.fit(space, starts[int(np.argmin(zs))])
+            except ModelFailure as exc:    # cannot show that best carries the weight
+                joint[o] = {"error": str(exc), "best_carries_weight": False}
+                rivals.append(o)
+                continue
+            chi_j = min(fj.chi2, fb.chi2, fo.chi2)
+            lr_o_given_b = max(fb.chi2 - chi_j, 0.0)
+            lr_b_given_o = max(fo.chi2 - chi_j, 0.0)
+            p_o = chibar_pvalue(lr_o_given_b, **_df(cands[o]))
+            p_b = chibar_pvalue(lr_b_given_o, **_df(cands[best]))
+            beaten = p_b < th["alpha_joint"] and p_o >= th["alpha_joint"]
+            joint[o] = {"chi2_best": fb.chi2, "chi2_other": fo.chi2, "chi2_joint": chi_j,
+                        "p_add_other_to_best": p_o, "p_add_best_to_other": p_b,
+                        "best_carries_weight": bool(beaten)}
+            if not beaten:
+                rivals.append(o)
+        rivals.sort(key=lambda n: cands[n].delta_bic)
+        return rivals, joint
+
+
+    def probes(self):
+        c = self.conditions
+        T0 = self.T_ref_C
+        out = []
+        for col, label in (("speed_rpm", "speed"), ("preload_assembled_N", "preload"),
+                           ("axial_load_N", "axial load")):
+            if col in c and np.any(c[col] != 0):
+                for f in (0.5, 2.0):
+                    d = dict(c)
+                    d[col] = c[col] * f
+                    out.append((f"repeat at {f:g} x the {label} ({col} {_rng(d[col])})", d))
+        if "T_ambient_C" in c:
+            d = dict(c)
+            d["T_ambient_C"] = T0 + 1.5 * (c["T_ambient_C"] - T0)
+            out.append(("extend the temperature range by 50 % about the reference temperature "
+                        f"(T_ambient_C {_rng(d['T_ambient_C'])})", d))
+            d = dict(c)
+            d["T_ambient_C"] = T0 - (c["T_ambient_C"] - T0)
+            out.append(("mirror the temperature programme about the reference temperature "
+                        f"(T_ambient_C {_rng(d['T_ambient_C'])})", d))
+        if "time_s" in c:
+            for f, txt in ((0.25, "4 x faster"), (4.0, "4 x slower")):
+                d = dict(c)
+                d["time_s"] = c["time_s"][0] + f * (c["time_s"] - c["time_s"][0])
+                out.append((f"run the temperature programme {txt} (time_s scaled by {f:g})", d))
+        return out
+
+
+    def separating(self, best, rivals, fits, base):
+        items = []
+        fb = fits[best]
+        eb_eff, eb_nuis = fb.space.unpack(fb.u)
+        for o in rivals:
+            fo = fits[o]
+            eo_eff, eo_nuis = fo.space.unpack(fo.u)
+            # a) within the measured conditions
+            zb = fb.pred
+            zo = fo.pred
+            best_row, best_d, best_col = None, -1.0, None
+            for c in self.columns:
+                d = np.abs(zb[c] - zo[c]) / self.sigma[c]
+                i = int(np.argmax(d))
+                if d[i] > best_d:
+                    best_row, best_d, best_col = i, float(d[i]), c
+            items.append({"pair": [best, o], "kind": "measured_conditions",
+                          "max_diff_sigma": best_d, "column": best_col,
+                          "at": {k: float(v[best_row]) for k, v in self.conditions.items()},
+                          "text": f"within the measured conditions {best} and {o} differ by at "
+                                  f"most {best_d:.2g} sigma in {best_col}"})
+            # b) unmeasured outputs
+            for c in zb:
+                if c in self.columns or c not in zo or c not in base.pred:
+                    continue
+                d = np.abs(zb[c] - zo[c])
+                ref = np.abs(base.pred[c])
+                mag = max(float(np.max(ref)), 1e-12)
+                if d.max() > 0.01 * mag:
+                    i = int(np.argmax(d))
+                    items.append({"pair": [best, o], "kind": "unmeasured_output", "column": c,
+                                  "max_diff": float(d[i]), "relative": float(d[i] / mag),
+                                  "at": {k: float(v[i]) for k, v in self.conditions.items()},
+                                  "text": f"measure {c}: {best} and {o} predict values that "
+                                          f"differ by up to {d[i]:.3g} ({100 * d[i] / mag:.0f} % "
+                                          "of its size)"})
+            # c) probe conditions
+            if self.predict_at is not None:
+                for text, cond in self.probes():
+                    try:
+                        pb = self.predict_at(eb_eff, eb_nuis, cond)
+                        po = self.predict_at(eo_eff, eo_nuis, cond)
+                        if not all(np.all(np.isfinite(np.asarray(x[c], float)))
+                                   for x in (pb, po) for c in self.columns):
+                            raise ValueError("non-finite prediction")
+                    except Exception as exc:  # a probe outside the model's range: skip it
+                        self.notes.append(f"probe skipped ({text}): {exc}")
+                        continue
+                    dmax, col = 0.0, None
+                    for c in self.columns:
+                        d = float(np.max(np.abs(np.asarray(pb[c], float)
+                                                - np.asarray(po[c], float))) / self.sigma[c])
+                        if d > dmax:
+                            dmax, col = d, c
+                    items.append({"pair": [best, o], "kind": "probe", "max_diff_sigma": dmax,
+                                  "column": col, "text": f"{text}: {best} and {o} then differ "
+                                  f"by up to {dmax:.2g} sigma in {col}"})
+        # summary text: best probe, best unmeasured output, the physics hints
+        parts = []
+        probes = sorted((i for i in items if i["kind"] == "probe"),
+                        key=lambda i: -i["max_diff_sigma"])
+        if probes and probes[0]["max_diff_sigma"] >= 2.0:
+            parts.append(probes[0]["text"])
+        unmeas = sorted((i for i in items if i["kind"] == "unmeasured_output"),
+                        key=lambda i: -i["relative"])
+        if unmeas:
+            parts.append(unmeas[0]["text"])
+        hints = [f"{n}: {self._effect(n).hint}" for n in [best] + list(rivals)
+                 if self._effect(n).hint]
+        if not parts:
+            meas = [i for i in items if i["kind"] == "measured_conditions"]
+            parts.append(meas[0]["text"] + " (not separable with this test design)")
+        text = "; or ".join(parts) + ". Physics: " + " | ".join(hints)
+        return text, items
+
+
+
+
+def _df(c):
+    return {"n_free": c.df["free"], "n_bound": c.df["on_bound"]}
+
+
+def _rng(a):
+    a = np.asarray(a, float)
+    return f"{a.min():.4g}..{a.max():.4g}" if a.min() != a.max() else f"{a.min():.4g}"
+
+

@@ -1,0 +1,77 @@
+"""Statistics of the diagnosis, as pure functions: the chi-bar-square null, the robust noise level
+from second differences, contiguous blocks, orthonormal bases and principal-angle cosines, and
+bounded least squares."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy import linalg, optimize, stats
+
+def chibar_pvalue(lr: float, n_free: int, n_bound: int) -> float:
+    """P(chi-bar-square > lr): n_free unconstrained directions plus n_bound directions on a bound
+    (each half chi-square with one df, taken as independent: binomial weights)."""
+    lr = max(float(lr), 0.0)
+    if n_free + n_bound == 0:
+        return 1.0
+    p = 0.0
+    for j in range(n_bound + 1):
+        w = math.comb(n_bound, j) / 2.0 ** n_bound
+        df = n_free + j
+        p += w * (stats.chi2.sf(lr, df) if df > 0 else (0.0 if lr > 0 else 1.0))
+    return float(min(p, 1.0))
+
+
+def noise_sigma(r: np.ndarray, seg: np.ndarray) -> float:
+    """Noise standard deviation from second differences within segments (robustly trimmed at 4
+    sigma; unbiased for white noise, blind to smooth structure, insensitive to a few steps)."""
+    r = np.asarray(r, float)
+    ok = np.isfinite(r)
+    idx = np.flatnonzero(ok)
+    if idx.size < 3:
+        return float(np.nanstd(r)) if idx.size > 1 else 0.0
+    a, b, c = idx[:-2], idx[1:-1], idx[2:]
+    same = (seg[a] == seg[b]) & (seg[b] == seg[c])
+    d2 = r[a[same]] - 2 * r[b[same]] + r[c[same]]
+    if d2.size < 5:
+        return float(np.std(r[ok], ddof=1))
+    d2 = d2 - np.median(d2)            # a steady curvature of the residuals is not noise
+    s_rob = stats.median_abs_deviation(d2, scale="normal") / math.sqrt(6.0)
+    if s_rob > 0:
+        kept = d2[np.abs(d2) <= 4.0 * math.sqrt(6.0) * s_rob]
+        d2 = kept if kept.size >= 5 else d2
+    trunc = 1.0 - 2 * 4.0 * stats.norm.pdf(4.0) / (1 - 2 * stats.norm.sf(4.0))
+    return float(math.sqrt(np.mean(d2 ** 2) / 6.0 / (trunc if s_rob > 0 else 1.0)))
+
+
+def auto_blocks(n: int, k: int) -> np.ndarray:
+    """Labels of k contiguous blocks of n rows (at least 2, at most n // 8 for n >= 16)."""
+    k = max(2, min(k, n // 8 if n >= 16 else 2))
+    return np.minimum((np.arange(n) * k) // n, k - 1)
+
+
+def orth(A: np.ndarray, rtol: float = 1e-8) -> np.ndarray:
+    """Orthonormal basis of the range of A (columns), singular values below rtol times the
+    largest dropped (`scipy.linalg.orth`); an empty basis for an empty or zero A."""
+    if A.size == 0 or A.shape[1] == 0 or not np.any(A):
+        return np.zeros((A.shape[0], 0))
+    return linalg.orth(A, rcond=rtol)
+
+
+def max_cosine(Qa: np.ndarray, Qb: np.ndarray) -> float:
+    """Cosine of the smallest principal angle between two subspaces (orthonormal bases Qa, Qb;
+    `scipy.linalg.subspace_angles`): 1 when they share a direction, 0 when orthogonal or empty."""
+    if Qa.shape[1] == 0 or Qb.shape[1] == 0:
+        return 0.0
+    return float(np.cos(linalg.subspace_angles(Qa, Qb).min()))
+
+
+def blsq(A: np.ndarray, b: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """min ||A x - b|| subject to lo <= x <= hi (small dense problems; exact active set)."""
+    x, *_ = np.linalg.lstsq(A, b, rcond=None)
+    if np.all(x >= lo) and np.all(x <= hi):
+        return x
+    hi = np.maximum(hi, lo + 1e-15)
+    return optimize.lsq_linear(A, b, bounds=(lo, hi), method="bvls").x
+
+
