@@ -60,7 +60,7 @@ class DecisionPhase:
         """Rivals of `best`: fitted candidates it does not clearly beat (joint fits)."""
         th = self.th
         rivals, joint = [], {}
-        eb = self._effect(best)
+        eb = self.effect(best)
         fb = fits[best]
         for o in names_id:
             if o == best:
@@ -68,7 +68,7 @@ class DecisionPhase:
             fo = fits[o]
             if fo.chi2 - fb.chi2 > th["clear_chi2"]:
                 continue
-            eo = self._effect(o)
+            eo = self.effect(o)
             fixed = {}
             for e, f in ((eb, fb), (eo, fo)):
                 if e.profile:
@@ -201,8 +201,8 @@ class DecisionPhase:
                         key=lambda i: -i["relative"])
         if unmeas:
             parts.append(unmeas[0]["text"])
-        hints = [f"{n}: {self._effect(n).hint}" for n in [best] + list(rivals)
-                 if self._effect(n).hint]
+        hints = [f"{n}: {self.effect(n).hint}" for n in [best] + list(rivals)
+                 if self.effect(n).hint]
         if not parts:
             meas = [i for i in items if i["kind"] == "measured_conditions"]
             parts.append(meas[0]["text"] + " (not separable with this test design)")

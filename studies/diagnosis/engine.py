@@ -415,7 +415,7 @@ class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
         done = sum(self.calls_by_phase.values())
         self.calls_by_phase[label] = self.model.calls - done
 
-    def _effect(self, name):
+    def effect(self, name):
         return next(e for e in self.candidates if e.name == name)
 
 

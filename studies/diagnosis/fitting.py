@@ -20,7 +20,7 @@ class FittingPhase:
         lnN = math.log(self.N)
         fits: dict[str, Fit] = {}
         for name in list(names_id):
-            e = self._effect(name)
+            e = self.effect(name)
             info = cands[name]
             calls0 = self.model.calls
             try:

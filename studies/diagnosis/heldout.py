@@ -19,7 +19,7 @@ class HeldoutPhase:
         base_ho, cands, names_id = b.heldout_z, s.candidates, s.identifiable
         ho = {}
         for name in list(names_id):
-            e = self._effect(name)
+            e = self.effect(name)
             try:
                 if e.profile:
                     ho[name], chosen = self.heldout_profile(fits[name].extra["grid_lin"], e)
