@@ -16,7 +16,7 @@ from studies.model.inputs import baseline_inputs
 from studies.model.pipeline import Pipeline
 from studies.runs.report_tools import md_table
 from studies.model.table import write_table
-from studies.runs.verify import _convergence, plot_convergence
+from studies.runs.verify import convergence_case, plot_convergence
 
 FACTORS = (4.0, 2.0, 1.0, 0.5, 0.25)
 T_STATES_C = (-60.0, 80.0)
@@ -46,7 +46,7 @@ def run(out: Path, progress=print) -> None:
         if all(r["fit_pressure_outer_A_MPa"] == 0 for r in rows):
             for r in rows:
                 del r["fit_pressure_outer_A_MPa"]        # open fit: nothing to converge
-        c = _convergence(f"seed000 at {Tc:g} C", {"assembly": asm.name, "T_C": Tc}, rows)
+        c = convergence_case(f"seed000 at {Tc:g} C", {"assembly": asm.name, "T_C": Tc}, rows)
         cases.append(c)
         write_table(out / f"levels_{Tc:+.0f}C.csv", {k: np.array([r[k] for r in rows])
                                                    for k in rows[0]})

@@ -131,7 +131,7 @@ def richardson(f: list[float], ratio: float = 2.0) -> dict:
     return {"observed_order": p, "extrapolated": ext, "gci_fine": gci, "monotone": True}
 
 
-def _convergence(name: str, inputs: dict, levels: list[dict], exact: dict | None = None) -> dict:
+def convergence_case(name: str, inputs: dict, levels: list[dict], exact: dict | None = None) -> dict:
     """Observed order and GCI of every quantity over the levels (refinement ratio 2)."""
     qs = [k for k in levels[0] if k not in ("factor", "size_mm", "fit_size_mm", "dofs")]
     out = {"name": name, "kind": "mesh_convergence", "inputs": dict(inputs, refinement_ratio=2.0),
@@ -172,7 +172,7 @@ def lame_convergence_case(factors=(4.0, 2.0, 1.0, 0.5), progress=None) -> dict:
                        "dofs": int(model.ndofs), "fit_pressure_MPa": p, "ring_u_r_um": 1e3 * u})
         if progress:
             progress(f"  Lamé level {len(levels)}/{len(factors)}: {model.ndofs} DOF")
-    return _convergence("mesh_convergence_lame_TC4_9Cr18", dict(common, assumption="plane_stress"),
+    return convergence_case("mesh_convergence_lame_TC4_9Cr18", dict(common, assumption="plane_stress"),
                         levels, exact)
 
 
@@ -200,7 +200,7 @@ def mesh_convergence_case(assembly, T_C: float = -60.0, factors=(4.0, 2.0, 1.0, 
                        "raceway_u_r_outer_A_um": 1e3 * float(u[2])})
         if progress:
             progress(f"  {assembly.name} level {len(levels)}/{len(factors)}: {model.ndofs} DOF")
-    return _convergence(f"mesh_convergence_{assembly.name}_{T_C:g}C",
+    return convergence_case(f"mesh_convergence_{assembly.name}_{T_C:g}C",
                         {"assembly": assembly.name, "T_C": T_C}, levels)
 
 
