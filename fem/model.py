@@ -225,6 +225,6 @@ def facets_on_line(model: StackModel, spec) -> np.ndarray:
 def build_model(section: Section, contact: str = "frictionless",
                 materials: dict[str, Material] | None = None) -> StackModel:
     """Mesh the section (cached) and assemble its model."""
-    from meshes.build import build_mesh, read_section_mesh
+    from meshes.build import section_mesh
 
-    return StackModel(section, read_section_mesh(build_mesh(section)), contact, materials)
+    return StackModel(section, section_mesh(section), contact, materials)

@@ -114,7 +114,7 @@ def test_simulate_command_writes_every_spec_column(tmp_path, capsys):
     ("T_ambient_C\n20\n", "radial_gradient:dT_K=999", "outside physical bounds"),
     ("T_ambient_C\n20\n", "radial_gradient:bad=1", "unknown parameter 'bad'"),
     ("T_ambient_C\n20\n", "thermal_lag:tau_s=10", "needs the condition column time_s"),
-    ("T_ambient_C,axial_load_N\n20,0\n20,1e300\n", None, "row 2: the bearing equilibrium did not converge"),
+    ("T_ambient_C,axial_load_N\n20,0\n20,1e300\n", None, "line 3, column 'axial_load_N': 1e+300 outside"),
 ])
 def test_simulate_bad_input_exits_2_with_one_line_and_no_output(tmp_path, capsys, content, effect, expect):
     cond = tmp_path / "c.csv"
@@ -152,9 +152,21 @@ def test_out_folder_not_written_by_bearingfem_is_refused(tmp_path, capsys):
     keep.mkdir()
     (keep / "notes.txt").write_text("precious")
     assert main(["study", "lubricant_viscosity", "--out", str(keep)]) == 2
-    assert "was not written by bearingfem" in capsys.readouterr().err
+    assert "holds files bearingfem did not write (notes.txt)" in capsys.readouterr().err
     assert (keep / "notes.txt").read_text() == "precious"
     out = tmp_path / "new"
     assert main(["study", "lubricant_viscosity", "--out", str(out)]) == 0
     assert main(["study", "lubricant_viscosity", "--out", str(out)]) == 0   # its own folder: replaced
     assert (out / "report.md").exists()
+
+
+def test_unconverged_or_non_finite_rows_raise_model_error_naming_the_row():
+    from studies.model.pipeline import CHECKED_OUTPUTS, ModelError, check_answers
+
+    out = {k: np.ones(3) for k in CHECKED_OUTPUTS}
+    check_answers(out, np.ones(3, bool))                  # a sound table passes
+    with pytest.raises(ModelError, match="row 2: the bearing equilibrium did not converge"):
+        check_answers(out, np.array([True, False, True]))
+    out["preload_N"] = np.array([1.0, 1.0, np.nan])
+    with pytest.raises(ModelError, match="row 3: preload_N is not finite"):
+        check_answers(out, np.ones(3, bool))

@@ -10,19 +10,34 @@ import os
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # small dense solves: threads only cost here
 
 import argparse  # noqa: E402
+import signal  # noqa: E402
 import sys  # noqa: E402
 from pathlib import Path  # noqa: E402
+
+import numpy as np  # noqa: E402
 
 from studies.app import commands  # noqa: E402
 from studies.app.output import UserError  # noqa: E402
 from studies.runs import STUDIES  # noqa: E402
 
 
+class Terminated(BaseException):
+    """SIGTERM (timeout, batch schedulers, docker stop): unwinds like Ctrl-C, so every temporary
+    file and folder is removed on the way out."""
+
+
+class _Parser(argparse.ArgumentParser):
+    """Usage errors as one line on stderr (exit 2), like every other bad input."""
+
+    def error(self, message):
+        self.exit(2, f"{self.prog}: {message} (see {self.prog.split()[0]} --help)\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="bearingfem", description=(
+    p = _Parser(prog="bearingfem", description=(
         "Thermal-structural FE + analytic bearing model of a preloaded angular-contact ball "
         "bearing pair on a shaft in a housing."))
-    sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND", parser_class=_Parser)
 
     s = sub.add_parser("simulate", help="run the model on a conditions table")
     s.add_argument("assembly", type=Path)
@@ -54,18 +69,34 @@ COMMANDS = {"simulate": commands.cmd_simulate, "diagnose": commands.cmd_diagnose
             "verify": commands.cmd_verify, "study": commands.cmd_study, "bench": commands.cmd_bench}
 
 
+def _terminate(signum, frame):
+    raise Terminated()
+
+
 def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
     from studies.model.config import ConfigError
 
+    previous = signal.signal(signal.SIGTERM, _terminate)
     try:
-        COMMANDS[args.command](args)
+        with np.errstate(all="ignore"):       # non-finite results are reported by row instead
+            COMMANDS[args.command](args)
     except (UserError, ConfigError) as exc:
         print(f"bearingfem {args.command}: {exc}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         print("bearingfem: interrupted", file=sys.stderr)
         return 130
+    except Terminated:
+        print("bearingfem: terminated", file=sys.stderr)
+        return 143
+    except ImportError as exc:
+        if isinstance(exc.__context__, KeyboardInterrupt):   # Ctrl-C inside a lazy import
+            print("bearingfem: interrupted", file=sys.stderr)
+            return 130
+        raise
+    finally:
+        signal.signal(signal.SIGTERM, previous)
     return 0
 
 

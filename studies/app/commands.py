@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import os
+import stat
 import sys
 from pathlib import Path
 
@@ -31,11 +32,28 @@ def _user_errors():
             DiagnosisError, ModelFailure)
 
 
-def check_output_file(path: Path) -> None:
-    """Refuse an output path that cannot be written, before any work is done."""
+def check_output_file(path: Path, inputs: tuple[Path, ...] = ()) -> None:
+    """Refuse, before any work is done, an output path that would lose or alter something the
+    user has: one of the inputs, a symlink, an existing non-regular file (FIFO, device, folder),
+    or a place that cannot be written."""
     path = Path(path)
-    if path.is_dir():
-        raise UserError(f"{path}: is a folder; -o needs a file name")
+    if path.is_symlink():
+        raise UserError(f"{path}: is a symbolic link; -o writes a regular file and does not "
+                        "replace links (give the target's path)")
+    if path.exists():
+        if path.is_dir():
+            raise UserError(f"{path}: is a folder; -o needs a file name")
+        if not stat.S_ISREG(path.stat().st_mode):
+            raise UserError(f"{path}: exists and is not a regular file (FIFO, device or socket); "
+                            "choose another output name")
+        for given in inputs:
+            try:
+                same = Path(given).exists() and os.path.samefile(path, given)
+            except OSError:
+                same = False
+            if same:
+                raise UserError(f"{path}: is the input file {given}; choose another output name "
+                                "(nothing was changed)")
     parent = path.resolve().parent
     probe = parent
     while not probe.exists():
@@ -64,7 +82,7 @@ def cmd_simulate(args) -> None:
     from studies.model.table import read_conditions, write_table
 
     try:
-        check_output_file(args.out)
+        check_output_file(args.out, (args.assembly, args.conditions))
         asm = _load(args.assembly)
         cond = read_conditions(args.conditions)
         effects = {}

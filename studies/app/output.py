@@ -31,33 +31,59 @@ MARKER = ".bearingfem-output"
 def atomic_dir(out: Path):
     """Yield a temporary folder beside `out`; move it to `out` only when the block succeeds.
 
-    An existing `out` is replaced only if it is empty or was written by bearingfem (it holds the
-    marker file); any other existing folder is refused, so nothing the user keeps there is lost.
-    On failure the previous content stays untouched and the temporary folder is removed."""
+    An existing `out` is replaced only if it is empty or holds exactly what bearingfem wrote there
+    (the marker file lists it); a folder with anything else in it (the user's own files, or files
+    added since) is refused with their names, so nothing the user keeps there is lost. On failure
+    or interruption the previous content stays untouched and the temporary folder is removed."""
     out = Path(out).resolve()
     if out.exists():
-        if not out.is_dir():
+        if not out.is_dir() or out.is_symlink():
             raise UserError(f"{out}: exists and is not a folder")
-        if any(out.iterdir()) and not (out / MARKER).exists():
-            raise UserError(f"{out}: folder exists and was not written by bearingfem; choose a new "
-                            "or empty folder (nothing was changed)")
+        foreign = _foreign_files(out)
+        if foreign:
+            more = f" and {len(foreign) - 3} more" if len(foreign) > 3 else ""
+            raise UserError(f"{out}: holds files bearingfem did not write ({', '.join(foreign[:3])}"
+                            f"{more}); choose a new or empty folder (nothing was changed)")
     try:
         out.parent.mkdir(parents=True, exist_ok=True)
         tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", dir=out.parent))
     except OSError as exc:
         raise UserError(f"{out}: cannot create the output folder ({exc.strerror})") from None
-    tmp.chmod(0o755)
-    (tmp / MARKER).write_text("written by bearingfem; this folder is replaced by the next run\n")
     try:
+        tmp.chmod(0o777 & ~_umask())
         yield tmp
+        written = sorted(str(p.relative_to(tmp)) for p in tmp.rglob("*") if p.is_file())
+        (tmp / MARKER).write_text("written by bearingfem; the next run replaces these files:\n"
+                                  + "".join(f"{w}\n" for w in written))
+        if out.exists():
+            old = out.with_name(f".{out.name}.old")
+            shutil.rmtree(old, ignore_errors=True)
+            out.rename(old)
+            tmp.rename(out)
+            shutil.rmtree(old, ignore_errors=True)
+        else:
+            tmp.rename(out)
+    except OSError as exc:
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise UserError(f"{out}: cannot write the results ({exc.strerror or exc}); nothing was "
+                        "changed") from None
     except BaseException:
         shutil.rmtree(tmp, ignore_errors=True)
         raise
-    if out.exists():
-        old = out.with_name(f".{out.name}.old")
-        shutil.rmtree(old, ignore_errors=True)
-        out.rename(old)
-        tmp.rename(out)
-        shutil.rmtree(old, ignore_errors=True)
-    else:
-        tmp.rename(out)
+
+
+def _foreign_files(out: Path) -> list[str]:
+    """Files under `out` that the marker does not list (all of them when there is no marker)."""
+    marker = out / MARKER
+    listed = set()
+    if marker.is_file():
+        listed = {line.strip() for line in marker.read_text().splitlines()[1:] if line.strip()}
+    return sorted(str(p.relative_to(out)) for p in out.rglob("*")
+                  if (p.is_file() or p.is_symlink()) and p != marker
+                  and str(p.relative_to(out)) not in listed)
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask

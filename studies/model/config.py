@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from analytic.materials import Material, get_material
+from analytic.safety import static_load_rating_C0_N
 
 
 class ConfigError(ValueError):
@@ -333,8 +334,25 @@ def _check_geometry(a: Assembly, path: str) -> None:
          "nut.diameter_mm", "must lie between the shaft seat and the outer ring ID")
     need(b.inner_ring_outer_diameter_mm < a.cover.diameter_mm < h.bore_diameter_mm,
          "cover.diameter_mm", "must lie between the inner ring OD and the housing bore")
-    need(b.inner_groove_ratio > 0.5 and b.outer_groove_ratio > 0.5, "bearing.inner_groove_ratio",
-         "groove curvature ratios must exceed 0.5")
+    for key, f in (("bearing.inner_groove_ratio", b.inner_groove_ratio),
+                   ("bearing.outer_groove_ratio", b.outer_groove_ratio)):
+        # Harris & Kotzalas Vol. 1 ch. 2: 0.515..0.54 in ball bearings; 0.5 is a ball in a
+        # conforming groove (no contact ellipse), above 0.6 not a raceway groove
+        need(0.5 < f <= 0.6, key, f"{f:g} is outside 0.5..0.6 (groove radius / ball diameter)")
+    need(b.width_mm >= b.ball_diameter_mm, "bearing.width_mm",
+         f"ring width {b.width_mm:g} mm is narrower than its ball ({b.ball_diameter_mm:g} mm)")
+    # a typo in one dimension (a housing 1e9 mm wide) would mesh until memory runs out: every
+    # length of the stack stays within 20 bearing outside diameters
+    big = 20.0 * b.outside_diameter_mm
+    for key, val in (("shaft.shoulder_width_mm", s.shoulder_width_mm),
+                     ("shaft.extension_mm", s.extension_mm),
+                     ("housing.outer_diameter_mm", h.outer_diameter_mm),
+                     ("housing.shoulder_width_mm", h.shoulder_width_mm),
+                     ("nut.width_mm", a.nut.width_mm), ("cover.width_mm", a.cover.width_mm),
+                     ("inner_spacer.length_mm", a.inner_spacer.length_mm),
+                     ("outer_spacer.length_mm", a.outer_spacer.length_mm)):
+        need(val <= big, key, f"{val:g} mm is more than 20 bearing outside diameters "
+                              f"({big:g} mm): a typo?")
     need(b.contact_angle_free_deg < 90.0, "bearing.contact_angle_free_deg", "must be below 90 deg")
     Dw, dm = b.ball_diameter_mm, b.pitch_diameter_mm
     need(b.bore_mm < dm - Dw and dm + Dw < b.outside_diameter_mm, "bearing.pitch_diameter_mm",
@@ -347,6 +365,10 @@ def _check_geometry(a: Assembly, path: str) -> None:
         need(abs(val) <= 2.0 * d, key, f"{val:g} um is beyond 2 per mille of the {d:g} mm diameter")
     need(a.lubrication.friction_coefficient <= 1.0, "lubrication.friction_coefficient",
          "must not exceed 1")
+    C0 = static_load_rating_C0_N(b.ball_count, Dw, dm, b.contact_angle_free_deg)
+    need(a.preload.assembled_N <= C0, "preload.assembled_N",
+         f"{a.preload.assembled_N:g} N exceeds the bearing's static load rating C0 = {C0:.0f} N "
+         "(ISO 76): the raceways would be dented at assembly")
     need(a.mesh.fit_size_mm <= a.mesh.size_mm, "mesh.fit_size_mm", "must not exceed mesh.size_mm")
     need(a.mesh.size_mm <= b.width_mm, "mesh.size_mm",
          f"must not exceed the bearing width ({b.width_mm:g} mm): the rings would not be resolved")

@@ -8,6 +8,7 @@ from __future__ import annotations
 import csv
 import math
 import os
+import stat
 import tempfile
 from pathlib import Path
 
@@ -84,7 +85,13 @@ def read_table(path: Path, allowed: set[str] | None = None,
 #: physical ranges of condition columns: the material and lubricant data hold from -150 to 300 C
 #: (beyond, CTE and viscosity laws are extrapolations the model does not stand behind)
 RANGES = {**{c: (-150.0, 300.0, "C") for c in CONDITION_COLUMNS if c.startswith("T_")},
-          "speed_rpm": (0.0, 1e5, "rpm"), "preload_assembled_N": (0.0, 1e5, "N")}
+          "speed_rpm": (0.0, 1e5, "rpm"), "preload_assembled_N": (0.0, 1e5, "N"),
+          "axial_load_N": (-1e6, 1e6, "N"),
+          # measured outputs (diagnose): beyond these no bearing this tool models goes
+          "torque_Nmm": (-1e7, 1e7, "N mm"), "preload_N": (-1e6, 1e6, "N"),
+          "contact_angle_deg": (-90.0, 90.0, "deg"), "max_contact_pressure_MPa": (0.0, 1e5, "MPa"),
+          "interference_inner_um": (-1e4, 1e4, "um"), "interference_outer_um": (-1e4, 1e4, "um"),
+          "fit_pressure_inner_MPa": (-1e4, 1e4, "MPa"), "fit_pressure_outer_MPa": (-1e4, 1e4, "MPa")}
 
 
 def check_ranges(path: Path, cols: dict[str, np.ndarray]) -> None:
@@ -105,15 +112,21 @@ def read_conditions(path: Path) -> dict[str, np.ndarray]:
 
 
 def write_table(path: Path, columns: dict[str, np.ndarray], comment: str = "") -> None:
-    """Write columns to CSV atomically (temporary file in the same folder, then rename)."""
+    """Write columns to CSV atomically (temporary file in the same folder, then rename). The file
+    gets the mode of the file it replaces, or the user's default (0666 less the umask); a write
+    error is one line (TableError), and leaves neither the temporary file nor a folder created
+    for it."""
     path = Path(path)
     names = [c for c in columns if not c.startswith("_")]
+    created = [p for p in reversed(path.parents) if not p.exists()]
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
     except OSError as exc:
+        _remove_folders(created)
         raise TableError(f"{path}: cannot write ({exc.strerror})") from None
     try:
+        os.chmod(tmp, stat.S_IMODE(path.stat().st_mode) if path.exists() else _default_mode())
         with os.fdopen(fd, "w", newline="") as fh:
             for line in comment.splitlines():
                 fh.write(f"# {line}\n")
@@ -123,9 +136,27 @@ def write_table(path: Path, columns: dict[str, np.ndarray], comment: str = "") -
             for i in range(len(arrays[0]) if arrays else 0):
                 w.writerow([_fmt(a[i]) for a in arrays])
         os.replace(tmp, path)
-    except BaseException:
+    except BaseException as exc:
         os.unlink(tmp)
+        _remove_folders(created)
+        if isinstance(exc, OSError):
+            raise TableError(f"{path}: cannot write ({exc.strerror or exc})") from None
         raise
+
+
+def _default_mode() -> int:
+    """0666 less the process umask: what a new file of the user's would get."""
+    mask = os.umask(0)
+    os.umask(mask)
+    return 0o666 & ~mask
+
+
+def _remove_folders(created: list[Path]) -> None:
+    for p in reversed(created):
+        try:
+            p.rmdir()
+        except OSError:
+            pass
 
 
 def _fmt(v) -> str:
