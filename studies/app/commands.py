@@ -98,8 +98,11 @@ def cmd_simulate(args) -> None:
     cols.update(out)
     desc = ", ".join(f"{k}({', '.join(f'{p}={v:g}' for p, v in prm.items())})"
                      for k, prm in effects.items()) or "none"
-    write_table(args.out, cols, comment=f"bearingfem simulate {args.assembly} {args.conditions}\n"
-                                        f"effects: {desc}")
+    try:
+        write_table(args.out, cols, comment=f"bearingfem simulate {args.assembly} {args.conditions}\n"
+                                            f"effects: {desc}")
+    except _user_errors() as exc:
+        raise UserError(str(exc)) from None
     print(f"wrote {len(next(iter(out.values())))} rows to {args.out}")
 
 

@@ -1,0 +1,269 @@
+"""Guard rails: bad inputs and faults against the command line, each held to the contract
+(docs/cli.md): exit code, a single stderr line naming the problem, no file left behind, and every
+input the user gave unchanged (by hash). Mesh-cache faults against meshes/build.py directly."""
+import errno
+import hashlib
+import os
+import re
+import signal
+import stat
+
+import numpy as np
+import pytest
+
+from meshes.build import MeshError, build_mesh, check_size, section_mesh
+from meshes.section import two_cylinder_section
+from studies.app.cli import main
+from studies.model.config import CONFIG_DIR
+
+CFG = CONFIG_DIR / "seed000_71807C_TC4.toml"
+
+
+def digest(path):
+    return hashlib.sha256(path.read_bytes()).hexdigest() if path.is_file() else None
+
+
+def config_with(tmp_path, section, key, value):
+    """The seed 000 assembly with one `key = value` changed inside [section]."""
+    text = CFG.read_text()
+    start = text.index(f"[{section}]")
+    end = text.find("\n[", start + 1)
+    end = len(text) if end < 0 else end
+    body, n = re.subn(rf"(?m)^{key}\s*=\s*[^#\n]*", f"{key} = {value} ", text[start:end], count=1)
+    assert n == 1, (section, key)
+    path = tmp_path / "asm.toml"
+    path.write_text(text[:start] + body + text[end:])
+    return path
+
+
+def run_cli(argv, capsys):
+    code = main([str(a) for a in argv])
+    err = capsys.readouterr().err.strip().splitlines()
+    return code, err
+
+
+def assert_refused(code, err, fragment, tmp_path, before):
+    assert code == 2
+    assert len(err) == 1 and fragment in err[0], err
+    for p, h in before.items():
+        assert digest(p) == h, f"{p} changed"
+    assert not [p for p in tmp_path.rglob(".*") if p.name.startswith((".o.csv", ".out"))]
+
+
+@pytest.fixture()
+def cond(tmp_path):
+    c = tmp_path / "cond.csv"
+    c.write_text("T_ambient_C\n20\n40\n")
+    return c
+
+
+# ------------------------------------------------------------------ data loss through -o
+@pytest.mark.parametrize("target", ["conditions", "assembly"])
+def test_output_onto_an_input_is_refused(tmp_path, capsys, cond, target):
+    asm = tmp_path / "asm.toml"
+    asm.write_text(CFG.read_text())
+    before = {cond: digest(cond), asm: digest(asm)}
+    out = cond if target == "conditions" else asm
+    code, err = run_cli(["simulate", asm, cond, "-o", out], capsys)
+    assert_refused(code, err, "is the input file", tmp_path, before)
+
+
+def test_output_onto_a_symlink_is_refused_and_the_link_kept(tmp_path, capsys, cond):
+    target = tmp_path / "target.csv"
+    target.write_text("keep\n")
+    link = tmp_path / "link.csv"
+    link.symlink_to(target)
+    code, err = run_cli(["simulate", CFG, cond, "-o", link], capsys)
+    assert_refused(code, err, "symbolic link", tmp_path, {target: digest(target), cond: digest(cond)})
+    assert link.is_symlink()
+
+
+def test_output_onto_a_fifo_is_refused(tmp_path, capsys, cond):
+    fifo = tmp_path / "pipe.csv"
+    os.mkfifo(fifo)
+    code, err = run_cli(["simulate", CFG, cond, "-o", fifo], capsys)
+    assert_refused(code, err, "not a regular file", tmp_path, {cond: digest(cond)})
+    assert stat.S_ISFIFO(fifo.stat().st_mode)
+
+
+def test_output_file_modes(tmp_path, capsys, cond):
+    old_mask = os.umask(0o022)
+    try:
+        new = tmp_path / "new.csv"
+        assert run_cli(["simulate", CFG, cond, "-o", new], capsys)[0] == 0
+        assert stat.S_IMODE(new.stat().st_mode) == 0o644        # the user's default, not 0600
+        kept = tmp_path / "kept.csv"
+        kept.write_text("old\n")
+        kept.chmod(0o640)
+        assert run_cli(["simulate", CFG, cond, "-o", kept], capsys)[0] == 0
+        assert stat.S_IMODE(kept.stat().st_mode) == 0o640        # an existing target keeps its mode
+        assert "preload_N" in kept.read_text()
+    finally:
+        os.umask(old_mask)
+
+
+def test_write_error_is_one_line_and_leaves_nothing(tmp_path, capsys, cond, monkeypatch):
+    out = tmp_path / "made" / "deeper" / "o.csv"
+    real = os.replace
+
+    def full_disk(src, dst):
+        if str(dst) == str(out):
+            raise OSError(errno.ENOSPC, "No space left on device")
+        return real(src, dst)
+    monkeypatch.setattr(os, "replace", full_disk)
+    code, err = run_cli(["simulate", CFG, cond, "-o", out], capsys)
+    assert_refused(code, err, "No space left on device", tmp_path, {cond: digest(cond)})
+    assert not (tmp_path / "made").exists()                    # the folder made for -o is gone
+
+
+def test_out_folder_with_files_added_since_is_refused(tmp_path, capsys):
+    out = tmp_path / "study"
+    assert run_cli(["study", "lubricant_viscosity", "--out", out], capsys)[0] == 0
+    mine = out / "my_notes.txt"
+    mine.write_text("precious")
+    code, err = run_cli(["study", "lubricant_viscosity", "--out", out], capsys)
+    assert code == 2 and len(err) == 1 and "my_notes.txt" in err[0], err
+    assert mine.read_text() == "precious"
+    mine.unlink()
+    assert run_cli(["study", "lubricant_viscosity", "--out", out], capsys)[0] == 0   # its own: replaced
+
+
+# ------------------------------------------------------------------ a poisoned mesh cache
+SEC = two_cylinder_section(0.0, 10.0, 15.0, "9Cr18", "9Cr18", 8.0, size_mm=2.0, fit_size_mm=1.0)
+OTHER = two_cylinder_section(0.0, 10.0, 16.0, "9Cr18", "9Cr18", 8.0, size_mm=2.0, fit_size_mm=1.0)
+
+
+@pytest.fixture()
+def cache(tmp_path, monkeypatch):
+    monkeypatch.setenv("BEARINGFEM_CACHE", str(tmp_path / "cache"))
+    return tmp_path / "cache" / "meshes"
+
+
+@pytest.mark.parametrize("damage", ["truncated", "empty", "random bytes", "folder", "other section"])
+def test_damaged_cache_entry_is_rebuilt_with_one_warning(cache, capsys, damage):
+    path = build_mesh(SEC)
+    good = section_mesh(SEC)
+    if damage == "truncated":
+        path.write_bytes(path.read_bytes()[: path.stat().st_size // 2])
+    elif damage == "empty":
+        path.write_bytes(b"")
+    elif damage == "random bytes":
+        path.write_bytes(np.random.default_rng(0).bytes(4096))
+    elif damage == "folder":
+        path.unlink()
+        path.mkdir()
+    else:
+        path.write_bytes(build_mesh(OTHER).read_bytes())
+    capsys.readouterr()
+    mesh = section_mesh(SEC)
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "warning" in err[0] and str(path) in err[0], err
+    assert np.array_equal(mesh.triangles, good.triangles) and np.array_equal(mesh.points, good.points)
+    assert section_mesh(SEC).points.shape == good.points.shape              # sound again
+    assert capsys.readouterr().err == ""
+
+
+def test_unusable_cache_location_meshes_in_a_temporary_folder(tmp_path, monkeypatch, capsys):
+    blocker = tmp_path / "a_file"
+    blocker.write_text("not a folder")
+    monkeypatch.setenv("BEARINGFEM_CACHE", str(blocker))
+    mesh = section_mesh(SEC)
+    err = capsys.readouterr().err.strip().splitlines()
+    assert mesh.triangles.shape[1] > 0
+    assert len(err) == 1 and "mesh cache" in err[0] and str(blocker) in err[0], err
+    assert blocker.read_text() == "not a folder"
+
+
+def test_temporary_meshes_of_killed_runs_are_removed(cache):
+    build_mesh(SEC)
+    dead = 2 ** 22 + 12345                        # above the default pid_max: no such process
+    stale = cache / f"section_{SEC.key()}.{dead}.msh"
+    stale.write_text("half written")
+    section_mesh(OTHER)
+    assert not stale.exists()
+
+
+# ------------------------------------------------------------------ no limit on problem size
+@pytest.mark.parametrize("section,key,value,fragment", [
+    ("housing", "outer_diameter_mm", "1e9", "housing.outer_diameter_mm: 1e+09 mm is more than 20"),
+    ("outer_spacer", "length_mm", "1e6", "outer_spacer.length_mm: 1e+06 mm is more than 20"),
+    ("bearing", "inner_groove_ratio", "50", "bearing.inner_groove_ratio: 50 is outside 0.5..0.6"),
+    ("bearing", "width_mm", "2.0", "narrower than its ball"),
+    ("preload", "assembled_N", "1e12", "exceeds the bearing's static load rating"),
+])
+def test_implausible_assembly_values_are_refused(tmp_path, capsys, cond, section, key, value, fragment):
+    asm = config_with(tmp_path, section, key, value)
+    before = {asm: digest(asm), cond: digest(cond)}
+    code, err = run_cli(["simulate", asm, cond, "-o", tmp_path / "o.csv"], capsys)
+    assert_refused(code, err, fragment, tmp_path, before)
+    assert not (tmp_path / "o.csv").exists()
+
+
+def test_a_mesh_too_fine_is_refused_before_meshing(tmp_path, capsys, cond):
+    asm = tmp_path / "asm.toml"
+    asm.write_text(CFG.read_text() + "\n[mesh]\nsize_mm = 0.02\nfit_size_mm = 0.01\n")
+    code, err = run_cli(["simulate", asm, cond, "-o", tmp_path / "o.csv"], capsys)
+    assert_refused(code, err, "BEARINGFEM_MAX_ELEMENTS", tmp_path, {cond: digest(cond)})
+    with pytest.raises(MeshError, match="triangles"):
+        check_size(SEC.scaled(1e-3))
+
+
+# ------------------------------------------------------------------ signals, ranges, usage
+def test_sigterm_cleans_up_and_exits_143(tmp_path, capsys, cond, monkeypatch):
+    from studies.model import pipeline
+
+    real = pipeline.Pipeline.run
+
+    def killed(self, *a, **k):
+        os.kill(os.getpid(), signal.SIGTERM)           # what `timeout` or a scheduler sends
+        return real(self, *a, **k)
+    monkeypatch.setattr(pipeline.Pipeline, "run", killed)
+    out = tmp_path / "o.csv"
+    code, err = run_cli(["simulate", CFG, cond, "-o", out], capsys)
+    assert code == 143 and err == ["bearingfem: terminated"]
+    assert not out.exists() and not list(tmp_path.glob(".o.csv*"))
+
+
+@pytest.mark.parametrize("content,fragment", [
+    ("T_ambient_C,axial_load_N\n20,1e300\n", "column 'axial_load_N': 1e+300 outside"),
+    ("T_ambient_C\n20\n-400\n", "column 'T_ambient_C': -400 outside"),
+])
+def test_condition_ranges(tmp_path, capsys, content, fragment):
+    c = tmp_path / "c.csv"
+    c.write_text(content)
+    code, err = run_cli(["simulate", CFG, c, "-o", tmp_path / "o.csv"], capsys)
+    assert_refused(code, err, fragment, tmp_path, {c: digest(c)})
+
+
+def test_measured_torque_range(tmp_path, capsys):
+    m = tmp_path / "m.csv"
+    rows = "".join(f"{t},{20 + t / 100},{1.0 if t else 1e300}\n" for t in range(0, 1200, 100))
+    m.write_text("time_s,T_ambient_C,torque_Nmm\n" + rows)
+    code, err = run_cli(["diagnose", CFG, m, "--out", tmp_path / "d"], capsys)
+    assert_refused(code, err, "column 'torque_Nmm': 1e+300 outside", tmp_path, {m: digest(m)})
+    assert not (tmp_path / "d").exists()
+
+
+@pytest.mark.parametrize("argv", [["simulate"], ["nope"], ["study"], ["simulate", "a", "b"]])
+def test_usage_errors_are_one_line(capsys, argv):
+    with pytest.raises(SystemExit) as exc:
+        main(argv)
+    err = capsys.readouterr().err.strip().splitlines()
+    assert exc.value.code == 2 and len(err) == 1 and "--help" in err[0], err
+
+
+def test_a_truncated_gmsh_write_never_enters_the_cache(cache, monkeypatch):
+    """On a full disk gmsh writes a short file without raising: it is checked before the move."""
+    import meshes.build as mb
+
+    real = mb._mesh_with_gmsh
+
+    def short_write(section, tmp):
+        real(section, tmp)
+        tmp.write_bytes(tmp.read_bytes()[:200])
+    monkeypatch.setattr(mb, "_mesh_with_gmsh", short_write)
+    with pytest.raises(MeshError, match="gmsh wrote an unusable mesh"):
+        section_mesh(SEC)
+    assert not list(cache.glob("section_*"))
+    monkeypatch.setattr(mb, "_mesh_with_gmsh", real)
+    assert section_mesh(SEC).triangles.shape[1] > 0             # the next run (disk freed) works
