@@ -267,3 +267,18 @@ def test_a_truncated_gmsh_write_never_enters_the_cache(cache, monkeypatch):
     assert not list(cache.glob("section_*"))
     monkeypatch.setattr(mb, "_mesh_with_gmsh", real)
     assert section_mesh(SEC).triangles.shape[1] > 0             # the next run (disk freed) works
+
+
+def test_temporaries_of_runs_killed_outright_are_removed_by_age(tmp_path, capsys, cond):
+    old_file, old_dir = tmp_path / ".o.csv.abc123", tmp_path / ".sout.xyz"
+    old_file.write_text("partial")
+    old_dir.mkdir()
+    fresh = tmp_path / ".o.csv.new456"                  # a run still writing: left alone
+    fresh.write_text("partial")
+    day_ago = os.stat(cond).st_mtime - 2 * 24 * 3600
+    for p in (old_file, old_dir):
+        os.utime(p, (day_ago, day_ago))
+    assert run_cli(["simulate", CFG, cond, "-o", tmp_path / "o.csv"], capsys)[0] == 0
+    assert not old_file.exists() and fresh.exists()
+    assert run_cli(["study", "lubricant_viscosity", "--out", tmp_path / "sout"], capsys)[0] == 0
+    assert not old_dir.exists()

@@ -12,6 +12,8 @@ import tempfile
 from contextlib import contextmanager
 from pathlib import Path
 
+from studies.model.table import remove_stale
+
 
 class UserError(Exception):
     """Bad input: printed as one line, exit code 2."""
@@ -44,6 +46,7 @@ def atomic_dir(out: Path):
             more = f" and {len(foreign) - 3} more" if len(foreign) > 3 else ""
             raise UserError(f"{out}: holds files bearingfem did not write ({', '.join(foreign[:3])}"
                             f"{more}); choose a new or empty folder (nothing was changed)")
+    remove_stale(out.parent, f".{out.name}.")
     try:
         out.parent.mkdir(parents=True, exist_ok=True)
         tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", dir=out.parent))

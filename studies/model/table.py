@@ -119,6 +119,7 @@ def write_table(path: Path, columns: dict[str, np.ndarray], comment: str = "") -
     path = Path(path)
     names = [c for c in columns if not c.startswith("_")]
     created = [p for p in reversed(path.parents) if not p.exists()]
+    remove_stale(path.parent, f".{path.name}.")
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
@@ -142,6 +143,27 @@ def write_table(path: Path, columns: dict[str, np.ndarray], comment: str = "") -
         if isinstance(exc, OSError):
             raise TableError(f"{path}: cannot write ({exc.strerror or exc})") from None
         raise
+
+
+#: temporary outputs of runs killed outright (SIGKILL, power loss) older than this are removed
+STALE_AGE_S = 24 * 3600.0
+
+
+def remove_stale(folder: Path, prefix: str) -> None:
+    """Remove temporary files and folders `<prefix>*` in `folder` older than STALE_AGE_S (what a
+    run killed before it could clean up leaves behind)."""
+    import shutil
+    import time
+
+    if not folder.is_dir():
+        return
+    now = time.time()
+    for p in folder.glob(f"{prefix}*"):
+        try:
+            if now - p.lstat().st_mtime > STALE_AGE_S:
+                shutil.rmtree(p) if p.is_dir() and not p.is_symlink() else p.unlink()
+        except OSError:
+            pass
 
 
 def _default_mode() -> int:
