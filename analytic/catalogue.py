@@ -22,34 +22,29 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from analytic.bearing.geometry import BearingSpec
+
 
 @dataclass(frozen=True)
 class CatalogueEntry:
-    """Internal geometry of one bearing type (Harris Vol. 1 ch. 2 notation), lengths in mm."""
-    designation: str
-    bore_mm: float
-    outside_diameter_mm: float
-    width_mm: float
-    ball_diameter_mm: float
-    ball_count: int
-    pitch_diameter_mm: float
-    inner_groove_ratio: float
-    outer_groove_ratio: float
-    contact_angle_free_deg: float
-    ring_material: str
-    ball_material: str
+    """One bearing type: its `BearingSpec` and where each number comes from."""
+    spec: BearingSpec
     sources: dict[str, str] = field(default_factory=dict)
     note: str = ""
 
 
 CATALOGUE: dict[str, CatalogueEntry] = {
     "NSK 71807C": CatalogueEntry(
-        designation="NSK 71807C",
-        bore_mm=35.0, outside_diameter_mm=47.0, width_mm=7.0,
-        ball_diameter_mm=3.969, ball_count=24, pitch_diameter_mm=41.0,
-        inner_groove_ratio=0.52, outer_groove_ratio=0.53, contact_angle_free_deg=15.0,
-        ring_material="9Cr18", ball_material="9Cr18",
-        sources={"bore_mm": "ISO (718 series, 35x47x7)", "outside_diameter_mm": "ISO",
+        spec=BearingSpec(
+            designation="NSK 71807C",
+            bore_mm=35.0, outside_diameter_mm=47.0, width_mm=7.0,
+            ball_diameter_mm=3.969, ball_count=24, pitch_diameter_mm=41.0,
+            inner_groove_ratio=0.52, outer_groove_ratio=0.53, contact_angle_free_deg=15.0,
+            ring_material="9Cr18", ball_material="9Cr18",
+            inner_ring_outer_diameter_mm=37.8, outer_ring_inner_diameter_mm=44.2),
+        sources={"inner_ring_outer_diameter_mm": "assume (mean of groove bottom and land)",
+                 "outer_ring_inner_diameter_mm": "assume (mean of groove bottom and land)",
+                 "bore_mm": "ISO (718 series, 35x47x7)", "outside_diameter_mm": "ISO",
                  "width_mm": "ISO", "contact_angle_free_deg": "cat (C = 15 deg)",
                  "ball_diameter_mm": "assume (5/32 in; 0.66 of the 6 mm section)",
                  "ball_count": "assume (fill 0.74)", "pitch_diameter_mm": "assume ((d+D)/2)",
@@ -57,12 +52,16 @@ CATALOGUE: dict[str, CatalogueEntry] = {
                  "ring_material": "seed 000", "ball_material": "seed 000"},
         note="seed 000: pair back-to-back, MoS2 film, TC4 shaft and housing"),
     "NSK 25TAC62B": CatalogueEntry(
-        designation="NSK 25TAC62B",
-        bore_mm=25.0, outside_diameter_mm=62.0, width_mm=15.0,
-        ball_diameter_mm=7.938, ball_count=14, pitch_diameter_mm=43.5,
-        inner_groove_ratio=0.53, outer_groove_ratio=0.53, contact_angle_free_deg=60.0,
-        ring_material="GCr15", ball_material="GCr15",
-        sources={"bore_mm": "cat (25TAC62: 25x62x15)", "outside_diameter_mm": "cat",
+        spec=BearingSpec(
+            designation="NSK 25TAC62B",
+            bore_mm=25.0, outside_diameter_mm=62.0, width_mm=15.0,
+            ball_diameter_mm=7.938, ball_count=14, pitch_diameter_mm=43.5,
+            inner_groove_ratio=0.53, outer_groove_ratio=0.53, contact_angle_free_deg=60.0,
+            ring_material="GCr15", ball_material="GCr15",
+            inner_ring_outer_diameter_mm=37.0, outer_ring_inner_diameter_mm=50.0),
+        sources={"inner_ring_outer_diameter_mm": "assume (mean of groove bottom and land)",
+                 "outer_ring_inner_diameter_mm": "assume (mean of groove bottom and land)",
+                 "bore_mm": "cat (25TAC62: 25x62x15)", "outside_diameter_mm": "cat",
                  "width_mm": "cat", "contact_angle_free_deg": "cat (TAC series: 60 deg)",
                  "ball_diameter_mm": "assume (5/16 in; 0.43 of the 18.5 mm section)",
                  "ball_count": "assume (fill 0.81)", "pitch_diameter_mm": "assume ((d+D)/2)",
@@ -71,12 +70,16 @@ CATALOGUE: dict[str, CatalogueEntry] = {
                  "ball_material": "assume"},
         note="seed 003: ball-screw support pair back-to-back, 1500 N preload, 1000/1500 rpm"),
     "flywheel 7004C (hybrid)": CatalogueEntry(
-        designation="flywheel 7004C (hybrid)",
-        bore_mm=20.0, outside_diameter_mm=42.0, width_mm=12.0,
-        ball_diameter_mm=6.35, ball_count=12, pitch_diameter_mm=31.0,
-        inner_groove_ratio=0.52, outer_groove_ratio=0.53, contact_angle_free_deg=15.0,
-        ring_material="G95Cr18", ball_material="Si3N4",
-        sources={"bore_mm": "assume (seed 001 gives no size: a typical small flywheel "
+        spec=BearingSpec(
+            designation="flywheel 7004C (hybrid)",
+            bore_mm=20.0, outside_diameter_mm=42.0, width_mm=12.0,
+            ball_diameter_mm=6.35, ball_count=12, pitch_diameter_mm=31.0,
+            inner_groove_ratio=0.52, outer_groove_ratio=0.53, contact_angle_free_deg=15.0,
+            ring_material="G95Cr18", ball_material="Si3N4",
+            inner_ring_outer_diameter_mm=25.5, outer_ring_inner_diameter_mm=36.5),
+        sources={"inner_ring_outer_diameter_mm": "assume (mean of groove bottom and land)",
+                 "outer_ring_inner_diameter_mm": "assume (mean of groove bottom and land)",
+                 "bore_mm": "assume (seed 001 gives no size: a typical small flywheel "
                             "ACBB, ISO 7004 = 20x42x12)",
                  "outside_diameter_mm": "assume", "width_mm": "assume",
                  "contact_angle_free_deg": "assume (C = 15 deg)",

@@ -12,6 +12,29 @@ from analytic.materials import Material, get_material
 
 
 @dataclass(frozen=True)
+class BearingSpec:
+    """A bearing as its user states it (an assembly's [bearing] table, a catalogue entry):
+    boundary dimensions, internal geometry (Harris & Kotzalas Vol. 1 ch. 2 notation) and the
+    effective ring sections the FE uses, in mm; materials by name. `BearingGeometry.from_spec`
+    resolves it for the bearing model."""
+    designation: str
+    bore_mm: float
+    outside_diameter_mm: float
+    width_mm: float
+    ball_diameter_mm: float
+    ball_count: int
+    pitch_diameter_mm: float
+    inner_groove_ratio: float        # f_i = r_i / Dw
+    outer_groove_ratio: float        # f_o = r_o / Dw
+    contact_angle_free_deg: float
+    inner_ring_outer_diameter_mm: float   # effective FE section of the inner ring
+    outer_ring_inner_diameter_mm: float   # effective FE section of the outer ring
+    ring_material: str
+    ball_material: str
+
+
+
+@dataclass(frozen=True)
 class BearingGeometry:
     """Internal geometry of one angular-contact ball bearing (Harris Vol. 1 ch. 2 notation)."""
     Dw_mm: float                 # ball diameter
@@ -25,8 +48,8 @@ class BearingGeometry:
     designation: str = ""
 
     @classmethod
-    def from_spec(cls, spec) -> "BearingGeometry":
-        """From a `studies.model.config.BearingSpec`."""
+    def from_spec(cls, spec: BearingSpec) -> "BearingGeometry":
+        """From a `BearingSpec` (materials resolved by name)."""
         return cls(Dw_mm=spec.ball_diameter_mm, Z=int(spec.ball_count),
                    dm_mm=spec.pitch_diameter_mm, f_i=spec.inner_groove_ratio,
                    f_o=spec.outer_groove_ratio, alpha0_deg=spec.contact_angle_free_deg,
@@ -37,11 +60,7 @@ class BearingGeometry:
     def from_catalogue(cls, name: str) -> "BearingGeometry":
         """From `analytic.catalogue` (designation or alias)."""
         from analytic.catalogue import get_entry
-        c = get_entry(name)
-        return cls(Dw_mm=c.ball_diameter_mm, Z=c.ball_count, dm_mm=c.pitch_diameter_mm,
-                   f_i=c.inner_groove_ratio, f_o=c.outer_groove_ratio,
-                   alpha0_deg=c.contact_angle_free_deg, ring=get_material(c.ring_material),
-                   ball=get_material(c.ball_material), designation=c.designation)
+        return cls.from_spec(get_entry(name).spec)
 
     @property
     def A0_mm(self) -> float:

@@ -14,6 +14,7 @@ import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from analytic.bearing.geometry import BearingSpec
 from analytic.materials import Material, get_material
 from analytic.safety import static_load_rating_C0_N
 
@@ -57,25 +58,6 @@ class Spacer:
     material: str
     diameter_mm: float               # inner spacer: outer diameter; outer spacer: inner diameter
     length_mm: float
-
-
-@dataclass(frozen=True)
-class BearingSpec:
-    """Bearing internal geometry (Harris & Kotzalas Vol. 1 ch. 2 notation)."""
-    designation: str
-    bore_mm: float
-    outside_diameter_mm: float
-    width_mm: float
-    ball_diameter_mm: float
-    ball_count: int
-    pitch_diameter_mm: float
-    inner_groove_ratio: float        # f_i = r_i / Dw
-    outer_groove_ratio: float        # f_o = r_o / Dw
-    contact_angle_free_deg: float
-    inner_ring_outer_diameter_mm: float   # effective FE section of the inner ring
-    outer_ring_inner_diameter_mm: float   # effective FE section of the outer ring
-    ring_material: str
-    ball_material: str
 
 
 @dataclass(frozen=True)
