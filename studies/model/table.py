@@ -8,8 +8,10 @@ from __future__ import annotations
 import csv
 import math
 import os
+import shutil
 import stat
 import tempfile
+import time
 from pathlib import Path
 
 import numpy as np
@@ -152,9 +154,6 @@ STALE_AGE_S = 24 * 3600.0
 def remove_stale(folder: Path, prefix: str) -> None:
     """Remove temporary files and folders `<prefix>*` in `folder` older than STALE_AGE_S (what a
     run killed before it could clean up leaves behind)."""
-    import shutil
-    import time
-
     if not folder.is_dir():
         return
     now = time.time()
