@@ -195,8 +195,8 @@ def onset_row(T, T_ref, threshold):
 # ============================================================================ the data route
 def test_predictor_is_simulate(pl000):
     """The data of these tests (ModelPredictor at mu_scale = 1) is what `simulate --effect` writes
-    (`studies.app.commands.simulate_table`): same conditions, same effects, same numbers."""
-    from studies.app.commands import simulate_table
+    (`studies.model.pipeline.simulate_table`): same conditions, same effects, same numbers."""
+    from studies.model.pipeline import simulate_table
 
     cond = cycles(n=60)
     eff = {"thermal_lag": {"tau_s": 300.0}, "friction_temperature": {"dmu_per_K": 2e-5}}

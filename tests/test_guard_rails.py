@@ -282,3 +282,12 @@ def test_temporaries_of_runs_killed_outright_are_removed_by_age(tmp_path, capsys
     assert not old_file.exists() and fresh.exists()
     assert run_cli(["study", "lubricant_viscosity", "--out", tmp_path / "sout"], capsys)[0] == 0
     assert not old_dir.exists()
+
+
+def test_excel_csv_with_a_byte_order_mark_is_read(tmp_path, capsys):
+    plain, bom = tmp_path / "plain.csv", tmp_path / "bom.csv"
+    plain.write_text("T_ambient_C\n20\n40\n")
+    bom.write_bytes(b"\xef\xbb\xbf" + plain.read_bytes())
+    for src, out in ((plain, tmp_path / "a.csv"), (bom, tmp_path / "b.csv")):
+        assert run_cli(["simulate", CFG, src, "-o", out], capsys)[0] == 0
+    assert (tmp_path / "a.csv").read_text().split("\n", 2)[2] == (tmp_path / "b.csv").read_text().split("\n", 2)[2]

@@ -7,7 +7,7 @@ import csv
 import numpy as np
 import pytest
 
-from studies.app.commands import simulate_table
+from studies.model.pipeline import simulate_table
 from studies.model.config import load_shipped
 from studies.model.pipeline import Pipeline
 from studies.runs import study_module

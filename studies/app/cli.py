@@ -37,6 +37,8 @@ def build_parser() -> argparse.ArgumentParser:
     p = _Parser(prog="bearingfem", description=(
         "Thermal-structural FE + analytic bearing model of a preloaded angular-contact ball "
         "bearing pair on a shaft in a housing."))
+    from bearingfem import __version__
+    p.add_argument("--version", action="version", version=f"bearingfem {__version__}")
     sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND", parser_class=_Parser)
 
     s = sub.add_parser("simulate", help="run the model on a conditions table")

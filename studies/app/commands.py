@@ -6,7 +6,6 @@ import stat
 import sys
 from pathlib import Path
 
-import numpy as np
 
 from studies.app.output import UserError, atomic_dir, progress
 from studies.runs import STUDIES, study_module
@@ -62,23 +61,9 @@ def check_output_file(path: Path, inputs: tuple[Path, ...] = ()) -> None:
         raise UserError(f"{path}: cannot write there ({probe} is not a writable folder)")
 
 
-def simulate_table(asm, columns: dict, effects: dict | None = None, direct: bool = False,
-                   pipeline=None) -> dict[str, np.ndarray]:
-    """Model outputs for a conditions table (column arrays), effects switched on by name."""
-    from studies.model.effects import apply_effects
-    from studies.model.inputs import baseline_inputs
-    from studies.model.pipeline import Pipeline
-
-    n = len(next(iter(v for k, v in columns.items() if not k.startswith("_"))))
-    inputs = baseline_inputs(columns, n, asm.T_ref_C, asm.preload.assembled_N,
-                             asm.lubrication.speed_rpm)
-    inputs = apply_effects(inputs, effects, asm.T_ref_C)
-    pl = pipeline or Pipeline(asm, progress=progress)
-    return pl.run(inputs, direct=direct)
-
-
 def cmd_simulate(args) -> None:
     from studies.model.effects import parse_effect_arg
+    from studies.model.pipeline import Pipeline, simulate_table
     from studies.model.table import read_conditions, write_table
 
     try:
@@ -91,7 +76,8 @@ def cmd_simulate(args) -> None:
             if name in effects:
                 raise UserError(f"--effect {name}: given twice")
             effects[name] = params
-        out = simulate_table(asm, cond, effects, direct=args.direct)
+        out = simulate_table(asm, cond, effects, direct=args.direct,
+                             pipeline=Pipeline(asm, progress=progress))
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
     cols = {k: v for k, v in cond.items() if not k.startswith("_")}

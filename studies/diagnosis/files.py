@@ -19,7 +19,7 @@ from studies.diagnosis.report import write_report
 from studies.model.effects import EFFECTS, ORDER, apply_effects, resolve_friction_coefficient
 from studies.model.inputs import CONDITION_COLUMNS, baseline_inputs
 from studies.model.pipeline import Pipeline
-from studies.model.table import TableError, check_ranges, read_table
+from studies.model.table import TableError, read_table
 
 #: output columns `diagnose` can compare (what `simulate` writes and a rig can measure)
 COMPARABLE = ("torque_Nmm", "preload_N", "contact_angle_deg", "interference_inner_um",
@@ -78,7 +78,6 @@ def read_measured(path: Path, known_outputs: set[str] | None = None) -> tuple[di
     `diagnose` does not compare (e.g. a `simulate` file's extra outputs) are allowed and ignored."""
     allowed = set(CONDITION_COLUMNS) | set(COMPARABLE) | set(known_outputs or ())
     cols = read_table(path, allowed=allowed)
-    check_ranges(path, cols)
     measured = {c: cols[c] for c in COMPARABLE if c in cols}
     if not measured:
         raise TableError(f"{path}: no output column to compare (need one of {', '.join(COMPARABLE)})")

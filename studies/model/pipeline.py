@@ -356,3 +356,17 @@ def _weighted_angle(pair: PairState) -> np.ndarray:
     tot = FA + FB
     wA = np.where(tot > 0, FA / np.where(tot > 0, tot, 1.0), 0.5)
     return wA * pair.contact_angle_deg[0] + (1 - wA) * pair.contact_angle_deg[1]
+
+
+def simulate_table(asm: Assembly, columns: dict, effects: dict | None = None,
+                   direct: bool = False, pipeline: Pipeline | None = None) -> dict[str, np.ndarray]:
+    """Model outputs for a conditions table (column name -> array, names of docs/cli.md), effects
+    switched on by name ({name: {parameter: value}}): what `bearingfem simulate` computes."""
+    from studies.model.effects import apply_effects
+    from studies.model.inputs import baseline_inputs
+
+    n = len(next(iter(v for k, v in columns.items() if not k.startswith("_"))))
+    inputs = baseline_inputs(columns, n, asm.T_ref_C, asm.preload.assembled_N,
+                             asm.lubrication.speed_rpm)
+    inputs = apply_effects(inputs, effects, asm.T_ref_C)
+    return (pipeline or Pipeline(asm)).run(inputs, direct=direct)

@@ -31,7 +31,8 @@ def read_table(path: Path, allowed: set[str] | None = None,
     if not path.exists():
         raise TableError(f"{path}: file not found")
     try:
-        with open(path, newline="", encoding="utf-8") as fh:
+        # utf-8-sig: a UTF-8 file with a byte-order mark (Excel's "CSV UTF-8") reads the same
+        with open(path, newline="", encoding="utf-8-sig") as fh:
             text = fh.read().splitlines(keepends=True)
     except UnicodeDecodeError as exc:
         raise TableError(f"{path}: not a UTF-8 text file ({exc.reason} at byte {exc.start})") from None
@@ -73,14 +74,10 @@ def read_table(path: Path, allowed: set[str] | None = None,
         raise TableError(f"{path}: empty table (no data rows)")
     data = np.array(rows, float)
     cols = {c: data[:, i] for i, c in enumerate(header)}
-    if "time_s" in cols:
-        bad = np.flatnonzero(np.diff(cols["time_s"]) <= 0)
-        if bad.size:
-            raise TableError(f"{path}: line {lines[bad[0] + 1]}, column 'time_s': time not "
-                             "increasing")
+    cols["_line"] = np.array(lines)
+    check_columns(path, cols)
     if required_any and not any(c in cols for c in required_any):
         raise TableError(f"{path}: needs at least one of the columns {', '.join(required_any)}")
-    cols["_line"] = np.array(lines)
     return cols
 
 
@@ -96,21 +93,43 @@ RANGES = {**{c: (-150.0, 300.0, "C") for c in CONDITION_COLUMNS if c.startswith(
           "fit_pressure_inner_MPa": (-1e4, 1e4, "MPa"), "fit_pressure_outer_MPa": (-1e4, 1e4, "MPa")}
 
 
-def check_ranges(path: Path, cols: dict[str, np.ndarray]) -> None:
-    """One-line error for the first value outside its column's physical range."""
-    for c, (lo, hi, unit) in RANGES.items():
-        if c in cols:
-            bad = np.flatnonzero((cols[c] < lo) | (cols[c] > hi))
+def check_columns(where, cols: dict[str, np.ndarray], allowed: set[str] | None = None) -> None:
+    """The checks every table gets, from a file or from Python: known names (when `allowed` is
+    given), equal lengths, finite numbers, `time_s` strictly increasing, every value inside its
+    column's physical range (RANGES). One-line TableError naming `where`, the line (file rows:
+    the `_line` column) or row, and the column."""
+    names = [c for c in cols if not c.startswith("_")]
+    for c in names:
+        if allowed is not None and c not in allowed:
+            raise TableError(f"{where}: column '{c}': unknown column")
+    sizes = {np.size(cols[c]) for c in names}
+    if len(sizes) > 1:
+        raise TableError(f"{where}: columns have different lengths {sorted(sizes)}")
+    n = sizes.pop() if sizes else 0
+    if n == 0:
+        raise TableError(f"{where}: empty table (no data rows)")
+    line = cols.get("_line")
+    label = (lambda i: f"line {line[i]}") if line is not None else (lambda i: f"row {i + 1}")
+    for c in names:
+        v = np.asarray(cols[c], float)
+        bad = np.flatnonzero(~np.isfinite(v))
+        if bad.size:
+            raise TableError(f"{where}: {label(bad[0])}, column '{c}': value is {v[bad[0]]}")
+        if c in RANGES:
+            lo, hi, unit = RANGES[c]
+            bad = np.flatnonzero((v < lo) | (v > hi))
             if bad.size:
-                raise TableError(f"{path}: line {cols['_line'][bad[0]]}, column '{c}': "
-                                 f"{cols[c][bad[0]]:g} outside {lo:g}..{hi:g} {unit}")
+                raise TableError(f"{where}: {label(bad[0])}, column '{c}': {v[bad[0]]:g} outside "
+                                 f"{lo:g}..{hi:g} {unit}")
+    if "time_s" in cols:
+        bad = np.flatnonzero(np.diff(np.asarray(cols["time_s"], float)) <= 0)
+        if bad.size:
+            raise TableError(f"{where}: {label(bad[0] + 1)}, column 'time_s': time not increasing")
 
 
 def read_conditions(path: Path) -> dict[str, np.ndarray]:
     """A conditions table: only the condition columns of the spec, values in range."""
-    cols = read_table(path, allowed=set(CONDITION_COLUMNS))
-    check_ranges(path, cols)
-    return cols
+    return read_table(path, allowed=set(CONDITION_COLUMNS))
 
 
 def write_table(path: Path, columns: dict[str, np.ndarray], comment: str = "") -> None:

@@ -1,0 +1,64 @@
+"""bearingfem from Python: the same model as the `bearingfem` command, three lines away.
+
+    import bearingfem
+    asm = bearingfem.load_assembly("my_pair.toml")
+    out = bearingfem.simulate(asm, {"T_ambient_C": [-40, 20, 80]})
+
+`simulate` returns a dict of numpy arrays, one per output column of `bearingfem simulate`
+(docs/cli.md: `torque_Nmm`, `preload_N`, `contact_angle_deg`, ...; units in every name). Pass it
+to `pandas.DataFrame(out)` for a table. The FE set-up of an assembly is kept for the next call with
+the same assembly object. BLAS runs single-threaded inside the FE superposition by itself.
+"""
+from __future__ import annotations
+
+from importlib import metadata
+from pathlib import Path
+from typing import Mapping
+
+import numpy as np
+
+try:
+    __version__ = metadata.version("bearingfem")
+except metadata.PackageNotFoundError:      # a source tree that was not installed
+    __version__ = "unknown"
+
+__all__ = ["__version__", "load_assembly", "simulate"]
+
+_PIPELINES: dict[int, tuple] = {}
+
+
+def load_assembly(path: str | Path):
+    """Read and check an assembly TOML file (`studies.model.config.Assembly`); a problem raises
+    `studies.model.config.ConfigError` with the one-line message the command line prints."""
+    from studies.model.config import load_assembly as load
+
+    return load(path)
+
+
+def simulate(assembly, conditions: Mapping, effects: Mapping | None = None) -> dict[str, np.ndarray]:
+    """Model outputs per row of `conditions`.
+
+    assembly: an `Assembly` (`load_assembly`) or the path of its TOML file.
+    conditions: column name -> values (a dict of lists or arrays, or a pandas DataFrame) with the
+        condition columns of docs/cli.md (`T_ambient_C` in C, `speed_rpm`, `preload_assembled_N`
+        and `axial_load_N` in N, part temperatures `T_<part>_C`, `time_s`), all of equal length.
+    effects: {effect name: {parameter: value}} switched on, as `simulate --effect`.
+    Returns {output column: array}, units in the names. Bad input raises ValueError subclasses
+    (TableError, EffectError, ModelError) with one-line messages naming the column or row.
+    """
+    from studies.model.inputs import CONDITION_COLUMNS
+    from studies.model.pipeline import Pipeline, simulate_table
+    from studies.model.table import TableError, check_columns
+
+    if not hasattr(assembly, "bearing"):
+        assembly = load_assembly(assembly)
+    cols = {str(k): np.asarray(v, float).ravel() for k, v in dict(conditions).items()}
+    if not cols:
+        raise TableError("conditions: no columns")
+    check_columns("conditions", cols, allowed=set(CONDITION_COLUMNS))
+    hit = _PIPELINES.get(id(assembly))
+    if hit is None or hit[0] is not assembly:
+        hit = (assembly, Pipeline(assembly))
+        _PIPELINES.clear()                  # one assembly at a time: memory stays bounded
+        _PIPELINES[id(assembly)] = hit
+    return simulate_table(assembly, cols, dict(effects or {}), pipeline=hit[1])
