@@ -48,6 +48,8 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--effect", action="append", default=[], metavar="NAME:key=value[,key=value]")
     s.add_argument("--direct", action="store_true",
                    help="direct FE solve per row instead of superposed unit solutions")
+    s.add_argument("--strict", action="store_true",
+                   help="exit 1 when a row violates a limit (flag_* columns; summary on stderr)")
 
     d = sub.add_parser("diagnose", help="find what the model gets wrong in measured data")
     d.add_argument("assembly", type=Path)
@@ -82,7 +84,7 @@ def main(argv=None) -> int:
     previous = signal.signal(signal.SIGTERM, _terminate)
     try:
         with np.errstate(all="ignore"):       # non-finite results are reported by row instead
-            COMMANDS[args.command](args)
+            code = COMMANDS[args.command](args) or 0
     except (UserError, ConfigError) as exc:
         print(f"bearingfem {args.command}: {exc}", file=sys.stderr)
         return 2
@@ -99,7 +101,7 @@ def main(argv=None) -> int:
         raise
     finally:
         signal.signal(signal.SIGTERM, previous)
-    return 0
+    return code
 
 
 if __name__ == "__main__":

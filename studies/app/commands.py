@@ -63,6 +63,7 @@ def check_output_file(path: Path, inputs: tuple[Path, ...] = ()) -> None:
 
 def cmd_simulate(args) -> None:
     from studies.model.effects import parse_effect_arg
+    from studies.model.checks import apply_checks, assembly_checks
     from studies.model.pipeline import Pipeline, simulate_table
     from studies.model.table import read_conditions, write_table
 
@@ -82,6 +83,8 @@ def cmd_simulate(args) -> None:
         raise UserError(str(exc)) from None
     cols = {k: v for k, v in cond.items() if not k.startswith("_")}
     cols.update(out)
+    flags, violations = apply_checks(out, assembly_checks(asm))
+    cols.update(flags)
     desc = ", ".join(f"{k}({', '.join(f'{p}={v:g}' for p, v in prm.items())})"
                      for k, prm in effects.items()) or "none"
     try:
@@ -89,7 +92,11 @@ def cmd_simulate(args) -> None:
                                             f"effects: {desc}")
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
-    print(f"wrote {len(next(iter(out.values())))} rows to {args.out}")
+    n = len(next(iter(out.values())))
+    for v in violations:
+        print(f"bearingfem simulate: warning: {v.summary(n, cond)}", file=sys.stderr)
+    print(f"wrote {n} rows to {args.out}")
+    return 1 if violations and args.strict else 0
 
 
 def cmd_study(args) -> None:

@@ -19,6 +19,7 @@ from studies.diagnosis.report import write_report
 from studies.model.effects import EFFECTS, ORDER, apply_effects, resolve_friction_coefficient
 from studies.model.inputs import CONDITION_COLUMNS, baseline_inputs
 from studies.model.pipeline import Pipeline
+from studies.model.checks import CHECK_COLUMNS
 from studies.model.table import TableError, read_table
 
 #: output columns `diagnose` can compare (what `simulate` writes and a rig can measure)
@@ -37,7 +38,7 @@ OUTPUT_NAMES = {
     "raceway_u_r_inner_A_um", "raceway_u_r_inner_A_lame_um", "groove_shift_dr_A_um",
     "groove_shift_dz_A_um", "groove_shift_dr_B_um", "groove_shift_dz_B_um", "axial_force_A_N",
     "axial_force_B_N", "contact_angle_A_deg", "contact_angle_B_deg", "ball_load_A_N",
-    "ball_load_B_N", "preload_lost", "friction_coefficient", "static_safety"}
+    "ball_load_B_N", "preload_lost", "friction_coefficient", "static_safety"} | CHECK_COLUMNS
 
 
 class ModelPredictor:

@@ -1,0 +1,100 @@
+"""Checks in every run: each operating point against the assembly's limits and the built-in
+checks, as flag columns (`flag_<check>`, 1 = violated) and margins (`margin_<check>`,
+allowable / actual - 1 for an upper limit, actual / allowable - 1 for a lower one; >= 0 is inside).
+
+Checks and their allowables (docs/cli.md, "simulate: limits"):
+- max_contact_pressure_MPa <= `[limits] max_contact_pressure_MPa`; without it the ISO 76:2006
+  static limit of 4200 MPa (ball bearings, clause 3.1), said so in the summary;
+- static_safety >= `[limits] min_static_safety`; without it 3 (GB/T 28878.2-2016 B.4, launch);
+- preload_lost: the pair's preload must stay above 0 N (a bearing unloaded);
+- fit_open_inner / fit_open_outer: the fit pressure must stay above 0 MPa, for a fit assembled
+  with interference only (a fit designed as a clearance is not flagged for being open).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from analytic.safety import GBT_LAUNCH_SAFETY, ISO76_CONTACT_PRESSURE_MPa
+
+
+#: every flag and margin column `simulate` may write (the checks of any assembly)
+CHECK_COLUMNS = frozenset(
+    [f"flag_{n}" for n in ("max_contact_pressure_MPa", "static_safety", "preload_lost",
+                           "fit_open_inner", "fit_open_outer")]
+    + [f"margin_{n}" for n in ("max_contact_pressure_MPa", "static_safety")])
+
+
+@dataclass(frozen=True)
+class Check:
+    name: str                 # flag_<name>, margin_<name>
+    column: str               # the output column checked
+    allowable: float
+    upper: bool               # True: column <= allowable; False: column >= (or >) allowable
+    unit: str
+    source: str               # where the allowable comes from
+    strict: bool = False      # a lower limit of 0 that must be exceeded (no margin column)
+
+
+@dataclass(frozen=True)
+class Violation:
+    check: Check
+    rows: np.ndarray          # 0-based rows violating it
+    worst_row: int
+    worst_value: float
+
+    def summary(self, n_rows: int, conditions: dict | None = None) -> str:
+        c = self.check
+        at = f"row {self.worst_row + 1}"
+        T = (conditions or {}).get("T_ambient_C")
+        if T is not None:
+            at += f", T_ambient_C = {float(np.asarray(T)[self.worst_row]):g}"
+        rel = ">" if c.upper else ("<=" if c.strict else "<")
+        return (f"{self.rows.size} of {n_rows} rows violate {c.name} (worst {self.worst_value:.4g} "
+                f"{rel} {c.allowable:g} {c.unit} at {at}; limit: {c.source})")
+
+
+def assembly_checks(asm) -> list[Check]:
+    """The checks that apply to an assembly, with their allowables and sources."""
+    lim = asm.limits
+    p_max = lim.max_contact_pressure_MPa
+    checks = [
+        Check("max_contact_pressure_MPa", "max_contact_pressure_MPa",
+              p_max if np.isfinite(p_max) else ISO76_CONTACT_PRESSURE_MPa, True, "MPa",
+              "[limits] max_contact_pressure_MPa" if np.isfinite(p_max)
+              else "ISO 76 static limit, no [limits] value given"),
+        Check("static_safety", "static_safety",
+              lim.min_static_safety if lim.min_static_safety > 0 else GBT_LAUNCH_SAFETY, False,
+              "", "[limits] min_static_safety" if lim.min_static_safety > 0
+              else "GB/T 28878.2 B.4 default, no [limits] value given"),
+        Check("preload_lost", "preload_N", 0.0, False, "N", "a preloaded pair", strict=True)]
+    for side, interference in (("inner", asm.fits.inner_interference_um),
+                               ("outer", asm.fits.outer_interference_um)):
+        if interference > 0:              # a designed clearance is allowed to be open
+            checks.append(Check(f"fit_open_{side}", f"fit_pressure_{side}_MPa", 0.0, False, "MPa",
+                                "a fit assembled with interference", strict=True))
+    return checks
+
+
+def apply_checks(out: dict[str, np.ndarray], checks: list[Check]
+                 ) -> tuple[dict[str, np.ndarray], list[Violation]]:
+    """Flag and margin columns for every check, and the violated checks."""
+    cols, violations = {}, []
+    for c in checks:
+        v = np.asarray(out[c.column], float)
+        if c.upper:
+            bad = v > c.allowable
+            margin = c.allowable / v - 1.0 if not c.strict else None
+        else:
+            bad = v <= c.allowable if c.strict else v < c.allowable
+            margin = v / c.allowable - 1.0 if not c.strict else None
+        cols[f"flag_{c.name}"] = bad.astype(float)
+        if margin is not None:
+            with np.errstate(divide="ignore", invalid="ignore"):
+                cols[f"margin_{c.name}"] = np.where(np.isfinite(margin), margin, np.inf)
+        if bad.any():
+            rows = np.flatnonzero(bad)
+            worst = int(rows[np.argmax(v[rows])] if c.upper else rows[np.argmin(v[rows])])
+            violations.append(Violation(c, rows, worst, float(v[worst])))
+    return cols, violations

@@ -1,0 +1,79 @@
+"""Checks in every run: `simulate` writes flag and margin columns for the assembly's limits and
+the built-in checks, one stderr line per violated check, and exits 1 with --strict."""
+import csv
+
+import numpy as np
+
+from studies.app.cli import main
+from studies.model.config import CONFIG_DIR
+
+CFG000 = CONFIG_DIR / "seed000_71807C_TC4.toml"
+CFG001 = CONFIG_DIR / "seed001_flywheel_hybrid.toml"
+
+
+def read(path):
+    with open(path) as f:
+        rows = list(csv.DictReader(r for r in f if not r.startswith("#")))
+    return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
+
+
+def with_limit(tmp_path, p_max):
+    text = CFG000.read_text()
+    start = text.index("[limits]")
+    end = text.find("\n[", start + 1)
+    end = len(text) if end < 0 else end
+    path = tmp_path / "asm.toml"
+    path.write_text(text[:start] + f"[limits]\nmax_contact_pressure_MPa = {p_max!r}\n" + text[end:])
+    return path
+
+
+def test_contact_pressure_limit_flags_margins_summary_and_strict(tmp_path, capsys):
+    cond = tmp_path / "c.csv"
+    cond.write_text("T_ambient_C,preload_assembled_N\n20,50\n20,200\n20,350\n")
+    ref = tmp_path / "ref.csv"
+    assert main(["simulate", str(CFG000), str(cond), "-o", str(ref)]) == 0
+    p = read(ref)["max_contact_pressure_MPa"]
+    limit = float(0.5 * (p[0] + p[1]))                  # between the first two rows
+    asm = with_limit(tmp_path, limit)
+    capsys.readouterr()
+    out = tmp_path / "o.csv"
+    assert main(["simulate", str(asm), str(cond), "-o", str(out)]) == 0
+    err = capsys.readouterr().err.strip().splitlines()
+    t = read(out)
+    np.testing.assert_array_equal(t["flag_max_contact_pressure_MPa"], (p > limit).astype(float))
+    # margin = limit/p - 1 from values the CSV keeps to 10 digits: round-off relative to the
+    # terms (limit/p and 1), not to their difference
+    np.testing.assert_allclose(t["margin_max_contact_pressure_MPa"], limit / p - 1, rtol=0,
+                               atol=1e-9 * np.max(limit / p))
+    assert len(err) == 1 and "2 of 3 rows violate max_contact_pressure_MPa" in err[0], err
+    assert "at row 3" in err[0] and "[limits] max_contact_pressure_MPa" in err[0]
+    assert main(["simulate", str(asm), str(cond), "-o", str(out), "--strict"]) == 1
+    assert out.exists()                                  # the results are written all the same
+
+
+def test_preload_lost_is_flagged_and_a_designed_clearance_is_not(tmp_path, capsys):
+    # seed 001: position preload 7 N in a hybrid pair, lost when hot; seed 000's outer fit is a
+    # designed clearance (-1.5 um): no fit_open_outer check for it
+    cond = tmp_path / "c.csv"
+    cond.write_text("T_ambient_C\n-20\n20\n60\n")
+    out = tmp_path / "o.csv"
+    assert main(["simulate", str(CFG001), str(cond), "-o", str(out)]) == 0
+    t = read(out)
+    np.testing.assert_array_equal(t["flag_preload_lost"], (t["preload_N"] <= 0).astype(float))
+    assert t["flag_preload_lost"][2] == 1.0 and t["flag_preload_lost"][1] == 0.0
+    assert "rows violate preload_lost" in capsys.readouterr().err
+    out0 = tmp_path / "o0.csv"
+    assert main(["simulate", str(CFG000), str(cond), "-o", str(out0)]) == 0
+    t0 = read(out0)
+    assert "flag_fit_open_inner" in t0 and "flag_fit_open_outer" not in t0
+
+
+def test_diagnose_reads_simulate_output_with_its_check_columns(tmp_path, capsys):
+    from studies.diagnosis.files import OUTPUT_NAMES
+    from studies.model.checks import CHECK_COLUMNS, assembly_checks
+    from studies.model.config import load_assembly
+
+    for cfg in (CFG000, CFG001):
+        for c in assembly_checks(load_assembly(cfg)):
+            assert f"flag_{c.name}" in CHECK_COLUMNS and f"flag_{c.name}" in OUTPUT_NAMES
+            assert c.strict or f"margin_{c.name}" in OUTPUT_NAMES
