@@ -81,6 +81,14 @@ class FEState:
         return replace(self, dr_mm=self.dr_mm if dr_mm is None else dr_mm,
                        dz_mm=self.dz_mm if dz_mm is None else dz_mm)
 
+    def take(self, rows: np.ndarray) -> "FEState":
+        """The states of the given rows (an index array; rows may repeat): with
+        `PhysicsInputs.take`, the same FE answers evaluated under several bearing or torque
+        settings in one `Pipeline.run_from_fe` call."""
+        rows = np.asarray(rows, int)
+        return FEState(self.fit_pressure_MPa[rows], self.interference_um[rows],
+                       self.dr_mm[:, rows], self.dz_mm[:, rows], self.raceway_u_mm[rows])
+
 
 class Pipeline:
     """One assembly: mesh, FE model, unit solutions and bearing geometry, built once."""
@@ -254,7 +262,7 @@ class Pipeline:
                            dalpha_per_K2=dict(NO_CTE_SLOPE))
 
     def run(self, inputs: PhysicsInputs, direct: bool = False,
-            compliance_mm_per_N=None, viscous_factor_f0: float | None = None,
+            compliance_mm_per_N=None, viscous_factor_f0=None,
             return_pair: bool = False):
         """All outputs per row (spec columns first, then the rest): the FE at the rows' states and
         at their assembly states, then `run_from_fe` (which documents the keyword arguments)."""
@@ -264,7 +272,7 @@ class Pipeline:
                                 return_pair)
 
     def run_from_fe(self, inputs: PhysicsInputs, fe: FEState, fe_ref: FEState,
-                    compliance_mm_per_N=None, viscous_factor_f0: float | None = None,
+                    compliance_mm_per_N=None, viscous_factor_f0=None,
                     return_pair: bool = False):
         """Bearing pair, torque and checks from given FE states (the rows' and their assembly
         states). Studies use it to switch parts of the FE answer off (e.g. only the radial
@@ -272,7 +280,7 @@ class Pipeline:
 
         compliance_mm_per_N: preload-path compliance per bearing (mm/N; scalar or one per row);
         default the assembly's (`[preload] path_compliance`). viscous_factor_f0: Palmgren's f0 in
-        place of the assembly's (oil lubrication). With `return_pair`, also the raw
+        place of the assembly's (oil lubrication; scalar or one per row). With `return_pair`, also the raw
         pair state (`analytic.bearing.PairState`: contact ellipses for heat models)."""
         a = self.asm
         preload = np.maximum(np.asarray(inputs.preload_assembled_N, float)
@@ -321,7 +329,7 @@ class Pipeline:
         return (out, pair) if return_pair else out
 
     def torque(self, pair: PairState, inputs: PhysicsInputs, mu: np.ndarray,
-               viscous_factor_f0: float | None = None) -> dict[str, np.ndarray]:
+               viscous_factor_f0=None) -> dict[str, np.ndarray]:
         """Friction torque of the pair (analytic/torque.py). Oil: viscosity of the configured
         lubricant (ASTM D341 fit of its datasheet points, slope scaled by the
         viscosity_temperature effect) at the mean of the ring and ball temperatures."""
