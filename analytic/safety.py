@@ -1,19 +1,12 @@
-"""Safety checks of a bearing pair, returned as flags with their values (for reports).
+"""Static safety of ball bearings and the lubrication-film check, for reports and the per-row
+checks of studies/model/checks.py (which apply the limits below to every operating point).
 
-Each check takes scalars or arrays over operating points and reports the WORST point (and its
-index). Units in names: N, MPa, um, (-).
-
-Checks:
-- preload_lost: the pair's preload must stay above a minimum (default 0 N: a bearing unloaded).
-- fit_open_inner / fit_open_outer: a fit pressure of 0 means the fit has opened (Lamé/FE).
-- contact_pressure: maximum Hertz pressure against a configured limit (e.g. a MoS2 film limit;
-  `Limits.max_contact_pressure_MPa` of the assembly config).
-- static_safety: s0 = C0 / P0 (ISO 76:2006 clause 3.6 and GB/T 28878.2-2016 Annex B.4 eq. B.6)
+- static safety: s0 = C0 / P0 (ISO 76:2006 clause 3.6 and GB/T 28878.2-2016 Annex B.4 eq. B.6)
   against a required value. GB/T 28878.2 eq. B.7 forms the requirement from a launch-environment
   safety factor "generally 3" and an overload amplification factor K; the product 3 K is our
   reading of the (garbled) equation, the factor that amplifies the load raising the requirement.
 - film_parameter: lambda >= 1 for oil-lubricated bearings (GB/T 28878.2 Annex B.1: lambda < 1 is
-  boundary lubrication); not applicable to solid-film bearings.
+  boundary lubrication); not applicable to solid-film bearings. Reported at the worst point.
 
 Basic static radial load rating of radial and angular-contact ball bearings (ISO 76:2006, 6.1.1):
     C0r = f0 i Z Dw^2 cos(alpha)
@@ -55,46 +48,6 @@ class SafetyFlag:
     message: str
     unit: str = ""
     worst_index: int | None = None
-
-
-def _worst(x, kind: str):
-    a = np.asarray(x, float)
-    if a.ndim == 0:
-        return float(a), None
-    i = int(np.nanargmin(a) if kind == "min" else np.nanargmax(a))
-    return float(a.flat[i]), i
-
-
-def _where(i):
-    return "" if i is None else f" (worst at row {i})"
-
-
-def preload_flag(preload_N, min_preload_N: float = 0.0) -> SafetyFlag:
-    """preload_lost: not ok when the smallest preload is <= min_preload_N (default 0 N: a bearing of
-    the pair has unloaded, the position preload is lost)."""
-    v, i = _worst(preload_N, "min")
-    ok = v > min_preload_N
-    msg = (f"preload {v:.4g} N stays above {min_preload_N:g} N" if ok else
-           f"PRELOAD LOST: preload {v:.4g} N <= {min_preload_N:g} N{_where(i)}")
-    return SafetyFlag("preload_lost", v, float(min_preload_N), ok, msg, "N", i)
-
-
-def fit_open_flag(fit_pressure_MPa, which: str = "inner") -> SafetyFlag:
-    """fit_open_<which>: not ok when the smallest fit pressure is 0 (the fit has opened)."""
-    v, i = _worst(fit_pressure_MPa, "min")
-    ok = v > 0.0
-    msg = (f"{which} fit stays closed (min pressure {v:.4g} MPa)" if ok else
-           f"{which.upper()} FIT OPEN: fit pressure {v:.4g} MPa{_where(i)}")
-    return SafetyFlag(f"fit_open_{which}", v, 0.0, ok, msg, "MPa", i)
-
-
-def contact_pressure_flag(max_contact_pressure_MPa, limit_MPa: float = np.inf) -> SafetyFlag:
-    """contact_pressure: not ok when the largest Hertz pressure exceeds limit_MPa (inf: no limit)."""
-    v, i = _worst(max_contact_pressure_MPa, "max")
-    ok = v <= limit_MPa
-    msg = (f"max contact pressure {v:.4g} MPa within the limit {limit_MPa:g} MPa" if ok else
-           f"CONTACT PRESSURE {v:.4g} MPa above the limit {limit_MPa:g} MPa{_where(i)}")
-    return SafetyFlag("contact_pressure", v, float(limit_MPa), ok, msg, "MPa", i)
 
 
 def iso76_f0(gamma):
@@ -152,45 +105,14 @@ def required_static_safety(launch_factor: float = GBT_LAUNCH_SAFETY,
     return float(launch_factor) * float(overload_factor_K)
 
 
-def static_safety_flag(s0, required: float = GBT_LAUNCH_SAFETY) -> SafetyFlag:
-    """static_safety: not ok when the smallest s0 is below the required value."""
-    v, i = _worst(s0, "min")
-    ok = v >= required
-    msg = (f"static safety s0 = {v:.3g} >= {required:g}" if ok else
-           f"STATIC SAFETY s0 = {v:.3g} below {required:g}{_where(i)}")
-    return SafetyFlag("static_safety", v, float(required), ok, msg, "-", i)
-
-
 def film_parameter_flag(film_parameter, minimum: float = 1.0) -> SafetyFlag:
-    """film_parameter: not ok when the smallest lambda is below `minimum` (1: boundary
-    lubrication, GB/T 28878.2-2016 Annex B.1)."""
-    v, i = _worst(film_parameter, "min")
+    """film_parameter: not ok when the smallest lambda is below `minimum` (boundary lubrication,
+    GB/T 28878.2 Annex B.1); reports the worst point and its row (0-based)."""
+    a = np.asarray(film_parameter, float)
+    i = None if a.ndim == 0 else int(np.nanargmin(a))
+    v = float(a) if i is None else float(a.flat[i])
     ok = v >= minimum
+    where = "" if i is None else f" (worst at row {i + 1})"
     msg = (f"film parameter lambda = {v:.3g} >= {minimum:g}" if ok else
-           f"FILM PARAMETER lambda = {v:.3g} below {minimum:g} (boundary lubrication){_where(i)}")
-    return SafetyFlag("film_parameter", v, float(minimum), ok, msg, "-", i)
-
-
-def evaluate_safety(*, preload_N=None, fit_pressure_inner_MPa=None, fit_pressure_outer_MPa=None,
-                    max_contact_pressure_MPa=None, contact_pressure_limit_MPa: float = np.inf,
-                    static_safety=None, min_static_safety: float = 0.0,
-                    film_parameter=None, lubrication_kind: str = "oil",
-                    min_preload_N: float = 0.0) -> list[SafetyFlag]:
-    """All checks whose inputs are given (None: skipped). min_static_safety <= 0 means the
-    GB/T 28878.2 default of 3 (launch factor with K = 1). The film parameter is only checked for
-    lubrication_kind == 'oil'."""
-    flags = []
-    if preload_N is not None:
-        flags.append(preload_flag(preload_N, min_preload_N))
-    if fit_pressure_inner_MPa is not None:
-        flags.append(fit_open_flag(fit_pressure_inner_MPa, "inner"))
-    if fit_pressure_outer_MPa is not None:
-        flags.append(fit_open_flag(fit_pressure_outer_MPa, "outer"))
-    if max_contact_pressure_MPa is not None:
-        flags.append(contact_pressure_flag(max_contact_pressure_MPa, contact_pressure_limit_MPa))
-    if static_safety is not None:
-        req = min_static_safety if min_static_safety > 0 else required_static_safety()
-        flags.append(static_safety_flag(static_safety, req))
-    if film_parameter is not None and lubrication_kind == "oil":
-        flags.append(film_parameter_flag(film_parameter))
-    return flags
+           f"FILM PARAMETER lambda = {v:.3g} below {minimum:g} (boundary lubrication){where}")
+    return SafetyFlag("film_parameter", v, float(minimum), ok, msg, "", i)

@@ -77,3 +77,24 @@ def test_diagnose_reads_simulate_output_with_its_check_columns(tmp_path, capsys)
         for c in assembly_checks(load_assembly(cfg)):
             assert f"flag_{c.name}" in CHECK_COLUMNS and f"flag_{c.name}" in OUTPUT_NAMES
             assert c.strict or f"margin_{c.name}" in OUTPUT_NAMES
+
+
+def test_limit_behaviour_of_every_check():
+    """At the limit: a contact pressure equal to its limit and a static safety equal to the
+    required one pass; a preload or fit pressure of exactly 0 is lost / open."""
+    from studies.model.checks import Check, apply_checks
+
+    checks = [Check("max_contact_pressure_MPa", "p", 1500.0, True, "MPa", "test"),
+              Check("static_safety", "s", 3.0, False, "", "test"),
+              Check("preload_lost", "P", 0.0, False, "N", "test", strict=True),
+              Check("fit_open_inner", "f", 0.0, False, "MPa", "test", strict=True)]
+    out = {"p": np.array([1200.0, 1500.0, 1600.0]), "s": np.array([3.0, 2.99, 4.0]),
+           "P": np.array([120.0, 0.0, 1e-9]), "f": np.array([0.0, 2.0, 0.5])}
+    cols, viol = apply_checks(out, checks)
+    assert cols["flag_max_contact_pressure_MPa"].tolist() == [0, 0, 1]
+    assert cols["flag_static_safety"].tolist() == [0, 1, 0]
+    assert cols["flag_preload_lost"].tolist() == [0, 1, 0]
+    assert cols["flag_fit_open_inner"].tolist() == [1, 0, 0]
+    np.testing.assert_allclose(cols["margin_static_safety"], [0.0, 2.99 / 3 - 1, 4 / 3 - 1], rtol=1e-15)
+    assert {v.check.name: v.worst_row for v in viol} == {
+        "max_contact_pressure_MPa": 2, "static_safety": 1, "preload_lost": 1, "fit_open_inner": 0}

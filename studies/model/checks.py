@@ -83,16 +83,16 @@ def apply_checks(out: dict[str, np.ndarray], checks: list[Check]
     cols, violations = {}, []
     for c in checks:
         v = np.asarray(out[c.column], float)
-        if c.upper:
-            bad = v > c.allowable
-            margin = c.allowable / v - 1.0 if not c.strict else None
-        else:
-            bad = v <= c.allowable if c.strict else v < c.allowable
-            margin = v / c.allowable - 1.0 if not c.strict else None
+        with np.errstate(divide="ignore", invalid="ignore"):     # an unloaded row: infinite margin
+            if c.upper:
+                bad = v > c.allowable
+                margin = c.allowable / v - 1.0 if not c.strict else None
+            else:
+                bad = v <= c.allowable if c.strict else v < c.allowable
+                margin = v / c.allowable - 1.0 if not c.strict else None
         cols[f"flag_{c.name}"] = bad.astype(float)
         if margin is not None:
-            with np.errstate(divide="ignore", invalid="ignore"):
-                cols[f"margin_{c.name}"] = np.where(np.isfinite(margin), margin, np.inf)
+            cols[f"margin_{c.name}"] = np.where(np.isfinite(margin), margin, np.inf)
         if bad.any():
             rows = np.flatnonzero(bad)
             worst = int(rows[np.argmax(v[rows])] if c.upper else rows[np.argmin(v[rows])])

@@ -63,18 +63,29 @@ def field_images(out_dir: Path, pipeline, T_C: float, stem: str, title: str) -> 
 
 
 def safety_section(asm, out: dict, film_parameter=None, title: str = "over the study's operating points") -> str:
-    """Markdown table of the safety flags (analytic/safety.py) at the worst operating point."""
-    from analytic.safety import evaluate_safety
+    """Markdown table of the checks `simulate` applies (studies/model/checks.py) at the governing
+    operating point of each, plus the EHL film parameter for oil (analytic/safety.py)."""
+    from analytic.safety import film_parameter_flag
+    from studies.model.checks import apply_checks, assembly_checks
 
-    flags = evaluate_safety(preload_N=out["preload_N"],
-                            fit_pressure_inner_MPa=out["fit_pressure_inner_MPa"],
-                            fit_pressure_outer_MPa=out["fit_pressure_outer_MPa"],
-                            max_contact_pressure_MPa=out["max_contact_pressure_MPa"],
-                            contact_pressure_limit_MPa=asm.limits.max_contact_pressure_MPa,
-                            static_safety=out["static_safety"],
-                            min_static_safety=asm.limits.min_static_safety,
-                            film_parameter=film_parameter, lubrication_kind=asm.lubrication.kind)
-    rows = [[f.name, f"{f.value:.4g} {f.unit}".strip(), f"{f.limit:.4g}", "ok" if f.ok else "NO",
-             f.message] for f in flags]
+    checks = assembly_checks(asm)
+    cols, _ = apply_checks(out, checks)
+    n = len(np.asarray(out["preload_N"]))
+    rows = []
+    for c in checks:
+        v = np.asarray(out[c.column], float)
+        i = int(np.argmax(v) if c.upper else np.argmin(v))
+        bad = int(cols[f"flag_{c.name}"].sum())
+        margin = cols.get(f"margin_{c.name}")
+        rel = "<=" if c.upper else (">" if c.strict else ">=")
+        rows.append([c.name, f"{v[i]:.4g} {c.unit}".strip(), f"{rel} {c.allowable:g}",
+                     "ok" if bad == 0 else f"NO ({bad} of {n})",
+                     "" if margin is None else f"{margin[i]:+.3f}", f"row {i + 1}", c.source])
+    if film_parameter is not None and asm.lubrication.kind == "oil":
+        f = film_parameter_flag(film_parameter)
+        rows.append([f.name, f"{f.value:.4g}", f">= {f.limit:g}", "ok" if f.ok else "NO", "",
+                     "" if f.worst_index is None else f"row {f.worst_index + 1}",
+                     "GB/T 28878.2 Annex B.1"])
     return "\n".join([f"## Safety checks ({title})", "",
-                      md_table(["check", "worst value", "limit", "ok", "message"], rows), ""])
+                      md_table(["check", "governing value", "allowable", "ok", "margin",
+                                "governing point", "allowable from"], rows), ""])
