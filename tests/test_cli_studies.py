@@ -5,16 +5,14 @@ import json
 import pytest
 
 from studies.app.cli import main
+from studies.runs import verify
 from studies.runs.verify import TOLERANCE
 
 LAME_INPUTS = {"r_inner_mm", "r_fit_mm", "r_outer_mm", "E_inner_MPa", "nu_inner", "E_outer_MPa",
                "nu_outer", "interference_um", "assumption"}
 
 
-def test_verify_command_contract_and_tolerance(tmp_path):
-    out = tmp_path / "v"
-    assert main(["verify", "--out", str(out)]) == 0
-    cases = json.loads((out / "verification.json").read_text())["cases"]
+def _check_verification(out, cases):
     lame = [c for c in cases if c["kind"] == "lame_fit"]
     assert len(lame) >= 8
     for c in lame:
@@ -28,6 +26,21 @@ def test_verify_command_contract_and_tolerance(tmp_path):
     # P2 on the smooth Lamé case: fit pressure error falls at least as h^2 (quadratic elements)
     assert min(smooth["quantities"]["fit_pressure_MPa"]["order_vs_exact"]) > 1.8
     assert (out / "verification.md").exists() and (out / "mesh_convergence.png").exists()
+
+
+def test_verify_cases_contract_and_tolerance(tmp_path):
+    """The verification cases with the assembly's mesh-convergence levels twice as coarse (the
+    Lamé cases and the Lamé convergence case as shipped); the command at full levels is slow."""
+    out = tmp_path / "v"
+    verify.run(out, progress=lambda s: None, mesh_factor=2.0)
+    _check_verification(out, json.loads((out / "verification.json").read_text())["cases"])
+
+
+@pytest.mark.slow
+def test_verify_command_contract_and_tolerance(tmp_path):
+    out = tmp_path / "v"
+    assert main(["verify", "--out", str(out)]) == 0
+    _check_verification(out, json.loads((out / "verification.json").read_text())["cases"])
 
 
 @pytest.mark.slow          # the coarse-mesh runs in test_studies_equal_simulate.py cover the default suite

@@ -309,8 +309,10 @@ def plot_convergence(path: Path, cases: list[dict]) -> Path:
     return path
 
 
-def run(out_dir: Path, progress=print) -> list[dict]:
-    """All verification cases into out_dir (verification.json, verification.md, PNG)."""
+def run(out_dir: Path, progress=print, mesh_factor: float = 1.0) -> list[dict]:
+    """All verification cases into out_dir (verification.json, verification.md, PNG).
+    mesh_factor > 1 coarsens the four levels of the assembly's mesh-convergence case (smoke
+    tests; `bearingfem verify` runs 1)."""
     from studies.model.config import load_shipped
 
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -318,7 +320,8 @@ def run(out_dir: Path, progress=print) -> list[dict]:
     cases = lame_cases()
     progress("mesh convergence: Lamé reference and the seed 000 stack ...")
     conv = [lame_convergence_case(progress=progress),
-            mesh_convergence_case(load_shipped("seed000"), progress=progress)]
+            mesh_convergence_case(load_shipped("seed000"), progress=progress,
+                                  factors=tuple(mesh_factor * f for f in (4.0, 2.0, 1.0, 0.5)))]
     cases += conv
     plot = plot_convergence(out_dir / "mesh_convergence.png", conv)
     write_verification(out_dir, cases, plot)
