@@ -290,4 +290,28 @@ def test_excel_csv_with_a_byte_order_mark_is_read(tmp_path, capsys):
     bom.write_bytes(b"\xef\xbb\xbf" + plain.read_bytes())
     for src, out in ((plain, tmp_path / "a.csv"), (bom, tmp_path / "b.csv")):
         assert run_cli(["simulate", CFG, src, "-o", out], capsys)[0] == 0
-    assert (tmp_path / "a.csv").read_text().split("\n", 2)[2] == (tmp_path / "b.csv").read_text().split("\n", 2)[2]
+    assert (tmp_path / "a.csv").read_text() == (tmp_path / "b.csv").read_text()
+
+
+def test_output_is_plain_csv_with_its_provenance_beside_it(tmp_path, capsys, cond):
+    import csv
+    import json
+
+    out = tmp_path / "o.csv"
+    assert run_cli(["simulate", CFG, cond, "-o", out], capsys)[0] == 0
+    lines = out.read_text().splitlines()
+    assert not any(line.startswith("#") for line in lines)       # a default CSV reader's input
+    header = next(csv.reader([lines[0]]))
+    assert header[0] == "T_ambient_C" and "preload_N" in header and len(lines) == 3
+    prov = json.loads((tmp_path / "o.csv.json").read_text())
+    assert prov["inputs"]["conditions"]["sha256"] == digest(cond)
+    assert prov["inputs"]["assembly"]["sha256"] == digest(CFG)
+
+
+def test_a_sidecar_path_that_is_a_link_is_refused(tmp_path, capsys, cond):
+    target = tmp_path / "elsewhere.json"
+    target.write_text("{}")
+    (tmp_path / "o.csv.json").symlink_to(target)
+    code, err = run_cli(["simulate", CFG, cond, "-o", tmp_path / "o.csv"], capsys)
+    assert_refused(code, err, "symbolic link", tmp_path, {target: digest(target), cond: digest(cond)})
+    assert not (tmp_path / "o.csv").exists()

@@ -1,6 +1,7 @@
 """Implementations of `bearingfem simulate`, `study` and `diagnose` (argument parsing: cli.py)."""
 from __future__ import annotations
 
+import hashlib
 import os
 import stat
 import sys
@@ -32,10 +33,16 @@ def _user_errors():
 
 
 def check_output_file(path: Path, inputs: tuple[Path, ...] = ()) -> None:
-    """Refuse, before any work is done, an output path that would lose or alter something the
-    user has: one of the inputs, a symlink, an existing non-regular file (FIFO, device, folder),
-    or a place that cannot be written."""
-    path = Path(path)
+    """Refuse, before any work is done, an output path (or its provenance sidecar) that would
+    lose or alter something the user has: one of the inputs, a symlink, an existing non-regular
+    file (FIFO, device, folder), or a place that cannot be written."""
+    from studies.model.table import sidecar_path
+
+    _check_one_output(Path(path), inputs)
+    _check_one_output(sidecar_path(path), inputs)
+
+
+def _check_one_output(path: Path, inputs: tuple[Path, ...]) -> None:
     if path.is_symlink():
         raise UserError(f"{path}: is a symbolic link; -o writes a regular file and does not "
                         "replace links (give the target's path)")
@@ -59,6 +66,16 @@ def check_output_file(path: Path, inputs: tuple[Path, ...] = ()) -> None:
         probe = probe.parent
     if not probe.is_dir() or not os.access(probe, os.W_OK):
         raise UserError(f"{path}: cannot write there ({probe} is not a writable folder)")
+
+
+def provenance(command: str, inputs: dict[str, Path], effects: dict | None = None) -> dict:
+    """What made an output: the command, each input with its SHA-256, effects, tool version."""
+    from bearingfem import __version__
+
+    return {"command": f"bearingfem {command}", "version": __version__,
+            "inputs": {k: {"path": str(p), "sha256": hashlib.sha256(Path(p).read_bytes()).hexdigest()}
+                       for k, p in inputs.items()},
+            "effects": {k: dict(v) for k, v in (effects or {}).items()}}
 
 
 def cmd_simulate(args) -> None:
@@ -85,11 +102,9 @@ def cmd_simulate(args) -> None:
     cols.update(out)
     flags, violations = apply_checks(out, assembly_checks(asm))
     cols.update(flags)
-    desc = ", ".join(f"{k}({', '.join(f'{p}={v:g}' for p, v in prm.items())})"
-                     for k, prm in effects.items()) or "none"
     try:
-        write_table(args.out, cols, comment=f"bearingfem simulate {args.assembly} {args.conditions}\n"
-                                            f"effects: {desc}")
+        write_table(args.out, cols, provenance=provenance(
+            "simulate", {"assembly": args.assembly, "conditions": args.conditions}, effects))
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
     n = len(next(iter(out.values())))

@@ -6,6 +6,8 @@ numeric and finite; `time_s` strictly increasing when present.
 from __future__ import annotations
 
 import csv
+import io
+import json
 import math
 import os
 import shutil
@@ -132,13 +134,47 @@ def read_conditions(path: Path) -> dict[str, np.ndarray]:
     return read_table(path, allowed=set(CONDITION_COLUMNS))
 
 
-def write_table(path: Path, columns: dict[str, np.ndarray], comment: str = "") -> None:
-    """Write columns to CSV atomically (temporary file in the same folder, then rename). The file
-    gets the mode of the file it replaces, or the user's default (0666 less the umask); a write
-    error is one line (TableError), and leaves neither the temporary file nor a folder created
-    for it."""
-    path = Path(path)
+def write_table(path: Path, columns: dict[str, np.ndarray], provenance: dict | None = None) -> None:
+    """Write columns to CSV atomically (temporary file in the same folder, then rename): a header
+    row and numbers only, so that `pandas.read_csv(path)` reads it with its defaults. With
+    `provenance` (what made the table: command, inputs and their hashes, version), a sidecar
+    `<name>.json` is written beside it the same way. Files get the mode of the file they replace,
+    or the user's default (0666 less the umask); a write error is one line (TableError) and leaves
+    neither a temporary file nor a folder created for it."""
+    text = _csv_text(columns)
+    if provenance is None:
+        _atomic_write(Path(path), text)
+        return
+    side = sidecar_path(path)
+    existed = side.exists()
+    created = [p for p in reversed(Path(path).parents) if not p.exists()]
+    _atomic_write(side, json.dumps(provenance, indent=2) + "\n")
+    try:
+        _atomic_write(Path(path), text)
+    except BaseException:
+        if not existed:                     # no partial output: the new sidecar goes too
+            side.unlink(missing_ok=True)
+        _remove_folders(created)
+        raise
+
+
+def sidecar_path(path: Path) -> Path:
+    """Where the provenance of a table is written: `<name>.json` beside it."""
+    return Path(f"{path}.json")
+
+
+def _csv_text(columns: dict[str, np.ndarray]) -> str:
     names = [c for c in columns if not c.startswith("_")]
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(names)
+    arrays = [np.asarray(columns[c]) for c in names]
+    for i in range(len(arrays[0]) if arrays else 0):
+        w.writerow([_fmt(a[i]) for a in arrays])
+    return buf.getvalue()
+
+
+def _atomic_write(path: Path, text: str) -> None:
     created = [p for p in reversed(path.parents) if not p.exists()]
     remove_stale(path.parent, f".{path.name}.")
     try:
@@ -150,13 +186,7 @@ def write_table(path: Path, columns: dict[str, np.ndarray], comment: str = "") -
     try:
         os.chmod(tmp, stat.S_IMODE(path.stat().st_mode) if path.exists() else _default_mode())
         with os.fdopen(fd, "w", newline="") as fh:
-            for line in comment.splitlines():
-                fh.write(f"# {line}\n")
-            w = csv.writer(fh)
-            w.writerow(names)
-            arrays = [np.asarray(columns[c]) for c in names]
-            for i in range(len(arrays[0]) if arrays else 0):
-                w.writerow([_fmt(a[i]) for a in arrays])
+            fh.write(text)
         os.replace(tmp, path)
     except BaseException as exc:
         os.unlink(tmp)

@@ -39,7 +39,7 @@ def temperature_sweep(pl, out: Path, say) -> dict:
     inp = _inputs(a, T.size, T_ambient_C=T)
     res = pl.run(inp)
     cols = {"T_C": T, **res}
-    write_table(out / "temperature_sweep.csv", cols, comment="seed000: uniform temperature sweep")
+    write_table(out / "temperature_sweep.csv", cols)
     rate_i = np.polyfit(T, res["interference_inner_um"], 1)[0]
     rate_o = np.polyfit(T, res["interference_outer_um"], 1)[0]
     io = res["interference_outer_um"]
