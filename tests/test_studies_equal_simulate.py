@@ -3,6 +3,7 @@ rows (the command-line route: conditions table -> baseline inputs -> pipeline), 
 report, plots and field images. Studies run on a coarser mesh here (mesh_factor 2.5) to keep the
 default suite short; `make test-slow` runs them at the shipped mesh (test_cli_studies.py)."""
 import csv
+import functools
 
 import numpy as np
 import pytest
@@ -34,9 +35,16 @@ def studies(tmp_path_factory):
     return out
 
 
+@functools.lru_cache(maxsize=None)
+def _pipeline(name):
+    """simulate's pipeline of a shipped assembly at the studies' mesh, built once per assembly
+    (a Pipeline keeps no state between runs but its FE cache keyed by exact inputs)."""
+    return Pipeline(load_shipped(name), mesh_factor=MESH_FACTOR)
+
+
 def _simulate(name, columns):
-    asm = load_shipped(name)
-    return simulate_table(asm, columns, pipeline=Pipeline(asm, mesh_factor=MESH_FACTOR))
+    pl = _pipeline(name)
+    return simulate_table(pl.asm, columns, pipeline=pl)
 
 
 def _close(a, b, what):
