@@ -411,7 +411,7 @@ CFG_000 = Path(__file__).resolve().parents[1] / "studies" / "configs" / "seed000
 
 def _write_csv(path, cols):
     from studies.model.table import write_table
-    write_table(path, cols, comment="test data")
+    write_table(path, cols)
 
 
 def test_cli_diagnose_end_to_end(tmp_path, capsys):

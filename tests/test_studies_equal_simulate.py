@@ -28,9 +28,13 @@ def _read(path):
 @pytest.fixture(scope="module")
 def studies(tmp_path_factory):
     out = {}
+    # seed000's field images at one temperature (the field-image code is the same at each; all
+    # three at the shipped mesh in the slow study run)
+    more = {"seed000": {"field_temperatures_C": (-60.0,)}}
     for name in ("seed000", "seed001", "seed003"):
         d = tmp_path_factory.mktemp(name)
-        study_module(name).run(d, progress=lambda s: None, mesh_factor=MESH_FACTOR)
+        study_module(name).run(d, progress=lambda s: None, mesh_factor=MESH_FACTOR,
+                               **more.get(name, {}))
         out[name] = d
     return out
 
@@ -70,7 +74,7 @@ def test_seed000_tables_equal_simulate(studies):
     report = (d / "report.md").read_text()
     assert "| quantity |" in report
     for f in ("fits_vs_temperature.png", "preload_vs_temperature.png", "cycles.png",
-              "field_-60C_von_mises_MPa.png", "field_+20C.vtu"):
+              "field_-60C_von_mises_MPa.png", "field_-60C.vtu"):
         assert (d / f).stat().st_size > 1000, f
 
 
