@@ -56,3 +56,23 @@ def test_missing_file_and_bad_toml(tmp_path):
     p.write_text("[shaft\n")
     with pytest.raises(ConfigError, match="not valid TOML"):
         load_assembly(p)
+
+
+def test_template_names_every_key_with_a_comment_and_loads():
+    """studies/configs/template.toml is the user's starting point: every section and key the
+    loader reads appears in it with a comment on its line (unit, allowed values, default), and
+    it loads as a valid assembly."""
+    import tomllib
+
+    from studies.model.config import CONFIG_DIR, SECTIONS, load_assembly
+
+    path = CONFIG_DIR / "template.toml"
+    raw = tomllib.loads(path.read_text())
+    assert set(raw) == {"assembly", *SECTIONS}
+    assert set(raw["assembly"]) == {"name", "arrangement", "T_ref_C", "source"}
+    for name, (cls, _) in SECTIONS.items():
+        assert set(raw[name]) == set(cls.__dataclass_fields__), name
+    for line in path.read_text().splitlines():
+        if "=" in line and not line.startswith("#"):
+            assert "#" in line, line                  # every key says what it is
+    load_assembly(path)
