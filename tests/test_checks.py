@@ -3,6 +3,7 @@ the built-in checks, one stderr line per violated check, and exits 1 with --stri
 import csv
 
 import numpy as np
+import pytest
 
 from studies.app.cli import main
 from studies.model.config import CONFIG_DIR
@@ -98,3 +99,36 @@ def test_limit_behaviour_of_every_check():
     np.testing.assert_allclose(cols["margin_static_safety"], [0.0, 2.99 / 3 - 1, 4 / 3 - 1], rtol=1e-15)
     assert {v.check.name: v.worst_row for v in viol} == {
         "max_contact_pressure_MPa": 2, "static_safety": 1, "preload_lost": 1, "fit_open_inner": 0}
+
+
+def _edit(tmp_path, section, key, value):
+    import re
+    text = CFG000.read_text()
+    start = text.index(f"[{section}]")
+    end = text.find("\n[", start + 1)
+    body = re.sub(rf"(?m)^{key}\s*=\s*[^#\n]*", f"{key} = {value} ", text[start:end], count=1)
+    path = tmp_path / "asm.toml"
+    path.write_text(text[:start] + body + text[end:])
+    return path
+
+
+@pytest.mark.parametrize("section,key,value,conditions,fragment", [
+    ("bearing", "contact_angle_free_deg", "0.26", "T_ambient_C\n20\n", "looks like radians"),
+    ("fits", "inner_interference_um", "0.003", "T_ambient_C\n20\n", "looks like millimetres"),
+    (None, None, None, "T_ambient_C\n233\n293\n", "kelvin typed as Celsius"),
+])
+def test_implausible_but_legal_input_gives_one_warning_line(tmp_path, capsys, section, key, value,
+                                                             conditions, fragment):
+    asm = _edit(tmp_path, section, key, value) if section else CFG000
+    cond = tmp_path / "c.csv"
+    cond.write_text(conditions)
+    assert main(["simulate", str(asm), str(cond), "-o", str(tmp_path / "o.csv")]) == 0
+    err = [l for l in capsys.readouterr().err.splitlines() if fragment in l]
+    assert len(err) == 1 and err[0].startswith("bearingfem simulate: warning:"), err
+
+
+def test_an_oil_bath_f0_on_a_lightly_lubricated_pair_is_questioned(tmp_path, capsys):
+    cond = tmp_path / "c.csv"
+    cond.write_text("T_ambient_C\n-20\n20\n")
+    assert main(["simulate", str(CFG001), str(cond), "-o", str(tmp_path / "o.csv")]) == 0
+    assert "is an oil-bath value" in capsys.readouterr().err

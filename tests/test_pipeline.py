@@ -37,6 +37,21 @@ def test_superposed_pipeline_equals_direct_fe_across_the_outer_fit_closing(pl000
         assert np.abs(sup[k] - direct[k]).max() <= 1e-8 * scale, k
 
 
+@pytest.mark.parametrize("T", [-60.0, 80.0])     # outer fit open / closed
+def test_row_field_equals_a_direct_fe_solve(pl000, T):
+    """`Pipeline.field` (superposed unit solutions) against one direct contact solve of the same
+    state: displacements relative to the largest, contact forces relative to the largest."""
+    inp = _inp(pl000.asm, [T])
+    f = pl000.field(inp)
+    theta = pl000.thetas(inp)[0]
+    sol = pl000.solver.solve(pl000.model.unit_loads @ theta, pl000.deltas_mm(*pl000.fits_um(inp))[0])
+    np.testing.assert_allclose(f.u_mm, sol.u, rtol=0, atol=1e-8 * np.abs(sol.u).max())
+    np.testing.assert_allclose(f.force_N, sol.force_N, rtol=0, atol=1e-8 * np.abs(sol.force_N).max())
+    # the raceway displacements the bearing model takes are this field's, probed
+    np.testing.assert_allclose(pl000.probe @ f.u_mm, pl000.fe(inp).raceway_u_mm[0], rtol=0,
+                               atol=1e-8 * np.abs(sol.u).max())
+
+
 def test_free_interference_follows_the_cte_difference(pl000):
     a = pl000.asm
     T = np.array([-60.0, 0.0, 80.0])

@@ -80,7 +80,7 @@ def provenance(command: str, inputs: dict[str, Path], effects: dict | None = Non
 
 def cmd_simulate(args) -> None:
     from studies.model.effects import parse_effect_arg
-    from studies.model.checks import apply_checks, assembly_checks
+    from studies.model.checks import apply_checks, assembly_checks, plausibility_warnings
     from studies.model.pipeline import Pipeline, simulate_table
     from studies.model.table import read_conditions, write_table
 
@@ -108,6 +108,8 @@ def cmd_simulate(args) -> None:
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
     n = len(next(iter(out.values())))
+    for msg in plausibility_warnings(asm, cols, out):
+        print(f"bearingfem simulate: warning: {msg}", file=sys.stderr)
     for v in violations:
         print(f"bearingfem simulate: warning: {v.summary(n, cond)}", file=sys.stderr)
     print(f"wrote {n} rows to {args.out}")

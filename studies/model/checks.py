@@ -98,3 +98,36 @@ def apply_checks(out: dict[str, np.ndarray], checks: list[Check]
             worst = int(rows[np.argmax(v[rows])] if c.upper else rows[np.argmin(v[rows])])
             violations.append(Violation(c, rows, worst, float(v[worst])))
     return cols, violations
+
+
+# ---------------------------------------------------------------------- plausibility warnings
+def plausibility_warnings(asm, conditions: dict | None = None, out: dict | None = None) -> list[str]:
+    """Legal but implausible inputs and results, one line each (the run goes on):
+    units typed wrong (kelvin for Celsius, radians for degrees, mm for um) and a viscous torque
+    that dwarfs the load torque (an oil-bath Palmgren f0 on a lightly lubricated bearing)."""
+    msgs = []
+    b, f = asm.bearing, asm.fits
+    if b.contact_angle_free_deg < np.pi / 2:             # 1.57: a right angle in radians
+        msgs.append(f"bearing.contact_angle_free_deg = {b.contact_angle_free_deg:g} deg looks like "
+                    "radians (an angular-contact bearing has 10-40 deg)")
+    for key, v in (("fits.inner_interference_um", f.inner_interference_um),
+                   ("fits.outer_interference_um", f.outer_interference_um)):
+        if 0.0 < abs(v) < 0.1:
+            msgs.append(f"{key} = {v:g} um looks like millimetres (bearing fits are a few um)")
+    if asm.T_ref_C > 200.0:
+        msgs.append(f"assembly.T_ref_C = {asm.T_ref_C:g} C looks like kelvin")
+    for c, v in (conditions or {}).items():
+        if c.startswith("T_") and c.endswith("_C") and np.size(v) and np.min(v) > 200.0:
+            msgs.append(f"conditions column {c}: every value above 200 C (min {np.min(v):g}): "
+                        "kelvin typed as Celsius?")
+            break
+    if out is not None and "torque_viscous_Nmm" in out and "torque_load_Nmm" in out:
+        visc = np.asarray(out["torque_viscous_Nmm"], float)
+        load = np.asarray(out["torque_load_Nmm"], float)
+        loaded = load > 0.0                 # rows with preload lost are flagged elsewhere
+        ratio = float(np.max(visc[loaded] / load[loaded])) if loaded.any() else 0.0
+        if ratio > 50.0:
+            msgs.append(f"viscous torque up to {ratio:.0f}x the load torque: Palmgren f0 = "
+                        f"{asm.lubrication.viscous_factor_f0:g} is an oil-bath value; a bearing with "
+                        "a few milligrams of oil runs far below it")
+    return msgs

@@ -90,6 +90,14 @@ class FEState:
                        self.dr_mm[:, rows], self.dz_mm[:, rows], self.raceway_u_mm[rows])
 
 
+@dataclass(frozen=True)
+class RowField:
+    """The full FE answer of one row's state (field images, fit distributions, stresses)."""
+    u_mm: np.ndarray            # displacement vector, every DOF of `Pipeline.model`, mm
+    force_N: np.ndarray         # contact force per interface pair (N, + compression)
+    theta: np.ndarray           # thermal strain per FE part (`model.part_names` order)
+
+
 class Pipeline:
     """One assembly: mesh, FE model, unit solutions and bearing geometry, built once."""
 
@@ -208,6 +216,17 @@ class Pipeline:
             inner_um + (theta[:, idx["shaft"]] - theta[:, idx["inner_ring_A"]]) * d_seat * 1e3,
             outer_um + (theta[:, idx["outer_ring_A"]] - theta[:, idx["housing"]]) * d_bore * 1e3])
         return FEState(p, interf, dr, dz, probe)
+
+    def field(self, inputs: PhysicsInputs, row: int = 0) -> RowField:
+        """Displacement field and contact forces of one row (superposed, or a direct solve when
+        the pipeline was built without unit solutions)."""
+        theta = self.thetas(inputs)[row]
+        delta = self.deltas_mm(*self.fits_um(inputs))[row]
+        if self.sup is None:
+            sol = self.solver.solve(self.model.unit_loads @ theta, delta)
+            return RowField(sol.u, sol.force_N, theta)
+        force = self.sup.evaluate(theta[None, :], delta[None, :])["force_N"][0]
+        return RowField(self.sup.field(theta, delta), force, theta)
 
     def fe_field(self, theta_q: np.ndarray, inputs: PhysicsInputs):
         """One state with a non-uniform thermal strain field (nel, nq) from a conduction solution:

@@ -52,11 +52,9 @@ def field_images(out_dir: Path, pipeline, T_C: float, stem: str, title: str) -> 
     a = pipeline.asm
     inp = baseline_inputs({"T_ambient_C": np.array([T_C])}, 1, a.T_ref_C, a.preload.assembled_N,
                           a.lubrication.speed_rpm)
-    theta = pipeline.thetas(inp)[0]
-    delta = pipeline.deltas_mm(*pipeline.fits_um(inp))[0]
-    u = pipeline.sup.field(theta, delta)
-    model = pipeline.model
-    stresses = element_stresses(model, u, theta_per_element(model, theta))
+    f = pipeline.field(inp)
+    u, model = f.u_mm, pipeline.model
+    stresses = element_stresses(model, u, theta_per_element(model, f.theta))
     T_vertex = np.full(model.mesh.p.shape[1], T_C)
     write_vtu(out_dir / f"{stem}.vtu", model, u, stresses, T_vertex)
     return render_fields(out_dir, stem, model, u, stresses, title, T_vertex_C=T_vertex)

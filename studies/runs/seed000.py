@@ -171,12 +171,11 @@ def fit_distributions_and_ring_stresses(pl, out: Path) -> list[list]:
     series, rows = {}, []
     for T in (-60.0, 20.0, 80.0):
         inp = _inputs(a, 1, T_ambient_C=T)
-        theta, delta = pl.thetas(inp)[0], pl.deltas_mm(*pl.fits_um(inp))[0]
-        res = pl.sup.evaluate(theta[None, :], delta[None, :])
-        for fr in fit_results(m, pl.solver.fit_of_pair, res["force_N"][0]):
+        f = pl.field(inp)
+        for fr in fit_results(m, pl.solver.fit_of_pair, f.force_N):
             if fr.name.endswith("_A"):
                 series[f"{fr.name[4:]} {T:g} C ({fr.status})"] = (fr.z_mm, fr.pressure_MPa)
-        st = element_stresses(m, pl.sup.field(theta, delta), theta_per_element(m, theta))
+        st = element_stresses(m, f.u_mm, theta_per_element(m, f.theta))
         for ring in ("inner_ring_A", "outer_ring_A"):
             sel = m.part_of == ring
             rows.append([ring, T, float(st["von_mises_MPa"][sel].max()),
