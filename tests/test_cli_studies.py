@@ -2,6 +2,7 @@
 field images (the numbers inside are tested where they are computed)."""
 import json
 
+import numpy as np
 import pytest
 
 from studies.app.cli import main
@@ -65,3 +66,20 @@ def test_unknown_study_exits_2(tmp_path, capsys):
     assert main(["study", "nope", "--out", str(tmp_path / "x")]) == 2
     assert "unknown" in capsys.readouterr().err
     assert not (tmp_path / "x").exists()
+
+
+def test_verify_runs_the_mesh_convergence_of_a_users_assembly(tmp_path, capsys):
+    """`verify --assembly`: the user's own stack gets its observed order and GCI (coarse levels
+    here; the command runs the default ones)."""
+    from studies.model.config import CONFIG_DIR, load_assembly
+    from studies.runs import verify
+
+    asm = load_assembly(CONFIG_DIR / "template.toml")
+    cases = verify.run(tmp_path / "v", progress=lambda s: None, mesh_factor=2.0, assembly=asm)
+    mine = [c for c in cases if c["kind"] == "mesh_convergence" and asm.name in c["name"]]
+    assert len(mine) == 1
+    q = mine[0]["quantities"]
+    assert q and all(np.isfinite(r["gci_fine"]) for r in q.values())
+    assert asm.name in (tmp_path / "v" / "verification.md").read_text()
+    assert main(["verify", "--out", str(tmp_path / "w"), "--assembly", str(tmp_path / "none.toml")]) == 2
+    assert "file not found" in capsys.readouterr().err and not (tmp_path / "w").exists()

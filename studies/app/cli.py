@@ -58,6 +58,8 @@ def build_parser() -> argparse.ArgumentParser:
 
     v = sub.add_parser("verify", help="FE against closed forms, mesh convergence")
     v.add_argument("--out", type=Path, required=True)
+    v.add_argument("--assembly", type=Path, default=None,
+                   help="also the mesh convergence (observed order, GCI) of this assembly's stack")
 
     st = sub.add_parser("study", help=f"run a named study ({', '.join(STUDIES)})")
     st.add_argument("name")

@@ -143,8 +143,12 @@ def cmd_diagnose(args) -> None:
 def cmd_verify(args) -> None:
     from studies.runs import verify
 
-    with atomic_dir(args.out) as tmp:
-        cases = verify.run(tmp, progress=progress)
+    try:
+        asm = _load(args.assembly) if args.assembly is not None else None
+        with atomic_dir(args.out) as tmp:
+            cases = verify.run(tmp, progress=progress, assembly=asm)
+    except _user_errors() as exc:
+        raise UserError(str(exc)) from None
     bad = [c["name"] for c in cases if c["kind"] in ("lame_fit", "lame_displacement", "free_thermal")
            and c["rel_error"] > verify.TOLERANCE]
     print(f"verification: {len(cases)} cases written to {args.out}/verification.md"

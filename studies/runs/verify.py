@@ -309,18 +309,20 @@ def plot_convergence(path: Path, cases: list[dict]) -> Path:
     return path
 
 
-def run(out_dir: Path, progress=print, mesh_factor: float = 1.0) -> list[dict]:
-    """All verification cases into out_dir (verification.json, verification.md, PNG).
-    mesh_factor > 1 coarsens the four levels of the assembly's mesh-convergence case (smoke
-    tests; `bearingfem verify` runs 1)."""
+def run(out_dir: Path, progress=print, mesh_factor: float = 1.0, assembly=None) -> list[dict]:
+    """All verification cases into out_dir (verification.json, verification.md, PNG): the
+    built-in Lamé cases and the mesh convergence (observed order, GCI) of an assembly's own
+    stack: `assembly` (`verify --assembly`), else the shipped seed 000 stack. mesh_factor > 1
+    coarsens the four levels of that case (smoke tests; `bearingfem verify` runs 1)."""
     from studies.model.config import load_shipped
 
+    asm = assembly if assembly is not None else load_shipped("seed000")
     out_dir.mkdir(parents=True, exist_ok=True)
     progress("Lamé cases ...")
     cases = lame_cases()
-    progress("mesh convergence: Lamé reference and the seed 000 stack ...")
+    progress(f"mesh convergence: Lamé reference and the {asm.name} stack ...")
     conv = [lame_convergence_case(progress=progress),
-            mesh_convergence_case(load_shipped("seed000"), progress=progress,
+            mesh_convergence_case(asm, progress=progress,
                                   factors=tuple(mesh_factor * f for f in (4.0, 2.0, 1.0, 0.5)))]
     cases += conv
     plot = plot_convergence(out_dir / "mesh_convergence.png", conv)
