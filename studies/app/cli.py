@@ -61,6 +61,12 @@ def build_parser() -> argparse.ArgumentParser:
     v.add_argument("--assembly", type=Path, default=None,
                    help="also the mesh convergence (observed order, GCI) of this assembly's stack")
 
+    r = sub.add_parser("report", help="the engineer's report for any assembly")
+    r.add_argument("assembly", type=Path)
+    r.add_argument("conditions", type=Path, nargs="?", default=None,
+                   help="conditions table (default: the assembly's operating temperature range)")
+    r.add_argument("--out", type=Path, required=True)
+
     st = sub.add_parser("study", help=f"run a named study ({', '.join(STUDIES)})")
     st.add_argument("name")
     st.add_argument("--out", type=Path, required=True)
@@ -71,7 +77,8 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 #: the one dispatch table: subcommand -> implementation (studies/app/commands.py)
-COMMANDS = {"simulate": commands.cmd_simulate, "diagnose": commands.cmd_diagnose,
+COMMANDS = {"simulate": commands.cmd_simulate, "report": commands.cmd_report,
+            "diagnose": commands.cmd_diagnose,
             "verify": commands.cmd_verify, "study": commands.cmd_study, "bench": commands.cmd_bench}
 
 

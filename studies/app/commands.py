@@ -116,6 +116,26 @@ def cmd_simulate(args) -> None:
     return 1 if violations and args.strict else 0
 
 
+def cmd_report(args) -> None:
+    from studies.model.table import read_conditions
+    from studies.runs import assembly_report
+
+    try:
+        asm = _load(args.assembly)
+        cond = read_conditions(args.conditions) if args.conditions is not None else None
+        inputs = {"assembly": args.assembly}
+        if args.conditions is not None:
+            inputs["conditions"] = args.conditions
+        with atomic_dir(args.out) as tmp:
+            notes = assembly_report.run(asm, cond, tmp, provenance("report", inputs),
+                                        progress=progress)
+    except _user_errors() as exc:
+        raise UserError(str(exc)) from None
+    for line in notes:
+        print(f"bearingfem report: warning: {line}", file=sys.stderr)
+    print(f"report: {args.out}/report.md and report.html")
+
+
 def cmd_study(args) -> None:
     if args.name not in STUDIES:
         raise UserError(f"study '{args.name}': unknown (known: {', '.join(STUDIES)})")

@@ -93,6 +93,13 @@ class Limits:
 
 
 @dataclass(frozen=True)
+class Operating:
+    """The temperature range the assembly must work over (the default conditions of `report`)."""
+    T_min_C: float = -40.0
+    T_max_C: float = 80.0
+
+
+@dataclass(frozen=True)
 class Mesh:
     size_mm: float = 1.0             # global element size
     fit_size_mm: float = 0.25        # size at fits and raceways
@@ -115,6 +122,7 @@ class Assembly:
     lubrication: Lubrication
     limits: Limits = field(default_factory=Limits)
     mesh: Mesh = field(default_factory=Mesh)
+    operating: Operating = field(default_factory=Operating)
     source: str = ""
 
     def material(self, part: str) -> Material:
@@ -145,8 +153,9 @@ SECTIONS = {
                                   "hysteresis_loss_factor": 0.0, "load_term": "coulomb"}),
     "limits": (Limits, {"max_contact_pressure_MPa": math.inf, "min_static_safety": 0.0}),
     "mesh": (Mesh, {"size_mm": 1.0, "fit_size_mm": 0.25}),
+    "operating": (Operating, {"T_min_C": -40.0, "T_max_C": 80.0}),
 }
-OPTIONAL_SECTIONS = {"limits", "mesh"}
+OPTIONAL_SECTIONS = {"limits", "mesh", "operating"}
 STRING_KEYS = {"material", "designation", "ring_material", "ball_material", "contact", "kind",
                "lubricant", "load_term", "clamp", "path_compliance"}
 CHOICES = {("fits", "contact"): ("frictionless", "bonded"),
@@ -162,7 +171,8 @@ ZERO_OK = {("shaft", "bore_diameter_mm"), ("shaft", "extension_mm"),
            ("lubrication", "viscous_factor_f0"), ("lubrication", "speed_rpm"),
            ("lubrication", "hysteresis_loss_factor"),
            ("limits", "min_static_safety")}
-SIGNED = {("fits", "inner_interference_um"), ("fits", "outer_interference_um")}
+SIGNED = {("fits", "inner_interference_um"), ("fits", "outer_interference_um"),
+          ("operating", "T_min_C"), ("operating", "T_max_C")}
 
 
 def _section(path: str, raw: dict, name: str):
@@ -352,6 +362,9 @@ def _check_geometry(a: Assembly, path: str) -> None:
          f"{a.preload.assembled_N:g} N exceeds the bearing's static load rating C0 = {C0:.0f} N "
          "(ISO 76): the raceways would be dented at assembly")
     need(a.mesh.fit_size_mm <= a.mesh.size_mm, "mesh.fit_size_mm", "must not exceed mesh.size_mm")
+    op = a.operating
+    need(-150.0 <= op.T_min_C < op.T_max_C <= 300.0, "operating.T_min_C",
+         f"the range {op.T_min_C:g}..{op.T_max_C:g} C must be increasing and inside -150..300 C")
     need(a.mesh.size_mm <= b.width_mm, "mesh.size_mm",
          f"must not exceed the bearing width ({b.width_mm:g} mm): the rings would not be resolved")
 

@@ -1,0 +1,207 @@
+"""`bearingfem report`: the engineer's report for any assembly.
+
+Conditions: the given table, or a temperature sweep over the assembly's operating range
+(`[operating]`, default -40..80 C) at its speed and preload. Everything comes from the pipeline
+(the one route) and the checks `simulate` applies. Contents: what made it (tool version, input
+hashes), the input echo (geometry, materials with E, nu, CTE and their sources, fits, preload,
+lubrication, limits), the results per operating point with the Lamé values beside the FE fit
+pressures, plots vs temperature, the safety table, field images and VTU at the coldest, reference
+and hottest temperature, and the discretisation error of this assembly's own mesh (observed order
+and GCI over three mesh levels, Roache 1998). Written as `report.md` and a self-contained
+`report.html` (images embedded), with the CSV tables.
+"""
+from __future__ import annotations
+
+import base64
+import re
+from pathlib import Path
+
+import numpy as np
+
+from studies.model.checks import apply_checks, assembly_checks, plausibility_warnings
+from studies.model.pipeline import Pipeline, simulate_table
+from studies.model.table import write_table
+from studies.runs.report_tools import field_images, line_plot, md_table, safety_section
+
+N_SWEEP = 29            # points of the default temperature sweep
+RESULT_ROWS = 12        # rows of the result table in the text (the CSV has them all)
+
+
+def default_conditions(asm) -> dict[str, np.ndarray]:
+    """A temperature sweep over the operating range at the assembly's speed and preload."""
+    op = asm.operating
+    T = np.unique(np.concatenate([np.linspace(op.T_min_C, op.T_max_C, N_SWEEP), [asm.T_ref_C]]))
+    T = T[(T >= op.T_min_C) & (T <= op.T_max_C)]
+    return {"T_ambient_C": T}
+
+
+def run(asm, conditions: dict | None, out: Path, provenance: dict, progress=print,
+        mesh_factor: float = 1.0) -> list[str]:
+    """Write the report into `out`; returns the warning lines (also in the report)."""
+    from studies.runs.verify import mesh_convergence_case
+
+    cond = dict(conditions) if conditions is not None else default_conditions(asm)
+    cond = {k: np.asarray(v, float) for k, v in cond.items() if not k.startswith("_")}
+    pl = Pipeline(asm, mesh_factor=mesh_factor, progress=progress)
+    progress(f"report: {len(next(iter(cond.values())))} operating points ...")
+    res = simulate_table(asm, cond, pipeline=pl)
+    flags, violations = apply_checks(res, assembly_checks(asm))
+    warnings = plausibility_warnings(asm, cond, res)
+    n = len(res["preload_N"])
+    write_table(out / "results.csv", {**cond, **res, **flags}, provenance=provenance)
+    x, xlabel = _x_axis(cond, n)
+    plots = _plots(out, asm, x, xlabel, res)
+    progress("report: field images ...")
+    temps = sorted({asm.operating.T_min_C, asm.T_ref_C, asm.operating.T_max_C})
+    images = {T: field_images(out, pl, T, f"field_{T:+.0f}C", f"{asm.name} at {T:g} C")
+              for T in temps}
+    progress("report: discretisation error of this mesh (three levels) ...")
+    conv = mesh_convergence_case(asm, T_C=asm.operating.T_min_C,
+                                 factors=tuple(mesh_factor * f for f in (2.0, 1.0, 0.5)))
+    lines = _text(asm, provenance, cond, res, flags, violations, warnings, plots, images, conv, pl, x,
+                  xlabel)
+    md = "\n".join(lines) + "\n"
+    (out / "report.md").write_text(md)
+    (out / "report.html").write_text(_html(md, out, asm.name))
+    return warnings + [v.summary(n, cond) for v in violations]
+
+
+def _x_axis(cond, n):
+    for key, label in (("T_ambient_C", "ambient temperature (C)"), ("time_s", "time (s)"),
+                       ("preload_assembled_N", "assembled preload (N)"), ("speed_rpm", "speed (rpm)")):
+        if key in cond and np.ptp(cond[key]) > 0:
+            return cond[key], label
+    return np.arange(1, n + 1, dtype=float), "operating point"
+
+
+def _plots(out: Path, asm, x, xlabel, r) -> dict[str, Path]:
+    p = {}
+    p["fits"] = line_plot(out / "fits.png", x, {
+        "inner: free interference (um)": r["interference_inner_um"],
+        "outer: free interference (um)": r["interference_outer_um"]}, xlabel,
+        "diametral interference (um; < 0 clearance)", "Fits at temperature")
+    p["fit_pressure"] = line_plot(out / "fit_pressure.png", x, {
+        "inner fit, FE": r["fit_pressure_inner_MPa"],
+        "inner fit, Lamé (plane stress)": r["fit_pressure_inner_lame_MPa"],
+        "outer fit, FE": r["fit_pressure_outer_MPa"],
+        "outer fit, Lamé (plane stress)": r["fit_pressure_outer_lame_MPa"]}, xlabel,
+        "mean fit pressure (MPa)", "Fit pressures: FE and the closed form beside it")
+    p["groove_shifts"] = line_plot(out / "groove_shifts.png", x, {
+        k: r[f"groove_shift_{k}_um"] for k in ("dr_A", "dz_A", "dr_B", "dz_B")}, xlabel,
+        "inner minus outer groove centre (um)", "Groove-centre shifts from the FE")
+    p["preload"] = line_plot(out / "preload.png", x, {
+        "preload of the pair": r["preload_N"], "axial force A": r["axial_force_A_N"],
+        "axial force B": r["axial_force_B_N"]}, xlabel, "N", "Preload")
+    p["contact_angle"] = line_plot(out / "contact_angle.png", x, {
+        "A": r["contact_angle_A_deg"], "B": r["contact_angle_B_deg"]}, xlabel,
+        "contact angle (deg)", "Contact angle")
+    limit = next(c.allowable for c in assembly_checks(asm) if c.name == "max_contact_pressure_MPa")
+    p["contact_pressure"] = line_plot(out / "contact_pressure.png", x, {
+        "max Hertz pressure": r["max_contact_pressure_MPa"],
+        f"limit {limit:g} MPa": np.full(len(x), limit)}, xlabel, "MPa",
+        "Maximum contact pressure and its limit")
+    p["stiffness"] = line_plot(out / "stiffness.png", x, {
+        "axial stiffness of the pair": r["axial_stiffness_N_per_um"]}, xlabel, "N/um",
+        "Axial stiffness")
+    parts = {k: r[k] for k in ("torque_Nmm", "torque_hysteresis_Nmm", "torque_differential_Nmm",
+                               "torque_spin_Nmm", "torque_load_Nmm", "torque_viscous_Nmm") if k in r}
+    p["torque"] = line_plot(out / "torque.png", x, {k.replace("torque_", "").replace("_Nmm", "")
+                                                   or "total": v for k, v in parts.items()},
+                            xlabel, "friction torque of the pair (N mm)", "Torque by component")
+    return p
+
+
+def _materials(asm) -> list[list]:
+    rows, seen = [], set()
+    for part in ("shaft", "housing", "nut", "cover", "inner_spacer", "outer_spacer",
+                 "inner_ring", "ball"):
+        m = asm.material(part)
+        key = (part if part not in ("inner_ring",) else "rings", m.name)
+        if key in seen:
+            continue
+        seen.add(key)
+        rows.append([key[0], m.name, m.E_MPa, m.nu, m.alpha_per_K * 1e6, m.source])
+    return rows
+
+
+def _echo(asm) -> list[str]:
+    """Every input table of the assembly, key = value, as given."""
+    from dataclasses import fields
+
+    out = []
+    for name in ("shaft", "housing", "nut", "cover", "inner_spacer", "outer_spacer", "bearing",
+                 "fits", "preload", "lubrication", "limits", "mesh", "operating"):
+        sec = getattr(asm, name)
+        out.append([f"[{name}]", ", ".join(f"{f.name} = {getattr(sec, f.name)}" for f in fields(sec))])
+    return out
+
+
+def _text(asm, prov, cond, r, flags, violations, warnings, plots, images, conv, pl, x, xlabel):
+    n = len(r["preload_N"])
+    idx = np.unique(np.linspace(0, n - 1, min(n, RESULT_ROWS)).round().astype(int))
+    inputs = ", ".join(f"{k} `{v['path']}` (sha256 {v['sha256'][:12]}...)"
+                       for k, v in prov["inputs"].items())
+    lines = [f"# Assembly report: {asm.name}", "",
+             f"bearingfem {prov['version']}; {inputs}. {asm.source}", "",
+             f"{asm.bearing.designation} pair, {asm.arrangement}, {asm.preload.kind} preload "
+             f"{asm.preload.assembled_N:g} N at {asm.T_ref_C:g} C; FE model {pl.model.ndofs} DOF "
+             "(axisymmetric, P2, exact fit contact); bearing: exact Hertz, pair equilibrium.", ""]
+    if warnings or violations:
+        lines += ["## Warnings", ""] + [f"- {w}" for w in warnings] + \
+                 [f"- {v.summary(n, cond)}" for v in violations] + [""]
+    lines += ["## Inputs", "", md_table(["table", "values"], _echo(asm)), "",
+              md_table(["part", "material", "E (MPa)", "nu", "CTE (1e-6/K)", "source"],
+                       _materials(asm)), ""]
+    cols = ["preload_N", "contact_angle_deg", "torque_Nmm", "max_contact_pressure_MPa",
+            "interference_inner_um", "fit_pressure_inner_MPa", "fit_pressure_inner_lame_MPa",
+            "interference_outer_um", "fit_pressure_outer_MPa", "fit_pressure_outer_lame_MPa",
+            "axial_stiffness_N_per_um"]
+    lines += ["## Results", "",
+              f"{n} operating points (all of them in `results.csv`, with every output, flag and "
+              "margin column; `results.csv.json` says what made it). FE fit pressures with the "
+              "two-cylinder Lamé value beside them (plane stress; a short ring tied to its "
+              "neighbours need not equal it).", "",
+              md_table([xlabel] + cols, [[float(x[i])] + [float(r[c][i]) for c in cols] for i in idx]),
+              ""]
+    for key in ("fits", "fit_pressure", "groove_shifts", "preload", "contact_angle",
+                "contact_pressure", "stiffness", "torque"):
+        lines += [f"![{key}]({plots[key].name})", ""]
+    lines += [safety_section(asm, r, title="all operating points")]
+    lines += ["## Field images", "",
+              "Displacement (deformed shape, exaggeration in the title), hoop and von Mises stress "
+              "at the coldest, reference and hottest temperature, nominal fits; the VTU files open "
+              "in ParaView.", ""]
+    for T, paths in images.items():
+        lines += [f"**{T:g} C**: " + " ".join(f"![{p.stem}]({p.name})" for p in paths
+                                              if any(k in p.name for k in
+                                                     ("displacement", "hoop", "von_mises"))), ""]
+    lines += ["## Discretisation error of this mesh", "",
+              f"The same FE at {asm.operating.T_min_C:g} C on three meshes (element sizes x2, x1, "
+              "x0.5 of this one); observed order and grid convergence index of the finest level "
+              "(Roache 1998, Fs = 1.25). The x1 level is the mesh used above.", "",
+              md_table(["quantity", "observed order", "Richardson value", "GCI (finest)",
+                        "error of the mesh used (x1) vs Richardson"],
+                       [[q, v["observed_order"], v["extrapolated"], f"{v['gci_fine']:.2e}",
+                         f"{abs(conv['levels'][1][q] - v['extrapolated']) / abs(v['extrapolated']):.2e}"]
+                        for q, v in conv["quantities"].items()]), ""]
+    return lines
+
+
+def _html(md: str, out: Path, title: str) -> str:
+    """A self-contained HTML page: the markdown rendered, every image embedded."""
+    import markdown
+
+    body = markdown.markdown(md, extensions=["tables"])
+
+    def embed(m):
+        path = out / m.group(1)
+        if not path.is_file():
+            return m.group(0)
+        data = base64.b64encode(path.read_bytes()).decode("ascii")
+        return f'src="data:image/png;base64,{data}"'
+    body = re.sub(r'src="([^"]+\.png)"', embed, body)
+    style = ("body{font-family:sans-serif;max-width:1100px;margin:2em auto;line-height:1.4}"
+             "table{border-collapse:collapse;font-size:0.85em}td,th{border:1px solid #bbb;"
+             "padding:2px 6px}img{max-width:48%;margin:2px}")
+    return (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>{title}</title>"
+            f"<style>{style}</style></head><body>{body}</body></html>\n")
