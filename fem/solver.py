@@ -82,6 +82,14 @@ class FitSolver:
     def n_pairs(self) -> int:
         return self.master.size
 
+    def clear_cache(self) -> None:
+        """Forget the factorisations of every contact status (benchmarks time them afresh)."""
+        self._cache.clear()
+
+    def factorize(self, closed: np.ndarray):
+        """The reduced system of a contact status (closed pairs), factorised (cached)."""
+        return self._system(closed)
+
     def _system(self, closed: np.ndarray):
         key = np.packbits(closed).tobytes() + bytes([closed.size % 8])
         if key in self._cache:
@@ -255,6 +263,10 @@ class Superposition:
                 return lam, gap, closed
             closed = (closed | open_bad) & ~closed_bad
         raise SolveError(f"contact active set did not settle in {max_iter} iterations")
+
+    def clear_cache(self) -> None:
+        """Forget the Cholesky factors of the condensed contact problems (benchmarks)."""
+        self._chol.clear()
 
     @single_thread_blas
     def evaluate(self, theta: np.ndarray, delta_mm: np.ndarray) -> dict:

@@ -39,8 +39,8 @@ def fe_levels(asm, factors, T_C=-60.0):
                            asm.fits.outer_interference_um) / 2000 for f in model.fits])
         sol = solver.solve(model.unit_loads @ theta, delta)
         closed = sol.closed
-        solver._cache.clear()
-        _, t_fac = _t(solver._system, closed)
+        solver.clear_cache()
+        _, t_fac = _t(solver.factorize, closed)
         _, t_sol = _t(solver.solve_status, closed, model.unit_loads @ theta, delta)
         p = fit_mean_pressures(model, solver.fit_of_pair, sol.force_N)[0, 0]
         print(f"{fac:6.2f} {model.ndofs:7d} {t_mesh:7.3f} {t_asm:7.3f} {t_fac:8.3f} {t_sol:8.4f} {p:14.8f}")
@@ -64,7 +64,7 @@ def sweep(asm):
         T = np.linspace(-60, 80, n)
         theta = np.array([[model.materials[p].thermal_strain(t, asm.T_ref_C) for p in model.part_names]
                           for t in T])
-        sup._chol.clear()
+        sup.clear_cache()
         res, t = _t(sup.evaluate, theta, np.tile(delta, (n, 1)))
         print(f"{n:5d}-point sweep -60..80 C: {t:.4f} s ({1e3 * t / n:.3f} ms/point, "
               f"{len(res['closed_sets'])} distinct contact active sets)")
@@ -81,7 +81,7 @@ def pipeline_sweep(asm):
         T = np.linspace(-60, 80, n)
         inp = baseline_inputs({"T_ambient_C": T}, n, asm.T_ref_C, asm.preload.assembled_N,
                               asm.lubrication.speed_rpm)
-        pl.sup._chol.clear()
+        pl.sup.clear_cache()
         _, t = _t(pl.run, inp)
         print(f"{n:5d}-point pipeline sweep: {t:.4f} s ({1e3 * t / n:.3f} ms/point)")
 
