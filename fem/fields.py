@@ -78,7 +78,7 @@ def render_fields(out_dir: Path, stem: str, model: StackModel, u: np.ndarray,
             grid.point_data[name] = values
         else:
             grid.cell_data[name] = values
-        p = pv.Plotter(off_screen=True, window_size=(1000, 800))
+        p = pv.Plotter(off_screen=True, window_size=(800, 640))
         p.add_mesh(grid, scalars=name, cmap="viridis", show_edges=False,
                    scalar_bar_args={"title": label, "vertical": True, "fmt": "%.3g",
                                      "position_x": 0.78, "position_y": 0.15, "width": 0.06,
