@@ -7,7 +7,7 @@
 `simulate` returns a dict of numpy arrays, one per output column of `bearingfem simulate`
 (docs/cli.md: `torque_Nmm`, `preload_N`, `contact_angle_deg`, ...; units in every name). Pass it
 to `pandas.DataFrame(out)` for a table. The FE set-up of an assembly is kept for the next call with
-the same assembly object. BLAS runs single-threaded inside the FE superposition by itself.
+an equal assembly (`Pipeline.shared`). BLAS runs single-threaded inside the FE superposition by itself.
 """
 from __future__ import annotations
 
@@ -23,9 +23,6 @@ except metadata.PackageNotFoundError:      # a source tree that was not installe
     __version__ = "unknown"
 
 __all__ = ["__version__", "load_assembly", "simulate"]
-
-_PIPELINES: dict[int, tuple] = {}
-
 
 def load_assembly(path: str | Path):
     """Read and check an assembly TOML file (`studies.model.config.Assembly`); a problem raises
@@ -56,9 +53,4 @@ def simulate(assembly, conditions: Mapping, effects: Mapping | None = None) -> d
     if not cols:
         raise TableError("conditions: no columns")
     check_columns("conditions", cols, allowed=set(CONDITION_COLUMNS))
-    hit = _PIPELINES.get(id(assembly))
-    if hit is None or hit[0] is not assembly:
-        hit = (assembly, Pipeline(assembly))
-        _PIPELINES.clear()                  # one assembly at a time: memory stays bounded
-        _PIPELINES[id(assembly)] = hit
-    return simulate_table(assembly, cols, dict(effects or {}), pipeline=hit[1])
+    return simulate_table(assembly, cols, dict(effects or {}), pipeline=Pipeline.shared(assembly))

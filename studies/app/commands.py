@@ -95,7 +95,7 @@ def cmd_simulate(args) -> None:
                 raise UserError(f"--effect {name}: given twice")
             effects[name] = params
         out = simulate_table(asm, cond, effects, direct=args.direct,
-                             pipeline=Pipeline(asm, progress=progress))
+                             pipeline=Pipeline.shared(asm, progress=progress))
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
     cols = {k: v for k, v in cond.items() if not k.startswith("_")}

@@ -94,7 +94,7 @@ def diagnose_files(assembly_path: Path, measured_path: Path, out_dir: Path, prog
                    pipeline: Pipeline | None = None) -> dict:
     asm = load_assembly(assembly_path)
     read_measured(measured_path, OUTPUT_NAMES)           # fail fast, before the FE is built
-    pl = pipeline or Pipeline(asm, progress=progress)
+    pl = pipeline or Pipeline.shared(asm, progress=progress)
     conditions, measured = read_measured(measured_path, OUTPUT_NAMES)
     predict = ModelPredictor(pl, conditions, measured.keys())
     candidates = [EFFECTS[name] for name in ORDER]

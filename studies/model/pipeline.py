@@ -101,6 +101,24 @@ class RowField:
 class Pipeline:
     """One assembly: mesh, FE model, unit solutions and bearing geometry, built once."""
 
+    #: pipelines built in this process, by (assembly, mesh factor): a few, oldest dropped first
+    _shared: dict = {}
+    SHARED_MAX = 4
+
+    @classmethod
+    def shared(cls, asm: Assembly, mesh_factor: float = 1.0, progress=None) -> "Pipeline":
+        """The pipeline of this assembly, built once per process: commands run from Python
+        (a notebook, the tests) after the first pay nothing for the FE set-up of the same
+        assembly. Assemblies are frozen values, so equal files give the same key."""
+        key = (asm, float(mesh_factor))
+        hit = cls._shared.get(key)
+        if hit is None:
+            hit = cls(asm, mesh_factor=mesh_factor, progress=progress)
+            if len(cls._shared) >= cls.SHARED_MAX:
+                cls._shared.pop(next(iter(cls._shared)))
+            cls._shared[key] = hit
+        return hit
+
     def __init__(self, asm: Assembly, mesh_factor: float = 1.0, progress=None,
                  superpose: bool = True):
         say = progress or (lambda s: None)
@@ -396,4 +414,4 @@ def simulate_table(asm: Assembly, columns: dict, effects: dict | None = None,
     inputs = baseline_inputs(columns, n, asm.T_ref_C, asm.preload.assembled_N,
                              asm.lubrication.speed_rpm)
     inputs = apply_effects(inputs, effects, asm.T_ref_C)
-    return (pipeline or Pipeline(asm)).run(inputs, direct=direct)
+    return (pipeline or Pipeline.shared(asm)).run(inputs, direct=direct)

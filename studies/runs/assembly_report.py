@@ -42,7 +42,7 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, progress=prin
 
     cond = dict(conditions) if conditions is not None else default_conditions(asm)
     cond = {k: np.asarray(v, float) for k, v in cond.items() if not k.startswith("_")}
-    pl = Pipeline(asm, mesh_factor=mesh_factor, progress=progress)
+    pl = Pipeline.shared(asm, mesh_factor=mesh_factor, progress=progress)
     progress(f"report: {len(next(iter(cond.values())))} operating points ...")
     res = simulate_table(asm, cond, pipeline=pl)
     flags, violations = apply_checks(res, assembly_checks(asm))
