@@ -221,9 +221,13 @@ def test_friction_temperature_linear_in_ring_mean():
     warm = base.copy(T_C=T)
     out = EFFECTS["friction_temperature"].apply(warm, {"dmu_per_K": 1e-4}, T_REF)
     ring_mean = 0.5 * (warm.T_C["inner_ring"] + warm.T_C["outer_ring"])
-    np.testing.assert_allclose(out.friction_coefficient, 1e-4 * (ring_mean - T_REF), atol=1e-15)
+    change = 1e-4 * (ring_mean - T_REF)
+    # round-off relative to the terms: the largest change, and the coefficient 0.02 it adds to
+    np.testing.assert_allclose(out.friction_coefficient, change, rtol=0,
+                               atol=1e-13 * np.abs(change).max())
     mu = resolve_friction_coefficient(out, 0.02)
-    np.testing.assert_allclose(mu, np.maximum(0.02 + 1e-4 * (ring_mean - T_REF), 0), atol=1e-15)
+    np.testing.assert_allclose(mu, np.maximum(0.02 + change, 0), rtol=0,
+                               atol=1e-13 * (0.02 + np.abs(change).max()))
     np.testing.assert_array_equal(resolve_friction_coefficient(base, 0.02), 0.02)
     # clipped at zero for a strong negative slope at high temperature
     neg = EFFECTS["friction_temperature"].apply(warm, {"dmu_per_K": -1e-3}, T_REF)

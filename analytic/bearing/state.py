@@ -57,10 +57,6 @@ class PairState:
     radial: RadialLoadState | None = None
 
     @property
-    def n_points(self) -> int:
-        return int(np.shape(self.preload_N)[-1])
-
-    @property
     def loaded_contact_angle_deg(self) -> np.ndarray:
         """Contact angle of the more loaded bearing, (N,)."""
         F = self.axial_force_N

@@ -101,6 +101,11 @@ def apply_checks(out: dict[str, np.ndarray], checks: list[Check]
 
 
 # ---------------------------------------------------------------------- plausibility warnings
+#: viscous / load torque above which f0 is questioned: Palmgren's f0 spans ~0.7 (little grease) to
+#: 4+ (oil bath) (Harris & Kotzalas Vol. 1 ch. 9), a factor ~6 in the viscous term; a ratio this
+#: large means the viscous term decides everything and the lubrication amount must be known
+VISCOUS_TO_LOAD_WARN = 50.0
+
 def plausibility_warnings(asm, conditions: dict | None = None, out: dict | None = None) -> list[str]:
     """Legal but implausible inputs and results, one line each (the run goes on):
     units typed wrong (kelvin for Celsius, radians for degrees, mm for um) and a viscous torque
@@ -126,7 +131,7 @@ def plausibility_warnings(asm, conditions: dict | None = None, out: dict | None 
         load = np.asarray(out["torque_load_Nmm"], float)
         loaded = load > 0.0                 # rows with preload lost are flagged elsewhere
         ratio = float(np.max(visc[loaded] / load[loaded])) if loaded.any() else 0.0
-        if ratio > 50.0:
+        if ratio > VISCOUS_TO_LOAD_WARN:
             msgs.append(f"viscous torque up to {ratio:.0f}x the load torque: Palmgren f0 = "
                         f"{asm.lubrication.viscous_factor_f0:g} is an oil-bath value; a bearing with "
                         "a few milligrams of oil runs far below it")
