@@ -45,11 +45,39 @@ def _grid(model: StackModel, pts_xy: np.ndarray):
     return pv.UnstructuredGrid(cells, celltypes, np.column_stack([pts_xy, np.zeros(len(pts_xy))]))
 
 
+def part_label_points(model: StackModel, pts_xy: np.ndarray) -> tuple[np.ndarray, list[str]]:
+    """One label point per part (mm): the vertex of the part nearest to its area centroid, so
+    the label sits on the part even where a section is not convex."""
+    t = model.mesh.t.T
+    corners = pts_xy[t]                                        # (n_cells, 3, 2)
+    centroid = corners.mean(axis=1)
+    e1, e2 = corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]
+    area = 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
+    where, names = [], []
+    for name in model.part_names:
+        on = model.part_of == name
+        if not on.any():
+            continue
+        c = (centroid[on] * area[on, None]).sum(axis=0) / area[on].sum()
+        near = centroid[on][np.argmin(np.linalg.norm(centroid[on] - c, axis=1))]
+        where.append(near)
+        names.append(name)
+    return np.array(where), names
+
+
+def scale_bar_mm(extent_mm: float) -> float:
+    """A round scale-bar length (1, 2 or 5 x 10^k mm) about a fifth of the drawing's extent."""
+    target = 0.2 * extent_mm
+    k = np.floor(np.log10(target))
+    return float(min((m * 10 ** k for m in (1, 2, 5)), key=lambda v: abs(v - target)))
+
+
 def render_fields(out_dir: Path, stem: str, model: StackModel, u: np.ndarray,
                   cell_data: dict[str, np.ndarray], title: str,
                   T_vertex_C: np.ndarray | None = None, exaggeration: float | None = None) -> list[Path]:
     """One PNG per field: temperature (if given), displacement magnitude on the deformed shape
-    (the exaggeration factor is printed in the title), and every cell-data stress field."""
+    (the exaggeration factor is printed in the title), and every cell-data stress field. Each
+    image names the parts on the section and carries a scale bar in mm under it."""
     import pyvista as pv
 
     pv.OFF_SCREEN = True
@@ -87,6 +115,14 @@ def render_fields(out_dir: Path, stem: str, model: StackModel, u: np.ndarray,
         outline = _grid(model, pts).extract_feature_edges(boundary_edges=True, feature_edges=False,
                                                           manifold_edges=False)
         p.add_mesh(outline, color="black", line_width=1)
+        where, names = part_label_points(model, pts)
+        p.add_point_labels(np.column_stack([where, np.full(len(where), 0.01 * extent)]), names,
+                           font_size=11, point_size=1, shape_opacity=0.6, always_visible=True,
+                           show_points=False)
+        bar = scale_bar_mm(extent)
+        x0, y0 = pts[:, 0].min(), pts[:, 1].min() - 0.06 * extent
+        p.add_ruler([x0, y0, 0.0], [x0 + bar, y0, 0.0], title=f"{bar:g} mm", number_labels=2,
+                    show_labels=False, font_size_factor=0.8, label_size_factor=0.8)
         shape = f", deformed shape x{exaggeration:g}" if name == "displacement_um" else ""
         p.add_text(f"{title}: {label}{shape}", font_size=10)
         p.view_xy()

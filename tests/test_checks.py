@@ -132,3 +132,57 @@ def test_an_oil_bath_f0_on_a_lightly_lubricated_pair_is_questioned(tmp_path, cap
     cond.write_text("T_ambient_C\n-20\n20\n")
     assert main(["simulate", str(CFG001), str(cond), "-o", str(tmp_path / "o.csv")]) == 0
     assert "is an oil-bath value" in capsys.readouterr().err
+
+
+def test_land_angle_agrees_with_the_ball_geometry():
+    # independent statement: unloaded at the free contact angle, the ball (radius Dw/2 about the
+    # pitch circle) touches each groove at r = dm/2 -+ (Dw/2) cos(alpha0); a land placed at that
+    # diameter ends the groove exactly at alpha0, and a land at the groove bottom at 0 deg
+    from analytic.bearing.geometry import BearingGeometry
+    from analytic.bearing.land import groove_bottom_diameter_mm, land_angle_deg
+    from analytic.catalogue import get_entry
+
+    for name in ("NSK 71807C", "NSK 25TAC62B"):
+        g = BearingGeometry.from_spec(get_entry(name).spec)
+        c = np.cos(np.radians(g.alpha0_deg))
+        for side, sign in (("inner", -1.0), ("outer", 1.0)):
+            d_contact = g.dm_mm + sign * g.Dw_mm * c
+            assert land_angle_deg(g, side, d_contact) == pytest.approx(g.alpha0_deg, abs=1e-9)
+            # arccos(1 - e) = sqrt(2 e): a few ulp of round-off in the cosine (e <= 8 eps) show
+            # as sqrt(16 eps) rad
+            assert land_angle_deg(g, side, groove_bottom_diameter_mm(g, side)) == \
+                pytest.approx(0.0, abs=np.degrees(np.sqrt(16 * np.finfo(float).eps)))
+
+
+def _with_land(tmp_path, d_inner):
+    text = CFG000.read_text().replace("[bearing]\n", f"[bearing]\ninner_land_diameter_mm = {d_inner}\n"
+                                      "outer_land_diameter_mm = 43.4\n", 1)
+    path = tmp_path / "asm.toml"
+    path.write_text(text)
+    return path
+
+
+def test_a_low_land_truncates_the_contact_ellipse_and_says_so(tmp_path, capsys):
+    cond = tmp_path / "c.csv"
+    cond.write_text("T_ambient_C\n20\n60\n")
+    # seed 000 (71807C, dm 41, Dw 3.969, f_i 0.52): inner groove bottom 37.03 mm; a land at
+    # 37.2 mm ends the groove about 17 deg from the bottom, inside a 15 deg contact's ellipse
+    out = tmp_path / "o.csv"
+    assert main(["simulate", str(_with_land(tmp_path, 37.2)), str(cond), "-o", str(out)]) == 0
+    err = [l for l in capsys.readouterr().err.splitlines() if "truncated by the land" in l]
+    assert len(err) == 1 and err[0].startswith("bearingfem simulate: warning: inner"), err
+    assert np.all(read(out)["land_margin_inner_deg"] < 0)
+    # the shipped land (inferred, about 51 deg) leaves a wide margin and no warning
+    assert main(["simulate", str(CFG000), str(cond), "-o", str(out)]) == 0
+    assert "truncated" not in capsys.readouterr().err
+    assert np.all(read(out)["land_margin_inner_deg"] > 20)
+
+
+def test_a_land_outside_the_groove_is_refused(tmp_path, capsys):
+    cond = tmp_path / "c.csv"
+    cond.write_text("T_ambient_C\n20\n")
+    out = tmp_path / "o.csv"
+    assert main(["simulate", str(_with_land(tmp_path, 42.0)), str(cond), "-o", str(out)]) == 2
+    assert not out.exists()
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "bearing.inner_land_diameter_mm" in err[0] and "pitch" in err[0]

@@ -46,7 +46,7 @@ def test_verify_command_contract_and_tolerance(tmp_path):
 
 @pytest.mark.slow          # the coarse-mesh runs in test_studies_equal_simulate.py cover the default suite
 @pytest.mark.parametrize("name,expect", [
-    ("seed000", ["fits_vs_temperature.png", "preload_vs_temperature.png", "torque_vs_preload.png",
+    ("seed000", ["fits.png", "preload_vs_temperature.png", "torque_vs_preload.png",
                  "cycles.png", "field_-60C_von_mises_MPa.png", "field_+80C_displacement_um.png",
                  "field_+20C.vtu", "temperature_sweep.csv"]),
     ("seed001", ["torque_vs_temperature.png", "ratio_map.png", "film_parameter.png"]),
@@ -56,7 +56,9 @@ def test_study_writes_report_plots_and_images(tmp_path, name, expect):
     out = tmp_path / name
     assert main(["study", name, "--out", str(out)]) == 0
     report = (out / "report.md").read_text()
-    assert "seed" in report.lower() and "| quantity |" in report
+    assert "published measurement" in report and "| quantity |" in report
+    assert "seed" not in report.lower().replace("seed00", "")   # "this rig", not "the seed"
+    assert "## Discretisation error of this mesh" in report and (out / "report.html").exists()
     for f in expect:
         assert (out / f).stat().st_size > 1000, f
     assert not list(tmp_path.glob(f".{name}.*"))      # no temporary folder left behind

@@ -31,7 +31,8 @@ class BearingSpec:
     outer_ring_inner_diameter_mm: float   # effective FE section of the outer ring
     ring_material: str
     ball_material: str
-
+    inner_land_diameter_mm: float = 0.0   # shoulder on the loaded side; 0: inferred (bearing/land.py)
+    outer_land_diameter_mm: float = 0.0
 
 
 @dataclass(frozen=True)

@@ -1,7 +1,6 @@
 """Implementations of `bearingfem simulate`, `study` and `diagnose` (argument parsing: cli.py)."""
 from __future__ import annotations
 
-import hashlib
 import os
 import stat
 import sys
@@ -9,6 +8,7 @@ from pathlib import Path
 
 
 from studies.app.output import UserError, atomic_dir, progress
+from studies.model.provenance import provenance
 from studies.runs import STUDIES, study_module
 
 
@@ -66,16 +66,6 @@ def _check_one_output(path: Path, inputs: tuple[Path, ...]) -> None:
         probe = probe.parent
     if not probe.is_dir() or not os.access(probe, os.W_OK):
         raise UserError(f"{path}: cannot write there ({probe} is not a writable folder)")
-
-
-def provenance(command: str, inputs: dict[str, Path], effects: dict | None = None) -> dict:
-    """What made an output: the command, each input with its SHA-256, effects, tool version."""
-    from bearingfem import __version__
-
-    return {"command": f"bearingfem {command}", "version": __version__,
-            "inputs": {k: {"path": str(p), "sha256": hashlib.sha256(Path(p).read_bytes()).hexdigest()}
-                       for k, p in inputs.items()},
-            "effects": {k: dict(v) for k, v in (effects or {}).items()}}
 
 
 def cmd_simulate(args) -> None:

@@ -38,7 +38,8 @@ OUTPUT_NAMES = {
     "raceway_u_r_inner_A_um", "raceway_u_r_inner_A_lame_um", "groove_shift_dr_A_um",
     "groove_shift_dz_A_um", "groove_shift_dr_B_um", "groove_shift_dz_B_um", "axial_force_A_N",
     "axial_force_B_N", "contact_angle_A_deg", "contact_angle_B_deg", "ball_load_A_N",
-    "ball_load_B_N", "preload_lost", "friction_coefficient", "static_safety"} | CHECK_COLUMNS
+    "ball_load_B_N", "preload_lost", "friction_coefficient", "static_safety",
+    "land_margin_inner_deg", "land_margin_outer_deg"} | CHECK_COLUMNS
 
 
 class ModelPredictor:

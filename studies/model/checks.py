@@ -108,8 +108,9 @@ VISCOUS_TO_LOAD_WARN = 50.0
 
 def plausibility_warnings(asm, conditions: dict | None = None, out: dict | None = None) -> list[str]:
     """Legal but implausible inputs and results, one line each (the run goes on):
-    units typed wrong (kelvin for Celsius, radians for degrees, mm for um) and a viscous torque
-    that dwarfs the load torque (an oil-bath Palmgren f0 on a lightly lubricated bearing)."""
+    units typed wrong (kelvin for Celsius, radians for degrees, mm for um), a viscous torque
+    that dwarfs the load torque (an oil-bath Palmgren f0 on a lightly lubricated bearing) and a
+    contact ellipse truncated by the land (`analytic/bearing/land.py`)."""
     msgs = []
     b, f = asm.bearing, asm.fits
     if b.contact_angle_free_deg < np.pi / 2:             # 1.57: a right angle in radians
@@ -135,4 +136,12 @@ def plausibility_warnings(asm, conditions: dict | None = None, out: dict | None 
             msgs.append(f"viscous torque up to {ratio:.0f}x the load torque: Palmgren f0 = "
                         f"{asm.lubrication.viscous_factor_f0:g} is an oil-bath value; a bearing with "
                         "a few milligrams of oil runs far below it")
+    for side in ("inner", "outer"):
+        m = None if out is None else out.get(f"land_margin_{side}_deg")
+        if m is not None and np.any(np.asarray(m) < 0):
+            m = np.asarray(m, float)
+            i = int(np.argmin(m))
+            msgs.append(f"{side} contact ellipse truncated by the land in {int((m < 0).sum())} of "
+                        f"{m.size} rows (up to {-m[i]:.3g} deg beyond the groove edge at row "
+                        f"{i + 1}): the edge carries load the Hertz pressure does not describe")
     return msgs

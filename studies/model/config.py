@@ -14,7 +14,8 @@ import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from analytic.bearing.geometry import BearingSpec
+from analytic.bearing.geometry import BearingGeometry, BearingSpec
+from analytic.bearing.land import groove_bottom_diameter_mm
 from analytic.materials import Material, get_material
 from analytic.safety import static_load_rating_C0_N
 
@@ -145,7 +146,7 @@ SECTIONS = {
     "cover": (Clamp, {"clamp": "rigid"}),
     "inner_spacer": (Spacer, {}),
     "outer_spacer": (Spacer, {}),
-    "bearing": (BearingSpec, {}),
+    "bearing": (BearingSpec, {"inner_land_diameter_mm": 0.0, "outer_land_diameter_mm": 0.0}),
     "fits": (Fits, {"contact": "frictionless"}),
     "preload": (Preload, {"path_compliance": "fe"}),
     "lubrication": (Lubrication, {"lubricant": "", "friction_coefficient": 0.0,
@@ -170,7 +171,8 @@ ZERO_OK = {("shaft", "bore_diameter_mm"), ("shaft", "extension_mm"),
            ("preload", "assembled_N"), ("lubrication", "friction_coefficient"),
            ("lubrication", "viscous_factor_f0"), ("lubrication", "speed_rpm"),
            ("lubrication", "hysteresis_loss_factor"),
-           ("limits", "min_static_safety")}
+           ("limits", "min_static_safety"), ("bearing", "inner_land_diameter_mm"),
+           ("bearing", "outer_land_diameter_mm")}
 SIGNED = {("fits", "inner_interference_um"), ("fits", "outer_interference_um"),
           ("operating", "T_min_C"), ("operating", "T_max_C")}
 
@@ -331,6 +333,14 @@ def _check_geometry(a: Assembly, path: str) -> None:
         # Harris & Kotzalas Vol. 1 ch. 2: 0.515..0.54 in ball bearings; 0.5 is a ball in a
         # conforming groove (no contact ellipse), above 0.6 not a raceway groove
         need(0.5 < f <= 0.6, key, f"{f:g} is outside 0.5..0.6 (groove radius / ball diameter)")
+    g = BearingGeometry.from_spec(b)
+    for side, d in (("inner", b.inner_land_diameter_mm), ("outer", b.outer_land_diameter_mm)):
+        if d > 0:        # given: the groove edge lies between the groove bottom and the pitch circle
+            bottom = groove_bottom_diameter_mm(g, side)
+            lo, hi = sorted((bottom, b.pitch_diameter_mm))
+            need(lo < d < hi, f"bearing.{side}_land_diameter_mm",
+                 f"{d:g} mm must lie between the groove bottom ({bottom:.3f} mm) and the pitch "
+                 f"diameter ({b.pitch_diameter_mm:g} mm)")
     need(b.width_mm >= b.ball_diameter_mm, "bearing.width_mm",
          f"ring width {b.width_mm:g} mm is narrower than its ball ({b.ball_diameter_mm:g} mm)")
     # a typo in one dimension (a housing 1e9 mm wide) would mesh until memory runs out: every

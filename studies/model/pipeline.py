@@ -21,6 +21,7 @@ import numpy as np
 
 from analytic import lame
 from analytic.bearing import SIGNS, BearingGeometry, PairState, solve_pair
+from analytic.bearing.land import groove_centre_radius_mm, land_diameters_mm, land_margin_deg
 from analytic.lubrication import get_lubricant
 from analytic.safety import static_load_rating_C0_N, static_safety_from_contact_pressure
 from analytic.torque import palmgren_f1_angular_contact, pair_torque
@@ -134,6 +135,7 @@ class Pipeline:
             say(f"unit solutions ({self.model.ndofs} DOF) ...")
             self.sup = Superposition(self.solver, self.probe)
         self.geom = BearingGeometry.from_spec(asm.bearing)
+        self.land_diameters_mm = land_diameters_mm(asm.bearing)[:2]
         self._centre_offsets(pts)
         self._fe_cache: dict[bytes, FEState] = {}
         self.lubricant = get_lubricant(asm.lubrication.lubricant) if asm.lubrication.kind == "oil" else None
@@ -156,7 +158,7 @@ class Pipeline:
             inner = ring.startswith("inner")
             f = g.f_i if inner else g.f_o
             sgn = 1.0 if inner else -1.0
-            rc = g.dm_mm / 2 + sgn * (f - 0.5) * g.Dw_mm * np.cos(a0)
+            rc = groove_centre_radius_mm(g, "inner" if inner else "outer")
             zc = pts[1, k] + sgn * s[j] * (f - 0.5) * g.Dw_mm * np.sin(a0)
             off[k] = (rc - pts[0, k], zc - pts[1, k])
         self.centre_offset_mm = off
@@ -358,6 +360,10 @@ class Pipeline:
         for j, J in enumerate("AB"):
             out[f"ball_load_{J}_N"] = pair.ball_load_N[j]
         out["axial_stiffness_N_per_um"] = pair.pair_axial_stiffness_N_per_um
+        for side, d_land, ell in (("inner", self.land_diameters_mm[0], pair.inner),
+                                  ("outer", self.land_diameters_mm[1], pair.outer)):
+            out[f"land_margin_{side}_deg"] = land_margin_deg(
+                self.geom, side, d_land, pair.contact_angle_deg, ell.a_mm).min(axis=0)
         out["preload_lost"] = pair.preload_lost.astype(float)
         with np.errstate(divide="ignore"):      # an unloaded pair has infinite static safety
             out["static_safety"] = static_safety_from_contact_pressure(pair.max_contact_pressure_MPa)

@@ -21,23 +21,38 @@ import numpy as np
 from studies.model.checks import apply_checks, assembly_checks, plausibility_warnings
 from studies.model.pipeline import Pipeline, simulate_table
 from studies.model.table import write_table
-from studies.runs.report_tools import field_images, line_plot, md_table, safety_section
+from analytic.bearing.land import land_diameters_mm
+from studies.runs.report_tools import field_images, line_plot, md_table, safety_section, significant
 
-N_SWEEP = 29            # points of the default temperature sweep
+N_SWEEP = 25            # about this many points in the default temperature sweep
 RESULT_ROWS = 12        # rows of the result table in the text (the CSV has them all)
 
 
 def default_conditions(asm) -> dict[str, np.ndarray]:
     """A temperature sweep over the operating range at the assembly's speed and preload."""
     op = asm.operating
-    T = np.unique(np.concatenate([np.linspace(op.T_min_C, op.T_max_C, N_SWEEP), [asm.T_ref_C]]))
+    step = nice_step(op.T_max_C - op.T_min_C, N_SWEEP)
+    grid = step * np.arange(np.ceil(op.T_min_C / step), np.floor(op.T_max_C / step) + 1)
+    T = np.unique(np.concatenate([[op.T_min_C, op.T_max_C, asm.T_ref_C], grid]))
     T = T[(T >= op.T_min_C) & (T <= op.T_max_C)]
     return {"T_ambient_C": T}
 
 
+def nice_step(span: float, n: int) -> float:
+    """The smallest 1, 2 or 5 x 10^k step that divides `span` into at most n - 1 intervals."""
+    raw = span / max(n - 1, 1)
+    k = 10.0 ** np.floor(np.log10(raw)) if raw > 0 else 1.0
+    return float(next(m * k for m in (1, 2, 5, 10) if m * k >= raw * (1 - 1e-12)))
+
+
 def run(asm, conditions: dict | None, out: Path, provenance: dict, progress=print,
-        mesh_factor: float = 1.0) -> list[str]:
-    """Write the report into `out`; returns the warning lines (also in the report)."""
+        mesh_factor: float = 1.0, rig_sections: list[str] | None = None,
+        field_temperatures_C: tuple[float, ...] | None = None) -> list[str]:
+    """Write the report into `out`; returns the warning lines (also in the report).
+
+    rig_sections: markdown lines a study of a particular rig adds (its own questions, the
+    published measurement beside the model), placed after the safety table.
+    field_temperatures_C: where to draw field images (default: coldest, reference, hottest)."""
     from studies.runs.verify import mesh_convergence_case
 
     cond = dict(conditions) if conditions is not None else default_conditions(asm)
@@ -52,14 +67,14 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, progress=prin
     x, xlabel = _x_axis(cond, n)
     plots = _plots(out, asm, x, xlabel, res)
     progress("report: field images ...")
-    temps = sorted({asm.operating.T_min_C, asm.T_ref_C, asm.operating.T_max_C})
+    temps = field_temperatures_C or sorted({asm.operating.T_min_C, asm.T_ref_C, asm.operating.T_max_C})
     images = {T: field_images(out, pl, T, f"field_{T:+.0f}C", f"{asm.name} at {T:g} C")
               for T in temps}
     progress("report: discretisation error of this mesh (three levels) ...")
     conv = mesh_convergence_case(asm, T_C=asm.operating.T_min_C,
                                  factors=tuple(mesh_factor * f for f in (2.0, 1.0, 0.5)))
     lines = _text(asm, provenance, cond, res, flags, violations, warnings, plots, images, conv, pl, x,
-                  xlabel)
+                  xlabel, rig_sections or [])
     md = "\n".join(lines) + "\n"
     (out / "report.md").write_text(md)
     (out / "report.html").write_text(_html(md, out, asm.name))
@@ -136,7 +151,8 @@ def _echo(asm) -> list[str]:
     return out
 
 
-def _text(asm, prov, cond, r, flags, violations, warnings, plots, images, conv, pl, x, xlabel):
+def _text(asm, prov, cond, r, flags, violations, warnings, plots, images, conv, pl, x, xlabel,
+          rig_sections):
     n = len(r["preload_N"])
     idx = np.unique(np.linspace(0, n - 1, min(n, RESULT_ROWS)).round().astype(int))
     inputs = ", ".join(f"{k} `{v['path']}` (sha256 {v['sha256'][:12]}...)"
@@ -161,20 +177,26 @@ def _text(asm, prov, cond, r, flags, violations, warnings, plots, images, conv, 
               "margin column; `results.csv.json` says what made it). FE fit pressures with the "
               "two-cylinder Lamé value beside them (plane stress; a short ring tied to its "
               "neighbours need not equal it).", "",
-              md_table([xlabel] + cols, [[float(x[i])] + [float(r[c][i]) for c in cols] for i in idx]),
+              md_table([xlabel] + cols, [[float(x[i])] + [significant(r[c], i) for c in cols]
+                                         for i in idx]),
               ""]
     for key in ("fits", "fit_pressure", "groove_shifts", "preload", "contact_angle",
                 "contact_pressure", "stiffness", "torque"):
         lines += [f"![{key}]({plots[key].name})", ""]
     lines += [safety_section(asm, r, title="all operating points")]
+    d_land = land_diameters_mm(asm.bearing)
+    lines += [f"Contact ellipse and groove edge: land diameters {d_land[0]:.3f} / {d_land[1]:.3f} mm "
+              f"(inner / outer; {d_land[2]}); smallest angle between the ellipse's edge and the "
+              f"land {np.min(r['land_margin_inner_deg']):.1f} deg (inner), "
+              f"{np.min(r['land_margin_outer_deg']):.1f} deg (outer); negative would mean the "
+              "ellipse is truncated (analytic/bearing/land.py).", ""]
+    lines += rig_sections
     lines += ["## Field images", "",
               "Displacement (deformed shape, exaggeration in the title), hoop and von Mises stress "
               "at the coldest, reference and hottest temperature, nominal fits; the VTU files open "
               "in ParaView.", ""]
     for T, paths in images.items():
-        lines += [f"**{T:g} C**: " + " ".join(f"![{p.stem}]({p.name})" for p in paths
-                                              if any(k in p.name for k in
-                                                     ("displacement", "hoop", "von_mises"))), ""]
+        lines += [f"### {T:g} C", "", " ".join(f"![{p.stem}]({p.name})" for p in paths), ""]
     lines += ["## Discretisation error of this mesh", "",
               f"The same FE at {asm.operating.T_min_C:g} C on three meshes (element sizes x2, x1, "
               "x0.5 of this one); observed order and grid convergence index of the finest level "
@@ -202,6 +224,7 @@ def _html(md: str, out: Path, title: str) -> str:
     body = re.sub(r'src="([^"]+\.png)"', embed, body)
     style = ("body{font-family:sans-serif;max-width:1100px;margin:2em auto;line-height:1.4}"
              "table{border-collapse:collapse;font-size:0.85em}td,th{border:1px solid #bbb;"
-             "padding:2px 6px}img{max-width:48%;margin:2px}")
+             "padding:2px 6px}table{display:block;overflow-x:auto;max-width:100%}"
+             "img{max-width:48%;margin:2px;vertical-align:top}")
     return (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>{title}</title>"
             f"<style>{style}</style></head><body>{body}</body></html>\n")

@@ -43,8 +43,28 @@ def md_table(header: list[str], rows: list[list], digits: int = 4) -> str:
     return "\n".join(out)
 
 
+#: relative size below which a printed value is round-off of its column (the FE and the
+#: bearing solve carry ~1e-12 of the largest term; a table prints 4 digits)
+ROUND_OFF = 1e-9
+
+
+def significant(column, i: int) -> float:
+    """Value i of a result column for printing: 0 where it is round-off of the column's scale
+    (e.g. a fit pressure of 4e-10 MPa in a column that reaches 10 MPa)."""
+    col = np.asarray(column, float)
+    v = float(col[i])
+    scale = float(np.max(np.abs(col[np.isfinite(col)]), initial=0.0))
+    return 0.0 if abs(v) <= ROUND_OFF * scale else v
+
+
+#: the stresses drawn as images (the VTU carries every component)
+IMAGE_STRESSES = ("sigma_hoop_MPa", "von_mises_MPa")
+
+
 def field_images(out_dir: Path, pipeline, T_C: float, stem: str, title: str) -> list[Path]:
-    """VTU + PNG field images of the stack at a uniform temperature (nominal fits)."""
+    """VTU (displacement, temperature, every stress component) and PNG images (displacement on
+    the deformed shape, hoop and von Mises stress) of the stack at a uniform temperature with the
+    nominal fits."""
     from fem.fields import render_fields, write_vtu
     from fem.post import element_stresses, theta_per_element
     from studies.model.inputs import baseline_inputs
@@ -57,7 +77,7 @@ def field_images(out_dir: Path, pipeline, T_C: float, stem: str, title: str) -> 
     stresses = element_stresses(model, u, theta_per_element(model, f.theta))
     T_vertex = np.full(model.mesh.p.shape[1], T_C)
     write_vtu(out_dir / f"{stem}.vtu", model, u, stresses, T_vertex)
-    return render_fields(out_dir, stem, model, u, stresses, title, T_vertex_C=T_vertex)
+    return render_fields(out_dir, stem, model, u, {k: stresses[k] for k in IMAGE_STRESSES}, title)
 
 
 def safety_section(asm, out: dict, film_parameter=None, title: str = "over the study's operating points") -> str:
@@ -76,7 +96,7 @@ def safety_section(asm, out: dict, film_parameter=None, title: str = "over the s
         bad = int(cols[f"flag_{c.name}"].sum())
         margin = cols.get(f"margin_{c.name}")
         rel = "<=" if c.upper else (">" if c.strict else ">=")
-        rows.append([c.name, f"{v[i]:.4g} {c.unit}".strip(), f"{rel} {c.allowable:g}",
+        rows.append([c.name, f"{significant(v, i):.4g} {c.unit}".strip(), f"{rel} {c.allowable:g}",
                      "ok" if bad == 0 else f"NO ({bad} of {n})",
                      "" if margin is None else f"{margin[i]:+.3f}", f"row {i + 1}", c.source])
     if film_parameter is not None and asm.lubrication.kind == "oil":

@@ -7,7 +7,10 @@ temperatures, stepped in time (backward Euler for the network, the heat taken at
 each step). The network's steady temperatures (a radial gradient: inner parts warmer) are fed back
 through the FE, and the change of contact angle and preload they cause is reported.
 
-Network data are assumptions (seed 003's housing drawing and resistances are not available to us):
+The report is the assembly report of this rig (`bearingfem report`) plus these sections, beside
+the published measurement (the paper named in the configuration's `source`).
+
+Network data are assumptions (the paper's housing drawing and resistances are not available to us):
 conduction through each ring half-section, fit contact conductance, Holm constriction at the
 ball contacts, natural convection on the housing and forced convection on the shaft; each value is
 printed in the report.
@@ -23,8 +26,11 @@ from analytic.heat import pair_heat_W
 from studies.model.config import load_shipped
 from studies.model.inputs import baseline_inputs
 from studies.model.pipeline import Pipeline
-from studies.runs.report_tools import line_plot, md_table, safety_section
+from studies.model.config import CONFIG_DIR, SHIPPED
+from studies.model.provenance import provenance
 from studies.model.table import write_table
+from studies.runs import assembly_report
+from studies.runs.report_tools import line_plot, md_table, safety_section
 
 SPEEDS_RPM = (1000.0, 1500.0)
 H_HOUSING_W_M2K = 15.0       # assumption: natural convection + radiation on the housing
@@ -122,10 +128,10 @@ def heat_up(pl, speed, progress) -> dict:
 
 
 def run(out: Path, progress=print, mesh_factor: float = 1.0) -> None:
-    """Write the study's tables, plots, field images and report.md into `out`; mesh_factor > 1
+    """Write the study's tables, plots, field images and report into `out`; mesh_factor > 1
     coarsens the FE mesh (smoke tests)."""
     asm = load_shipped("seed003")
-    pl = Pipeline(asm, mesh_factor=mesh_factor, progress=progress)
+    pl = Pipeline.shared(asm, mesh_factor=mesh_factor, progress=progress)
     results = {}
     for n in SPEEDS_RPM:
         progress(f"seed003: heat-up at {n:.0f} rpm ...")
@@ -142,7 +148,7 @@ def run(out: Path, progress=print, mesh_factor: float = 1.0) -> None:
                   "heat (W)", f"Heat generation split, {n:.0f} rpm")
     line_plot(out / "housing_temperature.png", th[SPEEDS_RPM[0]],
               {f"{n:.0f} rpm": (th[n], results[n]["hist"]["T_housing_C"]) for n in SPEEDS_RPM},
-              "time (min)", "housing temperature (C)", "Housing (validated quantity in seed 003)")
+              "time (min)", "housing temperature (C)", "Housing (the quantity the paper validated)")
     # steady radial gradient fed back through the FE
     a = asm
     rows, fb = [], []
@@ -169,14 +175,13 @@ def run(out: Path, progress=print, mesh_factor: float = 1.0) -> None:
     progress("seed003: FE conduction field at the 1500 rpm steady state ...")
     cond_rows, cond_imgs = conduction_check(pl, results[SPEEDS_RPM[-1]], SPEEDS_RPM[-1], out)
     lines = [
-        f"# Study seed003: {a.name}", "",
-        f"NSK 25TAC62B pair, {a.arrangement}, {a.preload.kind} preload {a.preload.assembled_N:g} N, "
+        "## This rig against the published measurement", "",
+        f"Published: {a.source}. NSK 25TAC62B pair, {a.arrangement}, {a.preload.kind} preload {a.preload.assembled_N:g} N, "
         f"{a.T_ref_C:g} C ambient. Heat from the pair model at the current part temperatures: "
         f"sliding (differential slip) and spin with a traction coefficient {MU_TRACTION:g}, viscous "
         f"(Palmgren, f0 = {a.lubrication.viscous_factor_f0:g}, {a.lubrication.lubricant}); 5-node network "
         "stepped with backward Euler. Network data are assumptions (listed below).", "",
-        "## Headline: seed vs ours", "",
-        md_table(["quantity", "seed 003", "ours"],
+        md_table(["quantity", "published measurement", "this model"],
                  [["housing temperature", "rises quickly, then levels off",
                    "rises and levels off; 63 % of the rise at " + ", ".join(t63)],
                   ["hottest node", "balls", tn.NODES[int(np.argmax(results[SPEEDS_RPM[0]]["steady"]))]],
@@ -186,16 +191,17 @@ def run(out: Path, progress=print, mesh_factor: float = 1.0) -> None:
                   ["heat split", "sliding, viscous, spin", ", ".join(
                       f"{k} {100 * float(getattr(results[SPEEDS_RPM[0]]['steady_heat'], k + '_W')[0]) / rows[0][-1]:.0f} %"
                       for k in ("sliding", "viscous", "spin")) + f" at {SPEEDS_RPM[0]:.0f} rpm"]]), "",
-        "## Steady state", "",
+        "### Steady state of the heat-up", "",
         md_table(["speed (rpm)", "housing (C)", "outer ring", "balls", "inner ring", "shaft",
                   "sliding (W)", "spin (W)", "viscous (W)", "total (W)"], rows), "",
-        "## Radial gradient fed back through the FE", "",
+        "### Radial gradient fed back through the FE", "",
         md_table(["speed (rpm)", "preload at 25 C (N)", "uniform at housing T (N)",
                   "with the network's gradient (N)", "contact angle 25 C (deg)",
                   "contact angle steady (deg)", "inner fit (MPa)", "outer fit (MPa)"], fb), "",
         gradient_text(results, fb), "",
-        safety_section(a, results[SPEEDS_RPM[-1]]["steady_out"], title=f"steady state at {SPEEDS_RPM[-1]:.0f} rpm"),
-        "## Non-uniform temperature field (FE conduction) vs uniform per part", "",
+        safety_section(a, results[SPEEDS_RPM[-1]]["steady_out"],
+                       title=f"the heat-up's steady state at {SPEEDS_RPM[-1]:.0f} rpm").replace("## ", "### ", 1),
+        "### Non-uniform temperature field (FE conduction) vs uniform per part", "",
         "The steady contact heat of the network is put on the raceway lines of the FE section, "
         "the balls are a lumped conductance between each bearing's inner and outer raceway "
         "(the network's two ball resistances in series), the housing and the shaft end convect to "
@@ -205,7 +211,7 @@ def run(out: Path, progress=print, mesh_factor: float = 1.0) -> None:
         md_table(["model", "inner raceway (C)", "outer raceway (C)", "housing outer (C)",
                   "groove shift dr A (um)", "preload (N)"], cond_rows), "",
         f"In the FE field the inner raceway is {cond_rows[1][1] - cond_rows[1][2]:+.1f} K warmer than the outer "
-        "one, as seed 003 measured, while the lumped network with our assumed resistances had the "
+        "one, as the paper measured, while the lumped network with our assumed resistances had the "
         f"outer ring {cond_rows[0][2] - cond_rows[0][1]:+.2f} K warmer: the ring order depends on how the heat "
         "leaves the shaft, which the FE resolves (conduction along the journal to the convecting end) "
         "and the 5-node network lumps into one assumed resistance. The FE field moves the inner "
@@ -215,14 +221,16 @@ def run(out: Path, progress=print, mesh_factor: float = 1.0) -> None:
         "![housing](housing_temperature.png)", ""]
     for n in SPEEDS_RPM:
         lines += [f"![temperatures {n:.0f}](temperatures_{n:.0f}rpm.png) ![heat {n:.0f}](heat_split_{n:.0f}rpm.png)", ""]
-    lines += ["## Network data (assumptions)", "",
+    lines += ["### Network data (assumptions)", "",
               md_table(["capacity", "J/K"], [[k, float(v)] for k, v in cap.items()]), "",
               md_table(["resistance", "K/W"], [[k, float(v)] for k, v in R.items()]), "",
               f"Convection: housing h = {H_HOUSING_W_M2K:g} W/m2K, shaft h = {H_SHAFT_W_M2K:g} W/m2K; "
-              f"fit contact conductance {H_FIT_W_M2K:g} W/m2K. Seed 003 validated its network on the "
+              f"fit contact conductance {H_FIT_W_M2K:g} W/m2K. The paper validated its network on the "
               "housing surface temperature; its resistances are not in the text we have, so ours are "
-              "order-of-magnitude values and the absolute temperatures carry that uncertainty."]
-    (out / "report.md").write_text("\n".join(lines) + "\n")
+              "order-of-magnitude values and the absolute temperatures carry that uncertainty.", ""]
+    assembly_report.run(asm, None, out, provenance("study seed003",
+                                                    {"assembly": CONFIG_DIR / SHIPPED["seed003"]}),
+                        progress=progress, mesh_factor=mesh_factor, rig_sections=lines)
 
 
 def gradient_text(results, fb) -> str:
@@ -234,11 +242,11 @@ def gradient_text(results, fb) -> str:
             f"{Ts[2] - Ts[3]:.1f} K above the inner ring; the {hot} is the warmer ring by "
             f"{abs(Ts[3] - Ts[1]):.2f} K. The balls' own growth takes up the internal clearance, so "
             f"the preload rises from {fb[0][1]:.0f} N to {fb[0][3]:.0f} N, whereas a uniform rise to "
-            f"the housing temperature changes it only to {fb[0][2]:.0f} N (all-steel stack). Seed 003 "
+            f"the housing temperature changes it only to {fb[0][2]:.0f} N (all-steel stack). The paper "
             "found the inner ring warmer than the outer one; in our network the shaft's convection "
             f"(h = {H_SHAFT_W_M2K:g} W/m2K on an assumed 200 mm of journal) cools the inner ring, and "
-            "the equal split of each contact's heat between ball and ring is the seed's assumption "
-            "too: with the seed's (unavailable) resistances the ring order may differ. The ring "
+            "the equal split of each contact's heat between ball and ring is the paper's assumption "
+            "too: with the paper's (unavailable) resistances the ring order may differ. The ring "
             "order is a property of the assumed network data, the ball-hottest result is not.")
 
 
@@ -284,5 +292,5 @@ def conduction_check(pl, res, speed, out: Path):
     Tv = cm.vertex_temperatures(T)
     write_vtu(out / f"conduction_{speed:.0f}rpm.vtu", pl.model, u, st, Tv)
     imgs = render_fields(out, f"conduction_{speed:.0f}rpm", pl.model, u,
-                         {"von_mises_MPa": st["von_mises_MPa"]}, f"seed003 {speed:.0f} rpm steady", T_vertex_C=Tv)
+                         {"von_mises_MPa": st["von_mises_MPa"]}, f"{a.name} {speed:.0f} rpm steady", T_vertex_C=Tv)
     return rows, imgs

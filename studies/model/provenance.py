@@ -1,0 +1,16 @@
+"""What made an output: the command, each input file with its SHA-256, the effects switched on,
+and the tool version (written beside every output table as `OUT.csv.json` and into reports)."""
+from __future__ import annotations
+
+import hashlib
+from pathlib import Path
+
+
+def provenance(command: str, inputs: dict[str, Path], effects: dict | None = None) -> dict:
+    """{"command", "version", "inputs": {name: {"path", "sha256"}}, "effects"}."""
+    from bearingfem import __version__
+
+    return {"command": f"bearingfem {command}", "version": __version__,
+            "inputs": {k: {"path": str(p), "sha256": hashlib.sha256(Path(p).read_bytes()).hexdigest()}
+                       for k, p in inputs.items()},
+            "effects": {k: dict(v) for k, v in (effects or {}).items()}}
