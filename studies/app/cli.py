@@ -67,6 +67,14 @@ def build_parser() -> argparse.ArgumentParser:
                    help="conditions table (default: the assembly's operating temperature range)")
     r.add_argument("--out", type=Path, required=True)
 
+    t = sub.add_parser("tolerance", help="worst case and Monte Carlo of the fit tolerances")
+    t.add_argument("assembly", type=Path)
+    t.add_argument("conditions", type=Path, nargs="?", default=None,
+                   help="conditions table (default: the assembly's operating temperature range)")
+    t.add_argument("--samples", type=int, default=2000, help="Monte Carlo samples (default 2000)")
+    t.add_argument("--seed", type=int, default=1, help="random seed (default 1)")
+    t.add_argument("--out", type=Path, required=True)
+
     st = sub.add_parser("study", help=f"run a named study ({', '.join(STUDIES)})")
     st.add_argument("name")
     st.add_argument("--out", type=Path, required=True)
@@ -78,6 +86,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 #: the one dispatch table: subcommand -> implementation (studies/app/commands.py)
 COMMANDS = {"simulate": commands.cmd_simulate, "report": commands.cmd_report,
+            "tolerance": commands.cmd_tolerance,
             "diagnose": commands.cmd_diagnose,
             "verify": commands.cmd_verify, "study": commands.cmd_study, "bench": commands.cmd_bench}
 

@@ -27,9 +27,10 @@ def _user_errors():
     from studies.model.effects import EffectError
     from studies.model.pipeline import ModelError
     from studies.model.table import TableError
+    from studies.runs.tolerance_report import ToleranceError
 
     return (ConfigError, TableError, EffectError, MeshError, SolveError, ModelError,
-            DiagnosisError, ModelFailure)
+            DiagnosisError, ModelFailure, ToleranceError)
 
 
 def check_output_file(path: Path, inputs: tuple[Path, ...] = ()) -> None:
@@ -124,6 +125,28 @@ def cmd_report(args) -> None:
     for line in notes:
         print(f"bearingfem report: warning: {line}", file=sys.stderr)
     print(f"report: {args.out}/report.md and report.html")
+
+
+def cmd_tolerance(args) -> None:
+    from studies.model.table import read_conditions
+    from studies.runs import tolerance_report
+
+    if args.samples < 2:
+        raise UserError(f"--samples {args.samples}: need at least 2")
+    try:
+        asm = _load(args.assembly)
+        cond = read_conditions(args.conditions) if args.conditions is not None else None
+        inputs = {"assembly": args.assembly}
+        if args.conditions is not None:
+            inputs["conditions"] = args.conditions
+        with atomic_dir(args.out) as tmp:
+            res = tolerance_report.run(asm, cond, tmp, provenance("tolerance", inputs),
+                                       samples=args.samples, seed=args.seed, progress=progress)
+    except _user_errors() as exc:
+        raise UserError(str(exc)) from None
+    p = res["probabilities"]
+    print(f"tolerance: {res['samples']} samples; P(inner fit opens) {p['fit_open_inner']:.3g}, "
+          f"P(preload lost) {p['preload_lost']:.3g}; report in {args.out}/report.md")
 
 
 def cmd_study(args) -> None:

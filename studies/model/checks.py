@@ -69,8 +69,7 @@ def assembly_checks(asm) -> list[Check]:
               "", "[limits] min_static_safety" if lim.min_static_safety > 0
               else "GB/T 28878.2 B.4 default, no [limits] value given"),
         Check("preload_lost", "preload_N", 0.0, False, "N", "a preloaded pair", strict=True)]
-    for side, interference in (("inner", asm.fits.inner_interference_um),
-                               ("outer", asm.fits.outer_interference_um)):
+    for side, interference in zip(("inner", "outer"), asm.mean_fits_um()):
         if interference > 0:              # a designed clearance is allowed to be open
             checks.append(Check(f"fit_open_{side}", f"fit_pressure_{side}_MPa", 0.0, False, "MPa",
                                 "a fit assembled with interference", strict=True))

@@ -66,6 +66,17 @@ class Fits:
     inner_interference_um: float     # diametral, + interference, - clearance
     outer_interference_um: float
     contact: str                     # "frictionless" or "bonded"
+    # tolerances (docs/cli.md "tolerance"): an ISO class or explicit (lower, upper) limit
+    # deviations in um per surface; "" / () = none. Deviations add to the nominal interference.
+    inner_shaft_class: str = ""                  # ISO 286 shaft class, e.g. "k5"
+    inner_ring_bore_class: str = ""              # ISO 492 class: Normal, P6, P5, P4, P2
+    outer_housing_class: str = ""                # ISO 286 hole class, e.g. "J6"
+    outer_ring_od_class: str = ""                # ISO 492 class
+    inner_shaft_deviation_um: tuple = ()
+    inner_ring_bore_deviation_um: tuple = ()
+    outer_housing_deviation_um: tuple = ()
+    outer_ring_od_deviation_um: tuple = ()
+    distribution: str = "uniform"                # "uniform" within limits or "normal" (+-3 sigma)
 
 
 @dataclass(frozen=True)
@@ -126,6 +137,15 @@ class Assembly:
     operating: Operating = field(default_factory=Operating)
     source: str = ""
 
+    def mean_fits_um(self) -> tuple[float, float]:
+        """Diametral interference (inner, outer) in um of the mean assembly: the [fits] values
+        plus, where tolerances are given, every deviation at the middle of its band. This is
+        the fit `simulate`, `report` and the studies use (studies/model/tolerances.py)."""
+        from studies.model.tolerances import mid_band_offsets_um
+
+        mid_i, mid_o = mid_band_offsets_um(self)
+        return self.fits.inner_interference_um + mid_i, self.fits.outer_interference_um + mid_o
+
     def material(self, part: str) -> Material:
         """Material of a part: shaft, housing, nut, cover, inner_spacer, outer_spacer,
         inner_ring, outer_ring, ball."""
@@ -139,6 +159,9 @@ class Assembly:
         return get_material(names[part])
 
 
+#: the toleranced surfaces of the two fits (keys `<surface>_class`, `<surface>_deviation_um`)
+TOLERANCE_SURFACES = ("inner_shaft", "inner_ring_bore", "outer_housing", "outer_ring_od")
+
 SECTIONS = {
     "shaft": (Shaft, {"bore_diameter_mm": 0.0, "extension_mm": 0.0}),
     "housing": (Housing, {}),
@@ -147,7 +170,9 @@ SECTIONS = {
     "inner_spacer": (Spacer, {}),
     "outer_spacer": (Spacer, {}),
     "bearing": (BearingSpec, {"inner_land_diameter_mm": 0.0, "outer_land_diameter_mm": 0.0}),
-    "fits": (Fits, {"contact": "frictionless"}),
+    "fits": (Fits, {"contact": "frictionless", "distribution": "uniform",
+                    **{f"{k}_class": "" for k in TOLERANCE_SURFACES},
+                    **{f"{k}_deviation_um": () for k in TOLERANCE_SURFACES}}),
     "preload": (Preload, {"path_compliance": "fe"}),
     "lubrication": (Lubrication, {"lubricant": "", "friction_coefficient": 0.0,
                                   "viscous_factor_f0": 0.0, "speed_rpm": 0.0,
@@ -158,8 +183,11 @@ SECTIONS = {
 }
 OPTIONAL_SECTIONS = {"limits", "mesh", "operating"}
 STRING_KEYS = {"material", "designation", "ring_material", "ball_material", "contact", "kind",
-               "lubricant", "load_term", "clamp", "path_compliance"}
+               "lubricant", "load_term", "clamp", "path_compliance", "distribution",
+               *(f"{k}_class" for k in TOLERANCE_SURFACES)}
+LIMIT_KEYS = {f"{k}_deviation_um" for k in TOLERANCE_SURFACES}
 CHOICES = {("fits", "contact"): ("frictionless", "bonded"),
+           ("fits", "distribution"): ("uniform", "normal"),
            ("preload", "kind"): ("position", "spring"),
            ("preload", "path_compliance"): ("fe", "rigid"),
            ("lubrication", "kind"): ("solid_film", "oil"),
@@ -205,6 +233,16 @@ def _section(path: str, raw: dict, name: str):
             choices = CHOICES.get((name, key))
             if choices and v not in choices:
                 raise ConfigError(f"{path}: {name}.{key}: '{v}' is not one of {', '.join(choices)}")
+        elif key in LIMIT_KEYS:
+            if v in ((), []):
+                v = ()
+            else:
+                if (not isinstance(v, list) or len(v) != 2
+                        or not all(isinstance(x, (int, float)) and not isinstance(x, bool)
+                                   and math.isfinite(x) for x in v) or v[0] > v[1]):
+                    raise ConfigError(f"{path}: {name}.{key}: must be [lower, upper] in um with "
+                                      f"lower <= upper, got {v!r}")
+                v = (float(v[0]), float(v[1]))
         elif key == "ball_count":
             if not isinstance(v, int) or isinstance(v, bool) or v < 3:
                 raise ConfigError(f"{path}: {name}.{key}: must be an integer >= 3, got {v!r}")
@@ -269,6 +307,7 @@ def assembly_from_dict(raw: dict, path: str = "<config>") -> Assembly:
                    source=str(top.get("source", "")), **parts)
     _check_materials(asm, path)
     _check_geometry(asm, path)
+    _check_tolerances(asm, path)
     if asm.lubrication.kind == "oil":
         from analytic.lubrication import get_lubricant
         try:
@@ -276,6 +315,21 @@ def assembly_from_dict(raw: dict, path: str = "<config>") -> Assembly:
         except (KeyError, ValueError) as exc:
             raise ConfigError(f"{path}: lubrication.lubricant: {exc.args[0]}") from None
     return asm
+
+
+def _check_tolerances(a: Assembly, path: str) -> None:
+    """A class or explicit limits per surface, not both, and a class the tables carry at the
+    surface's nominal diameter (analytic/tolerances.py)."""
+    from studies.model.tolerances import deviation_limits_um
+
+    f = a.fits
+    for k in TOLERANCE_SURFACES:
+        if getattr(f, f"{k}_class") and getattr(f, f"{k}_deviation_um"):
+            raise ConfigError(f"{path}: fits.{k}_class: give the class or {k}_deviation_um, not both")
+    try:
+        deviation_limits_um(a)
+    except ValueError as exc:
+        raise ConfigError(f"{path}: {exc.args[0]}") from None
 
 
 def _check_materials(a: Assembly, path: str) -> None:

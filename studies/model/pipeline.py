@@ -166,8 +166,8 @@ class Pipeline:
     def preload_path_compliance(self) -> float:
         """Axial compliance of the preload path per bearing (mm/N), from the FE at the assembled
         fits (`fem.compliance`)."""
-        f = self.asm.fits
-        delta = self.deltas_mm(np.array([f.inner_interference_um]), np.array([f.outer_interference_um]))[0]
+        inner, outer = self.asm.mean_fits_um()
+        delta = self.deltas_mm(np.array([inner]), np.array([outer]))[0]
         return preload_path_compliance_mm_per_N(self.solver, self.probe, SIGNS[self.asm.arrangement],
                                                 delta)
 
@@ -185,8 +185,7 @@ class Pipeline:
         return np.column_stack(cols)
 
     def fits_um(self, inputs: PhysicsInputs) -> tuple[np.ndarray, np.ndarray]:
-        f = self.asm.fits
-        return resolve_interference_um(inputs, f.inner_interference_um, f.outer_interference_um)
+        return resolve_interference_um(inputs, *self.asm.mean_fits_um())
 
     def deltas_mm(self, inner_um: np.ndarray, outer_um: np.ndarray) -> np.ndarray:
         """(n, n_fits) radial interference (mm) per FE fit."""

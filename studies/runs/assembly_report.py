@@ -12,8 +12,6 @@ and GCI over three mesh levels, Roache 1998). Written as `report.md` and a self-
 """
 from __future__ import annotations
 
-import base64
-import re
 from pathlib import Path
 
 import numpy as np
@@ -22,7 +20,9 @@ from studies.model.checks import apply_checks, assembly_checks, plausibility_war
 from studies.model.pipeline import Pipeline, simulate_table
 from studies.model.table import write_table
 from analytic.bearing.land import land_diameters_mm
-from studies.runs.report_tools import field_images, line_plot, md_table, safety_section, significant
+from studies.model.tolerances import has_tolerances
+from studies.runs.report_tools import (field_images, line_plot, md_table, safety_section,
+                                       significant, write_report_files)
 
 N_SWEEP = 25            # about this many points in the default temperature sweep
 RESULT_ROWS = 12        # rows of the result table in the text (the CSV has them all)
@@ -75,9 +75,7 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, progress=prin
                                  factors=tuple(mesh_factor * f for f in (2.0, 1.0, 0.5)))
     lines = _text(asm, provenance, cond, res, flags, violations, warnings, plots, images, conv, pl, x,
                   xlabel, rig_sections or [])
-    md = "\n".join(lines) + "\n"
-    (out / "report.md").write_text(md)
-    (out / "report.html").write_text(_html(md, out, asm.name))
+    write_report_files(out, lines, asm.name)
     return warnings + [v.summary(n, cond) for v in violations]
 
 
@@ -162,6 +160,11 @@ def _text(asm, prov, cond, r, flags, violations, warnings, plots, images, conv, 
              f"{asm.bearing.designation} pair, {asm.arrangement}, {asm.preload.kind} preload "
              f"{asm.preload.assembled_N:g} N at {asm.T_ref_C:g} C; FE model {pl.model.ndofs} DOF "
              "(axisymmetric, P2, exact fit contact); bearing: exact Hertz, pair equilibrium.", ""]
+    if has_tolerances(asm):
+        mi, mo = asm.mean_fits_um()
+        lines += [f"Fits: the mean assembly of the [fits] tolerances, {mi:+.2f} um inner and "
+                  f"{mo:+.2f} um outer (every deviation at the middle of its band); "
+                  "`bearingfem tolerance` gives their scatter.", ""]
     if warnings or violations:
         lines += ["## Warnings", ""] + [f"- {w}" for w in warnings] + \
                  [f"- {v.summary(n, cond)}" for v in violations] + [""]
@@ -207,24 +210,3 @@ def _text(asm, prov, cond, r, flags, violations, warnings, plots, images, conv, 
                          f"{abs(conv['levels'][1][q] - v['extrapolated']) / abs(v['extrapolated']):.2e}"]
                         for q, v in conv["quantities"].items()]), ""]
     return lines
-
-
-def _html(md: str, out: Path, title: str) -> str:
-    """A self-contained HTML page: the markdown rendered, every image embedded."""
-    import markdown
-
-    body = markdown.markdown(md, extensions=["tables"])
-
-    def embed(m):
-        path = out / m.group(1)
-        if not path.is_file():
-            return m.group(0)
-        data = base64.b64encode(path.read_bytes()).decode("ascii")
-        return f'src="data:image/png;base64,{data}"'
-    body = re.sub(r'src="([^"]+\.png)"', embed, body)
-    style = ("body{font-family:sans-serif;max-width:1100px;margin:2em auto;line-height:1.4}"
-             "table{border-collapse:collapse;font-size:0.85em}td,th{border:1px solid #bbb;"
-             "padding:2px 6px}table{display:block;overflow-x:auto;max-width:100%}"
-             "img{max-width:48%;margin:2px;vertical-align:top}")
-    return (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>{title}</title>"
-            f"<style>{style}</style></head><body>{body}</body></html>\n")

@@ -35,8 +35,7 @@ def fe_levels(asm, factors, T_C=-60.0):
         model, t_asm = _t(lambda: StackModel(sec, read_section_mesh(path), asm.fits.contact))
         solver = FitSolver(model)
         theta = np.array([model.materials[p].thermal_strain(T_C, asm.T_ref_C) for p in model.part_names])
-        delta = np.array([(asm.fits.inner_interference_um if f.key == "inner" else
-                           asm.fits.outer_interference_um) / 2000 for f in model.fits])
+        delta = np.array([asm.mean_fits_um()[0 if f.key == "inner" else 1] / 2000 for f in model.fits])
         sol = solver.solve(model.unit_loads @ theta, delta)
         closed = sol.closed
         solver.clear_cache()
@@ -58,8 +57,7 @@ def sweep(asm):
     probe = model.probe_matrix(np.array(list(sec.raceway_points.values())).T)
     sup, t_units = _t(Superposition, FitSolver(model), probe)
     print(f"unit solutions ({model.ndofs} DOF, {sup.ps.size} contact pairs): {t_units:.3f} s once")
-    delta = np.array([(asm.fits.inner_interference_um if f.key == "inner" else
-                       asm.fits.outer_interference_um) / 2000 for f in model.fits])
+    delta = np.array([asm.mean_fits_um()[0 if f.key == "inner" else 1] / 2000 for f in model.fits])
     for n in (11, 1401):
         T = np.linspace(-60, 80, n)
         theta = np.array([[model.materials[p].thermal_strain(t, asm.T_ref_C) for p in model.part_names]

@@ -1,6 +1,8 @@
 """Small helpers shared by the studies: plots (matplotlib, Agg), markdown tables, field images."""
 from __future__ import annotations
 
+import base64
+import re
 from pathlib import Path
 
 import numpy as np
@@ -107,3 +109,28 @@ def safety_section(asm, out: dict, film_parameter=None, title: str = "over the s
     return "\n".join([f"## Safety checks ({title})", "",
                       md_table(["check", "governing value", "allowable", "ok", "margin",
                                 "governing point", "allowable from"], rows), ""])
+
+
+def write_report_files(out: Path, lines: list[str], title: str) -> None:
+    """`report.md` from markdown lines and a self-contained `report.html` beside it (the
+    markdown rendered, every PNG it links embedded)."""
+    import markdown
+
+    md = "\n".join(lines) + "\n"
+    (out / "report.md").write_text(md)
+    body = markdown.markdown(md, extensions=["tables"])
+
+    def embed(m):
+        path = out / m.group(1)
+        if not path.is_file():
+            return m.group(0)
+        data = base64.b64encode(path.read_bytes()).decode("ascii")
+        return f'src="data:image/png;base64,{data}"'
+    body = re.sub(r'src="([^"]+\.png)"', embed, body)
+    style = ("body{font-family:sans-serif;max-width:1100px;margin:2em auto;line-height:1.4}"
+             "table{border-collapse:collapse;font-size:0.85em}td,th{border:1px solid #bbb;"
+             "padding:2px 6px}table{display:block;overflow-x:auto;max-width:100%}"
+             "img{max-width:48%;margin:2px;vertical-align:top}")
+    (out / "report.html").write_text(
+        f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>{title}</title>"
+        f"<style>{style}</style></head><body>{body}</body></html>\n")

@@ -79,7 +79,7 @@ def torque_sweeps(pl, out: Path) -> dict:
     r = {}
     interf = np.arange(0.0, 10.0 + 1e-9, 1.0)
     inp = _inputs(a, interf.size, T_ambient_C=a.T_ref_C)
-    inp = apply_effects(inp, None, a.T_ref_C).copy(interference_inner_um=interf - a.fits.inner_interference_um)
+    inp = apply_effects(inp, None, a.T_ref_C).copy(interference_inner_um=interf - a.mean_fits_um()[0])
     r["interference"] = (interf, pl.run(inp))
     P = np.arange(0.0, 350.0 + 1e-9, 50.0)
     r["preload"] = (P, pl.run(_inputs(a, P.size, T_ambient_C=a.T_ref_C, preload_assembled_N=P)))

@@ -180,8 +180,7 @@ def mesh_convergence_case(assembly, T_C: float = -60.0, factors=(4.0, 2.0, 1.0, 
                           progress=None) -> dict:
     """Fit pressure and raceway displacements of an assembly over mesh levels (size x factor)."""
     base = section_from_assembly(assembly)
-    fits_um = {"inner": assembly.fits.inner_interference_um,
-               "outer": assembly.fits.outer_interference_um}
+    fits_um = dict(zip(("inner", "outer"), assembly.mean_fits_um()))
     levels = []
     for fac in factors:
         sec = base.scaled(fac)

@@ -1,0 +1,174 @@
+"""Fit tolerances of an assembly: limit deviations, worst case and Monte Carlo through the exact
+model (each sample's fits and contact state solved by the pipeline, nothing linearised).
+
+Conventions (docs/cli.md "tolerance"). Deviations in um from the nominal diameters (shaft seat
+and bearing bore: `shaft.seat_diameter_mm`; housing bore and bearing OD:
+`housing.bore_diameter_mm`). Diametral interference of a sample:
+
+    inner = fits.inner_interference_um + (shaft deviation - ring bore deviation)
+    outer = fits.outer_interference_um + (ring OD deviation - housing deviation)
+
+each deviation drawn independently: uniform within its limits, or normal with the limits at
++-3 sigma (`[fits] distribution`). The position preload `[preload] assembled_N` is the design
+value for the mean fits (every deviation at the middle of its band): the spacers are ground for
+the expected fits, not for the actual ones, so the assembly state that fixes the preload offset
+uses the mid-band interferences, and a sample's fits then move its preload.
+
+The linear estimate beside the Monte Carlo is what a tolerance-stack tool gives: each output
+linearised at the mid-band fits (central differences over one tenth of each band), its standard
+deviation from the summed variances, a normal distribution, P(output beyond a limit) = Phi(-z).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import stats
+
+from analytic.tolerances import iso286_limits_um, iso492_limits_um
+
+SURFACES = ("inner_shaft", "inner_ring_bore", "outer_housing", "outer_ring_od")
+#: sign of each surface's deviation in its fit's interference, and the fit
+SURFACE_FIT = {"inner_shaft": ("inner", +1.0), "inner_ring_bore": ("inner", -1.0),
+               "outer_ring_od": ("outer", +1.0), "outer_housing": ("outer", -1.0)}
+#: quantities the Monte Carlo keeps per sample and condition
+QUANTITIES = ("interference_inner_um", "interference_outer_um", "fit_pressure_inner_MPa",
+              "fit_pressure_outer_MPa", "preload_N", "contact_angle_deg",
+              "max_contact_pressure_MPa", "torque_Nmm")
+
+
+def deviation_limits_um(asm) -> dict[str, tuple[float, float]]:
+    """(lower, upper) limit deviation in um of every toleranced surface (others absent)."""
+    f = asm.fits
+    d_in, d_out = asm.shaft.seat_diameter_mm, asm.housing.bore_diameter_mm
+    out = {}
+    for s in SURFACES:
+        cls, lim = getattr(f, f"{s}_class"), getattr(f, f"{s}_deviation_um")
+        d = d_in if s.startswith("inner") else d_out
+        if lim:
+            out[s] = (float(lim[0]), float(lim[1]))
+        elif cls:
+            key = f"fits.{s}_class"
+            try:
+                if s in ("inner_ring_bore", "outer_ring_od"):
+                    out[s] = iso492_limits_um(cls, d, "bore" if s == "inner_ring_bore" else "od")
+                else:
+                    lo, hi = iso286_limits_um(cls, d)
+                    if (s == "inner_shaft") != cls[0].islower():
+                        raise ValueError(f"'{cls}' is a {'hole' if cls[0].isupper() else 'shaft'} "
+                                         "class (shafts lower case, holes upper case)")
+                    out[s] = (lo, hi)
+            except ValueError as exc:
+                raise ValueError(f"{key}: {exc.args[0]}") from None
+    return out
+
+
+def has_tolerances(asm) -> bool:
+    return bool(deviation_limits_um(asm))
+
+
+@dataclass(frozen=True)
+class InterferenceBand:
+    """Worst-case limits of a fit's diametral interference (um) from the limit deviations."""
+    fit: str
+    nominal_um: float
+    lower_um: float
+    upper_um: float
+
+
+def worst_case_bands(asm) -> list[InterferenceBand]:
+    """Each fit's interference range: nominal + the extreme deviations (hand arithmetic of the
+    limits: shaft upper - bore lower is the tightest inner fit, and so on)."""
+    lim = deviation_limits_um(asm)
+    bands = []
+    for fit, nominal in (("inner", asm.fits.inner_interference_um),
+                         ("outer", asm.fits.outer_interference_um)):
+        lo = hi = float(nominal)
+        for s, (f, sign) in SURFACE_FIT.items():
+            if f == fit and s in lim:
+                a, b = (sign * lim[s][0], sign * lim[s][1])
+                lo, hi = lo + min(a, b), hi + max(a, b)
+        bands.append(InterferenceBand(fit, float(nominal), lo, hi))
+    return bands
+
+
+def sample_deviations_um(asm, n: int, seed: int) -> dict[str, np.ndarray]:
+    """n independent draws per toleranced surface (numpy PCG64 with `seed`)."""
+    rng = np.random.default_rng(seed)
+    out = {}
+    for s, (lo, hi) in deviation_limits_um(asm).items():
+        if asm.fits.distribution == "normal":
+            out[s] = rng.normal(0.5 * (lo + hi), (hi - lo) / 6.0, n)
+        else:
+            out[s] = rng.uniform(lo, hi, n)
+    return out
+
+
+def interference_offsets_um(deviations: dict[str, np.ndarray], n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Offsets of the inner and outer interference from their nominal values (um)."""
+    off = {"inner": np.zeros(n), "outer": np.zeros(n)}
+    for s, dev in deviations.items():
+        fit, sign = SURFACE_FIT[s]
+        off[fit] = off[fit] + sign * dev
+    return off["inner"], off["outer"]
+
+
+def mid_band_offsets_um(asm) -> tuple[float, float]:
+    """Interference offsets (inner, outer) with every deviation at the middle of its band."""
+    mid = {s: np.array([0.5 * (lo + hi)]) for s, (lo, hi) in deviation_limits_um(asm).items()}
+    i, o = interference_offsets_um(mid, 1)
+    return float(i[0]), float(o[0])
+
+
+def evaluate(pl, conditions: dict[str, np.ndarray], d_inner_um: np.ndarray,
+             d_outer_um: np.ndarray, chunk_rows: int = 50_000, progress=None) -> dict[str, np.ndarray]:
+    """Every sample (interference offsets from the [fits] values, length S) at every condition
+    (length C) through the pipeline, whose rows are the mean (mid-band) assembly with its preload
+    (`Assembly.mean_fits_um`); returns QUANTITIES as (S, C) arrays. Rows go in chunks of whole
+    samples, so memory stays bounded for any S."""
+    from studies.model.inputs import baseline_inputs
+
+    a = pl.asm
+    C = len(next(iter(conditions.values())))
+    S = len(d_inner_um)
+    base = baseline_inputs(conditions, C, a.T_ref_C, a.preload.assembled_N, a.lubrication.speed_rpm)
+    out = {q: np.empty((S, C)) for q in QUANTITIES}
+    per = max(1, chunk_rows // C)
+    mid_i, mid_o = mid_band_offsets_um(a)
+    for s0 in range(0, S, per):
+        s1 = min(S, s0 + per)
+        rows = np.tile(np.arange(C), s1 - s0)
+        inp = base.take(rows)
+        design = pl.reference_inputs(inp)                       # the mean assembly
+        inp = inp.copy(interference_inner_um=np.repeat(d_inner_um[s0:s1] - mid_i, C),
+                       interference_outer_um=np.repeat(d_outer_um[s0:s1] - mid_o, C))
+        res = pl.run_from_fe(inp, pl.fe(inp), pl.fe(design))
+        for q in QUANTITIES:
+            out[q][s0:s1] = res[q].reshape(s1 - s0, C)
+        if progress is not None:
+            progress(s1, S)
+    return out
+
+
+def probability(flags: np.ndarray) -> tuple[float, float]:
+    """Monte Carlo probability of a boolean event per sample and its standard error
+    sqrt(p (1 - p) / S) (binomial)."""
+    flags = np.asarray(flags, bool)
+    p = float(flags.mean())
+    return p, float(np.sqrt(p * (1 - p) / flags.size))
+
+
+def linear_probability(value_nominal: float, gradient: np.ndarray, sigma: np.ndarray,
+                       limit: float, upper: bool) -> float:
+    """P(output beyond `limit`) of the linear-normal estimate: output ~ N(value, sum (g s)^2)."""
+    sd = float(np.sqrt(np.sum((np.asarray(gradient) * np.asarray(sigma)) ** 2)))
+    if sd == 0.0:
+        return float((value_nominal > limit) if upper else (value_nominal <= limit))
+    z = (limit - value_nominal) / sd
+    return float(stats.norm.sf(z) if upper else stats.norm.cdf(z))
+
+
+def surface_sigma_um(asm) -> dict[str, float]:
+    """Standard deviation of each surface's deviation: width/sqrt(12) uniform, width/6 normal."""
+    k = 6.0 if asm.fits.distribution == "normal" else np.sqrt(12.0)
+    return {s: (hi - lo) / k for s, (lo, hi) in deviation_limits_um(asm).items()}

@@ -1,0 +1,147 @@
+"""Fit tolerances: the ISO tables against published values, the worst case against hand
+arithmetic of the limit deviations, and the Monte Carlo through the exact model against the
+closed-form probability of the summed deviations."""
+import json
+
+import numpy as np
+import pytest
+from scipy import stats
+
+from analytic.tolerances import iso286_limits_um, iso492_limits_um
+from studies.app.cli import main
+from studies.model.config import CONFIG_DIR, ConfigError, load_assembly
+from studies.model import tolerances as tol
+
+CFG000 = CONFIG_DIR / "seed000_71807C_TC4.toml"
+
+
+@pytest.mark.parametrize("cls,d,expect", [
+    # ISO 286-2 limit deviations (um) as printed in its tables and in every fits handbook
+    ("k5", 35.0, (2, 13)), ("k6", 35.0, (2, 18)), ("js6", 35.0, (-8, 8)), ("m6", 20.0, (8, 21)),
+    ("p6", 25.0, (22, 35)), ("g6", 40.0, (-25, -9)), ("h5", 47.0, (-11, 0)), ("n6", 60.0, (20, 39)),
+    ("H6", 47.0, (0, 16)), ("H7", 62.0, (0, 30)), ("J6", 47.0, (-6, 10)), ("J7", 62.0, (-12, 18)),
+    ("K6", 47.0, (-13, 3)), ("K7", 47.0, (-18, 7)), ("M6", 47.0, (-20, -4)), ("M7", 47.0, (-25, 0)),
+    ("N7", 47.0, (-33, -8)), ("G6", 47.0, (9, 25)), ("JS7", 47.0, (-12.5, 12.5)),
+])
+def test_iso286_limits_match_the_published_tables(cls, d, expect):
+    assert iso286_limits_um(cls, d) == pytest.approx(expect, abs=1e-12)
+
+
+@pytest.mark.parametrize("cls,d,surface,lower", [
+    # ISO 492:2014 Tables 1-10, mean diameter deviations (upper 0)
+    ("Normal", 35.0, "bore", -12), ("P6", 35.0, "bore", -10), ("P5", 25.0, "bore", -6),
+    ("P4", 35.0, "bore", -6), ("P2", 35.0, "bore", -2.5), ("Normal", 47.0, "od", -11),
+    ("P5", 62.0, "od", -9), ("P4", 47.0, "od", -6), ("P2", 62.0, "od", -4),
+])
+def test_iso492_limits_match_the_published_tables(cls, d, surface, lower):
+    assert iso492_limits_um(cls, d, surface) == (lower, 0.0)
+
+
+def _with_fits(tmp_path, lines, name="asm.toml", inner=0.0, outer=0.0):
+    text = CFG000.read_text()
+    text = text.replace("inner_interference_um = 5.0", f"inner_interference_um = {inner}", 1)
+    text = text.replace("outer_interference_um = -1.5", f"outer_interference_um = {outer}", 1)
+    path = tmp_path / name
+    path.write_text(text.replace("[fits]\n", "[fits]\n" + "\n".join(lines) + "\n", 1))
+    return path
+
+
+def test_worst_case_is_the_hand_arithmetic_of_the_limits(tmp_path):
+    asm = load_assembly(_with_fits(tmp_path, ['inner_shaft_class = "k5"',
+                                              'inner_ring_bore_class = "P4"',
+                                              'outer_housing_class = "J6"',
+                                              'outer_ring_od_deviation_um = [-7.0, 0.0]'], inner=1.0))
+    inner, outer = tol.worst_case_bands(asm)
+    # inner: 1 + (shaft 2..13) - (bore -6..0) = 3..20; outer: (OD -7..0) - (housing -6..10)
+    assert (inner.lower_um, inner.upper_um) == (3.0, 20.0)
+    assert (outer.lower_um, outer.upper_um) == (-17.0, 6.0)
+
+
+@pytest.mark.parametrize("lines,fragment", [
+    (['inner_shaft_class = "k5"', "inner_shaft_deviation_um = [2.0, 13.0]"], "not both"),
+    (['inner_shaft_class = "K5"'], "hole class"),
+    (['outer_ring_od_class = "P3"'], "not an ISO 492 class"),
+    (["inner_shaft_deviation_um = [13.0, 2.0]"], "lower <= upper"),
+    (['distribution = "triangular"'], "not one of uniform, normal"),
+])
+def test_bad_tolerance_keys_are_one_line_errors(tmp_path, lines, fragment):
+    with pytest.raises(ConfigError, match=fragment):
+        load_assembly(_with_fits(tmp_path, lines))
+
+
+def _uniform_sum_cdf(t, w1, w2):
+    """P(X + Y <= t) for independent X ~ U(0, w1), Y ~ U(0, w2): the area of the part of the
+    rectangle below the line x + y = t (inclusion-exclusion of the triangles beyond the sides)."""
+    g = lambda u: max(u, 0.0) ** 2 / 2
+    return (g(t) - g(t - w1) - g(t - w2) + g(t - w1 - w2)) / (w1 * w2)
+
+
+@pytest.fixture(scope="module")
+def fits_only(tmp_path_factory):
+    d = tmp_path_factory.mktemp("tol")
+    return {dist: load_assembly(_with_fits(d, ["inner_shaft_deviation_um = [-4.0, 6.0]",
+                                               "inner_ring_bore_deviation_um = [-6.0, 0.0]",
+                                               f'distribution = "{dist}"'], name=f"{dist}.toml"))
+            for dist in ("uniform", "normal")}
+
+
+@pytest.mark.parametrize("dist", ["uniform", "normal"])
+def test_monte_carlo_fit_opening_agrees_with_the_closed_form(fits_only, dist):
+    """Fits only, at the reference temperature: the inner fit opens when shaft - bore deviation
+    <= 0; shaft in [-4, 6], bore in [-6, 0] um. The exact model (contact solved per sample) must
+    give the closed-form probability within 4 Monte Carlo standard errors."""
+    from studies.model.pipeline import Pipeline
+
+    asm = fits_only[dist]
+    pl = Pipeline.shared(asm)
+    S = 3000
+    dev = tol.sample_deviations_um(asm, S, seed=7)
+    di, do = tol.interference_offsets_um(dev, S)
+    r = tol.evaluate(pl, {"T_ambient_C": np.array([asm.T_ref_C])}, di, do)
+    p, se = tol.probability(r["fit_pressure_inner_MPa"][:, 0] <= 0.0)
+    if dist == "uniform":        # X = shaft + 4 in [0, 10], Y = -bore in [0, 6]: X + Y <= 4
+        exact = _uniform_sum_cdf(4.0, 10.0, 6.0)
+    else:                        # limits at +-3 sigma: mean 1 - (-3) = 4, sigma^2 = (10/6)^2 + 1
+        exact = stats.norm.cdf(-4.0 / np.hypot(10.0 / 6.0, 1.0))
+    assert abs(p - exact) <= 4 * np.sqrt(exact * (1 - exact) / S), (p, exact)
+
+
+def test_mid_band_fits_give_the_assembled_preload(fits_only):
+    """The convention: the assembled preload is the design value for the mid-band fits."""
+    from studies.model.pipeline import Pipeline
+
+    asm = fits_only["uniform"]
+    mid_i, mid_o = tol.mid_band_offsets_um(asm)
+    assert (mid_i, mid_o) == (4.0, 0.0)                  # 1 - (-3)
+    r = tol.evaluate(Pipeline.shared(asm), {"T_ambient_C": np.array([asm.T_ref_C])},
+                     np.array([mid_i, mid_i + 2.0]), np.array([mid_o, mid_o]))
+    assert r["preload_N"][0, 0] == pytest.approx(asm.preload.assembled_N, rel=1e-9)
+    assert r["preload_N"][1, 0] > asm.preload.assembled_N     # a tighter inner fit adds preload
+
+
+def test_tolerance_command_writes_the_documented_json_and_repeats_for_a_seed(tmp_path, capsys):
+    asm = _with_fits(tmp_path, ['inner_shaft_class = "k5"', 'inner_ring_bore_class = "P4"',
+                                'outer_housing_class = "J6"', 'outer_ring_od_class = "P4"'])
+    cond = tmp_path / "c.csv"
+    cond.write_text("T_ambient_C\n20\n80\n")
+    runs = []
+    for k in (1, 2):
+        out = tmp_path / f"t{k}"
+        assert main(["tolerance", str(asm), str(cond), "--samples", "300", "--seed", "5",
+                     "--out", str(out)]) == 0
+        runs.append(json.loads((out / "tolerance.json").read_text()))
+    a, b = runs
+    assert a["samples"] == 300 and a["seed"] == 5
+    assert {"fit_open_inner", "fit_open_outer", "preload_lost"} <= set(a["probabilities"])
+    assert set(a["standard_errors"]) == set(a["probabilities"])
+    assert set(a["percentiles"]["preload_N"]) == {"p01", "p50", "p99"}
+    a.pop("provenance"), b.pop("provenance")
+    assert a == b                                        # same seed, same numbers
+    assert (tmp_path / "t1" / "report.html").exists() and (tmp_path / "t1" / "samples.csv").exists()
+
+
+def test_tolerance_without_tolerances_is_refused(tmp_path, capsys):
+    out = tmp_path / "t"
+    assert main(["tolerance", str(CFG000), "--samples", "10", "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "no tolerances" in err[0] and not out.exists()
