@@ -210,7 +210,7 @@ class Superposition:
         self.n_parts, self.n_fits = len(m.part_names), len(m.fits)
         self.probe = probe
         self._chol: dict[bytes, tuple] = {}
-        self.block = 32
+        self.block = 128         # states tried per active set (sweeps and samples alike: measured)
         s = solver
         self.ps, self.pm, self.pfit = s.slave, s.master, s.fit_of_pair
         if s.bonded:

@@ -38,7 +38,9 @@ def test_iso492_limits_match_the_published_tables(cls, d, surface, lower):
 
 
 def _with_fits(tmp_path, lines, name="asm.toml", inner=0.0, outer=0.0):
-    text = CFG000.read_text()
+    """seed 000 with the given [fits] lines, on a mesh twice as coarse (the fit-opening
+    probability at the reference temperature depends only on the sign of the interference)."""
+    text = CFG000.read_text() + "\n[mesh]\nsize_mm = 2.0\nfit_size_mm = 0.5\n"
     text = text.replace("inner_interference_um = 5.0", f"inner_interference_um = {inner}", 1)
     text = text.replace("outer_interference_um = -1.5", f"outer_interference_um = {outer}", 1)
     path = tmp_path / name
@@ -145,3 +147,22 @@ def test_tolerance_without_tolerances_is_refused(tmp_path, capsys):
     assert main(["tolerance", str(CFG000), "--samples", "10", "--out", str(out)]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "no tolerances" in err[0] and not out.exists()
+
+
+def test_dask_workers_give_the_single_process_numbers(fits_only):
+    """The Monte Carlo on a local Dask cluster (2 worker processes, each building its own FE
+    set-up) equals the single-process run for the same samples, bit for bit."""
+    asm = fits_only["uniform"]
+    S = 400
+    dev = tol.sample_deviations_um(asm, S, seed=3)
+    di, do = tol.interference_offsets_um(dev, S)
+    cond = {"T_ambient_C": np.array([-20.0, 60.0])}
+    old = tol.CHUNK_ROWS
+    tol.CHUNK_ROWS = 200                      # several blocks, so both workers get some
+    try:
+        here = tol.run_samples(asm, cond, di, do)
+        dask = tol.run_samples(asm, cond, di, do, workers=2)
+    finally:
+        tol.CHUNK_ROWS = old
+    for q in tol.QUANTITIES:
+        np.testing.assert_array_equal(dask[q], here[q], err_msg=q)

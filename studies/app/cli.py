@@ -74,6 +74,11 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--samples", type=int, default=2000, help="Monte Carlo samples (default 2000)")
     t.add_argument("--seed", type=int, default=1, help="random seed (default 1)")
     t.add_argument("--out", type=Path, required=True)
+    where = t.add_mutually_exclusive_group()
+    where.add_argument("--workers", type=int, default=None,
+                       help="run the Monte Carlo on a local Dask cluster of N processes")
+    where.add_argument("--scheduler", default=None,
+                       help="run it on an existing Dask cluster (tcp://host:port)")
 
     st = sub.add_parser("study", help=f"run a named study ({', '.join(STUDIES)})")
     st.add_argument("name")
@@ -81,6 +86,8 @@ def build_parser() -> argparse.ArgumentParser:
 
     b = sub.add_parser("bench", help="print FE and analytic timings on this machine")
     b.add_argument("--quick", action="store_true", help="fewer mesh levels")
+    b.add_argument("--tolerance", type=int, metavar="N", default=None,
+                   help="instead: Monte Carlo throughput with N samples, 1 and 2 Dask workers")
     return p
 
 

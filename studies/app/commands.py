@@ -133,6 +133,8 @@ def cmd_tolerance(args) -> None:
 
     if args.samples < 2:
         raise UserError(f"--samples {args.samples}: need at least 2")
+    if args.workers is not None and args.workers < 1:
+        raise UserError(f"--workers {args.workers}: need at least 1")
     try:
         asm = _load(args.assembly)
         cond = read_conditions(args.conditions) if args.conditions is not None else None
@@ -141,7 +143,8 @@ def cmd_tolerance(args) -> None:
             inputs["conditions"] = args.conditions
         with atomic_dir(args.out) as tmp:
             res = tolerance_report.run(asm, cond, tmp, provenance("tolerance", inputs),
-                                       samples=args.samples, seed=args.seed, progress=progress)
+                                       samples=args.samples, seed=args.seed, progress=progress,
+                                       workers=args.workers, scheduler=args.scheduler)
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
     p = res["probabilities"]
@@ -189,6 +192,11 @@ def cmd_verify(args) -> None:
 
 
 def cmd_bench(args) -> None:
+    if args.tolerance is not None:
+        from studies.runs import bench_tolerance
+
+        bench_tolerance.main(args.tolerance)
+        return
     from studies.runs import bench
 
     bench.main(quick=args.quick)

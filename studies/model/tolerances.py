@@ -120,34 +120,63 @@ def mid_band_offsets_um(asm) -> tuple[float, float]:
     return float(i[0]), float(o[0])
 
 
+#: rows (samples x conditions) evaluated together: bounds memory for any number of samples
+CHUNK_ROWS = 10_000
+
+
 def evaluate(pl, conditions: dict[str, np.ndarray], d_inner_um: np.ndarray,
-             d_outer_um: np.ndarray, chunk_rows: int = 50_000, progress=None) -> dict[str, np.ndarray]:
+             d_outer_um: np.ndarray) -> dict[str, np.ndarray]:
     """Every sample (interference offsets from the [fits] values, length S) at every condition
     (length C) through the pipeline, whose rows are the mean (mid-band) assembly with its preload
-    (`Assembly.mean_fits_um`); returns QUANTITIES as (S, C) arrays. Rows go in chunks of whole
-    samples, so memory stays bounded for any S."""
+    (`Assembly.mean_fits_um`); returns QUANTITIES as (S, C) arrays."""
     from studies.model.inputs import baseline_inputs
 
     a = pl.asm
     C = len(next(iter(conditions.values())))
     S = len(d_inner_um)
     base = baseline_inputs(conditions, C, a.T_ref_C, a.preload.assembled_N, a.lubrication.speed_rpm)
-    out = {q: np.empty((S, C)) for q in QUANTITIES}
-    per = max(1, chunk_rows // C)
     mid_i, mid_o = mid_band_offsets_um(a)
-    for s0 in range(0, S, per):
-        s1 = min(S, s0 + per)
-        rows = np.tile(np.arange(C), s1 - s0)
-        inp = base.take(rows)
-        design = pl.reference_inputs(inp)                       # the mean assembly
-        inp = inp.copy(interference_inner_um=np.repeat(d_inner_um[s0:s1] - mid_i, C),
-                       interference_outer_um=np.repeat(d_outer_um[s0:s1] - mid_o, C))
-        res = pl.run_from_fe(inp, pl.fe(inp), pl.fe(design))
-        for q in QUANTITIES:
-            out[q][s0:s1] = res[q].reshape(s1 - s0, C)
-        if progress is not None:
-            progress(s1, S)
+    d_inner_um, d_outer_um = np.asarray(d_inner_um, float), np.asarray(d_outer_um, float)
+    # rows condition by condition, samples ordered by their fits: neighbouring rows then share
+    # the contact active set (2x faster for random samples, measured); results are put back
+    order = np.lexsort((d_inner_um, np.round(d_outer_um, 1)))
+    rows_c, rows_s = np.repeat(np.arange(C), S), np.tile(order, C)
+    inp = base.take(rows_c)
+    design = pl.reference_inputs(inp)                       # the mean assembly
+    inp = inp.copy(interference_inner_um=d_inner_um[rows_s] - mid_i,
+                   interference_outer_um=d_outer_um[rows_s] - mid_o)
+    res = pl.run_from_fe(inp, pl.fe(inp), pl.fe(design))
+    out = {}
+    for q in QUANTITIES:
+        v = np.empty((S, C))
+        v[rows_s, rows_c] = res[q]
+        out[q] = v
     return out
+
+
+def evaluate_block(asm, conditions: dict[str, np.ndarray], d_inner_um: np.ndarray,
+                   d_outer_um: np.ndarray) -> dict[str, np.ndarray]:
+    """`evaluate` on the process's shared pipeline of `asm`: one task of `run_samples`."""
+    from studies.model.pipeline import Pipeline
+
+    return evaluate(Pipeline.shared(asm), conditions, d_inner_um, d_outer_um)
+
+
+def run_samples(asm, conditions: dict[str, np.ndarray], d_inner_um: np.ndarray,
+                d_outer_um: np.ndarray, workers: int | None = None, scheduler: str | None = None,
+                progress=None) -> dict[str, np.ndarray]:
+    """All samples in blocks of whole samples (about CHUNK_ROWS rows each), here or on Dask
+    (`studies.model.parallel.map_blocks`): the same blocks in every mode, so the same numbers."""
+    from studies.model.parallel import map_blocks
+
+    C = len(next(iter(conditions.values())))
+    S = len(d_inner_um)
+    per = max(1, CHUNK_ROWS // C)
+    blocks = [(asm, conditions, d_inner_um[s0:s0 + per], d_outer_um[s0:s0 + per])
+              for s0 in range(0, S, per)]
+    parts = map_blocks(evaluate_block, blocks, workers=workers, scheduler=scheduler,
+                       progress=progress)
+    return {q: np.concatenate([p[q] for p in parts]) for q in QUANTITIES}
 
 
 def probability(flags: np.ndarray) -> tuple[float, float]:
