@@ -80,6 +80,22 @@ def build_parser() -> argparse.ArgumentParser:
     where.add_argument("--scheduler", default=None,
                        help="run it on an existing Dask cluster (tcp://host:port)")
 
+    dz = sub.add_parser("design", help="search spacer materials, lengths, clamps and preload "
+                                       "for an athermal stack")
+    dz.add_argument("assembly", type=Path)
+    dz.add_argument("--range", required=True, metavar="T_MIN:T_MAX",
+                    help="temperature range in C, e.g. -60:80")
+    dz.add_argument("--band", default="0.8:1.2", metavar="LOW:HIGH",
+                    help="preload band as fractions of the assembled preload (default 0.8:1.2)")
+    dz.add_argument("--clamps", action="store_true",
+                    help="also try rigid and compliant nut and cover faces")
+    dz.add_argument("--out", type=Path, required=True)
+    dwhere = dz.add_mutually_exclusive_group()
+    dwhere.add_argument("--workers", type=int, default=None,
+                        help="evaluate the stacks on a local Dask cluster of N processes")
+    dwhere.add_argument("--scheduler", default=None,
+                        help="evaluate them on an existing Dask cluster (tcp://host:port)")
+
     st = sub.add_parser("study", help=f"run a named study ({', '.join(STUDIES)})")
     st.add_argument("name")
     st.add_argument("--out", type=Path, required=True)
@@ -93,7 +109,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 #: the one dispatch table: subcommand -> implementation (studies/app/commands.py)
 COMMANDS = {"simulate": commands.cmd_simulate, "report": commands.cmd_report,
-            "tolerance": commands.cmd_tolerance,
+            "tolerance": commands.cmd_tolerance, "design": commands.cmd_design,
             "diagnose": commands.cmd_diagnose,
             "verify": commands.cmd_verify, "study": commands.cmd_study, "bench": commands.cmd_bench}
 
@@ -102,7 +118,25 @@ def _terminate(signum, frame):
     raise Terminated()
 
 
+#: options whose value may start with a minus sign (a temperature range such as -60:80), which
+#: argparse would otherwise take for an option
+SIGNED_VALUE_OPTIONS = ("--range", "--band")
+
+
+def _join_signed_values(argv: list[str]) -> list[str]:
+    out, i = [], 0
+    while i < len(argv):
+        if argv[i] in SIGNED_VALUE_OPTIONS and i + 1 < len(argv) and argv[i + 1].startswith("-"):
+            out.append(f"{argv[i]}={argv[i + 1]}")
+            i += 2
+        else:
+            out.append(argv[i])
+            i += 1
+    return out
+
+
 def main(argv=None) -> int:
+    argv = _join_signed_values(list(sys.argv[1:] if argv is None else argv))
     args = build_parser().parse_args(argv)
     from studies.model.config import ConfigError
 

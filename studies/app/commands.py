@@ -152,6 +152,40 @@ def cmd_tolerance(args) -> None:
           f"P(preload lost) {p['preload_lost']:.3g}; report in {args.out}/report.md")
 
 
+def _pair(text: str, flag: str) -> tuple[float, float]:
+    """'A:B' -> (A, B) with A < B, or a one-line UserError naming the flag."""
+    try:
+        lo, hi = (float(v) for v in text.split(":"))
+    except ValueError:
+        raise UserError(f"{flag} {text}: expected LOW:HIGH, two numbers") from None
+    if not lo < hi:
+        raise UserError(f"{flag} {text}: LOW must be below HIGH")
+    return lo, hi
+
+
+def cmd_design(args) -> None:
+    from studies.runs import design_search
+
+    T_min, T_max = _pair(args.range, "--range")
+    band = _pair(args.band, "--band")
+    if not (-150.0 <= T_min and T_max <= 300.0):
+        raise UserError(f"--range {args.range}: outside -150..300 C (range of the material data)")
+    if args.workers is not None and args.workers < 1:
+        raise UserError(f"--workers {args.workers}: need at least 1")
+    try:
+        asm = _load(args.assembly)
+        with atomic_dir(args.out) as tmp:
+            res = design_search.run(asm, T_min, T_max, tmp,
+                                    provenance("design", {"assembly": args.assembly}), band=band,
+                                    clamps=args.clamps, progress=progress, workers=args.workers,
+                                    scheduler=args.scheduler)
+    except _user_errors() as exc:
+        raise UserError(str(exc)) from None
+    g, b = res["given"], res["designs"][0]
+    print(f"design: {res['n_designs']} designs; as given {100 * g['preload_variation']:.0f} % preload "
+          f"variation, best {100 * b['preload_variation']:.0f} %; report in {args.out}/report.md")
+
+
 def cmd_study(args) -> None:
     if args.name not in STUDIES:
         raise UserError(f"study '{args.name}': unknown (known: {', '.join(STUDIES)})")

@@ -1,0 +1,66 @@
+"""The athermal stack search: it finds a stack whose preload varies less over the range than the
+shipped seed 000 stack at the same assembled preload, says why, and reads its range flags."""
+import json
+
+import pytest
+
+from studies.app.cli import main
+from studies.model.config import CONFIG_DIR, load_shipped
+from studies.model.provenance import provenance
+from studies.runs import design_search as ds
+
+
+@pytest.fixture(scope="module")
+def search(tmp_path_factory):
+    out = tmp_path_factory.mktemp("design")
+    asm = load_shipped("seed000")
+    res = ds.run(asm, -60.0, 80.0, out, provenance("design", {}), progress=lambda s: None,
+                 materials=["TC4", "9Cr18", "6061"], length_factors=(0.5, 1.0),
+                 screen_mesh_factor=4.0, confirm_mesh_factor=4.0)
+    return asm, res, out
+
+
+def test_search_finds_a_stack_with_less_preload_variation(search):
+    asm, res, out = search
+    P0 = asm.preload.assembled_N
+    given = res["given"]
+    assert given["is_given"] and given["preload_assembled_N"] == P0
+    same_preload = [d for d in res["screened"] if d["feasible"] and d["preload_assembled_N"] == P0
+                    and not d["is_given"]]
+    best = min(same_preload, key=lambda d: d["preload_variation"])
+    given_screen = next(d for d in res["screened"] if d["is_given"] and d["preload_assembled_N"] == P0)
+    assert best["preload_variation"] < 0.8 * given_screen["preload_variation"]
+    # the report explains it with the radial / axial split of the preload change
+    report = (out / "report.md").read_text()
+    assert "## Why the best design works" in report and "axial shifts" in report
+    assert set(res["why"]) == {"given", "best"}
+    doc = json.loads((out / "design.json").read_text())
+    assert {"designs", "pareto", "given", "range_C"} <= set(doc)
+    assert all("preload_range_N" in d for d in doc["designs"])
+
+
+def test_pareto_set_is_not_dominated(search):
+    _, res, _ = search
+    front = res["pareto"]
+    feas = [d for d in res["screened"] if d["feasible"]]
+    for d in front:
+        for e in feas:
+            better = (e["preload_variation"] <= d["preload_variation"]
+                      and e["torque_max_Nmm"] <= d["torque_max_Nmm"]
+                      and e["contact_pressure_margin"] >= d["contact_pressure_margin"])
+            strictly = (e["preload_variation"] < d["preload_variation"]
+                        or e["torque_max_Nmm"] < d["torque_max_Nmm"]
+                        or e["contact_pressure_margin"] > d["contact_pressure_margin"])
+            assert not (better and strictly)
+
+
+@pytest.mark.parametrize("args,fragment", [
+    (["--range", "80:-60"], "LOW must be below HIGH"),
+    (["--range", "-60"], "expected LOW:HIGH"),
+    (["--range", "-60:80", "--band", "1.2:0.8"], "LOW must be below HIGH"),
+])
+def test_bad_range_is_one_line_exit_2(tmp_path, capsys, args, fragment):
+    out = tmp_path / "d"
+    code = main(["design", str(CONFIG_DIR / "seed000_71807C_TC4.toml"), *args, "--out", str(out)])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1 and fragment in err[0] and not out.exists()
