@@ -64,3 +64,25 @@ def test_bad_range_is_one_line_exit_2(tmp_path, capsys, args, fragment):
     code = main(["design", str(CONFIG_DIR / "seed000_71807C_TC4.toml"), *args, "--out", str(out)])
     err = capsys.readouterr().err.strip().splitlines()
     assert code == 2 and len(err) == 1 and fragment in err[0] and not out.exists()
+
+
+def test_inverse_search_finds_a_planted_trend():
+    """Plant a trend: the preload change of one candidate stack, computed by `simulate` on that
+    stack's assembly; the inverse search must return that stack first, with a miss at round-off
+    of the preload, and every other stack missing by more."""
+    import numpy as np
+
+    from studies.model.pipeline import Pipeline, simulate_table
+    from studies.runs.inverse_rig import match_trend, plausible_stacks
+
+    asm = load_shipped("seed000")
+    stacks = plausible_stacks(asm, ("TC4", "6061"), (1.0,), (0.0, 1.0),
+                              [(asm.nut.clamp, asm.cover.clamp)])
+    planted = stacks[3]
+    a = planted.assembly(asm)
+    P = simulate_table(a, {"T_ambient_C": np.array([-60.0, 20.0, 80.0])},
+                       pipeline=Pipeline(a, mesh_factor=4.0))["preload_N"]
+    target = (P[0] - P[1], P[2] - P[1])
+    m = match_trend(asm, stacks, (-60.0, 80.0), target, mesh_factor=4.0)
+    assert m[0].stack == planted and m[0].miss_N <= 1e-9 * np.max(np.abs(P))
+    assert all(x.miss_N > 1e-3 for x in m[1:])

@@ -54,14 +54,18 @@ class Stack:
     spacer_length_mm: float
     nut_clamp: str
     cover_clamp: str
+    ring_section_delta_mm: float = 0.0   # effective ring sections thickened radially by this
 
     def assembly(self, asm):
+        b, d = asm.bearing, self.ring_section_delta_mm
         return replace(asm, inner_spacer=replace(asm.inner_spacer, material=self.inner_spacer_material,
                                                  length_mm=self.spacer_length_mm),
                        outer_spacer=replace(asm.outer_spacer, material=self.outer_spacer_material,
                                             length_mm=self.spacer_length_mm),
                        nut=replace(asm.nut, clamp=self.nut_clamp),
-                       cover=replace(asm.cover, clamp=self.cover_clamp))
+                       cover=replace(asm.cover, clamp=self.cover_clamp),
+                       bearing=replace(b, inner_ring_outer_diameter_mm=b.inner_ring_outer_diameter_mm + 2 * d,
+                                       outer_ring_inner_diameter_mm=b.outer_ring_inner_diameter_mm - 2 * d))
 
 
 def distinct_materials() -> list[str]:
