@@ -17,8 +17,9 @@ import numpy as np
 import scipy.sparse as sp
 from skfem import Basis, ElementTriP2, ElementVector, MeshTri, asm
 
-from analytic.materials import Material, get_material
+from analytic.materials import Material
 from fem.forms import elasticity, lame_parameters, thermal_load
+from fem.setup import part_materials
 from meshes.section import Section, Split
 from meshes.build import SectionMesh
 
@@ -101,8 +102,7 @@ class StackModel:
         self.section, self.contact = section, contact
         self.part_names = section.parts()
         self.part_of = np.asarray(smesh.part_of).astype(str)
-        self.materials = {p: (materials or {}).get(p) or get_material(section.material_of(p))
-                          for p in self.part_names}
+        self.materials = part_materials(section, materials)
         pts, tris = unzip(smesh.points, smesh.triangles, self.part_of, section)
         self.mesh = MeshTri(pts, tris)
         self.basis = Basis(self.mesh, ElementVector(ElementTriP2()))

@@ -11,11 +11,12 @@ which converges much faster than an interface stress average (DESIGN.md section 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from fem.forms import stress_components, von_mises
-from fem.model import StackModel
+if TYPE_CHECKING:                    # only the model's fits and basis are read here
+    from fem.model import StackModel
 
 
 @dataclass
@@ -30,10 +31,17 @@ class FitResult:
 
 def fit_mean_pressures(model: StackModel, fit_of_pair: np.ndarray, force_N: np.ndarray) -> np.ndarray:
     """Mean fit pressure (MPa) per fit for states force_N (n_states, n_pairs)."""
+    return mean_pressures_MPa(force_N, fit_of_pair, [f.r_mm for f in model.fits],
+                              [f.length_mm for f in model.fits])
+
+
+def mean_pressures_MPa(force_N: np.ndarray, fit_of_pair: np.ndarray, r_mm, length_mm) -> np.ndarray:
+    """Mean pressure (MPa) per fit k of radius r_mm[k] and length length_mm[k] (mm) for states
+    force_N (n_states, n_pairs) of whole-ring pair forces (N): sum of the fit's forces / 2 pi R L."""
     F = np.atleast_2d(force_N)
-    out = np.empty((F.shape[0], len(model.fits)))
-    for k, f in enumerate(model.fits):
-        out[:, k] = F[:, fit_of_pair == k].sum(axis=1) / (2 * np.pi * f.r_mm * f.length_mm)
+    out = np.empty((F.shape[0], len(r_mm)))
+    for k, (r, length) in enumerate(zip(r_mm, length_mm)):
+        out[:, k] = F[:, fit_of_pair == k].sum(axis=1) / (2 * np.pi * r * length)
     return out
 
 
@@ -81,6 +89,8 @@ def groove_centre_shift(u_point_mm: np.ndarray, theta_ring: np.ndarray,
 def element_stresses(model: StackModel, u: np.ndarray, theta_e: np.ndarray) -> dict[str, np.ndarray]:
     """Element-mean stresses (MPa): sigma_rr, sigma_zz, sigma_tt (hoop), tau_rz, von_mises.
     theta_e: thermal strain per element (uniform per part)."""
+    from fem.forms import stress_components, von_mises
+
     b = model.basis
     uf = b.interpolate(u)
     r = b.mapping.F(b.quadrature[0])[0]

@@ -23,13 +23,15 @@ from __future__ import annotations
 
 import functools
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Callable
 
 import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.linalg import splu
 from threadpoolctl import ThreadpoolController
 
-from fem.model import StackModel
+if TYPE_CHECKING:                    # the model is only handed through here
+    from fem.model import StackModel
 
 _BLAS = ThreadpoolController()
 
@@ -202,39 +204,53 @@ class Superposition:
 
     @single_thread_blas
     def __init__(self, solver: FitSolver, probe: sp.csr_matrix | None = None):
+        self._set(condense(solver, probe), lambda: solver)
+
+    @classmethod
+    def from_condensed(cls, condensed: "Condensed", solver_of: Callable[[], FitSolver]
+                       ) -> "Superposition":
+        """A superposition of stored condensed arrays (`fem.setup`): `evaluate` needs nothing
+        else; `solver_of()` (called once, by `field` only) gives the full FE model when a whole
+        displacement field is asked for."""
+        sup = cls.__new__(cls)
+        sup._set(condensed, solver_of)
+        return sup
+
+    def _set(self, c: "Condensed", solver_of: Callable[[], FitSolver]) -> None:
         from scipy.linalg import cho_factor
 
         self._cho_factor = cho_factor
-        self.solver, self.model = solver, solver.model
-        m = self.model
-        self.n_parts, self.n_fits = len(m.part_names), len(m.fits)
-        self.probe = probe
+        self.condensed, self._solver_of = c, solver_of
+        self.n_parts, self.n_fits = c.n_parts, c.n_fits
         self._chol: dict[bytes, tuple] = {}
         self.block = 128         # states tried per active set (sweeps and samples alike: measured)
-        s = solver
-        self.ps, self.pm, self.pfit = s.slave, s.master, s.fit_of_pair
-        if s.bonded:
-            # tied fits never change status: the units of the one (all-closed) system suffice
-            closed = np.ones(s.n_pairs, bool)
-            F = np.hstack([m.unit_loads, np.zeros((m.ndofs, self.n_fits))])
-            D = np.vstack([np.zeros((self.n_parts, self.n_fits)), np.eye(self.n_fits)])
-            U = s.solve_status(closed, F, D)
-            self._bonded_units = U
-            self._bonded_force = s.pair_values(U, F, D)[0]
-            self._T, self._lu = s._system(closed)
-            self.PU = None if probe is None else probe @ U
-            return
-        npair = self.ps.size
-        self._T, self._lu = T, lu = s._system(np.zeros(npair, bool))
-        E = np.zeros((m.ndofs, npair))
-        E[self.ps, np.arange(npair)] = 1.0
-        E[self.pm, np.arange(npair)] -= 1.0
-        F = np.hstack([m.unit_loads, E])
-        U = T @ _lu_solve(lu, T.T @ F)
-        rel = U[self.ps] - U[self.pm]
-        self.B, A = rel[:, :self.n_parts], rel[:, self.n_parts:]
-        self.A = 0.5 * (A + A.T)
-        self.PU = None if probe is None else probe @ U
+        self.pfit, self.B, self.A = c.fit_of_pair, c.B, c.A
+        self.PU = c.probe_units if c.probe_units.shape[0] else None
+        self._bonded_units = None
+
+    @functools.cached_property
+    def solver(self) -> FitSolver:
+        """The full FE solver (built on first use when this superposition came from stored
+        arrays)."""
+        return self._solver_of()
+
+    @property
+    def model(self) -> "StackModel":
+        return self.solver.model
+
+    @property
+    def ps(self) -> np.ndarray:
+        """Slave (outer member) radial DOF of every contact pair."""
+        return self.solver.slave
+
+    @property
+    def pm(self) -> np.ndarray:
+        """Master (inner member) radial DOF of every contact pair."""
+        return self.solver.master
+
+    @property
+    def n_pairs(self) -> int:
+        return self.pfit.size
 
     def _factor(self, closed: np.ndarray):
         key = np.packbits(closed).tobytes()
@@ -274,10 +290,11 @@ class Superposition:
         contact force (N, + compression) and gap (mm) per pair, probe values, and the index of
         the active set used (states sharing an active set are solved together)."""
         theta, delta = np.atleast_2d(theta), np.atleast_2d(delta_mm)
-        if self.solver.bonded:
+        if self.condensed.bonded:
             C = np.hstack([theta, delta])
-            out = {"force_N": C @ self._bonded_force.T, "gap_mm": np.zeros((C.shape[0], self.ps.size)),
-                   "status": np.zeros(C.shape[0], int), "closed_sets": [np.ones(self.ps.size, bool)]}
+            n = self.n_pairs
+            out = {"force_N": C @ self.condensed.bonded_force.T, "gap_mm": np.zeros((C.shape[0], n)),
+                   "status": np.zeros(C.shape[0], int), "closed_sets": [np.ones(n, bool)]}
             if self.PU is not None:
                 out["probe"] = C @ self.PU.T
             return out
@@ -308,12 +325,80 @@ class Superposition:
         return out
 
     def field(self, theta: np.ndarray, delta_mm: np.ndarray) -> np.ndarray:
-        """Full displacement vector of one state (one back-substitution)."""
-        if self.solver.bonded:
+        """Full displacement vector (mm) of one state: one back-substitution with the
+        factorisation of the all-open system (bonded: the unit solutions of the tied system,
+        solved on first use)."""
+        s = self.solver
+        if self.condensed.bonded:
+            if self._bonded_units is None:
+                self._bonded_units = s.solve_status(np.ones(s.n_pairs, bool), *_bonded_units_load(s))
             return self._bonded_units @ np.concatenate([theta, delta_mm])
         res = self.evaluate(theta[None, :], delta_mm[None, :])
         lam = res["force_N"][0]
         f = self.model.unit_loads @ theta
         np.add.at(f, self.ps, lam)
         np.add.at(f, self.pm, -lam)
-        return self._T @ _lu_solve(self._lu, self._T.T @ f)
+        T, lu = s.factorize(np.zeros(s.n_pairs, bool))
+        return T @ _lu_solve(lu, T.T @ f)
+
+
+@dataclass(frozen=True)
+class Condensed:
+    """A `FitSolver`'s contact problem condensed to its fit interface: everything
+    `Superposition.evaluate` needs, independent of the mesh size once built (`fem.setup` stores
+    it across runs).
+
+    bonded: the fits are tied (their status never changes). n_parts, n_fits: FE parts and fits.
+    fit_of_pair (n_pairs,): the fit of each contact node pair. Frictionless fits: B (n_pairs,
+    n_parts) the gap (mm) per unit thermal strain of each part with every pair open; A (n_pairs,
+    n_pairs) the flexibility (mm/N), gap change per newton of pair force, symmetric;
+    probe_units (n_probe, n_parts + n_pairs) the probed displacements (mm) per unit thermal strain
+    and per newton of pair force. Bonded fits: probe_units (n_probe, n_parts + n_fits) per unit
+    thermal strain and per mm of radial interference, bonded_force (n_pairs, n_parts + n_fits) the
+    pair forces (N) per the same units. Arrays a variant does not use have size 0; n_probe is 0
+    without a probe matrix."""
+    bonded: bool
+    n_parts: int
+    n_fits: int
+    fit_of_pair: np.ndarray
+    B: np.ndarray
+    A: np.ndarray
+    probe_units: np.ndarray
+    bonded_force: np.ndarray
+
+
+def _bonded_units_load(s: FitSolver) -> tuple[np.ndarray, np.ndarray]:
+    """Loads and interferences of the bonded unit solutions: unit thermal strain of each part,
+    then 1 mm radial interference of each fit."""
+    m = s.model
+    n_parts, n_fits = len(m.part_names), len(m.fits)
+    return (np.hstack([m.unit_loads, np.zeros((m.ndofs, n_fits))]),
+            np.vstack([np.zeros((n_parts, n_fits)), np.eye(n_fits)]))
+
+
+@single_thread_blas
+def condense(solver: FitSolver, probe: sp.csr_matrix | None = None) -> Condensed:
+    """The condensed contact problem of `solver` (see `Superposition`): one factorisation of the
+    system with every pair open and one solve per part and per contact pair; bonded fits: the
+    tied system, one solve per part and per fit. `probe` (n_probe, ndofs) maps displacements to
+    the values `evaluate` returns as "probe"."""
+    m, s = solver.model, solver
+    n_parts, n_fits, npair = len(m.part_names), len(m.fits), s.n_pairs
+    none = np.zeros((0, 0))
+    if s.bonded:
+        F, D = _bonded_units_load(s)
+        U = s.solve_status(np.ones(npair, bool), F, D)
+        PU = np.zeros((0, n_parts + n_fits)) if probe is None else probe @ U
+        return Condensed(True, n_parts, n_fits, s.fit_of_pair.copy(), none, none,
+                         np.ascontiguousarray(PU), np.ascontiguousarray(s.pair_values(U, F, D)[0]))
+    T, lu = s.factorize(np.zeros(npair, bool))
+    E = np.zeros((m.ndofs, npair))
+    E[s.slave, np.arange(npair)] = 1.0
+    E[s.master, np.arange(npair)] -= 1.0
+    F = np.hstack([m.unit_loads, E])
+    U = T @ _lu_solve(lu, T.T @ F)
+    rel = U[s.slave] - U[s.master]
+    A = rel[:, n_parts:]
+    PU = np.zeros((0, n_parts + npair)) if probe is None else probe @ U
+    return Condensed(False, n_parts, n_fits, s.fit_of_pair.copy(), np.ascontiguousarray(rel[:, :n_parts]),
+                     0.5 * (A + A.T), np.ascontiguousarray(PU), none)

@@ -1,4 +1,5 @@
-"""Build the r-z mesh of a `Section` with gmsh; cache the .msh by a hash of geometry and sizes.
+"""Build the r-z mesh of a `Section` with gmsh; cache the .msh by a hash of geometry and sizes
+(`meshes.cache`: checked on every read, written atomically).
 
 Every part is a named physical surface; every fit and every split line a named physical curve.
 Elements are second-order triangles (triangle6), refined along fits and raceways. The mesh is read
@@ -7,15 +8,12 @@ back with meshio (`read_section_mesh`).
 from __future__ import annotations
 
 import os
-import shutil
-import sys
-import tempfile
-import time
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from meshes.cache import cache_dir, cached_file, remove_stale
 from meshes.section import Section
 
 
@@ -26,28 +24,6 @@ class MeshError(RuntimeError):
 #: largest mesh built without asking (triangles; P2: about 4 DOF per triangle, ~4 kB of memory per
 #: triangle through assembly and factorisation): BEARINGFEM_MAX_ELEMENTS overrides it
 MAX_ELEMENTS = 400_000
-#: temporary mesh files of killed runs older than this are removed whatever their PID (s)
-STALE_AGE_S = 24 * 3600.0
-
-
-def warn(msg: str) -> None:
-    """One warning line on stderr (the run goes on)."""
-    print(f"bearingfem: warning: {msg}", file=sys.stderr, flush=True)
-
-
-def cache_dir() -> Path:
-    """The mesh cache folder (BEARINGFEM_CACHE or ~/.cache/bearingfem, then meshes/). When it
-    cannot be created or written, a private temporary folder serves this run (one warning)."""
-    d = Path(os.environ.get("BEARINGFEM_CACHE", Path.home() / ".cache" / "bearingfem")) / "meshes"
-    try:
-        d.mkdir(parents=True, exist_ok=True)
-        if not os.access(d, os.W_OK | os.X_OK):
-            raise PermissionError(13, "not writable")
-        return d
-    except OSError as exc:
-        tmp = Path(tempfile.mkdtemp(prefix="bearingfem-meshes-"))
-        warn(f"mesh cache {d} is not usable ({exc.strerror or exc}); meshing in {tmp} for this run")
-        return tmp
 
 
 def estimate_elements(section: Section) -> int:
@@ -70,33 +46,6 @@ def check_size(section: Section) -> int:
                         f"the limit of {limit:.2g} (BEARINGFEM_MAX_ELEMENTS): check the section "
                         "dimensions and the [mesh] sizes")
     return n
-
-
-def _remove_stale(d: Path) -> None:
-    """Temporary meshes of killed runs: `section_<key>.<pid>.msh` whose process is gone (or that
-    are older than STALE_AGE_S)."""
-    now = time.time()
-    for f in d.glob("section_*.*.msh"):
-        try:
-            pid = int(f.suffixes[-2][1:])
-        except (ValueError, IndexError):
-            continue
-        try:
-            alive = pid != os.getpid() and _pid_alive(pid)
-            if not alive or now - f.stat().st_mtime > STALE_AGE_S:
-                f.unlink()
-        except OSError:
-            pass
-
-
-def _pid_alive(pid: int) -> bool:
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except PermissionError:
-        return True
-    return True
 
 
 @dataclass
@@ -124,30 +73,12 @@ def section_mesh(section: Section) -> "SectionMesh":
 
 def _cached(section: Section, refresh: bool):
     check_size(section)
-    d = cache_dir()
-    _remove_stale(d)
+    d = cache_dir("meshes", "mesh")
+    remove_stale(d, "section", ".msh")
     path = d / f"section_{section.key()}.msh"
-    if (path.exists() or path.is_symlink()) and not refresh:
-        try:
-            return path, validated(path, section)
-        except MeshError as exc:
-            warn(f"cached mesh {path} is unusable ({exc}); rebuilding it")
-            try:
-                shutil.rmtree(path) if path.is_dir() and not path.is_symlink() else path.unlink()
-            except OSError as exc2:
-                raise MeshError(f"cannot remove the unusable cached mesh {path} "
-                                f"({exc2.strerror})") from None
-    tmp = path.with_suffix(f".{os.getpid()}.msh")
-    try:
-        _mesh_with_gmsh(section, tmp)
-        try:
-            mesh = validated(tmp, section)
-        except MeshError as exc:
-            raise MeshError(f"gmsh wrote an unusable mesh ({exc}); is the disk at {d} full?") from None
-        os.replace(tmp, path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
+    mesh = cached_file(path, lambda tmp: _mesh_with_gmsh(section, tmp),
+                       lambda p: validated(p, section), what="mesh", writer="gmsh",
+                       error=MeshError, refresh=refresh)
     mesh.path = path
     return path, mesh
 

@@ -25,10 +25,10 @@ from analytic.bearing.land import groove_centre_radius_mm, land_diameters_mm, la
 from analytic.lubrication import get_lubricant
 from analytic.safety import static_load_rating_C0_N, static_safety_from_contact_pressure
 from analytic.torque import palmgren_f1_angular_contact, pair_torque
-from fem.compliance import preload_path_compliance_mm_per_N
-from fem.model import build_model
-from fem.post import fit_mean_pressures, groove_centre_shift
-from fem.solver import FitSolver, Superposition
+from fem.post import groove_centre_shift, mean_pressures_MPa
+from fem.setup import (CompliancePlan, FESetup, FullFE, SetupSpec, cached_setup, compute_setup,
+                       full_fe)
+from fem.solver import Superposition
 from studies.model.stack import section_from_assembly
 from studies.model.config import Assembly
 from studies.model.effects import resolve_friction_coefficient, resolve_interference_um
@@ -100,7 +100,12 @@ class RowField:
 
 
 class Pipeline:
-    """One assembly: mesh, FE model, unit solutions and bearing geometry, built once."""
+    """One assembly: FE set-up, unit solutions and bearing geometry, built once.
+
+    The superposition's arrays and the preload-path compliance come from `fem.setup`: from the
+    on-disk cache when this stack was set up before (`cache=False`: always computed). The full
+    FE model (`model`, `solver`, `probe`: mesh, assembly, factorisations) is built only when
+    something needs it: a set-up not cached yet, `direct` solves, whole fields."""
 
     #: pipelines built in this process, by (assembly, mesh factor): a few, oldest dropped first
     _shared: dict = {}
@@ -121,26 +126,59 @@ class Pipeline:
         return hit
 
     def __init__(self, asm: Assembly, mesh_factor: float = 1.0, progress=None,
-                 superpose: bool = True):
-        say = progress or (lambda s: None)
+                 superpose: bool = True, cache: bool = True):
+        self._say = progress or (lambda s: None)
         self.asm = asm
         self.section = section_from_assembly(asm).scaled(mesh_factor)
-        say(f"meshing and assembling the FE model of {asm.name} ...")
-        self.model = build_model(self.section, asm.fits.contact)
-        self.solver = FitSolver(self.model)
         pts = np.array([self.section.raceway_points[r] for r in RINGS]).T
-        self.probe = self.model.probe_matrix(pts)
-        self.sup = None
-        if superpose:
-            say(f"unit solutions ({self.model.ndofs} DOF) ...")
-            self.sup = Superposition(self.solver, self.probe)
+        plan = None
+        if asm.preload.path_compliance == "fe":
+            inner, outer = asm.mean_fits_um()
+            delta = self.deltas_mm(np.array([inner]), np.array([outer]))[0]
+            plan = CompliancePlan(tuple(float(v) for v in SIGNS[asm.arrangement]),
+                                  tuple(float(v) for v in delta))
+        self.spec = SetupSpec.of(self.section, asm.fits.contact, pts, plan)
+        self.materials = dict(self.spec.materials)
+        self._full: FullFE | None = None
+        self.setup: FESetup = (cached_setup(self.spec, self.full_fe, progress=self._say) if cache
+                               else compute_setup(self.spec, self.full_fe()))
+        self.part_names = self.setup.part_names
+        self.sup = (Superposition.from_condensed(self.setup.condensed, lambda: self.solver)
+                    if superpose else None)
         self.geom = BearingGeometry.from_spec(asm.bearing)
         self.land_diameters_mm = land_diameters_mm(asm.bearing)[:2]
         self._centre_offsets(pts)
         self._fe_cache: dict[bytes, FEState] = {}
         self.lubricant = get_lubricant(asm.lubrication.lubricant) if asm.lubrication.kind == "oil" else None
-        self.compliance_mm_per_N = (self.preload_path_compliance()
-                                    if asm.preload.path_compliance == "fe" else 0.0)
+        self.compliance_mm_per_N = self.setup.compliance_mm_per_N if plan is not None else 0.0
+
+    # ------------------------------------------------------------------ the full FE, on demand
+    def full_fe(self) -> FullFE:
+        """The full FE model of the section (mesh from its cache, assembly), built on first use."""
+        if self._full is None:
+            self._say(f"meshing and assembling the FE model of {self.asm.name} ...")
+            self._full = full_fe(self.spec)
+        return self._full
+
+    @property
+    def model(self):
+        """The assembled `fem.model.StackModel` (built on first use)."""
+        return self.full_fe().model
+
+    @property
+    def solver(self):
+        """The `fem.solver.FitSolver` of the model (built on first use)."""
+        return self.full_fe().solver
+
+    @property
+    def probe(self):
+        """(8, ndofs) matrix: u_r, u_z at the raceway points of RINGS (built on first use)."""
+        return self.full_fe().probe
+
+    @property
+    def ndofs(self) -> int:
+        """Displacement DOFs of the FE model."""
+        return self.setup.ndofs
 
     # ------------------------------------------------------------------ geometry
     def _centre_offsets(self, pts: np.ndarray) -> None:
@@ -163,22 +201,14 @@ class Pipeline:
             off[k] = (rc - pts[0, k], zc - pts[1, k])
         self.centre_offset_mm = off
 
-    def preload_path_compliance(self) -> float:
-        """Axial compliance of the preload path per bearing (mm/N), from the FE at the assembled
-        fits (`fem.compliance`)."""
-        inner, outer = self.asm.mean_fits_um()
-        delta = self.deltas_mm(np.array([inner]), np.array([outer]))[0]
-        return preload_path_compliance_mm_per_N(self.solver, self.probe, SIGNS[self.asm.arrangement],
-                                                delta)
-
     # ------------------------------------------------------------------ FE
     def thetas(self, inputs: PhysicsInputs) -> np.ndarray:
         """(n, n_parts) thermal strain per FE part; the cte_nonlinearity effect changes the CTE
         slope of the shaft (and nut) and housing (and cover)."""
         cols = []
-        for part in self.model.part_names:
+        for part in self.part_names:
             group = FE_PART_GROUP[part]
-            mat = self.model.materials[part]
+            mat = self.materials[part]
             if group in inputs.dalpha_per_K2:          # shaft (and nut), housing (and cover)
                 mat = mat.with_dalpha(inputs.dalpha_per_K2[group])
             cols.append(mat.thermal_strain(np.asarray(inputs.T_C[group], float), self.asm.T_ref_C))
@@ -190,7 +220,7 @@ class Pipeline:
     def deltas_mm(self, inner_um: np.ndarray, outer_um: np.ndarray) -> np.ndarray:
         """(n, n_fits) radial interference (mm) per FE fit."""
         return np.column_stack([(inner_um if f.key == "inner" else outer_um) / 2000.0
-                                for f in self.model.fits])
+                                for f in self.section.fits])
 
     def fe(self, inputs: PhysicsInputs, direct: bool = False) -> FEState:
         theta = self.thetas(inputs)
@@ -220,9 +250,9 @@ class Pipeline:
         else:
             res = self.sup.evaluate(theta, delta)
             force, probe = res["force_N"], res["probe"]
-        p = fit_mean_pressures(self.model, self.solver.fit_of_pair, force)
+        p = self.fit_pressures(force)
         # groove-centre shifts: raceway displacement + ring thermal strain x offset
-        idx = {p: i for i, p in enumerate(self.model.part_names)}
+        idx = {p: i for i, p in enumerate(self.part_names)}
         centre = np.empty((n, 4, 2))
         for k, ring in enumerate(RINGS):
             centre[:, k, :] = groove_centre_shift(probe[:, 2 * k:2 * k + 2], theta[:, idx[ring]],
@@ -235,6 +265,11 @@ class Pipeline:
             inner_um + (theta[:, idx["shaft"]] - theta[:, idx["inner_ring_A"]]) * d_seat * 1e3,
             outer_um + (theta[:, idx["outer_ring_A"]] - theta[:, idx["housing"]]) * d_bore * 1e3])
         return FEState(p, interf, dr, dz, probe)
+
+    def fit_pressures(self, force_N: np.ndarray) -> np.ndarray:
+        """(n, n_fits) mean pressure (MPa) per FE fit from the pair forces (n, n_pairs) in N."""
+        st = self.setup
+        return mean_pressures_MPa(force_N, st.condensed.fit_of_pair, st.fit_r_mm, st.fit_length_mm)
 
     def field(self, inputs: PhysicsInputs, row: int = 0) -> RowField:
         """Displacement field and contact forces of one row (superposed, or a direct solve when
@@ -256,7 +291,7 @@ class Pipeline:
         delta = self.deltas_mm(inner_um, outer_um)[0]
         sol = self.solver.solve(m.thermal_load_vector(theta_q), delta)
         probe = self.probe @ sol.u
-        p = fit_mean_pressures(m, self.solver.fit_of_pair, sol.force_N)
+        p = self.fit_pressures(sol.force_N)
         centre = np.empty((4, 2))
         w = m.basis.dx
         for k, ring in enumerate(RINGS):
@@ -270,7 +305,7 @@ class Pipeline:
     def lame_beside(self, fe: FEState, inputs: PhysicsInputs) -> dict[str, np.ndarray]:
         """Closed-form neighbours of the FE values (two-cylinder Lamé, plane stress)."""
         a, b = self.asm, self.asm.bearing
-        ms, mr, mh = (self.model.materials[p] for p in ("shaft", "inner_ring_A", "housing"))
+        ms, mr, mh = (self.materials[p] for p in ("shaft", "inner_ring_A", "housing"))
         inner = dict(r_inner_mm=a.shaft.bore_diameter_mm / 2, r_fit_mm=a.shaft.seat_diameter_mm / 2,
                      r_outer_mm=b.inner_ring_outer_diameter_mm / 2, E_inner_MPa=ms.E_MPa,
                      nu_inner=ms.nu, E_outer_MPa=mr.E_MPa, nu_outer=mr.nu)
@@ -334,8 +369,8 @@ class Pipeline:
                               if compliance_mm_per_N is None else compliance_mm_per_N)
             mu = resolve_friction_coefficient(inputs, a.lubrication.friction_coefficient)
             torque = self.torque(pair, inputs, mu, viscous_factor_f0)
-        nf = len(self.model.fits)
-        names = [f.name for f in self.model.fits]
+        names = list(self.setup.fit_names)
+        nf = len(names)
         p_in = fe.fit_pressure_MPa[:, [k for k in range(nf) if names[k].startswith("fit_inner")]]
         p_out = fe.fit_pressure_MPa[:, [k for k in range(nf) if names[k].startswith("fit_outer")]]
         out = {"torque_Nmm": torque.pop("torque_Nmm"), "preload_N": pair.preload_N,
