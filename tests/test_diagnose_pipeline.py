@@ -534,3 +534,44 @@ def test_cli_diagnose_bad_input_exits_2(tmp_path, capsys):
     cap = capsys.readouterr()
     assert code == 2 and len(cap.err.strip().splitlines()) == 1 and "nope.toml" in cap.err
     assert not out.exists()
+
+
+def test_noise_free_model_output_is_no_discrepancy(tmp_path):
+    """simulate's own output, written with 10 significant digits and diagnosed against the same
+    model: the residuals are round-off of the CSV, which is no discrepancy (it once came out as
+    'explained' by an interference error of 9e-12 um)."""
+    import json
+
+    from studies.app.cli import main
+    from studies.model.config import CONFIG_DIR
+
+    cfg = CONFIG_DIR / "seed000_71807C_TC4.toml"
+    t = np.arange(0.0, 12 * 3600.0 + 1, 900.0)
+    T = 20 + 60 * np.sin(2 * np.pi * t / (4 * 3600.0))
+    cond = tmp_path / "c.csv"
+    cond.write_text("time_s,T_ambient_C\n" + "".join(f"{a:.1f},{b:.6f}\n" for a, b in zip(t, T)))
+    sim = tmp_path / "sim.csv"
+    assert main(["simulate", str(cfg), str(cond), "-o", str(sim)]) == 0
+    assert main(["diagnose", str(cfg), str(sim), "--out", str(tmp_path / "d")]) == 0
+    result = json.loads((tmp_path / "d" / "diagnosis.json").read_text())
+    assert result["verdict"] == "no_discrepancy", (result["verdict"], result.get("cause"))
+
+
+def test_fitted_parameters_stay_inside_what_the_assembly_allows():
+    """A settling loss cannot exceed the assembled preload (seed 001: 7 N); an interference
+    error stays inside the fit's tolerance band around the mean fit where one is given."""
+    from dataclasses import replace
+
+    from studies.model.effects import EFFECTS, assembly_bounds
+
+    a001 = load_shipped("seed001")
+    b = assembly_bounds(a001)
+    assert b["preload_settling"]["loss_N"] == (0.0, a001.preload.assembled_N)
+    eff = EFFECTS["preload_settling"].with_bounds(**b["preload_settling"])
+    assert eff.bounds["loss_N"] == (0.0, 7.0) and EFFECTS["preload_settling"].bounds["loss_N"][1] == 2000.0
+    a000 = load_shipped("seed000")
+    tol = replace(a000, fits=replace(a000.fits, inner_interference_um=0.0,
+                                     inner_shaft_deviation_um=(2.0, 13.0),
+                                     inner_ring_bore_deviation_um=(-6.0, 0.0)))
+    # band 2..19 um around the mean 10.5 um
+    assert assembly_bounds(tol)["interference_error"]["inner_um"] == (-8.5, 8.5)

@@ -69,6 +69,11 @@ from studies.diagnosis.screening import ScreeningPhase
 from studies.diagnosis.stats import auto_blocks, noise_sigma, orth
 
 
+#: relative noise floor: a CSV keeps 10 significant digits (half a unit in the last is 5e-10 of the
+#: value); twice that, so that round-off alone never looks like structure
+ROUND_OFF = 1e-9
+
+
 class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
     """One diagnosis: the data, the cached model and the phases (mixins, one module each)."""
 
@@ -143,10 +148,14 @@ class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
 
     # ------------------------------------------------------------------ residuals
     def _initial_sigma(self, c):
+        """The column's noise level: given, or from the data (second differences), but never
+        below round-off (ROUND_OFF x its largest value): a file written with 10 significant
+        digits carries 5e-10 of relative noise, and residuals at that level are no discrepancy."""
         if c in self.user_sigma:
             return float(self.user_sigma[c])
-        s = noise_sigma(self.measured[c], self.blocks)
-        return s if s > 0 else 1.0
+        floor = ROUND_OFF * float(np.nanmax(np.abs(self.measured[c]), initial=0.0))
+        s = max(noise_sigma(self.measured[c], self.blocks), floor)
+        return s if s > 0 else 1.0     # a column of zeros
 
     def zvec(self, pred: dict) -> np.ndarray:
         parts = []
@@ -335,7 +344,7 @@ class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
             if c not in self.user_sigma:
                 s = noise_sigma(self.measured[c] - base.pred[c], self.blocks)
                 scale = max(np.nanmax(np.abs(self.measured[c])), 1e-300)
-                self.sigma[c] = max(s, 1e-12 * scale)
+                self.sigma[c] = max(s, ROUND_OFF * scale)
         base = self.fit(bspace, base.u)
         base_nuis = bspace.unpack(base.u)[1]
         n_nuis = len(self.nuis_names)

@@ -16,7 +16,8 @@ import numpy as np
 from studies.model.config import load_assembly
 from studies.diagnosis.engine import diagnose_full
 from studies.diagnosis.report import write_report
-from studies.model.effects import EFFECTS, ORDER, apply_effects, resolve_friction_coefficient
+from studies.model.effects import (EFFECTS, ORDER, apply_effects, assembly_bounds,
+                                   resolve_friction_coefficient)
 from studies.model.inputs import CONDITION_COLUMNS, baseline_inputs
 from studies.model.pipeline import Pipeline
 from studies.model.checks import CHECK_COLUMNS
@@ -98,7 +99,8 @@ def diagnose_files(assembly_path: Path, measured_path: Path, out_dir: Path, prog
     pl = pipeline or Pipeline.shared(asm, progress=progress)
     conditions, measured = read_measured(measured_path, OUTPUT_NAMES)
     predict = ModelPredictor(pl, conditions, measured.keys())
-    candidates = [EFFECTS[name] for name in ORDER]
+    limits = assembly_bounds(asm)
+    candidates = [EFFECTS[name].with_bounds(**limits.get(name, {})) for name in ORDER]
     progress(f"diagnosing {len(next(iter(measured.values())))} rows, columns "
              f"{', '.join(measured)}, {len(candidates)} candidate effects ...")
     outcome = diagnose_full(predict, measured, conditions, candidates, NUISANCE,

@@ -92,6 +92,23 @@ class Effect:
             out[p] = v
         return out
 
+    def with_bounds(self, **bounds: tuple[float, float]) -> "Effect":
+        """A copy whose bounds are narrowed to what one assembly allows (each new range inside the
+        physical one and containing the `off` value); the class stays as it is."""
+        import copy
+
+        new = dict(self.bounds)
+        for p, (lo, hi) in bounds.items():
+            plo, phi = self.bounds[p]
+            lo, hi = max(float(lo), plo), min(float(hi), phi)
+            if not lo <= self.off[p] <= hi:
+                raise EffectError(f"effect {self.name}: bounds [{lo:g}, {hi:g}] for {p} exclude "
+                                  f"its off value {self.off[p]:g}")
+            new[p] = (lo, hi)
+        out = copy.copy(self)
+        out.bounds = new
+        return out
+
     def is_off(self, params: Mapping[str, float]) -> bool:
         """True when the (validated) parameters give exactly the baseline."""
         return all(params[p] == self.off[p] for p in self.active_parameters())
@@ -193,6 +210,21 @@ from .preload_settling import PreloadSettling  # noqa: E402
 
 #: order in which `apply_effects` applies effects (the lag first: it acts on the ambient-following
 #: part temperatures; the radial gradient then adds to them; friction reads the final temperatures).
+def assembly_bounds(asm) -> dict[str, dict[str, tuple[float, float]]]:
+    """Parameter bounds an assembly implies (the diagnosis fits inside them):
+    - preload_settling.loss_N <= the assembled preload (a pair cannot lose more than it has);
+    - interference_error.inner_um / outer_um inside the fit's tolerance band around the mean fit,
+      where `[fits]` gives tolerances (`studies/model/tolerances.py`)."""
+    from studies.model.tolerances import has_tolerances, worst_case_bands
+
+    out = {"preload_settling": {"loss_N": (0.0, float(asm.preload.assembled_N))}}
+    if has_tolerances(asm):
+        mean = dict(zip(("inner", "outer"), asm.mean_fits_um()))
+        out["interference_error"] = {f"{b.fit}_um": (b.lower_um - mean[b.fit], b.upper_um - mean[b.fit])
+                                     for b in worst_case_bands(asm)}
+    return out
+
+
 ORDER = ("interference_error", "thermal_lag", "radial_gradient", "cte_nonlinearity",
          "viscosity_temperature", "friction_temperature", "preload_settling")
 
