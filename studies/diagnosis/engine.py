@@ -66,12 +66,21 @@ from studies.diagnosis.decision import DecisionPhase
 from studies.diagnosis.fitting import FittingPhase
 from studies.diagnosis.heldout import HeldoutPhase
 from studies.diagnosis.screening import ScreeningPhase
-from studies.diagnosis.stats import auto_blocks, noise_sigma, orth
+from studies.diagnosis.stats import (ar1_regression_ml, ar1_unwhiten, ar1_whiten, auto_blocks,
+                                     noise_sigma, orth)
 
 
 #: relative noise floor: a CSV keeps 10 significant digits (half a unit in the last is 5e-10 of the
 #: value); twice that, so that round-off alone never looks like structure
 ROUND_OFF = 1e-9
+#: likelihood-ratio statistic (chi-square, 1 df) of AR(1) errors against white ones, with the
+#: conditions' smoother as the regression, above which a column's noise is taken as AR(1) and
+#: whitened (slowly drifting sensors); 9 = a 3-sigma level
+AR1_LR = 9.0
+#: with AR(1) noise the whitening uses an estimated rho and the in-sample F test of the smoother
+#: is anti-conservative; the smoother must then also predict the held-out blocks (block cross-
+#: validation gain above this share of the residual variance) to count as structure
+AR1_MIN_CV_GAIN = 0.1
 
 
 class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
@@ -142,7 +151,9 @@ class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
         self.entry_block = self.blocks[self.entry_row]
         self.N = self.entry_row.size
         self.user_sigma = dict(noise_sigma_ or {})
-        self.sigma = {c: self._initial_sigma(c) for c in self.columns}
+        self.sigma = {c: self._initial_sigma(c) for c in self.columns}   # marginal noise level
+        self.rho = {c: 0.0 for c in self.columns}                        # AR(1) coefficient
+        self.sigma_w = dict(self.sigma)                                  # innovation level
         self.notes: list[str] = []
         self.calls_by_phase: dict[str, int] = {}
 
@@ -158,10 +169,13 @@ class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
         return s if s > 0 else 1.0     # a column of zeros
 
     def zvec(self, pred: dict) -> np.ndarray:
+        """Standardised residuals, stacked: per column whitened for its AR(1) noise (within the
+        held-out blocks) and divided by the innovation level; plain r / sigma for white noise."""
         parts = []
         for c in self.columns:
             m = self.valid[c]
-            parts.append((self.measured[c][m] - pred[c][m]) / self.sigma[c])
+            r = self.measured[c][m] - pred[c][m]
+            parts.append(ar1_whiten(r, self.blocks[m], self.rho[c]) / self.sigma_w[c])
         z = np.concatenate(parts)
         if not np.all(np.isfinite(z)):
             raise ModelFailure("the model returned non-finite values")
@@ -254,14 +268,19 @@ class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
             m = self.valid[c]
             r = (self.measured[c] - pred[c])[m]
             s = self.sigma[c]
-            z = r / s
+            seg = self.blocks[m]
+            rho = self.rho[c]
+            # generalised least squares for AR(1) noise: whiten residuals and regressors alike
+            # (identical to the white-noise statistics when rho = 0)
+            z = ar1_whiten(r, seg, rho) / self.sigma_w[c]
+            one = ar1_whiten(np.ones_like(r), seg, rho)
             nn = z.size
             bias = float(np.mean(r))
-            bias_p = float(2 * stats.norm.sf(abs(np.mean(z)) * math.sqrt(nn)))
+            b_hat = float(one @ z) / float(one @ one)
+            bias_p = float(2 * stats.norm.sf(abs(b_hat) * math.sqrt(float(one @ one))))
             chi2_red = float(z @ z / max(nn - n_params, 1))
-            # lag-1 autocorrelation within blocks, in row order
-            seg = self.blocks[m]
-            zc = z - z.mean()
+            # lag-1 autocorrelation within blocks, in row order (of the whitened residuals)
+            zc = z - one * b_hat
             same = seg[1:] == seg[:-1]
             den = float(zc @ zc) or 1.0
             num = float(np.sum(zc[1:][same] * zc[:-1][same]))
@@ -273,7 +292,7 @@ class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
                                stats.norm.sf(num / math.sqrt(npairs))))
             # smoother: polynomials in the varying conditions (and time / row order)
             X = X_all[m]
-            A = np.column_stack([np.ones(nn), X])
+            A = ar1_whiten(np.column_stack([np.ones(nn), X]), seg, rho)
             q = orth(A)
             fitted = q @ (q.T @ zc)
             ss1 = float(np.sum((zc - fitted) ** 2))
@@ -297,12 +316,17 @@ class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
                     continue
                 coef, *_ = np.linalg.lstsq(A[tr], z[tr], rcond=None)
                 sse_cv += float(np.sum((z[te] - A[te] @ coef) ** 2))
-                sse_0 += float(np.sum((z[te] - z[tr].mean()) ** 2))
+                b_tr = float(one[tr] @ z[tr]) / float(one[tr] @ one[tr])
+                sse_0 += float(np.sum((z[te] - one[te] * b_tr) ** 2))
             cv_gain = 1.0 - sse_cv / sse_0 if sse_0 > 0 else 0.0
             out[c] = {"bias": bias, "bias_p": bias_p, "rmse": float(np.sqrt(np.mean(r ** 2))),
-                      "noise_sigma": s, "chi2_reduced": chi2_red, "lag1_autocorr": r1,
+                      "noise_sigma": s, "noise_ar1": rho, "chi2_reduced": chi2_red,
+                      "lag1_autocorr": r1,
                       "lag1_p": auto_p, "smoother_F": float(Fst), "smoother_p": F_p,
                       "smoother_heldout_gain": float(cv_gain)}
+            if rho > 0.0 and cv_gain < AR1_MIN_CV_GAIN:
+                F_p = 1.0      # AR(1) noise: the smoother must also predict held-out blocks
+            out[c]["smoother_p_used"] = F_p
             pvals += [bias_p, auto_p, F_p]
         p_min = min(pvals)
         p_adj = min(1.0, p_min * len(pvals))
@@ -310,10 +334,12 @@ class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
 
     # ------------------------------------------------------------------ sensitivities
     def col_rmse(self, z_stacked) -> dict[str, float]:
+        """RMSE per column in its own unit (the standardised residuals un-whitened)."""
         out = {}
         for j, c in enumerate(self.columns):
             zz = z_stacked[self.entry_col == j]
-            out[c] = float(np.sqrt(np.mean(zz ** 2)) * self.sigma[c])
+            r = ar1_unwhiten(zz * self.sigma_w[c], self.blocks[self.valid[c]], self.rho[c])
+            out[c] = float(np.sqrt(np.mean(r ** 2)))
         return out
 
     # ------------------------------------------------------------------ run
@@ -344,7 +370,8 @@ class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
             if c not in self.user_sigma:
                 s = noise_sigma(self.measured[c] - base.pred[c], self.blocks)
                 scale = max(np.nanmax(np.abs(self.measured[c])), 1e-300)
-                self.sigma[c] = max(s, ROUND_OFF * scale)
+                self.sigma[c] = self.sigma_w[c] = max(s, ROUND_OFF * scale)
+                self._noise_ar1(c, base.pred[c], ROUND_OFF * scale)
         base = self.fit(bspace, base.u)
         base_nuis = bspace.unpack(base.u)[1]
         n_nuis = len(self.nuis_names)
@@ -353,6 +380,29 @@ class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
         base_ho = self.heldout_linear(base)
         Qn = orth(base.J)
         return Baseline(base, base_nuis, desc_base, bool(structure), base_ho, Qn)
+
+    def _noise_ar1(self, c: str, pred: np.ndarray, floor: float) -> None:
+        """Serial correlation of column c's noise: the maximum-likelihood AR(1) coefficient of the
+        baseline residuals regressed on the smoother in the conditions (what a model error would
+        look like is taken out first; `stats.ar1_regression_ml`). When significant (likelihood
+        ratio > AR1_LR) the noise is taken as AR(1): rho, the innovation level from the whitened
+        residuals' second differences, and the marginal level sigma_w / sqrt(1 - rho^2).
+        Only for time series (`time_s` increasing): in a table of steady points the row order
+        means nothing, and neighbouring rows of a grid share a model error, not a noise."""
+        t = self.conditions.get("time_s")
+        if t is None or t.size < 3 or not np.all(np.diff(t) > 0):
+            return
+        m = self.valid[c]
+        r = (self.measured[c] - pred)[m]
+        seg = self.blocks[m]
+        A = np.column_stack([np.ones(r.size), self.features()[m]])
+        rho, lr = ar1_regression_ml(r, A, seg)
+        if lr <= AR1_LR or rho <= 0.0:
+            return
+        u = ar1_whiten(r, seg, rho)
+        s_w = max(noise_sigma(u, seg), floor * math.sqrt(1 - rho * rho))
+        self.rho[c], self.sigma_w[c] = rho, s_w
+        self.sigma[c] = s_w / math.sqrt(1 - rho * rho)
 
     def assemble(self, b: Baseline, s: Screening, fits, ho, passing, d: Decision, sep,
                  sep_items) -> dict:

@@ -75,3 +75,76 @@ def blsq(A: np.ndarray, b: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.nda
     return optimize.lsq_linear(A, b, bounds=(lo, hi), method="bvls").x
 
 
+
+
+def _segment_starts(seg: np.ndarray) -> np.ndarray:
+    """True at the first row of each run of equal labels."""
+    seg = np.asarray(seg)
+    return np.concatenate([[True], seg[1:] != seg[:-1]]) if seg.size else np.zeros(0, bool)
+
+
+def ar1_whiten(r: np.ndarray, seg: np.ndarray, rho: float) -> np.ndarray:
+    """Prais-Winsten transform of an AR(1) series within segments: u_t = r_t - rho r_(t-1), the
+    first row of a segment r_0 sqrt(1 - rho^2); white noise of the innovation variance when r is
+    AR(1) with coefficient rho (Prais & Winsten 1954). rho = 0 returns r."""
+    r = np.asarray(r, float)
+    if rho == 0.0:
+        return r.copy()
+    start = _segment_starts(seg)
+    u = np.empty_like(r)
+    u[start] = r[start] * math.sqrt(1.0 - rho * rho)
+    prev = np.roll(r, 1, axis=0)
+    u[~start] = r[~start] - rho * prev[~start]
+    return u
+
+
+def ar1_unwhiten(u: np.ndarray, seg: np.ndarray, rho: float) -> np.ndarray:
+    """Inverse of `ar1_whiten` (same segments and rho)."""
+    u = np.asarray(u, float)
+    if rho == 0.0:
+        return u.copy()
+    start = _segment_starts(seg)
+    r = np.empty_like(u)
+    for i in range(u.shape[0]):
+        r[i] = u[i] / math.sqrt(1.0 - rho * rho) if start[i] else u[i] + rho * r[i - 1]
+    return r
+
+
+def ar1_coefficient(e: np.ndarray, seg: np.ndarray) -> tuple[float, float]:
+    """Lag-1 autocorrelation of e within segments (Cochrane & Orcutt 1949 on the residuals of a
+    regression) and its z score rho sqrt(pairs) under white noise."""
+    e = np.asarray(e, float) - np.mean(e)
+    start = _segment_starts(seg)
+    pairs = ~start
+    den = float(e @ e)
+    if den == 0.0 or pairs.sum() < 3:
+        return 0.0, 0.0
+    rho = float(np.sum(e[pairs] * np.roll(e, 1)[pairs]) / den)
+    return rho, rho * math.sqrt(float(pairs.sum()))
+
+
+def ar1_regression_ml(r: np.ndarray, A: np.ndarray, seg: np.ndarray,
+                      grid: np.ndarray = np.linspace(0.0, 0.95, 96)) -> tuple[float, float]:
+    """Maximum-likelihood AR(1) coefficient of the errors of the regression r ~ A (exact
+    Prais-Winsten likelihood profiled over rho on a grid; Beach & MacKinnon 1978): returns rho and
+    the likelihood-ratio statistic against rho = 0 (chi-square with one degree of freedom under
+    white noise). Less biased than the lag-1 autocorrelation of OLS residuals, which the
+    regression's smooth terms pull towards zero."""
+    r = np.asarray(r, float)
+    n = r.size
+    n_seg = int(_segment_starts(seg).sum())
+    best, ll0, ll_best = 0.0, None, -np.inf
+    for rho in grid:
+        u = ar1_whiten(r, seg, float(rho))
+        B = ar1_whiten(A, seg, float(rho))
+        coef, *_ = np.linalg.lstsq(B, u, rcond=None)
+        sse = float(np.sum((u - B @ coef) ** 2))
+        if sse <= 0:
+            continue
+        ll = -0.5 * n * math.log(sse / n) + 0.5 * n_seg * math.log(1.0 - rho * rho)
+        if rho == 0.0:
+            ll0 = ll
+        if ll > ll_best:
+            best, ll_best = float(rho), ll
+    return best, (2.0 * (ll_best - ll0) if ll0 is not None else 0.0)
+
