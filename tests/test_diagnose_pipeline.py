@@ -607,3 +607,20 @@ def test_hidden_effect_is_found_through_correlated_noise(pl000):
     meas = {"torque_Nmm": truth["torque_Nmm"] + _ar1_noise(np.random.default_rng(1), 240, 0.02, 0.8)}
     res = diagnose_real(pl000, cond, meas)
     assert res["verdict"] == "explained" and res["cause"] == "thermal_lag", summary(res)
+
+
+def test_noise_level_of_a_steady_grid_comes_from_the_design(pl000):
+    """Temperature x preload grid (no time, no replicates) with a model error (inner fit 3.5 um
+    smaller): estimated along each condition of the design, the torque noise level is within
+    0.7..1.5 of the true one (row-order second differences gave 3.4..4.0x: the jump between grid
+    lines is model error, not noise)."""
+    T, P = np.meshgrid(np.arange(0.0, 81, 10), np.array([50.0, 100, 200, 350]), indexing="ij")
+    cond = {"T_ambient_C": T.ravel(), "preload_assembled_N": P.ravel()}
+    truth = noise_free(pl000, cond, {"interference_error": {"inner_um": -3.5, "outer_um": 0.0}},
+                       ("torque_Nmm",))
+    sig = 0.02 * float(np.mean(np.abs(truth["torque_Nmm"])))
+    rng = np.random.default_rng(2)
+    res = diagnose_real(pl000, cond, {"torque_Nmm": truth["torque_Nmm"] + rng.normal(0, sig, 36)})
+    assert 0.7 < res["noise_sigma"]["torque_Nmm"] / sig < 1.5, res["noise_sigma"]
+    assert "design" in res["noise_sigma_source"]["torque_Nmm"]
+    assert res["verdict"] != "explained" or res["cause"] == "interference_error", summary(res)

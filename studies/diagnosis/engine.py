@@ -67,7 +67,7 @@ from studies.diagnosis.fitting import FittingPhase
 from studies.diagnosis.heldout import HeldoutPhase
 from studies.diagnosis.screening import ScreeningPhase
 from studies.diagnosis.stats import (ar1_regression_ml, ar1_unwhiten, ar1_whiten, auto_blocks,
-                                     noise_sigma, orth)
+                                     noise_sigma, noise_sigma_steady, orth)
 
 
 #: relative noise floor: a CSV keeps 10 significant digits (half a unit in the last is 5e-10 of the
@@ -151,6 +151,7 @@ class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
         self.entry_block = self.blocks[self.entry_row]
         self.N = self.entry_row.size
         self.user_sigma = dict(noise_sigma_ or {})
+        self.sigma_source: dict[str, str] = {}
         self.sigma = {c: self._initial_sigma(c) for c in self.columns}   # marginal noise level
         self.rho = {c: 0.0 for c in self.columns}                        # AR(1) coefficient
         self.sigma_w = dict(self.sigma)                                  # innovation level
@@ -165,8 +166,22 @@ class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
         if c in self.user_sigma:
             return float(self.user_sigma[c])
         floor = ROUND_OFF * float(np.nanmax(np.abs(self.measured[c]), initial=0.0))
-        s = max(noise_sigma(self.measured[c], self.blocks), floor)
+        s = max(self._data_sigma(c, self.measured[c]), floor)
         return s if s > 0 else 1.0     # a column of zeros
+
+    def _data_sigma(self, c: str, r: np.ndarray) -> float:
+        """Noise level of column c from residuals r: in a time series from second differences in
+        time (within blocks); in a table of steady points from the design (replicates, or
+        second differences along each condition: `stats.noise_sigma_steady`)."""
+        t = self.conditions.get("time_s")
+        if t is None or not np.all(np.diff(t) > 0):
+            m = self.valid[c]
+            s, how = noise_sigma_steady(r[m], {k: v[m] for k, v in self.conditions.items()})
+            if s > 0:
+                self.sigma_source[c] = how
+                return s
+        self.sigma_source[c] = "second differences of the baseline residuals"
+        return noise_sigma(r, self.blocks)
 
     def zvec(self, pred: dict) -> np.ndarray:
         """Standardised residuals, stacked: per column whitened for its AR(1) noise (within the
@@ -368,7 +383,7 @@ class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
         base = self.fit(bspace, np.zeros(bspace.k + len(self.nuis_names)))
         for c in self.columns:
             if c not in self.user_sigma:
-                s = noise_sigma(self.measured[c] - base.pred[c], self.blocks)
+                s = self._data_sigma(c, self.measured[c] - base.pred[c])
                 scale = max(np.nanmax(np.abs(self.measured[c])), 1e-300)
                 self.sigma[c] = self.sigma_w[c] = max(s, ROUND_OFF * scale)
                 self._noise_ar1(c, base.pred[c], ROUND_OFF * scale)
@@ -440,7 +455,8 @@ class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
             "columns": list(self.columns),
             "noise_sigma": dict(self.sigma),
             "noise_sigma_source": {c: ("given" if c in self.user_sigma else
-                                       "second differences of the baseline residuals")
+                                       self.sigma_source[c] + (f", AR(1) rho {self.rho[c]:.2f}"
+                                                               if self.rho[c] else ""))
                                    for c in self.columns},
             "nuisance": {"names": list(self.nuis_names),
                          "bounds": {n: [float(a), float(b)] for n, a, b in

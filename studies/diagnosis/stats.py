@@ -148,3 +148,61 @@ def ar1_regression_ml(r: np.ndarray, A: np.ndarray, seg: np.ndarray,
             best, ll_best = float(rho), ll
     return best, (2.0 * (ll_best - ll0) if ll0 is not None else 0.0)
 
+
+
+def noise_sigma_steady(r: np.ndarray, conditions: dict[str, np.ndarray]) -> tuple[float, str]:
+    """Noise standard deviation of a table of steady points (no time order), from the structure
+    of the design rather than the row order:
+
+    - replicates (rows with identical conditions): the pooled within-group standard deviation
+      (pure error; Box, Hunter & Hunter, Statistics for Experimenters, ch. 10);
+    - otherwise second differences along each varying condition with the others held fixed (the
+      grid lines of the design), pooled and robustly trimmed as in `noise_sigma`, weighted
+      (1, -2, 1) / sqrt(6) so that white noise gives its sigma; a model error smooth in the
+      conditions cancels to second order, whatever the row order.
+
+    Returns (sigma, how) or (0.0, "") when the design has neither replicates nor lines of three."""
+    r = np.asarray(r, float)
+    keys = [k for k, v in conditions.items() if np.nanstd(np.asarray(v, float)) > 0]
+    if not keys:
+        return 0.0, ""
+    X = np.column_stack([np.asarray(conditions[k], float) for k in keys])
+    _, group = np.unique(X, axis=0, return_inverse=True)
+    group = group.ravel()
+    counts = np.bincount(group)
+    if np.sum(counts[counts > 1] - 1) >= 5:                       # replicates
+        means = np.bincount(group, weights=r) / counts
+        dev = r - means[group]
+        dof = int(np.sum(counts - 1))
+        return float(np.sqrt(np.sum(dev ** 2) / dof)), "replicates (pure error)"
+    d2 = []
+    for j, k in enumerate(keys):
+        others = np.delete(X, j, axis=1)
+        _, line = (np.unique(others, axis=0, return_inverse=True) if others.shape[1]
+                   else (None, np.zeros(len(r), int)))
+        line = np.asarray(line).ravel()
+        for g in np.unique(line):
+            idx = np.flatnonzero(line == g)
+            idx = idx[np.argsort(X[idx, j], kind="stable")]
+            if idx.size < 3:
+                continue
+            x, y = X[idx, j], r[idx]
+            # second divided difference scaled to unit weights on an even grid: for uneven
+            # spacing the weights (h2, -(h1 + h2), h1) / ... keep a linear trend exactly cancelled
+            h1, h2 = np.diff(x)[:-1], np.diff(x)[1:]
+            a, b, c = h2, -(h1 + h2), h1
+            norm = np.sqrt(a ** 2 + b ** 2 + c ** 2)
+            d2.append((a * y[:-2] + b * y[1:-1] + c * y[2:]) / norm)
+    if not d2:
+        return 0.0, ""
+    d = np.concatenate(d2)
+    if d.size < 5:
+        return 0.0, ""
+    d = d - np.median(d)
+    s_rob = stats.median_abs_deviation(d, scale="normal")
+    if s_rob > 0:
+        kept = d[np.abs(d) <= 4.0 * s_rob]
+        d = kept if kept.size >= 5 else d
+    trunc = 1.0 - 2 * 4.0 * stats.norm.pdf(4.0) / (1 - 2 * stats.norm.sf(4.0))
+    return float(math.sqrt(np.mean(d ** 2) / (trunc if s_rob > 0 else 1.0))), \
+        "second differences along each condition of the design"
