@@ -81,6 +81,10 @@ AR1_LR = 9.0
 #: is anti-conservative; the smoother must then also predict the held-out blocks (block cross-
 #: validation gain above this share of the residual variance) to count as structure
 AR1_MIN_CV_GAIN = 0.1
+#: a residual this many robust standard deviations from the smoother is a spike (P = 2e-9 for
+#: Gaussian noise), if such entries are at most MAX_SPIKE_SHARE of the column
+SPIKE_SIGMA = 6.0
+MAX_SPIKE_SHARE = 0.05
 
 
 class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
@@ -145,11 +149,8 @@ class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
             raise DiagnosisError("need at least two held-out blocks")
         # stacked layout
         self.valid = {c: np.isfinite(self.measured[c]) for c in self.columns}
-        self.entry_row = np.concatenate([np.flatnonzero(self.valid[c]) for c in self.columns])
-        self.entry_col = np.concatenate([np.full(self.valid[c].sum(), j)
-                                         for j, c in enumerate(self.columns)])
-        self.entry_block = self.blocks[self.entry_row]
-        self.N = self.entry_row.size
+        self.spikes: dict[str, list[int]] = {}
+        self._layout()
         self.user_sigma = dict(noise_sigma_ or {})
         self.sigma_source: dict[str, str] = {}
         self.sigma = {c: self._initial_sigma(c) for c in self.columns}   # marginal noise level
@@ -157,6 +158,43 @@ class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
         self.sigma_w = dict(self.sigma)                                  # innovation level
         self.notes: list[str] = []
         self.calls_by_phase: dict[str, int] = {}
+
+    def _layout(self) -> None:
+        """The stacked layout of the compared entries (valid rows of every column)."""
+        self.entry_row = np.concatenate([np.flatnonzero(self.valid[c]) for c in self.columns])
+        self.entry_col = np.concatenate([np.full(self.valid[c].sum(), j)
+                                         for j, c in enumerate(self.columns)])
+        self.entry_block = self.blocks[self.entry_row]
+        self.N = self.entry_row.size
+
+    def _drop_spikes(self, pred: dict) -> bool:
+        """Isolated outliers (sensor spikes): entries whose baseline residual, after the
+        conditions' smoother, lies beyond SPIKE_SIGMA robust standard deviations (1.4826 MAD) are
+        left out of every fit and test and reported; a model error is smooth in the conditions
+        and stays. Returns True when some were dropped."""
+        X = self.features()
+        dropped = False
+        for c in self.columns:
+            m = self.valid[c]
+            rows = np.flatnonzero(m)
+            if rows.size < 20:
+                continue
+            r = (self.measured[c] - pred[c])[m]
+            A = np.column_stack([np.ones(rows.size), X[m]])
+            coef, *_ = np.linalg.lstsq(A, r, rcond=None)
+            e = r - A @ coef
+            s = stats.median_abs_deviation(e, scale="normal")
+            bad = np.abs(e - np.median(e)) > SPIKE_SIGMA * s if s > 0 else np.zeros(e.size, bool)
+            if bad.any() and bad.sum() <= MAX_SPIKE_SHARE * rows.size:
+                self.valid[c] = m.copy()
+                self.valid[c][rows[bad]] = False
+                self.spikes[c] = [int(i) + 1 for i in rows[bad]]      # 1-based, as in the file
+                dropped = True
+        if dropped:
+            self._layout()
+            self.notes.append("spikes left out (row numbers): " + "; ".join(
+                f"{c}: {', '.join(map(str, v))}" for c, v in self.spikes.items()))
+        return dropped
 
     # ------------------------------------------------------------------ residuals
     def _initial_sigma(self, c):
@@ -381,6 +419,8 @@ class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
         baseline residuals), its residual description and held-out residuals."""
         bspace = self.space([])
         base = self.fit(bspace, np.zeros(bspace.k + len(self.nuis_names)))
+        if self._drop_spikes(base.pred):
+            base = self.fit(bspace, base.u)
         for c in self.columns:
             if c not in self.user_sigma:
                 s = self._data_sigma(c, self.measured[c] - base.pred[c])
@@ -478,6 +518,7 @@ class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
                         "paired block bootstrap of the RMSE difference"},
             "thresholds": dict(th),
             "notes": list(self.notes),
+            "spikes": dict(self.spikes),
             "n_rows": int(self.n),
             "n_predict_calls": int(self.model.calls),
             "predict_calls_by_phase": dict(self.calls_by_phase),
