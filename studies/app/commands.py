@@ -7,7 +7,7 @@ import sys
 from pathlib import Path
 
 
-from studies.app.output import UserError, atomic_dir, progress
+from studies.app.output import UserError, atomic_dir, progress, progress_bar
 from studies.model.provenance import provenance
 from studies.runs import STUDIES, study_module
 
@@ -144,7 +144,8 @@ def cmd_tolerance(args) -> None:
         with atomic_dir(args.out) as tmp:
             res = tolerance_report.run(asm, cond, tmp, provenance("tolerance", inputs),
                                        samples=args.samples, seed=args.seed, progress=progress,
-                                       workers=args.workers, scheduler=args.scheduler)
+                                       workers=args.workers, scheduler=args.scheduler,
+                                       bar=progress_bar("Monte Carlo"))
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
     p = res["probabilities"]
@@ -178,7 +179,7 @@ def cmd_design(args) -> None:
             res = design_search.run(asm, T_min, T_max, tmp,
                                     provenance("design", {"assembly": args.assembly}), band=band,
                                     clamps=args.clamps, progress=progress, workers=args.workers,
-                                    scheduler=args.scheduler)
+                                    scheduler=args.scheduler, bar=progress_bar("stacks", "stack"))
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
     g, b = res["given"], res["designs"][0]

@@ -22,8 +22,32 @@ class UserError(Exception):
 def progress(msg: str) -> None:
     """Progress of long work, to stderr when a person watches it (a terminal, or BEARINGFEM_VERBOSE
     set); scripts and schedulers reading stderr see only warnings and the one-line errors."""
-    if sys.stderr.isatty() or os.environ.get("BEARINGFEM_VERBOSE"):
+    if watched():
         print(msg, file=sys.stderr, flush=True)
+
+
+def watched() -> bool:
+    """A person watches stderr (a terminal), or BEARINGFEM_VERBOSE asks for progress anyway."""
+    return sys.stderr.isatty() or bool(os.environ.get("BEARINGFEM_VERBOSE"))
+
+
+def progress_bar(desc: str, unit: str = "block"):
+    """A `callback(done, total)` for long loops (`studies.model.parallel.map_blocks`): a tqdm
+    bar on stderr while a person watches, nothing otherwise; closed when done == total."""
+    state = {}
+
+    def update(done: int, total: int) -> None:
+        if not watched():
+            return
+        if "bar" not in state:
+            from tqdm import tqdm
+
+            state["bar"] = tqdm(total=total, desc=desc, unit=unit, file=sys.stderr, leave=False)
+        bar = state["bar"]
+        bar.update(done - bar.n)
+        if done >= total:
+            bar.close()
+    return update
 
 
 MARKER = ".bearingfem-output"

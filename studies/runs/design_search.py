@@ -160,8 +160,9 @@ def run(asm, T_min_C: float, T_max_C: float, out: Path, provenance: dict, band=(
         clamps: bool = False, progress=print, workers: int | None = None,
         scheduler: str | None = None, screen_mesh_factor: float = SCREEN_MESH_FACTOR,
         confirm_mesh_factor: float = 1.0, length_factors=LENGTH_FACTORS,
-        materials: list[str] | None = None) -> dict:
-    """Search, write design.json, plots and the report into `out`; returns design.json."""
+        materials: list[str] | None = None, bar=None) -> dict:
+    """Search, write design.json, plots and the report into `out`; returns design.json.
+    `bar(done, total)` follows the stacks (the command line's progress bar)."""
     step = nice_step(T_max_C - T_min_C, N_TEMPERATURES)
     T = np.unique(np.concatenate([[T_min_C, T_max_C, asm.T_ref_C],
                                   step * np.arange(np.ceil(T_min_C / step), np.floor(T_max_C / step) + 1)]))
@@ -172,7 +173,8 @@ def run(asm, T_min_C: float, T_max_C: float, out: Path, provenance: dict, band=(
              f"(screening mesh x{screen_mesh_factor:g}) ...")
     screened = map_blocks(evaluate_stack, [(asm, s, T, P0, screen_mesh_factor) for s in stacks],
                           workers=workers, scheduler=scheduler,
-                          progress=lambda d, n: progress(f"  stack {d} of {n}") if d % 20 == 0 or d == n else None)
+                          progress=bar or (lambda d, n: progress(f"  stack {d} of {n}")
+                                           if d % 20 == 0 or d == n else None))
     designs = []
     for i, (s, r) in enumerate(zip(stacks, screened)):
         for m in _metrics(s.assembly(asm), r, P0, band):

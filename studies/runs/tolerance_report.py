@@ -75,10 +75,12 @@ def _linear(asm, pl, cond, limit_p):
 
 
 def run(asm, conditions: dict | None, out: Path, provenance: dict, samples: int, seed: int,
-        progress=print, workers: int | None = None, scheduler: str | None = None) -> dict:
+        progress=print, workers: int | None = None, scheduler: str | None = None,
+        bar=None) -> dict:
     """Write the tolerance analysis into `out`; returns the tolerance.json content. The Monte
     Carlo runs here, or on a local Dask cluster of `workers` processes, or on the cluster at
-    `scheduler`, with the same numbers (`studies.model.parallel`)."""
+    `scheduler`, with the same numbers (`studies.model.parallel`); `bar(done, total)` follows
+    its blocks (the command line's progress bar)."""
     if not tol.has_tolerances(asm):
         raise ToleranceError("[fits] has no tolerances: give <surface>_class or "
                              "<surface>_deviation_um keys (docs/cli.md, tolerance)")
@@ -99,7 +101,7 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, samples: int,
     dev = tol.sample_deviations_um(asm, samples, seed)
     di, do = tol.interference_offsets_um(dev, samples)
     mc = tol.run_samples(asm, cond, di, do, workers=workers, scheduler=scheduler,
-                         progress=lambda done, total: progress(f"  block {done} of {total}"))
+                         progress=bar or (lambda done, total: progress(f"  block {done} of {total}")))
     fail = failures(asm, mc)
     limit_p = next(c.allowable for c in assembly_checks(asm) if c.name == "max_contact_pressure_MPa")
     lin = _linear(asm, pl, cond, limit_p)
