@@ -71,40 +71,33 @@ def _check_one_output(path: Path, inputs: tuple[Path, ...]) -> None:
 
 def cmd_simulate(args) -> None:
     from studies.model.effects import parse_effect_arg
-    from studies.model.checks import apply_checks, assembly_checks, plausibility_warnings
-    from studies.model.pipeline import Pipeline, simulate_table
-    from studies.model.table import read_conditions, write_table
+    from studies.model.pipeline import Pipeline
+    from studies.model.stream import check_conditions, simulate_file
 
     try:
         check_output_file(args.out, (args.assembly, args.conditions))
         asm = _load(args.assembly)
-        cond = read_conditions(args.conditions)
+        n_rows = check_conditions(args.conditions)  # all of it, before any FE work
         effects = {}
         for text in args.effect:
             name, params = parse_effect_arg(text)
             if name in effects:
                 raise UserError(f"--effect {name}: given twice")
             effects[name] = params
-        out = simulate_table(asm, cond, effects, direct=args.direct,
-                             pipeline=Pipeline.shared(asm, progress=progress))
+        run = simulate_file(asm, args.conditions, args.out, effects, direct=args.direct,
+                            provenance=provenance("simulate", {"assembly": args.assembly,
+                                                               "conditions": args.conditions},
+                                                  effects),
+                            pipeline=Pipeline.shared(asm, progress=progress), progress=progress,
+                            n_rows=n_rows)
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
-    cols = {k: v for k, v in cond.items() if not k.startswith("_")}
-    cols.update(out)
-    flags, violations = apply_checks(out, assembly_checks(asm))
-    cols.update(flags)
-    try:
-        write_table(args.out, cols, provenance=provenance(
-            "simulate", {"assembly": args.assembly, "conditions": args.conditions}, effects))
-    except _user_errors() as exc:
-        raise UserError(str(exc)) from None
-    n = len(next(iter(out.values())))
-    for msg in plausibility_warnings(asm, cols, out):
+    for msg in run.warnings:
         print(f"bearingfem simulate: warning: {msg}", file=sys.stderr)
-    for v in violations:
-        print(f"bearingfem simulate: warning: {v.summary(n, cond)}", file=sys.stderr)
-    print(f"wrote {n} rows to {args.out}")
-    return 1 if violations and args.strict else 0
+    for line in run.summaries():
+        print(f"bearingfem simulate: warning: {line}", file=sys.stderr)
+    print(f"wrote {run.n_rows} rows to {args.out}")
+    return 1 if run.violations and args.strict else 0
 
 
 def cmd_report(args) -> None:

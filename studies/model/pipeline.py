@@ -51,20 +51,21 @@ CHECKED_OUTPUTS = ("torque_Nmm", "preload_N", "contact_angle_deg", "fit_pressure
                    "fit_pressure_outer_MPa", "max_contact_pressure_MPa")
 
 
-def check_answers(out: dict[str, np.ndarray], converged: np.ndarray) -> None:
-    """Raise ModelError naming the first row (1-based, as in the conditions table) whose bearing
-    equilibrium did not converge or whose output is not finite; never a silent NaN."""
+def check_answers(out: dict[str, np.ndarray], converged: np.ndarray, first_row: int = 0) -> None:
+    """Raise ModelError naming the first row (1-based, as in the conditions table; the arrays
+    start at 0-based row `first_row` of it) whose bearing equilibrium did not converge or whose
+    output is not finite; never a silent NaN."""
     bad = ~np.asarray(converged, bool)
     if bad.any():
-        i = int(np.flatnonzero(bad)[0])
+        i = int(np.flatnonzero(bad)[0]) + first_row
         raise ModelError(f"row {i + 1}: the bearing equilibrium did not converge "
                          f"({int(bad.sum())} row(s)); check the loads and fits of that row")
     for k in CHECKED_OUTPUTS:
         v = np.asarray(out[k], float)
         if not np.all(np.isfinite(v)):
             i = int(np.flatnonzero(~np.isfinite(v))[0])
-            raise ModelError(f"row {i + 1}: {k} is not finite ({v[i]}); the model has no answer "
-                             "for these inputs")
+            raise ModelError(f"row {i + first_row + 1}: {k} is not finite ({v[i]}); the model "
+                             "has no answer for these inputs")
 
 
 @dataclass
@@ -336,17 +337,17 @@ class Pipeline:
 
     def run(self, inputs: PhysicsInputs, direct: bool = False,
             compliance_mm_per_N=None, viscous_factor_f0=None,
-            return_pair: bool = False):
+            return_pair: bool = False, first_row: int = 0):
         """All outputs per row (spec columns first, then the rest): the FE at the rows' states and
         at their assembly states, then `run_from_fe` (which documents the keyword arguments)."""
         fe = self.fe(inputs, direct)
         fe_ref = self.fe(self.reference_inputs(inputs), direct)
         return self.run_from_fe(inputs, fe, fe_ref, compliance_mm_per_N, viscous_factor_f0,
-                                return_pair)
+                                return_pair, first_row)
 
     def run_from_fe(self, inputs: PhysicsInputs, fe: FEState, fe_ref: FEState,
                     compliance_mm_per_N=None, viscous_factor_f0=None,
-                    return_pair: bool = False):
+                    return_pair: bool = False, first_row: int = 0):
         """Bearing pair, torque and checks from given FE states (the rows' and their assembly
         states). Studies use it to switch parts of the FE answer off (e.g. only the radial
         groove-centre shifts) or to feed a non-uniform temperature field (`fe_field`).
@@ -354,7 +355,8 @@ class Pipeline:
         compliance_mm_per_N: preload-path compliance per bearing (mm/N; scalar or one per row);
         default the assembly's (`[preload] path_compliance`). viscous_factor_f0: Palmgren's f0 in
         place of the assembly's (oil lubrication; scalar or one per row). With `return_pair`, also the raw
-        pair state (`analytic.bearing.PairState`: contact ellipses for heat models)."""
+        pair state (`analytic.bearing.PairState`: contact ellipses for heat models). first_row:
+        the 0-based row of the whole table the inputs start at (rows named in errors)."""
         a = self.asm
         preload = np.maximum(np.asarray(inputs.preload_assembled_N, float)
                              - np.asarray(inputs.preload_loss_N, float), 0.0)
@@ -402,7 +404,7 @@ class Pipeline:
         with np.errstate(divide="ignore"):      # an unloaded pair has infinite static safety
             out["static_safety"] = static_safety_from_contact_pressure(pair.max_contact_pressure_MPa)
         out["friction_coefficient"] = mu
-        check_answers(out, pair.converged)
+        check_answers(out, pair.converged, first_row)
         return (out, pair) if return_pair else out
 
     def torque(self, pair: PairState, inputs: PhysicsInputs, mu: np.ndarray,
@@ -443,15 +445,21 @@ def _weighted_angle(pair: PairState) -> np.ndarray:
     return wA * pair.contact_angle_deg[0] + (1 - wA) * pair.contact_angle_deg[1]
 
 
-def simulate_table(asm: Assembly, columns: dict, effects: dict | None = None,
-                   direct: bool = False, pipeline: Pipeline | None = None) -> dict[str, np.ndarray]:
-    """Model outputs for a conditions table (column name -> array, names of docs/cli.md), effects
-    switched on by name ({name: {parameter: value}}): what `bearingfem simulate` computes."""
+def table_inputs(asm: Assembly, columns: dict, effects: dict | None = None) -> PhysicsInputs:
+    """The physical inputs of a conditions table (column name -> array, names of docs/cli.md),
+    effects switched on by name ({name: {parameter: value}})."""
     from studies.model.effects import apply_effects
     from studies.model.inputs import baseline_inputs
 
     n = len(next(iter(v for k, v in columns.items() if not k.startswith("_"))))
     inputs = baseline_inputs(columns, n, asm.T_ref_C, asm.preload.assembled_N,
                              asm.lubrication.speed_rpm)
-    inputs = apply_effects(inputs, effects, asm.T_ref_C)
-    return (pipeline or Pipeline.shared(asm)).run(inputs, direct=direct)
+    return apply_effects(inputs, effects, asm.T_ref_C)
+
+
+def simulate_table(asm: Assembly, columns: dict, effects: dict | None = None,
+                   direct: bool = False, pipeline: Pipeline | None = None) -> dict[str, np.ndarray]:
+    """Model outputs for a conditions table (`table_inputs`): what `bearingfem simulate`
+    computes (the command evaluates a file in chunks, `studies.model.stream`)."""
+    return (pipeline or Pipeline.shared(asm)).run(table_inputs(asm, columns, effects),
+                                                  direct=direct)

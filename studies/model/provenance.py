@@ -11,6 +11,11 @@ def provenance(command: str, inputs: dict[str, Path], effects: dict | None = Non
     from bearingfem import __version__
 
     return {"command": f"bearingfem {command}", "version": __version__,
-            "inputs": {k: {"path": str(p), "sha256": hashlib.sha256(Path(p).read_bytes()).hexdigest()}
-                       for k, p in inputs.items()},
+            "inputs": {k: {"path": str(p), "sha256": _sha256(p)} for k, p in inputs.items()},
             "effects": {k: dict(v) for k, v in (effects or {}).items()}}
+
+
+def _sha256(path) -> str:
+    """SHA-256 of a file, read piece by piece (a large conditions file is never held whole)."""
+    with open(Path(path), "rb") as fh:
+        return hashlib.file_digest(fh, "sha256").hexdigest()

@@ -5,8 +5,8 @@ numeric and finite; `time_s` strictly increasing when present.
 """
 from __future__ import annotations
 
+import codecs
 import csv
-import io
 import json
 import math
 import os
@@ -25,62 +25,115 @@ class TableError(ValueError):
     """Bad table: one line naming the file, the row or column, and the problem."""
 
 
+#: rows per chunk when a table is read or evaluated in pieces (memory ~ this, not the file)
+CHUNK_ROWS = 10_000
+
+
 def read_table(path: Path, allowed: set[str] | None = None,
                required_any: tuple[str, ...] = ()) -> dict[str, np.ndarray]:
     """Read a numeric CSV into column arrays. `allowed`: known column names (others are an
     error). Rows are numbered as in the file (1-based line numbers)."""
-    path = Path(path)
-    if not path.exists():
-        raise TableError(f"{path}: file not found")
-    try:
-        # utf-8-sig: a UTF-8 file with a byte-order mark (Excel's "CSV UTF-8") reads the same
-        with open(path, newline="", encoding="utf-8-sig") as fh:
-            text = fh.read().splitlines(keepends=True)
-    except UnicodeDecodeError as exc:
-        raise TableError(f"{path}: not a UTF-8 text file ({exc.reason} at byte {exc.start})") from None
-    except OSError as exc:
-        raise TableError(f"{path}: cannot read ({exc.strerror})") from None
-    header, rows, lines = None, [], []
-    for lineno, line in enumerate(text, start=1):
-        if not line.strip() or line.lstrip().startswith("#"):
-            continue
-        fields = next(csv.reader([line]))
-        if header is None:
-            header = [f.strip() for f in fields]
-            for col in header:
-                if not col:
-                    raise TableError(f"{path}: line {lineno}: empty column name in the header")
-                if allowed is not None and col not in allowed:
-                    raise TableError(f"{path}: column '{col}': unknown column")
-            dup = {c for c in header if header.count(c) > 1}
-            if dup:
-                raise TableError(f"{path}: column '{sorted(dup)[0]}': appears twice")
-            continue
-        if len(fields) != len(header):
-            raise TableError(f"{path}: line {lineno}: {len(fields)} values for {len(header)} columns")
-        vals = []
-        for col, f in zip(header, fields):
-            try:
-                v = float(f)
-            except ValueError:
-                raise TableError(f"{path}: line {lineno}, column '{col}': "
-                                 f"'{f.strip()}' is not a number") from None
-            if not math.isfinite(v):
-                raise TableError(f"{path}: line {lineno}, column '{col}': value is {f.strip()}")
-            vals.append(v)
-        rows.append(vals)
-        lines.append(lineno)
-    if header is None:
-        raise TableError(f"{path}: empty table (no header)")
-    if not rows:
-        raise TableError(f"{path}: empty table (no data rows)")
-    data = np.array(rows, float)
-    cols = {c: data[:, i] for i, c in enumerate(header)}
-    cols["_line"] = np.array(lines)
+    chunks = list(iter_table(path, allowed, check=False))
+    cols = {c: np.concatenate([ch[c] for ch in chunks]) for c in chunks[0]}
     check_columns(path, cols)
     if required_any and not any(c in cols for c in required_any):
         raise TableError(f"{path}: needs at least one of the columns {', '.join(required_any)}")
     return cols
+
+
+def iter_table(path: Path, allowed: set[str] | None = None, chunk_rows: int = CHUNK_ROWS,
+               check: bool = True):
+    """The rows of a numeric CSV in chunks of up to `chunk_rows` rows: column arrays plus `_line`
+    (1-based line numbers), read as the file is read (memory: one chunk). With `check`, every
+    chunk gets `check_columns`, and `time_s` must increase across chunk boundaries too, so bad
+    input anywhere is the same one-line TableError as from `read_table` (which checks the whole
+    table at once instead)."""
+    path = Path(path)
+    if not path.exists():
+        raise TableError(f"{path}: file not found")
+    header, rows, lines, last = None, [], [], None
+    for lineno, line in enumerate(_text_lines(path), start=1):
+        if not line.strip() or line.lstrip().startswith("#"):
+            continue
+        fields = next(csv.reader([line]))
+        if header is None:
+            header = _header(path, lineno, fields, allowed)
+            continue
+        rows.append(_values(path, lineno, header, fields))
+        lines.append(lineno)
+        if len(rows) == chunk_rows:
+            last = yield from _chunk(path, header, rows, lines, check, last)
+            rows, lines = [], []
+    if header is None:
+        raise TableError(f"{path}: empty table (no header)")
+    if rows:
+        yield from _chunk(path, header, rows, lines, check, last)
+    elif last is None:
+        raise TableError(f"{path}: empty table (no data rows)")
+
+
+def _text_lines(path: Path):
+    """The lines of a UTF-8 file (a byte-order mark skipped, as Excel's "CSV UTF-8" writes), read
+    piece by piece; bytes that are not UTF-8 are one TableError naming their offset."""
+    offset = 0
+    try:
+        with open(path, "rb") as fh:
+            for raw in fh:
+                if offset == 0 and raw.startswith(codecs.BOM_UTF8):
+                    raw = raw[len(codecs.BOM_UTF8):]
+                try:
+                    text = raw.decode("utf-8")
+                except UnicodeDecodeError as exc:
+                    raise TableError(f"{path}: not a UTF-8 text file ({exc.reason} at byte "
+                                     f"{offset + exc.start})") from None
+                offset += len(raw)
+                yield from text.splitlines(keepends=True)
+    except OSError as exc:
+        raise TableError(f"{path}: cannot read ({exc.strerror})") from None
+
+
+def _header(path: Path, lineno: int, fields: list[str], allowed: set[str] | None) -> list[str]:
+    header = [f.strip() for f in fields]
+    for col in header:
+        if not col:
+            raise TableError(f"{path}: line {lineno}: empty column name in the header")
+        if allowed is not None and col not in allowed:
+            raise TableError(f"{path}: column '{col}': unknown column")
+    dup = {c for c in header if header.count(c) > 1}
+    if dup:
+        raise TableError(f"{path}: column '{sorted(dup)[0]}': appears twice")
+    return header
+
+
+def _values(path: Path, lineno: int, header: list[str], fields: list[str]) -> list[float]:
+    if len(fields) != len(header):
+        raise TableError(f"{path}: line {lineno}: {len(fields)} values for {len(header)} columns")
+    vals = []
+    for col, f in zip(header, fields):
+        try:
+            v = float(f)
+        except ValueError:
+            raise TableError(f"{path}: line {lineno}, column '{col}': "
+                             f"'{f.strip()}' is not a number") from None
+        if not math.isfinite(v):
+            raise TableError(f"{path}: line {lineno}, column '{col}': value is {f.strip()}")
+        vals.append(v)
+    return vals
+
+
+def _chunk(path: Path, header: list[str], rows: list, lines: list, check: bool, last):
+    """Yield one chunk's columns (checked when asked, `time_s` against the previous chunk's
+    last row `last` = (line, time)); return this chunk's last (line, time)."""
+    data = np.array(rows, float)
+    cols = {c: data[:, i] for i, c in enumerate(header)}
+    cols["_line"] = np.array(lines)
+    if check:
+        check_columns(path, cols)
+        if "time_s" in cols and last is not None and last[1] is not None:
+            check_columns(path, {"time_s": np.array([last[1], cols["time_s"][0]]),
+                                 "_line": np.array([last[0], lines[0]])})
+    yield cols
+    return lines[-1], (float(cols["time_s"][-1]) if "time_s" in cols else None)
 
 
 #: physical ranges of condition columns: the material and lubricant data hold from -150 to 300 C
@@ -140,22 +193,10 @@ def write_table(path: Path, columns: dict[str, np.ndarray], provenance: dict | N
     `provenance` (what made the table: command, inputs and their hashes, version), a sidecar
     `<name>.json` is written beside it the same way. Files get the mode of the file they replace,
     or the user's default (0666 less the umask); a write error is one line (TableError) and leaves
-    neither a temporary file nor a folder created for it."""
-    text = _csv_text(columns)
-    if provenance is None:
-        _atomic_write(Path(path), text)
-        return
-    side = sidecar_path(path)
-    existed = side.exists()
-    created = [p for p in reversed(Path(path).parents) if not p.exists()]
-    _atomic_write(side, json.dumps(provenance, indent=2) + "\n")
-    try:
-        _atomic_write(Path(path), text)
-    except BaseException:
-        if not existed:                     # no partial output: the new sidecar goes too
-            side.unlink(missing_ok=True)
-        _remove_folders(created)
-        raise
+    neither a temporary file nor a folder created for it. (`TableWriter` writes the same bytes
+    chunk by chunk.)"""
+    with TableWriter(path, provenance) as w:
+        w.write(columns)
 
 
 def sidecar_path(path: Path) -> Path:
@@ -163,15 +204,90 @@ def sidecar_path(path: Path) -> Path:
     return Path(f"{path}.json")
 
 
-def _csv_text(columns: dict[str, np.ndarray]) -> str:
-    names = [c for c in columns if not c.startswith("_")]
-    buf = io.StringIO()
-    w = csv.writer(buf, lineterminator="\n")
-    w.writerow(names)
-    arrays = [np.asarray(columns[c]) for c in names]
-    for i in range(len(arrays[0]) if arrays else 0):
-        w.writerow([_fmt(a[i]) for a in arrays])
-    return buf.getvalue()
+class TableWriter:
+    """A CSV table written chunk by chunk (`write`, the same columns every time) into a temporary
+    file beside `path`, renamed onto `path` when the `with` block ends without an error, its
+    provenance sidecar written just before (see `write_table`, whose bytes it writes for the
+    chunks put together). On an error or an interruption the temporary file, a new sidecar and
+    the folders created for them are removed: no partial output."""
+
+    def __init__(self, path: Path, provenance: dict | None = None):
+        self.path, self.provenance = Path(path), provenance
+        self.rows = 0
+        self._names: list[str] | None = None
+
+    def __enter__(self) -> "TableWriter":
+        path = self.path
+        self._created = [p for p in reversed(path.parents) if not p.exists()]
+        self._side = sidecar_path(path) if self.provenance is not None else None
+        self._side_existed = self._side is not None and self._side.exists()
+        remove_stale(path.parent, f".{path.name}.")
+        try:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            fd, self._tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
+        except OSError as exc:
+            _remove_folders(self._created)
+            raise TableError(f"{path}: cannot write ({exc.strerror})") from None
+        try:
+            os.chmod(self._tmp, stat.S_IMODE(path.stat().st_mode) if path.exists() else _default_mode())
+            self._fh = os.fdopen(fd, "w", newline="")
+        except BaseException as exc:
+            os.close(fd)
+            self._discard()
+            raise self._error(exc) from None
+        self._csv = csv.writer(self._fh, lineterminator="\n")
+        return self
+
+    def write(self, columns: dict[str, np.ndarray]) -> None:
+        """Append the rows of `columns` (names starting with `_` are left out)."""
+        names = [c for c in columns if not c.startswith("_")]
+        arrays = [np.asarray(columns[c]) for c in names]
+        try:
+            if self._names is None:
+                self._names = names
+                self._csv.writerow(names)
+            elif names != self._names:
+                raise ValueError(f"{self.path}: a chunk with other columns than the first")
+            n = len(arrays[0]) if arrays else 0
+            for i in range(n):
+                self._csv.writerow([_fmt(a[i]) for a in arrays])
+            self.rows += n
+        except OSError as exc:
+            raise TableError(f"{self.path}: cannot write ({exc.strerror or exc})") from None
+
+    def __exit__(self, exc_type, exc_value, tb) -> bool:
+        if exc_type is not None:
+            self._discard()
+            return False
+        try:
+            if self._names is None:
+                self._csv.writerow([])          # no columns: what write_table({}) always wrote
+            self._fh.close()
+            if self._side is not None:
+                _atomic_write(self._side, json.dumps(self.provenance, indent=2) + "\n")
+            os.replace(self._tmp, self.path)
+        except BaseException as exc:
+            if self._side is not None and not self._side_existed:
+                self._side.unlink(missing_ok=True)     # no partial output: the new sidecar goes
+            self._discard()
+            raise self._error(exc) from None
+        return False
+
+    def _discard(self) -> None:
+        try:
+            self._fh.close()
+        except (AttributeError, OSError):
+            pass
+        try:
+            os.unlink(self._tmp)
+        except OSError:
+            pass
+        _remove_folders(self._created)
+
+    def _error(self, exc: BaseException) -> BaseException:
+        if isinstance(exc, TableError) or not isinstance(exc, OSError):
+            return exc
+        return TableError(f"{self.path}: cannot write ({exc.strerror or exc})")
 
 
 def _atomic_write(path: Path, text: str) -> None:

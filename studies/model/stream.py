@@ -1,0 +1,139 @@
+"""`bearingfem simulate` of a conditions file in chunks: memory that does not grow with the rows.
+
+The conditions file is read a chunk of rows at a time (`studies.model.table.iter_table`), twice:
+`check_conditions` checks all of it first (bad input anywhere stops the run before any FE work),
+then `simulate_file` evaluates each chunk through the one route (`pipeline.table_inputs` ->
+`Pipeline.run`) and streams its rows into the temporary output file (`table.TableWriter`),
+renamed onto the output only at the end. An effect may depend on earlier rows (a thermal lag, a
+settling after the first excursion): with effects switched on, the inputs of the whole table are
+formed first (the condition columns and `PhysicsInputs`, about 0.2 kB per row) and evaluated
+chunk by chunk.
+
+The checks of `studies.model.checks` run on each chunk (the flag and margin columns are per row);
+`CheckTally` combines their violations over all rows. The plausibility warnings and the violation
+summaries read a few columns over all rows, kept for them (8 bytes per row each): the
+temperature columns of the conditions and WARNING_OUTPUTS; the rows of a violated check are kept
+as indices (8 bytes per violating row). Everything else lives for one chunk.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable, Iterator
+
+import numpy as np
+
+from studies.model.checks import Check, Violation, apply_checks, assembly_checks, plausibility_warnings
+from studies.model.inputs import CONDITION_COLUMNS
+from studies.model.pipeline import Pipeline, table_inputs
+from studies.model.table import CHUNK_ROWS, TableError, TableWriter, iter_table
+
+#: output columns `plausibility_warnings` reads over all rows (a test holds the streamed warnings
+#: equal to those of the whole table, so a column read there and missing here is caught)
+WARNING_OUTPUTS = ("torque_viscous_Nmm", "torque_load_Nmm", "land_margin_inner_deg",
+                   "land_margin_outer_deg")
+
+
+class CheckTally:
+    """The violations of `checks` over a table evaluated chunk by chunk: `add` applies the checks
+    to one chunk (returning its flag and margin columns), `violations` gives what `apply_checks`
+    gives for the whole table (rows, worst row and value, the first of equal worst values)."""
+
+    def __init__(self, checks: list[Check]):
+        self.checks = checks
+        self._rows: dict[str, list[np.ndarray]] = {c.name: [] for c in checks}
+        self._worst: dict[str, tuple[int, float]] = {}
+
+    def add(self, out: dict[str, np.ndarray], first_row: int) -> dict[str, np.ndarray]:
+        """Check the rows of `out` (0-based rows first_row, first_row + 1, ... of the table)."""
+        flags, violations = apply_checks(out, self.checks)
+        for v in violations:
+            name = v.check.name
+            self._rows[name].append(v.rows + first_row)
+            old = self._worst.get(name)
+            if old is None or (v.worst_value > old[1] if v.check.upper else v.worst_value < old[1]):
+                self._worst[name] = (v.worst_row + first_row, v.worst_value)
+        return flags
+
+    def violations(self) -> list[Violation]:
+        return [Violation(c, np.concatenate(self._rows[c.name]), *self._worst[c.name])
+                for c in self.checks if c.name in self._worst]
+
+
+@dataclass(frozen=True)
+class SimulateRun:
+    """What `simulate_file` did. n_rows: rows written. violations: the violated checks over all
+    rows. warnings: the plausibility warnings (one line each). kept: the columns over all rows
+    the summaries read (temperature columns of the conditions)."""
+    n_rows: int
+    violations: list[Violation]
+    warnings: list[str]
+    kept: dict[str, np.ndarray]
+
+    def summaries(self) -> list[str]:
+        """One line per violated check (`checks.Violation.summary`)."""
+        return [v.summary(self.n_rows, self.kept) for v in self.violations]
+
+
+def check_conditions(path: Path, chunk_rows: int = CHUNK_ROWS) -> int:
+    """Read and check a whole conditions file, one chunk in memory at a time; its row count.
+    Bad input raises the one-line `TableError` of `table.iter_table`."""
+    return sum(len(c["_line"]) for c in iter_table(path, set(CONDITION_COLUMNS), chunk_rows))
+
+
+def simulate_file(asm, conditions: Path, out: Path, effects: dict | None = None,
+                  provenance: dict | None = None, direct: bool = False,
+                  pipeline: Pipeline | None = None, chunk_rows: int = CHUNK_ROWS,
+                  progress: Callable[[str], None] | None = None,
+                  n_rows: int | None = None) -> SimulateRun:
+    """Evaluate the conditions file `conditions` chunk by chunk and write the output table `out`
+    (condition columns, model outputs, flag and margin columns; with its provenance sidecar) as
+    one atomic file: nothing is left at `out` on an error. `n_rows`: the file's row count when
+    known (`check_conditions`), else it is counted first. See the module docstring."""
+    total = check_conditions(conditions, chunk_rows) if n_rows is None else n_rows
+    pl = pipeline or Pipeline.shared(asm)
+    tally = CheckTally(assembly_checks(asm))
+    kept: dict[str, np.ndarray] = {}
+    n = 0
+    with TableWriter(out, provenance) as w:
+        for cond, res in _evaluate(asm, conditions, effects, direct, pl, chunk_rows):
+            m = len(cond["_line"])
+            if n + m > total:
+                raise TableError(f"{conditions}: changed while it was read")
+            cols = {k: v for k, v in cond.items() if not k.startswith("_")}
+            cols.update(res)
+            cols.update(tally.add(res, n))
+            w.write(cols)
+            keep = [c for c in cols if c.startswith("T_") and c.endswith("_C")]
+            for k in keep + [c for c in WARNING_OUTPUTS if c in res]:
+                kept.setdefault(k, np.empty(total))[n:n + m] = cols[k]
+            n += m
+            if progress:
+                progress(f"simulate: {n} of {total} rows")
+        if n != total:
+            raise TableError(f"{conditions}: changed while it was read")
+    temps = {k: v for k, v in kept.items() if k not in WARNING_OUTPUTS}
+    outputs = {k: v for k, v in kept.items() if k in WARNING_OUTPUTS}
+    return SimulateRun(n, tally.violations(), plausibility_warnings(asm, temps, outputs), temps)
+
+
+def _evaluate(asm, path: Path, effects: dict | None, direct: bool, pl: Pipeline,
+              chunk_rows: int) -> Iterator[tuple[dict, dict]]:
+    """(condition columns, model outputs) per chunk of the conditions file."""
+    chunks = iter_table(path, set(CONDITION_COLUMNS), chunk_rows)
+    first = 0
+    if not effects:
+        for cond in chunks:
+            yield cond, pl.run(table_inputs(asm, cond), direct=direct, first_row=first)
+            first += len(cond["_line"])
+        return
+    parts = list(chunks)            # an effect may depend on earlier rows: the whole table's inputs
+    whole = {c: np.concatenate([p[c] for p in parts]) for c in parts[0]}
+    sizes = [len(p["_line"]) for p in parts]
+    del parts
+    inputs = table_inputs(asm, whole, effects)
+    for m in sizes:
+        rows = np.arange(first, first + m)
+        yield ({c: v[first:first + m] for c, v in whole.items()},
+               pl.run(inputs.take(rows), direct=direct, first_row=first))
+        first += m
