@@ -104,6 +104,11 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--quick", action="store_true", help="fewer mesh levels")
     b.add_argument("--tolerance", type=int, metavar="N", default=None,
                    help="instead: Monte Carlo throughput with N samples, 1 and 2 Dask workers")
+    b.add_argument("--simulate", action="store_true",
+                   help="instead: whole-process simulate times (3 rows, cold and warm cache) per "
+                        "assembly, DOF, and peak memory for 1e5 and 1e6 rows (--quick: 1e4, 1e5)")
+    b.add_argument("--assembly", type=Path, action="append", default=[],
+                   help="with --simulate: one more assembly to time (may repeat)")
     return p
 
 

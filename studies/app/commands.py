@@ -220,6 +220,14 @@ def cmd_verify(args) -> None:
 
 
 def cmd_bench(args) -> None:
+    if args.simulate:
+        from studies.runs import bench_simulate
+
+        missing = [a for a in args.assembly if not a.is_file()]
+        if missing:
+            raise UserError(f"{missing[0]}: file not found")
+        bench_simulate.main(quick=args.quick, assemblies=tuple(args.assembly))
+        return
     if args.tolerance is not None:
         from studies.runs import bench_tolerance
 

@@ -223,7 +223,9 @@ class Pipeline:
         return np.column_stack([(inner_um if f.key == "inner" else outer_um) / 2000.0
                                 for f in self.section.fits])
 
-    def fe(self, inputs: PhysicsInputs, direct: bool = False) -> FEState:
+    def fe(self, inputs: PhysicsInputs, direct: bool = False, remember: bool = True) -> FEState:
+        """The FE answers of the rows (superposed, or direct solves). `remember`: keep the result
+        for the next call with the same states (a table streamed in chunks does not)."""
         theta = self.thetas(inputs)
         inner_um, outer_um = self.fits_um(inputs)
         delta = self.deltas_mm(inner_um, outer_um)
@@ -234,6 +236,8 @@ class Pipeline:
         if hit is not None:
             return hit
         state = self._fe_solve(theta, delta, inner_um, outer_um, direct)
+        if not remember:
+            return state
         if len(self._fe_cache) >= 16:
             self._fe_cache.pop(next(iter(self._fe_cache)))
         self._fe_cache[key] = state
@@ -337,11 +341,12 @@ class Pipeline:
 
     def run(self, inputs: PhysicsInputs, direct: bool = False,
             compliance_mm_per_N=None, viscous_factor_f0=None,
-            return_pair: bool = False, first_row: int = 0):
+            return_pair: bool = False, first_row: int = 0, remember: bool = True):
         """All outputs per row (spec columns first, then the rest): the FE at the rows' states and
-        at their assembly states, then `run_from_fe` (which documents the keyword arguments)."""
-        fe = self.fe(inputs, direct)
-        fe_ref = self.fe(self.reference_inputs(inputs), direct)
+        at their assembly states (`fe`, which documents `remember`), then `run_from_fe` (which
+        documents the other keyword arguments)."""
+        fe = self.fe(inputs, direct, remember)
+        fe_ref = self.fe(self.reference_inputs(inputs), direct, remember)
         return self.run_from_fe(inputs, fe, fe_ref, compliance_mm_per_N, viscous_factor_f0,
                                 return_pair, first_row)
 

@@ -124,7 +124,8 @@ def _evaluate(asm, path: Path, effects: dict | None, direct: bool, pl: Pipeline,
     first = 0
     if not effects:
         for cond in chunks:
-            yield cond, pl.run(table_inputs(asm, cond), direct=direct, first_row=first)
+            yield cond, pl.run(table_inputs(asm, cond), direct=direct, first_row=first,
+                               remember=False)
             first += len(cond["_line"])
         return
     parts = list(chunks)            # an effect may depend on earlier rows: the whole table's inputs
@@ -135,5 +136,5 @@ def _evaluate(asm, path: Path, effects: dict | None, direct: bool, pl: Pipeline,
     for m in sizes:
         rows = np.arange(first, first + m)
         yield ({c: v[first:first + m] for c, v in whole.items()},
-               pl.run(inputs.take(rows), direct=direct, first_row=first))
+               pl.run(inputs.take(rows), direct=direct, first_row=first, remember=False))
         first += m
