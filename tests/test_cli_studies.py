@@ -82,6 +82,8 @@ def test_verify_runs_the_mesh_convergence_of_a_users_assembly(tmp_path, capsys):
     assert len(mine) == 1
     q = mine[0]["quantities"]
     assert q and all(np.isfinite(r["gci_fine"]) for r in q.values())
-    assert asm.name in (tmp_path / "v" / "verification.md").read_text()
+    md = (tmp_path / "v" / "verification.md").read_text()
+    assert asm.name in md and "**Achieved: " in md and "target error of 0.1 %" in md
+    assert mine[0]["target_error"] == 1e-3 and np.isfinite(mine[0]["error_max"])
     assert main(["verify", "--out", str(tmp_path / "w"), "--assembly", str(tmp_path / "none.toml")]) == 2
     assert "file not found" in capsys.readouterr().err and not (tmp_path / "w").exists()

@@ -22,6 +22,8 @@ def test_report_of_a_users_assembly(tmp_path):
                     "## Discretisation error of this mesh"):
         assert section in md, section
     assert "17-4PH" in md and "ASM-52100" in md                      # materials with sources
+    # the mesh's discretisation error: the target its sizes were chosen for and what it achieves
+    assert "chosen for a target error of 0.1 %" in md and "**Achieved: " in md
     for png in ("fits.png", "fit_pressure.png", "preload.png", "torque.png",
                 "field_-40C_von_mises_MPa.png", "field_+80C_displacement_um.png"):
         assert (tmp_path / png).stat().st_size > 1000, png

@@ -113,8 +113,13 @@ class Operating:
 
 @dataclass(frozen=True)
 class Mesh:
-    size_mm: float = 1.0             # global element size
-    fit_size_mm: float = 0.25        # size at fits and raceways
+    """Element sizes in mm; 0 = chosen for `target_error` by studies/model/mesh_size.py (given
+    sizes win, the others follow the rule)."""
+    size_mm: float = 0.0             # bulk element size
+    fit_size_mm: float = 0.0         # size along fits and raceways
+    corner_size_mm: float = 0.0      # size at the ends of fits and clamped faces
+    target_error: float = 1e-3       # relative discretisation error of fit pressures and
+    #                                  groove-centre shifts the sizes are chosen for
 
 
 @dataclass(frozen=True)
@@ -178,7 +183,8 @@ SECTIONS = {
                                   "viscous_factor_f0": 0.0, "speed_rpm": 0.0,
                                   "hysteresis_loss_factor": 0.0, "load_term": "coulomb"}),
     "limits": (Limits, {"max_contact_pressure_MPa": math.inf, "min_static_safety": 0.0}),
-    "mesh": (Mesh, {"size_mm": 1.0, "fit_size_mm": 0.25}),
+    "mesh": (Mesh, {"size_mm": 0.0, "fit_size_mm": 0.0, "corner_size_mm": 0.0,
+                    "target_error": 1e-3}),
     "operating": (Operating, {"T_min_C": -40.0, "T_max_C": 80.0}),
 }
 OPTIONAL_SECTIONS = {"limits", "mesh", "operating"}
@@ -200,7 +206,8 @@ ZERO_OK = {("shaft", "bore_diameter_mm"), ("shaft", "extension_mm"),
            ("lubrication", "viscous_factor_f0"), ("lubrication", "speed_rpm"),
            ("lubrication", "hysteresis_loss_factor"),
            ("limits", "min_static_safety"), ("bearing", "inner_land_diameter_mm"),
-           ("bearing", "outer_land_diameter_mm")}
+           ("bearing", "outer_land_diameter_mm"), ("mesh", "size_mm"), ("mesh", "fit_size_mm"),
+           ("mesh", "corner_size_mm")}
 SIGNED = {("fits", "inner_interference_um"), ("fits", "outer_interference_um"),
           ("operating", "T_min_C"), ("operating", "T_max_C")}
 
@@ -425,12 +432,29 @@ def _check_geometry(a: Assembly, path: str) -> None:
     need(a.preload.assembled_N <= C0, "preload.assembled_N",
          f"{a.preload.assembled_N:g} N exceeds the bearing's static load rating C0 = {C0:.0f} N "
          "(ISO 76): the raceways would be dented at assembly")
-    need(a.mesh.fit_size_mm <= a.mesh.size_mm, "mesh.fit_size_mm", "must not exceed mesh.size_mm")
     op = a.operating
     need(-150.0 <= op.T_min_C < op.T_max_C <= 300.0, "operating.T_min_C",
          f"the range {op.T_min_C:g}..{op.T_max_C:g} C must be increasing and inside -150..300 C")
-    need(a.mesh.size_mm <= b.width_mm, "mesh.size_mm",
-         f"must not exceed the bearing width ({b.width_mm:g} mm): the rings would not be resolved")
+    _check_mesh(a, need)
+
+
+def _check_mesh(a: Assembly, need) -> None:
+    """Given sizes in order (corner <= fit <= size <= bearing width); a target the size rule was
+    measured for (studies/model/mesh_size.py)."""
+    from studies.model.mesh_size import TARGET_RANGE
+
+    m, B = a.mesh, a.bearing.width_mm
+    lo, hi = TARGET_RANGE
+    need(lo <= m.target_error <= hi, "mesh.target_error",
+         f"{m.target_error:g} is outside {lo:g}..{hi:g} (the range the size rule was measured "
+         "over); give explicit sizes for other meshes")
+    need(m.size_mm <= B, "mesh.size_mm",
+         f"must not exceed the bearing width ({B:g} mm): the rings would not be resolved")
+    need(not (m.fit_size_mm and m.size_mm) or m.fit_size_mm <= m.size_mm, "mesh.fit_size_mm",
+         "must not exceed mesh.size_mm")
+    for big in ("fit_size_mm", "size_mm"):
+        need(not (m.corner_size_mm and getattr(m, big)) or m.corner_size_mm <= getattr(m, big),
+             "mesh.corner_size_mm", f"must not exceed mesh.{big}")
 
 
 CONFIG_DIR = Path(__file__).parents[1] / "configs"

@@ -2,13 +2,14 @@
 
 The rotor (shaft, inner rings, inner spacer, nut) and the stator (housing, outer rings, outer
 spacer, cover) as named rectangles, the radial split lines (fits, sliding bores), the clamped
-faces and the raceway points. `meshes/` knows only sections; this is the one place that reads an
-assembly to make one. Units: mm.
+faces and the raceway points; the element sizes from `studies.model.mesh_size`. `meshes/` knows
+only sections; this is the one place that reads an assembly to make one. Units: mm.
 """
 from __future__ import annotations
 
 from meshes.section import Fit, Rect, Section, Split
 from studies.model.config import Assembly
+from studies.model.mesh_size import mesh_sizes
 
 
 def stack_positions(a: Assembly) -> dict[str, tuple[float, float]]:
@@ -88,5 +89,6 @@ def section_from_assembly(a: Assembly) -> Section:
         for ring, r in (("inner_ring", r_iro), ("outer_ring", r_ori)) for j in "AB")
     raceways = {f"inner_ring_{j}": (r_iro, sum(z[f"inner_ring_{j}"]) / 2) for j in "AB"}
     raceways.update({f"outer_ring_{j}": (r_ori, sum(z[f"outer_ring_{j}"]) / 2) for j in "AB"})
-    return Section(tuple(rects), splits, fits, (), refine, raceways, a.mesh.size_mm,
-                   a.mesh.fit_size_mm)
+    sizes = mesh_sizes(a)
+    return Section(tuple(rects), splits, fits, (), refine, raceways, sizes.size_mm,
+                   sizes.fit_size_mm, sizes.corner_size_mm)
