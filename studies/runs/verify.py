@@ -388,6 +388,9 @@ def plot_convergence(path: Path, cases: list[dict]) -> Path:
     fig, axes = plt.subplots(1, len(cases), figsize=(5.5 * len(cases), 4.5), squeeze=False)
     for ax, case in zip(axes[0], cases):
         h = np.array([lv["fit_size_mm"] for lv in case["levels"]])
+        if "errors" in case:          # an assembly's mesh: its errors as the target counts them
+            _plot_assembly_errors(ax, case, h)
+            continue
         for q, r in case["quantities"].items():
             vals = np.array([lv[q] for lv in case["levels"]])
             if "exact" in r:
@@ -410,6 +413,28 @@ def plot_convergence(path: Path, cases: list[dict]) -> Path:
     fig.savefig(path, dpi=120)
     plt.close(fig)
     return path
+
+
+def _plot_assembly_errors(ax, case: dict, h: np.ndarray) -> None:
+    """Per fit pressure and groove-shift vector the error of each level but the finest against
+    the Richardson value (the measure of mesh_convergence_case), the target as a line."""
+    n = len(case["levels"]) - 1
+    errs = [_level_errors(case, i) for i in range(n)]
+    for name in errs[0]:
+        e = np.array([x[name] for x in errs])
+        ok = e > 0
+        if ok.any():
+            ax.loglog(h[:n][ok], e[ok], "o-", lw=1, ms=3,
+                      label=name.replace("fit_pressure_", "p ").replace("groove_shift_", "shift "))
+    if case["target_error"] is not None:
+        ax.axhline(case["target_error"], color="r", ls="-.", lw=1,
+                   label=f"target {100 * case['target_error']:g} %")
+    used = case["levels"][case["used_level"]]["fit_size_mm"]
+    ax.axvline(used, color="0.5", lw=0.8, label="mesh used")
+    ax.set_xlabel("element size at the fits (mm)")
+    ax.set_ylabel("error vs Richardson")
+    ax.set_title(case["name"], fontsize=9)
+    ax.legend(fontsize=6, ncol=2)
 
 
 def run(out_dir: Path, progress=print, mesh_factor: float = 1.0, assembly=None) -> list[dict]:
