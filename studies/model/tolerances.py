@@ -23,7 +23,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import stats
 
 from analytic.tolerances import iso286_limits_um, iso492_limits_um
 
@@ -193,6 +192,8 @@ def linear_probability(value_nominal: float, gradient: np.ndarray, sigma: np.nda
     sd = float(np.sqrt(np.sum((np.asarray(gradient) * np.asarray(sigma)) ** 2)))
     if sd == 0.0:
         return float((value_nominal > limit) if upper else (value_nominal <= limit))
+    from scipy import stats         # here, not at the top: every assembly load imports this module
+
     z = (limit - value_nominal) / sd
     return float(stats.norm.sf(z) if upper else stats.norm.cdf(z))
 
