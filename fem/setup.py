@@ -158,9 +158,10 @@ def cached_setup(spec: SetupSpec, fe: Callable[[], FullFE], progress=None) -> FE
     key = spec.key()
 
     def make(tmp: Path) -> None:
+        full = fe()
         if progress:
-            progress("FE set-up (factorisation, unit solutions) ...")
-        write_setup(compute_setup(spec, fe()), tmp)
+            progress(f"unit solutions ({full.model.ndofs} DOF) ...")
+        write_setup(compute_setup(spec, full), tmp)
 
     return cached_file(d / f"setup_{key}.npz", make, lambda p: read_setup(p, spec, key),
                        what="FE set-up", writer="bearingfem", error=SetupError)

@@ -195,3 +195,17 @@ def test_the_lubricant_does_not_change_the_set_up():
     keys = [SetupSpec.of(section_from_assembly(a), a.fits.contact, np.zeros((2, 1)), None).key()
             for a in (asm, other)]
     assert keys[0] == keys[1]
+
+
+def test_an_unusable_cache_location_is_one_warning_for_meshes_and_set_ups(tmp_path, monkeypatch,
+                                                                           capsys):
+    blocker = tmp_path / "a_file"
+    blocker.write_text("not a folder")
+    monkeypatch.setenv("BEARINGFEM_CACHE", str(blocker))
+    s = spec()
+    got = cached_setup(s, lambda: full_fe(s))                 # meshes, then stores the set-up
+    again = cached_setup(s, lambda: no_fe(s))                 # from the temporary folder
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "cache" in err[0] and str(blocker) in err[0], err
+    np.testing.assert_array_equal(again.condensed.A, got.condensed.A)
+    assert blocker.read_text() == "not a folder"

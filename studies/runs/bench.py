@@ -73,8 +73,9 @@ def pipeline_sweep(asm):
     from studies.model.inputs import baseline_inputs
     from studies.model.pipeline import Pipeline
 
-    pl, t_build = _t(Pipeline, asm)
-    print(f"pipeline set-up (mesh from cache, assembly, unit solutions, compliance): {t_build:.3f} s once")
+    pl, t_build = _t(Pipeline, asm, cache=False)
+    print(f"pipeline set-up (mesh from cache, assembly, unit solutions, compliance; not the "
+          f"cached FE set-up, see bench --simulate): {t_build:.3f} s once")
     for n in (11, 1401):
         T = np.linspace(-60, 80, n)
         inp = baseline_inputs({"T_ambient_C": T}, n, asm.T_ref_C, asm.preload.assembled_N,
