@@ -47,7 +47,8 @@ def test_verify_command_contract_and_tolerance(tmp_path):
 @pytest.mark.slow          # the coarse-mesh runs in test_studies_equal_simulate.py cover the default suite
 @pytest.mark.parametrize("name,expect", [
     ("seed000", ["fits.png", "preload_vs_temperature.png", "torque_vs_preload.png",
-                 "cycles.png", "field_-60C_von_mises_MPa.png", "field_+80C_displacement_um.png",
+                 "cycles.png", "published_trend_search.json",
+                 "field_-60C_von_mises_MPa.png", "field_+80C_displacement_um.png",
                  "field_+20C.vtu", "temperature_sweep.csv"]),
     ("seed001", ["torque_vs_temperature.png", "ratio_map.png", "film_parameter.png"]),
     ("seed003", ["temperatures_1000rpm.png", "heat_split_1500rpm.png", "housing_temperature.png"]),

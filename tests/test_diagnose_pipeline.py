@@ -536,6 +536,7 @@ def test_cli_diagnose_bad_input_exits_2(tmp_path, capsys):
     assert not out.exists()
 
 
+@pytest.mark.slow          # a full diagnosis of 240 rows (about 8 s)
 def test_noise_free_model_output_is_no_discrepancy(tmp_path):
     """simulate's own output, written with 10 significant digits and diagnosed against the same
     model: the residuals are round-off of the CSV, which is no discrepancy (it once came out as
@@ -599,6 +600,7 @@ def test_correlated_noise_alone_is_no_discrepancy(pl000):
     assert res["residuals"]["baseline"]["columns"]["torque_Nmm"]["noise_ar1"] > 0.5
 
 
+@pytest.mark.slow          # a full diagnosis of 240 rows (about 8 s)
 def test_hidden_effect_is_found_through_correlated_noise(pl000):
     """The whitening does not hide a real cause: a thermal lag (300 s) under the same AR(1) noise
     (phi 0.8, 0.02 N mm) is still explained, and by the lag."""
@@ -643,6 +645,7 @@ def test_a_fit_error_near_opening_is_found_by_the_global_search(pl000):
     assert abs(res["parameters"]["inner_um"] + 4.0) < 1.0, res["parameters"]
 
 
+@pytest.mark.slow          # a full diagnosis of 240 rows (about 8 s)
 def test_spikes_are_flagged_not_fitted(pl000):
     """Six torque spikes of 1..3 N mm (50..150 sigma; solid-film bearings show them) on a
     thermal-lag cycle: the spikes are found (their rows reported) and left out, and the lag is
