@@ -6,7 +6,7 @@ then `simulate_file` evaluates each chunk through the one route (`pipeline.table
 `Pipeline.run`) and streams its rows into the temporary output file (`table.TableWriter`),
 renamed onto the output only at the end. An effect may depend on earlier rows (a thermal lag, a
 settling after the first excursion): with effects switched on, the inputs of the whole table are
-formed first (the condition columns and `PhysicsInputs`, about 0.2 kB per row) and evaluated
+formed first (the condition columns and `PhysicsInputs`, about 0.1 kB per row) and evaluated
 chunk by chunk.
 
 The checks of `studies.model.checks` run on each chunk (the flag and margin columns are per row);
