@@ -159,7 +159,7 @@ def _text(asm, prov, cond, r, flags, violations, warnings, plots, images, conv, 
     lines = [f"# Assembly report: {asm.name}", "",
              f"bearingfem {prov['version']}; {inputs}. {asm.source}", "",
              f"{asm.bearing.designation} pair, {asm.arrangement}, {asm.preload.kind} preload "
-             f"{asm.preload.assembled_N:g} N at {asm.T_ref_C:g} C; FE model {pl.model.ndofs} DOF "
+             f"{asm.preload.assembled_N:g} N at {asm.T_ref_C:g} C; FE model {pl.ndofs} DOF "
              "(axisymmetric, P2, exact fit contact); bearing: exact Hertz, pair equilibrium.", ""]
     if has_tolerances(asm):
         mi, mo = asm.mean_fits_um()

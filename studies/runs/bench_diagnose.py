@@ -55,7 +55,7 @@ def main(argv=None) -> None:
     cond = cycles(N_ROWS, 60.0)
     print(f"diagnose benchmark: seed000, {N_ROWS} rows (cycles -60..80 C), columns "
           f"{', '.join(SIGMA)}, {len(ORDER)} candidates, mesh factor {args.mesh_factor:g} "
-          f"({pl.model.ndofs} DOF), OPENBLAS_NUM_THREADS={os.environ.get('OPENBLAS_NUM_THREADS')}, "
+          f"({pl.ndofs} DOF), OPENBLAS_NUM_THREADS={os.environ.get('OPENBLAS_NUM_THREADS')}, "
           f"{os.cpu_count()} CPUs")
     print(f"FE set-up (once per run of the CLI): {t_setup:.2f} s")
     print(f"{'dataset':<42} {'verdict':<15} {'cause':<18} {'engine s':>8} {'calls':>6} "

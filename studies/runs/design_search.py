@@ -111,7 +111,7 @@ def evaluate_stack(asm, stack: Stack, T_C: np.ndarray, preloads_N: np.ndarray,
                                  a.lubrication.speed_rpm))
     keep = ("preload_N", "max_contact_pressure_MPa", "fit_pressure_inner_MPa",
             "fit_pressure_outer_MPa", "torque_Nmm")
-    return {k: res[k].reshape(nP, nT) for k in keep} | {"dofs": pl.model.ndofs}
+    return {k: res[k].reshape(nP, nT) for k in keep} | {"dofs": pl.ndofs}
 
 
 def _metrics(asm, r: dict, preloads_N, band) -> list[dict]:

@@ -27,14 +27,14 @@ def run(out: Path, progress=print) -> None:
     levels = {T: [] for T in T_STATES_C}
     for fac in FACTORS:
         pl = Pipeline(asm, mesh_factor=fac, superpose=False)
-        progress(f"mesh_convergence: level x{fac:g}, {pl.model.ndofs} DOF ...")
+        progress(f"mesh_convergence: level x{fac:g}, {pl.ndofs} DOF ...")
         T = np.array(T_STATES_C)
         inp = baseline_inputs({"T_ambient_C": T}, T.size, asm.T_ref_C, asm.preload.assembled_N,
                               asm.lubrication.speed_rpm)
         res = pl.run(inp, direct=True)
         for i, Tc in enumerate(T_STATES_C):
             levels[Tc].append({"factor": fac, "size_mm": pl.section.size_mm,
-                               "fit_size_mm": pl.section.fit_size_mm, "dofs": int(pl.model.ndofs),
+                               "fit_size_mm": pl.section.fit_size_mm, "dofs": int(pl.ndofs),
                                "fit_pressure_inner_A_MPa": float(res["fit_pressure_inner_A_MPa"][i]),
                                "fit_pressure_outer_A_MPa": float(res["fit_pressure_outer_A_MPa"][i]),
                                "groove_shift_dr_A_um": float(res["groove_shift_dr_A_um"][i]),
