@@ -112,3 +112,21 @@ def main(quick: bool = False, assemblies: tuple[Path, ...] = ()) -> None:
         a, b = sizes
         per_row = (runs[b].peak_bytes - runs[a].peak_bytes) / (b - a)
         print(f"peak memory per row between {a} and {b} rows: {per_row:.0f} bytes")
+    if not quick:
+        _accuracy(paths)
+
+
+def _accuracy(paths) -> None:
+    """The chosen mesh's achieved discretisation error per assembly: its x1 level against the
+    Richardson value of its x1, x0.5, x0.25 meshes (verify.mesh_convergence_case, the tests'
+    reference from finer meshes only)."""
+    from studies.model.config import load_assembly
+    from studies.runs.verify import mesh_convergence_case
+
+    print("== chosen mesh: target and achieved error (vs Richardson of x1, x0.5, x0.25) ==")
+    print(f"{'assembly':32s} {'target':>8s} {'achieved':>9s}")
+    for path in paths:
+        c = mesh_convergence_case(load_assembly(path), factors=(1.0, 0.5, 0.25), used=0)
+        target = c.get("target_error")
+        print(f"{path.stem:32s} {'given' if target is None else f'{target:.1e}':>8s} "
+              f"{c['error_max']:9.2e}")
