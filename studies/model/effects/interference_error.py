@@ -36,7 +36,7 @@ class InterferenceError(Effect):
             "rate of temperature change")
 
     #: step (um) of the global search along each parameter, and the coarse 2-D grid per side
-    SEARCH_STEP_UM = 0.5
+    SEARCH_STEP_UM = 1.0
     GRID = 5
 
     def starts(self, conditions, T_ref_C):
