@@ -73,11 +73,12 @@ def test_inverse_search_finds_a_planted_trend():
     import numpy as np
 
     from studies.model.pipeline import Pipeline, simulate_table
-    from studies.runs.inverse_rig import match_trend, plausible_stacks
+    from studies.runs.design_search import candidates
+    from studies.runs.inverse_rig import match_trend
 
     asm = load_shipped("seed000")
-    stacks = plausible_stacks(asm, ("TC4", "6061"), (1.0,), (0.0, 1.0),
-                              [(asm.nut.clamp, asm.cover.clamp)])
+    stacks = candidates(asm, length_factors=(1.0,), materials=("TC4", "6061"),
+                        ring_deltas_mm=(0.0, 1.0))
     planted = stacks[3]
     a = planted.assembly(asm)
     P = simulate_table(a, {"T_ambient_C": np.array([-60.0, 20.0, 80.0])},

@@ -100,16 +100,23 @@ def cmd_simulate(args) -> None:
     return 1 if run.violations and args.strict else 0
 
 
-def cmd_report(args) -> None:
+def _assembly_and_conditions(args):
+    """The assembly, the optional conditions table and the input files for the provenance."""
     from studies.model.table import read_conditions
+
+    asm = _load(args.assembly)
+    cond = read_conditions(args.conditions) if args.conditions is not None else None
+    inputs = {"assembly": args.assembly}
+    if args.conditions is not None:
+        inputs["conditions"] = args.conditions
+    return asm, cond, inputs
+
+
+def cmd_report(args) -> None:
     from studies.runs import assembly_report
 
     try:
-        asm = _load(args.assembly)
-        cond = read_conditions(args.conditions) if args.conditions is not None else None
-        inputs = {"assembly": args.assembly}
-        if args.conditions is not None:
-            inputs["conditions"] = args.conditions
+        asm, cond, inputs = _assembly_and_conditions(args)
         with atomic_dir(args.out) as tmp:
             notes = assembly_report.run(asm, cond, tmp, provenance("report", inputs),
                                         progress=progress)
@@ -121,7 +128,6 @@ def cmd_report(args) -> None:
 
 
 def cmd_tolerance(args) -> None:
-    from studies.model.table import read_conditions
     from studies.runs import tolerance_report
 
     if args.samples < 2:
@@ -129,11 +135,7 @@ def cmd_tolerance(args) -> None:
     if args.workers is not None and args.workers < 1:
         raise UserError(f"--workers {args.workers}: need at least 1")
     try:
-        asm = _load(args.assembly)
-        cond = read_conditions(args.conditions) if args.conditions is not None else None
-        inputs = {"assembly": args.assembly}
-        if args.conditions is not None:
-            inputs["conditions"] = args.conditions
+        asm, cond, inputs = _assembly_and_conditions(args)
         with atomic_dir(args.out) as tmp:
             res = tolerance_report.run(asm, cond, tmp, provenance("tolerance", inputs),
                                        samples=args.samples, seed=args.seed, progress=progress,

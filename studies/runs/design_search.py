@@ -79,23 +79,28 @@ def distinct_materials() -> list[str]:
     return names
 
 
-def candidates(asm, clamps: bool, length_factors=LENGTH_FACTORS,
-               materials: list[str] | None = None) -> list[Stack]:
+#: every (nut, cover) clamp scheme
+ALL_CLAMPS = tuple((n, c) for n in ("rigid", "compliant") for c in ("rigid", "compliant"))
+
+
+def candidates(asm, clamps: bool = False, length_factors=LENGTH_FACTORS,
+               materials=None, ring_deltas_mm=(0.0,)) -> list[Stack]:
     """The assembly as given first, then every combination of spacer materials (the library's
-    distinct ones, or `materials`), common spacer length and (with `clamps`) clamp scheme."""
+    distinct ones, or `materials`), common spacer length (x the given one), clamp scheme (with
+    `clamps` all four, else the given one) and ring-section change (mm, radially)."""
     mats = materials or distinct_materials()
     L0 = asm.inner_spacer.length_mm
-    schemes = ([(n, c) for n in ("rigid", "compliant") for c in ("rigid", "compliant")] if clamps
-               else [(asm.nut.clamp, asm.cover.clamp)])
+    schemes = ALL_CLAMPS if clamps else ((asm.nut.clamp, asm.cover.clamp),)
     out = [Stack(asm.inner_spacer.material, asm.outer_spacer.material, L0, asm.nut.clamp,
                  asm.cover.clamp)]
     for mi in mats:
         for mo in mats:
             for f in length_factors:
                 for n, c in schemes:
-                    s = Stack(mi, mo, round(f * L0, 6), n, c)
-                    if s not in out:
-                        out.append(s)
+                    for d in ring_deltas_mm:
+                        s = Stack(mi, mo, round(f * L0, 6), n, c, float(d))
+                        if s not in out:
+                            out.append(s)
     return out
 
 

@@ -1,8 +1,8 @@
 """The inverse question for a published rig: which stack within plausible bounds reproduces a
 measured trend? A test instead of an inference.
 
-The candidates are stacks of `design_search` (spacer materials and common length, clamp scheme,
-effective ring sections) at the rig's assembled preload, each through the exact model (its own FE,
+The candidates are stacks of `design_search.candidates` (spacer materials and common length,
+clamp scheme, effective ring sections) at the rig's assembled preload, each through the exact model (its own FE,
 on the screening mesh); the target is a measured preload change at given temperatures. A stack
 reproduces the trend when its preload change is within `tolerance_N` of the measurement at every
 target temperature. The answer is the list of stacks that do, or the closest ones and how far
@@ -23,23 +23,6 @@ class TrendMatch:
     stack: Stack
     change_N: tuple[float, ...]        # preload change at the target temperatures (N)
     miss_N: float                      # largest |change - target| over the targets (N)
-
-
-def plausible_stacks(asm, materials, length_factors, ring_deltas_mm, clamps) -> list[Stack]:
-    """The given stack first, then every combination (spacer materials x length x clamps x
-    ring-section change)."""
-    L0 = asm.inner_spacer.length_mm
-    out = [Stack(asm.inner_spacer.material, asm.outer_spacer.material, L0, asm.nut.clamp,
-                 asm.cover.clamp)]
-    for mi in materials:
-        for mo in materials:
-            for f in length_factors:
-                for n, c in clamps:
-                    for d in ring_deltas_mm:
-                        s = Stack(mi, mo, round(f * L0, 6), n, c, float(d))
-                        if s not in out:
-                            out.append(s)
-    return out
 
 
 def match_trend(asm, stacks: list[Stack], T_target_C, change_target_N,

@@ -166,10 +166,11 @@ INVERSE_TOLERANCE_N = 10.0
 def published_trend_search(asm, out: Path, mesh_factor: float) -> list[str]:
     """The inverse question as a test: which stack within plausible bounds gives the published
     preload change (about -40 / +40 N at -60 / 80 C around 100 N)? Markdown lines."""
-    from studies.runs.inverse_rig import match_trend, plausible_stacks
+    from studies.runs.design_search import candidates
+    from studies.runs.inverse_rig import match_trend
 
-    stacks = plausible_stacks(asm, INVERSE_MATERIALS, INVERSE_LENGTH_FACTORS,
-                              INVERSE_RING_DELTAS_MM, [(asm.nut.clamp, asm.cover.clamp)])
+    stacks = candidates(asm, length_factors=INVERSE_LENGTH_FACTORS, materials=INVERSE_MATERIALS,
+                        ring_deltas_mm=INVERSE_RING_DELTAS_MM)
     target = PUBLISHED["preload_change_N"]
     matches = match_trend(asm, stacks, (-60.0, 80.0), target, mesh_factor=2.0 * mesh_factor)
     (out / "published_trend_search.json").write_text(json.dumps(
