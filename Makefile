@@ -21,11 +21,14 @@ demo: setup
 verify: setup
 	$(BIN)/bearingfem verify --out $(OUT)/verify
 
+# the suite on every core up to 4, one test module per worker (module fixtures built once)
+PYTEST_PAR := -n auto --maxprocesses 4 --dist loadscope
+
 test: setup
-	$(BIN)/python -m pytest -q
+	$(BIN)/python -m pytest -q $(PYTEST_PAR)
 
 test-slow: setup
-	$(BIN)/python -m pytest -q -m slow
+	$(BIN)/python -m pytest -q -m slow $(PYTEST_PAR)
 
 bench: setup
 	$(BIN)/bearingfem bench
