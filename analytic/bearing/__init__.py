@@ -75,7 +75,8 @@ def solve_pair(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.0, dz_mm=
                preload_kind: str = "position", preload_assembled_N=100.0, axial_load_N=0.0,
                dr_ref_mm=0.0, dz_ref_mm=0.0, compliance_mm_per_N=0.0,
                tol: float = 1e-14, max_outer: int = 30, chunk: int = 8192,
-               radial_load_N=0.0, return_ball_loads: bool = False) -> PairState:
+               radial_load_N=0.0, return_ball_loads: bool = False, moment_Nmm=0.0,
+               bearing_span_mm=None) -> PairState:
     """Equilibrium of a preloaded pair of identical bearings, vectorised over N operating points.
 
     Inputs (mm, C, N), scalars or arrays of shape (N,) (both bearings) or (2, N) (A, B):
@@ -92,6 +93,12 @@ def solve_pair(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.0, dz_mm=
                         runs (`combined.solve_pair_combined`; points without radial load keep
                         the axial-only state); otherwise the axial-only one
                         (`axial.solve_pair_axial`).
+      moment_Nmm        (scalar or (N,)) tilting moment on the rotor about the mid-point of the
+                        pair, in the plane of the radial load; a non-zero moment also runs the
+                        combined-load solver and needs bearing_span_mm
+      bearing_span_mm   distance between the ball planes of bearings A and B (mm): with it the
+                        rotor is free to tilt in the combined-load solver (radial load at the
+                        mid-point); without it the rotor is held against tilt
     Conventions and formulas: module docstring.
 
     Returns a `PairState` (`state.py`: per-bearing arrays (2, N), A first; `converged` per point).
@@ -106,10 +113,12 @@ def solve_pair(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.0, dz_mm=
                 T_outer_ring_C=T_outer_ring_C, T_ball_C=T_ball_C,
                 preload_assembled_N=preload_assembled_N, axial_load_N=axial_load_N,
                 dr_ref_mm=dr_ref_mm, dz_ref_mm=dz_ref_mm, compliance_mm_per_N=compliance_mm_per_N)
-    if return_ball_loads or np.any(np.asarray(radial_load_N, float) != 0.0):
+    if (return_ball_loads or np.any(np.asarray(radial_load_N, float) != 0.0)
+            or np.any(np.asarray(moment_Nmm, float) != 0.0)):
         return solve_pair_combined(g, arrangement, T_ref_C=T_ref_C, preload_kind=preload_kind,
                                    radial_load_N=radial_load_N, tol=tol, max_outer=max_outer,
-                                   chunk=chunk, return_ball_loads=return_ball_loads, **args)
+                                   chunk=chunk, return_ball_loads=return_ball_loads,
+                                   moment_Nmm=moment_Nmm, bearing_span_mm=bearing_span_mm, **args)
     N = n_points(*args.values())
     blocks = []
     for i0 in range(0, N, chunk):
