@@ -19,7 +19,11 @@ a_j of bearing j,
 theta = Material.thermal_strain(T, T_ref) of the inner ring, outer ring and ball.  K_n combines the
 inner and outer Hertz stiffnesses in series (`hertz.series_stiffness_N_per_mm15`), each from the
 exact Hertz solution at the current contact angle and the thermally grown Dw, groove radii and pitch
-diameter.  delta <= 0 means the bearing is unloaded (Q = 0), not an error.  Without dr and thermal
+diameter.  delta <= 0 means the bearing is unloaded (Q = 0), not an error.  One contact model in
+every solver: full-groove contact, a ball whose centre-distance vector points to X < 0 touches the
+other flank of its grooves at the negative angle atan2(X, Y) (a deep-groove bearing pushed past its
+axial play; an angular-contact pair only far beyond its preload), so the limit of a vanishing
+radial load or moment is the axial-only solution.  Without dr and thermal
 strain, F = Z K_n A0^1.5 (cos alpha0/cos alpha - 1)^1.5 sin alpha: Harris's axial-load equation
 (Vol. 1 ch. 7, thrust-loaded bearing); the tests hold the two equal.
 
@@ -42,16 +46,20 @@ bearings are unloaded).  Everything is vectorised over operating points, the two
 leading axis of length 2.
 
 Combined axial and radial load (`combined.solve_pair_combined`, chosen by `solve_pair` when a
-radial load is given): the quasi-static load distribution around the ball set (Harris & Kotzalas Vol. 1 ch. 7,
-Jones 1960; seed 003).  Ball k of Z sits at psi_k = 2 pi k / Z from the load direction, the rigid
-rotor's radial displacement rho (common to both bearings, no tilt) adds rho cos(psi_k) to Y_j, every
-ball has its own delta, contact angle and K_n, and the radial equation
-sum_j sum_k Q_jk cos(alpha_jk) cos(psi_k) = radial load joins the axial one.  With K_n frozen the
+radial load or a moment is given): the quasi-static load distribution around the ball set (Harris
+& Kotzalas Vol. 1 ch. 7, Jones 1960; seed 003).  Ball k of Z sits at psi_k = 2 pi k / Z from the load
+direction, the rigid rotor's radial displacement rho adds rho cos(psi_k) to Y_j, every ball has its
+own delta, contact angle and K_n, and the radial equation
+sum_j sum_k Q_jk cos(alpha_jk) cos(psi_k) = radial load joins the axial one.  With the bearing span
+(distance of the ball planes) given, the rotor also tilts by theta about the mid-point of the pair
+(`combined.tilt_arms_mm`: each inner groove centre moves axially by -theta R_i cos(psi) and radially
+by theta l_j cos(psi)), the radial load acts at the mid-point and sum_j M_j = moment joins them;
+without it the rotor is held against tilt (rho common to both bearings).  With K_n frozen the
 equations are the stationarity conditions of a convex potential, solved by a safeguarded Newton
 method, with the same outer K_n loop.
 
-Not modelled here: moment loads and shaft tilt, centrifugal and gyroscopic ball loads, and
-different inner and outer contact angles.
+Not modelled here: centrifugal and gyroscopic ball loads, different inner and outer contact
+angles, a moment about the radial load direction (loads in one plane), shaft bending (rigid rotor).
 
 Modules: geometry (free and grown geometry, pair conventions), contact (K_n from exact Hertz,
 bearing and ball-set states), roots (root finders with convergence flags), axial (axial-only
