@@ -285,8 +285,9 @@ def solve_pair_combined(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.
     over N operating points.  `analytic.bearing.solve_pair` calls this when a radial load is given.
 
     Model: each bearing j has Z balls at psi_k = 2 pi k / Z from the radial load direction.  The
-    rigid rotor moves radially by rho (mm, along psi = 0, common to both bearings; no tilt, so the
-    radial load is shared according to that common displacement) and axially by x:
+    rigid rotor moves radially by rho (mm, along psi = 0) and axially by x; without a bearing span
+    it does not tilt (rho common to both bearings, the radial load shared according to that
+    common displacement), with one it also tilts (below):
 
         X_jk = A0 sin(a0) + a_j,  Y_jk = A0 cos(a0) + dr_j + rho cos(psi_k)
         delta_jk = sqrt(X^2 + Y^2) - A_T,  Q_jk = K_n(alpha_jk) delta_jk^1.5 (0 if delta <= 0)
