@@ -83,13 +83,16 @@ def test_deep_groove_pair_far_bearing_on_the_other_flank():
     assert ref["axial_force_N[B]"][-1] < 0 and ref["contact_angle_deg[B]"][-1] < 0
 
 
-@pytest.mark.parametrize("arrangement", ["DB", "DF"])
-def test_tiny_radial_load_and_moment_preloaded_pair(arrangement):
-    """Preloaded angular-contact pair (71807C, 100 N, with groove shifts and a warm ball): a
-    radial load or a moment of 1e-6 (N, N mm) leaves the outputs at the axial-only values
-    (`assert_limit`), and the tilt and radial displacement are of order load / stiffness."""
+@pytest.mark.parametrize("arrangement,preload", [
+    ("DB", {}), ("DF", {}), ("DB", dict(compliance_mm_per_N=2e-5)),
+    ("DB", dict(preload_kind="spring"))])
+def test_tiny_radial_load_and_moment_preloaded_pair(arrangement, preload):
+    """Preloaded angular-contact pair (71807C, 100 N position preload, rigid or with a compliant
+    preload path, or a 100 N spring; groove shifts and a warm ball): a radial load or a moment of
+    1e-6 (N, N mm) leaves the outputs at the axial-only values (`assert_limit`), and the tilt and
+    radial displacement are of order load / stiffness."""
     kw = dict(preload_assembled_N=100.0, axial_load_N=[-60.0, 0.0, 80.0], dr_mm=3e-4,
-              dz_mm=np.array([[1e-4], [-2e-4]]), T_ball_C=35.0)
+              dz_mm=np.array([[1e-4], [-2e-4]]), T_ball_C=35.0, **preload)
     ref = flat(solve_pair(G, arrangement, **kw))
     for extra in (dict(radial_load_N=1e-6, bearing_span_mm=SPAN),
                   dict(moment_Nmm=1e-6, bearing_span_mm=SPAN)):
