@@ -103,9 +103,11 @@ def test_tiny_radial_load_and_moment_preloaded_pair(arrangement, preload):
         assert np.all(np.abs(out["radial.tilt_rad"]) < 1e-6 / 1e5)      # k_theta > 1e5 N mm/rad
 
 
-def test_moment_needs_a_span():
+def test_moment_needs_a_positive_span():
     with pytest.raises(ValueError, match="bearing_span_mm"):
         solve_pair(G, "DB", preload_assembled_N=100.0, moment_Nmm=10.0)
+    with pytest.raises(ValueError, match="bearing_span_mm must be positive"):
+        solve_pair(G, "DB", preload_assembled_N=100.0, radial_load_N=10.0, bearing_span_mm=0.0)
 
 
 # ---------------------------------------------------------------------------------------------

@@ -337,6 +337,8 @@ def solve_pair_combined(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.
     if bearing_span_mm is None and np.any(M != 0.0):
         raise ValueError("a moment load needs bearing_span_mm (the rotor tilts about the pair)")
     span = None if bearing_span_mm is None else float(bearing_span_mm)
+    if span is not None and not span > 0.0:
+        raise ValueError(f"bearing_span_mm must be positive, got {bearing_span_mm!r}")
     base = solve_pair_axial(g, arrangement, N, dr_mm=dr_mm, dz_mm=dz_mm,
                             T_inner_ring_C=T_inner_ring_C, T_outer_ring_C=T_outer_ring_C,
                             T_ball_C=T_ball_C, T_ref_C=T_ref_C, preload_kind=preload_kind,
