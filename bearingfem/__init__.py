@@ -37,8 +37,9 @@ def simulate(assembly, conditions: Mapping, effects: Mapping | None = None) -> d
 
     assembly: an `Assembly` (`load_assembly`) or the path of its TOML file.
     conditions: column name -> values (a dict of lists or arrays, or a pandas DataFrame) with the
-        condition columns of docs/cli.md (`T_ambient_C` in C, `speed_rpm`, `preload_assembled_N`
-        and `axial_load_N` in N, part temperatures `T_<part>_C`, `time_s`), all of equal length.
+        condition columns of docs/cli.md (`T_ambient_C` in C, `speed_rpm`, `preload_assembled_N`,
+        `axial_load_N` and `radial_load_N` in N, `moment_Nmm` in N mm, part temperatures
+        `T_<part>_C`, `time_s`), all of equal length.
     effects: {effect name: {parameter: value}} switched on, as `simulate --effect`.
     Returns {output column: array}, units in the names. Bad input raises ValueError subclasses
     (TableError, EffectError, ModelError) with one-line messages naming the column or row.

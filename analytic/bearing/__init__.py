@@ -19,7 +19,11 @@ a_j of bearing j,
 theta = Material.thermal_strain(T, T_ref) of the inner ring, outer ring and ball.  K_n combines the
 inner and outer Hertz stiffnesses in series (`hertz.series_stiffness_N_per_mm15`), each from the
 exact Hertz solution at the current contact angle and the thermally grown Dw, groove radii and pitch
-diameter.  delta <= 0 means the bearing is unloaded (Q = 0), not an error.  Without dr and thermal
+diameter.  delta <= 0 means the bearing is unloaded (Q = 0), not an error.  One contact model in
+every solver: full-groove contact, a ball whose centre-distance vector points to X < 0 touches the
+other flank of its grooves at the negative angle atan2(X, Y) (a deep-groove bearing pushed past its
+axial play; an angular-contact pair only far beyond its preload), so the limit of a vanishing
+radial load or moment is the axial-only solution.  Without dr and thermal
 strain, F = Z K_n A0^1.5 (cos alpha0/cos alpha - 1)^1.5 sin alpha: Harris's axial-load equation
 (Vol. 1 ch. 7, thrust-loaded bearing); the tests hold the two equal.
 
@@ -42,16 +46,20 @@ bearings are unloaded).  Everything is vectorised over operating points, the two
 leading axis of length 2.
 
 Combined axial and radial load (`combined.solve_pair_combined`, chosen by `solve_pair` when a
-radial load is given): the quasi-static load distribution around the ball set (Harris & Kotzalas Vol. 1 ch. 7,
-Jones 1960; seed 003).  Ball k of Z sits at psi_k = 2 pi k / Z from the load direction, the rigid
-rotor's radial displacement rho (common to both bearings, no tilt) adds rho cos(psi_k) to Y_j, every
-ball has its own delta, contact angle and K_n, and the radial equation
-sum_j sum_k Q_jk cos(alpha_jk) cos(psi_k) = radial load joins the axial one.  With K_n frozen the
+radial load or a moment is given): the quasi-static load distribution around the ball set (Harris
+& Kotzalas Vol. 1 ch. 7, Jones 1960; seed 003).  Ball k of Z sits at psi_k = 2 pi k / Z from the load
+direction, the rigid rotor's radial displacement rho adds rho cos(psi_k) to Y_j, every ball has its
+own delta, contact angle and K_n, and the radial equation
+sum_j sum_k Q_jk cos(alpha_jk) cos(psi_k) = radial load joins the axial one.  With the bearing span
+(distance of the ball planes) given, the rotor also tilts by theta about the mid-point of the pair
+(`combined.tilt_arms_mm`: each inner groove centre moves axially by -theta R_i cos(psi) and radially
+by theta l_j cos(psi)), the radial load acts at the mid-point and sum_j M_j = moment joins them;
+without it the rotor is held against tilt (rho common to both bearings).  With K_n frozen the
 equations are the stationarity conditions of a convex potential, solved by a safeguarded Newton
 method, with the same outer K_n loop.
 
-Not modelled here: moment loads and shaft tilt, centrifugal and gyroscopic ball loads, and
-different inner and outer contact angles.
+Not modelled here: centrifugal and gyroscopic ball loads, different inner and outer contact
+angles, a moment about the radial load direction (loads in one plane), shaft bending (rigid rotor).
 
 Modules: geometry (free and grown geometry, pair conventions), contact (K_n from exact Hertz,
 bearing and ball-set states), roots (root finders with convergence flags), axial (axial-only
@@ -75,7 +83,8 @@ def solve_pair(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.0, dz_mm=
                preload_kind: str = "position", preload_assembled_N=100.0, axial_load_N=0.0,
                dr_ref_mm=0.0, dz_ref_mm=0.0, compliance_mm_per_N=0.0,
                tol: float = 1e-14, max_outer: int = 30, chunk: int = 8192,
-               radial_load_N=0.0, return_ball_loads: bool = False) -> PairState:
+               radial_load_N=0.0, return_ball_loads: bool = False, moment_Nmm=0.0,
+               bearing_span_mm=None) -> PairState:
     """Equilibrium of a preloaded pair of identical bearings, vectorised over N operating points.
 
     Inputs (mm, C, N), scalars or arrays of shape (N,) (both bearings) or (2, N) (A, B):
@@ -92,6 +101,12 @@ def solve_pair(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.0, dz_mm=
                         runs (`combined.solve_pair_combined`; points without radial load keep
                         the axial-only state); otherwise the axial-only one
                         (`axial.solve_pair_axial`).
+      moment_Nmm        (scalar or (N,)) tilting moment on the rotor about the mid-point of the
+                        pair, in the plane of the radial load; a non-zero moment also runs the
+                        combined-load solver and needs bearing_span_mm
+      bearing_span_mm   distance between the ball planes of bearings A and B (mm): with it the
+                        rotor is free to tilt in the combined-load solver (radial load at the
+                        mid-point); without it the rotor is held against tilt
     Conventions and formulas: module docstring.
 
     Returns a `PairState` (`state.py`: per-bearing arrays (2, N), A first; `converged` per point).
@@ -106,10 +121,12 @@ def solve_pair(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.0, dz_mm=
                 T_outer_ring_C=T_outer_ring_C, T_ball_C=T_ball_C,
                 preload_assembled_N=preload_assembled_N, axial_load_N=axial_load_N,
                 dr_ref_mm=dr_ref_mm, dz_ref_mm=dz_ref_mm, compliance_mm_per_N=compliance_mm_per_N)
-    if return_ball_loads or np.any(np.asarray(radial_load_N, float) != 0.0):
+    if (return_ball_loads or np.any(np.asarray(radial_load_N, float) != 0.0)
+            or np.any(np.asarray(moment_Nmm, float) != 0.0)):
         return solve_pair_combined(g, arrangement, T_ref_C=T_ref_C, preload_kind=preload_kind,
                                    radial_load_N=radial_load_N, tol=tol, max_outer=max_outer,
-                                   chunk=chunk, return_ball_loads=return_ball_loads, **args)
+                                   chunk=chunk, return_ball_loads=return_ball_loads,
+                                   moment_Nmm=moment_Nmm, bearing_span_mm=bearing_span_mm, **args)
     N = n_points(*args.values())
     blocks = []
     for i0 in range(0, N, chunk):

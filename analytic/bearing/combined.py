@@ -16,6 +16,32 @@ from analytic.bearing.state import (ContactEllipses, PairState, RadialLoadState,
                                     pair_state, with_rows)
 
 
+def tilt_arms_mm(g: BearingGeometry, tg: ThermalGeometry, s, span_mm):
+    """Lever arms of a rotor tilt theta (rad, about the axis normal to the radial load, positive
+    when it moves the rotor at higher z towards psi = 0) at the inner groove curvature centre of
+    bearing j, ball at psi = 0, per radian:
+
+        gx_j = -s_j R_i            (axial approach change, along the bearing's contact sense)
+        gy_j = l_j                 (radial motion)
+        R_i = dm/2 + (f_i - 1/2) Dw cos(alpha0)          (Harris & Kotzalas Vol. 1 ch. 7: locus
+                                                          of the inner groove curvature centres)
+        l_j = z_j - z_mid + s_j (f_i - 1/2) Dw sin(alpha0)
+
+    z_j is the plane of bearing j's ball centres (bearing A at -span/2, B at +span/2 from the
+    mid-point z_mid, about which the moment is taken) and the last term the axial offset of the
+    inner groove centre from the ball centre (contact line at the free angle).  A rigid rotation
+    u = theta e_y x (r - r_mid) of the rotor gives these (small rotations); the moment M of the
+    ball forces about z_mid is the generalised force conjugate to theta.  Arrays (2, N), mm."""
+    a0 = np.radians(g.alpha0_deg)
+    off = (tg.f_i - 0.5) * tg.Dw_mm
+    R_i = 0.5 * tg.dm_mm + off * np.cos(a0)
+    half = 0.5 * np.asarray(span_mm, float)
+    z = np.array([-half, half])[:, None]
+    gx = -s * R_i
+    gy = z + s * off * np.sin(a0)
+    return np.broadcast_to(gx, np.broadcast_shapes(gx.shape, gy.shape)), gy * np.ones_like(gx)
+
+
 class CombinedProblem:
     """Unknowns u (n, N) and total potential of the pair under combined load, one preload mode:
 
@@ -26,17 +52,25 @@ class CombinedProblem:
       "spring"    spring preload:  u = (a_A, a_B, rho)
                   Pi = V - sum_j F_j^req a_j - Fr rho,  F_A^req = max(s_A Fa + P, 0), F_B^req = P
 
-    V = sum of the ball energies (`ball_set_state`).  Stationarity of Pi is the equilibrium of the
-    module docstring with the radial equation added: sum_j s_j F_j = Fa, sum_j Fr_j = Fr (and
-    a_j = a_j^nom - c F_j, or F_j = F_j^req).  With K_n frozen Pi is convex (delta is a norm minus
-    a constant, V an increasing convex function of it, the maps to X, Y affine)."""
+    With tilt arms (gx, gy of `tilt_arms_mm`, shaft free to tilt) one more unknown is appended,
+    t = Lam theta (mm; Lam a fixed length so that all unknowns are displacements), and Pi gets
+    - M theta.  V = sum of the ball energies (`ball_set_state`).  Stationarity of Pi is the
+    equilibrium of the module docstring with the radial equation added: sum_j s_j F_j = Fa,
+    sum_j Fr_j = Fr, sum_j M_j = M (and a_j = a_j^nom - c F_j, or F_j = F_j^req).  With K_n
+    frozen Pi is convex (delta is a norm minus a constant, V an increasing convex function of it,
+    the maps to X, Y affine)."""
 
-    def __init__(self, mode, s, X0, Ynom, A_T, cos_psi, Fa, Fr, dz, e=None, c=None, Freq=None):
+    def __init__(self, mode, s, X0, Ynom, A_T, cos_psi, Fa, Fr, dz, e=None, c=None, Freq=None,
+                 gx=None, gy=None, M=None, lam=1.0):
         self.mode, self.s, self.X0, self.Ynom, self.A_T = mode, s, X0, Ynom, A_T
         self.cos_psi, self.Fa, self.Fr, self.dz, self.e, self.c, self.Freq = (
             cos_psi, Fa, Fr, dz, e, c, Freq)
-        self.n = {"rigid": 2, "compliant": 4, "spring": 3}[mode]
+        self.tilt = gx is not None
+        self.gx, self.gy, self.lam = gx, gy, lam
+        self.M = M
+        self.n = {"rigid": 2, "compliant": 4, "spring": 3}[mode] + int(self.tilt)
         self.i_ax, self.i_rad = {"rigid": (0, 1), "compliant": (0, 1), "spring": (0, 2)}[mode]
+        self.i_tilt = self.n - 1 if self.tilt else None
 
     def split(self, u):
         """(a (2, N), rho (N,), x (N,))."""
@@ -49,15 +83,30 @@ class CombinedProblem:
         a = u[0:2]
         return a, u[2], s[0, 0] * a[0] - self.dz[0]
 
+    def theta(self, u):
+        """Rotor tilt (rad), (N,); zero without tilt arms."""
+        return u[self.i_tilt] / self.lam if self.tilt else np.zeros(u.shape[1])
+
     def state(self, u, Kn, dlnKn_dalpha=None) -> BallSetState:
         a, rho, _ = self.split(u)
-        return ball_set_state(self.X0 + a, self.Ynom, rho, self.A_T, Kn, self.cos_psi, dlnKn_dalpha)
+        if not self.tilt:
+            return ball_set_state(self.X0 + a, self.Ynom, rho, self.A_T, Kn, self.cos_psi,
+                                  dlnKn_dalpha)
+        return ball_set_state(self.X0 + a, self.Ynom, rho, self.A_T, Kn, self.cos_psi,
+                              dlnKn_dalpha, u[self.i_tilt], self.gx / self.lam,
+                              self.gy / self.lam)
 
     def alpha(self, u):
         """Angle of every ball's groove-centre line, atan2(X, Y), (2, Z, N)."""
         a, rho, _ = self.split(u)
-        Y = self.Ynom[:, None, :] + rho[None, None, :] * self.cos_psi[None, :, None]
-        return np.arctan2(np.broadcast_to((self.X0 + a)[:, None, :], Y.shape), Y)
+        c = self.cos_psi[None, :, None]
+        Y = self.Ynom[:, None, :] + rho[None, None, :] * c
+        X = (self.X0 + a)[:, None, :]
+        if self.tilt:
+            t = self.theta(u)[None, None, :]
+            X = X + t * self.gx[:, None, :] * c
+            Y = Y + t * self.gy[:, None, :] * c
+        return np.arctan2(np.broadcast_to(X, Y.shape), Y)
 
     def assemble(self, u, st: BallSetState):
         """Pi, a magnitude scale of its terms, gradient (n, N) and Hessian/tangent (n, n, N)."""
@@ -70,7 +119,7 @@ class CombinedProblem:
         if self.mode == "rigid":
             Pi_ext = self.Fa * x + self.Fr * rho
             Pi, Pabs = V - Pi_ext, QD + np.abs(self.Fa * x) + np.abs(self.Fr * rho)
-            g = np.stack([(s * st.F_N).sum(axis=0) - self.Fa, Rsum])
+            g = [(s * st.F_N).sum(axis=0) - self.Fa, Rsum]
             H[0, 0] = st.k_aa.sum(axis=0)
             H[0, 1] = (s * st.k_ar).sum(axis=0)
             H[1, 0] = (s * st.k_ra).sum(axis=0)
@@ -81,8 +130,8 @@ class CombinedProblem:
             Es = (gap * gap).sum(axis=0) / (2.0 * c)
             Pi = V + Es - self.Fa * x - self.Fr * rho
             Pabs = QD + Es + np.abs(self.Fa * x) + np.abs(self.Fr * rho)
-            g = np.stack([-(s * gap).sum(axis=0) / c - self.Fa, Rsum,
-                          st.F_N[0] + gap[0] / c, st.F_N[1] + gap[1] / c])
+            g = [-(s * gap).sum(axis=0) / c - self.Fa, Rsum,
+                 st.F_N[0] + gap[0] / c, st.F_N[1] + gap[1] / c]
             H[0, 0] = 2.0 / c
             for j in range(2):
                 H[0, 2 + j] = H[2 + j, 0] = -s[j, 0] / c
@@ -94,28 +143,56 @@ class CombinedProblem:
             work = (self.Freq * a).sum(axis=0) + self.Fr * rho
             Pi = V - work
             Pabs = QD + np.abs(self.Freq * a).sum(axis=0) + np.abs(self.Fr * rho)
-            g = np.stack([st.F_N[0] - self.Freq[0], st.F_N[1] - self.Freq[1], Rsum])
+            g = [st.F_N[0] - self.Freq[0], st.F_N[1] - self.Freq[1], Rsum]
             for j in range(2):
                 H[j, j] = st.k_aa[j]
                 H[j, 2] = st.k_ar[j]
                 H[2, j] = st.k_ra[j]
             H[2, 2] = krr
-        return Pi, Pabs, g, H
+        if self.tilt:
+            # theta-row and -column: d/d(a_j) enters through s_j (rigid: via x) or directly
+            t, i_r = self.i_tilt, self.i_rad
+            Mt = self.M / self.lam
+            Pi = Pi - Mt * u[t]
+            Pabs = Pabs + np.abs(Mt * u[t])
+            g.append(st.M_Nmm.sum(axis=0) - Mt)
+            if self.mode == "rigid":
+                H[0, t] = (s * st.k_at).sum(axis=0)
+                H[t, 0] = (s * st.k_ta).sum(axis=0)
+            else:
+                ia = (2, 3) if self.mode == "compliant" else (0, 1)
+                for j in range(2):
+                    H[ia[j], t] = st.k_at[j]
+                    H[t, ia[j]] = st.k_ta[j]
+            H[i_r, t] = st.k_rt.sum(axis=0)
+            H[t, i_r] = st.k_tr.sum(axis=0)
+            H[t, t] = st.k_tt.sum(axis=0)
+        return Pi, Pabs, np.stack(g), H
 
 
 
 def _combined_group(g: BearingGeometry, mode: str, s, dr, dz, tg: ThermalGeometry, Fa, Fr, c, e,
-                    Freq, lost_spring, u0, tol, max_outer, solve=True, ball_loads=False):
-    """Solve (or, with solve=False, only evaluate at u0) one group of points of one preload mode
-    and return their `PairState` (with its `radial` part)."""
+                    Freq, lost_spring, u0, tol, max_outer, solve=True, ball_loads=False,
+                    M=None, span=None):
+    """Solve (or, with solve=False, only evaluate at u0, where rho = theta = 0) one group of
+    points of one preload mode and return their `PairState` (with its `radial` part).  With a
+    bearing span the rotor tilt is an unknown (moment M)."""
     a0 = np.radians(g.alpha0_deg)
     X0, Y0 = g.A0_mm * np.sin(a0), g.A0_mm * np.cos(a0)
     psi = ball_azimuths_rad(g.Z)
-    prob = CombinedProblem(mode, s, X0, Y0 + dr, tg.A_T_mm, np.cos(psi), Fa, Fr, dz, e, c, Freq)
+    tilt = {}
+    if span is not None:
+        gx, gy = tilt_arms_mm(g, tg, s, span)
+        lam = float(np.max(np.hypot(gx, gy)))
+        tilt = dict(gx=gx, gy=gy, M=M, lam=lam)
+        u0 = np.vstack([u0, np.zeros(u0.shape[1])])
+    prob = CombinedProblem(mode, s, X0, Y0 + dr, tg.A_T_mm, np.cos(psi), Fa, Fr, dz, e, c, Freq,
+                           **tilt)
     tg3 = ThermalGeometry(*(v[:, None, :] for v in
                             (tg.A_T_mm, tg.Dw_mm, tg.f_i, tg.f_o, tg.dm_mm)))
     u = u0
-    cs = contact_stiffness(g, tg3, prob.alpha(u))
+    # without radial motion and tilt every ball of a bearing has the same angle: K_n once
+    cs = contact_stiffness(g, tg3, prob.alpha(u) if solve else prob.alpha(u)[:, :1, :])
     ok = np.ones(u.shape[1], bool)
     if solve:
         cap = 0.1 * g.A0_mm
@@ -143,6 +220,18 @@ def _combined_group(g: BearingGeometry, mode: str, s, dr, dz, tg: ThermalGeometr
         Jrr = Jm[:, r][:, :, r]
         return Jm[:, i, i] - np.einsum("nr,nrs,ns->n", Jm[:, i, r], np.linalg.pinv(Jrr), Jm[:, r, i])
     k_ax, k_rad = condensed(prob.i_ax), condensed(prob.i_rad)
+    if prob.tilt:
+        theta = prob.theta(u)
+        k_tilt = condensed(prob.i_tilt) * prob.lam ** 2        # dM/dtheta, N mm/rad
+        # bearing j's own moment about its ball plane: M_j - z_j Fr_j (z_j = -+span/2)
+        zj = np.array([-0.5 * span, 0.5 * span])[:, None]
+        M_own = st.M_Nmm * prob.lam - zj * st.Fr_N
+        rho_j = rho + theta * zj
+    else:
+        theta = np.zeros(u.shape[1])
+        k_tilt = np.full(u.shape[1], np.nan)
+        M_own = np.zeros_like(st.Fr_N)
+        rho_j = np.broadcast_to(rho, st.Fr_N.shape)
 
     Q, alpha, delta = st.Q_N, st.alpha_rad, st.delta_mm
     FA_, FB_ = st.F_N
@@ -163,12 +252,15 @@ def _combined_group(g: BearingGeometry, mode: str, s, dr, dz, tg: ThermalGeometr
         return np.take_along_axis(np.broadcast_to(v, Q.shape), im, axis=1)[:, 0, :]
 
     loaded = delta > 1e-12 * tg3.A_T_mm
+    inner, outer = (contact_ellipses(g, cs, Q, side) for side in (0, 1))
     radial = RadialLoadState(
         rho_mm=rho, radial_force_N=st.Fr_N, max_ball_load_N=Q.max(axis=1),
         loaded_zone=loaded.mean(axis=1), radial_stiffness_N_per_um=1e-3 * k_rad,
+        tilt_rad=theta, bearing_rho_mm=rho_j, bearing_moment_Nmm=M_own,
+        moment_stiffness_Nmm_per_mrad=1e-3 * k_tilt,
+        max_contact_pressure_MPa=np.maximum(inner.p_max_MPa, outer.p_max_MPa).max(axis=1),
         ball_loads_N=Q if ball_loads else None,
         ball_contact_angles_deg=np.degrees(alpha) if ball_loads else None)
-    inner, outer = (contact_ellipses(g, cs, Q, side) for side in (0, 1))
     top_inner, top_outer = (ContactEllipses(*(top(getattr(c, f)) for f in ContactEllipses.__dataclass_fields__))
                             for c in (inner, outer))
     return pair_state(F_N=st.F_N, alpha_rad=top(alpha), Q_N=top(Q), delta_mm=top(delta),
@@ -186,14 +278,16 @@ def solve_pair_combined(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.
                         preload_assembled_N=100.0, axial_load_N=0.0, radial_load_N=0.0,
                         dr_ref_mm=0.0, dz_ref_mm=0.0, compliance_mm_per_N=0.0,
                         tol: float = 1e-14, max_outer: int = 30, chunk: int = 8192,
-                        return_ball_loads: bool = False) -> PairState:
+                        return_ball_loads: bool = False, moment_Nmm=0.0,
+                        bearing_span_mm=None) -> PairState:
     """Pair equilibrium under combined axial and radial load with the quasi-static load
     distribution around the ball set (Harris & Kotzalas Vol. 1 ch. 7; Jones 1960), vectorised
     over N operating points.  `analytic.bearing.solve_pair` calls this when a radial load is given.
 
     Model: each bearing j has Z balls at psi_k = 2 pi k / Z from the radial load direction.  The
-    rigid rotor moves radially by rho (mm, along psi = 0, common to both bearings; no tilt, so the
-    radial load is shared according to that common displacement) and axially by x:
+    rigid rotor moves radially by rho (mm, along psi = 0) and axially by x; without a bearing span
+    it does not tilt (rho common to both bearings, the radial load shared according to that
+    common displacement), with one it also tilts (below):
 
         X_jk = A0 sin(a0) + a_j,  Y_jk = A0 cos(a0) + dr_j + rho cos(psi_k)
         delta_jk = sqrt(X^2 + Y^2) - A_T,  Q_jk = K_n(alpha_jk) delta_jk^1.5 (0 if delta <= 0)
@@ -209,9 +303,17 @@ def solve_pair_combined(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.
     angles until it changes by less than tol.  Start: the axial-only solution
     (`axial.solve_pair_axial`, which also gives the position-preload offset e), rho = 0.
 
+    Tilt and moment (bearing_span_mm given: the distance between the two bearings' ball planes,
+    B minus A, mm): the rotor is a rigid body free to tilt by theta about the axis normal to the
+    load plane, the radial load acts at the mid-point between the ball planes and moment_Nmm
+    (N mm, scalar or (N,); tilting the rotor at higher z towards psi = 0) about it.  Each ball
+    then also moves with the tilt (`tilt_arms_mm`: axial at the inner groove-centre radius, radial
+    at its distance from the mid-point), and sum_j M_j = moment_Nmm joins the equations.  Without
+    a span the rotor is held against tilt (a moment is refused).
+
     Inputs: those of `solve_pair`, plus radial_load_N (N, scalar or (N,); negative values point
-    to psi = 180 deg).  Points with zero radial load keep the axial-only state unchanged (the
-    radial part evaluated at that state, rho = 0).
+    to psi = 180 deg).  Points with zero radial load and moment keep the axial-only state
+    unchanged (the radial part evaluated at that state, rho = theta = 0).
 
     Returns a `PairState` whose per-bearing ball quantities (ball load, deflection, contact angle,
     ellipses) refer to the most loaded ball of that bearing, axial_force_N = sum_k Q sin(alpha),
@@ -219,7 +321,9 @@ def solve_pair_combined(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.
     at constant radial load, max_contact_pressure_MPa the largest over all balls and both
     contacts; and its `radial` part (`RadialLoadState`): rho_mm, radial_force_N, max_ball_load_N,
     loaded_zone (fraction of balls with delta > 1e-12 A_T), radial_stiffness_N_per_um (dF_r/drho
-    at constant axial load, x free, including dK_n/dalpha) and, with return_ball_loads,
+    at constant axial load, x free, including dK_n/dalpha), tilt_rad, bearing_rho_mm,
+    bearing_moment_Nmm (each bearing's moment about its own ball plane),
+    moment_stiffness_Nmm_per_mrad, max_contact_pressure_MPa per bearing and, with return_ball_loads,
     ball_loads_N and ball_contact_angles_deg of shape (2, Z, N), ball k at
     `contact.ball_azimuths_rad(Z)[k]`.
 
@@ -227,7 +331,14 @@ def solve_pair_combined(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.
     treats every ball as the most loaded one (an upper bound), not the load distribution.
     """
     N = n_points(dr_mm, dz_mm, T_inner_ring_C, T_outer_ring_C, T_ball_C, preload_assembled_N,
-                 axial_load_N, dr_ref_mm, dz_ref_mm, compliance_mm_per_N, radial_load_N)
+                 axial_load_N, dr_ref_mm, dz_ref_mm, compliance_mm_per_N, radial_load_N,
+                 moment_Nmm)
+    M = np.broadcast_to(np.asarray(moment_Nmm, float), (N,))
+    if bearing_span_mm is None and np.any(M != 0.0):
+        raise ValueError("a moment load needs bearing_span_mm (the rotor tilts about the pair)")
+    span = None if bearing_span_mm is None else float(bearing_span_mm)
+    if span is not None and not span > 0.0:
+        raise ValueError(f"bearing_span_mm must be positive, got {bearing_span_mm!r}")
     base = solve_pair_axial(g, arrangement, N, dr_mm=dr_mm, dz_mm=dz_mm,
                             T_inner_ring_C=T_inner_ring_C, T_outer_ring_C=T_outer_ring_C,
                             T_ball_C=T_ball_C, T_ref_C=T_ref_C, preload_kind=preload_kind,
@@ -262,10 +373,13 @@ def solve_pair_combined(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.
     out = replace(base, radial=RadialLoadState(
         rho_mm=np.zeros(N), radial_force_N=np.zeros((2, N)), max_ball_load_N=np.zeros((2, N)),
         loaded_zone=np.zeros((2, N)), radial_stiffness_N_per_um=np.zeros(N),
+        tilt_rad=np.zeros(N), bearing_rho_mm=np.zeros((2, N)), bearing_moment_Nmm=np.zeros((2, N)),
+        moment_stiffness_Nmm_per_mrad=np.zeros(N), max_contact_pressure_MPa=np.zeros((2, N)),
         ball_loads_N=np.zeros(Zb) if return_ball_loads else None,
         ball_contact_angles_deg=np.zeros(Zb) if return_ball_loads else None))
     for mode, mmask in modes.items():
-        for solve, smask in ((False, Fr == 0.0), (True, Fr != 0.0)):
+        loaded = (Fr != 0.0) | (M != 0.0)
+        for solve, smask in ((False, ~loaded), (True, loaded)):
             ids = np.flatnonzero(mmask & smask)
             for i0 in range(0, ids.size, chunk):
                 ii = ids[i0:i0 + chunk]
@@ -281,7 +395,7 @@ def solve_pair_combined(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.
                     ThermalGeometry(*(v[:, ii] for v in (tg.A_T_mm, tg.Dw_mm, tg.f_i, tg.f_o, tg.dm_mm))),
                     Fa[ii], Fr[ii], c[ii], e[ii], None if Freq is None else Freq[:, ii],
                     None if lost_spring is None else lost_spring[ii], u0, tol, max_outer,
-                    solve=solve, ball_loads=return_ball_loads)
+                    solve=solve, ball_loads=return_ball_loads, M=M[ii], span=span)
                 if solve:
                     out = with_rows(out, ii, res)
                 else:           # the axial solution stands; add the radial outputs at it

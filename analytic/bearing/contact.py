@@ -71,8 +71,11 @@ class BearingState:
 
 def axial_state(X_mm, Y_mm, A_T_mm, Kn, Z: int, dlnKn_dalpha=None, alpha_lin=None) -> BearingState:
     """F = Z K_n delta^1.5 sin(alpha) with delta = sqrt(X^2 + Y^2) - A_T, alpha = atan2(X, Y)
-    (Harris Vol. 1 ch. 7 with the centre distance written in components).  A bearing whose
-    contact angle would be <= 0 carries no axial load (F = 0, k = 0).
+    (Harris Vol. 1 ch. 7 with the centre distance written in components).  Full-groove contact,
+    the same contact model as `ball_set_state`: a bearing pushed past its centred position
+    (X < 0) touches the other flank of its grooves once |X| exceeds the axial play, at the
+    negative angle atan2(X, Y), and carries a negative axial force (a deep-groove bearing
+    under a load from either side).  F is odd and increasing in X.
 
     With dlnKn_dalpha and alpha_lin given, K_n is taken as K_n exp(dlnKn_dalpha (alpha - alpha_lin))
     (first-order model of its contact-angle dependence, used inside the solvers) and k includes
@@ -80,7 +83,7 @@ def axial_state(X_mm, Y_mm, A_T_mm, Kn, Z: int, dlnKn_dalpha=None, alpha_lin=Non
     X, Y = np.asarray(X_mm, float), np.asarray(Y_mm, float)
     D = np.hypot(X, Y)
     delta = np.maximum(D - A_T_mm, 0.0)
-    s = np.maximum(X, 0.0) / D
+    s = X / D
     c = Y / D
     alpha = np.arctan2(X, Y)
     if dlnKn_dalpha is not None:
@@ -103,7 +106,9 @@ def ball_azimuths_rad(Z: int) -> np.ndarray:
 @dataclass
 class BallSetState:
     """Ball loads of both bearings at given groove-centre distances (`ball_set_state`).
-    Per ball: shape (2, Z, N); per bearing: (2, N)."""
+    Per ball: shape (2, Z, N); per bearing: (2, N).  The generalised coordinates of bearing j are
+    its axial approach a, the rotor radial displacement rho and, with a tilt, the rotor tilt
+    theta; the k_* are the derivatives of the generalised forces (F, Fr, M) in them."""
     Q_N: np.ndarray              # ball load
     delta_mm: np.ndarray         # contact deformation (inner + outer), >= 0
     alpha_rad: np.ndarray        # contact angle atan2(X, Y)
@@ -115,29 +120,49 @@ class BallSetState:
     k_ra: np.ndarray             # dFr/da
     k_rr: np.ndarray             # dFr/drho
     QD_Nmm: np.ndarray           # sum_k Q D: scale of the rounding error of V (delta = D - A_T)
+    M_Nmm: np.ndarray | None = None   # moment of the bearing's ball forces, conjugate to theta
+    k_at: np.ndarray | None = None    # dF/dtheta   (N/rad)
+    k_rt: np.ndarray | None = None    # dFr/dtheta
+    k_ta: np.ndarray | None = None    # dM/da       (N mm/mm)
+    k_tr: np.ndarray | None = None    # dM/drho
+    k_tt: np.ndarray | None = None    # dM/dtheta   (N mm/rad)
 
 
-def ball_set_state(X_mm, Y_mm, rho_mm, A_T_mm, Kn, cos_psi, dlnKn_dalpha=None) -> BallSetState:
-    """Loads of every ball of both bearings under a rotor radial displacement rho (Harris &
-    Kotzalas Vol. 1 ch. 7, Jones 1960, rigid rings, no centrifugal or gyroscopic terms):
+def ball_set_state(X_mm, Y_mm, rho_mm, A_T_mm, Kn, cos_psi, dlnKn_dalpha=None, theta_rad=None,
+                   gx_mm=None, gy_mm=None) -> BallSetState:
+    """Loads of every ball of both bearings under a rotor radial displacement rho and, optionally,
+    a rotor tilt theta (Harris & Kotzalas Vol. 1 ch. 7, Jones 1960, rigid rings, no centrifugal or
+    gyroscopic terms):
 
-        X_jk = X_j,  Y_jk = Y_j + rho cos(psi_k),  D = sqrt(X^2 + Y^2),  alpha = atan2(X, Y)
-        delta_jk = D - A_T (0 if negative),  Q_jk = K_n,jk delta_jk^1.5
+        X_jk = X_j + theta gx_j cos(psi_k),  Y_jk = Y_j + (rho + theta gy_j) cos(psi_k)
+        D = sqrt(X^2 + Y^2),  alpha = atan2(X, Y),  delta_jk = D - A_T (0 if negative)
+        Q_jk = K_n,jk delta_jk^1.5
         F_j = sum_k Q sin(alpha),  Fr_j = sum_k Q cos(alpha) cos(psi_k)
+        M_j = sum_k Q cos(psi_k) (gx_j sin(alpha) + gy_j cos(alpha))
 
     X_mm, Y_mm, A_T_mm: (2, N) (bearing axial and radial groove-centre distance components without
-    rho); rho_mm: (N,); Kn: (2, Z, N) (or broadcastable); cos_psi: (Z,).  The ball force Q (sin a,
-    cos a) is the gradient of V = (2/5) K_n delta^2.5 in (X, Y) at fixed K_n, so the loads derive
-    from a convex potential (used by the solver).  The tangent in (X, Y) per ball is
-    1.5 K_n delta^0.5 n n^T + (Q/D) t t^T with n = (sin a, cos a), t = (cos a, -sin a); with
-    dlnKn_dalpha given it also contains (Q/D) dlnK_n/dalpha n t^T (the contact-angle dependence of
-    K_n; K_n itself is used as given).  A ball with X < 0 is taken to touch the other side of the
-    groove at the negative angle (full groove); `axial_state` instead gives such a bearing no axial
-    force.  They differ only for a bearing withdrawn beyond zero contact angle with radial
-    interference."""
+    rho and theta); rho_mm: (N,); Kn: (2, Z, N) (or broadcastable); cos_psi: (Z,).  Tilt (all
+    three given): theta_rad (N,) and the lever arms gx_mm, gy_mm (2, N) of `combined.tilt_arms_mm`
+    (the axial and radial motion of bearing j's inner groove centre at psi = 0 per radian of
+    tilt); M_j is then the generalised force conjugate to theta (the moment of the ball forces
+    on the rotor).  The ball force Q (sin a, cos a) is the gradient of V = (2/5) K_n delta^2.5 in
+    (X, Y) at fixed K_n, so the loads derive from a convex potential (used by the solver).  The
+    tangent in (X, Y) per ball is 1.5 K_n delta^0.5 n n^T + (Q/D) t t^T with n = (sin a, cos a),
+    t = (cos a, -sin a); with dlnKn_dalpha given it also contains (Q/D) dlnK_n/dalpha n t^T (the
+    contact-angle dependence of K_n; K_n itself is used as given); the k_* are its projections
+    G^T T G on the generalised coordinates (G = d(X, Y)/d(a, rho, theta)).  A ball with X < 0
+    touches the other flank of the groove at the negative angle (full groove: the contact model
+    of `axial_state` too)."""
     X = np.asarray(X_mm, float)[:, None, :]
     cpsi = np.asarray(cos_psi, float)[None, :, None]
     Y = np.asarray(Y_mm, float)[:, None, :] + np.asarray(rho_mm, float)[None, None, :] * cpsi
+    tilt = theta_rad is not None
+    if tilt:
+        th = np.asarray(theta_rad, float)[None, None, :]
+        gx = np.asarray(gx_mm, float)[:, None, :] * cpsi      # dX/dtheta per ball
+        gy = np.asarray(gy_mm, float)[:, None, :] * cpsi      # dY/dtheta per ball
+        X = X + th * gx
+        Y = Y + th * gy
     X = np.broadcast_to(X, Y.shape)
     A_T = np.asarray(A_T_mm, float)[:, None, :]
     D = np.hypot(X, Y)
@@ -155,8 +180,18 @@ def ball_set_state(X_mm, Y_mm, rho_mm, A_T_mm, Kn, cos_psi, dlnKn_dalpha=None) -
         w = kt * dlnKn_dalpha
         MXX, MXY, MYX, MYY = (MXX + w * nX * nY, MXY - w * nX * nX, MYX + w * nY * nY,
                               MYY - w * nX * nY)
-    return BallSetState(Q, delta, np.arctan2(X, Y), (Q * nX).sum(axis=1),
-                        (Q * nY * cpsi).sum(axis=1), (0.4 * Q * delta).sum(axis=1),
-                        MXX.sum(axis=1), (MXY * cpsi).sum(axis=1), (MYX * cpsi).sum(axis=1),
-                        (MYY * cpsi * cpsi).sum(axis=1), (Q * D).sum(axis=1))
-
+    QX, QY = Q * nX, Q * nY
+    out = BallSetState(Q, delta, np.arctan2(X, Y), QX.sum(axis=1),
+                       (QY * cpsi).sum(axis=1), (0.4 * Q * delta).sum(axis=1),
+                       MXX.sum(axis=1), (MXY * cpsi).sum(axis=1), (MYX * cpsi).sum(axis=1),
+                       (MYY * cpsi * cpsi).sum(axis=1), (Q * D).sum(axis=1))
+    if not tilt:
+        return out
+    # G = [[1, 0, gx], [0, c, gy]] per ball: column theta of T G and row theta of G^T T
+    TXt, TYt = MXX * gx + MXY * gy, MYX * gx + MYY * gy
+    return BallSetState(**{**out.__dict__,
+                           "M_Nmm": (QX * gx + QY * gy).sum(axis=1),
+                           "k_at": TXt.sum(axis=1), "k_rt": (TYt * cpsi).sum(axis=1),
+                           "k_ta": (gx * MXX + gy * MYX).sum(axis=1),
+                           "k_tr": ((gx * MXY + gy * MYY) * cpsi).sum(axis=1),
+                           "k_tt": (gx * TXt + gy * TYt).sum(axis=1)})

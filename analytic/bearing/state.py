@@ -23,12 +23,19 @@ class ContactEllipses:
 
 @dataclass(frozen=True)
 class RadialLoadState:
-    """What the combined-load solver adds (`combined.solve_pair_combined`)."""
+    """What the combined-load solver adds (`combined.solve_pair_combined`).  rho_mm and the
+    radial stiffness refer to the mid-point between the two bearings' ball planes (where the
+    radial load acts); the moment is taken about it."""
     rho_mm: np.ndarray                       # (N,) rotor radial displacement along the load
     radial_force_N: np.ndarray               # (2, N) radial load share of each bearing
     max_ball_load_N: np.ndarray              # (2, N) largest ball load of each bearing
     loaded_zone: np.ndarray                  # (2, N) fraction of balls in contact
-    radial_stiffness_N_per_um: np.ndarray    # (N,) dF_r/drho at constant axial load
+    radial_stiffness_N_per_um: np.ndarray    # (N,) dF_r/drho at constant axial load (and moment)
+    tilt_rad: np.ndarray                     # (N,) rotor tilt (0 without a bearing span)
+    bearing_rho_mm: np.ndarray               # (2, N) rotor radial displacement at each ball plane
+    bearing_moment_Nmm: np.ndarray           # (2, N) moment each bearing carries about its ball plane
+    moment_stiffness_Nmm_per_mrad: np.ndarray  # (N,) dM/dtheta, Fa and Fr held (NaN: no tilt DOF)
+    max_contact_pressure_MPa: np.ndarray     # (2, N) over every ball and both contacts of a bearing
     ball_loads_N: np.ndarray | None = None   # (2, Z, N) with return_ball_loads
     ball_contact_angles_deg: np.ndarray | None = None
 

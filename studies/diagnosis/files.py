@@ -40,7 +40,9 @@ OUTPUT_NAMES = {
     "groove_shift_dz_A_um", "groove_shift_dr_B_um", "groove_shift_dz_B_um", "axial_force_A_N",
     "axial_force_B_N", "contact_angle_A_deg", "contact_angle_B_deg", "ball_load_A_N",
     "ball_load_B_N", "preload_lost", "friction_coefficient", "static_safety",
-    "land_margin_inner_deg", "land_margin_outer_deg"} | CHECK_COLUMNS
+    "land_margin_inner_deg", "land_margin_outer_deg", "radial_displacement_um", "tilt_mrad",
+    "radial_force_A_N", "radial_force_B_N", "max_contact_pressure_A_MPa",
+    "max_contact_pressure_B_MPa"} | CHECK_COLUMNS
 
 
 class ModelPredictor:

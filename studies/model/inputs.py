@@ -28,7 +28,7 @@ PART_COLUMNS = {f"T_{p}_C": p for p in PARTS}
 #: CTE slope (1/K^2) of the shaft (and nut) and housing (and cover) in the baseline
 NO_CTE_SLOPE = {"shaft": 0.0, "housing": 0.0}
 CONDITION_COLUMNS = ("time_s", "T_ambient_C", *PART_COLUMNS, "speed_rpm", "preload_assembled_N",
-                     "axial_load_N")
+                     "axial_load_N", "radial_load_N", "moment_Nmm")
 
 
 @dataclass
@@ -50,6 +50,8 @@ class PhysicsInputs:
     T_ambient_C: np.ndarray | None = None
     dalpha_per_K2: dict[str, float] = field(default_factory=lambda: dict(NO_CTE_SLOPE))
     viscosity_slope_factor: float = 1.0
+    radial_load_N: np.ndarray | None = None            # on the shaft at the pair's mid-point
+    moment_Nmm: np.ndarray | None = None               # tilting moment on the shaft (N mm)
 
     def copy(self, **changes) -> "PhysicsInputs":
         """Shallow copy with fields replaced (arrays are never modified in place)."""
@@ -72,6 +74,7 @@ class PhysicsInputs:
                        interference_outer_um=pick(self.interference_outer_um),
                        friction_coefficient=pick(self.friction_coefficient),
                        preload_loss_N=pick(self.preload_loss_N),
+                       radial_load_N=pick(self.radial_load_N), moment_Nmm=pick(self.moment_Nmm),
                        dalpha_per_K2=dict(self.dalpha_per_K2))
 
 
@@ -90,6 +93,7 @@ def baseline_inputs(columns: dict[str, np.ndarray], n_rows: int, T_ref_C: float,
     return PhysicsInputs(n_rows=n_rows, T_C=T, speed_rpm=col("speed_rpm", speed_rpm),
                          preload_assembled_N=col("preload_assembled_N", preload_N),
                          axial_load_N=col("axial_load_N", 0.0),
+                         radial_load_N=col("radial_load_N", 0.0), moment_Nmm=col("moment_Nmm", 0.0),
                          interference_inner_um=np.zeros(n_rows), interference_outer_um=np.zeros(n_rows),
                          friction_coefficient=np.zeros(n_rows), preload_loss_N=np.zeros(n_rows),
                          time_s=columns.get("time_s"), T_ambient_C=amb)

@@ -29,7 +29,7 @@ from fem.post import groove_centre_shift, mean_pressures_MPa
 from fem.setup import (CompliancePlan, FESetup, FullFE, SetupSpec, cached_setup, compute_setup,
                        full_fe)
 from fem.solver import Superposition
-from studies.model.stack import section_from_assembly
+from studies.model.stack import section_from_assembly, stack_positions
 from studies.model.config import Assembly
 from studies.model.effects import resolve_friction_coefficient, resolve_interference_um
 from studies.model.inputs import NO_CTE_SLOPE, PhysicsInputs
@@ -148,6 +148,10 @@ class Pipeline:
                     if superpose else None)
         self.geom = BearingGeometry.from_spec(asm.bearing)
         self.land_diameters_mm = land_diameters_mm(asm.bearing)[:2]
+        # distance of the ball planes (inner ring mid-planes) of bearings A and B: the lever of
+        # the rotor tilt under a moment or an off-centre radial load
+        z = stack_positions(asm)
+        self.bearing_span_mm = 0.5 * (sum(z["inner_ring_B"]) - sum(z["inner_ring_A"]))
         self._centre_offsets(pts)
         self._fe_cache: dict[bytes, FEState] = {}
         self.lubricant = get_lubricant(asm.lubrication.lubricant) if asm.lubrication.kind == "oil" else None
@@ -371,6 +375,9 @@ class Pipeline:
                               T_outer_ring_C=inputs.T_C["outer_ring"], T_ball_C=inputs.T_C["ball"],
                               T_ref_C=a.T_ref_C, preload_kind=a.preload.kind,
                               preload_assembled_N=preload, axial_load_N=inputs.axial_load_N,
+                              radial_load_N=_zeros_if_none(inputs.radial_load_N),
+                              moment_Nmm=_zeros_if_none(inputs.moment_Nmm),
+                              bearing_span_mm=self.bearing_span_mm,
                               dr_ref_mm=fe_ref.dr_mm, dz_ref_mm=fe_ref.dz_mm,
                               compliance_mm_per_N=self.compliance_mm_per_N
                               if compliance_mm_per_N is None else compliance_mm_per_N)
@@ -401,6 +408,7 @@ class Pipeline:
         for j, J in enumerate("AB"):
             out[f"ball_load_{J}_N"] = pair.ball_load_N[j]
         out["axial_stiffness_N_per_um"] = pair.pair_axial_stiffness_N_per_um
+        out.update(_load_outputs(pair))
         for side, d_land, ell in (("inner", self.land_diameters_mm[0], pair.inner),
                                   ("outer", self.land_diameters_mm[1], pair.outer)):
             out[f"land_margin_{side}_deg"] = land_margin_deg(
@@ -438,6 +446,32 @@ class Pipeline:
                           nu_mm2_s=nu, load_term=lub.load_term, f1=f1)
         out["viscosity_mm2_s"] = nu
         return out
+
+
+def _zeros_if_none(v):
+    return 0.0 if v is None else v
+
+
+def _load_outputs(pair: PairState) -> dict[str, np.ndarray]:
+    """Columns of the pair under radial load and moment (`analytic.bearing.RadialLoadState`),
+    present in every row: rotor radial displacement at the pair's mid-point (um) and tilt
+    (mrad), each bearing's radial reaction (N) and its largest Hertz pressure over all balls
+    (MPa).  Rows without radial load and moment: zero displacement, tilt and reactions, and the
+    axial state's pressures (every ball alike)."""
+    r = pair.radial
+    if r is None:
+        n = pair.preload_N.shape[0]
+        z = np.zeros(n)
+        rho, tilt, Fr = z, z, np.zeros((2, n))
+        p = np.maximum(pair.inner.p_max_MPa, pair.outer.p_max_MPa)
+    else:
+        rho, tilt, Fr, p = r.rho_mm, r.tilt_rad, r.radial_force_N, r.max_contact_pressure_MPa
+    out = {"radial_displacement_um": 1e3 * rho, "tilt_mrad": 1e3 * tilt}
+    for j, J in enumerate("AB"):
+        out[f"radial_force_{J}_N"] = Fr[j]
+    for j, J in enumerate("AB"):
+        out[f"max_contact_pressure_{J}_MPa"] = p[j]
+    return out
 
 
 def _weighted_angle(pair: PairState) -> np.ndarray:

@@ -140,7 +140,8 @@ def _chunk(path: Path, header: list[str], rows: list, lines: list, check: bool, 
 #: (beyond, CTE and viscosity laws are extrapolations the model does not stand behind)
 RANGES = {**{c: (-150.0, 300.0, "C") for c in CONDITION_COLUMNS if c.startswith("T_")},
           "speed_rpm": (0.0, 1e5, "rpm"), "preload_assembled_N": (0.0, 1e5, "N"),
-          "axial_load_N": (-1e6, 1e6, "N"),
+          "axial_load_N": (-1e6, 1e6, "N"), "radial_load_N": (-1e6, 1e6, "N"),
+          "moment_Nmm": (-1e9, 1e9, "N mm"),
           # measured outputs (diagnose): beyond these no bearing this tool models goes
           "torque_Nmm": (-1e7, 1e7, "N mm"), "preload_N": (-1e6, 1e6, "N"),
           "contact_angle_deg": (-90.0, 90.0, "deg"), "max_contact_pressure_MPa": (0.0, 1e5, "MPa"),
