@@ -1,7 +1,9 @@
 """The FE -> analytic pipeline: conditions -> part temperatures and fits -> FE (fit pressures,
 groove-centre shifts) -> bearing pair (preload, contact angle, Hertz) -> friction torque.
 
-The FE runs through `fem.solver.Superposition`: unit solutions per part thermal strain and per fit,
+The FE runs through `fem.solver.Superposition`: unit solutions per part thermal strain, for the
+centrifugal load of the rotor (shaft, inner rings, inner spacer, nut) at the row's `speed_rpm`
+(scaled by omega^2; the assembly state is at rest) and per fit,
 combined exactly for every row (the contact active set is solved per row on the condensed
 interface), so a sweep costs little per point. `direct=True` solves every row with a full FE solve
 instead; tests hold the two equal.
@@ -29,7 +31,7 @@ from fem.post import groove_centre_shift, mean_pressures_MPa
 from fem.setup import (CompliancePlan, FESetup, FullFE, SetupSpec, cached_setup, compute_setup,
                        full_fe)
 from fem.solver import Superposition
-from studies.model.stack import section_from_assembly
+from studies.model.stack import ROTOR_PARTS, section_from_assembly
 from studies.model.config import Assembly
 from studies.model.effects import resolve_friction_coefficient, resolve_interference_um
 from studies.model.inputs import NO_CTE_SLOPE, PhysicsInputs
@@ -138,7 +140,8 @@ class Pipeline:
             delta = self.deltas_mm(np.array([inner]), np.array([outer]))[0]
             plan = CompliancePlan(tuple(float(v) for v in SIGNS[asm.arrangement]),
                                   tuple(float(v) for v in delta))
-        self.spec = SetupSpec.of(self.section, asm.fits.contact, pts, plan)
+        rotor = tuple(p for p in ROTOR_PARTS if p in self.section.parts())
+        self.spec = SetupSpec.of(self.section, asm.fits.contact, pts, plan, rotating_parts=rotor)
         self.materials = dict(self.spec.materials)
         self._full: FullFE | None = None
         self.setup: FESetup = (cached_setup(self.spec, self.full_fe, progress=self._say) if cache
@@ -215,6 +218,11 @@ class Pipeline:
             cols.append(mat.thermal_strain(np.asarray(inputs.T_C[group], float), self.asm.T_ref_C))
         return np.column_stack(cols)
 
+    @staticmethod
+    def omega2(inputs: PhysicsInputs) -> np.ndarray:
+        """(n,) square of the rotor speed, rad^2/s^2: omega = 2 pi speed_rpm / 60."""
+        return (np.asarray(inputs.speed_rpm, float) * (2.0 * np.pi / 60.0)) ** 2
+
     def fits_um(self, inputs: PhysicsInputs) -> tuple[np.ndarray, np.ndarray]:
         return resolve_interference_um(inputs, *self.asm.mean_fits_um())
 
@@ -229,13 +237,15 @@ class Pipeline:
         theta = self.thetas(inputs)
         inner_um, outer_um = self.fits_um(inputs)
         delta = self.deltas_mm(inner_um, outer_um)
+        w2 = np.broadcast_to(self.omega2(inputs), (theta.shape[0],)).copy()
         # a diagnosis re-evaluates the same FE states many times (friction, viscosity and preload
         # effects leave the structure alone): keep the last few results by their exact inputs
-        key = hashlib.sha1(theta.tobytes() + delta.tobytes() + bytes([direct])).digest()
+        key = hashlib.sha1(theta.tobytes() + delta.tobytes() + w2.tobytes()
+                           + bytes([direct])).digest()
         hit = self._fe_cache.get(key)
         if hit is not None:
             return hit
-        state = self._fe_solve(theta, delta, inner_um, outer_um, direct)
+        state = self._fe_solve(theta, delta, inner_um, outer_um, direct, w2)
         if not remember:
             return state
         if len(self._fe_cache) >= 16:
@@ -243,17 +253,18 @@ class Pipeline:
         self._fe_cache[key] = state
         return state
 
-    def _fe_solve(self, theta, delta, inner_um, outer_um, direct) -> FEState:
+    def _fe_solve(self, theta, delta, inner_um, outer_um, direct, w2) -> FEState:
         n = theta.shape[0]
         if direct or self.sup is None:
             force, probe = [], []
+            m = self.model
             for i in range(n):
-                sol = self.solver.solve(self.model.unit_loads @ theta[i], delta[i])
+                sol = self.solver.solve(m.unit_loads @ theta[i] + w2[i] * m.spin_load, delta[i])
                 force.append(sol.force_N)
                 probe.append(self.probe @ sol.u)
             force, probe = np.array(force), np.array(probe)
         else:
-            res = self.sup.evaluate(theta, delta)
+            res = self.sup.evaluate(theta, delta, w2)
             force, probe = res["force_N"], res["probe"]
         p = self.fit_pressures(force)
         # groove-centre shifts: raceway displacement + ring thermal strain x offset
@@ -281,11 +292,12 @@ class Pipeline:
         the pipeline was built without unit solutions)."""
         theta = self.thetas(inputs)[row]
         delta = self.deltas_mm(*self.fits_um(inputs))[row]
+        w2 = float(np.broadcast_to(self.omega2(inputs), (inputs.n_rows,))[row])
         if self.sup is None:
-            sol = self.solver.solve(self.model.unit_loads @ theta, delta)
+            sol = self.solver.solve(self.model.unit_loads @ theta + w2 * self.model.spin_load, delta)
             return RowField(sol.u, sol.force_N, theta)
-        force = self.sup.evaluate(theta[None, :], delta[None, :])["force_N"][0]
-        return RowField(self.sup.field(theta, delta), force, theta)
+        force = self.sup.evaluate(theta[None, :], delta[None, :], np.array([w2]))["force_N"][0]
+        return RowField(self.sup.field(theta, delta, w2), force, theta)
 
     def fe_field(self, theta_q: np.ndarray, inputs: PhysicsInputs):
         """One state with a non-uniform thermal strain field (nel, nq) from a conduction solution:
@@ -294,7 +306,8 @@ class Pipeline:
         m = self.model
         inner_um, outer_um = self.fits_um(inputs)
         delta = self.deltas_mm(inner_um, outer_um)[0]
-        sol = self.solver.solve(m.thermal_load_vector(theta_q), delta)
+        w2 = float(np.atleast_1d(self.omega2(inputs))[0])
+        sol = self.solver.solve(m.thermal_load_vector(theta_q) + w2 * m.spin_load, delta)
         probe = self.probe @ sol.u
         p = self.fit_pressures(sol.force_N)
         centre = np.empty((4, 2))
@@ -334,10 +347,10 @@ class Pipeline:
 
     # ------------------------------------------------------------------ whole chain
     def reference_inputs(self, inputs: PhysicsInputs) -> PhysicsInputs:
-        """The assembly state of every row: T_ref everywhere, the row's as-built fits."""
+        """The assembly state of every row: T_ref everywhere, at rest, the row's as-built fits."""
         T_ref = self.asm.T_ref_C
         return inputs.copy(T_C={k: np.full(inputs.n_rows, T_ref) for k in inputs.T_C},
-                           dalpha_per_K2=dict(NO_CTE_SLOPE))
+                           dalpha_per_K2=dict(NO_CTE_SLOPE), speed_rpm=np.zeros(inputs.n_rows))
 
     def run(self, inputs: PhysicsInputs, direct: bool = False,
             compliance_mm_per_N=None, viscous_factor_f0=None,
