@@ -42,6 +42,8 @@ FE_PART_GROUP = {"shaft": "shaft", "nut": "shaft", "inner_ring_A": "inner_ring",
                  "outer_ring_A": "outer_ring", "outer_ring_B": "outer_ring", "housing": "housing",
                  "cover": "housing"}
 RINGS = ("inner_ring_A", "inner_ring_B", "outer_ring_A", "outer_ring_B")
+#: fit-loosening speeds are searched up to here (rpm); a fit still closed there reports inf
+SPEED_SEARCH_MAX_RPM = 1e6
 
 class ModelError(ValueError):
     """The model cannot give a finite answer for these inputs (one line: row and output)."""
@@ -282,6 +284,19 @@ class Pipeline:
             outer_um + (theta[:, idx["outer_ring_A"]] - theta[:, idx["housing"]]) * d_bore * 1e3])
         return FEState(p, interf, dr, dz, probe)
 
+    def fit_open_speed_rpm(self, inputs: PhysicsInputs) -> dict[str, np.ndarray]:
+        """The speed (rpm) at which each inner (rotating) fit opens, per row at the row's part
+        temperatures and fits (`fem.loosening.fit_open_omega2` on the superposition): 0 when
+        already open at rest, inf when still closed at SPEED_SEARCH_MAX_RPM. {FE fit name: (n,)}."""
+        from fem.loosening import RPM2_TO_RAD2_S2, fit_open_omega2
+
+        sup = self.sup if self.sup is not None else Superposition(self.solver, self.probe)
+        theta = self.thetas(inputs)
+        delta = self.deltas_mm(*self.fits_um(inputs))
+        w2_max = SPEED_SEARCH_MAX_RPM ** 2 * RPM2_TO_RAD2_S2
+        return {f.name: np.sqrt(fit_open_omega2(sup, theta, delta, k, w2_max) / RPM2_TO_RAD2_S2)
+                for k, f in enumerate(self.section.fits) if f.key == "inner"}
+
     def fit_pressures(self, force_N: np.ndarray) -> np.ndarray:
         """(n, n_fits) mean pressure (MPa) per FE fit from the pair forces (n, n_pairs) in N."""
         st = self.setup
@@ -321,7 +336,9 @@ class Pipeline:
         return FEState(p, np.full((1, 2), np.nan), dr, dz, probe[None, :]), sol.u
 
     def lame_beside(self, fe: FEState, inputs: PhysicsInputs) -> dict[str, np.ndarray]:
-        """Closed-form neighbours of the FE values (two-cylinder Lamé, plane stress)."""
+        """Closed-form neighbours of the FE values (two-cylinder Lamé, plane stress; the inner fit
+        spinning at the row's speed, `lame.rotating_fit_pressure_MPa`, which is the static Lamé
+        value at rest)."""
         a, b = self.asm, self.asm.bearing
         ms, mr, mh = (self.materials[p] for p in ("shaft", "inner_ring_A", "housing"))
         inner = dict(r_inner_mm=a.shaft.bore_diameter_mm / 2, r_fit_mm=a.shaft.seat_diameter_mm / 2,
@@ -333,12 +350,16 @@ class Pipeline:
                      nu_inner=mr.nu, E_outer_MPa=mh.E_MPa, nu_outer=mh.nu)
         th_ring = mr.thermal_strain(np.asarray(inputs.T_C["inner_ring"], float), a.T_ref_C)
         r_race = b.inner_ring_outer_diameter_mm / 2
-        u_lame = lame.fit_displacement_mm(r_race, "outer", **inner,
-                                          interference_um=fe.interference_um[:, 0]) + th_ring * r_race
+        spin = dict(rho_inner_N_s2_mm4=ms.density_N_s2_mm4, rho_outer_N_s2_mm4=mr.density_N_s2_mm4,
+                    omega_rad_s=np.sqrt(self.omega2(inputs)))
         di, do = fe.interference_um[:, 0], fe.interference_um[:, 1]
-        return {"fit_pressure_inner_lame_MPa": lame.fit_pressure_MPa(**inner, interference_um=di),
+        u_lame = lame.rotating_fit_displacement_mm(r_race, "outer", **inner, interference_um=di,
+                                                   **spin) + th_ring * r_race
+        return {"fit_pressure_inner_lame_MPa":
+                    lame.rotating_fit_pressure_MPa(**inner, interference_um=di, **spin),
                 "fit_pressure_inner_lame_plane_strain_MPa":
-                    lame.fit_pressure_MPa(**inner, interference_um=di, assumption="plane_strain"),
+                    lame.rotating_fit_pressure_MPa(**inner, interference_um=di, **spin,
+                                                   assumption="plane_strain"),
                 "fit_pressure_outer_lame_MPa": lame.fit_pressure_MPa(**outer, interference_um=do),
                 "fit_pressure_outer_lame_plane_strain_MPa":
                     lame.fit_pressure_MPa(**outer, interference_um=do, assumption="plane_strain"),
