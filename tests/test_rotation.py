@@ -182,3 +182,34 @@ def test_assembly_max_speed():
     a1, a0 = load_shipped("seed001"), load_shipped("seed000")
     assert a1.operating.max_speed_rpm(a1.lubrication.speed_rpm) == 9000.0
     assert a0.operating.max_speed_rpm(a0.lubrication.speed_rpm) == a0.lubrication.speed_rpm
+
+
+def test_row_field_at_speed_equals_a_direct_fe_solve(pl001):
+    """`Pipeline.field` (superposed, omega^2 column) against one direct contact solve with the
+    centrifugal load at 9000 rpm: displacements and contact forces relative to their largest."""
+    inp = table_inputs(pl001.asm, {"T_ambient_C": np.array([-20.0]), "speed_rpm": np.array([9000.0])})
+    f = pl001.field(inp)
+    load = pl001.model.unit_loads @ f.theta + pl001.omega2(inp)[0] * pl001.model.spin_load
+    sol = pl001.solver.solve(load, pl001.deltas_mm(*pl001.fits_um(inp))[0])
+    np.testing.assert_allclose(f.u_mm, sol.u, rtol=0, atol=1e-8 * np.abs(sol.u).max())
+    np.testing.assert_allclose(f.force_N, sol.force_N, rtol=0, atol=1e-8 * np.abs(sol.force_N).max())
+
+
+def test_bonded_superposition_at_speed_equals_direct_fe():
+    """Bonded fits: the tied unit solutions with the omega^2 column reproduce a direct solve at
+    speed (pair forces relative to the largest); a bonded fit never opens (inf)."""
+    from fem.loosening import fit_open_omega2
+    from fem.model import build_model
+    from fem.solver import FitSolver, Superposition
+
+    sec = two_cylinder_section(5.0, 10.0, 15.0, "TC4", "9Cr18", 10.0)
+    model = build_model(sec, "bonded", rotating_parts=("shaft", "inner_ring_A"))
+    solver = FitSolver(model)
+    sup = Superposition(solver)
+    theta = np.array([[2e-4, 1e-4]])
+    w2 = (2 * np.pi * 20000 / 60) ** 2
+    res = sup.evaluate(theta, np.array([[0.002]]), np.array([w2]))
+    sol = solver.solve(model.unit_loads @ theta[0] + w2 * model.spin_load, [0.002])
+    np.testing.assert_allclose(res["force_N"][0], sol.force_N, rtol=0,
+                               atol=1e-8 * np.abs(sol.force_N).max())
+    assert np.isinf(fit_open_omega2(sup, theta, np.array([[0.002]]), 0, 1e12)).all()
