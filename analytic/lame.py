@@ -33,6 +33,11 @@ u = theta r with theta the integral of the CTE from T_ref, see analytic.material
 
     delta_d(T) = delta_d(T_ref) + (theta_inner - theta_outer) d_fit.
 
+Rotation (both members spinning at omega, body force rho omega^2 r): the rotating free ring
+(Timoshenko & Goodier §32, "rotating disks"; plane stress for a thin disc, plane strain for a long
+cylinder) superposed on the press fit: `rotating_displacement_mm`, `rotating_fit_pressure_MPa`,
+`fit_open_speed_rad_s`. Density rho in N s^2/mm^4 (kg/m^3 x 1e-12, analytic.materials).
+
 Multi-layer fits (shaft / inner ring / ... / housing): concentric layers, interface pressures solved
 together from compatibility as a small linear complementarity problem (closed: pressure >= 0 and
 overlap taken up exactly; open: pressure 0 and the free parts do not touch).
@@ -182,6 +187,110 @@ def fit_displacement_mm(r_mm, member: Literal["inner", "outer"], r_inner_mm, r_f
         return radial_displacement_mm(r_mm, r_fit_mm, r_outer_mm, E_outer_MPa, nu_outer, p, 0.0,
                                       assumption)
     raise ValueError(f"member must be 'inner' or 'outer', got {member!r}")
+
+
+def rotating_displacement_mm(r_mm, r_in_mm, r_out_mm, E_MPa, nu, rho_N_s2_mm4, omega_rad_s,
+                             assumption: Assumption = "plane_stress"):
+    """Radial displacement u_r(r) in mm of a free ring a <= r <= b (a = 0: solid disc) spinning
+    at omega about its axis, both faces free (sigma_rr(a) = sigma_rr(b) = 0).
+
+    Plane stress (thin rotating disc; Timoshenko & Goodier, Theory of Elasticity 3rd ed. §32
+    "Rotating disks", with u = r (sigma_tt - nu sigma_rr) / E):
+
+        u_r = rho omega^2 r / (8 E) [ (3 + nu)(1 - nu)(a^2 + b^2)
+                                      + (3 + nu)(1 + nu) a^2 b^2 / r^2 - (1 - nu^2) r^2 ]
+
+    from sigma_rr = (3 + nu)/8 rho omega^2 (a^2 + b^2 - a^2 b^2/r^2 - r^2),
+    sigma_tt = (3 + nu)/8 rho omega^2 (a^2 + b^2 + a^2 b^2/r^2 - (1 + 3 nu)/(3 + nu) r^2).
+    Plane strain (long cylinder, eps_zz = 0; T&G §32, the rotating long cylinder): the same
+    with the substitution of `effective_elastic` (E / (1 - nu^2), nu / (1 - nu)), which turns the
+    plane-strain Navier equation (lam + 2 mu) d/dr(1/r d(r u)/dr) + rho omega^2 r = 0 into the
+    plane-stress one. Units: radii mm, E MPa, rho N s^2/mm^4 (`Material.density_N_s2_mm4`:
+    kg/m^3 x 1e-12), omega rad/s, u mm. Vectorised."""
+    E, v = effective_elastic(E_MPa, nu, assumption)
+    a2 = np.asarray(r_in_mm, float) ** 2
+    b2 = np.asarray(r_out_mm, float) ** 2
+    r = np.asarray(r_mm, float)
+    w2 = np.asarray(rho_N_s2_mm4, float) * np.asarray(omega_rad_s, float) ** 2
+    with np.errstate(divide="ignore", invalid="ignore"):     # a solid disc: a = 0, a^2 b^2/r^2 = 0
+        hole = np.where(a2 > 0, a2 * b2 / (r * r), 0.0)
+    return w2 * r / (8.0 * E) * ((3 + v) * (1 - v) * (a2 + b2) + (3 + v) * (1 + v) * hole
+                                 - (1 - v * v) * r * r)
+
+
+def _spin_opening_mm_per_rad2_s2(r_inner_mm, r_fit_mm, r_outer_mm, E_inner_MPa, nu_inner,
+                                 E_outer_MPa, nu_outer, rho_inner_N_s2_mm4, rho_outer_N_s2_mm4,
+                                 assumption: Assumption):
+    """Free radial separation at the fit radius per omega^2 (mm s^2): the outer member's bore
+    grows more than the inner member's surface (`rotating_displacement_mm` of each at omega = 1)."""
+    u_o = rotating_displacement_mm(r_fit_mm, r_fit_mm, r_outer_mm, E_outer_MPa, nu_outer,
+                                   rho_outer_N_s2_mm4, 1.0, assumption)
+    u_i = rotating_displacement_mm(r_fit_mm, r_inner_mm, r_fit_mm, E_inner_MPa, nu_inner,
+                                   rho_inner_N_s2_mm4, 1.0, assumption)
+    return u_o - u_i
+
+
+def rotating_fit_pressure_MPa(r_inner_mm, r_fit_mm, r_outer_mm, E_inner_MPa, nu_inner,
+                              E_outer_MPa, nu_outer, interference_um, rho_inner_N_s2_mm4,
+                              rho_outer_N_s2_mm4, omega_rad_s,
+                              assumption: Assumption = "plane_stress"):
+    """Fit pressure (MPa) of two members spinning together at omega (frictionless fit); 0 when
+    the fit has opened.
+
+    Superposition of the rotating free rings and the Lamé press fit (both linear; T&G §28, §32;
+    Harris & Kotzalas Vol. 1 ch. 8 "fit loosening at speed"): with s(c) = u_rot,outer(c) -
+    u_rot,inner(c) the free separation at the fit radius c from rotation alone,
+
+        p = max(0, delta_d / 2 - s(c)) / compliance     (`fit_compliance_mm_per_MPa`).
+
+    Units as `fit_pressure_MPa`; rho in N s^2/mm^4 (kg/m^3 x 1e-12), omega in rad/s."""
+    _check_radii(r_inner_mm, r_fit_mm, r_outer_mm)
+    s = _spin_opening_mm_per_rad2_s2(r_inner_mm, r_fit_mm, r_outer_mm, E_inner_MPa, nu_inner,
+                                     E_outer_MPa, nu_outer, rho_inner_N_s2_mm4, rho_outer_N_s2_mm4,
+                                     assumption) * np.asarray(omega_rad_s, float) ** 2
+    delta_r_mm = 0.5 * np.asarray(interference_um, float) / UM_PER_MM
+    comp = fit_compliance_mm_per_MPa(r_inner_mm, r_fit_mm, r_outer_mm, E_inner_MPa, nu_inner,
+                                     E_outer_MPa, nu_outer, assumption)
+    return np.maximum(delta_r_mm - s, 0.0) / comp
+
+
+def rotating_fit_displacement_mm(r_mm, member: Literal["inner", "outer"], r_inner_mm, r_fit_mm,
+                                 r_outer_mm, E_inner_MPa, nu_inner, E_outer_MPa, nu_outer,
+                                 interference_um, rho_inner_N_s2_mm4, rho_outer_N_s2_mm4,
+                                 omega_rad_s, assumption: Assumption = "plane_stress"):
+    """Radial displacement (mm) at radius r of a member of a fit spinning at omega: the member's
+    rotating free-ring displacement plus its Lamé displacement under the rotating fit pressure
+    (`rotating_fit_pressure_MPa`; T&G §28, §32). Units as `rotating_fit_pressure_MPa`."""
+    p = rotating_fit_pressure_MPa(r_inner_mm, r_fit_mm, r_outer_mm, E_inner_MPa, nu_inner,
+                                  E_outer_MPa, nu_outer, interference_um, rho_inner_N_s2_mm4,
+                                  rho_outer_N_s2_mm4, omega_rad_s, assumption)
+    if member == "inner":
+        return (radial_displacement_mm(r_mm, r_inner_mm, r_fit_mm, E_inner_MPa, nu_inner, 0.0, p,
+                                       assumption)
+                + rotating_displacement_mm(r_mm, r_inner_mm, r_fit_mm, E_inner_MPa, nu_inner,
+                                           rho_inner_N_s2_mm4, omega_rad_s, assumption))
+    if member == "outer":
+        return (radial_displacement_mm(r_mm, r_fit_mm, r_outer_mm, E_outer_MPa, nu_outer, p, 0.0,
+                                       assumption)
+                + rotating_displacement_mm(r_mm, r_fit_mm, r_outer_mm, E_outer_MPa, nu_outer,
+                                           rho_outer_N_s2_mm4, omega_rad_s, assumption))
+    raise ValueError(f"member must be 'inner' or 'outer', got {member!r}")
+
+
+def fit_open_speed_rad_s(r_inner_mm, r_fit_mm, r_outer_mm, E_inner_MPa, nu_inner, E_outer_MPa,
+                         nu_outer, interference_um, rho_inner_N_s2_mm4, rho_outer_N_s2_mm4,
+                         assumption: Assumption = "plane_stress"):
+    """Speed (rad/s) at which a two-member fit spinning as one opens (fit-loosening speed):
+    omega_open = sqrt(delta_d / 2 / s1) with s1 the free separation per omega^2 (see
+    `rotating_fit_pressure_MPa`); 0 for a fit without interference, inf when rotation does not
+    separate the members (s1 <= 0). Units as `rotating_fit_pressure_MPa`."""
+    s1 = _spin_opening_mm_per_rad2_s2(r_inner_mm, r_fit_mm, r_outer_mm, E_inner_MPa, nu_inner,
+                                      E_outer_MPa, nu_outer, rho_inner_N_s2_mm4,
+                                      rho_outer_N_s2_mm4, assumption)
+    d = np.maximum(0.5 * np.asarray(interference_um, float) / UM_PER_MM, 0.0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(s1 > 0, np.sqrt(d / np.where(s1 > 0, s1, 1.0)),
+                        np.where(d > 0, np.inf, 0.0))
 
 
 def interference_at_temperature_um(interference_um, d_fit_mm, inner: Material, outer: Material,

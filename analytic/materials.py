@@ -41,6 +41,11 @@ from dataclasses import dataclass
 
 T_CTE_REF_C = 20.0  # temperature at which alpha_per_K is quoted
 
+#: kg/m^3 -> N s^2/mm^4 (the mass-density unit of the internal mm, N, s system): 1 N = 1 kg m/s^2
+#: = 1e3 kg mm/s^2, so 1 kg = 1e-3 N s^2/mm; 1 m^3 = 1e9 mm^3; hence 1 kg/m^3 = 1e-3 / 1e9
+#: N s^2/mm^4 = 1e-12 N s^2/mm^4 (1 N s^2/mm^4 = 1 tonne/mm^3). Steel 7800 kg/m^3 = 7.8e-9.
+KG_M3_TO_N_S2_MM4 = 1e-12
+
 
 @dataclass(frozen=True)
 class Material:
@@ -58,6 +63,12 @@ class Material:
         """theta = integral_{T_ref}^{T} alpha(T') dT' (dimensionless), exact for the linear law."""
         a, b = T_C - T_CTE_REF_C, T_ref_C - T_CTE_REF_C
         return self.alpha_per_K * (T_C - T_ref_C) + 0.5 * self.dalpha_per_K2 * (a * a - b * b)
+
+    @property
+    def density_N_s2_mm4(self) -> float:
+        """Mass density in N s^2/mm^4 (kg/m^3 x KG_M3_TO_N_S2_MM4 = 1e-12): rho omega^2 r is
+        then a body force in N/mm^3 for omega in rad/s and r in mm."""
+        return self.density_kg_m3 * KG_M3_TO_N_S2_MM4
 
     def with_dalpha(self, dalpha_per_K2: float) -> "Material":
         """Copy with a different CTE slope (used by the cte_nonlinearity effect)."""

@@ -12,8 +12,10 @@ Isotropic Hooke's law with a volumetric thermal strain theta = integral alpha dT
 Every volume integral carries the full ring measure 2 pi r dr dz, so nodal forces and reactions are
 forces on the whole ring (N) and energies are whole-body energies (N mm). Quadrature points lie
 inside the elements, so the u_r / r term is never evaluated on the axis; u_r = 0 is imposed there.
+A spinning part carries the body force rho omega^2 r (radial, N/mm^3; `centrifugal_load`).
 Source: Zienkiewicz & Taylor, The Finite Element Method, Vol. 1, 6th ed., section 6.3
-(axisymmetric stress analysis); Timoshenko & Goodier, Theory of Elasticity, ch. 13 (thermal stress).
+(axisymmetric stress analysis); Timoshenko & Goodier, Theory of Elasticity, ch. 13 (thermal stress),
+§32 (rotating disks).
 """
 from __future__ import annotations
 
@@ -51,6 +53,17 @@ def thermal_load(v, w):
     r = w.x[0]
     ev = strains(v, r)
     return TWO_PI * r * (3 * w.lam + 2 * w.mu) * w.theta * (ev[0] + ev[1] + ev[2])
+
+
+@LinearForm
+def centrifugal_load(v, w):
+    """l(v) = int rho omega^2 r v_r 2 pi r dA: the centrifugal body force of a part spinning at
+    omega about the z axis (N/mm^3 for rho in N s^2/mm^4 and omega in rad/s; w.rho_w2 is
+    rho omega^2 per element, zero on parts that do not spin). Source: Timoshenko & Goodier,
+    Theory of Elasticity, §32 (rotating disks: body force rho omega^2 r, radial);
+    Zienkiewicz & Taylor Vol. 1, section 6.3 (axisymmetric body forces)."""
+    r = w.x[0]
+    return TWO_PI * r * w.rho_w2 * r * v[0]
 
 
 @LinearForm

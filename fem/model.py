@@ -7,7 +7,9 @@ Steps (each a small function):
    one thermal load vector per part for unit thermal strain; node pairs of each fit (radial and
    axial DOFs of the inner member = master, of the outer member = slave); Dirichlet DOFs: u_r = 0
    on the axis, rollers, and one u_z per free-floating body (rigid axial mode, statically
-   determinate, so it adds no stress).
+   determinate, so it adds no stress). `spin_load`: the centrifugal load of the spinning parts
+   (`rotating_parts`, e.g. the rotor sub-assembly) at omega = 1 rad/s; at omega it scales by
+   omega^2 (the load is linear in rho omega^2).
 """
 from __future__ import annotations
 
@@ -18,7 +20,7 @@ import scipy.sparse as sp
 from skfem import Basis, ElementTriP2, ElementVector, MeshTri, asm
 
 from analytic.materials import Material
-from fem.forms import elasticity, lame_parameters, thermal_load
+from fem.forms import centrifugal_load, elasticity, lame_parameters, thermal_load
 from fem.setup import part_materials
 from meshes.section import Section, Split
 from meshes.build import SectionMesh
@@ -96,9 +98,14 @@ class StackModel:
     """Assembled axisymmetric thermo-elastic model of a section. Units: mm, N, MPa."""
 
     def __init__(self, section: Section, smesh: SectionMesh, contact: str = "frictionless",
-                 materials: dict[str, Material] | None = None):
+                 materials: dict[str, Material] | None = None,
+                 rotating_parts: tuple[str, ...] = ()):
         if contact not in ("frictionless", "bonded"):
             raise ValueError(f"contact must be 'frictionless' or 'bonded', got '{contact}'")
+        unknown = sorted(set(rotating_parts) - set(section.parts()))
+        if unknown:
+            raise ValueError(f"rotating parts {unknown} are not parts of the section")
+        self.rotating_parts = tuple(rotating_parts)
         self.section, self.contact = section, contact
         self.part_names = section.parts()
         self.part_of = np.asarray(smesh.part_of).astype(str)
@@ -117,6 +124,10 @@ class StackModel:
         self.K = asm(elasticity, self.basis, lam=self.lam_q, mu=self.mu_q).tocsr()
         self.unit_loads = np.column_stack([self.thermal_load_vector(self._indicator(p))
                                            for p in self.part_names])
+        rho = np.array([self.materials[p].density_N_s2_mm4 if p in self.rotating_parts else 0.0
+                        for p in self.part_of])
+        self.spin_load = asm(centrifugal_load, self.basis,
+                             rho_w2=np.repeat(rho[:, None], nq, 1))     # N per (rad/s)^2
         self.fits = [self._fit_pairs(f) for f in section.fits]
         self.tie_master, self.tie_slave = self._face_ties()
         self.dirichlet = self._dirichlet()
@@ -223,8 +234,9 @@ def facets_on_line(model: StackModel, spec) -> np.ndarray:
 
 
 def build_model(section: Section, contact: str = "frictionless",
-                materials: dict[str, Material] | None = None) -> StackModel:
-    """Mesh the section (cached) and assemble its model."""
+                materials: dict[str, Material] | None = None,
+                rotating_parts: tuple[str, ...] = ()) -> StackModel:
+    """Mesh the section (cached) and assemble its model (`rotating_parts`: the parts that spin)."""
     from meshes.build import section_mesh
 
-    return StackModel(section, section_mesh(section), contact, materials)
+    return StackModel(section, section_mesh(section), contact, materials, rotating_parts)

@@ -8,7 +8,9 @@ one file per key, written atomically, checked on every read, a damaged or foreig
 with one warning), so a second run of the same stack reads a small file instead.
 
 The key hashes everything the stored numbers depend on: the section (rectangles, splits, fits,
-supports, refined lines, probe points, element sizes), the material of every part, the contact
+supports, refined lines, probe points, element sizes), the material of every part (all of its
+properties: E, nu, CTE and the density the centrifugal unit solution scales with), which parts
+spin (the rotor sub-assembly: they carry the centrifugal load), the contact
 variant, where the compliance is taken (arrangement signs, assembled interferences), the versions
 of bearingfem, gmsh and scikit-fem, and FORMAT (raised whenever what is stored or how it is
 computed changes).
@@ -36,7 +38,7 @@ if TYPE_CHECKING:
     from fem.solver import FitSolver
 
 #: version of the stored layout and of the computation behind it
-FORMAT = 1
+FORMAT = 2          # 2: a centrifugal load column (omega^2) after the part thermal strains
 
 
 class SetupError(RuntimeError):
@@ -64,26 +66,31 @@ class SetupSpec:
     """Everything an FE set-up depends on. probe_points_rz: the (r, z) points (mm) whose
     displacements the superposition returns (u_r, u_z interleaved, in this order); compliance:
     None when the preload-path compliance is not wanted; materials: (part, material) in part
-    order. `of` makes one from points given as a (2, n) array of r and z."""
+    order; rotating_parts: the parts that spin with the shaft (their centrifugal load at
+    omega = 1 rad/s is the superposition's omega^2 column). `of` makes one from points given as
+    a (2, n) array of r and z."""
     section: Section
     contact: str
     probe_points_rz: tuple[tuple[float, float], ...]
     compliance: CompliancePlan | None
     materials: tuple[tuple[str, Material], ...]
+    rotating_parts: tuple[str, ...] = ()
 
     @classmethod
     def of(cls, section: Section, contact: str, probe_points_rz, compliance: CompliancePlan | None,
-           materials: dict[str, Material] | None = None) -> "SetupSpec":
+           materials: dict[str, Material] | None = None,
+           rotating_parts: tuple[str, ...] = ()) -> "SetupSpec":
         mats = part_materials(section, materials)
         pts = tuple((float(r), float(z)) for r, z in np.asarray(probe_points_rz, float).T)
-        return cls(section, contact, pts, compliance, tuple(mats.items()))
+        return cls(section, contact, pts, compliance, tuple(mats.items()), tuple(rotating_parts))
 
     def key(self) -> str:
         """Hex SHA-256 (24 digits) of the spec, FORMAT and the versions of the code."""
         data = {"format": FORMAT, "versions": _versions(), "section": asdict(self.section),
                 "contact": self.contact, "probe_points_rz": self.probe_points_rz,
                 "compliance": None if self.compliance is None else asdict(self.compliance),
-                "materials": [[p, asdict(m)] for p, m in self.materials]}
+                "materials": [[p, asdict(m)] for p, m in self.materials],
+                "rotating_parts": list(self.rotating_parts)}
         text = json.dumps(data, sort_keys=True, default=list)
         return hashlib.sha256(text.encode()).hexdigest()[:24]
 
@@ -130,7 +137,7 @@ def full_fe(spec: SetupSpec) -> FullFE:
     from fem.model import build_model
     from fem.solver import FitSolver
 
-    model = build_model(spec.section, spec.contact, dict(spec.materials))
+    model = build_model(spec.section, spec.contact, dict(spec.materials), spec.rotating_parts)
     return FullFE(model, FitSolver(model), model.probe_matrix(np.array(spec.probe_points_rz).T))
 
 
@@ -233,9 +240,10 @@ def _condensed(a: dict, n_parts: int, n_fits: int, n_probe: int) -> Condensed:
     fop = a["fit_of_pair"]
     n = fop.size
     bonded = bool(a["bonded"])
-    cols = n_parts + (n_fits if bonded else n)
+    n_loads = n_parts + 1                   # thermal strain per part, omega^2
+    cols = n_loads + (n_fits if bonded else n)
     shapes = {"fit_of_pair": (n,), "probe_units": (n_probe, cols),
-              "B": (0, 0) if bonded else (n, n_parts), "A": (0, 0) if bonded else (n, n),
+              "B": (0, 0) if bonded else (n, n_loads), "A": (0, 0) if bonded else (n, n),
               "bonded_force": (n, cols) if bonded else (0, 0),
               "fit_r_mm": (n_fits,), "fit_length_mm": (n_fits,)}
     for name, shape in shapes.items():

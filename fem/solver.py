@@ -13,8 +13,10 @@ closed pair is in tension and no open pair penetrates: the solution is exact, no
 approximate. Source: Wriggers, Computational Contact Mechanics, 2nd ed., ch. 6 (active set /
 Lagrange multipliers); Hüeber & Wohlmuth (2005) primal-dual active set.
 
-With the contact status fixed the response is linear in the part thermal strains theta_p and the
-fit interferences delta_k: u = sum theta_p U_p + sum delta_k U_k. `Superposition` keeps those
+With the contact status fixed the response is linear in the part thermal strains theta_p, the
+square of the rotor speed omega^2 (centrifugal body force rho omega^2 r on the spinning parts,
+`StackModel.spin_load`) and the fit interferences delta_k: u = sum theta_p U_p + omega^2 U_w +
+sum delta_k U_k. The "load columns" below are the n_parts thermal strains, then omega^2. `Superposition` keeps those
 unit solutions per status, evaluates any number of states by small dense products, checks each
 state's status (lambda >= 0 on closed pairs, gap >= 0 on open ones), and solves new statuses only
 when a state leaves the known ones (DESIGN.md section 2, "linearity is a resource").
@@ -188,10 +190,11 @@ class Superposition:
     """Exact superposition through the interface (static condensation of the contact problem).
 
     One factorisation of the unconstrained stiffness (supports only) serves every state. Columns:
-    the unit thermal loads of the parts (U_p) and unit pair forces (W_i: +1 N on the outer member,
-    -1 N on the inner member at pair i). With pair forces lambda and a state c = (theta, delta):
+    the unit thermal loads of the parts (U_p), the centrifugal load at omega = 1 rad/s (U_w) and
+    unit pair forces (W_i: +1 N on the outer member, -1 N on the inner member at pair i). With
+    pair forces lambda and a state c = (theta, omega^2, delta), L = (theta, omega^2):
 
-        gap = B theta - delta_pair + A lambda,   A_ij = W_j[s_i] - W_j[m_i]  (flexibility, SPD)
+        gap = B L - delta_pair + A lambda,   A_ij = W_j[s_i] - W_j[m_i]  (flexibility, SPD)
 
     and the contact conditions lambda >= 0, gap >= 0, lambda . gap = 0 form a small linear
     complementarity problem solved exactly by an active set on A (dense, a few hundred pairs),
@@ -225,6 +228,7 @@ class Superposition:
         self._chol: dict[bytes, tuple] = {}
         self.block = 128         # states tried per active set (sweeps and samples alike: measured)
         self.pfit, self.B, self.A = c.fit_of_pair, c.B, c.A
+        self.n_loads = c.n_parts + 1          # load columns: thermal strain per part, omega^2
         self.PU = c.probe_units if c.probe_units.shape[0] else None
         self._bonded_units = None
 
@@ -285,11 +289,13 @@ class Superposition:
         self._chol.clear()
 
     @single_thread_blas
-    def evaluate(self, theta: np.ndarray, delta_mm: np.ndarray) -> dict:
-        """theta: (n_states, n_parts), delta_mm: (n_states, n_fits). Returns per state the
+    def evaluate(self, theta: np.ndarray, delta_mm: np.ndarray, omega2_rad2_s2=None) -> dict:
+        """theta: (n_states, n_parts), delta_mm: (n_states, n_fits), omega2_rad2_s2: (n_states,)
+        the square of the rotor speed (rad^2/s^2; None = at rest). Returns per state the
         contact force (N, + compression) and gap (mm) per pair, probe values, and the index of
         the active set used (states sharing an active set are solved together)."""
         theta, delta = np.atleast_2d(theta), np.atleast_2d(delta_mm)
+        theta = load_columns(theta, omega2_rad2_s2)
         if self.condensed.bonded:
             C = np.hstack([theta, delta])
             n = self.n_pairs
@@ -321,10 +327,11 @@ class Superposition:
         gap[np.abs(gap) < 1e-15] = 0.0
         out = {"force_N": lam.T, "gap_mm": gap.T, "status": which, "closed_sets": sets}
         if self.PU is not None:
-            out["probe"] = (self.PU[:, :self.n_parts] @ theta.T + self.PU[:, self.n_parts:] @ lam).T
+            out["probe"] = (self.PU[:, :self.n_loads] @ theta.T + self.PU[:, self.n_loads:] @ lam).T
         return out
 
-    def field(self, theta: np.ndarray, delta_mm: np.ndarray) -> np.ndarray:
+    def field(self, theta: np.ndarray, delta_mm: np.ndarray, omega2_rad2_s2: float = 0.0
+              ) -> np.ndarray:
         """Full displacement vector (mm) of one state: one back-substitution with the
         factorisation of the all-open system (bonded: the unit solutions of the tied system,
         solved on first use)."""
@@ -332,10 +339,10 @@ class Superposition:
         if self.condensed.bonded:
             if self._bonded_units is None:
                 self._bonded_units = s.solve_status(np.ones(s.n_pairs, bool), *_bonded_units_load(s))
-            return self._bonded_units @ np.concatenate([theta, delta_mm])
-        res = self.evaluate(theta[None, :], delta_mm[None, :])
+            return self._bonded_units @ np.concatenate([theta, [omega2_rad2_s2], delta_mm])
+        res = self.evaluate(theta[None, :], delta_mm[None, :], np.array([omega2_rad2_s2]))
         lam = res["force_N"][0]
-        f = self.model.unit_loads @ theta
+        f = self.model.unit_loads @ theta + omega2_rad2_s2 * self.model.spin_load
         np.add.at(f, self.ps, lam)
         np.add.at(f, self.pm, -lam)
         T, lu = s.factorize(np.zeros(s.n_pairs, bool))
@@ -349,12 +356,14 @@ class Condensed:
     it across runs).
 
     bonded: the fits are tied (their status never changes). n_parts, n_fits: FE parts and fits.
+    The n_loads = n_parts + 1 load columns: unit thermal strain of each part, then the
+    centrifugal load of the spinning parts at omega^2 = 1 rad^2/s^2.
     fit_of_pair (n_pairs,): the fit of each contact node pair. Frictionless fits: B (n_pairs,
-    n_parts) the gap (mm) per unit thermal strain of each part with every pair open; A (n_pairs,
+    n_loads) the gap (mm) per unit load column with every pair open; A (n_pairs,
     n_pairs) the flexibility (mm/N), gap change per newton of pair force, symmetric;
-    probe_units (n_probe, n_parts + n_pairs) the probed displacements (mm) per unit thermal strain
-    and per newton of pair force. Bonded fits: probe_units (n_probe, n_parts + n_fits) per unit
-    thermal strain and per mm of radial interference, bonded_force (n_pairs, n_parts + n_fits) the
+    probe_units (n_probe, n_loads + n_pairs) the probed displacements (mm) per unit load column
+    and per newton of pair force. Bonded fits: probe_units (n_probe, n_loads + n_fits) per unit
+    load column and per mm of radial interference, bonded_force (n_pairs, n_loads + n_fits) the
     pair forces (N) per the same units. Arrays a variant does not use have size 0; n_probe is 0
     without a probe matrix."""
     bonded: bool
@@ -367,38 +376,52 @@ class Condensed:
     bonded_force: np.ndarray
 
 
+def load_columns(theta: np.ndarray, omega2_rad2_s2=None) -> np.ndarray:
+    """(n_states, n_parts + 1): the thermal strains, then omega^2 (rad^2/s^2; None = 0)."""
+    theta = np.atleast_2d(theta)
+    w2 = (np.zeros(theta.shape[0]) if omega2_rad2_s2 is None
+          else np.broadcast_to(np.asarray(omega2_rad2_s2, float), (theta.shape[0],)))
+    return np.column_stack([theta, w2])
+
+
+def _unit_loads(m: "StackModel") -> np.ndarray:
+    """(ndofs, n_parts + 1): the load vector of every load column (see `Condensed`)."""
+    return np.column_stack([m.unit_loads, m.spin_load])
+
+
 def _bonded_units_load(s: FitSolver) -> tuple[np.ndarray, np.ndarray]:
     """Loads and interferences of the bonded unit solutions: unit thermal strain of each part,
-    then 1 mm radial interference of each fit."""
+    omega^2 = 1 rad^2/s^2, then 1 mm radial interference of each fit."""
     m = s.model
-    n_parts, n_fits = len(m.part_names), len(m.fits)
-    return (np.hstack([m.unit_loads, np.zeros((m.ndofs, n_fits))]),
-            np.vstack([np.zeros((n_parts, n_fits)), np.eye(n_fits)]))
+    n_loads, n_fits = len(m.part_names) + 1, len(m.fits)
+    return (np.hstack([_unit_loads(m), np.zeros((m.ndofs, n_fits))]),
+            np.vstack([np.zeros((n_loads, n_fits)), np.eye(n_fits)]))
 
 
 @single_thread_blas
 def condense(solver: FitSolver, probe: sp.csr_matrix | None = None) -> Condensed:
     """The condensed contact problem of `solver` (see `Superposition`): one factorisation of the
-    system with every pair open and one solve per part and per contact pair; bonded fits: the
-    tied system, one solve per part and per fit. `probe` (n_probe, ndofs) maps displacements to
-    the values `evaluate` returns as "probe"."""
+    system with every pair open and one solve per load column (part, spin) and per contact pair;
+    bonded fits: the tied system, one solve per load column and per fit. `probe` (n_probe, ndofs)
+    maps displacements to the values `evaluate` returns as "probe"."""
     m, s = solver.model, solver
     n_parts, n_fits, npair = len(m.part_names), len(m.fits), s.n_pairs
+    n_loads = n_parts + 1
     none = np.zeros((0, 0))
     if s.bonded:
         F, D = _bonded_units_load(s)
         U = s.solve_status(np.ones(npair, bool), F, D)
-        PU = np.zeros((0, n_parts + n_fits)) if probe is None else probe @ U
+        PU = np.zeros((0, n_loads + n_fits)) if probe is None else probe @ U
         return Condensed(True, n_parts, n_fits, s.fit_of_pair.copy(), none, none,
                          np.ascontiguousarray(PU), np.ascontiguousarray(s.pair_values(U, F, D)[0]))
     T, lu = s.factorize(np.zeros(npair, bool))
     E = np.zeros((m.ndofs, npair))
     E[s.slave, np.arange(npair)] = 1.0
     E[s.master, np.arange(npair)] -= 1.0
-    F = np.hstack([m.unit_loads, E])
+    F = np.hstack([_unit_loads(m), E])
     U = T @ _lu_solve(lu, T.T @ F)
     rel = U[s.slave] - U[s.master]
-    A = rel[:, n_parts:]
-    PU = np.zeros((0, n_parts + npair)) if probe is None else probe @ U
-    return Condensed(False, n_parts, n_fits, s.fit_of_pair.copy(), np.ascontiguousarray(rel[:, :n_parts]),
+    A = rel[:, n_loads:]
+    PU = np.zeros((0, n_loads + npair)) if probe is None else probe @ U
+    return Condensed(False, n_parts, n_fits, s.fit_of_pair.copy(), np.ascontiguousarray(rel[:, :n_loads]),
                      0.5 * (A + A.T), np.ascontiguousarray(PU), none)

@@ -20,6 +20,11 @@ def _check_verification(out, cases):
         assert LAME_INPUTS <= set(c["inputs"]) and "fit_pressure_MPa" in c["fe"] \
             and "fit_pressure_MPa" in c["closed_form"]
         assert c["rel_error"] <= TOLERANCE, c["name"]
+    spin = [c for c in cases if c["kind"] == "rotating_fit"]
+    assert spin
+    for c in spin:     # issue 12: the lame_fit echo plus what the rotating closed form needs
+        assert LAME_INPUTS | {"rho_inner_kg_m3", "rho_outer_kg_m3", "omega_rad_s"} <= set(c["inputs"])
+        assert c["rel_error"] <= TOLERANCE, c["name"]
     conv = [c for c in cases if c["kind"] == "mesh_convergence"]
     assert conv and all("observed_order" in q and "gci_fine" in q
                         for c in conv for q in c["quantities"].values())

@@ -44,7 +44,8 @@ def test_row_field_equals_a_direct_fe_solve(pl000, T):
     inp = _inp(pl000.asm, [T])
     f = pl000.field(inp)
     theta = pl000.thetas(inp)[0]
-    sol = pl000.solver.solve(pl000.model.unit_loads @ theta, pl000.deltas_mm(*pl000.fits_um(inp))[0])
+    load = pl000.model.unit_loads @ theta + pl000.omega2(inp)[0] * pl000.model.spin_load
+    sol = pl000.solver.solve(load, pl000.deltas_mm(*pl000.fits_um(inp))[0])
     np.testing.assert_allclose(f.u_mm, sol.u, rtol=0, atol=1e-8 * np.abs(sol.u).max())
     np.testing.assert_allclose(f.force_N, sol.force_N, rtol=0, atol=1e-8 * np.abs(sol.force_N).max())
     # the raceway displacements the bearing model takes are this field's, probed
@@ -66,7 +67,7 @@ def test_free_interference_follows_the_cte_difference(pl000):
 def test_uniform_expansion_of_a_one_material_stack_is_a_pure_scale_change():
     """All parts 9Cr18, no fits: the FE must move every groove centre by theta * position, so
     dr = theta (r_ci - r_co) and dz_j = s_j theta A0 sin(a0) exactly (closed form), and the preload
-    changes only by the scale of the geometry (e is fixed in mm)."""
+    changes only by the scale of the geometry (e is fixed in mm). At rest (no centrifugal load)."""
     a = load_shipped("seed000")
     same = {f: dataclasses.replace(getattr(a, f), material="9Cr18") for f in
             ("shaft", "housing", "nut", "cover", "inner_spacer", "outer_spacer")}
@@ -74,7 +75,7 @@ def test_uniform_expansion_of_a_one_material_stack_is_a_pure_scale_change():
                                                         outer_interference_um=0.0), **same)
     pl = Pipeline(a, mesh_factor=2.0)
     T = np.array([-40.0, 20.0, 70.0])
-    out = pl.run(_inp(a, T))
+    out = pl.run(_inp(a, T, speed_rpm=np.zeros(3)))
     g = pl.geom
     th = get_material("9Cr18").thermal_strain(T, 20.0)
     a0 = np.radians(g.alpha0_deg)
@@ -104,7 +105,7 @@ def _read(path):
 
 def test_simulate_command_writes_every_spec_column(tmp_path, capsys):
     cond = tmp_path / "c.csv"
-    _csv(cond, ["T_ambient_C", "speed_rpm"], [[-60, 60], [20, 60], [80, 60]])
+    _csv(cond, ["T_ambient_C", "speed_rpm"], [[-60, 60], [20, 0], [80, 60]])
     out = tmp_path / "o.csv"
     assert main(["simulate", CFG, str(cond), "-o", str(out)]) == 0
     rows = _read(out)
@@ -112,7 +113,7 @@ def test_simulate_command_writes_every_spec_column(tmp_path, capsys):
                 "interference_inner_um", "interference_outer_um", "fit_pressure_inner_MPa",
                 "fit_pressure_outer_MPa", "max_contact_pressure_MPa"):
         assert col in rows[0]
-    assert float(rows[1]["preload_N"]) == pytest.approx(100.0, rel=1e-9)   # assembled at 20 C
+    assert float(rows[1]["preload_N"]) == pytest.approx(100.0, rel=1e-9)   # assembled: 20 C, at rest
     # an effect at its off value is the baseline exactly
     out2 = tmp_path / "o2.csv"
     assert main(["simulate", CFG, str(cond), "-o", str(out2), "--effect", "radial_gradient:dT_K=0"]) == 0

@@ -73,7 +73,8 @@ def test_a_field_after_a_cached_set_up_builds_the_fe_on_demand(cache):
     Pipeline(asm, mesh_factor=3.0)
     warm = Pipeline(asm, mesh_factor=3.0)
     f = warm.field(inp)
-    sol = warm.solver.solve(warm.model.unit_loads @ f.theta, warm.deltas_mm(*warm.fits_um(inp))[0])
+    load = warm.model.unit_loads @ f.theta + warm.omega2(inp)[0] * warm.model.spin_load
+    sol = warm.solver.solve(load, warm.deltas_mm(*warm.fits_um(inp))[0])
     np.testing.assert_allclose(f.u_mm, sol.u, rtol=0, atol=1e-8 * np.abs(sol.u).max())
 
 

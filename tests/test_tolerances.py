@@ -109,13 +109,15 @@ def test_monte_carlo_fit_opening_agrees_with_the_closed_form(fits_only, dist):
 
 
 def test_mid_band_fits_give_the_assembled_preload(fits_only):
-    """The convention: the assembled preload is the design value for the mid-band fits."""
+    """The convention: the assembled preload is the design value for the mid-band fits (at the
+    reference temperature, at rest)."""
     from studies.model.pipeline import Pipeline
 
     asm = fits_only["uniform"]
     mid_i, mid_o = tol.mid_band_offsets_um(asm)
     assert (mid_i, mid_o) == (4.0, 0.0)                  # 1 - (-3)
-    r = tol.evaluate(Pipeline.shared(asm), {"T_ambient_C": np.array([asm.T_ref_C])},
+    r = tol.evaluate(Pipeline.shared(asm), {"T_ambient_C": np.array([asm.T_ref_C]),
+                                            "speed_rpm": np.array([0.0])},
                      np.array([mid_i, mid_i + 2.0]), np.array([mid_o, mid_o]))
     assert r["preload_N"][0, 0] == pytest.approx(asm.preload.assembled_N, rel=1e-9)
     assert r["preload_N"][1, 0] > asm.preload.assembled_N     # a tighter inner fit adds preload

@@ -109,6 +109,11 @@ class Operating:
     """The temperature range the assembly must work over (the default conditions of `report`)."""
     T_min_C: float = -40.0
     T_max_C: float = 80.0
+    speed_max_rpm: float = 0.0       # highest shaft speed (report's "Speed"); 0 = [lubrication] speed_rpm
+
+    def max_speed_rpm(self, lubrication_speed_rpm: float) -> float:
+        """The highest speed the assembly runs at (rpm): speed_max_rpm, else the given speed."""
+        return self.speed_max_rpm if self.speed_max_rpm > 0 else float(lubrication_speed_rpm)
 
 
 @dataclass(frozen=True)
@@ -185,7 +190,7 @@ SECTIONS = {
     "limits": (Limits, {"max_contact_pressure_MPa": math.inf, "min_static_safety": 0.0}),
     "mesh": (Mesh, {"size_mm": 0.0, "fit_size_mm": 0.0, "corner_size_mm": 0.0,
                     "target_error": 1e-3}),
-    "operating": (Operating, {"T_min_C": -40.0, "T_max_C": 80.0}),
+    "operating": (Operating, {"T_min_C": -40.0, "T_max_C": 80.0, "speed_max_rpm": 0.0}),
 }
 OPTIONAL_SECTIONS = {"limits", "mesh", "operating"}
 STRING_KEYS = {"material", "designation", "ring_material", "ball_material", "contact", "kind",
@@ -207,7 +212,7 @@ ZERO_OK = {("shaft", "bore_diameter_mm"), ("shaft", "extension_mm"),
            ("lubrication", "hysteresis_loss_factor"),
            ("limits", "min_static_safety"), ("bearing", "inner_land_diameter_mm"),
            ("bearing", "outer_land_diameter_mm"), ("mesh", "size_mm"), ("mesh", "fit_size_mm"),
-           ("mesh", "corner_size_mm")}
+           ("mesh", "corner_size_mm"), ("operating", "speed_max_rpm")}
 SIGNED = {("fits", "inner_interference_um"), ("fits", "outer_interference_um"),
           ("operating", "T_min_C"), ("operating", "T_max_C")}
 

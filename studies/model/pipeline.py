@@ -1,7 +1,9 @@
 """The FE -> analytic pipeline: conditions -> part temperatures and fits -> FE (fit pressures,
 groove-centre shifts) -> bearing pair (preload, contact angle, Hertz) -> friction torque.
 
-The FE runs through `fem.solver.Superposition`: unit solutions per part thermal strain and per fit,
+The FE runs through `fem.solver.Superposition`: unit solutions per part thermal strain, for the
+centrifugal load of the rotor (shaft, inner rings, inner spacer, nut) at the row's `speed_rpm`
+(scaled by omega^2; the assembly state is at rest) and per fit,
 combined exactly for every row (the contact active set is solved per row on the condensed
 interface), so a sweep costs little per point. `direct=True` solves every row with a full FE solve
 instead; tests hold the two equal.
@@ -29,7 +31,7 @@ from fem.post import groove_centre_shift, mean_pressures_MPa
 from fem.setup import (CompliancePlan, FESetup, FullFE, SetupSpec, cached_setup, compute_setup,
                        full_fe)
 from fem.solver import Superposition
-from studies.model.stack import section_from_assembly, stack_positions
+from studies.model.stack import ROTOR_PARTS, section_from_assembly, stack_positions
 from studies.model.config import Assembly
 from studies.model.effects import resolve_friction_coefficient, resolve_interference_um
 from studies.model.inputs import NO_CTE_SLOPE, PhysicsInputs
@@ -40,6 +42,8 @@ FE_PART_GROUP = {"shaft": "shaft", "nut": "shaft", "inner_ring_A": "inner_ring",
                  "outer_ring_A": "outer_ring", "outer_ring_B": "outer_ring", "housing": "housing",
                  "cover": "housing"}
 RINGS = ("inner_ring_A", "inner_ring_B", "outer_ring_A", "outer_ring_B")
+#: fit-loosening speeds are searched up to here (rpm); a fit still closed there reports inf
+SPEED_SEARCH_MAX_RPM = 1e6
 
 class ModelError(ValueError):
     """The model cannot give a finite answer for these inputs (one line: row and output)."""
@@ -138,7 +142,8 @@ class Pipeline:
             delta = self.deltas_mm(np.array([inner]), np.array([outer]))[0]
             plan = CompliancePlan(tuple(float(v) for v in SIGNS[asm.arrangement]),
                                   tuple(float(v) for v in delta))
-        self.spec = SetupSpec.of(self.section, asm.fits.contact, pts, plan)
+        rotor = tuple(p for p in ROTOR_PARTS if p in self.section.parts())
+        self.spec = SetupSpec.of(self.section, asm.fits.contact, pts, plan, rotating_parts=rotor)
         self.materials = dict(self.spec.materials)
         self._full: FullFE | None = None
         self.setup: FESetup = (cached_setup(self.spec, self.full_fe, progress=self._say) if cache
@@ -219,6 +224,11 @@ class Pipeline:
             cols.append(mat.thermal_strain(np.asarray(inputs.T_C[group], float), self.asm.T_ref_C))
         return np.column_stack(cols)
 
+    @staticmethod
+    def omega2(inputs: PhysicsInputs) -> np.ndarray:
+        """(n,) square of the rotor speed, rad^2/s^2: omega = 2 pi speed_rpm / 60."""
+        return (np.asarray(inputs.speed_rpm, float) * (2.0 * np.pi / 60.0)) ** 2
+
     def fits_um(self, inputs: PhysicsInputs) -> tuple[np.ndarray, np.ndarray]:
         return resolve_interference_um(inputs, *self.asm.mean_fits_um())
 
@@ -233,13 +243,15 @@ class Pipeline:
         theta = self.thetas(inputs)
         inner_um, outer_um = self.fits_um(inputs)
         delta = self.deltas_mm(inner_um, outer_um)
+        w2 = np.broadcast_to(self.omega2(inputs), (theta.shape[0],)).copy()
         # a diagnosis re-evaluates the same FE states many times (friction, viscosity and preload
         # effects leave the structure alone): keep the last few results by their exact inputs
-        key = hashlib.sha1(theta.tobytes() + delta.tobytes() + bytes([direct])).digest()
+        key = hashlib.sha1(theta.tobytes() + delta.tobytes() + w2.tobytes()
+                           + bytes([direct])).digest()
         hit = self._fe_cache.get(key)
         if hit is not None:
             return hit
-        state = self._fe_solve(theta, delta, inner_um, outer_um, direct)
+        state = self._fe_solve(theta, delta, inner_um, outer_um, direct, w2)
         if not remember:
             return state
         if len(self._fe_cache) >= 16:
@@ -247,17 +259,18 @@ class Pipeline:
         self._fe_cache[key] = state
         return state
 
-    def _fe_solve(self, theta, delta, inner_um, outer_um, direct) -> FEState:
+    def _fe_solve(self, theta, delta, inner_um, outer_um, direct, w2) -> FEState:
         n = theta.shape[0]
         if direct or self.sup is None:
             force, probe = [], []
+            m = self.model
             for i in range(n):
-                sol = self.solver.solve(self.model.unit_loads @ theta[i], delta[i])
+                sol = self.solver.solve(m.unit_loads @ theta[i] + w2[i] * m.spin_load, delta[i])
                 force.append(sol.force_N)
                 probe.append(self.probe @ sol.u)
             force, probe = np.array(force), np.array(probe)
         else:
-            res = self.sup.evaluate(theta, delta)
+            res = self.sup.evaluate(theta, delta, w2)
             force, probe = res["force_N"], res["probe"]
         p = self.fit_pressures(force)
         # groove-centre shifts: raceway displacement + ring thermal strain x offset
@@ -275,6 +288,19 @@ class Pipeline:
             outer_um + (theta[:, idx["outer_ring_A"]] - theta[:, idx["housing"]]) * d_bore * 1e3])
         return FEState(p, interf, dr, dz, probe)
 
+    def fit_open_speed_rpm(self, inputs: PhysicsInputs) -> dict[str, np.ndarray]:
+        """The speed (rpm) at which each inner (rotating) fit opens, per row at the row's part
+        temperatures and fits (`fem.loosening.fit_open_omega2` on the superposition): 0 when
+        already open at rest, inf when still closed at SPEED_SEARCH_MAX_RPM. {FE fit name: (n,)}."""
+        from fem.loosening import RPM2_TO_RAD2_S2, fit_open_omega2
+
+        sup = self.sup if self.sup is not None else Superposition(self.solver, self.probe)
+        theta = self.thetas(inputs)
+        delta = self.deltas_mm(*self.fits_um(inputs))
+        w2_max = SPEED_SEARCH_MAX_RPM ** 2 * RPM2_TO_RAD2_S2
+        return {f.name: np.sqrt(fit_open_omega2(sup, theta, delta, k, w2_max) / RPM2_TO_RAD2_S2)
+                for k, f in enumerate(self.section.fits) if f.key == "inner"}
+
     def fit_pressures(self, force_N: np.ndarray) -> np.ndarray:
         """(n, n_fits) mean pressure (MPa) per FE fit from the pair forces (n, n_pairs) in N."""
         st = self.setup
@@ -285,11 +311,12 @@ class Pipeline:
         the pipeline was built without unit solutions)."""
         theta = self.thetas(inputs)[row]
         delta = self.deltas_mm(*self.fits_um(inputs))[row]
+        w2 = float(np.broadcast_to(self.omega2(inputs), (inputs.n_rows,))[row])
         if self.sup is None:
-            sol = self.solver.solve(self.model.unit_loads @ theta, delta)
+            sol = self.solver.solve(self.model.unit_loads @ theta + w2 * self.model.spin_load, delta)
             return RowField(sol.u, sol.force_N, theta)
-        force = self.sup.evaluate(theta[None, :], delta[None, :])["force_N"][0]
-        return RowField(self.sup.field(theta, delta), force, theta)
+        force = self.sup.evaluate(theta[None, :], delta[None, :], np.array([w2]))["force_N"][0]
+        return RowField(self.sup.field(theta, delta, w2), force, theta)
 
     def fe_field(self, theta_q: np.ndarray, inputs: PhysicsInputs):
         """One state with a non-uniform thermal strain field (nel, nq) from a conduction solution:
@@ -298,7 +325,8 @@ class Pipeline:
         m = self.model
         inner_um, outer_um = self.fits_um(inputs)
         delta = self.deltas_mm(inner_um, outer_um)[0]
-        sol = self.solver.solve(m.thermal_load_vector(theta_q), delta)
+        w2 = float(np.atleast_1d(self.omega2(inputs))[0])
+        sol = self.solver.solve(m.thermal_load_vector(theta_q) + w2 * m.spin_load, delta)
         probe = self.probe @ sol.u
         p = self.fit_pressures(sol.force_N)
         centre = np.empty((4, 2))
@@ -312,7 +340,9 @@ class Pipeline:
         return FEState(p, np.full((1, 2), np.nan), dr, dz, probe[None, :]), sol.u
 
     def lame_beside(self, fe: FEState, inputs: PhysicsInputs) -> dict[str, np.ndarray]:
-        """Closed-form neighbours of the FE values (two-cylinder Lamé, plane stress)."""
+        """Closed-form neighbours of the FE values (two-cylinder Lamé, plane stress; the inner fit
+        spinning at the row's speed, `lame.rotating_fit_pressure_MPa`, which is the static Lamé
+        value at rest)."""
         a, b = self.asm, self.asm.bearing
         ms, mr, mh = (self.materials[p] for p in ("shaft", "inner_ring_A", "housing"))
         inner = dict(r_inner_mm=a.shaft.bore_diameter_mm / 2, r_fit_mm=a.shaft.seat_diameter_mm / 2,
@@ -324,12 +354,16 @@ class Pipeline:
                      nu_inner=mr.nu, E_outer_MPa=mh.E_MPa, nu_outer=mh.nu)
         th_ring = mr.thermal_strain(np.asarray(inputs.T_C["inner_ring"], float), a.T_ref_C)
         r_race = b.inner_ring_outer_diameter_mm / 2
-        u_lame = lame.fit_displacement_mm(r_race, "outer", **inner,
-                                          interference_um=fe.interference_um[:, 0]) + th_ring * r_race
+        spin = dict(rho_inner_N_s2_mm4=ms.density_N_s2_mm4, rho_outer_N_s2_mm4=mr.density_N_s2_mm4,
+                    omega_rad_s=np.sqrt(self.omega2(inputs)))
         di, do = fe.interference_um[:, 0], fe.interference_um[:, 1]
-        return {"fit_pressure_inner_lame_MPa": lame.fit_pressure_MPa(**inner, interference_um=di),
+        u_lame = lame.rotating_fit_displacement_mm(r_race, "outer", **inner, interference_um=di,
+                                                   **spin) + th_ring * r_race
+        return {"fit_pressure_inner_lame_MPa":
+                    lame.rotating_fit_pressure_MPa(**inner, interference_um=di, **spin),
                 "fit_pressure_inner_lame_plane_strain_MPa":
-                    lame.fit_pressure_MPa(**inner, interference_um=di, assumption="plane_strain"),
+                    lame.rotating_fit_pressure_MPa(**inner, interference_um=di, **spin,
+                                                   assumption="plane_strain"),
                 "fit_pressure_outer_lame_MPa": lame.fit_pressure_MPa(**outer, interference_um=do),
                 "fit_pressure_outer_lame_plane_strain_MPa":
                     lame.fit_pressure_MPa(**outer, interference_um=do, assumption="plane_strain"),
@@ -338,10 +372,10 @@ class Pipeline:
 
     # ------------------------------------------------------------------ whole chain
     def reference_inputs(self, inputs: PhysicsInputs) -> PhysicsInputs:
-        """The assembly state of every row: T_ref everywhere, the row's as-built fits."""
+        """The assembly state of every row: T_ref everywhere, at rest, the row's as-built fits."""
         T_ref = self.asm.T_ref_C
         return inputs.copy(T_C={k: np.full(inputs.n_rows, T_ref) for k in inputs.T_C},
-                           dalpha_per_K2=dict(NO_CTE_SLOPE))
+                           dalpha_per_K2=dict(NO_CTE_SLOPE), speed_rpm=np.zeros(inputs.n_rows))
 
     def run(self, inputs: PhysicsInputs, direct: bool = False,
             compliance_mm_per_N=None, viscous_factor_f0=None,

@@ -11,6 +11,9 @@ from meshes.section import Fit, Rect, Section, Split
 from studies.model.config import Assembly
 from studies.model.mesh_size import mesh_sizes
 
+#: the rotor sub-assembly: the parts that spin with the shaft (centrifugal load in the FE)
+ROTOR_PARTS = ("shaft", "inner_ring_A", "inner_spacer", "inner_ring_B", "nut")
+
 
 def stack_positions(a: Assembly) -> dict[str, tuple[float, float]]:
     """Axial extent (z0, z1) in mm of every stack part; shoulder faces at z = 0."""

@@ -6,7 +6,9 @@ Conditions: the given table, or a temperature sweep over the assembly's operatin
 hashes), the input echo (geometry, materials with E, nu, CTE and their sources, fits, preload,
 lubrication, limits), the results per operating point with the Lamé values beside the FE fit
 pressures, plots vs temperature, the safety table, field images and VTU at the coldest, reference
-and hottest temperature, and the discretisation error of this assembly's own mesh (observed order
+and hottest temperature, the speed effects of the rotor's centrifugal growth (fit-loosening speed
+of each inner fit, fit pressure and preload at rest and at the highest speed), and the
+discretisation error of this assembly's own mesh (observed order
 and GCI over three mesh levels, Roache 1998; the target error its sizes were chosen for and the
 error achieved). Written as `report.md` and a self-contained
 `report.html` (images embedded), with the CSV tables.
@@ -18,8 +20,9 @@ from pathlib import Path
 import numpy as np
 
 from studies.model.checks import apply_checks, assembly_checks, plausibility_warnings
-from studies.model.pipeline import Pipeline, simulate_table
+from studies.model.pipeline import SPEED_SEARCH_MAX_RPM, Pipeline, simulate_table, table_inputs
 from studies.model.table import write_table
+from analytic import lame
 from analytic.bearing.land import land_diameters_mm
 from studies.model.tolerances import has_tolerances
 from studies.runs.report_tools import (field_images, line_plot, md_table, safety_section,
@@ -71,13 +74,61 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, progress=prin
     temps = field_temperatures_C or sorted({asm.operating.T_min_C, asm.T_ref_C, asm.operating.T_max_C})
     images = {T: field_images(out, pl, T, f"field_{T:+.0f}C", f"{asm.name} at {T:g} C")
               for T in temps}
+    progress("report: speed effects (fit-loosening speeds) ...")
+    speed = speed_lines(asm, pl)
     progress("report: discretisation error of this mesh (three levels) ...")
     conv = mesh_convergence_case(asm, factors=tuple(mesh_factor * f for f in (2.0, 1.0, 0.5)),
                                  used=1)
     lines = _text(asm, provenance, cond, res, flags, violations, warnings, plots, images, conv, pl, x,
-                  xlabel, rig_sections or [])
+                  xlabel, speed + (rig_sections or []))
     write_report_files(out, lines, asm.name)
     return warnings + [v.summary(n, cond) for v in violations]
+
+
+def speed_lines(asm, pl: Pipeline) -> list[str]:
+    """Markdown section "Speed": at the coldest, reference and hottest temperature (nominal fits),
+    the speed at which each inner fit opens (`Pipeline.fit_open_speed_rpm`) and the inner fit
+    pressure (FE, and the two-cylinder rotating Lamé value beside it), the preload and the radial
+    groove-centre shift of bearing A at rest and at the highest speed (`[operating]
+    speed_max_rpm`, else `[lubrication] speed_rpm`)."""
+    op = asm.operating
+    n_max = op.max_speed_rpm(asm.lubrication.speed_rpm)
+    T = np.array(sorted({op.T_min_C, asm.T_ref_C, op.T_max_C}), float)
+    TT = np.repeat(T, 2)
+    inp = table_inputs(asm, {"T_ambient_C": TT, "speed_rpm": np.tile([0.0, n_max], T.size)})
+    r = pl.run(inp)
+    n_open = pl.fit_open_speed_rpm(inp.take(np.arange(0, TT.size, 2)))
+    ms, mr = pl.materials["shaft"], pl.materials["inner_ring_A"]
+    n_lame = 60.0 / (2.0 * np.pi) * lame.fit_open_speed_rad_s(
+        asm.shaft.bore_diameter_mm / 2, asm.shaft.seat_diameter_mm / 2,
+        asm.bearing.inner_ring_outer_diameter_mm / 2, ms.E_MPa, ms.nu, mr.E_MPa, mr.nu,
+        r["interference_inner_um"][0::2], ms.density_N_s2_mm4, mr.density_N_s2_mm4)
+
+    def rpm(v):
+        return f"> {SPEED_SEARCH_MAX_RPM:.0e}" if np.isinf(v) else f"{v:.0f}"
+
+    rows = []
+    for i, Tc in enumerate(T):
+        a, b = 2 * i, 2 * i + 1
+        rows.append([f"{Tc:g}"] + [rpm(v[i]) for v in n_open.values()] + [rpm(n_lame[i])]
+                    + [f"{r['fit_pressure_inner_MPa'][a]:.4g}", f"{r['fit_pressure_inner_MPa'][b]:.4g}",
+                       f"{r['fit_pressure_inner_lame_MPa'][b]:.4g}",
+                       f"{r['preload_N'][a]:.4g}", f"{r['preload_N'][b]:.4g}",
+                       f"{r['groove_shift_dr_A_um'][b] - r['groove_shift_dr_A_um'][a]:+.3g}"])
+    head = (["T (C)"] + [f"{k.replace('fit_', '')} opens at (rpm)" for k in n_open]
+            + ["Lamé opens at (rpm)"]
+            + ["inner fit p at rest (MPa)", f"at {n_max:g} rpm (MPa)", "Lamé at speed (MPa)",
+               "preload at rest (N)", f"at {n_max:g} rpm (N)", "dr_A change (um)"])
+    return ["## Speed", "",
+            "The rotor (shaft, inner rings, inner spacer, nut) spins; its centrifugal body force "
+            "rho omega^2 r expands the inner rings' bores more than the shaft's seat, so the inner "
+            "fits loosen with speed and open at the fit-loosening speed (the whole fit open, mean "
+            "pressure 0; searched up to "
+            f"{SPEED_SEARCH_MAX_RPM:.0e} rpm). The stator does not spin: the outer fits do not "
+            "change with speed. Nominal fits; the assembly state is at rest. The balls' own "
+            "centrifugal force is not part of this FE effect. Lamé: shaft and inner ring as two "
+            "spinning cylinders in plane stress (analytic/lame.py, Timoshenko & Goodier §32).", "",
+            md_table(head, rows), ""]
 
 
 def _x_axis(cond, n):

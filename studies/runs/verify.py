@@ -9,6 +9,15 @@ Cases (each a dict per shared/spec/cli.md, `rel_error` = |FE - closed form| / cl
 - lame_displacement: the ring's outer-surface radial displacement vs Lamé.
 - lame_bounds: a short ring on a long shaft, FE against both plane-stress and plane-strain values.
 - free_thermal: one material, uniform temperature: u_r = theta r, zero stress.
+- rotating_fit: a shaft (solid or hollow) with a ring, both spinning at omega, frictionless fit:
+  FE mean fit pressure (centrifugal body force rho omega^2 r, `fem.forms.centrifugal_load`) vs the
+  rotating-disc Lamé closed form (analytic/lame.py, Timoshenko & Goodier §32); plane strain
+  (rollers on both ends) is exact in 3-D, plane stress only for a thin disc (sigma_r + sigma_theta
+  varies with r under rotation, so a free-ended cylinder has an axial strain that varies with r).
+  Its inputs echo the lame_fit inputs plus `rho_inner_kg_m3`, `rho_outer_kg_m3` (x 1e-12 gives
+  N s^2/mm^4) and `omega_rad_s`. With it: `rotating_displacement` (the ring's outer radius at
+  speed), `rotating_free` (a free spinning hollow cylinder, no fit) and `fit_open_speed` (the
+  speed at which the fit opens, `fem.loosening` on the FE vs `lame.fit_open_speed_rad_s`).
 - mesh_convergence: the quantities that feed the bearing model on the seed 000 stack over four
   mesh levels; observed order and grid convergence index (Roache 1998, GCI with Fs = 1.25).
 """
@@ -24,7 +33,8 @@ from analytic import lame
 from analytic.materials import get_material
 from fem.model import build_model
 from fem.post import element_stresses, fit_mean_pressures, theta_per_element
-from fem.solver import FitSolver
+from fem.loosening import fit_open_omega2
+from fem.solver import FitSolver, Superposition
 from meshes.section import two_cylinder_section
 from studies.runs.report_tools import md_table
 
@@ -77,6 +87,94 @@ def lame_fit_case(name: str, r_inner_mm: float, r_fit_mm: float, r_outer_mm: flo
                       "fe": {"u_r_um": 1e3 * u_fe}, "closed_form": {"u_r_um": 1e3 * u_cf},
                       "rel_error": abs(u_fe - u_cf) / abs(u_cf)})
     return cases
+
+
+def rotating_fit_cases(name: str, r_inner_mm: float, r_fit_mm: float, r_outer_mm: float,
+                       inner_material: str, outer_material: str, interference_um: float,
+                       speed_rpm: float, assumption: str = "plane_strain", length_mm: float = 10.0,
+                       mesh_factor: float = 1.0) -> list[dict]:
+    """A two-cylinder fit spinning at speed_rpm: FE vs the rotating Lamé closed form (fit
+    pressure, ring outer-radius displacement, fit-opening speed). Isothermal."""
+    mi, mo = get_material(inner_material), get_material(outer_material)
+    sec = two_cylinder_section(r_inner_mm, r_fit_mm, r_outer_mm, inner_material, outer_material,
+                               length_mm, plane_strain=assumption == "plane_strain")
+    model = build_model(sec.scaled(mesh_factor), rotating_parts=("shaft", "inner_ring_A"))
+    solver = FitSolver(model)
+    omega = 2.0 * math.pi * speed_rpm / 60.0
+    delta = [interference_um / 2000.0]
+    sol = solver.solve(omega ** 2 * model.spin_load, delta)
+    p_fe = float(fit_mean_pressures(model, solver.fit_of_pair, sol.force_N)[0, 0])
+    common = dict(r_inner_mm=r_inner_mm, r_fit_mm=r_fit_mm, r_outer_mm=r_outer_mm,
+                  E_inner_MPa=mi.E_MPa, nu_inner=mi.nu, E_outer_MPa=mo.E_MPa, nu_outer=mo.nu)
+    rho = dict(rho_inner_N_s2_mm4=mi.density_N_s2_mm4, rho_outer_N_s2_mm4=mo.density_N_s2_mm4)
+    p_cf = float(lame.rotating_fit_pressure_MPa(**common, interference_um=interference_um, **rho,
+                                                omega_rad_s=omega, assumption=assumption))
+    inputs = dict(common, interference_um=interference_um, assumption=assumption,
+                  rho_inner_kg_m3=mi.density_kg_m3, rho_outer_kg_m3=mo.density_kg_m3,
+                  omega_rad_s=omega, speed_rpm=speed_rpm, inner_material=inner_material,
+                  outer_material=outer_material, length_mm=length_mm, dofs=model.ndofs)
+    cases = [{"name": name, "kind": "rotating_fit", "inputs": inputs,
+              "fe": {"fit_pressure_MPa": p_fe}, "closed_form": {"fit_pressure_MPa": p_cf},
+              "rel_error": abs(p_fe - p_cf) / max(p_cf, REL_FLOOR_MPa)}]
+    P = model.probe_matrix(np.array([[r_outer_mm], [length_mm / 2]]))
+    u_fe = float((P @ sol.u)[0])
+    u_cf = float(lame.rotating_fit_displacement_mm(
+        r_outer_mm, "outer", **common, interference_um=interference_um, **rho, omega_rad_s=omega,
+        assumption=assumption))
+    cases.append({"name": name + "_ring_expansion", "kind": "rotating_displacement",
+                  "inputs": dict(inputs, r_mm=r_outer_mm),
+                  "fe": {"u_r_um": 1e3 * u_fe}, "closed_form": {"u_r_um": 1e3 * u_cf},
+                  "rel_error": abs(u_fe - u_cf) / abs(u_cf)})
+    w2 = fit_open_omega2(Superposition(solver), np.zeros((1, len(model.part_names))),
+                         np.array([delta]), 0, (100.0 * omega) ** 2)[0]
+    w_cf = float(lame.fit_open_speed_rad_s(**common, interference_um=interference_um, **rho,
+                                           assumption=assumption))
+    to_rpm = 60.0 / (2.0 * math.pi)
+    cases.append({"name": name + "_open_speed", "kind": "fit_open_speed", "inputs": inputs,
+                  "fe": {"fit_open_speed_rpm": to_rpm * math.sqrt(w2)},
+                  "closed_form": {"fit_open_speed_rpm": to_rpm * w_cf},
+                  "rel_error": abs(math.sqrt(w2) - w_cf) / w_cf})
+    return cases
+
+
+def rotating_free_case(material: str = "9Cr18", r_in_mm: float = 10.0, r_out_mm: float = 20.0,
+                       speed_rpm: float = 30000.0, mesh_factor: float = 1.0) -> dict:
+    """A free hollow cylinder (one material, the fit interface tied by zero interference and
+    the same speed on both sides), plane strain: u_r at the outer radius vs T&G §32."""
+    r_mid = 0.5 * (r_in_mm + r_out_mm)
+    sec = two_cylinder_section(r_in_mm, r_mid, r_out_mm, material, material, 10.0,
+                               plane_strain=True).scaled(mesh_factor)
+    model = build_model(sec, contact="bonded", rotating_parts=("shaft", "inner_ring_A"))
+    omega = 2.0 * math.pi * speed_rpm / 60.0
+    sol = FitSolver(model).solve(omega ** 2 * model.spin_load, [0.0])
+    m = get_material(material)
+    u_fe = float((model.probe_matrix(np.array([[r_out_mm], [5.0]])) @ sol.u)[0])
+    u_cf = float(lame.rotating_displacement_mm(r_out_mm, r_in_mm, r_out_mm, m.E_MPa, m.nu,
+                                               m.density_N_s2_mm4, omega, "plane_strain"))
+    return {"name": f"free_rotating_cylinder_{material}", "kind": "rotating_free",
+            "inputs": {"material": material, "r_inner_mm": r_in_mm, "r_outer_mm": r_out_mm,
+                       "E_MPa": m.E_MPa, "nu": m.nu, "rho_kg_m3": m.density_kg_m3,
+                       "omega_rad_s": omega, "speed_rpm": speed_rpm, "r_mm": r_out_mm,
+                       "assumption": "plane_strain", "dofs": model.ndofs},
+            "fe": {"u_r_um": 1e3 * u_fe}, "closed_form": {"u_r_um": 1e3 * u_cf},
+            "rel_error": abs(u_fe - u_cf) / abs(u_cf)}
+
+
+def rotating_cases(mesh_factor: float = 1.0) -> list[dict]:
+    """The rotating reference cases of issue 12: a solid steel shaft and a hollow TC4 shaft with
+    a 9Cr18 ring at 65..75 % of their fit-opening speed (plane strain: exact), the solid pair as
+    a thin disc (1 mm on a 15 mm radius, plane stress: the 3-D correction is of order
+    (length / radius)^2, measured 8e-5 on the ring displacement, 3e-4 at 2 mm), and a free
+    spinning cylinder."""
+    f = mesh_factor
+    return (rotating_fit_cases("rotating_solid_52100_shaft_52100_ring", 0.0, 10.0, 15.0, "52100",
+                               "52100", 10.0, 60000.0, mesh_factor=f)
+            + rotating_fit_cases("rotating_thin_disc_52100_shaft_52100_ring", 0.0, 10.0, 15.0,
+                                 "52100", "52100", 10.0, 60000.0, assumption="plane_stress",
+                                 length_mm=1.0, mesh_factor=f)
+            + rotating_fit_cases("rotating_hollow_TC4_shaft_9Cr18_ring", 12.5, 17.5, 18.9, "TC4",
+                                 "9Cr18", 5.0, 30000.0, mesh_factor=f)
+            + [rotating_free_case(mesh_factor=f)])
 
 
 def short_ring_case(mesh_factor: float = 1.0) -> dict:
@@ -324,7 +422,7 @@ def lame_cases(mesh_factor: float = 1.0) -> list[dict]:
                                "9Cr18", "TC4", -1.5, T_C=T, mesh_factor=f)
     cases.append(short_ring_case(mesh_factor=f))
     cases.append(free_thermal_case(mesh_factor=f))
-    return cases
+    return cases + rotating_cases(mesh_factor=f)
 
 
 def write_verification(out_dir: Path, cases: list[dict], plot_path: Path | None) -> None:
