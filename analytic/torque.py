@@ -274,15 +274,28 @@ def contact_inputs(pair, j: int) -> tuple[ContactInput, ContactInput]:
                  for c in (pair.inner, pair.outer))
 
 
+def ball_contact_inputs(radial, j: int) -> tuple[ContactInput, ContactInput]:
+    """Inner and outer `ContactInput` of every ball of bearing j, (Z, N), from the combined-load
+    state (`bearing.RadialLoadState`: ball_loads_N, ball_inner, ball_outer)."""
+    Q = radial.ball_loads_N[j]
+    return tuple(ContactInput(Q, c.a_mm[j], c.b_mm[j], c.E_ell[j], c.Rx_mm[j])
+                 for c in (radial.ball_inner, radial.ball_outer))
+
+
 def pair_torque(g, pair, *, model: str = "solid_film", mu=0.02, hysteresis_loss=0.0,
                 speed_rpm=None, f0=0.0, nu_mm2_s=0.0, f1=None, load_term: str = "coulomb"):
     """Friction torque of a bearing pair from its `bearing.PairState`, vectorised, N*mm.
 
     model "solid_film": `solid_film_torque_Nmm` per bearing (mu: film friction coefficient,
-      hysteresis_loss: alpha_h); returns torque_Nmm and torque_{hysteresis,differential,spin}_Nmm
+      hysteresis_loss: alpha_h); at points where the balls of a bearing carry unequal loads
+      (radial load or tilt: `pair.radial`) the sum over every ball's own contacts and contact
+      angle instead of Z times the representative ball; returns torque_Nmm and torque_{hysteresis,differential,spin}_Nmm
       (both bearings, inner + outer), torque_{inner,outer}_contacts_Nmm (all components of the
       inner or of the outer contacts) and the per-bearing totals torque_A_Nmm, torque_B_Nmm.
-    model "oil": load term per bearing (load_term "coulomb": mu F_a dm/2; "palmgren": f1 F_a dm)
+    model "oil": load term per bearing (load_term "coulomb": mu F_a dm/2; "palmgren": f1 F_a dm;
+      F_a = sum_k Q_k sin(alpha_k) the bearing's axial force, which under a radial load includes
+      the axial component the radial load induces; Harris Vol. 2 gives P1 = F_a - 0.1 F_r for an
+      angular-contact bearing, not applied here)
       plus Palmgren's viscous term per bearing (f0, nu_mm2_s, speed_rpm); returns torque_Nmm,
       torque_load_Nmm, torque_viscous_Nmm, torque_A_Nmm, torque_B_Nmm.
     With speed_rpm given, also heat_W (total dissipated power).
@@ -300,6 +313,16 @@ def pair_torque(g, pair, *, model: str = "solid_film", mu=0.02, hysteresis_loss=
             alpha = np.radians(pair.contact_angle_deg["AB".index(j)])
             comp = solid_film_torque_Nmm(g.Z, g.Dw_mm, g.dm_mm, g.f_i, g.f_o, alpha, cin, cout,
                                          mu, hysteresis_loss, c_ring, c_ball)
+            r = pair.radial
+            if r is not None and r.ball_inner is not None and np.any(r.unequal_balls):
+                # balls with unequal loads: every ball's own contacts and kinematics, summed
+                bin_, bout = ball_contact_inputs(r, "AB".index(j))
+                balls = solid_film_torque_Nmm(
+                    1, g.Dw_mm, g.dm_mm, g.f_i, g.f_o,
+                    np.radians(r.ball_contact_angles_deg["AB".index(j)]), bin_, bout,
+                    mu, hysteresis_loss, c_ring, c_ball)
+                comp = {k: np.where(r.unequal_balls, balls[k].sum(axis=0), v)
+                        for k, v in comp.items()}
             for key in acc:
                 acc[key] = acc[key] + comp[f"{key}_inner_Nmm"] + comp[f"{key}_outer_Nmm"]
                 for c in side:

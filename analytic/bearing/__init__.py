@@ -97,8 +97,8 @@ def solve_pair(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.0, dz_mm=
       dr_ref_mm, dz_ref_mm  shifts of the reference (assembled) state
       compliance_mm_per_N   axial compliance c of the preload path (position preload)
       radial_load_N     (scalar or (N,), along the azimuth of ball 0): with a non-zero radial
-                        load at any point, or return_ball_loads=True, the combined-load solver
-                        runs (`combined.solve_pair_combined`; points without radial load keep
+                        load at any point, or return_ball_loads=True (every ball's state in
+                        `PairState.radial`), the combined-load solver runs (`combined.solve_pair_combined`; points without radial load keep
                         the axial-only state); otherwise the axial-only one
                         (`axial.solve_pair_axial`).
       moment_Nmm        (scalar or (N,)) tilting moment on the rotor about the mid-point of the
@@ -125,7 +125,7 @@ def solve_pair(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.0, dz_mm=
             or np.any(np.asarray(moment_Nmm, float) != 0.0)):
         return solve_pair_combined(g, arrangement, T_ref_C=T_ref_C, preload_kind=preload_kind,
                                    radial_load_N=radial_load_N, tol=tol, max_outer=max_outer,
-                                   chunk=chunk, return_ball_loads=return_ball_loads,
+                                   chunk=chunk,
                                    moment_Nmm=moment_Nmm, bearing_span_mm=bearing_span_mm, **args)
     N = n_points(*args.values())
     blocks = []

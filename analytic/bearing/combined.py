@@ -171,8 +171,14 @@ class CombinedProblem:
 
 
 
+def _broadcast_ellipses(c: ContactEllipses, shape) -> ContactEllipses:
+    """Every field of `c` as an array of the ball-set shape (2, Z, N)."""
+    return ContactEllipses(*(np.array(np.broadcast_to(getattr(c, f), shape))
+                             for f in ContactEllipses.__dataclass_fields__))
+
+
 def _combined_group(g: BearingGeometry, mode: str, s, dr, dz, tg: ThermalGeometry, Fa, Fr, c, e,
-                    Freq, lost_spring, u0, tol, max_outer, solve=True, ball_loads=False,
+                    Freq, lost_spring, u0, tol, max_outer, solve=True,
                     M=None, span=None):
     """Solve (or, with solve=False, only evaluate at u0, where rho = theta = 0) one group of
     points of one preload mode and return their `PairState` (with its `radial` part).  With a
@@ -259,8 +265,8 @@ def _combined_group(g: BearingGeometry, mode: str, s, dr, dz, tg: ThermalGeometr
         tilt_rad=theta, bearing_rho_mm=rho_j, bearing_moment_Nmm=M_own,
         moment_stiffness_Nmm_per_mrad=1e-3 * k_tilt,
         max_contact_pressure_MPa=np.maximum(inner.p_max_MPa, outer.p_max_MPa).max(axis=1),
-        ball_loads_N=Q if ball_loads else None,
-        ball_contact_angles_deg=np.degrees(alpha) if ball_loads else None)
+        ball_loads_N=Q, ball_contact_angles_deg=np.degrees(alpha),
+        ball_inner=_broadcast_ellipses(inner, Q.shape), ball_outer=_broadcast_ellipses(outer, Q.shape))
     top_inner, top_outer = (ContactEllipses(*(top(getattr(c, f)) for f in ContactEllipses.__dataclass_fields__))
                             for c in (inner, outer))
     return pair_state(F_N=st.F_N, alpha_rad=top(alpha), Q_N=top(Q), delta_mm=top(delta),
@@ -278,7 +284,7 @@ def solve_pair_combined(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.
                         preload_assembled_N=100.0, axial_load_N=0.0, radial_load_N=0.0,
                         dr_ref_mm=0.0, dz_ref_mm=0.0, compliance_mm_per_N=0.0,
                         tol: float = 1e-14, max_outer: int = 30, chunk: int = 8192,
-                        return_ball_loads: bool = False, moment_Nmm=0.0,
+                        moment_Nmm=0.0,
                         bearing_span_mm=None) -> PairState:
     """Pair equilibrium under combined axial and radial load with the quasi-static load
     distribution around the ball set (Harris & Kotzalas Vol. 1 ch. 7; Jones 1960), vectorised
@@ -323,9 +329,9 @@ def solve_pair_combined(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.
     loaded_zone (fraction of balls with delta > 1e-12 A_T), radial_stiffness_N_per_um (dF_r/drho
     at constant axial load, x free, including dK_n/dalpha), tilt_rad, bearing_rho_mm,
     bearing_moment_Nmm (each bearing's moment about its own ball plane),
-    moment_stiffness_Nmm_per_mrad, max_contact_pressure_MPa per bearing and, with return_ball_loads,
-    ball_loads_N and ball_contact_angles_deg of shape (2, Z, N), ball k at
-    `contact.ball_azimuths_rad(Z)[k]`.
+    moment_stiffness_Nmm_per_mrad, max_contact_pressure_MPa per bearing and every ball's state,
+    ball_loads_N, ball_contact_angles_deg and its inner and outer contact ellipses (ball_inner,
+    ball_outer), of shape (2, Z, N), ball k at `contact.ball_azimuths_rad(Z)[k]`.
 
     Note: `torque.pair_torque` multiplies one ball's friction by Z; under a radial load it then
     treats every ball as the most loaded one (an upper bound), not the load distribution.
@@ -375,8 +381,9 @@ def solve_pair_combined(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.
         loaded_zone=np.zeros((2, N)), radial_stiffness_N_per_um=np.zeros(N),
         tilt_rad=np.zeros(N), bearing_rho_mm=np.zeros((2, N)), bearing_moment_Nmm=np.zeros((2, N)),
         moment_stiffness_Nmm_per_mrad=np.zeros(N), max_contact_pressure_MPa=np.zeros((2, N)),
-        ball_loads_N=np.zeros(Zb) if return_ball_loads else None,
-        ball_contact_angles_deg=np.zeros(Zb) if return_ball_loads else None))
+        ball_loads_N=np.zeros(Zb), ball_contact_angles_deg=np.zeros(Zb),
+        ball_inner=ContactEllipses(*(np.zeros(Zb) for _ in range(5))),
+        ball_outer=ContactEllipses(*(np.zeros(Zb) for _ in range(5)))))
     for mode, mmask in modes.items():
         loaded = (Fr != 0.0) | (M != 0.0)
         for solve, smask in ((False, ~loaded), (True, loaded)):
@@ -395,7 +402,7 @@ def solve_pair_combined(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.
                     ThermalGeometry(*(v[:, ii] for v in (tg.A_T_mm, tg.Dw_mm, tg.f_i, tg.f_o, tg.dm_mm))),
                     Fa[ii], Fr[ii], c[ii], e[ii], None if Freq is None else Freq[:, ii],
                     None if lost_spring is None else lost_spring[ii], u0, tol, max_outer,
-                    solve=solve, ball_loads=return_ball_loads, M=M[ii], span=span)
+                    solve=solve, M=M[ii], span=span)
                 if solve:
                     out = with_rows(out, ii, res)
                 else:           # the axial solution stands; add the radial outputs at it

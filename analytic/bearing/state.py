@@ -36,8 +36,16 @@ class RadialLoadState:
     bearing_moment_Nmm: np.ndarray           # (2, N) moment each bearing carries about its ball plane
     moment_stiffness_Nmm_per_mrad: np.ndarray  # (N,) dM/dtheta, Fa and Fr held (NaN: no tilt DOF)
     max_contact_pressure_MPa: np.ndarray     # (2, N) over every ball and both contacts of a bearing
-    ball_loads_N: np.ndarray | None = None   # (2, Z, N) with return_ball_loads
+    ball_loads_N: np.ndarray | None = None   # (2, Z, N), ball k at psi_k = 2 pi k / Z
     ball_contact_angles_deg: np.ndarray | None = None
+    #: every ball's inner and outer Hertz contact, (2, Z, N) (the torque sums over the balls)
+    ball_inner: ContactEllipses | None = None
+    ball_outer: ContactEllipses | None = None
+
+    @property
+    def unequal_balls(self) -> np.ndarray:
+        """(N,) bool: the balls of a bearing carry different loads (radial displacement or tilt)."""
+        return (self.rho_mm != 0.0) | (self.tilt_rad != 0.0)
 
 
 @dataclass(frozen=True)
