@@ -120,6 +120,8 @@ class Mesh:
     corner_size_mm: float = 0.0      # size at the ends of fits and clamped faces
     target_error: float = 1e-3       # relative discretisation error of fit pressures and
     #                                  groove-centre shifts the sizes are chosen for
+    ring_section: str = "grooved"    # "grooved": rings with their raceway grooves and lands;
+    #                                  "rectangle": the effective ring sections (studies/model/stack.py)
 
 
 @dataclass(frozen=True)
@@ -184,12 +186,12 @@ SECTIONS = {
                                   "hysteresis_loss_factor": 0.0, "load_term": "coulomb"}),
     "limits": (Limits, {"max_contact_pressure_MPa": math.inf, "min_static_safety": 0.0}),
     "mesh": (Mesh, {"size_mm": 0.0, "fit_size_mm": 0.0, "corner_size_mm": 0.0,
-                    "target_error": 1e-3}),
+                    "target_error": 1e-3, "ring_section": "grooved"}),
     "operating": (Operating, {"T_min_C": -40.0, "T_max_C": 80.0}),
 }
 OPTIONAL_SECTIONS = {"limits", "mesh", "operating"}
 STRING_KEYS = {"material", "designation", "ring_material", "ball_material", "contact", "kind",
-               "lubricant", "load_term", "clamp", "path_compliance", "distribution",
+               "lubricant", "load_term", "clamp", "path_compliance", "distribution", "ring_section",
                *(f"{k}_class" for k in TOLERANCE_SURFACES)}
 LIMIT_KEYS = {f"{k}_deviation_um" for k in TOLERANCE_SURFACES}
 CHOICES = {("fits", "contact"): ("frictionless", "bonded"),
@@ -198,7 +200,8 @@ CHOICES = {("fits", "contact"): ("frictionless", "bonded"),
            ("preload", "path_compliance"): ("fe", "rigid"),
            ("lubrication", "kind"): ("solid_film", "oil"),
            ("lubrication", "load_term"): ("coulomb", "palmgren"),
-           ("nut", "clamp"): ("rigid", "compliant"), ("cover", "clamp"): ("rigid", "compliant")}
+           ("nut", "clamp"): ("rigid", "compliant"), ("cover", "clamp"): ("rigid", "compliant"),
+           ("mesh", "ring_section"): ("grooved", "rectangle")}
 # keys allowed to be zero (everything else numeric must be > 0)
 ZERO_OK = {("shaft", "bore_diameter_mm"), ("shaft", "extension_mm"),
            ("fits", "inner_interference_um"), ("fits", "outer_interference_um"),
@@ -436,6 +439,42 @@ def _check_geometry(a: Assembly, path: str) -> None:
     need(-150.0 <= op.T_min_C < op.T_max_C <= 300.0, "operating.T_min_C",
          f"the range {op.T_min_C:g}..{op.T_max_C:g} C must be increasing and inside -150..300 C")
     _check_mesh(a, need)
+    if a.mesh.ring_section == "grooved":
+        _check_grooved(a, g, need)
+
+
+def _check_grooved(a: Assembly, g: BearingGeometry, need) -> None:
+    """Grooved ring sections (`[mesh] ring_section = "grooved"`): each groove leaves a ring wall
+    under its bottom and ends inside the ring width, and the lands clear the neighbouring parts
+    (the land is the ring's radial extent on the ball side)."""
+    from analytic.bearing.land import groove_centre_radius_mm, land_angle_deg, land_diameters_mm
+
+    b, s, h = a.bearing, a.shaft, a.housing
+    d_i, d_o, _ = land_diameters_mm(b)
+    for side, wall, name in (("inner", groove_bottom_diameter_mm(g, "inner") - b.bore_mm, "inner"),
+                             ("outer", b.outside_diameter_mm - groove_bottom_diameter_mm(g, "outer"),
+                              "outer")):
+        need(wall > 0, f"bearing.{name}_ring_outer_diameter_mm" if side == "inner"
+             else "bearing.outer_ring_inner_diameter_mm",
+             f"the {side} groove bottom leaves no ring wall ({wall / 2:.3f} mm) for "
+             "mesh.ring_section = \"grooved\"")
+        f = g.f_i if side == "inner" else g.f_o
+        d_land = d_i if side == "inner" else d_o
+        half = f * g.Dw_mm * math.sin(math.radians(land_angle_deg(g, side, d_land)))
+        need(half + (f - 0.5) * g.Dw_mm < b.width_mm / 2, f"bearing.{side}_land_diameter_mm",
+             f"the {side} groove ({2 * half:.3f} mm wide at the land) does not fit in the ring "
+             f"width {b.width_mm:g} mm")
+        need(abs(groove_centre_radius_mm(g, side) - d_land / 2) < f * g.Dw_mm,
+             f"bearing.{side}_land_diameter_mm", "the land does not meet the groove")
+    for key, cond, msg in (
+            ("shaft.shoulder_diameter_mm", s.shoulder_diameter_mm < d_o, "outer ring land"),
+            ("nut.diameter_mm", a.nut.diameter_mm < d_o, "outer ring land"),
+            ("housing.shoulder_diameter_mm", h.shoulder_diameter_mm > d_i, "inner ring land"),
+            ("cover.diameter_mm", a.cover.diameter_mm > d_i, "inner ring land"),
+            ("inner_spacer.diameter_mm", a.inner_spacer.diameter_mm <= d_i, "inner ring land"),
+            ("outer_spacer.diameter_mm", a.outer_spacer.diameter_mm >= d_o, "outer ring land")):
+        need(cond, key, f"overlaps the {msg} diameter ({d_i if 'inner' in msg else d_o:.3f} mm) "
+                        "of the grooved ring section (or set mesh.ring_section = \"rectangle\")")
 
 
 def _check_mesh(a: Assembly, need) -> None:

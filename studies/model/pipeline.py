@@ -25,7 +25,7 @@ from analytic.bearing.land import groove_centre_radius_mm, land_diameters_mm, la
 from analytic.lubrication import get_lubricant
 from analytic.safety import static_load_rating_C0_N, static_safety_from_contact_pressure
 from analytic.torque import palmgren_f1_angular_contact, pair_torque
-from fem.post import groove_centre_shift, mean_pressures_MPa
+from fem.post import circle_centre_weights, groove_centre_shift, mean_pressures_MPa
 from fem.setup import (CompliancePlan, FESetup, FullFE, SetupSpec, cached_setup, compute_setup,
                        full_fe)
 from fem.solver import Superposition
@@ -132,6 +132,13 @@ class Pipeline:
         self.asm = asm
         self.section = section_from_assembly(asm).scaled(mesh_factor)
         pts = np.array([self.section.raceway_points[r] for r in RINGS]).T
+        if self.section.grooves:        # + the groove points whose circle fit gives each centre
+            grooves = [self.section.groove_of(r) for r in RINGS]
+            self.centre_weights = [circle_centre_weights(np.array(g.points_rz_mm).T, (g.r_mm, g.z_mm))
+                                   for g in grooves]
+            pts = np.hstack([pts] + [np.array(g.points_rz_mm).T for g in grooves])
+        else:
+            self.centre_weights = None
         plan = None
         if asm.preload.path_compliance == "fe":
             inner, outer = asm.mean_fits_um()
@@ -148,7 +155,7 @@ class Pipeline:
                     if superpose else None)
         self.geom = BearingGeometry.from_spec(asm.bearing)
         self.land_diameters_mm = land_diameters_mm(asm.bearing)[:2]
-        self._centre_offsets(pts)
+        self._centre_offsets(pts[:, :4])
         self._fe_cache: dict[bytes, FEState] = {}
         self.lubricant = get_lubricant(asm.lubrication.lubricant) if asm.lubrication.kind == "oil" else None
         self.compliance_mm_per_N = self.setup.compliance_mm_per_N if plan is not None else 0.0
@@ -174,7 +181,7 @@ class Pipeline:
     @property
     def probe(self):
         """(8, ndofs) matrix: u_r, u_z at the raceway points of RINGS (built on first use)."""
-        return self.full_fe().probe
+        return self.full_fe().probe[:8]
 
     @property
     def ndofs(self) -> int:
@@ -250,18 +257,14 @@ class Pipeline:
             for i in range(n):
                 sol = self.solver.solve(self.model.unit_loads @ theta[i], delta[i])
                 force.append(sol.force_N)
-                probe.append(self.probe @ sol.u)
+                probe.append(self.full_fe().probe @ sol.u)
             force, probe = np.array(force), np.array(probe)
         else:
             res = self.sup.evaluate(theta, delta)
             force, probe = res["force_N"], res["probe"]
         p = self.fit_pressures(force)
-        # groove-centre shifts: raceway displacement + ring thermal strain x offset
         idx = {p: i for i, p in enumerate(self.part_names)}
-        centre = np.empty((n, 4, 2))
-        for k, ring in enumerate(RINGS):
-            centre[:, k, :] = groove_centre_shift(probe[:, 2 * k:2 * k + 2], theta[:, idx[ring]],
-                                                  self.centre_offset_mm[k])
+        centre = self._centres(probe, theta[:, [idx[r] for r in RINGS]])
         dr = np.stack([centre[:, 0, 0] - centre[:, 2, 0], centre[:, 1, 0] - centre[:, 3, 0]])
         dz = np.stack([centre[:, 0, 1] - centre[:, 2, 1], centre[:, 1, 1] - centre[:, 3, 1]])
         a = self.asm
@@ -269,7 +272,24 @@ class Pipeline:
         interf = np.column_stack([
             inner_um + (theta[:, idx["shaft"]] - theta[:, idx["inner_ring_A"]]) * d_seat * 1e3,
             outer_um + (theta[:, idx["outer_ring_A"]] - theta[:, idx["housing"]]) * d_bore * 1e3])
-        return FEState(p, interf, dr, dz, probe)
+        return FEState(p, interf, dr, dz, probe[:, :8])
+
+    def _centres(self, probe: np.ndarray, theta_rings: np.ndarray) -> np.ndarray:
+        """(n, 4, 2) groove-centre displacements (mm) of RINGS from the probed displacements
+        (n, n_probe): grooved rings, the circle fitted to the displaced groove points
+        (`fem.post.circle_centre_weights`); rectangular rings, the raceway point's displacement
+        + the ring's thermal strain (n, 4) x the centre offset (`fem.post.groove_centre_shift`)."""
+        n = probe.shape[0]
+        centre = np.empty((n, 4, 2))
+        m = 0 if self.centre_weights is None else self.centre_weights[0].shape[1]
+        for k in range(4):
+            if self.centre_weights is None:
+                centre[:, k, :] = groove_centre_shift(probe[:, 2 * k:2 * k + 2], theta_rings[:, k],
+                                                      self.centre_offset_mm[k])
+            else:
+                cols = slice(8 + k * m, 8 + (k + 1) * m)
+                centre[:, k, :] = probe[:, cols] @ self.centre_weights[k].T
+        return centre
 
     def fit_pressures(self, force_N: np.ndarray) -> np.ndarray:
         """(n, n_fits) mean pressure (MPa) per FE fit from the pair forces (n, n_pairs) in N."""
@@ -295,17 +315,15 @@ class Pipeline:
         inner_um, outer_um = self.fits_um(inputs)
         delta = self.deltas_mm(inner_um, outer_um)[0]
         sol = self.solver.solve(m.thermal_load_vector(theta_q), delta)
-        probe = self.probe @ sol.u
+        probe = self.full_fe().probe @ sol.u
         p = self.fit_pressures(sol.force_N)
-        centre = np.empty((4, 2))
         w = m.basis.dx
-        for k, ring in enumerate(RINGS):
-            sel = m.part_of == ring
-            th = float((theta_q[sel] * w[sel]).sum() / w[sel].sum())
-            centre[k] = groove_centre_shift(probe[2 * k:2 * k + 2], th, self.centre_offset_mm[k])
+        th = np.array([[float((theta_q[m.part_of == r] * w[m.part_of == r]).sum()
+                              / w[m.part_of == r].sum()) for r in RINGS]])
+        centre = self._centres(probe[None, :], th)[0]
         dr = np.array([[centre[0, 0] - centre[2, 0]], [centre[1, 0] - centre[3, 0]]])
         dz = np.array([[centre[0, 1] - centre[2, 1]], [centre[1, 1] - centre[3, 1]]])
-        return FEState(p, np.full((1, 2), np.nan), dr, dz, probe[None, :]), sol.u
+        return FEState(p, np.full((1, 2), np.nan), dr, dz, probe[None, :8]), sol.u
 
     def lame_beside(self, fe: FEState, inputs: PhysicsInputs) -> dict[str, np.ndarray]:
         """Closed-form neighbours of the FE values (two-cylinder Lamé, plane stress)."""

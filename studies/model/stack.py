@@ -4,12 +4,51 @@ The rotor (shaft, inner rings, inner spacer, nut) and the stator (housing, outer
 spacer, cover) as named rectangles, the radial split lines (fits, sliding bores), the clamped
 faces and the raceway points; the element sizes from `studies.model.mesh_size`. `meshes/` knows
 only sections; this is the one place that reads an assembly to make one. Units: mm.
+
+Ring sections (`[mesh] ring_section`): "grooved" (default) cuts each ring's raceway groove, the
+circle of radius f Dw about its curvature centre (`analytic.bearing.land.groove_centre_rz_mm`),
+from a ring rectangle that reaches the land diameter (`land_diameters_mm`; the same land on both
+sides of the groove); "rectangle" keeps the effective ring sections of `[bearing]`
+(inner_ring_outer_diameter_mm, outer_ring_inner_diameter_mm) with the raceway on their faces.
 """
 from __future__ import annotations
 
-from meshes.section import Fit, Rect, Section, Split
+import numpy as np
+
+from analytic.bearing.geometry import SIGNS, BearingGeometry
+from analytic.bearing.land import (groove_centre_rz_mm, groove_point_rz_mm, land_angle_deg,
+                                   land_diameters_mm)
+from meshes.section import Fit, Groove, Rect, Section, Split
 from studies.model.config import Assembly
 from studies.model.mesh_size import mesh_sizes
+
+#: half-width (deg, at the groove centre) of the groove arc about the free contact angle whose
+#: displaced points give the groove-centre shift, and the number of points on it
+GROOVE_FIT_HALF_ANGLE_DEG, GROOVE_FIT_POINTS = 30.0, 13
+
+
+def grooves_of(a: Assembly) -> tuple[Groove, ...]:
+    """The four raceway grooves (inner_ring_A, inner_ring_B, outer_ring_A, outer_ring_B) of the
+    assembly's stack: centres at the ball centre of each bearing (mid-width of its rings) plus the
+    free-contact-line offsets, radius f Dw, and the points of the arc alpha0 +- 30 deg (kept
+    inside the lands) that give the groove-centre shift."""
+    g = BearingGeometry.from_spec(a.bearing)
+    lands = dict(zip(("inner", "outer"), land_diameters_mm(a.bearing)[:2]))
+    z = stack_positions(a)
+    out = []
+    for side in ("inner", "outer"):
+        f = g.f_i if side == "inner" else g.f_o
+        edge = 0.98 * land_angle_deg(g, side, lands[side])
+        phi = np.linspace(max(g.alpha0_deg - GROOVE_FIT_HALF_ANGLE_DEG, -edge),
+                          min(g.alpha0_deg + GROOVE_FIT_HALF_ANGLE_DEG, edge), GROOVE_FIT_POINTS)
+        for j, J in enumerate("AB"):
+            ring = f"{side}_ring_{J}"
+            zb, s = sum(z[ring]) / 2, float(SIGNS[a.arrangement][j])
+            rc, zc = groove_centre_rz_mm(g, side, zb, s)
+            pts = groove_point_rz_mm(g, side, zb, s, phi)
+            out.append(Groove(ring, float(rc), float(zc), f * g.Dw_mm, tuple(float(p) for p in phi),
+                              tuple((float(r), float(zz)) for r, zz in pts.T)))
+    return tuple(out)
 
 
 def stack_positions(a: Assembly) -> dict[str, tuple[float, float]]:
@@ -37,7 +76,11 @@ def section_from_assembly(a: Assembly) -> Section:
     z_nut_end = z["nut"][1]
     z_shaft_end = z_nut_end + s.extension_mm
     z_house_end = z["outer_ring_B"][1]
-    r_iro, r_ori = b.inner_ring_outer_diameter_mm / 2, b.outer_ring_inner_diameter_mm / 2
+    grooved = a.mesh.ring_section == "grooved"
+    if grooved:                     # the ring rectangles reach the lands; the grooves are cut
+        r_iro, r_ori = (d / 2 for d in land_diameters_mm(b)[:2])
+    else:
+        r_iro, r_ori = b.inner_ring_outer_diameter_mm / 2, b.outer_ring_inner_diameter_mm / 2
     rings = b.ring_material
     rects = [
         Rect("shaft", r_bore, r_seat, -s.shoulder_width_mm, z_shaft_end, s.material),
@@ -84,11 +127,17 @@ def section_from_assembly(a: Assembly) -> Section:
          for j in "AB"]
         + [Fit(f"fit_outer_{j}", f"outer_ring_{j}", "housing", r_hb, *z[f"outer_ring_{j}"], "outer")
            for j in "AB"])
-    refine = tuple((f.r_mm, f.z0_mm, f.r_mm, f.z1_mm) for f in fits) + tuple(
-        (r, z[f"{ring}_{j}"][0], r, z[f"{ring}_{j}"][1])
-        for ring, r in (("inner_ring", r_iro), ("outer_ring", r_ori)) for j in "AB")
-    raceways = {f"inner_ring_{j}": (r_iro, sum(z[f"inner_ring_{j}"]) / 2) for j in "AB"}
-    raceways.update({f"outer_ring_{j}": (r_ori, sum(z[f"outer_ring_{j}"]) / 2) for j in "AB"})
+    refine = tuple((f.r_mm, f.z0_mm, f.r_mm, f.z1_mm) for f in fits)
+    if grooved:     # raceway point: the middle of the fitted arc (the free contact point unless a
+        #             land clips the arc)
+        grooves = grooves_of(a)
+        raceways = {gr.part: gr.points_rz_mm[len(gr.points_rz_mm) // 2] for gr in grooves}
+    else:
+        grooves = ()
+        refine += tuple((r, z[f"{ring}_{j}"][0], r, z[f"{ring}_{j}"][1])
+                        for ring, r in (("inner_ring", r_iro), ("outer_ring", r_ori)) for j in "AB")
+        raceways = {f"inner_ring_{j}": (r_iro, sum(z[f"inner_ring_{j}"]) / 2) for j in "AB"}
+        raceways.update({f"outer_ring_{j}": (r_ori, sum(z[f"outer_ring_{j}"]) / 2) for j in "AB"})
     sizes = mesh_sizes(a)
     return Section(tuple(rects), splits, fits, (), refine, raceways, sizes.size_mm,
-                   sizes.fit_size_mm, sizes.corner_size_mm)
+                   sizes.fit_size_mm, sizes.corner_size_mm, grooves)
