@@ -27,10 +27,18 @@ from studies.model.mesh_size import mesh_sizes
 GROOVE_FIT_HALF_ANGLE_DEG, GROOVE_FIT_POINTS = 30.0, 13
 
 
+def ball_centres_rz_mm(a: Assembly) -> list[tuple[float, float]]:
+    """(r, z) in mm of the ball centre of bearings A and B: the pitch radius at mid-width of the
+    bearing's inner ring (the free geometry the groove centres are placed about)."""
+    z = stack_positions(a)
+    return [(a.bearing.pitch_diameter_mm / 2, sum(z[f"inner_ring_{J}"]) / 2) for J in "AB"]
+
+
 def grooves_of(a: Assembly) -> tuple[Groove, ...]:
     """The four raceway grooves (inner_ring_A, inner_ring_B, outer_ring_A, outer_ring_B) of the
     assembly's stack: centres at the ball centre of each bearing (mid-width of its rings) plus the
-    free-contact-line offsets, radius f Dw, and the points of the arc alpha0 +- 30 deg (kept
+    free-contact-line offsets (each ring's own mid-width taken as its ball-centre plane, as the
+    rectangular sections' raceway points are), radius f Dw, and the points of the arc alpha0 +- 30 deg (kept
     inside the lands) that give the groove-centre shift."""
     g = BearingGeometry.from_spec(a.bearing)
     lands = dict(zip(("inner", "outer"), land_diameters_mm(a.bearing)[:2]))
