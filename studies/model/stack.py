@@ -53,7 +53,11 @@ def grooves_of(a: Assembly) -> tuple[Groove, ...]:
             ring = f"{side}_ring_{J}"
             zb, s = sum(z[ring]) / 2, float(SIGNS[a.arrangement][j])
             rc, zc = groove_centre_rz_mm(g, side, zb, s)
-            pts = groove_point_rz_mm(g, side, zb, s, phi)
+            # 1e-6 of the radius into the ring: a point exactly on a mesh vertex of the arc
+            # would be found outside every triangle by round-off (the fit stays exact for any
+            # radius, fem.post.circle_centre_weights)
+            pts = np.array([[rc], [zc]]) + (1 + 1e-6) * (groove_point_rz_mm(g, side, zb, s, phi)
+                                                       - np.array([[rc], [zc]]))
             out.append(Groove(ring, float(rc), float(zc), f * g.Dw_mm, tuple(float(p) for p in phi),
                               tuple((float(r), float(zz)) for r, zz in pts.T)))
     return tuple(out)
