@@ -164,12 +164,13 @@ def _mesh_with_gmsh(section: Section, tmp: Path) -> None:
 
         corner = section.corner_size_mm
         gmsh.option.setNumber("Mesh.MeshSizeMax", section.size_mm)
-        gmsh.option.setNumber("Mesh.MeshSizeMin", min(corner or section.fit_size_mm,
-                                                      section.fit_size_mm))
+        gmsh.option.setNumber("Mesh.MeshSizeMin", min([corner or section.fit_size_mm,
+                                                       section.fit_size_mm]
+                                                      + [g.size_mm for g in section.grooves
+                                                         if g.size_mm > 0]))
         gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
         gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
-        fine = ([c for line in section.refine_lines for c in curves_on(*line)]
-                + [c for g in section.grooves for c in _arc_curves(gmsh, g)])
+        fine = [c for line in section.refine_lines for c in curves_on(*line)]
         field = gmsh.model.mesh.field
         fields = []
         if fine:
@@ -182,6 +183,18 @@ def _mesh_with_gmsh(section: Section, tmp: Path) -> None:
             field.setNumber(thr, "SizeMax", section.size_mm)
             field.setNumber(thr, "DistMin", 2 * section.fit_size_mm)
             field.setNumber(thr, "DistMax", 2 * section.fit_size_mm + 4 * section.size_mm)
+            fields.append(thr)
+        for g in section.grooves:            # the groove arc at its own size (its chords
+            arc = field.add("Distance")      # are the section's only geometric error)
+            field.setNumbers(arc, "CurvesList", _arc_curves(gmsh, g))
+            field.setNumber(arc, "Sampling", 200)
+            h = g.size_mm or section.fit_size_mm
+            thr = field.add("Threshold")
+            field.setNumber(thr, "InField", arc)
+            field.setNumber(thr, "SizeMin", h)
+            field.setNumber(thr, "SizeMax", section.size_mm)
+            field.setNumber(thr, "DistMin", 2 * h)
+            field.setNumber(thr, "DistMax", 2 * h + (section.size_mm - h) / CORNER_GRADE)
             fields.append(thr)
         if corner > 0:                       # graded towards the singular corners
             near = field.add("Distance")

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import hashlib
 import json
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 
 
 
@@ -77,6 +77,7 @@ class Groove:
     radius_mm: float
     fit_phi_deg: tuple[float, ...]
     points_rz_mm: tuple[tuple[float, float], ...]
+    size_mm: float = 0.0             # element size along the groove arc; 0 = the fit size
 
 
 @dataclass(frozen=True)
@@ -122,7 +123,8 @@ class Section:
         which is what a Richardson extrapolation over its levels assumes."""
         return Section(self.rects, self.splits, self.fits, self.rollers_z_mm, self.refine_lines,
                        self.raceway_points, self.size_mm * factor, self.fit_size_mm * factor,
-                       self.corner_size_mm * factor ** 2, self.grooves)
+                       self.corner_size_mm * factor ** 2,
+                       tuple(replace(g, size_mm=g.size_mm * factor) for g in self.grooves))
 
     def groove_of(self, part: str) -> "Groove | None":
         """The groove cut into `part`, or None (a rectangular ring, or not a ring)."""

@@ -120,8 +120,8 @@ class Mesh:
     corner_size_mm: float = 0.0      # size at the ends of fits and clamped faces
     target_error: float = 1e-3       # relative discretisation error of fit pressures and
     #                                  groove-centre shifts the sizes are chosen for
-    ring_section: str = "grooved"    # "grooved": rings with their raceway grooves and lands;
-    #                                  "rectangle": the effective ring sections (studies/model/stack.py)
+    ring_section: str = "rectangle"  # "rectangle": the effective ring sections; "grooved": rings
+    #                                  with their raceway grooves and lands (studies/model/stack.py)
 
 
 @dataclass(frozen=True)
@@ -186,7 +186,7 @@ SECTIONS = {
                                   "hysteresis_loss_factor": 0.0, "load_term": "coulomb"}),
     "limits": (Limits, {"max_contact_pressure_MPa": math.inf, "min_static_safety": 0.0}),
     "mesh": (Mesh, {"size_mm": 0.0, "fit_size_mm": 0.0, "corner_size_mm": 0.0,
-                    "target_error": 1e-3, "ring_section": "grooved"}),
+                    "target_error": 1e-3, "ring_section": "rectangle"}),
     "operating": (Operating, {"T_min_C": -40.0, "T_max_C": 80.0}),
 }
 OPTIONAL_SECTIONS = {"limits", "mesh", "operating"}
@@ -466,13 +466,14 @@ def _check_grooved(a: Assembly, g: BearingGeometry, need) -> None:
              f"width {b.width_mm:g} mm")
         need(abs(groove_centre_radius_mm(g, side) - d_land / 2) < f * g.Dw_mm,
              f"bearing.{side}_land_diameter_mm", "the land does not meet the groove")
-    for key, cond, msg in (
+    need(d_i < b.pitch_diameter_mm < d_o, "bearing.inner_land_diameter_mm",
+         f"the lands ({d_i:.3f} and {d_o:.3f} mm) must lie either side of the pitch diameter "
+         f"({b.pitch_diameter_mm:g} mm)")
+    for key, cond, msg in (   # the faces that clamp one ring must not reach the other ring
             ("shaft.shoulder_diameter_mm", s.shoulder_diameter_mm < d_o, "outer ring land"),
             ("nut.diameter_mm", a.nut.diameter_mm < d_o, "outer ring land"),
             ("housing.shoulder_diameter_mm", h.shoulder_diameter_mm > d_i, "inner ring land"),
-            ("cover.diameter_mm", a.cover.diameter_mm > d_i, "inner ring land"),
-            ("inner_spacer.diameter_mm", a.inner_spacer.diameter_mm <= d_i, "inner ring land"),
-            ("outer_spacer.diameter_mm", a.outer_spacer.diameter_mm >= d_o, "outer ring land")):
+            ("cover.diameter_mm", a.cover.diameter_mm > d_i, "inner ring land")):
         need(cond, key, f"overlaps the {msg} diameter ({d_i if 'inner' in msg else d_o:.3f} mm) "
                         "of the grooved ring section (or set mesh.ring_section = \"rectangle\")")
 

@@ -83,6 +83,8 @@ SIZE_PER_L, FIT_PER_L, CORNER_PER_L = 3.0, 0.75, 0.05
 TARGET_RANGE = (3e-4, 1e-2)
 #: the default target: 0.1 %
 DEFAULT_TARGET = 1e-3
+#: level factor of grooved ring sections (`[mesh] ring_section = "grooved"`; see the docstring)
+GROOVED_LEVEL = 0.4
 
 
 @dataclass(frozen=True)
@@ -113,7 +115,7 @@ def mesh_sizes(a: Assembly) -> MeshSizes:
     target_error (each rule size kept below the given larger ones: corner <= fit <= size)."""
     m = a.mesh
     L = characteristic_length_mm(a)
-    f = level_for_target(m.target_error)
+    f = level_for_target(m.target_error) * (GROOVED_LEVEL if m.ring_section == "grooved" else 1.0)
     size = m.size_mm or min(SIZE_PER_L * L * f, a.bearing.width_mm)
     fit = m.fit_size_mm or min(FIT_PER_L * L * f, L, size)
     corner = m.corner_size_mm or min(CORNER_PER_L * L * f ** 2, fit)

@@ -25,6 +25,9 @@ from studies.model.mesh_size import mesh_sizes
 #: half-width (deg, at the groove centre) of the groove arc about the free contact angle whose
 #: displaced points give the groove-centre shift, and the number of points on it
 GROOVE_FIT_HALF_ANGLE_DEG, GROOVE_FIT_POINTS = 30.0, 13
+#: element size along a groove arc per fit size: the chords of the arc are the grooved section's
+#: geometric error (sagitta h^2 / 8R), which converges at order 2 in h
+GROOVE_SIZE_PER_FIT = 0.5
 
 
 def ball_centres_rz_mm(a: Assembly) -> list[tuple[float, float]]:
@@ -34,7 +37,7 @@ def ball_centres_rz_mm(a: Assembly) -> list[tuple[float, float]]:
     return [(a.bearing.pitch_diameter_mm / 2, sum(z[f"inner_ring_{J}"]) / 2) for J in "AB"]
 
 
-def grooves_of(a: Assembly) -> tuple[Groove, ...]:
+def grooves_of(a: Assembly, size_mm: float = 0.0) -> tuple[Groove, ...]:
     """The four raceway grooves (inner_ring_A, inner_ring_B, outer_ring_A, outer_ring_B) of the
     assembly's stack: centres at the ball centre of each bearing (mid-width of its rings) plus the
     free-contact-line offsets (each ring's own mid-width taken as its ball-centre plane, as the
@@ -59,7 +62,7 @@ def grooves_of(a: Assembly) -> tuple[Groove, ...]:
             pts = np.array([[rc], [zc]]) + (1 + 1e-6) * (groove_point_rz_mm(g, side, zb, s, phi)
                                                        - np.array([[rc], [zc]]))
             out.append(Groove(ring, float(rc), float(zc), f * g.Dw_mm, tuple(float(p) for p in phi),
-                              tuple((float(r), float(zz)) for r, zz in pts.T)))
+                              tuple((float(r), float(zz)) for r, zz in pts.T), size_mm))
     return tuple(out)
 
 
@@ -142,7 +145,7 @@ def section_from_assembly(a: Assembly) -> Section:
     refine = tuple((f.r_mm, f.z0_mm, f.r_mm, f.z1_mm) for f in fits)
     if grooved:     # raceway point: the middle of the fitted arc (the free contact point unless a
         #             land clips the arc)
-        grooves = grooves_of(a)
+        grooves = grooves_of(a, GROOVE_SIZE_PER_FIT * mesh_sizes(a).fit_size_mm)
         raceways = {gr.part: gr.points_rz_mm[len(gr.points_rz_mm) // 2] for gr in grooves}
     else:
         grooves = ()
