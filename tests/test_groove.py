@@ -25,6 +25,11 @@ from studies.model.config import ConfigError, assembly_from_dict, load_shipped
 from studies.model.stack import ball_centres_rz_mm, grooves_of, section_from_assembly
 
 
+def grooved(name):
+    a = load_shipped(name)
+    return dataclasses.replace(a, mesh=dataclasses.replace(a.mesh, ring_section="grooved"))
+
+
 def _ring_section(asm, ring="inner_ring_A", size=0.5):
     """One grooved ring of `asm`, free (no fits, no neighbours)."""
     full = section_from_assembly(asm)
@@ -66,7 +71,7 @@ def test_circle_fit_weights_exact_for_translation_and_dilation():
 def test_meshed_section_area_is_rectangles_minus_groove_segments():
     """Area of the triangles = sum of rectangles - the circular segments the grooves cut, up to
     the chord error of the polygonal arc (segment of each boundary edge h: h^3 / (12 R))."""
-    sec = section_from_assembly(load_shipped("seed000"))
+    sec = section_from_assembly(grooved("seed000"))
     m = section_mesh(sec)
     p, t = m.points, m.triangles
     area = 0.5 * np.abs((p[0, t[1]] - p[0, t[0]]) * (p[1, t[2]] - p[1, t[0]])
@@ -88,7 +93,7 @@ def test_meshed_section_area_is_rectangles_minus_groove_segments():
 
 
 def test_rigid_translation_moves_fitted_centre_by_that_translation():
-    sec, g = _ring_section(load_shipped("seed000"))
+    sec, g = _ring_section(grooved("seed000"))
     model = build_model(sec)
     t = np.array([2.0e-3, -1.0e-3])
     u = np.tile(t, model.ndofs // 2)                  # interleaved (u_r, u_z) per node
@@ -102,7 +107,7 @@ def test_uniform_thermal_expansion_of_free_ring_moves_centre_by_alpha_dT_rc(ring
     """Free grooved ring heated by dT: u = theta (x - x_fixed) with theta = alpha dT (u_r = 0 on
     no axis here: the ring is free radially; one u_z is held at its lowest node). The fitted
     groove centre moves by theta r_c radially and theta (z_c - z_fixed) axially."""
-    asm = load_shipped("seed000")
+    asm = grooved("seed000")
     sec, g = _ring_section(asm, ring)
     model = build_model(sec)
     theta = get_material(asm.bearing.ring_material).thermal_strain(100.0, 20.0)
@@ -116,7 +121,7 @@ def test_uniform_thermal_expansion_of_free_ring_moves_centre_by_alpha_dT_rc(ring
 
 
 def test_grooves_follow_the_bearing_geometry_and_the_section_key_changes_with_them():
-    a = load_shipped("seed000")
+    a = grooved("seed000")
     geo = BearingGeometry.from_spec(a.bearing)
     d_i, d_o, _ = land_diameters_mm(a.bearing)
     sec = section_from_assembly(a)
