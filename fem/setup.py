@@ -35,8 +35,9 @@ if TYPE_CHECKING:
     from fem.model import StackModel
     from fem.solver import FitSolver
 
-#: version of the stored layout and of the computation behind it
-FORMAT = 1
+#: version of the stored layout and of the computation behind it (2: loops of ties at
+#: ring corners of bonded fits no longer fix those corners axially, fem/solver.py)
+FORMAT = 2
 
 
 class SetupError(RuntimeError):

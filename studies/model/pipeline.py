@@ -38,7 +38,7 @@ from studies.model.inputs import NO_CTE_SLOPE, PhysicsInputs
 FE_PART_GROUP = {"shaft": "shaft", "nut": "shaft", "inner_ring_A": "inner_ring",
                  "inner_ring_B": "inner_ring", "inner_spacer": "spacer", "outer_spacer": "spacer",
                  "outer_ring_A": "outer_ring", "outer_ring_B": "outer_ring", "housing": "housing",
-                 "cover": "housing"}
+                 "cover": "housing", "sleeve": "housing", "cartridge": "housing"}
 RINGS = ("inner_ring_A", "inner_ring_B", "outer_ring_A", "outer_ring_B")
 
 class ModelError(ValueError):
@@ -226,9 +226,13 @@ class Pipeline:
         return resolve_interference_um(inputs, *self.asm.mean_fits_um())
 
     def deltas_mm(self, inner_um: np.ndarray, outer_um: np.ndarray) -> np.ndarray:
-        """(n, n_fits) radial interference (mm) per FE fit."""
-        return np.column_stack([(inner_um if f.key == "inner" else outer_um) / 2000.0
-                                for f in self.section.fits])
+        """(n, n_fits) radial interference (mm) per FE fit (a sleeve's or cartridge's fit: its
+        `[fits]` value on every row)."""
+        n = np.broadcast(inner_um, outer_um).shape
+        um = {"inner": inner_um, "outer": outer_um,
+              "sleeve": np.full(n, self.asm.fits.sleeve_interference_um),
+              "cartridge": np.full(n, self.asm.fits.cartridge_interference_um)}
+        return np.column_stack([um[f.key] / 2000.0 for f in self.section.fits])
 
     def fe(self, inputs: PhysicsInputs, direct: bool = False, remember: bool = True) -> FEState:
         """The FE answers of the rows (superposed, or direct solves). `remember`: keep the result
@@ -268,10 +272,11 @@ class Pipeline:
         dr = np.stack([centre[:, 0, 0] - centre[:, 2, 0], centre[:, 1, 0] - centre[:, 3, 0]])
         dz = np.stack([centre[:, 0, 1] - centre[:, 2, 1], centre[:, 1, 1] - centre[:, 3, 1]])
         a = self.asm
-        d_seat, d_bore = a.shaft.seat_diameter_mm, a.housing.bore_diameter_mm
+        d_seat, d_bore = a.shaft.seat_diameter_mm, a.outer_seat_diameter_mm
+        seat = ([n for n, _ in a.layers()] + ["housing"])[0]     # what the outer rings sit in
         interf = np.column_stack([
             inner_um + (theta[:, idx["shaft"]] - theta[:, idx["inner_ring_A"]]) * d_seat * 1e3,
-            outer_um + (theta[:, idx["outer_ring_A"]] - theta[:, idx["housing"]]) * d_bore * 1e3])
+            outer_um + (theta[:, idx["outer_ring_A"]] - theta[:, idx[seat]]) * d_bore * 1e3])
         return FEState(p, interf, dr, dz, probe[:, :8])
 
     def _centres(self, probe: np.ndarray, theta_rings: np.ndarray) -> np.ndarray:

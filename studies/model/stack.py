@@ -1,7 +1,8 @@
 """Assembly config -> the r-z section the FE meshes: where every part of the stack sits.
 
 The rotor (shaft, inner rings, inner spacer, nut) and the stator (housing, outer rings, outer
-spacer, cover) as named rectangles, the radial split lines (fits, sliding bores), the clamped
+spacer, cover, and an optional sleeve and cartridge between outer rings and housing) as named
+rectangles, the radial split lines (fits, sliding bores), the clamped
 faces and the raceway points; the element sizes from `studies.model.mesh_size`. `meshes/` knows
 only sections; this is the one place that reads an assembly to make one. Units: mm.
 
@@ -97,6 +98,16 @@ def section_from_assembly(a: Assembly) -> Section:
     else:
         r_iro, r_ori = b.inner_ring_outer_diameter_mm / 2, b.outer_ring_inner_diameter_mm / 2
     rings = b.ring_material
+    # sleeve / cartridge: cylinders from the bearing OD out to the housing bore, as long as the
+    # outer-ring stack; the outer rings sit in the innermost one. Their end faces share nodes
+    # with the housing shoulder and the cover (held there without slip: with bonded fits a
+    # sleeve of the housing's material is the housing itself); their bores and outsides are fits
+    layers = [name for name, _ in a.layers()]
+    r_od = a.outer_seat_diameter_mm / 2
+    r_layer = [r_od]
+    for _, layer in a.layers():
+        r_layer.append(r_layer[-1] + layer.radial_thickness_mm)
+    seat_of = (layers + ["housing"])          # the part each layer (and the rings) sits in
     rects = [
         Rect("shaft", r_bore, r_seat, -s.shoulder_width_mm, z_shaft_end, s.material),
         Rect("shaft", r_seat, s.shoulder_diameter_mm / 2, -s.shoulder_width_mm, 0.0, s.material),
@@ -107,19 +118,23 @@ def section_from_assembly(a: Assembly) -> Section:
         Rect("nut", r_seat, a.nut.diameter_mm / 2, *z["nut"], a.nut.material),
         Rect("housing", r_hb, r_ho, -h.shoulder_width_mm, z_house_end, h.material),
         Rect("housing", h.shoulder_diameter_mm / 2, r_hb, -h.shoulder_width_mm, 0.0, h.material),
-        Rect("outer_ring_A", r_ori, r_hb, *z["outer_ring_A"], rings),
-        Rect("outer_spacer", a.outer_spacer.diameter_mm / 2, r_hb, *z["outer_spacer"],
+        Rect("outer_ring_A", r_ori, r_od, *z["outer_ring_A"], rings),
+        Rect("outer_spacer", a.outer_spacer.diameter_mm / 2, r_od, *z["outer_spacer"],
              a.outer_spacer.material),
-        Rect("outer_ring_B", r_ori, r_hb, *z["outer_ring_B"], rings),
+        Rect("outer_ring_B", r_ori, r_od, *z["outer_ring_B"], rings),
         Rect("cover", a.cover.diameter_mm / 2, r_ho, *z["cover"], a.cover.material),
-    ]
+    ] + [Rect(name, r_layer[k], r_layer[k + 1], 0.0, z_house_end, layer.material)
+         for k, (name, layer) in enumerate(a.layers())]
+    outside = tuple(("housing", "cover") if p == "housing" else (p,) for p in seat_of)
     r_isp, r_osp = a.inner_spacer.diameter_mm / 2, a.outer_spacer.diameter_mm / 2
     zc = z["inner_ring_B"][0]
     splits = (
         Split("shaft_seat", "r", r_seat, 0.0, z["inner_ring_B"][1], ("shaft", "nut"),
               ("inner_ring_A", "inner_spacer", "inner_ring_B")),
-        Split("housing_bore", "r", r_hb, 0.0, z_house_end, ("outer_ring_A", "outer_spacer",
-                                                            "outer_ring_B"), ("housing", "cover")),
+        Split("housing_bore", "r", r_od, 0.0, z_house_end, ("outer_ring_A", "outer_spacer",
+                                                            "outer_ring_B"), outside[0]),
+        *[Split(f"{name}_outside", "r", r_layer[k + 1], 0.0, z_house_end, (name,), outside[k + 1])
+          for k, name in enumerate(layers)],
         Split("face_shaft_shoulder", "z", 0.0, r_seat, s.shoulder_diameter_mm / 2, ("shaft",),
               ("inner_ring_A",)),
         Split("face_inner_A_spacer", "z", B, r_seat, min(r_iro, r_isp), ("inner_ring_A",),
@@ -128,20 +143,22 @@ def section_from_assembly(a: Assembly) -> Section:
               ("inner_ring_B",)),
         Split("face_inner_B_nut", "z", z["nut"][0], r_seat, min(r_iro, a.nut.diameter_mm / 2),
               ("inner_ring_B",), ("nut",), a.nut.clamp == "rigid"),
-        Split("face_housing_shoulder", "z", 0.0, h.shoulder_diameter_mm / 2, r_hb, ("housing",),
+        Split("face_housing_shoulder", "z", 0.0, h.shoulder_diameter_mm / 2, r_od, ("housing",),
               ("outer_ring_A",)),
-        Split("face_outer_A_spacer", "z", B, max(r_ori, r_osp), r_hb, ("outer_ring_A",),
+        Split("face_outer_A_spacer", "z", B, max(r_ori, r_osp), r_od, ("outer_ring_A",),
               ("outer_spacer",)),
-        Split("face_outer_spacer_B", "z", z["outer_ring_B"][0], max(r_ori, r_osp), r_hb,
+        Split("face_outer_spacer_B", "z", z["outer_ring_B"][0], max(r_ori, r_osp), r_od,
               ("outer_spacer",), ("outer_ring_B",)),
-        Split("face_outer_B_cover", "z", z["cover"][0], max(r_ori, a.cover.diameter_mm / 2), r_hb,
+        Split("face_outer_B_cover", "z", z["cover"][0], max(r_ori, a.cover.diameter_mm / 2), r_od,
               ("outer_ring_B",), ("cover",), a.cover.clamp == "rigid"),
     )
     fits = tuple(
         [Fit(f"fit_inner_{j}", "shaft", f"inner_ring_{j}", r_seat, *z[f"inner_ring_{j}"], "inner")
          for j in "AB"]
-        + [Fit(f"fit_outer_{j}", f"outer_ring_{j}", "housing", r_hb, *z[f"outer_ring_{j}"], "outer")
-           for j in "AB"])
+        + [Fit(f"fit_outer_{j}", f"outer_ring_{j}", seat_of[0], r_od, *z[f"outer_ring_{j}"],
+               "outer") for j in "AB"]
+        + [Fit(f"fit_{name}", name, seat_of[k + 1], r_layer[k + 1], 0.0, z_house_end, name)
+           for k, name in enumerate(layers)])
     refine = tuple((f.r_mm, f.z0_mm, f.r_mm, f.z1_mm) for f in fits)
     if grooved:     # raceway point: the middle of the fitted arc (the free contact point unless a
         #             land clips the arc)
