@@ -128,3 +128,27 @@ def test_sleeve_and_cartridge_together_mesh_and_report_their_fits():
     assert pl.setup.fit_names[-2:] == ("fit_sleeve", "fit_cartridge")
     out = pl.run(table_inputs(a, {"T_ambient_C": np.array([20.0])}))
     assert out["fit_pressure_sleeve_MPa"][0] > 0          # 3 um interference: closed
+
+
+def test_multilayer_pressures_vectorised_equal_the_scalar_solution():
+    """Rows of interferences through open, closed and mixed states: the vectorised solver gives
+    `multilayer_fit`'s pressures row by row."""
+    radii, E, nu = (10.0, 21.0, 24.0, 30.0), (2.0e5, 1.97e5, 7.0e4), (0.3, 0.27, 0.33)
+    d = np.array([[6.0, 4.0], [6.0, -6.0], [-3.0, 5.0], [-1.0, -1.0], [8.0, -0.5]])
+    p = lame.multilayer_pressures_MPa(radii, E, nu, d)
+    for row, got in zip(d, p):
+        assert got == pytest.approx(lame.multilayer_fit(radii, E, nu, row).pressures_MPa,
+                                    rel=1e-12, abs=1e-12)
+
+
+def test_sleeve_fit_pressures_have_their_multilayer_lame_neighbours():
+    """The closed-form neighbours `simulate` writes with a sleeve (17-4PH, +4 um in the 6061
+    housing of the template): the three-layer Lamé solution opens and closes the sleeve fit
+    where the FE contact does: closed at 20 C, open at 60 C (the aluminium grows away by
+    (23.6 - 10.8)e-6 /K x 40 K x 48 mm = 25 um)."""
+    a = assembly_from_dict(_with_sleeve(_template(), 3.0, "17-4PH", sleeve_interference_um=4.0))
+    out = Pipeline(a, cache=False).run(table_inputs(a, {"T_ambient_C": np.array([20.0, 60.0])}))
+    for k in ("outer", "sleeve"):
+        assert np.all(np.isfinite(out[f"fit_pressure_{k}_lame_MPa"])), k
+    fe, cf = out["fit_pressure_sleeve_MPa"], out["fit_pressure_sleeve_lame_MPa"]
+    assert fe[0] > 0 and cf[0] > 0 and fe[1] == 0 and cf[1] == 0, (fe, cf)

@@ -346,14 +346,42 @@ class Pipeline:
         u_lame = lame.fit_displacement_mm(r_race, "outer", **inner,
                                           interference_um=fe.interference_um[:, 0]) + th_ring * r_race
         di, do = fe.interference_um[:, 0], fe.interference_um[:, 1]
+        if a.layers():      # ring / sleeve / cartridge / housing: the multi-layer Lamé solution
+            p_out = {k: self._layers_lame_MPa(fe, inputs, k) for k in ("plane_stress", "plane_strain")}
+        else:
+            p_out = {k: np.atleast_1d(lame.fit_pressure_MPa(**outer, interference_um=do,
+                                                            assumption=k))[:, None]
+                     for k in ("plane_stress", "plane_strain")}
         return {"fit_pressure_inner_lame_MPa": lame.fit_pressure_MPa(**inner, interference_um=di),
                 "fit_pressure_inner_lame_plane_strain_MPa":
                     lame.fit_pressure_MPa(**inner, interference_um=di, assumption="plane_strain"),
-                "fit_pressure_outer_lame_MPa": lame.fit_pressure_MPa(**outer, interference_um=do),
-                "fit_pressure_outer_lame_plane_strain_MPa":
-                    lame.fit_pressure_MPa(**outer, interference_um=do, assumption="plane_strain"),
+                "fit_pressure_outer_lame_MPa": p_out["plane_stress"][:, 0],
+                "fit_pressure_outer_lame_plane_strain_MPa": p_out["plane_strain"][:, 0],
+                **{f"fit_pressure_{n}_lame_MPa": p_out["plane_stress"][:, k + 1]
+                   for k, (n, _) in enumerate(a.layers())},
                 "raceway_u_r_inner_A_um": 1e3 * fe.raceway_u_mm[:, 0],
                 "raceway_u_r_inner_A_lame_um": 1e3 * u_lame}
+
+    def _layers_lame_MPa(self, fe: FEState, inputs: PhysicsInputs, assumption: str) -> np.ndarray:
+        """(n, 1 + n_layers) interface pressures (MPa) of the concentric outer ring (effective
+        section) / sleeve / cartridge / housing (`lame.multilayer_pressures_MPa`), at the rows'
+        free interferences: the outer fit's `interference_um[:, 1]`, each layer's `[fits]` value
+        plus its thermal mismatch with the part outside it (thermal strain x diameter)."""
+        a, b = self.asm, self.asm.bearing
+        parts = ["outer_ring_A"] + [n for n, _ in a.layers()] + ["housing"]
+        radii = [b.outer_ring_inner_diameter_mm / 2, b.outside_diameter_mm / 2]
+        for _, layer in a.layers():
+            radii.append(radii[-1] + layer.radial_thickness_mm)
+        radii.append(a.housing.outer_diameter_mm / 2)
+        theta = self.thetas(inputs)
+        idx = {p: i for i, p in enumerate(self.part_names)}
+        d_um = [fe.interference_um[:, 1]]
+        for k, (name, _) in enumerate(a.layers()):
+            d_um.append(getattr(a.fits, f"{name}_interference_um")
+                        + (theta[:, idx[name]] - theta[:, idx[parts[k + 2]]]) * 2 * radii[k + 2] * 1e3)
+        mats = [self.materials[p] for p in parts]
+        return lame.multilayer_pressures_MPa(radii, [m.E_MPa for m in mats], [m.nu for m in mats],
+                                             np.column_stack(d_um), assumption)
 
     # ------------------------------------------------------------------ whole chain
     def reference_inputs(self, inputs: PhysicsInputs) -> PhysicsInputs:

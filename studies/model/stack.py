@@ -99,15 +99,18 @@ def section_from_assembly(a: Assembly) -> Section:
         r_iro, r_ori = b.inner_ring_outer_diameter_mm / 2, b.outer_ring_inner_diameter_mm / 2
     rings = b.ring_material
     # sleeve / cartridge: cylinders from the bearing OD out to the housing bore, as long as the
-    # outer-ring stack; the outer rings sit in the innermost one. Their end faces share nodes
-    # with the housing shoulder and the cover (held there without slip: with bonded fits a
-    # sleeve of the housing's material is the housing itself); their bores and outsides are fits
+    # outer-ring stack; the outer rings sit in the innermost one; their bores and outsides are
+    # fits. Their end faces on the housing shoulder and the cover are clamped faces like the
+    # rings' (u_z tied, sliding radially) with frictionless fits, and tied (shared nodes) with
+    # bonded fits: every contact of the part bonded (a bonded sleeve of the housing's material
+    # is then the housing itself)
     layers = [name for name, _ in a.layers()]
     r_od = a.outer_seat_diameter_mm / 2
     r_layer = [r_od]
     for _, layer in a.layers():
         r_layer.append(r_layer[-1] + layer.radial_thickness_mm)
     seat_of = (layers + ["housing"])          # the part each layer (and the rings) sits in
+    sliding = layers if a.fits.contact == "frictionless" else []
     rects = [
         Rect("shaft", r_bore, r_seat, -s.shoulder_width_mm, z_shaft_end, s.material),
         Rect("shaft", r_seat, s.shoulder_diameter_mm / 2, -s.shoulder_width_mm, 0.0, s.material),
@@ -143,14 +146,14 @@ def section_from_assembly(a: Assembly) -> Section:
               ("inner_ring_B",)),
         Split("face_inner_B_nut", "z", z["nut"][0], r_seat, min(r_iro, a.nut.diameter_mm / 2),
               ("inner_ring_B",), ("nut",), a.nut.clamp == "rigid"),
-        Split("face_housing_shoulder", "z", 0.0, h.shoulder_diameter_mm / 2, r_od, ("housing",),
-              ("outer_ring_A",)),
+        Split("face_housing_shoulder", "z", 0.0, h.shoulder_diameter_mm / 2, r_hb, ("housing",),
+              ("outer_ring_A", *sliding)),
         Split("face_outer_A_spacer", "z", B, max(r_ori, r_osp), r_od, ("outer_ring_A",),
               ("outer_spacer",)),
         Split("face_outer_spacer_B", "z", z["outer_ring_B"][0], max(r_ori, r_osp), r_od,
               ("outer_spacer",), ("outer_ring_B",)),
-        Split("face_outer_B_cover", "z", z["cover"][0], max(r_ori, a.cover.diameter_mm / 2), r_od,
-              ("outer_ring_B",), ("cover",), a.cover.clamp == "rigid"),
+        Split("face_outer_B_cover", "z", z["cover"][0], max(r_ori, a.cover.diameter_mm / 2), r_hb,
+              ("outer_ring_B", *sliding), ("cover",), a.cover.clamp == "rigid"),
     )
     fits = tuple(
         [Fit(f"fit_inner_{j}", "shaft", f"inner_ring_{j}", r_seat, *z[f"inner_ring_{j}"], "inner")
