@@ -164,3 +164,32 @@ def test_bad_ring_section_and_grooved_geometry_are_one_line():
         assembly_from_dict(raw, "x.toml")
     raw["mesh"]["ring_section"] = "rectangle"         # the effective sections do not care
     assembly_from_dict(raw, "x.toml")
+
+
+def test_grooved_pipeline_superposed_equals_direct_and_fits_its_own_field():
+    """seed000 grooved (coarse target): the superposed groove-centre shifts equal a direct FE
+    solve per row, and equal the circle fitted to that row's full displacement field at the
+    groove points (fem.post.circle_centre_weights on the field, not on the probes)."""
+    from studies.model.pipeline import Pipeline, RINGS, table_inputs
+
+    a = grooved("seed000")
+    a = dataclasses.replace(a, mesh=dataclasses.replace(a.mesh, target_error=1e-2))
+    pl = Pipeline(a, cache=False)
+    inp = table_inputs(a, {"T_ambient_C": np.array([-60.0, 80.0])})
+    sup, direct = pl.fe(inp), pl.fe(inp, direct=True)
+    scale = np.abs(direct.dr_mm).max()
+    assert np.abs(sup.dr_mm - direct.dr_mm).max() <= 1e-8 * scale
+    assert np.abs(sup.dz_mm - direct.dz_mm).max() <= 1e-8 * scale
+    f = pl.field(inp, row=1)
+    basis = pl.model.sbasis
+    centre = []
+    for ring in RINGS:
+        g = pl.section.groove_of(ring)
+        pts = np.array(g.points_rz_mm).T
+        ur = basis.interpolator(f.u_mm[0::2])(pts)
+        uz = basis.interpolator(f.u_mm[1::2])(pts)
+        W = circle_centre_weights(pts, (g.r_mm, g.z_mm))
+        centre.append(W @ np.column_stack([ur, uz]).ravel())
+    centre = np.array(centre)
+    assert centre[0, 0] - centre[2, 0] == pytest.approx(sup.dr_mm[0, 1], rel=1e-9)
+    assert centre[1, 1] - centre[3, 1] == pytest.approx(sup.dz_mm[1, 1], rel=1e-9)
