@@ -166,7 +166,7 @@ def test_default_target_is_met_on_every_assembly(name):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("name", ["seed000", "seed001"])
+@pytest.mark.parametrize("name", list(ASSEMBLIES))
 def test_default_target_is_met_on_grooved_sections(name):
     """0.1 % on grooved ring sections (sized at GROOVED_LEVEL x the rule's level)."""
     asm = load_assembly(ASSEMBLIES[name])
