@@ -358,27 +358,10 @@ def multilayer_fit(radii_mm, E_MPa, nu, interferences_um,
     v = np.asarray(nu, float)
     d = np.asarray(interferences_um, float)
     n_layers = len(R) - 1
-    if n_layers < 2 or len(E) != n_layers or len(v) != n_layers or len(d) != n_layers - 1:
+    if len(d) != n_layers - 1:
         raise ValueError("need N+1 radii, N moduli and Poisson ratios, N-1 interferences (N >= 2)")
-    if R[0] < 0 or np.any(np.diff(R) <= 0):
-        raise ValueError("radii must be >= 0 and strictly increasing")
+    M = multilayer_matrix(R, E, v, assumption)
     n = n_layers - 1
-    M = np.zeros((n, n))
-
-    def u(layer, r, p_in, p_out):
-        return radial_displacement_mm(r, R[layer], R[layer + 1], E[layer], v[layer], p_in, p_out,
-                                      assumption)
-
-    for i in range(1, n_layers):          # interface i at R[i], row i-1
-        r = R[i]
-        # outer member (layer i): inner face pressure p_i, outer face p_{i+1}
-        M[i - 1, i - 1] += u(i, r, 1.0, 0.0)
-        if i + 1 < n_layers:
-            M[i - 1, i] += u(i, r, 0.0, 1.0)
-        # inner member (layer i-1): outer face p_i, inner face p_{i-1}
-        M[i - 1, i - 1] -= u(i - 1, r, 0.0, 1.0)
-        if i - 1 >= 1:
-            M[i - 1, i - 2] -= u(i - 1, r, 1.0, 0.0)
     q = 0.5 * d / UM_PER_MM
     q_tol = 1e-12 * max(float(np.max(np.abs(q))), 1e-30)
     p_tol = q_tol / float(np.min(np.diag(M)))
@@ -401,6 +384,63 @@ def multilayer_fit(radii_mm, E_MPa, nu, interferences_um,
         raise RuntimeError("multilayer_fit: no consistent open/closed set found")
     p, closed, gap = best
     return MultilayerFit(R, E, v, d, assumption, p, closed, gap)
+
+
+def multilayer_pressures_MPa(radii_mm, E_MPa, nu, interferences_um,
+                             assumption: Assumption = "plane_stress") -> np.ndarray:
+    """`multilayer_fit`'s interface pressures (MPa) for many states at once: interferences_um
+    (n_rows, N-1) diametral per interface, geometry and materials shared. Returns (n_rows, N-1).
+    The same complementarity problem and enumeration of closed sets (most closed first), each
+    row taking the first consistent set."""
+    M = multilayer_matrix(radii_mm, E_MPa, nu, assumption)
+    n = M.shape[0]
+    q = 0.5 * np.atleast_2d(np.asarray(interferences_um, float)) / UM_PER_MM
+    q_tol = 1e-12 * np.maximum(np.abs(q).max(axis=1), 1e-30)
+    p_tol = q_tol / float(np.min(np.diag(M)))
+    out = np.full(q.shape, np.nan)
+    todo = np.ones(q.shape[0], bool)
+    for k in range(n, -1, -1):
+        for S in itertools.combinations(range(n), k):
+            S = list(S)
+            p = np.zeros_like(q)
+            if S:
+                p[:, S] = np.linalg.solve(M[np.ix_(S, S)], q[:, S].T).T
+            w = p @ M.T - q
+            ok = todo & np.all(p >= -p_tol[:, None], axis=1) & np.all(w >= -q_tol[:, None], axis=1)
+            out[ok] = np.maximum(p[ok], 0.0)
+            todo &= ~ok
+    return out
+
+
+def multilayer_matrix(radii_mm, E_MPa, nu, assumption: Assumption = "plane_stress") -> np.ndarray:
+    """(N-1, N-1) matrix M of `multilayer_fit`: M[i-1, j-1] = d(u_i - u_{i-1})(R_i) / d p_j in
+    mm/MPa, the opening of interface i per unit pressure at interface j (Lamé, module docstring)."""
+    R = np.asarray(radii_mm, float)
+    E = np.asarray(E_MPa, float)
+    v = np.asarray(nu, float)
+    n_layers = len(R) - 1
+    if n_layers < 2 or len(E) != n_layers or len(v) != n_layers:
+        raise ValueError("need N+1 radii, N moduli and Poisson ratios, N-1 interferences (N >= 2)")
+    if R[0] < 0 or np.any(np.diff(R) <= 0):
+        raise ValueError("radii must be >= 0 and strictly increasing")
+    n = n_layers - 1
+    M = np.zeros((n, n))
+
+    def u(layer, r, p_in, p_out):
+        return radial_displacement_mm(r, R[layer], R[layer + 1], E[layer], v[layer], p_in, p_out,
+                                      assumption)
+
+    for i in range(1, n_layers):          # interface i at R[i], row i-1
+        r = R[i]
+        # outer member (layer i): inner face pressure p_i, outer face p_{i+1}
+        M[i - 1, i - 1] += u(i, r, 1.0, 0.0)
+        if i + 1 < n_layers:
+            M[i - 1, i] += u(i, r, 0.0, 1.0)
+        # inner member (layer i-1): outer face p_i, inner face p_{i-1}
+        M[i - 1, i - 1] -= u(i - 1, r, 0.0, 1.0)
+        if i - 1 >= 1:
+            M[i - 1, i - 2] -= u(i - 1, r, 1.0, 0.0)
+    return M
 
 
 def _check_radii(a, c, b) -> None:

@@ -72,12 +72,22 @@ def scale_bar_mm(extent_mm: float) -> float:
     return float(min((m * 10 ** k for m in (1, 2, 5)), key=lambda v: abs(v - target)))
 
 
+def ball_outline_rz_mm(r_mm: float, z_mm: float, diameter_mm: float, n: int = 96) -> np.ndarray:
+    """(n + 1, 2) closed polyline (r, z) in mm: the circle of a ball of the given diameter about
+    its centre in the r-z plane (first point repeated at the end)."""
+    t = np.linspace(0.0, 2 * np.pi, n + 1)
+    return np.column_stack([r_mm + 0.5 * diameter_mm * np.cos(t), z_mm + 0.5 * diameter_mm * np.sin(t)])
+
+
 def render_fields(out_dir: Path, stem: str, model: StackModel, u: np.ndarray,
                   cell_data: dict[str, np.ndarray], title: str,
-                  T_vertex_C: np.ndarray | None = None, exaggeration: float | None = None) -> list[Path]:
+                  T_vertex_C: np.ndarray | None = None, exaggeration: float | None = None,
+                  balls_rz_d_mm: tuple[tuple[float, float, float], ...] = ()) -> list[Path]:
     """One PNG per field: temperature (if given), displacement magnitude on the deformed shape
     (the exaggeration factor is printed in the title), and every cell-data stress field. Each
-    image names the parts on the section and carries a scale bar in mm under it."""
+    image names the parts on the section and carries a scale bar in mm under it. balls_rz_d_mm:
+    (r, z, diameter) in mm of each bearing's ball, drawn as a circle at its nominal centre (the
+    balls are analytic, not meshed)."""
     import pyvista as pv
 
     pv.OFF_SCREEN = True
@@ -115,6 +125,10 @@ def render_fields(out_dir: Path, stem: str, model: StackModel, u: np.ndarray,
         outline = _grid(model, pts).extract_feature_edges(boundary_edges=True, feature_edges=False,
                                                           manifold_edges=False)
         p.add_mesh(outline, color="black", line_width=1)
+        for r, z, d in balls_rz_d_mm:
+            ring = ball_outline_rz_mm(r, z, d)
+            p.add_mesh(pv.lines_from_points(np.column_stack([ring, np.full(len(ring), 0.01 * extent)])),
+                       color="black", line_width=2)
         where, names = part_label_points(model, pts)
         p.add_point_labels(np.column_stack([where, np.full(len(where), 0.01 * extent)]), names,
                            font_size=11, point_size=1, shape_opacity=0.6, always_visible=True,

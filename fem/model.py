@@ -50,7 +50,11 @@ def unzip(points: np.ndarray, tris: np.ndarray, part_of: np.ndarray, section: Se
 
 
 def nodes_on_line(x: np.ndarray, s) -> np.ndarray:
-    """Indices of the points x (2, n) on a split line."""
+    """Indices of the points x (2, n) on a split line (axis "arc": on the circle about
+    (at_mm, lo_mm) of radius hi_mm, a groove of `meshes.section.boundary_lines`)."""
+    if s.axis == "arc":
+        d = np.hypot(x[0] - s.at_mm, x[1] - s.lo_mm)
+        return np.flatnonzero(np.abs(d - s.hi_mm) < TOL_MM * (1 + s.hi_mm))
     i, j = (0, 1) if s.axis == "r" else (1, 0)
     return np.flatnonzero((np.abs(x[i] - s.at_mm) < TOL_MM * (1 + abs(s.at_mm)))
                           & (x[j] >= s.lo_mm - TOL_MM) & (x[j] <= s.hi_mm + TOL_MM))

@@ -37,8 +37,10 @@ if TYPE_CHECKING:
     from fem.model import StackModel
     from fem.solver import FitSolver
 
-#: version of the stored layout and of the computation behind it
-FORMAT = 2          # 2: a centrifugal load column (omega^2) after the part thermal strains
+#: version of the stored layout and of the computation behind it (2: a centrifugal load column
+#: (omega^2) after the part thermal strains; 3: loops of ties at ring corners of bonded fits no
+#: longer fix those corners axially, fem/solver.py)
+FORMAT = 3
 
 
 class SetupError(RuntimeError):

@@ -110,14 +110,11 @@ class FitSolver:
         dir_mask[m.dirichlet] = True
         keep = ~dir_mask[slaves]
         masters, slaves = masters[keep], slaves[keep]
-        # a master may itself be tied to another DOF (a chain of clamped faces): follow it
-        to = np.arange(N)
-        to[slaves] = masters
-        for _ in range(8):
-            nxt = to[masters]
-            if np.array_equal(nxt, masters):
-                break
-            masters = nxt
+        # ties form groups of DOFs that move together: chains of clamped faces, and closed loops
+        # where a bonded fit and a clamped face meet at a corner (ring corner on a shoulder:
+        # each DOF the other's slave). One DOF per group carries it: a fixed one if the group
+        # holds one (the group is then fixed), else its lowest DOF.
+        slaves, masters = _tie_representatives(N, masters, slaves, dir_mask)
         is_free = ~dir_mask
         is_free[slaves] = False
         free = np.flatnonzero(is_free)
@@ -387,6 +384,26 @@ def load_columns(theta: np.ndarray, omega2_rad2_s2=None) -> np.ndarray:
 def _unit_loads(m: "StackModel") -> np.ndarray:
     """(ndofs, n_parts + 1): the load vector of every load column (see `Condensed`)."""
     return np.column_stack([m.unit_loads, m.spin_load])
+
+
+def _tie_representatives(N: int, masters: np.ndarray, slaves: np.ndarray,
+                         fixed: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(slaves, representatives): every tied DOF but one per connected group of ties, each
+    with the DOF that carries its group (a fixed DOF of the group if any, else its lowest).
+    Connected groups by scipy.sparse.csgraph.connected_components; loops of ties are allowed."""
+    if slaves.size == 0:
+        return slaves, masters
+    g = sp.csr_matrix((np.ones(slaves.size), (masters, slaves)), shape=(N, N))
+    label = sp.csgraph.connected_components(g, directed=False)[1]
+    tied = np.unique(np.concatenate([masters, slaves]))
+    lab = label[tied]
+    # lowest key per group: fixed DOFs first (key -N + dof), then the lowest DOF
+    key = np.where(fixed[tied], tied - N, tied)
+    rep_key = np.full(label.max() + 1, np.iinfo(np.int64).max)
+    np.minimum.at(rep_key, lab, key)
+    rep = np.where(rep_key < 0, rep_key + N, rep_key)[lab]
+    other = tied != rep
+    return tied[other], rep[other]
 
 
 def _bonded_units_load(s: FitSolver) -> tuple[np.ndarray, np.ndarray]:

@@ -128,6 +128,7 @@ def _mesh_with_gmsh(section: Section, tmp: Path) -> None:
         gmsh.model.add("section")
         tags = [occ.addRectangle(r.r0_mm, r.z0_mm, 0.0, r.r1_mm - r.r0_mm, r.z1_mm - r.z0_mm)
                 for r in section.rects]
+        tags = _cut_grooves(occ, section, tags)
         occ.fragment([(2, t) for t in tags], [])
         occ.synchronize()
         parts = section.parts()
@@ -163,8 +164,10 @@ def _mesh_with_gmsh(section: Section, tmp: Path) -> None:
 
         corner = section.corner_size_mm
         gmsh.option.setNumber("Mesh.MeshSizeMax", section.size_mm)
-        gmsh.option.setNumber("Mesh.MeshSizeMin", min(corner or section.fit_size_mm,
-                                                      section.fit_size_mm))
+        gmsh.option.setNumber("Mesh.MeshSizeMin", min([corner or section.fit_size_mm,
+                                                       section.fit_size_mm]
+                                                      + [g.size_mm for g in section.grooves
+                                                         if g.size_mm > 0]))
         gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
         gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
         fine = [c for line in section.refine_lines for c in curves_on(*line)]
@@ -180,6 +183,18 @@ def _mesh_with_gmsh(section: Section, tmp: Path) -> None:
             field.setNumber(thr, "SizeMax", section.size_mm)
             field.setNumber(thr, "DistMin", 2 * section.fit_size_mm)
             field.setNumber(thr, "DistMax", 2 * section.fit_size_mm + 4 * section.size_mm)
+            fields.append(thr)
+        for g in section.grooves:            # the groove arc at its own size (its chords
+            arc = field.add("Distance")      # are the section's only geometric error)
+            field.setNumbers(arc, "CurvesList", _arc_curves(gmsh, g))
+            field.setNumber(arc, "Sampling", 200)
+            h = g.size_mm or section.fit_size_mm
+            thr = field.add("Threshold")
+            field.setNumber(thr, "InField", arc)
+            field.setNumber(thr, "SizeMin", h)
+            field.setNumber(thr, "SizeMax", section.size_mm)
+            field.setNumber(thr, "DistMin", 2 * h)
+            field.setNumber(thr, "DistMax", 2 * h + (section.size_mm - h) / CORNER_GRADE)
             fields.append(thr)
         if corner > 0:                       # graded towards the singular corners
             near = field.add("Distance")
@@ -207,6 +222,40 @@ def _mesh_with_gmsh(section: Section, tmp: Path) -> None:
         raise MeshError(f"gmsh failed to mesh the section: {exc}") from None
     finally:
         gmsh.finalize()
+
+
+def _cut_grooves(occ, section: Section, tags: list[int]) -> list[int]:
+    """The rectangle tags with every groove disc cut from its ring's (first) rectangle. The
+    disc must leave the ring one piece whose extent is the rectangle's (bore and faces whole)."""
+    tags = list(tags)
+    for g in section.grooves:
+        i = next(k for k, r in enumerate(section.rects) if r.part == g.part)
+        r = section.rects[i]
+        disk = occ.addDisk(g.r_mm, g.z_mm, 0.0, g.radius_mm, g.radius_mm)
+        out, _ = occ.cut([(2, tags[i])], [(2, disk)])
+        box = occ.getBoundingBox(*out[0]) if len(out) == 1 else None
+        tol = 1e-6 * (1 + r.r1_mm)
+        if box is None or not np.allclose([box[0], box[1], box[3], box[4]],
+                                          [r.r0_mm, r.z0_mm, r.r1_mm, r.z1_mm], atol=tol, rtol=0):
+            raise MeshError(f"the groove of {g.part} (centre r={g.r_mm:g}, z={g.z_mm:g} mm, radius "
+                            f"{g.radius_mm:g} mm) cuts through its ring's bore or side faces")
+        tags[i] = out[0][1]
+    return tags
+
+
+def _arc_curves(gmsh, g) -> list[int]:
+    """The curves of the meshed geometry lying on the groove circle of `g` (checked at both ends
+    and the middle of each curve's parameter range)."""
+    found = []
+    for _, c in gmsh.model.getEntities(1):
+        lo, hi = gmsh.model.getParametrizationBounds(1, c)
+        xyz = np.reshape(gmsh.model.getValue(1, c, [lo[0], 0.5 * (lo[0] + hi[0]), hi[0]]), (3, 3))
+        d = np.hypot(xyz[:, 0] - g.r_mm, xyz[:, 1] - g.z_mm)
+        if np.all(np.abs(d - g.radius_mm) < 1e-7 * (1 + g.radius_mm)):
+            found.append(c)
+    if not found:
+        raise MeshError(f"the groove of {g.part} is not a curve of the meshed section")
+    return found
 
 
 def _point_tags(gmsh, points: list[tuple[float, float]]) -> list[int]:

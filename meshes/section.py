@@ -1,6 +1,7 @@
 """The r-z section of an axisymmetric stack as named rectangles, before any meshing.
 
 A `Section` is pure data: rectangles (parts, each with a material and a sub-assembly), the
+raceway grooves cut into ring rectangles (`Groove`: a disc removed; none = rectangular rings), the
 radial lines along which the inner-side and outer-side parts are separated ("splits": fits and free
 sliding bores), the fits on them, roller supports, and the lines to refine. Everything not split is
 tied (shared mesh nodes): clamped ring/spacer/shoulder/nut/cover faces.
@@ -17,7 +18,7 @@ from __future__ import annotations
 
 import hashlib
 import json
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 
 
 
@@ -64,6 +65,22 @@ class Fit:
 
 
 @dataclass(frozen=True)
+class Groove:
+    """A raceway groove of a ring part: the disc of radius `radius_mm` about the groove curvature
+    centre (r_mm, z_mm) is cut from the part's rectangle (it must leave the bore and the side
+    faces whole). `fit_phi_deg`: angles (deg, at the centre, from the groove bottom) of the
+    groove-surface points whose displacements give the groove-centre shift (`fem.post.
+    circle_centre_weights`); `points_rz_mm` their (r, z) in mm (the same order)."""
+    part: str
+    r_mm: float
+    z_mm: float
+    radius_mm: float
+    fit_phi_deg: tuple[float, ...]
+    points_rz_mm: tuple[tuple[float, float], ...]
+    size_mm: float = 0.0             # element size along the groove arc; 0 = the fit size
+
+
+@dataclass(frozen=True)
 class Section:
     rects: tuple[Rect, ...]
     splits: tuple[Split, ...] = ()
@@ -74,6 +91,7 @@ class Section:
     size_mm: float = 1.0
     fit_size_mm: float = 0.25
     corner_size_mm: float = 0.0     # size at `corner_points()`, graded up to the others; 0 = none
+    grooves: tuple[Groove, ...] = ()  # raceway grooves cut from ring rectangles; () = rectangles
 
     def parts(self) -> list[str]:
         seen = []
@@ -93,6 +111,8 @@ class Section:
                            "splits": [asdict(s) for s in self.splits]}, sort_keys=True)
         if self.corner_size_mm > 0:          # (sections without corner grading keep their keys)
             data += json.dumps({"corner_size": self.corner_size_mm})
+        if self.grooves:                     # (rectangular sections keep their keys)
+            data += json.dumps({"grooves": [asdict(g) for g in self.grooves]}, sort_keys=True)
         return hashlib.sha256(data.encode()).hexdigest()[:16]
 
     def scaled(self, factor: float) -> "Section":
@@ -103,7 +123,12 @@ class Section:
         which is what a Richardson extrapolation over its levels assumes."""
         return Section(self.rects, self.splits, self.fits, self.rollers_z_mm, self.refine_lines,
                        self.raceway_points, self.size_mm * factor, self.fit_size_mm * factor,
-                       self.corner_size_mm * factor ** 2)
+                       self.corner_size_mm * factor ** 2,
+                       tuple(replace(g, size_mm=g.size_mm * factor) for g in self.grooves))
+
+    def groove_of(self, part: str) -> "Groove | None":
+        """The groove cut into `part`, or None (a rectangular ring, or not a ring)."""
+        return next((g for g in self.grooves if g.part == part), None)
 
     def corner_points(self) -> list[tuple[float, float]]:
         """(r, z) in mm of every end of a fit and of a split line (seats, bores, clamped faces),
@@ -141,14 +166,17 @@ def two_cylinder_section(r_inner_mm: float, r_fit_mm: float, r_outer_mm: float,
 
 def boundary_lines(section: Section) -> dict[str, tuple[str, float, float, float]]:
     """Named outer boundary lines of a stack section: (axis, at, lo, hi) like a `Split`.
-    Raceway lines are the ring surfaces facing the balls."""
+    Raceway lines are the ring surfaces facing the balls: of a grooved ring its groove arc, given
+    as ("arc", r_c, z_c, radius) (the circle about (r_c, z_c) in mm; `fem.model.nodes_on_line`)."""
     lines = {}
     by_part = {}
     for rc in section.rects:
         by_part.setdefault(rc.part, []).append(rc)
     for ring, rp in section.raceway_points.items():
         rc = by_part[ring][0]
-        lines[f"raceway_{ring}"] = ("r", rp[0], rc.z0_mm, rc.z1_mm)
+        g = section.groove_of(ring)
+        lines[f"raceway_{ring}"] = (("r", rp[0], rc.z0_mm, rc.z1_mm) if g is None
+                                    else ("arc", g.r_mm, g.z_mm, g.radius_mm))
     if "housing" in by_part:
         h = max(by_part["housing"], key=lambda r: r.r1_mm)
         lines["housing_outer"] = ("r", h.r1_mm, h.z0_mm, h.z1_mm)

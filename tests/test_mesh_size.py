@@ -163,3 +163,11 @@ def test_default_target_is_met_on_every_assembly(name):
     asm = load_assembly(ASSEMBLIES[name])
     case = _check_chosen_mesh(asm, DEFAULT_TARGET)
     assert case["levels"][0]["dofs"] < 25_000        # the 305-size pair had 64.5k DOF before
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", list(ASSEMBLIES))
+def test_default_target_is_met_on_grooved_sections(name):
+    """0.1 % on grooved ring sections (sized at GROOVED_LEVEL x the rule's level)."""
+    asm = load_assembly(ASSEMBLIES[name])
+    _check_chosen_mesh(with_mesh(asm, ring_section="grooved"), DEFAULT_TARGET)

@@ -75,3 +75,35 @@ def land_margin_deg(g: BearingGeometry, side: str, land_diameter_mm: float,
     f = g.f_i if side == "inner" else g.f_o
     half = np.degrees(np.asarray(a_mm, float) / (f * g.Dw_mm))
     return land_angle_deg(g, side, land_diameter_mm) - np.asarray(contact_angle_deg, float) - half
+
+
+def groove_centre_rz_mm(g: BearingGeometry, side: str, z_ball_mm: float,
+                        sign: float) -> tuple[float, float]:
+    """(r, z) in mm of a groove curvature centre of a bearing whose ball centre is at axial
+    position z_ball_mm, arrangement sign `sign` (+1/-1, `geometry.SIGNS`). Both centres lie on
+    the free contact line through the ball centre (Harris & Kotzalas Vol. 1 ch. 2):
+
+        inner:  r = dm/2 + (f_i - 1/2) Dw cos a0,   z = z_ball + s (f_i - 1/2) Dw sin a0
+        outer:  r = dm/2 - (f_o - 1/2) Dw cos a0,   z = z_ball - s (f_o - 1/2) Dw sin a0
+    """
+    f = g.f_i if side == "inner" else g.f_o
+    k = 1.0 if side == "inner" else -1.0
+    s0 = np.sin(np.radians(g.alpha0_deg))
+    return groove_centre_radius_mm(g, side), z_ball_mm + k * sign * (f - 0.5) * g.Dw_mm * s0
+
+
+def groove_point_rz_mm(g: BearingGeometry, side: str, z_ball_mm: float, sign: float,
+                       phi_deg) -> np.ndarray:
+    """(2, n) points (r, z) in mm of the groove surface at angles phi (deg) at the groove centre,
+    phi = 0 the groove bottom, phi = alpha0 the free contact point (phi > 0 towards the side the
+    ring takes its thrust from):
+
+        inner:  X = X_c - f_i Dw (cos phi, s sin phi),   outer:  X = X_c + f_o Dw (cos phi, s sin phi)
+
+    (the contact point lies f Dw from its centre along the contact line; Harris & Kotzalas Vol. 1
+    ch. 2)."""
+    f = g.f_i if side == "inner" else g.f_o
+    k = -1.0 if side == "inner" else 1.0
+    rc, zc = groove_centre_rz_mm(g, side, z_ball_mm, sign)
+    phi = np.radians(np.atleast_1d(np.asarray(phi_deg, float)))
+    return np.array([rc + k * f * g.Dw_mm * np.cos(phi), zc + k * sign * f * g.Dw_mm * np.sin(phi)])

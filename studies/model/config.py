@@ -62,10 +62,29 @@ class Spacer:
 
 
 @dataclass(frozen=True)
+class Layer:
+    """A sleeve or a cartridge (optional `[sleeve]`, `[cartridge]`): a plain cylinder between the
+    outer rings and the housing (the sleeve inside, the cartridge outside when both are given),
+    as long as the outer-ring stack, resting on the housing shoulder and clamped by the cover,
+    at the housing temperature. Its fit on the outside: `[fits] sleeve_interference_um` /
+    `cartridge_interference_um`; the outer rings' fit (`outer_interference_um`) is then in the
+    sleeve (or cartridge)."""
+    material: str
+    radial_thickness_mm: float
+    length_mm: float
+
+
+#: the optional layers between outer rings and housing, from the inside out
+LAYERS = ("sleeve", "cartridge")
+
+
+@dataclass(frozen=True)
 class Fits:
     inner_interference_um: float     # diametral, + interference, - clearance
     outer_interference_um: float
     contact: str                     # "frictionless" or "bonded"
+    sleeve_interference_um: float = 0.0      # sleeve in the next layer out (or the housing)
+    cartridge_interference_um: float = 0.0   # cartridge in the housing
     # tolerances (docs/cli.md "tolerance"): an ISO class or explicit (lower, upper) limit
     # deviations in um per surface; "" / () = none. Deviations add to the nominal interference.
     inner_shaft_class: str = ""                  # ISO 286 shaft class, e.g. "k5"
@@ -125,6 +144,8 @@ class Mesh:
     corner_size_mm: float = 0.0      # size at the ends of fits and clamped faces
     target_error: float = 1e-3       # relative discretisation error of fit pressures and
     #                                  groove-centre shifts the sizes are chosen for
+    ring_section: str = "rectangle"  # "rectangle": the effective ring sections; "grooved": rings
+    #                                  with their raceway grooves and lands (studies/model/stack.py)
 
 
 @dataclass(frozen=True)
@@ -146,6 +167,18 @@ class Assembly:
     mesh: Mesh = field(default_factory=Mesh)
     operating: Operating = field(default_factory=Operating)
     source: str = ""
+    sleeve: Layer | None = None
+    cartridge: Layer | None = None
+
+    def layers(self) -> list[tuple[str, Layer]]:
+        """The sleeve and cartridge present, from the inside out: (name, layer)."""
+        return [(n, getattr(self, n)) for n in LAYERS if getattr(self, n) is not None]
+
+    @property
+    def outer_seat_diameter_mm(self) -> float:
+        """Diameter of the outer rings' fit (mm): the housing bore, or with a sleeve or a
+        cartridge the bearing outside diameter (their bore)."""
+        return self.bearing.outside_diameter_mm if self.layers() else self.housing.bore_diameter_mm
 
     def mean_fits_um(self) -> tuple[float, float]:
         """Diametral interference (inner, outer) in um of the mean assembly: the [fits] values
@@ -165,7 +198,8 @@ class Assembly:
                  "outer_spacer": self.outer_spacer.material,
                  "inner_ring": self.bearing.ring_material,
                  "outer_ring": self.bearing.ring_material,
-                 "ball": self.bearing.ball_material}
+                 "ball": self.bearing.ball_material,
+                 **{n: layer.material for n, layer in self.layers()}}
         return get_material(names[part])
 
 
@@ -180,7 +214,10 @@ SECTIONS = {
     "inner_spacer": (Spacer, {}),
     "outer_spacer": (Spacer, {}),
     "bearing": (BearingSpec, {"inner_land_diameter_mm": 0.0, "outer_land_diameter_mm": 0.0}),
+    "sleeve": (Layer, {}),
+    "cartridge": (Layer, {}),
     "fits": (Fits, {"contact": "frictionless", "distribution": "uniform",
+                    "sleeve_interference_um": 0.0, "cartridge_interference_um": 0.0,
                     **{f"{k}_class": "" for k in TOLERANCE_SURFACES},
                     **{f"{k}_deviation_um": () for k in TOLERANCE_SURFACES}}),
     "preload": (Preload, {"path_compliance": "fe"}),
@@ -189,12 +226,12 @@ SECTIONS = {
                                   "hysteresis_loss_factor": 0.0, "load_term": "coulomb"}),
     "limits": (Limits, {"max_contact_pressure_MPa": math.inf, "min_static_safety": 0.0}),
     "mesh": (Mesh, {"size_mm": 0.0, "fit_size_mm": 0.0, "corner_size_mm": 0.0,
-                    "target_error": 1e-3}),
+                    "target_error": 1e-3, "ring_section": "rectangle"}),
     "operating": (Operating, {"T_min_C": -40.0, "T_max_C": 80.0, "speed_max_rpm": 0.0}),
 }
 OPTIONAL_SECTIONS = {"limits", "mesh", "operating"}
 STRING_KEYS = {"material", "designation", "ring_material", "ball_material", "contact", "kind",
-               "lubricant", "load_term", "clamp", "path_compliance", "distribution",
+               "lubricant", "load_term", "clamp", "path_compliance", "distribution", "ring_section",
                *(f"{k}_class" for k in TOLERANCE_SURFACES)}
 LIMIT_KEYS = {f"{k}_deviation_um" for k in TOLERANCE_SURFACES}
 CHOICES = {("fits", "contact"): ("frictionless", "bonded"),
@@ -203,10 +240,12 @@ CHOICES = {("fits", "contact"): ("frictionless", "bonded"),
            ("preload", "path_compliance"): ("fe", "rigid"),
            ("lubrication", "kind"): ("solid_film", "oil"),
            ("lubrication", "load_term"): ("coulomb", "palmgren"),
-           ("nut", "clamp"): ("rigid", "compliant"), ("cover", "clamp"): ("rigid", "compliant")}
+           ("nut", "clamp"): ("rigid", "compliant"), ("cover", "clamp"): ("rigid", "compliant"),
+           ("mesh", "ring_section"): ("grooved", "rectangle")}
 # keys allowed to be zero (everything else numeric must be > 0)
 ZERO_OK = {("shaft", "bore_diameter_mm"), ("shaft", "extension_mm"),
            ("fits", "inner_interference_um"), ("fits", "outer_interference_um"),
+           ("fits", "sleeve_interference_um"), ("fits", "cartridge_interference_um"),
            ("preload", "assembled_N"), ("lubrication", "friction_coefficient"),
            ("lubrication", "viscous_factor_f0"), ("lubrication", "speed_rpm"),
            ("lubrication", "hysteresis_loss_factor"),
@@ -214,6 +253,7 @@ ZERO_OK = {("shaft", "bore_diameter_mm"), ("shaft", "extension_mm"),
            ("bearing", "outer_land_diameter_mm"), ("mesh", "size_mm"), ("mesh", "fit_size_mm"),
            ("mesh", "corner_size_mm"), ("operating", "speed_max_rpm")}
 SIGNED = {("fits", "inner_interference_um"), ("fits", "outer_interference_um"),
+          ("fits", "sleeve_interference_um"), ("fits", "cartridge_interference_um"),
           ("operating", "T_min_C"), ("operating", "T_max_C")}
 
 
@@ -314,7 +354,8 @@ def assembly_from_dict(raw: dict, path: str = "<config>") -> Assembly:
     for name in raw:
         if name != "assembly" and name not in SECTIONS:
             raise ConfigError(f"{path}: [{name}]: unknown section")
-    parts = {name: _section(path, raw, name) for name in SECTIONS}
+    parts = {name: _section(path, raw, name) for name in SECTIONS
+             if name not in LAYERS or name in raw}
     asm = Assembly(name=str(top["name"]), arrangement=top["arrangement"], T_ref_C=float(T_ref),
                    source=str(top.get("source", "")), **parts)
     _check_materials(asm, path)
@@ -350,7 +391,8 @@ def _check_materials(a: Assembly, path: str) -> None:
             "inner_spacer.material": a.inner_spacer.material,
             "outer_spacer.material": a.outer_spacer.material,
             "bearing.ring_material": a.bearing.ring_material,
-            "bearing.ball_material": a.bearing.ball_material}
+            "bearing.ball_material": a.bearing.ball_material,
+            **{f"{n}.material": layer.material for n, layer in a.layers()}}
     for key, name in keys.items():
         try:
             get_material(name)
@@ -372,28 +414,36 @@ def _check_geometry(a: Assembly, path: str) -> None:
          "must exceed the seat diameter")
     need(abs(b.bore_mm - s.seat_diameter_mm) <= 0.01 * b.bore_mm, "bearing.bore_mm",
          f"inner ring bore {b.bore_mm:g} mm does not sit on the shaft seat {s.seat_diameter_mm:g} mm")
-    need(abs(b.outside_diameter_mm - h.bore_diameter_mm) <= 0.01 * b.outside_diameter_mm,
-         "bearing.outside_diameter_mm",
-         f"outer ring {b.outside_diameter_mm:g} mm does not sit in the housing bore {h.bore_diameter_mm:g} mm")
+    t_layers = sum(layer.radial_thickness_mm for _, layer in a.layers())
+    if not t_layers:
+        need(abs(b.outside_diameter_mm - h.bore_diameter_mm) <= 0.01 * b.outside_diameter_mm,
+             "bearing.outside_diameter_mm",
+             f"outer ring {b.outside_diameter_mm:g} mm does not sit in the housing bore {h.bore_diameter_mm:g} mm")
+    else:
+        _check_layers(a, need, t_layers)
+    seat = a.outer_seat_diameter_mm             # where the outer rings sit
     need(b.bore_mm < b.inner_ring_outer_diameter_mm < b.outer_ring_inner_diameter_mm
          < b.outside_diameter_mm, "bearing.inner_ring_outer_diameter_mm",
          "ring sections must satisfy bore < inner ring OD < outer ring ID < outside diameter")
     need(s.shoulder_diameter_mm < b.outer_ring_inner_diameter_mm, "shaft.shoulder_diameter_mm",
          "shaft shoulder overlaps the outer ring")
-    need(h.shoulder_diameter_mm < h.bore_diameter_mm, "housing.shoulder_diameter_mm",
-         "must be smaller than the housing bore")
+    need(h.shoulder_diameter_mm < seat, "housing.shoulder_diameter_mm",
+         "must be smaller than the housing bore" if not t_layers
+         else "must be smaller than the bearing outside diameter (it holds outer ring A)")
     need(h.shoulder_diameter_mm > b.inner_ring_outer_diameter_mm, "housing.shoulder_diameter_mm",
          "housing shoulder overlaps the inner ring")
     need(h.outer_diameter_mm > h.bore_diameter_mm, "housing.outer_diameter_mm",
          "must exceed the housing bore")
     need(b.inner_ring_outer_diameter_mm >= a.inner_spacer.diameter_mm > s.seat_diameter_mm,
          "inner_spacer.diameter_mm", "must lie between the shaft seat and the inner ring OD")
-    need(b.outer_ring_inner_diameter_mm <= a.outer_spacer.diameter_mm < h.bore_diameter_mm,
-         "outer_spacer.diameter_mm", "must lie between the outer ring ID and the housing bore")
+    need(b.outer_ring_inner_diameter_mm <= a.outer_spacer.diameter_mm < seat,
+         "outer_spacer.diameter_mm", "must lie between the outer ring ID and the housing bore"
+         if not t_layers else "must lie between the outer ring ID and the bearing OD")
     need(s.seat_diameter_mm < a.nut.diameter_mm < b.outer_ring_inner_diameter_mm,
          "nut.diameter_mm", "must lie between the shaft seat and the outer ring ID")
-    need(b.inner_ring_outer_diameter_mm < a.cover.diameter_mm < h.bore_diameter_mm,
-         "cover.diameter_mm", "must lie between the inner ring OD and the housing bore")
+    need(b.inner_ring_outer_diameter_mm < a.cover.diameter_mm < seat,
+         "cover.diameter_mm", "must lie between the inner ring OD and the housing bore"
+         if not t_layers else "must lie between the inner ring OD and the bearing OD")
     for key, f in (("bearing.inner_groove_ratio", b.inner_groove_ratio),
                    ("bearing.outer_groove_ratio", b.outer_groove_ratio)):
         # Harris & Kotzalas Vol. 1 ch. 2: 0.515..0.54 in ball bearings; 0.5 is a ball in a
@@ -431,6 +481,15 @@ def _check_geometry(a: Assembly, path: str) -> None:
         # 2 per mille of the diameter is far beyond any bearing fit (ISO 286 n6/P7 at 35 mm:
         # about 40 um) and would yield a hardened ring
         need(abs(val) <= 2.0 * d, key, f"{val:g} um is beyond 2 per mille of the {d:g} mm diameter")
+    d = b.outside_diameter_mm
+    for name, layer in a.layers():
+        d += 2 * layer.radial_thickness_mm
+        val = getattr(a.fits, f"{name}_interference_um")
+        need(abs(val) <= 2.0 * d, f"fits.{name}_interference_um",
+             f"{val:g} um is beyond 2 per mille of the {d:g} mm diameter")
+    for name in LAYERS:
+        need(getattr(a, name) is not None or getattr(a.fits, f"{name}_interference_um") == 0,
+             f"fits.{name}_interference_um", f"given, but the assembly has no [{name}]")
     need(a.lubrication.friction_coefficient <= 1.0, "lubrication.friction_coefficient",
          "must not exceed 1")
     C0 = static_load_rating_C0_N(b.ball_count, Dw, dm, b.contact_angle_free_deg)
@@ -441,6 +500,59 @@ def _check_geometry(a: Assembly, path: str) -> None:
     need(-150.0 <= op.T_min_C < op.T_max_C <= 300.0, "operating.T_min_C",
          f"the range {op.T_min_C:g}..{op.T_max_C:g} C must be increasing and inside -150..300 C")
     _check_mesh(a, need)
+    if a.mesh.ring_section == "grooved":
+        _check_grooved(a, g, need)
+
+
+def _check_layers(a: Assembly, need, t_layers: float) -> None:
+    """Sleeve / cartridge: the housing bore takes them, each as long as the outer-ring stack
+    (it rests on the housing shoulder and the cover clamps it with outer ring B)."""
+    b, h = a.bearing, a.housing
+    want = b.outside_diameter_mm + 2 * t_layers
+    names = " + ".join(n for n, _ in a.layers())
+    need(abs(h.bore_diameter_mm - want) <= 1e-6 * want, "housing.bore_diameter_mm",
+         f"{h.bore_diameter_mm:g} mm must be the bearing OD + 2 x ({names} radial thickness) = "
+         f"{want:g} mm")
+    stack = 2 * b.width_mm + a.outer_spacer.length_mm
+    for name, layer in a.layers():
+        need(abs(layer.length_mm - stack) <= 1e-6 * stack, f"{name}.length_mm",
+             f"{layer.length_mm:g} mm must equal the outer-ring stack (2 x bearing width + outer "
+             f"spacer = {stack:g} mm): it rests on the housing shoulder and the cover clamps it")
+
+
+def _check_grooved(a: Assembly, g: BearingGeometry, need) -> None:
+    """Grooved ring sections (`[mesh] ring_section = "grooved"`): each groove leaves a ring wall
+    under its bottom and ends inside the ring width, and the lands clear the neighbouring parts
+    (the land is the ring's radial extent on the ball side)."""
+    from analytic.bearing.land import groove_centre_radius_mm, land_angle_deg, land_diameters_mm
+
+    b, s, h = a.bearing, a.shaft, a.housing
+    d_i, d_o, _ = land_diameters_mm(b)
+    for side, wall, name in (("inner", groove_bottom_diameter_mm(g, "inner") - b.bore_mm, "inner"),
+                             ("outer", b.outside_diameter_mm - groove_bottom_diameter_mm(g, "outer"),
+                              "outer")):
+        need(wall > 0, f"bearing.{name}_ring_outer_diameter_mm" if side == "inner"
+             else "bearing.outer_ring_inner_diameter_mm",
+             f"the {side} groove bottom leaves no ring wall ({wall / 2:.3f} mm) for "
+             "mesh.ring_section = \"grooved\"")
+        f = g.f_i if side == "inner" else g.f_o
+        d_land = d_i if side == "inner" else d_o
+        half = f * g.Dw_mm * math.sin(math.radians(land_angle_deg(g, side, d_land)))
+        need(half + (f - 0.5) * g.Dw_mm < b.width_mm / 2, f"bearing.{side}_land_diameter_mm",
+             f"the {side} groove ({2 * half:.3f} mm wide at the land) does not fit in the ring "
+             f"width {b.width_mm:g} mm")
+        need(abs(groove_centre_radius_mm(g, side) - d_land / 2) < f * g.Dw_mm,
+             f"bearing.{side}_land_diameter_mm", "the land does not meet the groove")
+    need(d_i < b.pitch_diameter_mm < d_o, "bearing.inner_land_diameter_mm",
+         f"the lands ({d_i:.3f} and {d_o:.3f} mm) must lie either side of the pitch diameter "
+         f"({b.pitch_diameter_mm:g} mm)")
+    for key, cond, msg in (   # the faces that clamp one ring must not reach the other ring
+            ("shaft.shoulder_diameter_mm", s.shoulder_diameter_mm < d_o, "outer ring land"),
+            ("nut.diameter_mm", a.nut.diameter_mm < d_o, "outer ring land"),
+            ("housing.shoulder_diameter_mm", h.shoulder_diameter_mm > d_i, "inner ring land"),
+            ("cover.diameter_mm", a.cover.diameter_mm > d_i, "inner ring land")):
+        need(cond, key, f"overlaps the {msg} diameter ({d_i if 'inner' in msg else d_o:.3f} mm) "
+                        "of the grooved ring section (or set mesh.ring_section = \"rectangle\")")
 
 
 def _check_mesh(a: Assembly, need) -> None:

@@ -27,7 +27,7 @@ from analytic.bearing.land import groove_centre_radius_mm, land_diameters_mm, la
 from analytic.lubrication import get_lubricant
 from analytic.safety import static_load_rating_C0_N, static_safety_from_contact_pressure
 from analytic.torque import palmgren_f1_angular_contact, pair_torque
-from fem.post import groove_centre_shift, mean_pressures_MPa
+from fem.post import circle_centre_weights, groove_centre_shift, mean_pressures_MPa
 from fem.setup import (CompliancePlan, FESetup, FullFE, SetupSpec, cached_setup, compute_setup,
                        full_fe)
 from fem.solver import Superposition
@@ -40,7 +40,7 @@ from studies.model.inputs import NO_CTE_SLOPE, PhysicsInputs
 FE_PART_GROUP = {"shaft": "shaft", "nut": "shaft", "inner_ring_A": "inner_ring",
                  "inner_ring_B": "inner_ring", "inner_spacer": "spacer", "outer_spacer": "spacer",
                  "outer_ring_A": "outer_ring", "outer_ring_B": "outer_ring", "housing": "housing",
-                 "cover": "housing"}
+                 "cover": "housing", "sleeve": "housing", "cartridge": "housing"}
 RINGS = ("inner_ring_A", "inner_ring_B", "outer_ring_A", "outer_ring_B")
 #: fit-loosening speeds are searched up to here (rpm); a fit still closed there reports inf
 SPEED_SEARCH_MAX_RPM = 1e6
@@ -136,6 +136,13 @@ class Pipeline:
         self.asm = asm
         self.section = section_from_assembly(asm).scaled(mesh_factor)
         pts = np.array([self.section.raceway_points[r] for r in RINGS]).T
+        if self.section.grooves:        # + the groove points whose circle fit gives each centre
+            grooves = [self.section.groove_of(r) for r in RINGS]
+            self.centre_weights = [circle_centre_weights(np.array(g.points_rz_mm).T, (g.r_mm, g.z_mm))
+                                   for g in grooves]
+            pts = np.hstack([pts] + [np.array(g.points_rz_mm).T for g in grooves])
+        else:
+            self.centre_weights = None
         plan = None
         if asm.preload.path_compliance == "fe":
             inner, outer = asm.mean_fits_um()
@@ -157,7 +164,7 @@ class Pipeline:
         # the rotor tilt under a moment or an off-centre radial load
         z = stack_positions(asm)
         self.bearing_span_mm = 0.5 * (sum(z["inner_ring_B"]) - sum(z["inner_ring_A"]))
-        self._centre_offsets(pts)
+        self._centre_offsets(pts[:, :4])
         self._fe_cache: dict[bytes, FEState] = {}
         self.lubricant = get_lubricant(asm.lubrication.lubricant) if asm.lubrication.kind == "oil" else None
         self.compliance_mm_per_N = self.setup.compliance_mm_per_N if plan is not None else 0.0
@@ -183,7 +190,7 @@ class Pipeline:
     @property
     def probe(self):
         """(8, ndofs) matrix: u_r, u_z at the raceway points of RINGS (built on first use)."""
-        return self.full_fe().probe
+        return self.full_fe().probe[:8]
 
     @property
     def ndofs(self) -> int:
@@ -233,9 +240,13 @@ class Pipeline:
         return resolve_interference_um(inputs, *self.asm.mean_fits_um())
 
     def deltas_mm(self, inner_um: np.ndarray, outer_um: np.ndarray) -> np.ndarray:
-        """(n, n_fits) radial interference (mm) per FE fit."""
-        return np.column_stack([(inner_um if f.key == "inner" else outer_um) / 2000.0
-                                for f in self.section.fits])
+        """(n, n_fits) radial interference (mm) per FE fit (a sleeve's or cartridge's fit: its
+        `[fits]` value on every row)."""
+        n = np.broadcast(inner_um, outer_um).shape
+        um = {"inner": inner_um, "outer": outer_um,
+              "sleeve": np.full(n, self.asm.fits.sleeve_interference_um),
+              "cartridge": np.full(n, self.asm.fits.cartridge_interference_um)}
+        return np.column_stack([um[f.key] / 2000.0 for f in self.section.fits])
 
     def fe(self, inputs: PhysicsInputs, direct: bool = False, remember: bool = True) -> FEState:
         """The FE answers of the rows (superposed, or direct solves). `remember`: keep the result
@@ -267,26 +278,40 @@ class Pipeline:
             for i in range(n):
                 sol = self.solver.solve(m.unit_loads @ theta[i] + w2[i] * m.spin_load, delta[i])
                 force.append(sol.force_N)
-                probe.append(self.probe @ sol.u)
+                probe.append(self.full_fe().probe @ sol.u)
             force, probe = np.array(force), np.array(probe)
         else:
             res = self.sup.evaluate(theta, delta, w2)
             force, probe = res["force_N"], res["probe"]
         p = self.fit_pressures(force)
-        # groove-centre shifts: raceway displacement + ring thermal strain x offset
         idx = {p: i for i, p in enumerate(self.part_names)}
-        centre = np.empty((n, 4, 2))
-        for k, ring in enumerate(RINGS):
-            centre[:, k, :] = groove_centre_shift(probe[:, 2 * k:2 * k + 2], theta[:, idx[ring]],
-                                                  self.centre_offset_mm[k])
+        centre = self._centres(probe, theta[:, [idx[r] for r in RINGS]])
         dr = np.stack([centre[:, 0, 0] - centre[:, 2, 0], centre[:, 1, 0] - centre[:, 3, 0]])
         dz = np.stack([centre[:, 0, 1] - centre[:, 2, 1], centre[:, 1, 1] - centre[:, 3, 1]])
         a = self.asm
-        d_seat, d_bore = a.shaft.seat_diameter_mm, a.housing.bore_diameter_mm
+        d_seat, d_bore = a.shaft.seat_diameter_mm, a.outer_seat_diameter_mm
+        seat = ([n for n, _ in a.layers()] + ["housing"])[0]     # what the outer rings sit in
         interf = np.column_stack([
             inner_um + (theta[:, idx["shaft"]] - theta[:, idx["inner_ring_A"]]) * d_seat * 1e3,
-            outer_um + (theta[:, idx["outer_ring_A"]] - theta[:, idx["housing"]]) * d_bore * 1e3])
-        return FEState(p, interf, dr, dz, probe)
+            outer_um + (theta[:, idx["outer_ring_A"]] - theta[:, idx[seat]]) * d_bore * 1e3])
+        return FEState(p, interf, dr, dz, probe[:, :8])
+
+    def _centres(self, probe: np.ndarray, theta_rings: np.ndarray) -> np.ndarray:
+        """(n, 4, 2) groove-centre displacements (mm) of RINGS from the probed displacements
+        (n, n_probe): grooved rings, the circle fitted to the displaced groove points
+        (`fem.post.circle_centre_weights`); rectangular rings, the raceway point's displacement
+        + the ring's thermal strain (n, 4) x the centre offset (`fem.post.groove_centre_shift`)."""
+        n = probe.shape[0]
+        centre = np.empty((n, 4, 2))
+        m = 0 if self.centre_weights is None else self.centre_weights[0].shape[1]
+        for k in range(4):
+            if self.centre_weights is None:
+                centre[:, k, :] = groove_centre_shift(probe[:, 2 * k:2 * k + 2], theta_rings[:, k],
+                                                      self.centre_offset_mm[k])
+            else:
+                cols = slice(8 + k * m, 8 + (k + 1) * m)
+                centre[:, k, :] = probe[:, cols] @ self.centre_weights[k].T
+        return centre
 
     def fit_open_speed_rpm(self, inputs: PhysicsInputs) -> dict[str, np.ndarray]:
         """The speed (rpm) at which each inner (rotating) fit opens, per row at the row's part
@@ -327,17 +352,15 @@ class Pipeline:
         delta = self.deltas_mm(inner_um, outer_um)[0]
         w2 = float(np.atleast_1d(self.omega2(inputs))[0])
         sol = self.solver.solve(m.thermal_load_vector(theta_q) + w2 * m.spin_load, delta)
-        probe = self.probe @ sol.u
+        probe = self.full_fe().probe @ sol.u
         p = self.fit_pressures(sol.force_N)
-        centre = np.empty((4, 2))
         w = m.basis.dx
-        for k, ring in enumerate(RINGS):
-            sel = m.part_of == ring
-            th = float((theta_q[sel] * w[sel]).sum() / w[sel].sum())
-            centre[k] = groove_centre_shift(probe[2 * k:2 * k + 2], th, self.centre_offset_mm[k])
+        th = np.array([[float((theta_q[m.part_of == r] * w[m.part_of == r]).sum()
+                              / w[m.part_of == r].sum()) for r in RINGS]])
+        centre = self._centres(probe[None, :], th)[0]
         dr = np.array([[centre[0, 0] - centre[2, 0]], [centre[1, 0] - centre[3, 0]]])
         dz = np.array([[centre[0, 1] - centre[2, 1]], [centre[1, 1] - centre[3, 1]]])
-        return FEState(p, np.full((1, 2), np.nan), dr, dz, probe[None, :]), sol.u
+        return FEState(p, np.full((1, 2), np.nan), dr, dz, probe[None, :8]), sol.u
 
     def lame_beside(self, fe: FEState, inputs: PhysicsInputs) -> dict[str, np.ndarray]:
         """Closed-form neighbours of the FE values (two-cylinder Lamé, plane stress; the inner fit
@@ -359,16 +382,44 @@ class Pipeline:
         di, do = fe.interference_um[:, 0], fe.interference_um[:, 1]
         u_lame = lame.rotating_fit_displacement_mm(r_race, "outer", **inner, interference_um=di,
                                                    **spin) + th_ring * r_race
+        if a.layers():      # ring / sleeve / cartridge / housing: the multi-layer Lamé solution
+            p_out = {k: self._layers_lame_MPa(fe, inputs, k) for k in ("plane_stress", "plane_strain")}
+        else:
+            p_out = {k: np.atleast_1d(lame.fit_pressure_MPa(**outer, interference_um=do,
+                                                            assumption=k))[:, None]
+                     for k in ("plane_stress", "plane_strain")}
         return {"fit_pressure_inner_lame_MPa":
                     lame.rotating_fit_pressure_MPa(**inner, interference_um=di, **spin),
                 "fit_pressure_inner_lame_plane_strain_MPa":
                     lame.rotating_fit_pressure_MPa(**inner, interference_um=di, **spin,
                                                    assumption="plane_strain"),
-                "fit_pressure_outer_lame_MPa": lame.fit_pressure_MPa(**outer, interference_um=do),
-                "fit_pressure_outer_lame_plane_strain_MPa":
-                    lame.fit_pressure_MPa(**outer, interference_um=do, assumption="plane_strain"),
+                "fit_pressure_outer_lame_MPa": p_out["plane_stress"][:, 0],
+                "fit_pressure_outer_lame_plane_strain_MPa": p_out["plane_strain"][:, 0],
+                **{f"fit_pressure_{n}_lame_MPa": p_out["plane_stress"][:, k + 1]
+                   for k, (n, _) in enumerate(a.layers())},
                 "raceway_u_r_inner_A_um": 1e3 * fe.raceway_u_mm[:, 0],
                 "raceway_u_r_inner_A_lame_um": 1e3 * u_lame}
+
+    def _layers_lame_MPa(self, fe: FEState, inputs: PhysicsInputs, assumption: str) -> np.ndarray:
+        """(n, 1 + n_layers) interface pressures (MPa) of the concentric outer ring (effective
+        section) / sleeve / cartridge / housing (`lame.multilayer_pressures_MPa`), at the rows'
+        free interferences: the outer fit's `interference_um[:, 1]`, each layer's `[fits]` value
+        plus its thermal mismatch with the part outside it (thermal strain x diameter)."""
+        a, b = self.asm, self.asm.bearing
+        parts = ["outer_ring_A"] + [n for n, _ in a.layers()] + ["housing"]
+        radii = [b.outer_ring_inner_diameter_mm / 2, b.outside_diameter_mm / 2]
+        for _, layer in a.layers():
+            radii.append(radii[-1] + layer.radial_thickness_mm)
+        radii.append(a.housing.outer_diameter_mm / 2)
+        theta = self.thetas(inputs)
+        idx = {p: i for i, p in enumerate(self.part_names)}
+        d_um = [fe.interference_um[:, 1]]
+        for k, (name, _) in enumerate(a.layers()):
+            d_um.append(getattr(a.fits, f"{name}_interference_um")
+                        + (theta[:, idx[name]] - theta[:, idx[parts[k + 2]]]) * 2 * radii[k + 2] * 1e3)
+        mats = [self.materials[p] for p in parts]
+        return lame.multilayer_pressures_MPa(radii, [m.E_MPa for m in mats], [m.nu for m in mats],
+                                             np.column_stack(d_um), assumption)
 
     # ------------------------------------------------------------------ whole chain
     def reference_inputs(self, inputs: PhysicsInputs) -> PhysicsInputs:

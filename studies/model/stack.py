@@ -1,18 +1,73 @@
 """Assembly config -> the r-z section the FE meshes: where every part of the stack sits.
 
 The rotor (shaft, inner rings, inner spacer, nut) and the stator (housing, outer rings, outer
-spacer, cover) as named rectangles, the radial split lines (fits, sliding bores), the clamped
+spacer, cover, and an optional sleeve and cartridge between outer rings and housing) as named
+rectangles, the radial split lines (fits, sliding bores), the clamped
 faces and the raceway points; the element sizes from `studies.model.mesh_size`. `meshes/` knows
 only sections; this is the one place that reads an assembly to make one. Units: mm.
+
+Ring sections (`[mesh] ring_section`): "grooved" (default) cuts each ring's raceway groove, the
+circle of radius f Dw about its curvature centre (`analytic.bearing.land.groove_centre_rz_mm`),
+from a ring rectangle that reaches the land diameter (`land_diameters_mm`; the same land on both
+sides of the groove); "rectangle" keeps the effective ring sections of `[bearing]`
+(inner_ring_outer_diameter_mm, outer_ring_inner_diameter_mm) with the raceway on their faces.
 """
 from __future__ import annotations
 
-from meshes.section import Fit, Rect, Section, Split
+import numpy as np
+
+from analytic.bearing.geometry import SIGNS, BearingGeometry
+from analytic.bearing.land import (groove_centre_rz_mm, groove_point_rz_mm, land_angle_deg,
+                                   land_diameters_mm)
+from meshes.section import Fit, Groove, Rect, Section, Split
 from studies.model.config import Assembly
 from studies.model.mesh_size import mesh_sizes
 
 #: the rotor sub-assembly: the parts that spin with the shaft (centrifugal load in the FE)
 ROTOR_PARTS = ("shaft", "inner_ring_A", "inner_spacer", "inner_ring_B", "nut")
+
+#: half-width (deg, at the groove centre) of the groove arc about the free contact angle whose
+#: displaced points give the groove-centre shift, and the number of points on it
+GROOVE_FIT_HALF_ANGLE_DEG, GROOVE_FIT_POINTS = 30.0, 13
+#: element size along a groove arc per fit size: the chords of the arc are the grooved section's
+#: geometric error (sagitta h^2 / 8R), which converges at order 2 in h
+GROOVE_SIZE_PER_FIT = 0.5
+
+
+def ball_centres_rz_mm(a: Assembly) -> list[tuple[float, float]]:
+    """(r, z) in mm of the ball centre of bearings A and B: the pitch radius at mid-width of the
+    bearing's inner ring (the free geometry the groove centres are placed about)."""
+    z = stack_positions(a)
+    return [(a.bearing.pitch_diameter_mm / 2, sum(z[f"inner_ring_{J}"]) / 2) for J in "AB"]
+
+
+def grooves_of(a: Assembly, size_mm: float = 0.0) -> tuple[Groove, ...]:
+    """The four raceway grooves (inner_ring_A, inner_ring_B, outer_ring_A, outer_ring_B) of the
+    assembly's stack: centres at the ball centre of each bearing (mid-width of its rings) plus the
+    free-contact-line offsets (each ring's own mid-width taken as its ball-centre plane, as the
+    rectangular sections' raceway points are), radius f Dw, and the points of the arc alpha0 +- 30 deg (kept
+    inside the lands) that give the groove-centre shift."""
+    g = BearingGeometry.from_spec(a.bearing)
+    lands = dict(zip(("inner", "outer"), land_diameters_mm(a.bearing)[:2]))
+    z = stack_positions(a)
+    out = []
+    for side in ("inner", "outer"):
+        f = g.f_i if side == "inner" else g.f_o
+        edge = 0.98 * land_angle_deg(g, side, lands[side])
+        phi = np.linspace(max(g.alpha0_deg - GROOVE_FIT_HALF_ANGLE_DEG, -edge),
+                          min(g.alpha0_deg + GROOVE_FIT_HALF_ANGLE_DEG, edge), GROOVE_FIT_POINTS)
+        for j, J in enumerate("AB"):
+            ring = f"{side}_ring_{J}"
+            zb, s = sum(z[ring]) / 2, float(SIGNS[a.arrangement][j])
+            rc, zc = groove_centre_rz_mm(g, side, zb, s)
+            # 1e-6 of the radius into the ring: a point exactly on a mesh vertex of the arc
+            # would be found outside every triangle by round-off (the fit stays exact for any
+            # radius, fem.post.circle_centre_weights)
+            pts = np.array([[rc], [zc]]) + (1 + 1e-6) * (groove_point_rz_mm(g, side, zb, s, phi)
+                                                       - np.array([[rc], [zc]]))
+            out.append(Groove(ring, float(rc), float(zc), f * g.Dw_mm, tuple(float(p) for p in phi),
+                              tuple((float(r), float(zz)) for r, zz in pts.T), size_mm))
+    return tuple(out)
 
 
 def stack_positions(a: Assembly) -> dict[str, tuple[float, float]]:
@@ -40,8 +95,25 @@ def section_from_assembly(a: Assembly) -> Section:
     z_nut_end = z["nut"][1]
     z_shaft_end = z_nut_end + s.extension_mm
     z_house_end = z["outer_ring_B"][1]
-    r_iro, r_ori = b.inner_ring_outer_diameter_mm / 2, b.outer_ring_inner_diameter_mm / 2
+    grooved = a.mesh.ring_section == "grooved"
+    if grooved:                     # the ring rectangles reach the lands; the grooves are cut
+        r_iro, r_ori = (d / 2 for d in land_diameters_mm(b)[:2])
+    else:
+        r_iro, r_ori = b.inner_ring_outer_diameter_mm / 2, b.outer_ring_inner_diameter_mm / 2
     rings = b.ring_material
+    # sleeve / cartridge: cylinders from the bearing OD out to the housing bore, as long as the
+    # outer-ring stack; the outer rings sit in the innermost one; their bores and outsides are
+    # fits. Their end faces on the housing shoulder and the cover are clamped faces like the
+    # rings' (u_z tied, sliding radially) with frictionless fits, and tied (shared nodes) with
+    # bonded fits: every contact of the part bonded (a bonded sleeve of the housing's material
+    # is then the housing itself)
+    layers = [name for name, _ in a.layers()]
+    r_od = a.outer_seat_diameter_mm / 2
+    r_layer = [r_od]
+    for _, layer in a.layers():
+        r_layer.append(r_layer[-1] + layer.radial_thickness_mm)
+    seat_of = (layers + ["housing"])          # the part each layer (and the rings) sits in
+    sliding = layers if a.fits.contact == "frictionless" else []
     rects = [
         Rect("shaft", r_bore, r_seat, -s.shoulder_width_mm, z_shaft_end, s.material),
         Rect("shaft", r_seat, s.shoulder_diameter_mm / 2, -s.shoulder_width_mm, 0.0, s.material),
@@ -52,19 +124,23 @@ def section_from_assembly(a: Assembly) -> Section:
         Rect("nut", r_seat, a.nut.diameter_mm / 2, *z["nut"], a.nut.material),
         Rect("housing", r_hb, r_ho, -h.shoulder_width_mm, z_house_end, h.material),
         Rect("housing", h.shoulder_diameter_mm / 2, r_hb, -h.shoulder_width_mm, 0.0, h.material),
-        Rect("outer_ring_A", r_ori, r_hb, *z["outer_ring_A"], rings),
-        Rect("outer_spacer", a.outer_spacer.diameter_mm / 2, r_hb, *z["outer_spacer"],
+        Rect("outer_ring_A", r_ori, r_od, *z["outer_ring_A"], rings),
+        Rect("outer_spacer", a.outer_spacer.diameter_mm / 2, r_od, *z["outer_spacer"],
              a.outer_spacer.material),
-        Rect("outer_ring_B", r_ori, r_hb, *z["outer_ring_B"], rings),
+        Rect("outer_ring_B", r_ori, r_od, *z["outer_ring_B"], rings),
         Rect("cover", a.cover.diameter_mm / 2, r_ho, *z["cover"], a.cover.material),
-    ]
+    ] + [Rect(name, r_layer[k], r_layer[k + 1], 0.0, z_house_end, layer.material)
+         for k, (name, layer) in enumerate(a.layers())]
+    outside = tuple(("housing", "cover") if p == "housing" else (p,) for p in seat_of)
     r_isp, r_osp = a.inner_spacer.diameter_mm / 2, a.outer_spacer.diameter_mm / 2
     zc = z["inner_ring_B"][0]
     splits = (
         Split("shaft_seat", "r", r_seat, 0.0, z["inner_ring_B"][1], ("shaft", "nut"),
               ("inner_ring_A", "inner_spacer", "inner_ring_B")),
-        Split("housing_bore", "r", r_hb, 0.0, z_house_end, ("outer_ring_A", "outer_spacer",
-                                                            "outer_ring_B"), ("housing", "cover")),
+        Split("housing_bore", "r", r_od, 0.0, z_house_end, ("outer_ring_A", "outer_spacer",
+                                                            "outer_ring_B"), outside[0]),
+        *[Split(f"{name}_outside", "r", r_layer[k + 1], 0.0, z_house_end, (name,), outside[k + 1])
+          for k, name in enumerate(layers)],
         Split("face_shaft_shoulder", "z", 0.0, r_seat, s.shoulder_diameter_mm / 2, ("shaft",),
               ("inner_ring_A",)),
         Split("face_inner_A_spacer", "z", B, r_seat, min(r_iro, r_isp), ("inner_ring_A",),
@@ -74,24 +150,32 @@ def section_from_assembly(a: Assembly) -> Section:
         Split("face_inner_B_nut", "z", z["nut"][0], r_seat, min(r_iro, a.nut.diameter_mm / 2),
               ("inner_ring_B",), ("nut",), a.nut.clamp == "rigid"),
         Split("face_housing_shoulder", "z", 0.0, h.shoulder_diameter_mm / 2, r_hb, ("housing",),
-              ("outer_ring_A",)),
-        Split("face_outer_A_spacer", "z", B, max(r_ori, r_osp), r_hb, ("outer_ring_A",),
+              ("outer_ring_A", *sliding)),
+        Split("face_outer_A_spacer", "z", B, max(r_ori, r_osp), r_od, ("outer_ring_A",),
               ("outer_spacer",)),
-        Split("face_outer_spacer_B", "z", z["outer_ring_B"][0], max(r_ori, r_osp), r_hb,
+        Split("face_outer_spacer_B", "z", z["outer_ring_B"][0], max(r_ori, r_osp), r_od,
               ("outer_spacer",), ("outer_ring_B",)),
         Split("face_outer_B_cover", "z", z["cover"][0], max(r_ori, a.cover.diameter_mm / 2), r_hb,
-              ("outer_ring_B",), ("cover",), a.cover.clamp == "rigid"),
+              ("outer_ring_B", *sliding), ("cover",), a.cover.clamp == "rigid"),
     )
     fits = tuple(
         [Fit(f"fit_inner_{j}", "shaft", f"inner_ring_{j}", r_seat, *z[f"inner_ring_{j}"], "inner")
          for j in "AB"]
-        + [Fit(f"fit_outer_{j}", f"outer_ring_{j}", "housing", r_hb, *z[f"outer_ring_{j}"], "outer")
-           for j in "AB"])
-    refine = tuple((f.r_mm, f.z0_mm, f.r_mm, f.z1_mm) for f in fits) + tuple(
-        (r, z[f"{ring}_{j}"][0], r, z[f"{ring}_{j}"][1])
-        for ring, r in (("inner_ring", r_iro), ("outer_ring", r_ori)) for j in "AB")
-    raceways = {f"inner_ring_{j}": (r_iro, sum(z[f"inner_ring_{j}"]) / 2) for j in "AB"}
-    raceways.update({f"outer_ring_{j}": (r_ori, sum(z[f"outer_ring_{j}"]) / 2) for j in "AB"})
+        + [Fit(f"fit_outer_{j}", f"outer_ring_{j}", seat_of[0], r_od, *z[f"outer_ring_{j}"],
+               "outer") for j in "AB"]
+        + [Fit(f"fit_{name}", name, seat_of[k + 1], r_layer[k + 1], 0.0, z_house_end, name)
+           for k, name in enumerate(layers)])
+    refine = tuple((f.r_mm, f.z0_mm, f.r_mm, f.z1_mm) for f in fits)
+    if grooved:     # raceway point: the middle of the fitted arc (the free contact point unless a
+        #             land clips the arc)
+        grooves = grooves_of(a, GROOVE_SIZE_PER_FIT * mesh_sizes(a).fit_size_mm)
+        raceways = {gr.part: gr.points_rz_mm[len(gr.points_rz_mm) // 2] for gr in grooves}
+    else:
+        grooves = ()
+        refine += tuple((r, z[f"{ring}_{j}"][0], r, z[f"{ring}_{j}"][1])
+                        for ring, r in (("inner_ring", r_iro), ("outer_ring", r_ori)) for j in "AB")
+        raceways = {f"inner_ring_{j}": (r_iro, sum(z[f"inner_ring_{j}"]) / 2) for j in "AB"}
+        raceways.update({f"outer_ring_{j}": (r_ori, sum(z[f"outer_ring_{j}"]) / 2) for j in "AB"})
     sizes = mesh_sizes(a)
     return Section(tuple(rects), splits, fits, (), refine, raceways, sizes.size_mm,
-                   sizes.fit_size_mm, sizes.corner_size_mm)
+                   sizes.fit_size_mm, sizes.corner_size_mm, grooves)

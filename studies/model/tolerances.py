@@ -39,7 +39,7 @@ QUANTITIES = ("interference_inner_um", "interference_outer_um", "fit_pressure_in
 def deviation_limits_um(asm) -> dict[str, tuple[float, float]]:
     """(lower, upper) limit deviation in um of every toleranced surface (others absent)."""
     f = asm.fits
-    d_in, d_out = asm.shaft.seat_diameter_mm, asm.housing.bore_diameter_mm
+    d_in, d_out = asm.shaft.seat_diameter_mm, asm.outer_seat_diameter_mm
     out = {}
     for s in SURFACES:
         cls, lim = getattr(f, f"{s}_class"), getattr(f, f"{s}_deviation_um")

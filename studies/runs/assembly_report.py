@@ -179,7 +179,7 @@ def _plots(out: Path, asm, x, xlabel, r) -> dict[str, Path]:
 def _materials(asm) -> list[list]:
     rows, seen = [], set()
     for part in ("shaft", "housing", "nut", "cover", "inner_spacer", "outer_spacer",
-                 "inner_ring", "ball"):
+                 "inner_ring", "ball", *(n for n, _ in asm.layers())):
         m = asm.material(part)
         key = (part if part not in ("inner_ring",) else "rings", m.name)
         if key in seen:
@@ -195,7 +195,8 @@ def _echo(asm) -> list[str]:
 
     out = []
     for name in ("shaft", "housing", "nut", "cover", "inner_spacer", "outer_spacer", "bearing",
-                 "fits", "preload", "lubrication", "limits", "mesh", "operating"):
+                 "fits", "preload", "lubrication", "limits", "mesh", "operating",
+                 *(n for n, _ in asm.layers())):
         sec = getattr(asm, name)
         out.append([f"[{name}]", ", ".join(f"{f.name} = {getattr(sec, f.name)}" for f in fields(sec))])
     return out

@@ -79,7 +79,11 @@ def field_images(out_dir: Path, pipeline, T_C: float, stem: str, title: str) -> 
     stresses = element_stresses(model, u, theta_per_element(model, f.theta))
     T_vertex = np.full(model.mesh.p.shape[1], T_C)
     write_vtu(out_dir / f"{stem}.vtu", model, u, stresses, T_vertex)
-    return render_fields(out_dir, stem, model, u, {k: stresses[k] for k in IMAGE_STRESSES}, title)
+    from studies.model.stack import ball_centres_rz_mm
+
+    balls = tuple((r, z, a.bearing.ball_diameter_mm) for r, z in ball_centres_rz_mm(a))
+    return render_fields(out_dir, stem, model, u, {k: stresses[k] for k in IMAGE_STRESSES}, title,
+                         balls_rz_d_mm=balls)
 
 
 def safety_section(asm, out: dict, film_parameter=None, title: str = "over the study's operating points") -> str:
