@@ -34,6 +34,7 @@ import numpy as np
 from analytic.materials import MATERIALS
 from studies.model.checks import assembly_checks
 from studies.model.inputs import baseline_inputs
+from studies.model.memory import release_freed_memory
 from studies.model.parallel import map_blocks
 from studies.model.pipeline import Pipeline
 from studies.runs.assembly_report import nice_step
@@ -116,7 +117,10 @@ def evaluate_stack(asm, stack: Stack, T_C: np.ndarray, preloads_N: np.ndarray,
                                  a.lubrication.speed_rpm))
     keep = ("preload_N", "max_contact_pressure_MPa", "fit_pressure_inner_MPa",
             "fit_pressure_outer_MPa", "torque_Nmm")
-    return {k: res[k].reshape(nP, nT) for k in keep} | {"dofs": pl.ndofs}
+    out = {k: res[k].reshape(nP, nT) for k in keep} | {"dofs": pl.ndofs}
+    del pl, res
+    release_freed_memory()      # one FE after another fragments the C heap (studies/model/memory.py)
+    return out
 
 
 def _metrics(asm, r: dict, preloads_N, band) -> list[dict]:
