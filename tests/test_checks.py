@@ -171,11 +171,25 @@ def test_a_low_land_truncates_the_contact_ellipse_and_says_so(tmp_path, capsys):
     assert main(["simulate", str(_with_land(tmp_path, 37.2)), str(cond), "-o", str(out)]) == 0
     err = [l for l in capsys.readouterr().err.splitlines() if "truncated by the land" in l]
     assert len(err) == 1 and err[0].startswith("bearingfem simulate: warning: inner"), err
+    assert "inferred" not in err[0]             # the land was given
     assert np.all(read(out)["land_margin_inner_deg"] < 0)
     # the shipped land (inferred, about 51 deg) leaves a wide margin and no warning
     assert main(["simulate", str(CFG000), str(cond), "-o", str(out)]) == 0
     assert "truncated" not in capsys.readouterr().err
     assert np.all(read(out)["land_margin_inner_deg"] > 20)
+
+
+def test_a_truncation_at_an_inferred_land_asks_for_the_land_diameter(tmp_path, capsys):
+    """Seed 003 (60 deg contact) states no land diameters; the land inferred from its effective
+    ring sections ends the groove at about 53 deg, below the contact angle itself: the warning
+    says the land was inferred and names the key that states it."""
+    cond = tmp_path / "c.csv"
+    cond.write_text("T_ambient_C\n20\n")
+    out = tmp_path / "o.csv"
+    assert main(["simulate", str(CONFIG_DIR / "seed003_25TAC62B.toml"), str(cond), "-o", str(out)]) == 0
+    err = [l for l in capsys.readouterr().err.splitlines() if "truncated by the land" in l]
+    assert len(err) == 2 and all("inferred" in l for l in err), err
+    assert "[bearing] inner_land_diameter_mm" in err[0] and "outer_land_diameter_mm" in err[1]
 
 
 def test_a_land_outside_the_groove_is_refused(tmp_path, capsys):

@@ -142,5 +142,8 @@ def plausibility_warnings(asm, conditions: dict | None = None, out: dict | None 
             i = int(np.argmin(m))
             msgs.append(f"{side} contact ellipse truncated by the land in {int((m < 0).sum())} of "
                         f"{m.size} rows (up to {-m[i]:.3g} deg beyond the groove edge at row "
-                        f"{i + 1}): the edge carries load the Hertz pressure does not describe")
+                        f"{i + 1}): the edge carries load the Hertz pressure does not describe"
+                        + ("" if getattr(asm.bearing, f"{side}_land_diameter_mm") > 0 else
+                           f" (land diameter inferred from the effective ring section; give "
+                           f"[bearing] {side}_land_diameter_mm from the bearing's drawing)"))
     return msgs
