@@ -104,9 +104,65 @@ MATERIALS: dict[str, Material] = {
 ALIASES = {"Ti-6Al-4V": "TC4", "2024": "2A12", "AISI52100": "52100", "95Cr18": "G95Cr18"}
 
 
-def get_material(name: str) -> Material:
-    """Look a material up by name or alias; KeyError names the known ones."""
+def get_material(name: str, user: tuple[Material, ...] = ()) -> Material:
+    """Look a material up by name: first among `user` (a config's own `[materials.NAME]` tables,
+    which may override a library name), then in the library by name or alias. KeyError names
+    the known ones."""
+    for m in user:
+        if m.name == name:
+            return m
     key = ALIASES.get(name, name)
     if key not in MATERIALS:
-        raise KeyError(f"unknown material '{name}' (known: {', '.join(sorted(MATERIALS))})")
+        known = sorted({*MATERIALS, *(m.name for m in user)})
+        raise KeyError(f"unknown material '{name}' (known: {', '.join(known)})")
     return MATERIALS[key]
+
+
+#: keys of a `[materials.NAME]` table and the Material field each sets (units in the names)
+TABLE_KEYS = {"E_MPa": "E_MPa", "nu": "nu", "cte_per_K": "alpha_per_K",
+              "dcte_per_K2": "dalpha_per_K2", "density_kg_m3": "density_kg_m3",
+              "conductivity_W_mK": "conductivity_W_mK",
+              "specific_heat_J_kgK": "specific_heat_J_kgK", "source": "source"}
+
+
+def material_from_table(name: str, table: dict) -> Material:
+    """A user's material from a `[materials.NAME]` table: the keys of `TABLE_KEYS` (CTE at 20 C
+    as `cte_per_K`, its slope as `dcte_per_K2`), starting from the library material `base`
+    (a name or alias) when given, or from the library material of the same name (override),
+    else every key but `dcte_per_K2` and `source` is required. ValueError (one line, naming the
+    key) on a missing, unknown or out-of-range value; the caller adds the file."""
+    table = dict(table)
+    base_name = table.pop("base", None)
+    if base_name is not None and not isinstance(base_name, str):
+        raise ValueError(f"materials.{name}.base: must be a material name, got {base_name!r}")
+    try:
+        base = get_material(base_name if base_name is not None else name)
+    except KeyError as exc:
+        if base_name is not None:
+            raise ValueError(f"materials.{name}.base: {exc.args[0]}") from None
+        base = None
+    values = dict(base.__dict__) if base else {"dalpha_per_K2": 0.0, "source": ""}
+    values["name"] = name
+    for key, v in table.items():
+        if key not in TABLE_KEYS:
+            raise ValueError(f"materials.{name}.{key}: unknown key (known: base, "
+                             f"{', '.join(TABLE_KEYS)})")
+        if key == "source":
+            values["source"] = str(v)
+            continue
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or v != v or abs(v) == float("inf"):
+            raise ValueError(f"materials.{name}.{key}: must be a finite number, got {v!r}")
+        values[TABLE_KEYS[key]] = float(v)
+    missing = [k for k, f in TABLE_KEYS.items() if f not in values]
+    if missing:
+        raise ValueError(f"materials.{name}: missing {', '.join(missing)} (or give base = "
+                         f"\"<library material>\" to start from)")
+    for key, ok, what in (("E_MPa", values["E_MPa"] > 0, "> 0"),
+                          ("nu", 0.0 <= values["nu"] < 0.5, "in 0..0.5"),
+                          ("cte_per_K", abs(values["alpha_per_K"]) < 1e-3, "below 1e-3 /K in size"),
+                          ("density_kg_m3", values["density_kg_m3"] > 0, "> 0"),
+                          ("conductivity_W_mK", values["conductivity_W_mK"] > 0, "> 0"),
+                          ("specific_heat_J_kgK", values["specific_heat_J_kgK"] > 0, "> 0")):
+        if not ok:
+            raise ValueError(f"materials.{name}.{key}: must be {what}, got {values[TABLE_KEYS[key]]:g}")
+    return Material(**values)

@@ -49,12 +49,14 @@ class BearingGeometry:
     designation: str = ""
 
     @classmethod
-    def from_spec(cls, spec: BearingSpec) -> "BearingGeometry":
-        """From a `BearingSpec` (materials resolved by name)."""
+    def from_spec(cls, spec: BearingSpec, materials: tuple[Material, ...] = ()) -> "BearingGeometry":
+        """From a `BearingSpec`, its materials resolved by name among a config's own `materials`
+        first, then in the library (`analytic.materials.get_material`)."""
         return cls(Dw_mm=spec.ball_diameter_mm, Z=int(spec.ball_count),
                    dm_mm=spec.pitch_diameter_mm, f_i=spec.inner_groove_ratio,
                    f_o=spec.outer_groove_ratio, alpha0_deg=spec.contact_angle_free_deg,
-                   ring=get_material(spec.ring_material), ball=get_material(spec.ball_material),
+                   ring=get_material(spec.ring_material, materials),
+                   ball=get_material(spec.ball_material, materials),
                    designation=spec.designation)
 
     @classmethod

@@ -31,6 +31,7 @@ from __future__ import annotations
 import numpy as np
 
 from analytic.bearing.geometry import BearingGeometry, BearingSpec
+from analytic.materials import Material
 
 
 def groove_centre_radius_mm(g: BearingGeometry, side: str) -> float:
@@ -47,10 +48,11 @@ def groove_bottom_diameter_mm(g: BearingGeometry, side: str) -> float:
     return 2 * (r_c - g.f_i * g.Dw_mm) if side == "inner" else 2 * (r_c + g.f_o * g.Dw_mm)
 
 
-def land_diameters_mm(spec: BearingSpec) -> tuple[float, float, str]:
+def land_diameters_mm(spec: BearingSpec, materials: tuple[Material, ...] = ()
+                      ) -> tuple[float, float, str]:
     """(inner, outer) land diameters in mm and where they come from (given, or inferred from the
     effective ring sections as the mean of groove bottom and land)."""
-    g = BearingGeometry.from_spec(spec)
+    g = BearingGeometry.from_spec(spec, materials)
     d_i, d_o = spec.inner_land_diameter_mm, spec.outer_land_diameter_mm
     if d_i > 0 and d_o > 0:
         return d_i, d_o, "[bearing] land diameters"

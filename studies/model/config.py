@@ -16,7 +16,7 @@ from pathlib import Path
 
 from analytic.bearing.geometry import BearingGeometry, BearingSpec
 from analytic.bearing.land import groove_bottom_diameter_mm
-from analytic.materials import Material, get_material
+from analytic.materials import Material, get_material, material_from_table
 from analytic.safety import static_load_rating_C0_N
 
 
@@ -169,6 +169,7 @@ class Assembly:
     source: str = ""
     sleeve: Layer | None = None
     cartridge: Layer | None = None
+    materials: tuple[Material, ...] = ()   # the config's own [materials.NAME] tables
 
     def layers(self) -> list[tuple[str, Layer]]:
         """The sleeve and cartridge present, from the inside out: (name, layer)."""
@@ -200,7 +201,7 @@ class Assembly:
                  "outer_ring": self.bearing.ring_material,
                  "ball": self.bearing.ball_material,
                  **{n: layer.material for n, layer in self.layers()}}
-        return get_material(names[part])
+        return get_material(names[part], self.materials)
 
 
 #: the toleranced surfaces of the two fits (keys `<surface>_class`, `<surface>_deviation_um`)
@@ -352,12 +353,13 @@ def assembly_from_dict(raw: dict, path: str = "<config>") -> Assembly:
         raise ConfigError(f"{path}: assembly.T_ref_C: must be a number in -150..300 C "
                           f"(range of the material data), got {T_ref!r}")
     for name in raw:
-        if name != "assembly" and name not in SECTIONS:
+        if name not in ("assembly", "materials") and name not in SECTIONS:
             raise ConfigError(f"{path}: [{name}]: unknown section")
     parts = {name: _section(path, raw, name) for name in SECTIONS
              if name not in LAYERS or name in raw}
     asm = Assembly(name=str(top["name"]), arrangement=top["arrangement"], T_ref_C=float(T_ref),
-                   source=str(top.get("source", "")), **parts)
+                   source=str(top.get("source", "")), materials=parse_materials(raw, path),
+                   **parts)
     _check_materials(asm, path)
     _check_geometry(asm, path)
     _check_tolerances(asm, path)
@@ -368,6 +370,18 @@ def assembly_from_dict(raw: dict, path: str = "<config>") -> Assembly:
         except (KeyError, ValueError) as exc:
             raise ConfigError(f"{path}: lubrication.lubricant: {exc.args[0]}") from None
     return asm
+
+
+def parse_materials(raw: dict, path: str) -> tuple[Material, ...]:
+    """A config's `[materials.NAME]` tables (analytic.materials.material_from_table), in file
+    order; ConfigError (one line naming the file and key) on a bad table."""
+    tables = raw.get("materials", {})
+    if not isinstance(tables, dict) or not all(isinstance(t, dict) for t in tables.values()):
+        raise ConfigError(f"{path}: [materials]: give one table per material, [materials.NAME]")
+    try:
+        return tuple(material_from_table(name, t) for name, t in tables.items())
+    except ValueError as exc:
+        raise ConfigError(f"{path}: {exc.args[0]}") from None
 
 
 def _check_tolerances(a: Assembly, path: str) -> None:
@@ -395,7 +409,7 @@ def _check_materials(a: Assembly, path: str) -> None:
             **{f"{n}.material": layer.material for n, layer in a.layers()}}
     for key, name in keys.items():
         try:
-            get_material(name)
+            get_material(name, a.materials)
         except KeyError as exc:
             raise ConfigError(f"{path}: {key}: {exc.args[0]}") from None
 
@@ -449,7 +463,7 @@ def _check_geometry(a: Assembly, path: str) -> None:
         # Harris & Kotzalas Vol. 1 ch. 2: 0.515..0.54 in ball bearings; 0.5 is a ball in a
         # conforming groove (no contact ellipse), above 0.6 not a raceway groove
         need(0.5 < f <= 0.6, key, f"{f:g} is outside 0.5..0.6 (groove radius / ball diameter)")
-    g = BearingGeometry.from_spec(b)
+    g = BearingGeometry.from_spec(b, a.materials)
     for side, d in (("inner", b.inner_land_diameter_mm), ("outer", b.outer_land_diameter_mm)):
         if d > 0:        # given: the groove edge lies between the groove bottom and the pitch circle
             bottom = groove_bottom_diameter_mm(g, side)
@@ -527,7 +541,7 @@ def _check_grooved(a: Assembly, g: BearingGeometry, need) -> None:
     from analytic.bearing.land import groove_centre_radius_mm, land_angle_deg, land_diameters_mm
 
     b, s, h = a.bearing, a.shaft, a.housing
-    d_i, d_o, _ = land_diameters_mm(b)
+    d_i, d_o, _ = land_diameters_mm(b, a.materials)
     for side, wall, name in (("inner", groove_bottom_diameter_mm(g, "inner") - b.bore_mm, "inner"),
                              ("outer", b.outside_diameter_mm - groove_bottom_diameter_mm(g, "outer"),
                               "outer")):

@@ -25,6 +25,7 @@ from analytic import lame
 from analytic.bearing import SIGNS, BearingGeometry, PairState, solve_pair
 from analytic.bearing.land import groove_centre_radius_mm, land_diameters_mm, land_margin_deg
 from analytic.lubrication import get_lubricant
+from analytic.materials import get_material
 from analytic.safety import static_load_rating_C0_N, static_safety_from_contact_pressure
 from analytic.torque import palmgren_f1_angular_contact, pair_torque
 from fem.post import circle_centre_weights, groove_centre_shift, mean_pressures_MPa
@@ -150,7 +151,10 @@ class Pipeline:
             plan = CompliancePlan(tuple(float(v) for v in SIGNS[asm.arrangement]),
                                   tuple(float(v) for v in delta))
         rotor = tuple(p for p in ROTOR_PARTS if p in self.section.parts())
-        self.spec = SetupSpec.of(self.section, asm.fits.contact, pts, plan, rotating_parts=rotor)
+        mats = {p: get_material(self.section.material_of(p), asm.materials)
+                for p in self.section.parts()}
+        self.spec = SetupSpec.of(self.section, asm.fits.contact, pts, plan, materials=mats,
+                                 rotating_parts=rotor)
         self.materials = dict(self.spec.materials)
         self._full: FullFE | None = None
         self.setup: FESetup = (cached_setup(self.spec, self.full_fe, progress=self._say) if cache
@@ -158,8 +162,8 @@ class Pipeline:
         self.part_names = self.setup.part_names
         self.sup = (Superposition.from_condensed(self.setup.condensed, lambda: self.solver)
                     if superpose else None)
-        self.geom = BearingGeometry.from_spec(asm.bearing)
-        self.land_diameters_mm = land_diameters_mm(asm.bearing)[:2]
+        self.geom = BearingGeometry.from_spec(asm.bearing, asm.materials)
+        self.land_diameters_mm = land_diameters_mm(asm.bearing, asm.materials)[:2]
         # distance of the ball planes (inner ring mid-planes) of bearings A and B: the lever of
         # the rotor tilt under a moment or an off-centre radial load
         z = stack_positions(asm)

@@ -47,8 +47,8 @@ def grooves_of(a: Assembly, size_mm: float = 0.0) -> tuple[Groove, ...]:
     free-contact-line offsets (each ring's own mid-width taken as its ball-centre plane, as the
     rectangular sections' raceway points are), radius f Dw, and the points of the arc alpha0 +- 30 deg (kept
     inside the lands) that give the groove-centre shift."""
-    g = BearingGeometry.from_spec(a.bearing)
-    lands = dict(zip(("inner", "outer"), land_diameters_mm(a.bearing)[:2]))
+    g = BearingGeometry.from_spec(a.bearing, a.materials)
+    lands = dict(zip(("inner", "outer"), land_diameters_mm(a.bearing, a.materials)[:2]))
     z = stack_positions(a)
     out = []
     for side in ("inner", "outer"):
@@ -97,7 +97,7 @@ def section_from_assembly(a: Assembly) -> Section:
     z_house_end = z["outer_ring_B"][1]
     grooved = a.mesh.ring_section == "grooved"
     if grooved:                     # the ring rectangles reach the lands; the grooves are cut
-        r_iro, r_ori = (d / 2 for d in land_diameters_mm(b)[:2])
+        r_iro, r_ori = (d / 2 for d in land_diameters_mm(b, a.materials)[:2])
     else:
         r_iro, r_ori = b.inner_ring_outer_diameter_mm / 2, b.outer_ring_inner_diameter_mm / 2
     rings = b.ring_material

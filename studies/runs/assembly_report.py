@@ -240,7 +240,7 @@ def _text(asm, prov, cond, r, flags, violations, warnings, plots, images, conv, 
                 "contact_pressure", "stiffness", "torque"):
         lines += [f"![{key}]({plots[key].name})", ""]
     lines += [safety_section(asm, r, title="all operating points")]
-    d_land = land_diameters_mm(asm.bearing)
+    d_land = land_diameters_mm(asm.bearing, asm.materials)
     lines += [f"Contact ellipse and groove edge: land diameters {d_land[0]:.3f} / {d_land[1]:.3f} mm "
               f"(inner / outer; {d_land[2]}); smallest angle between the ellipse's edge and the "
               f"land {np.min(r['land_margin_inner_deg']):.1f} deg (inner), "
