@@ -50,6 +50,11 @@ def build_parser() -> argparse.ArgumentParser:
                    help="direct FE solve per row instead of superposed unit solutions")
     s.add_argument("--strict", action="store_true",
                    help="exit 1 when a row violates a limit (flag_* columns; summary on stderr)")
+    swhere = s.add_mutually_exclusive_group()
+    swhere.add_argument("--workers", type=int, default=None,
+                        help="evaluate the row chunks on a local Dask cluster of N processes")
+    swhere.add_argument("--scheduler", default=None,
+                        help="evaluate them on an existing Dask cluster (tcp://host:port)")
 
     d = sub.add_parser("diagnose", help="find what the model gets wrong in measured data")
     d.add_argument("assembly", type=Path)

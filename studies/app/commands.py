@@ -74,6 +74,8 @@ def cmd_simulate(args) -> None:
     from studies.model.pipeline import Pipeline
     from studies.model.stream import check_conditions, simulate_file
 
+    if args.workers is not None and args.workers < 1:
+        raise UserError(f"--workers {args.workers}: need at least 1")
     try:
         check_output_file(args.out, (args.assembly, args.conditions))
         asm = _load(args.assembly)
@@ -88,8 +90,10 @@ def cmd_simulate(args) -> None:
                             provenance=provenance("simulate", {"assembly": args.assembly,
                                                                "conditions": args.conditions},
                                                   effects),
-                            pipeline=Pipeline.shared(asm, progress=progress), progress=progress,
-                            n_rows=n_rows)
+                            pipeline=(Pipeline.shared(asm, progress=progress)
+                                      if args.workers is None and args.scheduler is None else None),
+                            progress=progress, n_rows=n_rows, workers=args.workers,
+                            scheduler=args.scheduler)
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
     for msg in run.warnings:

@@ -7,43 +7,101 @@ order. Without `workers` or `scheduler` it runs here, one block after the other;
 boundaries are the same in every mode and each block is computed by the same function, so the
 results are identical bit for bit; the caller chooses blocks that do not depend on one another.
 
+`Blocks` is the same as a context manager that keeps its cluster for several calls: `imap`
+yields the results in block order while later blocks still run, with at most `ahead` blocks
+submitted and not yet yielded (memory bounded for any number of blocks; a streamed `simulate`).
+
 Per-assembly set-up inside `fn` (the FE model, its unit solutions) is done once per worker
 process: `Pipeline.shared` keeps it for the life of the process.
 """
 from __future__ import annotations
 
-from typing import Callable, Sequence
+from collections import deque
+from typing import Callable, Iterable, Iterator, Sequence
+
+#: environment of every local worker process (and pre-spawn environment of any nanny):
+#: - one BLAS/OpenMP thread per worker process: the workers share the cores already;
+#: - MALLOC_TRIM_THRESHOLD_: distributed's nanny sets 64 KiB so workers return memory early;
+#:   the pipeline allocates many mid-size arrays per block and ran 1.6x slower with it (measured);
+#: - MALLOC_MMAP_THRESHOLD_ = 32 MiB: glibc's default serves arrays over 128 kB..32 MB by fresh
+#:   mmap, and every block's temporaries then page-fault anew (4e5 minor faults per 1e6 tolerance
+#:   samples, ~1e3 with it, measured; glibc mallopt(3) M_MMAP_THRESHOLD).
+WORKER_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1",
+              "MALLOC_TRIM_THRESHOLD_": str(2 ** 30), "MALLOC_MMAP_THRESHOLD_": str(2 ** 25)}
 
 
-def map_blocks(fn: Callable, blocks: Sequence[tuple], workers: int | None = None,
-               scheduler: str | None = None, progress: Callable[[int, int], None] | None = None
-               ) -> list:
-    """[fn(*b) for b in blocks], here or on Dask (see the module docstring)."""
-    total = len(blocks)
-    if workers is None and scheduler is None:
-        out = []
-        for i, b in enumerate(blocks):
-            out.append(fn(*b))
-            if progress is not None:
-                progress(i + 1, total)
-        return out
-    import dask
-    from dask.distributed import Client, LocalCluster, as_completed
+class Blocks:
+    """Where blocks run: here (no workers, no scheduler), a local Dask cluster of `workers`
+    single-threaded processes, or the Dask scheduler at `scheduler`. Use as a context manager."""
 
-    # distributed's nanny sets MALLOC_TRIM_THRESHOLD_=64 KiB so workers return memory early;
-    # the pipeline allocates many mid-size arrays per block and ran 1.6x slower with it (measured)
-    dask.config.set({"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": 2 ** 30})
+    def __init__(self, workers: int | None = None, scheduler: str | None = None):
+        self.workers, self.scheduler = workers, scheduler
+        self.client = self.cluster = None
 
-    if scheduler is not None:
-        client, cluster = Client(scheduler), None
-    else:
-        # one BLAS/OpenMP thread per worker process: the workers share the cores already
-        one = {k: "1" for k in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")}
-        cluster = LocalCluster(n_workers=int(workers), threads_per_worker=1, processes=True,
-                               dashboard_address=None, env=one)
-        client = Client(cluster)
-    try:
-        futures = [client.submit(fn, *b, pure=False) for b in blocks]
+    @property
+    def here(self) -> bool:
+        return self.workers is None and self.scheduler is None
+
+    def __enter__(self) -> "Blocks":
+        if self.here:
+            return self
+        import dask
+        from dask.distributed import Client, LocalCluster
+
+        dask.config.set({f"distributed.nanny.pre-spawn-environ.{k}": v
+                         for k, v in WORKER_ENV.items() if k.startswith("MALLOC")})
+        if self.scheduler is not None:
+            self.client = Client(self.scheduler)
+        else:
+            self.cluster = LocalCluster(n_workers=int(self.workers), threads_per_worker=1,
+                                        processes=True, dashboard_address=None, env=WORKER_ENV)
+            self.client = Client(self.cluster)
+        return self
+
+    def __exit__(self, *exc) -> bool:
+        if self.client is not None:
+            self.client.close()
+        if self.cluster is not None:
+            self.cluster.close()
+        self.client = self.cluster = None
+        return False
+
+    def slots(self) -> int:
+        """Worker threads available (1 here)."""
+        if self.client is None:
+            return 1
+        return max(1, sum(self.client.nthreads().values()))
+
+    def imap(self, fn: Callable, blocks: Iterable[tuple], ahead: int | None = None) -> Iterator:
+        """fn(*b) for each block, yielded in block order; on Dask at most `ahead` blocks
+        (default 2 per worker thread) are submitted and not yet yielded."""
+        if self.client is None:
+            for b in blocks:
+                yield fn(*b)
+            return
+        ahead = ahead or 2 * self.slots()
+        pending: deque = deque()
+        for b in blocks:
+            pending.append(self.client.submit(fn, *b, pure=False))
+            if len(pending) >= ahead:
+                yield pending.popleft().result()
+        while pending:
+            yield pending.popleft().result()
+
+    def map(self, fn: Callable, blocks: Sequence[tuple],
+            progress: Callable[[int, int], None] | None = None) -> list:
+        """[fn(*b) for b in blocks], all submitted at once on Dask."""
+        total = len(blocks)
+        if self.client is None:
+            out = []
+            for i, b in enumerate(blocks):
+                out.append(fn(*b))
+                if progress is not None:
+                    progress(i + 1, total)
+            return out
+        from dask.distributed import as_completed
+
+        futures = [self.client.submit(fn, *b, pure=False) for b in blocks]
         index = {f.key: i for i, f in enumerate(futures)}
         results = [None] * total
         for done, fut in enumerate(as_completed(futures), start=1):
@@ -51,7 +109,11 @@ def map_blocks(fn: Callable, blocks: Sequence[tuple], workers: int | None = None
             if progress is not None:
                 progress(done, total)
         return results
-    finally:
-        client.close()
-        if cluster is not None:
-            cluster.close()
+
+
+def map_blocks(fn: Callable, blocks: Sequence[tuple], workers: int | None = None,
+               scheduler: str | None = None, progress: Callable[[int, int], None] | None = None
+               ) -> list:
+    """[fn(*b) for b in blocks], here or on Dask (see the module docstring)."""
+    with Blocks(workers, scheduler) as where:
+        return where.map(fn, blocks, progress)

@@ -135,6 +135,7 @@ class Pipeline:
                  superpose: bool = True, cache: bool = True):
         self._say = progress or (lambda s: None)
         self.asm = asm
+        self.mesh_factor = float(mesh_factor)
         self.section = section_from_assembly(asm).scaled(mesh_factor)
         pts = np.array([self.section.raceway_points[r] for r in RINGS]).T
         if self.section.grooves:        # + the groove points whose circle fit gives each centre

@@ -17,6 +17,7 @@ as indices (8 bytes per violating row). Everything else lives for one chunk.
 """
 from __future__ import annotations
 
+from collections import deque
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable, Iterator
@@ -85,18 +86,38 @@ def simulate_file(asm, conditions: Path, out: Path, effects: dict | None = None,
                   provenance: dict | None = None, direct: bool = False,
                   pipeline: Pipeline | None = None, chunk_rows: int = CHUNK_ROWS,
                   progress: Callable[[str], None] | None = None,
-                  n_rows: int | None = None) -> SimulateRun:
+                  n_rows: int | None = None, workers: int | None = None,
+                  scheduler: str | None = None) -> SimulateRun:
     """Evaluate the conditions file `conditions` chunk by chunk and write the output table `out`
     (condition columns, model outputs, flag and margin columns; with its provenance sidecar) as
     one atomic file: nothing is left at `out` on an error. `n_rows`: the file's row count when
-    known (`check_conditions`), else it is counted first. See the module docstring."""
+    known (`check_conditions`), else it is counted first. With `workers` (a local Dask cluster)
+    or `scheduler` (an existing one) the chunks are evaluated as Dask tasks (`run_block` on each
+    worker's shared pipeline, `studies.model.parallel.Blocks.imap`), the same chunks by the same
+    function, so the same bytes. See the module docstring."""
+    from studies.model.parallel import Blocks
+
     total = check_conditions(conditions, chunk_rows) if n_rows is None else n_rows
-    pl = pipeline or Pipeline.shared(asm)
     tally = CheckTally(assembly_checks(asm))
     kept: dict[str, np.ndarray] = {}
     n = 0
-    with TableWriter(out, provenance) as w:
-        for cond, res in _evaluate(asm, conditions, effects, direct, pl, chunk_rows):
+    with TableWriter(out, provenance) as w, Blocks(workers, scheduler) as where:
+        if where.here:
+            pl = pipeline or Pipeline.shared(asm)
+            fn = lambda a, f, inputs, d, first: pl.run(inputs, direct=d,  # noqa: E731
+                                                      first_row=first, remember=False)
+        else:
+            fn = run_block
+        factor = pipeline.mesh_factor if pipeline is not None else 1.0
+        conds: deque[dict] = deque()       # the condition columns of the blocks under way
+
+        def blocks():
+            for cond, inputs, first in _inputs(asm, conditions, effects, chunk_rows):
+                conds.append(cond)
+                yield asm, factor, inputs, direct, first
+
+        for res in where.imap(fn, blocks()):
+            cond = conds.popleft()
             m = len(cond["_line"])
             if n + m > total:
                 raise TableError(f"{conditions}: changed while it was read")
@@ -117,15 +138,22 @@ def simulate_file(asm, conditions: Path, out: Path, effects: dict | None = None,
     return SimulateRun(n, tally.violations(), plausibility_warnings(asm, temps, outputs), temps)
 
 
-def _evaluate(asm, path: Path, effects: dict | None, direct: bool, pl: Pipeline,
-              chunk_rows: int) -> Iterator[tuple[dict, dict]]:
-    """(condition columns, model outputs) per chunk of the conditions file."""
+def run_block(asm, mesh_factor: float, inputs, direct: bool, first_row: int) -> dict[str, np.ndarray]:
+    """The model outputs of one chunk's inputs on this process's shared pipeline of `asm` at
+    `mesh_factor` (one Dask task of `simulate_file`; rows numbered from 0-based `first_row` in
+    its errors)."""
+    return Pipeline.shared(asm, mesh_factor).run(inputs, direct=direct, first_row=first_row,
+                                                 remember=False)
+
+
+def _inputs(asm, path: Path, effects: dict | None,
+            chunk_rows: int) -> Iterator[tuple[dict, object, int]]:
+    """(condition columns, `PhysicsInputs`, 0-based first row) per chunk of the conditions file."""
     chunks = iter_table(path, set(CONDITION_COLUMNS), chunk_rows)
     first = 0
     if not effects:
         for cond in chunks:
-            yield cond, pl.run(table_inputs(asm, cond), direct=direct, first_row=first,
-                               remember=False)
+            yield cond, table_inputs(asm, cond), first
             first += len(cond["_line"])
         return
     parts = list(chunks)            # an effect may depend on earlier rows: the whole table's inputs
@@ -135,6 +163,5 @@ def _evaluate(asm, path: Path, effects: dict | None, direct: bool, pl: Pipeline,
     inputs = table_inputs(asm, whole, effects)
     for m in sizes:
         rows = np.arange(first, first + m)
-        yield ({c: v[first:first + m] for c, v in whole.items()},
-               pl.run(inputs.take(rows), direct=direct, first_row=first, remember=False))
+        yield {c: v[first:first + m] for c, v in whole.items()}, inputs.take(rows), first
         first += m
