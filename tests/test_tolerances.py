@@ -168,3 +168,23 @@ def test_dask_workers_give_the_single_process_numbers(fits_only):
         tol.CHUNK_ROWS = old
     for q in tol.QUANTITIES:
         np.testing.assert_array_equal(dask[q], here[q], err_msg=q)
+
+
+def test_samples_reordered_into_blocks_come_back_in_their_own_rows(fits_only):
+    """run_samples sorts the samples by their fits (`sample_order`) before it cuts blocks and
+    puts the results back: at the reference temperature each row's inner interference is the
+    hand sum of its own drawn deviations (nominal + shaft - bore), to rounding (1e-12 um), and
+    the drawn order really was changed."""
+    asm = fits_only["uniform"]
+    S = 600
+    dev = tol.sample_deviations_um(asm, S, seed=5)
+    di, do = tol.interference_offsets_um(dev, S)
+    assert not np.array_equal(tol.sample_order(di, do), np.arange(S))
+    old = tol.CHUNK_ROWS
+    tol.CHUNK_ROWS = 150                          # four blocks
+    try:
+        r = tol.run_samples(asm, {"T_ambient_C": np.array([asm.T_ref_C])}, di, do)
+    finally:
+        tol.CHUNK_ROWS = old
+    hand = asm.fits.inner_interference_um + dev["inner_shaft"] - dev["inner_ring_bore"]
+    np.testing.assert_allclose(r["interference_inner_um"][:, 0], hand, rtol=0, atol=1e-12)
