@@ -108,7 +108,14 @@ def build_parser() -> argparse.ArgumentParser:
     b = sub.add_parser("bench", help="print FE and analytic timings on this machine")
     b.add_argument("--quick", action="store_true", help="fewer mesh levels")
     b.add_argument("--tolerance", type=int, metavar="N", default=None,
-                   help="instead: Monte Carlo throughput with N samples, 1 and 2 Dask workers")
+                   help="instead: Monte Carlo throughput with N samples, here, on 1 and on 2 Dask "
+                        "workers (wall, CPU, load)")
+    b.add_argument("--design", action="store_true",
+                   help="instead: the design search of seed 000 (324 stacks), cold and warm FE "
+                        "cache (wall, CPU, load)")
+    b.add_argument("--workers", type=int, default=None,
+                   help="with --tolerance: only on N Dask workers; with --design: N workers "
+                        "(default 2, 0 = this process)")
     b.add_argument("--simulate", action="store_true",
                    help="instead: whole-process simulate times (3 rows, cold and warm cache) per "
                         "assembly, DOF, and peak memory for 1e5 and 1e6 rows (--quick: 1e4, 1e5)")

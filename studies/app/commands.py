@@ -234,10 +234,21 @@ def cmd_bench(args) -> None:
             raise UserError(f"{missing[0]}: file not found")
         bench_simulate.main(quick=args.quick, assemblies=tuple(args.assembly))
         return
+    if args.workers is not None and (args.workers < 0 or (args.workers == 0 and not args.design)):
+        raise UserError(f"--workers {args.workers}: need at least 1 (0 only with --design)")
+    if args.workers is not None and args.tolerance is None and not args.design:
+        raise UserError("--workers: only with --tolerance or --design")
     if args.tolerance is not None:
         from studies.runs import bench_tolerance
 
-        bench_tolerance.main(args.tolerance)
+        if args.tolerance < 1:
+            raise UserError(f"--tolerance {args.tolerance}: need at least 1 sample")
+        bench_tolerance.main(args.tolerance, args.workers)
+        return
+    if args.design:
+        from studies.runs import bench_design
+
+        bench_design.main(2 if args.workers is None else args.workers)
         return
     from studies.runs import bench
 

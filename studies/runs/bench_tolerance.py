@@ -1,15 +1,18 @@
-"""`bearingfem bench --tolerance N`: Monte Carlo throughput of the fit tolerances, printed.
+"""`bearingfem bench --tolerance N [--workers W]`: Monte Carlo throughput of the fit tolerances,
+printed with wall and CPU seconds and the machine load (`bench_clock`).
 
 N samples of the seed 000 stack with realistic classes (k5 / P4 inner, J6 / P4 outer, fits 0 / 0
-um at the nominal diameters) at one temperature (80 C) through the exact model: in this process
-and on a local Dask cluster of 1 and 2 workers (cluster start and per-worker FE set-up included),
-with the speed-up of 2 workers over 1 and a check that all three give the same numbers.
+um at the nominal diameters) at one temperature (80 C) through the exact model
+(`tolerances.run_samples`, blocks of 1e4 samples). With `--workers W`: on a local Dask cluster of
+W workers only (cluster start and per-worker FE set-up, read from the cache, included). Without:
+in this process, then on 1 and on 2 workers, the speed-up of 2 workers over 1 (wall) and a check
+that all three give the same numbers bit for bit.
 """
 from __future__ import annotations
 
-import time
-
 import numpy as np
+
+from studies.runs.bench_clock import Clock
 
 TOLERANCES = {"inner_shaft_class": "k5", "inner_ring_bore_class": "P4",
               "outer_housing_class": "J6", "outer_ring_od_class": "P4"}
@@ -25,27 +28,38 @@ def _assembly():
                                    **TOLERANCES))
 
 
-def main(samples: int) -> None:
+def main(samples: int, workers: int | None = None) -> None:
     from studies.model import tolerances as tol
     from studies.model.pipeline import Pipeline
 
     asm = _assembly()
     cond = {"T_ambient_C": np.array([80.0])}
-    dev = tol.sample_deviations_um(asm, samples, seed=1)
-    di, do = tol.interference_offsets_um(dev, samples)
-    t0 = time.perf_counter()
-    Pipeline.shared(asm)
-    print(f"FE set-up (seed 000 stack): {time.perf_counter() - t0:.2f} s")
-    runs = {}
-    for label, workers in (("this process", None), ("Dask, 1 worker", 1), ("Dask, 2 workers", 2)):
-        t0 = time.perf_counter()
-        runs[label] = tol.run_samples(asm, cond, di, do, workers=workers)
-        dt = time.perf_counter() - t0
-        print(f"{label:>16}: {samples} samples at 80 C in {dt:7.2f} s "
-              f"({samples / dt:9.0f} samples/s)")
-        runs[label + " s"] = dt
-    print(f"speed-up of 2 workers over 1: {runs['Dask, 1 worker s'] / runs['Dask, 2 workers s']:.2f}x")
-    same = all(np.array_equal(runs[k]["preload_N"], runs["this process"]["preload_N"])
-               for k in ("Dask, 1 worker", "Dask, 2 workers"))
-    p, se = tol.probability(runs["this process"]["fit_pressure_inner_MPa"][:, 0] <= 0)
-    print(f"identical results in all three: {same}; P(inner fit open at 80 C) = {p:.4f} +- {se:.4f}")
+    with Clock() as c:
+        dev = tol.sample_deviations_um(asm, samples, seed=1)
+        di, do = tol.interference_offsets_um(dev, samples)
+    print(f"{'draw samples':>16}: {c.line()}")
+    modes = [("this process", None), ("Dask, 1 worker", 1), ("Dask, 2 workers", 2)]
+    if workers is not None:
+        modes = [(f"Dask, {workers} worker{'s' if workers > 1 else ''}", workers)]
+    else:
+        with Clock() as c:
+            Pipeline.shared(asm)
+        print(f"{'FE set-up':>16}: {c.line()}")
+    runs, clocks = {}, {}
+    for label, w in modes:
+        with Clock() as c:
+            runs[label] = tol.run_samples(asm, cond, di, do, workers=w)
+        clocks[label] = c
+        print(f"{label:>16}: {samples} samples at 80 C, {c.line()}, "
+              f"{samples / c.wall_s:8.0f} samples/s", flush=True)
+    if workers is None:
+        one, two = clocks["Dask, 1 worker"], clocks["Dask, 2 workers"]
+        print(f"speed-up of 2 workers over 1: wall {one.wall_s / two.wall_s:.2f}x "
+              f"(CPU {one.cpu_s:.1f} s vs {two.cpu_s:.1f} s)")
+        same = all(np.array_equal(runs[k][q], runs["this process"][q])
+                   for k in ("Dask, 1 worker", "Dask, 2 workers") for q in tol.QUANTITIES)
+        print(f"identical results in all three: {same}")
+    r = next(iter(runs.values()))
+    p, se = tol.probability(r["fit_pressure_inner_MPa"][:, 0] <= 0)
+    print(f"P(inner fit open at 80 C) = {p:.4g} +- {se:.2g}; preload mean "
+          f"{r['preload_N'].mean():.2f} N, sd {r['preload_N'].std():.2f} N")
