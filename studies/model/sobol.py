@@ -56,8 +56,13 @@ def sample(inputs: dict[str, tuple[str, float, float]], n_base: int, seed: int) 
 
 
 def analyse(inputs: dict[str, tuple[str, float, float]], Y: np.ndarray, seed: int) -> SobolIndices:
-    """The indices from the outputs Y of the rows of `sample` (same inputs, same order)."""
+    """The indices from the outputs Y of the rows of `sample` (same inputs, same order). An
+    output that does not vary has no variance to share: all indices 0."""
     from SALib.analyze import sobol as sobol_analyze
+
+    if np.ptp(Y) == 0:
+        z = np.zeros(len(inputs))
+        return SobolIndices(tuple(inputs), z, z, z, z)
 
     r = sobol_analyze.analyze(_problem(inputs), np.asarray(Y, float), calc_second_order=False,
                               seed=seed, print_to_console=False)

@@ -15,6 +15,7 @@ from pathlib import Path
 import numpy as np
 from scipy import stats
 
+from studies.model import sobol
 from studies.model import tolerances as tol
 from studies.model.checks import assembly_checks
 from studies.model.pipeline import Pipeline
@@ -23,6 +24,7 @@ from studies.runs.assembly_report import nice_step
 from studies.runs.report_tools import line_plot, md_table, write_report_files
 
 N_CONDITIONS = 8          # about this many temperatures in the default conditions
+SOBOL_BASE_SAMPLES = 512  # Sobol' design: 512 x (surfaces + 2) samples (studies/model/sobol.py)
 PERCENTILES = {"p01": 1.0, "p50": 50.0, "p99": 99.0}
 
 
@@ -119,6 +121,10 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, samples: int,
     # sensitivity of the preload to each surface: Spearman rank correlation per condition
     sens = {s: [float(stats.spearmanr(dev[s], mc["preload_N"][:, c]).statistic)
                 if np.ptp(mc["preload_N"][:, c]) > 0 else 0.0 for c in range(C)] for s in dev}
+    # Sobol' indices of the preload per surface (studies/model/sobol.py): their own sample design
+    sob = sobol.preload_indices(asm, cond, SOBOL_BASE_SAMPLES, seed, workers, scheduler)
+    sobol_json = {s: {k: [float(getattr(r, k)[i]) for r in sob]
+                      for k in ("S1", "S1_conf", "ST", "ST_conf")} for i, s in enumerate(sob[0].names)}
     result = {
         "samples": int(samples), "seed": int(seed), "distribution": asm.fits.distribution,
         "conditions": {k: [float(x) for x in v] for k, v in cond.items()},
@@ -131,6 +137,7 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, samples: int,
         "worst_case": {q: {"min": float(wc[q].min()), "max": float(wc[q].max())}
                        for q in tol.QUANTITIES},
         "preload_rank_correlation": sens,
+        "preload_sobol": sobol_json, "sobol_base_samples": SOBOL_BASE_SAMPLES,
         "provenance": provenance,
     }
     (out / "tolerance.json").write_text(json.dumps(result, indent=1) + "\n")
@@ -213,6 +220,14 @@ def _report(asm, out, cond, res, mc, fail, lin):
               "condition (+1: a larger deviation always gives a larger preload).", "",
               md_table([xlabel] + list(sens), [[float(x[c])] + [sens[s][c] for s in sens]
                                                 for c in range(C)]), ""]
+    sob = res["preload_sobol"]
+    lines += [f"Sobol' indices of the preload (first order S1: the share of its variance a surface "
+              f"causes alone; total ST: with its interactions; +- the 95 % bootstrap half-width; "
+              f"{res['sobol_base_samples']} x (surfaces + 2) model runs, Saltelli et al. 2010 "
+              f"with SALib).", "",
+              md_table([xlabel] + [f"{s} {k}" for s in sob for k in ("S1", "ST")],
+                       [[float(x[c])] + [f"{sob[s][k][c]:.3f} +- {sob[s][k + '_conf'][c]:.3f}"
+                                         for s in sob for k in ("S1", "ST")] for c in range(C)]), ""]
     write_report_files(out, lines, f"Tolerance analysis: {asm.name}")
 
 
