@@ -17,6 +17,7 @@ from studies.runs.bench_clock import Clock
 
 
 def main(workers: int | None = 2) -> None:
+    from bearingfem import __version__
     from studies.model.config import load_shipped
     from studies.runs import design_search
 
@@ -30,7 +31,9 @@ def main(workers: int | None = 2) -> None:
                 out = Path(tmp) / label.split()[0]
                 out.mkdir()
                 with Clock() as c:
-                    res = design_search.run(asm, -60.0, 80.0, out, {}, workers=w,
+                    res = design_search.run(asm, -60.0, 80.0, out,
+                                            {"command": "bench --design", "version": __version__},
+                                            workers=w,
                                             progress=lambda s: None)
                 print(f"design search, {res['n_stacks']} stacks ({res['n_designs']} designs), "
                       f"{'this process' if w is None else f'{w} workers'}, {label}: {c.line()}",
