@@ -248,3 +248,18 @@ def test_row_formatting_reads_back_to_ten_digits_and_matches_the_per_value_write
     for i in range(n):
         w.writerow([table._fmt(a[i]) for a in (x, flags, ints)])
     assert text == buf.getvalue()
+
+
+def test_simulate_with_an_unreachable_scheduler_is_one_line_and_no_output(tmp_path, capsys,
+                                                                        monkeypatch):
+    """--scheduler at an address nothing listens on: exit 2, one line naming the address, no
+    output file."""
+    from studies.model import parallel
+
+    monkeypatch.setattr(parallel, "CONNECT_TIMEOUT_S", 2.0)
+    cond = conditions(tmp_path / "c.csv", 3)
+    out = tmp_path / "o.csv"
+    code = main(["simulate", str(CFG), str(cond), "-o", str(out), "--scheduler", "tcp://127.0.0.1:9"])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and not out.exists()
+    assert len(err) == 1 and "--scheduler tcp://127.0.0.1:9: cannot connect" in err[0], err

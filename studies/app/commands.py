@@ -27,10 +27,11 @@ def _user_errors():
     from studies.model.effects import EffectError
     from studies.model.pipeline import ModelError
     from studies.model.table import TableError
+    from studies.model.parallel import SchedulerError
     from studies.runs.tolerance_report import ToleranceError
 
     return (ConfigError, TableError, EffectError, MeshError, SolveError, ModelError,
-            DiagnosisError, ModelFailure, ToleranceError)
+            DiagnosisError, ModelFailure, ToleranceError, SchedulerError)
 
 
 def check_output_file(path: Path, inputs: tuple[Path, ...] = ()) -> None:

@@ -30,6 +30,14 @@ WORKER_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THRE
               "MALLOC_TRIM_THRESHOLD_": str(2 ** 30), "MALLOC_MMAP_THRESHOLD_": str(2 ** 25)}
 
 
+#: seconds to wait for an existing scheduler (`--scheduler`) before giving up
+CONNECT_TIMEOUT_S = 20.0
+
+
+class SchedulerError(ValueError):
+    """The Dask scheduler given cannot be reached: one line naming its address."""
+
+
 class Blocks:
     """Where blocks run: here (no workers, no scheduler), a local Dask cluster of `workers`
     single-threaded processes, or the Dask scheduler at `scheduler`. Use as a context manager."""
@@ -51,7 +59,12 @@ class Blocks:
         dask.config.set({f"distributed.nanny.pre-spawn-environ.{k}": v
                          for k, v in WORKER_ENV.items() if k.startswith("MALLOC")})
         if self.scheduler is not None:
-            self.client = Client(self.scheduler)
+            try:
+                self.client = Client(self.scheduler, timeout=CONNECT_TIMEOUT_S)
+            except (OSError, TimeoutError, ValueError) as exc:
+                raise SchedulerError(f"--scheduler {self.scheduler}: cannot connect "
+                                     f"({type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''})"
+                                     ) from None
         else:
             self.cluster = LocalCluster(n_workers=int(self.workers), threads_per_worker=1,
                                         processes=True, dashboard_address=None, env=WORKER_ENV)
