@@ -514,8 +514,11 @@ class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
             "not_identifiable": {n: cands[n].reason for n in cands
                                  if cands[n].status in ("not_identifiable", "not_applicable")},
             "heldout": {"blocks": int(self.n_blocks), "method": "contiguous blocks; parameters "
-                        "refitted on the other blocks (one Gauss-Newton step from the full fit); "
-                        "paired block bootstrap of the RMSE difference"},
+                        "refitted on the other blocks (one Gauss-Newton step from the full fit; "
+                        "a profiled threshold re-selected over its grid, then all parameters "
+                        "refitted by nonlinear least squares); paired block bootstrap of the "
+                        "RMSE difference over the blocks that can test the effect"},
+            "heldout_untestable": list(cands[cause].heldout_untestable or []) if cause else [],
             "thresholds": dict(th),
             "notes": list(self.notes),
             "spikes": dict(self.spikes),
