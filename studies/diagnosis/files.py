@@ -102,7 +102,8 @@ def diagnose_files(assembly_path: Path, measured_path: Path, out_dir: Path, prog
     conditions, measured = read_measured(measured_path, OUTPUT_NAMES)
     predict = ModelPredictor(pl, conditions, measured.keys())
     limits = assembly_bounds(asm)
-    candidates = [EFFECTS[name].with_bounds(**limits.get(name, {})) for name in ORDER]
+    candidates = [EFFECTS[name].with_bounds(**limits.get(name, {})).for_assembly(asm)
+                  for name in ORDER]
     progress(f"diagnosing {len(next(iter(measured.values())))} rows, columns "
              f"{', '.join(measured)}, {len(candidates)} candidate effects ...")
     outcome = diagnose_full(predict, measured, conditions, candidates, NUISANCE,
