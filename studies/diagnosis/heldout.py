@@ -19,14 +19,26 @@ import math
 
 import numpy as np
 
-from scipy import optimize
-
 from studies.diagnosis.core import Baseline, Fit, ModelFailure, Screening
 from studies.diagnosis.stats import blsq
 
 #: relative size below which two predictions (or sensitivities) count as equal: round-off of a
 #: row-wise model evaluation, far below any noise level
 SAME_RTOL = 1e-8
+
+
+#: grid values (best on the kept rows by the baseline linearisation) linearised again about the
+#: full fit in a held-out refit; the chord iteration's largest number of steps and the step (in
+#: scaled parameter units) below which it has converged
+TOP_VALUES = 3
+CHORD_ITER = 8
+CHORD_STEP = 1e-4
+
+
+def _lin_sse(J, z, lo, hi) -> tuple[float, np.ndarray]:
+    """Chi-square and step of the bounded linear fit z + J x on the given entries."""
+    x = blsq(J, -z, lo, hi)
+    return float(np.sum((z + J @ x) ** 2)), x
 
 
 #: fewest testable held-out blocks for a held-out gain (a bootstrap over fewer is meaningless)
@@ -117,44 +129,46 @@ class HeldoutPhase:
     def heldout_profile(self, fit: Fit, e, base_ho: np.ndarray
                         ) -> tuple[np.ndarray, list, dict[int, str]]:
         """Held-out residuals for a candidate with a profiled parameter (a threshold), all its
-        parameters refitted on the kept blocks (module docstring):
+        parameters refitted on the kept blocks (module docstring). Per held-out block:
 
-        1. every grid value evaluated by the in-sample profile is linearised about the full-data
-           fit (its other parameters and nuisance; one model call per parameter and value);
-        2. per held-out block, the value with the least linearised chi-square on the kept rows is
-           chosen (a global profile over the bounded grid), then the other parameters and the
-           nuisance are refitted by bounded nonlinear least squares on the kept rows from that
-           linear solution, and the held-out block is predicted by a real model call;
-        3. a block is untestable when a parameter does not move the kept rows' predictions, or
-           when another value predicts (and moves) the kept rows exactly as the chosen one but not
-           the held-out block. Its entries keep the baseline's held-out residual (no gain claimed)
-           and the bootstrap leaves it out.
+        1. a global profile over the grid values the in-sample profile evaluated: each value's
+           linearisation (at the baseline) is fitted to the kept rows; the TOP_VALUES best are
+           linearised again about the full-data fit (cached across blocks) and the best of those
+           on the kept rows is chosen;
+        2. untestable (left out, see `_untestable`) or refined: every other parameter and the
+           nuisance refitted on the kept rows by a chord (simplified Gauss-Newton) iteration to
+           convergence with the Jacobian about the full fit, each step a real model call; the
+           held-out block is predicted at the result.
 
-        Returns the stacked held-out residuals, the chosen value per testable block and
-        {block: reason} for the untestable ones."""
+        Returns the stacked held-out residuals (untestable blocks keep the baseline's: no gain
+        claimed there), the chosen value per testable block and {block: reason} for the
+        untestable ones."""
         (pp,) = e.profile
-        sp0 = fit.space
-        k = sp0.k
+        grid_lin = fit.extra["grid_lin"]
+        k = fit.space.k
         u = fit.u
-        lins = []
-        for g in fit.extra["grid_lin"]:
-            space = g["space"]                    # same coordinates for every value of pp
-            try:
-                z0, _ = self.eval(space, u)
-                cols = []
-                for i in range(k):
-                    h = 1.0 if u[i] + 1.0 <= space.hi[i] else -1.0
-                    du = np.zeros_like(u)
-                    du[i] = h
-                    cols.append((self.eval(space, u + du)[0] - z0) / h)
-            except ModelFailure:
-                continue
-            lins.append({"value": g["value"], "space": space, "z": z0,
-                         "Je": np.column_stack(cols) if cols else np.zeros((self.N, 0))})
-        if not lins:
-            raise ModelFailure(f"the model fails at every {pp} about the fit")
         Jn = fit.J[:, k:]
-        lo, hi = sp0.lo - u, sp0.hi - u
+        relin: dict[float, dict | None] = {}
+
+        def about_fit(g):
+            v = g["value"]
+            if v not in relin:
+                space = g["space"]                # same coordinates for every value of pp
+                try:
+                    z0, _ = self.eval(space, u)
+                    cols = []
+                    for i in range(k):
+                        h = 1.0 if u[i] + 1.0 <= space.hi[i] else -1.0
+                        du = np.zeros_like(u)
+                        du[i] = h
+                        cols.append((self.eval(space, u + du)[0] - z0) / h)
+                    relin[v] = {"value": v, "space": space, "z": z0,
+                                "J": np.column_stack(cols + [Jn])}
+                except ModelFailure:
+                    relin[v] = None
+            return relin[v]
+
+        lo, hi = fit.space.lo - u, fit.space.hi - u
         z_ho = base_ho.copy()
         chosen, untestable = [], {}
         for b in range(self.n_blocks):
@@ -162,68 +176,80 @@ class HeldoutPhase:
             tr = ~te
             if not te.any():
                 continue
+            ranked = sorted(grid_lin, key=lambda g: _lin_sse(g["J"][tr], g["z"][tr], g["lo"],
+                                                             g["hi"])[0])
             best = None
-            for L in lins:
-                J = np.column_stack([L["Je"][tr], Jn[tr]])
-                x = blsq(J, -L["z"][tr], lo, hi)
-                sse = float(np.sum((L["z"][tr] + J @ x) ** 2))
+            for g in ranked[:TOP_VALUES]:
+                L = about_fit(g)
+                if L is None:
+                    continue
+                sse, x = _lin_sse(L["J"][tr], L["z"][tr], lo, hi)
                 if best is None or sse < best[0]:
-                    best = (sse, L, x)
-            _, L, x = best
-            why = self._untestable(L, lins, tr, te, e, pp)
+                    best = (sse, L, x, g)
+            if best is None:
+                raise ModelFailure(f"the model fails at every {pp} about the fit")
+            _, L, x, g = best
+            why = self._untestable(g, grid_lin, tr, te, pp)
             if why:
                 untestable[b] = why
                 continue
-            uu = self._refit_rows(L["space"], u + x, tr)
-            zz, _ = self.eval(L["space"], uu)        # ModelFailure -> candidate fails
+            zz = self._refit_rows(L["space"], u + x, tr, L["J"])
             z_ho[te] = zz[te]
             chosen.append(L["value"])
         return z_ho, chosen, untestable
 
-    def _untestable(self, L: dict, lins: list[dict], tr, te, e, pp: str) -> str | None:
-        """Why the kept rows (`tr`) cannot test the held-out block (`te`) at the chosen value
-        (linearisation `L`), or None."""
-        ref = max(float(np.max(np.abs(L["z"]))), 1.0)
-        for i, (_, p) in enumerate(L["space"].eff_params):
-            col = L["Je"][:, i]
-            full = float(np.max(np.abs(col)))
-            if full > 0 and float(np.max(np.abs(col[tr]))) <= SAME_RTOL * full:
+    def _untestable(self, g: dict, grid_lin: list[dict], tr, te, pp: str) -> str | None:
+        """Why the kept entries (`tr`) cannot test the held-out block (`te`) at the chosen value
+        (`g`, its linearisation at the baseline: the effect's sensitivity per parameter), or
+        None: a parameter whose sensitivity vanishes on the kept rows (the effect acts only in
+        this block), or another value whose sensitivity equals the chosen one's on the kept rows
+        but not on this block (where the trigger falls inside this block cannot be learnt)."""
+        k = g["space"].k
+        Jg = g["J"][:, :k]
+        ref = max(float(np.max(np.abs(Jg), initial=0.0)), 1e-300)
+        for i, (_, p) in enumerate(g["space"].eff_params):
+            full = float(np.max(np.abs(Jg[:, i])))
+            if full > 0 and float(np.max(np.abs(Jg[tr, i]), initial=0.0)) <= SAME_RTOL * full:
                 return (f"{p} does not change the predictions of the other blocks (at {pp} = "
-                        f"{L['value']:g} the effect acts only in this block)")
-        for M in lins:
-            if M is L:
+                        f"{g['value']:g} the effect acts only in this block)")
+        for h in grid_lin:
+            if h is g:
                 continue
-            same_tr = (np.max(np.abs(M["z"][tr] - L["z"][tr]), initial=0.0) <= SAME_RTOL * ref
-                       and np.allclose(M["Je"][tr], L["Je"][tr], rtol=SAME_RTOL,
-                                       atol=SAME_RTOL * ref))
-            if not same_tr:
-                continue
-            if (np.max(np.abs(M["z"][te] - L["z"][te]), initial=0.0) > SAME_RTOL * ref
-                    or not np.allclose(M["Je"][te], L["Je"][te], rtol=SAME_RTOL,
-                                       atol=SAME_RTOL * ref)):
-                a, c = sorted((L["value"], M["value"]))
-                return (f"{pp} = {a:g} and {c:g} predict the other blocks identically but this "
-                        "block differently: the trigger falls inside this block, and where "
-                        "cannot be learnt from the others")
+            Jh = h["J"][:, :k]
+            if (np.max(np.abs(Jh[tr] - Jg[tr]), initial=0.0) <= SAME_RTOL * ref
+                    and np.max(np.abs(Jh[te] - Jg[te]), initial=0.0) > SAME_RTOL * ref):
+                a, c = sorted((g["value"], h["value"]))
+                return (f"{pp} = {a:g} and {c:g} act identically on the other blocks but not on "
+                        "this one: the trigger falls inside this block, and where cannot be "
+                        "learnt from the others")
         return None
 
-    def _refit_rows(self, space, u0, rows) -> np.ndarray:
-        """Bounded nonlinear least squares (as `fit`) on the stacked entries `rows` only."""
-        lo, hi = space.lo, space.hi
-        span = np.maximum(hi - lo, 1)
-        u0 = np.clip(space.clip(np.asarray(u0, float)), lo + 1e-10 * span, hi - 1e-10 * span)
-        big = np.full(int(np.sum(rows)), 1e6)
-
-        def fun(uu):
-            try:
-                return self.eval(space, uu)[0][rows]
-            except ModelFailure:
-                return big
-
-        res = optimize.least_squares(fun, u0, bounds=(lo, hi), method="trf", diff_step=1e-3,
-                                     x_scale=1.0, ftol=1e-8, xtol=1e-8, gtol=1e-8,
-                                     max_nfev=20 * (u0.size + 1))
-        return res.x
+    def _refit_rows(self, space, u0, rows, J) -> np.ndarray:
+        """Bounded least squares on the stacked entries `rows` only: chord iterations (the
+        Jacobian `J` held, each step a real model call, halved while it does not lower the
+        kept rows' chi-square) until the step or the gain is negligible. Returns the stacked
+        standardised residuals at the result (all entries)."""
+        u = space.clip(np.asarray(u0, float))
+        z, _ = self.eval(space, u)
+        sse = float(z[rows] @ z[rows])
+        Jr = J[rows]
+        for _ in range(CHORD_ITER):
+            du = blsq(Jr, -z[rows], space.lo - u, space.hi - u)
+            if not np.any(np.abs(du) > CHORD_STEP):
+                break
+            for damp in (1.0, 0.5, 0.25):
+                un = space.clip(u + damp * du)
+                zn, _ = self.eval(space, un)
+                ssen = float(zn[rows] @ zn[rows])
+                if ssen <= sse:
+                    break
+            else:
+                break
+            gain = sse - ssen
+            u, z, sse = un, zn, ssen
+            if gain <= 1e-6 * max(sse, 1.0):
+                break
+        return z
 
     def _block_rows(self, b: int) -> list[int]:
         """First and last row (1-based, as in the file) of held-out block b."""
