@@ -11,7 +11,7 @@ every kept row is settled and the kept blocks cannot say where in the held-out b
 began. The engine must refit the settling on the kept blocks, list that block as untestable, and
 still find the held-out gain on the others.
 
-The pipeline uses `mesh_factor=2.0`: data and model share it, so the mesh error is no model error.
+The candidates are the CLI's (`files.candidate_effects`). The pipeline uses `mesh_factor=2.0`: data and model share it, so the mesh error is no model error.
 """
 from __future__ import annotations
 
@@ -20,9 +20,9 @@ import pytest
 
 from studies.diagnosis.designs import cycles
 from studies.diagnosis.engine import diagnose_full
-from studies.diagnosis.files import NUISANCE, ModelPredictor
+from studies.diagnosis.files import NUISANCE, ModelPredictor, candidate_effects
+from studies.diagnosis.report import write_report
 from studies.model.config import load_shipped
-from studies.model.effects import EFFECTS, ORDER
 from studies.model.pipeline import Pipeline, simulate_table
 
 LOSS_N, THRESHOLD_K = 20.0, 30.0
@@ -46,10 +46,13 @@ def noisy(pl, cond, effects, seed):
     return {"torque_Nmm": truth + np.random.default_rng(seed).normal(0.0, sig, truth.size)}, sig
 
 
-def run(pl, cond, meas):
+def run(pl, cond, meas, report_dir=None):
     pred = ModelPredictor(pl, cond, meas.keys())
-    return diagnose_full(pred, meas, cond, [EFFECTS[n] for n in ORDER], NUISANCE,
-                         T_ref_C=pl.asm.T_ref_C, predict_at=pred.at).result
+    out = diagnose_full(pred, meas, cond, candidate_effects(pl.asm), NUISANCE,
+                        T_ref_C=pl.asm.T_ref_C, predict_at=pred.at)
+    if report_dir is not None:
+        write_report(out.result, cond, meas, out.baseline_pred, out.extended_pred, report_dir)
+    return out.result
 
 
 def onset_row(T, T_ref, threshold):
@@ -57,7 +60,7 @@ def onset_row(T, T_ref, threshold):
     return int(np.argmax(np.abs(np.asarray(T) - T_ref) > threshold))
 
 
-def test_one_off_settling_in_three_cycles_is_explained(pl000):
+def test_one_off_settling_in_three_cycles_is_explained(pl000, tmp_path):
     cond = three_cycles()
     eff = {"preload_settling": {"loss_N": LOSS_N, "threshold_K": THRESHOLD_K}}
     meas, sig = noisy(pl000, cond, eff, seed=1)
@@ -65,7 +68,7 @@ def test_one_off_settling_in_three_cycles_is_explained(pl000):
     base = simulate_table(pl000.asm, cond, {}, pipeline=pl000)["torque_Nmm"]
     truth = simulate_table(pl000.asm, cond, eff, pipeline=pl000)["torque_Nmm"]
     assert np.max(np.abs(truth - base)) > 8 * sig
-    res = run(pl000, cond, meas)
+    res = run(pl000, cond, meas, tmp_path)
     assert (res["verdict"], res["cause"]) == ("explained", "preload_settling"), res["reasons"]
     # the loss is recovered within three of its standard uncertainties (99.7 % for a Gaussian
     # estimate); the fitted threshold switches at the true onset row
@@ -85,9 +88,12 @@ def test_one_off_settling_in_three_cycles_is_explained(pl000):
     assert c["heldout_gain"]["n_blocks"] == res["heldout"]["blocks"] - 1
     assert c["heldout_gain"]["excludes_zero"]
     assert res["gain"]["heldout_rmse_ratio"] < 1.0
+    report = (tmp_path / "report.md").read_text()
+    assert f"block {unt[0]['block']} (rows {unt[0]['rows'][0]}..{unt[0]['rows'][1]})" in report
 
 
 def test_no_effect_in_three_cycles_is_no_discrepancy(pl000):
+    """The same design, nothing hidden (the candidates exactly as the CLI builds them)."""
     cond = three_cycles()
     meas, _ = noisy(pl000, cond, {}, seed=2)
     res = run(pl000, cond, meas)

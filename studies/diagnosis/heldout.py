@@ -41,7 +41,8 @@ def _lin_sse(J, z, lo, hi) -> tuple[float, np.ndarray]:
     return float(np.sum((z + J @ x) ** 2)), x
 
 
-#: fewest testable held-out blocks for a held-out gain (a bootstrap over fewer is meaningless)
+#: fewest testable held-out blocks for a held-out gain (a bootstrap over fewer is meaningless;
+#: all of them when the data have fewer blocks)
 MIN_TESTABLE_BLOCKS = 3
 
 
@@ -79,9 +80,10 @@ class HeldoutPhase:
                 reasons.append(f"likelihood ratio not significant (p = {c.p_lr:.2g}, Holm)")
             if not c.delta_bic < -th["bic_margin"]:
                 reasons.append(f"BIC not better than the baseline (delta {c.delta_bic:.1f})")
-            if c.heldout_gain["n_blocks"] < MIN_TESTABLE_BLOCKS:
+            need = min(MIN_TESTABLE_BLOCKS, self.n_blocks)
+            if c.heldout_gain["n_blocks"] < need:
                 reasons.append(f"only {c.heldout_gain['n_blocks']} held-out blocks can test it "
-                               f"(need {MIN_TESTABLE_BLOCKS})")
+                               f"(need {need})")
             elif not c.heldout_gain["excludes_zero"]:
                 reasons.append("no held-out gain beyond noise (bootstrap interval "
                                f"[{c.heldout_gain['ci'][0]:.3g}, "
