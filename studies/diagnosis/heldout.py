@@ -5,14 +5,14 @@ of `studies.diagnosis.engine`, step 4).
 
 History effects (a profiled parameter such as a settling threshold) are refitted in full on the
 kept blocks: the profiled value is re-selected over its whole grid (linearised about the full-data
-fit), then every other parameter and the nuisance are refitted by nonlinear least squares on the
-kept rows. A block the kept blocks cannot test is left out of the held-out gain and reported
+fit), then every other parameter and the nuisance are refitted on the kept rows (chord iterations,
+each step a real model call). A block the kept blocks cannot test is left out of the held-out gain and reported
 (`heldout_untestable`): when a parameter does not move the kept rows' predictions (the trigger
 never occurs there), or when another value of the profiled parameter predicts the kept rows
 identically but the held-out block differently (the trigger falls inside the held-out block, so
 where it falls cannot be learnt from the others). Cross-validation can only test what the
-training folds identify (Arlot & Celisse 2010, A survey of cross-validation procedures, sec. 8 on
-dependent data and blocks)."""
+training folds identify (Arlot & Celisse 2010, A survey of cross-validation procedures for model
+selection, Statistics Surveys 4, on dependent data and blocks)."""
 from __future__ import annotations
 
 import math
