@@ -40,6 +40,7 @@ class Candidate:
     lr_significant: bool | None = None                      # after Holm over the candidates
     heldout_profile_values: list | None = None
     heldout_failed: str | None = None
+    heldout_untestable: list | None = None                  # blocks the kept blocks cannot test
     heldout_gain: dict | None = None                        # paired block bootstrap
     # working state (WORKING): d(prediction)/d(parameter) at off, profiled parameters' values
     sensitivity: np.ndarray | None = field(default=None, repr=False)

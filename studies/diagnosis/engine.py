@@ -32,8 +32,10 @@ Method (DESIGN.md section 5):
    correction over the candidates tested, and a BIC margin.
 4. Held-out gain: for each contiguous block, the parameters are refitted on the other blocks (one
    Gauss-Newton step from the full fit with the full-fit Jacobian restricted to the training rows;
-   profiled parameters are re-selected on the training rows), the held-out block is predicted with
-   a real model call. A paired block bootstrap of the held-out RMSE difference (baseline minus
+   a candidate with a profiled parameter, a history effect, is refitted in full: the value
+   re-selected over its grid, every other parameter refitted on the training rows), the held-out
+   block is predicted with a real model call. Blocks the training rows cannot test (a one-off
+   trigger inside the held-out block) are left out and reported (`heldout_untestable`). A paired block bootstrap of the held-out RMSE difference (baseline minus
    candidate) must exclude zero.
 5. Candidates passing 3 and 4: the best (lowest BIC) is compared with every other candidate that
    fits nearly as well by a joint fit: it "clearly carries the weight" when adding it to the other
@@ -514,8 +516,11 @@ class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
             "not_identifiable": {n: cands[n].reason for n in cands
                                  if cands[n].status in ("not_identifiable", "not_applicable")},
             "heldout": {"blocks": int(self.n_blocks), "method": "contiguous blocks; parameters "
-                        "refitted on the other blocks (one Gauss-Newton step from the full fit); "
-                        "paired block bootstrap of the RMSE difference"},
+                        "refitted on the other blocks (one Gauss-Newton step from the full fit; "
+                        "a profiled threshold re-selected over its grid, then all parameters "
+                        "refitted by nonlinear least squares); paired block bootstrap of the "
+                        "RMSE difference over the blocks that can test the effect"},
+            "heldout_untestable": list(cands[cause].heldout_untestable or []) if cause else [],
             "thresholds": dict(th),
             "notes": list(self.notes),
             "spikes": dict(self.spikes),

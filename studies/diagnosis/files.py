@@ -94,6 +94,13 @@ def read_measured(path: Path, known_outputs: set[str] | None = None) -> tuple[di
     return conditions, measured
 
 
+def candidate_effects(asm) -> list:
+    """Every listed effect as this assembly sees it: bounds narrowed to what it allows
+    (`assembly_bounds`), its configured speed and lubrication (`Effect.for_assembly`)."""
+    limits = assembly_bounds(asm)
+    return [EFFECTS[name].with_bounds(**limits.get(name, {})).for_assembly(asm) for name in ORDER]
+
+
 def diagnose_files(assembly_path: Path, measured_path: Path, out_dir: Path, progress=print,
                    pipeline: Pipeline | None = None) -> dict:
     asm = load_assembly(assembly_path)
@@ -101,8 +108,7 @@ def diagnose_files(assembly_path: Path, measured_path: Path, out_dir: Path, prog
     pl = pipeline or Pipeline.shared(asm, progress=progress)
     conditions, measured = read_measured(measured_path, OUTPUT_NAMES)
     predict = ModelPredictor(pl, conditions, measured.keys())
-    limits = assembly_bounds(asm)
-    candidates = [EFFECTS[name].with_bounds(**limits.get(name, {})) for name in ORDER]
+    candidates = candidate_effects(asm)
     progress(f"diagnosing {len(next(iter(measured.values())))} rows, columns "
              f"{', '.join(measured)}, {len(candidates)} candidate effects ...")
     outcome = diagnose_full(predict, measured, conditions, candidates, NUISANCE,

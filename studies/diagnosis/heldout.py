@@ -1,7 +1,18 @@
 """Phase 4 of the diagnosis: held-out gain. Each contiguous block is predicted from parameters
 refitted on the other blocks; a paired block bootstrap of the RMSE difference must exclude zero;
 a candidate passes when its likelihood ratio, BIC and held-out gain all say so (module docstring
-of `studies.diagnosis.engine`, step 4)."""
+of `studies.diagnosis.engine`, step 4).
+
+History effects (a profiled parameter such as a settling threshold) are refitted in full on the
+kept blocks: the profiled value is re-selected over its whole grid (linearised about the full-data
+fit), then every other parameter and the nuisance are refitted on the kept rows (chord iterations,
+each step a real model call). A block the kept blocks cannot test is left out of the held-out gain and reported
+(`heldout_untestable`): when a parameter does not move the kept rows' predictions (the trigger
+never occurs there), or when another value of the profiled parameter predicts the kept rows
+identically but the held-out block differently (the trigger falls inside the held-out block, so
+where it falls cannot be learnt from the others). Cross-validation can only test what the
+training folds identify (Arlot & Celisse 2010, A survey of cross-validation procedures for model
+selection, Statistics Surveys 4, on dependent data and blocks)."""
 from __future__ import annotations
 
 import math
@@ -10,6 +21,29 @@ import numpy as np
 
 from studies.diagnosis.core import Baseline, Fit, ModelFailure, Screening
 from studies.diagnosis.stats import blsq
+
+#: relative size below which two predictions (or sensitivities) count as equal: round-off of a
+#: row-wise model evaluation, far below any noise level
+SAME_RTOL = 1e-8
+
+
+#: grid values (best on the kept rows by the baseline linearisation) linearised again about the
+#: full fit in a held-out refit; the chord iteration's largest number of steps and the step (in
+#: scaled parameter units) below which it has converged
+TOP_VALUES = 3
+CHORD_ITER = 8
+CHORD_STEP = 1e-4
+
+
+def _lin_sse(J, z, lo, hi) -> tuple[float, np.ndarray]:
+    """Chi-square and step of the bounded linear fit z + J x on the given entries."""
+    x = blsq(J, -z, lo, hi)
+    return float(np.sum((z + J @ x) ** 2)), x
+
+
+#: fewest testable held-out blocks for a held-out gain (a bootstrap over fewer is meaningless;
+#: all of them when the data have fewer blocks)
+MIN_TESTABLE_BLOCKS = 3
 
 
 class HeldoutPhase:
@@ -20,10 +54,14 @@ class HeldoutPhase:
         ho = {}
         for name in list(names_id):
             e = self.effect(name)
+            untestable = {}
             try:
                 if e.profile:
-                    ho[name], chosen = self.heldout_profile(fits[name].extra["grid_lin"], e)
+                    ho[name], chosen, untestable = self.heldout_profile(fits[name], e, base_ho)
                     cands[name].heldout_profile_values = chosen
+                    cands[name].heldout_untestable = [
+                        {"block": int(bk) + 1, "rows": self._block_rows(bk), "reason": why}
+                        for bk, why in sorted(untestable.items())]
                 else:
                     ho[name] = self.heldout_linear(fits[name])
             except ModelFailure as exc:
@@ -31,7 +69,9 @@ class HeldoutPhase:
                 cands[name].heldout_failed = str(exc)
                 ho[name] = base_ho.copy()
             cands[name].heldout_rmse = self.col_rmse(ho[name])
-            cands[name].heldout_gain = self.bootstrap_gain(base_ho, ho[name])
+            keep = np.ones(self.n_blocks, bool)
+            keep[list(untestable)] = False
+            cands[name].heldout_gain = self.bootstrap_gain(base_ho, ho[name], keep)
         passing = []
         for name in names_id:
             c = cands[name]
@@ -40,7 +80,11 @@ class HeldoutPhase:
                 reasons.append(f"likelihood ratio not significant (p = {c.p_lr:.2g}, Holm)")
             if not c.delta_bic < -th["bic_margin"]:
                 reasons.append(f"BIC not better than the baseline (delta {c.delta_bic:.1f})")
-            if not c.heldout_gain["excludes_zero"]:
+            need = min(MIN_TESTABLE_BLOCKS, self.n_blocks)
+            if c.heldout_gain["n_blocks"] < need:
+                reasons.append(f"only {c.heldout_gain['n_blocks']} held-out blocks can test it "
+                               f"(need {need})")
+            elif not c.heldout_gain["excludes_zero"]:
                 reasons.append("no held-out gain beyond noise (bootstrap interval "
                                f"[{c.heldout_gain['ci'][0]:.3g}, "
                                f"{c.heldout_gain['ci'][1]:.3g}] includes 0)")
@@ -84,44 +128,157 @@ class HeldoutPhase:
         return z_ho
 
 
-    def heldout_profile(self, grid_lin: list[dict], e) -> tuple[np.ndarray, list]:
-        """Held-out residuals for a profiled candidate: re-select the profiled value per fold from
-        the linearisations stored for every grid value."""
-        z_ho = np.empty(self.N)
-        chosen = []
+    def heldout_profile(self, fit: Fit, e, base_ho: np.ndarray
+                        ) -> tuple[np.ndarray, list, dict[int, str]]:
+        """Held-out residuals for a candidate with a profiled parameter (a threshold), all its
+        parameters refitted on the kept blocks (module docstring). Per held-out block:
+
+        1. a global profile over the grid values the in-sample profile evaluated: each value's
+           linearisation (at the baseline) is fitted to the kept rows; the TOP_VALUES best are
+           linearised again about the full-data fit (cached across blocks) and the best of those
+           on the kept rows is chosen;
+        2. untestable (left out, see `_untestable`) or refined: every other parameter and the
+           nuisance refitted on the kept rows by a chord (simplified Gauss-Newton) iteration to
+           convergence with the Jacobian about the full fit, each step a real model call; the
+           held-out block is predicted at the result.
+
+        Returns the stacked held-out residuals (untestable blocks keep the baseline's: no gain
+        claimed there), the chosen value per testable block and {block: reason} for the
+        untestable ones."""
+        (pp,) = e.profile
+        grid_lin = fit.extra["grid_lin"]
+        k = fit.space.k
+        u = fit.u
+        Jn = fit.J[:, k:]
+        relin: dict[float, dict | None] = {}
+
+        def about_fit(g):
+            v = g["value"]
+            if v not in relin:
+                space = g["space"]                # same coordinates for every value of pp
+                try:
+                    z0, _ = self.eval(space, u)
+                    cols = []
+                    for i in range(k):
+                        h = 1.0 if u[i] + 1.0 <= space.hi[i] else -1.0
+                        du = np.zeros_like(u)
+                        du[i] = h
+                        cols.append((self.eval(space, u + du)[0] - z0) / h)
+                    relin[v] = {"value": v, "space": space, "z": z0,
+                                "J": np.column_stack(cols + [Jn])}
+                except ModelFailure:
+                    relin[v] = None
+            return relin[v]
+
+        lo, hi = fit.space.lo - u, fit.space.hi - u
+        z_ho = base_ho.copy()
+        chosen, untestable = [], {}
         for b in range(self.n_blocks):
             te = self.entry_block == b
             tr = ~te
             if not te.any():
                 continue
+            ranked = sorted(grid_lin, key=lambda g: _lin_sse(g["J"][tr], g["z"][tr], g["lo"],
+                                                             g["hi"])[0])
             best = None
-            for g in grid_lin:
-                x = blsq(g["J"][tr], -g["z"][tr], g["lo"], g["hi"])
-                sse = float(np.sum((g["z"][tr] + g["J"][tr] @ x) ** 2))
+            for g in ranked[:TOP_VALUES]:
+                L = about_fit(g)
+                if L is None:
+                    continue
+                sse, x = _lin_sse(L["J"][tr], L["z"][tr], lo, hi)
                 if best is None or sse < best[0]:
-                    best = (sse, g, x)
-            _, g, du = best
-            zz, _ = self.eval(g["space"], g["u0"] + du)     # ModelFailure -> candidate fails
+                    best = (sse, L, x, g)
+            if best is None:
+                raise ModelFailure(f"the model fails at every {pp} about the fit")
+            _, L, x, g = best
+            why = self._untestable(g, grid_lin, tr, te, pp)
+            if why:
+                untestable[b] = why
+                continue
+            zz = self._refit_rows(L["space"], u + x, tr, L["J"])
             z_ho[te] = zz[te]
-            chosen.append(g["value"])
-        return z_ho, chosen
+            chosen.append(L["value"])
+        return z_ho, chosen, untestable
 
+    def _untestable(self, g: dict, grid_lin: list[dict], tr, te, pp: str) -> str | None:
+        """Why the kept entries (`tr`) cannot test the held-out block (`te`) at the chosen value
+        (`g`, its linearisation at the baseline: the effect's sensitivity per parameter), or
+        None: a parameter whose sensitivity vanishes on the kept rows (the effect acts only in
+        this block), or another value whose sensitivity equals the chosen one's on the kept rows
+        but not on this block (where the trigger falls inside this block cannot be learnt)."""
+        k = g["space"].k
+        Jg = g["J"][:, :k]
+        ref = max(float(np.max(np.abs(Jg), initial=0.0)), 1e-300)
+        for i, (_, p) in enumerate(g["space"].eff_params):
+            full = float(np.max(np.abs(Jg[:, i])))
+            if full > 0 and float(np.max(np.abs(Jg[tr, i]), initial=0.0)) <= SAME_RTOL * full:
+                return (f"{p} does not change the predictions of the other blocks (at {pp} = "
+                        f"{g['value']:g} the effect acts only in this block)")
+        for h in grid_lin:
+            if h is g:
+                continue
+            Jh = h["J"][:, :k]
+            if (np.max(np.abs(Jh[tr] - Jg[tr]), initial=0.0) <= SAME_RTOL * ref
+                    and np.max(np.abs(Jh[te] - Jg[te]), initial=0.0) > SAME_RTOL * ref):
+                a, c = sorted((g["value"], h["value"]))
+                return (f"{pp} = {a:g} and {c:g} act identically on the other blocks but not on "
+                        "this one: the trigger falls inside this block, and where cannot be "
+                        "learnt from the others")
+        return None
 
-    def bootstrap_gain(self, z_base_ho, z_cand_ho) -> dict:
-        """Paired block bootstrap of RMSE(baseline) - RMSE(candidate), standardised, held-out."""
+    def _refit_rows(self, space, u0, rows, J) -> np.ndarray:
+        """Bounded least squares on the stacked entries `rows` only: chord iterations (the
+        Jacobian `J` held, each step a real model call, halved while it does not lower the
+        kept rows' chi-square) until the step or the gain is negligible. Returns the stacked
+        standardised residuals at the result (all entries)."""
+        u = space.clip(np.asarray(u0, float))
+        z, _ = self.eval(space, u)
+        sse = float(z[rows] @ z[rows])
+        Jr = J[rows]
+        for _ in range(CHORD_ITER):
+            du = blsq(Jr, -z[rows], space.lo - u, space.hi - u)
+            if not np.any(np.abs(du) > CHORD_STEP):
+                break
+            for damp in (1.0, 0.5, 0.25):
+                un = space.clip(u + damp * du)
+                zn, _ = self.eval(space, un)
+                ssen = float(zn[rows] @ zn[rows])
+                if ssen <= sse:
+                    break
+            else:
+                break
+            gain = sse - ssen
+            u, z, sse = un, zn, ssen
+            if gain <= 1e-6 * max(sse, 1.0):
+                break
+        return z
+
+    def _block_rows(self, b: int) -> list[int]:
+        """First and last row (1-based, as in the file) of held-out block b."""
+        rows = np.flatnonzero(self.blocks == b)
+        return [int(rows[0]) + 1, int(rows[-1]) + 1]
+
+    def bootstrap_gain(self, z_base_ho, z_cand_ho, keep=None) -> dict:
+        """Paired block bootstrap of RMSE(baseline) - RMSE(candidate), standardised, held-out,
+        over the blocks `keep` (boolean per block; default all)."""
         B = int(self.th["n_boot"])
-        sb = np.bincount(self.entry_block, weights=z_base_ho ** 2, minlength=self.n_blocks)
-        sc = np.bincount(self.entry_block, weights=z_cand_ho ** 2, minlength=self.n_blocks)
-        nb = np.bincount(self.entry_block, minlength=self.n_blocks).astype(float)
-        idx = self.rng.integers(0, self.n_blocks, size=(B, self.n_blocks))
-        cnt = np.zeros((B, self.n_blocks))
-        np.add.at(cnt, (np.repeat(np.arange(B), self.n_blocks), idx.ravel()), 1.0)
+        keep = np.ones(self.n_blocks, bool) if keep is None else np.asarray(keep, bool)
+        sb = np.bincount(self.entry_block, weights=z_base_ho ** 2, minlength=self.n_blocks)[keep]
+        sc = np.bincount(self.entry_block, weights=z_cand_ho ** 2, minlength=self.n_blocks)[keep]
+        nb = np.bincount(self.entry_block, minlength=self.n_blocks).astype(float)[keep]
+        m = int(keep.sum())
+        if m == 0:
+            return {"rmse_gain": 0.0, "ci": [0.0, 0.0], "blocks_improved": 0, "n_blocks": 0,
+                    "excludes_zero": False}
+        idx = self.rng.integers(0, m, size=(B, m))
+        cnt = np.zeros((B, m))
+        np.add.at(cnt, (np.repeat(np.arange(B), m), idx.ravel()), 1.0)
         nn = cnt @ nb
         d = np.sqrt(cnt @ sb / nn) - np.sqrt(cnt @ sc / nn)
         q = float(self.th["heldout_quantile"])
         point = math.sqrt(sb.sum() / nb.sum()) - math.sqrt(sc.sum() / nb.sum())
         lo, hi = np.quantile(d, [q, 1 - q])
         return {"rmse_gain": float(point), "ci": [float(lo), float(hi)],
-                "blocks_improved": int(np.sum(sb > sc)), "n_blocks": int(self.n_blocks),
+                "blocks_improved": int(np.sum(sb > sc)), "n_blocks": m,
                 "excludes_zero": bool(lo > 0)}
 

@@ -211,6 +211,13 @@ def write_report(result: dict, conditions: Mapping[str, np.ndarray],
           f" | {_fmt(result['extended']['heldout_rmse'][c])} |")
     w("")
     w(f"Held-out rows: {result['heldout']['blocks']} {result['heldout']['method']}.\n")
+    unt = result.get("heldout_untestable") or []
+    if unt:
+        w(f"Blocks that cannot test `{cause}` (left out of its held-out gain; their rows keep the "
+          "baseline's held-out residual):\n")
+        for u in unt:
+            w(f"- block {u['block']} (rows {u['rows'][0]}..{u['rows'][1]}): {u['reason']}")
+        w("")
 
     w("## What the baseline gets wrong\n")
     nu = result["nuisance"]
@@ -265,6 +272,9 @@ def write_report(result: dict, conditions: Mapping[str, np.ndarray],
         ho = c["heldout_rmse"][c0] if c.get("heldout_rmse") else None
         params = ", ".join(f"{k}={_fmt(v)}" for k, v in c["parameters"].items()) or "–"
         note = c["reason"]
+        if c.get("heldout_untestable"):
+            note += ("; " if note else "") + "held-out blocks it cannot test: " + ", ".join(
+                f"{u['block']} (rows {u['rows'][0]}..{u['rows'][1]})" for u in c["heldout_untestable"])
         if c.get("held_at_off"):
             note += ("; " if note else "") + "held at its off value (not separable in this data): " \
                 + ", ".join(c["held_at_off"])
@@ -317,7 +327,8 @@ def write_report(result: dict, conditions: Mapping[str, np.ndarray],
       "projected out: too little left = not identifiable; overlaps = look-alike matrix.")
     w("3. Bounded least-squares fit of each candidate with the nuisance; likelihood ratio (Holm "
       "over candidates) and a BIC margin.")
-    w("4. Held-out gain on contiguous blocks with a paired block bootstrap interval excluding 0.")
+    w("4. Held-out gain on contiguous blocks with a paired block bootstrap interval excluding 0 "
+      "(history effects refitted in full on the kept blocks; blocks they cannot test left out).")
     w("5. Several passing: joint fits; ambiguous unless the best clearly carries the weight.\n")
     w("| threshold | value |")
     w("| --- | --- |")

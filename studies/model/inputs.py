@@ -16,6 +16,8 @@ Conventions for the fields effects write (see studies/effects/__init__.py):
   baseline.
 - `viscosity_slope_factor`: Walther slope factor about 40 C (1 = nominal).
 - `preload_loss_N`: permanent loss subtracted from the assembled preload per row.
+- `extra_compliance_mm_per_N`: axial compliance added in series to each bearing's preload path
+  (mm/N, on top of the assembly's `[preload] path_compliance`); zero in the baseline.
 """
 from __future__ import annotations
 
@@ -50,6 +52,7 @@ class PhysicsInputs:
     T_ambient_C: np.ndarray | None = None
     dalpha_per_K2: dict[str, float] = field(default_factory=lambda: dict(NO_CTE_SLOPE))
     viscosity_slope_factor: float = 1.0
+    extra_compliance_mm_per_N: float = 0.0             # added to the preload-path compliance
     radial_load_N: np.ndarray | None = None            # on the shaft at the pair's mid-point
     moment_Nmm: np.ndarray | None = None               # tilting moment on the shaft (N mm)
 

@@ -452,7 +452,9 @@ class Pipeline:
         groove-centre shifts) or to feed a non-uniform temperature field (`fe_field`).
 
         compliance_mm_per_N: preload-path compliance per bearing (mm/N; scalar or one per row);
-        default the assembly's (`[preload] path_compliance`). viscous_factor_f0: Palmgren's f0 in
+        default the assembly's (`[preload] path_compliance`); the inputs'
+        `extra_compliance_mm_per_N` (the preload_path_compliance effect) is added in series
+        (compliances of springs in series add). viscous_factor_f0: Palmgren's f0 in
         place of the assembly's (oil lubrication; scalar or one per row). With `return_pair`, also the raw
         pair state (`analytic.bearing.PairState`: contact ellipses for heat models). first_row:
         the 0-based row of the whole table the inputs start at (rows named in errors)."""
@@ -469,8 +471,10 @@ class Pipeline:
                               moment_Nmm=_zeros_if_none(inputs.moment_Nmm),
                               bearing_span_mm=self.bearing_span_mm,
                               dr_ref_mm=fe_ref.dr_mm, dz_ref_mm=fe_ref.dz_mm,
-                              compliance_mm_per_N=self.compliance_mm_per_N
-                              if compliance_mm_per_N is None else compliance_mm_per_N)
+                              compliance_mm_per_N=(self.compliance_mm_per_N
+                                                   if compliance_mm_per_N is None
+                                                   else compliance_mm_per_N)
+                              + inputs.extra_compliance_mm_per_N)
             mu = resolve_friction_coefficient(inputs, a.lubrication.friction_coefficient)
             torque = self.torque(pair, inputs, mu, viscous_factor_f0)
         names = list(self.setup.fit_names)

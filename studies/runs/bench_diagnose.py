@@ -1,14 +1,16 @@
-"""Benchmark of `bearingfem diagnose` (issue 5 performance goal: a 500-row dataset with all seven
-candidate effects diagnosed in under 10 s on 2 cores). Prints, never asserts.
+"""Benchmark of `bearingfem diagnose` (issue 5 and 11 performance goal: a 500-row dataset with
+every candidate effect diagnosed in under 10 s on 2 cores). Prints, never asserts.
 
 Run: `.venv/bin/python -m studies.runs.bench_diagnose` (add `--mesh-factor 2` for the coarser mesh of
-the tests).
+the tests, `--rows 240 500` for several sizes).
 
 Dataset: seed 000 (the shipped `seed000_71807C_TC4.toml`, full mesh as the CLI builds it),
 alternating -60 <-> 80 C cycles from 20 C (2 K/min ramps, one-hour dwells) sampled every 60 s,
-500 rows, torque (sigma 0.02 N mm) and preload (sigma 0.5 N) measured, the rig's friction
-coefficient 1.25 x the configured one. Three datasets: no effect, a thermal lag (tau 300 s) and a
-preload settling (5 N beyond 50 K), because the engine's work depends on how many candidates pass.
+500 rows (`--rows`), torque (sigma 0.02 N mm) and preload (sigma 0.5 N) measured, the rig's
+friction coefficient 1.25 x the configured one. Datasets: no effect, a thermal lag (tau 300 s), a
+preload settling (5 N beyond 50 K) and a solid-film run-in (-0.004 over 10 krev), because the
+engine's work depends on how many candidates pass. The candidates are the CLI's
+(`files.candidate_effects`).
 Times: the FE set-up (mesh from the cache, unit solutions) once; per dataset the engine alone
 (`diagnose_full`, what the goal is about) and the whole `diagnose_files` (reading the CSV, the
 engine, JSON and the report with its plots), with the set-up pipeline passed in.
@@ -33,53 +35,58 @@ SIGMA = {"torque_Nmm": 0.02, "preload_N": 0.5}
 MU_TRUE = 1.25
 DATASETS = {"no effect": {}, "thermal_lag tau_s=300": {"thermal_lag": {"tau_s": 300.0}},
             "preload_settling loss_N=5 threshold_K=50":
-                {"preload_settling": {"loss_N": 5.0, "threshold_K": 50.0}}}
+                {"preload_settling": {"loss_N": 5.0, "threshold_K": 50.0}},
+            "solid_film_runin dmu=-0.004 runin_krev=10":
+                {"solid_film_runin": {"dmu": -0.004, "runin_krev": 10.0}}}
 
 
 def main(argv=None) -> None:
     from studies.model.config import CONFIG_DIR, SHIPPED, load_shipped
-    from studies.diagnosis.files import NUISANCE, ModelPredictor, diagnose_files
+    from studies.diagnosis.files import (NUISANCE, ModelPredictor, candidate_effects,
+                                         diagnose_files)
     from studies.diagnosis.engine import diagnose_full
-    from studies.model.effects import EFFECTS, ORDER
     from studies.model.pipeline import Pipeline
     from studies.model.table import write_table
 
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--mesh-factor", type=float, default=1.0)
+    ap.add_argument("--rows", type=int, nargs="+", default=[N_ROWS])
     args = ap.parse_args(argv)
 
     asm = load_shipped("seed000")
     t0 = time.perf_counter()
     pl = Pipeline(asm, mesh_factor=args.mesh_factor)
     t_setup = time.perf_counter() - t0
-    cond = cycles(N_ROWS, 60.0)
-    print(f"diagnose benchmark: seed000, {N_ROWS} rows (cycles -60..80 C), columns "
-          f"{', '.join(SIGMA)}, {len(ORDER)} candidates, mesh factor {args.mesh_factor:g} "
-          f"({pl.ndofs} DOF), OPENBLAS_NUM_THREADS={os.environ.get('OPENBLAS_NUM_THREADS')}, "
-          f"{os.cpu_count()} CPUs")
+    cands = candidate_effects(asm)
     print(f"FE set-up (once per run of the CLI): {t_setup:.2f} s")
-    print(f"{'dataset':<42} {'verdict':<15} {'cause':<18} {'engine s':>8} {'calls':>6} "
-          f"{'model s':>8} {'CLI s':>6}")
-    rng = np.random.default_rng(0)
-    for label, effects in DATASETS.items():
-        truth = ModelPredictor(pl, cond, tuple(SIGMA))(effects, {"mu_scale": MU_TRUE})
-        meas = {c: truth[c] + rng.normal(0.0, s, truth[c].size) for c, s in SIGMA.items()}
-        pred = ModelPredictor(pl, cond, tuple(SIGMA))
-        t0 = time.perf_counter()
-        out = diagnose_full(pred, meas, cond, [EFFECTS[n] for n in ORDER], NUISANCE,
-                            T_ref_C=asm.T_ref_C, predict_at=pred.at)
-        t_engine = time.perf_counter() - t0
-        r = out.result
-        with tempfile.TemporaryDirectory() as tmp:
-            csv = Path(tmp) / "measured.csv"
-            write_table(csv, {**cond, **meas})
+    for n_rows in args.rows:
+        cond = cycles(n_rows, 60.0)
+        print(f"diagnose benchmark: seed000, {n_rows} rows (cycles -60..80 C), columns "
+              f"{', '.join(SIGMA)}, {len(cands)} candidates, mesh factor {args.mesh_factor:g} "
+              f"({pl.ndofs} DOF), OPENBLAS_NUM_THREADS={os.environ.get('OPENBLAS_NUM_THREADS')}, "
+              f"{os.cpu_count()} CPUs")
+        print(f"{'dataset':<42} {'verdict':<15} {'cause':<18} {'engine s':>8} {'calls':>6} "
+              f"{'model s':>8} {'CLI s':>6}")
+        rng = np.random.default_rng(0)
+        for label, effects in DATASETS.items():
+            truth = ModelPredictor(pl, cond, tuple(SIGMA))(effects, {"mu_scale": MU_TRUE})
+            meas = {c: truth[c] + rng.normal(0.0, s, truth[c].size) for c, s in SIGMA.items()}
+            pred = ModelPredictor(pl, cond, tuple(SIGMA))
             t0 = time.perf_counter()
-            diagnose_files(CONFIG_DIR / SHIPPED["seed000"], csv, Path(tmp), progress=lambda s: None,
-                           pipeline=pl)
-            t_cli = time.perf_counter() - t0
-        print(f"{label:<42} {r['verdict']:<15} {str(r['cause']):<18} {t_engine:8.2f} "
-              f"{r['n_predict_calls']:6d} {r['seconds']['predict']:8.2f} {t_cli:6.2f}")
-        print(f"    model calls by phase: {r['predict_calls_by_phase']}")
+            out = diagnose_full(pred, meas, cond, cands, NUISANCE, T_ref_C=asm.T_ref_C,
+                                predict_at=pred.at)
+            t_engine = time.perf_counter() - t0
+            r = out.result
+            with tempfile.TemporaryDirectory() as tmp:
+                csv = Path(tmp) / "measured.csv"
+                write_table(csv, {**cond, **meas})
+                t0 = time.perf_counter()
+                diagnose_files(CONFIG_DIR / SHIPPED["seed000"], csv, Path(tmp),
+                               progress=lambda s: None, pipeline=pl)
+                t_cli = time.perf_counter() - t0
+            print(f"{label:<42} {r['verdict']:<15} {str(r['cause']):<18} {t_engine:8.2f} "
+                  f"{r['n_predict_calls']:6d} {r['seconds']['predict']:8.2f} {t_cli:6.2f}")
+            print(f"    model calls by phase: {r['predict_calls_by_phase']}")
 
 
 if __name__ == "__main__":

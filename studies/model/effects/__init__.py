@@ -173,6 +173,10 @@ class Effect:
         """Values to profile over for each parameter in `profile`."""
         return {}
 
+    def for_assembly(self, asm) -> "Effect":
+        """The effect as one assembly sees it (e.g. its configured speed); default: itself."""
+        return self
+
     def describe(self) -> str:
         """First paragraph of the module docstring."""
         import sys
@@ -207,6 +211,8 @@ from .cte_nonlinearity import CteNonlinearity  # noqa: E402
 from .viscosity_temperature import ViscosityTemperature  # noqa: E402
 from .friction_temperature import FrictionTemperature  # noqa: E402
 from .preload_settling import PreloadSettling  # noqa: E402
+from .solid_film_runin import SolidFilmRunin  # noqa: E402
+from .preload_path_compliance import PreloadPathCompliance  # noqa: E402
 
 #: order in which `apply_effects` applies effects (the lag first: it acts on the ambient-following
 #: part temperatures; the radial gradient then adds to them; friction reads the final temperatures).
@@ -226,11 +232,13 @@ def assembly_bounds(asm) -> dict[str, dict[str, tuple[float, float]]]:
 
 
 ORDER = ("interference_error", "thermal_lag", "radial_gradient", "cte_nonlinearity",
-         "viscosity_temperature", "friction_temperature", "preload_settling")
+         "viscosity_temperature", "friction_temperature", "preload_settling", "solid_film_runin",
+         "preload_path_compliance")
 
 EFFECTS: dict[str, Effect] = {e.name: e for e in (
     InterferenceError(), RadialGradient(), ThermalLag(), ViscosityTemperature(),
-    FrictionTemperature(), PreloadSettling(), CteNonlinearity())}
+    FrictionTemperature(), PreloadSettling(), CteNonlinearity(), SolidFilmRunin(),
+    PreloadPathCompliance())}
 assert set(EFFECTS) == set(ORDER)
 
 
