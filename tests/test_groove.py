@@ -20,7 +20,7 @@ from fem.fields import ball_outline_rz_mm
 from fem.model import build_model
 from fem.post import circle_centre_weights
 from meshes.build import section_mesh
-from meshes.section import Rect, Section
+from meshes.section import Section
 from studies.model.config import ConfigError, assembly_from_dict, load_shipped
 from studies.model.stack import ball_centres_rz_mm, grooves_of, section_from_assembly
 

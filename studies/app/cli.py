@@ -119,6 +119,9 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--simulate", action="store_true",
                    help="instead: whole-process simulate times (3 rows, cold and warm cache) per "
                         "assembly, DOF, and peak memory for 1e5 and 1e6 rows (--quick: 1e4, 1e5)")
+    b.add_argument("--diagnose", action="store_true",
+                   help="instead: time of a 500-row diagnosis with all candidates (seed000), per "
+                        "phase in model calls and in the engine")
     b.add_argument("--assembly", type=Path, action="append", default=[],
                    help="with --simulate: one more assembly to time (may repeat)")
     return p

@@ -227,6 +227,11 @@ def cmd_verify(args) -> None:
 
 
 def cmd_bench(args) -> None:
+    if args.diagnose:
+        from studies.runs import bench_diagnose
+
+        bench_diagnose.main([])
+        return
     if args.simulate:
         from studies.runs import bench_simulate
 

@@ -16,3 +16,17 @@ def cycles(n: int = 240, dt: float = 120.0) -> dict[str, np.ndarray]:
             kt.append(kt[-1] + 60.0 * minutes)
             kT.append(T)
     return {"time_s": t, "T_ambient_C": np.interp(t, kt, kT)}
+
+
+def speed_steps(n: int = 240, dt: float = 120.0,
+                speeds_rpm: tuple = (3000.0, 6000.0, 9000.0)) -> dict[str, np.ndarray]:
+    """Oil-lubricated spindle style: chamber steps 0, 20, 40, 60 C (the chamber follows its set
+    point at 3 K/min) repeated at each speed, sampled every `dt` s (240 x 120 s = 8 h)."""
+    t = np.arange(n) * dt
+    k = (np.arange(n) * 4 * len(speeds_rpm)) // n
+    target = np.array([0.0, 20.0, 40.0, 60.0])[k % 4]
+    amb = np.empty(n)
+    amb[0] = target[0]
+    for i in range(1, n):
+        amb[i] = amb[i - 1] + np.clip(target[i] - amb[i - 1], -0.05 * dt, 0.05 * dt)
+    return {"time_s": t, "T_ambient_C": amb, "speed_rpm": np.asarray(speeds_rpm, float)[k // 4]}

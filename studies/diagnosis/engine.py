@@ -67,6 +67,7 @@ from studies.diagnosis.core import (DEFAULT_THRESHOLDS, FIRST_COLUMNS, Baseline,
 from studies.diagnosis.decision import DecisionPhase
 from studies.diagnosis.fitting import FittingPhase
 from studies.diagnosis.heldout import HeldoutPhase
+from studies.diagnosis.openworld import characterise
 from studies.diagnosis.screening import ScreeningPhase
 from studies.diagnosis.stats import (ar1_regression_ml, ar1_unwhiten, ar1_whiten, auto_blocks,
                                      noise_sigma, noise_sigma_steady, orth)
@@ -160,6 +161,7 @@ class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
         self.sigma_w = dict(self.sigma)                                  # innovation level
         self.notes: list[str] = []
         self.calls_by_phase: dict[str, int] = {}
+        self.seconds_by_phase: dict[str, dict] = {}     # cumulative clocks at each phase's end
 
     def _layout(self) -> None:
         """The stacked layout of the compared entries (valid rows of every column)."""
@@ -414,7 +416,12 @@ class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
         sep, sep_items = (self.separating(d.best, d.rivals, fits, b.fit)
                           if d.verdict == "ambiguous" else (None, []))
         self._phase("separating")
-        return self.assemble(b, s, fits, ho, passing, d, sep, sep_items)
+        result = self.assemble(b, s, fits, ho, passing, d, sep, sep_items)
+        result["open_world"] = (jsonable(characterise(
+            {c: self.measured[c] - b.fit.pred[c] for c in self.columns}, self.valid,
+            self.conditions, self.blocks, self.sigma_w, self.rho).to_json())
+            if d.verdict == "unexplained" else None)
+        return result
 
     def calibrate_baseline(self) -> Baseline:
         """Phase 1: nuisance-only fit in two passes (noise from the measured data, then from the
@@ -528,6 +535,7 @@ class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
             "n_predict_calls": int(self.model.calls),
             "predict_calls_by_phase": dict(self.calls_by_phase),
             "seconds": {"total": time.perf_counter() - self.t0, "predict": self.model.seconds},
+            "seconds_by_phase": _phase_seconds(self.seconds_by_phase),
         }
         self.base_fit, self.ext_fit, self.fits = base, ext_fit, fits
         return jsonable(result)
@@ -535,10 +543,21 @@ class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
     def _phase(self, label):
         done = sum(self.calls_by_phase.values())
         self.calls_by_phase[label] = self.model.calls - done
+        self.seconds_by_phase[label] = {"total": time.perf_counter() - self.t0,
+                                        "predict": self.model.seconds}
 
     def effect(self, name):
         return next(e for e in self.candidates if e.name == name)
 
+
+
+def _phase_seconds(cum: dict) -> dict:
+    """Seconds spent in each phase (total and in model calls), from the cumulative clocks."""
+    out, prev = {}, {"total": 0.0, "predict": 0.0}
+    for label, c in cum.items():
+        out[label] = {k: c[k] - prev[k] for k in ("total", "predict")}
+        prev = c
+    return out
 
 
 # ============================================================================ public API

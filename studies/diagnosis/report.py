@@ -23,6 +23,8 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
+from studies.diagnosis.openworld import report_lines
+
 MAX_PANELS = 6
 
 
@@ -257,6 +259,7 @@ def write_report(result: dict, conditions: Mapping[str, np.ndarray],
         w(f"![{c}: measured vs models]({f1})\n")
         w(f"![{c}: residuals]({f2})\n")
 
+    L.extend(report_lines(result.get("open_world")))     # unexplained: what it depends on
     w("## Candidates\n")
     w("Sorted best first. `delta BIC` is relative to the calibrated baseline (negative = better); "
       "`p (LR)` is the likelihood-ratio p-value (half-chi-square mixture for parameters with a "

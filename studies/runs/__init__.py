@@ -14,6 +14,7 @@ STUDIES = {
     "seed003": "studies.runs.seed003",
     "mesh_convergence": "studies.runs.mesh_convergence",
     "lubricant_viscosity": "studies.runs.lubricant_viscosity",
+    "confusion_matrix": "studies.runs.confusion_matrix",
 }
 
 

@@ -1,8 +1,10 @@
 """Benchmark of `bearingfem diagnose` (issue 5 and 11 performance goal: a 500-row dataset with
 every candidate effect diagnosed in under 10 s on 2 cores). Prints, never asserts.
 
-Run: `.venv/bin/python -m studies.runs.bench_diagnose` (add `--mesh-factor 2` for the coarser mesh of
-the tests, `--rows 240 500` for several sizes).
+Run: `bearingfem bench --diagnose` or `.venv/bin/python -m studies.runs.bench_diagnose` (add
+`--mesh-factor 2` for the coarser mesh of the tests, `--rows 240 500` for several sizes). Per dataset
+it also prints the model calls and the seconds of each phase, split into model calls and the
+engine's own work.
 
 Dataset: seed 000 (the shipped `seed000_71807C_TC4.toml`, full mesh as the CLI builds it),
 alternating -60 <-> 80 C cycles from 20 C (2 K/min ramps, one-hour dwells) sampled every 60 s,
@@ -87,6 +89,11 @@ def main(argv=None) -> None:
             print(f"{label:<42} {r['verdict']:<15} {str(r['cause']):<18} {t_engine:8.2f} "
                   f"{r['n_predict_calls']:6d} {r['seconds']['predict']:8.2f} {t_cli:6.2f}")
             print(f"    model calls by phase: {r['predict_calls_by_phase']}")
+            print("    seconds by phase (model + engine): " + ", ".join(
+                f"{k} {v['predict']:.2f} + {v['total'] - v['predict']:.2f}"
+                for k, v in r["seconds_by_phase"].items())
+                + f"; engine outside the model: {r['seconds']['total'] - r['seconds']['predict']:.2f} s"
+                f" of {r['seconds']['total']:.2f} s")
 
 
 if __name__ == "__main__":
