@@ -33,6 +33,8 @@ from studies.model.effects.generalised import forms_of
 
 #: families (listed candidates, best BIC first) whose generalised forms are tried
 MAX_FAMILIES = 2
+#: local fits per form: from the listed fit and from the best other starting points
+N_RUNS = 3
 
 
 class GeneralisedPhase:
@@ -90,6 +92,7 @@ class GeneralisedPhase:
         u_nuis = f_listed.u[f_listed.space.k:]
         start_vals = [form.from_listed(vals_listed)]
         start_vals += [{**start_vals[0], **x} for x in form.extra_starts(vals_listed, self.conditions)]
+        Jn = f_listed.J[:, f_listed.space.k:]       # d z / d u_nuisance at the listed fit
         scored = []
         for i, v in enumerate(start_vals):
             x = np.array([v[p] for (_, p) in space.eff_params], float)
@@ -98,11 +101,16 @@ class GeneralisedPhase:
                 z, _ = self.eval(space, u)
             except ModelFailure:
                 continue
+            if nq:                                   # linearised nuisance refit for the score
+                dn, *_ = np.linalg.lstsq(Jn, -z, rcond=None)
+                u = space.clip(np.concatenate([u[:k], u[k:] + dn]))
+                z = z + Jn @ dn
             scored.append((float(z @ z), i, u))
         if not scored:
             raise ModelFailure("the model fails at every start of the generalised form")
         scored.sort(key=lambda t: t[:2])
-        runs = [t for t in scored if t[1] == 0] + [t for t in scored if t[1] != 0][:1]
+        # local fits from the listed fit (index 0) and the two most promising other starts
+        runs = [t for t in scored if t[1] == 0] + [t for t in scored if t[1] != 0][:N_RUNS - 1]
         f_ext = None
         for _, _, u in runs:
             try:

@@ -65,9 +65,11 @@ class ThermalLagPerPart(GeneralisedForm):
         return {"tau_s": s, "tau_shaft_s": s}
 
     def extra_starts(self, listed, conditions):
-        tau = float(listed["tau_s"])
-        return [{"tau_s": tau * a, "tau_shaft_s": tau * b}
-                for a, b in ((0.6, 2.0), (2.0, 0.6), (0.5, 3.0), (3.0, 0.5))]
+        """A grid of both time constants about the listed one (factors 0.3..3): the two lags
+        trade against each other and against the friction calibration (local minima)."""
+        tau = max(float(listed["tau_s"]), 1.0)
+        f = (0.3, 0.5, 0.7, 1.0, 1.5, 2.0, 3.0)
+        return [{"tau_s": tau * a, "tau_shaft_s": tau * b} for a in f for b in f if a != b]
 
     def text(self, params):
         return (f"thermal_lag, per-part time constants: housing {params['tau_s']:.0f} s, "
