@@ -110,7 +110,10 @@ class GeneralisedPhase:
             raise ModelFailure("the model fails at every start of the generalised form")
         scored.sort(key=lambda t: t[:2])
         # local fits from the listed fit (index 0) and the two most promising other starts
-        runs = [t for t in scored if t[1] == 0] + [t for t in scored if t[1] != 0][:N_RUNS - 1]
+        # (another start only when its score already beats the listed fit: otherwise the data
+        # give the extra parameter nothing to do, and a listed effect costs one local fit)
+        runs = [t for t in scored if t[1] == 0] + [
+            t for t in scored if t[1] != 0 and t[0] < f_listed.chi2][:N_RUNS - 1]
         f_ext = None
         for _, _, u in runs:
             try:

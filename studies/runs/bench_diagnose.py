@@ -7,8 +7,11 @@ the tests).
 Dataset: seed 000 (the shipped `seed000_71807C_TC4.toml`, full mesh as the CLI builds it),
 alternating -60 <-> 80 C cycles from 20 C (2 K/min ramps, one-hour dwells) sampled every 60 s,
 500 rows, torque (sigma 0.02 N mm) and preload (sigma 0.5 N) measured, the rig's friction
-coefficient 1.25 x the configured one. Three datasets: no effect, a thermal lag (tau 300 s) and a
-preload settling (5 N beyond 50 K), because the engine's work depends on how many candidates pass.
+coefficient 1.25 x the configured one. Five datasets: no effect, a thermal lag (tau 300 s), a
+preload settling (5 N beyond 50 K), because the engine's work depends on how many candidates pass,
+and two generalised forms (per-part lag 300 s / 360 s, settling creeping 3 N/h), where the engine
+also fits the generalised forms of the family (`studies.diagnosis.generalised`); the column
+`form` gives the extended form reported.
 Times: the FE set-up (mesh from the cache, unit solutions) once; per dataset the engine alone
 (`diagnose_full`, what the goal is about) and the whole `diagnose_files` (reading the CSV, the
 engine, JSON and the report with its plots), with the set-up pipeline passed in.
@@ -33,7 +36,13 @@ SIGMA = {"torque_Nmm": 0.02, "preload_N": 0.5}
 MU_TRUE = 1.25
 DATASETS = {"no effect": {}, "thermal_lag tau_s=300": {"thermal_lag": {"tau_s": 300.0}},
             "preload_settling loss_N=5 threshold_K=50":
-                {"preload_settling": {"loss_N": 5.0, "threshold_K": 50.0}}}
+                {"preload_settling": {"loss_N": 5.0, "threshold_K": 50.0}},
+            # generalised forms (issue 11): the engine then also fits the family's forms
+            "thermal_lag.per_part tau_s=300 tau_shaft_s=360":
+                {"thermal_lag.per_part": {"tau_s": 300.0, "tau_shaft_s": 360.0}},
+            "preload_settling.creep 5 N, 50 K, 3 N/h":
+                {"preload_settling.creep": {"loss_N": 5.0, "threshold_K": 50.0,
+                                            "creep_N_per_h": 3.0}}}
 
 
 def main(argv=None) -> None:
@@ -77,8 +86,9 @@ def main(argv=None) -> None:
             diagnose_files(CONFIG_DIR / SHIPPED["seed000"], csv, Path(tmp), progress=lambda s: None,
                            pipeline=pl)
             t_cli = time.perf_counter() - t0
+        form = (r.get("extended_form") or {}).get("name", "-")
         print(f"{label:<42} {r['verdict']:<15} {str(r['cause']):<18} {t_engine:8.2f} "
-              f"{r['n_predict_calls']:6d} {r['seconds']['predict']:8.2f} {t_cli:6.2f}")
+              f"{r['n_predict_calls']:6d} {r['seconds']['predict']:8.2f} {t_cli:6.2f}  {form}")
         print(f"    model calls by phase: {r['predict_calls_by_phase']}")
 
 

@@ -65,10 +65,10 @@ class ThermalLagPerPart(GeneralisedForm):
         return {"tau_s": s, "tau_shaft_s": s}
 
     def extra_starts(self, listed, conditions):
-        """A grid of both time constants about the listed one (factors 0.3..3): the two lags
+        """A grid of both time constants about the listed one (factors 0.35..2.8): the two lags
         trade against each other and against the friction calibration (local minima)."""
         tau = max(float(listed["tau_s"]), 1.0)
-        f = (0.3, 0.5, 0.7, 1.0, 1.5, 2.0, 3.0)
+        f = (0.35, 0.5, 0.7, 1.0, 1.4, 2.0, 2.8)
         return [{"tau_s": tau * a, "tau_shaft_s": tau * b} for a in f for b in f if a != b]
 
     def text(self, params):
