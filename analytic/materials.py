@@ -58,11 +58,17 @@ class Material:
     specific_heat_J_kgK: float
     dalpha_per_K2: float = 0.0
     source: str = ""
+    d2alpha_per_K3: float = 0.0
 
     def thermal_strain(self, T_C, T_ref_C):
-        """theta = integral_{T_ref}^{T} alpha(T') dT' (dimensionless), exact for the linear law."""
+        """theta = integral_{T_ref}^{T} alpha(T') dT' (dimensionless), exact for the quadratic law
+        alpha(T) = alpha_per_K + dalpha_per_K2 (T - 20) + d2alpha_per_K3 (T - 20)^2 (T in C, 20 C =
+        T_CTE_REF_C; the curvature term is zero unless the cte_nonlinearity curvature form sets it)."""
         a, b = T_C - T_CTE_REF_C, T_ref_C - T_CTE_REF_C
-        return self.alpha_per_K * (T_C - T_ref_C) + 0.5 * self.dalpha_per_K2 * (a * a - b * b)
+        theta = self.alpha_per_K * (T_C - T_ref_C) + 0.5 * self.dalpha_per_K2 * (a * a - b * b)
+        if self.d2alpha_per_K3 != 0.0:
+            theta = theta + self.d2alpha_per_K3 * (a * a * a - b * b * b) / 3.0
+        return theta
 
     @property
     def density_N_s2_mm4(self) -> float:
@@ -70,9 +76,11 @@ class Material:
         then a body force in N/mm^3 for omega in rad/s and r in mm."""
         return self.density_kg_m3 * KG_M3_TO_N_S2_MM4
 
-    def with_dalpha(self, dalpha_per_K2: float) -> "Material":
-        """Copy with a different CTE slope (used by the cte_nonlinearity effect)."""
-        return Material(**{**self.__dict__, "dalpha_per_K2": dalpha_per_K2})
+    def with_dalpha(self, dalpha_per_K2: float, d2alpha_per_K3: float = 0.0) -> "Material":
+        """Copy with a different CTE slope (used by the cte_nonlinearity effect) and curvature
+        (its generalised form, `studies.model.effects.cte_curvature`)."""
+        return Material(**{**self.__dict__, "dalpha_per_K2": dalpha_per_K2,
+                           "d2alpha_per_K3": d2alpha_per_K3})
 
 
 _STEEL_9CR18 = dict(E_MPa=200e3, nu=0.30, alpha_per_K=10.5e-6, density_kg_m3=7700.0,

@@ -66,6 +66,7 @@ from studies.diagnosis.core import (DEFAULT_THRESHOLDS, FIRST_COLUMNS, Baseline,
                                     jsonable)
 from studies.diagnosis.decision import DecisionPhase
 from studies.diagnosis.fitting import FittingPhase
+from studies.diagnosis.generalised import GeneralisedPhase
 from studies.diagnosis.heldout import HeldoutPhase
 from studies.diagnosis.openworld import characterise
 from studies.diagnosis.screening import ScreeningPhase
@@ -90,7 +91,7 @@ SPIKE_SIGMA = 6.0
 MAX_SPIKE_SHARE = 0.05
 
 
-class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
+class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase, GeneralisedPhase):
     """One diagnosis: the data, the cached model and the phases (mixins, one module each)."""
 
     def __init__(self, predict, measured, conditions, candidates, nuisance, blocks, noise_sigma_,
@@ -411,8 +412,10 @@ class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
         ho, passing = self.validate(s, fits, b)
         self._phase("heldout")
         d = self.decide(s, fits, passing, b)
-        self.verdict, self.cause, self.best = d.verdict, d.cause, d.best
         self._phase("compare")
+        d, self.generalised_forms, self.chosen_form = self.generalise(s, fits, ho, b, d)
+        self._phase("generalised")
+        self.verdict, self.cause, self.best = d.verdict, d.cause, d.best
         sep, sep_items = (self.separating(d.best, d.rivals, fits, b.fit)
                           if d.verdict == "ambiguous" else (None, []))
         self._phase("separating")
@@ -477,8 +480,15 @@ class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
         verdict, cause, best, rivals, best_desc, joint, reasons = (
             d.verdict, d.cause, d.best, d.rivals, d.best_residuals, d.joint_fits, d.reasons)
         look = s.lookalike
-        ext_fit = fits[cause] if cause else base
-        ext_ho = ho[cause] if cause else base_ho
+        gen = self.chosen_form          # a generalised form of the cause (phase 5b) or None
+        ext_fit = gen["fit"] if gen else fits[cause] if cause else base
+        ext_ho = gen["heldout_z"] if gen else ho[cause] if cause else base_ho
+        cause_params = ({p: v for p, v in gen["entry"]["parameters"].items()
+                         if p in self.effect(cause).parameters} if gen else
+                        dict(cands[cause].parameters) if cause else {})
+        cause_unc = ({p: v for p, v in gen["entry"]["parameter_uncertainty"].items()
+                      if p in self.effect(cause).parameters} if gen else
+                     dict(cands[cause].uncertainty) if cause else {})
         base_rmse, base_ho_rmse = self.col_rmse(base.z), self.col_rmse(base_ho)
         ext_rmse, ext_ho_rmse = self.col_rmse(ext_fit.z), self.col_rmse(ext_ho)
         c0 = self.columns[0]
@@ -491,7 +501,7 @@ class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
         result = {
             "verdict": verdict,
             "cause": cause,
-            "parameters": dict(cands[cause].parameters) if cause else {},
+            "parameters": cause_params,
             "indistinguishable": list(rivals),
             "separating_test": sep,
             "baseline": {"rmse": base_rmse, "heldout_rmse": base_ho_rmse},
@@ -499,7 +509,9 @@ class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
             "gain": {"heldout_rmse_ratio": float(ratio)},
             "candidates": cand_list,
             # ---- extras
-            "parameter_uncertainty": dict(cands[cause].uncertainty) if cause else {},
+            "parameter_uncertainty": cause_unc,
+            "extended_form": gen["entry"] if gen else None,
+            "generalised_forms": list(self.generalised_forms),
             "reasons": reasons,
             "columns": list(self.columns),
             "noise_sigma": dict(self.sigma),
@@ -511,7 +523,8 @@ class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase):
                          "bounds": {n: [float(a), float(b)] for n, a, b in
                                     zip(self.nuis_names, self.nuis_lo, self.nuis_hi)},
                          "baseline": base_nuis,
-                         "extended": (cands[cause].nuisance if cause else base_nuis)},
+                         "extended": (gen["entry"]["nuisance"] if gen else
+                                      cands[cause].nuisance if cause else base_nuis)},
             "residuals": {"baseline": desc_base, "extended": best_desc if cause else None,
                           "baseline_structure": bool(structure)},
             "best_partial": (None if verdict != "unexplained" or best is None else
@@ -575,7 +588,8 @@ def diagnose_full(predict: Callable[[dict, dict], Mapping[str, np.ndarray]],
                   candidates: Sequence, nuisance: Mapping[str, tuple], blocks=None, *,
                   noise_sigma: Mapping[str, float] | None = None, T_ref_C: float = 20.0,
                   predict_at: Callable | None = None, thresholds: Mapping | None = None,
-                  seed: int = 0, columns: Sequence[str] | None = None) -> DiagnosisOutcome:
+                  seed: int = 0, columns: Sequence[str] | None = None,
+                  generalised: bool = True) -> DiagnosisOutcome:
     """Run the diagnosis (see the module docstring) and return the result with predictions.
 
     predict(effects, nuisance) -> {column: array(n_rows)} on the measured conditions.
@@ -588,11 +602,14 @@ def diagnose_full(predict: Callable[[dict, dict], Mapping[str, np.ndarray]],
     noise_sigma: known noise levels per column (default: estimated from the data).
     predict_at(effects, nuisance, conditions) -> outputs at other conditions (optional; used to
         find the separating test).
+    generalised: try the generalised forms of the listed effects when the verdict would be
+        `unexplained` (`studies.diagnosis.generalised`).
     """
     th = dict(DEFAULT_THRESHOLDS)
     th.update(thresholds or {})
     eng = _Engine(predict, measured, conditions, candidates, nuisance, blocks, noise_sigma,
                   T_ref_C, predict_at, th, seed, columns)
+    eng.try_generalised = bool(generalised)
     result = eng.run()
     return DiagnosisOutcome(result, eng.base_fit.pred, eng.ext_fit.pred,
                             {n: f.pred for n, f in eng.fits.items()})

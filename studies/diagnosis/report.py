@@ -200,6 +200,17 @@ def write_report(result: dict, conditions: Mapping[str, np.ndarray],
         for p, v in result["parameters"].items():
             w(f"| `{p}` | {_pm(v, unc.get(p))} |")
         w("")
+        ext = result.get("extended_form")
+        if ext:
+            g = ext["heldout_gain_vs_listed"]
+            w(f"Extended form: **{ext['text']}** (`{ext['name']}`), beats the listed form "
+              f"in sample (p = {ext['p_vs_listed']:.2g}) and on held-out blocks (RMSE gain "
+              f"{g['rmse_gain']:.3g} noise units, interval [{g['ci'][0]:.3g}, {g['ci'][1]:.3g}]).\n")
+            w("| parameter | value ± standard uncertainty |")
+            w("| --- | --- |")
+            for p, v in ext["parameters"].items():
+                w(f"| `{p}` | {_pm(v, ext['parameter_uncertainty'].get(p))} {ext['units'][p]} |")
+            w("")
     c0 = cols[0]
     w("## Gain on held-out data\n")
     w(f"Held-out RMSE ratio (extended / baseline, `{c0}`): "

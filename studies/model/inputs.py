@@ -13,7 +13,7 @@ Conventions for the fields effects write (see studies/effects/__init__.py):
 - `friction_coefficient`: change from the config's coefficient per row; zero in the baseline; the
   resolved coefficient is clipped at 0.
 - `dalpha_per_K2["shaft"|"housing"]`: CTE slope of those parts (and nut / cover); zero in the
-  baseline.
+  baseline. `d2alpha_per_K3[...]`: their CTE curvature (1/K^3), likewise.
 - `viscosity_slope_factor`: Walther slope factor about 40 C (1 = nominal).
 - `preload_loss_N`: permanent loss subtracted from the assembled preload per row.
 - `extra_compliance_mm_per_N`: axial compliance added in series to each bearing's preload path
@@ -55,10 +55,12 @@ class PhysicsInputs:
     extra_compliance_mm_per_N: float = 0.0             # added to the preload-path compliance
     radial_load_N: np.ndarray | None = None            # on the shaft at the pair's mid-point
     moment_Nmm: np.ndarray | None = None               # tilting moment on the shaft (N mm)
+    d2alpha_per_K3: dict[str, float] = field(default_factory=lambda: dict(NO_CTE_SLOPE))
 
     def copy(self, **changes) -> "PhysicsInputs":
         """Shallow copy with fields replaced (arrays are never modified in place)."""
-        new = replace(self, T_C=dict(self.T_C), dalpha_per_K2=dict(self.dalpha_per_K2))
+        new = replace(self, T_C=dict(self.T_C), dalpha_per_K2=dict(self.dalpha_per_K2),
+                      d2alpha_per_K3=dict(self.d2alpha_per_K3))
         return replace(new, **changes) if changes else new
 
     def take(self, rows: np.ndarray) -> "PhysicsInputs":
@@ -78,7 +80,8 @@ class PhysicsInputs:
                        friction_coefficient=pick(self.friction_coefficient),
                        preload_loss_N=pick(self.preload_loss_N),
                        radial_load_N=pick(self.radial_load_N), moment_Nmm=pick(self.moment_Nmm),
-                       dalpha_per_K2=dict(self.dalpha_per_K2))
+                       dalpha_per_K2=dict(self.dalpha_per_K2),
+                       d2alpha_per_K3=dict(self.d2alpha_per_K3))
 
 
 def baseline_inputs(columns: dict[str, np.ndarray], n_rows: int, T_ref_C: float,

@@ -232,7 +232,8 @@ class Pipeline:
             group = FE_PART_GROUP[part]
             mat = self.materials[part]
             if group in inputs.dalpha_per_K2:          # shaft (and nut), housing (and cover)
-                mat = mat.with_dalpha(inputs.dalpha_per_K2[group])
+                mat = mat.with_dalpha(inputs.dalpha_per_K2[group],
+                                      inputs.d2alpha_per_K3.get(group, 0.0))
             cols.append(mat.thermal_strain(np.asarray(inputs.T_C[group], float), self.asm.T_ref_C))
         return np.column_stack(cols)
 
@@ -431,7 +432,8 @@ class Pipeline:
         """The assembly state of every row: T_ref everywhere, at rest, the row's as-built fits."""
         T_ref = self.asm.T_ref_C
         return inputs.copy(T_C={k: np.full(inputs.n_rows, T_ref) for k in inputs.T_C},
-                           dalpha_per_K2=dict(NO_CTE_SLOPE), speed_rpm=np.zeros(inputs.n_rows))
+                           dalpha_per_K2=dict(NO_CTE_SLOPE), d2alpha_per_K3=dict(NO_CTE_SLOPE),
+                           speed_rpm=np.zeros(inputs.n_rows))
 
     def run(self, inputs: PhysicsInputs, direct: bool = False,
             compliance_mm_per_N=None, viscous_factor_f0=None,

@@ -11,8 +11,10 @@ alternating -60 <-> 80 C cycles from 20 C (2 K/min ramps, one-hour dwells) sampl
 500 rows (`--rows`), torque (sigma 0.02 N mm) and preload (sigma 0.5 N) measured, the rig's
 friction coefficient 1.25 x the configured one. Datasets: no effect, a thermal lag (tau 300 s), a
 preload settling (5 N beyond 50 K) and a solid-film run-in (-0.004 over 10 krev), because the
-engine's work depends on how many candidates pass. The candidates are the CLI's
-(`files.candidate_effects`).
+engine's work depends on how many candidates pass, and two generalised forms (per-part lag
+300 s / 360 s, settling creeping 3 N/h), where the engine also fits the generalised forms of the
+family (`studies.diagnosis.generalised`); the column `form` gives the extended form reported.
+The candidates are the CLI's (`files.candidate_effects`).
 Times: the FE set-up (mesh from the cache, unit solutions) once; per dataset the engine alone
 (`diagnose_full`, what the goal is about) and the whole `diagnose_files` (reading the CSV, the
 engine, JSON and the report with its plots), with the set-up pipeline passed in.
@@ -39,7 +41,13 @@ DATASETS = {"no effect": {}, "thermal_lag tau_s=300": {"thermal_lag": {"tau_s": 
             "preload_settling loss_N=5 threshold_K=50":
                 {"preload_settling": {"loss_N": 5.0, "threshold_K": 50.0}},
             "solid_film_runin dmu=-0.004 runin_krev=10":
-                {"solid_film_runin": {"dmu": -0.004, "runin_krev": 10.0}}}
+                {"solid_film_runin": {"dmu": -0.004, "runin_krev": 10.0}},
+            # generalised forms (issue 11): the engine then also fits the family's forms
+            "thermal_lag.per_part tau_s=300 tau_shaft_s=360":
+                {"thermal_lag.per_part": {"tau_s": 300.0, "tau_shaft_s": 360.0}},
+            "preload_settling.creep 5 N, 50 K, 3 N/h":
+                {"preload_settling.creep": {"loss_N": 5.0, "threshold_K": 50.0,
+                                            "creep_N_per_h": 3.0}}}
 
 
 def main(argv=None) -> None:
@@ -68,7 +76,7 @@ def main(argv=None) -> None:
               f"({pl.ndofs} DOF), OPENBLAS_NUM_THREADS={os.environ.get('OPENBLAS_NUM_THREADS')}, "
               f"{os.cpu_count()} CPUs")
         print(f"{'dataset':<42} {'verdict':<15} {'cause':<18} {'engine s':>8} {'calls':>6} "
-              f"{'model s':>8} {'CLI s':>6}")
+              f"{'model s':>8} {'CLI s':>6}  form")
         rng = np.random.default_rng(0)
         for label, effects in DATASETS.items():
             truth = ModelPredictor(pl, cond, tuple(SIGMA))(effects, {"mu_scale": MU_TRUE})
@@ -86,8 +94,9 @@ def main(argv=None) -> None:
                 diagnose_files(CONFIG_DIR / SHIPPED["seed000"], csv, Path(tmp),
                                progress=lambda s: None, pipeline=pl)
                 t_cli = time.perf_counter() - t0
+            form = (r.get("extended_form") or {}).get("name", "-")
             print(f"{label:<42} {r['verdict']:<15} {str(r['cause']):<18} {t_engine:8.2f} "
-                  f"{r['n_predict_calls']:6d} {r['seconds']['predict']:8.2f} {t_cli:6.2f}")
+                  f"{r['n_predict_calls']:6d} {r['seconds']['predict']:8.2f} {t_cli:6.2f}  {form}")
             print(f"    model calls by phase: {r['predict_calls_by_phase']}")
             print("    seconds by phase (model + engine): " + ", ".join(
                 f"{k} {v['predict']:.2f} + {v['total'] - v['predict']:.2f}"

@@ -243,10 +243,13 @@ assert set(EFFECTS) == set(ORDER)
 
 
 def get_effect(name: str) -> Effect:
+    """A listed effect, or a generalised form `family.form` (`studies.model.effects.generalised`)."""
+    from .generalised import GENERALISED
     try:
-        return EFFECTS[name]
+        return EFFECTS[name] if name in EFFECTS else GENERALISED[name]
     except KeyError:
-        raise EffectError(f"unknown effect {name!r} (known: {', '.join(EFFECTS)})") from None
+        raise EffectError(f"unknown effect {name!r} (known: {', '.join(EFFECTS)}; generalised "
+                          f"forms: {', '.join(GENERALISED)})") from None
 
 
 def parse_effect_arg(text: str) -> tuple[str, dict[str, float]]:
@@ -271,14 +274,13 @@ def parse_effect_arg(text: str) -> tuple[str, dict[str, float]]:
 
 def apply_effects(inputs: PhysicsInputs, effects: Mapping[str, Mapping[str, float]] | None,
                   T_ref_C: float) -> PhysicsInputs:
-    """Apply several effects (name -> parameters) in the order `ORDER`; no effects -> a copy."""
+    """Apply several effects (name -> parameters) in the order `ORDER` (a generalised form at its
+    family's place); no effects -> a copy."""
     effects = dict(effects or {})
-    for name in effects:
-        get_effect(name)
+    objs = {name: get_effect(name) for name in effects}
     out = inputs.copy()
-    for name in ORDER:
-        if name in effects:
-            out = EFFECTS[name].apply(out, effects[name], T_ref_C)
+    for name in sorted(effects, key=lambda n: ORDER.index(getattr(objs[n], "family", "") or n)):
+        out = objs[name].apply(out, effects[name], T_ref_C)
     return out
 
 

@@ -1,0 +1,172 @@
+"""Phase 5b of the diagnosis: generalised forms of the listed effects (issue 11).
+
+When the verdict is `unexplained` because the listed form of a family leaves structure behind (or
+does not pass), the generalised forms of the most promising families
+(`studies.model.effects.generalised`) are fitted as NESTED models of their listed form:
+
+1. the fit starts at the listed fit (the form's reducing value, `from_listed`, gives the listed
+   form's predictions exactly) and from a few values of the extra parameters, nuisance refitted,
+   profiled parameters (a settling threshold) held at the listed fit's value;
+2. likelihood ratio against the LISTED fit, chi-bar-square null (one-sided where the reducing
+   value is a bound), Bonferroni over the forms tried, and a BIC margin for the extra parameters;
+3. held-out gain against the LISTED form: the form's held-out residuals (`heldout_linear`, refit
+   on the other blocks) against the listed form's held-out residuals of phase 4, paired block
+   bootstrap (`bootstrap_gain`) excluding zero; and against the baseline likewise;
+4. the form explains the data when it passes 2 and 3 and leaves no structure (`describe`, the
+   `alpha_residual` threshold of the listed candidates).
+
+A form that explains the data turns the verdict into `explained` with `cause` = the family (the
+listed cause) and `extended_form` = the form, its parameters, uncertainties, its one-line text
+("thermal_lag, per-part time constants: housing 900 s, shaft 2400 s") and its gains. Data that a
+listed form explains never reach this phase (the verdict is not `unexplained`), and a form must
+beat its listed form out of sample, so a listed effect is never reported as an extended one.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from studies.diagnosis.core import Baseline, Decision, Fit, ModelFailure, Screening
+from studies.diagnosis.stats import chibar_pvalue
+from studies.model.effects.generalised import forms_of
+
+#: families (listed candidates, best BIC first) whose generalised forms are tried
+MAX_FAMILIES = 2
+#: local fits per form: from the listed fit and from the best other starting points
+N_RUNS = 3
+
+
+class GeneralisedPhase:
+    def generalise(self, s: Screening, fits: dict[str, Fit], ho: dict, b: Baseline,
+                   d: Decision) -> tuple[Decision, list[dict], dict | None]:
+        """Try the generalised forms (module docstring); returns the (possibly new) decision, one
+        entry per form tried and the chosen form (fit, held-out residuals, entry) or None."""
+        if not getattr(self, "try_generalised", True) or d.verdict not in ("unexplained",
+                                                                          "explained"):
+            return d, [], None
+        cands = s.candidates
+        if d.verdict == "explained":        # the listed cause's own forms, nested in it
+            fams = [d.cause] if forms_of(d.cause) else []
+        else:
+            fams = [n for n in sorted(fits, key=lambda n: cands[n].delta_bic)
+                    if forms_of(n) and cands[n].delta_bic < 0 and cands[n].lr_significant]
+        tried = [(fam, f) for fam in fams[:MAX_FAMILIES] for f in forms_of(fam)
+                 if f.applicable(self.conditions) is None]
+        entries, ok = [], []
+        for fam, form in tried:
+            listed = self.effect(fam)
+            form = form.with_bounds(**{p: listed.bounds[p] for p in form.parameters
+                                       if p in listed.bounds})
+            try:
+                entry, f_ext, ho_ext = self.fit_form(form, listed, fits[fam], ho[fam], cands[fam],
+                                                     b, len(tried))
+            except ModelFailure as exc:
+                entries.append({"effect": fam, "form": form.form, "name": form.name,
+                                "status": "model_failed", "reason": str(exc)})
+                continue
+            entries.append(entry)
+            if entry["status"] == "explains":
+                ok.append((f_ext.chi2, entry, f_ext, ho_ext))
+        if not ok:
+            return d, entries, None
+        ok.sort(key=lambda t: t[0])
+        _, entry, f_ext, ho_ext = ok[0]
+        reasons = list(d.reasons) + [
+            f"the generalised form {entry['text']} beats the listed form {entry['effect']} in "
+            f"sample (p = {entry['p_vs_listed']:.2g}) and on held-out blocks and leaves no "
+            "structure"]
+        new = Decision("explained", entry["effect"], entry["effect"], [], entry["residuals"],
+                       d.joint_fits, reasons)
+        return new, entries, {"fit": f_ext, "heldout_z": ho_ext, "entry": entry}
+
+    def fit_form(self, form, listed, f_listed: Fit, ho_listed: np.ndarray, cand, b: Baseline,
+                 m: int):
+        """Nested fit of one generalised form from the listed fit and its tests (module
+        docstring, steps 1-4). Returns (entry, fit, held-out residuals)."""
+        th = self.th
+        vals_listed = dict(cand.parameters)
+        fixed = {form.name: {p: vals_listed[p] for p in form.profile}}
+        space = self.space([form], fixed)
+        k, nq = space.k, len(self.nuis_names)
+        u_nuis = f_listed.u[f_listed.space.k:]
+        start_vals = [form.from_listed(vals_listed)]
+        start_vals += [{**start_vals[0], **x} for x in form.extra_starts(vals_listed, self.conditions)]
+        Jn = f_listed.J[:, f_listed.space.k:]       # d z / d u_nuisance at the listed fit
+        scored = []
+        for i, v in enumerate(start_vals):
+            x = np.array([v[p] for (_, p) in space.eff_params], float)
+            u = space.clip(np.concatenate([(x - space.origin[:k]) / space.scale[:k], u_nuis]))
+            try:
+                z, _ = self.eval(space, u)
+            except ModelFailure:
+                continue
+            if nq:                                   # linearised nuisance refit for the score
+                dn, *_ = np.linalg.lstsq(Jn, -z, rcond=None)
+                u = space.clip(np.concatenate([u[:k], u[k:] + dn]))
+                z = z + Jn @ dn
+            scored.append((float(z @ z), i, u))
+        if not scored:
+            raise ModelFailure("the model fails at every start of the generalised form")
+        scored.sort(key=lambda t: t[:2])
+        # local fits from the listed fit (index 0) and the two most promising other starts
+        # (another start only when its score already beats the listed fit: otherwise the data
+        # give the extra parameter nothing to do, and a listed effect costs one local fit)
+        runs = [t for t in scored if t[1] == 0] + [
+            t for t in scored if t[1] != 0 and t[0] < f_listed.chi2][:N_RUNS - 1]
+        f_ext = None
+        for _, _, u in runs:
+            try:
+                fi = self.fit(space, u)
+            except ModelFailure:
+                continue
+            if f_ext is None or fi.chi2 < f_ext.chi2:
+                f_ext = fi
+        if f_ext is None:
+            raise ModelFailure("the fits of the generalised form fail from every start")
+        eff_vals, nuis_vals = space.unpack(f_ext.u)
+        params = dict(eff_vals[form.name])
+        n_bound = sum(1 for p in form.extra if form.on_bound(p))
+        n_free = len(form.extra) - n_bound
+        lr = max(f_listed.chi2 - f_ext.chi2, 0.0)
+        p = chibar_pvalue(lr, n_free, n_bound)
+        p_adj = min(1.0, p * m)
+        dbic = -lr + len(form.extra) * math.log(self.N)
+        ho_ext = self.heldout_linear(f_ext)
+        g_listed = self.bootstrap_gain(ho_listed, ho_ext)
+        g_base = self.bootstrap_gain(b.heldout_z, ho_ext)
+        desc = self.describe(f_ext.pred, nq + (cand.k or 0) + len(form.extra))
+        reasons = []
+        if not p_adj < th["alpha_lr"]:
+            reasons.append(f"not significant against the listed form (p = {p_adj:.2g}, "
+                           f"Bonferroni over {m})")
+        if not dbic < -th["bic_margin"]:
+            reasons.append(f"BIC not better than the listed form (delta {dbic:.1f})")
+        if not g_listed["excludes_zero"]:
+            reasons.append("no held-out gain over the listed form (bootstrap interval "
+                           f"[{g_listed['ci'][0]:.3g}, {g_listed['ci'][1]:.3g}] includes 0)")
+        if not g_base["excludes_zero"]:
+            reasons.append("no held-out gain over the baseline")
+        if not reasons and desc["p_min_adjusted"] < th["alpha_residual"]:
+            status = "passes_but_leaves_structure"
+            reasons.append("beats the listed form but leaves structure (adjusted p = "
+                           f"{desc['p_min_adjusted']:.2g})")
+        else:
+            status = "rejected" if reasons else "explains"
+        entry = {
+            "effect": form.family, "form": form.form, "name": form.name, "label": form.label,
+            "text": form.text(params), "parameters": params,
+            "units": {q: form.units[q] for q in form.parameters},
+            "parameter_uncertainty": self.uncertainty(f_ext, form),
+            "listed_parameters": vals_listed, "nuisance": nuis_vals,
+            "chi2_listed": f_listed.chi2, "chi2": f_ext.chi2, "lr_vs_listed": lr,
+            "df_vs_listed": {"free": n_free, "on_bound": n_bound}, "p_vs_listed": p_adj,
+            "delta_bic_vs_listed": dbic,
+            "heldout_gain_vs_listed": g_listed, "heldout_gain_vs_baseline": g_base,
+            "heldout_rmse": self.col_rmse(ho_ext), "rmse": self.col_rmse(f_ext.z),
+            "residuals": desc, "status": status,
+            "reason": "; ".join(reasons) if reasons else
+                      "beats the listed form in sample and on held-out blocks, no structure left"}
+        if form.profile:
+            entry["held_at_listed_fit"] = {q: vals_listed[q] for q in form.profile}
+        return entry, f_ext, ho_ext

@@ -1,0 +1,76 @@
+"""thermal_lag.per_part: generalised thermal_lag, one time constant for the housing side and one
+for the shaft side of the assembly.
+
+Physics added: the listed `thermal_lag` gives every ambient-following part the same lumped time
+constant. Parts of very different mass and surface (a thick housing flange against a hollow
+shaft reached only through its ends and the balls) heat at different rates: each group obeys its
+own first-order law
+
+    tau_s       dT/dt = T_ambient - T   for the housing, the outer ring and the spacers,
+    tau_shaft_s dT/dt = T_ambient - T   for the shaft, the inner ring and the balls,
+
+integrated exactly for a piecewise linear ambient (`thermal_lag.lag_response`, the listed form's
+own integrator). Parts with their own measured temperature are left as they are.
+
+Parameters:
+    tau_s        housing-side time constant, s, bounds [0, 1e5], off 0 (the listed parameter)
+    tau_shaft_s  shaft-side time constant, s, bounds [0, 1e5], off 0
+
+Reduces to `thermal_lag` with tau_s exactly at tau_shaft_s = tau_s (the same integrator runs on
+the same inputs). Needs `time_s` and `T_ambient_C`.
+
+Source / rationale: lumped capacitance per body, tau = rho c V / (h A) (Incropera, Fundamentals of
+Heat and Mass Transfer, ch. 5): a part's time constant scales with its volume-to-surface ratio and
+its contact conductances, so housing and shaft differ by factors of 2-3 in thermal-vacuum and
+chamber tests of mechanisms (issue 11: housing 900 s, shaft 2400 s).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .generalised import GeneralisedForm
+from .thermal_lag import ThermalLag, lag_response
+
+SHAFT_SIDE = ("shaft", "inner_ring", "ball")
+
+
+class ThermalLagPerPart(GeneralisedForm):
+    family = "thermal_lag"
+    form = "per_part"
+    name = "thermal_lag.per_part"
+    label = "per-part time constants"
+    parameters = ("tau_s", "tau_shaft_s")
+    extra = ("tau_shaft_s",)
+    reduces = {"tau_shaft_s": "tau_s"}
+    units = {"tau_s": "s", "tau_shaft_s": "s"}
+    bounds = {"tau_s": (0.0, 1e5), "tau_shaft_s": (0.0, 1e5)}
+    off = {"tau_s": 0.0, "tau_shaft_s": 0.0}
+    requires = ("time_s", "T_ambient_C")
+    scale = {"tau_s": 60.0, "tau_shaft_s": 60.0}
+    hint = ThermalLag.hint + "; measure the shaft (inner ring) and housing temperatures apart"
+
+    def _apply(self, inputs, p, T_ref_C):
+        amb = np.asarray(inputs.T_ambient_C, float)
+        lagged = {tau: lag_response(inputs.time_s, amb, tau)
+                  for tau in {p["tau_s"], p["tau_shaft_s"]}}
+        T = dict(inputs.T_C)
+        for part, arr in T.items():
+            if np.array_equal(np.asarray(arr, float), amb):   # follows the ambient
+                tau = p["tau_shaft_s"] if part in SHAFT_SIDE else p["tau_s"]
+                T[part] = lagged[tau].copy()
+        return inputs.copy(T_C=T)
+
+    def steps(self, conditions):
+        s = ThermalLag().steps(conditions)["tau_s"]
+        return {"tau_s": s, "tau_shaft_s": s}
+
+    def extra_starts(self, listed, conditions):
+        """A grid of both time constants about the listed one (factors 0.35..2.8): the two lags
+        trade against each other and against the friction calibration (local minima)."""
+        tau = max(float(listed["tau_s"]), 1.0)
+        f = (0.35, 0.5, 0.7, 1.0, 1.4, 2.0, 2.8)
+        return [{"tau_s": tau * a, "tau_shaft_s": tau * b} for a in f for b in f if a != b]
+
+    def text(self, params):
+        return (f"thermal_lag, per-part time constants: housing {params['tau_s']:.0f} s, "
+                f"shaft {params['tau_shaft_s']:.0f} s")

@@ -1,0 +1,166 @@
+"""Generalised forms of the listed effects (issue 11): each reduces EXACTLY to its listed form at
+its reducing value, is the baseline at `off`, keeps physical bounds, and adds the physics its
+docstring states. Expected numbers come from closed forms stated beside them (first-order lag
+response to a ramp and to a ramped step, the integral of a quadratic CTE law by quadrature, the
+hand-counted time beyond a threshold of a stepped temperature programme)."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy import integrate
+
+from analytic.materials import MATERIALS, T_CTE_REF_C
+from studies.model.effects import (EFFECTS, EffectError, apply_effects, get_effect,
+                                   parse_effect_arg)
+from studies.model.effects.generalised import GENERALISED, GeneralisedForm, forms_of
+from studies.model.effects.preload_settling_creep import hours_beyond
+from studies.model.inputs import PhysicsInputs, baseline_inputs
+
+from test_effects import T_REF, assert_same_inputs, cycle_inputs
+
+#: a physical value of every form's parameters away from its reducing value
+ON = {
+    "thermal_lag.per_part": {"tau_s": 900.0, "tau_shaft_s": 2400.0},
+    "preload_settling.creep": {"loss_N": 12.0, "threshold_K": 30.0, "creep_N_per_h": 4.0},
+    "cte_nonlinearity.curvature": {"dalpha_per_K": 5e-9, "d2alpha_per_K3": 1e-10},
+    "radial_gradient.lag": {"dT_K": 3.0, "dT_per_krpm_K": 1.5, "tau_gradient_s": 600.0},
+}
+
+
+def assert_same_all(a: PhysicsInputs, b: PhysicsInputs):
+    assert_same_inputs(a, b)
+    assert a.d2alpha_per_K3 == b.d2alpha_per_K3
+
+
+def test_registry_families_and_docs():
+    assert set(GENERALISED) == set(ON)
+    for name, f in GENERALISED.items():
+        assert isinstance(f, GeneralisedForm) and name == f"{f.family}.{f.form}"
+        listed = EFFECTS[f.family]
+        assert get_effect(name) is f and f in forms_of(f.family)
+        # the listed parameters keep their names, bounds and off values
+        for p in listed.parameters:
+            assert p in f.parameters and f.bounds[p] == listed.bounds[p] and f.off[p] == listed.off[p]
+        assert set(f.extra) == set(f.parameters) - set(listed.parameters) and f.extra
+        assert set(f.bounds) == set(f.off) == set(f.units) == set(f.parameters)
+        doc = __import__(type(f).__module__, fromlist=["x"]).__doc__
+        assert "Source" in doc and "Reduces to" in doc
+
+
+@pytest.mark.parametrize("name", sorted(ON))
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_reduces_exactly_to_the_listed_form(name, seed):
+    """At `from_listed(listed)` the form gives the listed effect's inputs, field by field, for
+    random listed parameters inside the bounds (and with a measured part temperature)."""
+    f = GENERALISED[name]
+    listed = EFFECTS[f.family]
+    rng = np.random.default_rng(seed)
+    params = {p: float(rng.uniform(*listed.bounds[p])) for p in listed.parameters}
+    if "tau_s" in params:
+        params["tau_s"] = float(rng.uniform(30.0, 3000.0))    # lags the 60 s samples can show
+    if "threshold_K" in params:
+        params["threshold_K"] = float(rng.uniform(5.0, 60.0))
+    for base in (cycle_inputs(), cycle_inputs(measured_part="housing")):
+        a = f.apply(base, f.from_listed(params), T_REF)
+        b = listed.apply(base, params, T_REF)
+        assert_same_all(a, b)
+        # and together with other effects through apply_effects (the family's place in ORDER)
+        other = {"interference_error": {"inner_um": 1.0, "outer_um": 0.0}}
+        assert_same_all(apply_effects(base, {name: f.from_listed(params), **other}, T_REF),
+                        apply_effects(base, {f.family: params, **other}, T_REF))
+    # and differs away from it (else the test above could not fail)
+    on = f.apply(cycle_inputs(), ON[name], T_REF)
+    off_listed = listed.apply(cycle_inputs(), {p: ON[name][p] for p in listed.parameters}, T_REF)
+    with pytest.raises(AssertionError):
+        assert_same_all(on, off_listed)
+
+
+@pytest.mark.parametrize("name", sorted(ON))
+def test_off_is_baseline_and_bounds(name):
+    f = GENERALISED[name]
+    base = cycle_inputs()
+    assert_same_all(f.apply(base, f.off, T_REF), base)
+    for p in f.extra:
+        lo, hi = f.bounds[p]
+        with pytest.raises(EffectError, match=p):
+            f.validate({p: hi + abs(hi) + 1.0})
+    assert parse_effect_arg(name + ":" + ",".join(f"{k}={v}" for k, v in ON[name].items())) \
+        == (name, ON[name])
+
+
+def test_per_part_lag_ramp_closed_form():
+    """Ambient ramp u = u0 + s t from equilibrium: each group follows with its own lag,
+    T(t) = u(t) - s tau (1 - exp(-t / tau)) (first-order ramp response, Incropera ch. 5)."""
+    n, s = 120, 2.0 / 60.0
+    t = np.arange(n) * 30.0
+    inp = baseline_inputs({"time_s": t, "T_ambient_C": 20.0 + s * t}, n, T_REF, 100.0, 0.0)
+    out = GENERALISED["thermal_lag.per_part"].apply(inp, {"tau_s": 900.0, "tau_shaft_s": 2400.0},
+                                                    T_REF)
+    for part, tau in (("housing", 900.0), ("outer_ring", 900.0), ("spacer", 900.0),
+                      ("shaft", 2400.0), ("inner_ring", 2400.0), ("ball", 2400.0)):
+        exact = 20.0 + s * t - s * tau * (1.0 - np.exp(-t / tau))
+        np.testing.assert_allclose(out.T_C[part], exact, rtol=0, atol=1e-9)   # K, round-off
+
+
+def test_settling_creep_hours_counted_by_hand():
+    """Stepped programme, 10 min samples: 20 C for 3 rows, 80 C for 6 rows, 20 C for 3 rows.
+    Threshold 30 K: rows 3..8 beyond; intervals ending at rows 4..8 count (5 x 600 s = 5/6 h),
+    the interval ending at row 3 too (the programme steps within it): 6 x 600 s = 1 h."""
+    T = np.array([20.0] * 3 + [80.0] * 6 + [20.0] * 3)
+    t = np.arange(T.size) * 600.0
+    H = hours_beyond(t, T, T_REF, 30.0)
+    np.testing.assert_allclose(H, [0, 0, 0, 1 / 6, 2 / 6, 3 / 6, 4 / 6, 5 / 6, 1, 1, 1, 1],
+                               rtol=0, atol=1e-15)
+    inp = baseline_inputs({"time_s": t, "T_ambient_C": T}, T.size, T_REF, 100.0, 0.0)
+    out = GENERALISED["preload_settling.creep"].apply(
+        inp, {"loss_N": 5.0, "threshold_K": 30.0, "creep_N_per_h": 3.0}, T_REF)
+    expect = np.where(np.arange(T.size) >= 3, 5.0, 0.0) + 3.0 * np.array(H)
+    np.testing.assert_allclose(out.preload_loss_N, expect, rtol=0, atol=1e-12)   # N, round-off
+
+
+@pytest.mark.parametrize("T_ref", [20.0, 25.0])
+def test_cte_curvature_strain_is_the_integral_of_alpha(T_ref):
+    """theta(T) = integral_{T_ref}^{T} alpha(T') dT' with alpha = alpha0 + a1 (T' - 20) +
+    a2 (T' - 20)^2, by adaptive quadrature (an independent method), -60..150 C."""
+    m = MATERIALS["TC4"].with_dalpha(8e-9, 2e-10)
+
+    def alpha(T):
+        d = T - T_CTE_REF_C
+        return m.alpha_per_K + 8e-9 * d + 2e-10 * d * d
+
+    for T in (-60.0, 0.0, 20.0, 80.0, 150.0):
+        ref = integrate.quad(alpha, T_ref, T, epsabs=1e-16, epsrel=1e-13)[0]
+        # 1e-15 absolute: round-off of strains of order 1e-3
+        assert m.thermal_strain(np.array(T), T_ref) == pytest.approx(ref, abs=1e-15)
+
+
+def test_cte_curvature_reaches_the_pipeline_strains():
+    """The form writes the curvature of the shaft and housing; the pipeline's strains then follow
+    the quadratic law (checked on the material objects the FE uses)."""
+    f = GENERALISED["cte_nonlinearity.curvature"]
+    out = f.apply(cycle_inputs(), ON["cte_nonlinearity.curvature"], T_REF)
+    assert out.d2alpha_per_K3 == {"shaft": 1e-10, "housing": 1e-10}
+    assert out.dalpha_per_K2 == {"shaft": 5e-9, "housing": 5e-9}
+
+
+def test_gradient_lag_after_a_speed_step_closed_form():
+    """Speed 1000 -> 3000 rpm ramped over one sample interval h (from t1): the speed part of the
+    gradient G follows the ramp-then-hold response of a first-order lag,
+    G(t) = Gs0 + dG [1 - (tau/h)(exp(h/tau) - 1) exp(-(t - t1)/tau)] for t >= t1 + h."""
+    n, h, tau, k = 200, 30.0, 600.0, 1.5
+    t = np.arange(n) * h
+    i1 = 50
+    speed = np.where(np.arange(n) <= i1, 1000.0, 3000.0)
+    inp = baseline_inputs({"time_s": t, "T_ambient_C": np.full(n, 20.0), "speed_rpm": speed}, n,
+                          T_REF, 100.0, 0.0)
+    out = GENERALISED["radial_gradient.lag"].apply(
+        inp, {"dT_K": 0.0, "dT_per_krpm_K": k, "tau_gradient_s": tau}, T_REF)
+    G = out.T_C["shaft"] - 20.0
+    t1 = t[i1]
+    after = t >= t1 + h
+    exact = 1.5 + 3.0 * (1.0 - (tau / h) * math.expm1(h / tau) * np.exp(-(t[after] - t1) / tau))
+    np.testing.assert_allclose(G[after], exact, rtol=0, atol=1e-9)      # K, round-off
+    np.testing.assert_allclose(G[t <= t1], 1.5, rtol=0, atol=1e-12)
+    np.testing.assert_array_equal(out.T_C["housing"], inp.T_C["housing"])
