@@ -24,6 +24,7 @@ beat its listed form out of sample, so a listed effect is never reported as an e
 from __future__ import annotations
 
 import math
+from types import SimpleNamespace
 
 import numpy as np
 
@@ -122,9 +123,17 @@ class GeneralisedPhase:
                 continue
             if f_ext is None or fi.chi2 < f_ext.chi2:
                 f_ext = fi
+        if form.profile and cand.profile_grid:
+            try:
+                fp = self.fit_profiled(form, SimpleNamespace(profile_grid=cand.profile_grid),
+                                       b.fit, b.nuisance)
+            except ModelFailure:
+                fp = None
+            if fp is not None and (f_ext is None or fp.chi2 < f_ext.chi2):
+                f_ext = fp
         if f_ext is None:
             raise ModelFailure("the fits of the generalised form fail from every start")
-        eff_vals, nuis_vals = space.unpack(f_ext.u)
+        eff_vals, nuis_vals = f_ext.space.unpack(f_ext.u)
         params = dict(eff_vals[form.name])
         n_bound = sum(1 for p in form.extra if form.on_bound(p))
         n_free = len(form.extra) - n_bound
@@ -168,5 +177,6 @@ class GeneralisedPhase:
             "reason": "; ".join(reasons) if reasons else
                       "beats the listed form in sample and on held-out blocks, no structure left"}
         if form.profile:
-            entry["held_at_listed_fit"] = {q: vals_listed[q] for q in form.profile}
+            entry["profiled"] = {q: {"value": params[q], "listed_fit": vals_listed[q]}
+                                 for q in form.profile}
         return entry, f_ext, ho_ext
