@@ -50,6 +50,7 @@ from analytic.bearing.geometry import BearingGeometry, thermal_geometry
 from analytic.bearing.land import groove_centre_radius_mm
 from analytic.bearing.roots import Root
 from analytic.bearing.state import contact_ellipses
+from analytic.torque import ball_kinematics
 
 CONVENTIONS = ("exact", "iso16281")
 BALL_MODELS = ("static", "quasi_dynamic")
@@ -327,7 +328,9 @@ def balls_at_displacement(g: BearingGeometry, axial_mm, radial_x_mm=0.0, radial_
         d_i = np.where(Q_i > 0, (Q_i / cs.K_i) ** (2.0 / 3.0), 0.0)
         d_o = np.where(Q_o > 0, (Q_o / cs.K_o) ** (2.0 / 3.0), 0.0)
         zeros = np.zeros(X.shape)
-        Fc, Mg, sr = zeros, zeros, zeros
+        kin = ball_kinematics(tg.dm_mm, tg.Dw_mm, a_i)
+        Fc, Mg = zeros, zeros
+        sr = kin.spin_inner / np.hypot(kin.omega_r, kin.omega_z)
     elif ball_model == "quasi_dynamic":
         b = bd.solve_balls(g, X, Y, np.broadcast_to(spd, X.shape), control=control, tg=tg,
                            alpha_stiffness_rad=alpha_K)
