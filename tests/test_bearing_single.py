@@ -9,8 +9,9 @@ References each test holds the model to:
   `contact_stiffness_N_per_mm15`, series sum), and the sum of ball forces and moments r x F;
 - Stribeck / Sjovall: radial load on a zero-clearance bearing, Q_max = F_r / (Z J_r(0.5)),
   J_r(0.5) = 0.2288 (Harris & Kotzalas Vol. 1 ch. 7, table of the Sjovall integrals);
-- the closed forms of the ball: centrifugal force m omega_c^2 dm/2 and Harris's two force
-  equations of the ball (Vol. 2 ch. 3), evaluated directly from the reported angles and loads;
+- the closed forms of the ball: centrifugal force m omega_c^2 dm/2, the two force equations of
+  the ball (Harris Vol. 2 ch. 3 structure) and Euler's equation dH/dt = omega_c x H (the
+  moment of the controlling contact's friction), evaluated from the reported angles and loads;
 - limits: speed 0 of the quasi-dynamic model is the quasi-static contact.
 """
 from __future__ import annotations
@@ -97,10 +98,19 @@ def test_ball_at_speed_closed_forms(control):
     lam_i, lam_o = (0.0, 2.0) if control == "outer" else (2.0, 0.0)
     Qi, Qo, Mg, Fc, D = (b.load_inner_N, b.load_outer_N, b.gyroscopic_moment_Nmm,
                          b.centrifugal_force_N, g.Dw_mm)
-    axial = Qi * np.sin(ai) - Qo * np.sin(ao) - Mg / D * (lam_i * np.cos(ai) - lam_o * np.cos(ao))
-    radial = (Qi * np.cos(ai) - Qo * np.cos(ao) + Mg / D * (lam_i * np.sin(ai) - lam_o * np.sin(ao))
+    axial = Qi * np.sin(ai) - Qo * np.sin(ao) + Mg / D * (lam_i * np.cos(ai) - lam_o * np.cos(ao))
+    radial = (Qi * np.cos(ai) - Qo * np.cos(ao) - Mg / D * (lam_i * np.sin(ai) - lam_o * np.sin(ao))
               + Fc)
     assert np.all(np.abs(axial) <= 1e-9 * Qo) and np.all(np.abs(radial) <= 1e-9 * Qo)
+    # Euler's equation of the ball: the friction (what balances the normal and centrifugal
+    # forces) at the controlling contact has the moment dH/dt = omega_c e_z x J Omega = +M_g e_t
+    # about the ball centre; moment about e_t of (f_a, f_r) at offset (a, r): a f_r - r f_a
+    f_a = -(Qi * np.sin(ai) - Qo * np.sin(ao))
+    f_r = -(Qi * np.cos(ai) - Qo * np.cos(ao) + Fc)
+    n = (np.sin(ao), np.cos(ao)) if control == "outer" else (-np.sin(ai), -np.cos(ai))
+    moment = 0.5 * D * (n[0] * f_r - n[1] * f_a)
+    assert np.all(Mg > 0)
+    np.testing.assert_allclose(moment, Mg, rtol=1e-8)
     static = np.arctan2(X, Y)
     assert np.all(ao < static) and np.all(ai > static)
     assert np.all(Qo > Qi)

@@ -14,10 +14,10 @@ ball centre u = (u_a, u_r) is the unknown (2 per ball):
     Q_o = K_o(a_o) delta_o^1.5,   Q_i = K_i(a_i) delta_i^1.5   (0 where delta <= 0)
 
 K_i, K_o: the exact Hertz stiffness of each contact at its own angle (`contact.contact_stiffness`,
-Harris Vol. 1 ch. 6).  Forces on the ball (Harris Vol. 2 ch. 3, eqs. of the ball in the
-"quasi-dynamic" analysis, written as vectors):
+Harris Vol. 1 ch. 6).  Forces on the ball (the structure of Harris Vol. 2 ch. 3's ball
+equations, written as vectors):
 
-    Q_i n_i - Q_o n_o + F_c e_r + (M_g / Dw) (lam_o t_o - lam_i t_i) = 0,   t = (cos a, -sin a)
+    Q_i n_i - Q_o n_o + F_c e_r + (M_g / Dw) (lam_i t_i - lam_o t_o) = 0,   t = (cos a, -sin a)
 
     F_c = m omega_c^2 dm / 2          centrifugal force, m = rho pi Dw^3 / 6
     M_g = J omega_c omega_R,r         gyroscopic moment, J = m Dw^2 / 10,
@@ -28,11 +28,15 @@ omega_c and omega_R sin(beta) come from `torque.ball_kinematics` at the current 
 ring fixed, inner ring at speed_rpm; Jones 1960 outer-race control kinematics).  lam_o = 2,
 lam_i = 0 under outer-race control (the outer contact's friction takes the whole gyroscopic
 moment, Jones; Harris Vol. 2 ch. 3), lam_i = 2, lam_o = 0 under inner-race control (the
-kinematics stay those of outer-race control: a documented simplification).  In components these
-are Harris's two equations
+kinematics stay those of outer-race control: a documented simplification).  Direction of the
+friction forces, derived here from Euler's equation of the ball: its angular momentum J Omega
+precesses with the cage, so the contacts must apply dH/dt = omega_c e_z x J Omega =
++M_g e_t (e_r, e_t, e_z right-handed, e_t the orbit direction; Omega_r > 0 for a positive outer
+contact angle), and a friction force f t at the outer contact point (Dw/2 along n_o) has the
+moment -(Dw/2) f e_t, at the inner one (Dw/2 along -n_i) +(Dw/2) f e_t.  In components:
 
-    Q_i sin a_i - Q_o sin a_o - (M_g/Dw)(lam_i cos a_i - lam_o cos a_o) = 0
-    Q_i cos a_i - Q_o cos a_o + (M_g/Dw)(lam_i sin a_i - lam_o sin a_o) + F_c = 0
+    Q_i sin a_i - Q_o sin a_o + (M_g/Dw)(lam_i cos a_i - lam_o cos a_o) = 0
+    Q_i cos a_i - Q_o cos a_o - (M_g/Dw)(lam_i sin a_i - lam_o sin a_o) + F_c = 0
 
 which the tests evaluate directly.  At speed 0 (F_c = M_g = 0) the centres and the ball centre are
 collinear, a_i = a_o and Q_i = Q_o = K_n delta^1.5 with K_n the series stiffness: the quasi-static
@@ -238,8 +242,8 @@ def frozen_forces(g: BearingGeometry, tg: ThermalGeometry, alpha_i, alpha_o, spe
     F_c = ball_mass_N_s2_per_mm(g, Dw) * omega_c ** 2 * 0.5 * dm
     M_g = ball_inertia_N_s2_mm(g, Dw) * omega_c * kin.omega_r * omega
     w = M_g / Dw
-    b = np.stack([w * (lam_o * np.cos(ao) - lam_i * np.cos(ai)),
-                  F_c + w * (lam_i * np.sin(ai) - lam_o * np.sin(ao))])
+    b = np.stack([w * (lam_i * np.cos(ai) - lam_o * np.cos(ao)),
+                  F_c - w * (lam_i * np.sin(ai) - lam_o * np.sin(ao))])
     om_R = np.hypot(kin.omega_r, kin.omega_z)
     extras = dict(F_c=F_c, M_g=M_g, spin_to_roll=kin.spin_inner / np.where(om_R > 0, om_R, 1.0),
                   cage_rpm=kin.cage * np.asarray(speed_rpm, float))
