@@ -198,7 +198,9 @@ def _minimise(prob, q0, cap: float, max_iter: int = 60) -> Root:
     (plus 1e-12 of its largest diagonal and 1e-6 N/mm for directions no ball holds), capped to
     `cap` mm, halved while the potential rises above its rounding level (1e-13 of its terms).
     A point has converged when every generalised residual force is below 1e-13 of the sum of
-    its ball forces and loads, or its step below 1e-15 (1 + max|q|) mm.  (A criterion on the
+    its ball forces and loads, or its full step below 1e-15 (1 + max|q|) mm (or, once no step
+    lowers the potential, the residual below 1e-10 of them); a full Newton step whose predicted
+    change is below the potential's rounding is taken as it is.  (A criterion on the
     residual rather than on the potential: with the ball equilibria solved inside it, the
     potential carries their rounding.)"""
     q = np.array(q0, float, copy=True)
@@ -221,10 +223,11 @@ def _minimise(prob, q0, cap: float, max_iter: int = 60) -> Root:
         t = np.ones(N)
         pending = ~done
         scale = prob.scale.copy()
+        flat = np.abs((g * d).sum(axis=0)) <= 1e-12 * Pabs   # as in ball_dynamics._newton_ball
         for _ls in range(30):
             trial = q + t * d
             Pt, Pat, gt, Ht = prob(trial)
-            ok = pending & (Pt <= Pi + 1e-13 * (Pabs + Pat))
+            ok = pending & ((Pt <= Pi + 1e-13 * (Pabs + Pat)) | (flat & (t == 1.0)))
             q[:, ok], Pi[ok], Pabs[ok], g[:, ok], H[..., ok] = (trial[:, ok], Pt[ok], Pat[ok],
                                                                gt[:, ok], Ht[..., ok])
             scale[ok] = prob.scale[ok]
@@ -235,7 +238,9 @@ def _minimise(prob, q0, cap: float, max_iter: int = 60) -> Root:
         prob.scale = scale
         conv |= ~done & (t == 1.0) & (np.abs(d).max(axis=0) <= 1e-15 * (1.0 + np.abs(q).max(axis=0)))
         done |= conv | pending
-    conv |= np.abs(g).max(axis=0) <= 1e-13 * prob.scale
+    # no step lowers the potential any more: at its minimum to rounding when the residual is
+    # also within 1e-10 of the forces (the ball equilibria inside carry their own rounding)
+    conv |= np.abs(g).max(axis=0) <= 1e-10 * prob.scale
     return Root(q, conv & np.isfinite(q).all(axis=0))
 
 
