@@ -58,12 +58,17 @@ without it the rotor is held against tilt (rho common to both bearings).  With K
 equations are the stationarity conditions of a convex potential, solved by a safeguarded Newton
 method, with the same outer K_n loop.
 
-Not modelled here: centrifugal and gyroscopic ball loads, different inner and outer contact
-angles, a moment about the radial load direction (loads in one plane), shaft bending (rigid rotor).
+Not modelled in the pair solvers: centrifugal and gyroscopic ball loads, different inner and outer
+contact angles, a moment about the radial load direction (loads in one plane), shaft bending
+(rigid rotor).  The quasi-dynamic ball (`ball_dynamics.solve_balls`: centrifugal force, gyroscopic
+moment, raceway control) and one bearing with 5 DOF of its inner ring under loads in any direction
+(`single.solve_single`, `single.balls_at_displacement`) are modelled, for the single-bearing
+command; the pair does not use them yet.
 
 Modules: geometry (free and grown geometry, pair conventions), contact (K_n from exact Hertz,
 bearing and ball-set states), roots (root finders with convergence flags), axial (axial-only
-equilibrium), combined (combined load), state (`PairState`, the one typed result).
+equilibrium), combined (combined load), state (`PairState`, the one typed result),
+ball_dynamics (quasi-dynamic ball), single (one bearing, 5 DOF).
 """
 from __future__ import annotations
 

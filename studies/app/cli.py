@@ -72,6 +72,14 @@ def build_parser() -> argparse.ArgumentParser:
                    help="conditions table (default: the assembly's operating temperature range)")
     r.add_argument("--out", type=Path, required=True)
 
+    bb = sub.add_parser("bearing", help="one bearing under radial, axial and moment loads")
+    bb.add_argument("bearing", type=Path, help="TOML file with a [bearing] table")
+    bb.add_argument("loads", type=Path, help="loads table (CSV)")
+    bb.add_argument("-o", "--out", type=Path, required=True)
+    bb.add_argument("--convention", choices=("exact", "iso16281"), default="exact",
+                    help="exact groove-centre geometry (default) or the ISO/TS 16281 "
+                         "simplifications")
+
     t = sub.add_parser("tolerance", help="worst case and Monte Carlo of the fit tolerances")
     t.add_argument("assembly", type=Path)
     t.add_argument("conditions", type=Path, nargs="?", default=None,
@@ -129,6 +137,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 #: the one dispatch table: subcommand -> implementation (studies/app/commands.py)
 COMMANDS = {"simulate": commands.cmd_simulate, "report": commands.cmd_report,
+            "bearing": commands.cmd_bearing,
             "tolerance": commands.cmd_tolerance, "design": commands.cmd_design,
             "diagnose": commands.cmd_diagnose,
             "verify": commands.cmd_verify, "study": commands.cmd_study, "bench": commands.cmd_bench}

@@ -105,6 +105,19 @@ def cmd_simulate(args) -> None:
     return 1 if run.violations and args.strict else 0
 
 
+def cmd_bearing(args) -> None:
+    from studies.runs.bearing_single import BearingRunError, run
+
+    try:
+        check_output_file(args.out, (args.bearing, args.loads))
+        n = run(args.bearing, args.loads, args.out, args.convention,
+                provenance("bearing", {"bearing": args.bearing, "loads": args.loads},
+                           {"convention": {"name": args.convention}}))
+    except (BearingRunError, *_user_errors()) as exc:
+        raise UserError(str(exc)) from None
+    print(f"wrote {n} rows to {args.out} (convention {args.convention})")
+
+
 def _assembly_and_conditions(args):
     """The assembly, the optional conditions table and the input files for the provenance."""
     from studies.model.table import read_conditions

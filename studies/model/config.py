@@ -336,6 +336,81 @@ def load_assembly(path: str | Path) -> Assembly:
     return assembly_from_dict(raw, path)
 
 
+@dataclass(frozen=True)
+class SingleBearingConfig:
+    """A single bearing's file (`bearingfem bearing`): its [bearing] table, the config's own
+    materials, and the diametral radial internal clearance when the file gives one (the free
+    contact angle of `spec` then follows from it)."""
+    spec: BearingSpec
+    materials: tuple[Material, ...]
+    radial_internal_clearance_um: float | None
+
+    @property
+    def geometry(self) -> BearingGeometry:
+        return BearingGeometry.from_spec(self.spec, self.materials)
+
+
+def load_bearing(path: str | Path) -> SingleBearingConfig:
+    """Read and validate a single bearing's TOML file: a [bearing] table with the keys of an
+    assembly's [bearing] section (parsed by the same `_section`, checked by `check_bearing`),
+    either `contact_angle_free_deg` or `radial_internal_clearance_um` (total diametral play,
+    ISO 5753; the free contact angle follows from cos a0 = 1 - P_d / (2 A0),
+    `analytic.bearing.single.free_contact_angle_deg`), and optional [materials.NAME] tables.
+    ConfigError (one line naming file and key) on any problem."""
+    from dataclasses import replace
+
+    from analytic.bearing.single import free_contact_angle_deg
+
+    path = str(path)
+    try:
+        with open(path, "rb") as fh:
+            raw = tomllib.load(fh)
+    except FileNotFoundError:
+        raise ConfigError(f"{path}: file not found") from None
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        raise ConfigError(f"{path}: not valid TOML: {exc}") from None
+    except OSError as exc:
+        raise ConfigError(f"{path}: cannot read ({exc.strerror})") from None
+    for name in raw:
+        if name not in ("bearing", "materials"):
+            raise ConfigError(f"{path}: [{name}]: unknown section (a bearing file has [bearing] "
+                              "and [materials.NAME] tables)")
+    table = raw.get("bearing")
+    if not isinstance(table, dict):
+        raise ConfigError(f"{path}: [bearing]: missing section")
+    table = dict(table)
+    key = "radial_internal_clearance_um"
+    clearance = table.pop(key, None)
+    if clearance is not None:
+        if "contact_angle_free_deg" in table:
+            raise ConfigError(f"{path}: bearing.{key}: conflicts with bearing.contact_angle_free_deg "
+                              "(the clearance sets the free contact angle; give one of them)")
+        if (isinstance(clearance, bool) or not isinstance(clearance, (int, float))
+                or not math.isfinite(clearance) or clearance < 0):
+            raise ConfigError(f"{path}: bearing.{key}: must be a number >= 0, got {clearance!r}")
+        table["contact_angle_free_deg"] = 45.0        # placeholder, replaced below
+    elif "contact_angle_free_deg" not in table:
+        raise ConfigError(f"{path}: bearing.contact_angle_free_deg: missing key (or give "
+                          f"bearing.{key})")
+    materials = parse_materials(raw, path)
+    spec = _section(path, {"bearing": table}, "bearing")
+    for k, name in (("bearing.ring_material", spec.ring_material),
+                    ("bearing.ball_material", spec.ball_material)):
+        try:
+            get_material(name, materials)
+        except KeyError as exc:
+            raise ConfigError(f"{path}: {k}: {exc.args[0]}") from None
+    if clearance is not None:
+        A0 = (spec.inner_groove_ratio + spec.outer_groove_ratio - 1.0) * spec.ball_diameter_mm
+        try:
+            alpha0 = free_contact_angle_deg(A0, 1e-3 * float(clearance))
+        except ValueError as exc:
+            raise ConfigError(f"{path}: bearing.{key}: {exc.args[0]}") from None
+        spec = replace(spec, contact_angle_free_deg=alpha0)
+    check_bearing(spec, materials, path)
+    return SingleBearingConfig(spec, materials, None if clearance is None else float(clearance))
+
+
 def assembly_from_dict(raw: dict, path: str = "<config>") -> Assembly:
     top = raw.get("assembly")
     if not isinstance(top, dict):
@@ -414,6 +489,37 @@ def _check_materials(a: Assembly, path: str) -> None:
             raise ConfigError(f"{path}: {key}: {exc.args[0]}") from None
 
 
+def check_bearing(b: BearingSpec, materials: tuple[Material, ...], path: str) -> BearingGeometry:
+    """The checks of a [bearing] table on its own (an assembly's or a single bearing's file):
+    groove ratios, land diameters, ring width, contact angle, pitch diameter and ball count.
+    Returns the resolved `BearingGeometry`; ConfigError (one line naming file and key)."""
+    def need(cond: bool, key: str, msg: str) -> None:
+        if not cond:
+            raise ConfigError(f"{path}: {key}: {msg}")
+
+    for key, f in (("bearing.inner_groove_ratio", b.inner_groove_ratio),
+                   ("bearing.outer_groove_ratio", b.outer_groove_ratio)):
+        # Harris & Kotzalas Vol. 1 ch. 2: 0.515..0.54 in ball bearings; 0.5 is a ball in a
+        # conforming groove (no contact ellipse), above 0.6 not a raceway groove
+        need(0.5 < f <= 0.6, key, f"{f:g} is outside 0.5..0.6 (groove radius / ball diameter)")
+    g = BearingGeometry.from_spec(b, materials)
+    for side, d in (("inner", b.inner_land_diameter_mm), ("outer", b.outer_land_diameter_mm)):
+        if d > 0:        # given: the groove edge lies between the groove bottom and the pitch circle
+            bottom = groove_bottom_diameter_mm(g, side)
+            lo, hi = sorted((bottom, b.pitch_diameter_mm))
+            need(lo < d < hi, f"bearing.{side}_land_diameter_mm",
+                 f"{d:g} mm must lie between the groove bottom ({bottom:.3f} mm) and the pitch "
+                 f"diameter ({b.pitch_diameter_mm:g} mm)")
+    need(b.width_mm >= b.ball_diameter_mm, "bearing.width_mm",
+         f"ring width {b.width_mm:g} mm is narrower than its ball ({b.ball_diameter_mm:g} mm)")
+    need(b.contact_angle_free_deg < 90.0, "bearing.contact_angle_free_deg", "must be below 90 deg")
+    Dw, dm = b.ball_diameter_mm, b.pitch_diameter_mm
+    need(b.bore_mm < dm - Dw and dm + Dw < b.outside_diameter_mm, "bearing.pitch_diameter_mm",
+         "balls do not fit between bore and outside diameter")
+    need(b.ball_count * Dw < math.pi * dm, "bearing.ball_count", "balls overlap on the pitch circle")
+    return g
+
+
 def _check_geometry(a: Assembly, path: str) -> None:
     """Overlaps, rings that do not touch their seats, and impossible bearing geometry."""
     s, h, b = a.shaft, a.housing, a.bearing
@@ -458,21 +564,7 @@ def _check_geometry(a: Assembly, path: str) -> None:
     need(b.inner_ring_outer_diameter_mm < a.cover.diameter_mm < seat,
          "cover.diameter_mm", "must lie between the inner ring OD and the housing bore"
          if not t_layers else "must lie between the inner ring OD and the bearing OD")
-    for key, f in (("bearing.inner_groove_ratio", b.inner_groove_ratio),
-                   ("bearing.outer_groove_ratio", b.outer_groove_ratio)):
-        # Harris & Kotzalas Vol. 1 ch. 2: 0.515..0.54 in ball bearings; 0.5 is a ball in a
-        # conforming groove (no contact ellipse), above 0.6 not a raceway groove
-        need(0.5 < f <= 0.6, key, f"{f:g} is outside 0.5..0.6 (groove radius / ball diameter)")
-    g = BearingGeometry.from_spec(b, a.materials)
-    for side, d in (("inner", b.inner_land_diameter_mm), ("outer", b.outer_land_diameter_mm)):
-        if d > 0:        # given: the groove edge lies between the groove bottom and the pitch circle
-            bottom = groove_bottom_diameter_mm(g, side)
-            lo, hi = sorted((bottom, b.pitch_diameter_mm))
-            need(lo < d < hi, f"bearing.{side}_land_diameter_mm",
-                 f"{d:g} mm must lie between the groove bottom ({bottom:.3f} mm) and the pitch "
-                 f"diameter ({b.pitch_diameter_mm:g} mm)")
-    need(b.width_mm >= b.ball_diameter_mm, "bearing.width_mm",
-         f"ring width {b.width_mm:g} mm is narrower than its ball ({b.ball_diameter_mm:g} mm)")
+    g = check_bearing(b, a.materials, path)
     # a typo in one dimension (a housing 1e9 mm wide) would mesh until memory runs out: every
     # length of the stack stays within 20 bearing outside diameters
     big = 20.0 * b.outside_diameter_mm
@@ -485,11 +577,7 @@ def _check_geometry(a: Assembly, path: str) -> None:
                      ("outer_spacer.length_mm", a.outer_spacer.length_mm)):
         need(val <= big, key, f"{val:g} mm is more than 20 bearing outside diameters "
                               f"({big:g} mm): a typo?")
-    need(b.contact_angle_free_deg < 90.0, "bearing.contact_angle_free_deg", "must be below 90 deg")
     Dw, dm = b.ball_diameter_mm, b.pitch_diameter_mm
-    need(b.bore_mm < dm - Dw and dm + Dw < b.outside_diameter_mm, "bearing.pitch_diameter_mm",
-         "balls do not fit between bore and outside diameter")
-    need(b.ball_count * Dw < math.pi * dm, "bearing.ball_count", "balls overlap on the pitch circle")
     for key, val, d in (("fits.inner_interference_um", a.fits.inner_interference_um, s.seat_diameter_mm),
                         ("fits.outer_interference_um", a.fits.outer_interference_um, h.bore_diameter_mm)):
         # 2 per mille of the diameter is far beyond any bearing fit (ISO 286 n6/P7 at 35 mm:

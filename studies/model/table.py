@@ -142,6 +142,9 @@ RANGES = {**{c: (-150.0, 300.0, "C") for c in CONDITION_COLUMNS if c.startswith(
           "speed_rpm": (0.0, 1e5, "rpm"), "preload_assembled_N": (0.0, 1e5, "N"),
           "axial_load_N": (-1e6, 1e6, "N"), "radial_load_N": (-1e6, 1e6, "N"),
           "moment_Nmm": (-1e9, 1e9, "N mm"),
+          # single bearing loads (bearingfem bearing)
+          "radial_load_y_N": (-1e6, 1e6, "N"), "moment_x_Nmm": (-1e9, 1e9, "N mm"),
+          "moment_y_Nmm": (-1e9, 1e9, "N mm"),
           # measured outputs (diagnose): beyond these no bearing this tool models goes
           "torque_Nmm": (-1e7, 1e7, "N mm"), "preload_N": (-1e6, 1e6, "N"),
           "contact_angle_deg": (-90.0, 90.0, "deg"), "max_contact_pressure_MPa": (0.0, 1e5, "MPa"),

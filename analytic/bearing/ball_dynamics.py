@@ -1,0 +1,323 @@
+"""Quasi-dynamic equilibrium of one ball between its raceways: centrifugal force and gyroscopic
+moment, so that the inner and outer contact angles and loads differ (Jones 1960; Harris &
+Kotzalas, Rolling Bearing Analysis 5th ed., Vol. 2 ch. 3).  Units: mm, N, s; radians inside,
+degrees in the result.
+
+Geometry (one ball, its plane through the bearing axis; coordinates (axial, radial), radial
+outward, axial positive towards the side where the inner groove centre lies at a positive
+contact angle).  The outer groove curvature centre is the origin; the inner one sits at
+P = (X, Y) (`analytic.bearing` module docstring: X = A0 sin a0 + a, Y = A0 cos a0 + dr).  The
+ball centre u = (u_a, u_r) is the unknown (2 per ball):
+
+    d_o = |u|,        n_o = u / d_o = (sin a_o, cos a_o),   delta_o = d_o - (r_o - Dw/2)
+    d_i = |P - u|,    n_i = (P - u) / d_i = (sin a_i, cos a_i),   delta_i = d_i - (r_i - Dw/2)
+    Q_o = K_o(a_o) delta_o^1.5,   Q_i = K_i(a_i) delta_i^1.5   (0 where delta <= 0)
+
+K_i, K_o: the exact Hertz stiffness of each contact at its own angle (`contact.contact_stiffness`,
+Harris Vol. 1 ch. 6).  Forces on the ball (the structure of Harris Vol. 2 ch. 3's ball
+equations, written as vectors):
+
+    Q_i n_i - Q_o n_o + F_c e_r + (M_g / Dw) (lam_i t_i - lam_o t_o) = 0,   t = (cos a, -sin a)
+
+    F_c = m omega_c^2 dm / 2          centrifugal force, m = rho pi Dw^3 / 6
+    M_g = J omega_c omega_R,r         gyroscopic moment, J = m Dw^2 / 10,
+                                      omega_R,r = omega_R sin(beta) (ball spin about its own
+                                      axis, radial component, relative to the cage)
+
+omega_c and omega_R sin(beta) come from `torque.ball_kinematics` at the current angles (outer
+ring fixed, inner ring at speed_rpm; Jones 1960 outer-race control kinematics).  lam_o = 2,
+lam_i = 0 under outer-race control (the outer contact's friction takes the whole gyroscopic
+moment, Jones; Harris Vol. 2 ch. 3), lam_i = 2, lam_o = 0 under inner-race control (the
+kinematics stay those of outer-race control: a documented simplification).  Direction of the
+friction forces, derived here from Euler's equation of the ball: its angular momentum J Omega
+precesses with the cage, so the contacts must apply dH/dt = omega_c e_z x J Omega =
++M_g e_t (e_r, e_t, e_z right-handed, e_t the orbit direction; Omega_r > 0 for a positive outer
+contact angle), and a friction force f t at the outer contact point (Dw/2 along n_o) has the
+moment -(Dw/2) f e_t, at the inner one (Dw/2 along -n_i) +(Dw/2) f e_t.  In components:
+
+    Q_i sin a_i - Q_o sin a_o + (M_g/Dw)(lam_i cos a_i - lam_o cos a_o) = 0
+    Q_i cos a_i - Q_o cos a_o - (M_g/Dw)(lam_i sin a_i - lam_o sin a_o) + F_c = 0
+
+which the tests evaluate directly.  At speed 0 (F_c = M_g = 0) the centres and the ball centre are
+collinear, a_i = a_o and Q_i = Q_o = K_n delta^1.5 with K_n the series stiffness: the quasi-static
+contact of `contact.axial_state` / `ball_set_state`.
+
+Solution.  With K_i, K_o, F_c, M_g and the friction directions frozen, the ball equilibrium is
+the stationarity of the convex potential (2/5)(K_o delta_o^2.5 + K_i delta_i^2.5) - b.u
+(b the frozen forces), minimised by `roots.newton_minimise`; an outer loop refreshes the frozen
+quantities at the new contact angles until the angles change by less than tol.  Its minimum
+W(P) is a convex function of the inner groove centre P (partial minimisation of a jointly convex
+function) whose gradient is the inner contact force Q_i n_i (envelope theorem) and whose Hessian
+is the inner and outer contact tangents in series, T_i (T_i + T_o)^-1 T_o: what a ring-level
+solver (`single.py`) needs.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from analytic.bearing.contact import ContactStiffness, contact_stiffness
+from analytic.bearing.geometry import BearingGeometry, ThermalGeometry, thermal_geometry
+from analytic.bearing.roots import Root
+from analytic.torque import RPM_TO_RAD_S, ball_kinematics
+
+#: raceway control hypotheses: (lam_i, lam_o), the shares of 2 M_g / Dw taken by friction at the
+#: inner and at the outer contact (Harris Vol. 2 ch. 3)
+CONTROL = {"outer": (0.0, 2.0), "inner": (2.0, 0.0)}
+
+
+def ball_mass_N_s2_per_mm(g: BearingGeometry, Dw_mm=None) -> float:
+    """Ball mass m = rho pi Dw^3 / 6 in N s^2/mm (density from `Material.density_N_s2_mm4`)."""
+    Dw = g.Dw_mm if Dw_mm is None else Dw_mm
+    return g.ball.density_N_s2_mm4 * np.pi * np.asarray(Dw, float) ** 3 / 6.0
+
+
+def ball_inertia_N_s2_mm(g: BearingGeometry, Dw_mm=None) -> float:
+    """Polar mass moment of inertia of the ball J = m Dw^2 / 10, N s^2 mm (solid sphere)."""
+    Dw = g.Dw_mm if Dw_mm is None else Dw_mm
+    return ball_mass_N_s2_per_mm(g, Dw) * np.asarray(Dw, float) ** 2 / 10.0
+
+
+@dataclass(frozen=True)
+class BallDynamics:
+    """Quasi-dynamic state of every ball (arrays of the shape of the inputs X, Y)."""
+    contact_angle_inner_deg: np.ndarray
+    contact_angle_outer_deg: np.ndarray
+    load_inner_N: np.ndarray
+    load_outer_N: np.ndarray
+    approach_inner_mm: np.ndarray        # Hertz deformation delta_i (0 when not in contact)
+    approach_outer_mm: np.ndarray
+    centrifugal_force_N: np.ndarray
+    gyroscopic_moment_Nmm: np.ndarray
+    spin_to_roll: np.ndarray             # inner contact: |omega_s,i| / omega_R (cage frame)
+    cage_speed_rpm: np.ndarray
+    ball_centre_mm: np.ndarray           # (2, ...): (axial, radial) from the outer groove centre
+    inner_force_N: np.ndarray            # (2, ...): Q_i n_i, the ball's force on the inner ring reversed
+    tangent_N_per_mm: np.ndarray         # (2, 2, ...): d(Q_i n_i)/dP, ball in equilibrium
+    cs_inner: ContactStiffness           # Hertz data at the inner angle (ellipses: state.contact_ellipses)
+    cs_outer: ContactStiffness
+    converged: np.ndarray
+
+
+@dataclass
+class _Frozen:
+    """What the outer loop freezes for one pass (flat arrays over balls, M entries)."""
+    K_i: np.ndarray
+    K_o: np.ndarray
+    c_i: np.ndarray              # r_i - Dw/2 (grown)
+    c_o: np.ndarray              # r_o - Dw/2
+    b: np.ndarray                # (2, M) centrifugal + friction forces on the ball
+
+
+def _contact(d, c, K):
+    delta = np.maximum(d - c, 0.0)
+    sd = np.sqrt(delta)
+    Q = K * delta * sd
+    return delta, Q, 1.5 * K * sd, 0.4 * Q * delta
+
+
+def _tangent(n, kn, Q, d):
+    """Contact tangent kn n n^T + (Q/d)(I - n n^T), (2, 2, M)."""
+    kt = Q / d
+    nn = n[:, None, :] * n[None, :, :]
+    eye = np.eye(2)[:, :, None]
+    return kn * nn + kt * (eye - nn)
+
+
+def _ball_potential(P, u, fz: _Frozen):
+    """(Pi, |terms|, grad, Hessian, parts) of the frozen ball problem at ball centres u (2, M)."""
+    d_o = np.hypot(u[0], u[1])
+    v = P - u
+    d_i = np.hypot(v[0], v[1])
+    n_o, n_i = u / d_o, v / d_i
+    dl_o, Q_o, kn_o, V_o = _contact(d_o, fz.c_o, fz.K_o)
+    dl_i, Q_i, kn_i, V_i = _contact(d_i, fz.c_i, fz.K_i)
+    bu = (fz.b * u).sum(axis=0)
+    T_o, T_i = _tangent(n_o, kn_o, Q_o, d_o), _tangent(n_i, kn_i, Q_i, d_i)
+    grad = Q_o * n_o - Q_i * n_i - fz.b
+    parts = dict(n_o=n_o, n_i=n_i, Q_o=Q_o, Q_i=Q_i, dl_o=dl_o, dl_i=dl_i, kn_o=kn_o,
+                 kn_i=kn_i, kt_o=Q_o / d_o, kt_i=Q_i / d_i)
+    return V_o + V_i - bu, V_o + V_i + np.abs(bu), grad, T_o + T_i, parts
+
+
+def _newton_ball(P, u0, fz: _Frozen, cap: float, max_iter: int = 100) -> Root:
+    """Ball centres minimising the frozen ball potential: Newton steps on the 2 x 2 Hessian
+    (plus 1e-12 of its largest diagonal and 1e-9 N/mm, so a ball touching nothing still gets a
+    step along its free forces), capped to `cap` mm, halved while the potential rises above its
+    rounding level (1e-13 of its terms).  A ball has converged when its residual force is below
+    1e-12 of the largest force on it (contact loads, frozen forces) or its step below
+    1e-15 (1 + |u|) mm; `converged` says so per ball."""
+    u = np.array(u0, float, copy=True)
+    M = u.shape[1]
+    done = np.zeros(M, bool)
+    conv = np.zeros(M, bool)
+    Pi, Pabs, g, H, p = _ball_potential(P, u, fz)
+    for _ in range(max_iter):
+        scale = np.maximum.reduce([p["Q_i"], p["Q_o"], np.hypot(fz.b[0], fz.b[1])])
+        conv |= np.hypot(g[0], g[1]) <= 1e-12 * scale
+        done |= conv
+        if done.all():
+            break
+        lam = 1e-12 * np.maximum(np.abs(H[0, 0]), np.abs(H[1, 1])) + 1e-9
+        a, b_, c, d_ = H[0, 0] + lam, H[0, 1], H[1, 0], H[1, 1] + lam
+        det = a * d_ - b_ * c
+        step = -np.array([d_ * g[0] - b_ * g[1], a * g[1] - c * g[0]]) / det
+        size = np.hypot(step[0], step[1])
+        step *= np.where(size > cap, cap / np.where(size > 0, size, 1.0), 1.0)
+        step[:, done] = 0.0
+        t = np.ones(M)
+        pending = ~done
+        # a full Newton step whose predicted change of the potential is below its rounding level
+        # is taken as it is (the line search could not judge it; near the minimum it is exact)
+        flat = np.abs((g * step).sum(axis=0)) <= 1e-12 * Pabs
+        for _ls in range(40):
+            trial = u + t * step
+            Pt, Pat, gt, Ht, pt = _ball_potential(P, trial, fz)
+            ok = pending & ((Pt <= Pi + 1e-13 * (Pabs + Pat)) | (flat & (t == 1.0)))
+            u[:, ok], Pi[ok], Pabs[ok], g[:, ok], H[..., ok] = (trial[:, ok], Pt[ok], Pat[ok],
+                                                               gt[:, ok], Ht[..., ok])
+            for k in p:
+                p[k][..., ok] = pt[k][..., ok]
+            pending &= ~ok
+            if not pending.any():
+                break
+            t = np.where(pending, 0.5 * t, t)
+        conv |= ~done & (t == 1.0) & (size <= 1e-15 * (1.0 + np.hypot(u[0], u[1])))
+        done |= conv | pending
+    scale = np.maximum.reduce([p["Q_i"], p["Q_o"], np.hypot(fz.b[0], fz.b[1])])
+    # a ball whose potential no step lowers any more is at its minimum to rounding: converged
+    # when its residual is also within 1e-10 of its loads (the difference of two contact forces
+    # of a heavily loaded ball carries their rounding)
+    conv |= np.hypot(g[0], g[1]) <= 1e-10 * scale
+    return Root(u, conv & np.isfinite(u).all(axis=0))
+
+
+def series_tangent(n_i, kn_i, kt_i, n_o, kn_o, kt_o):
+    """Condensed tangent T_i (T_i + T_o)^-1 T_o of the inner and outer contact in series through
+    a ball in equilibrium, (2, 2, M), T = kn n n^T + kt t t^T.  Written in the frame (n_o, t_o)
+    with T_i there [[A, B], [B, C]], A = kn_i c^2 + kt_i s^2, B = (kn_i - kt_i) c s,
+    C = kn_i s^2 + kt_i c^2 (c = n_i.n_o, s = n_i.t_o), so that every term is free of
+    cancellation: det(T_i + T_o) = kn_o kt_o + kn_o C + kt_o A + kn_i kt_i and
+    T_i adj(T_i + T_o) T_o = [[kn_o (A kt_o + kn_i kt_i), B kn_o kt_o],
+                              [B kn_o kt_o, kt_o (C kn_o + kn_i kt_i)]]
+    (a near-singular sum, a lightly loaded ball, would otherwise lose every digit).  Zero where
+    the ball touches at most one race."""
+    t_o = np.stack([n_o[1], -n_o[0]])
+    c = (n_i * n_o).sum(axis=0)
+    s = (n_i * t_o).sum(axis=0)
+    A = kn_i * c * c + kt_i * s * s
+    B = (kn_i - kt_i) * c * s
+    C = kn_i * s * s + kt_i * c * c
+    det = kn_o * kt_o + kn_o * C + kt_o * A + kn_i * kt_i
+    safe = np.where(det > 0.0, det, 1.0)
+    knn = np.where(det > 0.0, kn_o * (A * kt_o + kn_i * kt_i) / safe, 0.0)
+    knt = np.where(det > 0.0, B * kn_o * kt_o / safe, 0.0)
+    ktt = np.where(det > 0.0, kt_o * (C * kn_o + kn_i * kt_i) / safe, 0.0)
+    nn = n_o[:, None] * n_o[None, :]
+    nt = n_o[:, None] * t_o[None, :]
+    tt = t_o[:, None] * t_o[None, :]
+    return knn * nn + knt * (nt + np.swapaxes(nt, 0, 1)) + ktt * tt
+
+
+def frozen_equilibrium(P, u0, fz: _Frozen, Dw_mm: float):
+    """Ball centres (2, M) in equilibrium with K, F_c and friction frozen, and the condensed
+    potential W(P) = min_u Pi, its gradient Q_i n_i and Hessian T_i (T_i + T_o)^-1 T_o."""
+    root = _newton_ball(P, u0, fz, cap=0.05 * Dw_mm)
+    Pi, Pabs, _, _, p = _ball_potential(P, root.x, fz)
+    Kt = series_tangent(p["n_i"], p["kn_i"], p["kt_i"], p["n_o"], p["kn_o"], p["kt_o"])
+    return root, Pi, Pabs, p["Q_i"] * p["n_i"], Kt, p
+
+
+def frozen_forces(g: BearingGeometry, tg: ThermalGeometry, alpha_i, alpha_o, speed_rpm,
+                  control: str, alpha_stiffness=None):
+    """K_i, K_o at the contact angles (or at alpha_stiffness for both, the ISO 16281 convention),
+    the kinematics at the angles, F_c, M_g and the frozen force vector b on the ball.
+    Returns (_Frozen, extras dict, cs_inner, cs_outer)."""
+    lam_i, lam_o = CONTROL[control]
+    ai = np.asarray(alpha_i, float)
+    ao = np.asarray(alpha_o, float)
+    if alpha_stiffness is None:
+        cs_i, cs_o = contact_stiffness(g, tg, ai), contact_stiffness(g, tg, ao)
+    else:
+        cs_i = cs_o = contact_stiffness(g, tg, np.broadcast_to(alpha_stiffness, ai.shape))
+    Dw, dm = tg.Dw_mm, tg.dm_mm
+    kin = ball_kinematics(dm, Dw, ai, ao)
+    omega = np.asarray(speed_rpm, float) * RPM_TO_RAD_S
+    omega_c = kin.cage * omega
+    F_c = ball_mass_N_s2_per_mm(g, Dw) * omega_c ** 2 * 0.5 * dm
+    M_g = ball_inertia_N_s2_mm(g, Dw) * omega_c * kin.omega_r * omega
+    w = M_g / Dw
+    b = np.stack([w * (lam_i * np.cos(ai) - lam_o * np.cos(ao)),
+                  F_c - w * (lam_i * np.sin(ai) - lam_o * np.sin(ao))])
+    om_R = np.hypot(kin.omega_r, kin.omega_z)
+    extras = dict(F_c=F_c, M_g=M_g, spin_to_roll=kin.spin_inner / np.where(om_R > 0, om_R, 1.0),
+                  cage_rpm=kin.cage * np.asarray(speed_rpm, float))
+    fz = _Frozen(cs_i.K_i, cs_o.K_o, tg.f_i * Dw - 0.5 * Dw, tg.f_o * Dw - 0.5 * Dw, b)
+    return fz, extras, cs_i, cs_o
+
+
+def static_split(P, fz: _Frozen):
+    """Start: the ball centre of the quasi-static contact (collinear centres, deformations split
+    so that K_i delta_i^1.5 = K_o delta_o^1.5; unloaded balls midway)."""
+    D = np.hypot(P[0], P[1])
+    delta = D - fz.c_i - fz.c_o
+    r = (fz.K_i / fz.K_o) ** (2.0 / 3.0)
+    d_o = np.where(delta > 0, delta * r / (1.0 + r), 0.5 * delta)
+    return P / D * (fz.c_o + d_o)
+
+
+def solve_balls(g: BearingGeometry, X_mm, Y_mm, speed_rpm=0.0, *, control: str = "outer",
+                tg: ThermalGeometry | None = None, alpha_stiffness_rad=None,
+                tol: float = 1e-12, max_outer: int = 60) -> BallDynamics:
+    """Quasi-dynamic equilibrium of balls whose inner groove centre sits at (X_mm, Y_mm) from the
+    outer groove centre (axial, radial; any common shape), inner ring at speed_rpm (outer fixed).
+
+    Arguments: g bearing geometry (ball density from its ball material); X_mm, Y_mm in mm;
+    speed_rpm scalar or broadcastable; control "outer" (default) or "inner" raceway control
+    (module docstring); tg grown geometry (default: free at T_ref); alpha_stiffness_rad: evaluate
+    K_i and K_o at this fixed angle (ISO 16281 convention) instead of at each contact's angle.
+    Returns `BallDynamics` (angles deg, loads N, approaches mm, F_c N, M_g N mm, spin-to-roll
+    ratio, cage speed rpm, ball centre mm, inner contact force and its tangent, convergence).
+    Formulas and sources: module docstring."""
+    if control not in CONTROL:
+        raise ValueError(f"control must be 'outer' or 'inner', got {control!r}")
+    tg = tg or thermal_geometry(g)
+    X, Y, spd = np.broadcast_arrays(np.asarray(X_mm, float), np.asarray(Y_mm, float),
+                                    np.asarray(speed_rpm, float))
+    shape = X.shape
+    P = np.stack([X.ravel(), Y.ravel()])
+    spd = spd.ravel()
+    alpha = np.arctan2(P[0], P[1])
+    a_i, a_o = alpha, alpha
+    u = None
+    ok_outer = np.zeros(P.shape[1], bool)
+    for _ in range(max_outer):
+        fz, ex, cs_i, cs_o = frozen_forces(g, tg, a_i, a_o, spd, control, alpha_stiffness_rad)
+        if u is None:
+            u = static_split(P, fz)
+        root, _, _, F_in, Kt, p = frozen_equilibrium(P, u, fz, float(np.max(tg.Dw_mm)))
+        u = root.x
+        new_o = np.arctan2(p["n_o"][0], p["n_o"][1])
+        new_i = np.arctan2(p["n_i"][0], p["n_i"][1])
+        # angles of contacts that carry load (an open contact's direction is no state of it)
+        change = np.maximum(np.where(p["Q_o"] > 0, np.abs(new_o - a_o), 0.0),
+                            np.where(p["Q_i"] > 0, np.abs(new_i - a_i), 0.0))
+        a_i, a_o = new_i, new_o
+        ok_outer = change <= tol
+        if np.all(ok_outer):
+            break
+    fz, ex, cs_i, cs_o = frozen_forces(g, tg, a_i, a_o, spd, control, alpha_stiffness_rad)
+    root2, _, _, F_in, Kt, p = frozen_equilibrium(P, u, fz, float(np.max(tg.Dw_mm)))
+    r = lambda a: a.reshape(shape)  # noqa: E731
+    return BallDynamics(
+        contact_angle_inner_deg=r(np.degrees(a_i)), contact_angle_outer_deg=r(np.degrees(a_o)),
+        load_inner_N=r(p["Q_i"]), load_outer_N=r(p["Q_o"]), approach_inner_mm=r(p["dl_i"]),
+        approach_outer_mm=r(p["dl_o"]), centrifugal_force_N=r(np.broadcast_to(ex["F_c"], a_i.shape)),
+        gyroscopic_moment_Nmm=r(np.broadcast_to(ex["M_g"], a_i.shape)),
+        spin_to_roll=r(np.broadcast_to(ex["spin_to_roll"], a_i.shape)),
+        cage_speed_rpm=r(np.broadcast_to(ex["cage_rpm"], a_i.shape)),
+        ball_centre_mm=root2.x.reshape((2,) + shape),
+        inner_force_N=F_in.reshape((2,) + shape), tangent_N_per_mm=Kt.reshape((2, 2) + shape),
+        cs_inner=cs_i, cs_outer=cs_o,
+        converged=r(ok_outer & root.converged & root2.converged))
