@@ -62,6 +62,7 @@ def test_settling_creep_is_preload_settling_extended(pl000):
     _check_params(ext, truth, rel=0.10)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("which", ["thermal_lag", "preload_settling"])
 def test_listed_form_stays_listed(pl000, pl001, which):
     if which == "thermal_lag":

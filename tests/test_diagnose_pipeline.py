@@ -218,18 +218,20 @@ def test_predictor_is_simulate(pl000):
 # (effect, parameters, config, design, measured columns + noise). Each design is one where the
 # effect is identifiable: time for the lag and the settling, several speeds for the speed part of
 # the radial gradient, an oil bearing for the viscosity law.
+SLOW = pytest.mark.slow      # the whole list runs in `make test-slow` (hit rates there as well)
 HIDDEN = [
     ("interference_error", {"inner_um": -1.0, "outer_um": 0.5}, "seed000", preload_sweep,
      SIGMA_000),
-    ("radial_gradient", {"dT_K": 1.0, "dT_per_krpm_K": 2.0}, "seed003", oil_speed_steps_003,
-     SIGMA_003),
-    ("thermal_lag", {"tau_s": 300.0}, "seed000", cycles, SIGMA_000_TORQUE),
-    ("viscosity_temperature", {"slope_factor": 1.01}, "seed001", oil_speed_steps_001,
-     SIGMA_001_TORQUE),
-    ("friction_temperature", {"dmu_per_K": 4e-5}, "seed000",
-     lambda: temp_steps(time_col=False), SIGMA_000),
+    pytest.param("radial_gradient", {"dT_K": 1.0, "dT_per_krpm_K": 2.0}, "seed003",
+                 oil_speed_steps_003, SIGMA_003, marks=SLOW),
+    pytest.param("thermal_lag", {"tau_s": 300.0}, "seed000", cycles, SIGMA_000_TORQUE, marks=SLOW),
+    pytest.param("viscosity_temperature", {"slope_factor": 1.01}, "seed001",
+                 oil_speed_steps_001, SIGMA_001_TORQUE, marks=SLOW),
+    pytest.param("friction_temperature", {"dmu_per_K": 4e-5}, "seed000",
+                 lambda: temp_steps(time_col=False), SIGMA_000, marks=SLOW),
     ("preload_settling", {"loss_N": 5.0, "threshold_K": 50.0}, "seed000", cycles, SIGMA_000),
-    ("cte_nonlinearity", {"dalpha_per_K": 4e-9}, "seed000", temp_steps, SIGMA_000),
+    pytest.param("cte_nonlinearity", {"dalpha_per_K": 4e-9}, "seed000", temp_steps, SIGMA_000,
+                 marks=SLOW),
 ]
 #: relative tolerance on a fitted parameter: at >= 8 sigma over >= 100 rows the statistical error
 #: of a magnitude is a few per cent (the engine's own uncertainty is checked separately, 5 u);
@@ -238,7 +240,7 @@ REL_TOL = 0.10
 
 
 @pytest.mark.parametrize("name, params, seed_name, design, sigma", HIDDEN,
-                         ids=[h[0] for h in HIDDEN])
+                         ids=[getattr(h, "values", h)[0] for h in HIDDEN])
 def test_hidden_effect_is_named(pipelines, name, params, seed_name, design, sigma):
     pl = pipelines[seed_name]
     cond = design()
@@ -292,7 +294,7 @@ def test_interference_error_in_preload_sweep_local_minimum(pl000):
 
 # ============================================================================ 2. null data
 NULL = [
-    ("seed000", cycles, SIGMA_000),
+    pytest.param("seed000", cycles, SIGMA_000, marks=SLOW),
     ("seed000", preload_sweep, SIGMA_000_TORQUE),
     ("seed001", oil_speed_steps_001, SIGMA_001_TORQUE),
     ("seed003", oil_speed_steps_003, SIGMA_003),
@@ -300,7 +302,8 @@ NULL = [
 
 
 @pytest.mark.parametrize("seed_name, design, sigma", NULL,
-                         ids=[f"{n[0]}-{n[1].__name__}" for n in NULL])
+                         ids=[(lambda v: f"{v[0]}-{v[1].__name__}")(getattr(n, "values", n))
+                              for n in NULL])
 def test_null_data_no_discrepancy(pipelines, seed_name, design, sigma):
     pl = pipelines[seed_name]
     cond = design()
@@ -319,6 +322,7 @@ def test_null_data_no_discrepancy(pipelines, seed_name, design, sigma):
         assert res["noise_sigma"][c] == pytest.approx(s, rel=0.2)
 
 
+@pytest.mark.slow
 def test_viscosity_law_on_solid_film_is_never_claimed(pl000):
     """Seed 000 runs on a MoS2 film: the viscosity law is not part of its torque, so a changed
     law gives exactly the baseline data and the candidate cannot be claimed."""
@@ -367,7 +371,7 @@ LOOKALIKE_COND = dict(levels=(0, 10, 20, 30, 40), per=20, time_col=False)
 
 @pytest.mark.parametrize("truth_name, params, rival", [
     ("radial_gradient", {"dT_K": 1.0}, "interference_error"),
-    ("interference_error", {"inner_um": 7.0}, "radial_gradient"),
+    pytest.param("interference_error", {"inner_um": 7.0}, "radial_gradient", marks=SLOW),
 ])
 def test_lookalike_pair_is_ambiguous(pl000, truth_name, params, rival):
     cond = temp_steps(**LOOKALIKE_COND)
@@ -393,8 +397,8 @@ def test_lookalike_pair_is_ambiguous(pl000, truth_name, params, rival):
 
 # ============================================================================ 4. outside the list
 @pytest.mark.parametrize("seed_name, design, sigma, drift_sigma", [
-    ("seed000", cycles, SIGMA_000, 10.0),
-    ("seed001", oil_speed_steps_001, SIGMA_001_TORQUE, 15.0),
+    pytest.param("seed000", cycles, SIGMA_000, 10.0, marks=SLOW),
+    pytest.param("seed001", oil_speed_steps_001, SIGMA_001_TORQUE, 15.0, marks=SLOW),
 ])
 def test_sensor_drift_is_not_claimed(pipelines, seed_name, design, sigma, drift_sigma):
     """A torque-sensor drift linear in time (not a listed effect; `drift_sigma` noise units over

@@ -162,6 +162,7 @@ def test_hidden_runin_is_recovered(pl000):
     assert lo / step <= 10.0 <= hi * step, (res["parameters"], u)
 
 
+@pytest.mark.slow
 def test_hidden_path_compliance_is_recovered(pl001):
     """Seed 001 (oil, 7 N position preload), temperature steps -20..40 C at 3500/6000/9000 rpm,
     torque (1 N mm) and preload (0.05 N) measured, a preload path 300 um/kN softer than the FE's:
