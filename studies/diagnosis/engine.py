@@ -618,3 +618,16 @@ def diagnose_full(predict: Callable[[dict, dict], Mapping[str, np.ndarray]],
 def diagnose(*args, **kwargs) -> dict:
     """`diagnose_full(...)`.result: the JSON-ready dict."""
     return diagnose_full(*args, **kwargs).result
+
+
+def lookalike_matrix(predict: Callable, measured: Mapping[str, np.ndarray],
+                     conditions: Mapping[str, np.ndarray], candidates: Sequence, nuisance: Mapping,
+                     noise_sigma: Mapping[str, float], T_ref_C: float,
+                     predict_at: Callable | None = None) -> dict[str, dict[str, float]]:
+    """Phases 1-2 only (baseline calibration and screening) on `measured`: the look-alike matrix
+    {a: {b: largest cosine between the candidates' sensitivity subspaces}} of the identifiable
+    candidates. On the model's own noise-free output it is a property of the test design alone
+    (`studies.diagnosis.operating.lookalike_before_data`)."""
+    eng = _Engine(predict, measured, conditions, candidates, nuisance, None, noise_sigma,
+                  T_ref_C, predict_at, dict(DEFAULT_THRESHOLDS), 0, None)
+    return eng.screen(eng.calibrate_baseline()).lookalike

@@ -34,7 +34,7 @@ import numpy as np
 from scipy import optimize, stats
 
 from studies.diagnosis.core import DEFAULT_THRESHOLDS
-from studies.diagnosis.engine import _Engine, diagnose
+from studies.diagnosis.engine import diagnose, lookalike_matrix
 
 #: magnitudes of the injected causes: RMS visible change in noise sigmas
 MAGNITUDES = (0.25, 0.5)
@@ -115,9 +115,8 @@ def lookalike_before_data(d: Design) -> dict[str, dict[str, float]]:
     predict, predict_at = d.predictor(d.conditions)
     truth = predict({}, {k: v[2] if len(v) > 2 else 1.0 for k, v in d.nuisance.items()})
     meas = {c: np.asarray(truth[c], float) for c in d.sigma}
-    eng = _Engine(predict, meas, d.conditions, d.candidates, d.nuisance, None, d.sigma,
-                  d.T_ref_C, predict_at, dict(DEFAULT_THRESHOLDS), 0, None)
-    return eng.screen(eng.calibrate_baseline()).lookalike
+    return lookalike_matrix(predict, meas, d.conditions, d.candidates, d.nuisance, d.sigma,
+                            d.T_ref_C, predict_at)
 
 
 def visible_rms_sigma(predict, truth: dict, sigma: dict, nuisance: dict) -> float:
