@@ -321,18 +321,23 @@ def _unit_hint(key: str, fields) -> str:
     return ""
 
 
-def load_assembly(path: str | Path) -> Assembly:
-    """Read and validate an assembly TOML file. Raises ConfigError (one line) on any problem."""
-    path = str(path)
+def _read_toml(path: str) -> dict:
+    """The parsed TOML file; ConfigError (one line naming the file) when it cannot be read."""
     try:
         with open(path, "rb") as fh:
-            raw = tomllib.load(fh)
+            return tomllib.load(fh)
     except FileNotFoundError:
         raise ConfigError(f"{path}: file not found") from None
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
         raise ConfigError(f"{path}: not valid TOML: {exc}") from None
     except OSError as exc:
         raise ConfigError(f"{path}: cannot read ({exc.strerror})") from None
+
+
+def load_assembly(path: str | Path) -> Assembly:
+    """Read and validate an assembly TOML file. Raises ConfigError (one line) on any problem."""
+    path = str(path)
+    raw = _read_toml(path)
     return assembly_from_dict(raw, path)
 
 
@@ -362,15 +367,7 @@ def load_bearing(path: str | Path) -> SingleBearingConfig:
     from analytic.bearing.single import free_contact_angle_deg
 
     path = str(path)
-    try:
-        with open(path, "rb") as fh:
-            raw = tomllib.load(fh)
-    except FileNotFoundError:
-        raise ConfigError(f"{path}: file not found") from None
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
-        raise ConfigError(f"{path}: not valid TOML: {exc}") from None
-    except OSError as exc:
-        raise ConfigError(f"{path}: cannot read ({exc.strerror})") from None
+    raw = _read_toml(path)
     for name in raw:
         if name not in ("bearing", "materials"):
             raise ConfigError(f"{path}: [{name}]: unknown section (a bearing file has [bearing] "
