@@ -10,15 +10,19 @@ describes how the data are made; the generalised forms go through the same `appl
   -60 <-> 80 C cycles: preload_settling with the creep form, parameters within 3 u;
 - data made with the LISTED forms (thermal_lag 900 s; preload_settling 5 N at 50 K): the listed
   form, no extension claimed (the nested test must not fire);
-- null data: no_discrepancy and no form tried.
+- null data: no_discrepancy and no form tried;
+- (slow) a CTE with curvature (3e-10 /K^3, no slope) in seed 000's -60..80 C steps, and a radial
+  gradient whose speed part lags 1200 s behind seed 003's speed steps: the listed family with its
+  curvature / lag form, the added parameter within 3 u and 15 %.
 """
 from __future__ import annotations
 
 import pytest
 
-from test_diagnose_pipeline import (SIGMA_000, SIGMA_001_TORQUE, cycles, diagnose_real,
-                                    largest_change_sigma, measured, oil_speed_steps_001, summary,
-                                    MIN_CHANGE_SIGMA, pl000, pl001)  # noqa: F401 (fixtures)
+from test_diagnose_pipeline import (SIGMA_000, SIGMA_001_TORQUE, SIGMA_003, cycles, diagnose_real,
+                                    largest_change_sigma, measured, oil_speed_steps_001,
+                                    oil_speed_steps_003, summary, temp_steps,
+                                    MIN_CHANGE_SIGMA, pl000, pl001, pl003)  # noqa: F401 (fixtures)
 
 #: 3 standard uncertainties (the engine's linearised ones): a miss beyond is a wrong fit
 K_U = 3.0
@@ -84,3 +88,28 @@ def test_null_stays_no_discrepancy(pl001):
     res = diagnose_real(pl001, cond, measured(pl001, cond, {}, SIGMA_001_TORQUE, seed=17))
     assert res["verdict"] == "no_discrepancy", summary(res)
     assert res["extended_form"] is None and res["generalised_forms"] == []
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("which", ["cte_nonlinearity.curvature", "radial_gradient.lag"])
+def test_curvature_and_gradient_lag_are_their_family_extended(pl000, pl003, which):
+    if which == "cte_nonlinearity.curvature":
+        pl, cond, sigma = pl000, temp_steps(), SIGMA_000
+        truth = {"d2alpha_per_K3": 3e-10}
+        eff = {which: {"dalpha_per_K": 0.0, **truth}}
+        rel = 0.15     # u(d2alpha) is about 4 % here (108 sigma of change)
+    else:
+        pl, cond, sigma = pl003, oil_speed_steps_003(), SIGMA_003
+        truth = {"dT_K": 1.0, "dT_per_krpm_K": 2.0, "tau_gradient_s": 1200.0}
+        eff = {which: truth}
+        # seed 003's torque noise (2 N mm) leaves 23 sigma of change: u(tau) is about 16 % of it,
+        # so the 3 u check binds; 30 % still catches a fit in the wrong basin (tau -> 0 or 1e5)
+        rel = 0.30
+    family = which.split(".")[0]
+    assert largest_change_sigma(pl, cond, eff, sigma) >= MIN_CHANGE_SIGMA
+    res = diagnose_real(pl, cond, measured(pl, cond, eff, sigma, seed=17))
+    assert (res["verdict"], res["cause"]) == ("explained", family), summary(res)
+    ext = res["extended_form"]
+    assert ext is not None and ext["name"] == which, res["generalised_forms"]
+    assert ext["heldout_gain_vs_listed"]["excludes_zero"]
+    _check_params(ext, truth, rel=rel)
