@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from analytic.torque import contact_inputs, power_W, sliding_spin_torque_Nmm
+from analytic.torque import contact_angles_rad, contact_inputs, power_W, sliding_spin_torque_Nmm
 
 
 @dataclass(frozen=True)
@@ -33,7 +33,8 @@ def pair_heat_W(g, pair, speed_rpm, mu_traction: float, viscous_torque_Nmm) -> P
     """Heat generated in the pair at speed_rpm (rpm), W.
 
     g: `bearing.BearingGeometry`; pair: `bearing.PairState` (ball loads N, contact angles deg,
-    Hertz ellipses mm); mu_traction: traction coefficient for sliding and spin (-);
+    Hertz ellipses mm; with quasi-dynamic balls each contact at its own load and angle, and the
+    kinematics from both angles); mu_traction: traction coefficient for sliding and spin (-);
     viscous_torque_Nmm: viscous torque of the pair (both bearings), N*mm.
     Sliding and spin torques per contact: Harris & Kotzalas Vol. 2 ch. 6 (Heathcote slip and spin
     moment over the Hertz ellipse), via `torque.sliding_spin_torque_Nmm`; power P = M |omega|.
@@ -43,8 +44,9 @@ def pair_heat_W(g, pair, speed_rpm, mu_traction: float, viscous_torque_Nmm) -> P
     part = {"sliding_inner": 0.0, "sliding_outer": 0.0, "spin_inner": 0.0, "spin_outer": 0.0}
     for j in (0, 1):
         cin, cout = contact_inputs(pair, j)
-        t = sliding_spin_torque_Nmm(g.Z, g.Dw_mm, g.dm_mm, g.f_i, g.f_o,
-                                    np.radians(pair.contact_angle_deg[j]), cin, cout, mu_traction)
+        alpha_i, alpha_o = contact_angles_rad(pair, j)
+        t = sliding_spin_torque_Nmm(g.Z, g.Dw_mm, g.dm_mm, g.f_i, g.f_o, alpha_i, cin, cout,
+                                    mu_traction, alpha_outer_rad=alpha_o)
         for k in part:
             part[k] = part[k] + t[f"{k}_Nmm"]
     visc = np.asarray(viscous_torque_Nmm, float)

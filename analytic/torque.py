@@ -153,7 +153,7 @@ class ContactInput:
 def solid_film_torque_Nmm(Z: int, Dw_mm: float, dm_mm: float, f_i: float, f_o: float,
                           alpha_rad, inner: ContactInput, outer: ContactInput, mu,
                           hysteresis_loss, ring_compliance_per_MPa=1.0,
-                          ball_compliance_per_MPa=1.0) -> dict[str, np.ndarray]:
+                          ball_compliance_per_MPa=1.0, alpha_outer_rad=None) -> dict[str, np.ndarray]:
     """Friction torque of one solid-film (MoS2) lubricated bearing, N*mm, by components.
 
     Seed 000 structure (after Todd & Stevens / Snare): inner M_i = M_E,i + M_d,i + M_s,i,
@@ -162,10 +162,12 @@ def solid_film_torque_Nmm(Z: int, Dw_mm: float, dm_mm: float, f_i: float, f_o: f
       hysteresis  F_R v_contact / omega = F_R (dm/2) roll_j
       differential  C_H mu Q a^2 / R_c * slip_j
       spin        (3/8) mu Q a E(m) * spin_j
-    alpha_rad: contact angle (inner = outer).  Returns keys hysteresis_inner_Nmm, hysteresis_outer_Nmm,
-    differential_inner_Nmm, differential_outer_Nmm, spin_inner_Nmm, spin_outer_Nmm, total_Nmm.
+    alpha_rad: contact angle of the inner contact, alpha_outer_rad that of the outer one (default
+    equal: quasi-static balls; quasi-dynamic balls at speed give two, and the kinematics follow
+    them).  Returns keys hysteresis_inner_Nmm, hysteresis_outer_Nmm, differential_inner_Nmm,
+    differential_outer_Nmm, spin_inner_Nmm, spin_outer_Nmm, total_Nmm.
     """
-    kin = ball_kinematics(dm_mm, Dw_mm, alpha_rad)
+    kin = ball_kinematics(dm_mm, Dw_mm, alpha_rad, alpha_outer_rad)
     Rc_i = contact_surface_radius_mm(Dw_mm, f_i, ring_compliance_per_MPa, ball_compliance_per_MPa)
     Rc_o = contact_surface_radius_mm(Dw_mm, f_o, ring_compliance_per_MPa, ball_compliance_per_MPa)
     half_dm = 0.5 * dm_mm
@@ -249,13 +251,14 @@ def friction_heat_W(components_Nmm: dict[str, np.ndarray], n_rpm) -> dict[str, n
 
 def sliding_spin_torque_Nmm(Z: int, Dw_mm, dm_mm, f_i, f_o, alpha_rad, inner: ContactInput,
                             outer: ContactInput, mu_slide, mu_spin=None,
-                            ring_compliance_per_MPa=1.0, ball_compliance_per_MPa=1.0):
+                            ring_compliance_per_MPa=1.0, ball_compliance_per_MPa=1.0,
+                            alpha_outer_rad=None):
     """Sliding (differential slip) and spin torques of an oil-lubricated bearing with boundary /
     traction coefficients mu_slide, mu_spin (default mu_slide), N*mm (same contact models as
     `solid_film_torque_Nmm` without hysteresis).  Multiply by the speed (`friction_heat_W`) for
     seed 003's sliding and spin heat."""
     out = solid_film_torque_Nmm(Z, Dw_mm, dm_mm, f_i, f_o, alpha_rad, inner, outer, mu_slide, 0.0,
-                                ring_compliance_per_MPa, ball_compliance_per_MPa)
+                                ring_compliance_per_MPa, ball_compliance_per_MPa, alpha_outer_rad)
     if mu_spin is not None and mu_slide != 0:
         scale = mu_spin / mu_slide
         out["spin_inner_Nmm"] = out["spin_inner_Nmm"] * scale
@@ -268,10 +271,22 @@ def sliding_spin_torque_Nmm(Z: int, Dw_mm, dm_mm, f_i, f_o, alpha_rad, inner: Co
 # ---------------------------------------------------------------------------------------------
 def contact_inputs(pair, j: int) -> tuple[ContactInput, ContactInput]:
     """Inner and outer `ContactInput` of bearing j (0 = A, 1 = B) of a `bearing.PairState`
-    (ball load N, ellipse semi-axes mm, E(e), Rx mm)."""
-    Q = pair.ball_load_N[j]
-    return tuple(ContactInput(Q, c.a_mm[j], c.b_mm[j], c.E_ell[j], c.Rx_mm[j])
-                 for c in (pair.inner, pair.outer))
+    (ball load N, ellipse semi-axes mm, E(e), Rx mm); with quasi-dynamic balls
+    (`pair.dynamic`) each contact at its own load."""
+    d = pair.dynamic
+    Q = (pair.ball_load_N[j], pair.ball_load_N[j]) if d is None else (d.load_inner_N[j],
+                                                                      d.load_outer_N[j])
+    return tuple(ContactInput(q, c.a_mm[j], c.b_mm[j], c.E_ell[j], c.Rx_mm[j])
+                 for q, c in zip(Q, (pair.inner, pair.outer)))
+
+
+def contact_angles_rad(pair, j: int):
+    """(inner, outer) contact angle of bearing j of a `bearing.PairState`, rad; the outer one is
+    None for quasi-static balls (equal to the inner one)."""
+    d = pair.dynamic
+    if d is None:
+        return np.radians(pair.contact_angle_deg[j]), None
+    return np.radians(d.contact_angle_inner_deg[j]), np.radians(d.contact_angle_outer_deg[j])
 
 
 def ball_contact_inputs(radial, j: int) -> tuple[ContactInput, ContactInput]:
@@ -310,9 +325,9 @@ def pair_torque(g, pair, *, model: str = "solid_film", mu=0.02, hysteresis_loss=
         side = {"inner": 0.0, "outer": 0.0}
         for j in "AB":
             cin, cout = contact_inputs(pair, "AB".index(j))
-            alpha = np.radians(pair.contact_angle_deg["AB".index(j)])
+            alpha, alpha_o = contact_angles_rad(pair, "AB".index(j))
             comp = solid_film_torque_Nmm(g.Z, g.Dw_mm, g.dm_mm, g.f_i, g.f_o, alpha, cin, cout,
-                                         mu, hysteresis_loss, c_ring, c_ball)
+                                         mu, hysteresis_loss, c_ring, c_ball, alpha_o)
             r = pair.radial
             if r is not None and r.ball_inner is not None and np.any(r.unequal_balls):
                 # balls with unequal loads: every ball's own contacts and kinematics, summed

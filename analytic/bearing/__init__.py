@@ -58,24 +58,27 @@ without it the rotor is held against tilt (rho common to both bearings).  With K
 equations are the stationarity conditions of a convex potential, solved by a safeguarded Newton
 method, with the same outer K_n loop.
 
-Not modelled in the pair solvers: centrifugal and gyroscopic ball loads, different inner and outer
-contact angles, a moment about the radial load direction (loads in one plane), shaft bending
-(rigid rotor).  The quasi-dynamic ball (`ball_dynamics.solve_balls`: centrifugal force, gyroscopic
-moment, raceway control) and one bearing with 5 DOF of its inner ring under loads in any direction
-(`single.solve_single`, `single.balls_at_displacement`) are modelled, for the single-bearing
-command; the pair does not use them yet.
+At speed (`ball_model="quasi_dynamic"`, `dynamic.solve_pair_dynamic`): the axial-only pair with
+every ball in its quasi-dynamic equilibrium (`ball_dynamics.solve_balls`: centrifugal force,
+gyroscopic moment, outer/inner/Jones raceway control), so inner and outer contact angles and loads
+differ; the bearing's axial force is that of its inner contacts.  Not modelled in the pair
+solvers: quasi-dynamic balls under a radial load or moment (one bearing under loads in any
+direction at speed: `single.solve_single`), a moment about the radial load direction (loads in
+one plane), shaft bending (rigid rotor).
 
 Modules: geometry (free and grown geometry, pair conventions), contact (K_n from exact Hertz,
 bearing and ball-set states), roots (root finders with convergence flags), axial (axial-only
 equilibrium), combined (combined load), state (`PairState`, the one typed result),
-ball_dynamics (quasi-dynamic ball), single (one bearing, 5 DOF).
+ball_dynamics (quasi-dynamic ball), dynamic (the pair at speed), single (one bearing, 5 DOF).
 """
 from __future__ import annotations
 
 import numpy as np
 
 from analytic.bearing.axial import approach_for_force, bearing_axial_force, solve_pair_axial
+from analytic.bearing.ball_dynamics import BALL_MODELS
 from analytic.bearing.combined import solve_pair_combined
+from analytic.bearing.dynamic import DynamicContacts, solve_pair_dynamic
 from analytic.bearing.contact import (axial_state, ball_azimuths_rad, ball_set_state,
                                       contact_stiffness)
 from analytic.bearing.geometry import (SIGNS, BearingGeometry, ThermalGeometry, n_points,
@@ -89,7 +92,8 @@ def solve_pair(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.0, dz_mm=
                dr_ref_mm=0.0, dz_ref_mm=0.0, compliance_mm_per_N=0.0,
                tol: float = 1e-14, max_outer: int = 30, chunk: int = 8192,
                radial_load_N=0.0, return_ball_loads: bool = False, moment_Nmm=0.0,
-               bearing_span_mm=None) -> PairState:
+               bearing_span_mm=None, speed_rpm=0.0, ball_model: str = "static",
+               control: str = "outer") -> PairState:
     """Equilibrium of a preloaded pair of identical bearings, vectorised over N operating points.
 
     Inputs (mm, C, N), scalars or arrays of shape (N,) (both bearings) or (2, N) (A, B):
@@ -112,6 +116,11 @@ def solve_pair(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.0, dz_mm=
       bearing_span_mm   distance between the ball planes of bearings A and B (mm): with it the
                         rotor is free to tilt in the combined-load solver (radial load at the
                         mid-point); without it the rotor is held against tilt
+      ball_model        "static" (quasi-static balls, speed ignored) or "quasi_dynamic": every
+                        ball in its own equilibrium at speed_rpm (scalar or (N,), inner rings
+                        rotating) with centrifugal force and gyroscopic moment, raceway control
+                        `control` ("outer", "inner", "jones"), `dynamic.solve_pair_dynamic`;
+                        axial loads only (a radial load or moment with it is a ValueError)
     Conventions and formulas: module docstring.
 
     Returns a `PairState` (`state.py`: per-bearing arrays (2, N), A first; `converged` per point).
@@ -122,29 +131,43 @@ def solve_pair(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.0, dz_mm=
         raise ValueError(f"arrangement must be 'DB' or 'DF', got {arrangement!r}")
     if preload_kind not in ("position", "spring"):
         raise ValueError(f"preload_kind must be 'position' or 'spring', got {preload_kind!r}")
+    if ball_model not in BALL_MODELS:
+        raise ValueError(f"ball_model must be one of {', '.join(BALL_MODELS)}, got {ball_model!r}")
     args = dict(dr_mm=dr_mm, dz_mm=dz_mm, T_inner_ring_C=T_inner_ring_C,
                 T_outer_ring_C=T_outer_ring_C, T_ball_C=T_ball_C,
                 preload_assembled_N=preload_assembled_N, axial_load_N=axial_load_N,
                 dr_ref_mm=dr_ref_mm, dz_ref_mm=dz_ref_mm, compliance_mm_per_N=compliance_mm_per_N)
-    if (return_ball_loads or np.any(np.asarray(radial_load_N, float) != 0.0)
-            or np.any(np.asarray(moment_Nmm, float) != 0.0)):
+    combined = (return_ball_loads or np.any(np.asarray(radial_load_N, float) != 0.0)
+                or np.any(np.asarray(moment_Nmm, float) != 0.0))
+    if ball_model == "quasi_dynamic":
+        if combined:
+            raise ValueError("quasi-dynamic balls in the pair take axial loads only: a radial "
+                             "load or moment at speed is modelled for one bearing "
+                             "(single.solve_single)")
+        solver = lambda n, **sub: solve_pair_dynamic(  # noqa: E731
+            g, arrangement, n, T_ref_C=T_ref_C, preload_kind=preload_kind, control=control,
+            tol=tol, **sub)
+        args["speed_rpm"] = speed_rpm
+    elif combined:
         return solve_pair_combined(g, arrangement, T_ref_C=T_ref_C, preload_kind=preload_kind,
                                    radial_load_N=radial_load_N, tol=tol, max_outer=max_outer,
                                    chunk=chunk,
                                    moment_Nmm=moment_Nmm, bearing_span_mm=bearing_span_mm, **args)
+    else:
+        solver = lambda n, **sub: solve_pair_axial(  # noqa: E731
+            g, arrangement, n, T_ref_C=T_ref_C, preload_kind=preload_kind, tol=tol,
+            max_outer=max_outer, **sub)
     N = n_points(*args.values())
     blocks = []
     for i0 in range(0, N, chunk):
         sl = slice(i0, min(N, i0 + chunk))
         sub = {k: (np.asarray(v)[..., sl] if v is not None and np.ndim(v) >= 1
                    and np.shape(v)[-1] == N else v) for k, v in args.items()}
-        blocks.append(solve_pair_axial(g, arrangement, sl.stop - sl.start, T_ref_C=T_ref_C,
-                                       preload_kind=preload_kind, tol=tol, max_outer=max_outer,
-                                       **sub))
+        blocks.append(solver(sl.stop - sl.start, **sub))
     return blocks[0] if len(blocks) == 1 else concatenate_states(blocks)
 
 
-__all__ = ["BearingGeometry", "ThermalGeometry", "PairState", "ContactEllipses", "RadialLoadState",
+__all__ = ["BALL_MODELS", "DynamicContacts", "solve_pair_dynamic", "BearingGeometry", "ThermalGeometry", "PairState", "ContactEllipses", "RadialLoadState",
            "SIGNS", "solve_pair", "solve_pair_combined", "solve_pair_axial", "thermal_geometry",
            "contact_stiffness", "axial_state", "ball_set_state", "ball_azimuths_rad",
            "approach_for_force", "bearing_axial_force"]

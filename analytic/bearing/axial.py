@@ -95,7 +95,7 @@ class _LinearKn:
     dlnKn_dalpha: np.ndarray
 
 
-def _reference_state(g: BearingGeometry, s, P, c, dr_ref, dz_ref, tol):
+def reference_state(g: BearingGeometry, s, P, c, dr_ref, dz_ref, tol):
     """Position-preload offset e and rotor position x at the reference state (free geometry at
     T_ref, shifts dr_ref/dz_ref, no external load, F_A = F_B = P):
         a_j* = approach of bearing j carrying P;  a_j* + c P = s_j (dz_j + x) + e
@@ -156,7 +156,7 @@ def solve_pair_axial(g: BearingGeometry, arrangement: str, N: int, *, dr_mm, dz_
     A_T = tg.A_T_mm
 
     if preload_kind == "position":
-        e, x, alpha_lin, cs, ok = _reference_state(g, s, P, c, pair_array(dr_ref_mm, N),
+        e, x, alpha_lin, cs, ok = reference_state(g, s, P, c, pair_array(dr_ref_mm, N),
                                                    pair_array(dz_ref_mm, N), tol)
         # operating state: K_n linearised about alpha_lin (first pass: the reference state's),
         # refreshed at the operating geometry until the linear model is exact to tol

@@ -28,7 +28,14 @@ omega_c and omega_R sin(beta) come from `torque.ball_kinematics` at the current 
 ring fixed, inner ring at speed_rpm; Jones 1960 outer-race control kinematics).  lam_o = 2,
 lam_i = 0 under outer-race control (the outer contact's friction takes the whole gyroscopic
 moment, Jones; Harris Vol. 2 ch. 3), lam_i = 2, lam_o = 0 under inner-race control (the
-kinematics stay those of outer-race control: a documented simplification).  Direction of the
+kinematics stay those of outer-race control: a documented simplification).  control "jones"
+chooses per ball with Jones's criterion (Jones 1960; Harris & Kotzalas Vol. 2 ch. 3, raceway
+control): the outer raceway controls where its spin-resisting moment is the larger,
+
+    Q_o a_o E(k_o) cos(a_i - a_o) >= Q_i a_i E(k_i)        (a: semi-major axis, E: elliptic integral)
+
+evaluated at the previous pass's state (outer control at the first); a ball's choice is frozen
+after JONES_FREE_PASSES passes so that a ball at the switching point cannot cycle.  Direction of the
 friction forces, derived here from Euler's equation of the ball: its angular momentum J Omega
 precesses with the cage, so the contacts must apply dH/dt = omega_c e_z x J Omega =
 +M_g e_t (e_r, e_t, e_z right-handed, e_t the orbit direction; Omega_r > 0 for a positive outer
@@ -65,6 +72,38 @@ from analytic.torque import RPM_TO_RAD_S, ball_kinematics
 #: raceway control hypotheses: (lam_i, lam_o), the shares of 2 M_g / Dw taken by friction at the
 #: inner and at the outer contact (Harris Vol. 2 ch. 3)
 CONTROL = {"outer": (0.0, 2.0), "inner": (2.0, 0.0)}
+#: ball models of the bearing solvers: quasi-static contact, or quasi-dynamic balls at speed
+BALL_MODELS = ("static", "quasi_dynamic")
+#: the control choices of `solve_balls`: a fixed hypothesis, or Jones's criterion per ball
+CONTROLS = ("outer", "inner", "jones")
+#: passes of the outer loop during which control "jones" may still switch a ball's control
+JONES_FREE_PASSES = 8
+
+
+def jones_outer_control(g: BearingGeometry, cs_inner: ContactStiffness,
+                        cs_outer: ContactStiffness, Q_inner_N, Q_outer_N, alpha_i_rad,
+                        alpha_o_rad) -> np.ndarray:
+    """Jones's raceway-control criterion (Jones 1960; Harris & Kotzalas Vol. 2 ch. 3): True where
+    the outer raceway controls, Q_o a_o E(k_o) cos(a_i - a_o) >= Q_i a_i E(k_i), i.e. the outer
+    contact's full-slip spin moment (3/8) mu Q a E (`torque.spin_moment_Nmm`, equal mu) projected
+    on the inner contact's normal is at least the inner one's.  Loads N, angles rad; semi-axes
+    from the Hertz ellipses at the given loads (`state.contact_ellipses`)."""
+    from analytic.bearing.state import contact_ellipses
+
+    e_i = contact_ellipses(g, cs_inner, Q_inner_N, 0)
+    e_o = contact_ellipses(g, cs_outer, Q_outer_N, 1)
+    m_o = np.asarray(Q_outer_N) * e_o.a_mm * e_o.E_ell * np.cos(np.asarray(alpha_i_rad)
+                                                                  - np.asarray(alpha_o_rad))
+    return m_o >= np.asarray(Q_inner_N) * e_i.a_mm * e_i.E_ell
+
+
+def control_shares(control, outer_controls=None):
+    """(lam_i, lam_o) of a control hypothesis: "outer", "inner", or with "jones" per ball from the
+    boolean array outer_controls (True: outer-race control)."""
+    if control == "jones":
+        oc = np.asarray(outer_controls, bool)
+        return np.where(oc, 0.0, 2.0), np.where(oc, 2.0, 0.0)
+    return CONTROL[control]
 
 
 def ball_mass_N_s2_per_mm(g: BearingGeometry, Dw_mm=None) -> float:
@@ -97,6 +136,7 @@ class BallDynamics:
     tangent_N_per_mm: np.ndarray         # (2, 2, ...): d(Q_i n_i)/dP, ball in equilibrium
     cs_inner: ContactStiffness           # Hertz data at the inner angle (ellipses: state.contact_ellipses)
     cs_outer: ContactStiffness
+    outer_control: np.ndarray            # True where the outer raceway controls (the hypothesis)
     converged: np.ndarray
 
 
@@ -230,11 +270,12 @@ def frozen_equilibrium(P, u0, fz: _Frozen, Dw_mm: float):
 
 
 def frozen_forces(g: BearingGeometry, tg: ThermalGeometry, alpha_i, alpha_o, speed_rpm,
-                  control: str, alpha_stiffness=None):
+                  control, alpha_stiffness=None):
     """K_i, K_o at the contact angles (or at alpha_stiffness for both, the ISO 16281 convention),
-    the kinematics at the angles, F_c, M_g and the frozen force vector b on the ball.
+    the kinematics at the angles, F_c, M_g and the frozen force vector b on the ball.  control:
+    "outer", "inner" or the shares (lam_i, lam_o) per ball (`control_shares`).
     Returns (_Frozen, extras dict, cs_inner, cs_outer)."""
-    lam_i, lam_o = CONTROL[control]
+    lam_i, lam_o = CONTROL[control] if isinstance(control, str) else control
     ai = np.asarray(alpha_i, float)
     ao = np.asarray(alpha_o, float)
     if alpha_stiffness is None:
@@ -274,26 +315,31 @@ def solve_balls(g: BearingGeometry, X_mm, Y_mm, speed_rpm=0.0, *, control: str =
     outer groove centre (axial, radial; any common shape), inner ring at speed_rpm (outer fixed).
 
     Arguments: g bearing geometry (ball density from its ball material); X_mm, Y_mm in mm;
-    speed_rpm scalar or broadcastable; control "outer" (default) or "inner" raceway control
-    (module docstring); tg grown geometry (default: free at T_ref); alpha_stiffness_rad: evaluate
-    K_i and K_o at this fixed angle (ISO 16281 convention) instead of at each contact's angle.
+    speed_rpm scalar or broadcastable; control "outer" (default), "inner" raceway control or
+    "jones" (Jones's criterion per ball; module docstring); tg grown geometry (default: free at
+    T_ref; arrays broadcastable with X_mm); alpha_stiffness_rad: evaluate K_i and K_o at this
+    fixed angle (ISO 16281 convention) instead of at each contact's angle.
     Returns `BallDynamics` (angles deg, loads N, approaches mm, F_c N, M_g N mm, spin-to-roll
-    ratio, cage speed rpm, ball centre mm, inner contact force and its tangent, convergence).
-    Formulas and sources: module docstring."""
-    if control not in CONTROL:
-        raise ValueError(f"control must be 'outer' or 'inner', got {control!r}")
-    tg = tg or thermal_geometry(g)
+    ratio, cage speed rpm, ball centre mm, inner contact force and its tangent, controlling
+    raceway, convergence).  Formulas and sources: module docstring."""
+    if control not in CONTROLS:
+        raise ValueError(f"control must be one of {', '.join(CONTROLS)}, got {control!r}")
+    tg0 = tg or thermal_geometry(g)
     X, Y, spd = np.broadcast_arrays(np.asarray(X_mm, float), np.asarray(Y_mm, float),
                                     np.asarray(speed_rpm, float))
     shape = X.shape
+    tg = ThermalGeometry(*(np.broadcast_to(np.asarray(getattr(tg0, k), float), shape).ravel()
+                           for k in ("A_T_mm", "Dw_mm", "f_i", "f_o", "dm_mm")))
     P = np.stack([X.ravel(), Y.ravel()])
     spd = spd.ravel()
     alpha = np.arctan2(P[0], P[1])
     a_i, a_o = alpha, alpha
     u = None
     ok_outer = np.zeros(P.shape[1], bool)
-    for _ in range(max_outer):
-        fz, ex, cs_i, cs_o = frozen_forces(g, tg, a_i, a_o, spd, control, alpha_stiffness_rad)
+    outer_ctl = np.ones(P.shape[1], bool)
+    for n_pass in range(max_outer):
+        shares = control_shares(control, outer_ctl)
+        fz, ex, cs_i, cs_o = frozen_forces(g, tg, a_i, a_o, spd, shares, alpha_stiffness_rad)
         if u is None:
             u = static_split(P, fz)
         root, _, _, F_in, Kt, p = frozen_equilibrium(P, u, fz, float(np.max(tg.Dw_mm)))
@@ -305,11 +351,18 @@ def solve_balls(g: BearingGeometry, X_mm, Y_mm, speed_rpm=0.0, *, control: str =
                             np.where(p["Q_i"] > 0, np.abs(new_i - a_i), 0.0))
         a_i, a_o = new_i, new_o
         ok_outer = change <= tol
+        if control == "jones" and n_pass < JONES_FREE_PASSES:
+            cs_i2, cs_o2 = contact_stiffness(g, tg, a_i), contact_stiffness(g, tg, a_o)
+            new_ctl = jones_outer_control(g, cs_i2, cs_o2, p["Q_i"], p["Q_o"], a_i, a_o)
+            ok_outer &= new_ctl == outer_ctl
+            outer_ctl = new_ctl
         if np.all(ok_outer):
             break
-    fz, ex, cs_i, cs_o = frozen_forces(g, tg, a_i, a_o, spd, control, alpha_stiffness_rad)
+    shares = control_shares(control, outer_ctl)
+    fz, ex, cs_i, cs_o = frozen_forces(g, tg, a_i, a_o, spd, shares, alpha_stiffness_rad)
     root2, _, _, F_in, Kt, p = frozen_equilibrium(P, u, fz, float(np.max(tg.Dw_mm)))
     r = lambda a: a.reshape(shape)  # noqa: E731
+    outer_ctl = outer_ctl if control == "jones" else np.full(outer_ctl.shape, control == "outer")
     return BallDynamics(
         contact_angle_inner_deg=r(np.degrees(a_i)), contact_angle_outer_deg=r(np.degrees(a_o)),
         load_inner_N=r(p["Q_i"]), load_outer_N=r(p["Q_o"]), approach_inner_mm=r(p["dl_i"]),
@@ -319,5 +372,5 @@ def solve_balls(g: BearingGeometry, X_mm, Y_mm, speed_rpm=0.0, *, control: str =
         cage_speed_rpm=r(np.broadcast_to(ex["cage_rpm"], a_i.shape)),
         ball_centre_mm=root2.x.reshape((2,) + shape),
         inner_force_N=F_in.reshape((2,) + shape), tangent_N_per_mm=Kt.reshape((2, 2) + shape),
-        cs_inner=cs_i, cs_outer=cs_o,
+        cs_inner=cs_i, cs_outer=cs_o, outer_control=r(outer_ctl),
         converged=r(ok_outer & root.converged & root2.converged))

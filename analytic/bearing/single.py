@@ -44,6 +44,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from analytic.bearing import ball_dynamics as bd
+from analytic.bearing.ball_dynamics import BALL_MODELS
 from analytic.bearing.axial import approach_for_force
 from analytic.bearing.contact import axial_state, ball_azimuths_rad, contact_stiffness
 from analytic.bearing.geometry import BearingGeometry, thermal_geometry
@@ -53,7 +54,6 @@ from analytic.bearing.state import contact_ellipses
 from analytic.torque import ball_kinematics
 
 CONVENTIONS = ("exact", "iso16281")
-BALL_MODELS = ("static", "quasi_dynamic")
 
 
 def free_contact_angle_deg(A0_mm: float, radial_internal_clearance_mm: float) -> float:

@@ -70,6 +70,8 @@ class PairState:
     approach_mm: np.ndarray                  # (2, N) axial approach of each bearing
     converged: np.ndarray                    # (N,) bool: every root finder of the row converged
     radial: RadialLoadState | None = None
+    #: quasi-dynamic balls (`dynamic.DynamicContacts`): inner and outer contacts apart
+    dynamic: object | None = None
 
     @property
     def loaded_contact_angle_deg(self) -> np.ndarray:
@@ -91,7 +93,8 @@ def contact_ellipses(g: BearingGeometry, cs: ContactStiffness, Q_N: np.ndarray,
 
 def pair_state(*, F_N, alpha_rad, Q_N, delta_mm, inner: ContactEllipses, outer: ContactEllipses,
                max_contact_pressure_MPa, k_bearing_N_per_mm, k_pair_N_per_mm, lost, x_mm,
-               offset_mm, approach_mm, converged, radial: RadialLoadState | None = None) -> PairState:
+               offset_mm, approach_mm, converged, radial: RadialLoadState | None = None,
+               dynamic=None) -> PairState:
     """The one constructor of `PairState` from a solver's final state (per-bearing (2, N) arrays;
     stiffnesses in N/mm, reported in N/um)."""
     F_N = np.asarray(F_N)
@@ -104,7 +107,7 @@ def pair_state(*, F_N, alpha_rad, Q_N, delta_mm, inner: ContactEllipses, outer: 
         pair_axial_stiffness_N_per_um=1e-3 * np.asarray(k_pair_N_per_mm),
         preload_lost=np.asarray(lost, bool), x_mm=np.asarray(x_mm),
         preload_offset_mm=np.asarray(offset_mm), approach_mm=np.asarray(approach_mm),
-        converged=np.asarray(converged, bool), radial=radial)
+        converged=np.asarray(converged, bool), radial=radial, dynamic=dynamic)
 
 
 def _combine(fn, first, *others):

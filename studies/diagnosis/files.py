@@ -42,7 +42,9 @@ OUTPUT_NAMES = {
     "ball_load_B_N", "preload_lost", "friction_coefficient", "static_safety",
     "land_margin_inner_deg", "land_margin_outer_deg", "radial_displacement_um", "tilt_mrad",
     "radial_force_A_N", "radial_force_B_N", "max_contact_pressure_A_MPa",
-    "max_contact_pressure_B_MPa"} | CHECK_COLUMNS
+    "max_contact_pressure_B_MPa", "contact_angle_outer_A_deg", "contact_angle_outer_B_deg",
+    "ball_load_outer_A_N", "ball_load_outer_B_N", "centrifugal_force_N",
+    "gyroscopic_moment_Nmm"} | CHECK_COLUMNS
 
 
 class ModelPredictor:

@@ -129,6 +129,10 @@ class Operating:
     T_min_C: float = -40.0
     T_max_C: float = 80.0
     speed_max_rpm: float = 0.0       # highest shaft speed (report's "Speed"); 0 = [lubrication] speed_rpm
+    ball_model: str = "static"       # "static": quasi-static balls; "quasi_dynamic": each ball in
+    #                                  its own equilibrium at the row's speed (centrifugal force,
+    #                                  gyroscopic moment; analytic/bearing/dynamic.py)
+    raceway_control: str = "outer"   # quasi-dynamic: "outer", "inner" or "jones" (per ball)
 
     def max_speed_rpm(self, lubrication_speed_rpm: float) -> float:
         """The highest speed the assembly runs at (rpm): speed_max_rpm, else the given speed."""
@@ -228,11 +232,13 @@ SECTIONS = {
     "limits": (Limits, {"max_contact_pressure_MPa": math.inf, "min_static_safety": 0.0}),
     "mesh": (Mesh, {"size_mm": 0.0, "fit_size_mm": 0.0, "corner_size_mm": 0.0,
                     "target_error": 1e-3, "ring_section": "rectangle"}),
-    "operating": (Operating, {"T_min_C": -40.0, "T_max_C": 80.0, "speed_max_rpm": 0.0}),
+    "operating": (Operating, {"T_min_C": -40.0, "T_max_C": 80.0, "speed_max_rpm": 0.0,
+                              "ball_model": "static", "raceway_control": "outer"}),
 }
 OPTIONAL_SECTIONS = {"limits", "mesh", "operating"}
 STRING_KEYS = {"material", "designation", "ring_material", "ball_material", "contact", "kind",
                "lubricant", "load_term", "clamp", "path_compliance", "distribution", "ring_section",
+               "ball_model", "raceway_control",
                *(f"{k}_class" for k in TOLERANCE_SURFACES)}
 LIMIT_KEYS = {f"{k}_deviation_um" for k in TOLERANCE_SURFACES}
 CHOICES = {("fits", "contact"): ("frictionless", "bonded"),
@@ -242,7 +248,9 @@ CHOICES = {("fits", "contact"): ("frictionless", "bonded"),
            ("lubrication", "kind"): ("solid_film", "oil"),
            ("lubrication", "load_term"): ("coulomb", "palmgren"),
            ("nut", "clamp"): ("rigid", "compliant"), ("cover", "clamp"): ("rigid", "compliant"),
-           ("mesh", "ring_section"): ("grooved", "rectangle")}
+           ("mesh", "ring_section"): ("grooved", "rectangle"),
+           ("operating", "ball_model"): ("static", "quasi_dynamic"),
+           ("operating", "raceway_control"): ("outer", "inner", "jones")}
 # keys allowed to be zero (everything else numeric must be > 0)
 ZERO_OK = {("shaft", "bore_diameter_mm"), ("shaft", "extension_mm"),
            ("fits", "inner_interference_um"), ("fits", "outer_interference_um"),

@@ -437,18 +437,20 @@ class Pipeline:
 
     def run(self, inputs: PhysicsInputs, direct: bool = False,
             compliance_mm_per_N=None, viscous_factor_f0=None,
-            return_pair: bool = False, first_row: int = 0, remember: bool = True):
+            return_pair: bool = False, first_row: int = 0, remember: bool = True,
+            ball_model: str | None = None):
         """All outputs per row (spec columns first, then the rest): the FE at the rows' states and
         at their assembly states (`fe`, which documents `remember`), then `run_from_fe` (which
         documents the other keyword arguments)."""
         fe = self.fe(inputs, direct, remember)
         fe_ref = self.fe(self.reference_inputs(inputs), direct, remember)
         return self.run_from_fe(inputs, fe, fe_ref, compliance_mm_per_N, viscous_factor_f0,
-                                return_pair, first_row)
+                                return_pair, first_row, ball_model)
 
     def run_from_fe(self, inputs: PhysicsInputs, fe: FEState, fe_ref: FEState,
                     compliance_mm_per_N=None, viscous_factor_f0=None,
-                    return_pair: bool = False, first_row: int = 0):
+                    return_pair: bool = False, first_row: int = 0,
+                    ball_model: str | None = None):
         """Bearing pair, torque and checks from given FE states (the rows' and their assembly
         states). Studies use it to switch parts of the FE answer off (e.g. only the radial
         groove-centre shifts) or to feed a non-uniform temperature field (`fe_field`).
@@ -459,8 +461,13 @@ class Pipeline:
         (compliances of springs in series add). viscous_factor_f0: Palmgren's f0 in
         place of the assembly's (oil lubrication; scalar or one per row). With `return_pair`, also the raw
         pair state (`analytic.bearing.PairState`: contact ellipses for heat models). first_row:
-        the 0-based row of the whole table the inputs start at (rows named in errors)."""
+        the 0-based row of the whole table the inputs start at (rows named in errors).
+        ball_model: "static" or "quasi_dynamic" in place of the assembly's `[operating]
+        ball_model` (the report sets both side by side; the FE does not depend on it)."""
         a = self.asm
+        ball_model = a.operating.ball_model if ball_model is None else ball_model
+        if ball_model == "quasi_dynamic":
+            _check_axial_only(inputs, first_row)
         preload = np.maximum(np.asarray(inputs.preload_assembled_N, float)
                              - np.asarray(inputs.preload_loss_N, float), 0.0)
         with np.errstate(all="ignore"):     # a row without an answer is reported below, by name
@@ -472,6 +479,9 @@ class Pipeline:
                               radial_load_N=_zeros_if_none(inputs.radial_load_N),
                               moment_Nmm=_zeros_if_none(inputs.moment_Nmm),
                               bearing_span_mm=self.bearing_span_mm,
+                              speed_rpm=np.asarray(inputs.speed_rpm, float),
+                              ball_model=ball_model,
+                              control=a.operating.raceway_control,
                               dr_ref_mm=fe_ref.dr_mm, dz_ref_mm=fe_ref.dz_mm,
                               compliance_mm_per_N=(self.compliance_mm_per_N
                                                    if compliance_mm_per_N is None
@@ -503,6 +513,7 @@ class Pipeline:
             out[f"contact_angle_{J}_deg"] = pair.contact_angle_deg[j]
         for j, J in enumerate("AB"):
             out[f"ball_load_{J}_N"] = pair.ball_load_N[j]
+        out.update(_ball_outputs(pair))
         out["axial_stiffness_N_per_um"] = pair.pair_axial_stiffness_N_per_um
         out.update(_load_outputs(pair))
         for side, d_land, ell in (("inner", self.land_diameters_mm[0], pair.inner),
@@ -544,6 +555,19 @@ class Pipeline:
         return out
 
 
+def _check_axial_only(inputs: PhysicsInputs, first_row: int) -> None:
+    """ModelError naming the first row with a radial load or moment: the pair's quasi-dynamic
+    balls take axial loads only (`analytic.bearing.dynamic`)."""
+    for name in ("radial_load_N", "moment_Nmm"):
+        v = getattr(inputs, name)
+        if v is not None and np.any(np.asarray(v, float) != 0.0):
+            i = int(np.flatnonzero(np.broadcast_to(np.asarray(v, float), (inputs.n_rows,)))[0])
+            raise ModelError(f"row {i + first_row + 1}: {name} with [operating] ball_model = "
+                             "\"quasi_dynamic\": the pair's quasi-dynamic balls take axial loads "
+                             "only (use ball_model = \"static\", or `bearingfem bearing` for one "
+                             "bearing at speed under any load)")
+
+
 def _zeros_if_none(v):
     return 0.0 if v is None else v
 
@@ -567,6 +591,26 @@ def _load_outputs(pair: PairState) -> dict[str, np.ndarray]:
         out[f"radial_force_{J}_N"] = Fr[j]
     for j, J in enumerate("AB"):
         out[f"max_contact_pressure_{J}_MPa"] = p[j]
+    return out
+
+
+def _ball_outputs(pair: PairState) -> dict[str, np.ndarray]:
+    """Columns of the outer contact and of the ball's speed loads, present in every row:
+    contact angle and load of the outer contact of each bearing (equal to the inner ones,
+    `contact_angle_{J}_deg` and `ball_load_{J}_N`, with quasi-static balls), and the centrifugal
+    force (N) and gyroscopic moment (N mm) on a ball of bearing A (0 with quasi-static balls)."""
+    d = pair.dynamic
+    if d is None:
+        angle_o, load_o = pair.contact_angle_deg, pair.ball_load_N
+        z = np.zeros(pair.preload_N.shape)
+        fc, mg = z, z
+    else:
+        angle_o, load_o = d.contact_angle_outer_deg, d.load_outer_N
+        fc, mg = d.centrifugal_force_N[0], d.gyroscopic_moment_Nmm[0]
+    out = {f"contact_angle_outer_{J}_deg": angle_o[j] for j, J in enumerate("AB")}
+    out.update({f"ball_load_outer_{J}_N": load_o[j] for j, J in enumerate("AB")})
+    out["centrifugal_force_N"] = fc
+    out["gyroscopic_moment_Nmm"] = mg
     return out
 
 

@@ -120,6 +120,7 @@ def speed_lines(asm, pl: Pipeline) -> list[str]:
             + ["inner fit p at rest (MPa)", f"at {n_max:g} rpm (MPa)", "Lamé at speed (MPa)",
                "preload at rest (N)", f"at {n_max:g} rpm (N)", "dr_A change (um)"])
     return ["## Speed", "",
+            "### The rotor's centrifugal growth", "",
             "The rotor (shaft, inner rings, inner spacer, nut) spins; its centrifugal body force "
             "rho omega^2 r expands the inner rings' bores more than the shaft's seat, so the inner "
             "fits loosen with speed and open at the fit-loosening speed (the whole fit open, mean "
@@ -128,7 +129,37 @@ def speed_lines(asm, pl: Pipeline) -> list[str]:
             "change with speed. Nominal fits; the assembly state is at rest. The balls' own "
             "centrifugal force is not part of this FE effect. Lamé: shaft and inner ring as two "
             "spinning cylinders in plane stress (analytic/lame.py, Timoshenko & Goodier §32).", "",
-            md_table(head, rows), ""]
+            md_table(head, rows), ""] + ball_speed_lines(asm, pl, n_max)
+
+
+def ball_speed_lines(asm, pl: Pipeline, n_max: float) -> list[str]:
+    """Markdown subsection "The balls at speed": at the reference temperature, at rest and at
+    n_max, the pair with quasi-static balls against quasi-dynamic balls (centrifugal force and
+    gyroscopic moment; analytic/bearing/dynamic.py, raceway control as configured): preload,
+    inner and outer contact angle and ball load of bearing A, torque."""
+    if n_max <= 0:
+        return []
+    inp = table_inputs(asm, {"T_ambient_C": np.full(2, asm.T_ref_C),
+                             "speed_rpm": np.array([0.0, n_max])})
+    runs = {m: pl.run(inp, ball_model=m) for m in ("static", "quasi_dynamic")}
+    cols = [("preload_N", "preload (N)", ".4g"), ("contact_angle_A_deg", "A inner angle (deg)", ".3f"),
+            ("contact_angle_outer_A_deg", "A outer angle (deg)", ".3f"),
+            ("ball_load_A_N", "A inner ball load (N)", ".4g"),
+            ("ball_load_outer_A_N", "A outer ball load (N)", ".4g"),
+            ("centrifugal_force_N", "centrifugal force per ball (N)", ".3g"),
+            ("torque_Nmm", "torque (N mm)", ".4g")]
+    rows = [["at rest"] + [format(runs["static"][k][0], f) for k, _, f in cols]]
+    for m, label in (("static", "quasi-static balls"), ("quasi_dynamic", "quasi-dynamic balls")):
+        rows.append([f"{n_max:g} rpm, {label}"] + [format(runs[m][k][1], f) for k, _, f in cols])
+    used = asm.operating.ball_model.replace("_", "-")
+    return ["### The balls at speed", "",
+            f"At {asm.T_ref_C:g} C. Each ball's centrifugal force m omega_c^2 dm/2 presses it "
+            "onto the outer raceway and its gyroscopic moment is taken by friction at the "
+            f"controlling raceway ({asm.operating.raceway_control} control): the outer contact "
+            "angle falls, the inner one rises, and the outer contact carries more load than the "
+            "inner one (Jones 1960; Harris & Kotzalas Vol. 2 ch. 3; analytic/bearing/dynamic.py). "
+            f"This assembly's results use {used} balls (`[operating] ball_model`).", "",
+            md_table(["state"] + [h for _, h, _ in cols], rows), ""]
 
 
 def _x_axis(cond, n):
