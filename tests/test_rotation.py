@@ -213,3 +213,22 @@ def test_bonded_superposition_at_speed_equals_direct_fe():
     np.testing.assert_allclose(res["force_N"][0], sol.force_N, rtol=0,
                                atol=1e-8 * np.abs(sol.force_N).max())
     assert np.isinf(fit_open_omega2(sup, theta, np.array([[0.002]]), 0, 1e12)).all()
+
+
+def test_report_shows_the_balls_at_speed(pl001):
+    """The report's "The balls at speed" table (seed 001, 9000 rpm): at rest the assembled
+    preload; at speed the quasi-dynamic row has the outer contact angle below the inner one and
+    a centrifugal force m omega_c^2 dm/2 > 0, the quasi-static row equal angles and none."""
+    from studies.runs.assembly_report import ball_speed_lines
+
+    asm = pl001.asm
+    lines = ball_speed_lines(asm, pl001, 9000.0)
+    assert lines[0] == "### The balls at speed"
+    rows = [ln for ln in "\n".join(lines).splitlines()
+            if ln.startswith("| at rest") or ln.startswith("| 9000 rpm")]
+    cells = {r.split("|")[1].strip(): [c.strip() for c in r.split("|")[2:-1]] for r in rows}
+    rest = cells["at rest"]
+    assert float(rest[0]) == pytest.approx(asm.preload.assembled_N, rel=1e-3)
+    qs, qd = cells["9000 rpm, quasi-static balls"], cells["9000 rpm, quasi-dynamic balls"]
+    assert qs[1] == qs[2] and float(qs[5]) == 0.0
+    assert float(qd[2]) < float(qd[1]) and float(qd[5]) > 0.0

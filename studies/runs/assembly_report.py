@@ -151,7 +151,7 @@ def ball_speed_lines(asm, pl: Pipeline, n_max: float) -> list[str]:
     rows = [["at rest"] + [format(runs["static"][k][0], f) for k, _, f in cols]]
     for m, label in (("static", "quasi-static balls"), ("quasi_dynamic", "quasi-dynamic balls")):
         rows.append([f"{n_max:g} rpm, {label}"] + [format(runs[m][k][1], f) for k, _, f in cols])
-    used = asm.operating.ball_model.replace("_", "-")
+    used = {"static": "quasi-static", "quasi_dynamic": "quasi-dynamic"}[asm.operating.ball_model]
     return ["### The balls at speed", "",
             f"At {asm.T_ref_C:g} C. Each ball's centrifugal force m omega_c^2 dm/2 presses it "
             "onto the outer raceway and its gyroscopic moment is taken by friction at the "

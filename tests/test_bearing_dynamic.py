@@ -1,0 +1,152 @@
+"""The pair at speed (analytic/bearing/dynamic.py): quasi-dynamic balls in the pair equilibrium.
+
+Independent statements held here: at speed 0 the quasi-static pair (`solve_pair_axial`); at speed,
+every ball's two force equations (Harris & Kotzalas Vol. 2 ch. 3) with the centrifugal force and
+gyroscopic moment recomputed from their closed forms, the pair's axial equilibrium, the geometry
+of the groove centres rebuilt from Hertz approaches, and a second, separately written solver (one
+bearing with 5 DOF of its inner ring, `single.solve_single`) carrying the same axial load.
+Jones's raceway-control criterion is checked against the state it chose."""
+import numpy as np
+import pytest
+
+from analytic.bearing import BearingGeometry, contact_stiffness, solve_pair, thermal_geometry
+from analytic.bearing.ball_dynamics import jones_outer_control, solve_balls
+from analytic.bearing.single import solve_single
+from analytic.torque import ball_kinematics
+
+G = BearingGeometry.from_catalogue("71807C")
+N = 6
+CASE = dict(dr_mm=np.linspace(-0.002, 0.003, N), dz_mm=np.linspace(0.0, 0.001, N),
+            T_inner_ring_C=np.linspace(-40.0, 80.0, N), T_outer_ring_C=np.linspace(-40.0, 70.0, N),
+            T_ball_C=np.linspace(-40.0, 75.0, N), preload_assembled_N=100.0,
+            axial_load_N=np.linspace(-50.0, 80.0, N), compliance_mm_per_N=2e-5)
+
+
+@pytest.mark.parametrize("kind", ["position", "spring"])
+def test_speed_zero_is_the_quasi_static_pair(kind):
+    """Speed 0: no centrifugal force or gyroscopic moment, so the quasi-dynamic pair is the
+    quasi-static one (forces, angles, loads, rotor position to 1e-10 of their scale).  The axial
+    stiffness differs by the dK_n/dalpha term the frozen ball tangent leaves out, of relative
+    size (F/k) dlnK_n/dalpha cos(alpha)/D ~ 1e-6 here: held to 1e-5."""
+    st = solve_pair(G, "DB", preload_kind=kind, **CASE)
+    dy = solve_pair(G, "DB", preload_kind=kind, ball_model="quasi_dynamic", speed_rpm=0.0, **CASE)
+    assert st.converged.all() and dy.converged.all()
+    for f in ("axial_force_N", "contact_angle_deg", "ball_load_N", "x_mm", "delta_mm",
+              "max_contact_pressure_MPa", "preload_N"):
+        a, b = getattr(st, f), getattr(dy, f)
+        assert np.max(np.abs(a - b)) <= 1e-10 * np.max(np.abs(a)), f
+    np.testing.assert_allclose(dy.axial_stiffness_N_per_um, st.axial_stiffness_N_per_um, rtol=1e-5)
+    d = dy.dynamic
+    np.testing.assert_array_equal(d.centrifugal_force_N, 0.0)
+    np.testing.assert_allclose(d.contact_angle_outer_deg, d.contact_angle_inner_deg, atol=1e-9)
+    np.testing.assert_allclose(d.load_outer_N, d.load_inner_N, rtol=1e-9, atol=1e-9)
+
+
+@pytest.mark.parametrize("control", ["outer", "inner"])
+def test_pair_at_speed_balls_and_pair_in_equilibrium(control):
+    """20000 rpm, position preload 100 N, compliance, axial loads, no thermal growth: (1) each
+    ball's axial and radial force equations with F_c = m omega_c^2 dm/2 (m = rho pi Dw^3/6) and
+    M_g = J omega_c omega_R sin(beta) (J = m Dw^2/10) recomputed from the reported angles through
+    the kinematics, to 1e-9 of the loads; (2) sum_j s_j Z Q_i sin(a_i) = axial load to 1e-9 of
+    the preload; (3) the groove centres rebuilt from the contact normals and the Hertz approaches
+    delta = (Q/K)^(2/3) (K at each contact's own angle) lie where the pair's kinematics put them:
+    Y_j = A0 cos a0 + dr_j and X_j = A0 sin a0 + a_j, a_j = s_j (dz_j + x) + e - c F_j (1e-9 mm);
+    and the outer contact angle below the inner one, the outer ball load above it."""
+    speed = 20000.0
+    c = 2e-5
+    case = dict(dr_mm=CASE["dr_mm"], dz_mm=CASE["dz_mm"], preload_assembled_N=100.0,
+                axial_load_N=CASE["axial_load_N"], compliance_mm_per_N=c)
+    p = solve_pair(G, "DB", ball_model="quasi_dynamic", speed_rpm=speed, control=control, **case)
+    assert p.converged.all()
+    d = p.dynamic
+    ai, ao = np.radians(d.contact_angle_inner_deg), np.radians(d.contact_angle_outer_deg)
+    Qi, Qo = d.load_inner_N, d.load_outer_N
+    kin = ball_kinematics(G.dm_mm, G.Dw_mm, ai, ao)
+    omega = speed * 2.0 * np.pi / 60.0
+    m = G.ball.density_kg_m3 * 1e-12 * np.pi * G.Dw_mm ** 3 / 6.0
+    Fc = m * (kin.cage * omega) ** 2 * G.dm_mm / 2.0
+    Mg = m * G.Dw_mm ** 2 / 10.0 * kin.cage * omega * kin.omega_r * omega
+    np.testing.assert_allclose(d.centrifugal_force_N, Fc, rtol=1e-12)
+    lam_i, lam_o = (0.0, 2.0) if control == "outer" else (2.0, 0.0)
+    w = Mg / G.Dw_mm
+    axial = Qi * np.sin(ai) - Qo * np.sin(ao) + w * (lam_i * np.cos(ai) - lam_o * np.cos(ao))
+    radial = Qi * np.cos(ai) - Qo * np.cos(ao) - w * (lam_i * np.sin(ai) - lam_o * np.sin(ao)) + Fc
+    assert np.all(np.abs(axial) <= 1e-9 * Qo) and np.all(np.abs(radial) <= 1e-9 * Qo)
+    s = np.array([1.0, -1.0])[:, None]
+    F = G.Z * Qi * np.sin(ai)
+    np.testing.assert_allclose(p.axial_force_N, F, rtol=1e-12)
+    assert np.all(np.abs((s * F).sum(axis=0) - case["axial_load_N"]) <= 1e-9 * 100.0)
+    tg = thermal_geometry(G)
+    Ki, Ko = contact_stiffness(G, tg, ai).K_i, contact_stiffness(G, tg, ao).K_o
+    di, do = (Qi / Ki) ** (2.0 / 3.0), (Qo / Ko) ** (2.0 / 3.0)
+    ri, ro = (G.f_i - 0.5) * G.Dw_mm + di, (G.f_o - 0.5) * G.Dw_mm + do
+    X = ro * np.sin(ao) + ri * np.sin(ai)
+    Y = ro * np.cos(ao) + ri * np.cos(ai)
+    a0 = np.radians(G.alpha0_deg)
+    np.testing.assert_allclose(Y, np.broadcast_to(G.A0_mm * np.cos(a0) + case["dr_mm"], Y.shape),
+                               rtol=0, atol=1e-9)
+    a = s * (case["dz_mm"] + p.x_mm) + p.preload_offset_mm - c * F
+    np.testing.assert_allclose(X, G.A0_mm * np.sin(a0) + a, rtol=0, atol=1e-9)
+    assert np.all(ao < ai) and np.all(Qo > Qi)
+
+
+def test_pair_bearing_equals_single_bearing_at_speed():
+    """A second route: the single-bearing solver (inner ring with 5 DOF, every ball at its own
+    azimuth, `single.solve_single`, quasi-dynamic balls) under the axial load that bearing A
+    carries in the pair at 15000 rpm gives the same inner and outer contact angles and ball
+    loads (1e-7 relative; no radial shift, no thermal growth)."""
+    speed = 15000.0
+    p = solve_pair(G, "DB", ball_model="quasi_dynamic", speed_rpm=speed,
+                   preload_assembled_N=np.array([30.0, 100.0, 300.0]),
+                   axial_load_N=np.array([0.0, 40.0, -100.0]))
+    assert p.converged.all()
+    st = solve_single(G, axial_load_N=p.axial_force_N[0], speed_rpm=speed,
+                      ball_model="quasi_dynamic")
+    assert st.converged.all()
+    b = st.balls
+    d = p.dynamic
+    np.testing.assert_allclose(b.contact_angle_inner_deg[0], d.contact_angle_inner_deg[0], rtol=1e-7)
+    np.testing.assert_allclose(b.contact_angle_outer_deg[0], d.contact_angle_outer_deg[0], rtol=1e-7)
+    np.testing.assert_allclose(b.load_inner_N[0], d.load_inner_N[0], rtol=1e-7)
+    np.testing.assert_allclose(b.load_outer_N[0], d.load_outer_N[0], rtol=1e-7)
+
+
+def test_jones_control_chooses_by_the_spin_moments():
+    """Jones's criterion (Harris & Kotzalas Vol. 2 ch. 3): the chosen hypothesis holds at the
+    state it gives, Q_o a_o E_o cos(a_i - a_o) >= Q_i a_i E_i where outer control was chosen and
+    < where inner control was (semi-axes and E(k) recomputed from exact Hertz at the solved loads
+    and angles); the balls then equal those of the fixed hypothesis chosen (1e-10); and the
+    choice is inner control at 100 rpm (the inner contact of the 71807C, f_i < f_o, is the wider
+    one) and outer control at 60000 rpm (the centrifugal force loads the outer contact)."""
+    a0 = np.radians(G.alpha0_deg)
+    X = np.full(4, G.A0_mm * np.sin(a0) + 0.005)
+    Y = np.full(4, G.A0_mm * np.cos(a0))
+    speed = np.array([100.0, 3000.0, 20000.0, 60000.0])
+    b = solve_balls(G, X, Y, speed, control="jones")
+    assert b.converged.all()
+    assert not b.outer_control[0] and b.outer_control[-1]
+    ai, ao = np.radians(b.contact_angle_inner_deg), np.radians(b.contact_angle_outer_deg)
+    tg = thermal_geometry(G)
+    from analytic import hertz
+    for k in range(4):
+        cs_i, cs_o = contact_stiffness(G, tg, ai[k]), contact_stiffness(G, tg, ao[k])
+        hi = hertz.hertz_from_kappa(b.load_inner_N[k], cs_i.R_mm[0], G.E_star_MPa, cs_i.kappa[0],
+                                    cs_i.K_ell[0], cs_i.E_ell[0])
+        ho = hertz.hertz_from_kappa(b.load_outer_N[k], cs_o.R_mm[1], G.E_star_MPa, cs_o.kappa[1],
+                                    cs_o.K_ell[1], cs_o.E_ell[1])
+        m_o = b.load_outer_N[k] * ho.a_mm * cs_o.E_ell[1] * np.cos(ai[k] - ao[k])
+        m_i = b.load_inner_N[k] * hi.a_mm * cs_i.E_ell[0]
+        assert (m_o >= m_i) == bool(b.outer_control[k])
+        fixed = solve_balls(G, X[k], Y[k], speed[k],
+                            control="outer" if b.outer_control[k] else "inner")
+        np.testing.assert_allclose(fixed.contact_angle_outer_deg, b.contact_angle_outer_deg[k],
+                                   rtol=1e-10)
+        np.testing.assert_allclose(fixed.load_inner_N, b.load_inner_N[k], rtol=1e-10)
+    assert np.array_equal(jones_outer_control(G, contact_stiffness(G, tg, ai),
+                                              contact_stiffness(G, tg, ao), b.load_inner_N,
+                                              b.load_outer_N, ai, ao), b.outer_control)
+
+
+def test_radial_load_with_quasi_dynamic_balls_is_refused():
+    with pytest.raises(ValueError, match="axial loads only"):
+        solve_pair(G, "DB", ball_model="quasi_dynamic", speed_rpm=1000.0, radial_load_N=10.0)
