@@ -81,6 +81,14 @@ class Blocks:
         self.client = self.cluster = None
         return False
 
+    def on_every_worker(self, fn: Callable, *args) -> None:
+        """fn(*args) once in every worker process (here: once in this process), e.g. to build
+        the per-process FE set-up before timing blocks (`bench --tolerance`)."""
+        if self.client is None:
+            fn(*args)
+        else:
+            self.client.run(fn, *args)
+
     def slots(self) -> int:
         """Worker threads available (1 here)."""
         if self.client is None:
@@ -127,8 +135,11 @@ class Blocks:
 
 
 def map_blocks(fn: Callable, blocks: Sequence[tuple], workers: int | None = None,
-               scheduler: str | None = None, progress: Callable[[int, int], None] | None = None
-               ) -> list:
-    """[fn(*b) for b in blocks], here or on Dask (see the module docstring)."""
-    with Blocks(workers, scheduler) as where:
+               scheduler: str | None = None, progress: Callable[[int, int], None] | None = None,
+               where: Blocks | None = None) -> list:
+    """[fn(*b) for b in blocks], here or on Dask (see the module docstring); `where`: an open
+    `Blocks` to use (and leave open) instead of workers / scheduler."""
+    if where is not None:
         return where.map(fn, blocks, progress)
+    with Blocks(workers, scheduler) as opened:
+        return opened.map(fn, blocks, progress)

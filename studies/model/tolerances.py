@@ -165,6 +165,13 @@ def evaluate(pl, conditions: dict[str, np.ndarray], d_inner_um: np.ndarray,
     return out
 
 
+def warm(asm) -> None:
+    """Build this process's shared pipeline of `asm` (what the first block would do)."""
+    from studies.model.pipeline import Pipeline
+
+    Pipeline.shared(asm)
+
+
 def evaluate_block(asm, conditions: dict[str, np.ndarray], d_inner_um: np.ndarray,
                    d_outer_um: np.ndarray) -> dict[str, np.ndarray]:
     """`evaluate` on the process's shared pipeline of `asm`: one task of `run_samples`."""
@@ -175,11 +182,11 @@ def evaluate_block(asm, conditions: dict[str, np.ndarray], d_inner_um: np.ndarra
 
 def run_samples(asm, conditions: dict[str, np.ndarray], d_inner_um: np.ndarray,
                 d_outer_um: np.ndarray, workers: int | None = None, scheduler: str | None = None,
-                progress=None) -> dict[str, np.ndarray]:
+                progress=None, where=None) -> dict[str, np.ndarray]:
     """All samples in blocks of whole samples (about CHUNK_ROWS rows each), here or on Dask
     (`studies.model.parallel.map_blocks`): the same blocks in every mode, so the same numbers.
     The samples are put in `sample_order` before the blocks are cut and the results put back in
-    the order given."""
+    the order given. `where`: an open `parallel.Blocks` to run on (workers / scheduler unused)."""
     from studies.model.parallel import map_blocks
 
     C = len(next(iter(conditions.values())))
@@ -189,7 +196,7 @@ def run_samples(asm, conditions: dict[str, np.ndarray], d_inner_um: np.ndarray,
     di, do = np.asarray(d_inner_um, float)[order], np.asarray(d_outer_um, float)[order]
     blocks = [(asm, conditions, di[s0:s0 + per], do[s0:s0 + per]) for s0 in range(0, S, per)]
     parts = map_blocks(evaluate_block, blocks, workers=workers, scheduler=scheduler,
-                       progress=progress)
+                       progress=progress, where=where)
     out = {}
     for q in QUANTITIES:
         v = np.empty((S, C))
