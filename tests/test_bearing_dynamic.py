@@ -150,3 +150,27 @@ def test_jones_control_chooses_by_the_spin_moments():
 def test_radial_load_with_quasi_dynamic_balls_is_refused():
     with pytest.raises(ValueError, match="axial loads only"):
         solve_pair(G, "DB", ball_model="quasi_dynamic", speed_rpm=1000.0, radial_load_N=10.0)
+
+
+def test_single_bearing_jones_control_holds_at_the_state_it_chose():
+    """One bearing under combined radial + axial load at speed with control "jones": every
+    ball's controlling raceway satisfies Jones's criterion at the solved state (recomputed
+    here), the state equals the fixed hypothesis where all balls chose the same one, and at low
+    speed the inner raceway controls while at high speed the outer one does (as for one ball)."""
+    speed = np.array([100.0, 60000.0])
+    st = solve_single(G, axial_load_N=200.0, radial_load_x_N=150.0, speed_rpm=speed,
+                      ball_model="quasi_dynamic", control="jones")
+    assert st.converged.all()
+    b = st.balls
+    ai, ao = np.radians(b.contact_angle_inner_deg), np.radians(b.contact_angle_outer_deg)
+    tg = thermal_geometry(G)
+    loaded = b.load_inner_N > 0
+    chosen = jones_outer_control(G, contact_stiffness(G, tg, ai), contact_stiffness(G, tg, ao),
+                                 b.load_inner_N, b.load_outer_N, ai, ao)
+    assert np.array_equal(chosen[loaded], b.outer_control[loaded])
+    assert not b.outer_control[loaded[:, 0], 0].any() and b.outer_control[loaded[:, 1], 1].all()
+    for k, ctl in ((0, "inner"), (1, "outer")):
+        fixed = solve_single(G, axial_load_N=200.0, radial_load_x_N=150.0, speed_rpm=speed[k],
+                             ball_model="quasi_dynamic", control=ctl)
+        np.testing.assert_allclose(fixed.axial_mm, st.axial_mm[k], rtol=1e-9)
+        np.testing.assert_allclose(fixed.radial_x_mm, st.radial_x_mm[k], rtol=1e-9)

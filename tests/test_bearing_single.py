@@ -301,6 +301,28 @@ def test_cli_bearing_good_run(tmp_path):
                       axial_load_N=[300.0, 0.0], radial_load_x_N=[1000.0, 800.0],
                       moment_y_Nmm=[0.0, -3000.0], convention="iso16281")
     np.testing.assert_allclose(df["max_ball_load_N"], st.balls.max_ball_load_N, rtol=1e-6)
+    assert df["outer_race_control"].isna().all()       # no speed column: no raceway control
+
+
+def test_cli_bearing_jones_control(tmp_path):
+    """--control jones with a speed column: the inner raceway controls the most loaded ball at
+    100 rpm, the outer at 60000 rpm, and the rows equal the Python route with that control."""
+    import pandas as pd
+
+    b = tmp_path / "b.toml"
+    b.write_text(BEARING_TOML)
+    loads = tmp_path / "loads.csv"
+    loads.write_text("radial_load_N,axial_load_N,speed_rpm\n500,300,100\n500,300,60000\n")
+    out = tmp_path / "out.csv"
+    r = _cli("bearing", b, loads, "-o", out, "--control", "jones")
+    assert r.returncode == 0, r.stderr
+    df = pd.read_csv(out)
+    assert list(df["outer_race_control"]) == [0.0, 1.0]
+    g = deep_groove(15.0)
+    st = solve_single(BearingGeometry(**{**g.__dict__, "ring": get_material("GCr15")}),
+                      axial_load_N=300.0, radial_load_x_N=500.0, speed_rpm=[100.0, 60000.0],
+                      ball_model="quasi_dynamic", control="jones")
+    np.testing.assert_allclose(df["max_ball_load_N"], st.balls.max_ball_load_N, rtol=1e-6)
 
 
 @pytest.mark.parametrize("edit, loads_text, expect", [

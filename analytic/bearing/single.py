@@ -95,6 +95,7 @@ class BallsState:
     spin_to_roll: np.ndarray
     max_contact_pressure_MPa: np.ndarray     # of the ball's two contacts
     loads: np.ndarray                        # (5, N): F_z, F_x, F_y (N), M_x, M_y (N mm) they carry
+    outer_control: np.ndarray | None = None  # quasi-dynamic: True where the outer raceway controls
 
     @property
     def max_ball_load_N(self) -> np.ndarray:
@@ -136,6 +137,7 @@ class _Problem:
         self.g, self.tg, self.G, self.Yc, self.F = g, tg, G, Yc, F
         self.speed, self.ball_model, self.control = speed, ball_model, control
         self.alpha_K = np.radians(g.alpha0_deg) if convention == "iso16281" else None
+        self.outer_ctl = None        # control "jones": the raceway that controls, per ball
 
     def P(self, q):
         X = np.einsum("jk,jn->kn", self.G[0], q)
@@ -149,8 +151,22 @@ class _Problem:
             self.Kn = contact_stiffness(g, tg, ak).Kn
         else:
             spd = np.broadcast_to(self.speed, a_i.shape)
+            if self.outer_ctl is None:
+                self.outer_ctl = np.ones(a_i.size, bool)
+            shares = bd.control_shares(self.control, self.outer_ctl)
             self.fz, *_ = bd.frozen_forces(g, tg, a_i.ravel(), a_o.ravel(), spd.ravel(),
-                                           self.control, self.alpha_K)
+                                           shares, self.alpha_K)
+
+    def switch_control(self, a_i, a_o) -> bool:
+        """Control "jones": re-choose each ball's controlling raceway by Jones's criterion at the
+        balls' last state (`ball_dynamics.jones_outer_control`); True when any ball switched."""
+        g, tg, p = self.g, self.tg, self.last
+        ai, ao = a_i.ravel(), a_o.ravel()
+        new = bd.jones_outer_control(g, contact_stiffness(g, tg, ai), contact_stiffness(g, tg, ao),
+                                     p["Q_i"], p["Q_o"], ai, ao)
+        switched = bool(np.any(new != self.outer_ctl))
+        self.outer_ctl = new
+        return switched
 
     def balls(self, X, Y):
         """W (Z, N), grad (2, Z, N), Hessian (2, 2, Z, N), inner and outer angles."""
@@ -176,6 +192,7 @@ class _Problem:
                                                                 self.fz, self.g.Dw_mm)
         self.u_prev = root.x
         self.ball_ok = root.converged
+        self.last = p
         self.W_abs = W_abs.reshape(X.shape)
         a_o = np.arctan2(p["n_o"][0], p["n_o"][1]).reshape(X.shape)
         a_i = np.arctan2(p["n_i"][0], p["n_i"][1]).reshape(X.shape)
@@ -251,7 +268,7 @@ def _solve_block(g, tg, G, R_m, Yc, F, speed, q0, ball_model, convention, contro
     X, Y = prob.P(q)
     a_i = a_o = np.arctan2(X, Y)
     done = np.zeros(q.shape[1], bool)
-    for _ in range(max_outer):
+    for n_pass in range(max_outer):
         prob.freeze(X, Y, a_i, a_o)
         root = _minimise(prob, q, cap=0.05 * g.Dw_mm)
         q = root.x
@@ -260,6 +277,9 @@ def _solve_block(g, tg, G, R_m, Yc, F, speed, q0, ball_model, convention, contro
         change = np.maximum(np.abs(n_i - a_i), np.abs(n_o - a_o)).max(axis=0)
         a_i, a_o = n_i, n_o
         done = change <= tol
+        if (control == "jones" and ball_model != "static" and n_pass < bd.JONES_FREE_PASSES
+                and prob.switch_control(a_i, a_o)):
+            done[:] = False
         if done.all():
             break
     prob.freeze(X, Y, a_i, a_o)
@@ -279,12 +299,15 @@ def solve_single(g: BearingGeometry, *, axial_load_N=0.0, radial_load_x_N=0.0,
 
     ball_model "static" (quasi-static contact, inner = outer angle) or "quasi_dynamic"
     (`ball_dynamics`: centrifugal force and gyroscopic moment; identical to "static" at speed 0);
-    convention "exact" or "iso16281"; control "outer" or "inner" raceway control (quasi-dynamic).
+    convention "exact" or "iso16281"; control "outer", "inner" or "jones" raceway control
+    (quasi-dynamic; "jones": Jones's criterion per ball, `ball_dynamics.jones_outer_control`).
     The free contact angle of g sets the internal clearance (`free_contact_angle_deg` converts a
     clearance).  Formulas: module docstring.  Returns `SingleBearingState` (displacements mm and
     rad, every ball's state, `converged` per point)."""
     if ball_model not in BALL_MODELS:
         raise ValueError(f"ball_model must be one of {', '.join(BALL_MODELS)}, got {ball_model!r}")
+    if control not in bd.CONTROLS:
+        raise ValueError(f"control must be one of {', '.join(bd.CONTROLS)}, got {control!r}")
     G, R_m = _map(g, convention)
     loads = np.broadcast_arrays(*(np.atleast_1d(np.asarray(v, float)) for v in
                                   (axial_load_N, radial_load_x_N, radial_load_y_N, moment_x_Nmm,
@@ -351,6 +374,7 @@ def balls_at_displacement(g: BearingGeometry, axial_mm, radial_x_mm=0.0, radial_
         kin = ball_kinematics(tg.dm_mm, tg.Dw_mm, a_i)
         Fc, Mg = zeros, zeros
         sr = kin.spin_inner / np.hypot(kin.omega_r, kin.omega_z)
+        ctl = None
     elif ball_model == "quasi_dynamic":
         b = bd.solve_balls(g, X, Y, np.broadcast_to(spd, X.shape), control=control, tg=tg,
                            alpha_stiffness_rad=alpha_K)
@@ -359,6 +383,7 @@ def balls_at_displacement(g: BearingGeometry, axial_mm, radial_x_mm=0.0, radial_
         d_i, d_o = b.approach_inner_mm, b.approach_outer_mm
         cs_i, cs_o = b.cs_inner, b.cs_outer
         Fc, Mg, sr = b.centrifugal_force_N, b.gyroscopic_moment_Nmm, b.spin_to_roll
+        ctl = b.outer_control
     else:
         raise ValueError(f"ball_model must be one of {', '.join(BALL_MODELS)}, got {ball_model!r}")
 
@@ -370,5 +395,6 @@ def balls_at_displacement(g: BearingGeometry, axial_mm, radial_x_mm=0.0, radial_
     loads = np.stack([sa.sum(axis=0), (ca * np.cos(psi)).sum(axis=0),
                       (ca * np.sin(psi)).sum(axis=0), (sa * R_m * np.sin(psi)).sum(axis=0),
                       -(sa * R_m * np.cos(psi)).sum(axis=0)])
-    return BallsState(np.degrees(a_i), np.degrees(a_o), Q_i, Q_o, d_i, d_o, Fc, Mg, sr, p, loads)
+    return BallsState(np.degrees(a_i), np.degrees(a_o), Q_i, Q_o, d_i, d_o, Fc, Mg, sr, p, loads,
+                      ctl)
 

@@ -79,6 +79,9 @@ def build_parser() -> argparse.ArgumentParser:
     bb.add_argument("--convention", choices=("exact", "iso16281"), default="exact",
                     help="exact groove-centre geometry (default) or the ISO/TS 16281 "
                          "simplifications")
+    bb.add_argument("--control", choices=("outer", "inner", "jones"), default="outer",
+                    help="raceway control of the quasi-dynamic balls (rows with speed_rpm): "
+                         "outer (default), inner, or jones (Jones's criterion per ball)")
 
     t = sub.add_parser("tolerance", help="worst case and Monte Carlo of the fit tolerances")
     t.add_argument("assembly", type=Path)

@@ -112,10 +112,12 @@ def cmd_bearing(args) -> None:
         check_output_file(args.out, (args.bearing, args.loads))
         n = run(args.bearing, args.loads, args.out, args.convention,
                 provenance("bearing", {"bearing": args.bearing, "loads": args.loads},
-                           {"convention": {"name": args.convention}}))
+                           {"convention": {"name": args.convention},
+                            "raceway_control": {"name": args.control}}),
+                control=args.control)
     except (BearingRunError, *_user_errors()) as exc:
         raise UserError(str(exc)) from None
-    print(f"wrote {n} rows to {args.out} (convention {args.convention})")
+    print(f"wrote {n} rows to {args.out} (convention {args.convention}, {args.control} control)")
 
 
 def _assembly_and_conditions(args):

@@ -1,11 +1,12 @@
-"""`bearingfem bearing BEARING.toml LOADS.csv -o OUT.csv [--convention exact|iso16281]`: one
+"""`bearingfem bearing BEARING.toml LOADS.csv -o OUT.csv [--convention exact|iso16281]
+[--control outer|inner|jones]`: one
 bearing, rigid rings, inner ring with 5 DOF under the rows of LOADS.csv
 (`analytic.bearing.single.solve_single`; shared/spec/cli.md section "bearing").
 
 Columns in (any subset): radial_load_N (along x), radial_load_y_N, axial_load_N, moment_x_Nmm,
 moment_y_Nmm, speed_rpm.  A file with a speed_rpm column runs the quasi-dynamic ball model
-(`analytic.bearing.ball_dynamics`, outer-race control; identical to the quasi-static one at
-speed 0), otherwise the quasi-static one.  Columns out: the input columns, then OUTPUT_COLUMNS,
+(`analytic.bearing.ball_dynamics`, outer-race control unless --control says inner or jones;
+identical to the quasi-static one at speed 0), otherwise the quasi-static one.  Columns out: the input columns, then OUTPUT_COLUMNS,
 then `convention`.  Units in every name; displacements of the inner ring against the outer.
 """
 from __future__ import annotations
@@ -38,6 +39,8 @@ OUTPUT_COLUMNS = {
     "centrifugal_force_N": "centrifugal force on a ball (most loaded ball's orbit)",
     "gyroscopic_moment_Nmm": "gyroscopic moment on the most loaded ball",
     "spin_to_roll": "spin-to-roll ratio at the inner contact of the most loaded ball",
+    "outer_race_control": "1 where the outer raceway controls the most loaded ball, 0 the inner "
+                          "(--control; empty without a speed_rpm column)",
 }
 
 
@@ -46,7 +49,7 @@ class BearingRunError(ValueError):
 
 
 def run(bearing_path: Path, loads_path: Path, out: Path, convention: str = "exact",
-        provenance: dict | None = None) -> int:
+        provenance: dict | None = None, control: str = "outer") -> int:
     """Solve every row of `loads_path` for the bearing of `bearing_path`, write `out` atomically
     (nothing is written when any row fails).  Returns the number of rows."""
     cfg = load_bearing(bearing_path)
@@ -58,7 +61,8 @@ def run(bearing_path: Path, loads_path: Path, out: Path, convention: str = "exac
                       radial_load_x_N=get("radial_load_N"), radial_load_y_N=get("radial_load_y_N"),
                       moment_x_Nmm=get("moment_x_Nmm"), moment_y_Nmm=get("moment_y_Nmm"),
                       speed_rpm=get("speed_rpm"),
-                      ball_model="quasi_dynamic" if quasi else "static", convention=convention)
+                      ball_model="quasi_dynamic" if quasi else "static", convention=convention,
+                      control=control)
     bad = np.flatnonzero(~st.converged)
     if bad.size:
         raise BearingRunError(f"{loads_path}: line {cols['_line'][bad[0]]}: no equilibrium found "
@@ -81,6 +85,8 @@ def run(bearing_path: Path, loads_path: Path, out: Path, convention: str = "exac
         "centrifugal_force_N": st.most_loaded("centrifugal_force_N"),
         "gyroscopic_moment_Nmm": st.most_loaded("gyroscopic_moment_Nmm"),
         "spin_to_roll": st.most_loaded("spin_to_roll"),
+        "outer_race_control": (st.most_loaded("outer_control").astype(float) if quasi
+                               else np.full(n, np.nan)),
         "convention": np.full(n, convention),
     })
     try:
