@@ -9,7 +9,7 @@ import numpy as np
 
 from analytic.bearing.contact import ContactStiffness, axial_state, contact_stiffness
 from analytic.bearing.geometry import (SIGNS, BearingGeometry, ThermalGeometry, pair_array,
-                                       thermal_geometry)
+                                       pair_thermal_geometry, thermal_geometry)
 from analytic.bearing.roots import Root, newton_increasing
 from analytic.bearing.state import PairState, contact_ellipses, pair_state
 
@@ -147,11 +147,7 @@ def solve_pair_axial(g: BearingGeometry, arrangement: str, N: int, *, dr_mm, dz_
     c = np.broadcast_to(np.asarray(compliance_mm_per_N, float), (N,))
     dr, dz = pair_array(dr_mm, N), pair_array(dz_mm, N)
     T_ref = float(T_ref_C)
-    temps = [None if T is None else pair_array(T, N)
-             for T in (T_inner_ring_C, T_outer_ring_C, T_ball_C)]
-    tg = thermal_geometry(g, *temps, T_ref_C=T_ref)
-    tg = ThermalGeometry(*(np.broadcast_to(v, (2, N)) for v in
-                           (tg.A_T_mm, tg.Dw_mm, tg.f_i, tg.f_o, tg.dm_mm)))
+    tg = pair_thermal_geometry(g, T_inner_ring_C, T_outer_ring_C, T_ball_C, T_ref, N)
     Y = Y0 + dr
     A_T = tg.A_T_mm
 

@@ -65,7 +65,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from analytic.bearing.contact import ContactStiffness, contact_stiffness
-from analytic.bearing.geometry import BearingGeometry, ThermalGeometry, thermal_geometry
+from analytic.bearing.geometry import (BearingGeometry, ThermalGeometry, broadcast_geometry,
+                                       thermal_geometry)
 from analytic.bearing.roots import Root
 from analytic.torque import RPM_TO_RAD_S, ball_kinematics
 
@@ -328,8 +329,8 @@ def solve_balls(g: BearingGeometry, X_mm, Y_mm, speed_rpm=0.0, *, control: str =
     X, Y, spd = np.broadcast_arrays(np.asarray(X_mm, float), np.asarray(Y_mm, float),
                                     np.asarray(speed_rpm, float))
     shape = X.shape
-    tg = ThermalGeometry(*(np.broadcast_to(np.asarray(getattr(tg0, k), float), shape).ravel()
-                           for k in ("A_T_mm", "Dw_mm", "f_i", "f_o", "dm_mm")))
+    tg = broadcast_geometry(tg0, shape)
+    tg = ThermalGeometry(*(v.ravel() for v in (tg.A_T_mm, tg.Dw_mm, tg.f_i, tg.f_o, tg.dm_mm)))
     P = np.stack([X.ravel(), Y.ravel()])
     spd = spd.ravel()
     alpha = np.arctan2(P[0], P[1])

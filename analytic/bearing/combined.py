@@ -10,7 +10,7 @@ import numpy as np
 from analytic.bearing.axial import solve_pair_axial
 from analytic.bearing.contact import BallSetState, ball_azimuths_rad, ball_set_state, contact_stiffness
 from analytic.bearing.geometry import (SIGNS, BearingGeometry, ThermalGeometry, n_points,
-                                       pair_array, thermal_geometry)
+                                       pair_array, pair_thermal_geometry)
 from analytic.bearing.roots import newton_minimise
 from analytic.bearing.state import (ContactEllipses, PairState, RadialLoadState, contact_ellipses,
                                     pair_state, with_rows)
@@ -358,11 +358,7 @@ def solve_pair_combined(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.
     Fa = np.broadcast_to(np.asarray(axial_load_N, float), (N,))
     c = np.broadcast_to(np.asarray(compliance_mm_per_N, float), (N,))
     dr, dz = pair_array(dr_mm, N), pair_array(dz_mm, N)
-    temps = [None if T is None else pair_array(T, N)
-             for T in (T_inner_ring_C, T_outer_ring_C, T_ball_C)]
-    tg = thermal_geometry(g, *temps, T_ref_C=float(T_ref_C))
-    tg = ThermalGeometry(*(np.broadcast_to(v, (2, N)) for v in
-                           (tg.A_T_mm, tg.Dw_mm, tg.f_i, tg.f_o, tg.dm_mm)))
+    tg = pair_thermal_geometry(g, T_inner_ring_C, T_outer_ring_C, T_ball_C, T_ref_C, N)
     e = base.preload_offset_mm
     x0 = base.x_mm
     ap0 = base.approach_mm

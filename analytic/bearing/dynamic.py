@@ -38,7 +38,7 @@ import numpy as np
 from analytic.bearing.axial import reference_state
 from analytic.bearing.ball_dynamics import BallDynamics, solve_balls
 from analytic.bearing.geometry import (SIGNS, BearingGeometry, ThermalGeometry, pair_array,
-                                       thermal_geometry)
+                                       pair_thermal_geometry)
 from analytic.bearing.roots import Root, newton_increasing
 from analytic.bearing.state import PairState, contact_ellipses, pair_state
 
@@ -59,11 +59,6 @@ class DynamicContacts:
     spin_to_roll: np.ndarray             # inner contact
     cage_speed_rpm: np.ndarray
     outer_control: np.ndarray            # bool: the outer raceway controls
-
-
-def _flat_geometry(tg: ThermalGeometry, shape) -> ThermalGeometry:
-    return ThermalGeometry(*(np.broadcast_to(np.asarray(getattr(tg, k), float), shape)
-                             for k in ("A_T_mm", "Dw_mm", "f_i", "f_o", "dm_mm")))
 
 
 class _Balls:
@@ -115,9 +110,7 @@ def solve_pair_dynamic(g: BearingGeometry, arrangement: str, N: int, *, dr_mm, d
     Fext = np.broadcast_to(np.asarray(axial_load_N, float), (N,))
     c = np.broadcast_to(np.asarray(compliance_mm_per_N, float), (N,))
     dr, dz = pair_array(dr_mm, N), pair_array(dz_mm, N)
-    temps = [None if T is None else pair_array(T, N)
-             for T in (T_inner_ring_C, T_outer_ring_C, T_ball_C)]
-    tg = _flat_geometry(thermal_geometry(g, *temps, T_ref_C=float(T_ref_C)), (2, N))
+    tg = pair_thermal_geometry(g, T_inner_ring_C, T_outer_ring_C, T_ball_C, T_ref_C, N)
     Y = Y0 + dr
     speed = pair_array(speed_rpm, N)
     balls = _Balls(g, tg, Y, speed, control)

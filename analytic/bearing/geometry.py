@@ -110,6 +110,21 @@ def thermal_geometry(g: BearingGeometry, T_inner_ring_C=None, T_outer_ring_C=Non
 
 
 
+def broadcast_geometry(tg: ThermalGeometry, shape) -> ThermalGeometry:
+    """The grown geometry with every array broadcast to `shape` (read-only views)."""
+    return ThermalGeometry(*(np.broadcast_to(np.asarray(getattr(tg, k), float), shape)
+                             for k in ("A_T_mm", "Dw_mm", "f_i", "f_o", "dm_mm")))
+
+
+def pair_thermal_geometry(g: BearingGeometry, T_inner_ring_C, T_outer_ring_C, T_ball_C,
+                          T_ref_C: float, N: int) -> ThermalGeometry:
+    """`thermal_geometry` of both bearings of a pair at N points, arrays (2, N); temperatures
+    as `pair_array` takes them (None: T_ref)."""
+    temps = [None if T is None else pair_array(T, N)
+             for T in (T_inner_ring_C, T_outer_ring_C, T_ball_C)]
+    return broadcast_geometry(thermal_geometry(g, *temps, T_ref_C=float(T_ref_C)), (2, N))
+
+
 #: arrangement signs s_j of bearings A and B: "DB" back-to-back, "DF" face-to-face
 SIGNS = {"DB": np.array([1.0, -1.0]), "DF": np.array([-1.0, 1.0])}
 

@@ -51,8 +51,7 @@ def main(samples: int, workers: int | None = None) -> None:
     for label, w in modes:
         with Clock() as c:
             with Blocks(workers=w) as where:
-                with Clock() as c_start:
-                    where.on_every_worker(tol.warm, asm)
+                where.on_every_worker(tol.warm, asm)
                 with Clock() as c_blocks:
                     runs[label] = tol.run_samples(asm, cond, di, do, where=where)
         clocks[label], blocks_s[label] = c, c_blocks.wall_s
