@@ -153,17 +153,7 @@ def ball_set_state(X_mm, Y_mm, rho_mm, A_T_mm, Kn, cos_psi, dlnKn_dalpha=None, t
     G^T T G on the generalised coordinates (G = d(X, Y)/d(a, rho, theta)).  A ball with X < 0
     touches the other flank of the groove at the negative angle (full groove: the contact model
     of `axial_state` too)."""
-    X = np.asarray(X_mm, float)[:, None, :]
-    cpsi = np.asarray(cos_psi, float)[None, :, None]
-    Y = np.asarray(Y_mm, float)[:, None, :] + np.asarray(rho_mm, float)[None, None, :] * cpsi
-    tilt = theta_rad is not None
-    if tilt:
-        th = np.asarray(theta_rad, float)[None, None, :]
-        gx = np.asarray(gx_mm, float)[:, None, :] * cpsi      # dX/dtheta per ball
-        gy = np.asarray(gy_mm, float)[:, None, :] * cpsi      # dY/dtheta per ball
-        X = X + th * gx
-        Y = Y + th * gy
-    X = np.broadcast_to(X, Y.shape)
+    X, Y, cpsi, gx, gy = ball_positions(X_mm, Y_mm, rho_mm, cos_psi, theta_rad, gx_mm, gy_mm)
     A_T = np.asarray(A_T_mm, float)[:, None, :]
     D = np.hypot(X, Y)
     delta = np.maximum(D - A_T, 0.0)
@@ -180,12 +170,39 @@ def ball_set_state(X_mm, Y_mm, rho_mm, A_T_mm, Kn, cos_psi, dlnKn_dalpha=None, t
         w = kt * dlnKn_dalpha
         MXX, MXY, MYX, MYY = (MXX + w * nX * nY, MXY - w * nX * nX, MYX + w * nY * nY,
                               MYY - w * nX * nY)
-    QX, QY = Q * nX, Q * nY
-    out = BallSetState(Q, delta, np.arctan2(X, Y), QX.sum(axis=1),
-                       (QY * cpsi).sum(axis=1), (0.4 * Q * delta).sum(axis=1),
+    return project_balls(Q, delta, np.arctan2(X, Y), Q * nX, Q * nY, 0.4 * Q * delta, Q * D,
+                         (MXX, MXY, MYX, MYY), cpsi, gx, gy)
+
+
+def ball_positions(X_mm, Y_mm, rho_mm, cos_psi, theta_rad=None, gx_mm=None, gy_mm=None):
+    """Every ball's groove-centre distance components (2, Z, N) under a rotor radial
+    displacement rho (N,) and, with theta_rad, gx_mm, gy_mm, a tilt (the maps of
+    `ball_set_state`): returns (X, Y, cos_psi (1, Z, 1), gx, gy), gx, gy the per-ball
+    derivatives dX/dtheta, dY/dtheta (None without a tilt)."""
+    X = np.asarray(X_mm, float)[:, None, :]
+    cpsi = np.asarray(cos_psi, float)[None, :, None]
+    Y = np.asarray(Y_mm, float)[:, None, :] + np.asarray(rho_mm, float)[None, None, :] * cpsi
+    gx = gy = None
+    if theta_rad is not None:
+        th = np.asarray(theta_rad, float)[None, None, :]
+        gx = np.asarray(gx_mm, float)[:, None, :] * cpsi      # dX/dtheta per ball
+        gy = np.asarray(gy_mm, float)[:, None, :] * cpsi      # dY/dtheta per ball
+        X = X + th * gx
+        Y = Y + th * gy
+    return np.broadcast_to(X, Y.shape), Y, cpsi, gx, gy
+
+
+def project_balls(Q, delta, alpha, QX, QY, V, QD, tangent, cpsi, gx=None, gy=None) -> BallSetState:
+    """A `BallSetState` from every ball's state (2, Z, N): load Q, deformation delta, angle alpha,
+    force on the inner groove centre (QX, QY) = dV/d(X, Y), energy V, rounding scale QD and the
+    tangent (MXX, MXY, MYX, MYY) = d(QX, QY)/d(X, Y); the generalised forces and stiffnesses are
+    the projections G^T (QX, QY) and G^T T G on (a, rho[, theta]) with G = d(X, Y)/d(a, rho,
+    theta) = [[1, 0, gx], [0, cos psi, gy]] (`ball_positions`)."""
+    MXX, MXY, MYX, MYY = tangent
+    out = BallSetState(Q, delta, alpha, QX.sum(axis=1), (QY * cpsi).sum(axis=1), V.sum(axis=1),
                        MXX.sum(axis=1), (MXY * cpsi).sum(axis=1), (MYX * cpsi).sum(axis=1),
-                       (MYY * cpsi * cpsi).sum(axis=1), (Q * D).sum(axis=1))
-    if not tilt:
+                       (MYY * cpsi * cpsi).sum(axis=1), QD.sum(axis=1))
+    if gx is None:
         return out
     # G = [[1, 0, gx], [0, c, gy]] per ball: column theta of T G and row theta of G^T T
     TXt, TYt = MXX * gx + MXY * gy, MYX * gx + MYY * gy
