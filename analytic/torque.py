@@ -291,10 +291,12 @@ def contact_angles_rad(pair, j: int):
 
 def ball_contact_inputs(radial, j: int) -> tuple[ContactInput, ContactInput]:
     """Inner and outer `ContactInput` of every ball of bearing j, (Z, N), from the combined-load
-    state (`bearing.RadialLoadState`: ball_loads_N, ball_inner, ball_outer)."""
-    Q = radial.ball_loads_N[j]
+    state (`bearing.RadialLoadState`: ball_loads_N, ball_inner, ball_outer; with quasi-dynamic
+    balls the outer contacts at their own loads, ball_loads_outer_N)."""
+    Q_i = radial.ball_loads_N[j]
+    Q_o = Q_i if radial.ball_loads_outer_N is None else radial.ball_loads_outer_N[j]
     return tuple(ContactInput(Q, c.a_mm[j], c.b_mm[j], c.E_ell[j], c.Rx_mm[j])
-                 for c in (radial.ball_inner, radial.ball_outer))
+                 for Q, c in ((Q_i, radial.ball_inner), (Q_o, radial.ball_outer)))
 
 
 def pair_torque(g, pair, *, model: str = "solid_film", mu=0.02, hysteresis_loss=0.0,
@@ -332,10 +334,12 @@ def pair_torque(g, pair, *, model: str = "solid_film", mu=0.02, hysteresis_loss=
             if r is not None and r.ball_inner is not None and np.any(r.unequal_balls):
                 # balls with unequal loads: every ball's own contacts and kinematics, summed
                 bin_, bout = ball_contact_inputs(r, "AB".index(j))
+                a_o = (None if r.ball_contact_angles_outer_deg is None
+                       else np.radians(r.ball_contact_angles_outer_deg["AB".index(j)]))
                 balls = solid_film_torque_Nmm(
                     1, g.Dw_mm, g.dm_mm, g.f_i, g.f_o,
                     np.radians(r.ball_contact_angles_deg["AB".index(j)]), bin_, bout,
-                    mu, hysteresis_loss, c_ring, c_ball)
+                    mu, hysteresis_loss, c_ring, c_ball, a_o)
                 comp = {k: np.where(r.unequal_balls, balls[k].sum(axis=0), v)
                         for k, v in comp.items()}
             for key in acc:

@@ -147,9 +147,69 @@ def test_jones_control_chooses_by_the_spin_moments():
                                               b.load_outer_N, ai, ao), b.outer_control)
 
 
-def test_radial_load_with_quasi_dynamic_balls_is_refused():
-    with pytest.raises(ValueError, match="axial loads only"):
-        solve_pair(G, "DB", ball_model="quasi_dynamic", speed_rpm=1000.0, radial_load_N=10.0)
+COMBINED = dict(preload_assembled_N=100.0, axial_load_N=np.array([0.0, 30.0, -20.0]),
+                radial_load_N=np.array([50.0, 200.0, 120.0]),
+                moment_Nmm=np.array([0.0, 1000.0, -500.0]), bearing_span_mm=20.0)
+
+
+@pytest.mark.parametrize("kind, c", [("position", 0.0), ("position", 2e-5), ("spring", 0.0)])
+def test_combined_load_at_speed_zero_is_the_quasi_static_pair(kind, c):
+    """Radial load, moment and tilt, speed 0: the ball-by-ball pair with quasi-dynamic balls is
+    the quasi-static combined-load pair (forces, angles, radial displacement, tilt, every ball's
+    load to 1e-10 of their scale), for a rigid and a compliant position preload and a spring."""
+    st = solve_pair(G, "DB", preload_kind=kind, compliance_mm_per_N=c, **COMBINED)
+    dy = solve_pair(G, "DB", preload_kind=kind, compliance_mm_per_N=c, ball_model="quasi_dynamic",
+                    speed_rpm=0.0, **COMBINED)
+    assert st.converged.all() and dy.converged.all()
+    for a, b, name in [(st.axial_force_N, dy.axial_force_N, "F"), (st.x_mm, dy.x_mm, "x"),
+                       (st.contact_angle_deg, dy.contact_angle_deg, "alpha"),
+                       (st.radial.rho_mm, dy.radial.rho_mm, "rho"),
+                       (st.radial.tilt_rad, dy.radial.tilt_rad, "tilt"),
+                       (st.radial.radial_force_N, dy.radial.radial_force_N, "Fr"),
+                       (st.radial.ball_loads_N, dy.radial.ball_loads_N, "Q")]:
+        assert np.max(np.abs(a - b)) <= 1e-10 * np.max(np.abs(a)), name
+
+
+@pytest.mark.parametrize("kind, c", [("position", 2e-5), ("spring", 0.0)])
+def test_combined_load_at_speed_against_the_single_bearing_balls(kind, c):
+    """A second route for the pair at 15000 rpm under radial load and moment (shaft free to
+    tilt): each bearing's inner ring displacement read from the pair's solution (axial approach
+    a_j, radial rho + theta l_j, tilt s_j theta; `combined.tilt_arms_mm`) is handed to the
+    single-bearing code (`single.balls_at_displacement`, which solves every ball on its own):
+    its balls equal the pair's ball by ball (1e-8), and the loads those balls carry add up to
+    the external ones: sum_j s_j F_z,j = axial load, sum_j F_x,j = radial load, and the moment
+    about the pair's mid-point (1e-8 of the preload, and of the preload times half the span)."""
+    from analytic.bearing.combined import tilt_arms_mm
+    from analytic.bearing.single import balls_at_displacement
+
+    speed = 15000.0
+    p = solve_pair(G, "DB", preload_kind=kind, compliance_mm_per_N=c, ball_model="quasi_dynamic",
+                   speed_rpm=speed, **COMBINED)
+    assert p.converged.all()
+    r = p.radial
+    s = np.array([1.0, -1.0])
+    a0 = np.radians(G.alpha0_deg)
+    gx, gy = tilt_arms_mm(G, thermal_geometry(G), s[:, None], COMBINED["bearing_span_mm"])
+    loads = []
+    for j in range(2):
+        b = balls_at_displacement(G, G.A0_mm * np.sin(a0) + p.approach_mm[j],
+                                  r.rho_mm + r.tilt_rad * gy[j], 0.0, 0.0, s[j] * r.tilt_rad, speed,
+                                  ball_model="quasi_dynamic")
+        np.testing.assert_allclose(b.load_inner_N, r.ball_loads_N[j], rtol=1e-8, atol=1e-8)
+        np.testing.assert_allclose(b.load_outer_N, r.ball_loads_outer_N[j], rtol=1e-8, atol=1e-8)
+        np.testing.assert_allclose(b.contact_angle_outer_deg, r.ball_contact_angles_outer_deg[j],
+                                   rtol=1e-8)
+        loads.append(b.loads)
+    P = COMBINED["preload_assembled_N"]
+    assert np.all(np.abs(s[0] * loads[0][0] + s[1] * loads[1][0] - COMBINED["axial_load_N"])
+                  <= 1e-8 * P)
+    assert np.all(np.abs(loads[0][1] + loads[1][1] - COMBINED["radial_load_N"]) <= 1e-8 * P)
+    # moment about the mid-point: each bearing's moment of its axial ball forces (about y, tilt
+    # sense s_j) plus its radial force acting at its inner groove centres, l_j from the mid-point
+    # (z_j = -+span/2 plus the groove centre's axial offset from the ball plane)
+    M = sum(s[j] * loads[j][4] + gy[j] * loads[j][1] for j in range(2))
+    half = 0.5 * COMBINED["bearing_span_mm"]
+    assert np.all(np.abs(M - COMBINED["moment_Nmm"]) <= 1e-8 * P * half)
 
 
 def test_single_bearing_jones_control_holds_at_the_state_it_chose():

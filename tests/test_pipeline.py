@@ -190,21 +190,22 @@ def test_unconverged_or_non_finite_rows_raise_model_error_naming_the_row():
 
 def test_quasi_dynamic_balls_through_the_pipeline(pl000):
     """`[operating] ball_model = "quasi_dynamic"` (here the run's override): rows at rest give
-    the quasi-static answer (1e-10 of each column's scale: no centrifugal force or gyroscopic
-    moment at speed 0); at 20000 rpm the centrifugal force per ball equals m omega_c^2 dm/2 with
+    the quasi-static answer, with and without radial load and moment (1e-10 of each column's
+    scale: no centrifugal force or gyroscopic moment at speed 0); at 20000 rpm the centrifugal force per ball equals m omega_c^2 dm/2 with
     m = rho pi Dw^3/6 and omega_c from the kinematics at the reported angles, and the outer
     contact angle lies below the inner one (closed forms recomputed here)."""
     from analytic.torque import ball_kinematics
 
-    inp = _inp(pl000.asm, [-40.0, 20.0, 80.0, 20.0], speed_rpm=[0.0, 0.0, 0.0, 20000.0])
-    st = pl000.run(inp, ball_model="static")
-    dy = pl000.run(inp, ball_model="quasi_dynamic")
-    for k in ("torque_Nmm", "preload_N", "contact_angle_deg", "contact_angle_outer_A_deg",
-              "ball_load_outer_B_N", "max_contact_pressure_MPa", "heat_W"):
-        if k not in st:
-            continue
-        a, b = st[k][:3], dy[k][:3]
-        assert np.max(np.abs(a - b)) <= 1e-10 * max(np.max(np.abs(a)), 1e-300), k
+    for radial in ([0.0] * 4, [0.0, 150.0, 40.0, 0.0]):
+        inp = _inp(pl000.asm, [-40.0, 20.0, 80.0, 20.0], speed_rpm=[0.0, 0.0, 0.0, 20000.0],
+                   radial_load_N=radial, moment_Nmm=[0.0, 0.0, 800.0, 0.0])
+        st = pl000.run(inp, ball_model="static")
+        dy = pl000.run(inp, ball_model="quasi_dynamic")
+        for k in ("torque_Nmm", "preload_N", "contact_angle_deg", "contact_angle_outer_A_deg",
+                  "ball_load_outer_B_N", "max_contact_pressure_MPa", "heat_W", "tilt_mrad",
+                  "radial_force_A_N"):
+            a, b = st[k][:3], dy[k][:3]
+            assert np.max(np.abs(a - b)) <= 1e-10 * max(np.max(np.abs(a)), 1e-300), k
     g = pl000.geom
     ai, ao = np.radians(dy["contact_angle_A_deg"][3]), np.radians(dy["contact_angle_outer_A_deg"][3])
     kin = ball_kinematics(g.dm_mm, g.Dw_mm, ai, ao)
@@ -212,20 +213,3 @@ def test_quasi_dynamic_balls_through_the_pipeline(pl000):
     omega_c = kin.cage * 20000.0 * 2.0 * np.pi / 60.0
     assert dy["centrifugal_force_N"][3] == pytest.approx(m * omega_c ** 2 * g.dm_mm / 2.0, rel=1e-12)
     assert ao < ai and st["centrifugal_force_N"][3] == 0.0
-
-
-def test_quasi_dynamic_with_a_radial_load_exits_2_naming_the_row(tmp_path, capsys):
-    cfg = tmp_path / "qd.toml"
-    cfg.write_text(open(CFG).read() + '\n[operating]\nball_model = "quasi_dynamic"\n'
-                   if "[operating]" not in open(CFG).read() else
-                   open(CFG).read().replace("[operating]", '[operating]\nball_model = "quasi_dynamic"', 1))
-    cond = tmp_path / "c.csv"
-    _csv(cond, ["T_ambient_C", "speed_rpm", "radial_load_N"], [[20, 1000, 0], [20, 1000, 50]])
-    out = tmp_path / "o.csv"
-    assert main(["simulate", str(cfg), str(cond), "-o", str(out)]) == 2
-    err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and "row 2: radial_load_N" in err[0], err
-    assert not out.exists()
-    cfg.write_text(cfg.read_text().replace('"quasi_dynamic"', '"dynamic"'))
-    assert main(["simulate", str(cfg), str(cond), "-o", str(out)]) == 2
-    assert "operating.ball_model: 'dynamic' is not one of static, quasi_dynamic" in capsys.readouterr().err

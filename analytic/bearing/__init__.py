@@ -61,10 +61,10 @@ method, with the same outer K_n loop.
 At speed (`ball_model="quasi_dynamic"`, `dynamic.solve_pair_dynamic`): the axial-only pair with
 every ball in its quasi-dynamic equilibrium (`ball_dynamics.solve_balls`: centrifugal force,
 gyroscopic moment, outer/inner/Jones raceway control), so inner and outer contact angles and loads
-differ; the bearing's axial force is that of its inner contacts.  Not modelled in the pair
-solvers: quasi-dynamic balls under a radial load or moment (one bearing under loads in any
-direction at speed: `single.solve_single`), a moment about the radial load direction (loads in
-one plane), shaft bending (rigid rotor).
+differ; the bearing's axial force is that of its inner contacts; under a radial load or moment
+the combined-load solver takes the same balls ball by ball (`dynamic.DynamicBallSet`).  Not
+modelled in the pair solvers: a moment about the radial load direction (loads in one plane),
+shaft bending (rigid rotor).
 
 Modules: geometry (free and grown geometry, pair conventions), contact (K_n from exact Hertz,
 bearing and ball-set states), roots (root finders with convergence flags), axial (axial-only
@@ -119,8 +119,9 @@ def solve_pair(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.0, dz_mm=
       ball_model        "static" (quasi-static balls, speed ignored) or "quasi_dynamic": every
                         ball in its own equilibrium at speed_rpm (scalar or (N,), inner rings
                         rotating) with centrifugal force and gyroscopic moment, raceway control
-                        `control` ("outer", "inner", "jones"), `dynamic.solve_pair_dynamic`;
-                        axial loads only (a radial load or moment with it is a ValueError)
+                        `control` ("outer", "inner", "jones"): `dynamic.solve_pair_dynamic`,
+                        or with a radial load or moment `combined.solve_pair_combined` with
+                        quasi-dynamic balls
     Conventions and formulas: module docstring.
 
     Returns a `PairState` (`state.py`: per-bearing arrays (2, N), A first; `converged` per point).
@@ -139,11 +140,13 @@ def solve_pair(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.0, dz_mm=
                 dr_ref_mm=dr_ref_mm, dz_ref_mm=dz_ref_mm, compliance_mm_per_N=compliance_mm_per_N)
     combined = (return_ball_loads or np.any(np.asarray(radial_load_N, float) != 0.0)
                 or np.any(np.asarray(moment_Nmm, float) != 0.0))
+    if ball_model == "quasi_dynamic" and combined:
+        return solve_pair_combined(g, arrangement, T_ref_C=T_ref_C, preload_kind=preload_kind,
+                                   radial_load_N=radial_load_N, tol=tol, max_outer=max_outer,
+                                   chunk=chunk, moment_Nmm=moment_Nmm,
+                                   bearing_span_mm=bearing_span_mm, speed_rpm=speed_rpm,
+                                   control=control, **args)
     if ball_model == "quasi_dynamic":
-        if combined:
-            raise ValueError("quasi-dynamic balls in the pair take axial loads only: a radial "
-                             "load or moment at speed is modelled for one bearing "
-                             "(single.solve_single)")
         solver = lambda n, **sub: solve_pair_dynamic(  # noqa: E731
             g, arrangement, n, T_ref_C=T_ref_C, preload_kind=preload_kind, control=control,
             tol=tol, **sub)

@@ -8,12 +8,19 @@ from dataclasses import replace
 import numpy as np
 
 from analytic.bearing.axial import solve_pair_axial
-from analytic.bearing.contact import BallSetState, ball_azimuths_rad, ball_set_state, contact_stiffness
+from analytic.bearing.dynamic import DynamicBallSet, DynamicContacts, solve_pair_dynamic
+from analytic.bearing import ball_dynamics as bd
+from analytic.bearing.contact import (BallSetState, ball_azimuths_rad, ball_positions,
+                                      ball_set_state, contact_stiffness)
 from analytic.bearing.geometry import (SIGNS, BearingGeometry, ThermalGeometry, n_points,
                                        pair_array, pair_thermal_geometry)
 from analytic.bearing.roots import newton_minimise
 from analytic.bearing.state import (ContactEllipses, PairState, RadialLoadState, contact_ellipses,
                                     pair_state, with_rows)
+
+
+#: contact-angle change (rad) below which the quasi-dynamic balls' frozen forces are converged
+BALL_ANGLE_TOL_RAD = 1e-12
 
 
 def tilt_arms_mm(g: BearingGeometry, tg: ThermalGeometry, s, span_mm):
@@ -87,26 +94,25 @@ class CombinedProblem:
         """Rotor tilt (rad), (N,); zero without tilt arms."""
         return u[self.i_tilt] / self.lam if self.tilt else np.zeros(u.shape[1])
 
-    def state(self, u, Kn, dlnKn_dalpha=None) -> BallSetState:
+    def _maps(self, u):
         a, rho, _ = self.split(u)
         if not self.tilt:
-            return ball_set_state(self.X0 + a, self.Ynom, rho, self.A_T, Kn, self.cos_psi,
-                                  dlnKn_dalpha)
-        return ball_set_state(self.X0 + a, self.Ynom, rho, self.A_T, Kn, self.cos_psi,
-                              dlnKn_dalpha, u[self.i_tilt], self.gx / self.lam,
-                              self.gy / self.lam)
+            return (self.X0 + a, self.Ynom, rho, self.cos_psi)
+        return (self.X0 + a, self.Ynom, rho, self.cos_psi, u[self.i_tilt], self.gx / self.lam,
+                self.gy / self.lam)
+
+    def positions(self, u):
+        """Every ball's (X, Y, cos psi, gx, gy) (`contact.ball_positions`)."""
+        return ball_positions(*self._maps(u))
+
+    def state(self, u, Kn, dlnKn_dalpha=None) -> BallSetState:
+        m = self._maps(u)
+        return ball_set_state(*m[:3], self.A_T, Kn, m[3], dlnKn_dalpha, *m[4:])
 
     def alpha(self, u):
         """Angle of every ball's groove-centre line, atan2(X, Y), (2, Z, N)."""
-        a, rho, _ = self.split(u)
-        c = self.cos_psi[None, :, None]
-        Y = self.Ynom[:, None, :] + rho[None, None, :] * c
-        X = (self.X0 + a)[:, None, :]
-        if self.tilt:
-            t = self.theta(u)[None, None, :]
-            X = X + t * self.gx[:, None, :] * c
-            Y = Y + t * self.gy[:, None, :] * c
-        return np.arctan2(np.broadcast_to(X, Y.shape), Y)
+        X, Y = self.positions(u)[:2]
+        return np.arctan2(X, Y)
 
     def assemble(self, u, st: BallSetState):
         """Pi, a magnitude scale of its terms, gradient (n, N) and Hessian/tangent (n, n, N)."""
@@ -179,10 +185,13 @@ def _broadcast_ellipses(c: ContactEllipses, shape) -> ContactEllipses:
 
 def _combined_group(g: BearingGeometry, mode: str, s, dr, dz, tg: ThermalGeometry, Fa, Fr, c, e,
                     Freq, lost_spring, u0, tol, max_outer, solve=True,
-                    M=None, span=None):
+                    M=None, span=None, speed_rpm=None, control: str = "outer"):
     """Solve (or, with solve=False, only evaluate at u0, where rho = theta = 0) one group of
     points of one preload mode and return their `PairState` (with its `radial` part).  With a
-    bearing span the rotor tilt is an unknown (moment M)."""
+    bearing span the rotor tilt is an unknown (moment M).  With speed_rpm ((N,)) every ball is
+    quasi-dynamic (`dynamic.DynamicBallSet`, raceway control `control`): the outer loop
+    refreshes the frozen ball forces instead of K_n, until the contact angles change by less
+    than `ball_dynamics` tolerance (1e-12 rad)."""
     a0 = np.radians(g.alpha0_deg)
     X0, Y0 = g.A0_mm * np.sin(a0), g.A0_mm * np.cos(a0)
     psi = ball_azimuths_rad(g.Z)
@@ -197,24 +206,34 @@ def _combined_group(g: BearingGeometry, mode: str, s, dr, dz, tg: ThermalGeometr
     tg3 = ThermalGeometry(*(v[:, None, :] for v in
                             (tg.A_T_mm, tg.Dw_mm, tg.f_i, tg.f_o, tg.dm_mm)))
     u = u0
-    # without radial motion and tilt every ball of a bearing has the same angle: K_n once
-    cs = contact_stiffness(g, tg3, prob.alpha(u) if solve else prob.alpha(u)[:, :1, :])
-    ok = np.ones(u.shape[1], bool)
-    if solve:
-        cap = 0.1 * g.A0_mm
+    dyn = None
+    if speed_rpm is not None:
+        shape = (2, g.Z, u.shape[1])
+        dyn = DynamicBallSet(g, tg3, np.asarray(speed_rpm, float)[None, None, :], control, shape)
+        u, ok = _solve_dynamic(prob, dyn, u, 0.1 * g.A0_mm, max_outer, control)
+        st = dyn.state(*prob.positions(u))
+        inner, outer = dyn.contacts()
+        ok = ok & dyn.ball_ok.reshape(shape).all(axis=(0, 1))
+    else:
+        # without radial motion and tilt every ball of a bearing has the same angle: K_n once
+        cs = contact_stiffness(g, tg3, prob.alpha(u) if solve else prob.alpha(u)[:, :1, :])
+        ok = np.ones(u.shape[1], bool)
+        if solve:
+            cap = 0.1 * g.A0_mm
 
-        for _ in range(max_outer):
-            Kn = cs.Kn
-            root = newton_minimise(lambda uu: prob.assemble(uu, prob.state(uu, Kn)), u, cap)
-            u = root.x
-            cs_new = contact_stiffness(g, tg3, prob.alpha(u))
-            done = bool(np.all(np.abs(cs_new.Kn / cs.Kn - 1.0) <= tol))
-            cs = cs_new
-            if done:      # u solves the equilibrium with K_n matching the exact K_n at its angles to tol
-                break
-        ok = root.converged & done
-    # final state: K_n exact at the final angles, full tangent (with dK_n/dalpha)
-    st = prob.state(u, cs.Kn, cs.dlnKn_dalpha)
+            for _ in range(max_outer):
+                Kn = cs.Kn
+                root = newton_minimise(lambda uu: prob.assemble(uu, prob.state(uu, Kn)), u, cap)
+                u = root.x
+                cs_new = contact_stiffness(g, tg3, prob.alpha(u))
+                done = bool(np.all(np.abs(cs_new.Kn / cs.Kn - 1.0) <= tol))
+                cs = cs_new
+                if done:  # u solves the equilibrium with K_n matching the exact K_n at its angles to tol
+                    break
+            ok = root.converged & done
+        ok = ok & cs.converged.all(axis=(0, 1))
+        # final state: K_n exact at the final angles, full tangent (with dK_n/dalpha)
+        st = prob.state(u, cs.Kn, cs.dlnKn_dalpha)
     _, _, _, J = prob.assemble(u, st)
     a, rho, x = prob.split(u)
     Jm = np.moveaxis(J, -1, 0)
@@ -258,7 +277,20 @@ def _combined_group(g: BearingGeometry, mode: str, s, dr, dz, tg: ThermalGeometr
         return np.take_along_axis(np.broadcast_to(v, Q.shape), im, axis=1)[:, 0, :]
 
     loaded = delta > 1e-12 * tg3.A_T_mm
-    inner, outer = (contact_ellipses(g, cs, Q, side) for side in (0, 1))
+    dynamic, outer_balls = None, {}
+    if dyn is None:
+        inner, outer = (contact_ellipses(g, cs, Q, side) for side in (0, 1))
+    else:
+        a_o = dyn.angles()[1]
+        Q_o = dyn.loads()[1]
+        ex = dyn.extras()
+        outer_balls = dict(ball_loads_outer_N=Q_o, ball_contact_angles_outer_deg=np.degrees(a_o))
+        dynamic = DynamicContacts(
+            contact_angle_inner_deg=np.degrees(top(alpha)), contact_angle_outer_deg=np.degrees(top(a_o)),
+            load_inner_N=top(Q), load_outer_N=top(Q_o), centrifugal_force_N=top(ex["F_c"]),
+            gyroscopic_moment_Nmm=top(ex["M_g"]), spin_to_roll=top(ex["spin_to_roll"]),
+            cage_speed_rpm=top(ex["cage_rpm"]),
+            outer_control=top(dyn.outer_ctl.reshape(Q.shape)))
     radial = RadialLoadState(
         rho_mm=rho, radial_force_N=st.Fr_N, max_ball_load_N=Q.max(axis=1),
         loaded_zone=loaded.mean(axis=1), radial_stiffness_N_per_um=1e-3 * k_rad,
@@ -266,7 +298,8 @@ def _combined_group(g: BearingGeometry, mode: str, s, dr, dz, tg: ThermalGeometr
         moment_stiffness_Nmm_per_mrad=1e-3 * k_tilt,
         max_contact_pressure_MPa=np.maximum(inner.p_max_MPa, outer.p_max_MPa).max(axis=1),
         ball_loads_N=Q, ball_contact_angles_deg=np.degrees(alpha),
-        ball_inner=_broadcast_ellipses(inner, Q.shape), ball_outer=_broadcast_ellipses(outer, Q.shape))
+        ball_inner=_broadcast_ellipses(inner, Q.shape), ball_outer=_broadcast_ellipses(outer, Q.shape),
+        **outer_balls)
     top_inner, top_outer = (ContactEllipses(*(top(getattr(c, f)) for f in ContactEllipses.__dataclass_fields__))
                             for c in (inner, outer))
     return pair_state(F_N=st.F_N, alpha_rad=top(alpha), Q_N=top(Q), delta_mm=top(delta),
@@ -274,8 +307,42 @@ def _combined_group(g: BearingGeometry, mode: str, s, dr, dz, tg: ThermalGeometr
                       max_contact_pressure_MPa=np.maximum(inner.p_max_MPa, outer.p_max_MPa).max(axis=(0, 1)),
                       k_bearing_N_per_mm=k_eff, k_pair_N_per_mm=k_pair, lost=lost, x_mm=x,
                       offset_mm=e_out, approach_mm=a,
-                      converged=ok & cs.converged.all(axis=(0, 1)) & np.isfinite(st.F_N).all(axis=0),
-                      radial=radial)
+                      converged=ok & np.isfinite(st.F_N).all(axis=0),
+                      radial=radial, dynamic=dynamic)
+
+
+def _solve_dynamic(prob: CombinedProblem, dyn: "DynamicBallSet", u, cap, max_outer, control):
+    """The outer loop of the quasi-dynamic ball set: freeze the ball forces at the contact
+    angles, minimise the pair's potential (`roots.newton_minimise`), re-read the angles; for
+    control "jones" the controlling raceway is re-chosen during the first passes
+    (`ball_dynamics.JONES_FREE_PASSES`).  Returns (u, converged per point)."""
+    a_i = a_o = prob.alpha(u)
+    done = np.zeros(u.shape[1], bool)
+    for n_pass in range(max_outer):
+        dyn.freeze(a_i, a_o)
+        u = newton_minimise(lambda uu: prob.assemble(uu, dyn.state(*prob.positions(uu))), u, cap,
+                            max_iter=60).x
+        st = dyn.state(*prob.positions(u))
+        n_i, n_o = dyn.angles()
+        Q_i, Q_o = dyn.loads()
+        change = np.maximum(np.where(Q_o > 0, np.abs(n_o - a_o), 0.0),
+                            np.where(Q_i > 0, np.abs(n_i - a_i), 0.0)).max(axis=(0, 1))
+        a_i, a_o = n_i, n_o
+        done = change <= BALL_ANGLE_TOL_RAD
+        if (control == "jones" and n_pass < bd.JONES_FREE_PASSES
+                and dyn.switch_control(a_i, a_o)):
+            done[:] = False
+        if done.all():
+            break
+    dyn.freeze(a_i, a_o)
+    # converged: the generalised residual forces within 1e-10 of the forces involved (the ball
+    # equilibria inside carry their own rounding, so the potential cannot judge the last digits)
+    st = dyn.state(*prob.positions(u))
+    g = prob.assemble(u, st)[2]
+    scale = st.Q_N.sum(axis=(0, 1)) + np.abs(prob.Fa) + np.abs(prob.Fr)
+    if prob.tilt:
+        scale = scale + np.abs(prob.M / prob.lam)
+    return u, done & (np.abs(g).max(axis=0) <= 1e-10 * scale)
 
 
 def solve_pair_combined(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.0, dz_mm=0.0,
@@ -285,7 +352,8 @@ def solve_pair_combined(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.
                         dr_ref_mm=0.0, dz_ref_mm=0.0, compliance_mm_per_N=0.0,
                         tol: float = 1e-14, max_outer: int = 30, chunk: int = 8192,
                         moment_Nmm=0.0,
-                        bearing_span_mm=None) -> PairState:
+                        bearing_span_mm=None, speed_rpm=None,
+                        control: str = "outer") -> PairState:
     """Pair equilibrium under combined axial and radial load with the quasi-static load
     distribution around the ball set (Harris & Kotzalas Vol. 1 ch. 7; Jones 1960), vectorised
     over N operating points.  `analytic.bearing.solve_pair` calls this when a radial load is given.
@@ -333,8 +401,12 @@ def solve_pair_combined(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.
     ball_loads_N, ball_contact_angles_deg and its inner and outer contact ellipses (ball_inner,
     ball_outer), of shape (2, Z, N), ball k at `contact.ball_azimuths_rad(Z)[k]`.
 
-    Note: `torque.pair_torque` multiplies one ball's friction by Z; under a radial load it then
-    treats every ball as the most loaded one (an upper bound), not the load distribution.
+    Balls at speed (speed_rpm given, scalar or (N,)): every ball quasi-dynamic
+    (`dynamic.DynamicBallSet`: centrifugal force, gyroscopic moment, raceway control `control`),
+    its inner contact carrying the ring's loads; start and position-preload offset from the
+    quasi-dynamic axial pair (`dynamic.solve_pair_dynamic`); every point is solved (also those
+    without radial load or moment), and the state gains `dynamic` (the most loaded ball's
+    contacts) and every ball's outer contact in `radial`.
     """
     N = n_points(dr_mm, dz_mm, T_inner_ring_C, T_outer_ring_C, T_ball_C, preload_assembled_N,
                  axial_load_N, dr_ref_mm, dz_ref_mm, compliance_mm_per_N, radial_load_N,
@@ -345,13 +417,18 @@ def solve_pair_combined(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.
     span = None if bearing_span_mm is None else float(bearing_span_mm)
     if span is not None and not span > 0.0:
         raise ValueError(f"bearing_span_mm must be positive, got {bearing_span_mm!r}")
-    base = solve_pair_axial(g, arrangement, N, dr_mm=dr_mm, dz_mm=dz_mm,
-                            T_inner_ring_C=T_inner_ring_C, T_outer_ring_C=T_outer_ring_C,
-                            T_ball_C=T_ball_C, T_ref_C=T_ref_C, preload_kind=preload_kind,
-                            preload_assembled_N=preload_assembled_N,
-                            axial_load_N=np.broadcast_to(np.asarray(axial_load_N, float), (N,)),
-                            dr_ref_mm=dr_ref_mm, dz_ref_mm=dz_ref_mm,
-                            compliance_mm_per_N=compliance_mm_per_N, tol=tol, max_outer=max_outer)
+    axial = dict(dr_mm=dr_mm, dz_mm=dz_mm, T_inner_ring_C=T_inner_ring_C,
+                 T_outer_ring_C=T_outer_ring_C, T_ball_C=T_ball_C, T_ref_C=T_ref_C,
+                 preload_kind=preload_kind, preload_assembled_N=preload_assembled_N,
+                 axial_load_N=np.broadcast_to(np.asarray(axial_load_N, float), (N,)),
+                 dr_ref_mm=dr_ref_mm, dz_ref_mm=dz_ref_mm,
+                 compliance_mm_per_N=compliance_mm_per_N, tol=tol)
+    if speed_rpm is None:
+        base = solve_pair_axial(g, arrangement, N, max_outer=max_outer, **axial)
+        speed = None
+    else:
+        speed = np.broadcast_to(np.asarray(speed_rpm, float), (N,))
+        base = solve_pair_dynamic(g, arrangement, N, speed_rpm=speed, control=control, **axial)
     Fr = np.broadcast_to(np.asarray(radial_load_N, float), (N,))
     s = SIGNS[arrangement][:, None]
     P = np.broadcast_to(np.asarray(preload_assembled_N, float), (N,))
@@ -379,9 +456,11 @@ def solve_pair_combined(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.
         moment_stiffness_Nmm_per_mrad=np.zeros(N), max_contact_pressure_MPa=np.zeros((2, N)),
         ball_loads_N=np.zeros(Zb), ball_contact_angles_deg=np.zeros(Zb),
         ball_inner=ContactEllipses(*(np.zeros(Zb) for _ in range(5))),
-        ball_outer=ContactEllipses(*(np.zeros(Zb) for _ in range(5)))))
+        ball_outer=ContactEllipses(*(np.zeros(Zb) for _ in range(5))),
+        **({} if speed is None else dict(ball_loads_outer_N=np.zeros(Zb),
+                                         ball_contact_angles_outer_deg=np.zeros(Zb)))))
     for mode, mmask in modes.items():
-        loaded = (Fr != 0.0) | (M != 0.0)
+        loaded = (Fr != 0.0) | (M != 0.0) | (speed is not None)
         for solve, smask in ((False, ~loaded), (True, loaded)):
             ids = np.flatnonzero(mmask & smask)
             for i0 in range(0, ids.size, chunk):
@@ -398,7 +477,8 @@ def solve_pair_combined(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.
                     ThermalGeometry(*(v[:, ii] for v in (tg.A_T_mm, tg.Dw_mm, tg.f_i, tg.f_o, tg.dm_mm))),
                     Fa[ii], Fr[ii], c[ii], e[ii], None if Freq is None else Freq[:, ii],
                     None if lost_spring is None else lost_spring[ii], u0, tol, max_outer,
-                    solve=solve, M=M[ii], span=span)
+                    solve=solve, M=M[ii], span=span,
+                    speed_rpm=None if speed is None else speed[ii], control=control)
                 if solve:
                     out = with_rows(out, ii, res)
                 else:           # the axial solution stands; add the radial outputs at it

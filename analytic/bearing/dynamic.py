@@ -37,8 +37,10 @@ import numpy as np
 
 from analytic.bearing.axial import reference_state
 from analytic.bearing.ball_dynamics import BallDynamics, solve_balls
-from analytic.bearing.geometry import (SIGNS, BearingGeometry, ThermalGeometry, pair_array,
-                                       pair_thermal_geometry)
+from analytic.bearing import ball_dynamics as bd
+from analytic.bearing.contact import contact_stiffness, project_balls
+from analytic.bearing.geometry import (SIGNS, BearingGeometry, ThermalGeometry, broadcast_geometry,
+                                       pair_array, pair_thermal_geometry)
 from analytic.bearing.roots import Root, newton_increasing
 from analytic.bearing.state import PairState, contact_ellipses, pair_state
 
@@ -169,6 +171,80 @@ def solve_pair_dynamic(g: BearingGeometry, arrangement: str, N: int, *, dr_mm, d
                       converged=ok & b.converged.all(axis=0) & np.isfinite(F).all(axis=0)
                       & np.isfinite(ao).all(axis=0),
                       dynamic=dyn)
+
+
+class DynamicBallSet:
+    """Every ball of both bearings at speed for the combined-load pair solver
+    (`combined._combined_group`): the ball equilibria of `ball_dynamics` with K, F_c, M_g and the
+    friction directions frozen by `freeze`, condensed to each ball's inner groove centre (its
+    potential W, force Q_i n_i and series tangent), then projected on the pair's generalised
+    coordinates like the quasi-static balls (`contact.project_balls`).  Shapes (2, Z, N)."""
+
+    def __init__(self, g: BearingGeometry, tg: ThermalGeometry, speed_rpm, control: str, shape):
+        self.g, self.control, self.shape = g, control, shape
+        bg = broadcast_geometry(tg, shape)
+        self.tg = ThermalGeometry(*(v.ravel() for v in (bg.A_T_mm, bg.Dw_mm, bg.f_i, bg.f_o,
+                                                         bg.dm_mm)))
+        self.speed = np.broadcast_to(np.asarray(speed_rpm, float), shape).ravel()
+        self.outer_ctl = np.ones(self.speed.size, bool)
+        self.u_prev = None
+
+    def freeze(self, a_i, a_o) -> None:
+        """Freeze K, F_c, M_g and the friction directions at the contact angles (2, Z, N)."""
+        shares = bd.control_shares(self.control, self.outer_ctl)
+        self.fz, _, self.cs_i, self.cs_o = bd.frozen_forces(self.g, self.tg, a_i.ravel(),
+                                                            a_o.ravel(), self.speed, shares)
+
+    def state(self, X, Y, cpsi, gx=None, gy=None):
+        """`contact.BallSetState` of the balls at groove-centre distances X, Y (2, Z, N)."""
+        P = np.stack([X.ravel(), Y.ravel()])
+        u0 = bd.static_split(P, self.fz) if self.u_prev is None else self.u_prev
+        Dw = float(np.max(self.tg.Dw_mm))
+        root, W, W_abs, F_in, Kt, p = bd.frozen_equilibrium(P, u0, self.fz, Dw)
+        if self.u_prev is not None and not root.converged.all():
+            root, W, W_abs, F_in, Kt, p = bd.frozen_equilibrium(P, bd.static_split(P, self.fz),
+                                                                self.fz, Dw)
+        self.u_prev, self.ball_ok, self.p = root.x, root.converged, p
+        r = lambda v: np.asarray(v).reshape(self.shape)  # noqa: E731
+        tangent = tuple(r(Kt[i, j]) for i, j in ((0, 0), (0, 1), (1, 0), (1, 1)))
+        return project_balls(r(p["Q_i"]), r(p["dl_i"] + p["dl_o"]), self.angles()[0],
+                             r(F_in[0]), r(F_in[1]), r(W), r(W_abs), tangent, cpsi, gx, gy)
+
+    def angles(self):
+        """(inner, outer) contact angles of the last state, rad, (2, Z, N)."""
+        p = self.p
+        return (np.arctan2(p["n_i"][0], p["n_i"][1]).reshape(self.shape),
+                np.arctan2(p["n_o"][0], p["n_o"][1]).reshape(self.shape))
+
+    def loads(self):
+        """(inner, outer) contact loads of the last state, N, (2, Z, N)."""
+        return self.p["Q_i"].reshape(self.shape), self.p["Q_o"].reshape(self.shape)
+
+    def switch_control(self, a_i, a_o) -> bool:
+        """Control "jones": re-choose every ball's controlling raceway at the last state; True
+        when any ball switched."""
+        g, tg, p = self.g, self.tg, self.p
+        ai, ao = a_i.ravel(), a_o.ravel()
+        new = bd.jones_outer_control(g, contact_stiffness(g, tg, ai), contact_stiffness(g, tg, ao),
+                                     p["Q_i"], p["Q_o"], ai, ao)
+        switched = bool(np.any(new != self.outer_ctl))
+        self.outer_ctl = new
+        return switched
+
+    def contacts(self) -> tuple:
+        """(inner, outer) `ContactEllipses` of every ball at the last state, (2, Z, N)."""
+        Qi, Qo = self.loads()
+        return (contact_ellipses(self.g, _shaped(self.cs_i, self.shape), Qi, 0),
+                contact_ellipses(self.g, _shaped(self.cs_o, self.shape), Qo, 1))
+
+    def extras(self) -> dict:
+        """Centrifugal force, gyroscopic moment, spin-to-roll ratio and cage speed per ball at the
+        frozen state, (2, Z, N)."""
+        fz_i, fz_o = self.angles()
+        _, ex, _, _ = bd.frozen_forces(self.g, self.tg, fz_i.ravel(), fz_o.ravel(), self.speed,
+                                       bd.control_shares(self.control, self.outer_ctl))
+        return {k: np.broadcast_to(ex[k], self.speed.shape).reshape(self.shape)
+                for k in ("F_c", "M_g", "spin_to_roll", "cage_rpm")}
 
 
 def _shaped(cs, shape):

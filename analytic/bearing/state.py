@@ -41,6 +41,10 @@ class RadialLoadState:
     #: every ball's inner and outer Hertz contact, (2, Z, N) (the torque sums over the balls)
     ball_inner: ContactEllipses | None = None
     ball_outer: ContactEllipses | None = None
+    #: quasi-dynamic balls: every ball's outer contact load and angle (the fields above are the
+    #: inner contact's); None with quasi-static balls (inner = outer)
+    ball_loads_outer_N: np.ndarray | None = None
+    ball_contact_angles_outer_deg: np.ndarray | None = None
 
     @property
     def unequal_balls(self) -> np.ndarray:

@@ -466,8 +466,6 @@ class Pipeline:
         ball_model` (the report sets both side by side; the FE does not depend on it)."""
         a = self.asm
         ball_model = a.operating.ball_model if ball_model is None else ball_model
-        if ball_model == "quasi_dynamic":
-            _check_axial_only(inputs, first_row)
         preload = np.maximum(np.asarray(inputs.preload_assembled_N, float)
                              - np.asarray(inputs.preload_loss_N, float), 0.0)
         with np.errstate(all="ignore"):     # a row without an answer is reported below, by name
@@ -553,19 +551,6 @@ class Pipeline:
                           nu_mm2_s=nu, load_term=lub.load_term, f1=f1)
         out["viscosity_mm2_s"] = nu
         return out
-
-
-def _check_axial_only(inputs: PhysicsInputs, first_row: int) -> None:
-    """ModelError naming the first row with a radial load or moment: the pair's quasi-dynamic
-    balls take axial loads only (`analytic.bearing.dynamic`)."""
-    for name in ("radial_load_N", "moment_Nmm"):
-        v = getattr(inputs, name)
-        if v is not None and np.any(np.asarray(v, float) != 0.0):
-            i = int(np.flatnonzero(np.broadcast_to(np.asarray(v, float), (inputs.n_rows,)))[0])
-            raise ModelError(f"row {i + first_row + 1}: {name} with [operating] ball_model = "
-                             "\"quasi_dynamic\": the pair's quasi-dynamic balls take axial loads "
-                             "only (use ball_model = \"static\", or `bearingfem bearing` for one "
-                             "bearing at speed under any load)")
 
 
 def _zeros_if_none(v):
