@@ -6,12 +6,14 @@ Per shipped assembly (studies/configs: seed000, seed001, seed003, template) the 
 are run twice through the public route (`bearingfem.simulate`, the function `bearingfem simulate`
 uses), once with `[mesh] ring_section = "rectangle"` (the effective sections of `[bearing]`) and
 once with `"grooved"`; nothing else changes. Conditions: uniform temperature at `[operating]`
-T_min_C, 20 C and T_max_C, at the assembly's default speed (`[lubrication] speed_rpm`, what
+T_min_C, 20 C, the assembly temperature T_ref_C and T_max_C, at the assembly's default speed (`[lubrication] speed_rpm`, what
 `simulate` takes without a speed column) and, when `[operating] speed_max_rpm` is higher, again
 at that speed. The discretisation error of each mesh is measured the way `report` and
 `verify --assembly` measure it (`studies.runs.verify.mesh_convergence_case`: levels x2, x1, x0.5,
 Richardson value, at T_min_C and T_max_C with the default speed), so a difference can be read
-against it.
+against it. Besides simulate's outputs, the preload change from T_ref_C (same speed) and, as a
+diagnostic, the grooved results with the groove radius held at its thermal growth in the circle
+fit (`radius_held`; docs/ring_sections.md explains why).
 
 Run: `bearingfem study ring_sections --out DIR` or `python -m studies.runs.ring_section_compare
 --out DIR`. Writes `ring_sections.csv` (one row per assembly, condition and quantity: rectangle,
