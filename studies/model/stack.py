@@ -6,10 +6,10 @@ rectangles, the radial split lines (fits, sliding bores), the clamped
 faces and the raceway points; the element sizes from `studies.model.mesh_size`. `meshes/` knows
 only sections; this is the one place that reads an assembly to make one. Units: mm.
 
-Ring sections (`[mesh] ring_section`): "grooved" (default) cuts each ring's raceway groove, the
+Ring sections (`[mesh] ring_section`): "grooved" cuts each ring's raceway groove, the
 circle of radius f Dw about its curvature centre (`analytic.bearing.land.groove_centre_rz_mm`),
 from a ring rectangle that reaches the land diameter (`land_diameters_mm`; the same land on both
-sides of the groove); "rectangle" keeps the effective ring sections of `[bearing]`
+sides of the groove); "rectangle" (the default) keeps the effective ring sections of `[bearing]`
 (inner_ring_outer_diameter_mm, outer_ring_inner_diameter_mm) with the raceway on their faces.
 """
 from __future__ import annotations

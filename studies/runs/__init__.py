@@ -15,6 +15,7 @@ STUDIES = {
     "mesh_convergence": "studies.runs.mesh_convergence",
     "lubricant_viscosity": "studies.runs.lubricant_viscosity",
     "confusion_matrix": "studies.runs.confusion_matrix",
+    "ring_sections": "studies.runs.ring_section_compare",
 }
 
 
