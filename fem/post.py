@@ -86,30 +86,41 @@ def groove_centre_shift(u_point_mm: np.ndarray, theta_ring: np.ndarray,
     return np.asarray(u_point_mm) + np.asarray(theta_ring)[..., None] * np.asarray(offset_rz_mm)
 
 
-def circle_centre_weights(points_rz_mm: np.ndarray, centre_rz_mm) -> np.ndarray:
-    """(2, 2n) matrix W: the shift (dr, dz) in mm of the circle fitted to n displaced points of a
-    circular arc is W @ [u_r(p0), u_z(p0), u_r(p1), ...] (displacements in mm).
+def circle_centre_weights(points_rz_mm: np.ndarray, centre_rz_mm,
+                          free_radius: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """(W (2, 2n), w_theta (2,)): the shift (dr, dz) in mm of the circle fitted to n displaced
+    points of a circular arc is W @ [u_r(p0), u_z(p0), u_r(p1), ...] + theta_ring w_theta
+    (displacements in mm, theta_ring the ring's thermal strain).
 
     The geometric least-squares circle fit (Gander, Golub & Strebel, "Least-squares fitting of
     circles and ellipses", BIT 34 (1994) 558-578) linearised about the nominal circle (centre c,
     radius R): with n_i the unit normal (X_i - c)/R, the distance of the displaced point to the
-    shifted circle is n_i . (u_i - dc) - dR to first order, and
+    shifted circle is n_i . (u_i - dc) - dR to first order.  The bearing model takes the groove
+    radius as f Dw grown with the ring's thermal strain only (`bearing.thermal_geometry`), so
+    by default the radius change is held at that growth, dR = theta_ring R, and
 
-        min over (dc, dR) of  sum_i (n_i . u_i - n_i . dc - dR)^2
+        min over dc of  sum_i (n_i . u_i - n_i . dc - theta_ring R)^2
 
-    is linear least squares, G [dc; dR] = N u with rows G_i = (n_i^T, 1). It is exact for a rigid
-    translation (dc = the translation) and for a uniform dilation u = theta X (dc = theta c,
-    dR = theta R): the groove radius f Dw grows with the ring's strain, its centre moves with the
-    ring. points_rz_mm: (2, n) points on the arc, n >= 3 spanning an angle; units mm."""
+    places the centre so that the circle of the model's radius lies where the displaced groove
+    surface is near the contact (an elastic change of the groove radius, e.g. the ring stretched
+    by its fit, then shows as the surface's normal motion, which is what the ball meets).
+    free_radius=True fits dR too (rows G_i = (n_i^T, 1); w_theta = 0): the centre of the best
+    circle of any radius.  Both are exact for a rigid translation (dc = the translation) and
+    for a uniform dilation u = theta X (dc = theta c).  points_rz_mm: (2, n) points on the arc,
+    n >= 3 spanning an angle; units mm."""
     X = np.asarray(points_rz_mm, float)
     c = np.asarray(centre_rz_mm, float).reshape(2, 1)
     d = X - c
-    nrm = d / np.hypot(*d)
-    G = np.column_stack([nrm.T, np.ones(X.shape[1])])
+    R = np.hypot(*d)
+    nrm = d / R
     N = np.zeros((X.shape[1], 2 * X.shape[1]))
     idx = np.arange(X.shape[1])
     N[idx, 2 * idx], N[idx, 2 * idx + 1] = nrm[0], nrm[1]
-    return (np.linalg.pinv(G) @ N)[:2]
+    if free_radius:
+        G = np.column_stack([nrm.T, np.ones(X.shape[1])])
+        return (np.linalg.pinv(G) @ N)[:2], np.zeros(2)
+    pinv = np.linalg.pinv(nrm.T)
+    return pinv @ N, -pinv @ R
 
 
 def element_stresses(model: StackModel, u: np.ndarray, theta_e: np.ndarray) -> dict[str, np.ndarray]:

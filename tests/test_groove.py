@@ -61,11 +61,34 @@ def test_circle_fit_weights_exact_for_translation_and_dilation():
     c = np.array([20.0, 3.0])
     phi = np.radians(np.linspace(-15, 45, 13))
     X = c[:, None] + 2.0 * np.array([-np.cos(phi), np.sin(phi)])
-    W = circle_centre_weights(X, c)
     t = np.array([1.3e-3, -0.7e-3])
-    assert W @ np.tile(t, X.shape[1]) == pytest.approx(t, abs=1e-15)
     theta = 1.7e-3
-    assert W @ (theta * X).T.ravel() == pytest.approx(theta * c, rel=1e-12)
+    for free in (False, True):
+        W, w = circle_centre_weights(X, c, free_radius=free)
+        assert W @ np.tile(t, X.shape[1]) == pytest.approx(t, abs=1e-15)
+        assert W @ (theta * X).T.ravel() + theta * w == pytest.approx(theta * c, rel=1e-12)
+
+
+def test_held_radius_fit_reads_a_radius_change_as_the_surface_motion():
+    """An elastic change dR of the groove radius about a fixed centre (u = dR n on every point):
+    the free fit returns the centre unmoved (the radius took it); the fit with the radius held
+    at its thermal growth (theta = 0 here) moves the centre so that the model's circle passes
+    through the displaced surface in the least-squares sense: dc = dR pinv(n^T) 1, the closed form
+    of min_dc sum (dR - n_i . dc)^2, and for an arc symmetric about direction e, dc = dR (sum n_i .
+    e / sum (n_i . e)^2) e."""
+    c = np.array([20.0, 3.0])
+    phi = np.radians(np.linspace(-30, 30, 13))
+    e = np.array([np.cos(np.radians(15.0)), np.sin(np.radians(15.0))])
+    ang = np.arctan2(e[1], e[0]) + phi
+    n = np.array([np.cos(ang), np.sin(ang)])
+    X = c[:, None] + 2.0 * n
+    dR = 1e-4
+    u = (dR * n).T.ravel()
+    W_free, _ = circle_centre_weights(X, c, free_radius=True)
+    assert W_free @ u == pytest.approx(np.zeros(2), abs=1e-16)
+    W, _ = circle_centre_weights(X, c)
+    ne = n.T @ e
+    assert W @ u == pytest.approx(dR * ne.sum() / (ne ** 2).sum() * e, rel=1e-10)
 
 
 def test_meshed_section_area_is_rectangles_minus_groove_segments():
@@ -97,7 +120,7 @@ def test_rigid_translation_moves_fitted_centre_by_that_translation():
     model = build_model(sec)
     t = np.array([2.0e-3, -1.0e-3])
     u = np.tile(t, model.ndofs // 2)                  # interleaved (u_r, u_z) per node
-    W = circle_centre_weights(np.array(g.points_rz_mm).T, (g.r_mm, g.z_mm))
+    W, _ = circle_centre_weights(np.array(g.points_rz_mm).T, (g.r_mm, g.z_mm))
     probe = model.probe_matrix(np.array(g.points_rz_mm).T)
     assert W @ (probe @ u) == pytest.approx(t, rel=1e-10)
 
@@ -114,8 +137,8 @@ def test_uniform_thermal_expansion_of_free_ring_moves_centre_by_alpha_dT_rc(ring
     f = model.unit_loads @ np.array([theta])
     u = solve(*condense(model.K, f, D=model.dirichlet))
     z_fixed = model.sbasis.doflocs[1, model.dirichlet[0] // 2]
-    W = circle_centre_weights(np.array(g.points_rz_mm).T, (g.r_mm, g.z_mm))
-    dc = W @ (model.probe_matrix(np.array(g.points_rz_mm).T) @ u)
+    W, w = circle_centre_weights(np.array(g.points_rz_mm).T, (g.r_mm, g.z_mm))
+    dc = W @ (model.probe_matrix(np.array(g.points_rz_mm).T) @ u) + theta * w
     assert dc[0] == pytest.approx(theta * g.r_mm, rel=1e-8)
     assert dc[1] == pytest.approx(theta * (g.z_mm - z_fixed), rel=1e-8)
 
@@ -188,8 +211,9 @@ def test_grooved_pipeline_superposed_equals_direct_and_fits_its_own_field():
         pts = np.array(g.points_rz_mm).T
         ur = basis.interpolator(f.u_mm[0::2])(pts)
         uz = basis.interpolator(f.u_mm[1::2])(pts)
-        W = circle_centre_weights(pts, (g.r_mm, g.z_mm))
-        centre.append(W @ np.column_stack([ur, uz]).ravel())
+        W, w = circle_centre_weights(pts, (g.r_mm, g.z_mm))
+        theta = f.theta[list(pl.part_names).index(ring)]
+        centre.append(W @ np.column_stack([ur, uz]).ravel() + theta * w)
     centre = np.array(centre)
     assert centre[0, 0] - centre[2, 0] == pytest.approx(sup.dr_mm[0, 1], rel=1e-9)
     assert centre[1, 1] - centre[3, 1] == pytest.approx(sup.dz_mm[1, 1], rel=1e-9)

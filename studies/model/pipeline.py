@@ -304,19 +304,20 @@ class Pipeline:
 
     def _centres(self, probe: np.ndarray, theta_rings: np.ndarray) -> np.ndarray:
         """(n, 4, 2) groove-centre displacements (mm) of RINGS from the probed displacements
-        (n, n_probe): grooved rings, the circle fitted to the displaced groove points
-        (`fem.post.circle_centre_weights`); rectangular rings, the raceway point's displacement
+        (n, n_probe): grooved rings, the circle of the ring's thermally grown groove radius
+        fitted to the displaced groove points (`fem.post.circle_centre_weights`); rectangular rings, the raceway point's displacement
         + the ring's thermal strain (n, 4) x the centre offset (`fem.post.groove_centre_shift`)."""
         n = probe.shape[0]
         centre = np.empty((n, 4, 2))
-        m = 0 if self.centre_weights is None else self.centre_weights[0].shape[1]
+        m = 0 if self.centre_weights is None else self.centre_weights[0][0].shape[1]
         for k in range(4):
             if self.centre_weights is None:
                 centre[:, k, :] = groove_centre_shift(probe[:, 2 * k:2 * k + 2], theta_rings[:, k],
                                                       self.centre_offset_mm[k])
             else:
                 cols = slice(8 + k * m, 8 + (k + 1) * m)
-                centre[:, k, :] = probe[:, cols] @ self.centre_weights[k].T
+                W, w_theta = self.centre_weights[k]
+                centre[:, k, :] = probe[:, cols] @ W.T + theta_rings[:, k, None] * w_theta
         return centre
 
     def fit_open_speed_rpm(self, inputs: PhysicsInputs) -> dict[str, np.ndarray]:

@@ -12,8 +12,8 @@ at that speed. The discretisation error of each mesh is measured the way `report
 `verify --assembly` measure it (`studies.runs.verify.mesh_convergence_case`: levels x2, x1, x0.5,
 Richardson value, at T_min_C and T_max_C with the default speed), so a difference can be read
 against it. Besides simulate's outputs, the preload change from T_ref_C (same speed) and, as a
-diagnostic, the grooved results with the groove radius held at its thermal growth in the circle
-fit (`radius_held`; docs/ring_sections.md explains why).
+diagnostic, the grooved results read with a free-radius circle fit (`radius_free`; the model
+holds the groove radius at its thermal growth, docs/ring_sections.md explains why).
 
 Run: `bearingfem study ring_sections --out DIR` or `python -m studies.runs.ring_section_compare
 --out DIR`. Writes `ring_sections.csv` (one row per assembly, condition and quantity: rectangle,
@@ -43,8 +43,8 @@ FE_FITS = ("fit_pressure_inner_A_MPa", "fit_pressure_inner_B_MPa",
 FE_SHIFTS = ("groove_shift_dr_A_um", "groove_shift_dz_A_um",
              "groove_shift_dr_B_um", "groove_shift_dz_B_um")
 BEARING = ("preload_N", "contact_angle_deg", "torque_Nmm")
-#: label of the grooved results with the groove radius held (`radius_held`)
-HELD = "(grooved, radius held)"
+#: label of the grooved results read with a free-radius circle fit (`radius_free`)
+FREE = "(grooved, radius fitted)"
 #: a difference is called resolved when it exceeds this multiple of the discretisation error
 RESOLVED_FACTOR = 2.0
 
@@ -82,12 +82,14 @@ def mesh_error(asm) -> dict:
             "dofs": int(case["levels"][case["used_level"]]["dofs"])}
 
 
-def _held_centres_mm(pl, inputs) -> tuple[np.ndarray, np.ndarray]:
+def _free_centres_mm(pl, inputs) -> tuple[np.ndarray, np.ndarray]:
     """(dr, dz) (2, n) in mm, inner minus outer per bearing like `FEState`, of the grooved
-    pipeline `pl`, the circle fitted with its radius held at the thermal growth theta_ring R."""
+    pipeline `pl` read with the free-radius circle fit (`fem.post.circle_centre_weights`,
+    free_radius=True) on each row's displacement field."""
+    from fem.post import circle_centre_weights
     from studies.model.pipeline import RINGS
 
-    basis, idx = pl.model.sbasis, {p: i for i, p in enumerate(pl.part_names)}
+    basis = pl.model.sbasis
     centre = np.empty((inputs.n_rows, 4, 2))
     for i in range(inputs.n_rows):
         f = pl.field(inputs, row=i)
@@ -95,30 +97,27 @@ def _held_centres_mm(pl, inputs) -> tuple[np.ndarray, np.ndarray]:
         for k, ring in enumerate(RINGS):
             g = pl.section.groove_of(ring)
             X = np.array(g.points_rz_mm).T
-            nrm = (X - np.array([[g.r_mm], [g.z_mm]])) / g.radius_mm
-            un = nrm[0] * ur_of(X) + nrm[1] * uz_of(X)
-            centre[i, k] = np.linalg.lstsq(nrm.T, un - f.theta[idx[ring]] * g.radius_mm,
-                                           rcond=None)[0]
+            W, _ = circle_centre_weights(X, (g.r_mm, g.z_mm), free_radius=True)
+            centre[i, k] = W @ np.column_stack([ur_of(X), uz_of(X)]).ravel()
     d = np.stack([centre[:, 0] - centre[:, 2], centre[:, 1] - centre[:, 3]])   # (2, n, 2)
     return d[..., 0], d[..., 1]
 
 
-def radius_held(asm, cond: dict) -> dict[str, np.ndarray]:
-    """simulate's outputs of a grooved assembly with the groove-centre shifts read with each
-    groove radius held at its thermal growth (dR = theta_ring R) instead of fitted: the same
-    least-squares circle as `fem.post.circle_centre_weights`, one unknown fewer, at the rows and
-    at their assembly states, then the same bearing model (`Pipeline.run_from_fe`). The
-    difference to `simulate` is the mechanical change of the groove radius that the free fit
-    turns into a centre shift (the bearing model receives the centre only). A diagnostic of
-    this study; the model is unchanged."""
+def radius_free(asm, cond: dict) -> dict[str, np.ndarray]:
+    """simulate's outputs of a grooved assembly with the groove-centre shifts read by the
+    free-radius circle fit (centre and radius fitted) instead of the model's fit with the
+    radius held at its thermal growth, at the rows and their assembly states, then the same
+    bearing model (`Pipeline.run_from_fe`). The difference to `simulate` is the elastic change
+    of the groove radius that a free fit turns into a centre shift (the bearing model receives
+    the centre only). A diagnostic of this study."""
     from studies.model.pipeline import Pipeline, table_inputs
 
     pl = Pipeline.shared(asm)
     inp = table_inputs(asm, cond)
     ref = pl.reference_inputs(inp)
     fe, fe_ref = pl.fe(inp), pl.fe(ref)
-    fe = fe.with_shifts(*_held_centres_mm(pl, inp))
-    fe_ref = fe_ref.with_shifts(*_held_centres_mm(pl, ref))
+    fe = fe.with_shifts(*_free_centres_mm(pl, inp))
+    fe_ref = fe_ref.with_shifts(*_free_centres_mm(pl, ref))
     return pl.run_from_fe(inp, fe, fe_ref)
 
 
@@ -144,8 +143,8 @@ def compare(name: str, asm, progress=print, errors: bool = True) -> tuple[list[d
         if errors:
             progress(f"{name}: {s} sections, mesh error (levels x2, x1, x0.5) ...")
             err[s] = mesh_error(a)
-    progress(f"{name}: grooved, shifts read with the groove radius held ...")
-    held = radius_held(with_section(asm, "grooved"), cond)
+    progress(f"{name}: grooved, shifts read with a free-radius circle fit ...")
+    free = radius_free(with_section(asm, "grooved"), cond)
     e_ref = max((e["error_max"] for e in err.values()), default=float("nan"))
     R, G = outs["rectangle"], outs["grooved"]
     T, v = cond["T_ambient_C"], cond["speed_rpm"]
@@ -153,14 +152,14 @@ def compare(name: str, asm, progress=print, errors: bool = True) -> tuple[list[d
     change = "preload change from T_ref_N"         # preload(T) - preload(T_ref), same speed
     R[change] = R["preload_N"] - R["preload_N"][ref]
     G[change] = G["preload_N"] - G["preload_N"][ref]
-    held[change] = held["preload_N"] - held["preload_N"][ref]
+    free[change] = free["preload_N"] - free["preload_N"][ref]
     rows = []
     for i in range(T.size):
         for q in (quantities(R) + [change]
-                  + [f"{q} {HELD}" for q in (*FE_SHIFTS, *BEARING, change)]):
-            base = q.replace(f" {HELD}", "")
+                  + [f"{q} {FREE}" for q in (*FE_SHIFTS, *BEARING, change)]):
+            base = q.replace(f" {FREE}", "")
             r = float(R[base][i])
-            g = float(held[base][i]) if base != q else float(G[q][i])
+            g = float(free[base][i]) if base != q else float(G[q][i])
             d = g - r
             scale = _error_scale(base, R, i)
             scale = None if scale is None else max(scale, _error_scale(base, G, i))
