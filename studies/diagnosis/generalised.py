@@ -115,22 +115,29 @@ class GeneralisedPhase:
         # give the extra parameter nothing to do, and a listed effect costs one local fit)
         runs = [t for t in scored if t[1] == 0] + [
             t for t in scored if t[1] != 0 and t[0] < f_listed.chi2][:N_RUNS - 1]
+        profiled = bool(form.profile and cand.profile_grid)
+
+        def local_fit(u):
+            """The local fit from start u (None: the profiled fit over the listed grid), or None
+            when the model fails."""
+            try:
+                if u is None:
+                    return self.fit_profiled(form, SimpleNamespace(profile_grid=cand.profile_grid),
+                                             b.fit, b.nuisance)
+                return self.fit(space, u)
+            except ModelFailure:
+                return None
+
+        # the local fits are independent: on the engine's workers (the profiled one first)
+        got = self.parallel(local_fit, [u for _, _, u in runs] + [None] * profiled,
+                            first=[len(runs)] if profiled else None)
         f_ext = None
-        for _, _, u in runs:
-            try:
-                fi = self.fit(space, u)
-            except ModelFailure:
-                continue
-            if f_ext is None or fi.chi2 < f_ext.chi2:
+        for fi in got[:len(runs)]:
+            if fi is not None and (f_ext is None or fi.chi2 < f_ext.chi2):
                 f_ext = fi
-        if form.profile and cand.profile_grid:
-            try:
-                fp = self.fit_profiled(form, SimpleNamespace(profile_grid=cand.profile_grid),
-                                       b.fit, b.nuisance)
-            except ModelFailure:
-                fp = None
-            if fp is not None and (f_ext is None or fp.chi2 < f_ext.chi2):
-                f_ext = fp
+        fp = got[-1] if profiled else None
+        if fp is not None and (f_ext is None or fp.chi2 < f_ext.chi2):
+            f_ext = fp
         if f_ext is None:
             raise ModelFailure("the fits of the generalised form fail from every start")
         eff_vals, nuis_vals = f_ext.space.unpack(f_ext.u)
