@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import multiprocessing
 import os
+import signal
 from typing import Callable, Sequence
 
 #: the job of the forked workers: (cached model, task, items), set just before the fork
@@ -36,6 +37,13 @@ def can_fork() -> bool:
     """Whether worker processes can be forked here (fork start method, not a daemonic process)."""
     return ("fork" in multiprocessing.get_all_start_methods()
             and not multiprocessing.current_process().daemon)
+
+
+def _worker_signals() -> None:
+    """A worker ends quietly when the parent ends the pool (the parent's SIGTERM handler, e.g.
+    the CLI's, is not inherited) and leaves Ctrl-C to the parent."""
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
 def _run(i: int):
@@ -65,10 +73,15 @@ def fork_map(model, task: Callable, items: Sequence, workers: int,
     global _JOB
     order = list(dict.fromkeys(list(first or ()) + list(range(len(items)))))
     _JOB = (model, task, items)
+    pool = multiprocessing.get_context("fork").Pool(n, initializer=_worker_signals)
     try:
-        with multiprocessing.get_context("fork").Pool(n) as pool:
-            got = dict(zip(order, pool.imap(_run, order, chunksize=1)))
+        got = dict(zip(order, pool.imap(_run, order, chunksize=1)))
+        pool.close()                        # every task done: the workers exit by themselves
+    except BaseException:
+        pool.terminate()
+        raise
     finally:
+        pool.join()
         _JOB = None
     results = []
     for i in range(len(items)):
