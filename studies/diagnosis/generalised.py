@@ -94,19 +94,24 @@ class GeneralisedPhase:
         start_vals = [form.from_listed(vals_listed)]
         start_vals += [{**start_vals[0], **x} for x in form.extra_starts(vals_listed, self.conditions)]
         Jn = f_listed.J[:, f_listed.space.k:]       # d z / d u_nuisance at the listed fit
-        scored = []
-        for i, v in enumerate(start_vals):
+
+        def score(iv):
+            """(chi-square with the nuisance refitted linearly, index, start) or None."""
+            i, v = iv
             x = np.array([v[p] for (_, p) in space.eff_params], float)
             u = space.clip(np.concatenate([(x - space.origin[:k]) / space.scale[:k], u_nuis]))
             try:
                 z, _ = self.eval(space, u)
             except ModelFailure:
-                continue
+                return None
             if nq:                                   # linearised nuisance refit for the score
                 dn, *_ = np.linalg.lstsq(Jn, -z, rcond=None)
                 u = space.clip(np.concatenate([u[:k], u[k:] + dn]))
                 z = z + Jn @ dn
-            scored.append((float(z @ z), i, u))
+            return float(z @ z), i, u
+
+        # one model call per start, independent: on the engine's workers
+        scored = [t for t in self.parallel(score, list(enumerate(start_vals))) if t is not None]
         if not scored:
             raise ModelFailure("the model fails at every start of the generalised form")
         scored.sort(key=lambda t: t[:2])

@@ -116,11 +116,11 @@ class HeldoutPhase:
         chi-square), then a real model call."""
         z_ho = np.empty(self.N)
         sp = fit.space
-        for b in range(self.n_blocks):
+
+        def fold(b):
+            """The held-out block's residuals (its model call from the training-rows step)."""
             te = self.entry_block == b
             tr = ~te
-            if not te.any():
-                continue
             J, z = fit.J[tr], fit.z[tr]
             if J.shape[1]:
                 lo = np.minimum(sp.lo - fit.u, 0.0)
@@ -138,7 +138,12 @@ class HeldoutPhase:
                     break
             else:
                 zz = fit.z             # keep the full-data fit (no better training fit found)
-            z_ho[te] = zz[te]
+            return zz[te]
+
+        # the folds are independent: on the engine's workers (inside a worker: one by one)
+        blocks = [b for b in range(self.n_blocks) if (self.entry_block == b).any()]
+        for b, z_te in zip(blocks, self.parallel(fold, blocks)):
+            z_ho[self.entry_block == b] = z_te
         return z_ho
 
 
