@@ -105,8 +105,8 @@ def candidate_effects(asm) -> list:
 def diagnose_files(assembly_path: Path, measured_path: Path, out_dir: Path, progress=print,
                    pipeline: Pipeline | None = None, workers: int | None = None) -> dict:
     """`bearingfem diagnose`: diagnosis.json and the report in `out_dir`. workers: processes
-    for the candidates' work (`diagnose_full`; default every CPU this process may use, at most
-    the candidates' number matters); the result does not depend on it."""
+    for the candidates' work (`diagnose_full`) and the report's plots (default every CPU this
+    process may use); the result does not depend on it."""
     asm = load_assembly(assembly_path)
     read_measured(measured_path, OUTPUT_NAMES)           # fail fast, before the FE is built
     pl = pipeline or Pipeline.shared(asm, progress=progress)
@@ -115,14 +115,15 @@ def diagnose_files(assembly_path: Path, measured_path: Path, out_dir: Path, prog
     candidates = candidate_effects(asm)
     progress(f"diagnosing {len(next(iter(measured.values())))} rows, columns "
              f"{', '.join(measured)}, {len(candidates)} candidate effects ...")
+    workers = available_workers() if workers is None else workers
     outcome = diagnose_full(predict, measured, conditions, candidates, NUISANCE,
-                            T_ref_C=asm.T_ref_C, predict_at=predict.at,
-                            workers=available_workers() if workers is None else workers)
+                            T_ref_C=asm.T_ref_C, predict_at=predict.at, workers=workers)
     result = outcome.result
     result.setdefault("nuisance_calibration", "mu_scale: scale on the friction coefficient (0.3..3)")
     result["model_calls"] = result["n_predict_calls"]      # the workers' calls included
     (out_dir / "diagnosis.json").write_text(json.dumps(result, indent=2, default=_json_default))
-    write_report(result, conditions, measured, outcome.baseline_pred, outcome.extended_pred, out_dir)
+    write_report(result, conditions, measured, outcome.baseline_pred, outcome.extended_pred, out_dir,
+                 workers=workers)
     return result
 
 

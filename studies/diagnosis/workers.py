@@ -50,11 +50,16 @@ def _run(i: int):
     """One task in a worker: (("ok", value) or ("err", exception), model calls, model seconds,
     new model-cache entries)."""
     model, task, items = _JOB
-    calls0, sec0, known = model.calls, model.seconds, set(model.cache)
+    if model is None:
+        calls0, sec0, known = 0, 0.0, set()
+    else:
+        calls0, sec0, known = model.calls, model.seconds, set(model.cache)
     try:
         out = ("ok", task(items[i]))
     except Exception as exc:                # re-raised in the parent, in the items' order
         out = ("err", exc)
+    if model is None:
+        return out, 0, 0.0, []
     new = [(k, v) for k, v in model.cache.items() if k not in known]
     return out, model.calls - calls0, model.seconds - sec0, new
 
@@ -63,7 +68,7 @@ def fork_map(model, task: Callable, items: Sequence, workers: int,
              first: Sequence[int] | None = None) -> list:
     """[task(item) for item in items], on up to `workers` forked processes when `workers` > 1,
     there are at least two items and `can_fork()`; else serially here. `model`: the engine's
-    `CachedModel` (its counters and cache are updated with the workers' calls). `first`: indices
+    `CachedModel` (its counters and cache are updated with the workers' calls), or None. `first`: indices
     of items to start first (the longest tasks: better balance; results keep the items' order).
     An exception of a task is raised here, the first in the items' order."""
     items = list(items)
@@ -86,10 +91,11 @@ def fork_map(model, task: Callable, items: Sequence, workers: int,
     results = []
     for i in range(len(items)):
         (kind, value), calls, seconds, new = got[i]
-        model.calls += calls
-        model.seconds += seconds
-        for k, v in new:
-            model.remember(k, v)
+        if model is not None:
+            model.calls += calls
+            model.seconds += seconds
+            for k, v in new:
+                model.remember(k, v)
         if kind == "err":
             raise value
         results.append(value)
