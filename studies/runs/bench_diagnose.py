@@ -58,6 +58,7 @@ def main(argv=None) -> None:
                                          diagnose_files)
     from studies.diagnosis.engine import diagnose_full
     from studies.diagnosis.workers import available_workers
+    from studies.runs.bench_clock import Clock
     from studies.model.pipeline import Pipeline
     from studies.model.table import write_table
 
@@ -80,7 +81,7 @@ def main(argv=None) -> None:
         print(f"diagnose benchmark: seed000, {n_rows} rows (cycles -60..80 C), columns "
               f"{', '.join(SIGMA)}, {len(cands)} candidates, mesh factor {args.mesh_factor:g} "
               f"({pl.ndofs} DOF), OPENBLAS_NUM_THREADS={os.environ.get('OPENBLAS_NUM_THREADS')}, "
-              f"{os.cpu_count()} CPUs, {workers} worker process(es), load {_load()}")
+              f"{os.cpu_count()} CPUs, {workers} worker process(es), load {os.getloadavg()[0]:.1f}")
         print(f"{'dataset':<42} {'verdict':<15} {'cause':<18} {'engine s':>8} {'CPU s':>6} "
               f"{'calls':>6} {'model s':>8} {'CLI s':>6} {'CPU s':>6}  form")
         rng = np.random.default_rng(0)
@@ -88,42 +89,26 @@ def main(argv=None) -> None:
             truth = ModelPredictor(pl, cond, tuple(SIGMA))(effects, {"mu_scale": MU_TRUE})
             meas = {c: truth[c] + rng.normal(0.0, s, truth[c].size) for c, s in SIGMA.items()}
             pred = ModelPredictor(pl, cond, tuple(SIGMA))
-            t0, c0 = time.perf_counter(), _cpu()
-            out = diagnose_full(pred, meas, cond, cands, NUISANCE, T_ref_C=asm.T_ref_C,
-                                predict_at=pred.at, workers=workers)
-            t_engine, c_engine = time.perf_counter() - t0, _cpu() - c0
+            with Clock() as engine:
+                out = diagnose_full(pred, meas, cond, cands, NUISANCE, T_ref_C=asm.T_ref_C,
+                                    predict_at=pred.at, workers=workers)
             r = out.result
             with tempfile.TemporaryDirectory() as tmp:
                 csv = Path(tmp) / "measured.csv"
                 write_table(csv, {**cond, **meas})
-                t0, c0 = time.perf_counter(), _cpu()
-                diagnose_files(CONFIG_DIR / SHIPPED["seed000"], csv, Path(tmp),
-                               progress=lambda s: None, pipeline=pl, workers=workers)
-                t_cli, c_cli = time.perf_counter() - t0, _cpu() - c0
+                with Clock() as cli:
+                    diagnose_files(CONFIG_DIR / SHIPPED["seed000"], csv, Path(tmp),
+                                   progress=lambda s: None, pipeline=pl, workers=workers)
             form = (r.get("extended_form") or {}).get("name", "-")
-            print(f"{label:<42} {r['verdict']:<15} {str(r['cause']):<18} {t_engine:8.2f} "
-                  f"{c_engine:6.2f} {r['n_predict_calls']:6d} {r['seconds']['predict']:8.2f} "
-                  f"{t_cli:6.2f} {c_cli:6.2f}  {form}")
+            print(f"{label:<42} {r['verdict']:<15} {str(r['cause']):<18} {engine.wall_s:8.2f} "
+                  f"{engine.cpu_s:6.2f} {r['n_predict_calls']:6d} {r['seconds']['predict']:8.2f} "
+                  f"{cli.wall_s:6.2f} {cli.cpu_s:6.2f}  {form}  (load {cli.load_after:.1f})")
             print(f"    model calls by phase: {r['predict_calls_by_phase']}")
             # with workers the model seconds are summed over the processes (may exceed the wall)
             print("    wall seconds by phase (model seconds, summed over the workers): " + ", ".join(
                 f"{k} {v['total']:.2f} ({v['predict']:.2f})"
                 for k, v in r["seconds_by_phase"].items() if v["total"] >= 0.005)
                 + f"; total {r['seconds']['total']:.2f} s ({r['seconds']['predict']:.2f} s)")
-
-
-def _cpu() -> float:
-    """CPU seconds of this process and of its finished child processes (the workers)."""
-    t = os.times()
-    return t.user + t.system + t.children_user + t.children_system
-
-
-def _load() -> str:
-    """The 1-minute load average (the machine may be shared), or '?'."""
-    try:
-        return f"{os.getloadavg()[0]:.1f}"
-    except OSError:
-        return "?"
 
 
 if __name__ == "__main__":
