@@ -446,11 +446,11 @@ class Pipeline:
         fe = self.fe(inputs, direct, remember)
         fe_ref = self.fe(self.reference_inputs(inputs), direct, remember)
         return self.run_from_fe(inputs, fe, fe_ref, compliance_mm_per_N, viscous_factor_f0,
-                                return_pair, first_row)
+                                return_pair, first_row, remember=remember)
 
     def run_from_fe(self, inputs: PhysicsInputs, fe: FEState, fe_ref: FEState,
                     compliance_mm_per_N=None, viscous_factor_f0=None,
-                    return_pair: bool = False, first_row: int = 0):
+                    return_pair: bool = False, first_row: int = 0, *, remember: bool = True):
         """Bearing pair, torque and checks from given FE states (the rows' and their assembly
         states). Studies use it to switch parts of the FE answer off (e.g. only the radial
         groove-centre shifts) or to feed a non-uniform temperature field (`fe_field`).
@@ -461,7 +461,9 @@ class Pipeline:
         (compliances of springs in series add). viscous_factor_f0: Palmgren's f0 in
         place of the assembly's (oil lubrication; scalar or one per row). With `return_pair`, also the raw
         pair state (`analytic.bearing.PairState`: contact ellipses for heat models). first_row:
-        the 0-based row of the whole table the inputs start at (rows named in errors)."""
+        the 0-based row of the whole table the inputs start at (rows named in errors).
+        remember: keep the pair equilibrium for the next call with the same inputs (a table
+        streamed in chunks does not)."""
         a = self.asm
         preload = np.maximum(np.asarray(inputs.preload_assembled_N, float)
                              - np.asarray(inputs.preload_loss_N, float), 0.0)
@@ -484,7 +486,8 @@ class Pipeline:
             pair = self._pair_memo.get(key)
             if pair is None:
                 pair = solve_pair(self.geom, a.arrangement, **args)
-                self._pair_memo.put(key, pair, inputs.n_rows)
+                if remember:
+                    self._pair_memo.put(key, pair, inputs.n_rows)
             mu = resolve_friction_coefficient(inputs, a.lubrication.friction_coefficient)
             torque = self.torque(pair, inputs, mu, viscous_factor_f0)
         names = list(self.setup.fit_names)
