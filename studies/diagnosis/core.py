@@ -89,10 +89,15 @@ class CachedModel:
             a = np.asarray(v, dtype=float) if not isinstance(v, str) else None
             if a is not None and a.ndim == 1 and a.size == self.n:
                 out[k] = a
+        self.remember(key, out)
+        return out
+
+    def remember(self, key, out: dict) -> None:
+        """Keep a result (the newest; the least recently used goes beyond `maxsize`)."""
         self.cache[key] = out
+        self.cache.move_to_end(key)
         if len(self.cache) > self.maxsize:
             self.cache.popitem(last=False)
-        return out
 
 
 @dataclass

@@ -72,6 +72,7 @@ from studies.diagnosis.openworld import characterise
 from studies.diagnosis.screening import ScreeningPhase
 from studies.diagnosis.stats import (ar1_regression_ml, ar1_unwhiten, ar1_whiten, auto_blocks,
                                      noise_sigma, noise_sigma_steady, orth)
+from studies.diagnosis.workers import fork_map
 
 
 #: relative noise floor: a CSV keeps 10 significant digits (half a unit in the last is 5e-10 of the
@@ -562,6 +563,11 @@ class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase, General
     def effect(self, name):
         return next(e for e in self.candidates if e.name == name)
 
+    def parallel(self, task, items, first=None) -> list:
+        """[task(item) for item in items] on the engine's `workers` processes
+        (`studies.diagnosis.workers.fork_map`: the same results as serially)."""
+        return fork_map(self.model, task, items, getattr(self, "workers", 1), first)
+
 
 
 def _phase_seconds(cum: dict) -> dict:
@@ -589,7 +595,7 @@ def diagnose_full(predict: Callable[[dict, dict], Mapping[str, np.ndarray]],
                   noise_sigma: Mapping[str, float] | None = None, T_ref_C: float = 20.0,
                   predict_at: Callable | None = None, thresholds: Mapping | None = None,
                   seed: int = 0, columns: Sequence[str] | None = None,
-                  generalised: bool = True) -> DiagnosisOutcome:
+                  generalised: bool = True, workers: int = 1) -> DiagnosisOutcome:
     """Run the diagnosis (see the module docstring) and return the result with predictions.
 
     predict(effects, nuisance) -> {column: array(n_rows)} on the measured conditions.
@@ -604,12 +610,16 @@ def diagnose_full(predict: Callable[[dict, dict], Mapping[str, np.ndarray]],
         find the separating test).
     generalised: try the generalised forms of the listed effects when the verdict would be
         `unexplained` (`studies.diagnosis.generalised`).
+    workers: processes for the independent candidate work (fits, held-out refits, the local
+        fits of a generalised form; `studies.diagnosis.workers`): the result does not depend on
+        it, only the wall time (1: all in this process).
     """
     th = dict(DEFAULT_THRESHOLDS)
     th.update(thresholds or {})
     eng = _Engine(predict, measured, conditions, candidates, nuisance, blocks, noise_sigma,
                   T_ref_C, predict_at, th, seed, columns)
     eng.try_generalised = bool(generalised)
+    eng.workers = int(workers)
     result = eng.run()
     return DiagnosisOutcome(result, eng.base_fit.pred, eng.ext_fit.pred,
                             {n: f.pred for n, f in eng.fits.items()})

@@ -16,6 +16,7 @@ import numpy as np
 from studies.model.config import load_assembly
 from studies.diagnosis.engine import diagnose_full
 from studies.diagnosis.report import write_report
+from studies.diagnosis.workers import available_workers
 from studies.model.effects import (EFFECTS, ORDER, apply_effects, assembly_bounds,
                                    resolve_friction_coefficient)
 from studies.model.inputs import CONDITION_COLUMNS, baseline_inputs
@@ -104,7 +105,10 @@ def candidate_effects(asm) -> list:
 
 
 def diagnose_files(assembly_path: Path, measured_path: Path, out_dir: Path, progress=print,
-                   pipeline: Pipeline | None = None) -> dict:
+                   pipeline: Pipeline | None = None, workers: int | None = None) -> dict:
+    """`bearingfem diagnose`: diagnosis.json and the report in `out_dir`. workers: processes
+    for the candidates' work (`diagnose_full`) and the report's plots (default every CPU this
+    process may use); the result does not depend on it."""
     asm = load_assembly(assembly_path)
     read_measured(measured_path, OUTPUT_NAMES)           # fail fast, before the FE is built
     pl = pipeline or Pipeline.shared(asm, progress=progress)
@@ -113,13 +117,15 @@ def diagnose_files(assembly_path: Path, measured_path: Path, out_dir: Path, prog
     candidates = candidate_effects(asm)
     progress(f"diagnosing {len(next(iter(measured.values())))} rows, columns "
              f"{', '.join(measured)}, {len(candidates)} candidate effects ...")
+    workers = available_workers() if workers is None else workers
     outcome = diagnose_full(predict, measured, conditions, candidates, NUISANCE,
-                            T_ref_C=asm.T_ref_C, predict_at=predict.at)
+                            T_ref_C=asm.T_ref_C, predict_at=predict.at, workers=workers)
     result = outcome.result
     result.setdefault("nuisance_calibration", "mu_scale: scale on the friction coefficient (0.3..3)")
-    result["model_calls"] = predict.calls
+    result["model_calls"] = result["n_predict_calls"]      # the workers' calls included
     (out_dir / "diagnosis.json").write_text(json.dumps(result, indent=2, default=_json_default))
-    write_report(result, conditions, measured, outcome.baseline_pred, outcome.extended_pred, out_dir)
+    write_report(result, conditions, measured, outcome.baseline_pred, outcome.extended_pred, out_dir,
+                 workers=workers)
     return result
 
 

@@ -19,21 +19,32 @@ class FittingPhase:
         base, base_nuis, cands, names_id = b.fit, b.nuisance, s.candidates, s.identifiable
         lnN = math.log(self.N)
         fits: dict[str, Fit] = {}
-        for name in list(names_id):
-            e = self.effect(name)
-            info = cands[name]
+
+        def fit_one(name):
+            """(fit or None, profile summary, failure message or None, model calls)."""
+            e, info = self.effect(name), cands[name]
             calls0 = self.model.calls
             try:
-                if e.profile:
-                    fits[name] = self.fit_profiled(e, info, base, base_nuis)
-                else:
-                    fits[name] = self.fit_candidate(e, info, base)
+                f = (self.fit_profiled(e, info, base, base_nuis) if e.profile
+                     else self.fit_candidate(e, info, base))
             except ModelFailure as exc:
-                info.set_status("model_failed", f"fit failed: {exc}")
+                return None, None, str(exc), self.model.calls - calls0
+            return f, info.profile, None, self.model.calls - calls0
+
+        # the candidates' fits are independent: on the engine's workers (profiled first: longest)
+        names = list(names_id)
+        done = self.parallel(fit_one, names,
+                             first=[i for i, n in enumerate(names) if self.effect(n).profile])
+        for name, (f, profile, failed, calls) in zip(names, done):
+            e = self.effect(name)
+            info = cands[name]
+            if failed is not None:
+                info.set_status("model_failed", f"fit failed: {failed}")
                 names_id.remove(name)
                 continue
-            f = fits[name]
-            info.predict_calls_fit = self.model.calls - calls0
+            fits[name] = f
+            info.profile = profile
+            info.predict_calls_fit = calls
             lr = max(base.chi2 - f.chi2, 0.0)
             r = info.rank
             n_two = sum(1 for p in self.free_params(e) if e.sign(p) == 0)

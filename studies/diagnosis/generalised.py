@@ -94,19 +94,24 @@ class GeneralisedPhase:
         start_vals = [form.from_listed(vals_listed)]
         start_vals += [{**start_vals[0], **x} for x in form.extra_starts(vals_listed, self.conditions)]
         Jn = f_listed.J[:, f_listed.space.k:]       # d z / d u_nuisance at the listed fit
-        scored = []
-        for i, v in enumerate(start_vals):
+
+        def score(iv):
+            """(chi-square with the nuisance refitted linearly, index, start) or None."""
+            i, v = iv
             x = np.array([v[p] for (_, p) in space.eff_params], float)
             u = space.clip(np.concatenate([(x - space.origin[:k]) / space.scale[:k], u_nuis]))
             try:
                 z, _ = self.eval(space, u)
             except ModelFailure:
-                continue
+                return None
             if nq:                                   # linearised nuisance refit for the score
                 dn, *_ = np.linalg.lstsq(Jn, -z, rcond=None)
                 u = space.clip(np.concatenate([u[:k], u[k:] + dn]))
                 z = z + Jn @ dn
-            scored.append((float(z @ z), i, u))
+            return float(z @ z), i, u
+
+        # one model call per start, independent: on the engine's workers
+        scored = [t for t in self.parallel(score, list(enumerate(start_vals))) if t is not None]
         if not scored:
             raise ModelFailure("the model fails at every start of the generalised form")
         scored.sort(key=lambda t: t[:2])
@@ -115,22 +120,29 @@ class GeneralisedPhase:
         # give the extra parameter nothing to do, and a listed effect costs one local fit)
         runs = [t for t in scored if t[1] == 0] + [
             t for t in scored if t[1] != 0 and t[0] < f_listed.chi2][:N_RUNS - 1]
+        profiled = bool(form.profile and cand.profile_grid)
+
+        def local_fit(u):
+            """The local fit from start u (None: the profiled fit over the listed grid), or None
+            when the model fails."""
+            try:
+                if u is None:
+                    return self.fit_profiled(form, SimpleNamespace(profile_grid=cand.profile_grid),
+                                             b.fit, b.nuisance)
+                return self.fit(space, u)
+            except ModelFailure:
+                return None
+
+        # the local fits are independent: on the engine's workers (the profiled one first)
+        got = self.parallel(local_fit, [u for _, _, u in runs] + [None] * profiled,
+                            first=[len(runs)] if profiled else None)
         f_ext = None
-        for _, _, u in runs:
-            try:
-                fi = self.fit(space, u)
-            except ModelFailure:
-                continue
-            if f_ext is None or fi.chi2 < f_ext.chi2:
+        for fi in got[:len(runs)]:
+            if fi is not None and (f_ext is None or fi.chi2 < f_ext.chi2):
                 f_ext = fi
-        if form.profile and cand.profile_grid:
-            try:
-                fp = self.fit_profiled(form, SimpleNamespace(profile_grid=cand.profile_grid),
-                                       b.fit, b.nuisance)
-            except ModelFailure:
-                fp = None
-            if fp is not None and (f_ext is None or fp.chi2 < f_ext.chi2):
-                f_ext = fp
+        fp = got[-1] if profiled else None
+        if fp is not None and (f_ext is None or fp.chi2 < f_ext.chi2):
+            f_ext = fp
         if f_ext is None:
             raise ModelFailure("the fits of the generalised form fail from every start")
         eff_vals, nuis_vals = f_ext.space.unpack(f_ext.u)

@@ -52,22 +52,36 @@ class HeldoutPhase:
         th = self.th
         base_ho, cands, names_id = b.heldout_z, s.candidates, s.identifiable
         ho = {}
-        for name in list(names_id):
+
+        def refit(name):
+            """(held-out residuals, chosen profiled values or None, untestable blocks, failure
+            message or None): the model calls of one candidate, no random numbers."""
             e = self.effect(name)
-            untestable = {}
             try:
                 if e.profile:
-                    ho[name], chosen, untestable = self.heldout_profile(fits[name], e, base_ho)
+                    return (*self.heldout_profile(fits[name], e, base_ho), None)
+                return self.heldout_linear(fits[name]), None, {}, None
+            except ModelFailure as exc:
+                return None, None, {}, str(exc)
+
+        # the candidates' refits are independent: on the engine's workers; the bootstraps below
+        # draw from the engine's random numbers in the candidates' order
+        names = list(names_id)
+        done = self.parallel(refit, names,
+                             first=[i for i, n in enumerate(names) if self.effect(n).profile])
+        for name, (z_ho, chosen, untestable, failed) in zip(names, done):
+            e = self.effect(name)
+            if failed is not None:
+                # no honest held-out number: the candidate cannot pass
+                cands[name].heldout_failed = failed
+                ho[name] = base_ho.copy()
+            else:
+                ho[name] = z_ho
+                if e.profile:
                     cands[name].heldout_profile_values = chosen
                     cands[name].heldout_untestable = [
                         {"block": int(bk) + 1, "rows": self._block_rows(bk), "reason": why}
                         for bk, why in sorted(untestable.items())]
-                else:
-                    ho[name] = self.heldout_linear(fits[name])
-            except ModelFailure as exc:
-                # no honest held-out number: the candidate cannot pass
-                cands[name].heldout_failed = str(exc)
-                ho[name] = base_ho.copy()
             cands[name].heldout_rmse = self.col_rmse(ho[name])
             keep = np.ones(self.n_blocks, bool)
             keep[list(untestable)] = False
@@ -102,11 +116,11 @@ class HeldoutPhase:
         chi-square), then a real model call."""
         z_ho = np.empty(self.N)
         sp = fit.space
-        for b in range(self.n_blocks):
+
+        def fold(b):
+            """The held-out block's residuals (its model call from the training-rows step)."""
             te = self.entry_block == b
             tr = ~te
-            if not te.any():
-                continue
             J, z = fit.J[tr], fit.z[tr]
             if J.shape[1]:
                 lo = np.minimum(sp.lo - fit.u, 0.0)
@@ -124,7 +138,12 @@ class HeldoutPhase:
                     break
             else:
                 zz = fit.z             # keep the full-data fit (no better training fit found)
-            z_ho[te] = zz[te]
+            return zz[te]
+
+        # the folds are independent: on the engine's workers (inside a worker: one by one)
+        blocks = [b for b in range(self.n_blocks) if (self.entry_block == b).any()]
+        for b, z_te in zip(blocks, self.parallel(fold, blocks)):
+            z_ho[self.entry_block == b] = z_te
         return z_ho
 
 

@@ -16,6 +16,7 @@
 """
 from __future__ import annotations
 
+from functools import partial
 from pathlib import Path
 from typing import Mapping
 
@@ -24,6 +25,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
 from studies.diagnosis.openworld import report_lines
+from studies.diagnosis.workers import fork_map
 
 MAX_PANELS = 6
 
@@ -155,24 +157,26 @@ def _plot_candidates(result, out: Path):
 
 def write_report(result: dict, conditions: Mapping[str, np.ndarray],
                  measured: Mapping[str, np.ndarray], baseline_pred: Mapping[str, np.ndarray],
-                 extended_pred: Mapping[str, np.ndarray], out_dir) -> Path:
-    """Write report.md and the PNG plots into out_dir; return the path of report.md."""
+                 extended_pred: Mapping[str, np.ndarray], out_dir, workers: int = 1) -> Path:
+    """Write report.md and the PNG plots into out_dir; return the path of report.md. workers:
+    processes drawing the plots (`studies.diagnosis.workers.fork_map`; the files are the same)."""
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     cols = list(result["columns"])
     n = int(result.get("n_rows", len(next(iter(measured.values())))))
     cause = result["cause"]
-    figs = []
+    figs, plots = [], []
     for c in cols:
         m = np.asarray(measured[c], float)
         b = np.asarray(baseline_pred[c], float)
         e = np.asarray(extended_pred[c], float)
         safe = c.replace("/", "_")
-        _plot_fits(c, conditions, m, b, e, cause, out / f"fit_{safe}.png", n)
-        _plot_residuals(c, conditions, m, b, e, cause, result["noise_sigma"].get(c),
-                        out / f"residuals_{safe}.png", n)
+        plots.append(partial(_plot_fits, c, conditions, m, b, e, cause, out / f"fit_{safe}.png", n))
+        plots.append(partial(_plot_residuals, c, conditions, m, b, e, cause,
+                             result["noise_sigma"].get(c), out / f"residuals_{safe}.png", n))
         figs.append((c, f"fit_{safe}.png", f"residuals_{safe}.png"))
-    has_cand_plot = _plot_candidates(result, out / "candidates.png")
+    plots.append(partial(_plot_candidates, result, out / "candidates.png"))
+    has_cand_plot = fork_map(None, lambda plot: plot(), plots, workers)[-1]
 
     L: list[str] = []
     w = L.append

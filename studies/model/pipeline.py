@@ -36,6 +36,7 @@ from studies.model.stack import ROTOR_PARTS, section_from_assembly, stack_positi
 from studies.model.config import Assembly
 from studies.model.effects import resolve_friction_coefficient, resolve_interference_um
 from studies.model.inputs import NO_CTE_SLOPE, PhysicsInputs
+from studies.model.memo import Memo, inputs_key
 
 #: which temperature of `PhysicsInputs.T_C` each FE part takes
 FE_PART_GROUP = {"shaft": "shaft", "nut": "shaft", "inner_ring_A": "inner_ring",
@@ -171,6 +172,7 @@ class Pipeline:
         self.bearing_span_mm = 0.5 * (sum(z["inner_ring_B"]) - sum(z["inner_ring_A"]))
         self._centre_offsets(pts[:, :4])
         self._fe_cache: dict[bytes, FEState] = {}
+        self._pair_memo = Memo()        # pair equilibria by their exact inputs (run_from_fe)
         self.lubricant = get_lubricant(asm.lubrication.lubricant) if asm.lubrication.kind == "oil" else None
         self.compliance_mm_per_N = self.setup.compliance_mm_per_N if plan is not None else 0.0
 
@@ -446,12 +448,12 @@ class Pipeline:
         fe = self.fe(inputs, direct, remember)
         fe_ref = self.fe(self.reference_inputs(inputs), direct, remember)
         return self.run_from_fe(inputs, fe, fe_ref, compliance_mm_per_N, viscous_factor_f0,
-                                return_pair, first_row, ball_model)
+                                return_pair, first_row, ball_model, remember=remember)
 
     def run_from_fe(self, inputs: PhysicsInputs, fe: FEState, fe_ref: FEState,
                     compliance_mm_per_N=None, viscous_factor_f0=None,
                     return_pair: bool = False, first_row: int = 0,
-                    ball_model: str | None = None):
+                    ball_model: str | None = None, *, remember: bool = True):
         """Bearing pair, torque and checks from given FE states (the rows' and their assembly
         states). Studies use it to switch parts of the FE answer off (e.g. only the radial
         groove-centre shifts) or to feed a non-uniform temperature field (`fe_field`).
@@ -464,28 +466,36 @@ class Pipeline:
         pair state (`analytic.bearing.PairState`: contact ellipses for heat models). first_row:
         the 0-based row of the whole table the inputs start at (rows named in errors).
         ball_model: "static" or "quasi_dynamic" in place of the assembly's `[operating]
-        ball_model` (the report sets both side by side; the FE does not depend on it)."""
+        ball_model` (the report sets both side by side; the FE does not depend on it).
+        remember: keep the pair equilibrium for the next call with the same inputs (a table
+        streamed in chunks does not)."""
         a = self.asm
         ball_model = a.operating.ball_model if ball_model is None else ball_model
         preload = np.maximum(np.asarray(inputs.preload_assembled_N, float)
                              - np.asarray(inputs.preload_loss_N, float), 0.0)
         with np.errstate(all="ignore"):     # a row without an answer is reported below, by name
-            pair = solve_pair(self.geom, a.arrangement, dr_mm=fe.dr_mm, dz_mm=fe.dz_mm,
-                              T_inner_ring_C=inputs.T_C["inner_ring"],
-                              T_outer_ring_C=inputs.T_C["outer_ring"], T_ball_C=inputs.T_C["ball"],
-                              T_ref_C=a.T_ref_C, preload_kind=a.preload.kind,
-                              preload_assembled_N=preload, axial_load_N=inputs.axial_load_N,
-                              radial_load_N=_zeros_if_none(inputs.radial_load_N),
-                              moment_Nmm=_zeros_if_none(inputs.moment_Nmm),
-                              bearing_span_mm=self.bearing_span_mm,
-                              speed_rpm=np.asarray(inputs.speed_rpm, float),
-                              ball_model=ball_model,
-                              control=a.operating.raceway_control,
-                              dr_ref_mm=fe_ref.dr_mm, dz_ref_mm=fe_ref.dz_mm,
-                              compliance_mm_per_N=(self.compliance_mm_per_N
-                                                   if compliance_mm_per_N is None
-                                                   else compliance_mm_per_N)
-                              + inputs.extra_compliance_mm_per_N)
+            # friction-only changes (a diagnosis's friction scale) leave the equilibrium alone:
+            # the last few are reused by their exact inputs (`studies.model.memo`)
+            args = dict(dr_mm=fe.dr_mm, dz_mm=fe.dz_mm, T_inner_ring_C=inputs.T_C["inner_ring"],
+                        T_outer_ring_C=inputs.T_C["outer_ring"], T_ball_C=inputs.T_C["ball"],
+                        T_ref_C=a.T_ref_C, preload_kind=a.preload.kind,
+                        preload_assembled_N=preload, axial_load_N=inputs.axial_load_N,
+                        radial_load_N=_zeros_if_none(inputs.radial_load_N),
+                        moment_Nmm=_zeros_if_none(inputs.moment_Nmm),
+                        bearing_span_mm=self.bearing_span_mm,
+                        speed_rpm=np.asarray(inputs.speed_rpm, float), ball_model=ball_model,
+                        control=a.operating.raceway_control,
+                        dr_ref_mm=fe_ref.dr_mm, dz_ref_mm=fe_ref.dz_mm,
+                        compliance_mm_per_N=(self.compliance_mm_per_N
+                                             if compliance_mm_per_N is None
+                                             else compliance_mm_per_N)
+                        + inputs.extra_compliance_mm_per_N)
+            key = inputs_key(args)
+            pair = self._pair_memo.get(key)
+            if pair is None:
+                pair = solve_pair(self.geom, a.arrangement, **args)
+                if remember:
+                    self._pair_memo.put(key, pair, inputs.n_rows)
             mu = resolve_friction_coefficient(inputs, a.lubrication.friction_coefficient)
             torque = self.torque(pair, inputs, mu, viscous_factor_f0)
         names = list(self.setup.fit_names)

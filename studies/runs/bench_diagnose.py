@@ -2,9 +2,9 @@
 every candidate effect diagnosed in under 10 s on 2 cores). Prints, never asserts.
 
 Run: `bearingfem bench --diagnose` or `.venv/bin/python -m studies.runs.bench_diagnose` (add
-`--mesh-factor 2` for the coarser mesh of the tests, `--rows 240 500` for several sizes). Per dataset
-it also prints the model calls and the seconds of each phase, split into model calls and the
-engine's own work.
+`--mesh-factor 2` for the coarser mesh of the tests, `--rows 240 500` for several sizes,
+`--workers 1` for one process). Per dataset it also prints the model calls and the wall seconds of
+each phase with the seconds spent in model calls (summed over the worker processes).
 
 Dataset: seed 000 (the shipped `seed000_71807C_TC4.toml`, full mesh as the CLI builds it),
 alternating -60 <-> 80 C cycles from 20 C (2 K/min ramps, one-hour dwells) sampled every 60 s,
@@ -14,10 +14,12 @@ preload settling (5 N beyond 50 K) and a solid-film run-in (-0.004 over 10 krev)
 engine's work depends on how many candidates pass, and two generalised forms (per-part lag
 300 s / 360 s, settling creeping 3 N/h), where the engine also fits the generalised forms of the
 family (`studies.diagnosis.generalised`); the column `form` gives the extended form reported.
-The candidates are the CLI's (`files.candidate_effects`).
+The candidates are the CLI's (`files.candidate_effects`), and so are the worker processes
+(`--workers`, default every CPU the process may use, `studies.diagnosis.workers`).
 Times: the FE set-up (mesh from the cache, unit solutions) once; per dataset the engine alone
 (`diagnose_full`, what the goal is about) and the whole `diagnose_files` (reading the CSV, the
-engine, JSON and the report with its plots), with the set-up pipeline passed in.
+engine, JSON and the report with its plots), with the set-up pipeline passed in; wall seconds
+and CPU seconds (this process and its workers: on a loaded machine the CPU seconds move less).
 """
 from __future__ import annotations
 
@@ -55,13 +57,18 @@ def main(argv=None) -> None:
     from studies.diagnosis.files import (NUISANCE, ModelPredictor, candidate_effects,
                                          diagnose_files)
     from studies.diagnosis.engine import diagnose_full
+    from studies.diagnosis.workers import available_workers
+    from studies.runs.bench_clock import Clock
     from studies.model.pipeline import Pipeline
     from studies.model.table import write_table
 
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--mesh-factor", type=float, default=1.0)
     ap.add_argument("--rows", type=int, nargs="+", default=[N_ROWS])
+    ap.add_argument("--workers", type=int, default=None,
+                    help="worker processes of the engine (default: as the CLI, every CPU)")
     args = ap.parse_args(argv)
+    workers = available_workers() if args.workers is None else args.workers
 
     asm = load_shipped("seed000")
     t0 = time.perf_counter()
@@ -74,35 +81,34 @@ def main(argv=None) -> None:
         print(f"diagnose benchmark: seed000, {n_rows} rows (cycles -60..80 C), columns "
               f"{', '.join(SIGMA)}, {len(cands)} candidates, mesh factor {args.mesh_factor:g} "
               f"({pl.ndofs} DOF), OPENBLAS_NUM_THREADS={os.environ.get('OPENBLAS_NUM_THREADS')}, "
-              f"{os.cpu_count()} CPUs")
-        print(f"{'dataset':<42} {'verdict':<15} {'cause':<18} {'engine s':>8} {'calls':>6} "
-              f"{'model s':>8} {'CLI s':>6}  form")
+              f"{os.cpu_count()} CPUs, {workers} worker process(es), load {os.getloadavg()[0]:.1f}")
+        print(f"{'dataset':<42} {'verdict':<15} {'cause':<18} {'engine s':>8} {'CPU s':>6} "
+              f"{'calls':>6} {'model s':>8} {'CLI s':>6} {'CPU s':>6}  form")
         rng = np.random.default_rng(0)
         for label, effects in DATASETS.items():
             truth = ModelPredictor(pl, cond, tuple(SIGMA))(effects, {"mu_scale": MU_TRUE})
             meas = {c: truth[c] + rng.normal(0.0, s, truth[c].size) for c, s in SIGMA.items()}
             pred = ModelPredictor(pl, cond, tuple(SIGMA))
-            t0 = time.perf_counter()
-            out = diagnose_full(pred, meas, cond, cands, NUISANCE, T_ref_C=asm.T_ref_C,
-                                predict_at=pred.at)
-            t_engine = time.perf_counter() - t0
+            with Clock() as engine:
+                out = diagnose_full(pred, meas, cond, cands, NUISANCE, T_ref_C=asm.T_ref_C,
+                                    predict_at=pred.at, workers=workers)
             r = out.result
             with tempfile.TemporaryDirectory() as tmp:
                 csv = Path(tmp) / "measured.csv"
                 write_table(csv, {**cond, **meas})
-                t0 = time.perf_counter()
-                diagnose_files(CONFIG_DIR / SHIPPED["seed000"], csv, Path(tmp),
-                               progress=lambda s: None, pipeline=pl)
-                t_cli = time.perf_counter() - t0
+                with Clock() as cli:
+                    diagnose_files(CONFIG_DIR / SHIPPED["seed000"], csv, Path(tmp),
+                                   progress=lambda s: None, pipeline=pl, workers=workers)
             form = (r.get("extended_form") or {}).get("name", "-")
-            print(f"{label:<42} {r['verdict']:<15} {str(r['cause']):<18} {t_engine:8.2f} "
-                  f"{r['n_predict_calls']:6d} {r['seconds']['predict']:8.2f} {t_cli:6.2f}  {form}")
+            print(f"{label:<42} {r['verdict']:<15} {str(r['cause']):<18} {engine.wall_s:8.2f} "
+                  f"{engine.cpu_s:6.2f} {r['n_predict_calls']:6d} {r['seconds']['predict']:8.2f} "
+                  f"{cli.wall_s:6.2f} {cli.cpu_s:6.2f}  {form}  (load {cli.load_after:.1f})")
             print(f"    model calls by phase: {r['predict_calls_by_phase']}")
-            print("    seconds by phase (model + engine): " + ", ".join(
-                f"{k} {v['predict']:.2f} + {v['total'] - v['predict']:.2f}"
-                for k, v in r["seconds_by_phase"].items())
-                + f"; engine outside the model: {r['seconds']['total'] - r['seconds']['predict']:.2f} s"
-                f" of {r['seconds']['total']:.2f} s")
+            # with workers the model seconds are summed over the processes (may exceed the wall)
+            print("    wall seconds by phase (model seconds, summed over the workers): " + ", ".join(
+                f"{k} {v['total']:.2f} ({v['predict']:.2f})"
+                for k, v in r["seconds_by_phase"].items() if v["total"] >= 0.005)
+                + f"; total {r['seconds']['total']:.2f} s ({r['seconds']['predict']:.2f} s)")
 
 
 if __name__ == "__main__":
