@@ -11,6 +11,11 @@ from studies.diagnosis.core import Baseline, Decision, Fit, ModelFailure, Screen
 from studies.diagnosis.stats import ar1_whiten, chibar_pvalue
 
 
+#: the unlisted look-alike every claim must beat (`DecisionPhase.versus_sensor_drift`), as named
+#: in the joint fits of the result
+SENSOR_DRIFT = "unlisted: sensor zero drift linear in time"
+
+
 class DecisionPhase:
     def decide(self, s: Screening, fits: dict[str, Fit], passing: list[str], b: Baseline) -> Decision:
         th = self.th
@@ -48,7 +53,7 @@ class DecisionPhase:
                                                f"{fits[o].chi2 - fits[best].chi2:+.1f})")
                 drift = self.versus_sensor_drift(fits[best], _df(cands[best]), b)
                 if drift is not None:
-                    joint["sensor_drift"] = drift
+                    joint[SENSOR_DRIFT] = drift
                 verdict = "ambiguous" if rivals else "explained"
                 cause = best
                 if drift is not None and not drift["best_carries_weight"]:
@@ -97,10 +102,12 @@ class DecisionPhase:
             r = fit.z - A @ coef
             return float(r @ r)
         chi_0 = chi2_with_drift(b.fit)
-        chi_c = min(chi2_with_drift(f), chi_0)
-        lr = max(chi_0 - chi_c, 0.0)
-        p = chibar_pvalue(lr, **df)
-        return {"chi2_baseline_drift": chi_0, "chi2_best_drift": chi_c, "lr": lr, "p": p,
+        chi_j = min(chi2_with_drift(f), chi_0, f.chi2)
+        p = chibar_pvalue(max(chi_0 - chi_j, 0.0), **df)
+        p_drift = chibar_pvalue(max(f.chi2 - chi_j, 0.0), len(self.columns), 0)
+        # the keys of a joint fit of two candidates (`compare`, the report's table)
+        return {"chi2_best": f.chi2, "chi2_other": chi_0, "chi2_joint": chi_j,
+                "p_add_other_to_best": p_drift, "p_add_best_to_other": p, "p": p,
                 "best_carries_weight": bool(p < self.th["alpha_joint"])}
 
     def compare(self, best, fits, cands, names_id):
