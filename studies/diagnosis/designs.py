@@ -25,10 +25,18 @@ def cycles(n: int = 240, dt: float = 120.0,
     return out
 
 
+#: speeds of `speed_steps`, not in increasing order: a speed programme monotone in time makes an
+#: effect growing with speed (a radial gradient) look like a sensor drift in time, which the
+#: diagnosis then rightly refuses to name (`decision.versus_sensor_drift`); in this order the
+#: speed staircase correlates 0.5 with time instead of 0.98
+SPEEDS_RPM = (6000.0, 3000.0, 9000.0)
+
+
 def speed_steps(n: int = 240, dt: float = 120.0,
-                speeds_rpm: tuple = (3000.0, 6000.0, 9000.0)) -> dict[str, np.ndarray]:
+                speeds_rpm: tuple = SPEEDS_RPM) -> dict[str, np.ndarray]:
     """Oil-lubricated spindle style: chamber steps 0, 20, 40, 60 C (the chamber follows its set
-    point at 3 K/min) repeated at each speed, sampled every `dt` s (240 x 120 s = 8 h)."""
+    point at 3 K/min) repeated at each speed (`SPEEDS_RPM`: 6000, 3000, 9000 rpm), sampled every
+    `dt` s (240 x 120 s = 8 h)."""
     t = np.arange(n) * dt
     k = (np.arange(n) * 4 * len(speeds_rpm)) // n
     target = np.array([0.0, 20.0, 40.0, 60.0])[k % 4]

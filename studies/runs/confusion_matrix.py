@@ -4,9 +4,9 @@ Two standard designs (`studies/diagnosis/designs.py`), each on a shipped assembl
 route (`Pipeline` behind `files.ModelPredictor`, the nuisance and assembly bounds of `diagnose`):
 
 - `cycles`: seed 000 (MoS2 film, 71807C pair), alternating -60 <-> 80 C cycles, 240 rows x 120 s;
-- `speed_steps`: seed 001 (oil, hybrid pair), chamber steps 0..60 C at 3000, 6000, 9000 rpm,
+- `speed_steps`: seed 001 (oil, hybrid pair), chamber steps 0..60 C at 6000, 3000, 9000 rpm,
   240 rows x 120 s;
-- `cycles_speeds`: seed 000 in the `cycles` programme with the speed held at 60, 300 and 600 rpm
+- `cycles_speeds`: seed 000 in the `cycles` programme with the speed held at 300, 60 and 600 rpm
   for a third of the rows each (revolutions then accumulate at different rates in time, so a
   run-in in revolutions and a drift in time differ): only the run-in, the unlisted drift and
   nulls are injected.
@@ -42,7 +42,7 @@ N_NULL = 20
 NOISE_SHARE = 0.01
 COLUMNS = ("torque_Nmm", "preload_N")
 DESIGNS = {"cycles": ("seed000", cycles), "speed_steps": ("seed001", speed_steps),
-           "cycles_speeds": ("seed000", lambda: cycles(speeds_rpm=(60.0, 300.0, 600.0)))}
+           "cycles_speeds": ("seed000", lambda: cycles(speeds_rpm=(300.0, 60.0, 600.0)))}
 #: listed effects injected per design (None: every one the design can identify)
 HIDDEN = {"cycles_speeds": ["solid_film_runin"]}
 
