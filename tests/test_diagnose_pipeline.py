@@ -586,6 +586,30 @@ def test_fitted_parameters_stay_inside_what_the_assembly_allows():
     assert assembly_bounds(tol)["interference_error"]["inner_um"] == (-8.5, 8.5)
 
 
+def test_cli_candidates_carry_the_assembly_bounds():
+    """The candidates `diagnose` fits (`files.candidate_effects`) carry the assembly's bounds:
+    seed 001 (7 N assembled) a settling loss in [0, 7] N; on a toleranced seed 000 (shaft
+    +2..+13 um, bore -6..0 um on a 0 um nominal fit: fits 2..19 um, mean 10.5 um) an inner
+    interference error in [-8.5, +8.5] um around the mean fit, none on the outer fit (its
+    deviations are 0: a band of zero width); the run-in knows the configured speed and lubrication."""
+    from dataclasses import replace
+
+    by = {e.name: e for e in candidate_effects(load_shipped("seed001"))}
+    assert by["preload_settling"].bounds["loss_N"] == (0.0, 7.0)
+    assert by["solid_film_runin"].applicable({"time_s": np.arange(10.0)}) is not None  # oil
+    a000 = load_shipped("seed000")
+    tol = replace(a000, fits=replace(a000.fits, inner_interference_um=0.0,
+                                     inner_shaft_deviation_um=(2.0, 13.0),
+                                     inner_ring_bore_deviation_um=(-6.0, 0.0)))
+    by = {e.name: e for e in candidate_effects(tol)}
+    assert by["interference_error"].bounds["inner_um"] == (-8.5, 8.5)
+    # the outer fit's deviations are left at 0 in this assembly: its band is the nominal fit
+    assert by["interference_error"].bounds["outer_um"] == (0.0, 0.0)
+    assert by["preload_settling"].bounds["loss_N"] == (0.0, a000.preload.assembled_N)
+    assert by["solid_film_runin"].speed_rpm == a000.lubrication.speed_rpm == 60.0
+    assert by["solid_film_runin"].applicable({"time_s": np.arange(10.0)}) is None
+
+
 def _ar1_noise(rng, n, sigma, phi):
     """Stationary AR(1) noise of marginal standard deviation sigma (a slowly drifting sensor)."""
     e = np.empty(n)
