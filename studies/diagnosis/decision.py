@@ -59,11 +59,13 @@ class DecisionPhase:
                 if drift is not None and not drift["best_carries_weight"]:
                     verdict, cause = "unexplained", None
                     reasons.append(
-                        f"the best candidate, {best}, fits, but no better than a zero drift of "
-                        "the sensors linear in time, a cause outside the list that a history "
-                        f"effect resembles (adding {best} to that drift: p = {drift['p']:.2g}, "
-                        f"needs < {th['alpha_joint']:g}); a test at other speeds or a repeat of "
-                        "the programme separates a drift in time from the effect")
+                        f"the best candidate, {best}, does not clearly beat a zero drift of the "
+                        "sensors linear in time, a cause outside the list that a history effect "
+                        f"resembles (adding {best} to that drift: p = {drift['p']:.2g}, needs < "
+                        f"{th['alpha_joint']:g}; adding the drift to {best}: p = "
+                        f"{drift['p_add_other_to_best']:.2g}, needs >= {th['alpha_joint']:g}); "
+                        "a test at other speeds or a repeat of the programme separates a drift "
+                        "in time from the effect")
                 elif rivals:
                     reasons.append(f"{best} and {', '.join(rivals)} explain the data about "
                                    "equally well")
@@ -80,8 +82,10 @@ class DecisionPhase:
         Likelihood ratio of adding the candidate to baseline + drift: chi2(baseline + drift) -
         chi2(candidate + drift), both linearised at their own fits (the drift is linear in its
         slopes; nuisance and candidate take one Gauss-Newton step with their fit's Jacobian),
-        chi-bar-square p with the candidate's degrees of freedom, compared with alpha_joint as in
-        the joint fits of two candidates (`compare`). The drift's residual columns are whitened
+        chi-bar-square p with the candidate's degrees of freedom; and of adding the drift to the
+        candidate (chi2(candidate) - chi2(candidate + drift), one free slope per column). As in
+        the joint fits of two candidates (`compare`), the candidate carries the weight when
+        adding it to the drift is significant at alpha_joint and adding the drift to it is not. The drift's residual columns are whitened
         and scaled exactly as the data (`zvec`). None without a strictly increasing `time_s`
         (a table of steady points has no time order)."""
         t = self.conditions.get("time_s")
@@ -106,9 +110,10 @@ class DecisionPhase:
         p = chibar_pvalue(max(chi_0 - chi_j, 0.0), **df)
         p_drift = chibar_pvalue(max(f.chi2 - chi_j, 0.0), len(self.columns), 0)
         # the keys of a joint fit of two candidates (`compare`, the report's table)
+        a = self.th["alpha_joint"]
         return {"chi2_best": f.chi2, "chi2_other": chi_0, "chi2_joint": chi_j,
                 "p_add_other_to_best": p_drift, "p_add_best_to_other": p, "p": p,
-                "best_carries_weight": bool(p < self.th["alpha_joint"])}
+                "best_carries_weight": bool(p < a and p_drift >= a)}
 
     def compare(self, best, fits, cands, names_id):
         """Rivals of `best`: fitted candidates it does not clearly beat (joint fits)."""
