@@ -80,7 +80,7 @@ class DecisionPhase:
         history effect in time or revolutions resembles, e.g. a run-in at constant speed)?
 
         Likelihood ratio of adding the candidate to baseline + drift: chi2(baseline + drift) -
-        chi2(candidate + drift), both linearised at their own fits (the drift is linear in its
+        chi2(candidate + drift), every chi2 linearised at its own fit (the drift is linear in its
         slopes; nuisance and candidate take one Gauss-Newton step with their fit's Jacobian),
         chi-bar-square p with the candidate's degrees of freedom; and of adding the drift to the
         candidate (chi2(candidate) - chi2(candidate + drift), one free slope per column). As in
@@ -100,18 +100,22 @@ class DecisionPhase:
             D[i0:i0 + k, j] = ar1_whiten(ramp[m], self.blocks[m], self.rho[c]) / self.sigma_w[c]
             i0 += k
 
-        def chi2_with_drift(fit: Fit) -> float:
-            A = np.column_stack([fit.J, D])
+        def chi2_lin(fit: Fit, drift: bool) -> float:
+            """chi2 after one Gauss-Newton step of the fit's own parameters (and the drift's
+            slopes): every chi2 compared is linearised the same way, so an unfinished fit's own
+            step is not credited to the drift."""
+            A = np.column_stack([fit.J, D]) if drift else fit.J
             coef, *_ = np.linalg.lstsq(A, fit.z, rcond=None)
             r = fit.z - A @ coef
             return float(r @ r)
-        chi_0 = chi2_with_drift(b.fit)
-        chi_j = min(chi2_with_drift(f), chi_0, f.chi2)
+        chi_0 = chi2_lin(b.fit, True)                    # baseline + drift
+        chi_c = min(chi2_lin(f, False), f.chi2)          # candidate
+        chi_j = min(chi2_lin(f, True), chi_0, chi_c)     # candidate + drift
         p = chibar_pvalue(max(chi_0 - chi_j, 0.0), **df)
-        p_drift = chibar_pvalue(max(f.chi2 - chi_j, 0.0), len(self.columns), 0)
+        p_drift = chibar_pvalue(max(chi_c - chi_j, 0.0), len(self.columns), 0)
         # the keys of a joint fit of two candidates (`compare`, the report's table)
         a = self.th["alpha_joint"]
-        return {"chi2_best": f.chi2, "chi2_other": chi_0, "chi2_joint": chi_j,
+        return {"chi2_best": chi_c, "chi2_other": chi_0, "chi2_joint": chi_j,
                 "p_add_other_to_best": p_drift, "p_add_best_to_other": p, "p": p,
                 "best_carries_weight": bool(p < a and p_drift >= a)}
 

@@ -34,6 +34,7 @@ import numpy as np
 from scipy import optimize, stats
 
 from studies.diagnosis.core import DEFAULT_THRESHOLDS
+from studies.diagnosis.decision import SENSOR_DRIFT
 from studies.diagnosis.engine import diagnose, lookalike_matrix
 
 #: magnitudes of the injected causes: RMS visible change in noise sigmas
@@ -111,6 +112,8 @@ class Trial:
     indistinguishable: list[str]
     open_world_lead: str | None     # first selected feature of the torque (unexplained only)
     seconds: float
+    best_partial: str | None = None          # best candidate of an `unexplained` verdict
+    drift_adds_p: float | None = None        # p of adding a sensor drift to the best candidate
 
 
 @dataclass
@@ -203,9 +206,12 @@ def run_matrix(designs: Sequence[Design], magnitudes=MAGNITUDES, reps: int = 3, 
             ow = res.get("open_world") or {}
             lead = next((c["selected"][0] for c in ow.get("columns", [])
                          if c["depends"] and c["column"] == next(iter(d.sigma))), None)
+            drift = (res.get("joint_fits") or {}).get(SENSOR_DRIFT) or {}
             trials.append(Trial(d.name, hidden, m, k, res["verdict"], res["cause"],
                                 list(res["indistinguishable"]), lead,
-                                time.perf_counter() - t0))
+                                time.perf_counter() - t0,
+                                (res.get("best_partial") or {}).get("effect"),
+                                drift.get("p_add_other_to_best")))
             progress(f"{d.name}: {hidden} at {m:g} sigma #{k}: {res['verdict']} {res['cause']}")
     out = Matrix(tuple(magnitudes), trials, look, not_visible=skipped)
     summarise(out)
