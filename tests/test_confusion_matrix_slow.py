@@ -105,3 +105,36 @@ def test_unlisted_drift_is_not_run_in_at_several_speeds():
     assert sorted(r["magnitude_sigma"] for r in drift) == sorted(MAGNITUDES)
     for r in drift:
         assert r["cause_claimed"] == 0, r
+
+
+def test_real_model_lookalikes_stated_in_the_docs():
+    """The look-alike pairs docs/diagnosis.md states for the study's designs on the real model
+    (before any data, `operating.lookalike_before_data`, cosine above the engine's 0.95):
+    `cycles` (seed 000) interference_error ~ preload_path_compliance (a fit error and a softer
+    preload path both change the preload by a nearly temperature-independent amount) and
+    radial_gradient ~ preload_settling; `speed_steps` (seed 001) interference_error ~
+    cte_nonlinearity ~ preload_path_compliance (0..60 C steps: a fit offset, a CTE slope and a
+    path compliance move the 7 N preload alike). The history effects are look-alikes of nothing
+    (thermal_lag, and solid_film_runin on seed 000: below 0.5). The study's candidates are the
+    CLI's (`files.candidate_effects`)."""
+    from studies.diagnosis.operating import lookalike_before_data
+    from studies.runs.confusion_matrix import design, setup
+
+    th = 0.95
+    for name, pairs, history in (
+            ("cycles", [("interference_error", "preload_path_compliance"),
+                        ("radial_gradient", "preload_settling")],
+             ("thermal_lag", "solid_film_runin")),
+            ("speed_steps", [("interference_error", "cte_nonlinearity"),
+                             ("interference_error", "preload_path_compliance"),
+                             ("cte_nonlinearity", "preload_path_compliance")],
+             ("thermal_lag",))):
+        asm, cond, cands = setup(name)
+        assert [(e.name, e.bounds, e.applicable(cond)) for e in cands] == \
+            [(e.name, e.bounds, e.applicable(cond)) for e in candidate_effects(asm)]
+        look = lookalike_before_data(design(name))
+        print(name, {a: {b: round(v, 2) for b, v in row.items()} for a, row in look.items()})
+        for a, b in pairs:
+            assert look[a][b] > th, (name, a, b, look[a][b])
+        for h in history:
+            assert max(v for k, v in look[h].items() if k != h) < 0.5, (name, h, look[h])
