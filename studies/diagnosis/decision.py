@@ -85,9 +85,9 @@ class DecisionPhase:
         chi-bar-square p with the candidate's degrees of freedom; and of adding the drift to the
         candidate (chi2(candidate) - chi2(candidate + drift), one free slope per column). As in
         the joint fits of two candidates (`compare`), the candidate carries the weight when
-        adding it to the drift is significant at alpha_joint and adding the drift to it is not. The drift's residual columns are whitened
-        and scaled exactly as the data (`zvec`). None without a strictly increasing `time_s`
-        (a table of steady points has no time order)."""
+        adding it to the drift is significant at alpha_joint and adding the drift to it is not.
+        The drift's residual columns are whitened and scaled exactly as the data (`zvec`). None
+        without a strictly increasing `time_s` (a table of steady points has no time order)."""
         t = self.conditions.get("time_s")
         if t is None or t.size < 3 or not np.all(np.diff(t) > 0):
             return None
