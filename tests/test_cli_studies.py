@@ -93,3 +93,22 @@ def test_verify_runs_the_mesh_convergence_of_a_users_assembly(tmp_path, capsys):
     assert mine[0]["target_error"] == 1e-3 and np.isfinite(mine[0]["error_max"])
     assert main(["verify", "--out", str(tmp_path / "w"), "--assembly", str(tmp_path / "none.toml")]) == 2
     assert "file not found" in capsys.readouterr().err and not (tmp_path / "w").exists()
+
+
+def test_confusion_matrix_candidates_are_the_cli_candidates():
+    """The confusion-matrix study diagnoses with exactly the candidates `bearingfem diagnose`
+    builds (`files.candidate_effects`: assembly bounds, configured speed and lubrication): same
+    names in order, bounds and applicability on each design. Physics: the solid-film run-in is a
+    candidate on the MoS2 seed 000 (the configured 60 rpm gives the revolutions, no speed column
+    needed) and not on the oil-lubricated seed 001; seed 001's settling loss is at most its 7 N."""
+    from studies.diagnosis.files import candidate_effects
+    from studies.runs.confusion_matrix import DESIGNS, setup
+
+    for name in DESIGNS:
+        asm, cond, cands = setup(name)
+        assert [(e.name, e.bounds, e.applicable(cond)) for e in cands] == \
+            [(e.name, e.bounds, e.applicable(cond)) for e in candidate_effects(asm)]
+        runin = next(e for e in cands if e.name == "solid_film_runin")
+        assert (runin.applicable(cond) is None) == (asm.lubrication.kind == "solid_film"), name
+    asm, cond, cands = setup("speed_steps")
+    assert next(e for e in cands if e.name == "preload_settling").bounds["loss_N"] == (0.0, 7.0)

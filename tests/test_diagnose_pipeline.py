@@ -413,6 +413,79 @@ def test_sensor_drift_is_not_claimed(pipelines, seed_name, design, sigma, drift_
     assert res["verdict"] == "unexplained", summary(res)
 
 
+def steady_grid():
+    """Seed 000 steady points without time: T_ambient -60..80 C in 20 K steps x assembled preload
+    50, 100, 200, 350 N, every point measured twice (64 rows)."""
+    T, P = np.meshgrid(np.arange(-60.0, 81.0, 20.0), np.array([50.0, 100.0, 200.0, 350.0]),
+                       indexing="ij")
+    return {"T_ambient_C": np.repeat(T.ravel(), 2), "preload_assembled_N": np.repeat(P.ravel(), 2)}
+
+
+@pytest.fixture(scope="module")
+def pl000_groove():
+    """Seed 000 whose inner groove curvature ratio is 0.54 instead of the configured one: a
+    geometry error no listed effect describes (a tighter or looser groove changes the contact
+    stiffness and the spin, with preload and temperature, not a fit or a temperature field)."""
+    from dataclasses import replace
+
+    a = load_shipped("seed000")
+    return Pipeline(replace(a, bearing=replace(a.bearing, inner_groove_ratio=0.54)),
+                    mesh_factor=MESH_FACTOR)
+
+
+def unlisted_on_steady_grid(pl000, pl_truth, sigma, seed):
+    """(result, largest change in sigma) of one noisy draw of the unlisted groove on the grid."""
+    cond = steady_grid()
+    truth = noise_free(pl_truth, cond, {}, tuple(sigma))
+    pred = ModelPredictor(pl000, cond, tuple(sigma))
+    lo, hi = NUISANCE["mu_scale"][:2]
+
+    def res(x):
+        b = pred({}, {"mu_scale": float(x[0])})
+        return np.concatenate([(truth[c] - b[c]) / sigma[c] for c in sigma])
+    x = optimize.least_squares(res, [MU_TRUE], bounds=([lo], [hi]), diff_step=1e-4).x
+    change = float(np.max(np.abs(res(x))))
+    rng = np.random.default_rng(seed)
+    meas = {c: truth[c] + rng.normal(0.0, s, truth[c].size) for c, s in sigma.items()}
+    return diagnose_real(pl000, cond, meas), change
+
+
+def assert_unlisted_verdict(res):
+    """No cause claimed (not explained, not ambiguous), and the open-world characterisation ties
+    the residual to a condition of the grid (temperature or preload)."""
+    assert res["verdict"] == "unexplained", summary(res)
+    assert res["cause"] is None and res["indistinguishable"] == [], summary(res)
+    ow = res["open_world"]
+    lead = {f for c in ow["columns"] if c["depends"] for f in c["selected"]}
+    assert any(("T_" in f or "preload" in f or "temperature" in f) for f in lead), ow
+
+
+def test_unlisted_groove_on_a_steady_grid_is_unexplained(pl000, pl000_groove):
+    """A cause outside the list on steady points (no time column, so no drift or history can be
+    blamed): the data come from seed 000 with the inner groove ratio 0.54 (the candidates' model
+    has the configured ratio), torque and preload measured at the SIGMA_000 levels, friction
+    1.25 x the configured one. The change is at least 8 sigma (not invisible); the verdict must
+    be `unexplained` with no cause and no ambiguous claim."""
+    res, change = unlisted_on_steady_grid(pl000, pl000_groove, SIGMA_000, seed=1)
+    assert change >= MIN_CHANGE_SIGMA, change
+    assert_unlisted_verdict(res)
+
+
+@pytest.mark.slow          # 12 diagnoses of 64 rows (about 45 s)
+@pytest.mark.parametrize("sigma", [SIGMA_000, SIGMA_000_TORQUE], ids=["torque+preload", "torque"])
+def test_unlisted_groove_on_a_steady_grid_rate(pl000, pl000_groove, sigma):
+    """The same unlisted groove over six noise draws, with torque and preload or torque alone
+    (change 21.9 and 12.4 sigma): never a claimed cause, always `unexplained` (measured 6/6 each,
+    2026-11-25). At a groove ratio of 0.525 the torque-only change is 4.5 sigma, below the 8 sigma
+    this file asks of a visible cause: there a small listed effect (a CTE slope change of
+    -8e-10 /K or a path compliance of 0.9 um/kN) fits it within the noise in 3 of 6 draws
+    (docs/diagnosis.md), a limit of any closed list, not asserted here."""
+    for seed in range(1, 7):
+        res, change = unlisted_on_steady_grid(pl000, pl000_groove, sigma, seed=seed)
+        assert change >= MIN_CHANGE_SIGMA, change
+        assert_unlisted_verdict(res)
+
+
 # ============================================================================ 5. the CLI
 CFG_000 = Path(__file__).resolve().parents[1] / "studies" / "configs" / "seed000_71807C_TC4.toml"
 
@@ -584,6 +657,30 @@ def test_fitted_parameters_stay_inside_what_the_assembly_allows():
                                      inner_ring_bore_deviation_um=(-6.0, 0.0)))
     # band 2..19 um around the mean 10.5 um
     assert assembly_bounds(tol)["interference_error"]["inner_um"] == (-8.5, 8.5)
+
+
+def test_cli_candidates_carry_the_assembly_bounds():
+    """The candidates `diagnose` fits (`files.candidate_effects`) carry the assembly's bounds:
+    seed 001 (7 N assembled) a settling loss in [0, 7] N; on a toleranced seed 000 (shaft
+    +2..+13 um, bore -6..0 um on a 0 um nominal fit: fits 2..19 um, mean 10.5 um) an inner
+    interference error in [-8.5, +8.5] um around the mean fit, none on the outer fit (its
+    deviations are 0: a band of zero width); the run-in knows the configured speed and lubrication."""
+    from dataclasses import replace
+
+    by = {e.name: e for e in candidate_effects(load_shipped("seed001"))}
+    assert by["preload_settling"].bounds["loss_N"] == (0.0, 7.0)
+    assert by["solid_film_runin"].applicable({"time_s": np.arange(10.0)}) is not None  # oil
+    a000 = load_shipped("seed000")
+    tol = replace(a000, fits=replace(a000.fits, inner_interference_um=0.0,
+                                     inner_shaft_deviation_um=(2.0, 13.0),
+                                     inner_ring_bore_deviation_um=(-6.0, 0.0)))
+    by = {e.name: e for e in candidate_effects(tol)}
+    assert by["interference_error"].bounds["inner_um"] == (-8.5, 8.5)
+    # the outer fit's deviations are left at 0 in this assembly: its band is the nominal fit
+    assert by["interference_error"].bounds["outer_um"] == (0.0, 0.0)
+    assert by["preload_settling"].bounds["loss_N"] == (0.0, a000.preload.assembled_N)
+    assert by["solid_film_runin"].speed_rpm == a000.lubrication.speed_rpm == 60.0
+    assert by["solid_film_runin"].applicable({"time_s": np.arange(10.0)}) is None
 
 
 def _ar1_noise(rng, n, sigma, phi):

@@ -65,6 +65,18 @@ class ToyBearing:
         return {"torque_Nmm": torque, "preload_N": preload, "interference_inner_um": fit_i,
                 "interference_outer_um": fit_o}
 
+    def assembly(self):
+        """The assembly the toy stands for, as `diagnose` reads it: seed 000 (MoS2 film) with the
+        toy's preload and speed, oil-lubricated when the toy has a viscous term. Candidates are
+        built from it exactly as the CLI builds them (`files.candidate_effects`)."""
+        from dataclasses import replace
+        from studies.model.config import load_shipped
+        a = load_shipped("seed000")
+        kind = "oil" if self.c_visc > 0 else "solid_film"
+        return replace(a, preload=replace(a.preload, assembled_N=self.P),
+                       lubrication=replace(a.lubrication, kind=kind, speed_rpm=self.speed,
+                                           friction_coefficient=self.mu))
+
     def predictor(self, conditions):
         def predict(effects, nuisance):
             return self.evaluate(conditions, effects, nuisance)

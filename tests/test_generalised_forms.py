@@ -120,6 +120,28 @@ def test_settling_creep_hours_counted_by_hand():
     np.testing.assert_allclose(out.preload_loss_N, expect, rtol=0, atol=1e-12)   # N, round-off
 
 
+def test_settling_creep_never_loses_more_than_the_assembled_preload():
+    """Seed 001's pair is assembled with 7 N. A 5 N step at 30 K plus creep at the bound
+    (500 N/h) over the stepped programme above: without a limit the loss would reach
+    5 + 500 x 1 h = 505 N. The pair cannot lose more than it has: the total loss is
+    min(5 + 500 H, 7) N per row (a pair without preload loses nothing more), exact."""
+    from studies.model.config import load_shipped
+
+    P_a = load_shipped("seed001").preload.assembled_N
+    assert P_a == 7.0
+    T = np.array([20.0] * 3 + [80.0] * 6 + [20.0] * 3)
+    t = np.arange(T.size) * 600.0
+    H = hours_beyond(t, T, T_REF, 30.0)
+    inp = baseline_inputs({"time_s": t, "T_ambient_C": T}, T.size, T_REF, P_a, 0.0)
+    out = GENERALISED["preload_settling.creep"].apply(
+        inp, {"loss_N": 5.0, "threshold_K": 30.0, "creep_N_per_h": 500.0}, T_REF)
+    loss = np.asarray(out.preload_loss_N, float)
+    assert loss.max() <= P_a
+    expect = np.minimum(np.where(np.arange(T.size) >= 3, 5.0, 0.0) + 500.0 * H, P_a)
+    np.testing.assert_allclose(loss, expect, rtol=0, atol=1e-12)   # N, round-off
+    assert loss[-1] == P_a                                          # the whole preload is gone
+
+
 @pytest.mark.parametrize("T_ref", [20.0, 25.0])
 def test_cte_curvature_strain_is_the_integral_of_alpha(T_ref):
     """theta(T) = integral_{T_ref}^{T} alpha(T') dT' with alpha = alpha0 + a1 (T' - 20) +

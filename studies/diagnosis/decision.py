@@ -8,7 +8,12 @@ import math
 import numpy as np
 
 from studies.diagnosis.core import Baseline, Decision, Fit, ModelFailure, Screening
-from studies.diagnosis.stats import chibar_pvalue
+from studies.diagnosis.stats import ar1_whiten, chibar_pvalue
+
+
+#: the unlisted look-alike every claim must beat (`DecisionPhase.versus_sensor_drift`), as named
+#: in the joint fits of the result
+SENSOR_DRIFT = "unlisted: sensor zero drift linear in time"
 
 
 class DecisionPhase:
@@ -46,15 +51,73 @@ class DecisionPhase:
                     if o != best and o not in rivals:
                         cands[o].reason += (f"; but clearly beaten by {best} (chi-square "
                                                f"{fits[o].chi2 - fits[best].chi2:+.1f})")
+                drift = self.versus_sensor_drift(fits[best], _df(cands[best]), b)
+                if drift is not None:
+                    joint[SENSOR_DRIFT] = drift
                 verdict = "ambiguous" if rivals else "explained"
                 cause = best
-                if rivals:
+                if drift is not None and not drift["best_carries_weight"]:
+                    verdict, cause = "unexplained", None
+                    reasons.append(
+                        f"the best candidate, {best}, does not clearly beat a zero drift of the "
+                        "sensors linear in time, a cause outside the list that a history effect "
+                        f"resembles (adding {best} to that drift: p = {drift['p']:.2g}, needs < "
+                        f"{th['alpha_joint']:g}; adding the drift to {best}: p = "
+                        f"{drift['p_add_other_to_best']:.2g}, needs >= {th['alpha_joint']:g}); "
+                        "a test at other speeds or a repeat of the programme separates a drift "
+                        "in time from the effect")
+                elif rivals:
                     reasons.append(f"{best} and {', '.join(rivals)} explain the data about "
                                    "equally well")
                 else:
                     reasons.append(f"{best} beats the baseline on held-out blocks and clearly "
                                    "beats every other candidate")
         return Decision(verdict, cause, best, rivals, best_desc, joint, reasons)
+
+    def versus_sensor_drift(self, f: Fit, df: dict, b: Baseline) -> dict | None:
+        """Does the fitted candidate carry weight over an unlisted look-alike, a zero drift of
+        every compared sensor linear in time (the commonest unlisted cause on a rig, and what a
+        history effect in time or revolutions resembles, e.g. a run-in at constant speed)?
+
+        Likelihood ratio of adding the candidate to baseline + drift: chi2(baseline + drift) -
+        chi2(candidate + drift), every chi2 linearised at its own fit (the drift is linear in its
+        slopes; nuisance and candidate take one Gauss-Newton step with their fit's Jacobian),
+        chi-bar-square p with the candidate's degrees of freedom; and of adding the drift to the
+        candidate (chi2(candidate) - chi2(candidate + drift), one free slope per column). As in
+        the joint fits of two candidates (`compare`), the candidate carries the weight when
+        adding it to the drift is significant at alpha_joint and adding the drift to it is not.
+        The drift's residual columns are whitened and scaled exactly as the data (`zvec`). None
+        without a strictly increasing `time_s` (a table of steady points has no time order)."""
+        t = self.conditions.get("time_s")
+        if t is None or t.size < 3 or not np.all(np.diff(t) > 0):
+            return None
+        ramp = (t - t[0]) / (t[-1] - t[0])
+        D = np.zeros((self.N, len(self.columns)))
+        i0 = 0
+        for j, c in enumerate(self.columns):
+            m = self.valid[c]
+            k = int(m.sum())
+            D[i0:i0 + k, j] = ar1_whiten(ramp[m], self.blocks[m], self.rho[c]) / self.sigma_w[c]
+            i0 += k
+
+        def chi2_lin(fit: Fit, drift: bool) -> float:
+            """chi2 after one Gauss-Newton step of the fit's own parameters (and the drift's
+            slopes): every chi2 compared is linearised the same way, so an unfinished fit's own
+            step is not credited to the drift."""
+            A = np.column_stack([fit.J, D]) if drift else fit.J
+            coef, *_ = np.linalg.lstsq(A, fit.z, rcond=None)
+            r = fit.z - A @ coef
+            return float(r @ r)
+        chi_0 = chi2_lin(b.fit, True)                    # baseline + drift
+        chi_c = min(chi2_lin(f, False), f.chi2)          # candidate
+        chi_j = min(chi2_lin(f, True), chi_0, chi_c)     # candidate + drift
+        p = chibar_pvalue(max(chi_0 - chi_j, 0.0), **df)
+        p_drift = chibar_pvalue(max(chi_c - chi_j, 0.0), len(self.columns), 0)
+        # the keys of a joint fit of two candidates (`compare`, the report's table)
+        a = self.th["alpha_joint"]
+        return {"chi2_best": chi_c, "chi2_other": chi_0, "chi2_joint": chi_j,
+                "p_add_other_to_best": p_drift, "p_add_best_to_other": p, "p": p,
+                "best_carries_weight": bool(p < a and p_drift >= a)}
 
     def compare(self, best, fits, cands, names_id):
         """Rivals of `best`: fitted candidates it does not clearly beat (joint fits)."""

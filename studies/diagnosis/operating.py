@@ -34,6 +34,7 @@ import numpy as np
 from scipy import optimize, stats
 
 from studies.diagnosis.core import DEFAULT_THRESHOLDS
+from studies.diagnosis.decision import SENSOR_DRIFT
 from studies.diagnosis.engine import diagnose, lookalike_matrix
 
 #: magnitudes of the injected causes: RMS visible change in noise sigmas
@@ -53,13 +54,30 @@ SETTINGS = {
 NONE, UNLISTED = "none", "unlisted_drift"
 
 
-def setting(effect) -> dict[str, float]:
+#: a profiled parameter's injected value: the grid point nearest this share of the grid's top
+PROFILE_SHARE = 0.3
+
+
+def setting(effect, conditions: Mapping[str, np.ndarray] | None = None,
+            T_ref_C: float = 20.0) -> dict[str, float]:
     """The injected setting of an effect: `SETTINGS`, else each parameter at off + 5 x its scale
-    (clipped to the bounds) for effects added after this table."""
+    (clipped to the bounds) for effects added after this table, with a profiled parameter (a time
+    or revolution constant) at the point of the effect's grid on these conditions nearest
+    PROFILE_SHARE x the grid's largest value. The grid spans what the design can show (for the
+    run-in constant: from the revolutions of the first rows to those of the whole table), so the
+    injected effect completes about 97 % of its change (1 - exp(-1/0.3)) within the design
+    instead of, e.g., a 15 krev run-in finishing in the first rows of a 3000 rpm table, where the
+    friction calibration absorbs it."""
     if effect.name in SETTINGS:
         return dict(SETTINGS[effect.name])
-    return {p: float(np.clip(effect.off[p] + 5.0 * effect.scale[p], *effect.bounds[p]))
-            for p in effect.parameters}
+    out = {p: float(np.clip(effect.off[p] + 5.0 * effect.scale[p], *effect.bounds[p]))
+           for p in effect.parameters}
+    if conditions is not None:
+        for p, g in effect.grid(conditions, T_ref_C).items():
+            if len(g):
+                g = np.asarray(g, float)
+                out[p] = float(g[np.argmin(np.abs(np.log(g / (PROFILE_SHARE * g.max()))))])
+    return out
 
 
 def unlisted_drift(conditions: Mapping[str, np.ndarray], n: int) -> np.ndarray:
@@ -94,6 +112,8 @@ class Trial:
     indistinguishable: list[str]
     open_world_lead: str | None     # first selected feature of the torque (unexplained only)
     seconds: float
+    best_partial: str | None = None          # best candidate of an `unexplained` verdict
+    drift_adds_p: float | None = None        # p of adding a sensor drift to the best candidate
 
 
 @dataclass
@@ -150,7 +170,7 @@ def dataset(d: Design, hidden: str, magnitude: float, rng) -> dict[str, np.ndarr
             truth[c0] = truth[c0] + d.sigma[c0] * unlisted_drift(d.conditions, n)
         else:
             eff = next(e for e in d.candidates if e.name == hidden)
-            truth = predict({hidden: setting(eff)}, nuis)
+            truth = predict({hidden: setting(eff, d.conditions, d.T_ref_C)}, nuis)
         v = visible_rms_sigma(predict, truth, d.sigma, d.nuisance)
         if v < 1e-9:
             return None
@@ -186,9 +206,12 @@ def run_matrix(designs: Sequence[Design], magnitudes=MAGNITUDES, reps: int = 3, 
             ow = res.get("open_world") or {}
             lead = next((c["selected"][0] for c in ow.get("columns", [])
                          if c["depends"] and c["column"] == next(iter(d.sigma))), None)
+            drift = (res.get("joint_fits") or {}).get(SENSOR_DRIFT) or {}
             trials.append(Trial(d.name, hidden, m, k, res["verdict"], res["cause"],
                                 list(res["indistinguishable"]), lead,
-                                time.perf_counter() - t0))
+                                time.perf_counter() - t0,
+                                (res.get("best_partial") or {}).get("effect"),
+                                drift.get("p_add_other_to_best")))
             progress(f"{d.name}: {hidden} at {m:g} sigma #{k}: {res['verdict']} {res['cause']}")
     out = Matrix(tuple(magnitudes), trials, look, not_visible=skipped)
     summarise(out)

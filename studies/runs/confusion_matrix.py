@@ -4,8 +4,17 @@ Two standard designs (`studies/diagnosis/designs.py`), each on a shipped assembl
 route (`Pipeline` behind `files.ModelPredictor`, the nuisance and assembly bounds of `diagnose`):
 
 - `cycles`: seed 000 (MoS2 film, 71807C pair), alternating -60 <-> 80 C cycles, 240 rows x 120 s;
-- `speed_steps`: seed 001 (oil, hybrid pair), chamber steps 0..60 C at 3000, 6000, 9000 rpm,
-  240 rows x 120 s.
+- `speed_steps`: seed 001 (oil, hybrid pair), chamber steps 0..60 C at 6000, 3000, 9000 rpm,
+  240 rows x 120 s;
+- `cycles_speeds`: seed 000 in the `cycles` programme with the speed held at 300, 60 and 600 rpm
+  for a third of the rows each (revolutions then accumulate at different rates in time, so a
+  run-in in revolutions and a drift in time differ): only the run-in, the unlisted drift and
+  nulls are injected.
+
+The candidates are exactly those of `bearingfem diagnose` on that assembly
+(`files.candidate_effects`: assembly bounds and `Effect.for_assembly`), so e.g. the solid-film
+run-in is a candidate on seed 000 (its configured speed gives the revolutions) and not on the
+oil-lubricated seed 001.
 
 Torque and preload are measured; the base noise of each column is 1 % of its mean baseline value
 (a stated choice: a good rig's torque and load cells). Hidden causes: none (N_NULL trials per
@@ -32,29 +41,39 @@ N_NULL = 20
 #: base noise: this share of the column's mean absolute baseline value
 NOISE_SHARE = 0.01
 COLUMNS = ("torque_Nmm", "preload_N")
-DESIGNS = {"cycles": ("seed000", cycles), "speed_steps": ("seed001", speed_steps)}
+DESIGNS = {"cycles": ("seed000", cycles), "speed_steps": ("seed001", speed_steps),
+           "cycles_speeds": ("seed000", lambda: cycles(speeds_rpm=(300.0, 60.0, 600.0)))}
+#: listed effects injected per design (None: every one the design can identify)
+HIDDEN = {"cycles_speeds": ["solid_film_runin"]}
+
+
+def setup(name: str):
+    """(assembly, conditions, candidates) of a design, the candidates exactly as `diagnose`
+    builds them (`files.candidate_effects`); no model is built."""
+    from studies.diagnosis.files import candidate_effects
+    from studies.model.config import load_shipped
+
+    key, make = DESIGNS[name]
+    asm = load_shipped(key)
+    return asm, make(), candidate_effects(asm)
 
 
 def design(name: str) -> Design:
     """A standard design on its shipped assembly, with the candidates `diagnose` would try."""
     from studies.diagnosis.files import NUISANCE, ModelPredictor
-    from studies.model.config import load_shipped
-    from studies.model.effects import EFFECTS, ORDER, assembly_bounds
     from studies.model.pipeline import Pipeline
 
-    key, make = DESIGNS[name]
-    asm = load_shipped(key)
+    key = DESIGNS[name][0]
+    asm, cond, cands = setup(name)
     pl = Pipeline.shared(asm, progress=lambda s: None)
-    cond = make()
 
     def predictor(c):
         p = ModelPredictor(pl, c, COLUMNS)
         return p, p.at
     base = predictor(cond)[0]({}, {"mu_scale": 1.0})
     sigma = {c: NOISE_SHARE * float(np.mean(np.abs(base[c]))) for c in COLUMNS}
-    limits = assembly_bounds(asm)
-    cands = [EFFECTS[n].with_bounds(**limits.get(n, {})) for n in ORDER]
-    return Design(f"{name} ({key})", cond, predictor, cands, NUISANCE, sigma, asm.T_ref_C)
+    return Design(f"{name} ({key})", cond, predictor, cands, NUISANCE, sigma, asm.T_ref_C,
+                  hidden=HIDDEN.get(name))
 
 
 def run(out_dir: Path, progress=print, designs=tuple(DESIGNS), reps: int = REPS,

@@ -6,12 +6,16 @@ Physics added: the listed `preload_settling` loses `loss_N` at the first excursi
 polymer spacer go on while the joint is held hot (or cold): the loss then grows with the time
 spent beyond the threshold,
 
-    preload_loss_N[i] = loss_N * settled[i] + creep_N_per_h * H[i],
+    preload_loss_N[i] = L[i] + min(creep_N_per_h * H[i], max(P_a[i] - L[i], 0)),
+    L[i] = loss_N * settled[i],
     H[i] = sum_{k=1..i} (t_k - t_{k-1}) [ |T_k - T_ref| > threshold_K ] / 3600   (h),
 
 `settled` as in `preload_settling` (the running excursion beyond the threshold), the interval
 before a row counted as beyond the threshold when that row is (rectangle rule, exact for the
-sampled indicator). T is `T_ambient_C`.
+sampled indicator). T is `T_ambient_C`. The creep stops when the joint has lost the whole
+assembled preload P_a (`preload_assembled_N` of the row): a pair cannot lose more preload than it
+was assembled with (the listed form's `loss_N` is bounded by it, `assembly_bounds`), so the total
+loss never exceeds P_a whatever the creep rate and the duration of the table.
 
 Parameters:
     loss_N         step loss at the first excursion, N, bounds [0, 2000], off 0 (listed)
@@ -64,8 +68,9 @@ class PreloadSettlingCreep(GeneralisedForm):
         listed = PreloadSettling()._apply(inputs, {"loss_N": p["loss_N"],
                                                    "threshold_K": p["threshold_K"]}, T_ref_C)
         H = hours_beyond(inputs.time_s, inputs.T_ambient_C, T_ref_C, p["threshold_K"])
-        return listed.copy(preload_loss_N=np.asarray(listed.preload_loss_N, float)
-                           + p["creep_N_per_h"] * H)
+        L = np.asarray(listed.preload_loss_N, float)
+        room = np.maximum(np.asarray(inputs.preload_assembled_N, float) - L, 0.0)
+        return listed.copy(preload_loss_N=L + np.minimum(p["creep_N_per_h"] * H, room))
 
     def steps(self, conditions):
         return {"loss_N": self.scale["loss_N"], "creep_N_per_h": self.scale["creep_N_per_h"]}
