@@ -29,7 +29,7 @@ from analytic.bearing.ball_dynamics import solve_balls
 from analytic.bearing.contact import axial_state, contact_stiffness
 from analytic.bearing.single import balls_at_displacement, solve_single
 from analytic.materials import get_material
-from analytic.torque import RPM_TO_RAD_S, ball_kinematics
+from analytic.torque import ball_kinematics
 
 G71807 = BearingGeometry.from_catalogue("NSK 71807C")
 

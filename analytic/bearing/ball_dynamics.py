@@ -98,6 +98,16 @@ def jones_outer_control(g: BearingGeometry, cs_inner: ContactStiffness,
     return m_o >= np.asarray(Q_inner_N) * e_i.a_mm * e_i.E_ell
 
 
+def jones_choice(g: BearingGeometry, tg: ThermalGeometry, balls: dict, alpha_i_rad,
+                 alpha_o_rad) -> np.ndarray:
+    """`jones_outer_control` at a solved ball state: `balls` the per-ball quantities of
+    `frozen_equilibrium` (flat arrays Q_i, Q_o), angles in rad (any shape, flattened), exact
+    Hertz stiffness at each angle of the grown geometry tg (flat)."""
+    ai, ao = np.ravel(alpha_i_rad), np.ravel(alpha_o_rad)
+    return jones_outer_control(g, contact_stiffness(g, tg, ai), contact_stiffness(g, tg, ao),
+                               balls["Q_i"], balls["Q_o"], ai, ao)
+
+
 def control_shares(control, outer_controls=None):
     """(lam_i, lam_o) of a control hypothesis: "outer", "inner", or with "jones" per ball from the
     boolean array outer_controls (True: outer-race control)."""
@@ -353,8 +363,7 @@ def solve_balls(g: BearingGeometry, X_mm, Y_mm, speed_rpm=0.0, *, control: str =
         a_i, a_o = new_i, new_o
         ok_outer = change <= tol
         if control == "jones" and n_pass < JONES_FREE_PASSES:
-            cs_i2, cs_o2 = contact_stiffness(g, tg, a_i), contact_stiffness(g, tg, a_o)
-            new_ctl = jones_outer_control(g, cs_i2, cs_o2, p["Q_i"], p["Q_o"], a_i, a_o)
+            new_ctl = jones_choice(g, tg, p, a_i, a_o)
             ok_outer &= new_ctl == outer_ctl
             outer_ctl = new_ctl
         if np.all(ok_outer):

@@ -38,7 +38,7 @@ import numpy as np
 from analytic.bearing.axial import reference_state
 from analytic.bearing.ball_dynamics import BallDynamics, solve_balls
 from analytic.bearing import ball_dynamics as bd
-from analytic.bearing.contact import contact_stiffness, project_balls
+from analytic.bearing.contact import project_balls
 from analytic.bearing.geometry import (SIGNS, BearingGeometry, ThermalGeometry, broadcast_geometry,
                                        pair_array, pair_thermal_geometry)
 from analytic.bearing.roots import Root, newton_increasing
@@ -223,10 +223,7 @@ class DynamicBallSet:
     def switch_control(self, a_i, a_o) -> bool:
         """Control "jones": re-choose every ball's controlling raceway at the last state; True
         when any ball switched."""
-        g, tg, p = self.g, self.tg, self.p
-        ai, ao = a_i.ravel(), a_o.ravel()
-        new = bd.jones_outer_control(g, contact_stiffness(g, tg, ai), contact_stiffness(g, tg, ao),
-                                     p["Q_i"], p["Q_o"], ai, ao)
+        new = bd.jones_choice(self.g, self.tg, self.p, a_i, a_o)
         switched = bool(np.any(new != self.outer_ctl))
         self.outer_ctl = new
         return switched

@@ -160,10 +160,7 @@ class _Problem:
     def switch_control(self, a_i, a_o) -> bool:
         """Control "jones": re-choose each ball's controlling raceway by Jones's criterion at the
         balls' last state (`ball_dynamics.jones_outer_control`); True when any ball switched."""
-        g, tg, p = self.g, self.tg, self.last
-        ai, ao = a_i.ravel(), a_o.ravel()
-        new = bd.jones_outer_control(g, contact_stiffness(g, tg, ai), contact_stiffness(g, tg, ao),
-                                     p["Q_i"], p["Q_o"], ai, ao)
+        new = bd.jones_choice(self.g, self.tg, self.last, a_i, a_o)
         switched = bool(np.any(new != self.outer_ctl))
         self.outer_ctl = new
         return switched
