@@ -210,8 +210,7 @@ def _combined_group(g: BearingGeometry, mode: str, s, dr, dz, tg: ThermalGeometr
     if speed_rpm is not None:
         shape = (2, g.Z, u.shape[1])
         dyn = DynamicBallSet(g, tg3, np.asarray(speed_rpm, float)[None, None, :], control, shape)
-        u, ok = _solve_dynamic(prob, dyn, u, 0.1 * g.A0_mm, max_outer, control)
-        st = dyn.state(*prob.positions(u))
+        u, ok, st = _solve_dynamic(prob, dyn, u, 0.1 * g.A0_mm, max_outer, control)
         inner, outer = dyn.contacts()
         ok = ok & dyn.ball_ok.reshape(shape).all(axis=(0, 1))
     else:
@@ -315,14 +314,15 @@ def _solve_dynamic(prob: CombinedProblem, dyn: "DynamicBallSet", u, cap, max_out
     """The outer loop of the quasi-dynamic ball set: freeze the ball forces at the contact
     angles, minimise the pair's potential (`roots.newton_minimise`), re-read the angles; for
     control "jones" the controlling raceway is re-chosen during the first passes
-    (`ball_dynamics.JONES_FREE_PASSES`).  Returns (u, converged per point)."""
+    (`ball_dynamics.JONES_FREE_PASSES`).  Returns (u, converged per point, the balls' state at u
+    with the final frozen forces)."""
     a_i = a_o = prob.alpha(u)
     done = np.zeros(u.shape[1], bool)
     for n_pass in range(max_outer):
         dyn.freeze(a_i, a_o)
         u = newton_minimise(lambda uu: prob.assemble(uu, dyn.state(*prob.positions(uu))), u, cap,
                             max_iter=60).x
-        st = dyn.state(*prob.positions(u))
+        dyn.state(*prob.positions(u))            # the balls at u: their angles and loads
         n_i, n_o = dyn.angles()
         Q_i, Q_o = dyn.loads()
         change = np.maximum(np.where(Q_o > 0, np.abs(n_o - a_o), 0.0),
@@ -342,7 +342,7 @@ def _solve_dynamic(prob: CombinedProblem, dyn: "DynamicBallSet", u, cap, max_out
     scale = st.Q_N.sum(axis=(0, 1)) + np.abs(prob.Fa) + np.abs(prob.Fr)
     if prob.tilt:
         scale = scale + np.abs(prob.M / prob.lam)
-    return u, done & (np.abs(g).max(axis=0) <= 1e-10 * scale)
+    return u, done & (np.abs(g).max(axis=0) <= 1e-10 * scale), st
 
 
 def solve_pair_combined(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.0, dz_mm=0.0,

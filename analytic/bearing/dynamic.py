@@ -75,22 +75,22 @@ class _Balls:
         b = solve_balls(self.g, X, self.Y, self.speed, control=self.control, tg=self.tg)
         self.last = b
         Z = self.g.Z
-        return Z * b.inner_force_N[0], Z * b.tangent_N_per_mm[0, 0], b
+        return Z * b.inner_force_N[0], Z * b.tangent_N_per_mm[0, 0]
 
 
 def _effective_X(balls: _Balls, Xnom, c) -> tuple[Root, np.ndarray, np.ndarray]:
     """X with X + c F(X) = X_nom per bearing (compliance c in series, F increasing in X);
     returns (Root, F, dF/dX) at the solution."""
-    F0, k0, _ = balls(Xnom)
+    F0, k0 = balls(Xnom)
     if np.all(c == 0.0):
         return Root(Xnom, np.ones(np.shape(Xnom), bool)), F0, k0
 
     def fun(X):
-        F, k, _ = balls(X)
+        F, k = balls(X)
         return X + c * F - Xnom, 1.0 + c * k
     root = newton_increasing(fun, Xnom - c * F0 / (1.0 + c * k0), lo=Xnom - c * np.maximum(F0, 0.0),
                              hi=Xnom + c * np.maximum(-F0, 0.0), step0=1e-4, xtol=XTOL_MM)
-    F, k, _ = balls(root.x)
+    F, k = balls(root.x)
     return root, F, k
 
 
@@ -141,11 +141,11 @@ def solve_pair_dynamic(g: BearingGeometry, arrangement: str, N: int, *, dr_mm, d
         Freq = np.stack([np.maximum(FA, 0.0), P])
 
         def fun(XX):
-            F, k, _ = balls(XX)
+            F, k = balls(XX)
             return F - Freq, k
         root = newton_increasing(fun, np.full((2, N), X0), step0=1e-3 * g.Dw_mm, xtol=XTOL_MM)
         X = root.x
-        F, k, _ = balls(X)
+        F, k = balls(X)
         ok = root.converged.all(axis=0)
         x = s[0, 0] * (X[0] - X0) - dz[0]
         e_out = np.full(N, np.nan)

@@ -307,8 +307,9 @@ class Pipeline:
     def _centres(self, probe: np.ndarray, theta_rings: np.ndarray) -> np.ndarray:
         """(n, 4, 2) groove-centre displacements (mm) of RINGS from the probed displacements
         (n, n_probe): grooved rings, the circle of the ring's thermally grown groove radius
-        fitted to the displaced groove points (`fem.post.circle_centre_weights`); rectangular rings, the raceway point's displacement
-        + the ring's thermal strain (n, 4) x the centre offset (`fem.post.groove_centre_shift`)."""
+        fitted to the displaced groove points (`fem.post.circle_centre_weights`); rectangular
+        rings, the raceway point's displacement + the ring's thermal strain (n, 4) x the centre
+        offset (`fem.post.groove_centre_shift`)."""
         n = probe.shape[0]
         centre = np.empty((n, 4, 2))
         m = 0 if self.centre_weights is None else self.centre_weights[0][0].shape[1]
