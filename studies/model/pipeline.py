@@ -27,7 +27,7 @@ from analytic.bearing.land import groove_centre_radius_mm, land_diameters_mm, la
 from analytic.lubrication import get_lubricant
 from analytic.materials import get_material
 from analytic.safety import static_load_rating_C0_N, static_safety_from_contact_pressure
-from analytic.torque import palmgren_f1_angular_contact, pair_torque
+from analytic.torque import TorqueComponents, palmgren_f1_angular_contact, pair_torque
 from fem.post import circle_centre_weights, groove_centre_shift, mean_pressures_MPa
 from fem.setup import (CompliancePlan, FESetup, FullFE, SetupSpec, cached_setup, compute_setup,
                        full_fe)
@@ -290,7 +290,7 @@ class Pipeline:
             force, probe = np.array(force), np.array(probe)
         else:
             res = self.sup.evaluate(theta, delta, w2)
-            force, probe = res["force_N"], res["probe"]
+            force, probe = res.force_N, res.probe
         p = self.fit_pressures(force)
         idx = {p: i for i, p in enumerate(self.part_names)}
         centre = self._centres(probe, theta[:, [idx[r] for r in RINGS]])
@@ -350,7 +350,7 @@ class Pipeline:
         if self.sup is None:
             sol = self.solver.solve(self.model.unit_loads @ theta + w2 * self.model.spin_load, delta)
             return RowField(sol.u, sol.force_N, theta)
-        force = self.sup.evaluate(theta[None, :], delta[None, :], np.array([w2]))["force_N"][0]
+        force = self.sup.evaluate(theta[None, :], delta[None, :], np.array([w2])).force_N[0]
         return RowField(self.sup.field(theta, delta, w2), force, theta)
 
     def fe_field(self, theta_q: np.ndarray, inputs: PhysicsInputs):
@@ -498,7 +498,7 @@ class Pipeline:
                 if remember:
                     self._pair_memo.put(key, pair, inputs.n_rows)
             mu = resolve_friction_coefficient(inputs, a.lubrication.friction_coefficient)
-            torque = self.torque(pair, inputs, mu, viscous_factor_f0)
+            torque = _torque_columns(self.torque(pair, inputs, mu, viscous_factor_f0))
         names = list(self.setup.fit_names)
         nf = len(names)
         p_in = fe.fit_pressure_MPa[:, [k for k in range(nf) if names[k].startswith("fit_inner")]]
@@ -538,7 +538,7 @@ class Pipeline:
         return (out, pair) if return_pair else out
 
     def torque(self, pair: PairState, inputs: PhysicsInputs, mu: np.ndarray,
-               viscous_factor_f0=None) -> dict[str, np.ndarray]:
+               viscous_factor_f0=None) -> TorqueComponents:
         """Friction torque of the pair (analytic/torque.py). Oil: viscosity of the configured
         lubricant (ASTM D341 fit of its datasheet points, slope scaled by the
         viscosity_temperature effect) at the mean of the ring and ball temperatures."""
@@ -558,11 +558,24 @@ class Pipeline:
             C0 = static_load_rating_C0_N(g.Z, g.Dw_mm, g.dm_mm, g.alpha0_deg)
             P0 = pair.axial_force_N.max(axis=0)
             f1 = palmgren_f1_angular_contact(P0, C0)
-        out = pair_torque(self.geom, pair, model="oil", mu=mu, speed_rpm=speed,
-                          f0=lub.viscous_factor_f0 if viscous_factor_f0 is None else viscous_factor_f0,
-                          nu_mm2_s=nu, load_term=lub.load_term, f1=f1)
-        out["viscosity_mm2_s"] = nu
-        return out
+        return pair_torque(self.geom, pair, model="oil", mu=mu, speed_rpm=speed,
+                           f0=lub.viscous_factor_f0 if viscous_factor_f0 is None else viscous_factor_f0,
+                           nu_mm2_s=nu, load_term=lub.load_term, f1=f1)
+
+
+def _torque_columns(t: TorqueComponents) -> dict[str, np.ndarray]:
+    if t.model == "solid_film":
+        out = {"torque_hysteresis_Nmm": t.hysteresis_Nmm, "torque_differential_Nmm": t.differential_Nmm,
+               "torque_spin_Nmm": t.spin_Nmm, "torque_inner_contacts_Nmm": t.inner_contacts_Nmm,
+               "torque_outer_contacts_Nmm": t.outer_contacts_Nmm}
+    else:
+        out = {"torque_load_Nmm": t.load_Nmm, "torque_viscous_Nmm": t.viscous_Nmm}
+    out.update(torque_A_Nmm=t.torque_A_Nmm, torque_B_Nmm=t.torque_B_Nmm, torque_Nmm=t.torque_Nmm)
+    if t.heat_W is not None:
+        out["heat_W"] = t.heat_W
+    if t.model == "oil":
+        out["viscosity_mm2_s"] = t.viscosity_mm2_s
+    return out
 
 
 def _zeros_if_none(v):
