@@ -210,7 +210,7 @@ def test_bonded_superposition_at_speed_equals_direct_fe():
     w2 = (2 * np.pi * 20000 / 60) ** 2
     res = sup.evaluate(theta, np.array([[0.002]]), np.array([w2]))
     sol = solver.solve(model.unit_loads @ theta[0] + w2 * model.spin_load, [0.002])
-    np.testing.assert_allclose(res["force_N"][0], sol.force_N, rtol=0,
+    np.testing.assert_allclose(res.force_N[0], sol.force_N, rtol=0,
                                atol=1e-8 * np.abs(sol.force_N).max())
     assert np.isinf(fit_open_omega2(sup, theta, np.array([[0.002]]), 0, 1e12)).all()
 
