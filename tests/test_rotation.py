@@ -13,6 +13,7 @@ from meshes.section import two_cylinder_section
 from studies.model.config import load_shipped
 from studies.model.pipeline import Pipeline, table_inputs
 from studies.runs.verify import TOLERANCE, rotating_cases
+from studies.model.columns import to_columns
 
 
 def _hooke_stresses(u, r, h, E, nu, assumption):
@@ -132,7 +133,7 @@ def test_speed_loosens_the_inner_fit_as_omega_squared_and_leaves_the_outer(pl001
     (a short ring tied to its neighbours: within 10 %; measured 3.6 % at mesh x3)."""
     a = pl001.asm
     n = np.array([0.0, 3000.0, 6000.0])
-    out = pl001.run(table_inputs(a, {"T_ambient_C": np.full(3, 20.0), "speed_rpm": n}))
+    out = to_columns(pl001.run(table_inputs(a, {"T_ambient_C": np.full(3, 20.0), "speed_rpm": n})))
     p = out["fit_pressure_inner_MPa"]
     assert p[2] - p[0] == pytest.approx(4 * (p[1] - p[0]), rel=1e-7)
     assert p[2] < p[0]
@@ -154,7 +155,7 @@ def test_fit_open_speed_brackets_the_opening(pl001):
     p = pl001.fe(probe).fit_pressure_MPa[:, k]
     assert p[0] > 0 and p[1] == 0
     ms, mr = pl001.materials["shaft"], pl001.materials["inner_ring_A"]
-    d_um = pl001.run(inp)["interference_inner_um"][0]
+    d_um = to_columns(pl001.run(inp))["interference_inner_um"][0]
     w = lame.fit_open_speed_rad_s(a.shaft.bore_diameter_mm / 2, a.shaft.seat_diameter_mm / 2,
                                   a.bearing.inner_ring_outer_diameter_mm / 2, ms.E_MPa, ms.nu,
                                   mr.E_MPa, mr.nu, d_um, ms.density_N_s2_mm4, mr.density_N_s2_mm4)
