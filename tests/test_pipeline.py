@@ -214,3 +214,31 @@ def test_quasi_dynamic_balls_through_the_pipeline(pl000):
     omega_c = kin.cage * 20000.0 * 2.0 * np.pi / 60.0
     assert dy["centrifugal_force_N"][3] == pytest.approx(m * omega_c ** 2 * g.dm_mm / 2.0, rel=1e-12)
     assert ao < ai and st["centrifugal_force_N"][3] == 0.0
+
+
+def test_fe_options_split_the_preload_change_into_its_causes_to_first_order(pl000):
+    """`FEOptions(shifts=...)` holds one set of groove-centre shifts at its assembly-state value
+    (exactly); `FEOptions(states=...)` evaluates given FE answers. The preload P(dr, dz, T) of
+    the pair is smooth, so its change from T_ref splits into the radial-shift, axial-shift and
+    temperature-only (both shifts held) parts to first order (Taylor):
+    dP_full - dP_radial - dP_axial + dP_neither = O(dT^2), i.e. relative to dP_full O(dT): the
+    remainder falls 10x (8..12x) from 2 K to 0.2 K. An option that kept or dropped the wrong
+    shifts leaves a first-order remainder that does not fall so."""
+    from studies.model.pipeline import FEOptions
+
+    a = pl000.asm
+    P0 = pl000.run(_inp(a, [a.T_ref_C])).preload_N[0]
+    rel = []
+    for dT in (2.0, 0.2):
+        inp = _inp(a, [a.T_ref_C + dT])
+        full = pl000.run(inp)
+        radial = pl000.run(inp, fe_options=FEOptions(shifts="radial_only"))
+        axial = pl000.run(inp, fe_options=FEOptions(shifts="axial_only"))
+        neither = pl000.run(inp, fe_options=FEOptions(states=(full.fe_ref, full.fe_ref)))
+        np.testing.assert_array_equal(radial.fe.dz_mm, full.fe_ref.dz_mm)
+        np.testing.assert_array_equal(radial.fe.dr_mm, full.fe.dr_mm)
+        np.testing.assert_array_equal(axial.fe.dr_mm, full.fe_ref.dr_mm)
+        np.testing.assert_array_equal(axial.fe.dz_mm, full.fe.dz_mm)
+        d = [r.preload_N[0] - P0 for r in (full, radial, axial, neither)]
+        rel.append(abs((d[0] - d[1] - d[2] + d[3]) / d[0]))
+    assert rel[0] < 0.01 and 8.0 < rel[0] / rel[1] < 12.0, rel
