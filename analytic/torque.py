@@ -257,19 +257,32 @@ def power_W(torque_Nmm, n_rpm):
     return np.asarray(torque_Nmm, float) * np.abs(np.asarray(n_rpm, float)) * RPM_TO_RAD_S * 1e-3
 
 
-def friction_heat_W(components_Nmm: dict[str, np.ndarray], n_rpm) -> dict[str, np.ndarray]:
-    """Heat (W) of each torque component at speed n_rpm for a thermal network; keys renamed
-    *_Nmm -> *_W.  The sliding (differential), spin and hysteresis parts of `solid_film_torque_Nmm`
+def friction_heat_W(components_Nmm, n_rpm) -> dict[str, np.ndarray]:
+    """Heat (W) of each torque component at speed n_rpm for a thermal network, by name: the
+    fields of a torque dataclass (`ContactTorques`, `SlidingSpinTorques`) or the keys of a
+    mapping, renamed *_Nmm -> *_W (a display helper; None fields are left out).  The sliding (differential), spin and hysteresis parts of `solid_film_torque_Nmm`
     or of `sliding_spin_torque_Nmm` map to seed 003's H_B1 (sliding) and H_B3 (spin); the viscous
     term of `palmgren_viscous_torque_Nmm` to H_B2."""
+    items = (components_Nmm.items() if isinstance(components_Nmm, dict)
+             else ((f.name, getattr(components_Nmm, f.name)) for f in fields(components_Nmm)))
     return {k[:-4] + "_W" if k.endswith("_Nmm") else k + "_W": power_W(v, n_rpm)
-            for k, v in components_Nmm.items()}
+            for k, v in items if v is not None}
+
+
+@dataclass(frozen=True)
+class SlidingSpinTorques:
+    """Sliding (differential slip) and spin torques of one bearing's inner and outer contacts,
+    N*mm (`sliding_spin_torque_Nmm`)."""
+    sliding_inner_Nmm: np.ndarray
+    sliding_outer_Nmm: np.ndarray
+    spin_inner_Nmm: np.ndarray
+    spin_outer_Nmm: np.ndarray
 
 
 def sliding_spin_torque_Nmm(Z: int, Dw_mm, dm_mm, f_i, f_o, alpha_rad, inner: ContactInput,
                             outer: ContactInput, mu_slide, mu_spin=None,
                             ring_compliance_per_MPa=1.0, ball_compliance_per_MPa=1.0,
-                            alpha_outer_rad=None):
+                            alpha_outer_rad=None) -> SlidingSpinTorques:
     """Sliding (differential slip) and spin torques of an oil-lubricated bearing with boundary /
     traction coefficients mu_slide, mu_spin (default mu_slide), N*mm (same contact models as
     `solid_film_torque_Nmm` without hysteresis).  Multiply by the speed (`friction_heat_W`) for
@@ -280,9 +293,7 @@ def sliding_spin_torque_Nmm(Z: int, Dw_mm, dm_mm, f_i, f_o, alpha_rad, inner: Co
     if mu_spin is not None and mu_slide != 0:
         scale = mu_spin / mu_slide
         spin_i, spin_o = spin_i * scale, spin_o * scale
-    return {"sliding_inner_Nmm": t.differential_inner_Nmm,
-            "sliding_outer_Nmm": t.differential_outer_Nmm,
-            "spin_inner_Nmm": spin_i, "spin_outer_Nmm": spin_o}
+    return SlidingSpinTorques(t.differential_inner_Nmm, t.differential_outer_Nmm, spin_i, spin_o)
 
 
 # ---------------------------------------------------------------------------------------------

@@ -218,8 +218,8 @@ def test_sliding_spin_heat_for_thermal_network():
     cin, cout = _contact(40.0, 20.0, "inner"), _contact(40.0, 20.0, "outer")
     oil = torque.sliding_spin_torque_Nmm(G.Z, G.Dw_mm, G.dm_mm, G.f_i, G.f_o, np.radians(20.0),
                                          cin, cout, mu_slide=0.04, mu_spin=0.02)
-    assert oil["sliding_inner_Nmm"] == pytest.approx(base.differential_inner_Nmm, rel=1e-14)
-    assert oil["sliding_outer_Nmm"] == pytest.approx(base.differential_outer_Nmm, rel=1e-14)
-    assert oil["spin_inner_Nmm"] == pytest.approx(0.5 * base.spin_inner_Nmm, rel=1e-14)
+    assert oil.sliding_inner_Nmm == pytest.approx(base.differential_inner_Nmm, rel=1e-14)
+    assert oil.sliding_outer_Nmm == pytest.approx(base.differential_outer_Nmm, rel=1e-14)
+    assert oil.spin_inner_Nmm == pytest.approx(0.5 * base.spin_inner_Nmm, rel=1e-14)
     heat = torque.friction_heat_W(oil, 1500.0)
-    assert heat["spin_inner_W"] == pytest.approx(oil["spin_inner_Nmm"] * 1500 * 2 * np.pi / 60e3, rel=1e-14)
+    assert heat["spin_inner_W"] == pytest.approx(oil.spin_inner_Nmm * 1500 * 2 * np.pi / 60e3, rel=1e-14)
