@@ -28,9 +28,9 @@ from studies.model.memo import Memo, inputs_key
 from studies.model.result import FitPressures, SimulationResult
 from studies.model.stack import section_from_assembly
 from studies.model.stages.bearing import BearingStage
-from studies.model.stages.fe import (FE_PART_GROUP, SPEED_SEARCH_MAX_RPM, FEOptions, FEStage,  # noqa: F401
+from studies.model.stages.fe import (SPEED_SEARCH_MAX_RPM, FEOptions, FEStage,  # noqa: F401
                                      FEState, RowField)
-from studies.model.stages.grooves import RINGS  # noqa: F401
+from studies.model.stages.grooves import RINGS  # noqa: F401  (re-exported for the studies)
 from studies.model.stages.lame import lame_neighbours
 from studies.model.stages.torque import pair_friction_torque
 
