@@ -167,8 +167,10 @@ def ball_tangents(balls: PairBalls, X_mm=None, Y_mm=None) -> BallTangents:
 
 
 def _static_tangents(balls: PairBalls, X, Y) -> BallTangents:
-    """Quasi-static balls: K_n exact at each ball's angle, `contact.ball_set_state` per ball."""
-    g, shape = balls.g, X.shape
+    """Quasi-static balls: K_n exact at each ball's angle, `contact.ball_set_state` per ball
+    (each ball as a set of one at psi = 0: its loads are (Q sin a, Q cos a), its k_* the
+    tangent's entries)."""
+    shape = X.shape
     cs = contact_stiffness(balls.g, balls.tg, np.arctan2(X, Y))
     M = shape[1] * shape[2]
     flat = lambda v: np.broadcast_to(v, shape).reshape(2, 1, M)  # noqa: E731
@@ -176,11 +178,8 @@ def _static_tangents(balls: PairBalls, X, Y) -> BallTangents:
                         np.broadcast_to(balls.tg.A_T_mm, shape).reshape(2, M), flat(cs.Kn),
                         np.ones(1), flat(cs.dlnKn_dalpha))
     r = lambda v: v.reshape(shape)  # noqa: E731
-    ok = cs.converged.reshape(shape).all(axis=(0, 1)) if np.ndim(cs.converged) else \
-        np.full(shape[2], bool(cs.converged))
-    del g
     return BallTangents(r(st.F_N), r(st.Fr_N), (r(st.k_aa), r(st.k_ar), r(st.k_ra), r(st.k_rr)),
-                        ok)
+                        np.broadcast_to(cs.converged, shape).all(axis=(0, 1)))
 
 
 def _dynamic_tangents(balls: PairBalls, X, Y, shape) -> BallTangents:
