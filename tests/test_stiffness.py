@@ -241,3 +241,20 @@ def test_condense_rigid_floating_and_series():
     assert condense(K6, np.inf)[2, 2] == k
     assert np.isclose(condense(K6, 2.0)[2, 2], k * 2.0 / (k + 2.0), rtol=1e-15)
     assert condense(K6, 0.0)[2, 2] == 0.0
+
+
+@pytest.mark.parametrize("ball_model,c", [("static", 2e-5), ("quasi_dynamic", 0.0)])
+def test_pair_matrix_is_the_bearings_moved_to_the_pair_centre(ball_model, c):
+    """Rigid-body transfer (statics): with bearing j's ball plane at z_j = -+span/2 from the
+    pair's centre, its DOFs are x_j = x + z_j theta_y, y_j = y - z_j theta_x (the rest equal),
+    so K_pair = sum_j T_j^T K_j T_j, to 1e-9 of sqrt(K_ii K_jj): the two frames are computed
+    from different lever arms, not by this transfer."""
+    st, args = case(ball_model, c)
+    k = pair_stiffness(G, "DB", st, **args)
+    moved = np.zeros_like(k.pair_N_mm_rad)
+    for j, zj in enumerate((-0.5 * SPAN, 0.5 * SPAN)):
+        T = np.eye(5)
+        T[0, 4], T[1, 3] = zj, -zj
+        moved += np.einsum("ai,nab,bj->nij", T, k.bearing_N_mm_rad[j], T)
+    d = np.sqrt(np.abs(np.diagonal(k.pair_N_mm_rad, axis1=-2, axis2=-1)))
+    assert np.all(np.abs(moved - k.pair_N_mm_rad) <= 1e-9 * d[:, :, None] * d[:, None, :])

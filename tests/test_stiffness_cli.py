@@ -1,0 +1,93 @@
+"""`bearingfem stiffness` (docs/cli.md "Bearing stiffness"): the column contract, the same
+equilibrium as `simulate` (its axial stiffness is a second route to k_zz), the ROSS table's
+layout, units and speed range, and bad input as one line, exit 2, no output."""
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import bearingfem
+from studies.app.cli import main
+from studies.model.config import CONFIG_DIR, load_assembly
+
+CFG = CONFIG_DIR / "seed000_71807C_TC4.toml"
+#: the names of shared/spec/cli.md "stiffness", typed here from the spec
+SPEC = ["k_xx_N_per_mm", "k_yy_N_per_mm", "k_zz_N_per_mm", "k_xy_N_per_mm", "k_yx_N_per_mm",
+        "k_tx_Nmm_per_mrad", "k_ty_Nmm_per_mrad", "k_x_ty_N_per_mrad"]
+ROSS = ["frequency", "kxx", "kyy", "kxy", "kyx", "cxx", "cyy", "cxy", "cyx"]
+
+
+def write(tmp_path, text, name="c.csv"):
+    p = tmp_path / name
+    p.write_text(text)
+    return p
+
+
+def test_columns_equal_simulate_and_ross_table(tmp_path, capsys):
+    """Five rows at 0..12000 rpm and 20..60 C (quasi-dynamic balls as seed 000 says).
+    Columns: the condition columns, then the spec's eight names (with --per-bearing the same
+    suffixed _A, _B).  k_zz equals `simulate`'s axial_stiffness_N_per_um (the axial solvers'
+    own dF/dx, same rows) to 1e-9; pair = A + B for k_xx, k_zz (translations: the same about
+    any point; the CSV's 10 significant digits).  ROSS table: SI units (rad/s from rpm, N/m from N/mm), one row per speed sorted,
+    no damping, the speed range in its sidecar and on stdout, no warning with 5 speeds."""
+    T = [60.0, 20.0, 40.0, 40.0, 20.0]
+    rpm = [12000.0, 0.0, 6000.0, 9000.0, 3000.0]
+    cond = write(tmp_path, "T_ambient_C,speed_rpm\n" + "".join(f"{t},{s}\n" for t, s in zip(T, rpm)))
+    out, ross = tmp_path / "k.csv", tmp_path / "ross.csv"
+    assert main(["stiffness", str(CFG), str(cond), "-o", str(out), "--per-bearing",
+                 "--ross", str(ross)]) == 0
+    cap = capsys.readouterr()
+    assert cap.err == "" and "0..12000 rpm" in cap.out
+    df = pd.read_csv(out)
+    assert list(df.columns) == ["T_ambient_C", "speed_rpm"] + SPEC + [
+        f"{c}_{J}" for J in "AB" for c in SPEC]
+    sim = bearingfem.simulate(load_assembly(CFG), {"T_ambient_C": T, "speed_rpm": rpm})
+    np.testing.assert_allclose(df["k_zz_N_per_mm"], 1e3 * sim["axial_stiffness_N_per_um"],
+                               rtol=1e-9)
+    for c in ("k_xx_N_per_mm", "k_zz_N_per_mm"):
+        np.testing.assert_allclose(df[c], df[c + "_A"] + df[c + "_B"], rtol=1e-9)  # 10 digits
+    r = pd.read_csv(ross)
+    assert list(r.columns) == ROSS
+    order = np.argsort(rpm)
+    np.testing.assert_allclose(r["frequency"], np.array(rpm)[order] * 2 * np.pi / 60, rtol=1e-9)
+    np.testing.assert_allclose(r["kxx"], 1e3 * df["k_xx_N_per_mm"].to_numpy()[order], rtol=1e-9)
+    assert (r[["cxx", "cyy", "cxy", "cyx"]] == 0).all().all()
+    side = json.loads((tmp_path / "ross.csv.json").read_text())
+    assert side["ross"]["interpolated_range_rpm"] == [0.0, 12000.0]
+
+
+def test_fewer_than_five_speeds_warns_once(tmp_path, capsys):
+    cond = write(tmp_path, "T_ambient_C,speed_rpm\n20,0\n20,5000\n")
+    out, ross = tmp_path / "k.csv", tmp_path / "ross.csv"
+    assert main(["stiffness", str(CFG), str(cond), "-o", str(out), "--ross", str(ross)]) == 0
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "warning" in err[0] and "2 speed(s)" in err[0] \
+        and "0..5000 rpm" in err[0], err
+    assert list(pd.read_csv(out).columns) == ["T_ambient_C", "speed_rpm"] + SPEC
+
+
+@pytest.mark.parametrize("content,extra,fragment", [
+    ("T_ambient_C,speed_rpm\n20,0\n40,0\n", ["--ross", "R"], "rows 1 and 2 have the same speed_rpm 0"),
+    ("T_ambient_C,bogus\n20,1\n", [], "bogus"),
+    ("T_ambient_C\n20\nabc\n", [], "'abc' is not a number"),
+    ("T_ambient_C\n", [], "empty table"),
+])
+def test_bad_input_is_one_line_exit_2_and_no_output(tmp_path, capsys, content, extra, fragment):
+    cond = write(tmp_path, content)
+    out = tmp_path / "k.csv"
+    extra = [str(tmp_path / "r.csv") if e == "R" else e for e in extra]
+    code = main(["stiffness", str(CFG), str(cond), "-o", str(out), *extra])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1 and fragment in err[0], err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["c.csv"]
+
+
+def test_ross_output_may_not_be_the_table(tmp_path, capsys):
+    cond = write(tmp_path, "T_ambient_C\n20\n")
+    out = tmp_path / "k.csv"
+    out.write_text("mine\n")
+    code = main(["stiffness", str(CFG), str(cond), "-o", str(out), "--ross", str(out)])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1 and "is the input file" in err[0]
+    assert out.read_text() == "mine\n"
