@@ -22,8 +22,9 @@ def _import_ross():
             warnings.simplefilter("ignore")
             import ross
     except Exception as exc:           # absent, or an incompatible plotly (ROSS 2.3 needs < 7)
+        first = str(exc).splitlines()[0] if str(exc) else ""
         pytest.skip(f"ross (ross-rotordynamics, the optional extra 'ross') not importable: "
-                    f"{type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}")
+                    f"{type(exc).__name__}: {first}", allow_module_level=True)
     return ross
 
 
