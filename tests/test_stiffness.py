@@ -56,7 +56,7 @@ def fd_tangent(balls, frame, h_mm):
                 q[d] = sgn * steps[d]
             else:
                 w[:] = sgn * steps[d]
-            F.append(generalised_loads(balls, q, w, frame)[0])
+            F.append(generalised_loads(balls, q, w, frame))
         out[..., :, d] = np.moveaxis((F[0] - F[1]) / (2.0 * steps[d]), 0, -1)
     return out
 

@@ -38,8 +38,8 @@ function theorem
 
 with T = kn n n^T + (Q/d)(t t^T + dlnK/dalpha n t^T) per contact and b_a = db/dalpha; the
 derivatives of K_i, K_o and b in the angles (smooth functions of one angle each, from
-`ball_dynamics.frozen_forces`) by central differences with step ANGLE_STEP_RAD (error
-O(h^2) ~ 1e-12 relative).  Without the b and dK terms this is the series tangent
+`ball_dynamics.frozen_forces`) by central differences with step ANGLE_STEP_RAD (truncation
+O(h^2) and rounding O(eps/h): ~1e-10 of those terms, which are themselves small corrections).  Without the b and dK terms this is the series tangent
 T_i (T_i + T_o)^-1 T_o of `ball_dynamics.series_tangent`; at speed 0 it is the quasi-static one
 (tests).  Raceway control: held at the equilibrium's choice.  Not included: the velocity-dependent
 (damping, cross-coupled) terms of lubricated contacts.
@@ -160,10 +160,9 @@ def ball_tangents(balls: PairBalls, X_mm=None, Y_mm=None) -> BallTangents:
     (module docstring)."""
     X = balls.X_mm if X_mm is None else np.asarray(X_mm, float)
     Y = balls.Y_mm if Y_mm is None else np.asarray(Y_mm, float)
-    shape = X.shape
     if balls.speed_rpm is None:
         return _static_tangents(balls, X, Y)
-    return _dynamic_tangents(balls, X, Y, shape)
+    return _dynamic_tangents(balls, X, Y)
 
 
 def _static_tangents(balls: PairBalls, X, Y) -> BallTangents:
@@ -182,10 +181,10 @@ def _static_tangents(balls: PairBalls, X, Y) -> BallTangents:
                         np.broadcast_to(cs.converged, shape).all(axis=(0, 1)))
 
 
-def _dynamic_tangents(balls: PairBalls, X, Y, shape) -> BallTangents:
+def _dynamic_tangents(balls: PairBalls, X, Y) -> BallTangents:
     """Quasi-dynamic balls (`ball_dynamics.solve_balls`) and the full tangent of the module
     docstring."""
-    g = balls.g
+    g, shape = balls.g, X.shape
     speed = np.broadcast_to(balls.speed_rpm, shape)
     b = bd.solve_balls(g, X, Y, speed, control=balls.control, tg=balls.tg)
     M = X.size
@@ -252,13 +251,12 @@ def _maps(balls: PairBalls, z_c):
     return GX, GY
 
 
-def generalised_loads(balls: PairBalls, q=None, w_mm=None, frame: str = "pair",
-                      tangents: BallTangents | None = None):
+def generalised_loads(balls: PairBalls, q=None, w_mm=None, frame: str = "pair"):
     """Loads the balls of each bearing carry when the rotor is displaced by q (5, N: mm, mm, mm,
     rad, rad) from the equilibrium and the preload paths give by w_mm (2, N): (6, 2, N) per
     bearing, (F_x, F_y, F_z, M_x, M_y, F_w) with F_w = -F_j the force on the path (moments about
-    the pair's centre, frame "pair", or each bearing's ball plane, frame "bearing"), and the
-    `BallTangents` they come from.  The equilibrium force function whose derivative
+    the pair's centre, frame "pair", or each bearing's ball plane, frame "bearing"), the balls
+    solved afresh there (`ball_tangents`).  The equilibrium force function whose derivative
     `pair_stiffness` is."""
     N = balls.n_points
     q = np.zeros((5, N)) if q is None else np.asarray(q, float)
@@ -266,9 +264,12 @@ def generalised_loads(balls: PairBalls, q=None, w_mm=None, frame: str = "pair",
     GX, GY = _maps(balls, _frame_zc(balls, frame))
     dX = np.einsum("dbkn,dn->bkn", GX[:5], q) + GX[5] * w[:, None, :]
     dY = np.einsum("dbkn,dn->bkn", GY[:5], q)
-    bt = tangents or ball_tangents(balls, balls.X_mm + dX, balls.Y_mm + dY)
-    F = (GX * bt.f_X_N + GY * bt.f_Y_N).sum(axis=2)
-    return F, bt
+    return _loads(GX, GY, ball_tangents(balls, balls.X_mm + dX, balls.Y_mm + dY))
+
+
+def _loads(GX, GY, bt: BallTangents) -> np.ndarray:
+    """(6, 2, N): the generalised loads sum_k G^T f_k of each bearing."""
+    return (GX * bt.f_X_N + GY * bt.f_Y_N).sum(axis=2)
 
 
 def _frame_zc(balls: PairBalls, frame: str):
@@ -312,5 +313,5 @@ def pair_stiffness(g: BearingGeometry, arrangement: str, state: PairState,
     bt = ball_tangents(balls)
     K_pair = condense(bearing_tangents(balls, "pair", bt), balls.inv_c_N_per_mm).sum(axis=0)
     K_own = condense(bearing_tangents(balls, "bearing", bt), balls.inv_c_N_per_mm)
-    loads, _ = generalised_loads(balls, tangents=bt)
+    loads = _loads(*_maps(balls, balls.z_c_mm), bt)
     return PairStiffness(K_pair, K_own, loads[:5].sum(axis=1), bt.converged & state.converged)
