@@ -91,3 +91,25 @@ def test_ross_output_may_not_be_the_table(tmp_path, capsys):
     err = capsys.readouterr().err.strip().splitlines()
     assert code == 2 and len(err) == 1 and "is the input file" in err[0]
     assert out.read_text() == "mine\n"
+
+
+def test_chunks_give_the_same_numbers(tmp_path, monkeypatch):
+    """Rows are evaluated in chunks (bounded memory): chunks of 2 rows give the numbers of one
+    chunk to round-off, 1e-12 of the row's sqrt(k_ii k_jj) (sums over the balls are ordered by
+    the array shapes: the entries that are 0 by symmetry, k_xy ~ 1e-11 N/mm, differ in their
+    noise)."""
+    import studies.runs.stiffness as stiffness
+
+    cond = write(tmp_path, "T_ambient_C,speed_rpm,radial_load_N\n20,0,0\n30,1000,100\n"
+                           "40,2000,0\n50,3000,200\n60,4000,50\n")
+    one, two = tmp_path / "one.csv", tmp_path / "two.csv"
+    assert main(["stiffness", str(CFG), str(cond), "-o", str(one)]) == 0
+    monkeypatch.setattr(stiffness, "CHUNK_ROWS", 2)
+    assert main(["stiffness", str(CFG), str(cond), "-o", str(two)]) == 0
+    a, b = pd.read_csv(one), pd.read_csv(two)
+    kx, kt = a["k_xx_N_per_mm"], a["k_ty_Nmm_per_mrad"] * 1e3
+    scale = {"k_xx_N_per_mm": kx, "k_yy_N_per_mm": kx, "k_zz_N_per_mm": a["k_zz_N_per_mm"],
+             "k_xy_N_per_mm": kx, "k_yx_N_per_mm": kx, "k_tx_Nmm_per_mrad": kt / 1e3,
+             "k_ty_Nmm_per_mrad": kt / 1e3, "k_x_ty_N_per_mrad": np.sqrt(kx * kt) / 1e3}
+    for c, sc in scale.items():
+        assert np.all(np.abs(a[c] - b[c]) <= 1e-12 * sc), c

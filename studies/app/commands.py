@@ -129,7 +129,7 @@ def cmd_stiffness(args) -> None:
             check_output_file(args.ross, (args.assembly, args.conditions, args.out))
         res = run(args.assembly, args.conditions, args.out, args.per_bearing, args.ross,
                   provenance("stiffness", {"assembly": args.assembly,
-                                           "conditions": args.conditions}))
+                                           "conditions": args.conditions}), progress=progress)
     except (StiffnessRunError, *_user_errors()) as exc:
         raise UserError(str(exc)) from None
     print(f"wrote {res.n_rows} rows to {args.out}")

@@ -43,6 +43,9 @@ ROSS_DAMPING = ("cxx", "cyy", "cxy", "cyx")
 #: extrapolates; the issue asks for at least 5)
 ROSS_MIN_SPEEDS = 5
 RPM_TO_RAD_S = 2.0 * np.pi / 60.0
+#: rows evaluated together (every ball of every row is held at once: about 0.1 MB per row with
+#: quasi-dynamic balls)
+CHUNK_ROWS = 2048
 
 
 class StiffnessRunError(ValueError):
@@ -57,18 +60,19 @@ class Equilibrium:
     pair_args: dict              # keyword arguments of `analytic.bearing.solve_pair`
 
 
-def equilibrium(pipe: Pipeline, inputs: PhysicsInputs) -> Equilibrium:
+def equilibrium(pipe: Pipeline, inputs: PhysicsInputs, first_row: int = 0) -> Equilibrium:
     """The one call into the model's route (FE at the rows' and assembly states -> groove-centre
     shifts -> pair equilibrium), and the solver arguments it used (the FE answers are the
-    pipeline's remembered ones, so the same arrays)."""
-    columns, pair = pipe.run(inputs, return_pair=True)
+    pipeline's remembered ones, so the same arrays).  first_row: the 0-based table row the
+    inputs start at (rows named in errors)."""
+    columns, pair = pipe.run(inputs, return_pair=True, first_row=first_row)
     args = pipe.pair_arguments(inputs, pipe.fe(inputs), pipe.fe(pipe.reference_inputs(inputs)))
     return Equilibrium(columns, pair, args)
 
 
-def stiffness_at(pipe: Pipeline, inputs: PhysicsInputs) -> PairStiffness:
+def stiffness_at(pipe: Pipeline, inputs: PhysicsInputs, first_row: int = 0) -> PairStiffness:
     """`PairStiffness` of the pair at its equilibrium for the rows' inputs (`equilibrium`)."""
-    eq = equilibrium(pipe, inputs)
+    eq = equilibrium(pipe, inputs, first_row)
     return pair_stiffness(pipe.geom, pipe.asm.arrangement, eq.pair, **eq.pair_args)
 
 
@@ -129,7 +133,8 @@ class StiffnessRun:
 
 
 def run(assembly_path: Path, conditions_path: Path, out: Path, per_bearing: bool = False,
-        ross_out: Path | None = None, provenance: dict | None = None) -> StiffnessRun:
+        ross_out: Path | None = None, provenance: dict | None = None,
+        progress=None) -> StiffnessRun:
     """The command: read, solve every row, then write OUT.csv (and the ROSS table) atomically;
     nothing is written when any row fails."""
     from studies.model.config import load_assembly
@@ -137,17 +142,28 @@ def run(assembly_path: Path, conditions_path: Path, out: Path, per_bearing: bool
     asm = load_assembly(assembly_path)
     cond = read_conditions(conditions_path)
     n = len(cond["_line"])
-    inputs = table_inputs(asm, cond)
-    k = stiffness_at(Pipeline.shared(asm), inputs)
-    bad = np.flatnonzero(~k.converged)
-    if bad.size:
-        raise ModelError(f"{conditions_path}: line {cond['_line'][bad[0]]}: the balls' state at "
-                         f"the equilibrium did not converge ({bad.size} row(s))")
+    pipe = Pipeline.shared(asm, progress=progress)
     cols = {c: v for c, v in cond.items() if not c.startswith("_")}
+    parts, speeds = [], []
+    for i0 in range(0, n, CHUNK_ROWS):          # bounded working memory (every ball, every row)
+        rows = {c: v[i0:i0 + CHUNK_ROWS] for c, v in cond.items()}
+        inputs = table_inputs(asm, rows)
+        k = stiffness_at(pipe, inputs, i0)
+        bad = np.flatnonzero(~k.converged)
+        if bad.size:
+            raise ModelError(f"{conditions_path}: line {rows['_line'][bad[0]]}: the balls' state "
+                             f"at the equilibrium did not converge")
+        parts.append(k)
+        speeds.append(np.broadcast_to(inputs.speed_rpm, (len(rows["_line"]),)))
+        if progress and n > CHUNK_ROWS:
+            progress(f"stiffness: {min(n, i0 + CHUNK_ROWS)} of {n} rows")
+    k = PairStiffness(*(np.concatenate([getattr(p, f) for p in parts], axis=ax) for f, ax in
+                        (("pair_N_mm_rad", 0), ("bearing_N_mm_rad", 1), ("loads_N_mm", 1),
+                         ("converged", 0))))
     cols.update(stiffness_columns(k, per_bearing))
     ross = None
     if ross_out is not None:
-        ross = ross_table(k, np.broadcast_to(inputs.speed_rpm, (n,)), str(conditions_path))
+        ross = ross_table(k, np.concatenate(speeds), str(conditions_path))
     try:
         with TableWriter(out, provenance) as w:
             w.write(cols)
