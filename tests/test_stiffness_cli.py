@@ -29,11 +29,13 @@ def test_columns_equal_simulate_and_ross_table(tmp_path, capsys):
     Columns: the condition columns, then the spec's eight names (with --per-bearing the same
     suffixed _A, _B).  k_zz equals `simulate`'s axial_stiffness_N_per_um (the axial solvers'
     own dF/dx, same rows) to 1e-9; pair = A + B for k_xx, k_zz (translations: the same about
-    any point; the CSV's 10 significant digits).  ROSS table: SI units (rad/s from rpm, N/m from N/mm), one row per speed sorted,
-    no damping, the speed range in its sidecar and on stdout, no warning with 5 speeds."""
+    any point; the CSV's 10 significant digits).  ROSS table: SI units (rad/s from rpm, N/m
+    from N/mm), one row per speed sorted, no damping, the speed range in its sidecar and on
+    stdout, no warning with 5 speeds."""
     T = [60.0, 20.0, 40.0, 40.0, 20.0]
     rpm = [12000.0, 0.0, 6000.0, 9000.0, 3000.0]
-    cond = write(tmp_path, "T_ambient_C,speed_rpm\n" + "".join(f"{t},{s}\n" for t, s in zip(T, rpm)))
+    cond = write(tmp_path, "T_ambient_C,speed_rpm\n"
+                 + "".join(f"{t},{s}\n" for t, s in zip(T, rpm)))
     out, ross = tmp_path / "k.csv", tmp_path / "ross.csv"
     assert main(["stiffness", str(CFG), str(cond), "-o", str(out), "--per-bearing",
                  "--ross", str(ross)]) == 0
@@ -68,7 +70,8 @@ def test_fewer_than_five_speeds_warns_once(tmp_path, capsys):
 
 
 @pytest.mark.parametrize("content,extra,fragment", [
-    ("T_ambient_C,speed_rpm\n20,0\n40,0\n", ["--ross", "R"], "rows 1 and 2 have the same speed_rpm 0"),
+    ("T_ambient_C,speed_rpm\n20,0\n40,0\n", ["--ross", "R"],
+     "rows 1 and 2 have the same speed_rpm 0"),
     ("T_ambient_C,bogus\n20,1\n", [], "bogus"),
     ("T_ambient_C\n20\nabc\n", [], "'abc' is not a number"),
     ("T_ambient_C\n", [], "empty table"),

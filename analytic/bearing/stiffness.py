@@ -39,10 +39,11 @@ function theorem
 with T = kn n n^T + (Q/d)(t t^T + dlnK/dalpha n t^T) per contact and b_a = db/dalpha; the
 derivatives of K_i, K_o and b in the angles (smooth functions of one angle each, from
 `ball_dynamics.frozen_forces`) by central differences with step ANGLE_STEP_RAD (truncation
-O(h^2) and rounding O(eps/h): ~1e-10 of those terms, which are themselves small corrections).  Without the b and dK terms this is the series tangent
-T_i (T_i + T_o)^-1 T_o of `ball_dynamics.series_tangent`; at speed 0 it is the quasi-static one
-(tests).  Raceway control: held at the equilibrium's choice.  Not included: the velocity-dependent
-(damping, cross-coupled) terms of lubricated contacts.
+O(h^2) and rounding O(eps/h): ~1e-10 of those terms, themselves small corrections).  Without
+the b and dK terms this is the series tangent T_i (T_i + T_o)^-1 T_o of
+`ball_dynamics.series_tangent`; at speed 0 it is the quasi-static one (tests).  Raceway
+control: held at the equilibrium's choice.  Not included: the velocity-dependent (damping,
+cross-coupled) terms of lubricated contacts.
 """
 from __future__ import annotations
 
@@ -73,7 +74,8 @@ class PairBalls:
     X_mm: np.ndarray             # (2, Z, N) axial groove-centre distance at the equilibrium
     Y_mm: np.ndarray             # (2, Z, N) radial
     R_i_mm: np.ndarray           # (2, N) inner groove-centre radius
-    z_c_mm: np.ndarray           # (2, N) axial position of the inner groove centres from the pair's centre
+    z_c_mm: np.ndarray           # (2, N) axial position of the inner groove centres from the
+    #                              pair's centre
     z_ball_mm: np.ndarray        # (2, N) ball plane of each bearing from the pair's centre
     inv_c_N_per_mm: np.ndarray   # (2, N) 1 / preload-path compliance (inf: rigid, 0: floating)
     speed_rpm: np.ndarray | None  # (N,); None: quasi-static balls
@@ -117,7 +119,8 @@ def pair_balls(g: BearingGeometry, arrangement: str, state: PairState, *, dr_mm=
     with these keyword arguments (the same dict may be passed; the arguments that only fix the
     loads and the reference state are not needed here).  Ball k of bearing j sits at
 
-        X_jk = A0 sin a0 + a_j + theta gx_j cos psi_k,  Y_jk = A0 cos a0 + dr_j + (rho + theta gy_j) cos psi_k
+        X_jk = A0 sin a0 + a_j + theta gx_j cos psi_k
+        Y_jk = A0 cos a0 + dr_j + (rho + theta gy_j) cos psi_k
 
     (`combined.solve_pair_combined`; rho, theta = 0 without `state.radial`).  bearing_span_mm is
     needed (the tilt arms)."""
@@ -287,9 +290,9 @@ def bearing_tangents(balls: PairBalls, frame: str = "pair",
     bt = tangents or ball_tangents(balls)
     GX, GY = _maps(balls, _frame_zc(balls, frame))
     TXX, TXY, TYX, TYY = bt.T
-    K = (np.einsum("dbkn,bkn,ebkn->bnde", GX, TXX, GX) + np.einsum("dbkn,bkn,ebkn->bnde", GX, TXY, GY)
-         + np.einsum("dbkn,bkn,ebkn->bnde", GY, TYX, GX) + np.einsum("dbkn,bkn,ebkn->bnde", GY, TYY, GY))
-    return K
+    proj = "dbkn,bkn,ebkn->bnde"
+    return (np.einsum(proj, GX, TXX, GX) + np.einsum(proj, GX, TXY, GY)
+            + np.einsum(proj, GY, TYX, GX) + np.einsum(proj, GY, TYY, GY))
 
 
 def condense(K6: np.ndarray, inv_c) -> np.ndarray:
