@@ -116,3 +116,28 @@ def test_chunks_give_the_same_numbers(tmp_path, monkeypatch):
              "k_ty_Nmm_per_mrad": kt / 1e3, "k_x_ty_N_per_mrad": np.sqrt(kx * kt) / 1e3}
     for c, sc in scale.items():
         assert np.all(np.abs(a[c] - b[c]) <= 1e-12 * sc), c
+
+
+def test_the_route_equilibrium_is_the_one_differentiated():
+    """The balls placed from the pipeline's `PairState` and its solver arguments (FE groove
+    shifts, temperatures, preload path) carry exactly the rows' loads: F_x = radial load,
+    F_z = axial load, M_y = moment, F_y = M_x = 0, to 1e-9 of Z x preload (the order of a
+    bearing's ball-load sum; moments over the span).  A wrong shift or temperature would leave
+    a residual of the order of the preload."""
+    from studies.model.pipeline import Pipeline, table_inputs
+    from studies.runs.stiffness import stiffness_at
+
+    asm = load_assembly(CFG)
+    rows = {"T_ambient_C": np.array([-40.0, 20.0, 80.0]),
+            "speed_rpm": np.array([0.0, 6000.0, 12000.0]),
+            "radial_load_N": np.array([0.0, 300.0, 150.0]),
+            "axial_load_N": np.array([0.0, 40.0, -60.0]),
+            "moment_Nmm": np.array([0.0, 0.0, 2500.0])}
+    k = stiffness_at(Pipeline.shared(asm), table_inputs(asm, rows))
+    applied = np.stack([rows["radial_load_N"], np.zeros(3), rows["axial_load_N"], np.zeros(3),
+                        rows["moment_Nmm"]])
+    span = Pipeline.shared(asm).bearing_span_mm
+    err = np.abs(k.loads_N_mm - applied)
+    err[3:] /= span
+    preload = asm.preload.assembled_N
+    assert np.all(err <= 1e-9 * 24 * preload), err
