@@ -236,12 +236,19 @@ class Pipeline:
         check_answers(_checked_outputs(result), pair.converged, first_row)
         return replace(result, checks=evaluate_checks(result, self.checks))
 
+    def pair_arguments(self, inputs: PhysicsInputs, fe: FEState, fe_ref: FEState,
+                       compliance_mm_per_N=None, ball_model: str | None = None) -> dict:
+        """The keyword arguments of `analytic.bearing.solve_pair` for these rows (arguments as
+        `run`; `BearingStage.arguments`): what the pair's equilibrium, and its stiffness
+        (`analytic.bearing.stiffness.pair_stiffness`), are evaluated with."""
+        return self.bearing.arguments(inputs, fe, fe_ref, compliance_mm_per_N, ball_model)
+
     def _pair(self, inputs: PhysicsInputs, fe: FEState, fe_ref: FEState, compliance_mm_per_N,
               ball_model: str | None, remember: bool) -> PairState:
         """The pair equilibrium (bearing stage); friction-only changes (a diagnosis's friction
         scale) leave it alone: the last few are reused by their exact inputs
         (`studies.model.memo`)."""
-        args = self.bearing.arguments(inputs, fe, fe_ref, compliance_mm_per_N, ball_model)
+        args = self.pair_arguments(inputs, fe, fe_ref, compliance_mm_per_N, ball_model)
         key = inputs_key(args)
         pair = self._pair_memo.get(key)
         if pair is None:
