@@ -148,7 +148,7 @@ def test_fit_open_speed_brackets_the_opening(pl001):
     and it lies within 10 % of the two-cylinder Lamé value (plane stress), its neighbour."""
     a = pl001.asm
     inp = table_inputs(a, {"T_ambient_C": np.array([20.0])})
-    n_open = pl001.fit_open_speed_rpm(inp)["fit_inner_A"][0]
+    n_open = pl001.fit_open_speed_rpm(inp).of("fit_inner_A")[0]
     k = [f.name for f in pl001.section.fits].index("fit_inner_A")
     probe = table_inputs(a, {"T_ambient_C": np.full(2, 20.0),
                              "speed_rpm": n_open * np.array([1 - 1e-6, 1 + 1e-6])})

@@ -29,7 +29,7 @@ from studies.model.result import FitPressures, SimulationResult
 from studies.model.stack import section_from_assembly
 from studies.model.stages.bearing import BearingStage
 from studies.model.stages.fe import (SPEED_SEARCH_MAX_RPM, FEOptions, FEStage,  # noqa: F401
-                                     FEState, RowField)
+                                     FEState, FitOpenSpeeds, RowField)
 from studies.model.stages.grooves import RINGS  # noqa: F401  (re-exported for the studies)
 from studies.model.stages.lame import lame_neighbours
 from studies.model.stages.torque import pair_friction_torque
@@ -157,7 +157,7 @@ class Pipeline:
         (`FEStage.fe_field`)."""
         return self.fe_stage.fe_field(theta_q, inputs)
 
-    def fit_open_speed_rpm(self, inputs: PhysicsInputs) -> dict[str, np.ndarray]:
+    def fit_open_speed_rpm(self, inputs: PhysicsInputs) -> FitOpenSpeeds:
         """The speed (rpm) at which each inner fit opens (`FEStage.fit_open_speed_rpm`)."""
         return self.fe_stage.fit_open_speed_rpm(inputs)
 

@@ -113,12 +113,12 @@ def speed_lines(asm, pl: Pipeline) -> list[str]:
     rows = []
     for i, Tc in enumerate(T):
         a, b = 2 * i, 2 * i + 1
-        rows.append([f"{Tc:g}"] + [rpm(v[i]) for v in n_open.values()] + [rpm(n_lame[i])]
+        rows.append([f"{Tc:g}"] + [rpm(v) for v in n_open.speed_rpm[i]] + [rpm(n_lame[i])]
                     + [f"{r['fit_pressure_inner_MPa'][a]:.4g}", f"{r['fit_pressure_inner_MPa'][b]:.4g}",
                        f"{r['fit_pressure_inner_lame_MPa'][b]:.4g}",
                        f"{r['preload_N'][a]:.4g}", f"{r['preload_N'][b]:.4g}",
                        f"{r['groove_shift_dr_A_um'][b] - r['groove_shift_dr_A_um'][a]:+.3g}"])
-    head = (["T (C)"] + [f"{k.replace('fit_', '')} opens at (rpm)" for k in n_open]
+    head = (["T (C)"] + [f"{k.replace('fit_', '')} opens at (rpm)" for k in n_open.names]
             + ["Lamé opens at (rpm)"]
             + ["inner fit p at rest (MPa)", f"at {n_max:g} rpm (MPa)", "Lamé at speed (MPa)",
                "preload at rest (N)", f"at {n_max:g} rpm (N)", "dr_A change (um)"])

@@ -138,6 +138,19 @@ class FELoads:
                             + bytes([direct])).digest()
 
 
+@dataclass(frozen=True)
+class FitOpenSpeeds:
+    """The fit-loosening speeds of the inner (rotating) fits: names (the FE fits, `fit_inner_A`,
+    ...) and speed_rpm (n, n_inner_fits), rpm (0: open at rest; inf: still closed at
+    SPEED_SEARCH_MAX_RPM)."""
+    names: tuple[str, ...]
+    speed_rpm: np.ndarray
+
+    def of(self, name: str) -> np.ndarray:
+        """(n,) speeds of the FE fit `name`, rpm."""
+        return self.speed_rpm[:, self.names.index(name)]
+
+
 class FEStage:
     """The FE of one assembly's section: set-up (from the cache, or computed), loads of a row,
     solves. `cache=False`: the set-up is always computed; `superpose=False`: rows are solved
@@ -266,18 +279,20 @@ class FEStage:
         st = self.setup
         return mean_pressures_MPa(force_N, st.condensed.fit_of_pair, st.fit_r_mm, st.fit_length_mm)
 
-    def fit_open_speed_rpm(self, inputs: PhysicsInputs) -> dict[str, np.ndarray]:
+    def fit_open_speed_rpm(self, inputs: PhysicsInputs) -> "FitOpenSpeeds":
         """The speed (rpm) at which each inner (rotating) fit opens, per row at the row's part
         temperatures and fits (`fem.loosening.fit_open_omega2` on the superposition): 0 when
-        already open at rest, inf when still closed at SPEED_SEARCH_MAX_RPM. {FE fit name: (n,)}."""
+        already open at rest, inf when still closed at SPEED_SEARCH_MAX_RPM."""
         from fem.loosening import RPM2_TO_RAD2_S2, fit_open_omega2
 
         sup = self.sup if self.sup is not None else Superposition(self.solver, self.probe)
         theta = self.thetas(inputs)
         delta = self.deltas_mm(*self.fits_um(inputs))
         w2_max = SPEED_SEARCH_MAX_RPM ** 2 * RPM2_TO_RAD2_S2
-        return {f.name: np.sqrt(fit_open_omega2(sup, theta, delta, k, w2_max) / RPM2_TO_RAD2_S2)
-                for k, f in enumerate(self.section.fits) if f.key == "inner"}
+        fits = [(k, f.name) for k, f in enumerate(self.section.fits) if f.key == "inner"]
+        rpm = [np.sqrt(fit_open_omega2(sup, theta, delta, k, w2_max) / RPM2_TO_RAD2_S2)
+               for k, _ in fits]
+        return FitOpenSpeeds(tuple(n for _, n in fits), np.column_stack(rpm))
 
     def field(self, inputs: PhysicsInputs, row: int = 0) -> RowField:
         """Displacement field and contact forces of one row (superposed, or a direct solve when
