@@ -375,52 +375,63 @@ def pair_torque(g, pair, *, model: str = "solid_film", mu=0.02, hysteresis_loss=
     With speed_rpm given, also heat_W (total dissipated power).
     g: `bearing.BearingGeometry`.
     """
-    per = {}
     if model == "solid_film":
-        c_ring = (1.0 - g.ring.nu ** 2) / g.ring.E_MPa
-        c_ball = (1.0 - g.ball.nu ** 2) / g.ball.E_MPa
-        hyst = diff = spin = inner = outer = 0.0
-        for j in range(2):
-            cin, cout = contact_inputs(pair, j)
-            alpha, alpha_o = contact_angles_rad(pair, j)
-            c = solid_film_torque_Nmm(g.Z, g.Dw_mm, g.dm_mm, g.f_i, g.f_o, alpha, cin, cout,
-                                      mu, hysteresis_loss, c_ring, c_ball, alpha_o)
-            r = pair.radial
-            if r is not None and r.ball_inner is not None and np.any(r.unequal_balls):
-                # balls with unequal loads: every ball's own contacts and kinematics, summed
-                bin_, bout = ball_contact_inputs(r, j)
-                a_o = (None if r.ball_contact_angles_outer_deg is None
-                       else np.radians(r.ball_contact_angles_outer_deg[j]))
-                balls = solid_film_torque_Nmm(
-                    1, g.Dw_mm, g.dm_mm, g.f_i, g.f_o, np.radians(r.ball_contact_angles_deg[j]),
-                    bin_, bout, mu, hysteresis_loss, c_ring, c_ball, a_o)
-                c = c.where(r.unequal_balls, balls)
-            hyst = hyst + c.hysteresis_inner_Nmm + c.hysteresis_outer_Nmm
-            diff = diff + c.differential_inner_Nmm + c.differential_outer_Nmm
-            spin = spin + c.spin_inner_Nmm + c.spin_outer_Nmm
-            inner = inner + c.hysteresis_inner_Nmm + c.differential_inner_Nmm + c.spin_inner_Nmm
-            outer = outer + c.hysteresis_outer_Nmm + c.differential_outer_Nmm + c.spin_outer_Nmm
-            per[j] = c.total_Nmm
-        parts = dict(hysteresis_Nmm=hyst, differential_Nmm=diff, spin_Nmm=spin,
-                     inner_contacts_Nmm=inner, outer_contacts_Nmm=outer)
+        per, parts = _solid_film_pair(g, pair, mu, hysteresis_loss)
     elif model == "oil":
-        load = 0.0
-        visc = palmgren_viscous_torque_Nmm(f0, nu_mm2_s, 0.0 if speed_rpm is None else speed_rpm,
-                                           g.dm_mm)
-        for j in range(2):
-            Fa = pair.axial_force_N[j]
-            if load_term == "coulomb":
-                m1 = coulomb_load_torque_Nmm(mu, Fa, 0.5 * g.dm_mm)
-            elif load_term == "palmgren":
-                m1 = palmgren_load_torque_Nmm(f1, Fa, g.dm_mm)
-            else:
-                raise ValueError(f"load_term must be 'coulomb' or 'palmgren', got {load_term!r}")
-            load = load + m1
-            per[j] = m1 + visc
-        parts = dict(load_Nmm=load, viscous_Nmm=2.0 * visc * np.ones_like(load),
-                     viscosity_mm2_s=nu_mm2_s)
+        per, parts = _oil_pair(g, pair, mu, speed_rpm, f0, nu_mm2_s, f1, load_term)
+        parts["viscosity_mm2_s"] = nu_mm2_s
     else:
         raise ValueError(f"model must be 'solid_film' or 'oil', got {model!r}")
     total = per[0] + per[1]
     heat = None if speed_rpm is None else power_W(total, speed_rpm)
     return TorqueComponents(model, total, per[0], per[1], heat, **parts)
+
+
+def _solid_film_pair(g, pair, mu, hysteresis_loss) -> tuple[list, dict]:
+    """Per-bearing totals and the pair's solid-film components (`pair_torque`), N*mm."""
+    c_ring = (1.0 - g.ring.nu ** 2) / g.ring.E_MPa
+    c_ball = (1.0 - g.ball.nu ** 2) / g.ball.E_MPa
+    hyst = diff = spin = inner = outer = 0.0
+    per = []
+    for j in range(2):
+        cin, cout = contact_inputs(pair, j)
+        alpha, alpha_o = contact_angles_rad(pair, j)
+        c = solid_film_torque_Nmm(g.Z, g.Dw_mm, g.dm_mm, g.f_i, g.f_o, alpha, cin, cout,
+                                  mu, hysteresis_loss, c_ring, c_ball, alpha_o)
+        r = pair.radial
+        if r is not None and r.ball_inner is not None and np.any(r.unequal_balls):
+            # balls with unequal loads: every ball's own contacts and kinematics, summed
+            bin_, bout = ball_contact_inputs(r, j)
+            a_o = (None if r.ball_contact_angles_outer_deg is None
+                   else np.radians(r.ball_contact_angles_outer_deg[j]))
+            balls = solid_film_torque_Nmm(
+                1, g.Dw_mm, g.dm_mm, g.f_i, g.f_o, np.radians(r.ball_contact_angles_deg[j]),
+                bin_, bout, mu, hysteresis_loss, c_ring, c_ball, a_o)
+            c = c.where(r.unequal_balls, balls)
+        hyst = hyst + c.hysteresis_inner_Nmm + c.hysteresis_outer_Nmm
+        diff = diff + c.differential_inner_Nmm + c.differential_outer_Nmm
+        spin = spin + c.spin_inner_Nmm + c.spin_outer_Nmm
+        inner = inner + c.hysteresis_inner_Nmm + c.differential_inner_Nmm + c.spin_inner_Nmm
+        outer = outer + c.hysteresis_outer_Nmm + c.differential_outer_Nmm + c.spin_outer_Nmm
+        per.append(c.total_Nmm)
+    return per, dict(hysteresis_Nmm=hyst, differential_Nmm=diff, spin_Nmm=spin,
+                     inner_contacts_Nmm=inner, outer_contacts_Nmm=outer)
+
+
+def _oil_pair(g, pair, mu, speed_rpm, f0, nu_mm2_s, f1, load_term) -> tuple[list, dict]:
+    """Per-bearing totals and the pair's load and viscous terms (`pair_torque`), N*mm."""
+    load = 0.0
+    visc = palmgren_viscous_torque_Nmm(f0, nu_mm2_s, 0.0 if speed_rpm is None else speed_rpm,
+                                       g.dm_mm)
+    per = []
+    for j in range(2):
+        Fa = pair.axial_force_N[j]
+        if load_term == "coulomb":
+            m1 = coulomb_load_torque_Nmm(mu, Fa, 0.5 * g.dm_mm)
+        elif load_term == "palmgren":
+            m1 = palmgren_load_torque_Nmm(f1, Fa, g.dm_mm)
+        else:
+            raise ValueError(f"load_term must be 'coulomb' or 'palmgren', got {load_term!r}")
+        load = load + m1
+        per.append(m1 + visc)
+    return per, dict(load_Nmm=load, viscous_Nmm=2.0 * visc * np.ones_like(load))
