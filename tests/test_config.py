@@ -82,3 +82,12 @@ def test_template_names_every_key_with_a_comment_and_loads():
         if "=" in line and not line.startswith("#"):
             assert "#" in line, line                  # every key says what it is
     load_assembly(path)
+
+
+def test_a_byte_order_mark_is_accepted(tmp_path):
+    """Windows editors save UTF-8 with a byte order mark (EF BB BF); the TOML parser refuses it,
+    the loader reads past it: the same assembly as the file without it (issue 25)."""
+    src = CONFIG_DIR / "template.toml"
+    p = tmp_path / "bom.toml"
+    p.write_bytes(b"\xef\xbb\xbf" + src.read_bytes())
+    assert load_assembly(p) == load_assembly(src)

@@ -330,10 +330,13 @@ def _unit_hint(key: str, fields) -> str:
 
 
 def _read_toml(path: str) -> dict:
-    """The parsed TOML file; ConfigError (one line naming the file) when it cannot be read."""
+    """The parsed TOML file (UTF-8, with or without a byte order mark); ConfigError (one line
+    naming the file) when it cannot be read."""
     try:
         with open(path, "rb") as fh:
-            return tomllib.load(fh)
+            data = fh.read()
+        # a UTF-8 byte order mark (Windows editors) is not TOML: read past it
+        return tomllib.loads(data.removeprefix(b"\xef\xbb\xbf").decode("utf-8"))
     except FileNotFoundError:
         raise ConfigError(f"{path}: file not found") from None
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
