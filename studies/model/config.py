@@ -350,19 +350,7 @@ def load_bearing(path: str | Path) -> SingleBearingConfig:
     if not isinstance(table, dict):
         raise ConfigError(f"{path}: [bearing]: missing section")
     table = dict(table)
-    key = "radial_internal_clearance_um"
-    clearance = table.pop(key, None)
-    if clearance is not None:
-        if "contact_angle_free_deg" in table:
-            raise ConfigError(f"{path}: bearing.{key}: conflicts with bearing.contact_angle_free_deg "
-                              "(the clearance sets the free contact angle; give one of them)")
-        if (isinstance(clearance, bool) or not isinstance(clearance, (int, float))
-                or not math.isfinite(clearance) or clearance < 0):
-            raise ConfigError(f"{path}: bearing.{key}: must be a number >= 0, got {clearance!r}")
-        table["contact_angle_free_deg"] = 45.0        # placeholder, replaced below
-    elif "contact_angle_free_deg" not in table:
-        raise ConfigError(f"{path}: bearing.contact_angle_free_deg: missing key (or give "
-                          f"bearing.{key})")
+    clearance = _clearance_um(path, table)
     materials = parse_materials(raw, path)
     spec = _section(path, {"bearing": table}, "bearing")
     for k, name in (("bearing.ring_material", spec.ring_material),
@@ -373,19 +361,54 @@ def load_bearing(path: str | Path) -> SingleBearingConfig:
             raise ConfigError(f"{path}: {k}: {exc.args[0]}") from None
     if clearance is not None:
         A0 = (spec.inner_groove_ratio + spec.outer_groove_ratio - 1.0) * spec.ball_diameter_mm
-        try:
+        try:      # 0 <= P_d < 2 A0 gives 0 <= alpha0 < 90 deg: the key's bounds
             alpha0 = free_contact_angle_deg(A0, 1e-3 * float(clearance))
         except ValueError as exc:
-            raise ConfigError(f"{path}: bearing.{key}: {exc.args[0]}") from None
+            raise ConfigError(f"{path}: bearing.{_CLEARANCE}: {exc.args[0]}") from None
         spec = replace(spec, contact_angle_free_deg=alpha0)
     check_bearing(spec, materials, path)
     return SingleBearingConfig(spec, materials, None if clearance is None else float(clearance))
 
 
+_CLEARANCE = "radial_internal_clearance_um"
+
+
+def _clearance_um(path: str, table: dict) -> float | None:
+    """A bearing file's radial internal clearance (um, >= 0), taken out of `table`, or None;
+    with it `table` gets a placeholder free contact angle (the clearance sets it)."""
+    clearance = table.pop(_CLEARANCE, None)
+    if clearance is None:
+        if "contact_angle_free_deg" not in table:
+            raise ConfigError(f"{path}: bearing.contact_angle_free_deg: missing key (or give "
+                              f"bearing.{_CLEARANCE})")
+        return None
+    if "contact_angle_free_deg" in table:
+        raise ConfigError(f"{path}: bearing.{_CLEARANCE}: conflicts with "
+                          "bearing.contact_angle_free_deg (the clearance sets the free contact "
+                          "angle; give one of them)")
+    if (isinstance(clearance, bool) or not isinstance(clearance, (int, float))
+            or not math.isfinite(clearance) or clearance < 0):
+        raise ConfigError(f"{path}: bearing.{_CLEARANCE}: must be a number >= 0, got {clearance!r}")
+    table["contact_angle_free_deg"] = 45.0        # placeholder, replaced by the caller
+    return clearance
+
+
 def assembly_from_dict(raw: dict, path: str = "<config>") -> Assembly:
     """An assembly from a parsed TOML file: each section against its keys, then the relations
     between keys (config_checks.check_assembly). ConfigError (one line) on the first problem."""
-    top = raw.get("assembly")
+    top = _header(path, raw.get("assembly"))
+    for name in raw:
+        if name not in ("assembly", "materials") and name not in SECTIONS:
+            raise ConfigError(f"{path}: [{name}]: unknown section")
+    parts = {name: _section(path, raw, name) for name in SECTIONS
+             if name not in LAYERS or name in raw}
+    asm = Assembly(**top, materials=parse_materials(raw, path), **parts)
+    check_assembly(asm, path)
+    return asm
+
+
+def _header(path: str, top) -> dict:
+    """The [assembly] table: name, arrangement, T_ref_C, source (ASSEMBLY_KEYS)."""
     if not isinstance(top, dict):
         raise ConfigError(f"{path}: [assembly]: missing section")
     for key, spec in ASSEMBLY_KEYS.items():
@@ -401,22 +424,8 @@ def assembly_from_dict(raw: dict, path: str = "<config>") -> Assembly:
     T_ref, T_key = top["T_ref_C"], ASSEMBLY_KEYS["T_ref_C"]
     if isinstance(T_ref, bool) or not isinstance(T_ref, (int, float)) or not T_key.bounds.holds(T_ref):
         raise ConfigError(f"{path}: assembly.T_ref_C: {T_key.bounds.error.format(v=T_ref)}")
-    for name in raw:
-        if name not in ("assembly", "materials") and name not in SECTIONS:
-            raise ConfigError(f"{path}: [{name}]: unknown section")
-    parts = {name: _section(path, raw, name) for name in SECTIONS
-             if name not in LAYERS or name in raw}
-    asm = Assembly(name=str(top["name"]), arrangement=top["arrangement"], T_ref_C=float(T_ref),
-                   source=str(top.get("source", "")), materials=parse_materials(raw, path),
-                   **parts)
-    check_assembly(asm, path)
-    if asm.lubrication.kind == "oil":
-        from analytic.lubrication import get_lubricant
-        try:
-            get_lubricant(asm.lubrication.lubricant)
-        except (KeyError, ValueError) as exc:
-            raise ConfigError(f"{path}: lubrication.lubricant: {exc.args[0]}") from None
-    return asm
+    return {"name": str(top["name"]), "arrangement": top["arrangement"], "T_ref_C": float(T_ref),
+            "source": str(top.get("source", ""))}
 
 
 def parse_materials(raw: dict, path: str) -> tuple[Material, ...]:

@@ -122,18 +122,15 @@ class Key:
         if self.kind == "choice":
             q = [f'"{c}"' for c in self.choices]
             return ", ".join(q[:-1]) + " or " + q[-1]
-        if self.kind == "integer":
-            return f"integer >= {self.minimum}"
-        if self.kind == "material":
-            return "material by name"
-        if self.kind == "limits":
-            return "[lower, upper] or []"
-        if self.kind == "text":
-            return "text"
+        if self.kind != "number":
+            return {"integer": f"integer >= {self.minimum}", "material": "material by name",
+                    "limits": "[lower, upper] or []", "text": "text"}[self.kind]
         sign = {POSITIVE: "> 0", ZERO_OK: ">= 0", SIGNED: ""}[self.sign]
-        if self.bounds is not None and self.bounds.lo is not None:
-            sign = ""                    # the bound says it
-        return ", ".join(p for p in (sign, self.bounds.text() if self.bounds else "") if p)
+        if self.bounds is None:
+            return sign
+        if self.bounds.lo is not None:
+            return self.bounds.text()      # the bound says the sign
+        return ", ".join(p for p in (sign, self.bounds.text()) if p)
 
 
 def _value_text(v) -> str:
@@ -238,36 +235,54 @@ def keys_of(cls) -> dict[str, Key]:
 def parse_value(path: str, where: str, key: Key, v):
     """One value checked against its key: the value as the dataclass holds it (float, int, str,
     (lower, upper) tuple), or ConfigError `path: where: problem` (one line)."""
-    def fail(msg: str):
-        raise ConfigError(f"{path}: {where}: {msg}")
+    try:
+        return _PARSERS[key.kind](key, v)
+    except _Bad as exc:
+        raise ConfigError(f"{path}: {where}: {exc.args[0]}") from None
 
-    if key.kind in ("text", "choice", "material"):
-        if not isinstance(v, str):
-            fail(f"must be a string, got {v!r}")
-        if key.choices and v not in key.choices:
-            fail(f"'{v}' is not one of {', '.join(key.choices)}")
-        return v
-    if key.kind == "limits":
-        if v in ((), []):
-            return ()
-        if (not isinstance(v, list) or len(v) != 2
-                or not all(_is_number(x) and math.isfinite(x) for x in v) or v[0] > v[1]):
-            fail(f"must be [lower, upper] in um with lower <= upper, got {v!r}")
-        return float(v[0]), float(v[1])
-    if key.kind == "integer":
-        if not isinstance(v, int) or isinstance(v, bool) or v < key.minimum:
-            fail(f"must be an integer >= {key.minimum}, got {v!r}")
-        return v
+
+class _Bad(Exception):
+    """A value its key refuses; the argument is the problem."""
+
+
+def _string(key: Key, v) -> str:
+    if not isinstance(v, str):
+        raise _Bad(f"must be a string, got {v!r}")
+    if key.choices and v not in key.choices:
+        raise _Bad(f"'{v}' is not one of {', '.join(key.choices)}")
+    return v
+
+
+def _limits(key: Key, v) -> tuple:
+    if v in ((), []):
+        return ()
+    if (not isinstance(v, list) or len(v) != 2
+            or not all(_is_number(x) and math.isfinite(x) for x in v) or v[0] > v[1]):
+        raise _Bad(f"must be [lower, upper] in um with lower <= upper, got {v!r}")
+    return float(v[0]), float(v[1])
+
+
+def _integer(key: Key, v) -> int:
+    if not isinstance(v, int) or isinstance(v, bool) or v < key.minimum:
+        raise _Bad(f"must be an integer >= {key.minimum}, got {v!r}")
+    return v
+
+
+def _number(key: Key, v) -> float:
     if not _is_number(v) or not math.isfinite(v):
         if key.infinite_ok and v == math.inf:
             return v
-        fail(f"must be a finite number, got {v!r}")
+        raise _Bad(f"must be a finite number, got {v!r}")
     v = float(v)
     if key.sign != SIGNED and (v < 0 or (v == 0 and key.sign == POSITIVE)):
-        fail(f"must be positive, got {v:g}")
+        raise _Bad(f"must be positive, got {v:g}")
     if key.bounds is not None and key.bounds.error and not key.bounds.holds(v):
-        fail(key.bounds.error.format(v=v))
+        raise _Bad(key.bounds.error.format(v=v))
     return v
+
+
+_PARSERS = {"text": _string, "choice": _string, "material": _string, "limits": _limits,
+            "integer": _integer, "number": _number}
 
 
 def _is_number(v) -> bool:
