@@ -122,6 +122,53 @@ def test_study_writes_report_plots_and_images(tmp_path, name, expect):
     for f in expect:
         assert (out / f).stat().st_size > 1000, f
     assert not list(tmp_path.glob(f".{name}.*"))      # no temporary folder left behind
+    _check_study_numbers(name, out, report)
+
+
+def _md_dicts(md: str, first: str) -> list[dict[str, str]]:
+    lines = md.splitlines()
+    head = next(line for line in lines if line.startswith(f"| {first} |"))
+    names = [c.strip() for c in head.strip("|").split("|")]
+    return [dict(zip(names, r)) for r in _md_rows(md, first)]
+
+
+def _check_study_numbers(name: str, out, report: str) -> None:
+    """A study's report: its results table is its results.csv (printed to 4 significant digits:
+    5e-4 relative), the fits there follow free thermal expansion (every part at the ambient; the
+    shipped materials have constant CTEs), and the rig's own numbers their closed forms."""
+    from studies.model.config import load_shipped
+
+    asm = load_shipped(name)
+    with open(out / "results.csv", newline="") as f:
+        rows = list(csv.DictReader(r for r in f if not r.startswith("#")))
+    cols = {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
+    table = _md_dicts(report, "ambient temperature (C)")      # some of the CSV's rows
+    at = [int(np.flatnonzero(cols["T_ambient_C"] == float(r["ambient temperature (C)"]))[0])
+          for r in table]
+    for col in table[0]:
+        if col in cols:
+            np.testing.assert_allclose([float(r[col]) for r in table], cols[col][at], rtol=5e-4,
+                                       atol=1e-9, err_msg=col)
+    shaft, ring, housing = (asm.material(p) for p in ("shaft", "inner_ring", "housing"))
+    assert shaft.dalpha_per_K2 == ring.dalpha_per_K2 == housing.dalpha_per_K2 == 0.0
+    dT = cols["T_ambient_C"] - asm.T_ref_C
+    rate_i = 1e3 * asm.shaft.seat_diameter_mm * (shaft.alpha_per_K - ring.alpha_per_K)   # um/C
+    rate_o = 1e3 * asm.housing.bore_diameter_mm * (ring.alpha_per_K - housing.alpha_per_K)
+    np.testing.assert_allclose(cols["interference_inner_um"],
+                               asm.fits.inner_interference_um + rate_i * dT, rtol=1e-9)
+    np.testing.assert_allclose(cols["interference_outer_um"],
+                               asm.fits.outer_interference_um + rate_o * dT, rtol=1e-9)
+    if name == "seed000":     # the published rates and the clearance's closing temperature
+        rig = {r["quantity"]: r for r in _md_dicts(report, "quantity")}
+        assert float(rig["inner fit rate (um/C)"]["this model"]) == pytest.approx(rate_i, abs=5e-5)
+        assert float(rig["outer fit rate (um/C)"]["this model"]) == pytest.approx(rate_o, abs=5e-5)
+        closes = asm.T_ref_C - asm.fits.outer_interference_um / rate_o
+        assert float(rig["outer clearance closes (C)"]["this model"].split()[0]) == \
+            pytest.approx(closes, abs=0.05)
+    if name == "seed003":     # the heat of each speed's steady state is its three sources
+        for r in _md_dicts(report, "speed (rpm)"):
+            parts = sum(float(r[k]) for k in ("sliding (W)", "spin (W)", "viscous (W)"))
+            assert float(r["total (W)"]) == pytest.approx(parts, rel=2e-3), r   # 4 digits each
 
 
 def test_unknown_study_exits_2(tmp_path, capsys):
