@@ -1,8 +1,8 @@
 """The schema of the assembly file: per key its unit, what it allows and its default, in one place.
 
 Each section's keys are declared once, as field metadata on the section's dataclass
-(studies/model/config.py: `material: str = material_key()`, `bore_diameter_mm: float =
-number("mm", zero_ok=True, default=0.0)`); the two tables whose dataclasses are not the config's
+(studies/model/config.py: `material: str = material()`, `bore_diameter_mm: float =
+number("mm", sign=ZERO_OK, default=0.0)`); the two tables whose dataclasses are not the config's
 own, `[assembly]` (fields of `Assembly`) and `[bearing]` (`analytic.bearing.geometry.BearingSpec`,
 which knows nothing of files), are declared here as tables of the same `Key`s. From a `Key` come
 the parsing of one value (`parse_value`, the one-line messages of `ConfigError`), the summary the
@@ -10,14 +10,15 @@ template states for the key (`Key.summary`, tested against studies/configs/templ
 rows of the key tables in docs/cli.md (`markdown_table`, tested against the file;
 `python -m studies.model.config_schema docs/cli.md` rewrites them).
 
-Relations between keys (a bore smaller than its seat, a preload below C0, the mesh target inside
-the measured range of studies/model/mesh_size.py) are checked with the assembly as a whole
-(studies/model/config_checks.py); a key's `note` says which.
+Relations between keys (a bore smaller than its seat, a preload below C0, T_min_C below T_max_C)
+are checked with the assembly as a whole (studies/model/config_checks.py); a key's `note` says
+which, and bounds declared without a message (`Range.error` empty: the operating range, the mesh
+target whose range studies/model/mesh_size.py measured) are checked there too.
 
 Why not pydantic: the sections are frozen dataclasses the whole model reads (and `[bearing]` is
 `analytic`'s `BearingSpec`), the messages are one line in a fixed wording that the tests and users
 rely on (pydantic's are multi-line and would have to be rewritten anyway), and the rules are a few
-kinds of value: a 150-line table carries them without a dependency.
+kinds of value: this module carries them without a dependency.
 """
 from __future__ import annotations
 
@@ -37,6 +38,7 @@ class ConfigError(ValueError):
 LAYERS = ("sleeve", "cartridge")
 #: the toleranced surfaces of the two fits (keys `[fits] <surface>_class`, `<surface>_deviation_um`)
 TOLERANCE_SURFACES = ("inner_shaft", "inner_ring_bore", "outer_housing", "outer_ring_od")
+
 
 class _Required:
     def __repr__(self) -> str:
