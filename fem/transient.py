@@ -196,11 +196,14 @@ class ThermalParameters:
 class StepLoads:
     """What drives one step (values at the end of the step). T_ambient_C: the fluid temperature
     of every film; T_sink_C: the radiation sink (None: T_ambient_C); heat_W: face group or ball
-    node ("ball_A", "ball_B") -> heat input (W); T_fixed_C: fixed face group -> temperature."""
+    node ("ball_A", "ball_B") -> heat input (W); T_fixed_C: fixed face group -> temperature;
+    source_W: a load vector (W per DOF, (n_total,)) added as it is, e.g. a volume source field
+    assembled with `volume_source` (its total is counted as heat in)."""
     T_ambient_C: float = 20.0
     T_sink_C: float | None = None
     heat_W: dict = field(default_factory=dict)
     T_fixed_C: dict = field(default_factory=dict)
+    source_W: np.ndarray | None = None
 
     @property
     def sink_C(self) -> float:
@@ -279,6 +282,7 @@ class TransientConduction:
         # radial interfaces: one matrix per fit and one for the other bore lines
         self.C_fit, self.C_bore, self._radial_pairs = self._interfaces()
         self.fixed_groups = tuple(fixed_groups)
+        self.perfect_contact = bool(perfect_contact)
         self._eliminate(perfect_contact)
 
     # --- assembly helpers -------------------------------------------------------------------
@@ -409,9 +413,10 @@ class TransientConduction:
         hf = np.asarray(prm.fit_conductance_W_m2K, float)
         if hf.size != len(self.C_fit):
             raise ValueError(f"fit_conductance_W_m2K: {hf.size} values for {len(self.C_fit)} fits")
-        for h, C in zip(hf, self.C_fit):
-            A = A + (h * PER_M2_TO_PER_MM2) * C
-        A = A + (prm.bore_conductance_W_m2K * PER_M2_TO_PER_MM2) * self.C_bore
+        if not self.perfect_contact:        # tied radial lines: the terms vanish
+            for h, C in zip(hf, self.C_fit):
+                A = A + (h * PER_M2_TO_PER_MM2) * C
+            A = A + (prm.bore_conductance_W_m2K * PER_M2_TO_PER_MM2) * self.C_bore
         A = A + self._ball_part(prm)
         h_r = radiation_h_W_mm2K(prm.T_rad_lin_C)
         for name, eps in prm.emissivity.items():
@@ -449,6 +454,8 @@ class TransientConduction:
             if name not in self.a:
                 raise ValueError(f"unknown heat input '{name}' (known: {', '.join(self.a)})")
             f += Q * self.a[name]
+        if loads.source_W is not None:
+            f += loads.source_W
         h_r = radiation_h_W_mm2K(prm.T_rad_lin_C)
         for name, eps in prm.emissivity.items():
             f += (eps * h_r * loads.sink_C) * self.b[name]
@@ -590,6 +597,8 @@ class Stepper:
             rad = sum(eps * h_r * float(tc.b[name] @ T - tc.b[name].sum() * loads.sink_C)
                       for name, eps in prm.emissivity.items()) + float(np.sum(self.R @ rem))
         heat = float(sum(loads.heat_W.values()))
+        if loads.source_W is not None:
+            heat += float(np.sum(loads.source_W))
         fixed_in = 0.0
         if tc.fixed_groups:
             r = tc.M @ (c0 * T - c1 * Tn - c2 * Tm) / self.dt + self.A @ T - tc.load(prm, loads)
