@@ -399,9 +399,8 @@ class TransientConduction:
         self.n_free = free.size
 
     def _facet_dofs(self, facets: np.ndarray) -> np.ndarray:
-        b = self.model.sbasis
-        fb = FacetBasis(self.model.mesh, b.elem, facets=facets)
-        return np.unique(fb.element_dofs)
+        """The P2 DOFs on the given facets (vertices and mid-sides)."""
+        return np.unique(self.model.sbasis.get_dofs(facets).flatten())
 
     # --- the affine operator ----------------------------------------------------------------
     def operator(self, prm: ThermalParameters) -> sp.csr_matrix:
