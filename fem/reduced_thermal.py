@@ -56,7 +56,9 @@ import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sp
 from scipy.sparse.linalg import splu
+from skfem import BilinearForm, asm
 
+from fem.forms import TWO_PI, strains
 from fem.solver import Condensed, FitSolver, Superposition, condense
 from fem.transient import (PER_M2_TO_PER_MM2, SCHEMES, StepLoads, ThermalParameters,
                            TransientConduction, radiation_h_W_mm2K, radiation_remainder_W_mm2)
@@ -64,8 +66,8 @@ from fem.transient import (PER_M2_TO_PER_MM2, SCHEMES, StepLoads, ThermalParamet
 
 @dataclass(frozen=True)
 class ReducedBasis:
-    """V (n_total, m): M-orthonormal modes ordered by POD energy; energy (m,): the POD
-    eigenvalues (J/K K^2 units of T^T M T)."""
+    """V (n_total, m): M-orthonormal modes, the uniform field first, then ordered by POD energy;
+    energy (m,): the POD eigenvalues of the normalised moments (inf for the uniform field)."""
     V: np.ndarray
     energy: np.ndarray
 
@@ -79,7 +81,7 @@ def krylov_basis(tc: TransientConduction, training: Sequence[ThermalParameters],
     if tc.fixed_groups:
         raise ValueError("the reduced model has no fixed-temperature groups: use films")
     P, M = tc.P, tc.M
-    cols = [np.ones(tc.n_total)]
+    cols = []
     for prm in training:
         A = tc.operator(prm)
         amb = StepLoads(1.0, 1.0)
@@ -88,14 +90,22 @@ def krylov_basis(tc: TransientConduction, training: Sequence[ThermalParameters],
         for s in shifts_per_s:
             lu = splu((P.T @ (s * M + A) @ P).tocsc())
             cols.append(P @ lu.solve(np.asfortranarray(P.T @ B)))
-    X = np.column_stack([c if c.ndim == 2 else c[:, None] for c in cols])
+    # the uniform field is the first mode, exactly (initial states and T_ref lie in the space)
+    u0 = np.ones(tc.n_total)
+    u0 /= np.sqrt(u0 @ (M @ u0))
+    X = np.column_stack(cols)
+    X = X - np.outer(u0, u0 @ (M @ X))
     X = X / np.sqrt(np.einsum("ij,ij->j", X, M @ X))[None, :]
     G = X.T @ (M @ X)
     w, U = np.linalg.eigh(0.5 * (G + G.T))
     order = np.argsort(w)[::-1]
     w, U = w[order], U[:, order]
     keep = w > tol * w[0]
-    V = X @ (U[:, keep] / np.sqrt(w[keep]))
+    V = np.column_stack([u0, X @ (U[:, keep] / np.sqrt(w[keep]))])
+    # one more M-orthogonalisation against u0 (round-off of the eigenvectors)
+    V[:, 1:] -= np.outer(u0, u0 @ (M @ V[:, 1:]))
+    w = np.concatenate([[np.inf], w])
+    keep = np.ones(w.size, bool)
     return ReducedBasis(V, w[keep])
 
 
@@ -269,19 +279,17 @@ def modal_structure(solver: FitSolver, probe: sp.csr_matrix, rc: ReducedConducti
             raise ValueError(f"part {p}: a temperature-dependent CTE is not linear in T")
     c = condensed if condensed is not None else condense(solver, probe)
     tc = rc.tc
-    b = m.sbasis
-    alpha = np.array([m.materials[p].alpha_per_K for p in m.part_of])
     V = rc.V[:tc.N]
-    loads = np.empty((m.ndofs, rc.m))
-    ring_strain = np.empty((len(rings), rc.m))
+    loads = thermal_coupling(m) @ V
+    # ring mean strains: the mean of alpha phi over the ring's elements by area dx
+    b = m.sbasis
     dx = m.basis.dx
-    sel = [m.part_of == r for r in rings]
-    for i in range(rc.m):
-        phi_q = np.asarray(b.interpolate(V[:, i]))
-        theta = alpha[:, None] * phi_q
-        loads[:, i] = m.thermal_load_vector(theta)
-        for k, s in enumerate(sel):
-            ring_strain[k, i] = float((theta[s] * dx[s]).sum() / dx[s].sum())
+    ring_strain = np.empty((len(rings), rc.m))
+    for k, r in enumerate(rings):
+        s = m.part_of == r
+        alpha = m.materials[r].alpha_per_K
+        w = (dx[s] / dx[s].sum())
+        ring_strain[k] = alpha * _element_average(b, s, w) @ V
     T, lu = solver.factorize(np.zeros(solver.n_pairs, bool))
     U = T @ lu.solve(np.asfortranarray(T.T @ loads))
     B_modes = U[solver.slave] - U[solver.master]
@@ -293,3 +301,32 @@ def modal_structure(solver: FitSolver, probe: sp.csr_matrix, rc: ReducedConducti
     sup = Superposition.from_condensed(cond, lambda: solver)
     q_ref = T_ref_C * rc.q_one
     return ModalStructure(sup, ring_strain, q_ref)
+
+
+@BilinearForm
+def _thermal_coupling_form(T, v, w):
+    """int (3 lam + 2 mu) alpha T (eps_rr + eps_zz + eps_tt)(v) 2 pi r dA: `fem.forms.
+    thermal_load` with theta = alpha T, as a matrix from scalar temperatures T to load vectors."""
+    r = w.x[0]
+    ev = strains(v, r)
+    return TWO_PI * r * (3 * w.lam + 2 * w.mu) * w.alpha * T * (ev[0] + ev[1] + ev[2])
+
+
+def thermal_coupling(model) -> sp.csr_matrix:
+    """(ndofs, N) matrix G with G T = the thermal load vector (N) of theta = alpha (x) T for
+    nodal temperature changes T (K) (constant CTE per part; `StackModel.thermal_load_vector`)."""
+    nq = model.basis.X.shape[1]
+    alpha = np.array([model.materials[p].alpha_per_K for p in model.part_of])
+    return asm(_thermal_coupling_form, model.sbasis, model.basis, lam=model.lam_q,
+               mu=model.mu_q, alpha=np.repeat(alpha[:, None], nq, 1)).tocsr()
+
+
+def _element_average(b, sel: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """Row vector a with a . T = sum over the selected elements and their quadrature points of
+    w x T(x_q) (w (n_sel, nq) weights) for nodal temperatures T."""
+    phi = np.array([np.asarray(b.basis[i][0]) for i in range(len(b.basis))])   # (nloc, nel, nq)
+    vals = (phi[:, sel, :] * w[None, :, :]).sum(axis=2)                   # (nloc, n_sel)
+    dofs = b.element_dofs[:, sel]
+    out = np.zeros(b.N)
+    np.add.at(out, dofs.ravel(), vals.ravel())
+    return out
