@@ -174,6 +174,7 @@ def run(n_steps: int = 900, dt_s: float = 2.0, stride: int = 1) -> dict:
             "full_s": c_full.wall_s, "rows": rows.size,
             "preload_err": float(np.max(np.abs(P_r - P_f) / np.abs(P_f))),
             "preload_est": float(np.max(np.abs(P_h - P_r) / np.abs(P_f))),
+            "preload_err_range": float(np.max(np.abs(P_r - P_f)) / np.ptp(P_f)),
             "preload_change_N": float(np.ptp(P_f)),
             "shift_err": float(np.abs(s_r - s_f).max() / np.abs(s_f).max()),
             "shift_est": float(np.abs(s_h - s_r).max() / np.abs(s_f).max()),
@@ -197,10 +198,12 @@ def main(argv=None) -> None:
     print(f"full-FE transient: {r['full_s']:.2f} s (structure solved at {r['rows']} steps)")
     print(f"preload {r['preload_N'][0]:.1f} N -> {r['preload_N'][1]:.1f} N "
           f"(range {r['preload_change_N']:.1f} N)")
-    print(f"max relative preload error reduced vs full: {r['preload_err']:.2e} "
-          f"(a-posteriori estimate {r['preload_est']:.2e})")
+    print(f"max relative preload error reduced vs full: {r['preload_err']:.2e}")
+    print(f"a-posteriori estimate of it (half the modes vs all): {r['preload_est']:.2e}; the "
+          f"error relative to the preload's range: {r['preload_err_range']:.2e}")
     print(f"max relative groove-shift error: {r['shift_err']:.2e} (estimate {r['shift_est']:.2e}); "
-          f"fit pressure: {r['pressure_err']:.2e} (estimate {r['pressure_est']:.2e})")
+          f"fit pressure: {r['pressure_err']:.2e} (estimate {r['pressure_est']:.2e}); "
+          "each relative to the largest value of the full FE")
 
 
 if __name__ == "__main__":
