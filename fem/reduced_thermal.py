@@ -61,7 +61,8 @@ from skfem import BilinearForm, asm
 from fem.forms import TWO_PI, strains
 from fem.solver import Condensed, FitSolver, Superposition, condense
 from fem.transient import (PER_M2_TO_PER_MM2, SCHEMES, StepLoads, ThermalParameters,
-                           TransientConduction, radiation_h_W_mm2K, radiation_remainder_W_mm2)
+                           TransientConduction, element_average, radiation_h_W_mm2K,
+                           radiation_remainder_W_mm2)
 
 
 @dataclass(frozen=True)
@@ -289,7 +290,7 @@ def modal_structure(solver: FitSolver, probe: sp.csr_matrix, rc: ReducedConducti
         s = m.part_of == r
         alpha = m.materials[r].alpha_per_K
         w = (dx[s] / dx[s].sum())
-        ring_strain[k] = alpha * _element_average(b, s, w) @ V
+        ring_strain[k] = alpha * element_average(b, s, w) @ V
     T, lu = solver.factorize(np.zeros(solver.n_pairs, bool))
     U = T @ lu.solve(np.asfortranarray(T.T @ loads))
     B_modes = U[solver.slave] - U[solver.master]
@@ -320,13 +321,3 @@ def thermal_coupling(model) -> sp.csr_matrix:
     return asm(_thermal_coupling_form, model.sbasis, model.basis, lam=model.lam_q,
                mu=model.mu_q, alpha=np.repeat(alpha[:, None], nq, 1)).tocsr()
 
-
-def _element_average(b, sel: np.ndarray, w: np.ndarray) -> np.ndarray:
-    """Row vector a with a . T = sum over the selected elements and their quadrature points of
-    w x T(x_q) (w (n_sel, nq) weights) for nodal temperatures T."""
-    phi = np.array([np.asarray(b.basis[i][0]) for i in range(len(b.basis))])   # (nloc, nel, nq)
-    vals = (phi[:, sel, :] * w[None, :, :]).sum(axis=2)                   # (nloc, n_sel)
-    dofs = b.element_dofs[:, sel]
-    out = np.zeros(b.N)
-    np.add.at(out, dofs.ravel(), vals.ravel())
-    return out

@@ -138,6 +138,20 @@ def contact_conductance_W_m2K(pressure_MPa, gap_um, k1_W_mK: float, k2_W_mK: flo
     return np.where(p > 0, h_solid + h_gas_closed, h_open)
 
 
+def fit_conductances_W_m2K(model: StackModel, pressure_MPa, gap_um,
+                           surf: SurfacePair = SurfacePair()) -> np.ndarray:
+    """(n_fits,) contact conductance (W/(m^2 K)) of every fit of `model` (model order) from its
+    mean pressure (MPa) and, where open, its mean radial gap (um), with the conductivities of its
+    two parts (`contact_conductance_W_m2K`): the typed input `ThermalParameters.
+    fit_conductance_W_m2K` of a step, updated from the structural FE's fit state."""
+    p = np.asarray(pressure_MPa, float)
+    g = np.broadcast_to(np.asarray(gap_um, float), p.shape)
+    mats = model.materials
+    return np.array([float(contact_conductance_W_m2K(p[k], g[k], mats[f.inner_part].conductivity_W_mK,
+                                                     mats[f.outer_part].conductivity_W_mK, surf))
+                     for k, f in enumerate(model.section.fits)])
+
+
 # ------------------------------------------------------------------------ face groups
 def face_groups(model: StackModel) -> dict[str, np.ndarray]:
     """Exterior boundary facets of the section by group name: the named lines of
@@ -187,7 +201,21 @@ class ThermalParameters:
     emissivity: dict = field(default_factory=dict)
     T_rad_lin_C: float = 20.0
 
+    def __post_init__(self):
+        for name, v in [*((f"film_W_m2K[{k}]", h) for k, h in self.film_W_m2K.items()),
+                        *((f"fit_conductance_W_m2K[{k}]", h)
+                          for k, h in enumerate(self.fit_conductance_W_m2K)),
+                        ("bore_conductance_W_m2K", self.bore_conductance_W_m2K),
+                        ("ball_inner_W_K", self.ball_inner_W_K),
+                        ("ball_outer_W_K", self.ball_outer_W_K)]:
+            if not np.isfinite(v) or v < 0:
+                raise ValueError(f"{name}: must be a finite number >= 0, got {v}")
+        for k, e in self.emissivity.items():
+            if not 0.0 <= e <= 1.0:
+                raise ValueError(f"emissivity[{k}]: must lie in [0, 1], got {e}")
+
     def with_fits(self, fit_conductance_W_m2K) -> "ThermalParameters":
+        """The same coefficients with new fit conductances (W/(m^2 K), one per fit)."""
         from dataclasses import replace
         return replace(self, fit_conductance_W_m2K=tuple(float(v) for v in fit_conductance_W_m2K))
 
@@ -480,14 +508,21 @@ class TransientConduction:
 
     def part_mean_C(self, T: np.ndarray) -> dict[str, float]:
         """Volume (ring-measure) mean temperature per part (C)."""
-        b = self.model.sbasis
-        Tq = np.asarray(b.interpolate(T[:self.N]))
-        w = b.dx * _r(b)
-        out = {}
-        for p in self.model.part_names:
-            sel = self.model.part_of == p
-            out[p] = float((Tq[sel] * w[sel]).sum() / w[sel].sum())
-        return out
+        v = self.part_mean_rows() @ T
+        return {p: float(x) for p, x in zip(self.model.part_names, v)}
+
+    def part_mean_rows(self) -> np.ndarray:
+        """(n_parts, n_total): row p . T = the volume mean of T over part p (ring measure
+        2 pi r dA), in `model.part_names` order (cached)."""
+        if getattr(self, "_part_rows", None) is None:
+            b = self.model.sbasis
+            w = b.dx * _r(b)
+            rows = np.zeros((len(self.model.part_names), self.n_total))
+            for i, p in enumerate(self.model.part_names):
+                sel = self.model.part_of == p
+                rows[i, :self.N] = element_average(b, sel, w[sel] / w[sel].sum())
+            self._part_rows = rows
+        return self._part_rows
 
     def theta_field(self, T: np.ndarray, T_ref_C: float) -> np.ndarray:
         """Thermal strain at the quadrature points (nel, nq) of temperatures T, per material."""
@@ -498,6 +533,16 @@ class TransientConduction:
             sel = m.part_of == p
             out[sel] = m.materials[p].thermal_strain(Tq[sel], T_ref_C)
         return out
+
+
+def element_average(b, sel: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """Row vector a with a . T = sum over the selected elements and their quadrature points of
+    w x T(x_q) (w (n_sel, nq) weights) for nodal values T of the scalar basis b."""
+    phi = np.array([np.asarray(b.basis[i][0]) for i in range(len(b.basis))])   # (nloc, nel, nq)
+    vals = (phi[:, sel, :] * w[None, :, :]).sum(axis=2)                       # (nloc, n_sel)
+    out = np.zeros(b.N)
+    np.add.at(out, b.element_dofs[:, sel].ravel(), vals.ravel())
+    return out
 
 
 def _r(b) -> np.ndarray:
