@@ -308,7 +308,8 @@ class TransientConduction:
         # ball links: (e_ball - a_race)(e_ball - a_race)^T per unit conductance
         self.ball_inner, self.ball_outer = self._ball_links()
         # radial interfaces: one matrix per fit and one for the other bore lines
-        self.C_fit, self.C_bore, self._radial_pairs = self._interfaces()
+        self.C_fit, self.C_bore = self._interfaces()
+        self._part_rows: np.ndarray | None = None
         self.fixed_groups = tuple(fixed_groups)
         self.perfect_contact = bool(perfect_contact)
         self._eliminate(perfect_contact)
@@ -343,14 +344,11 @@ class TransientConduction:
         n = self.n_total
         C_fit = [sp.csr_matrix((n, n)) for _ in fits]
         C_bore = sp.csr_matrix((n, n))
-        all_m, all_s = [], []
         for s in m.section.splits:
             if s.axis != "r":
                 continue
             ma, sl = node_pairs_on(x, nodes_on_line(x, s), b.element_dofs, m.part_of,
                                    s.inner_parts, s.outer_parts)
-            all_m.append(ma)
-            all_s.append(sl)
             partner = np.full(self.N, -1)
             partner[sl] = ma
             on = np.zeros(mesh.p.shape[1], bool)
@@ -386,9 +384,7 @@ class TransientConduction:
                     C_bore = C_bore + C
                 else:
                     C_fit[k] = C_fit[k] + C
-        self._radial_m = np.concatenate(all_m) if all_m else np.zeros(0, int)
-        self._radial_s = np.concatenate(all_s) if all_s else np.zeros(0, int)
-        return C_fit, C_bore, (self._radial_m, self._radial_s)
+        return C_fit, C_bore
 
     def _eliminate(self, perfect_contact: bool) -> None:
         """T = P q + D tau: tied DOFs follow their representative, fixed groups take tau."""
@@ -514,7 +510,7 @@ class TransientConduction:
     def part_mean_rows(self) -> np.ndarray:
         """(n_parts, n_total): row p . T = the volume mean of T over part p (ring measure
         2 pi r dA), in `model.part_names` order (cached)."""
-        if getattr(self, "_part_rows", None) is None:
+        if self._part_rows is None:
             b = self.model.sbasis
             w = b.dx * _r(b)
             rows = np.zeros((len(self.model.part_names), self.n_total))
