@@ -184,3 +184,22 @@ def test_contact_conductance_in_the_handbook_range():
     air = SurfacePair()
     assert contact_conductance_W_m2K(-1.0, 10.0, 16.0, 16.0, air) == pytest.approx(
         0.026 / (10e-6 + 0.37e-6), rel=1e-12)
+
+
+def test_heat_through_fixed_faces_closes_the_balance():
+    """A bore whose temperature ramps (a fixed face group) feeding a ring that convects: the heat
+    entering through the fixed face (the reactions there) equals stored + convected every step,
+    to 1e-11 of the largest term, and the ring's outside lags the bore (heat flows outwards)."""
+    from meshes.section import two_cylinder_section
+
+    sec = two_cylinder_section(5.0, 10.0, 15.0, "TC4", "9Cr18", 10.0)
+    tc = TransientConduction(build_model(sec), fixed_groups=("shaft_bore",))
+    prm = ThermalParameters(film_W_m2K={"raceway_inner_ring_A": 50.0},
+                            fit_conductance_W_m2K=(3e3,))
+    st = Stepper(tc, prm, 2.0, 20.0, "bdf2")
+    for k in range(1, 21):
+        T = st.step(StepLoads(20.0, T_fixed_C={"shaft_bore": 20.0 + 2.0 * k}))
+        bal = st.balance
+        assert bal.fixed_in_W > 0
+        assert abs(bal.residual_W) < 1e-11 * bal.scale_W
+    assert tc.mean_C(T, "raceway_inner_ring_A") < tc.mean_C(T, "shaft_bore") == pytest.approx(60.0)
