@@ -1,0 +1,161 @@
+"""Manufactured solutions (fem/mms.py): the axisymmetric thermo-elastic operator with a
+two-material frictionless fit and the steady conduction operator converge at the P2 orders.
+
+Independent references: the orders of the element (Ciarlet th. 3.2.2: h^3 in L2, h^2 in the
+energy norm for P2 on smooth solutions); the hand-derived source terms are checked against
+central finite differences of the stresses and fluxes they come from; the interface conditions
+of the manufactured fields are checked at the fit directly."""
+import numpy as np
+import pytest
+
+from fem.mms import (ConductionField, ElasticFitField, TwoMaterialBox, conduction_level,
+                     conduction_source, elastic_body_force, elastic_fit_level, elastic_stress,
+                     observed_order)
+
+BOX = TwoMaterialBox()
+ELASTIC = ElasticFitField(BOX)
+THERMAL = ConductionField(BOX)
+#: the observed order (least squares over the three finest levels) must lie within this of the
+#: element's order; the finer slow run within half of it
+ORDER_TOL = 0.2
+DEFAULT_LEVELS = (4, 8, 16)          # h = 1.25 .. 0.31 mm, about 0.3 s per case
+SLOW_LEVELS = (8, 16, 32, 64)
+
+
+def _points(k, n=7):
+    """Points inside material k (0 inner, 1 outer), away from the fit by more than the FD step."""
+    rng = np.random.default_rng(k)
+    lo, hi = ((BOX.r0_mm, BOX.a_mm) if k == 0 else (BOX.a_mm, BOX.R_mm))
+    return (rng.uniform(lo + 0.2, hi - 0.2, n), rng.uniform(0.2, BOX.L_mm - 0.2, n))
+
+
+def _fd(fun, r, z, h=1e-4):
+    """Central differences (d/dr, d/dz) of a scalar function of (r, z)."""
+    return ((fun(r + h, z) - fun(r - h, z)) / (2 * h), (fun(r, z + h) - fun(r, z - h)) / (2 * h))
+
+
+@pytest.mark.parametrize("k", [0, 1])
+def test_field_derivatives_match_finite_differences(k):
+    """The closed-form derivatives of the manufactured fields against central differences
+    (relative to the largest derivative of each field; FD truncation ~ h^2 = 1e-8)."""
+    r, z = _points(k)
+    fields = [lambda r, z, i=i: ELASTIC.fields(r, z, k)[i] for i in range(3)]
+    fields.append(lambda r, z: THERMAL.field(r, z, k))
+    for fn in fields:
+        d = fn(r, z)
+        scale = max(np.abs(getattr(d, a)).max() for a in ("r", "z", "rr", "rz", "zz"))
+        dr, dz = _fd(lambda a, b: fn(a, b).v, r, z)
+        assert np.allclose(dr, d.r, atol=1e-6 * scale) and np.allclose(dz, d.z, atol=1e-6 * scale)
+        drr, drz = _fd(lambda a, b: fn(a, b).r, r, z)
+        _, dzz = _fd(lambda a, b: fn(a, b).z, r, z)
+        assert np.allclose(drr, d.rr, atol=1e-6 * scale)
+        assert np.allclose(drz, d.rz, atol=1e-6 * scale) and np.allclose(dzz, d.zz, atol=1e-6 * scale)
+
+
+@pytest.mark.parametrize("k", [0, 1])
+def test_body_force_is_minus_the_divergence_of_the_stress(k):
+    """The hand-expanded f = -div(sigma) of fem/mms.py against the axisymmetric equilibrium
+    built from finite differences of the stresses themselves (Timoshenko & Goodier ch. 13:
+    sigma_rr,r + tau_rz,z + (sigma_rr - sigma_tt)/r + f_r = 0, tau_rz,r + sigma_zz,z + tau_rz/r
+    + f_z = 0), relative to the largest stress-gradient term."""
+    co = ELASTIC.coefficients()[k]
+    r, z = _points(k)
+
+    def stress(a, b):
+        ur, uz, th = ELASTIC.fields(a, b, k)
+        return elastic_stress(ur, uz, a, co["lam"], co["mu"], th)
+
+    def sig(i):
+        return lambda a, b: stress(a, b)[i]
+    srr_r, _ = _fd(sig(0), r, z)
+    _, szz_z = _fd(sig(1), r, z)
+    trz_r, trz_z = _fd(sig(3), r, z)
+    srr, _, stt, trz = stress(r, z)
+    fr_fd = -(srr_r + trz_z + (srr - stt) / r)
+    fz_fd = -(trz_r + szz_z + trz / r)
+    ur, uz, th = ELASTIC.fields(r, z, k)
+    fr, fz = elastic_body_force(ur, uz, r, co["lam"], co["mu"], th)
+    scale = max(np.abs(srr_r).max(), np.abs(trz_z).max(), np.abs(szz_z).max(), np.abs(trz_r).max())
+    assert np.allclose(fr, fr_fd, atol=1e-6 * scale) and np.allclose(fz, fz_fd, atol=1e-6 * scale)
+
+
+@pytest.mark.parametrize("k", [0, 1])
+def test_conduction_source_is_minus_the_divergence_of_the_flux(k):
+    """q''' = -(1/r) d(r k T,r)/dr - d(k T,z)/dz from finite differences of the flux."""
+    kk = THERMAL.conductivity_W_mmK(k)
+    r, z = _points(k)
+    qr = lambda a, b: a * kk * THERMAL.field(a, b, k).r      # noqa: E731
+    qz = lambda a, b: kk * THERMAL.field(a, b, k).z          # noqa: E731
+    d_rqr, _ = _fd(qr, r, z)
+    _, d_qz = _fd(qz, r, z)
+    ref = -(d_rqr / r + d_qz)
+    got = conduction_source(THERMAL.field(r, z, k), r, kk)
+    assert np.allclose(got, ref, atol=1e-6 * max(np.abs(d_rqr / r).max(), np.abs(d_qz).max()))
+
+
+def test_manufactured_fields_satisfy_the_frictionless_fit_and_perfect_contact():
+    """At r = a: u_r jumps by the interference, the shear is zero on both sides, the normal stress
+    is continuous and compressive; the temperature and the heat flux k T,r are continuous.
+    Tolerances relative to the stress and flux scales (round-off)."""
+    z = np.linspace(0.0, BOX.L_mm, 41)
+    a = np.full_like(z, BOX.a_mm)
+    sides = [ELASTIC.fields(a, z, k) for k in (0, 1)]
+    co = ELASTIC.coefficients()
+    st = [elastic_stress(sides[k][0], sides[k][1], a, co[k]["lam"], co[k]["mu"], sides[k][2])
+          for k in (0, 1)]
+    assert np.allclose(sides[1][0].v - sides[0][0].v, ELASTIC.delta_mm, rtol=0, atol=1e-15)
+    scale = abs(ELASTIC.S0_MPa)
+    for k in (0, 1):
+        assert np.allclose(st[k][3], 0.0, atol=1e-12 * scale)
+    assert np.allclose(st[0][0], st[1][0], atol=1e-12 * scale) and (st[0][0] < 0).all()
+    assert not np.allclose(sides[0][1].v, sides[1][1].v)          # the fit slips axially
+    T = [THERMAL.field(a, z, k) for k in (0, 1)]
+    assert np.allclose(T[0].v, T[1].v, atol=1e-12 * np.abs(T[0].v).max())
+    q = [THERMAL.conductivity_W_mmK(k) * T[k].r for k in (0, 1)]
+    assert np.allclose(q[0], q[1], atol=1e-12 * THERMAL.Fa_W_mm2)
+    assert THERMAL.conductivity_W_mmK(0) != THERMAL.conductivity_W_mmK(1)
+
+
+def _orders(levels):
+    return observed_order(levels, "L2"), observed_order(levels, "energy")
+
+
+@pytest.mark.requirement("R-FE-MMS-ELASTIC")
+def test_thermoelastic_fit_converges_at_the_p2_orders():
+    """Two materials (TC4 / 9Cr18: E, nu, alpha differ), thermal strain, body force, tractions,
+    a closed frictionless fit that slips: displacement error h^3 in L2, h^2 in energy."""
+    out = [elastic_fit_level(ELASTIC, n) for n in DEFAULT_LEVELS]
+    assert all(closed.all() for _, closed in out)          # the fit stays closed on every level
+    p_l2, p_en = _orders([lv for lv, _ in out])
+    assert abs(p_l2 - 3.0) <= ORDER_TOL and abs(p_en - 2.0) <= ORDER_TOL, (p_l2, p_en)
+
+
+@pytest.mark.requirement("R-FE-MMS-THERMAL")
+def test_conduction_through_a_fit_converges_at_the_p2_orders():
+    """Two conductivities (TC4 / 9Cr18), perfect contact at the fit, source, Dirichlet and flux
+    boundaries: temperature error h^3 in L2, h^2 in the energy norm."""
+    p_l2, p_en = _orders([conduction_level(THERMAL, n) for n in DEFAULT_LEVELS])
+    assert abs(p_l2 - 3.0) <= ORDER_TOL and abs(p_en - 2.0) <= ORDER_TOL, (p_l2, p_en)
+
+
+@pytest.mark.slow
+@pytest.mark.requirement("R-FE-MMS-ELASTIC")
+@pytest.mark.requirement("R-FE-MMS-THERMAL")
+def test_orders_on_finer_levels():
+    """Down to h = 0.08 mm (270 000 DOF): the asymptotic orders within 0.1."""
+    out = [elastic_fit_level(ELASTIC, n)[0] for n in SLOW_LEVELS]
+    p_l2, p_en = _orders(out)
+    assert abs(p_l2 - 3.0) <= ORDER_TOL / 2 and abs(p_en - 2.0) <= ORDER_TOL / 2, (p_l2, p_en)
+    p_l2, p_en = _orders([conduction_level(THERMAL, n) for n in SLOW_LEVELS])
+    assert abs(p_l2 - 3.0) <= ORDER_TOL / 2 and abs(p_en - 2.0) <= ORDER_TOL / 2, (p_l2, p_en)
+
+
+def test_a_wrong_hoop_term_is_caught(monkeypatch):
+    """The study can fail: a 1 % error in the hoop strain u_r / r of the form stalls the error
+    (observed order near zero), so the orders above are evidence, not a formality."""
+    import fem.forms as forms
+
+    monkeypatch.setattr(forms, "strains", lambda u, r: (u.grad[0, 0], u.grad[1, 1], 1.01 * u[0] / r,
+                                                        u.grad[0, 1] + u.grad[1, 0]))
+    p_l2, _ = _orders([elastic_fit_level(ELASTIC, n)[0] for n in DEFAULT_LEVELS])
+    assert p_l2 < 1.0
