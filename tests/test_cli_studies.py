@@ -34,6 +34,7 @@ def _check_verification(out, cases):
     assert (out / "verification.md").exists() and (out / "mesh_convergence.png").exists()
 
 
+@pytest.mark.requirement("R-FE-LAME")
 def test_verify_cases_contract_and_tolerance(tmp_path):
     """The verification cases with the assembly's mesh-convergence levels twice as coarse (the
     Lamé cases and the Lamé convergence case as shipped); the command at full levels is slow."""

@@ -76,6 +76,7 @@ def cases():
     return rotating_cases()
 
 
+@pytest.mark.requirement("R-FE-ROTATION")
 def test_rotating_fit_cases_agree_with_the_closed_form_within_half_a_percent(cases):
     """Issue 12 'Done when': every rotating case within 0.5 % of its closed form; the fit
     pressure of each rotating_fit case is also recomputed here from the echoed inputs alone

@@ -20,11 +20,20 @@ Cases (each a dict per shared/spec/cli.md, `rel_error` = |FE - closed form| / cl
   speed at which the fit opens, `fem.loosening` on the FE vs `lame.fit_open_speed_rad_s`).
 - mesh_convergence: the quantities that feed the bearing model on the seed 000 stack over four
   mesh levels; observed order and grid convergence index (Roache 1998, GCI with Fs = 1.25).
+
+Beside the cases (`verification.json` keys "mms" and "requirements"):
+- mms: manufactured solutions (`fem.mms`) for the thermo-elastic operator with a two-material
+  frictionless fit and for steady conduction; per operator and norm the expected order of the P2
+  elements, the observed one (least squares over the three finest of MMS_LEVELS) and pass when
+  they differ by at most MMS_ORDER_TOL (`MMSCase`).
+- requirements: the traceability table (`studies.runs.requirements.trace`): every requirement,
+  the tests tagged with it, the outcome of their last pytest run in this checkout.
 """
 from __future__ import annotations
 
 import json
 import math
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -37,9 +46,53 @@ from fem.loosening import fit_open_omega2
 from fem.solver import FitSolver, Superposition
 from meshes.section import two_cylinder_section
 from studies.runs.report_tools import md_table
+from studies.runs.requirements import trace
 
 TOLERANCE = 0.005          # issue 2: every Lamé case within 0.5 % on the default mesh
 REL_FLOOR_MPa = 1e-9
+#: structured-mesh levels of the manufactured solutions (cells across each material: h = 5 mm / n)
+MMS_LEVELS = (4, 8, 16, 32)
+#: an observed order passes within this of the element's order (P2: 3 in L2, 2 in energy)
+MMS_ORDER_TOL = 0.2
+
+
+@dataclass(frozen=True)
+class MMSCase:
+    """One manufactured-solution convergence study: the operator, the norm of the error, the
+    element's order and the observed one over the levels (`fem.mms.MMSLevel`, relative errors)."""
+    name: str
+    operator: str
+    norm: str                    # "L2" or "energy"
+    expected_order: float
+    observed_order: float
+    levels: tuple
+
+    @property
+    def passed(self) -> bool:
+        return abs(self.observed_order - self.expected_order) <= MMS_ORDER_TOL
+
+    def to_json(self) -> dict:
+        key = "l2_rel" if self.norm == "L2" else "energy_rel"
+        return {"name": self.name, "operator": self.operator, "norm": self.norm,
+                "expected_order": self.expected_order, "observed_order": self.observed_order,
+                "pass": self.passed, "tolerance": MMS_ORDER_TOL,
+                "levels": [{"h_mm": lv.h_mm, "dofs": lv.dofs, "rel_error": getattr(lv, key)}
+                           for lv in self.levels]}
+
+
+def mms_cases(levels: tuple[int, ...] = MMS_LEVELS) -> list[MMSCase]:
+    """The manufactured-solution studies of `fem.mms` (TC4 inside, 9Cr18 outside the fit)."""
+    from fem import mms
+
+    box = mms.TwoMaterialBox()
+    el = [mms.elastic_fit_level(mms.ElasticFitField(box), n)[0] for n in levels]
+    th = [mms.conduction_level(mms.ConductionField(box), n) for n in levels]
+    ops = (("thermoelastic_fit_TC4_9Cr18", "axisymmetric thermo-elasticity, two materials, closed "
+            "frictionless fit (fem.forms, fem.solver)", el),
+           ("conduction_TC4_9Cr18", "steady axisymmetric conduction, two conductivities, perfect "
+            "contact (fem.forms, fem.thermal)", th))
+    return [MMSCase(f"{name}_{norm}", op, norm, order, mms.observed_order(lv, norm), tuple(lv))
+            for name, op, lv in ops for norm, order in (("L2", 3.0), ("energy", 2.0))]
 
 
 def _solve_two_cylinder(section, T_C: float, T_ref_C: float, interference_um: float):
@@ -425,9 +478,13 @@ def lame_cases(mesh_factor: float = 1.0) -> list[dict]:
     return cases + rotating_cases(mesh_factor=f)
 
 
-def write_verification(out_dir: Path, cases: list[dict], plot_path: Path | None) -> None:
-    """verification.json and verification.md (the tables a reviewer reads)."""
-    (out_dir / "verification.json").write_text(json.dumps({"cases": cases}, indent=2, default=float))
+def write_verification(out_dir: Path, cases: list[dict], plot_path: Path | None,
+                       mms: list[MMSCase] = (), requirements=()) -> None:
+    """verification.json and verification.md (the tables a reviewer reads); `requirements`:
+    `studies.runs.requirements.RequirementTrace` rows."""
+    (out_dir / "verification.json").write_text(json.dumps(
+        {"cases": cases, "mms": [m.to_json() for m in mms],
+         "requirements": [r.to_json() for r in requirements]}, indent=2, default=float))
     lines = ["# bearingfem verification", "",
              "FE (axisymmetric P2, exact contact, fit pressure from contact reactions) against closed "
              "forms. Tolerance for every Lamé case: 0.5 %.", "",
@@ -474,7 +531,40 @@ def write_verification(out_dir: Path, cases: list[dict], plot_path: Path | None)
                   f"{c['closed_form']['fit_pressure_plane_stress_MPa']:.4g}, plane strain "
                   f"{c['closed_form']['fit_pressure_plane_strain_MPa']:.4g}: "
                   f"{'between the bounds' if c['within_bounds'] else 'outside the bounds'}. {c['note']}."]
+    lines += mms_lines(mms) + requirement_lines(requirements)
     (out_dir / "verification.md").write_text("\n".join(lines) + "\n")
+
+
+def mms_lines(mms: list[MMSCase]) -> list[str]:
+    """Markdown: the manufactured-solution table (expected vs observed order, pass/fail)."""
+    if not mms:
+        return []
+    rows = [[m.name, m.operator, m.norm, f"{m.expected_order:g}", f"{m.observed_order:.3f}",
+             ", ".join(f"{(lv.l2_rel if m.norm == 'L2' else lv.energy_rel):.2e}" for lv in m.levels),
+             "PASS" if m.passed else "FAIL"] for m in mms]
+    h = ", ".join(f"{lv.h_mm:g}" for lv in mms[0].levels)
+    return ["", "## Manufactured solutions (code verification)", "",
+            "Fields in sin/cos/exp of r and z with the source terms that make them exact (fem/mms.py), "
+            "two materials across a fit (TC4 inside, 9Cr18 outside: E, nu, alpha, k differ); the "
+            "elastic field has a closed frictionless fit (u_r jumps by the interference, zero shear, "
+            "continuous compressive normal stress, axial slip), the thermal one perfect contact. "
+            f"Structured meshes, h = {h} mm; relative errors; observed order = least-squares slope over "
+            f"the three finest levels; pass within {MMS_ORDER_TOL:g} of the P2 order.", "",
+            md_table(["case", "operator", "norm", "expected order", "observed order",
+                      "relative errors", "result"], rows)]
+
+
+def requirement_lines(requirements) -> list[str]:
+    """Markdown: the traceability table requirement -> tests -> last result."""
+    if not requirements:
+        return []
+    rows = [[r.id, r.text, "<br>".join(f"`{t}`" for t in r.tests) or "(none)", r.result]
+            for r in requirements]
+    return ["", "## Requirements traceability", "",
+            "Each requirement, the tests tagged with it (`@pytest.mark.requirement`), and the result "
+            "of their last pytest run in this checkout (recorded by tests/conftest.py; \"not run\" "
+            "when none of its tests has run here).", "",
+            md_table(["requirement", "statement", "tests", "last result"], rows)]
 
 
 def plot_convergence(path: Path, cases: list[dict]) -> Path:
@@ -552,5 +642,7 @@ def run(out_dir: Path, progress=print, mesh_factor: float = 1.0, assembly=None) 
                                   factors=tuple(mesh_factor * f for f in (4.0, 2.0, 1.0, 0.5)))]
     cases += conv
     plot = plot_convergence(out_dir / "mesh_convergence.png", conv)
-    write_verification(out_dir, cases, plot)
+    progress("manufactured solutions ...")
+    mms = mms_cases()
+    write_verification(out_dir, cases, plot, mms, trace())
     return cases
