@@ -30,8 +30,8 @@ def _lame(ri, rf, ro, mi, mo, d_um, assumption):
 @pytest.mark.requirement("R-FE-LAME")
 def test_every_verify_lame_case_within_half_percent():
     for c in lame_cases(mesh_factor=2.0):   # coarser than the default mesh: still far inside
-        if c["kind"] in ("lame_fit", "lame_displacement", "free_thermal"):
-            assert c["rel_error"] < 1e-4, c["name"]
+        if c.kind in ("lame_fit", "lame_displacement", "free_thermal"):
+            assert c.rel_error < 1e-4, c.name
 
 
 def test_free_thermal_growth_is_exact_and_stress_free():
@@ -70,7 +70,7 @@ def test_clearance_fit_stays_open_with_zero_force_and_the_right_gap():
 
 def test_short_ring_pressure_between_plane_stress_and_plane_strain():
     c = short_ring_case(mesh_factor=1.5)
-    assert c["within_bounds"], c
+    assert dict(c.extra)["within_bounds"], c
 
 
 def test_rigid_body_fix_adds_no_force():
