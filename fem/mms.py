@@ -5,11 +5,12 @@ strong form, the FE solves with those sources on a sequence of refined meshes, a
 against the chosen field must fall at the order of the element: for P2, h^3 in L2 and h^2 in the
 energy norm (Roache, Verification and Validation in Computational Science and Engineering, 1998,
 ch. 3; Salari & Knupp, Code Verification by the Method of Manufactured Solutions, Sandia
-SAND2000-1444, 2000; Ciarlet, The Finite Element Method for Elliptic Problems, th. 3.2.2 for the
-orders).
+SAND2000-1444, 2000; Ciarlet, The Finite Element Method for Elliptic Problems, 1978, sections
+3.1-3.2 for the orders).
 
-Strong forms (Timoshenko & Goodier, Theory of Elasticity, 3rd ed., ch. 13 sections 135-136 for
-the axisymmetric equilibrium with thermal strain; Zienkiewicz & Taylor Vol. 1, 6th ed., section 6.3),
+Strong forms (Timoshenko & Goodier, Theory of Elasticity, 3rd ed., ch. 12 for the equilibrium of
+a solid of revolution, ch. 13 for the thermal strain; Zienkiewicz & Taylor Vol. 1, 6th ed.,
+section 6.3),
 r, z in mm, u in mm, stresses in MPa, body force in N/mm^3, theta the thermal strain (-):
 
     eps_rr = u_r,r   eps_zz = u_z,z   eps_tt = u_r / r   gamma_rz = u_r,z + u_z,r
@@ -124,7 +125,7 @@ def exp_(x, L: float) -> tuple:
 
 def elastic_body_force(ur: Derivs, uz: Derivs, r, lam, mu, th: Derivs):
     """(f_r, f_z) N/mm^3 that make (u_r, u_z) an equilibrium with thermal strain theta (module
-    docstring: Timoshenko & Goodier ch. 13)."""
+    docstring: Timoshenko & Goodier ch. 12-13)."""
     beta = 3 * lam + 2 * mu
     tr_r = ur.rr + uz.rz + ur.r / r - ur.v / (r * r)
     tr_z = ur.rz + uz.zz + ur.z / r
@@ -166,6 +167,20 @@ class TwoMaterialBox:
 
 
 @dataclass(frozen=True)
+class SideCoefficients:
+    """The constants of one side of the fit (`ElasticFitField.coefficients`): u_r at the fit c
+    (mm), the slopes P0, P1 of u_r across it (-), the axial amplitude W (mm), the Lamé constants
+    lam, mu (MPa) and the CTE alpha (1/K)."""
+    c: float
+    P0: float
+    P1: float
+    W: float
+    lam: float
+    mu: float
+    alpha: float
+
+
+@dataclass(frozen=True)
 class ElasticFitField:
     """The manufactured thermo-elastic field with a closed frictionless fit at r = a (module
     docstring). Amplitudes in mm (displacements), MPa (S0, S1), 1/mm (wave numbers); the
@@ -189,7 +204,7 @@ class ElasticFitField:
     def materials(self) -> tuple[Material, Material]:
         return get_material(self.box.inner), get_material(self.box.outer)
 
-    def coefficients(self) -> list[dict]:
+    def coefficients(self) -> list[SideCoefficients]:
         """Per material the constants c, P0, P1 that give sigma_rr = S0 + S1 g(z) at r = a."""
         a = self.box.a_mm
         out = []
@@ -200,7 +215,7 @@ class ElasticFitField:
             W = self.W_mm[k]
             P0 = (self.S0_MPa - lam * c / a + beta * al * self.D0_K) / (lam + 2 * mu)
             P1 = (self.S1_MPa - lam * W + beta * al * self.D1_K) / (lam + 2 * mu)
-            out.append({"c": c, "P0": P0, "P1": P1, "W": W, "lam": lam, "mu": mu, "alpha": al})
+            out.append(SideCoefficients(c, P0, P1, W, lam, mu, al))
         return out
 
     def fields(self, r, z, k: int):
@@ -209,14 +224,14 @@ class ElasticFitField:
         co = self.coefficients()[k]
         s = r - a
         g = cos_(z, self.k_per_mm)
-        ur = (product(poly(s, 0), poly(z, 0), co["c"]) + product(poly(s, 1), poly(z, 0), co["P0"])
-              + product(poly(s, 1), g, co["P1"])
+        ur = (product(poly(s, 0), poly(z, 0), co.c) + product(poly(s, 1), poly(z, 0), co.P0)
+              + product(poly(s, 1), g, co.P1)
               + product(s2_sin(r, a, self.w_per_mm), exp_(z, self.Lz_mm), self.A_per_mm[k]))
-        uz = (product(poly(s, 0), sin_over_k(z, self.k_per_mm), co["W"])
+        uz = (product(poly(s, 0), sin_over_k(z, self.k_per_mm), co.W)
               + product(s2_cos(r, a, self.w_per_mm), sin_(z, self.k2_per_mm), self.B_per_mm[k]))
         dT = (product(poly(s, 0), poly(z, 0), self.D0_K)
               + product(exp_(s, self.lt_mm), g, self.D1_K))
-        al = co["alpha"]
+        al = co.alpha
         th = Derivs(al * dT.v, al * dT.r, al * dT.z, al * dT.rr, al * dT.rz, al * dT.zz)
         return ur, uz, th
 
@@ -319,7 +334,7 @@ def elastic_fit_level(field: ElasticFitField, n: int) -> tuple[MMSLevel, np.ndar
         sel = mat == k
         co = field.coefficients()[k]
         ur, uz, th = field.fields(r[sel], z[sel], k)
-        fr[sel], fz[sel] = elastic_body_force(ur, uz, r[sel], co["lam"], co["mu"], th)
+        fr[sel], fz[sel] = elastic_body_force(ur, uz, r[sel], co.lam, co.mu, th)
         theta[sel] = th.v
     f = model.thermal_load_vector(theta) + asm(_vector_load, b, fr=fr, fz=fz)
     # tractions sigma . n on the outer boundary (the fit is not loaded: the field satisfies it)
@@ -338,7 +353,7 @@ def elastic_fit_level(field: ElasticFitField, n: int) -> tuple[MMSLevel, np.ndar
                 continue
             co = field.coefficients()[k]
             ur, uz, th = field.fields(x[0][sel], x[1][sel], k)
-            srr, szz, _, trz = elastic_stress(ur, uz, x[0][sel], co["lam"], co["mu"], th)
+            srr, szz, _, trz = elastic_stress(ur, uz, x[0][sel], co.lam, co.mu, th)
             tr_r[sel] = srr * nrm[0][sel] + trz * nrm[1][sel]
             tr_z[sel] = trz * nrm[0][sel] + szz * nrm[1][sel]
         f += asm(_vector_load, fb, fr=tr_r, fz=tr_z)
@@ -358,9 +373,9 @@ def elastic_fit_level(field: ElasticFitField, n: int) -> tuple[MMSLevel, np.ndar
         rk = r[sel]
         e_en += float(np.sum(_strain_energy_density(ur.r - G[0, 0], uz.z - G[1, 1], er / rk,
                                                     ur.z - G[0, 1] + uz.r - G[1, 0],
-                                                    co["lam"], co["mu"]) * dV[sel]))
+                                                    co.lam, co.mu) * dV[sel]))
         n_en += float(np.sum(_strain_energy_density(ur.r, uz.z, ur.v / rk, ur.z + uz.r,
-                                                    co["lam"], co["mu"]) * dV[sel]))
+                                                    co.lam, co.mu) * dV[sel]))
     level = MMSLevel(h, int(model.ndofs), math.sqrt(e_l2 / n_l2), math.sqrt(e_en / n_en))
     return level, sol.closed
 

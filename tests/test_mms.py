@@ -1,7 +1,7 @@
 """Manufactured solutions (fem/mms.py): the axisymmetric thermo-elastic operator with a
 two-material frictionless fit and the steady conduction operator converge at the P2 orders.
 
-Independent references: the orders of the element (Ciarlet th. 3.2.2: h^3 in L2, h^2 in the
+Independent references: the orders of the element (Ciarlet 1978, sections 3.1-3.2: h^3 in L2, h^2 in the
 energy norm for P2 on smooth solutions); the hand-derived source terms are checked against
 central finite differences of the stresses and fluxes they come from; the interface conditions
 of the manufactured fields are checked at the fit directly."""
@@ -55,7 +55,7 @@ def test_field_derivatives_match_finite_differences(k):
 @pytest.mark.parametrize("k", [0, 1])
 def test_body_force_is_minus_the_divergence_of_the_stress(k):
     """The hand-expanded f = -div(sigma) of fem/mms.py against the axisymmetric equilibrium
-    built from finite differences of the stresses themselves (Timoshenko & Goodier ch. 13:
+    built from finite differences of the stresses themselves (Timoshenko & Goodier ch. 12:
     sigma_rr,r + tau_rz,z + (sigma_rr - sigma_tt)/r + f_r = 0, tau_rz,r + sigma_zz,z + tau_rz/r
     + f_z = 0), relative to the largest stress-gradient term."""
     co = ELASTIC.coefficients()[k]
@@ -63,7 +63,7 @@ def test_body_force_is_minus_the_divergence_of_the_stress(k):
 
     def stress(a, b):
         ur, uz, th = ELASTIC.fields(a, b, k)
-        return elastic_stress(ur, uz, a, co["lam"], co["mu"], th)
+        return elastic_stress(ur, uz, a, co.lam, co.mu, th)
 
     def sig(i):
         return lambda a, b: stress(a, b)[i]
@@ -74,7 +74,7 @@ def test_body_force_is_minus_the_divergence_of_the_stress(k):
     fr_fd = -(srr_r + trz_z + (srr - stt) / r)
     fz_fd = -(trz_r + szz_z + trz / r)
     ur, uz, th = ELASTIC.fields(r, z, k)
-    fr, fz = elastic_body_force(ur, uz, r, co["lam"], co["mu"], th)
+    fr, fz = elastic_body_force(ur, uz, r, co.lam, co.mu, th)
     scale = max(np.abs(srr_r).max(), np.abs(trz_z).max(), np.abs(szz_z).max(), np.abs(trz_r).max())
     assert np.allclose(fr, fr_fd, atol=1e-6 * scale) and np.allclose(fz, fz_fd, atol=1e-6 * scale)
 
@@ -101,7 +101,7 @@ def test_manufactured_fields_satisfy_the_frictionless_fit_and_perfect_contact():
     a = np.full_like(z, BOX.a_mm)
     sides = [ELASTIC.fields(a, z, k) for k in (0, 1)]
     co = ELASTIC.coefficients()
-    st = [elastic_stress(sides[k][0], sides[k][1], a, co[k]["lam"], co[k]["mu"], sides[k][2])
+    st = [elastic_stress(sides[k][0], sides[k][1], a, co[k].lam, co[k].mu, sides[k][2])
           for k in (0, 1)]
     assert np.allclose(sides[1][0].v - sides[0][0].v, ELASTIC.delta_mm, rtol=0, atol=1e-15)
     scale = abs(ELASTIC.S0_MPa)
