@@ -29,15 +29,16 @@ def test_trace_gives_the_last_result_of_each_requirement(tmp_path):
         '@pytest.mark.requirement("R-TORQUE")\n@pytest.mark.parametrize("x", [1, 2])\n'
         "def test_two(x):\n    pass\n\n"
         '@pytest.mark.requirement("R-TORQUE")\ndef test_three():\n    pass\n')
-    rec = {"tests/test_a.py::test_one": {"outcome": "passed"},
-           "tests/test_a.py::test_two[1]": {"outcome": "passed"},
-           "tests/test_a.py::test_two[2]": {"outcome": "failed"}}
+    rec = {"tests/test_a.py::test_one": {"outcome": "passed", "when": "2026-01-02T03:04:05+00:00"},
+           "tests/test_a.py::test_two[1]": {"outcome": "passed", "when": "2026-01-01T00:00:00+00:00"},
+           "tests/test_a.py::test_two[2]": {"outcome": "failed", "when": "2026-01-01T00:00:00+00:00"}}
     path = tmp_path / RESULTS_RELPATH
     path.parent.mkdir(parents=True)
     path.write_text(json.dumps({"tests": rec}))
     rows = {r.id: r for r in trace(tmp_path)}
-    assert rows["R-HERTZ"].result == "passed" and rows["R-HERTZ"].tests == ("tests/test_a.py::test_one",)
-    assert rows["R-TORQUE"].result == "failed (1 of 2)"
+    assert rows["R-HERTZ"].result == "passed, last run 2026-01-02T03:04:05+00:00"
+    assert rows["R-HERTZ"].tests == ("tests/test_a.py::test_one",)
+    assert rows["R-TORQUE"].result == "failed (1 of 2), last run 2026-01-01T00:00:00+00:00"
     assert rows["R-FE-LAME"].result == "not run" and rows["R-FE-LAME"].tests == ()
     path.unlink()
     assert all(r.result == "not run" for r in trace(tmp_path))

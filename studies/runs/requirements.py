@@ -57,7 +57,7 @@ def repository_root() -> Path:
 class RequirementTrace:
     """One row of the traceability table: the requirement, the tests tagged with it (pytest node
     ids without parameters), and the outcome of their last run ("passed", "failed (k of n)",
-    "not run", "partly run (k of n): passed")."""
+    "partly run (k of n): passed", each with ", last run <UTC time>"; or "not run")."""
     id: str
     text: str
     tests: tuple[str, ...]
@@ -89,21 +89,22 @@ def tagged_tests(tests_dir: Path) -> dict[str, list[str]]:
     return out
 
 
-def read_results(root: Path) -> dict[str, str]:
-    """test node id (parameters stripped) -> last outcome, from the plugin's record; {} when
-    absent or unreadable. A parametrised test counts as failed if any of its cases failed."""
+def read_results(root: Path) -> dict[str, tuple[str, str]]:
+    """test node id (parameters stripped) -> (last outcome, when it ran, ISO time), from the
+    plugin's record; {} when absent or unreadable. A parametrised test counts as failed if any of
+    its cases failed."""
     path = root / RESULTS_RELPATH
     try:
         rec = json.loads(path.read_text())["tests"]
     except (OSError, ValueError, KeyError, TypeError):
         return {}
-    out: dict[str, str] = {}
+    out: dict[str, tuple[str, str]] = {}
     rank = {"failed": 2, "passed": 1, "skipped": 0}
     for nodeid, r in rec.items():
         base = nodeid.split("[", 1)[0]
-        o = r.get("outcome", "skipped")
-        if base not in out or rank.get(o, 0) > rank.get(out[base], 0):
-            out[base] = o
+        o, when = r.get("outcome", "skipped"), str(r.get("when", ""))
+        if base not in out or rank.get(o, 0) > rank.get(out[base][0], 0):
+            out[base] = (o, max(when, out[base][1]) if base in out else when)
     return out
 
 
@@ -117,8 +118,8 @@ def trace(root: Path | None = None) -> list[RequirementTrace]:
     rows = []
     for rid, text in REQUIREMENTS.items():
         tests = tuple(tagged.get(rid, ()))
-        ran = [results[t] for t in tests if t in results and results[t] != "skipped"]
-        failed = sum(o == "failed" for o in ran)
+        ran = [results[t] for t in tests if t in results and results[t][0] != "skipped"]
+        failed = sum(o == "failed" for o, _ in ran)
         if not ran:
             result = "not run"
         elif failed:
@@ -127,5 +128,8 @@ def trace(root: Path | None = None) -> list[RequirementTrace]:
             result = f"partly run ({len(ran)} of {len(tests)}): passed"
         else:
             result = "passed"
+        last = max((w for _, w in ran), default="")
+        if last:
+            result += f", last run {last}"
         rows.append(RequirementTrace(rid, text, tests, result))
     return rows
