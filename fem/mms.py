@@ -41,6 +41,10 @@ the manufactured fields satisfy the interface conditions exactly, so no line sou
   sigma_rr = S0 + S1 g(z) on both sides when the theta of both sides is D0_k + D1_k g(z) there;
   P0_k and P1_k are solved from the chosen S0 < -|S1| (compression everywhere) per material.
   u_z = 0 on z = 0, where `StackModel` fixes one u_z per floating body.
+  On a solid inner part (r0 = 0: the axis, u_r = 0 there) the inner fields are regular at the
+  axis (u_r odd, u_z and theta even in r): u_r = P0 r + A (r^2 - a^2)^2 sin(w r) e^{z / Lz},
+  u_z = W G(z) + B (r^2 - a^2)^2 cos(w r) sin(k2 z), theta from D0 + D1 cos(w r)/cos(w a) g(z);
+  then P1 = 0 inside, c = a P0 and S1 = lam W - beta alpha D1 of the inner material.
 - conduction, perfect thermal contact (the tie of `fem.thermal.ConductionModel`): T continuous
   and k T,r continuous at r = a:
       T = Ta(z) + s F(z) / k_k + C_k s^2 cos(w r) e^{-z / Lz}
@@ -99,6 +103,26 @@ def s2_cos(r, a: float, w: float) -> tuple:
     """(r - a)^2 cos(w r) and its two r-derivatives."""
     s, S, C = r - a, np.sin(w * r), np.cos(w * r)
     return s * s * C, 2 * s * C - s * s * w * S, 2 * C - 4 * s * w * S - s * s * w * w * C
+
+
+def q2_sin(r, a: float, w: float) -> tuple:
+    """(r^2 - a^2)^2 sin(w r) and its two r-derivatives: odd in r, zero with its slope at a."""
+    Q, S, C = r * r - a * a, np.sin(w * r), np.cos(w * r)
+    return (Q * Q * S, 4 * r * Q * S + Q * Q * w * C,
+            (4 * Q + 8 * r * r) * S + 8 * r * Q * w * C - Q * Q * w * w * S)
+
+
+def q2_cos(r, a: float, w: float) -> tuple:
+    """(r^2 - a^2)^2 cos(w r) and its two r-derivatives: even in r, zero with its slope at a."""
+    Q, S, C = r * r - a * a, np.sin(w * r), np.cos(w * r)
+    return (Q * Q * C, 4 * r * Q * C - Q * Q * w * S,
+            (4 * Q + 8 * r * r) * C - 8 * r * Q * w * S - Q * Q * w * w * C)
+
+
+def cos_ratio(r, a: float, w: float) -> tuple:
+    """cos(w r) / cos(w a) and its two derivatives: even in r, 1 at a."""
+    c = np.cos(w * a)
+    return np.cos(w * r) / c, -w * np.sin(w * r) / c, -w * w * np.cos(w * r) / c
 
 
 def cos_(z, k: float) -> tuple:
@@ -204,17 +228,30 @@ class ElasticFitField:
     def materials(self) -> tuple[Material, Material]:
         return get_material(self.box.inner), get_material(self.box.outer)
 
+    @property
+    def on_axis(self) -> bool:
+        """The inner part is solid (r0 = 0): its fields are the axis-regular ones."""
+        return self.box.r0_mm == 0.0
+
     def coefficients(self) -> list[SideCoefficients]:
         """Per material the constants c, P0, P1 that give sigma_rr = S0 + S1 g(z) at r = a."""
         a = self.box.a_mm
+        mats = self.materials()
+        lame = [lame_parameters(m.E_MPa, m.nu) for m in mats]
+        beta = [3 * lam + 2 * mu for lam, mu in lame]
+        S0, S1, c1 = self.S0_MPa, self.S1_MPa, self.c1_mm
+        if self.on_axis:        # u_r = P0 r inside: P1 = 0, c = a P0, S1 follows from W and D1
+            (lam, mu), al = lame[0], mats[0].alpha_per_K
+            P0 = (S0 + beta[0] * al * self.D0_K) / (2 * lam + 2 * mu)
+            c1 = a * P0
+            S1 = lam * self.W_mm[0] - beta[0] * al * self.D1_K
         out = []
-        for k, m in enumerate(self.materials()):
-            lam, mu = lame_parameters(m.E_MPa, m.nu)
-            beta, al = 3 * lam + 2 * mu, m.alpha_per_K
-            c = self.c1_mm + (self.delta_mm if k == 1 else 0.0)
+        for k, m in enumerate(mats):
+            (lam, mu), al = lame[k], m.alpha_per_K
+            c = c1 + (self.delta_mm if k == 1 else 0.0)
             W = self.W_mm[k]
-            P0 = (self.S0_MPa - lam * c / a + beta * al * self.D0_K) / (lam + 2 * mu)
-            P1 = (self.S1_MPa - lam * W + beta * al * self.D1_K) / (lam + 2 * mu)
+            P0 = (S0 - lam * c / a + beta[k] * al * self.D0_K) / (lam + 2 * mu)
+            P1 = (S1 - lam * W + beta[k] * al * self.D1_K) / (lam + 2 * mu)
             out.append(SideCoefficients(c, P0, P1, W, lam, mu, al))
         return out
 
@@ -224,13 +261,21 @@ class ElasticFitField:
         co = self.coefficients()[k]
         s = r - a
         g = cos_(z, self.k_per_mm)
-        ur = (product(poly(s, 0), poly(z, 0), co.c) + product(poly(s, 1), poly(z, 0), co.P0)
-              + product(poly(s, 1), g, co.P1)
-              + product(s2_sin(r, a, self.w_per_mm), exp_(z, self.Lz_mm), self.A_per_mm[k]))
-        uz = (product(poly(s, 0), sin_over_k(z, self.k_per_mm), co.W)
-              + product(s2_cos(r, a, self.w_per_mm), sin_(z, self.k2_per_mm), self.B_per_mm[k]))
-        dT = (product(poly(s, 0), poly(z, 0), self.D0_K)
-              + product(exp_(s, self.lt_mm), g, self.D1_K))
+        if k == 0 and self.on_axis:
+            ur = (product(poly(r, 1), poly(z, 0), co.P0)
+                  + product(q2_sin(r, a, self.w_per_mm), exp_(z, self.Lz_mm), self.A_per_mm[k]))
+            uz = (product(poly(r, 0), sin_over_k(z, self.k_per_mm), co.W)
+                  + product(q2_cos(r, a, self.w_per_mm), sin_(z, self.k2_per_mm), self.B_per_mm[k]))
+            dT = (product(poly(r, 0), poly(z, 0), self.D0_K)
+                  + product(cos_ratio(r, a, 1.0 / self.lt_mm), g, self.D1_K))
+        else:
+            ur = (product(poly(s, 0), poly(z, 0), co.c) + product(poly(s, 1), poly(z, 0), co.P0)
+                  + product(poly(s, 1), g, co.P1)
+                  + product(s2_sin(r, a, self.w_per_mm), exp_(z, self.Lz_mm), self.A_per_mm[k]))
+            uz = (product(poly(s, 0), sin_over_k(z, self.k_per_mm), co.W)
+                  + product(s2_cos(r, a, self.w_per_mm), sin_(z, self.k2_per_mm), self.B_per_mm[k]))
+            dT = (product(poly(s, 0), poly(z, 0), self.D0_K)
+                  + product(exp_(s, self.lt_mm), g, self.D1_K))
         al = co.alpha
         th = Derivs(al * dT.v, al * dT.r, al * dT.z, al * dT.rr, al * dT.rz, al * dT.zz)
         return ur, uz, th
@@ -261,6 +306,17 @@ class ConductionField:
                 + product(poly(s, 0), exp_(z, self.Lz_mm), self.Ta_K)
                 + product(poly(s, 1), sin_(z, self.k_per_mm), self.Fa_W_mm2 / kk)
                 + product(s2_cos(r, a, self.w_per_mm), exp_(z, -self.Lz_mm), self.C_K_per_mm2[k]))
+
+
+#: the solid-shaft section and field of the axis case: a TC4 shaft (r < 6 mm) in a 9Cr18 ring
+AXIS_BOX = TwoMaterialBox(r0_mm=0.0, a_mm=6.0, R_mm=10.0, L_mm=10.0)
+
+
+def axis_field() -> ElasticFitField:
+    """The manufactured field of the solid-shaft case (axis-regular inside; bulk amplitudes
+    scaled so the (r^2 - a^2)^2 terms stay of the size of the others)."""
+    return ElasticFitField(AXIS_BOX, W_mm=(0.5e-3, -0.6e-3), A_per_mm=(1.2e-6, -3.0e-5),
+                           B_per_mm=(1.0e-6, 5.0e-5))
 
 
 def structured_box_mesh(box: TwoMaterialBox, n: int):
@@ -338,8 +394,11 @@ def elastic_fit_level(field: ElasticFitField, n: int) -> tuple[MMSLevel, np.ndar
         theta[sel] = th.v
     f = model.thermal_load_vector(theta) + asm(_vector_load, b, fr=fr, fz=fz)
     # tractions sigma . n on the outer boundary (the fit is not loaded: the field satisfies it)
-    for spec in (("r", box.r0_mm, 0.0, box.L_mm), ("r", box.R_mm, 0.0, box.L_mm),
-                 ("z", 0.0, box.r0_mm, box.R_mm), ("z", box.L_mm, box.r0_mm, box.R_mm)):
+    sides = [("r", box.R_mm, 0.0, box.L_mm), ("z", 0.0, box.r0_mm, box.R_mm),
+             ("z", box.L_mm, box.r0_mm, box.R_mm)]
+    if not field.on_axis:                  # the axis carries no traction (u_r = 0 there)
+        sides.append(("r", box.r0_mm, 0.0, box.L_mm))
+    for spec in sides:
         facets = facets_on_line(model, spec)
         fb = FacetBasis(model.mesh, b.elem, facets=facets)
         x = np.asarray(fb.global_coordinates())
