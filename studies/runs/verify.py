@@ -25,9 +25,9 @@ Cases (`VerifyCase`, written per shared/spec/cli.md by `VerifyCase.to_json`; `re
 
 Beside the cases (`verification.json` keys "mms" and "requirements"):
 - mms: manufactured solutions (`fem.mms`) for the thermo-elastic operator with a two-material
-  frictionless fit (a hollow and a solid shaft) and for steady conduction; per operator and norm the expected order of the P2
-  elements, the observed one (least squares over the three finest of MMS_LEVELS) and pass when
-  they differ by at most MMS_ORDER_TOL (`MMSCase`).
+  frictionless fit (a hollow and a solid shaft) and for steady conduction; per operator and
+  norm the expected order of the P2 elements, the observed one (least squares over the three
+  finest of MMS_LEVELS) and pass when they differ by at most MMS_ORDER_TOL (`MMSCase`).
 - requirements: the traceability table (`studies.runs.requirements.trace`): every requirement,
   the tests tagged with it, the outcome of their last pytest run in this checkout.
 """
