@@ -25,7 +25,6 @@ from analytic.axial_stack import (AxialStack, Bar, elastic_mismatch_mm, pair_pre
                                   paper_mismatch_mm, uniform_growth_shifts_mm)
 from analytic.bearing.geometry import SIGNS
 from analytic.materials import get_material
-
 from studies.model.config import load_shipped
 from studies.model.effects import apply_effects
 from studies.model.inputs import baseline_inputs
