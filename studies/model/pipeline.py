@@ -18,6 +18,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from analytic.axial_stack import uniform_growth_shifts_mm
 from analytic.bearing import PairState
 from analytic.lubrication import get_lubricant
 from studies.model.checks import assembly_checks, evaluate_checks
@@ -205,7 +206,13 @@ class Pipeline:
             if options.centres is not None:
                 fe = fe.with_shifts(*options.centres(self, inputs))
                 fe_ref = fe_ref.with_shifts(*options.centres(self, ref_inputs))
-        return options.apply_shifts(fe, fe_ref), fe_ref
+        growth = growth_ref = None
+        if options.held != "assembly":
+            arr, T_ref = self.asm.arrangement, self.asm.T_ref_C
+            growth = uniform_growth_shifts_mm(self.geom, arr, inputs.T_C["inner_ring"], T_ref)
+            growth_ref = uniform_growth_shifts_mm(self.geom, arr, np.full(inputs.n_rows, T_ref),
+                                                  T_ref)
+        return options.apply_shifts(fe, fe_ref, growth, growth_ref)
 
     # ------------------------------------------------------------------ the route
     def run(self, inputs: PhysicsInputs, direct: bool = False,

@@ -86,8 +86,14 @@ class FEOptions:
     """How the route forms the FE answer the bearing sees (`Pipeline.run(..., fe_options=)`).
 
     shifts: "both" (the default: the FE's groove-centre shifts as solved), "radial_only" (the
-      axial shifts held at their assembly-state values: what the fits and ring growth alone do
-      to the preload) or "axial_only" (the radial shifts held: what the stack lengths alone do).
+      axial shifts held: what the fits and ring growth alone do to the preload) or "axial_only"
+      (the radial shifts held: what the stack lengths alone do).
+    held: what a held set of shifts is: "assembly" (the default: its value in the row's
+      assembly state), "assembly_plus_free_growth" (that plus the bearing's own uniform thermal
+      growth at the row's inner-ring temperature, `analytic.axial_stack.uniform_growth_shifts_mm`:
+      a uniformly heated bearing keeps its contact angle) or "free_growth" (the uniform growth
+      alone, in the rows and in their assembly states: the fits' raceway expansion at assembly
+      also off).
     reference: the assembly state the position preload is set in, per row: "as_built" (the
       default: T_ref, at rest, at the row's own fits) or "nominal_fits" (at the assembly's
       `[fits]` values: a fit-tolerance sample assembled into the nominal stack).
@@ -97,28 +103,40 @@ class FEOptions:
     states: None, or the FE answers given instead of solved, (rows, assembly states) as two
       `FEState`s: an earlier result's `fe` and `fe_ref` (`FEState.take` repeats rows to evaluate
       them under other bearing or torque settings), or `Pipeline.fe_field`'s state of a
-      non-uniform temperature field. `shifts` still applies; `centres` and `reference` do not.
+      non-uniform temperature field. `shifts` and `held` still apply; `centres` and `reference`
+      do not.
     """
     shifts: str = "both"
+    held: str = "assembly"
     reference: str = "as_built"
     centres: Callable | None = None
     states: tuple[FEState, FEState] | None = None
 
     def __post_init__(self):
-        if self.shifts not in ("both", "radial_only", "axial_only"):
-            raise ValueError(f"FEOptions.shifts must be 'both', 'radial_only' or 'axial_only', "
-                             f"got {self.shifts!r}")
-        if self.reference not in ("as_built", "nominal_fits"):
-            raise ValueError(f"FEOptions.reference must be 'as_built' or 'nominal_fits', "
-                             f"got {self.reference!r}")
+        for name, allowed in (("shifts", ("both", "radial_only", "axial_only")),
+                              ("held", ("assembly", "assembly_plus_free_growth", "free_growth")),
+                              ("reference", ("as_built", "nominal_fits"))):
+            if getattr(self, name) not in allowed:
+                raise ValueError(f"FEOptions.{name} must be one of {', '.join(allowed)}, "
+                                 f"got {getattr(self, name)!r}")
 
-    def apply_shifts(self, fe: FEState, fe_ref: FEState) -> FEState:
-        """The rows' state with the shifts this option holds at their assembly-state values."""
-        if self.shifts == "radial_only":
-            return fe.with_shifts(dz_mm=fe_ref.dz_mm)
-        if self.shifts == "axial_only":
-            return fe.with_shifts(dr_mm=fe_ref.dr_mm)
-        return fe
+    def apply_shifts(self, fe: FEState, fe_ref: FEState,
+                     growth=None, growth_ref=None) -> tuple[FEState, FEState]:
+        """The rows' and assembly states with the shifts this option holds. growth, growth_ref:
+        (dr_mm, dz_mm) of the bearing's uniform growth at the rows' and at the assembly
+        temperature (each (2, n), mm; needed unless held = "assembly")."""
+        if self.shifts == "both":
+            return fe, fe_ref
+        k = 1 if self.shifts == "radial_only" else 0          # the held set: 0 radial, 1 axial
+        ref = (fe_ref.dr_mm, fe_ref.dz_mm)[k]
+        if self.held == "assembly":
+            held = ref
+        elif self.held == "assembly_plus_free_growth":
+            held = ref + growth[k]
+        else:
+            held, ref = growth[k], growth_ref[k]
+            fe_ref = fe_ref.with_shifts(**{("dr_mm", "dz_mm")[k]: ref})
+        return fe.with_shifts(**{("dr_mm", "dz_mm")[k]: held}), fe_ref
 
 
 @dataclass(frozen=True)
