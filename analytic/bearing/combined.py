@@ -318,6 +318,7 @@ def _solve_dynamic(prob: CombinedProblem, dyn: "DynamicBallSet", u, cap, max_out
     with the final frozen forces)."""
     a_i = a_o = prob.alpha(u)
     done = np.zeros(u.shape[1], bool)
+    relax, last = np.ones(u.shape[1]), np.full(u.shape[1], np.inf)
     for n_pass in range(max_outer):
         dyn.freeze(a_i, a_o)
         u = newton_minimise(lambda uu: prob.assemble(uu, dyn.state(*prob.positions(uu))), u, cap,
@@ -327,7 +328,8 @@ def _solve_dynamic(prob: CombinedProblem, dyn: "DynamicBallSet", u, cap, max_out
         Q_i, Q_o = dyn.loads()
         change = np.maximum(np.where(Q_o > 0, np.abs(n_o - a_o), 0.0),
                             np.where(Q_i > 0, np.abs(n_i - a_i), 0.0)).max(axis=(0, 1))
-        a_i, a_o = n_i, n_o
+        a_i, a_o, relax = bd.relaxed_update(a_i, a_o, n_i, n_o, change, last, relax)
+        last = change
         done = change <= BALL_ANGLE_TOL_RAD
         if (control == "jones" and n_pass < bd.JONES_FREE_PASSES
                 and dyn.switch_control(a_i, a_o)):

@@ -9,8 +9,10 @@ groove centre sits at (X_j, Y_j) from its outer one,
     X_j = A0 sin(alpha0) + a_j,   a_j = s_j (dz_j + x) + e - c F_j,   Y_j = A0 cos(alpha0) + dr_j
 
 and the rotor position x solves sum_j s_j F_j = axial_load_N.  What changes at speed is the
-bearing's axial force: F_j = Z Q_i,j sin(alpha_i,j), the axial component of the INNER contact force
-of a ball in its own equilibrium between the raceways (the inner ring carries the shaft's loads);
+bearing's axial force: F_j = Z (Q_i,j sin(alpha_i,j) + f_i,j cos(alpha_i,j)), the axial component of
+the INNER ring's load from a ball in its own equilibrium between the raceways (the inner ring
+carries the shaft's loads; f_i the inner raceway's gyroscopic friction, nonzero under inner-race
+control: `ball_dynamics` module docstring, so that the outer rings carry the same load);
 the outer contact additionally carries the centrifugal force, so alpha_o < alpha_i and Q_o > Q_i.
 dF_j/dX_j = Z (d(Q_i n_i)/dP)_aa, the series tangent of the ball (`ball_dynamics` module docstring).
 

@@ -30,7 +30,10 @@ inner ring (virtual work; the loads the rings carry):
     F_z = sum_k Q_k sin a_k,   F_x = sum_k Q_k cos a_k cos psi_k,   F_y = sum_k Q_k cos a_k sin psi_k
     M_x = sum_k Q_k sin a_k R_m sin psi_k,   M_y = -sum_k Q_k sin a_k R_m cos psi_k
 
-(Q_k, a_k the inner contact of ball k).  With K frozen these are the stationarity conditions of
+(Q_k, a_k the inner contact of ball k; with quasi-dynamic balls Q_k (sin a_k, cos a_k) stands for
+the inner ring's whole load from ball k, Q_i n_i + f_i t_i, the inner raceway's gyroscopic friction
+included (inner-race control), so that the ring's and the outer ring's balance close: `ball_dynamics`
+module docstring).  With K frozen these are the stationarity conditions of
 the convex potential sum_k W_k(X_k, Y_k) - F.q (W = (2/5) K_n delta^2.5 quasi-statically, the
 condensed ball potential of `ball_dynamics` at speed), minimised by `roots.newton_minimise`; an
 outer loop refreshes K (and the centrifugal force, gyroscopic moment and friction directions) at
@@ -265,6 +268,7 @@ def _solve_block(g, tg, G, R_m, Yc, F, speed, q0, ball_model, convention, contro
     X, Y = prob.P(q)
     a_i = a_o = np.arctan2(X, Y)
     done = np.zeros(q.shape[1], bool)
+    relax, last = np.ones(q.shape[1]), np.full(q.shape[1], np.inf)
     for n_pass in range(max_outer):
         prob.freeze(X, Y, a_i, a_o)
         root = _minimise(prob, q, cap=0.05 * g.Dw_mm)
@@ -272,7 +276,11 @@ def _solve_block(g, tg, G, R_m, Yc, F, speed, q0, ball_model, convention, contro
         X, Y = prob.P(q)
         _, _, _, n_i, n_o = prob.balls(X, Y)
         change = np.maximum(np.abs(n_i - a_i), np.abs(n_o - a_o)).max(axis=0)
-        a_i, a_o = n_i, n_o
+        if ball_model == "static":
+            a_i, a_o = n_i, n_o
+        else:
+            a_i, a_o, relax = bd.relaxed_update(a_i, a_o, n_i, n_o, change, last, relax)
+            last = change
         done = change <= tol
         if (control == "jones" and ball_model != "static" and n_pass < bd.JONES_FREE_PASSES
                 and prob.switch_control(a_i, a_o)):
@@ -372,6 +380,7 @@ def balls_at_displacement(g: BearingGeometry, axial_mm, radial_x_mm=0.0, radial_
         Fc, Mg = zeros, zeros
         sr = kin.spin_inner / np.hypot(kin.omega_r, kin.omega_z)
         ctl = None
+        Fa_k, Fr_k = Q_i * np.sin(a_i), Q_i * np.cos(a_i)
     elif ball_model == "quasi_dynamic":
         b = bd.solve_balls(g, X, Y, np.broadcast_to(spd, X.shape), control=control, tg=tg,
                            alpha_stiffness_rad=alpha_K)
@@ -381,6 +390,7 @@ def balls_at_displacement(g: BearingGeometry, axial_mm, radial_x_mm=0.0, radial_
         cs_i, cs_o = b.cs_inner, b.cs_outer
         Fc, Mg, sr = b.centrifugal_force_N, b.gyroscopic_moment_Nmm, b.spin_to_roll
         ctl = b.outer_control
+        Fa_k, Fr_k = b.inner_force_N          # Q_i n_i + the inner raceway's friction
     else:
         raise ValueError(f"ball_model must be one of {', '.join(BALL_MODELS)}, got {ball_model!r}")
 
@@ -388,7 +398,7 @@ def balls_at_displacement(g: BearingGeometry, axial_mm, radial_x_mm=0.0, radial_
         return contact_ellipses(g, cs, Q.reshape(np.shape(cs.Kn)), side).p_max_MPa.reshape(X.shape)
     p = np.maximum(ell(cs_i, Q_i, 0), ell(cs_o, Q_o, 1))
     psi = ball_azimuths_rad(g.Z)[:, None]
-    sa, ca = Q_i * np.sin(a_i), Q_i * np.cos(a_i)
+    sa, ca = Fa_k, Fr_k
     loads = np.stack([sa.sum(axis=0), (ca * np.cos(psi)).sum(axis=0),
                       (ca * np.sin(psi)).sum(axis=0), (sa * R_m * np.sin(psi)).sum(axis=0),
                       -(sa * R_m * np.cos(psi)).sum(axis=0)])
