@@ -47,8 +47,9 @@ def test_pair_at_speed_balls_and_pair_in_equilibrium(control):
     """20000 rpm, position preload 100 N, compliance, axial loads, no thermal growth: (1) each
     ball's axial and radial force equations with F_c = m omega_c^2 dm/2 (m = rho pi Dw^3/6) and
     M_g = J omega_c omega_R sin(beta) (J = m Dw^2/10) recomputed from the reported angles through
-    the kinematics, to 1e-9 of the loads; (2) sum_j s_j Z Q_i sin(a_i) = axial load to 1e-9 of
-    the preload; (3) the groove centres rebuilt from the contact normals and the Hertz approaches
+    the kinematics of the control hypothesis, to 1e-9 of the loads; (2) the bearing's axial force
+    F = Z (Q_i sin(a_i) + f_i cos(a_i)) (f_i = 2 M_g/Dw, the inner raceway's friction, under
+    inner control) and sum_j s_j F_j = axial load to 1e-9 of the preload; (3) the groove centres rebuilt from the contact normals and the Hertz approaches
     delta = (Q/K)^(2/3) (K at each contact's own angle) lie where the pair's kinematics put them:
     Y_j = A0 cos a0 + dr_j and X_j = A0 sin a0 + a_j, a_j = s_j (dz_j + x) + e - c F_j (1e-9 mm);
     and the outer contact angle below the inner one, the outer ball load above it."""
@@ -61,7 +62,7 @@ def test_pair_at_speed_balls_and_pair_in_equilibrium(control):
     d = p.dynamic
     ai, ao = np.radians(d.contact_angle_inner_deg), np.radians(d.contact_angle_outer_deg)
     Qi, Qo = d.load_inner_N, d.load_outer_N
-    kin = ball_kinematics(G.dm_mm, G.Dw_mm, ai, ao)
+    kin = ball_kinematics(G.dm_mm, G.Dw_mm, ai, ao, outer_control=control == "outer")
     omega = speed * 2.0 * np.pi / 60.0
     m = G.ball.density_kg_m3 * 1e-12 * np.pi * G.Dw_mm ** 3 / 6.0
     Fc = m * (kin.cage * omega) ** 2 * G.dm_mm / 2.0
@@ -73,7 +74,7 @@ def test_pair_at_speed_balls_and_pair_in_equilibrium(control):
     radial = Qi * np.cos(ai) - Qo * np.cos(ao) - w * (lam_i * np.sin(ai) - lam_o * np.sin(ao)) + Fc
     assert np.all(np.abs(axial) <= 1e-9 * Qo) and np.all(np.abs(radial) <= 1e-9 * Qo)
     s = np.array([1.0, -1.0])[:, None]
-    F = G.Z * Qi * np.sin(ai)
+    F = G.Z * (Qi * np.sin(ai) + w * lam_i * np.cos(ai))
     np.testing.assert_allclose(p.axial_force_N, F, rtol=1e-12)
     assert np.all(np.abs((s * F).sum(axis=0) - case["axial_load_N"]) <= 1e-9 * 100.0)
     tg = thermal_geometry(G)

@@ -334,6 +334,7 @@ def _solve_dynamic(prob: CombinedProblem, dyn: "DynamicBallSet", u, cap, max_out
         if (control == "jones" and n_pass < bd.JONES_FREE_PASSES
                 and dyn.switch_control(a_i, a_o)):
             done[:] = False
+            last[:] = np.inf         # the next pass's change comes from the switch
         if done.all():
             break
     dyn.freeze(a_i, a_o)

@@ -285,6 +285,7 @@ def _solve_block(g, tg, G, R_m, Yc, F, speed, q0, ball_model, convention, contro
         if (control == "jones" and ball_model != "static" and n_pass < bd.JONES_FREE_PASSES
                 and prob.switch_control(a_i, a_o)):
             done[:] = False
+            last[:] = np.inf         # the next pass's change comes from the switch
         if done.all():
             break
     prob.freeze(X, Y, a_i, a_o)
