@@ -195,7 +195,8 @@ def test_single_bearing_global_balance_combined_load(control):
     """71807C under axial, radial (x and y) load and moment at 0..20000 rpm: the inner ring's
     load from the balls (normal + friction) summed over the azimuths equals the applied forces;
     the outer ring's equals the applied forces plus the balls' centrifugal forces (each ball at
-    its own orbit speed), 1e-9 of the applied axial load."""
+    its own orbit speed), 1e-9 of the applied axial load; the inner ring's moments (axial loads
+    at the groove-centre radius and the friction couples) equal the applied ones, 1e-9 of it."""
     g = G
     n = SPEEDS.size
     Fz, Fx, Fy = 300.0, 120.0, -60.0
@@ -214,6 +215,17 @@ def test_single_bearing_global_balance_combined_load(control):
         assert np.all(np.abs(((rad - Fc) * np.cos(psi)).sum(axis=0) - Fx) <= tol)
         assert np.all(np.abs(((rad - Fc) * np.sin(psi)).sum(axis=0) - Fy) <= tol)
     assert np.max(np.abs(b.loads[0] - Fz)) <= tol          # the solver's own sum agrees
+    # the inner ring's moments: the axial ball loads at the moment arm R_m (the groove-centre
+    # radius R_i = dm/2 + (f_i - 1/2) Dw cos a0, convention "exact") plus each friction's couple
+    # about its groove centre, r_i f e_t (f_i Dw the groove radius, e_t = (-sin psi, cos psi))
+    R_i = 0.5 * g.dm_mm + (g.f_i - 0.5) * g.Dw_mm * np.cos(np.radians(g.alpha0_deg))
+    ai = np.radians(b.contact_angle_inner_deg)
+    f = np.where(b.outer_control, 0.0, 2.0 * b.gyroscopic_moment_Nmm / g.Dw_mm)
+    ax = b.load_inner_N * np.sin(ai) + f * np.cos(ai)
+    Mx = (R_i * ax * np.sin(psi) - g.f_i * g.Dw_mm * f * np.sin(psi)).sum(axis=0)
+    My = (-R_i * ax * np.cos(psi) + g.f_i * g.Dw_mm * f * np.cos(psi)).sum(axis=0)
+    assert np.all(np.abs(Mx) <= 1e-9 * 400.0)
+    assert np.all(np.abs(My - 400.0) <= 1e-9 * 400.0)
 
 
 @pytest.mark.parametrize("control", ["outer", "inner", "jones"])

@@ -199,21 +199,25 @@ def test_combined_load_at_speed_zero_is_the_quasi_static_pair(kind, c):
         assert np.max(np.abs(a - b)) <= 1e-10 * np.max(np.abs(a)), name
 
 
-@pytest.mark.parametrize("kind, c", [("position", 2e-5), ("spring", 0.0)])
-def test_combined_load_at_speed_against_the_single_bearing_balls(kind, c):
+@pytest.mark.parametrize("kind, c, control", [("position", 2e-5, "outer"),
+                                               ("spring", 0.0, "outer"),
+                                               ("position", 2e-5, "inner")])
+def test_combined_load_at_speed_against_the_single_bearing_balls(kind, c, control):
     """A second route for the pair at 15000 rpm under radial load and moment (shaft free to
     tilt): each bearing's inner ring displacement read from the pair's solution (axial approach
     a_j, radial rho + theta l_j, tilt s_j theta; `combined.tilt_arms_mm`) is handed to the
     single-bearing code (`single.balls_at_displacement`, which solves every ball on its own):
     its balls equal the pair's ball by ball (1e-8), and the loads those balls carry add up to
     the external ones: sum_j s_j F_z,j = axial load, sum_j F_x,j = radial load, and the moment
-    about the pair's mid-point (1e-8 of the preload, and of the preload times half the span)."""
+    about the pair's mid-point (1e-8 of the preload, and of the preload times half the span).
+    Outer- and inner-race control (the latter with the inner raceway's friction and its couples
+    about the groove centres on the rings)."""
     from analytic.bearing.combined import tilt_arms_mm
     from analytic.bearing.single import balls_at_displacement
 
     speed = 15000.0
     p = solve_pair(G, "DB", preload_kind=kind, compliance_mm_per_N=c, ball_model="quasi_dynamic",
-                   speed_rpm=speed, **COMBINED)
+                   speed_rpm=speed, control=control, **COMBINED)
     assert p.converged.all()
     r = p.radial
     s = np.array([1.0, -1.0])
@@ -223,7 +227,7 @@ def test_combined_load_at_speed_against_the_single_bearing_balls(kind, c):
     for j in range(2):
         b = balls_at_displacement(G, G.A0_mm * np.sin(a0) + p.approach_mm[j],
                                   r.rho_mm + r.tilt_rad * gy[j], 0.0, 0.0, s[j] * r.tilt_rad, speed,
-                                  ball_model="quasi_dynamic")
+                                  ball_model="quasi_dynamic", control=control)
         np.testing.assert_allclose(b.load_inner_N, r.ball_loads_N[j], rtol=1e-8, atol=1e-8)
         np.testing.assert_allclose(b.load_outer_N, r.ball_loads_outer_N[j], rtol=1e-8, atol=1e-8)
         np.testing.assert_allclose(b.contact_angle_outer_deg, r.ball_contact_angles_outer_deg[j],

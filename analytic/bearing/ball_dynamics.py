@@ -64,9 +64,8 @@ The rings carry what the ball exerts on them: the inner ring Q_i n_i + lam_i (M_
 friction included: `inner_force_N`), the outer ring Q_o n_o + lam_o (M_g/Dw) t_o, so that Z times
 the sum over the balls of either equals the applied load (plus, for the outer ring, the balls'
 centrifugal forces) in every control mode.  The friction is frozen with the other forces, so the
-ring sees it as a dead load at the inner groove centre (its lever arm about the groove centre,
-the groove radius, gives a couple r_i f per ball that the ring-level solvers leave out: it
-cancels over a ball set of equal balls).  At speed 0 (F_c = M_g = 0) the centres and the ball centre are
+ring sees it as a dead load: at the inner groove centre, plus its couple about it, r_i f_i e_t per
+ball (`friction_couple_Nmm`; the ring-level solvers with moments or tilt carry it).  At speed 0 (F_c = M_g = 0) the centres and the ball centre are
 collinear, a_i = a_o and Q_i = Q_o = K_n delta^1.5 with K_n the series stiffness: the quasi-static
 contact of `contact.axial_state` / `ball_set_state`.
 
@@ -86,7 +85,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from analytic.bearing.contact import ContactStiffness, contact_stiffness
+from analytic.bearing.contact import ContactStiffness, ball_azimuths_rad, contact_stiffness
 from analytic.bearing.geometry import (BearingGeometry, ThermalGeometry, broadcast_geometry,
                                        thermal_geometry)
 from analytic.bearing.roots import Root
@@ -139,13 +138,30 @@ def control_shares(control, outer_controls=None):
     return CONTROL[control]
 
 
+def friction_couple_Nmm(g: BearingGeometry, tg: ThermalGeometry,
+                        friction_inner_N) -> np.ndarray:
+    """(M_x, M_y) in N mm, (2, N): the couples of the inner raceway's gyroscopic friction about the
+    inner groove centres, summed over the balls.  Ball k's friction f_k t_i (N, module
+    docstring's sign convention; nonzero under inner-race control) acts on the ring at the contact point,
+    r_i = f_i Dw from the groove centre against n_i: the moment (-r_i n_i) x f_k t_i = r_i f_k e_t
+    (n_i x t_i = -e_t, e_t = (-sin psi, cos psi) the orbit direction at psi_k) adds to the
+    moment of f_k t_i placed at the groove centre.  friction_inner_N: (Z, N), ball k at psi_k."""
+    psi = ball_azimuths_rad(g.Z)[:, None]
+    c = tg.f_i * tg.Dw_mm * np.asarray(friction_inner_N, float)
+    return np.stack([-(c * np.sin(psi)).sum(axis=0), (c * np.cos(psi)).sum(axis=0)])
+
+
 def relaxed_update(a_i, a_o, n_i, n_o, change, last, relax):
     """One pass of the frozen angles of the ring-level outer loops (`single`, `combined`): the new
     ball angles (n_i, n_o), under-relaxed per point once a pass changes them more than the one
-    before (relax halves then, down to 1/64; a lightly loaded controlling inner contact can make
-    the plain update oscillate with a growing amplitude).  change, last, relax: per point (last
-    axis).  Returns (a_i, a_o, relax)."""
-    relax = np.where(change > last, np.maximum(0.5 * relax, 1.0 / 64.0), relax)
+    before (a lightly loaded controlling inner contact can make the plain update oscillate with
+    a growing amplitude).  A mode that the update multiplies by lam < -1 grows by
+    r = |1 - relax (1 - lam)| per pass; relax is then set to relax / (1 + r), the value that
+    cancels it when r comes from that mode alone (floor 1/64).  change, last, relax: per point
+    (last axis).  Returns (a_i, a_o, relax)."""
+    grow = change > last
+    r = np.where(grow, change / np.where(grow, last, 1.0), 0.0)
+    relax = np.where(grow, np.maximum(relax / (1.0 + r), 1.0 / 64.0), relax)
     return a_i + relax * (n_i - a_i), a_o + relax * (n_o - a_o), relax
 
 

@@ -210,6 +210,8 @@ def _combined_group(g: BearingGeometry, mode: str, s, dr, dz, tg: ThermalGeometr
     if speed_rpm is not None:
         shape = (2, g.Z, u.shape[1])
         dyn = DynamicBallSet(g, tg3, np.asarray(speed_rpm, float)[None, None, :], control, shape)
+        if prob.tilt:
+            dyn.set_tilt(s, prob.lam)
         u, ok, st = _solve_dynamic(prob, dyn, u, 0.1 * g.A0_mm, max_outer, control)
         inner, outer = dyn.contacts()
         ok = ok & dyn.ball_ok.reshape(shape).all(axis=(0, 1))
@@ -321,9 +323,10 @@ def _solve_dynamic(prob: CombinedProblem, dyn: "DynamicBallSet", u, cap, max_out
     relax, last = np.ones(u.shape[1]), np.full(u.shape[1], np.inf)
     for n_pass in range(max_outer):
         dyn.freeze(a_i, a_o)
-        u = newton_minimise(lambda uu: prob.assemble(uu, dyn.state(*prob.positions(uu))), u, cap,
+        u = newton_minimise(lambda uu: prob.assemble(uu, dyn.state(*prob.positions(uu),
+                                                                   prob.theta(uu))), u, cap,
                             max_iter=60).x
-        dyn.state(*prob.positions(u))            # the balls at u: their angles and loads
+        dyn.state(*prob.positions(u), prob.theta(u))     # the balls at u: their angles and loads
         n_i, n_o = dyn.angles()
         Q_i, Q_o = dyn.loads()
         change = np.maximum(np.where(Q_o > 0, np.abs(n_o - a_o), 0.0),
@@ -340,7 +343,7 @@ def _solve_dynamic(prob: CombinedProblem, dyn: "DynamicBallSet", u, cap, max_out
     dyn.freeze(a_i, a_o)
     # converged: the generalised residual forces within 1e-10 of the forces involved (the ball
     # equilibria inside carry their own rounding, so the potential cannot judge the last digits)
-    st = dyn.state(*prob.positions(u))
+    st = dyn.state(*prob.positions(u), prob.theta(u))
     g = prob.assemble(u, st)[2]
     scale = st.Q_N.sum(axis=(0, 1)) + np.abs(prob.Fa) + np.abs(prob.Fr)
     if prob.tilt:
