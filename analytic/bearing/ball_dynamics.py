@@ -65,9 +65,11 @@ friction included: `inner_force_N`), the outer ring Q_o n_o + lam_o (M_g/Dw) t_o
 the sum over the balls of either equals the applied load (plus, for the outer ring, the balls'
 centrifugal forces) in every control mode.  The friction is frozen with the other forces, so the
 ring sees it as a dead load: at the inner groove centre, plus its couple about it, r_i f_i e_t per
-ball (`friction_couple_Nmm`; the ring-level solvers with moments or tilt carry it).  At speed 0 (F_c = M_g = 0) the centres and the ball centre are
-collinear, a_i = a_o and Q_i = Q_o = K_n delta^1.5 with K_n the series stiffness: the quasi-static
-contact of `contact.axial_state` / `ball_set_state`.
+ball (`friction_couple_Nmm`; the ring-level solvers with moments or tilt carry it).
+
+At speed 0 (F_c = M_g = 0) the centres and the ball centre are collinear, a_i = a_o and
+Q_i = Q_o = K_n delta^1.5 with K_n the series stiffness: the quasi-static contact of
+`contact.axial_state` / `ball_set_state`.
 
 Solution.  With K_i, K_o, F_c, M_g and the friction directions frozen, the ball equilibrium is
 the stationarity of the convex potential (2/5)(K_o delta_o^2.5 + K_i delta_i^2.5) - b.u
@@ -141,11 +143,12 @@ def control_shares(control, outer_controls=None):
 def friction_couple_Nmm(g: BearingGeometry, tg: ThermalGeometry,
                         friction_inner_N) -> np.ndarray:
     """(M_x, M_y) in N mm, (2, N): the couples of the inner raceway's gyroscopic friction about the
-    inner groove centres, summed over the balls.  Ball k's friction f_k t_i (N, module
-    docstring's sign convention; nonzero under inner-race control) acts on the ring at the contact point,
-    r_i = f_i Dw from the groove centre against n_i: the moment (-r_i n_i) x f_k t_i = r_i f_k e_t
-    (n_i x t_i = -e_t, e_t = (-sin psi, cos psi) the orbit direction at psi_k) adds to the
-    moment of f_k t_i placed at the groove centre.  friction_inner_N: (Z, N), ball k at psi_k."""
+    inner groove centres, summed over the balls.  Ball k's friction f_k t_i (N, the module
+    docstring's sign convention; nonzero under inner-race control) acts on the ring at the
+    contact point, r_i = f_i Dw (grown geometry tg) from the groove centre against n_i: the
+    moment (-r_i n_i) x f_k t_i = r_i f_k e_t (n_i x t_i = -e_t, e_t = (-sin psi, cos psi) the
+    orbit direction at psi_k) adds to the moment of f_k t_i placed at the groove centre.
+    friction_inner_N: (Z, N), ball k at `contact.ball_azimuths_rad`[k]."""
     psi = ball_azimuths_rad(g.Z)[:, None]
     c = tg.f_i * tg.Dw_mm * np.asarray(friction_inner_N, float)
     return np.stack([-(c * np.sin(psi)).sum(axis=0), (c * np.cos(psi)).sum(axis=0)])
