@@ -229,6 +229,8 @@ class DynamicBallSet:
             self.g, ThermalGeometry(*(v.reshape(self.shape)[j, :1] for v in (
                 tg.A_T_mm, tg.Dw_mm, tg.f_i, tg.f_o, tg.dm_mm))), self.f_i[j])[1]
             for j in range(2)])
+        if theta_rad is None:
+            raise ValueError("DynamicBallSet.state: a tilt (set_tilt) needs theta_rad")
         th = np.asarray(theta_rad, float)
         return replace(st, M_Nmm=st.M_Nmm + Mc / self.lam, V_Nmm=st.V_Nmm + Mc * th,
                        QD_Nmm=st.QD_Nmm + np.abs(Mc * th))
