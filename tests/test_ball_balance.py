@@ -286,3 +286,51 @@ def test_combined_pair_global_balance(control):
         assert np.all(np.abs((s * ax.sum(axis=1)).sum(axis=0) - COMBINED["axial_load_N"]) <= 1e-9 * P)
         assert np.all(np.abs(((rad - fc) * cpsi).sum(axis=(0, 1)) - COMBINED["radial_load_N"])
                       <= 1e-9 * P)
+
+
+BEARING_7014 = """
+[bearing]
+designation = "7014C size (issue 25)"
+bore_mm = 70.0
+outside_diameter_mm = 110.0
+width_mm = 20.0
+ball_diameter_mm = 11.112
+ball_count = 20
+pitch_diameter_mm = 90.0
+inner_groove_ratio = 0.52
+outer_groove_ratio = 0.53
+radial_internal_clearance_um = 37.8632
+inner_ring_outer_diameter_mm = 80.0
+outer_ring_inner_diameter_mm = 100.0
+ring_material = "GCr15"
+ball_material = "GCr15"
+"""
+
+
+@pytest.mark.parametrize("control", ["outer", "inner", "jones"])
+def test_bearing_command_columns_close_the_outer_ring_balance(tmp_path, control):
+    """The check of issue 25 made from the `bearing` command's own columns: under 1000 N axial
+    at 5000 and 20000 rpm every ball is alike, and Z times the outer ring's load from one ball,
+    Q_o sin(a_o) (Q_o = max_ball_load_N, a_o = contact_angle_outer_deg) plus the outer raceway's
+    friction 2 M_g/Dw cos(a_o) where the outer raceway controls (outer_race_control = 1), is
+    the applied 1000 N to 5e-9 (the CSV's 10 significant digits; before the fix 1029.9 N with
+    jones at 5000 rpm and 1323 N with inner control at 20000 rpm)."""
+    import csv
+
+    from studies.app.cli import main
+
+    b = tmp_path / "b.toml"
+    b.write_text(BEARING_7014)
+    loads = tmp_path / "loads.csv"
+    loads.write_text("axial_load_N,speed_rpm\n1000,5000\n1000,20000\n")
+    out = tmp_path / "out.csv"
+    assert main(["bearing", str(b), str(loads), "-o", str(out), "--control", control]) == 0
+    with open(out, newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    assert len(rows) == 2
+    for row in rows:
+        Qo, ao = float(row["max_ball_load_N"]), np.radians(float(row["contact_angle_outer_deg"]))
+        f = 2.0 * float(row["gyroscopic_moment_Nmm"]) / 11.112
+        outer = float(row["outer_race_control"]) == 1.0
+        F = 20 * (Qo * np.sin(ao) + (f * np.cos(ao) if outer else 0.0))
+        assert F == pytest.approx(1000.0, rel=5e-9)
