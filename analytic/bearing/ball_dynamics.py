@@ -51,10 +51,11 @@ inner raceway on the ball is +lam_i (M_g/Dw) t_i, that of the outer raceway -lam
 t = (cos a, -sin a), M_g > 0 (inner ring turning so that the ball's radial spin component
 Omega_r is positive at a positive contact angle).  The common rendering of Harris's equations
 (Harris & Kotzalas Vol. 2 ch. 3; seed 003 eq. 16: Q_i sin a_i - Q_o sin a_o - (lam_i M_g/Dw)
-cos a_i + (lam_o M_g/Dw) cos a_o = 0) has the opposite sign on the friction terms: it draws the
-gyroscopic moment in the sense that opposes the precession (the moment the ball exerts on its
-contacts), while here M_g e_t is the moment the contacts exert on the ball, dH/dt.  Physical
-check, the thrust limit a_i = a_o = 90 deg: the ball rolls with w_c = 1/2 and Omega_r = dm/(2 Dw)
+cos a_i + (lam_o M_g/Dw) cos a_o = 0) has the opposite sign on the friction terms.  The sign
+there belongs to the senses its figure draws (direction of rotation, positive sense of M_g as
+the inertial couple of the ball); here it is fixed by Euler's equation in the axes above with
+the inner ring turning in the positive sense: M_g e_t is the moment the contacts exert on the
+ball, dH/dt, whatever the rendering.  Physical check, the thrust limit a_i = a_o = 90 deg: the ball rolls with w_c = 1/2 and Omega_r = dm/(2 Dw)
 per unit ring speed under either control, M_g = J omega^2 dm / (4 Dw), and the friction that
 supplies +M_g e_t at the outer contact (Dw/2 along +e_z) points radially outwards, at the inner
 contact (Dw/2 along -e_z) inwards, magnitude 2 M_g / Dw (tests/test_ball_balance.py evaluates
