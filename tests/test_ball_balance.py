@@ -256,11 +256,11 @@ COMBINED = dict(preload_assembled_N=100.0, axial_load_N=np.array([0.0, 30.0, -20
                 moment_Nmm=np.array([0.0, 1000.0, -500.0]), bearing_span_mm=20.0)
 
 
-@pytest.mark.parametrize("control", ["outer", "inner"])
+@pytest.mark.parametrize("control", ["outer", "inner", "jones"])
 def test_combined_pair_global_balance(control):
-    """The combined-load pair at 15000 rpm (radial load, moment, tilt): every ball's gyroscopic
-    moment recomputed from the kinematics solved here (M_g = J omega_c Omega_r), its friction
-    with the stated convention; the rings' loads from all balls of both bearings add up to the
+    """The combined-load pair at 15000 rpm (radial load, moment, tilt), controls outer, inner and
+    jones (each ball's reported raceway): every ball's gyroscopic moment recomputed from the
+    kinematics solved here (M_g = J omega_c Omega_r), its friction with the stated convention; the rings' loads from all balls of both bearings add up to the
     applied axial and radial loads (outer rings: plus the centrifugal forces), 1e-9 of the
     preload."""
     speed = 15000.0
@@ -271,14 +271,18 @@ def test_combined_pair_global_balance(control):
     ai, ao = r.ball_contact_angles_deg, r.ball_contact_angles_outer_deg
     m = G.ball.density_kg_m3 * 1e-12 * np.pi * G.Dw_mm ** 3 / 6.0
     om = speed * RPM
+    outer_ctl = r.ball_outer_control
+    if control != "jones":      # the reported hypothesis (every ball, and the most loaded one)
+        assert np.all(outer_ctl == (control == "outer"))
+        assert np.all(p.dynamic.outer_control == (control == "outer"))
     Mg, Fc = np.zeros(ai.shape), np.zeros(ai.shape)
     for idx in np.ndindex(ai.shape):
         wc, om_r, _ = _kinematics_3d(G.dm_mm, G.Dw_mm, np.radians(ai[idx]), np.radians(ao[idx]),
-                                     control == "outer")
+                                     bool(outer_ctl[idx]))
         Mg[idx] = m * G.Dw_mm ** 2 / 10.0 * wc * om * om_r * om
         Fc[idx] = m * (wc * om) ** 2 * G.dm_mm / 2.0
-    inner, outer = _ring_forces(r.ball_loads_N, r.ball_loads_outer_N, ai, ao, Mg,
-                                np.full(ai.shape, control == "outer"), G.Dw_mm)
+    inner, outer = _ring_forces(r.ball_loads_N, r.ball_loads_outer_N, ai, ao, Mg, outer_ctl,
+                                G.Dw_mm)
     s = np.array([1.0, -1.0])[:, None]
     cpsi = np.cos(ball_azimuths_rad(G.Z))[None, :, None]
     P = COMBINED["preload_assembled_N"]

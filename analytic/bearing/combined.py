@@ -285,13 +285,14 @@ def _combined_group(g: BearingGeometry, mode: str, s, dr, dz, tg: ThermalGeometr
         a_o = dyn.angles()[1]
         Q_o = dyn.loads()[1]
         ex = dyn.extras()
-        outer_balls = dict(ball_loads_outer_N=Q_o, ball_contact_angles_outer_deg=np.degrees(a_o))
+        outer_balls = dict(ball_loads_outer_N=Q_o, ball_contact_angles_outer_deg=np.degrees(a_o),
+                           ball_outer_control=dyn.outer_control())
         dynamic = DynamicContacts(
             contact_angle_inner_deg=np.degrees(top(alpha)), contact_angle_outer_deg=np.degrees(top(a_o)),
             load_inner_N=top(Q), load_outer_N=top(Q_o), centrifugal_force_N=top(ex["F_c"]),
             gyroscopic_moment_Nmm=top(ex["M_g"]), spin_to_roll=top(ex["spin_to_roll"]),
             cage_speed_rpm=top(ex["cage_rpm"]),
-            outer_control=top(dyn.outer_ctl.reshape(Q.shape)))
+            outer_control=top(dyn.outer_control()))
     radial = RadialLoadState(
         rho_mm=rho, radial_force_N=st.Fr_N, max_ball_load_N=Q.max(axis=1),
         loaded_zone=loaded.mean(axis=1), radial_stiffness_N_per_um=1e-3 * k_rad,
@@ -464,7 +465,8 @@ def solve_pair_combined(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.
         ball_inner=ContactEllipses(*(np.zeros(Zb) for _ in range(5))),
         ball_outer=ContactEllipses(*(np.zeros(Zb) for _ in range(5))),
         **({} if speed is None else dict(ball_loads_outer_N=np.zeros(Zb),
-                                         ball_contact_angles_outer_deg=np.zeros(Zb)))))
+                                         ball_contact_angles_outer_deg=np.zeros(Zb),
+                                         ball_outer_control=np.ones(Zb, bool)))))
     for mode, mmask in modes.items():
         loaded = (Fr != 0.0) | (M != 0.0) | (speed is not None)
         for solve, smask in ((False, ~loaded), (True, loaded)):

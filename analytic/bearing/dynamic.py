@@ -245,6 +245,12 @@ class DynamicBallSet:
         """(inner, outer) contact loads of the last state, N, (2, Z, N)."""
         return self.p["Q_i"].reshape(self.shape), self.p["Q_o"].reshape(self.shape)
 
+    def outer_control(self) -> np.ndarray:
+        """True where the outer raceway controls the ball (the hypothesis in force), (2, Z, N)."""
+        ctl = self.outer_ctl if self.control == "jones" else np.full(self.outer_ctl.shape,
+                                                                      self.control == "outer")
+        return ctl.reshape(self.shape)
+
     def switch_control(self, a_i, a_o) -> bool:
         """Control "jones": re-choose every ball's controlling raceway at the last state; True
         when any ball switched."""
