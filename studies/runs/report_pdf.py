@@ -54,16 +54,27 @@ def _cells(line: str) -> list[str]:
     return [c.strip() for c in line.strip().strip("|").split("|")]
 
 
+def _breakable(cell: str) -> str:
+    """A table cell whose column names (fit_pressure_inner_MPa) may wrap after an underscore
+    (a zero-width space there): a narrow column never runs into the next one."""
+    return cell.replace("_", "_\u200b")
+
+
 def _table(rows: list[list[str]]) -> str:
     n = len(rows[0])
-    head = ", ".join(f"[#strong({_str(c)})]" for c in rows[0])
-    cells = ", ".join(f"[{inline(c)}]" for r in rows[1:] for c in (r + [""] * n)[:n])
+    head = ", ".join(f"[#strong({_str(_breakable(c))})]" for c in rows[0])
+    cells = ", ".join(f"[{inline(_breakable(c))}]" for r in rows[1:] for c in (r + [""] * n)[:n])
     return f"#table(columns: {n}, table.header({head}), {cells})"
+
+
+def _images_only(line: str) -> bool:
+    return bool(_IMAGE.search(line)) and not _IMAGE.sub("", line).strip()
 
 
 def to_typst(lines: list[str], out: Path, title: str) -> str:
     """Typst source of the markdown `lines`; images are looked up in `out`."""
     src = [PREAMBLE.format(title=_str(title))]
+    lines = "\n".join(lines).split("\n")          # a table is one item holding its rows
     i = 0
     while i < len(lines):
         line = lines[i]
@@ -78,14 +89,20 @@ def to_typst(lines: list[str], out: Path, title: str) -> str:
         m = re.match(r"(#{1,4}) (.*)", line)
         if m:
             src.append("=" * len(m.group(1)) + " " + inline(m.group(2)) + "\n")
-        elif _IMAGE.fullmatch(line.strip()) or (_IMAGE.match(line.strip())
-                                                 and not _IMAGE.sub("", line).strip()):
-            paths = [p for _, p in _IMAGE.findall(line) if (out / p).is_file()]
+        elif _images_only(line):
+            # consecutive lines of one image each (the plots) two to a row; a line of
+            # several (the field images) as one row
+            paths = [p for _, p in _IMAGE.findall(line)]
             if len(paths) == 1:
-                src.append(f'#align(center, image({_str(paths[0])}, width: 62%))\n')
-            elif paths:
-                imgs = ", ".join(f"image({_str(p)}, width: 100%)" for p in paths)
-                src.append(f"#grid(columns: {min(len(paths), 3)}, gutter: 4pt, {imgs})\n")
+                while i + 1 < len(lines) and (not lines[i + 1].strip() or _images_only(lines[i + 1])) \
+                        and len(_IMAGE.findall(lines[i + 1])) <= 1:
+                    i += 1
+                    paths += [p for _, p in _IMAGE.findall(lines[i])]
+            paths = [p for p in paths if (out / p).is_file()]
+            cols = 2 if len(paths) != 3 else 3
+            imgs = ", ".join(f"image({_str(p)}, width: 100%)" for p in paths)
+            if paths:
+                src.append(f"#grid(columns: {cols}, gutter: 6pt, {imgs})\n")
         elif re.match(r"(- |\d+\. )", line):
             m = re.match(r"(- |\d+\. )(.*)", line)
             marker = "-" if m.group(1) == "- " else "+"
