@@ -15,7 +15,9 @@ from studies.model.config import CONFIG_DIR, load_assembly
 
 TEMPLATE = CONFIG_DIR / "template.toml"
 #: the template on the coarsest mesh the sizing rule allows (target 1 %): a cheap run
-COARSE = TEMPLATE.read_text().replace("target_error = 0.001 ", "target_error = 0.01  ")
+COARSE = (TEMPLATE.read_text().replace("target_error = 0.001 ", "target_error = 0.01  ")
+          .replace('inner_shaft_class = ""  ', 'inner_shaft_class = "k5"')
+          .replace('outer_housing_class = ""  ', 'outer_housing_class = "J6"'))
 
 
 def _margins(md: str) -> dict[str, dict[str, str]]:
@@ -105,6 +107,26 @@ def test_margin_table_is_the_csv_and_the_checks(reports):
     # every headline number carries its mesh error
     for item in ("preload band", "peak contact pressure", "static safety s0", "friction torque"):
         assert m[item]["mesh error"].endswith("%"), item
+
+
+def test_tolerance_worst_case_brackets_the_mid_band_result(reports):
+    """The assembly has ISO classes (k5 shaft, J6 housing): the report gives the worst case of
+    the interference bands, and the mid-band preload and fit pressures of results.csv lie within
+    it (each grows monotonically with its fit's interference, so the band's corners bound it)."""
+    asm_path, runs = reports
+    asm = load_assembly(asm_path)
+    assert (asm.fits.inner_shaft_class, asm.fits.outer_housing_class) == ("k5", "J6")
+    md = (runs[0] / "report.md").read_text()
+    with open(runs[0] / "results.csv", newline="") as f:
+        rows = list(csv.DictReader(r for r in f if not r.startswith("#")))
+    lines = md.splitlines()
+    i = next(k for k, line in enumerate(lines) if line.startswith("| quantity | mid-band"))
+    for line in lines[i + 2:i + 7]:
+        q, _, lo, hi = (c.strip() for c in line.strip("|").split("|"))
+        v = np.array([float(r[q]) for r in rows])
+        assert float(lo) <= v.min() * (1 + 5e-4) + 1e-9 and v.max() * (1 - 5e-4) - 1e-9 <= float(hi), q
+        if q == "preload_N":
+            assert float(hi) - float(lo) > v.max() - v.min()      # the tolerances widen the band
 
 
 def test_a_violated_check_is_a_fail_with_its_count():

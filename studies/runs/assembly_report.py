@@ -84,7 +84,7 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, progress=prin
     progress("report: discretisation error of this mesh (three levels) ...")
     conv = mesh_convergence_case(asm, factors=tuple(mesh_factor * f for f in (2.0, 1.0, 0.5)),
                                  used=1)
-    front = report_margins.front_lines(asm, cond, res, flags, conv, provenance, command,
+    front = report_margins.front_lines(asm, cond, res, flags, conv, provenance, command, pl,
                                        Pipeline.shared(asm, mesh_factor=0.5 * mesh_factor))
     lines = _text(asm, provenance, cond, res, flags, violations, warnings, plots, images, conv, pl, x,
                   xlabel, speed + (rig_sections or []))

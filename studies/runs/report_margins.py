@@ -73,6 +73,7 @@ def headlines(res: dict) -> dict[str, Headline]:
     for fit in FITS:
         if f"fit_pressure_{fit}_MPa" in res:
             add(f"fit_{fit}_min", f"fit_pressure_{fit}_MPa", False)
+            add(f"fit_{fit}_max", f"fit_pressure_{fit}_MPa", True)
     add("static_safety_min", "static_safety", False)
     add("torque_min", "torque_Nmm", False)
     add("torque_max", "torque_Nmm", True)
@@ -134,7 +135,8 @@ def margin_rows(asm, res: dict, flags: dict, mesh_error: dict[str, float]) -> li
             "> 0 MPa" if chk else "clearance fit: may open",
             f"{h.value:.4g} MPa above 0 (row {h.row + 1})" if chk else "",
             status(f"flag_fit_open_{fit}") if chk else "no limit",
-            mesh_error.get(f"fit_{fit}_min"), chk.source if chk else "designed with clearance"))
+            _worst(mesh_error, f"fit_{fit}_min", f"fit_{fit}_max"),
+            chk.source if chk else "designed with clearance"))
     c, h = checks["static_safety"], hl["static_safety_min"]
     rows.append(MarginRow(
         "static safety s0", f"{h.value:.4g}", f">= {c.allowable:g}",
@@ -308,8 +310,28 @@ VALIDATION = (
 )
 
 
+#: the quantities whose worst case over the tolerance bands the report gives
+TOLERANCE_QUANTITIES = ("preload_N", "max_contact_pressure_MPa", "fit_pressure_inner_MPa",
+                        "fit_pressure_outer_MPa", "torque_Nmm")
+
+
+def tolerance_lines(asm, res: dict, worst: dict | None) -> list[str]:
+    """The uncertainty from the fit tolerances: the worst case of the interference bands (four
+    corners, `studies.runs.tolerance_report.worst_case`) beside the mid-band result."""
+    if worst is None:
+        return ["Uncertainty from the fit tolerances: no tolerance classes or limit deviations "
+                "in `[fits]`; the fits are as given.", ""]
+    rows = [[q, f"{np.min(res[q]):.4g} .. {np.max(res[q]):.4g}",
+             f"{np.min(worst[q]):.4g}", f"{np.max(worst[q]):.4g}"] for q in TOLERANCE_QUANTITIES]
+    return ["Uncertainty from the fit tolerances: the four corners of the two interference bands "
+            "(every deviation at a limit) at every operating point, beside the mid-band result "
+            "above; the Monte Carlo and the probabilities: `bearingfem tolerance`.", "",
+            md_table(["quantity", "mid-band (this report)", "worst case min", "worst case max"],
+                     rows), ""]
+
+
 def credibility_lines(conv: dict, mesh_error: dict[str, float], order: float,
-                      traces=None, test_results=None) -> list[str]:
+                      traces=None, test_results=None, tolerance: list[str] = ()) -> list[str]:
     """Markdown section "Credibility": code verification (the requirement traceability of
     `verify`, last results of their tests), this mesh's error, the validation cases and
     their agreement, input pedigree, the tolerance uncertainty."""
@@ -345,9 +367,7 @@ def credibility_lines(conv: dict, mesh_error: dict[str, float], order: float,
             md_table(["case", "published", "agreement", "test result"], val_rows), "",
             "### Input pedigree and uncertainty", "",
             "Sources of every material and catalogue value and of each assembly key: "
-            "\"Inputs and their sources\" above. Uncertainty from the fit tolerances: "
-            "`bearingfem tolerance` (worst case and Monte Carlo through the same model); not "
-            "part of this report.", ""]
+            "\"Inputs and their sources\" above.", ""] + list(tolerance)
 
 
 # ---------------------------------------------------------------------- environment, command
@@ -381,10 +401,15 @@ def reproduce_lines(command: list[str] | None) -> list[str]:
 
 
 def front_lines(asm, cond: dict, res: dict, flags: dict, conv: dict, prov: dict,
-                command: list[str] | None, fine_pipeline) -> list[str]:
+                command: list[str] | None, pipeline, fine_pipeline) -> list[str]:
     """The report's front sections in order: date, Margins, Inputs and their sources,
-    Assumptions, Credibility, Environment, Reproduce."""
+    Assumptions, Credibility, Environment, Reproduce. `pipeline`: the one of the results (the
+    tolerance corners), `fine_pipeline`: its mesh at half the sizes (the headline errors)."""
     from studies.model.mesh_size import ORDER
+    from studies.model.tolerances import has_tolerances
+    from studies.runs.tolerance_report import worst_case
+
+    worst = worst_case(pipeline, cond) if has_tolerances(asm) else None
 
     err = headline_mesh_errors(cond, res, fine_pipeline, ORDER)
     n = len(np.asarray(res["preload_N"]))
@@ -395,5 +420,5 @@ def front_lines(asm, cond: dict, res: dict, flags: dict, conv: dict, prov: dict,
             + margin_lines(margin_rows(asm, res, flags, err), n, where)
             + pedigree_lines(asm, Path(path) if path else None)
             + assumption_lines(asm)
-            + credibility_lines(conv, err, ORDER)
+            + credibility_lines(conv, err, ORDER, tolerance=tolerance_lines(asm, res, worst))
             + environment_lines(prov) + reproduce_lines(command))
