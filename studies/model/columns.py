@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from studies.model.checks import Checks
 from studies.model.result import SimulationResult
 
 AB = "AB"
@@ -50,10 +51,18 @@ def to_columns(result: SimulationResult, flags: bool = True) -> dict[str, np.nda
     out["static_safety"] = s.static_safety
     out["friction_coefficient"] = result.friction_coefficient
     if flags:
-        for o in result.checks.outcomes:
-            out[f"flag_{o.check.name}"] = o.violated.astype(float)
-            if o.margin is not None:
-                out[f"margin_{o.check.name}"] = o.margin
+        out.update(check_columns(result.checks))
+    return out
+
+
+def check_columns(checks: Checks) -> dict[str, np.ndarray]:
+    """Each check's `flag_<name>` (1 = violated) and `margin_<name>` columns (no margin for a
+    strict check), in the checks' order: the last columns of `to_columns`."""
+    out = {}
+    for o in checks.outcomes:
+        out[f"flag_{o.check.name}"] = o.violated.astype(float)
+        if o.margin is not None:
+            out[f"margin_{o.check.name}"] = o.margin
     return out
 
 
