@@ -27,8 +27,9 @@ from typing import TYPE_CHECKING, Callable
 import numpy as np
 
 from analytic.materials import Material, get_material
+from infra.version import __version__
 from fem.solver import Condensed
-from meshes.cache import cache_dir, cached_file, remove_stale
+from meshes.cache import cache_dir, cached_file
 from meshes.section import Section
 
 if TYPE_CHECKING:
@@ -98,8 +99,6 @@ class SetupSpec:
 
 
 def _versions() -> dict[str, str]:
-    from bearingfem import __version__
-
     out = {"bearingfem": __version__}
     for dist in ("gmsh", "scikit-fem"):
         try:
@@ -163,7 +162,6 @@ def cached_setup(spec: SetupSpec, fe: Callable[[], FullFE], progress=None) -> FE
     """The set-up of `spec` from the cache, else computed from `fe()` (called only then) and
     stored. A stored file that is unusable is rebuilt with one warning line."""
     d = cache_dir("setups", "FE set-up")
-    remove_stale(d, "setup", ".npz")
     key = spec.key()
 
     def make(tmp: Path) -> None:

@@ -16,6 +16,7 @@ from pathlib import Path  # noqa: E402
 
 import numpy as np  # noqa: E402
 
+from infra.version import __version__  # noqa: E402
 from studies.app import commands  # noqa: E402
 from studies.app.output import UserError  # noqa: E402
 from studies.runs import STUDIES  # noqa: E402
@@ -37,7 +38,6 @@ def build_parser() -> argparse.ArgumentParser:
     p = _Parser(prog="bearingfem", description=(
         "Thermal-structural FE + analytic bearing model of a preloaded angular-contact ball "
         "bearing pair on a shaft in a housing."))
-    from bearingfem import __version__
     p.add_argument("--version", action="version", version=f"bearingfem {__version__}")
     sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND", parser_class=_Parser)
 
