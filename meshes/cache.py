@@ -11,6 +11,7 @@ folder serves the run (one warning).
 from __future__ import annotations
 
 import os
+import re
 import shutil
 import sys
 import tempfile
@@ -38,6 +39,7 @@ def cache_dir(kind: str = "meshes", what: str = "mesh") -> Path:
         if not os.access(d, os.W_OK | os.X_OK):
             raise PermissionError(13, "not writable")
         sweep_stale(d, ".")                    # the temporaries of killed runs
+        _sweep_legacy(d)
         return d
     except OSError as exc:
         known = _fallback.get(str(base))
@@ -51,6 +53,24 @@ def cache_dir(kind: str = "meshes", what: str = "mesh") -> Path:
 
 #: the temporary folder serving an unusable cache location, per location (one warning per run)
 _fallback: dict[str, Path] = {}
+
+
+#: temporaries of bearingfem 0.2.0 and before: `<stem>_<key>.<pid><suffix>`
+_LEGACY = re.compile(r"^[a-z]+_[0-9a-f]+\.(\d+)\.(msh|npz)$")
+
+
+def _sweep_legacy(d: Path) -> None:
+    """Remove the temporaries that killed runs of earlier versions left (named as _LEGACY; their
+    PID no longer runs)."""
+    for f in d.iterdir():
+        m = _LEGACY.match(f.name)
+        if m and int(m[1]) != os.getpid():
+            try:
+                os.kill(int(m[1]), 0)
+            except ProcessLookupError:
+                f.unlink(missing_ok=True)
+            except OSError:
+                pass
 
 
 def cached_file(path: Path, make: Callable[[Path], None], read: Callable[[Path], T], *,

@@ -186,10 +186,11 @@ def test_temporary_meshes_of_killed_runs_are_removed(cache):
     stale = cache / f".section_{SEC.key()}.msh.{dead}.{HOST_TAG}deadbeef.msh"
     alive = cache / f".section_{SEC.key()}.msh.{os.getpid()}.{HOST_TAG}beefdead.msh"
     elsewhere = cache / f".section_{SEC.key()}.msh.{dead}.{'0' * 8 if HOST_TAG != '0' * 8 else '1' * 8}deadbeef.msh"
-    for p in (stale, alive, elsewhere):
+    legacy = cache / f"section_{SEC.key()}.{dead}.msh"      # as bearingfem 0.2.0 named them
+    for p in (stale, alive, elsewhere, legacy):
         p.write_text("half written")
     section_mesh(OTHER)
-    assert not stale.exists()
+    assert not stale.exists() and not legacy.exists()
     assert alive.exists() and elsewhere.exists()    # a live run's, and another machine's
 
 
