@@ -159,3 +159,17 @@ def test_the_graph_sees_deferred_and_package_imports(tmp_path):
     g = import_graph(tmp_path)
     assert cycles(g) == [["infra.a", "infra.b"]]
     assert {t for t, _ in g["analytic"]} == {"infra", "infra.q", "infra.q.r"}
+
+
+def test_one_csv_writer():
+    """Every CSV the project writes goes through studies/model/table.py (one dialect, the one of
+    `simulate`): no other module builds csv writers or formats CSV lines itself."""
+    writers = []
+    for mod, path in modules().items():
+        if mod == "studies.model.table":
+            continue
+        for node in ast.walk(ast.parse(path.read_text())):
+            if (isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name)
+                    and node.value.id == "csv" and node.attr in ("writer", "DictWriter")):
+                writers.append(f"{mod}:{node.lineno} csv.{node.attr}")
+    assert not writers, writers

@@ -1,7 +1,14 @@
 """Conditions / measured CSV tables: strict reading with one-line errors, atomic writing.
 
-Format (shared/spec/cli.md): header row, comma separated, `#` lines are comments. Every value
-numeric and finite; `time_s` strictly increasing when present.
+Read (docs/cli.md): header row, comma separated, `#` lines are comments. Every value numeric and
+finite; `time_s` strictly increasing when present.
+
+Written: the one CSV dialect of bearingfem, for `simulate` and every study table alike
+(`write_table`, `TableWriter`): UTF-8, a header row of column names (units in the names), no
+comment lines, comma separated, "\n" line ends, numbers as '%.10g' of their float value, booleans
+1/0, text as it is (quoted by the csv module when it holds a comma or a quote); what a table is
+goes into its provenance sidecar or the report beside it. `pandas.read_csv(path)` reads it with
+its defaults.
 """
 from __future__ import annotations
 
