@@ -22,7 +22,7 @@ def vertex_values(model: StackModel, u: np.ndarray) -> np.ndarray:
 def write_vtu(path: Path, model: StackModel, u: np.ndarray, cell_data: dict[str, np.ndarray],
               T_vertex_C: np.ndarray | None = None) -> Path:
     """Write the deformed-state fields of one solution to a .vtu file (meshio)."""
-    import meshio
+    import meshio  # noqa: PLC0415 -- deferred: only VTU output needs it
 
     pts = np.column_stack([model.mesh.p.T, np.zeros(model.mesh.p.shape[1])])
     disp = vertex_values(model, u)
@@ -38,7 +38,7 @@ def write_vtu(path: Path, model: StackModel, u: np.ndarray, cell_data: dict[str,
 
 
 def _grid(model: StackModel, pts_xy: np.ndarray):
-    import pyvista as pv
+    import pyvista as pv  # noqa: PLC0415 -- deferred: pyvista/VTK load only for images
 
     t = model.mesh.t.T
     cells = np.hstack([np.full((t.shape[0], 1), 3), t]).ravel()
@@ -89,7 +89,7 @@ def render_fields(out_dir: Path, stem: str, model: StackModel, u: np.ndarray,
     image names the parts on the section and carries a scale bar in mm under it. balls_rz_d_mm:
     (r, z, diameter) in mm of each bearing's ball, drawn as a circle at its nominal centre (the
     balls are analytic, not meshed)."""
-    import pyvista as pv
+    import pyvista as pv  # noqa: PLC0415 -- deferred: pyvista/VTK load only for images
 
     pv.OFF_SCREEN = True
     try:

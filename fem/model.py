@@ -22,7 +22,7 @@ from skfem import Basis, ElementTriP2, ElementVector, MeshTri, asm
 from analytic.materials import Material, get_material
 from fem.forms import centrifugal_load, elasticity, lame_parameters, thermal_load
 from meshes.section import Section, Split
-from meshes.build import SectionMesh
+from meshes.build import SectionMesh, section_mesh
 
 
 def part_materials(section: Section, materials: dict[str, Material] | None = None
@@ -249,6 +249,4 @@ def build_model(section: Section, contact: str = "frictionless",
                 materials: dict[str, Material] | None = None,
                 rotating_parts: tuple[str, ...] = ()) -> StackModel:
     """Mesh the section (cached) and assemble its model (`rotating_parts`: the parts that spin)."""
-    from meshes.build import section_mesh
-
     return StackModel(section, section_mesh(section), contact, materials, rotating_parts)

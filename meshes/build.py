@@ -7,6 +7,8 @@ back with meshio (`read_section_mesh`).
 """
 from __future__ import annotations
 
+import contextlib
+import io
 import os
 import signal
 import threading
@@ -296,10 +298,7 @@ def _point_tags(gmsh, points: list[tuple[float, float]]) -> list[int]:
 def read_section_mesh(path: Path) -> SectionMesh:
     """Read a section .msh with meshio: corner nodes of the triangle6 cells, the part of each
     triangle (physical surface names) and the named physical curves (line3 -> corner pairs)."""
-    import contextlib
-    import io
-
-    import meshio
+    import meshio  # noqa: PLC0415 -- deferred: a run with its FE set-up cached never reads a mesh
 
     with contextlib.redirect_stdout(io.StringIO()):      # meshio prints a stray blank line
         m = meshio.read(str(path))

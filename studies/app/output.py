@@ -38,7 +38,7 @@ def progress_bar(desc: str, unit: str = "block"):
         if not watched():
             return
         if "bar" not in state:
-            from tqdm import tqdm
+            from tqdm import tqdm  # noqa: PLC0415 -- deferred: only when a person watches
 
             state["bar"] = tqdm(total=total, desc=desc, unit=unit, file=sys.stderr, leave=False)
         bar = state["bar"]
