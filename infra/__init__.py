@@ -1,7 +1,8 @@
 """The first layer of bearingfem: what every other package may import, and which imports none of
 them (tests/test_imports.py holds this): the version (`infra.version`), atomic output files and
-folders with the one sweeper of stale temporaries (`infra.files`), and the one in-memory cache
-helper (`infra.memo`).
+folders with the one sweeper of stale temporaries (`infra.files`), the one in-memory cache helper
+(`infra.memo`) and signals held back around native calls that must not be interrupted
+(`infra.signals`).
 
 Why a package of its own: `meshes/` is the first layer that writes files and `fem/` needs the
 version, so these cannot live in `bearingfem/` (the Python API, which imports `studies/`; importing
