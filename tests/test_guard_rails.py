@@ -354,6 +354,12 @@ def _wait_for(proc, pattern_dir: Path, pattern: str, timeout_s: float = 120.0) -
     raise AssertionError(f"{pattern} did not appear in {timeout_s} s")
 
 
+def _sigint_as_in_a_terminal() -> None:
+    """Run in the child before exec: SIGINT to its default action, as a shell started from a
+    terminal has it (pytest-xdist workers ignore SIGINT, and a child inherits that)."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def _leftovers(*folders: Path) -> list[str]:
     return sorted(str(p) for d in folders if d.is_dir() for p in d.rglob(".*"))
 
@@ -422,7 +428,7 @@ def test_ctrl_c_during_start_up_is_one_line(tmp_path, module):
     env = dict(os.environ, BEARINGFEM_CACHE=str(tmp_path / "cache"))
     done = subprocess.run([sys.executable, "-c", code, "simulate", str(CFG), str(cond), "-o",
                            str(tmp_path / "o.csv")], env=env, capture_output=True, text=True,
-                          timeout=120)
+                          timeout=120, preexec_fn=_sigint_as_in_a_terminal)
     err = done.stderr.strip().splitlines()
     assert done.returncode == 130 and err == ["bearingfem: interrupted"], err
     assert not (tmp_path / "o.csv").exists() and not _leftovers(tmp_path)
@@ -451,7 +457,8 @@ def test_ctrl_c_while_an_image_renders_waits_for_the_plotter(tmp_path):
             "    sys.exit(130)\n")
     env = dict(os.environ, BEARINGFEM_CACHE=str(tmp_path / "cache"))
     done = subprocess.run([sys.executable, "-c", code, str(tmp_path / "img")], env=env,
-                          capture_output=True, text=True, timeout=120)
+                          capture_output=True, text=True, timeout=120,
+                          preexec_fn=_sigint_as_in_a_terminal)
     assert done.returncode == 130, done.stderr
     assert [p.name for p in (tmp_path / "img").iterdir()] == ["f_temperature_C.png"]
 
