@@ -21,9 +21,12 @@ PACKAGES = ("infra", "analytic", "meshes", "fem", "studies", "bearingfem")
 #: cycles inside studies/model that the rewrite of pipeline.py, config.py and the effects
 #: package (issue 22) removes; listed so that no *new* module joins a cycle meanwhile: the
 #: effects' __init__ <-> each effect (the base class lives in __init__), config -> tolerances ->
-#: pipeline -> config (deferred imports in config.py and tolerances.py), config <-> mesh_size
+#: pipeline -> config (deferred imports in config.py and tolerances.py), config <-> mesh_size,
+#: config -> config_checks -> (mesh_size, tolerances) -> config and config -> config_schema ->
+#: config (a deferred import of SECTIONS in config_schema.key_table_markdown)
 KNOWN_CYCLE_MODULES = frozenset({
-    "studies.model.config", "studies.model.mesh_size", "studies.model.pipeline",
+    "studies.model.config", "studies.model.config_checks", "studies.model.config_schema",
+    "studies.model.mesh_size", "studies.model.pipeline",
     "studies.model.stack", "studies.model.tolerances", "studies.model.effects",
     *(f"studies.model.effects.{m}" for m in (
         "cte_curvature", "cte_nonlinearity", "friction_temperature", "generalised",
