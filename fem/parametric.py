@@ -266,13 +266,24 @@ _FAMILIES: dict[str, Family] = {}
 FAMILIES_MAX = 8
 
 
-def parametric_setup(spec: SetupSpec, variable: tuple[str, ...]) -> FESetup:
-    """The set-up of `spec` through its family (built on first use in this process, the first
-    member seen its reference)."""
+def member_spec(spec: SetupSpec, materials: dict[str, Material]) -> SetupSpec:
+    """`spec` with the parts of `materials` made of those (the same family)."""
+    sec = replace(spec.section, rects=tuple(replace(r, material=materials[r.part].name)
+                                            if r.part in materials else r
+                                            for r in spec.section.rects))
+    return replace(spec, section=sec, materials=tuple((p, materials.get(p, m))
+                                                      for p, m in spec.materials))
+
+
+def parametric_setup(spec: SetupSpec, variable: tuple[str, ...],
+                     reference: dict[str, Material] | None = None) -> FESetup:
+    """The set-up of `spec` through its family, built on first use in this process with the
+    variable parts made of `reference` (default: `spec`'s own materials). A fixed reference
+    makes the numbers independent of the order in which members are asked for (Dask workers)."""
     key = family_key(spec, variable)
     fam = _FAMILIES.get(key)
     if fam is None:
-        fam = Family(spec, variable)
+        fam = Family(member_spec(spec, reference or {}), variable)
         if len(_FAMILIES) >= FAMILIES_MAX:
             _FAMILIES.pop(next(iter(_FAMILIES)))
         _FAMILIES[key] = fam

@@ -27,11 +27,13 @@ from __future__ import annotations
 
 import json
 from dataclasses import dataclass, replace
+from functools import partial
 from pathlib import Path
 
 import numpy as np
 
-from analytic.materials import MATERIALS
+from analytic.materials import MATERIALS, get_material
+from fem.parametric import parametric_setup
 from studies.model.checks import assembly_checks
 from studies.model.inputs import baseline_inputs
 from studies.model.memory import release_freed_memory
@@ -45,6 +47,8 @@ PRELOAD_FACTORS = (0.5, 0.75, 1.0, 1.25, 1.5)
 SCREEN_MESH_FACTOR = 2.0
 N_TEMPERATURES = 15
 CONFIRM = 5                      # best designs re-evaluated on the assembly's mesh
+#: the parts whose material the search varies (the screening's FE set-up family, fem.parametric)
+SPACERS = ("inner_spacer", "outer_spacer")
 
 
 @dataclass(frozen=True)
@@ -105,12 +109,23 @@ def candidates(asm, clamps: bool = False, length_factors=LENGTH_FACTORS,
     return out
 
 
+def parametric_setup_of(asm):
+    """The screening's FE set-up route for the stacks of `asm`: `fem.parametric` with the spacers
+    as the variable parts, their reference materials the assembly's own (fixed, so the numbers do
+    not depend on which worker sees which stack first)."""
+    ref = {p: get_material(getattr(asm, p).material, asm.materials) for p in SPACERS}
+    return partial(parametric_setup, variable=SPACERS, reference=ref)
+
+
 def evaluate_stack(asm, stack: Stack, T_C: np.ndarray, preloads_N: np.ndarray,
-                   mesh_factor: float) -> dict:
+                   mesh_factor: float, parametric: bool = False) -> dict:
     """Preload, contact pressure, fit pressures and torque of one stack at every temperature
-    and preload: arrays (n_preloads, n_T). One task of the search."""
+    and preload: arrays (n_preloads, n_T). One task of the search. `parametric`: the FE set-up
+    from the stack's family (`fem.parametric`, equal to the full set-up to round-off) instead of
+    the stack's own (cached) one."""
     a = stack.assembly(asm)
-    pl = Pipeline(a, mesh_factor=mesh_factor)
+    setup_of = parametric_setup_of(asm) if parametric and asm.fits.contact == "frictionless" else None
+    pl = Pipeline(a, mesh_factor=mesh_factor, setup_of=setup_of)
     nT, nP = T_C.size, preloads_N.size
     cols = {"T_ambient_C": np.tile(T_C, nP), "preload_assembled_N": np.repeat(preloads_N, nT)}
     res = pl.run(baseline_inputs(cols, nT * nP, a.T_ref_C, a.preload.assembled_N,
@@ -180,7 +195,8 @@ def run(asm, T_min_C: float, T_max_C: float, out: Path, provenance: dict, band=(
     stacks = candidates(asm, clamps, length_factors, materials)
     progress(f"design: {len(stacks)} stacks x {P0.size} preloads x {T.size} temperatures "
              f"(screening mesh x{screen_mesh_factor:g}) ...")
-    screened = map_blocks(evaluate_stack, [(asm, s, T, P0, screen_mesh_factor) for s in stacks],
+    screened = map_blocks(evaluate_stack, [(asm, s, T, P0, screen_mesh_factor, True)
+                                           for s in stacks],
                           workers=workers, scheduler=scheduler,
                           progress=bar or (lambda d, n: progress(f"  stack {d} of {n}")
                                            if d % 20 == 0 or d == n else None))
