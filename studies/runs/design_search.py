@@ -7,9 +7,14 @@ Design variables (the assembly's own values are one candidate):
 - the clamp scheme of nut and cover (rigid or compliant faces), with `--clamps`;
 - the assembled preload, `PRELOAD_FACTORS` x the assembly's (no new FE: one bearing run).
 
-Every stack is its own FE model (mesh, unit solutions): the search screens all of them on a mesh
-twice as coarse (`SCREEN_MESH_FACTOR`) and re-evaluates the best ones on the assembly's mesh, so
-the ranking printed is the fine one. Over the temperature range (uniform temperature, round
+Every stack is its own FE model: the search screens all of them on a mesh twice as coarse
+(`SCREEN_MESH_FACTOR`) and re-evaluates the best ones on the assembly's mesh (each through the
+normal, cached FE set-up), so the ranking printed is the fine one. The screening's FE set-ups come
+from `fem.parametric`: the stacks of one spacer length and clamp scheme (a family) share one
+reference FE (mesh, assembly, factorisation, unit solutions, the spacers of the assembly's
+materials), and a member's set-up follows from it exactly by condensing the two spacers and a
+low-rank update (equal to the stack's own set-up to round-off, about 1e-12 relative: tests/
+test_parametric.py); no stack is meshed or factorised on its own. Over the temperature range (uniform temperature, round
 steps) each candidate gets its preload range (max - min), its smallest preload, whether each fit
 assembled with interference stays closed, its largest contact pressure against the limit
 `simulate` checks, and its largest torque. Feasible: fits closed, preload kept, contact pressure
