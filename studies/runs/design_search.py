@@ -42,7 +42,7 @@ from fem.parametric import parametric_setup
 from studies.model.checks import assembly_checks
 from studies.model.inputs import baseline_inputs
 from studies.model.memory import release_freed_memory
-from studies.model.parallel import map_blocks
+from studies.model.parallel import Blocks, map_blocks
 from studies.model.pipeline import Pipeline
 from studies.runs.assembly_report import nice_step
 from studies.runs.report_tools import line_plot, md_table, write_report_files
@@ -200,21 +200,24 @@ def run(asm, T_min_C: float, T_max_C: float, out: Path, provenance: dict, band=(
     stacks = candidates(asm, clamps, length_factors, materials)
     progress(f"design: {len(stacks)} stacks x {P0.size} preloads x {T.size} temperatures "
              f"(screening mesh x{screen_mesh_factor:g}) ...")
-    screened = map_blocks(evaluate_stack, [(asm, s, T, P0, screen_mesh_factor, True)
-                                           for s in stacks],
-                          workers=workers, scheduler=scheduler,
-                          progress=bar or (lambda d, n: progress(f"  stack {d} of {n}")
-                                           if d % 20 == 0 or d == n else None))
-    designs = []
-    for i, (s, r) in enumerate(zip(stacks, screened)):
-        for m in _metrics(s.assembly(asm), r, P0, band):
-            designs.append({"stack": i, **s.__dict__, **m, "is_given": i == 0, "mesh": "screen"})
-    # confirm the best feasible ones (and the assembly as given) on the fine mesh
-    ranked = sorted(designs, key=rank_key)
-    best_stacks = list(dict.fromkeys([0] + [d["stack"] for d in ranked if d["feasible"]][:CONFIRM]))
-    progress(f"design: confirming {len(best_stacks)} stacks on the assembly's mesh ...")
-    fine = map_blocks(evaluate_stack, [(asm, stacks[i], T, P0, confirm_mesh_factor)
-                                       for i in best_stacks], workers=workers, scheduler=scheduler)
+    with Blocks(workers, scheduler) as where:      # one cluster for screening and confirm
+        screened = map_blocks(evaluate_stack, [(asm, s, T, P0, screen_mesh_factor, True)
+                                               for s in stacks],
+                              where=where,
+                              progress=bar or (lambda d, n: progress(f"  stack {d} of {n}")
+                                               if d % 20 == 0 or d == n else None))
+        designs = []
+        for i, (s, r) in enumerate(zip(stacks, screened)):
+            for m in _metrics(s.assembly(asm), r, P0, band):
+                designs.append({"stack": i, **s.__dict__, **m, "is_given": i == 0,
+                                "mesh": "screen"})
+        # confirm the best feasible ones (and the assembly as given) on the fine mesh
+        ranked = sorted(designs, key=rank_key)
+        best_stacks = list(dict.fromkeys([0] + [d["stack"] for d in ranked
+                                                if d["feasible"]][:CONFIRM]))
+        progress(f"design: confirming {len(best_stacks)} stacks on the assembly's mesh ...")
+        fine = map_blocks(evaluate_stack, [(asm, stacks[i], T, P0, confirm_mesh_factor)
+                                           for i in best_stacks], where=where)
     confirmed = []
     for i, r in zip(best_stacks, fine):
         for m in _metrics(stacks[i].assembly(asm), r, P0, band):
