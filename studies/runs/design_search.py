@@ -14,8 +14,9 @@ from `fem.parametric`: the stacks of one spacer length and clamp scheme (a famil
 reference FE (mesh, assembly, factorisation, unit solutions, the spacers of the assembly's
 materials), and a member's set-up follows from it exactly by condensing the two spacers and a
 low-rank update (equal to the stack's own set-up to round-off, about 1e-12 relative: tests/
-test_parametric.py); no stack is meshed or factorised on its own. Over the temperature range (uniform temperature, round
-steps) each candidate gets its preload range (max - min), its smallest preload, whether each fit
+test_parametric.py); no stack is meshed or factorised on its own, only one stack per family.
+
+Over the temperature range (uniform temperature, round steps) each candidate gets its preload range (max - min), its smallest preload, whether each fit
 assembled with interference stays closed, its largest contact pressure against the limit
 `simulate` checks, and its largest torque. Feasible: fits closed, preload kept, contact pressure
 within the limit; `in_band`: the preload stays inside the band (x the assembled preload) at every
