@@ -89,3 +89,22 @@ def test_design_screening_equals_full_route(family):
     rng = lambda r: np.ptp(r["preload_N"], axis=1)      # noqa: E731
     assert np.all(np.abs(rng(par) - rng(own)) < RTOL * rng(own))
     assert parametric_setup_of(asm).keywords["variable"] == SPACERS
+
+
+def test_screening_on_workers_equals_this_process(family):
+    """The family's reference is fixed (the assembly's spacer materials), not the first stack a
+    worker happens to see: the screening on 2 Dask workers gives this process's numbers bit for
+    bit, whatever stacks each worker gets."""
+    from studies.model.parallel import map_blocks
+
+    asm, _ = family
+    L = asm.inner_spacer.length_mm
+    stacks = [Stack(i, o, L, asm.nut.clamp, asm.cover.clamp)
+              for i, o in (("6061", "TC4"), ("Si3N4", "6061"), ("9Cr18", "Si3N4"))]
+    T, P0 = np.array([-60.0, 80.0]), np.array([asm.preload.assembled_N])
+    blocks = [(asm, s, T, P0, MESH_FACTOR, True) for s in stacks]
+    here = map_blocks(evaluate_stack, blocks[::-1])[::-1]       # another order than the workers'
+    there = map_blocks(evaluate_stack, blocks, workers=2)
+    for a, b in zip(here, there):
+        for k in ("preload_N", "fit_pressure_inner_MPa", "torque_Nmm"):
+            np.testing.assert_array_equal(a[k], b[k], err_msg=k)
