@@ -43,6 +43,8 @@ from scipy.linalg import lu_factor, lu_solve
 from scipy.sparse.linalg import splu
 
 from analytic.materials import Material
+from skfem import Basis, asm
+
 from fem.forms import centrifugal_load, elasticity, lame_parameters, thermal_load
 from fem.setup import FESetup, SetupSpec, full_fe
 from fem.solver import Condensed, Superposition, _lu_solve, single_thread_blas
@@ -76,6 +78,39 @@ class _Part:
     spin: np.ndarray            # local centrifugal load per unit rho omega^2 (zero if not spinning)
 
 
+def _touched(m, T: sp.csr_matrix) -> dict[str, np.ndarray]:
+    """The reduced DOFs (columns of the elimination T, ndofs x n_reduced) each part's elements
+    touch, by part."""
+    el = m.basis.element_dofs
+    return {p: np.unique(T[np.unique(el[:, m.part_of == p])].indices) for p in m.part_names}
+
+
+def _interior_and_boundary(p: str, touched: dict[str, np.ndarray]):
+    """(interior, boundary) reduced DOFs of part p: touched by p only, and shared with others."""
+    mine = touched[p]
+    others = np.unique(np.concatenate([v for q, v in touched.items() if q != p]))
+    shared = np.isin(mine, others)
+    return mine[~shared], mine[shared]
+
+
+def _variable_part(m, T: sp.csr_matrix, p: str, dofs: np.ndarray, n_interior: int,
+                   b_pos: np.ndarray, rotating: bool) -> _Part:
+    """Part p's stiffness per unit lam and per unit mu, thermal load per unit (3 lam + 2 mu)
+    theta and centrifugal load per unit rho omega^2, on its reduced DOFs `dofs` (interior first),
+    assembled on its own elements (`fem.forms`)."""
+    basis = Basis(m.mesh, m.basis.elem, elements=np.flatnonzero(m.part_of == p))
+    shape = (basis.nelems, basis.X.shape[1])
+    one, zero = np.ones(shape), np.zeros(shape)
+
+    def local(M):
+        return (T.T @ M @ T).tocsr()[dofs][:, dofs].tocsr()
+
+    th = T.T @ asm(thermal_load, basis, lam=zero, mu=0.5 * one, theta=one)
+    spin = T.T @ asm(centrifugal_load, basis, rho_w2=one) if rotating else np.zeros(T.shape[1])
+    return _Part(p, n_interior, dofs, b_pos, local(asm(elasticity, basis, lam=one, mu=zero)),
+                 local(asm(elasticity, basis, lam=zero, mu=one)), th[dofs], spin[dofs])
+
+
 class Family:
     """The reference FE of a family and the arrays a member's set-up is computed from."""
 
@@ -96,50 +131,21 @@ class Family:
         T, lu = s.factorize(np.zeros(npair, bool))
         T = sp.csr_matrix(T)
         nred = T.shape[1]
-        Tt = T.T.tocsr()
-        # reduced DOFs touched by each part's elements
-        el = m.basis.element_dofs
-        touched = {}
-        for p in self.part_names:
-            full = np.unique(el[:, m.part_of == p])
-            touched[p] = np.unique(T[full].indices)
-        count = np.zeros(nred, int)
-        for p in self.part_names:
-            count[touched[p]] += 1
-        b_all, parts = [], []
-        for p in self.variable:
-            mine = touched[p]
-            others = np.zeros(nred, bool)
-            for q in self.part_names:
-                if q != p:
-                    others[touched[q]] = True
-            interior, bound = mine[~others[mine]], mine[others[mine]]
-            b_all.append(bound)
-            parts.append((p, interior, bound))
-        self.b = np.unique(np.concatenate(b_all)) if b_all else np.zeros(0, int)
-        pos = np.full(nred, -1)
+        touched = _touched(m, T)
+        split = [(p, *_interior_and_boundary(p, touched)) for p in self.variable]
+        self.b = (np.unique(np.concatenate([bound for _, _, bound in split])) if split
+                  else np.zeros(0, int))
+        pos = np.full(T.shape[1], -1)
         pos[self.b] = np.arange(self.b.size)
-        from skfem import Basis, asm
-        self.parts = []
-        for p, interior, bound in parts:
-            basis = Basis(m.mesh, m.basis.elem, elements=np.flatnonzero(m.part_of == p))
-            nq = basis.X.shape[1]
-            ne = basis.nelems
-            one, zero = np.ones((ne, nq)), np.zeros((ne, nq))
-            dofs = np.concatenate([interior, bound])
-            loc = lambda M: (Tt @ M @ T).tocsr()[dofs][:, dofs].tocsr()   # noqa: E731
-            Kl = loc(asm(elasticity, basis, lam=one, mu=zero))
-            Km = loc(asm(elasticity, basis, lam=zero, mu=one))
-            th = Tt @ asm(thermal_load, basis, lam=zero, mu=0.5 * one, theta=one)
-            spin = Tt @ asm(centrifugal_load, basis, rho_w2=one)
-            rotating = p in spec.rotating_parts
-            self.parts.append(_Part(p, interior.size, dofs, pos[bound], Kl, Km, th[dofs],
-                                    spin[dofs] if rotating else np.zeros(dofs.size)))
+        self.parts = [_variable_part(m, T, p, np.concatenate([interior, bound]), interior.size,
+                                     pos[bound], p in spec.rotating_parts)
+                      for p, interior, bound in split]
         # fixed load columns: unit thermal strain of every other part, the spin of the other
         # rotating parts, the raceway unit loads (compliance), unit pair forces
         self.fixed_parts = tuple(p for p in self.part_names if p not in self.variable)
         cols = [m.unit_loads[:, self.part_names.index(p)] for p in self.fixed_parts]
-        rest_rho = np.array([spec.materials[self.part_names.index(p)][1].density_N_s2_mm4
+        rho = dict(spec.materials)
+        rest_rho = np.array([rho[p].density_N_s2_mm4
                              if p in spec.rotating_parts and p not in self.variable else 0.0
                              for p in m.part_of])
         nq = m.basis.X.shape[1]
@@ -153,7 +159,7 @@ class Family:
         E = np.zeros((m.ndofs, npair))
         E[s.slave, np.arange(npair)] = 1.0
         E[s.master, np.arange(npair)] -= 1.0
-        F = Tt @ np.column_stack(cols + [E])
+        F = T.T @ np.column_stack(cols + [E])
         interior_all = np.concatenate([p.dofs[:p.n_interior] for p in self.parts]) \
             if self.parts else np.zeros(0, int)
         if interior_all.size and np.abs(F[interior_all]).max() > 0:
