@@ -267,9 +267,10 @@ def _compliance(cond: Condensed, raceway: np.ndarray, plan) -> float:
     return float(np.mean(-np.asarray(plan.signs) * d_dz))
 
 
-#: families built in this process, by family key (a design search's worker builds each once)
+#: families built in this process, by family key (a design search's worker builds each once; a
+#: family holds about 1 MB: the reduced arrays, not the FE model)
 _FAMILIES: dict[str, Family] = {}
-FAMILIES_MAX = 8
+FAMILIES_MAX = 64
 
 
 def member_spec(spec: SetupSpec, materials: dict[str, Material]) -> SetupSpec:

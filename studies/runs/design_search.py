@@ -123,6 +123,12 @@ def parametric_setup_of(asm):
     return partial(parametric_setup, variable=SPACERS, reference=ref)
 
 
+def _family_of(s: Stack) -> tuple:
+    """What puts a stack in another FE family than its neighbours (all but the spacer
+    materials)."""
+    return (s.spacer_length_mm, s.nut_clamp, s.cover_clamp, s.ring_section_delta_mm)
+
+
 def evaluate_stack(asm, stack: Stack, T_C: np.ndarray, preloads_N: np.ndarray,
                    mesh_factor: float, parametric: bool = False) -> dict:
     """Preload, contact pressure, fit pressures and torque of one stack at every temperature
@@ -202,11 +208,17 @@ def run(asm, T_min_C: float, T_max_C: float, out: Path, provenance: dict, band=(
     progress(f"design: {len(stacks)} stacks x {P0.size} preloads x {T.size} temperatures "
              f"(screening mesh x{screen_mesh_factor:g}) ...")
     with Blocks(workers, scheduler) as where:      # one cluster for screening and confirm
-        screened = map_blocks(evaluate_stack, [(asm, s, T, P0, screen_mesh_factor, True)
-                                               for s in stacks],
-                              where=where,
-                              progress=bar or (lambda d, n: progress(f"  stack {d} of {n}")
-                                               if d % 20 == 0 or d == n else None))
+        # submitted family by family (spacer length, clamps, ring sections): a worker then
+        # builds few of the families (fem.parametric); the results go back to the stacks' order
+        order = sorted(range(len(stacks)), key=lambda i: _family_of(stacks[i]))
+        done = map_blocks(evaluate_stack, [(asm, stacks[i], T, P0, screen_mesh_factor, True)
+                                           for i in order],
+                          where=where,
+                          progress=bar or (lambda d, n: progress(f"  stack {d} of {n}")
+                                           if d % 20 == 0 or d == n else None))
+        screened = [None] * len(stacks)
+        for i, r in zip(order, done):
+            screened[i] = r
         designs = []
         for i, (s, r) in enumerate(zip(stacks, screened)):
             for m in _metrics(s.assembly(asm), r, P0, band):
