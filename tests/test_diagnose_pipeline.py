@@ -37,6 +37,7 @@ from studies.diagnosis.files import NUISANCE, ModelPredictor, candidate_effects
 from studies.diagnosis.engine import diagnose_full
 from studies.model.effects import EFFECTS, ORDER
 from studies.model.pipeline import Pipeline
+from studies.diagnosis import fitspec
 from studies.diagnosis.designs import cycles
 
 MESH_FACTOR = 2.0
@@ -257,7 +258,7 @@ def test_hidden_effect_is_named(pipelines, name, params, seed_name, design, sigm
     unc = res["parameter_uncertainty"]
     for p, v in params.items():
         got = res["parameters"][p]
-        if p in EFFECTS[name].profile:
+        if p in fitspec.profile(EFFECTS[name]):
             # a profiled threshold is only determined up to the rows it switches: the fitted
             # value must switch at the same row as the true one
             T = cond["T_ambient_C"]

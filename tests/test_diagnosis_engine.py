@@ -20,6 +20,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from studies.diagnosis import fitspec
 from studies.diagnosis.engine import diagnose, diagnose_full
 from studies.diagnosis.stats import chibar_pvalue, noise_sigma
 from studies.model.effects import (EFFECTS, apply_effects, resolve_friction_coefficient,
@@ -190,7 +191,7 @@ def test_hidden_effect_is_named(name, params, design):
                                            res["indistinguishable"])
     assert res["cause"] == name
     for p, v in params.items():
-        if EFFECTS[name].profile and p in EFFECTS[name].profile:
+        if p in fitspec.profile(EFFECTS[name]):
             continue
         unc = res["parameter_uncertainty"][p]
         assert abs(res["parameters"][p] - v) < 5 * unc + 1e-12 * abs(v), (p, res["parameters"], unc)

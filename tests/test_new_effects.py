@@ -18,6 +18,7 @@ import pytest
 from studies.diagnosis.designs import cycles
 from studies.diagnosis.engine import diagnose_full
 from studies.diagnosis.files import NUISANCE, ModelPredictor
+from studies.diagnosis.fitspec import RUNIN_PER_DECADE
 from studies.model.config import load_shipped
 from studies.model.effects import EFFECTS, ORDER
 from studies.model.effects.preload_path_compliance import UM_PER_KN
@@ -158,7 +159,7 @@ def test_hidden_runin_is_recovered(pl000):
     u = res["parameter_uncertainty"]
     assert abs(res["parameters"]["dmu"] + 0.004) <= 3 * u["dmu"], (res["parameters"], u)
     lo, hi = u["runin_krev"]["interval"]
-    step = 10 ** (1 / EFFECTS["solid_film_runin"].PER_DECADE)
+    step = 10 ** (1 / RUNIN_PER_DECADE)
     assert lo / step <= 10.0 <= hi * step, (res["parameters"], u)
 
 

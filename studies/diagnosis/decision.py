@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 
+from studies.diagnosis import fitspec
 from studies.diagnosis.core import Baseline, Decision, Fit, ModelFailure, Screening
 from studies.diagnosis.stats import ar1_whiten, chibar_pvalue
 
@@ -134,8 +135,8 @@ class DecisionPhase:
             eo = self.effect(o)
             fixed = {}
             for e, f in ((eb, fb), (eo, fo)):
-                if e.profile:
-                    fixed[e.name] = {p: f.extra["value"] for p in e.profile}
+                if fitspec.profile(e):
+                    fixed[e.name] = {p: f.extra["value"] for p in fitspec.profile(e)}
             space = self.space([eb, eo], fixed)
             kb = fb.space.k
             ko = fo.space.k

@@ -61,6 +61,7 @@ from typing import Callable, Mapping, Sequence
 import numpy as np
 from scipy import optimize, stats
 
+from studies.diagnosis import fitspec
 from studies.diagnosis.core import (DEFAULT_THRESHOLDS, FIRST_COLUMNS, Baseline, CachedModel,
                                     Decision, DiagnosisError, Fit, ModelFailure, Screening, Space,
                                     jsonable)
@@ -248,7 +249,7 @@ class _Engine(ScreeningPhase, FittingPhase, HeldoutPhase, DecisionPhase, General
         eff_params, origin, scale, lo, hi = [], [], [], [], []
         fx = {}
         for e in effects:
-            steps = e.steps(self.conditions)
+            steps = fitspec.steps(e, self.conditions)
             fx[e.name] = dict(e.off)
             fx[e.name].update(fixed.get(e.name, {}))
             for p in self.free_params(e):

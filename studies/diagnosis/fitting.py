@@ -8,6 +8,7 @@ import math
 
 import numpy as np
 
+from studies.diagnosis import fitspec
 from studies.diagnosis.core import Baseline, Fit, ModelFailure, Screening
 from studies.diagnosis.stats import blsq, chibar_pvalue
 
@@ -25,7 +26,7 @@ class FittingPhase:
             e, info = self.effect(name), cands[name]
             calls0 = self.model.calls
             try:
-                f = (self.fit_profiled(e, info, base, base_nuis) if e.profile
+                f = (self.fit_profiled(e, info, base, base_nuis) if fitspec.profile(e)
                      else self.fit_candidate(e, info, base))
             except ModelFailure as exc:
                 return None, None, str(exc), self.model.calls - calls0
@@ -34,7 +35,7 @@ class FittingPhase:
         # the candidates' fits are independent: on the engine's workers (profiled first: longest)
         names = list(names_id)
         done = self.parallel(fit_one, names,
-                             first=[i for i, n in enumerate(names) if self.effect(n).profile])
+                             first=[i for i, n in enumerate(names) if fitspec.profile(self.effect(n))])
         for name, (f, profile, failed, calls) in zip(names, done):
             e = self.effect(name)
             info = cands[name]
@@ -48,9 +49,9 @@ class FittingPhase:
             lr = max(base.chi2 - f.chi2, 0.0)
             r = info.rank
             n_two = sum(1 for p in self.free_params(e) if e.sign(p) == 0)
-            n_free = min(r, n_two) + len(e.profile)
+            n_free = min(r, n_two) + len(fitspec.profile(e))
             n_bound = r - min(r, n_two)
-            k_eff = r + len(e.profile)
+            k_eff = r + len(fitspec.profile(e))
             info.lr = lr
             info.df = {"free": n_free, "on_bound": n_bound}
             info.p_lr = chibar_pvalue(lr, n_free, n_bound)
@@ -58,7 +59,7 @@ class FittingPhase:
             info.k = k_eff
             eff_vals, nuis_vals = f.space.unpack(f.u)
             info.parameters = {p: eff_vals[name][p] for p in e.parameters}
-            held = list(e.held_fixed(self.conditions))
+            held = list(fitspec.held_fixed(e, self.conditions))
             if held:
                 info.held_at_off = {p: e.off[p] for p in held}
             info.nuisance = nuis_vals
@@ -95,7 +96,7 @@ class FittingPhase:
         A = np.column_stack([Jc, Jn])
         d, *_ = np.linalg.lstsq(A, -base.z, rcond=None)
         starts.append(np.concatenate([d[:k], u_nuis + d[k:]]))
-        for s in e.starts(self.conditions, self.T_ref_C):
+        for s in fitspec.starts(e, self.conditions, self.T_ref_C):
             vals = [s.get(p, e.off[p]) for (_, p) in space.eff_params]
             uu = np.concatenate([(np.array(vals) - space.origin[:k]) / space.scale[:k], u_nuis])
             starts.append(uu)
@@ -142,7 +143,7 @@ class FittingPhase:
     def fit_profiled(self, e, info, base: Fit, base_nuis) -> Fit:
         """Profile the `profile` parameter (one) over its grid with a linearised inner fit, then
         refine the best value with a full bounded least-squares fit."""
-        (pp,) = e.profile
+        (pp,) = fitspec.profile(e)
         values = list(info.profile_grid[pp])
         nq = len(self.nuis_names)
 
@@ -233,7 +234,7 @@ class FittingPhase:
                 out[p] = float(math.sqrt(s2 * np.sum(v ** 2 * np.where(tiny, 0.0, inv)))
                                * f.space.scale[i])
         if "interval" in f.extra:
-            for p in e.profile:
+            for p in fitspec.profile(e):
                 out[p] = {"interval": f.extra["interval"]}
         return out
 

@@ -28,6 +28,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
+from studies.diagnosis import fitspec
 from studies.diagnosis.core import Baseline, Decision, Fit, ModelFailure, Screening
 from studies.diagnosis.stats import chibar_pvalue
 from studies.model.effects.generalised import forms_of
@@ -87,12 +88,12 @@ class GeneralisedPhase:
         docstring, steps 1-4). Returns (entry, fit, held-out residuals)."""
         th = self.th
         vals_listed = dict(cand.parameters)
-        fixed = {form.name: {p: vals_listed[p] for p in form.profile}}
+        fixed = {form.name: {p: vals_listed[p] for p in fitspec.profile(form)}}
         space = self.space([form], fixed)
         k, nq = space.k, len(self.nuis_names)
         u_nuis = f_listed.u[f_listed.space.k:]
         start_vals = [form.from_listed(vals_listed)]
-        start_vals += [{**start_vals[0], **x} for x in form.extra_starts(vals_listed, self.conditions)]
+        start_vals += [{**start_vals[0], **x} for x in fitspec.extra_starts(form, vals_listed, self.conditions)]
         Jn = f_listed.J[:, f_listed.space.k:]       # d z / d u_nuisance at the listed fit
 
         def score(iv):
@@ -120,7 +121,7 @@ class GeneralisedPhase:
         # give the extra parameter nothing to do, and a listed effect costs one local fit)
         runs = [t for t in scored if t[1] == 0] + [
             t for t in scored if t[1] != 0 and t[0] < f_listed.chi2][:N_RUNS - 1]
-        profiled = bool(form.profile and cand.profile_grid)
+        profiled = bool(fitspec.profile(form) and cand.profile_grid)
 
         def local_fit(u):
             """The local fit from start u (None: the profiled fit over the listed grid), or None
@@ -188,7 +189,7 @@ class GeneralisedPhase:
             "residuals": desc, "status": status,
             "reason": "; ".join(reasons) if reasons else
                       "beats the listed form in sample and on held-out blocks, no structure left"}
-        if form.profile:
+        if fitspec.profile(form):
             entry["profiled"] = {q: {"value": params[q], "listed_fit": vals_listed[q]}
-                                 for q in form.profile}
+                                 for q in fitspec.profile(form)}
         return entry, f_ext, ho_ext

@@ -19,6 +19,7 @@ import math
 
 import numpy as np
 
+from studies.diagnosis import fitspec
 from studies.diagnosis.core import Baseline, Fit, ModelFailure, Screening
 from studies.diagnosis.stats import blsq
 
@@ -58,7 +59,7 @@ class HeldoutPhase:
             message or None): the model calls of one candidate, no random numbers."""
             e = self.effect(name)
             try:
-                if e.profile:
+                if fitspec.profile(e):
                     return (*self.heldout_profile(fits[name], e, base_ho), None)
                 return self.heldout_linear(fits[name]), None, {}, None
             except ModelFailure as exc:
@@ -68,7 +69,7 @@ class HeldoutPhase:
         # draw from the engine's random numbers in the candidates' order
         names = list(names_id)
         done = self.parallel(refit, names,
-                             first=[i for i, n in enumerate(names) if self.effect(n).profile])
+                             first=[i for i, n in enumerate(names) if fitspec.profile(self.effect(n))])
         for name, (z_ho, chosen, untestable, failed) in zip(names, done):
             e = self.effect(name)
             if failed is not None:
@@ -77,7 +78,7 @@ class HeldoutPhase:
                 ho[name] = base_ho.copy()
             else:
                 ho[name] = z_ho
-                if e.profile:
+                if fitspec.profile(e):
                     cands[name].heldout_profile_values = chosen
                     cands[name].heldout_untestable = [
                         {"block": int(bk) + 1, "rows": self._block_rows(bk), "reason": why}
@@ -164,7 +165,7 @@ class HeldoutPhase:
         Returns the stacked held-out residuals (untestable blocks keep the baseline's: no gain
         claimed there), the chosen value per testable block and {block: reason} for the
         untestable ones."""
-        (pp,) = e.profile
+        (pp,) = fitspec.profile(e)
         grid_lin = fit.extra["grid_lin"]
         k = fit.space.k
         u = fit.u

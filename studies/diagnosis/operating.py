@@ -33,6 +33,7 @@ from typing import Callable, Mapping, Sequence
 import numpy as np
 from scipy import optimize, stats
 
+from studies.diagnosis import fitspec
 from studies.diagnosis.core import DEFAULT_THRESHOLDS
 from studies.diagnosis.decision import SENSOR_DRIFT
 from studies.diagnosis.engine import diagnose, lookalike_matrix
@@ -73,7 +74,7 @@ def setting(effect, conditions: Mapping[str, np.ndarray] | None = None,
     out = {p: float(np.clip(effect.off[p] + 5.0 * effect.scale[p], *effect.bounds[p]))
            for p in effect.parameters}
     if conditions is not None:
-        for p, g in effect.grid(conditions, T_ref_C).items():
+        for p, g in fitspec.grid(effect, conditions, T_ref_C).items():
             if len(g):
                 g = np.asarray(g, float)
                 out[p] = float(g[np.argmin(np.abs(np.log(g / (PROFILE_SHARE * g.max()))))])

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from studies.diagnosis import fitspec
 from studies.diagnosis.candidate import Candidate
 from studies.diagnosis.core import Baseline, ModelFailure, Screening
 from studies.diagnosis.stats import max_cosine, orth
@@ -22,10 +23,10 @@ class ScreeningPhase:
             cands[e.name] = info
             why = e.applicable(self.conditions)
             grid = {}
-            if why is None and e.profile:
-                grid = e.grid(self.conditions, self.T_ref_C)
+            if why is None and fitspec.profile(e):
+                grid = fitspec.grid(e, self.conditions, self.T_ref_C)
                 if any(len(v) == 0 for v in grid.values()):
-                    why = "no value of " + ", ".join(e.profile) + " changes the prediction here"
+                    why = "no value of " + ", ".join(fitspec.profile(e)) + " changes the prediction here"
             if why is not None:
                 info.set_status("not_applicable", why)
                 continue
@@ -33,8 +34,8 @@ class ScreeningPhase:
             # the calibration absorbs least kept (a run-in that ends within the first rows is a
             # constant change of mu; the same run-in slower is not)
             best = None
-            for q in ((0.5, 0.25, 0.75) if e.profile else (0.5,)):
-                fixed = {p: float(np.quantile(grid[p], q, method="nearest")) for p in e.profile}
+            for q in ((0.5, 0.25, 0.75) if fitspec.profile(e) else (0.5,)):
+                fixed = {p: float(np.quantile(grid[p], q, method="nearest")) for p in fitspec.profile(e)}
                 try:
                     Jc, names = self.sensitivity(e, base_nuis, base.pred, fixed)
                 except ModelFailure as exc:
@@ -55,7 +56,7 @@ class ScreeningPhase:
             reach = 0.0
             for i, p in enumerate(names):
                 lo, hi = e.bounds[p]
-                h = float(e.steps(self.conditions).get(p, e.scale[p]))
+                h = float(fitspec.steps(e, self.conditions).get(p, e.scale[p]))
                 reach = max(reach, left[i] * max(abs(hi - e.off[p]), abs(lo - e.off[p])) / h)
             info.identifiability = {"remaining_fraction": dict(zip(names, frac)),
                                        "reach_sigma": float(reach)}
@@ -86,13 +87,13 @@ class ScreeningPhase:
     def free_params(self, e) -> list[str]:
         """Parameters fitted by gradients: not profiled, not held at "off" for these conditions
         (e.g. a speed-proportional part when every row has the same speed)."""
-        held = set(e.held_fixed(self.conditions))
-        return [p for p in e.parameters if p not in e.profile and p not in held]
+        held = set(fitspec.held_fixed(e, self.conditions))
+        return [p for p in e.parameters if p not in fitspec.profile(e) and p not in held]
 
 
     def sensitivity(self, e, base_nuis: dict, base_pred: dict, fixed: dict | None = None):
         """d(pred)/sigma per unit step of each non-profile parameter at off (N x k, stacked)."""
-        steps = e.steps(self.conditions)
+        steps = fitspec.steps(e, self.conditions)
         cols = []
         names = []
         for p in self.free_params(e):
