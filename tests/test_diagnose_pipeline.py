@@ -35,6 +35,7 @@ from scipy import optimize
 from studies.model.config import load_shipped
 from studies.diagnosis.files import NUISANCE, ModelPredictor, candidate_effects
 from studies.diagnosis.engine import diagnose_full
+from studies.diagnosis.result import to_json
 from studies.model.effects import EFFECTS, ORDER
 from studies.model.pipeline import Pipeline
 from studies.diagnosis import fitspec
@@ -174,7 +175,7 @@ def diagnose_real(pl, cond, meas):
     pred = ModelPredictor(pl, cond, meas.keys())
     out = diagnose_full(pred, meas, cond, candidate_effects(pl.asm), NUISANCE,
                         T_ref_C=pl.asm.T_ref_C, predict_at=pred.at)
-    return out.result
+    return to_json(out)
 
 
 def summary(res):

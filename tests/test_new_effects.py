@@ -19,6 +19,7 @@ from studies.diagnosis.designs import cycles
 from studies.diagnosis.engine import diagnose_full
 from studies.diagnosis.files import NUISANCE, ModelPredictor
 from studies.diagnosis.fitspec import RUNIN_PER_DECADE
+from studies.diagnosis.result import to_json
 from studies.model.config import load_shipped
 from studies.model.effects import EFFECTS, ORDER
 from studies.model.effects.preload_path_compliance import UM_PER_KN
@@ -136,8 +137,8 @@ def test_compliance_off_is_baseline_exactly(pl001):
 def _diagnose(pl, cond, meas):
     pred = ModelPredictor(pl, cond, meas.keys())
     cands = [EFFECTS[n].for_assembly(pl.asm) for n in ORDER]
-    return diagnose_full(pred, meas, cond, cands, NUISANCE, T_ref_C=pl.asm.T_ref_C,
-                         predict_at=pred.at).result
+    return to_json(diagnose_full(pred, meas, cond, cands, NUISANCE, T_ref_C=pl.asm.T_ref_C,
+                                 predict_at=pred.at))
 
 
 def _noisy(pl, cond, eff, sigma, seed, mu_scale=1.25):

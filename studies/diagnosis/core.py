@@ -92,6 +92,23 @@ class CachedModel:
         self.remember(key, out)
         return out
 
+    # the state a forked worker's calls add (`studies.model.parallel.parallel_map`)
+    def snapshot(self) -> tuple[int, float, set]:
+        return self.calls, self.seconds, set(self.cache)
+
+    def delta(self, snapshot: tuple[int, float, set]) -> tuple[int, float, list]:
+        """Calls, model seconds and new cache entries since `snapshot`."""
+        calls0, sec0, known = snapshot
+        return (self.calls - calls0, self.seconds - sec0,
+                [(k, v) for k, v in self.cache.items() if k not in known])
+
+    def merge(self, delta: tuple[int, float, list]) -> None:
+        calls, seconds, new = delta
+        self.calls += calls
+        self.seconds += seconds
+        for k, v in new:
+            self.remember(k, v)
+
     def remember(self, key, out: dict) -> None:
         """Keep a result (the newest; the least recently used goes beyond `maxsize`)."""
         self.cache[key] = out

@@ -297,29 +297,29 @@ def characterise(residuals: Mapping[str, np.ndarray], valid: Mapping[str, np.nda
     return OpenWorld(residual_of, desc, aliases, cols, summary)
 
 
-def report_lines(ow: dict | None) -> list[str]:
-    """The report section (markdown lines) for the `open_world` entry of the result."""
-    if not ow:
+def report_lines(ow: OpenWorld | None) -> list[str]:
+    """The report section (markdown lines) for the open-world characterisation of a result."""
+    if ow is None:
         return []
     L = ["## What the residual depends on (open world)\n",
-         f"No listed effect removes the structure, so the {ow['residual_of']} residual was "
+         f"No listed effect removes the structure, so the {ow.residual_of} residual was "
          "regressed on named conditions (forward selection by BIC, nested block "
          "cross-validation). **Hypotheses, not findings**: confirm with the test named.\n",
-         f"Summary: {ow['summary']}.\n",
+         f"Summary: {ow.summary}.\n",
          "| column | depends on | change over the data (column unit) | held-out gain | "
          "hypothesis | confirming test |",
          "| --- | --- | --- | --- | --- | --- |"]
-    for c in ow["columns"]:
-        dep = ", ".join(f"`{k}`" for k in c["selected"]) or "–"
-        rng = ", ".join(f"{k}: {v:+.3g}" for k, v in c["range_effect"].items()) or "–"
-        hyp = c["hypothesis"] or "–"
-        if c["not_separable"]:
+    for c in ow.columns:
+        dep = ", ".join(f"`{k}`" for k in c.selected) or "–"
+        rng = ", ".join(f"{k}: {v:+.3g}" for k, v in c.range_effect.items()) or "–"
+        hyp = c.hypothesis or "–"
+        if c.not_separable:
             hyp += " (not separable here from: " + "; ".join(
-                f"{k} ~ {', '.join(v)}" for k, v in c["not_separable"].items()) + ")"
-        L.append(f"| `{c['column']}` | {dep} | {rng} | {c['heldout_gain']:.3f} | {hyp} | "
-                 f"{c['confirming_test'] or '–'} |")
+                f"{k} ~ {', '.join(v)}" for k, v in c.not_separable.items()) + ")"
+        L.append(f"| `{c.column}` | {dep} | {rng} | {c.heldout_gain:.3f} | {hyp} | "
+                 f"{c.confirming_test or '–'} |")
     L.append("")
-    if ow["aliases"]:
+    if ow.aliases:
         L.append("Same quantity in this design (left out): " + ", ".join(
-            f"`{a}` = `{b}`" for a, b in ow["aliases"].items()) + ".\n")
+            f"`{a}` = `{b}`" for a, b in ow.aliases.items()) + ".\n")
     return L
