@@ -19,62 +19,62 @@ from studies.diagnosis.stats import ar1_whiten, chibar_pvalue
 SENSOR_DRIFT = "unlisted: sensor zero drift linear in time"
 
 
-def decide(pb: Problem, s: Screening, fits: dict[str, Fit], passing: list[str], b: Baseline) -> Decision:
-    th = pb.th
-    cands, names_id = s.candidates, list(fits)
-    desc_base, structure, n_nuis = b.residuals, b.structure, len(pb.nuisance.names)
-    verdict, cause, rivals, best_desc, joint = "no_discrepancy", None, [], None, {}
-    best = min(passing, key=lambda n: cands[n].delta_bic) if passing else None
-    reasons = []
-    if best is None:
-        if structure:
-            verdict = "unexplained"
-            reasons.append("the baseline residuals show structure beyond noise "
-                           f"(adjusted p = {desc_base['p_min_adjusted']:.2g}) but no "
-                           "candidate passes")
-            cols = desc_base["columns"].values()
-            if all(d["smoother_heldout_gain"] <= 0 and d["bias_p"] > 0.01 for d in cols):
-                reasons.append("the structure is serial correlation that a smooth function "
-                               "of the conditions does not predict on held-out blocks: it may "
-                               "be correlated noise, a drift in time or a history effect "
-                               "outside the candidate list")
-        else:
-            reasons.append("the baseline residuals are consistent with the noise estimated "
-                           "from the data and no candidate passes")
-    else:
-        best_desc = pb.describe(fits[best].pred, n_nuis + cands[best].k)
-        if best_desc["p_min_adjusted"] < th["alpha_residual"]:
-            verdict = "unexplained"
-            reasons.append(f"the best candidate, {best}, passes but leaves structure in the "
-                           f"residuals (adjusted p = {best_desc['p_min_adjusted']:.2g})")
-        else:
-            rivals, joint = compare(pb, best, fits, cands, names_id)
-            for o in passing:
-                if o != best and o not in rivals:
-                    cands[o].reason += (f"; but clearly beaten by {best} (chi-square "
-                                           f"{fits[o].chi2 - fits[best].chi2:+.1f})")
-            drift = versus_sensor_drift(pb, fits[best], _df(cands[best]), b)
-            if drift is not None:
-                joint[SENSOR_DRIFT] = drift
-            verdict = "ambiguous" if rivals else "explained"
-            cause = best
-            if drift is not None and not drift["best_carries_weight"]:
-                verdict, cause = "unexplained", None
-                reasons.append(
-                    f"the best candidate, {best}, does not clearly beat a zero drift of the "
-                    "sensors linear in time, a cause outside the list that a history effect "
-                    f"resembles (adding {best} to that drift: p = {drift['p']:.2g}, needs < "
-                    f"{th['alpha_joint']:g}; adding the drift to {best}: p = "
-                    f"{drift['p_add_other_to_best']:.2g}, needs >= {th['alpha_joint']:g}); "
-                    "a test at other speeds or a repeat of the programme separates a drift "
-                    "in time from the effect")
-            elif rivals:
-                reasons.append(f"{best} and {', '.join(rivals)} explain the data about "
-                               "equally well")
-            else:
-                reasons.append(f"{best} beats the baseline on held-out blocks and clearly "
-                               "beats every other candidate")
-    return Decision(verdict, cause, best, rivals, best_desc, joint, reasons)
+def decide(pb: Problem, s: Screening, fits: dict[str, Fit], passing: list[str],
+           b: Baseline) -> Decision:
+    """Phase 5: the verdict (module docstring of `studies.diagnosis.engine`, step 5). The
+    passing candidates beaten by the best get a note in their reason."""
+    cands = s.candidates
+    if not passing:
+        return _nothing_passes(b)
+    best = min(passing, key=lambda n: cands[n].delta_bic)
+    best_desc = pb.describe(fits[best].pred, len(pb.nuisance.names) + cands[best].k)
+    if best_desc["p_min_adjusted"] < pb.th["alpha_residual"]:
+        return Decision("unexplained", None, best, [], best_desc, {}, [
+            f"the best candidate, {best}, passes but leaves structure in the "
+            f"residuals (adjusted p = {best_desc['p_min_adjusted']:.2g})"])
+    rivals, joint = compare(pb, best, fits, cands, list(fits))
+    for o in passing:
+        if o != best and o not in rivals:
+            cands[o].reason += (f"; but clearly beaten by {best} (chi-square "
+                                f"{fits[o].chi2 - fits[best].chi2:+.1f})")
+    drift = versus_sensor_drift(pb, fits[best], _df(cands[best]), b)
+    if drift is not None:
+        joint[SENSOR_DRIFT] = drift
+    if drift is not None and not drift["best_carries_weight"]:
+        a = pb.th["alpha_joint"]
+        return Decision("unexplained", None, best, rivals, best_desc, joint, [
+            f"the best candidate, {best}, does not clearly beat a zero drift of the "
+            "sensors linear in time, a cause outside the list that a history effect "
+            f"resembles (adding {best} to that drift: p = {drift['p']:.2g}, needs < "
+            f"{a:g}; adding the drift to {best}: p = "
+            f"{drift['p_add_other_to_best']:.2g}, needs >= {a:g}); "
+            "a test at other speeds or a repeat of the programme separates a drift "
+            "in time from the effect"])
+    if rivals:
+        return Decision("ambiguous", best, best, rivals, best_desc, joint, [
+            f"{best} and {', '.join(rivals)} explain the data about equally well"])
+    return Decision("explained", best, best, rivals, best_desc, joint, [
+        f"{best} beats the baseline on held-out blocks and clearly beats every other "
+        "candidate"])
+
+
+def _nothing_passes(b: Baseline) -> Decision:
+    """No candidate passes: unexplained when the baseline residuals show structure (with a note
+    when it is only serial correlation a smoother cannot predict), else no discrepancy."""
+    desc = b.residuals
+    if not b.structure:
+        return Decision("no_discrepancy", None, None, [], None, {}, [
+            "the baseline residuals are consistent with the noise estimated from the data and "
+            "no candidate passes"])
+    reasons = ["the baseline residuals show structure beyond noise "
+               f"(adjusted p = {desc['p_min_adjusted']:.2g}) but no candidate passes"]
+    if all(d["smoother_heldout_gain"] <= 0 and d["bias_p"] > 0.01
+           for d in desc["columns"].values()):
+        reasons.append("the structure is serial correlation that a smooth function of the "
+                       "conditions does not predict on held-out blocks: it may be correlated "
+                       "noise, a drift in time or a history effect outside the candidate list")
+    return Decision("unexplained", None, None, [], None, {}, reasons)
+
 
 def versus_sensor_drift(pb: Problem, f: Fit, df: dict, b: Baseline) -> dict | None:
     """Does the fitted candidate carry weight over an unlisted look-alike, a zero drift of

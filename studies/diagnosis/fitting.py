@@ -177,21 +177,29 @@ def _bisected(values: list, lin) -> list[dict]:
     sides until neighbours are evaluated."""
     lins = {int(i): lin(values[i])
             for i in np.unique(np.linspace(0, len(values) - 1, COARSE).round().astype(int))}
-    while True:
-        ok = sorted(i for i in lins if lins[i] is not None)
-        if not ok:
-            break
-        ib = min(ok, key=lambda i: lins[i]["sse"])
-        left = max([i for i in lins if i < ib], default=None)
-        right = min([i for i in lins if i > ib], default=None)
-        new = [m for m in ((None if left is None else (left + ib) // 2),
-                           (None if right is None else (ib + right + 1) // 2))
-               if m is not None and m not in lins]
-        if not new:
-            break
+    new = _bisection(lins)
+    while new:
         for m in new:
             lins[m] = lin(values[m])
+        new = _bisection(lins)
     return [lins[i] for i in sorted(lins) if lins[i] is not None]
+
+
+def _bisection(lins: dict[int, dict | None]) -> list[int]:
+    """Grid indices halfway from the best evaluated one to its evaluated neighbours, not yet
+    evaluated (none when every neighbour is adjacent or nothing evaluates)."""
+    ok = sorted(i for i in lins if lins[i] is not None)
+    if not ok:
+        return []
+    ib = min(ok, key=lambda i: lins[i]["sse"])
+    left = max([i for i in lins if i < ib], default=None)
+    right = min([i for i in lins if i > ib], default=None)
+    mids = []
+    if left is not None:
+        mids.append((left + ib) // 2)
+    if right is not None:
+        mids.append((ib + right + 1) // 2)
+    return [m for m in mids if m not in lins]
 
 
 def fit_profiled(pb: Problem, e, info, base: Fit, base_nuis) -> Fit:

@@ -161,16 +161,22 @@ def _best_local_fit(pb: Problem, form, space, scored: list[tuple], f_listed: Fit
     # the local fits are independent: on the workers (the profiled one first)
     got = pb.parallel(local_fit, [u for _, _, u in runs] + [None] * profiled,
                       first=[len(runs)] if profiled else None)
-    f_ext = None
-    for fi in got[:len(runs)]:
-        if fi is not None and (f_ext is None or fi.chi2 < f_ext.chi2):
-            f_ext = fi
-    fp = got[-1] if profiled else None
-    if fp is not None and (f_ext is None or fp.chi2 < f_ext.chi2):
-        f_ext = fp
+    # the best of the local fits, then the profiled one only when strictly better
+    f_ext = _lowest(got[:len(runs)])
+    if profiled:
+        f_ext = _lowest([f_ext, got[-1]])
     if f_ext is None:
         raise ModelFailure("the fits of the generalised form fail from every start")
     return f_ext
+
+
+def _lowest(fits: list[Fit | None]) -> Fit | None:
+    """The fit of lowest chi-square (the first of equals), None when none succeeded."""
+    best = None
+    for f in fits:
+        if f is not None and (best is None or f.chi2 < best.chi2):
+            best = f
+    return best
 
 
 def _form_status(th, m: int, p_adj: float, dbic: float, g_listed: dict, g_base: dict,

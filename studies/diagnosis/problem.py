@@ -139,14 +139,7 @@ class Problem:
             for d in range(1, deg + 1):
                 F.append(x ** d)
         if "time_s" in self.conditions and self.n >= 12 * 4 * len(cols) + 10:
-            t = self.conditions["time_s"]
-            if np.all(np.diff(t) > 0):
-                for k, x in cols:
-                    if k in ("time_s", "row"):
-                        continue
-                    g = np.gradient(x, t)
-                    if np.std(g) > 0:
-                        F.append((g - g.mean()) / g.std())
+            F += _rates(cols, self.conditions["time_s"])
         return np.array(F).T if F else np.zeros((self.n, 0))
 
     @property
@@ -302,6 +295,21 @@ class Problem:
             F_p = 1.0      # AR(1) noise: the smoother must also predict held-out blocks
         out["smoother_p_used"] = F_p
         return out
+
+
+def _rates(cols: list[tuple[str, np.ndarray]], t: np.ndarray) -> list[np.ndarray]:
+    """Standardised rates of change d x / d t of the varying conditions (not of time itself) in
+    a time series (`t` strictly increasing; else none)."""
+    if not np.all(np.diff(t) > 0):
+        return []
+    out = []
+    for k, x in cols:
+        if k in ("time_s", "row"):
+            continue
+        g = np.gradient(x, t)
+        if np.std(g) > 0:
+            out.append((g - g.mean()) / g.std())
+    return out
 
 
 #: with AR(1) noise the whitening uses an estimated rho and the in-sample F test of the smoother
