@@ -3,10 +3,11 @@ space, a fit, and what the phases hand to each other (`Baseline`, `Screening`, `
 A candidate is `studies.diagnosis.candidate.Candidate`."""
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from collections import OrderedDict
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -40,7 +41,10 @@ class ModelFailure(RuntimeError):
 
 
 def jsonable(x):
-    """Numbers, arrays and containers as plain JSON values (non-finite floats -> null)."""
+    """Numbers, arrays, containers and dataclasses as plain JSON values (non-finite floats ->
+    null)."""
+    if dataclasses.is_dataclass(x) and not isinstance(x, type):
+        return jsonable({f.name: getattr(x, f.name) for f in dataclasses.fields(x)})
     if isinstance(x, dict):
         return {str(k): jsonable(v) for k, v in x.items()}
     if isinstance(x, (list, tuple)):
@@ -153,6 +157,23 @@ class Space:
 
 
 @dataclass
+class Linearisation:
+    """A candidate at one value of its profiled parameter, linearised: the standardised
+    residual z and its Jacobian J (effect parameters, then nuisance) in `space`; for a grid
+    point of the in-sample profile also the start u0, the step bounds lo / hi, the bounded
+    linear fit's step du and chi-square sse."""
+    value: float
+    space: Space
+    J: np.ndarray
+    z: np.ndarray
+    u0: np.ndarray | None = None
+    lo: np.ndarray | None = None
+    hi: np.ndarray | None = None
+    sse: float = math.inf
+    du: np.ndarray | None = None
+
+
+@dataclass
 class Fit:
     space: Space
     u: np.ndarray
@@ -160,7 +181,10 @@ class Fit:
     J: np.ndarray               # d z / d u at u
     chi2: float
     pred: dict
-    extra: dict = field(default_factory=dict)
+    # a profiled fit: the profiled value, the grid's linearisations, the chi-square-1 interval
+    profile_value: float | None = None
+    grid: list[Linearisation] | None = None
+    interval: list[float] | None = None
 
 
 @dataclass

@@ -137,7 +137,7 @@ def compare(pb: Problem, best, fits, cands, names_id):
         fixed = {}
         for e, f in ((eb, fb), (eo, fo)):
             if fitspec.profile(e):
-                fixed[e.name] = {p: f.extra["value"] for p in fitspec.profile(e)}
+                fixed[e.name] = {p: f.profile_value for p in fitspec.profile(e)}
         space = pb.space([eb, eo], fixed)
         kb = fb.space.k
         ko = fo.space.k

@@ -9,7 +9,7 @@ import math
 import numpy as np
 
 from studies.diagnosis import fitspec
-from studies.diagnosis.core import Baseline, Fit, ModelFailure, Screening
+from studies.diagnosis.core import Baseline, Fit, Linearisation, ModelFailure, Screening
 from studies.diagnosis.problem import Problem
 from studies.diagnosis.stats import blsq, chibar_pvalue
 
@@ -143,7 +143,7 @@ def fit_candidate(pb: Problem, e, info, base: Fit) -> Fit:
     return f
 
 
-def _linearised(pb: Problem, e, pp: str, value: float, base: Fit) -> dict | None:
+def _linearised(pb: Problem, e, pp: str, value: float, base: Fit) -> Linearisation | None:
     """The candidate at profiled value `value`, linearised about the baseline (one model call
     per parameter), and its bounded linear fit; None when the model fails."""
     space = pb.space([e], fixed={e.name: {pp: value}})
@@ -163,8 +163,7 @@ def _linearised(pb: Problem, e, pp: str, value: float, base: Fit) -> dict | None
     lo, hi = space.lo - u0, space.hi - u0
     x = blsq(J, -base.z, lo, hi)
     sse = float(np.sum((base.z + J @ x) ** 2))
-    return {"value": value, "space": space, "J": J, "z": base.z, "u0": u0, "lo": lo,
-            "hi": hi, "sse": sse, "du": x}
+    return Linearisation(value, space, J, base.z, u0, lo, hi, sse, x)
 
 
 #: grids longer than this are searched coarse first (COARSE points), then bisected
@@ -172,7 +171,7 @@ LONG_GRID = 16
 COARSE = 12
 
 
-def _bisected(values: list, lin) -> list[dict]:
+def _bisected(values: list, lin) -> list[Linearisation]:
     """A long grid's linearisations: COARSE points, then bisect towards the best onset on both
     sides until neighbours are evaluated."""
     lins = {int(i): lin(values[i])
@@ -185,13 +184,13 @@ def _bisected(values: list, lin) -> list[dict]:
     return [lins[i] for i in sorted(lins) if lins[i] is not None]
 
 
-def _bisection(lins: dict[int, dict | None]) -> list[int]:
+def _bisection(lins: dict[int, Linearisation | None]) -> list[int]:
     """Grid indices halfway from the best evaluated one to its evaluated neighbours, not yet
     evaluated (none when every neighbour is adjacent or nothing evaluates)."""
     ok = sorted(i for i in lins if lins[i] is not None)
     if not ok:
         return []
-    ib = min(ok, key=lambda i: lins[i]["sse"])
+    ib = min(ok, key=lambda i: lins[i].sse)
     left = max([i for i in lins if i < ib], default=None)
     right = min([i for i in lins if i > ib], default=None)
     mids = []
@@ -215,23 +214,23 @@ def fit_profiled(pb: Problem, e, info, base: Fit, base_nuis) -> Fit:
                 else [g for g in map(lin, values) if g is not None])
     if not grid_lin:
         raise ModelFailure(f"the model fails for every {pp} on the grid")
-    ranked = sorted(grid_lin, key=lambda g: g["sse"])
-    ranked = [g for g in ranked[:2] if g["sse"] <= ranked[0]["sse"] + 1.0]
+    ranked = sorted(grid_lin, key=lambda g: g.sse)
+    ranked = [g for g in ranked[:2] if g.sse <= ranked[0].sse + 1.0]
     best = None
     for g in ranked:
         try:
-            f = pb.fit(g["space"], g["u0"] + g["du"])
+            f = pb.fit(g.space, g.u0 + g.du)
         except ModelFailure:
             continue
         if best is None or f.chi2 < best.chi2:
             best = f
-            best.extra["value"] = g["value"]
+            best.profile_value = g.value
     if best is None:
         raise ModelFailure(f"the fits at the best values of {pp} fail")
     # profile interval: values whose linearised chi-square is within 1 of the best
-    sse_min = min(g["sse"] for g in grid_lin)
-    near = [g["value"] for g in grid_lin if g["sse"] <= sse_min + 1.0]
-    best.extra.update(grid_lin=grid_lin, interval=[min(near), max(near)])
+    sse_min = min(g.sse for g in grid_lin)
+    near = [g.value for g in grid_lin if g.sse <= sse_min + 1.0]
+    best.grid, best.interval = grid_lin, [min(near), max(near)]
     info.profile = {pp: {"grid_size": len(values), "evaluated": len(grid_lin),
                          "interval_chi2_1": [min(near), max(near)]}}
     return best
@@ -255,9 +254,9 @@ def uncertainty(pb: Problem, f: Fit, e) -> dict:
         else:
             out[p] = float(math.sqrt(s2 * np.sum(v ** 2 * np.where(tiny, 0.0, inv)))
                            * f.space.scale[i])
-    if "interval" in f.extra:
+    if f.interval is not None:
         for p in fitspec.profile(e):
-            out[p] = {"interval": f.extra["interval"]}
+            out[p] = {"interval": f.interval}
     return out
 
 

@@ -30,6 +30,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from studies.diagnosis import fitspec
+from studies.diagnosis.candidate import HeldoutGain
 from studies.diagnosis.core import Baseline, Decision, Fit, ModelFailure, Screening
 from studies.diagnosis.fitting import fit_profiled, uncertainty
 from studies.diagnosis.heldout import bootstrap_gain, heldout_linear
@@ -179,7 +180,8 @@ def _lowest(fits: list[Fit | None]) -> Fit | None:
     return best
 
 
-def _form_status(th, m: int, p_adj: float, dbic: float, g_listed: dict, g_base: dict,
+def _form_status(th, m: int, p_adj: float, dbic: float, g_listed: HeldoutGain,
+                 g_base: HeldoutGain,
                  desc: dict) -> tuple[str, list[str]]:
     """explains | passes_but_leaves_structure | rejected, and why (module docstring, 2-4)."""
     reasons = []
@@ -188,10 +190,10 @@ def _form_status(th, m: int, p_adj: float, dbic: float, g_listed: dict, g_base: 
                        f"Bonferroni over {m})")
     if not dbic < -th["bic_margin"]:
         reasons.append(f"BIC not better than the listed form (delta {dbic:.1f})")
-    if not g_listed["excludes_zero"]:
+    if not g_listed.excludes_zero:
         reasons.append("no held-out gain over the listed form (bootstrap interval "
-                       f"[{g_listed['ci'][0]:.3g}, {g_listed['ci'][1]:.3g}] includes 0)")
-    if not g_base["excludes_zero"]:
+                       f"[{g_listed.ci[0]:.3g}, {g_listed.ci[1]:.3g}] includes 0)")
+    if not g_base.excludes_zero:
         reasons.append("no held-out gain over the baseline")
     if not reasons and desc["p_min_adjusted"] < th["alpha_residual"]:
         reasons.append("beats the listed form but leaves structure (adjusted p = "

@@ -20,7 +20,8 @@ import math
 import numpy as np
 
 from studies.diagnosis import fitspec
-from studies.diagnosis.core import Baseline, Fit, ModelFailure, Screening
+from studies.diagnosis.candidate import HeldoutGain
+from studies.diagnosis.core import Baseline, Fit, Linearisation, ModelFailure, Screening
 from studies.diagnosis.problem import Problem
 from studies.diagnosis.stats import blsq
 
@@ -97,13 +98,12 @@ def validate(pb: Problem, s: Screening, fits: dict[str, Fit], b: Baseline,
         if not c.delta_bic < -th["bic_margin"]:
             reasons.append(f"BIC not better than the baseline (delta {c.delta_bic:.1f})")
         need = min(MIN_TESTABLE_BLOCKS, pb.n_blocks)
-        if c.heldout_gain["n_blocks"] < need:
-            reasons.append(f"only {c.heldout_gain['n_blocks']} held-out blocks can test it "
-                           f"(need {need})")
-        elif not c.heldout_gain["excludes_zero"]:
+        g = c.heldout_gain
+        if g.n_blocks < need:
+            reasons.append(f"only {g.n_blocks} held-out blocks can test it (need {need})")
+        elif not g.excludes_zero:
             reasons.append("no held-out gain beyond noise (bootstrap interval "
-                           f"[{c.heldout_gain['ci'][0]:.3g}, "
-                           f"{c.heldout_gain['ci'][1]:.3g}] includes 0)")
+                           f"[{g.ci[0]:.3g}, {g.ci[1]:.3g}] includes 0)")
         c.status = "passed" if not reasons else "rejected"
         c.reason = "; ".join(reasons) if reasons else "beats the baseline in sample and " \
                                                          "on held-out blocks"
@@ -167,16 +167,16 @@ def heldout_profile(pb: Problem, fit: Fit, e, base_ho: np.ndarray
     claimed there), the chosen value per testable block and {block: reason} for the
     untestable ones."""
     (pp,) = fitspec.profile(e)
-    grid_lin = fit.extra["grid_lin"]
+    grid_lin = fit.grid
     k = fit.space.k
     u = fit.u
     Jn = fit.J[:, k:]
-    relin: dict[float, dict | None] = {}
+    relin: dict[float, Linearisation | None] = {}
 
     def about_fit(g):
-        v = g["value"]
+        v = g.value
         if v not in relin:
-            space = g["space"]                # same coordinates for every value of pp
+            space = g.space                   # same coordinates for every value of pp
             try:
                 z0, _ = pb.eval(space, u)
                 cols = []
@@ -185,8 +185,7 @@ def heldout_profile(pb: Problem, fit: Fit, e, base_ho: np.ndarray
                     du = np.zeros_like(u)
                     du[i] = h
                     cols.append((pb.eval(space, u + du)[0] - z0) / h)
-                relin[v] = {"value": v, "space": space, "z": z0,
-                            "J": np.column_stack(cols + [Jn])}
+                relin[v] = Linearisation(v, space, np.column_stack(cols + [Jn]), z0)
             except ModelFailure:
                 relin[v] = None
         return relin[v]
@@ -199,14 +198,13 @@ def heldout_profile(pb: Problem, fit: Fit, e, base_ho: np.ndarray
         tr = ~te
         if not te.any():
             continue
-        ranked = sorted(grid_lin, key=lambda g: _lin_sse(g["J"][tr], g["z"][tr], g["lo"],
-                                                         g["hi"])[0])
+        ranked = sorted(grid_lin, key=lambda g: _lin_sse(g.J[tr], g.z[tr], g.lo, g.hi)[0])
         best = None
         for g in ranked[:TOP_VALUES]:
             L = about_fit(g)
             if L is None:
                 continue
-            sse, x = _lin_sse(L["J"][tr], L["z"][tr], lo, hi)
+            sse, x = _lin_sse(L.J[tr], L.z[tr], lo, hi)
             if best is None or sse < best[0]:
                 best = (sse, L, x, g)
         if best is None:
@@ -216,32 +214,32 @@ def heldout_profile(pb: Problem, fit: Fit, e, base_ho: np.ndarray
         if why:
             untestable[b] = why
             continue
-        zz = _refit_rows(pb, L["space"], u + x, tr, L["J"])
+        zz = _refit_rows(pb, L.space, u + x, tr, L.J)
         z_ho[te] = zz[te]
-        chosen.append(L["value"])
+        chosen.append(L.value)
     return z_ho, chosen, untestable
 
-def _untestable(g: dict, grid_lin: list[dict], tr, te, pp: str) -> str | None:
+def _untestable(g: Linearisation, grid_lin: list[Linearisation], tr, te, pp: str) -> str | None:
     """Why the kept entries (`tr`) cannot test the held-out block (`te`) at the chosen value
     (`g`, its linearisation at the baseline: the effect's sensitivity per parameter), or
     None: a parameter whose sensitivity vanishes on the kept rows (the effect acts only in
     this block), or another value whose sensitivity equals the chosen one's on the kept rows
     but not on this block (where the trigger falls inside this block cannot be learnt)."""
-    k = g["space"].k
-    Jg = g["J"][:, :k]
+    k = g.space.k
+    Jg = g.J[:, :k]
     ref = max(float(np.max(np.abs(Jg), initial=0.0)), 1e-300)
-    for i, (_, p) in enumerate(g["space"].eff_params):
+    for i, (_, p) in enumerate(g.space.eff_params):
         full = float(np.max(np.abs(Jg[:, i])))
         if full > 0 and float(np.max(np.abs(Jg[tr, i]), initial=0.0)) <= SAME_RTOL * full:
             return (f"{p} does not change the predictions of the other blocks (at {pp} = "
-                    f"{g['value']:g} the effect acts only in this block)")
+                    f"{g.value:g} the effect acts only in this block)")
     for h in grid_lin:
         if h is g:
             continue
-        Jh = h["J"][:, :k]
+        Jh = h.J[:, :k]
         if (np.max(np.abs(Jh[tr] - Jg[tr]), initial=0.0) <= SAME_RTOL * ref
                 and np.max(np.abs(Jh[te] - Jg[te]), initial=0.0) > SAME_RTOL * ref):
-            a, c = sorted((g["value"], h["value"]))
+            a, c = sorted((g.value, h.value))
             return (f"{pp} = {a:g} and {c:g} act identically on the other blocks but not on "
                     "this one: the trigger falls inside this block, and where cannot be "
                     "learnt from the others")
@@ -275,7 +273,7 @@ def _refit_rows(pb: Problem, space, u0, rows, J) -> np.ndarray:
     return z
 
 def bootstrap_gain(pb: Problem, rng: np.random.Generator, z_base_ho, z_cand_ho,
-                   keep=None) -> dict:
+                   keep=None) -> HeldoutGain:
     """Paired block bootstrap of RMSE(baseline) - RMSE(candidate), standardised, held-out,
     over the blocks `keep` (boolean per block; default all)."""
     B = int(pb.th["n_boot"])
@@ -285,8 +283,7 @@ def bootstrap_gain(pb: Problem, rng: np.random.Generator, z_base_ho, z_cand_ho,
     nb = np.bincount(pb.entry_block, minlength=pb.n_blocks).astype(float)[keep]
     m = int(keep.sum())
     if m == 0:
-        return {"rmse_gain": 0.0, "ci": [0.0, 0.0], "blocks_improved": 0, "n_blocks": 0,
-                "excludes_zero": False}
+        return HeldoutGain(0.0, [0.0, 0.0], 0, 0, False)
     idx = rng.integers(0, m, size=(B, m))
     cnt = np.zeros((B, m))
     np.add.at(cnt, (np.repeat(np.arange(B), m), idx.ravel()), 1.0)
@@ -295,8 +292,7 @@ def bootstrap_gain(pb: Problem, rng: np.random.Generator, z_base_ho, z_cand_ho,
     q = float(pb.th["heldout_quantile"])
     point = math.sqrt(sb.sum() / nb.sum()) - math.sqrt(sc.sum() / nb.sum())
     lo, hi = np.quantile(d, [q, 1 - q])
-    return {"rmse_gain": float(point), "ci": [float(lo), float(hi)],
-            "blocks_improved": int(np.sum(sb > sc)), "n_blocks": m,
-            "excludes_zero": bool(lo > 0)}
+    return HeldoutGain(float(point), [float(lo), float(hi)], int(np.sum(sb > sc)), m,
+                       bool(lo > 0))
 
 

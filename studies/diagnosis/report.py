@@ -206,8 +206,8 @@ def _cause_section(r: DiagnosisResult) -> list[str]:
         g = ext["heldout_gain_vs_listed"]
         L.append(f"Extended form: **{ext['text']}** (`{ext['name']}`), beats the listed form "
                  f"in sample (p = {ext['p_vs_listed']:.2g}) and on held-out blocks (RMSE gain "
-                 f"{g['rmse_gain']:.3g} noise units, interval [{g['ci'][0]:.3g}, "
-                 f"{g['ci'][1]:.3g}]).\n")
+                 f"{g.rmse_gain:.3g} noise units, interval [{g.ci[0]:.3g}, "
+                 f"{g.ci[1]:.3g}]).\n")
         L += ["| parameter | value ± standard uncertainty |", "| --- | --- |"]
         L += [f"| `{p}` | {_pm(v, ext['parameter_uncertainty'].get(p))} {ext['units'][p]} |"
               for p, v in ext["parameters"].items()]
@@ -288,7 +288,7 @@ def _candidate_note(c) -> str:
 
 def _candidate_row(c, c0: str) -> str:
     hg = c.heldout_gain
-    gain = (f"{_fmt(hg['rmse_gain'], 3)} [{_fmt(hg['ci'][0], 3)}, {_fmt(hg['ci'][1], 3)}]"
+    gain = (f"{_fmt(hg.rmse_gain, 3)} [{_fmt(hg.ci[0], 3)}, {_fmt(hg.ci[1], 3)}]"
             if hg else "–")
     ho = c.heldout_rmse[c0] if c.heldout_rmse else None
     params = ", ".join(f"{k}={_fmt(v)}" for k, v in c.parameters.items()) or "–"
