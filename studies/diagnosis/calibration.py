@@ -42,7 +42,7 @@ def calibrate(pb: Problem) -> tuple[Problem, Baseline]:
     base = pb.fit(bspace, base.u)
     base_nuis = bspace.unpack(base.u)[1]
     desc_base = pb.describe(base.pred, len(pb.nuisance.names))
-    structure = desc_base["p_min_adjusted"] < pb.th["alpha_structure"]
+    structure = desc_base.p_min_adjusted < pb.th["alpha_structure"]
     return pb, Baseline(base, base_nuis, desc_base, bool(structure), heldout_linear(pb, base),
                         orth(base.J))
 

@@ -188,11 +188,40 @@ class Fit:
 
 
 @dataclass
+class ColumnResiduals:
+    """Residual statistics of one column (`Problem.describe_column`): bias (column unit) and
+    its p value, RMSE, the noise level and AR(1) coefficient used, reduced chi-square, lag-1
+    autocorrelation and its p, the smoother's F statistic, p and held-out gain, and the p the
+    structure decision uses (1 for AR(1) noise when the smoother does not predict held-out
+    blocks)."""
+    bias: float
+    bias_p: float
+    rmse: float
+    noise_sigma: float
+    noise_ar1: float
+    chi2_reduced: float
+    lag1_autocorr: float
+    lag1_p: float
+    smoother_F: float
+    smoother_p: float
+    smoother_heldout_gain: float
+    smoother_p_used: float
+
+
+@dataclass
+class Residuals:
+    """Residual statistics per compared column and the smallest p value, Bonferroni-adjusted
+    over the tests and columns."""
+    columns: dict[str, ColumnResiduals]
+    p_min_adjusted: float
+
+
+@dataclass
 class Baseline:
     """Phase 1: the calibrated baseline."""
     fit: Fit
     nuisance: dict               # fitted nuisance values
-    residuals: dict              # `describe` of its residuals
+    residuals: Residuals         # `describe` of its residuals
     structure: bool              # residual structure beyond noise
     heldout_z: np.ndarray        # held-out standardised residuals
     nuisance_span: np.ndarray    # orthonormal basis of what the calibration can produce
@@ -207,12 +236,33 @@ class Screening:
 
 
 @dataclass
+class JointFit:
+    """The best candidate fitted jointly with another (or with the unlisted sensor drift):
+    chi-squares of each alone and of both, the p values of adding one to the other, whether the
+    best carries the weight; `p` the drift check's p of adding the best to the drift; `error`
+    when the joint fit failed (the best cannot be shown to carry the weight)."""
+    best_carries_weight: bool
+    chi2_best: float | None = None
+    chi2_other: float | None = None
+    chi2_joint: float | None = None
+    p_add_other_to_best: float | None = None
+    p_add_best_to_other: float | None = None
+    p: float | None = None
+    error: str | None = None
+
+    def to_json(self) -> dict:
+        """The fields that are set (a failed joint fit: its error)."""
+        return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)
+                if getattr(self, f.name) is not None}
+
+
+@dataclass
 class Decision:
     """Phase 5: the verdict."""
     verdict: str
     cause: str | None
     best: str | None
     rivals: list
-    best_residuals: dict | None
-    joint_fits: dict
+    best_residuals: Residuals | None
+    joint_fits: dict[str, JointFit]
     reasons: list[str]

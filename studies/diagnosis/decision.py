@@ -9,7 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from studies.diagnosis import fitspec
-from studies.diagnosis.core import Baseline, Decision, Fit, ModelFailure, Screening
+from studies.diagnosis.core import Baseline, Decision, Fit, JointFit, ModelFailure, Screening
 from studies.diagnosis.problem import Problem
 from studies.diagnosis.stats import ar1_whiten, chibar_pvalue
 
@@ -28,10 +28,10 @@ def decide(pb: Problem, s: Screening, fits: dict[str, Fit], passing: list[str],
         return _nothing_passes(b)
     best = min(passing, key=lambda n: cands[n].delta_bic)
     best_desc = pb.describe(fits[best].pred, len(pb.nuisance.names) + cands[best].k)
-    if best_desc["p_min_adjusted"] < pb.th["alpha_residual"]:
+    if best_desc.p_min_adjusted < pb.th["alpha_residual"]:
         return Decision("unexplained", None, best, [], best_desc, {}, [
             f"the best candidate, {best}, passes but leaves structure in the "
-            f"residuals (adjusted p = {best_desc['p_min_adjusted']:.2g})"])
+            f"residuals (adjusted p = {best_desc.p_min_adjusted:.2g})"])
     rivals, joint = compare(pb, best, fits, cands, list(fits))
     for o in passing:
         if o != best and o not in rivals:
@@ -40,14 +40,14 @@ def decide(pb: Problem, s: Screening, fits: dict[str, Fit], passing: list[str],
     drift = versus_sensor_drift(pb, fits[best], _df(cands[best]), b)
     if drift is not None:
         joint[SENSOR_DRIFT] = drift
-    if drift is not None and not drift["best_carries_weight"]:
+    if drift is not None and not drift.best_carries_weight:
         a = pb.th["alpha_joint"]
         return Decision("unexplained", None, best, rivals, best_desc, joint, [
             f"the best candidate, {best}, does not clearly beat a zero drift of the "
             "sensors linear in time, a cause outside the list that a history effect "
-            f"resembles (adding {best} to that drift: p = {drift['p']:.2g}, needs < "
+            f"resembles (adding {best} to that drift: p = {drift.p:.2g}, needs < "
             f"{a:g}; adding the drift to {best}: p = "
-            f"{drift['p_add_other_to_best']:.2g}, needs >= {a:g}); "
+            f"{drift.p_add_other_to_best:.2g}, needs >= {a:g}); "
             "a test at other speeds or a repeat of the programme separates a drift "
             "in time from the effect"])
     if rivals:
@@ -67,16 +67,15 @@ def _nothing_passes(b: Baseline) -> Decision:
             "the baseline residuals are consistent with the noise estimated from the data and "
             "no candidate passes"])
     reasons = ["the baseline residuals show structure beyond noise "
-               f"(adjusted p = {desc['p_min_adjusted']:.2g}) but no candidate passes"]
-    if all(d["smoother_heldout_gain"] <= 0 and d["bias_p"] > 0.01
-           for d in desc["columns"].values()):
+               f"(adjusted p = {desc.p_min_adjusted:.2g}) but no candidate passes"]
+    if all(d.smoother_heldout_gain <= 0 and d.bias_p > 0.01 for d in desc.columns.values()):
         reasons.append("the structure is serial correlation that a smooth function of the "
                        "conditions does not predict on held-out blocks: it may be correlated "
                        "noise, a drift in time or a history effect outside the candidate list")
     return Decision("unexplained", None, None, [], None, {}, reasons)
 
 
-def versus_sensor_drift(pb: Problem, f: Fit, df: dict, b: Baseline) -> dict | None:
+def versus_sensor_drift(pb: Problem, f: Fit, df: dict, b: Baseline) -> JointFit | None:
     """Does the fitted candidate carry weight over an unlisted look-alike, a zero drift of
     every compared sensor linear in time (the commonest unlisted cause on a rig, and what a
     history effect in time or revolutions resembles, e.g. a run-in at constant speed)?
@@ -117,9 +116,7 @@ def versus_sensor_drift(pb: Problem, f: Fit, df: dict, b: Baseline) -> dict | No
     p_drift = chibar_pvalue(max(chi_c - chi_j, 0.0), len(pb.columns), 0)
     # the keys of a joint fit of two candidates (`compare`, the report's table)
     a = pb.th["alpha_joint"]
-    return {"chi2_best": chi_c, "chi2_other": chi_0, "chi2_joint": chi_j,
-            "p_add_other_to_best": p_drift, "p_add_best_to_other": p, "p": p,
-            "best_carries_weight": bool(p < a and p_drift >= a)}
+    return JointFit(bool(p < a and p_drift >= a), chi_c, chi_0, chi_j, p_drift, p, p)
 
 def compare(pb: Problem, best, fits, cands, names_id):
     """Rivals of `best`: fitted candidates it does not clearly beat (joint fits)."""
@@ -153,7 +150,7 @@ def compare(pb: Problem, best, fits, cands, names_id):
                     zs.append(math.inf)
             fj = pb.fit(space, starts[int(np.argmin(zs))])
         except ModelFailure as exc:    # cannot show that best carries the weight
-            joint[o] = {"error": str(exc), "best_carries_weight": False}
+            joint[o] = JointFit(False, error=str(exc))
             rivals.append(o)
             continue
         chi_j = min(fj.chi2, fb.chi2, fo.chi2)
@@ -162,9 +159,7 @@ def compare(pb: Problem, best, fits, cands, names_id):
         p_o = chibar_pvalue(lr_o_given_b, **_df(cands[o]))
         p_b = chibar_pvalue(lr_b_given_o, **_df(cands[best]))
         beaten = p_b < th["alpha_joint"] and p_o >= th["alpha_joint"]
-        joint[o] = {"chi2_best": fb.chi2, "chi2_other": fo.chi2, "chi2_joint": chi_j,
-                    "p_add_other_to_best": p_o, "p_add_best_to_other": p_b,
-                    "best_carries_weight": bool(beaten)}
+        joint[o] = JointFit(bool(beaten), fb.chi2, fo.chi2, chi_j, p_o, p_b)
         if not beaten:
             rivals.append(o)
     rivals.sort(key=lambda n: cands[n].delta_bic)

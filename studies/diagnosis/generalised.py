@@ -31,7 +31,7 @@ import numpy as np
 
 from studies.diagnosis import fitspec
 from studies.diagnosis.candidate import HeldoutGain
-from studies.diagnosis.core import Baseline, Decision, Fit, ModelFailure, Screening
+from studies.diagnosis.core import Baseline, Decision, Fit, ModelFailure, Residuals, Screening
 from studies.diagnosis.fitting import fit_profiled, uncertainty
 from studies.diagnosis.heldout import bootstrap_gain, heldout_linear
 from studies.diagnosis.problem import Problem
@@ -182,7 +182,7 @@ def _lowest(fits: list[Fit | None]) -> Fit | None:
 
 def _form_status(th, m: int, p_adj: float, dbic: float, g_listed: HeldoutGain,
                  g_base: HeldoutGain,
-                 desc: dict) -> tuple[str, list[str]]:
+                 desc: Residuals) -> tuple[str, list[str]]:
     """explains | passes_but_leaves_structure | rejected, and why (module docstring, 2-4)."""
     reasons = []
     if not p_adj < th["alpha_lr"]:
@@ -195,9 +195,9 @@ def _form_status(th, m: int, p_adj: float, dbic: float, g_listed: HeldoutGain,
                        f"[{g_listed.ci[0]:.3g}, {g_listed.ci[1]:.3g}] includes 0)")
     if not g_base.excludes_zero:
         reasons.append("no held-out gain over the baseline")
-    if not reasons and desc["p_min_adjusted"] < th["alpha_residual"]:
+    if not reasons and desc.p_min_adjusted < th["alpha_residual"]:
         reasons.append("beats the listed form but leaves structure (adjusted p = "
-                       f"{desc['p_min_adjusted']:.2g})")
+                       f"{desc.p_min_adjusted:.2g})")
         return "passes_but_leaves_structure", reasons
     return ("rejected" if reasons else "explains"), reasons
 

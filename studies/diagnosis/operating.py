@@ -207,12 +207,12 @@ def run_matrix(designs: Sequence[Design], magnitudes=MAGNITUDES, reps: int = 3, 
             ow_columns = res.open_world.columns if res.open_world is not None else []
             lead = next((c.selected[0] for c in ow_columns
                          if c.depends and c.column == next(iter(d.sigma))), None)
-            drift = res.joint_fits.get(SENSOR_DRIFT) or {}
+            drift = res.joint_fits.get(SENSOR_DRIFT)
             trials.append(Trial(d.name, hidden, m, k, res.verdict, res.cause,
                                 list(res.indistinguishable), lead,
                                 time.perf_counter() - t0,
                                 res.best_partial.effect if res.best_partial else None,
-                                drift.get("p_add_other_to_best")))
+                                drift.p_add_other_to_best if drift else None))
             progress(f"{d.name}: {hidden} at {m:g} sigma #{k}: {res.verdict} {res.cause}")
     out = Matrix(tuple(magnitudes), trials, look, not_visible=skipped)
     summarise(out)

@@ -19,8 +19,8 @@ import numpy as np
 from scipy import optimize, stats
 
 from studies.diagnosis import fitspec
-from studies.diagnosis.core import (FIRST_COLUMNS, CachedModel, DiagnosisError, Fit, ModelFailure,
-                                    Space)
+from studies.diagnosis.core import (FIRST_COLUMNS, CachedModel, ColumnResiduals, DiagnosisError,
+                                    Fit, ModelFailure, Residuals, Space)
 from studies.diagnosis.stats import (ar1_unwhiten, ar1_whiten, auto_blocks, noise_sigma,
                                      noise_sigma_steady, orth)
 from studies.model.parallel import parallel_map
@@ -248,18 +248,18 @@ class Problem:
         return parallel_map(task, items, self.workers, first=first, state=self.model)
 
     # ------------------------------------------------------------------ residual description
-    def describe(self, pred: Mapping[str, np.ndarray], n_params: int) -> dict:
+    def describe(self, pred: Mapping[str, np.ndarray], n_params: int) -> Residuals:
         """Residual statistics per column (`describe_column`) and the smallest p value,
         Bonferroni-adjusted over the tests and columns."""
         out = {}
         pvals = []
         for c in self.columns:
             out[c] = self.describe_column(c, pred[c], n_params)
-            pvals += [out[c]["bias_p"], out[c]["lag1_p"], out[c]["smoother_p_used"]]
+            pvals += [out[c].bias_p, out[c].lag1_p, out[c].smoother_p_used]
         p_adj = min(1.0, min(pvals) * len(pvals))
-        return {"columns": out, "p_min_adjusted": p_adj}
+        return Residuals(out, p_adj)
 
-    def describe_column(self, c: str, pred_c: np.ndarray, n_params: int) -> dict:
+    def describe_column(self, c: str, pred_c: np.ndarray, n_params: int) -> ColumnResiduals:
         """Bias (t test), reduced chi-square, lag-1 autocorrelation, the conditions' smoother
         (F test and held-out gain) of column c's residuals, generalised least squares for AR(1)
         noise (residuals and regressors whitened alike; the white-noise statistics at rho 0)."""
@@ -286,15 +286,11 @@ class Problem:
         A = ar1_whiten(np.column_stack([np.ones(nn), self.features[m]]), seg, rho)
         Fst, F_p = _smoother_test(A, zc, den)
         cv_gain = _smoother_cv_gain(A, z, one, seg)
-        out = {"bias": float(np.mean(r)), "bias_p": bias_p,
-               "rmse": float(np.sqrt(np.mean(r ** 2))), "noise_sigma": self.noise.sigma[c],
-               "noise_ar1": rho, "chi2_reduced": float(z @ z / max(nn - n_params, 1)),
-               "lag1_autocorr": r1, "lag1_p": auto_p, "smoother_F": float(Fst),
-               "smoother_p": F_p, "smoother_heldout_gain": float(cv_gain)}
-        if rho > 0.0 and cv_gain < AR1_MIN_CV_GAIN:
-            F_p = 1.0      # AR(1) noise: the smoother must also predict held-out blocks
-        out["smoother_p_used"] = F_p
-        return out
+        # AR(1) noise: the smoother must also predict held-out blocks
+        p_used = 1.0 if rho > 0.0 and cv_gain < AR1_MIN_CV_GAIN else F_p
+        return ColumnResiduals(float(np.mean(r)), bias_p, float(np.sqrt(np.mean(r ** 2))),
+                               self.noise.sigma[c], rho, float(z @ z / max(nn - n_params, 1)),
+                               r1, auto_p, float(Fst), F_p, float(cv_gain), p_used)
 
 
 def _rates(cols: list[tuple[str, np.ndarray]], t: np.ndarray) -> list[np.ndarray]:

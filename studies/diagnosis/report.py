@@ -250,26 +250,26 @@ def _baseline_section(r: DiagnosisResult, figs) -> list[str]:
          "| column | bias | reduced chi² | lag-1 autocorr. (p) | smoother F test p | "
          "smoother held-out gain | bias p |", "| --- | --- | --- | --- | --- | --- | --- |"]
     for c in r.columns:
-        d = r.residuals_baseline["columns"][c]
-        L.append(f"| `{c}` | {_fmt(d['bias'])} | {_fmt(d['chi2_reduced'])} | "
-                 f"{_fmt(d['lag1_autocorr'], 2)} ({_fmt(d['lag1_p'], 2)}) | "
-                 f"{_fmt(d['smoother_p'], 2)} | {_fmt(d['smoother_heldout_gain'], 2)} | "
-                 f"{_fmt(d['bias_p'], 2)} |")
+        d = r.residuals_baseline.columns[c]
+        L.append(f"| `{c}` | {_fmt(d.bias)} | {_fmt(d.chi2_reduced)} | "
+                 f"{_fmt(d.lag1_autocorr, 2)} ({_fmt(d.lag1_p, 2)}) | "
+                 f"{_fmt(d.smoother_p, 2)} | {_fmt(d.smoother_heldout_gain, 2)} | "
+                 f"{_fmt(d.bias_p, 2)} |")
     L += ["", f"Structure beyond noise: **{_fmt(r.baseline_structure)}** "
           f"(smallest p, Bonferroni-adjusted over tests and columns: "
-          f"{_fmt(r.residuals_baseline['p_min_adjusted'], 2)}; threshold "
+          f"{_fmt(r.residuals_baseline.p_min_adjusted, 2)}; threshold "
           f"{_fmt(r.thresholds['alpha_structure'])}). The reduced chi² uses the noise level "
           "estimated from second differences of the residuals; the smoother is a cubic polynomial "
           "in each varying condition and in time plus the rates of change of the conditions, its "
           "gain measured on held-out blocks.\n"]
     if r.residuals_extended:
         L.append(f"After `{r.cause}`: smallest adjusted p of the same tests "
-                 f"{_fmt(r.residuals_extended['p_min_adjusted'], 2)} (structure left if below "
+                 f"{_fmt(r.residuals_extended.p_min_adjusted, 2)} (structure left if below "
                  f"{_fmt(r.thresholds['alpha_residual'])}).\n")
     bp = r.best_partial
     if bp:
         L.append(f"Best partial candidate: `{bp.effect}` ({_fmt(bp.parameters)}); it leaves "
-                 f"structure (adjusted p {_fmt(bp.residuals['p_min_adjusted'], 2)}).\n")
+                 f"structure (adjusted p {_fmt(bp.residuals.p_min_adjusted, 2)}).\n")
     for c, f1, f2 in figs:
         L += [f"![{c}: measured vs models]({f1})\n", f"![{c}: residuals]({f2})\n"]
     return L
@@ -344,9 +344,9 @@ def _joint_fits_section(r: DiagnosisResult) -> list[str]:
          "p (add best to other) | best carries the weight |",
          "| --- | --- | --- | --- | --- | --- | --- |"]
     for o, j in r.joint_fits.items():
-        L.append(f"| `{o}` | {_fmt(j['chi2_best'])} | {_fmt(j['chi2_other'])} | "
-                 f"{_fmt(j['chi2_joint'])} | {_fmt(j['p_add_other_to_best'], 2)} | "
-                 f"{_fmt(j['p_add_best_to_other'], 2)} | {_fmt(j['best_carries_weight'])} |")
+        L.append(f"| `{o}` | {_fmt(j.chi2_best)} | {_fmt(j.chi2_other)} | "
+                 f"{_fmt(j.chi2_joint)} | {_fmt(j.p_add_other_to_best, 2)} | "
+                 f"{_fmt(j.p_add_best_to_other, 2)} | {_fmt(j.best_carries_weight)} |")
     L.append("")
     return L
 

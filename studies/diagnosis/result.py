@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from studies.diagnosis.candidate import Candidate
-from studies.diagnosis.core import jsonable
+from studies.diagnosis.core import JointFit, Residuals, jsonable
 from studies.diagnosis.openworld import OpenWorld
 from studies.diagnosis.problem import Noise
 
@@ -43,7 +43,7 @@ class BestPartial:
     """An unexplained verdict's best candidate (it passes but leaves structure)."""
     effect: str
     parameters: dict[str, float]
-    residuals: dict
+    residuals: Residuals
 
 
 @dataclass
@@ -75,12 +75,12 @@ class DiagnosisResult:
     columns: list[str]
     noise: Noise
     nuisance: NuisanceFit
-    residuals_baseline: dict        # `Problem.describe` of the baseline residuals
-    residuals_extended: dict | None
+    residuals_baseline: Residuals   # `Problem.describe` of the baseline residuals
+    residuals_extended: Residuals | None
     baseline_structure: bool
     best_partial: BestPartial | None
     lookalike: dict[str, dict[str, float]]
-    joint_fits: dict[str, dict]
+    joint_fits: dict[str, JointFit]
     separating_tests: list[dict]
     heldout_blocks: int
     heldout_untestable: list[dict]
@@ -135,7 +135,7 @@ def to_json(r: DiagnosisResult) -> dict:
                           "parameters": r.best_partial.parameters,
                           "residuals": r.best_partial.residuals}),
         "lookalike": r.lookalike,
-        "joint_fits": r.joint_fits,
+        "joint_fits": {k: j.to_json() for k, j in r.joint_fits.items()},
         "separating_tests": r.separating_tests,
         "not_identifiable": r.not_identifiable,
         "heldout": {"blocks": int(r.heldout_blocks), "method": HELDOUT_METHOD},
