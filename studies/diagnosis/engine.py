@@ -129,9 +129,9 @@ def _cause_values(pb: Problem, s: Screening, d: Decision, chosen: ChosenForm | N
     if chosen:
         entry = chosen.entry
         own = pb.effect(cause).parameters
-        return ({p: v for p, v in entry["parameters"].items() if p in own},
-                {p: v for p, v in entry["parameter_uncertainty"].items() if p in own},
-                entry["nuisance"])
+        return ({p: v for p, v in entry.parameters.items() if p in own},
+                {p: v for p, v in entry.parameter_uncertainty.items() if p in own},
+                entry.nuisance)
     if cause:
         c = s.candidates[cause]
         return dict(c.parameters), dict(c.uncertainty), c.nuisance

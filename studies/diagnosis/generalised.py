@@ -24,7 +24,7 @@ beat its listed form out of sample, so a listed effect is never reported as an e
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from types import SimpleNamespace
 
 import numpy as np
@@ -45,18 +45,57 @@ N_RUNS = 3
 
 
 @dataclass
+class FormEntry:
+    """One generalised form tried (an entry of `generalised_forms` in diagnosis.json): the
+    family (`effect`), the form's names, and unless the model failed its fitted parameters
+    (units), uncertainties, the listed fit's parameters, the refitted nuisance, the tests
+    against the listed form (chi-squares, likelihood ratio, degrees of freedom, Bonferroni-
+    adjusted p, delta BIC, held-out gains against the listed form and the baseline), held-out
+    and in-sample RMSE per column, the residual description; its status and why."""
+    effect: str
+    form: str
+    name: str
+    status: str            # explains | passes_but_leaves_structure | rejected | model_failed
+    reason: str
+    label: str | None = None
+    text: str | None = None
+    parameters: dict[str, float] | None = None
+    units: dict[str, str] | None = None
+    parameter_uncertainty: dict | None = None
+    listed_parameters: dict[str, float] | None = None
+    nuisance: dict[str, float] | None = None
+    chi2_listed: float | None = None
+    chi2: float | None = None
+    lr_vs_listed: float | None = None
+    df_vs_listed: dict[str, int] | None = None
+    p_vs_listed: float | None = None
+    delta_bic_vs_listed: float | None = None
+    heldout_gain_vs_listed: HeldoutGain | None = None
+    heldout_gain_vs_baseline: HeldoutGain | None = None
+    heldout_rmse: dict[str, float] | None = None
+    rmse: dict[str, float] | None = None
+    residuals: Residuals | None = None
+    profiled: dict | None = None
+
+    def to_json(self) -> dict:
+        """The fields that are set (a form the model failed on: names, status, reason)."""
+        return {f.name: getattr(self, f.name) for f in fields(self)
+                if getattr(self, f.name) is not None}
+
+
+@dataclass
 class ChosenForm:
     """The generalised form that explains the data: its fit, held-out residuals and entry."""
     fit: Fit
     heldout_z: np.ndarray
-    entry: dict
+    entry: FormEntry
 
 
 @dataclass
 class Generalisation:
     """Phase 5b: the (possibly new) decision, one entry per form tried, the chosen form."""
     decision: Decision
-    forms: list[dict]
+    forms: list[FormEntry]
     chosen: ChosenForm | None
 
 
@@ -87,21 +126,20 @@ def generalise(pb: Problem, s: Screening, fits: dict[str, Fit], ho: dict, b: Bas
             entry, f_ext, ho_ext = fit_form(pb, form, fits[fam], ho[fam], cands[fam], b,
                                             len(tried), rng)
         except ModelFailure as exc:
-            entries.append({"effect": fam, "form": form.form, "name": form.name,
-                            "status": "model_failed", "reason": str(exc)})
+            entries.append(FormEntry(fam, form.form, form.name, "model_failed", str(exc)))
             continue
         entries.append(entry)
-        if entry["status"] == "explains":
+        if entry.status == "explains":
             ok.append((f_ext.chi2, entry, f_ext, ho_ext))
     if not ok:
         return Generalisation(d, entries, None)
     ok.sort(key=lambda t: t[0])
     _, entry, f_ext, ho_ext = ok[0]
     reasons = list(d.reasons) + [
-        f"the generalised form {entry['text']} beats the listed form {entry['effect']} in "
-        f"sample (p = {entry['p_vs_listed']:.2g}) and on held-out blocks and leaves no "
+        f"the generalised form {entry.text} beats the listed form {entry.effect} in "
+        f"sample (p = {entry.p_vs_listed:.2g}) and on held-out blocks and leaves no "
         "structure"]
-    new = Decision("explained", entry["effect"], entry["effect"], [], entry["residuals"],
+    new = Decision("explained", entry.effect, entry.effect, [], entry.residuals,
                    d.joint_fits, reasons)
     return Generalisation(new, entries, ChosenForm(f_ext, ho_ext, entry))
 
@@ -203,7 +241,7 @@ def _form_status(th, m: int, p_adj: float, dbic: float, g_listed: HeldoutGain,
 
 
 def fit_form(pb: Problem, form, f_listed: Fit, ho_listed: np.ndarray, cand, b: Baseline,
-             m: int, rng: np.random.Generator) -> tuple[dict, Fit, np.ndarray]:
+             m: int, rng: np.random.Generator) -> tuple[FormEntry, Fit, np.ndarray]:
     """Nested fit of one generalised form from the listed fit and its tests (module
     docstring, steps 1-4). Returns (entry, fit, held-out residuals)."""
     vals_listed = dict(cand.parameters)
@@ -222,21 +260,18 @@ def fit_form(pb: Problem, form, f_listed: Fit, ho_listed: np.ndarray, cand, b: B
     g_base = bootstrap_gain(pb, rng, b.heldout_z, ho_ext)
     desc = pb.describe(f_ext.pred, len(pb.nuisance.names) + (cand.k or 0) + len(form.extra))
     status, reasons = _form_status(pb.th, m, p_adj, dbic, g_listed, g_base, desc)
-    entry = {
-        "effect": form.family, "form": form.form, "name": form.name, "label": form.label,
-        "text": form.text(params), "parameters": params,
-        "units": {q: form.units[q] for q in form.parameters},
-        "parameter_uncertainty": uncertainty(pb, f_ext, form),
-        "listed_parameters": vals_listed, "nuisance": nuis_vals,
-        "chi2_listed": f_listed.chi2, "chi2": f_ext.chi2, "lr_vs_listed": lr,
-        "df_vs_listed": {"free": n_free, "on_bound": n_bound}, "p_vs_listed": p_adj,
-        "delta_bic_vs_listed": dbic,
-        "heldout_gain_vs_listed": g_listed, "heldout_gain_vs_baseline": g_base,
-        "heldout_rmse": pb.col_rmse(ho_ext), "rmse": pb.col_rmse(f_ext.z),
-        "residuals": desc, "status": status,
-        "reason": "; ".join(reasons) if reasons else
-                  "beats the listed form in sample and on held-out blocks, no structure left"}
-    if fitspec.profile(form):
-        entry["profiled"] = {q: {"value": params[q], "listed_fit": vals_listed[q]}
-                             for q in fitspec.profile(form)}
+    reason = ("; ".join(reasons) if reasons else
+              "beats the listed form in sample and on held-out blocks, no structure left")
+    profiled = ({q: {"value": params[q], "listed_fit": vals_listed[q]}
+                 for q in fitspec.profile(form)} if fitspec.profile(form) else None)
+    entry = FormEntry(
+        form.family, form.form, form.name, status, reason, label=form.label,
+        text=form.text(params), parameters=params,
+        units={q: form.units[q] for q in form.parameters},
+        parameter_uncertainty=uncertainty(pb, f_ext, form), listed_parameters=vals_listed,
+        nuisance=nuis_vals, chi2_listed=f_listed.chi2, chi2=f_ext.chi2, lr_vs_listed=lr,
+        df_vs_listed={"free": n_free, "on_bound": n_bound}, p_vs_listed=p_adj,
+        delta_bic_vs_listed=dbic, heldout_gain_vs_listed=g_listed,
+        heldout_gain_vs_baseline=g_base, heldout_rmse=pb.col_rmse(ho_ext),
+        rmse=pb.col_rmse(f_ext.z), residuals=desc, profiled=profiled)
     return entry, f_ext, ho_ext

@@ -203,14 +203,14 @@ def _cause_section(r: DiagnosisResult) -> list[str]:
     L.append("")
     ext = r.extended_form
     if ext:
-        g = ext["heldout_gain_vs_listed"]
-        L.append(f"Extended form: **{ext['text']}** (`{ext['name']}`), beats the listed form "
-                 f"in sample (p = {ext['p_vs_listed']:.2g}) and on held-out blocks (RMSE gain "
+        g = ext.heldout_gain_vs_listed
+        L.append(f"Extended form: **{ext.text}** (`{ext.name}`), beats the listed form "
+                 f"in sample (p = {ext.p_vs_listed:.2g}) and on held-out blocks (RMSE gain "
                  f"{g.rmse_gain:.3g} noise units, interval [{g.ci[0]:.3g}, "
                  f"{g.ci[1]:.3g}]).\n")
         L += ["| parameter | value ± standard uncertainty |", "| --- | --- |"]
-        L += [f"| `{p}` | {_pm(v, ext['parameter_uncertainty'].get(p))} {ext['units'][p]} |"
-              for p, v in ext["parameters"].items()]
+        L += [f"| `{p}` | {_pm(v, ext.parameter_uncertainty.get(p))} {ext.units[p]} |"
+              for p, v in ext.parameters.items()]
         L.append("")
     return L
 

@@ -12,6 +12,7 @@ import numpy as np
 
 from studies.diagnosis.candidate import Candidate
 from studies.diagnosis.core import JointFit, Residuals, jsonable
+from studies.diagnosis.generalised import FormEntry
 from studies.diagnosis.openworld import OpenWorld
 from studies.diagnosis.problem import Noise
 
@@ -69,8 +70,8 @@ class DiagnosisResult:
     extended: ModelRmse
     heldout_rmse_ratio: float       # extended / baseline held-out RMSE of the first column
     candidates: list[Candidate]     # fitted first (passing, then by delta BIC), then the rest
-    extended_form: dict | None      # the generalised form that explains the data
-    generalised_forms: list[dict]
+    extended_form: FormEntry | None     # the generalised form that explains the data
+    generalised_forms: list[FormEntry]
     reasons: list[str]
     columns: list[str]
     noise: Noise
@@ -119,8 +120,8 @@ def to_json(r: DiagnosisResult) -> dict:
         "candidates": [c.to_json() for c in r.candidates],
         # ---- extras
         "parameter_uncertainty": r.parameter_uncertainty,
-        "extended_form": r.extended_form,
-        "generalised_forms": list(r.generalised_forms),
+        "extended_form": None if r.extended_form is None else r.extended_form.to_json(),
+        "generalised_forms": [f.to_json() for f in r.generalised_forms],
         "reasons": list(r.reasons),
         "columns": list(r.columns),
         "noise_sigma": dict(r.noise.sigma),
