@@ -5,9 +5,13 @@ The engine only sees a `predict(effects, nuisance) -> {column: array}` callable 
 model on the measured conditions with the given effects switched on (`{name: {param: value}}`) and
 the nuisance calibration (`{name: value}`, e.g. a friction scale `mu_scale`), the measured outputs,
 the conditions table, the candidate effect objects (`studies.model.effects`), the nuisance bounds and the
-held-out block labels. It returns a JSON-ready dict with the keys of `spec/cli.md` (`verdict`,
-`cause`, `parameters`, `indistinguishable`, `separating_test`, `baseline`, `extended`, `gain`,
-`candidates`) plus diagnostics.
+held-out block labels. It returns a typed `DiagnosisResult` (`studies.diagnosis.result`; its
+JSON form has the keys of `spec/cli.md`: `verdict`, `cause`, `parameters`, `indistinguishable`,
+`separating_test`, `baseline`, `extended`, `gain`, `candidates`, plus diagnostics).
+
+Each phase below is a plain function (one module each) of the immutable `Problem`
+(`studies.diagnosis.problem`) and the typed results of the phases before it; `run` calls them
+in order and `assemble` builds the result.
 
 Method (DESIGN.md section 5):
 

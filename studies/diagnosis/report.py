@@ -1,6 +1,6 @@
 """Human-readable diagnosis report: `report.md` with PNG plots (matplotlib, Agg, no pyplot state).
 
-`write_report(result, conditions, measured, baseline_pred, extended_pred, out_dir)` writes
+`write_report(result, conditions, measured, out_dir)` writes
 
 - `report.md`: verdict and cause with fitted parameters and uncertainties, held-out gain, what the
   baseline gets wrong (residual statistics per column), the candidate table, identifiability and
