@@ -1,9 +1,14 @@
-"""Assembly config validation: every bad input gives one line naming file, key and problem."""
+"""Assembly config validation: every bad input gives one line naming file, key and problem; the
+template and the docs' key tables say what the schema says."""
+import re
 import tomllib
 
 import pytest
 
 from studies.model.config import CONFIG_DIR, ConfigError, assembly_from_dict, load_assembly, load_shipped
+
+
+TEMPLATE = CONFIG_DIR / "template.toml"
 
 
 def _raw():
@@ -58,27 +63,105 @@ def test_missing_file_and_bad_toml(tmp_path):
         load_assembly(p)
 
 
-def test_template_names_every_key_with_a_comment_and_loads():
-    """studies/configs/template.toml is the user's starting point: every section and key the
-    loader reads appears in it with a comment on its line (unit, allowed values, default), and
-    it loads as a valid assembly."""
-    import tomllib
+def _template_keys() -> dict[tuple[str, str], tuple[str, str]]:
+    """(table, key) -> (value, comment) of every key line of the template, the commented-out
+    optional tables included ([materials.NAME], which has its own schema, left out)."""
+    out, table = {}, None
+    for line in TEMPLATE.read_text().splitlines():
+        if m := re.match(r"^(?:# )?\[([A-Za-z_.]+)\]", line):
+            table = m.group(1)
+        elif (m := re.match(r"^(?:# )?(\w+) = (.+?)\s+#\s*(.*)$", line)) and table:
+            if not table.startswith("materials"):
+                assert (table, m.group(1)) not in out, (table, m.group(1))
+                out[(table, m.group(1))] = (m.group(2), m.group(3))
+    return out
 
-    from studies.model.config import CONFIG_DIR, LAYERS, SECTIONS, load_assembly
 
-    path = CONFIG_DIR / "template.toml"
-    raw = tomllib.loads(path.read_text())
-    assert set(raw) == {"assembly", *SECTIONS} - set(LAYERS)
-    assert set(raw["assembly"]) == {"name", "arrangement", "T_ref_C", "source"}
-    for name, (cls, _) in SECTIONS.items():
-        if name in LAYERS:       # optional parts: a commented-out table names their keys
-            text = path.read_text()
-            assert f"# [{name}]" in text or f"[{name}]" in text, name
-            for key in cls.__dataclass_fields__:
-                assert f"# {key} = " in text, (name, key)
-            continue
-        assert set(raw[name]) == set(cls.__dataclass_fields__), name
-    for line in path.read_text().splitlines():
-        if "=" in line and not line.startswith("#"):
-            assert "#" in line, line                  # every key says what it is
-    load_assembly(path)
+def test_template_states_each_schema_key_with_its_unit_bounds_and_default():
+    """studies/configs/template.toml is the user's starting point. Every key of the schema is in
+    it and every key in it is in the schema (a layer's keys once, in the commented-out [sleeve]:
+    [cartridge] has the same); the comment on each key starts with what the schema says of it
+    (unit, allowed values or bounds, default: `Key.summary`); each value, the commented-out ones
+    too, passes its key; and the file loads as a valid assembly."""
+    from studies.model.config import LAYERS, SECTIONS
+    from studies.model.config_schema import ASSEMBLY_KEYS, keys_of, parse_value
+
+    schema = {("assembly", k): key for k, key in ASSEMBLY_KEYS.items()}
+    for name, cls in SECTIONS.items():
+        if name != "cartridge":
+            schema.update({(name, k): key for k, key in keys_of(cls).items()})
+    assert SECTIONS["cartridge"] is SECTIONS["sleeve"]
+    found = _template_keys()
+    assert set(found) == set(schema)
+    for (name, k), key in schema.items():
+        value, comment = found[(name, k)]
+        summary = key.summary()
+        assert comment == summary or comment.startswith(summary + ";"), (name, k, comment, summary)
+        parse_value("template", f"{name}.{k}", key, tomllib.loads(f"v = {value}")["v"])
+    raw = tomllib.loads(TEMPLATE.read_text())
+    assert set(raw) == {"assembly", *SECTIONS} - set(LAYERS)     # the layers commented out
+    assert load_assembly(TEMPLATE).name == "my_pair"
+
+
+def test_schema_declares_every_field_once_with_the_dataclass_default():
+    """The schema of a section is its dataclass's fields (BearingSpec, analytic's, by a table
+    of the same names and defaults); a key's default is what the loader fills in when the file
+    leaves it out; the mesh target's bounds are the range the size rule was measured over."""
+    import dataclasses
+
+    from studies.model.config import SECTIONS, Mesh
+    from studies.model.config_schema import keys_of
+    from studies.model.mesh_size import TARGET_RANGE
+
+    for name, cls in SECTIONS.items():
+        keys = keys_of(cls)
+        fields = dataclasses.fields(cls)
+        assert list(keys) == [f.name for f in fields], name
+        for f in fields:
+            if keys[f.name].required:
+                assert f.default is dataclasses.MISSING, (name, f.name)
+            else:
+                assert f.default == keys[f.name].default, (name, f.name)
+    bounds = keys_of(Mesh)["target_error"].bounds
+    assert (bounds.lo, bounds.hi) == TARGET_RANGE
+    # a key left out takes the schema's default: the seed 000 file gives no [mesh], no tolerances
+    a = load_shipped("seed000")
+    assert a.mesh == Mesh() and a.fits.inner_shaft_deviation_um == () and a.nut.clamp == "rigid"
+
+
+def test_docs_key_tables_are_the_schemas():
+    """docs/cli.md carries every table's key table as generated from the schema (regenerate with
+    `python -m studies.model.config_schema docs/cli.md`)."""
+    from studies.model.config_schema import section_tables, with_tables
+
+    doc = (CONFIG_DIR.parents[1] / "docs" / "cli.md").read_text()
+    assert with_tables(doc) == doc, "run: python -m studies.model.config_schema docs/cli.md"
+    for name, table in section_tables().items():
+        assert f"<!-- keys [{name}]: generated from studies/model/config_schema.py -->\n{table}\n" \
+            in doc, name
+
+
+def test_a_byte_order_mark_is_accepted(tmp_path):
+    """Windows editors save UTF-8 with a byte order mark (EF BB BF); the TOML parser refuses it,
+    the loader reads past it: the same assembly as the file without it (issue 25)."""
+    src = CONFIG_DIR / "template.toml"
+    p = tmp_path / "bom.toml"
+    p.write_bytes(b"\xef\xbb\xbf" + src.read_bytes())
+    assert load_assembly(p) == load_assembly(src)
+
+
+def test_a_bearing_file_with_a_clearance_names_a_bad_groove_ratio(tmp_path):
+    """A single bearing's file: the groove ratio is checked as a key before the clearance turns
+    into a contact angle through A0 = (f_i + f_o - 1) Dw (which a ratio below 0.5 makes
+    negative: the clearance was blamed before the schema held the ratio's bounds)."""
+    from studies.model.config import load_bearing
+
+    raw = _raw()["bearing"]
+    del raw["contact_angle_free_deg"]
+    raw["inner_groove_ratio"] = 0.3
+    lines = ["[bearing]", "radial_internal_clearance_um = 10"]
+    lines += [f"{k} = {v!r}" if not isinstance(v, str) else f'{k} = "{v}"' for k, v in raw.items()]
+    p = tmp_path / "b.toml"
+    p.write_text("\n".join(lines))
+    with pytest.raises(ConfigError, match=r"bearing.inner_groove_ratio: 0.3 is outside 0.5..0.6"):
+        load_bearing(p)

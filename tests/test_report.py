@@ -1,8 +1,12 @@
 """`bearingfem report` for a user's assembly (the template): every part of the report is there,
-the HTML is self-contained, the result table is the simulate route's, bad input is one line."""
+the HTML is self-contained, the result table is the simulate route's, its numbers are the CSV's
+and agree with closed forms (free thermal expansion, the Lamé fit, a ball's centrifugal force),
+bad input is one line."""
 import csv
+import math
 
 import numpy as np
+import pytest
 
 from studies.app.cli import main
 from studies.model.config import CONFIG_DIR, load_assembly
@@ -35,6 +39,76 @@ def test_report_of_a_users_assembly(tmp_path):
     ref = simulate_table(asm, cond, pipeline=Pipeline(asm, mesh_factor=3.0))
     np.testing.assert_allclose([float(r["preload_N"]) for r in rows], ref["preload_N"], rtol=1e-9)
     assert "flag_max_contact_pressure_MPa" in rows[0]
+    _check_numbers(asm, md, {k: np.array([float(r[k]) for r in rows]) for k in rows[0]})
+
+
+def _md_table(md: str, first: str) -> list[dict[str, str]]:
+    """The rows of the markdown table whose header starts with `| first |`, by column."""
+    lines = md.splitlines()
+    i = next(k for k, line in enumerate(lines) if line.startswith(f"| {first} |"))
+    head = [c.strip() for c in lines[i].strip("|").split("|")]
+    rows = []
+    for line in lines[i + 2:]:
+        if not line.startswith("|"):
+            break
+        rows.append(dict(zip(head, (c.strip() for c in line.strip("|").split("|")))))
+    return rows
+
+
+def _check_numbers(asm, md, csv_cols):
+    """The report's numbers: its results table is the CSV's (printed to 4 significant digits:
+    at most 5e-4 relative), and the CSV agrees with closed forms computed here from the
+    config and the material data alone."""
+    from analytic.materials import get_material
+
+    T = csv_cols["T_ambient_C"]
+    results = _md_table(md, "ambient temperature (C)")
+    assert [float(r["ambient temperature (C)"]) for r in results] == list(T)
+    for col in results[0]:
+        if col in csv_cols:
+            printed = np.array([float(r[col]) for r in results])
+            np.testing.assert_allclose(printed, csv_cols[col], rtol=5e-4, atol=1e-9, err_msg=col)
+    shaft, ring, housing = (get_material(n) for n in (asm.shaft.material,
+                                                      asm.bearing.ring_material,
+                                                      asm.housing.material))
+    assert shaft.dalpha_per_K2 == ring.dalpha_per_K2 == housing.dalpha_per_K2 == 0.0
+    dT = T - asm.T_ref_C
+    # free thermal expansion: diametral interference + d (alpha_shaft - alpha_ring) dT, and for
+    # the outer fit d (alpha_ring - alpha_housing) dT, in um (every part at the ambient)
+    d_i, d_o = asm.shaft.seat_diameter_mm, asm.housing.bore_diameter_mm
+    delta_i = asm.fits.inner_interference_um + 1e3 * d_i * (shaft.alpha_per_K - ring.alpha_per_K) * dT
+    delta_o = asm.fits.outer_interference_um + 1e3 * d_o * (ring.alpha_per_K - housing.alpha_per_K) * dT
+    np.testing.assert_allclose(csv_cols["interference_inner_um"], delta_i, rtol=1e-9)
+    np.testing.assert_allclose(csv_cols["interference_outer_um"], delta_o, rtol=1e-9)
+    # the Lamé column: two cylinders in plane stress (Shigley, Mechanical Engineering Design,
+    # ch. 3 "press and shrink fits"), the radial interference less what the rotation at the
+    # report's speed takes (spinning discs, Timoshenko & Goodier ch. 4 §32: the free ring's
+    # bore grows rho w^2 b ((3 + nu) c^2 + (1 - nu) b^2) / (4 E), the solid shaft's surface
+    # (1 - nu) rho w^2 b^3 / (4 E)); MPa from mm and MPa
+    b, c = d_i / 2, asm.bearing.inner_ring_outer_diameter_mm / 2
+    w = asm.lubrication.speed_rpm * math.pi / 30
+    rw2 = 1e-12 * w ** 2            # kg/m^3 rad^2/s^2 -> N/mm^4 per kg/m^3
+    grow = (ring.density_kg_m3 * rw2 * b * ((3 + ring.nu) * c ** 2 + (1 - ring.nu) * b ** 2)
+            / (4 * ring.E_MPa) - (1 - shaft.nu) * shaft.density_kg_m3 * rw2 * b ** 3 / (4 * shaft.E_MPa))
+    compliance = (b / ring.E_MPa * ((c * c + b * b) / (c * c - b * b) + ring.nu)
+                  + b / shaft.E_MPa * (1 - shaft.nu))
+    p_lame = np.maximum((0.5e-3 * delta_i - grow) / compliance, 0.0)
+    np.testing.assert_allclose(csv_cols["fit_pressure_inner_lame_MPa"], p_lame, rtol=1e-6)
+    # the speed table: at rest at T_ref the position preload is the assembled one (the config's)
+    speed = _md_table(md, "state")
+    rest = next(r for r in speed if r["state"] == "at rest")
+    assert float(rest["preload (N)"]) == pytest.approx(asm.preload.assembled_N, rel=5e-4)
+    # a ball's centrifugal force m w_c^2 dm / 2, m = rho pi Dw^3 / 6, cage speed
+    # w_c = w (1 - Dw cos a / dm) / 2 (inner ring turning; Harris & Kotzalas Vol. 1 ch. 8), at
+    # the contact angle the table gives (printed to 3 digits: 2e-3 relative)
+    dyn = next(r for r in speed if "quasi-dynamic" in r["state"])
+    alpha = math.radians(float(dyn["A inner angle (deg)"]))
+    Dw, dm = asm.bearing.ball_diameter_mm, asm.bearing.pitch_diameter_mm
+    ball = get_material(asm.bearing.ball_material)
+    m_kg = ball.density_kg_m3 * math.pi * (1e-3 * Dw) ** 3 / 6
+    w_c = 0.5 * w * (1 - Dw * math.cos(alpha) / dm)
+    F_c = m_kg * w_c ** 2 * 0.5e-3 * dm
+    assert float(dyn["centrifugal force per ball (N)"]) == pytest.approx(F_c, rel=2e-3)
 
 
 def test_report_default_conditions_span_the_operating_range():

@@ -83,6 +83,16 @@ def build_parser() -> argparse.ArgumentParser:
                     help="raceway control of the quasi-dynamic balls (rows with speed_rpm): "
                          "outer (default), inner, or jones (Jones's criterion per ball)")
 
+    sf = sub.add_parser("stiffness", help="the pair's tangent stiffness matrix at its "
+                                          "equilibrium per row (rotordynamics; ROSS table)")
+    sf.add_argument("assembly", type=Path)
+    sf.add_argument("conditions", type=Path)
+    sf.add_argument("-o", "--out", type=Path, required=True)
+    sf.add_argument("--per-bearing", action="store_true",
+                    help="also each bearing's matrix about its own ball plane (suffix _A, _B)")
+    sf.add_argument("--ross", type=Path, default=None, metavar="OUT.csv",
+                    help="also the coefficients against speed in the table layout ROSS reads")
+
     t = sub.add_parser("tolerance", help="worst case and Monte Carlo of the fit tolerances")
     t.add_argument("assembly", type=Path)
     t.add_argument("conditions", type=Path, nargs="?", default=None,
@@ -140,7 +150,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 #: the one dispatch table: subcommand -> implementation (studies/app/commands.py)
 COMMANDS = {"simulate": commands.cmd_simulate, "report": commands.cmd_report,
-            "bearing": commands.cmd_bearing,
+            "bearing": commands.cmd_bearing, "stiffness": commands.cmd_stiffness,
             "tolerance": commands.cmd_tolerance, "design": commands.cmd_design,
             "diagnose": commands.cmd_diagnose,
             "verify": commands.cmd_verify, "study": commands.cmd_study, "bench": commands.cmd_bench}

@@ -120,6 +120,26 @@ def cmd_bearing(args) -> None:
     print(f"wrote {n} rows to {args.out} (convention {args.convention}, {args.control} control)")
 
 
+def cmd_stiffness(args) -> None:
+    from studies.runs.stiffness import StiffnessRunError, run
+
+    try:
+        check_output_file(args.out, (args.assembly, args.conditions))
+        if args.ross is not None:
+            check_output_file(args.ross, (args.assembly, args.conditions, args.out))
+        res = run(args.assembly, args.conditions, args.out, args.per_bearing, args.ross,
+                  provenance("stiffness", {"assembly": args.assembly,
+                                           "conditions": args.conditions}), progress=progress)
+    except (StiffnessRunError, *_user_errors()) as exc:
+        raise UserError(str(exc)) from None
+    print(f"wrote {res.n_rows} rows to {args.out}")
+    if res.ross is not None:
+        if res.ross.warning:
+            print(f"bearingfem stiffness: warning: {res.ross.warning}", file=sys.stderr)
+        print(f"wrote the ROSS table ({res.ross.speeds_rpm.size} speeds, "
+              f"{res.ross.range_text}; ROSS extrapolates outside) to {args.ross}")
+
+
 def _assembly_and_conditions(args):
     """The assembly, the optional conditions table and the input files for the provenance."""
     from studies.model.table import read_conditions

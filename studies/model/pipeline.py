@@ -471,26 +471,10 @@ class Pipeline:
         remember: keep the pair equilibrium for the next call with the same inputs (a table
         streamed in chunks does not)."""
         a = self.asm
-        ball_model = a.operating.ball_model if ball_model is None else ball_model
-        preload = np.maximum(np.asarray(inputs.preload_assembled_N, float)
-                             - np.asarray(inputs.preload_loss_N, float), 0.0)
         with np.errstate(all="ignore"):     # a row without an answer is reported below, by name
             # friction-only changes (a diagnosis's friction scale) leave the equilibrium alone:
             # the last few are reused by their exact inputs (`studies.model.memo`)
-            args = dict(dr_mm=fe.dr_mm, dz_mm=fe.dz_mm, T_inner_ring_C=inputs.T_C["inner_ring"],
-                        T_outer_ring_C=inputs.T_C["outer_ring"], T_ball_C=inputs.T_C["ball"],
-                        T_ref_C=a.T_ref_C, preload_kind=a.preload.kind,
-                        preload_assembled_N=preload, axial_load_N=inputs.axial_load_N,
-                        radial_load_N=_zeros_if_none(inputs.radial_load_N),
-                        moment_Nmm=_zeros_if_none(inputs.moment_Nmm),
-                        bearing_span_mm=self.bearing_span_mm,
-                        speed_rpm=np.asarray(inputs.speed_rpm, float), ball_model=ball_model,
-                        control=a.operating.raceway_control,
-                        dr_ref_mm=fe_ref.dr_mm, dz_ref_mm=fe_ref.dz_mm,
-                        compliance_mm_per_N=(self.compliance_mm_per_N
-                                             if compliance_mm_per_N is None
-                                             else compliance_mm_per_N)
-                        + inputs.extra_compliance_mm_per_N)
+            args = self.pair_arguments(inputs, fe, fe_ref, compliance_mm_per_N, ball_model)
             key = inputs_key(args)
             pair = self._pair_memo.get(key)
             if pair is None:
@@ -536,6 +520,29 @@ class Pipeline:
         out["friction_coefficient"] = mu
         check_answers(out, pair.converged, first_row)
         return (out, pair) if return_pair else out
+
+    def pair_arguments(self, inputs: PhysicsInputs, fe: FEState, fe_ref: FEState,
+                       compliance_mm_per_N=None, ball_model: str | None = None) -> dict:
+        """The keyword arguments of `analytic.bearing.solve_pair` for these rows (arguments as
+        `run_from_fe`): what the pair's equilibrium, and its stiffness
+        (`analytic.bearing.stiffness.pair_stiffness`), are evaluated with."""
+        a = self.asm
+        preload = np.maximum(np.asarray(inputs.preload_assembled_N, float)
+                             - np.asarray(inputs.preload_loss_N, float), 0.0)
+        return dict(dr_mm=fe.dr_mm, dz_mm=fe.dz_mm, T_inner_ring_C=inputs.T_C["inner_ring"],
+                    T_outer_ring_C=inputs.T_C["outer_ring"], T_ball_C=inputs.T_C["ball"],
+                    T_ref_C=a.T_ref_C, preload_kind=a.preload.kind,
+                    preload_assembled_N=preload, axial_load_N=inputs.axial_load_N,
+                    radial_load_N=_zeros_if_none(inputs.radial_load_N),
+                    moment_Nmm=_zeros_if_none(inputs.moment_Nmm),
+                    bearing_span_mm=self.bearing_span_mm,
+                    speed_rpm=np.asarray(inputs.speed_rpm, float),
+                    ball_model=a.operating.ball_model if ball_model is None else ball_model,
+                    control=a.operating.raceway_control,
+                    dr_ref_mm=fe_ref.dr_mm, dz_ref_mm=fe_ref.dz_mm,
+                    compliance_mm_per_N=(self.compliance_mm_per_N if compliance_mm_per_N is None
+                                         else compliance_mm_per_N)
+                    + inputs.extra_compliance_mm_per_N)
 
     def torque(self, pair: PairState, inputs: PhysicsInputs, mu: np.ndarray,
                viscous_factor_f0=None) -> dict[str, np.ndarray]:

@@ -33,11 +33,6 @@ class SobolIndices:
     ST: np.ndarray
     ST_conf: np.ndarray
 
-    def as_dict(self) -> dict[str, dict[str, float]]:
-        return {n: {"S1": float(self.S1[i]), "S1_conf": float(self.S1_conf[i]),
-                    "ST": float(self.ST[i]), "ST_conf": float(self.ST_conf[i])}
-                for i, n in enumerate(self.names)}
-
 
 def _problem(inputs: dict[str, tuple[str, float, float]]) -> dict:
     """SALib problem of inputs name -> ('uniform', low, high) or ('normal', mean, sd)."""

@@ -86,10 +86,6 @@ class Effect:
         out.bounds = new
         return out
 
-    def is_off(self, params: Mapping[str, float]) -> bool:
-        """True when the (validated) parameters give exactly the baseline."""
-        return all(params[p] == self.off[p] for p in self.active_parameters())
-
     def active_parameters(self) -> tuple[str, ...]:
         """Parameters whose off value switches the effect off (default: all)."""
         return self.parameters
