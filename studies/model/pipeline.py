@@ -23,11 +23,11 @@ from analytic.bearing import PairState
 from analytic.lubrication import get_lubricant
 from studies.model.checks import assembly_checks, evaluate_checks
 from studies.model.config import Assembly
-from studies.model.effects import resolve_friction_coefficient
+from studies.model.effects import resolve_friction_coefficient, resolve_interference_um
 from studies.model.inputs import NO_CTE_SLOPE, PhysicsInputs
 from studies.model.memo import Memo, inputs_key
 from studies.model.result import FitPressures, SimulationResult
-from studies.model.stack import section_from_assembly
+from studies.model.stack import ROTOR_PARTS, section_from_assembly, stack_positions
 from studies.model.stages.bearing import BearingStage
 from studies.model.stages.fe import (SPEED_SEARCH_MAX_RPM, FEOptions, FEStage,  # noqa: F401
                                      FEState, FitOpenSpeeds, RowField)
@@ -77,7 +77,8 @@ class Pipeline:
     two caches; `run` is the route.
 
     The superposition's arrays and the preload-path compliance come from `fem.setup`: from the
-    on-disk cache when this stack was set up before (`cache=False`: always computed). The full
+    on-disk cache when this stack was set up before (`cache=False`: always computed;
+    `setup_of(spec)`: from elsewhere, e.g. `fem.parametric` for a design search's family). The full
     FE model (`model`, `solver`, `probe`: mesh, assembly, factorisations) is built only when
     something needs it: a set-up not cached yet, `direct` solves, whole fields."""
 
@@ -100,12 +101,15 @@ class Pipeline:
         return hit
 
     def __init__(self, asm: Assembly, mesh_factor: float = 1.0, progress=None,
-                 superpose: bool = True, cache: bool = True):
+                 superpose: bool = True, cache: bool = True, setup_of=None):
         self.asm = asm
         self.mesh_factor = float(mesh_factor)
         self.section = section_from_assembly(asm).scaled(mesh_factor)
-        self.bearing = BearingStage(asm)
-        self.fe_stage = FEStage(asm, self.section, self.bearing.geom, progress, superpose, cache)
+        z = stack_positions(asm)        # the ball planes: inner ring mid-planes of A and B
+        self.bearing = BearingStage(asm, 0.5 * (sum(z["inner_ring_B"]) - sum(z["inner_ring_A"])))
+        self.fe_stage = FEStage(asm, self.section, self.bearing.geom, ROTOR_PARTS,
+                                lambda inputs: resolve_interference_um(inputs, *asm.mean_fits_um()),
+                                progress, superpose, cache, setup_of)
         self.bearing.compliance_mm_per_N = self.fe_stage.compliance_mm_per_N
         self.lubricant = (get_lubricant(asm.lubrication.lubricant)
                           if asm.lubrication.kind == "oil" else None)
@@ -122,6 +126,7 @@ class Pipeline:
     land_diameters_mm = property(lambda self: self.bearing.land_diameters_mm,
                                  doc="inner and outer land diameters, mm")
     setup = property(lambda self: self.fe_stage.setup, doc="the FE set-up (`fem.setup.FESetup`)")
+    spec = property(lambda self: self.fe_stage.spec, doc="what the set-up is of (`fem.setup.SetupSpec`)")
     sup = property(lambda self: self.fe_stage.sup, doc="the `fem.solver.Superposition` (or None)")
     part_names = property(lambda self: self.fe_stage.part_names, doc="the FE parts, in order")
     materials = property(lambda self: self.fe_stage.materials, doc="material per FE part")

@@ -16,9 +16,7 @@ import numpy as np
 from analytic.bearing import BearingGeometry, PairState, solve_pair
 from analytic.bearing.land import land_diameters_mm, land_margin_deg
 from analytic.safety import static_safety_from_contact_pressure
-from studies.model.config import Assembly
 from studies.model.inputs import PhysicsInputs
-from studies.model.stack import stack_positions
 from studies.model.stages.fe import FEState
 
 
@@ -41,15 +39,15 @@ class PairSummary:
 class BearingStage:
     """The pair of one assembly: geometry, the bearing span and the land diameters, built once."""
 
-    def __init__(self, asm: Assembly, fe_compliance_mm_per_N=0.0):
+    def __init__(self, asm, bearing_span_mm: float, fe_compliance_mm_per_N=0.0):
+        """asm: the `studies.model.config.Assembly`; bearing_span_mm: the distance of the ball
+        planes (inner ring mid-planes) of bearings A and B, the lever of the rotor tilt under a
+        moment or an off-centre radial load, mm."""
         self.asm = asm
         self.geom = BearingGeometry.from_spec(asm.bearing, asm.materials)
         #: inner and outer land diameters (mm): given, or from the effective ring section
         self.land_diameters_mm = land_diameters_mm(asm.bearing, asm.materials)[:2]
-        # distance of the ball planes (inner ring mid-planes) of bearings A and B: the lever of
-        # the rotor tilt under a moment or an off-centre radial load
-        z = stack_positions(asm)
-        self.bearing_span_mm = 0.5 * (sum(z["inner_ring_B"]) - sum(z["inner_ring_A"]))
+        self.bearing_span_mm = float(bearing_span_mm)
         #: the assembly's preload-path compliance per bearing (mm/N; 0: rigid; the pipeline sets
         #: the FE's value for `[preload] path_compliance = "fe"`)
         self.compliance_mm_per_N = fe_compliance_mm_per_N

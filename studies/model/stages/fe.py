@@ -24,10 +24,7 @@ from fem.post import mean_pressures_MPa
 from fem.setup import (CompliancePlan, FESetup, FullFE, SetupSpec, cached_setup, compute_setup,
                        full_fe)
 from fem.solver import Superposition
-from studies.model.config import Assembly
-from studies.model.effects import resolve_interference_um
 from studies.model.inputs import PhysicsInputs
-from studies.model.stack import ROTOR_PARTS
 from studies.model.stages.grooves import RINGS, GrooveCentres
 
 #: which temperature of `PhysicsInputs.T_C` each FE part takes
@@ -171,14 +168,19 @@ class FitOpenSpeeds:
 
 class FEStage:
     """The FE of one assembly's section: set-up (from the cache, or computed), loads of a row,
-    solves. `cache=False`: the set-up is always computed; `superpose=False`: rows are solved
-    directly."""
+    solves. `cache=False`: the set-up is always computed; `setup_of(spec)`: the set-up from
+    elsewhere (`fem.parametric`); `superpose=False`: rows are solved directly."""
 
-    def __init__(self, asm: Assembly, section, geom: BearingGeometry, progress=None,
-                 superpose: bool = True, cache: bool = True):
+    def __init__(self, asm, section, geom: BearingGeometry, rotating_parts: tuple[str, ...],
+                 fits_of: Callable, progress=None, superpose: bool = True, cache: bool = True,
+                 setup_of=None):
+        """asm: the `studies.model.config.Assembly`; section: its `meshes.section` (scaled);
+        rotating_parts: the rotor's parts (centrifugal load); fits_of(inputs) -> (inner_um,
+        outer_um): the rows' diametral fits at T_ref (`effects.resolve_interference_um`)."""
         self._say = progress or (lambda s: None)
         self.asm = asm
         self.section = section
+        self._fits_of = fits_of
         self.grooves = GrooveCentres.of(section, geom, asm.arrangement)
         plan = None
         if asm.preload.path_compliance == "fe":
@@ -186,13 +188,14 @@ class FEStage:
             delta = self.deltas_mm(np.array([inner]), np.array([outer]))[0]
             plan = CompliancePlan(tuple(float(v) for v in SIGNS[asm.arrangement]),
                                   tuple(float(v) for v in delta))
-        rotor = tuple(p for p in ROTOR_PARTS if p in section.parts())
+        rotor = tuple(p for p in rotating_parts if p in section.parts())
         mats = {p: get_material(section.material_of(p), asm.materials) for p in section.parts()}
         self.spec = SetupSpec.of(section, asm.fits.contact, self.grooves.probe_points_rz_mm, plan,
                                  materials=mats, rotating_parts=rotor)
         self.materials = dict(self.spec.materials)
         self._full: FullFE | None = None
-        self.setup: FESetup = (cached_setup(self.spec, self.full_fe, progress=self._say) if cache
+        self.setup: FESetup = (setup_of(self.spec) if setup_of is not None   # fem.parametric
+                               else cached_setup(self.spec, self.full_fe, progress=self._say) if cache
                                else compute_setup(self.spec, self.full_fe()))
         self.part_names = self.setup.part_names
         self.sup = (Superposition.from_condensed(self.setup.condensed, lambda: self.solver)
@@ -245,7 +248,7 @@ class FEStage:
     def fits_um(self, inputs: PhysicsInputs) -> tuple[np.ndarray, np.ndarray]:
         """(inner, outer) diametral fit (um) of each row at T_ref: the `[fits]` values plus the
         inputs' offsets (effects, tolerance samples)."""
-        return resolve_interference_um(inputs, *self.asm.mean_fits_um())
+        return self._fits_of(inputs)
 
     def deltas_mm(self, inner_um: np.ndarray, outer_um: np.ndarray) -> np.ndarray:
         """(n, n_fits) radial interference (mm) per FE fit (a sleeve's or cartridge's fit: its

@@ -15,15 +15,14 @@ import numpy as np
 from analytic.bearing import BearingGeometry, PairState
 from analytic.safety import static_load_rating_C0_N
 from analytic.torque import TorqueComponents, palmgren_f1_angular_contact, pair_torque
-from studies.model.config import Assembly
 from studies.model.inputs import PhysicsInputs
 
 
-def pair_friction_torque(asm: Assembly, geom: BearingGeometry, lubricant, pair: PairState,
+def pair_friction_torque(asm, geom: BearingGeometry, lubricant, pair: PairState,
                          inputs: PhysicsInputs, mu: np.ndarray,
                          viscous_factor_f0=None) -> TorqueComponents:
     """Friction torque of the pair at the rows' speeds and temperatures (see the module
-    docstring). lubricant: the oil's `analytic.lubrication` lubricant (None for a solid film);
+    docstring). asm: the `studies.model.config.Assembly`; lubricant: the oil's `analytic.lubrication` lubricant (None for a solid film);
     mu: friction coefficient per row (-); viscous_factor_f0: Palmgren's f0 in place of the
     assembly's (scalar or per row)."""
     lub = asm.lubrication
