@@ -23,6 +23,7 @@ from scipy.sparse.linalg import splu
 from skfem import FacetBasis, asm
 
 from fem.forms import boundary_flux, conduction, convection
+from fem.solver import _tie_representatives
 from fem.model import StackModel, facets_on_line, line_split, node_pairs_on, nodes_on_line
 from meshes.section import boundary_lines
 
@@ -96,13 +97,12 @@ class ConductionModel:
             fixed[dofs] = True
             T_fix[dofs] = T
         # elimination: tied slaves follow their masters; fixed DOFs are known
+        # groups of tied DOFs (chains and loops, e.g. a ring corner paired with the shaft across
+        # the seat and with the nut across the face: each the other's slave) -> one
+        # representative each (fem.solver._tie_representatives)
         to = np.arange(N)
-        to[self.tie_s] = self.tie_m
-        for _ in range(8):
-            nxt = to[to]
-            if np.array_equal(nxt, to):
-                break
-            to = nxt
+        sl, rep = _tie_representatives(N, self.tie_m, self.tie_s, np.zeros(N, bool))
+        to[sl] = rep
         fixed_rep = np.zeros(N, bool)
         np.logical_or.at(fixed_rep, to, fixed)
         T_rep = np.zeros(N)
