@@ -201,11 +201,11 @@ def seed001_candidates(asm: Assembly) -> list[Candidate]:
                            lambda v: (replace(asm, operating=replace(asm.operating,
                                                                      ball_model="quasi_dynamic")),
                                       {}, None)))
-    for name in lubricant_library():
+    for name, oil in lubricant_library().items():
         if name == lub.lubricant:
             continue
         try:
-            lubricant_library()[name].walther()
+            oil.walther()
         except ValueError:          # fewer than two viscosity points in the project data
             continue
         cands.append(Candidate(f"oil: {name}", "", (np.nan, np.nan), "the project's oil table",
