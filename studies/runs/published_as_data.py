@@ -100,7 +100,8 @@ class PublishedAsData:
 
     @property
     def best(self) -> HeldOutFit:
-        """The candidate whose fitted number comes closest to its band (log distance)."""
+        """The candidate whose fitted number comes closest to its band (relative distance; the
+        first of several inside it)."""
         lo, hi = self.fitted_band
         return min(self.fits, key=lambda f: _band_distance(f.fitted, lo, hi))
 
