@@ -38,7 +38,7 @@ def test_seed001_viscous_term_follows_palmgren_and_no_oil_side_change_reaches_th
     asm = load_shipped("seed001")
     lub = get_lubricant(asm.lubrication.lubricant)
     out = pad.seed001_torques(asm, mesh_factor=MESH)
-    Mv = out["torque_viscous_Nmm"]
+    Mv = out.torque.viscous_Nmm
     np.testing.assert_allclose(Mv[0] / Mv[1], _palmgren_ratio(lub, -20.0, 20.0), rtol=1e-9)
     lo_slope = get_effect("viscosity_temperature").bounds["slope_factor"][0]
     assert _palmgren_ratio(lub, -20.0, 20.0, lo_slope) > pad.SEED001_COLD_BAND[1]
@@ -48,7 +48,7 @@ def test_seed001_viscous_term_follows_palmgren_and_no_oil_side_change_reaches_th
         except ValueError:
             continue
         assert _palmgren_ratio(oil, -20.0, 20.0) > pad.SEED001_COLD_BAND[1], name
-    lower = Mv[0] / out["torque_Nmm"][1]
+    lower = Mv[0] / out.torque_Nmm[1]
     assert s001.configured[0] >= lower * (1 - 1e-12)
     assert not s001.any_fits
     for f in s001.fits:                      # every candidate stays above the band's top

@@ -31,6 +31,7 @@ from studies.diagnosis.designs import cycles as cycle_design
 from studies.model.config import Assembly, load_shipped
 from studies.model.effects import get_effect
 from studies.model.pipeline import Pipeline, simulate_table
+from studies.model.result import SimulationResult
 
 #: seed 001, the paper's conclusion 2: +33.3..50.0 % at -20 C, -25 % at 60 C (against 20 C)
 SEED001_COLD_BAND = (1.333, 1.500)
@@ -217,8 +218,8 @@ def seed001_candidates(asm: Assembly) -> list[Candidate]:
 
 def seed001_torques(asm: Assembly, columns: dict | None = None, effects: dict | None = None,
                     dT_K: float = 0.0, mesh_factor: float = 1.0,
-                    parts: str = "bearing") -> dict[str, np.ndarray]:
-    """The model at the three published chamber temperatures: `simulate_table` outputs. With
+                    parts: str = "bearing") -> SimulationResult:
+    """The model at the three published chamber temperatures: the typed `simulate_table` result. With
     `dT_K`, parts="bearing": the rings and balls dT_K above the chamber, the shaft, spacers and
     housing at it; parts="stack": every part dT_K above it."""
     T = np.array(SEED001_T_C)
@@ -242,7 +243,7 @@ def seed001(mesh_factor: float = 1.0) -> PublishedAsData:
     def ratios(cand: Candidate, v: float) -> tuple[float, float]:
         a, extra, eff = cand.setup(v)
         M = seed001_torques(a, None, eff, float(extra.get("dT_K", 0.0)), mesh_factor,
-                            extra.get("parts", "bearing"))["torque_Nmm"]
+                            extra.get("parts", "bearing")).torque_Nmm
         return float(M[0] / M[1]), float(M[2] / M[1])
 
     base = Candidate("as configured", "", (np.nan, np.nan), "", lambda v: (asm, {}, None))
@@ -271,14 +272,14 @@ def self_heating_unbounded(parts: str, mesh_factor: float = 1.0,
     target = float(np.sqrt(np.prod(SEED001_COLD_BAND)))
 
     def f(dT):
-        M = seed001_torques(asm, None, None, dT, mesh_factor, parts)["torque_Nmm"]
+        M = seed001_torques(asm, None, None, dT, mesh_factor, parts).torque_Nmm
         return M[0] / M[1] - target
     if f(0.0) * f(upper_K) >= 0:
         return SelfHeatingUnbounded(parts, *(float("nan"),) * 3)
     dT = float(brentq(f, 0.0, upper_K, rtol=1e-9))
     o = seed001_torques(asm, None, None, dT, mesh_factor, parts)
-    return SelfHeatingUnbounded(parts, dT, float(o["torque_Nmm"][2] / o["torque_Nmm"][1]),
-                                float(o["preload_N"][1]))
+    return SelfHeatingUnbounded(parts, dT, float(o.torque_Nmm[2] / o.torque_Nmm[1]),
+                                float(o.preload_N[1]))
 
 
 # --------------------------------------------------------------------------------- seed 000
@@ -329,12 +330,12 @@ def seed000(fit_on: str = "max", mesh_factor: float = 1.0) -> PublishedAsData:
     i_fit = 0 if fit_on == "max" else 1
     pub = (SEED000_MAX_CHANGE_NMM, SEED000_MIN_CHANGE_NMM)
 
-    M0 = simulate_table(asm, cols, None, pipeline=pl)["torque_Nmm"]
+    M0 = simulate_table(asm, cols, None, pipeline=pl).torque_Nmm
     first = np.floor(cols["time_s"] / (60.0 * SEED000_CYCLE_MIN)) == 0
 
     def changes(cand: Candidate, v: float) -> tuple[float, float]:
         a, _, eff = cand.setup(v)
-        M = simulate_table(a, cols, eff, pipeline=pl)["torque_Nmm"]
+        M = simulate_table(a, cols, eff, pipeline=pl).torque_Nmm
         if cand.after_first_cycle:     # the static model has no memory: the first cycle as built
             M = np.where(first, M0, M)
         ch = cycle_extremes(cols["time_s"], M)
@@ -389,7 +390,7 @@ def seed001_section(mesh_factor: float = 1.0) -> list[str]:
     hs = self_heating_unbounded("stack", mesh_factor)
     asm = load_shipped("seed001")
     base = seed001_torques(asm, mesh_factor=mesh_factor)
-    visc_share = float(base["torque_viscous_Nmm"][1] / base["torque_Nmm"][1])
+    visc_share = float(base.torque.viscous_Nmm[1] / base.torque_Nmm[1])
     visc = _named(r, "viscosity_temperature")
     oils = min(f.fitted for f in r.fits if f.candidate.startswith("oil"))
     lines = ["### The published ratios as data: one extension at a time", "",
