@@ -23,10 +23,9 @@ def check_assembly(a: Assembly, path: str) -> None:
     _check_materials(a, path)
     _check_geometry(a, path)
     _check_tolerances(a, path)
-    if a.lubrication.kind == "oil":      # an oil needs its data
-        from analytic.lubrication import get_lubricant
+    if a.lubrication.kind == "oil":      # an oil needs its data: a Walther law (>= 2 points)
         try:
-            get_lubricant(a.lubrication.lubricant)
+            a.oil().walther()
         except (KeyError, ValueError) as exc:
             raise ConfigError(f"{path}: lubrication.lubricant: {exc.args[0]}") from None
 

@@ -24,7 +24,6 @@ import numpy as np
 from analytic import lame
 from analytic.bearing import SIGNS, BearingGeometry, PairState, solve_pair
 from analytic.bearing.land import groove_centre_radius_mm, land_diameters_mm, land_margin_deg
-from analytic.lubrication import get_lubricant
 from analytic.materials import get_material
 from analytic.safety import static_load_rating_C0_N, static_safety_from_contact_pressure
 from analytic.torque import palmgren_f1_angular_contact, pair_torque
@@ -173,7 +172,7 @@ class Pipeline:
         self._centre_offsets(pts[:, :4])
         self._fe_cache: dict[bytes, FEState] = {}
         self._pair_memo = Memo()        # pair equilibria by their exact inputs (run_from_fe)
-        self.lubricant = get_lubricant(asm.lubrication.lubricant) if asm.lubrication.kind == "oil" else None
+        self.lubricant = asm.oil()
         self.compliance_mm_per_N = self.setup.compliance_mm_per_N if plan is not None else 0.0
 
     # ------------------------------------------------------------------ the full FE, on demand
