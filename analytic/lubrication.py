@@ -81,7 +81,7 @@ class WaltherLaw:
         out = (T < lo - 0.01) | (T > hi + 0.01)
         if not out.any():
             return None
-        return (f"lubricant {name}: oil temperature {T[out].min():.4g}..{T[out].max():.4g} C in "
+        return (f"lubricant {name}: oil temperature {T[out].min():.1f}..{T[out].max():.1f} C in "
                 f"{int(out.sum())} "
                 f"of {T.size} rows is outside the Walther fit's range {lo:g}..{hi:g} C: the "
                 "viscosity there is extrapolated (give viscosity points that span the range)")

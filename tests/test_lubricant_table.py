@@ -68,7 +68,7 @@ def test_fit_from_40_and_100C_is_wrong_at_minus_40C_and_the_warning_fires(tmp_pa
     warn = [w for w in plausibility_warnings(asm, None, {"viscosity_mm2_s": law.nu_mm2_s([-40.0, 60.0])})
             if "Walther" in w]
     assert len(warn) == 1 and "X2000own" in warn[0] and "40..100 C" in warn[0] \
-        and "-40..-40 C in 1 of 2 rows" in warn[0]
+        and "-40.0..-40.0 C in 1 of 2 rows" in warn[0]
     assert not [w for w in plausibility_warnings(asm, None, {"viscosity_mm2_s": law.nu_mm2_s([40.0, 99.0])})
                 if "Walther" in w]
     # end to end: the simulate run of the user's oil says it once on stderr
