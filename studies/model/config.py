@@ -335,10 +335,18 @@ class SingleBearingConfig:
     spec: BearingSpec
     materials: tuple[Material, ...]
     radial_internal_clearance_um: float | None
+    lubrication: Lubrication | None = None   # optional [lubrication]: the friction torque
+    lubricants: tuple[Lubricant, ...] = ()   # the file's own [lubricants.NAME] tables
 
     @property
     def geometry(self) -> BearingGeometry:
         return BearingGeometry.from_spec(self.spec, self.materials)
+
+    def oil(self) -> Lubricant | None:
+        """The oil of `[lubrication] lubricant`, None without [lubrication] or for a film."""
+        if self.lubrication is None or self.lubrication.kind != "oil":
+            return None
+        return get_lubricant(self.lubrication.lubricant, self.lubricants)
 
 
 def load_bearing(path: str | Path) -> SingleBearingConfig:
@@ -346,16 +354,17 @@ def load_bearing(path: str | Path) -> SingleBearingConfig:
     assembly's [bearing] section (parsed by the same `_section`, checked by `check_bearing`),
     either `contact_angle_free_deg` or `radial_internal_clearance_um` (total diametral play,
     ISO 5753; the free contact angle follows from cos a0 = 1 - P_d / (2 A0),
-    `analytic.bearing.single.free_contact_angle_deg`), and optional [materials.NAME] tables.
-    ConfigError (one line naming file and key) on any problem."""
+    `analytic.bearing.single.free_contact_angle_deg`), optional [materials.NAME] tables, and an
+    optional [lubrication] section (the assembly's keys; its friction torque) with optional
+    [lubricants.NAME] tables. ConfigError (one line naming file and key) on any problem."""
     from analytic.bearing.single import free_contact_angle_deg
 
     path = str(path)
     raw = _read_toml(path)
     for name in raw:
-        if name not in ("bearing", "materials"):
-            raise ConfigError(f"{path}: [{name}]: unknown section (a bearing file has [bearing] "
-                              "and [materials.NAME] tables)")
+        if name not in ("bearing", "materials", "lubrication", "lubricants"):
+            raise ConfigError(f"{path}: [{name}]: unknown section (a bearing file has [bearing], "
+                              "[lubrication], [materials.NAME] and [lubricants.NAME] tables)")
     table = raw.get("bearing")
     if not isinstance(table, dict):
         raise ConfigError(f"{path}: [bearing]: missing section")
@@ -377,7 +386,15 @@ def load_bearing(path: str | Path) -> SingleBearingConfig:
             raise ConfigError(f"{path}: bearing.{_CLEARANCE}: {exc.args[0]}") from None
         spec = replace(spec, contact_angle_free_deg=alpha0)
     check_bearing(spec, materials, path)
-    return SingleBearingConfig(spec, materials, None if clearance is None else float(clearance))
+    lubrication = _section(path, raw, "lubrication") if "lubrication" in raw else None
+    cfg = SingleBearingConfig(spec, materials, None if clearance is None else float(clearance),
+                              lubrication, parse_lubricants(raw, path))
+    if lubrication is not None and lubrication.kind == "oil":   # an oil needs a Walther law
+        try:
+            cfg.oil().walther()
+        except (KeyError, ValueError) as exc:
+            raise ConfigError(f"{path}: lubrication.lubricant: {exc.args[0]}") from None
+    return cfg
 
 
 _CLEARANCE = "radial_internal_clearance_um"
