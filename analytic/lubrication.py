@@ -236,6 +236,17 @@ class Lubricant:
         srcs = sorted({p[2] for p in self.viscosity_points if p[0] in T})
         return fit_walther(T, nu, source=f"{self.name}: Walther fit to {list(T)} C ({', '.join(srcs)})")
 
+    def statement(self) -> str:
+        """One sentence for a report: the oil, its Walther fit (points, temperature range), density
+        and pressure-viscosity coefficient with their sources."""
+        law = self.walther()
+        lo, hi = law.fit_range_C
+        pts = ", ".join(f"{nu:g} cSt at {T:g} C" for T, nu, _ in self.viscosity_points)
+        return (f"Oil {self.name}: viscosity by the Walther (ASTM D341) fit through {pts}, "
+                f"valid {lo:g}..{hi:g} C (extrapolated outside, a warning says so); density "
+                f"{self.density_kg_m3:g} kg/m^3 ({self.density_source}); pressure-viscosity "
+                f"coefficient {self.alpha_per_Pa * 1e9:g} 1/GPa ({self.alpha_source}).")
+
     def nu_mm2_s(self, T_C, slope_factor: float = 1.0):
         """Kinematic viscosity (mm^2/s) from the Walther law of all datasheet points."""
         return self.walther().nu_mm2_s(T_C, slope_factor)

@@ -145,3 +145,12 @@ def test_a_table_may_take_a_library_name_and_wins():
                                                "density_kg_m3": 1850.0, "pressure_viscosity_per_GPa": 15.0})
     assert get_lubricant("Fomblin Z25", (own,)) is own
     assert get_lubricant("Z60", (own,)).name == "Fomblin Z60"
+
+
+def test_the_report_states_the_fit_and_its_range(tmp_path):
+    """The report's inputs name the oil's Walther fit, its points and its range."""
+    cfg = _with_oil(tmp_path, "X2000own", _table("X2000own", [[40.0, 107.0], [100.0, 14.3]],
+                                                 source="Bessette 1997"))
+    text = load_assembly(cfg).oil().statement()
+    assert "Walther (ASTM D341)" in text and "valid 40..100 C" in text
+    assert "107 cSt at 40 C, 14.3 cSt at 100 C" in text and "Bessette 1997" in text
