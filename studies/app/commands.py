@@ -262,6 +262,11 @@ def cmd_verify(args) -> None:
 
 
 def cmd_bench(args) -> None:
+    if args.transient:
+        from studies.runs.bench_transient import main as bench_transient
+
+        bench_transient([])
+        return
     if args.diagnose:
         from studies.runs import bench_diagnose
 
