@@ -80,7 +80,7 @@ def cmd_simulate(args) -> None:
     try:
         check_output_file(args.out, (args.assembly, args.conditions))
         asm = _load(args.assembly)
-        n_rows = check_conditions(args.conditions)  # all of it, before any FE work
+        n_rows = check_conditions(args.conditions, asm=asm)  # all of it, before any FE work
         effects = {}
         for text in args.effect:
             name, params = parse_effect_arg(text)

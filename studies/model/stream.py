@@ -76,10 +76,19 @@ class SimulateRun:
         return [v.summary(self.n_rows, self.kept) for v in self.violations]
 
 
-def check_conditions(path: Path, chunk_rows: int = CHUNK_ROWS) -> int:
+def condition_columns(asm) -> set[str]:
+    """The columns a conditions file of `asm` may have (transient mode: its own, see
+    `studies.model.transient_route`; the part temperatures are refused there with their reason)."""
+    if asm is not None and asm.thermal.mode == "transient":
+        from studies.model.transient_route import TRANSIENT_COLUMNS
+        return set(CONDITION_COLUMNS) | set(TRANSIENT_COLUMNS)
+    return set(CONDITION_COLUMNS)
+
+
+def check_conditions(path: Path, chunk_rows: int = CHUNK_ROWS, asm=None) -> int:
     """Read and check a whole conditions file, one chunk in memory at a time; its row count.
     Bad input raises the one-line `TableError` of `table.iter_table`."""
-    return sum(len(c["_line"]) for c in iter_table(path, set(CONDITION_COLUMNS), chunk_rows))
+    return sum(len(c["_line"]) for c in iter_table(path, condition_columns(asm), chunk_rows))
 
 
 def simulate_file(asm, conditions: Path, out: Path, effects: dict | None = None,
@@ -97,6 +106,10 @@ def simulate_file(asm, conditions: Path, out: Path, effects: dict | None = None,
     function, so the same bytes. See the module docstring."""
     from studies.model.parallel import Blocks
 
+    if asm.thermal.mode == "transient":          # rows in time order through the transient loop
+        from studies.model.transient_route import simulate_transient_file
+        return simulate_transient_file(asm, conditions, out, effects, provenance, direct,
+                                       pipeline, progress, workers, scheduler)
     total = check_conditions(conditions, chunk_rows) if n_rows is None else n_rows
     tally = CheckTally(assembly_checks(asm))
     kept: dict[str, np.ndarray] = {}

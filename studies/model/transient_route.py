@@ -249,11 +249,13 @@ class TransientRun:
     heat_W: np.ndarray
 
 
-def _grid(t: np.ndarray) -> np.ndarray:
+def _grid(t: np.ndarray, dt_s: float = DT_S) -> np.ndarray:
+    """The time grid from the first to the last row: equal steps of dt_s or a little less
+    (longer when the table spans more than MAX_STEPS of them)."""
     span = float(t[-1] - t[0])
     if span <= 0:
         return t[:1].astype(float)
-    k = int(np.ceil(span / max(DT_S, span / MAX_STEPS) - 1e-9))
+    k = int(np.ceil(span / max(dt_s, span / MAX_STEPS) - 1e-9))
     return t[0] + span * np.arange(k + 1) / k
 
 
@@ -263,10 +265,10 @@ def _interp_rows(grid: np.ndarray, t: np.ndarray, Q: np.ndarray) -> np.ndarray:
 
 
 def run_transient(pl: Pipeline, cols: dict, progress=None, first_row: int = 0,
-                  couple_every: int = COUPLE_EVERY) -> TransientRun:
+                  couple_every: int = COUPLE_EVERY, dt_s: float = DT_S) -> TransientRun:
     """Every row of a transient conditions table (column -> array, TRANSIENT_COLUMNS) through
     the reduced transient loop (module docstring); the coupling refreshed every `couple_every`
-    steps."""
+    steps, the step dt_s (s; `_grid`)."""
     asm = pl.asm
     env = environment(asm, cols)
     tm = thermal_model(pl, progress)
@@ -274,7 +276,7 @@ def run_transient(pl: Pipeline, cols: dict, progress=None, first_row: int = 0,
     n = t.size
     base = baseline_inputs({k: v for k, v in cols.items() if k not in ("T_ambient_C",)}, n,
                            asm.T_ref_C, asm.preload.assembled_N, asm.lubrication.speed_rpm)
-    grid = _grid(t)
+    grid = _grid(t, dt_s)
     at = lambda v: np.interp(grid, t, np.asarray(v, float))        # noqa: E731
     amb, sink, scale, extra = at(env.T_ambient_C), at(env.T_sink_C), at(env.film_scale), at(env.heat_W)
     speed, preload = at(base.speed_rpm), at(base.preload_assembled_N)
@@ -390,3 +392,37 @@ def _evaluate_rows(pl: Pipeline, tm: ThermalModel, rc: ReducedConduction, ms: Mo
     cols.update(out)
     cols["_heat_W"] = np.asarray(heat.total_W, float).reshape(n)
     return cols
+
+
+def simulate_transient_file(asm: Assembly, conditions, out, effects: dict | None = None,
+                            provenance: dict | None = None, direct: bool = False,
+                            pipeline: Pipeline | None = None, progress=None,
+                            workers: int | None = None, scheduler: str | None = None):
+    """`bearingfem simulate` of an assembly in transient mode: the whole conditions file (rows
+    are successive instants, evaluated in order), the checks of `studies.model.checks` per row,
+    one atomic output file (`table.TableWriter`). Effects, direct solves and Dask workers are
+    refused (one line): the route has its own temperatures and runs in time order."""
+    from studies.model.checks import assembly_checks, plausibility_warnings
+    from studies.model.inputs import CONDITION_COLUMNS
+    from studies.model.stream import WARNING_OUTPUTS, CheckTally, SimulateRun
+    from studies.model.table import TableWriter, read_table
+
+    for bad, what in ((effects, "--effect"), (direct, "--direct"),
+                      (workers is not None or scheduler is not None, "--workers/--scheduler")):
+        if bad:
+            raise ConfigError(f"{what}: not available with [thermal] mode = \"transient\"")
+    cols = read_table(conditions, allowed=set(CONDITION_COLUMNS) | set(TRANSIENT_COLUMNS))
+    cols = {k: v for k, v in cols.items() if not k.startswith("_")}
+    environment(asm, cols, str(conditions))           # bad input before any FE work
+    pl = pipeline or Pipeline.shared(asm, progress=progress)
+    run = run_transient(pl, cols, progress)
+    tally = CheckTally(assembly_checks(asm))
+    res = dict(cols)
+    res.update(run.out)
+    res.update(tally.add(run.out, 0))
+    with TableWriter(out, provenance) as w:
+        w.write(res)
+    temps = {k: np.asarray(v, float) for k, v in res.items() if k.startswith("T_") and k.endswith("_C")}
+    outputs = {k: run.out[k] for k in WARNING_OUTPUTS if k in run.out}
+    n = len(cols["time_s"])
+    return SimulateRun(n, tally.violations(), plausibility_warnings(asm, temps, outputs), temps)
