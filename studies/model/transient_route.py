@@ -41,6 +41,7 @@ from analytic import thermal_network as tn
 from analytic.heat import PairHeat, pair_heat_W
 from fem.reduced_thermal import (ModalStructure, ReducedConduction, ReducedStepper, krylov_basis,
                                  modal_structure)
+from fem.solver import single_thread_blas
 from fem.transient import (StepLoads, ThermalParameters, TransientConduction,
                            bearing_heat_inputs_W, fit_conductances_W_m2K)
 from studies.model.config import Assembly, ConfigError
@@ -155,6 +156,7 @@ def _group_rows(tc: TransientConduction) -> np.ndarray:
     return out
 
 
+@single_thread_blas
 def thermal_model(pl: Pipeline, progress=None) -> ThermalModel:
     """The reduced transient model of `pl`'s assembly (module docstring), built on first use and
     kept on the pipeline."""
@@ -264,6 +266,7 @@ def _interp_rows(grid: np.ndarray, t: np.ndarray, Q: np.ndarray) -> np.ndarray:
     return np.column_stack([np.interp(t, grid, Q[:, j]) for j in range(Q.shape[1])])
 
 
+@single_thread_blas
 def run_transient(pl: Pipeline, cols: dict, progress=None, first_row: int = 0,
                   couple_every: int = COUPLE_EVERY, dt_s: float = DT_S) -> TransientRun:
     """Every row of a transient conditions table (column -> array, TRANSIENT_COLUMNS) through
