@@ -136,3 +136,23 @@ def test_simulate_command_refuses_a_part_temperature_in_transient_mode(tmp_path)
     assert p.returncode == 2, p.stderr
     assert p.stderr.strip().count("\n") == 0 and "T_shaft_C" in p.stderr
     assert not out.exists()
+
+
+def test_the_reduced_basis_is_cached_and_a_damaged_entry_rebuilt(pl, capsys):
+    """A second pipeline of the same stack reads the basis from the cache (the same modes to the
+    bit); a damaged file is removed with one warning and rebuilt (meshes/cache.py's rules)."""
+    from meshes.cache import cache_dir
+    from studies.model.pipeline import Pipeline
+    from studies.model.transient_route import thermal_model
+
+    V1 = thermal_model(pl).rc.V
+    files = list(cache_dir("setups").glob("thermal_*.npz"))
+    assert files
+    again = thermal_model(Pipeline(pl.asm, mesh_factor=MESH_FACTOR)).rc.V
+    assert np.array_equal(again, V1)
+    for f in files:
+        f.write_bytes(b"not an npz")
+    capsys.readouterr()
+    rebuilt = thermal_model(Pipeline(pl.asm, mesh_factor=MESH_FACTOR)).rc.V
+    assert "reduced thermal basis" in capsys.readouterr().err
+    assert np.allclose(rebuilt, V1, rtol=0, atol=1e-9 * np.abs(V1).max())

@@ -194,7 +194,7 @@ def thermal_model(pl: Pipeline, progress=None) -> ThermalModel:
                         fit_conductance_W_m2K=tuple(h_fit * c)) for s, c in TRAINING]
     inputs = [f"raceway_{r}" for r in RINGS if f"raceway_{r}" in tc.a] + \
              [k for k in ("ball_A", "ball_B") if k in tc.a]
-    rc = ReducedConduction(tc, krylov_basis(tc, training, inputs))
+    rc = ReducedConduction(tc, cached_basis(pl, tc, training, inputs, say))
     half = rc.truncated(max(1, int(HALF * rc.m)))
     probe = pl.full_fe().probe
     ms = modal_structure(pl.solver, probe, rc, T_ref, RINGS, pl.setup.condensed)
@@ -202,6 +202,61 @@ def thermal_model(pl: Pipeline, progress=None) -> ThermalModel:
     out = ThermalModel(tc, rc, half, ms, ms_half, nominal, _group_rows(tc), pressure)
     pl._thermal_model = out
     return out
+
+
+#: format of the cached reduced basis (raise when the file layout or the basis changes)
+BASIS_FORMAT = 1
+
+
+class BasisCacheError(RuntimeError):
+    """A cached reduced basis that is not sound for its key (one line)."""
+
+
+def basis_key(pl: Pipeline, tc: TransientConduction, training, inputs) -> str:
+    """SHA-256 (24 hex digits) of what the basis depends on: the FE set-up's key (section,
+    materials, code versions), the model's size, the training coefficient sets, the inputs,
+    the capacities (ball nodes included) and BASIS_FORMAT."""
+    import hashlib
+    import json
+
+    data = {"format": BASIS_FORMAT, "setup": pl.setup.key, "n_total": int(tc.n_total),
+            "training": [repr(prm) for prm in training], "inputs": list(inputs),
+            "capacity_J_K": float(tc.M.diagonal().sum())}     # the ball nodes' included
+    return hashlib.sha256(json.dumps(data, sort_keys=True).encode()).hexdigest()[:24]
+
+
+def cached_basis(pl: Pipeline, tc: TransientConduction, training, inputs, say=None):
+    """`fem.reduced_thermal.krylov_basis` of the stack, cached beside the FE set-ups
+    (`meshes.cache`: hash-named .npz, atomic write, checked on read, rebuilt with a warning)."""
+    from fem.reduced_thermal import ReducedBasis
+    from meshes.cache import cache_dir, cached_file, remove_stale
+
+    d = cache_dir("setups", "reduced thermal basis")
+    remove_stale(d, "thermal", ".npz")
+    key = basis_key(pl, tc, training, inputs)
+
+    def make(tmp):
+        if say:
+            say("transient conduction: reducing the stack (once; cached) ...")
+        b = krylov_basis(tc, training, inputs)
+        with open(tmp, "wb") as fh:
+            np.savez(fh, key=np.array(key), V=b.V, energy=b.energy)
+
+    def read(path):
+        try:
+            with np.load(path, allow_pickle=False) as z:
+                a = {k: z[k] for k in z.files}
+        except Exception as exc:       # a damaged or foreign file
+            raise BasisCacheError(f"unreadable: {type(exc).__name__}") from None
+        if set(a) != {"key", "V", "energy"} or str(a["key"]) != key:
+            raise BasisCacheError("not the basis of this stack")
+        V, e = a["V"], a["energy"]
+        if V.ndim != 2 or V.shape[0] != tc.n_total or e.ndim != 1 or not np.all(np.isfinite(V)):
+            raise BasisCacheError("its arrays are not sound")
+        return ReducedBasis(V, e)
+
+    return cached_file(d / f"thermal_{key}.npz", make, read, what="reduced thermal basis",
+                       writer="bearingfem", error=BasisCacheError)
 
 
 @dataclass(frozen=True)
