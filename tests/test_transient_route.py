@@ -156,3 +156,40 @@ def test_the_reduced_basis_is_cached_and_a_damaged_entry_rebuilt(pl, capsys):
     rebuilt = thermal_model(Pipeline(pl.asm, mesh_factor=MESH_FACTOR)).rc.V
     assert "reduced thermal basis" in capsys.readouterr().err
     assert np.allclose(rebuilt, V1, rtol=0, atol=1e-9 * np.abs(V1).max())
+
+
+def test_simulate_file_in_transient_mode_writes_the_transient_columns(pl, tmp_path):
+    """`simulate`'s file route in transient mode: the condition columns, the computed part
+    temperatures and the transient columns of docs/cli.md, the numbers those of
+    `run_transient` (one route), flags and margins as in given mode."""
+    import pandas as pd
+
+    from studies.model.stream import simulate_file
+    from studies.model.transient_route import run_transient
+
+    cond = tmp_path / "c.csv"
+    cond.write_text("time_s,T_ambient_C,speed_rpm,heat_W\n0,25,1000,0\n300,25,1000,2\n600,30,1000,2\n")
+    out = tmp_path / "o.csv"
+    run = simulate_file(pl.asm, cond, out, pipeline=pl)
+    assert run.n_rows == 3
+    got = pd.read_csv(out)
+    for c in ("time_s", "T_ambient_C", "heat_W", "T_shaft_C", "T_inner_ring_C", "T_ball_C",
+              "T_outer_ring_C", "T_housing_C", "T_spacer_C", "T_max_C", "T_min_C",
+              "heat_bearing_W", "reduction_error_est", "preload_N", "torque_Nmm"):
+        assert c in got.columns, c
+    assert any(c.startswith("flag_") for c in got.columns)
+    ref = run_transient(pl, {"time_s": np.array([0.0, 300, 600]), "T_ambient_C": np.array([25.0, 25, 30]),
+                             "speed_rpm": np.full(3, 1000.0), "heat_W": np.array([0.0, 2, 2])}).out
+    for c in ("preload_N", "T_ball_C", "heat_bearing_W"):
+        assert np.allclose(got[c], ref[c], rtol=1e-9, atol=0), c     # written with 10 digits
+    assert np.all(got["heat_bearing_W"][1:] > 2.0)
+
+
+def test_bench_transient_flag_runs_the_transient_bench(monkeypatch):
+    import studies.runs.bench_transient as bt
+    from studies.app.cli import main
+
+    calls = []
+    monkeypatch.setattr(bt, "main", lambda argv: calls.append(argv))
+    assert main(["bench", "--transient"]) in (0, None)
+    assert calls == [[]]
