@@ -227,3 +227,21 @@ def test_the_coupled_run_conserves_energy_step_by_step(pl):
         worst = max(worst, abs(r.heat_W[k] - stored - conv) / max(abs(x) for x in terms))
     assert worst < 1e-9, worst
     assert r.heat_W[-1] > 5.0
+
+
+def test_in_vacuum_the_stack_radiates_to_the_sink_of_the_thermal_section():
+    """No films, emissivity 0.8 on the exterior, `[thermal] sink_C = -20` and only T_ambient_C
+    in the conditions (which then drives nothing): at rest the stack cools from 25 C by
+    radiation alone and ends uniform at the sink (steady radiation without a source: T_K^4 =
+    T_sink,K^4; Incropera ch. 12), to 1e-6 of the 45 K drop, cooling all the way."""
+    from studies.model.pipeline import Pipeline
+    from studies.model.transient_route import run_transient
+
+    asm = replace(load_shipped("seed003"),
+                  thermal=Thermal(mode="transient", emissivity=0.8, sink_C=-20.0))
+    pl = Pipeline(asm, mesh_factor=MESH_FACTOR)
+    t = np.array([0.0, 3600.0, 10 * 3600.0, 1.5e6])
+    r = run_transient(pl, {"time_s": t, "T_ambient_C": np.full(4, 25.0), "speed_rpm": np.zeros(4)},
+                      dt_s=3000.0).out
+    assert abs(r["T_max_C"][-1] + 20.0) < 1e-6 * 45 and abs(r["T_min_C"][-1] + 20.0) < 1e-6 * 45
+    assert 25.0 > r["T_housing_C"][1] > r["T_housing_C"][2] > -20.0

@@ -480,7 +480,9 @@ def simulate_transient_file(asm: Assembly, conditions, out, effects: dict | None
     res.update(tally.add(run.out, 0))
     with TableWriter(out, provenance) as w:
         w.write(res)
-    temps = {k: np.asarray(v, float) for k, v in res.items() if k.startswith("T_") and k.endswith("_C")}
+    is_T = lambda k: k.startswith("T_") and k.endswith("_C")           # noqa: E731
+    temps = {k: np.asarray(v, float) for k, v in res.items() if is_T(k)}
+    given = {k: v for k, v in temps.items() if k in cols}     # the warnings read the inputs
     outputs = {k: run.out[k] for k in WARNING_OUTPUTS if k in run.out}
     n = len(cols["time_s"])
-    return SimulateRun(n, tally.violations(), plausibility_warnings(asm, temps, outputs), temps)
+    return SimulateRun(n, tally.violations(), plausibility_warnings(asm, given, outputs), temps)
