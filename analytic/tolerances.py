@@ -2,9 +2,10 @@
 
 Data carried in the project, with their sources:
 - ISO 286-1:2010 Table 1 (standard tolerance grades IT4..IT7) and Tables 2-3 (fundamental
-  deviations of shafts f, g, h, js, k, m, n, p and holes G, H, JS, K, M, N with the delta of
-  Table 3 for K, M, N up to IT8), ISO 286-2:2010 for the irregular J6 and J7 holes. Nominal sizes
-  above 3 up to 500 mm ("over ... up to and including").
+  deviations of shafts f, g, h, j, js, k, m, n, p and holes G, H, JS, K, M, N, P: ES = -ei + Delta
+  for K, M, N up to IT8 and P up to IT7, Delta from Table 3, 0 for sizes up to 3 mm; the special
+  case M6 over 250 up to 315 mm, ES = -9 um), ISO 286-2:2010 for the irregular J6 and J7 holes.
+  Nominal sizes over 0 up to 500 mm ("over ... up to and including").
 - ISO 492:2014 Tables 1-10 (radial bearings): the mean bore diameter deviation t_Delta_dmp and
   the mean outside diameter deviation t_Delta_Dmp of tolerance classes Normal, 6, 5, 4 and 2
   (upper deviation 0), d over 2.5 up to 180 mm and D over 6 up to 250 mm (class Normal) or 180 mm.
@@ -31,6 +32,21 @@ SHAFT_ES_UM = {
     "f": (-6, -10, -13, -16, -20, -25, -30, -36, -43, -50, -56, -62, -68),
     "g": (-2, -4, -5, -6, -7, -9, -10, -12, -14, -15, -17, -18, -20),
     "h": (0,) * 13,
+}
+#: lower deviation ei (um) of the irregular shafts j5, j6 (one row) and j7 (ISO 286-1:2010 Table 2;
+#: j4 is not defined)
+SHAFT_J_EI_UM = {
+    5: (-2, -2, -2, -3, -4, -5, -7, -9, -11, -13, -16, -18, -20),
+    6: (-2, -2, -2, -3, -4, -5, -7, -9, -11, -13, -16, -18, -20),
+    7: (-4, -4, -5, -6, -8, -10, -12, -15, -18, -21, -26, -28, -32),
+}
+#: Delta (um) of the holes K, M, N (grades up to 8) and P (up to 7) by grade, ISO 286-1:2010
+#: Table 3 (0 up to 3 mm; above, Delta_n = IT_n - IT_(n-1))
+DELTA_UM = {
+    4: (0, 1.5, 1.5, 2, 2, 3, 3, 4, 4, 4, 4, 5, 5),
+    5: (0, 1, 2, 3, 3, 4, 5, 5, 6, 6, 7, 7, 7),
+    6: (0, 3, 3, 3, 4, 5, 6, 7, 7, 9, 9, 11, 13),
+    7: (0, 4, 6, 7, 8, 9, 11, 13, 15, 17, 20, 21, 23),
 }
 #: lower deviation ei (um) of shafts k (grades 4..7), m, n, p (ISO 286-1:2010 Table 2)
 SHAFT_EI_UM = {
@@ -78,7 +94,7 @@ def _parse_iso286(cls: str) -> tuple[str, int]:
     m = re.fullmatch(r"([a-zA-Z]{1,2})(\d)", cls.strip())
     if not m or int(m.group(2)) not in IT_UM:
         raise ValueError(f"'{cls}' is not an ISO 286 class the tables carry (letter(s) and "
-                         f"grade {min(IT_UM)}..{max(IT_UM)}, e.g. k5, js6, H6, J6)")
+                         f"grade {min(IT_UM)}..{max(IT_UM)}, e.g. k5, js6, j6, H6, J6, P7)")
     return m.group(1), int(m.group(2))
 
 
@@ -91,6 +107,9 @@ def iso286_limits_um(cls: str, d_mm: float) -> tuple[float, float]:
     if letters == "js" or letters == "JS":
         return -it / 2, it / 2
     if letters.islower():
+        if letters == "j" and grade in SHAFT_J_EI_UM:
+            ei = float(SHAFT_J_EI_UM[grade][i])
+            return ei, ei + it
         if letters in SHAFT_ES_UM:
             es = float(SHAFT_ES_UM[letters][i])
             return es - it, es
@@ -107,13 +126,16 @@ def iso286_limits_um(cls: str, d_mm: float) -> tuple[float, float]:
         if letters in ("G", "H"):
             ei = -float(SHAFT_ES_UM[low][i])          # EI = -es (ISO 286-1 5.3.2)
             return ei, ei + it
-        if letters in ("K", "M", "N"):
-            # ES = -ei + delta, delta = IT_n - IT_(n-1) (ISO 286-1 Table 3, grades up to 8)
-            delta = it - float(IT_UM[grade - 1][i]) if grade - 1 in IT_UM else 0.0
-            es = -float(SHAFT_EI_UM[low][i]) + delta
+        if letters in ("K", "M", "N", "P"):
+            # ES = -ei + Delta (ISO 286-1 Table 3: K, M, N up to IT8, P up to IT7; every grade
+            # carried here), with the special case M6 over 250 up to 315 mm: ES = -9 um
+            if letters == "M" and grade == 6 and ISO286_SIZES_MM[i] == 315:
+                es = -9.0
+            else:
+                es = -float(SHAFT_EI_UM[low][i]) + float(DELTA_UM[grade][i])
             return es - it, es
-    raise ValueError(f"ISO 286 class {cls}: letter '{letters}' is not in the tables carried "
-                     "(shafts f g h js k m n p; holes G H JS J K M N)")
+    raise ValueError(f"ISO 286 class {cls}: letter '{letters}' (grade {grade}) is not in the "
+                     "tables carried (shafts f g h j5-7 js k m n p; holes G H JS J6-7 K M N P)")
 
 
 def iso492_limits_um(cls: str, d_mm: float, surface: str) -> tuple[float, float]:

@@ -69,7 +69,7 @@ C_HEATHCOTE = heathcote_coefficient()
 class BallKinematics:
     """Rates per unit inner-ring speed (outer ring fixed), cage frame; all dimensionless."""
     cage: np.ndarray             # omega_c / omega
-    spin_inner: np.ndarray       # |omega_s,i| / omega
+    spin_inner: np.ndarray       # |omega_s,i| / omega (0 under inner-race control)
     spin_outer: np.ndarray       # |omega_s,o| / omega (0 under outer-race control)
     slip_inner: np.ndarray       # |k_i| / omega, differential-slip rate coefficient
     slip_outer: np.ndarray
@@ -79,18 +79,28 @@ class BallKinematics:
     omega_z: np.ndarray          # ball angular velocity, axial component / omega
 
 
-def ball_kinematics(dm_mm, Dw_mm, alpha_i_rad, alpha_o_rad=None) -> BallKinematics:
-    """Kinematics of a ball under outer-race control (Jones 1960; Harris Vol. 2 ch. 2), outer ring
-    fixed, inner ring at unit speed.  Cage frame, ball angular velocity Omega in the r-z plane,
-    contact normals n_j = (cos a_j, sin a_j), tangents t_j = (-sin a_j, cos a_j):
+def ball_kinematics(dm_mm, Dw_mm, alpha_i_rad, alpha_o_rad=None, outer_control=True) -> BallKinematics:
+    """Kinematics of a ball under outer-race control (default) or inner-race control (where
+    `outer_control` is False; a bool or an array broadcastable with the angles), outer ring fixed,
+    inner ring at unit speed (Jones 1960; Harris & Kotzalas, Rolling Bearing Analysis 5th ed.,
+    Vol. 2 ch. 2 "ball spin/roll ratio").  Cage frame, ball angular velocity Omega in the r-z
+    plane, contact normals n_j = (cos a_j, sin a_j), tangents t_j = (-sin a_j, cos a_j):
 
       inner rolling   Omega.t_i + (1 - w_c)(dm/Dw - cos a_i) = 0
       outer rolling   Omega.t_o + w_c (dm/Dw + cos a_o) = 0
       outer control   Omega.n_o + w_c sin a_o = 0          (no spin at the outer contact)
+      inner control   Omega.n_i - (1 - w_c) sin a_i = 0    (no spin at the inner contact)
 
-    giving w_c [sin a_o sin D + (dm/Dw + cos a_o) cos D + dm/Dw - cos a_i] = dm/Dw - cos a_i,
-    D = a_o - a_i; spin_i = Omega.n_i - (1 - w_c) sin a_i; differential-slip rates
+    Outer control: w_c [sin a_o sin D + (dm/Dw + cos a_o) cos D + dm/Dw - cos a_i] = dm/Dw - cos a_i,
+    D = a_o - a_i, Omega = -w_c [sin a_o n_o + (dm/Dw + cos a_o) t_o], tan(beta) = Omega_r/|Omega_z|
+    = sin a_o / (cos a_o + Dw/dm); spin_i = Omega.n_i - (1 - w_c) sin a_i.
+    Inner control: w_c = S / (S + dm/Dw + cos a_o), S = sin a_i sin D + (dm/Dw - cos a_i) cos D,
+    Omega = (1 - w_c) [sin a_i n_i - (dm/Dw - cos a_i) t_i], i.e. Omega_r = (1 - w_c) (dm/Dw) sin a_i,
+    Omega_z = (1 - w_c)(1 - (dm/Dw) cos a_i), tan(beta) = sin a_i / (cos a_i - Dw/dm) (Harris's
+    inner-raceway-control spin-axis angle); spin_o = Omega.n_o + w_c sin a_o
+    = (1 - w_c)(sin a_o - (dm/Dw) sin D) + w_c sin a_o.  Both: differential-slip rates
     k_i = Omega.t_i - (1 - w_c) cos a_i = -(1 - w_c) dm/Dw and k_o = Omega.t_o + w_c cos a_o = -w_c dm/Dw.
+    With equal angles both hypotheses give w_c = (1 - (Dw/dm) cos a)/2.
     """
     ai = np.asarray(alpha_i_rad, float)
     ao = ai if alpha_o_rad is None else np.asarray(alpha_o_rad, float)
@@ -101,10 +111,20 @@ def ball_kinematics(dm_mm, Dw_mm, alpha_i_rad, alpha_o_rad=None) -> BallKinemati
     # Omega = -wc [sin a_o n_o + (q + cos a_o) t_o]; Omega.n_i with n_o.n_i = cos D, t_o.n_i = -sin D
     om_ni = -wc * (so * np.cos(D) - (q + co) * np.sin(D))
     spin_i = om_ni - (1.0 - wc) * si
-    return BallKinematics(cage=wc, spin_inner=np.abs(spin_i), spin_outer=np.zeros_like(spin_i),
+    om_r, om_z, spin_o = wc * q * so, -wc * (1.0 + q * co), np.zeros_like(spin_i)
+    oc = np.asarray(outer_control, bool)
+    if not oc.all():
+        S = si * np.sin(D) + (q - ci) * np.cos(D)
+        wc_i = S / (S + q + co)
+        wc = np.where(oc, wc, wc_i)
+        om_r = np.where(oc, om_r, (1.0 - wc_i) * q * si)
+        om_z = np.where(oc, om_z, (1.0 - wc_i) * (1.0 - q * ci))
+        spin_o = np.where(oc, spin_o, (1.0 - wc_i) * (so - q * np.sin(D)) + wc_i * so)
+        spin_i = np.where(oc, spin_i, 0.0)
+    return BallKinematics(cage=wc, spin_inner=np.abs(spin_i), spin_outer=np.abs(spin_o),
                           slip_inner=(1.0 - wc) * q, slip_outer=wc * q,
                           roll_inner=(1.0 - wc) * (1.0 - ci / q), roll_outer=wc * (1.0 + co / q),
-                          omega_r=wc * q * so, omega_z=-wc * (1.0 + q * co))
+                          omega_r=om_r, omega_z=om_z)
 
 
 # ---------------------------------------------------------------------------------------------

@@ -33,6 +33,7 @@ def force_direct(g, approach, dr=0.0):
 
 
 @pytest.mark.parametrize("load", [0.0, 150.0, -80.0, 400.0])
+@pytest.mark.requirement("R-PAIR-EQUILIBRIUM")
 def test_harris_axial_load_equation(load):
     """Harris Vol. 1 ch. 7 (thrust-loaded bearing): Fa = Z K_n A^1.5 (cos a0/cos a - 1)^1.5 sin a, and the axial
     deflection delta_a = A sin(a - a0)/cos a (same chapter), for each loaded bearing of the pair."""
@@ -51,6 +52,7 @@ def test_harris_axial_load_equation(load):
 
 
 @pytest.mark.parametrize("arrangement", ["DB", "DF"])
+@pytest.mark.requirement("R-PAIR-EQUILIBRIUM")
 def test_second_route_prescribed_displacement(arrangement):
     """Route 2: choose rotor displacements x, compute both bearings' forces directly from the
     geometry (force_direct), form the external load they balance, and give that load to the

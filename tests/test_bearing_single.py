@@ -77,7 +77,8 @@ def test_ball_speed_zero_is_the_quasi_static_contact():
 @pytest.mark.parametrize("control", ["outer", "inner"])
 def test_ball_at_speed_closed_forms(control):
     """At speed: F_c = m omega_c^2 dm/2 with m = rho pi Dw^3/6 (rho in N s^2/mm^4: 1 kg/m^3 =
-    1e-12) and omega_c from the outer-race-control kinematics at the solved angles; Harris's
+    1e-12) and omega_c from the kinematics of the control hypothesis at the solved angles
+    (`torque.ball_kinematics`, itself checked in tests/test_ball_balance.py); Harris's
     two force equations of the ball hold to 1e-9 of the loads; and the outer contact angle falls,
     the inner rises against the static angle (the centrifugal force loads the outer race)."""
     g = G71807
@@ -88,7 +89,7 @@ def test_ball_at_speed_closed_forms(control):
     b = solve_balls(g, X, Y, speed, control=control)
     assert b.converged.all()
     ai, ao = np.radians(b.contact_angle_inner_deg), np.radians(b.contact_angle_outer_deg)
-    kin = ball_kinematics(g.dm_mm, g.Dw_mm, ai, ao)
+    kin = ball_kinematics(g.dm_mm, g.Dw_mm, ai, ao, outer_control=control == "outer")
     omega = speed * 2.0 * np.pi / 60.0
     m = g.ball.density_kg_m3 * 1e-12 * np.pi * g.Dw_mm ** 3 / 6.0
     np.testing.assert_allclose(b.centrifugal_force_N, m * (kin.cage * omega) ** 2 * g.dm_mm / 2,

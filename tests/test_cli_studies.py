@@ -88,6 +88,7 @@ def _md_rows(md: str, first: str) -> list[list[str]]:
     return rows
 
 
+@pytest.mark.requirement("R-FE-LAME")
 def test_verify_cases_contract_and_tolerance(tmp_path):
     """The verification cases with the assembly's mesh-convergence levels twice as coarse (the
     Lamé cases and the Lamé convergence case as shipped); the command at full levels is slow."""
@@ -184,8 +185,8 @@ def test_verify_runs_the_mesh_convergence_of_a_users_assembly(tmp_path, capsys):
     from studies.runs import verify
 
     asm = load_assembly(CONFIG_DIR / "template.toml")
-    cases = verify.run(tmp_path / "v", progress=lambda s: None, mesh_factor=2.0, assembly=asm)
-    mine = [c for c in cases if c["kind"] == "mesh_convergence" and asm.name in c["name"]]
+    result = verify.run(tmp_path / "v", progress=lambda s: None, mesh_factor=2.0, assembly=asm)
+    mine = [c for c in result.convergence if asm.name in c["name"]]
     assert len(mine) == 1
     q = mine[0]["quantities"]
     assert q and all(np.isfinite(r["gci_fine"]) for r in q.values())

@@ -144,6 +144,7 @@ def diagnose_toy(model, cond, meas, names=None):
     return diagnose(predict, meas, cond, cands, NUISANCE, predict_at=predict_at, T_ref_C=T_REF)
 
 
+@pytest.mark.requirement("R-DIAG-RATES")
 def test_false_claim_rate_on_null_data():
     rng = np.random.default_rng(2024)
     n = 45
@@ -178,6 +179,7 @@ def test_false_claim_rate_on_null_data():
 
 
 @pytest.mark.parametrize("name", sorted(DESIGN_FOR))      # the effects the toy model carries
+@pytest.mark.requirement("R-DIAG-RATES")
 def test_hit_rate_per_effect(name):
     rng = np.random.default_rng(zlib.crc32(name.encode()))
     n = 12

@@ -19,6 +19,7 @@ def test_contact_modulus_identical_materials():
 
 
 @pytest.mark.parametrize("Q", [1.0, 100.0, 5000.0])
+@pytest.mark.requirement("R-HERTZ")
 def test_sphere_on_flat_equals_johnson(Q):
     """Johnson, Contact Mechanics (1985) ch. 4 (sphere radius R on a flat, Rx = Ry = R):
     a = (3 Q R / (4 E*))^(1/3), delta = a^2 / R, p0 = 3 Q / (2 pi a^2)."""
@@ -51,6 +52,7 @@ def test_near_circular_contact_is_continuous(eps):
 
 
 @pytest.mark.parametrize("ratio", [1.0 + 1e-3, 1.5, 4.0, 10.0, 30.0, 300.0, 1e4])
+@pytest.mark.requirement("R-HERTZ")
 def test_ellipticity_solves_hertz_equation_by_quadrature(ratio):
     """(kappa^2 E - K)/(K - E) = Ry/Rx (Harris Vol. 1 ch. 6, rearranged), with K and E
     recomputed from their defining integrals by adaptive quadrature; the returned K and E equal
@@ -94,6 +96,7 @@ def _boussinesq_displacement(x0, y0, a, b, p0, E_star, n_theta=1024):
 
 
 @pytest.mark.parametrize("Rx,Ry", [(5.0, 5.0), (4.0, 6.8), (1.8, 45.0)])
+@pytest.mark.requirement("R-HERTZ")
 def test_surface_displacement_matches_gap_condition(Rx, Ry):
     """Inside the contact the surfaces conform: w(x, y) = delta - x^2/(2Rx) - y^2/(2Ry) (Johnson
     1985 ch. 4), with w from the Boussinesq integral of the Hertz pressure.  This checks the

@@ -175,6 +175,7 @@ def test_verify_contract_keyword_names():
     assert fit_pressure_MPa(**inputs) > 0
 
 
+@pytest.mark.requirement("R-SEED000-FITS")
 def test_seed000_fit_change_rates():
     """Seed 000 quotes -0.05 um/C (inner: TC4 shaft in 9Cr18 ring, 35 mm) and +0.07 um/C (outer:
     9Cr18 ring in TC4 housing, 47 mm); the numbers are given to one significant digit, hence the
@@ -189,6 +190,7 @@ def test_seed000_fit_change_rates():
     assert np.allclose(same, 5.0, rtol=0, atol=1e-12)
 
 
+@pytest.mark.requirement("R-SEED000-FITS")
 def test_outer_fit_of_seed000_closes_on_heating():
     """-1.5 um clearance closes where 1.5 um = 1.5e-6/K * 47 mm * (T - 20 C), i.e. near 41 C
     (DESIGN.md section 6; TC4's CTE slope moves it by about 2 K): open at 20 and 35 C, closed at

@@ -145,6 +145,7 @@ def _check_chosen_mesh(asm, target):
 
 
 @pytest.mark.parametrize("name", ["seed000", "pair_305"])
+@pytest.mark.requirement("R-FE-MESH")
 def test_coarse_target_is_met_on_a_small_and_a_large_assembly(name):
     """1 % asked: the chosen mesh of the 71807C pair (L = 1.4 mm) and of the 305-size pair
     (L = 4.25 mm) are within 1 % of the Richardson value of their x0.5 and x0.25 meshes."""
@@ -158,6 +159,7 @@ def test_coarse_target_is_met_on_a_small_and_a_large_assembly(name):
 
 @pytest.mark.slow
 @pytest.mark.parametrize("name", list(ASSEMBLIES))
+@pytest.mark.requirement("R-FE-MESH")
 def test_default_target_is_met_on_every_assembly(name):
     """0.1 % (the default) on every shipped assembly and the 305-size pair in aluminium."""
     asm = load_assembly(ASSEMBLIES[name])

@@ -76,16 +76,17 @@ def cases():
     return rotating_cases()
 
 
+@pytest.mark.requirement("R-FE-ROTATION")
 def test_rotating_fit_cases_agree_with_the_closed_form_within_half_a_percent(cases):
     """Issue 12 'Done when': every rotating case within 0.5 % of its closed form; the fit
     pressure of each rotating_fit case is also recomputed here from the echoed inputs alone
     (T&G §28, §32 written out again: p = (delta/2 - s(c) omega^2) / compliance)."""
-    kinds = {c["kind"] for c in cases}
+    kinds = {c.kind for c in cases}
     assert {"rotating_fit", "rotating_displacement", "rotating_free", "fit_open_speed"} <= kinds
     for c in cases:
-        assert c["rel_error"] <= TOLERANCE, c["name"]
-    for c in (c for c in cases if c["kind"] == "rotating_fit"):
-        i = c["inputs"]
+        assert c.rel_error <= TOLERANCE, c.name
+    for c in (c for c in cases if c.kind == "rotating_fit"):
+        i = c.inputs
         Ei, vi, Eo, vo = i["E_inner_MPa"], i["nu_inner"], i["E_outer_MPa"], i["nu_outer"]
         if i["assumption"] == "plane_strain":
             Ei, vi, Eo, vo = Ei / (1 - vi ** 2), vi / (1 - vi), Eo / (1 - vo ** 2), vo / (1 - vo)
@@ -101,7 +102,7 @@ def test_rotating_fit_cases_agree_with_the_closed_form_within_half_a_percent(cas
         comp = c_ * (((b * b + c_ * c_) / (b * b - c_ * c_) + vo) / Eo
                      + ((c_ * c_ + a * a) / (c_ * c_ - a * a) - vi) / Ei)
         p = (i["interference_um"] / 2000.0 - s) / comp
-        assert c["closed_form"]["fit_pressure_MPa"] == pytest.approx(p, rel=1e-12)
+        assert c.closed_form["fit_pressure_MPa"] == pytest.approx(p, rel=1e-12)
         assert 0 < p < i["interference_um"] / 2000.0 / comp      # loosened, not open
 
 

@@ -24,6 +24,7 @@ def _exact_two_layer(r, T1, T2, k1, k2):
     return np.where(r <= RF, T1 - q * np.log(r / RI) / k1, Tf - q * np.log(r / RF) / k2)
 
 
+@pytest.mark.requirement("R-FE-THERMAL")
 def test_radial_conduction_through_a_fit_matches_log_profile_and_converges():
     k1, k2 = get_material("TC4").conductivity_W_mK, get_material("9Cr18").conductivity_W_mK
     errs = []

@@ -81,6 +81,7 @@ def test_hysteresis_scales_with_load_to_four_thirds():
     assert F8 / F1 == pytest.approx(16.0, rel=1e-12)
 
 
+@pytest.mark.requirement("R-TORQUE")
 def test_hysteresis_force_is_work_of_front_half_pressure():
     """Johnson 1985 ch. 9: the work per unit distance rolled is the moment of the front half of the
     pressure about the contact centre over Rx; the moment integrated numerically equals (3/16) Q b."""
@@ -107,6 +108,7 @@ def test_heathcote_rolling_bands():
     assert torque.C_HEATHCOTE == pytest.approx(0.08, abs=0.001)   # Johnson: "about 0.08"
 
 
+@pytest.mark.requirement("R-TORQUE")
 def test_heathcote_power_by_direct_integration():
     """Power = mu int int p |k (y^2 - y_c^2)| / (2 R_c) dA over the ellipse (y along the major
     axis a), integrated numerically in 2-D, equals C_H mu |k| Q a^2 / R_c."""
@@ -124,6 +126,7 @@ def test_heathcote_power_by_direct_integration():
 
 
 @pytest.mark.parametrize("ratio", [1.0, 4.0, 25.0])
+@pytest.mark.requirement("R-TORQUE")
 def test_spin_moment_by_direct_integration(ratio):
     """M_s = int int mu p sqrt(x^2 + y^2) dA (full slip about the centre) equals (3/8) mu Q a E(m);
     the circular contact gives Johnson's 3 pi mu Q a / 16."""

@@ -25,11 +25,12 @@ equations, written as vectors):
                                       axis, radial component, relative to the cage)
 
 omega_c and omega_R sin(beta) come from `torque.ball_kinematics` at the current angles (outer
-ring fixed, inner ring at speed_rpm; Jones 1960 outer-race control kinematics).  lam_o = 2,
+ring fixed, inner ring at speed_rpm) under the ball's own control hypothesis: outer-race control
+tan(beta) = sin a_o / (cos a_o + Dw/dm), inner-race control tan(beta) = sin a_i / (cos a_i - Dw/dm)
+(Jones 1960; Harris & Kotzalas Vol. 2 ch. 2, ball spin/roll kinematics).  lam_o = 2,
 lam_i = 0 under outer-race control (the outer contact's friction takes the whole gyroscopic
-moment, Jones; Harris Vol. 2 ch. 3), lam_i = 2, lam_o = 0 under inner-race control (the
-kinematics stay those of outer-race control: a documented simplification).  control "jones"
-chooses per ball with Jones's criterion (Jones 1960; Harris & Kotzalas Vol. 2 ch. 3, raceway
+moment, Jones; Harris Vol. 2 ch. 3), lam_i = 2, lam_o = 0 under inner-race control.  control
+"jones" chooses per ball with Jones's criterion (Jones 1960; Harris & Kotzalas Vol. 2 ch. 3, raceway
 control): the outer raceway controls where its spin-resisting moment is the larger,
 
     Q_o a_o E(k_o) cos(a_i - a_o) >= Q_i a_i E(k_i)        (a: semi-major axis, E: elliptic integral)
@@ -45,18 +46,41 @@ moment -(Dw/2) f e_t, at the inner one (Dw/2 along -n_i) +(Dw/2) f e_t.  In comp
     Q_i sin a_i - Q_o sin a_o + (M_g/Dw)(lam_i cos a_i - lam_o cos a_o) = 0
     Q_i cos a_i - Q_o cos a_o - (M_g/Dw)(lam_i sin a_i - lam_o sin a_o) + F_c = 0
 
-which the tests evaluate directly.  At speed 0 (F_c = M_g = 0) the centres and the ball centre are
-collinear, a_i = a_o and Q_i = Q_o = K_n delta^1.5 with K_n the series stiffness: the quasi-static
-contact of `contact.axial_state` / `ball_set_state`.
+which the tests evaluate directly.  Sign convention of the gyroscopic friction: the force of the
+inner raceway on the ball is +lam_i (M_g/Dw) t_i, that of the outer raceway -lam_o (M_g/Dw) t_o,
+t = (cos a, -sin a), M_g > 0 (inner ring turning so that the ball's radial spin component
+Omega_r is positive at a positive contact angle).  The common rendering of Harris's equations
+(Harris & Kotzalas Vol. 2 ch. 3; seed 003 eq. 16: Q_i sin a_i - Q_o sin a_o - (lam_i M_g/Dw)
+cos a_i + (lam_o M_g/Dw) cos a_o = 0) has the opposite sign on the friction terms.  The sign
+there belongs to the senses its figure draws (direction of rotation, positive sense of M_g as
+the inertial couple of the ball); here it is fixed by Euler's equation in the axes above with
+the inner ring turning in the positive sense: M_g e_t is the moment the contacts exert on the
+ball, dH/dt, whatever the rendering.  Physical check, the thrust limit a_i = a_o = 90 deg: the ball rolls with w_c = 1/2 and Omega_r = dm/(2 Dw)
+per unit ring speed under either control, M_g = J omega^2 dm / (4 Dw), and the friction that
+supplies +M_g e_t at the outer contact (Dw/2 along +e_z) points radially outwards, at the inner
+contact (Dw/2 along -e_z) inwards, magnitude 2 M_g / Dw (tests/test_ball_balance.py evaluates
+Euler's equation of the ball in three dimensions).
+
+The rings carry what the ball exerts on them: the inner ring Q_i n_i + lam_i (M_g/Dw) t_i (its
+friction included: `inner_force_N`), the outer ring Q_o n_o + lam_o (M_g/Dw) t_o, so that Z times
+the sum over the balls of either equals the applied load (plus, for the outer ring, the balls'
+centrifugal forces) in every control mode.  The friction is frozen with the other forces, so the
+ring sees it as a dead load: at the inner groove centre, plus its couple about it, r_i f_i e_t per
+ball (`friction_couple_Nmm`; the ring-level solvers with moments or tilt carry it).
+
+At speed 0 (F_c = M_g = 0) the centres and the ball centre are collinear, a_i = a_o and
+Q_i = Q_o = K_n delta^1.5 with K_n the series stiffness: the quasi-static contact of
+`contact.axial_state` / `ball_set_state`.
 
 Solution.  With K_i, K_o, F_c, M_g and the friction directions frozen, the ball equilibrium is
 the stationarity of the convex potential (2/5)(K_o delta_o^2.5 + K_i delta_i^2.5) - b.u
 (b the frozen forces), minimised by `roots.newton_minimise`; an outer loop refreshes the frozen
-quantities at the new contact angles until the angles change by less than tol.  Its minimum
-W(P) is a convex function of the inner groove centre P (partial minimisation of a jointly convex
-function) whose gradient is the inner contact force Q_i n_i (envelope theorem) and whose Hessian
-is the inner and outer contact tangents in series, T_i (T_i + T_o)^-1 T_o: what a ring-level
-solver (`single.py`) needs.
+quantities at the new contact angles until the angles change by less than tol.  Its minimum plus
+the work of the inner raceway's frozen friction, W(P) = min_u Pi + f_i.P (f_i = lam_i (M_g/Dw) t_i),
+is a convex function of the inner groove centre P (partial minimisation of a jointly convex
+function) whose gradient is the inner ring's load from the ball Q_i n_i + f_i (envelope theorem)
+and whose Hessian is the inner and outer contact tangents in series, T_i (T_i + T_o)^-1 T_o: what
+a ring-level solver (`single.py`, `dynamic.py`, `combined.py`) needs.
 """
 from __future__ import annotations
 
@@ -64,7 +88,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from analytic.bearing.contact import ContactStiffness, contact_stiffness
+from analytic.bearing.contact import ContactStiffness, ball_azimuths_rad, contact_stiffness
 from analytic.bearing.geometry import (BearingGeometry, ThermalGeometry, broadcast_geometry,
                                        thermal_geometry)
 from analytic.bearing.roots import Root
@@ -117,6 +141,34 @@ def control_shares(control, outer_controls=None):
     return CONTROL[control]
 
 
+def friction_couple_Nmm(g: BearingGeometry, tg: ThermalGeometry,
+                        friction_inner_N) -> np.ndarray:
+    """(M_x, M_y) in N mm, (2, N): the couples of the inner raceway's gyroscopic friction about the
+    inner groove centres, summed over the balls.  Ball k's friction f_k t_i (N, the module
+    docstring's sign convention; nonzero under inner-race control) acts on the ring at the
+    contact point, r_i = f_i Dw (grown geometry tg) from the groove centre against n_i: the
+    moment (-r_i n_i) x f_k t_i = r_i f_k e_t (n_i x t_i = -e_t, e_t = (-sin psi, cos psi) the
+    orbit direction at psi_k) adds to the moment of f_k t_i placed at the groove centre.
+    friction_inner_N: (Z, N), ball k at `contact.ball_azimuths_rad`[k]."""
+    psi = ball_azimuths_rad(g.Z)[:, None]
+    c = tg.f_i * tg.Dw_mm * np.asarray(friction_inner_N, float)
+    return np.stack([-(c * np.sin(psi)).sum(axis=0), (c * np.cos(psi)).sum(axis=0)])
+
+
+def relaxed_update(a_i, a_o, n_i, n_o, change, last, relax):
+    """One pass of the frozen angles of the ring-level outer loops (`single`, `combined`): the new
+    ball angles (n_i, n_o), under-relaxed per point once a pass changes them more than the one
+    before (a lightly loaded controlling inner contact can make the plain update oscillate with
+    a growing amplitude).  A mode that the update multiplies by lam < -1 grows by
+    r = |1 - relax (1 - lam)| per pass; relax is then set to relax / (1 + r), the value that
+    cancels it when r comes from that mode alone (floor 1/64).  change, last, relax: per point
+    (last axis).  Returns (a_i, a_o, relax)."""
+    grow = change > last
+    r = np.where(grow, change / np.where(grow, last, 1.0), 0.0)
+    relax = np.where(grow, np.maximum(relax / (1.0 + r), 1.0 / 64.0), relax)
+    return a_i + relax * (n_i - a_i), a_o + relax * (n_o - a_o), relax
+
+
 def ball_mass_N_s2_per_mm(g: BearingGeometry, Dw_mm=None) -> float:
     """Ball mass m = rho pi Dw^3 / 6 in N s^2/mm (density from `Material.density_N_s2_mm4`)."""
     Dw = g.Dw_mm if Dw_mm is None else Dw_mm
@@ -143,8 +195,10 @@ class BallDynamics:
     spin_to_roll: np.ndarray             # inner contact: |omega_s,i| / omega_R (cage frame)
     cage_speed_rpm: np.ndarray
     ball_centre_mm: np.ndarray           # (2, ...): (axial, radial) from the outer groove centre
-    inner_force_N: np.ndarray            # (2, ...): Q_i n_i, the ball's force on the inner ring reversed
-    tangent_N_per_mm: np.ndarray         # (2, 2, ...): d(Q_i n_i)/dP, ball in equilibrium
+    inner_force_N: np.ndarray            # (2, ...): Q_i n_i + f_i t_i, the ball's force on the inner ring reversed
+    tangent_N_per_mm: np.ndarray         # (2, 2, ...): d(inner_force_N)/dP, ball in equilibrium
+    friction_inner_N: np.ndarray         # f_i: force of the inner raceway on the ball along t_i
+    friction_outer_N: np.ndarray         # f_o: force of the outer raceway on the ball along t_o
     cs_inner: ContactStiffness           # Hertz data at the inner angle (ellipses: state.contact_ellipses)
     cs_outer: ContactStiffness
     outer_control: np.ndarray            # True where the outer raceway controls (the hypothesis)
@@ -159,6 +213,7 @@ class _Frozen:
     c_i: np.ndarray              # r_i - Dw/2 (grown)
     c_o: np.ndarray              # r_o - Dw/2
     b: np.ndarray                # (2, M) centrifugal + friction forces on the ball
+    f_ring: np.ndarray           # (2, M) the inner raceway's friction force on the ball, f_i t_i
 
 
 def _contact(d, c, K):
@@ -273,18 +328,21 @@ def series_tangent(n_i, kn_i, kt_i, n_o, kn_o, kt_o):
 
 def frozen_equilibrium(P, u0, fz: _Frozen, Dw_mm: float):
     """Ball centres (2, M) in equilibrium with K, F_c and friction frozen, and the condensed
-    potential W(P) = min_u Pi, its gradient Q_i n_i and Hessian T_i (T_i + T_o)^-1 T_o."""
+    potential W(P) = min_u Pi + f_i.P, its gradient Q_i n_i + f_i (the inner ring's load from the
+    ball, its raceway's friction included) and Hessian T_i (T_i + T_o)^-1 T_o."""
     root = _newton_ball(P, u0, fz, cap=0.05 * Dw_mm)
     Pi, Pabs, _, _, p = _ball_potential(P, root.x, fz)
     Kt = series_tangent(p["n_i"], p["kn_i"], p["kt_i"], p["n_o"], p["kn_o"], p["kt_o"])
-    return root, Pi, Pabs, p["Q_i"] * p["n_i"], Kt, p
+    work = (fz.f_ring * P).sum(axis=0)
+    return root, Pi + work, Pabs + np.abs(work), p["Q_i"] * p["n_i"] + fz.f_ring, Kt, p
 
 
 def frozen_forces(g: BearingGeometry, tg: ThermalGeometry, alpha_i, alpha_o, speed_rpm,
                   control, alpha_stiffness=None):
     """K_i, K_o at the contact angles (or at alpha_stiffness for both, the ISO 16281 convention),
-    the kinematics at the angles, F_c, M_g and the frozen force vector b on the ball.  control:
-    "outer", "inner" or the shares (lam_i, lam_o) per ball (`control_shares`).
+    the kinematics at the angles under each ball's control (outer where lam_o > 0), F_c, M_g, the
+    frozen force vector b on the ball and the inner raceway's friction f_i t_i (module docstring).
+    control: "outer", "inner" or the shares (lam_i, lam_o) per ball (`control_shares`).
     Returns (_Frozen, extras dict, cs_inner, cs_outer)."""
     lam_i, lam_o = CONTROL[control] if isinstance(control, str) else control
     ai = np.asarray(alpha_i, float)
@@ -294,18 +352,19 @@ def frozen_forces(g: BearingGeometry, tg: ThermalGeometry, alpha_i, alpha_o, spe
     else:
         cs_i = cs_o = contact_stiffness(g, tg, np.broadcast_to(alpha_stiffness, ai.shape))
     Dw, dm = tg.Dw_mm, tg.dm_mm
-    kin = ball_kinematics(dm, Dw, ai, ao)
+    kin = ball_kinematics(dm, Dw, ai, ao, outer_control=np.asarray(lam_o) > 0.0)
     omega = np.asarray(speed_rpm, float) * RPM_TO_RAD_S
     omega_c = kin.cage * omega
     F_c = ball_mass_N_s2_per_mm(g, Dw) * omega_c ** 2 * 0.5 * dm
     M_g = ball_inertia_N_s2_mm(g, Dw) * omega_c * kin.omega_r * omega
     w = M_g / Dw
-    b = np.stack([w * (lam_i * np.cos(ai) - lam_o * np.cos(ao)),
-                  F_c - w * (lam_i * np.sin(ai) - lam_o * np.sin(ao))])
+    f_i, f_o = lam_i * w, -lam_o * w          # along t_i, t_o: module docstring, sign convention
+    f_ring = np.stack(np.broadcast_arrays(f_i * np.cos(ai), -f_i * np.sin(ai)))
+    b = np.stack([f_ring[0] + f_o * np.cos(ao), F_c + f_ring[1] - f_o * np.sin(ao)])
     om_R = np.hypot(kin.omega_r, kin.omega_z)
     extras = dict(F_c=F_c, M_g=M_g, spin_to_roll=kin.spin_inner / np.where(om_R > 0, om_R, 1.0),
-                  cage_rpm=kin.cage * np.asarray(speed_rpm, float))
-    fz = _Frozen(cs_i.K_i, cs_o.K_o, tg.f_i * Dw - 0.5 * Dw, tg.f_o * Dw - 0.5 * Dw, b)
+                  cage_rpm=kin.cage * np.asarray(speed_rpm, float), f_i=f_i, f_o=f_o)
+    fz = _Frozen(cs_i.K_i, cs_o.K_o, tg.f_i * Dw - 0.5 * Dw, tg.f_o * Dw - 0.5 * Dw, b, f_ring)
     return fz, extras, cs_i, cs_o
 
 
@@ -382,5 +441,7 @@ def solve_balls(g: BearingGeometry, X_mm, Y_mm, speed_rpm=0.0, *, control: str =
         cage_speed_rpm=r(np.broadcast_to(ex["cage_rpm"], a_i.shape)),
         ball_centre_mm=root2.x.reshape((2,) + shape),
         inner_force_N=F_in.reshape((2,) + shape), tangent_N_per_mm=Kt.reshape((2, 2) + shape),
+        friction_inner_N=r(np.broadcast_to(ex["f_i"], a_i.shape)),
+        friction_outer_N=r(np.broadcast_to(ex["f_o"], a_i.shape)),
         cs_inner=cs_i, cs_outer=cs_o, outer_control=r(outer_ctl),
         converged=r(ok_outer & root.converged & root2.converged))

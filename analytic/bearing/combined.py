@@ -210,6 +210,8 @@ def _combined_group(g: BearingGeometry, mode: str, s, dr, dz, tg: ThermalGeometr
     if speed_rpm is not None:
         shape = (2, g.Z, u.shape[1])
         dyn = DynamicBallSet(g, tg3, np.asarray(speed_rpm, float)[None, None, :], control, shape)
+        if prob.tilt:
+            dyn.set_tilt(s, prob.lam)
         u, ok, st = _solve_dynamic(prob, dyn, u, 0.1 * g.A0_mm, max_outer, control)
         inner, outer = dyn.contacts()
         ok = ok & dyn.ball_ok.reshape(shape).all(axis=(0, 1))
@@ -283,13 +285,14 @@ def _combined_group(g: BearingGeometry, mode: str, s, dr, dz, tg: ThermalGeometr
         a_o = dyn.angles()[1]
         Q_o = dyn.loads()[1]
         ex = dyn.extras()
-        outer_balls = dict(ball_loads_outer_N=Q_o, ball_contact_angles_outer_deg=np.degrees(a_o))
+        outer_balls = dict(ball_loads_outer_N=Q_o, ball_contact_angles_outer_deg=np.degrees(a_o),
+                           ball_outer_control=dyn.outer_control())
         dynamic = DynamicContacts(
             contact_angle_inner_deg=np.degrees(top(alpha)), contact_angle_outer_deg=np.degrees(top(a_o)),
             load_inner_N=top(Q), load_outer_N=top(Q_o), centrifugal_force_N=top(ex["F_c"]),
             gyroscopic_moment_Nmm=top(ex["M_g"]), spin_to_roll=top(ex["spin_to_roll"]),
             cage_speed_rpm=top(ex["cage_rpm"]),
-            outer_control=top(dyn.outer_ctl.reshape(Q.shape)))
+            outer_control=top(dyn.outer_control()))
     radial = RadialLoadState(
         rho_mm=rho, radial_force_N=st.Fr_N, max_ball_load_N=Q.max(axis=1),
         loaded_zone=loaded.mean(axis=1), radial_stiffness_N_per_um=1e-3 * k_rad,
@@ -318,26 +321,30 @@ def _solve_dynamic(prob: CombinedProblem, dyn: "DynamicBallSet", u, cap, max_out
     with the final frozen forces)."""
     a_i = a_o = prob.alpha(u)
     done = np.zeros(u.shape[1], bool)
+    relax, last = np.ones(u.shape[1]), np.full(u.shape[1], np.inf)
     for n_pass in range(max_outer):
         dyn.freeze(a_i, a_o)
-        u = newton_minimise(lambda uu: prob.assemble(uu, dyn.state(*prob.positions(uu))), u, cap,
+        u = newton_minimise(lambda uu: prob.assemble(uu, dyn.state(*prob.positions(uu),
+                                                                   prob.theta(uu))), u, cap,
                             max_iter=60).x
-        dyn.state(*prob.positions(u))            # the balls at u: their angles and loads
+        dyn.state(*prob.positions(u), prob.theta(u))     # the balls at u: their angles and loads
         n_i, n_o = dyn.angles()
         Q_i, Q_o = dyn.loads()
         change = np.maximum(np.where(Q_o > 0, np.abs(n_o - a_o), 0.0),
                             np.where(Q_i > 0, np.abs(n_i - a_i), 0.0)).max(axis=(0, 1))
-        a_i, a_o = n_i, n_o
+        a_i, a_o, relax = bd.relaxed_update(a_i, a_o, n_i, n_o, change, last, relax)
+        last = change
         done = change <= BALL_ANGLE_TOL_RAD
         if (control == "jones" and n_pass < bd.JONES_FREE_PASSES
                 and dyn.switch_control(a_i, a_o)):
             done[:] = False
+            last[:] = np.inf         # the next pass's change comes from the switch
         if done.all():
             break
     dyn.freeze(a_i, a_o)
     # converged: the generalised residual forces within 1e-10 of the forces involved (the ball
     # equilibria inside carry their own rounding, so the potential cannot judge the last digits)
-    st = dyn.state(*prob.positions(u))
+    st = dyn.state(*prob.positions(u), prob.theta(u))
     g = prob.assemble(u, st)[2]
     scale = st.Q_N.sum(axis=(0, 1)) + np.abs(prob.Fa) + np.abs(prob.Fr)
     if prob.tilt:
@@ -458,7 +465,8 @@ def solve_pair_combined(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.
         ball_inner=ContactEllipses(*(np.zeros(Zb) for _ in range(5))),
         ball_outer=ContactEllipses(*(np.zeros(Zb) for _ in range(5))),
         **({} if speed is None else dict(ball_loads_outer_N=np.zeros(Zb),
-                                         ball_contact_angles_outer_deg=np.zeros(Zb)))))
+                                         ball_contact_angles_outer_deg=np.zeros(Zb),
+                                         ball_outer_control=np.ones(Zb, bool)))))
     for mode, mmask in modes.items():
         loaded = (Fr != 0.0) | (M != 0.0) | (speed is not None)
         for solve, smask in ((False, ~loaded), (True, loaded)):

@@ -9,8 +9,10 @@ groove centre sits at (X_j, Y_j) from its outer one,
     X_j = A0 sin(alpha0) + a_j,   a_j = s_j (dz_j + x) + e - c F_j,   Y_j = A0 cos(alpha0) + dr_j
 
 and the rotor position x solves sum_j s_j F_j = axial_load_N.  What changes at speed is the
-bearing's axial force: F_j = Z Q_i,j sin(alpha_i,j), the axial component of the INNER contact force
-of a ball in its own equilibrium between the raceways (the inner ring carries the shaft's loads);
+bearing's axial force: F_j = Z (Q_i,j sin(alpha_i,j) + f_i,j cos(alpha_i,j)), the axial component of
+the INNER ring's load from a ball in its own equilibrium between the raceways (the inner ring
+carries the shaft's loads; f_i the inner raceway's gyroscopic friction, nonzero under inner-race
+control: `ball_dynamics` module docstring, so that the outer rings carry the same load);
 the outer contact additionally carries the centrifugal force, so alpha_o < alpha_i and Q_o > Q_i.
 dF_j/dX_j = Z (d(Q_i n_i)/dP)_aa, the series tangent of the ball (`ball_dynamics` module docstring).
 
@@ -31,7 +33,7 @@ the ball, ring centrifugal growth beyond what the FE gives (the FE spins the rot
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -188,15 +190,26 @@ class DynamicBallSet:
         self.speed = np.broadcast_to(np.asarray(speed_rpm, float), shape).ravel()
         self.outer_ctl = np.ones(self.speed.size, bool)
         self.u_prev = None
+        self.tilt_sign = None    # with a rotor tilt: s_j (2, 1), the bearings' contact senses
+
+    def set_tilt(self, s, lam: float) -> None:
+        """A rotor tilt theta is an unknown, as u_t = lam theta (`combined.CombinedProblem`), s the
+        bearings' contact senses (2, 1): the inner raceway friction's couples
+        (`ball_dynamics.friction_couple_Nmm`, about the bearing's own y axis) then enter the tilt
+        equation as s_j M_y,j."""
+        self.tilt_sign, self.lam = np.asarray(s, float), float(lam)
 
     def freeze(self, a_i, a_o) -> None:
         """Freeze K, F_c, M_g and the friction directions at the contact angles (2, Z, N)."""
         shares = bd.control_shares(self.control, self.outer_ctl)
-        self.fz, _, self.cs_i, self.cs_o = bd.frozen_forces(self.g, self.tg, a_i.ravel(),
-                                                            a_o.ravel(), self.speed, shares)
+        self.fz, ex, self.cs_i, self.cs_o = bd.frozen_forces(self.g, self.tg, a_i.ravel(),
+                                                             a_o.ravel(), self.speed, shares)
+        self.f_i = np.broadcast_to(ex["f_i"], self.speed.shape).reshape(self.shape)
 
-    def state(self, X, Y, cpsi, gx=None, gy=None):
-        """`contact.BallSetState` of the balls at groove-centre distances X, Y (2, Z, N)."""
+    def state(self, X, Y, cpsi, gx=None, gy=None, theta_rad=None):
+        """`contact.BallSetState` of the balls at groove-centre distances X, Y (2, Z, N); with a
+        tilt (gx, gy and theta_rad given, `set_tilt` called) the moment and the potential carry
+        the frozen friction couples, s_j M_y,j theta."""
         P = np.stack([X.ravel(), Y.ravel()])
         u0 = bd.static_split(P, self.fz) if self.u_prev is None else self.u_prev
         Dw = float(np.max(self.tg.Dw_mm))
@@ -207,8 +220,20 @@ class DynamicBallSet:
         self.u_prev, self.ball_ok, self.p = root.x, root.converged, p
         r = lambda v: np.asarray(v).reshape(self.shape)  # noqa: E731
         tangent = tuple(r(Kt[i, j]) for i, j in ((0, 0), (0, 1), (1, 0), (1, 1)))
-        return project_balls(r(p["Q_i"]), r(p["dl_i"] + p["dl_o"]), self.angles()[0],
-                             r(F_in[0]), r(F_in[1]), r(W), r(W_abs), tangent, cpsi, gx, gy)
+        st = project_balls(r(p["Q_i"]), r(p["dl_i"] + p["dl_o"]), self.angles()[0],
+                           r(F_in[0]), r(F_in[1]), r(W), r(W_abs), tangent, cpsi, gx, gy)
+        if gx is None or self.tilt_sign is None:
+            return st
+        tg = self.tg
+        Mc = np.stack([self.tilt_sign[j] * bd.friction_couple_Nmm(
+            self.g, ThermalGeometry(*(v.reshape(self.shape)[j, :1] for v in (
+                tg.A_T_mm, tg.Dw_mm, tg.f_i, tg.f_o, tg.dm_mm))), self.f_i[j])[1]
+            for j in range(2)])
+        if theta_rad is None:
+            raise ValueError("DynamicBallSet.state: a tilt (set_tilt) needs theta_rad")
+        th = np.asarray(theta_rad, float)
+        return replace(st, M_Nmm=st.M_Nmm + Mc / self.lam, V_Nmm=st.V_Nmm + Mc * th,
+                       QD_Nmm=st.QD_Nmm + np.abs(Mc * th))
 
     def angles(self):
         """(inner, outer) contact angles of the last state, rad, (2, Z, N)."""
@@ -219,6 +244,12 @@ class DynamicBallSet:
     def loads(self):
         """(inner, outer) contact loads of the last state, N, (2, Z, N)."""
         return self.p["Q_i"].reshape(self.shape), self.p["Q_o"].reshape(self.shape)
+
+    def outer_control(self) -> np.ndarray:
+        """True where the outer raceway controls the ball (the hypothesis in force), (2, Z, N)."""
+        ctl = self.outer_ctl if self.control == "jones" else np.full(self.outer_ctl.shape,
+                                                                      self.control == "outer")
+        return ctl.reshape(self.shape)
 
     def switch_control(self, a_i, a_o) -> bool:
         """Control "jones": re-choose every ball's controlling raceway at the last state; True

@@ -30,9 +30,15 @@ inner ring (virtual work; the loads the rings carry):
     F_z = sum_k Q_k sin a_k,   F_x = sum_k Q_k cos a_k cos psi_k,   F_y = sum_k Q_k cos a_k sin psi_k
     M_x = sum_k Q_k sin a_k R_m sin psi_k,   M_y = -sum_k Q_k sin a_k R_m cos psi_k
 
-(Q_k, a_k the inner contact of ball k).  With K frozen these are the stationarity conditions of
-the convex potential sum_k W_k(X_k, Y_k) - F.q (W = (2/5) K_n delta^2.5 quasi-statically, the
-condensed ball potential of `ball_dynamics` at speed), minimised by `roots.newton_minimise`; an
+(Q_k, a_k the inner contact of ball k; with quasi-dynamic balls Q_k (sin a_k, cos a_k) stands for
+the inner ring's whole load from ball k, Q_i n_i + f_i t_i, the inner raceway's gyroscopic friction
+included (inner-race control), so that the ring's and the outer ring's force balance close; M_x
+and M_y then also carry that friction's couple about the groove centre, r_i f_i e_t per ball,
+`ball_dynamics.friction_couple_Nmm` and module docstring).  With K (and at speed the frozen ball
+forces) held these are the stationarity conditions of the convex potential
+sum_k W_k(X_k, Y_k) - (F - C).q (C the friction couples as generalised loads; W = (2/5) K_n
+delta^2.5 quasi-statically, the condensed ball potential of `ball_dynamics` at speed),
+minimised by `roots.newton_minimise`; an
 outer loop refreshes K (and the centrifugal force, gyroscopic moment and friction directions) at
 the new contact angles until the angles change by less than tol.  Axial displacement is reported
 from the centred position in both conventions.
@@ -138,6 +144,8 @@ class _Problem:
         self.speed, self.ball_model, self.control = speed, ball_model, control
         self.alpha_K = np.radians(g.alpha0_deg) if convention == "iso16281" else None
         self.outer_ctl = None        # control "jones": the raceway that controls, per ball
+        self.R_m = moment_arm_mm(g, convention)
+        self.couple = None           # quasi-dynamic: generalised load of the friction couples
 
     def P(self, q):
         X = np.einsum("jk,jn->kn", self.G[0], q)
@@ -154,8 +162,11 @@ class _Problem:
             if self.outer_ctl is None:
                 self.outer_ctl = np.ones(a_i.size, bool)
             shares = bd.control_shares(self.control, self.outer_ctl)
-            self.fz, *_ = bd.frozen_forces(g, tg, a_i.ravel(), a_o.ravel(), spd.ravel(),
-                                           shares, self.alpha_K)
+            self.fz, ex, _, _ = bd.frozen_forces(g, tg, a_i.ravel(), a_o.ravel(), spd.ravel(),
+                                                 shares, self.alpha_K)
+            f_i = np.broadcast_to(ex["f_i"], a_i.size).reshape(a_i.shape)
+            self.couple = np.zeros((5, a_i.shape[1]))
+            self.couple[3:] = bd.friction_couple_Nmm(g, tg, f_i) / self.R_m
 
     def switch_control(self, a_i, a_o) -> bool:
         """Control "jones": re-choose each ball's controlling raceway by Jones's criterion at the
@@ -200,8 +211,9 @@ class _Problem:
         X, Y = self.P(q)
         W, grad, H, _, _ = self.balls(X, Y)
         G = self.G
-        Fq = (self.F * q).sum(axis=0)
-        gq = np.einsum("ajk,akn->jn", G, grad) - self.F
+        F = self.F if self.couple is None else self.F - self.couple
+        Fq = (F * q).sum(axis=0)
+        gq = np.einsum("ajk,akn->jn", G, grad) - F
         Hq = np.einsum("ajk,abkn,blk->jln", G, H, G)
         self.scale = np.hypot(grad[0], grad[1]).sum(axis=0) + np.abs(self.F).max(axis=0)
         return W.sum(axis=0) - Fq, self.W_abs.sum(axis=0) + np.abs(Fq), gq, Hq
@@ -265,6 +277,7 @@ def _solve_block(g, tg, G, R_m, Yc, F, speed, q0, ball_model, convention, contro
     X, Y = prob.P(q)
     a_i = a_o = np.arctan2(X, Y)
     done = np.zeros(q.shape[1], bool)
+    relax, last = np.ones(q.shape[1]), np.full(q.shape[1], np.inf)
     for n_pass in range(max_outer):
         prob.freeze(X, Y, a_i, a_o)
         root = _minimise(prob, q, cap=0.05 * g.Dw_mm)
@@ -272,11 +285,16 @@ def _solve_block(g, tg, G, R_m, Yc, F, speed, q0, ball_model, convention, contro
         X, Y = prob.P(q)
         _, _, _, n_i, n_o = prob.balls(X, Y)
         change = np.maximum(np.abs(n_i - a_i), np.abs(n_o - a_o)).max(axis=0)
-        a_i, a_o = n_i, n_o
+        if ball_model == "static":
+            a_i, a_o = n_i, n_o
+        else:
+            a_i, a_o, relax = bd.relaxed_update(a_i, a_o, n_i, n_o, change, last, relax)
+            last = change
         done = change <= tol
         if (control == "jones" and ball_model != "static" and n_pass < bd.JONES_FREE_PASSES
                 and prob.switch_control(a_i, a_o)):
             done[:] = False
+            last[:] = np.inf         # the next pass's change comes from the switch
         if done.all():
             break
     prob.freeze(X, Y, a_i, a_o)
@@ -290,7 +308,7 @@ def _solve_block(g, tg, G, R_m, Yc, F, speed, q0, ball_model, convention, contro
 def solve_single(g: BearingGeometry, *, axial_load_N=0.0, radial_load_x_N=0.0,
                  radial_load_y_N=0.0, moment_x_Nmm=0.0, moment_y_Nmm=0.0, speed_rpm=0.0,
                  ball_model: str = "static", convention: str = "exact", control: str = "outer",
-                 tol: float = 1e-12, max_outer: int = 40, chunk: int = 1024) -> SingleBearingState:
+                 tol: float = 1e-12, max_outer: int = 60, chunk: int = 1024) -> SingleBearingState:
     """Equilibrium of one bearing (inner ring 5 DOF, outer ring rigid and fixed) under the given
     loads (N, N mm; scalars or arrays (N,)) at speed_rpm of the inner ring.
 
@@ -372,6 +390,8 @@ def balls_at_displacement(g: BearingGeometry, axial_mm, radial_x_mm=0.0, radial_
         Fc, Mg = zeros, zeros
         sr = kin.spin_inner / np.hypot(kin.omega_r, kin.omega_z)
         ctl = None
+        Fa_k, Fr_k = Q_i * np.sin(a_i), Q_i * np.cos(a_i)
+        couple = np.zeros((2, X.shape[1]))
     elif ball_model == "quasi_dynamic":
         b = bd.solve_balls(g, X, Y, np.broadcast_to(spd, X.shape), control=control, tg=tg,
                            alpha_stiffness_rad=alpha_K)
@@ -381,6 +401,8 @@ def balls_at_displacement(g: BearingGeometry, axial_mm, radial_x_mm=0.0, radial_
         cs_i, cs_o = b.cs_inner, b.cs_outer
         Fc, Mg, sr = b.centrifugal_force_N, b.gyroscopic_moment_Nmm, b.spin_to_roll
         ctl = b.outer_control
+        Fa_k, Fr_k = b.inner_force_N          # Q_i n_i + the inner raceway's friction
+        couple = bd.friction_couple_Nmm(g, tg, b.friction_inner_N)
     else:
         raise ValueError(f"ball_model must be one of {', '.join(BALL_MODELS)}, got {ball_model!r}")
 
@@ -388,10 +410,11 @@ def balls_at_displacement(g: BearingGeometry, axial_mm, radial_x_mm=0.0, radial_
         return contact_ellipses(g, cs, Q.reshape(np.shape(cs.Kn)), side).p_max_MPa.reshape(X.shape)
     p = np.maximum(ell(cs_i, Q_i, 0), ell(cs_o, Q_o, 1))
     psi = ball_azimuths_rad(g.Z)[:, None]
-    sa, ca = Q_i * np.sin(a_i), Q_i * np.cos(a_i)
+    sa, ca = Fa_k, Fr_k
     loads = np.stack([sa.sum(axis=0), (ca * np.cos(psi)).sum(axis=0),
-                      (ca * np.sin(psi)).sum(axis=0), (sa * R_m * np.sin(psi)).sum(axis=0),
-                      -(sa * R_m * np.cos(psi)).sum(axis=0)])
+                      (ca * np.sin(psi)).sum(axis=0),
+                      (sa * R_m * np.sin(psi)).sum(axis=0) + couple[0],
+                      -(sa * R_m * np.cos(psi)).sum(axis=0) + couple[1]])
     return BallsState(np.degrees(a_i), np.degrees(a_o), Q_i, Q_o, d_i, d_o, Fc, Mg, sr, p, loads,
                       ctl)
 

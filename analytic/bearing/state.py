@@ -45,6 +45,8 @@ class RadialLoadState:
     #: inner contact's); None with quasi-static balls (inner = outer)
     ball_loads_outer_N: np.ndarray | None = None
     ball_contact_angles_outer_deg: np.ndarray | None = None
+    #: quasi-dynamic balls: True where the outer raceway controls the ball (2, Z, N)
+    ball_outer_control: np.ndarray | None = None
 
     @property
     def unequal_balls(self) -> np.ndarray:

@@ -33,10 +33,12 @@ solves g(u, P) = Q_o n_o - Q_i n_i - b(alpha_i, alpha_o) = 0 (P the inner groove
 centrifugal and gyroscopic friction forces, K_i, K_o at the contact angles), so by the implicit
 function theorem
 
-    dF_in/dP = T_i (I + A^-1 B),   A = dg/du = T_o + T_i + b_ai t_i^T / d_i - b_ao t_o^T / d_o,
-                                   B = dg/dP = -T_i - b_ai t_i^T / d_i
+    dF_in/dP = (T_i + f_ai t_i^T / d_i)(I + A^-1 B) - f_ao t_o^T / d_o A^-1 B,
+               A = dg/du = T_o + T_i + b_ai t_i^T / d_i - b_ao t_o^T / d_o,
+               B = dg/dP = -T_i - b_ai t_i^T / d_i
 
-with T = kn n n^T + (Q/d)(t t^T + dlnK/dalpha n t^T) per contact and b_a = db/dalpha; the
+(F_in = Q_i n_i + f, f the inner raceway's frozen friction on the ring, nonzero under inner-race
+control, a function of both angles: `ball_dynamics` module docstring) with T = kn n n^T + (Q/d)(t t^T + dlnK/dalpha n t^T) per contact and b_a = db/dalpha; the
 derivatives of K_i, K_o and b in the angles (smooth functions of one angle each, from
 `ball_dynamics.frozen_forces`) by central differences with step ANGLE_STEP_RAD (truncation
 O(h^2) and rounding O(eps/h): ~1e-10 of those terms, themselves small corrections).  Without
@@ -223,7 +225,12 @@ def _dynamic_tangents(balls: PairBalls, X, Y) -> BallTangents:
     sdet = np.where(ok_det, det, 1.0)
     inv = np.array([[A[1, 1], -A[0, 1]], [-A[1, 0], A[0, 0]]]) / sdet
     AB = np.einsum("ikm,kjm->ijm", inv, B)
-    T = np.einsum("ikm,kjm->ijm", T_i, np.eye(2)[:, :, None] + AB)
+    # the inner raceway's friction on the ring (inner-race control) through both angles
+    f_ai = (fi_p.f_ring - fi_m.f_ring) / (2.0 * h)
+    f_ao = (fo_p.f_ring - fo_m.f_ring) / (2.0 * h)
+    T = (np.einsum("ikm,kjm->ijm", T_i + f_ai[:, None, :] * t_i[None, :, :] / d_i,
+                   np.eye(2)[:, :, None] + AB)
+         - np.einsum("ikm,kjm->ijm", f_ao[:, None, :] * t_o[None, :, :] / d_o, AB))
     T = np.where(ok_det & (Q_i > 0.0), T, 0.0)
     r = lambda v: v.reshape(shape)  # noqa: E731
     F = b.inner_force_N

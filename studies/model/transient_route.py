@@ -197,7 +197,10 @@ def thermal_model(pl: Pipeline, progress=None) -> ThermalModel:
     rc = ReducedConduction(tc, cached_basis(pl, tc, training, inputs, say))
     half = rc.truncated(max(1, int(HALF * rc.m)))
     probe = pl.full_fe().probe
-    ms = modal_structure(pl.solver, probe, rc, T_ref, RINGS, pl.setup.condensed)
+    try:
+        ms = modal_structure(pl.solver, probe, rc, T_ref, RINGS, pl.setup.condensed)
+    except ValueError as exc:     # a CTE slope or bonded fits: not linear in the modes
+        raise ConfigError(f'thermal.mode = "transient": {exc}') from None
     ms_half = modal_structure(pl.solver, probe, half, T_ref, RINGS, pl.setup.condensed)
     out = ThermalModel(tc, rc, half, ms, ms_half, nominal, _group_rows(tc), pressure)
     pl._thermal_model = out

@@ -1,6 +1,7 @@
 """`bearingfem verify`: the FE held against closed forms, and its mesh convergence.
 
-Cases (each a dict per shared/spec/cli.md, `rel_error` = |FE - closed form| / closed form):
+Cases (`VerifyCase`, written per shared/spec/cli.md by `VerifyCase.to_json`; `rel_error` =
+|FE - closed form| / closed form):
 - lame_fit: two-cylinder fits, FE mean fit pressure (from contact reactions) vs Lamé
   (analytic/lame.py). Equal lengths with free ends and a frictionless fit make the plane-stress
   Lamé solution exact in 3-D (sigma_r + sigma_theta is constant, so the axial strain is uniform);
@@ -19,12 +20,22 @@ Cases (each a dict per shared/spec/cli.md, `rel_error` = |FE - closed form| / cl
   speed), `rotating_free` (a free spinning hollow cylinder, no fit) and `fit_open_speed` (the
   speed at which the fit opens, `fem.loosening` on the FE vs `lame.fit_open_speed_rad_s`).
 - mesh_convergence: the quantities that feed the bearing model on the seed 000 stack over four
-  mesh levels; observed order and grid convergence index (Roache 1998, GCI with Fs = 1.25).
+  mesh levels; observed order and grid convergence index (Roache 1998, GCI with Fs = 1.25)
+  (these cases stay dicts: `convergence_case`; the assembly report and the benchmarks read them).
+
+Beside the cases (`verification.json` keys "mms" and "requirements"):
+- mms: manufactured solutions (`fem.mms`) for the thermo-elastic operator with a two-material
+  frictionless fit (a hollow and a solid shaft) and for steady conduction; per operator and
+  norm the expected order of the P2 elements, the observed one (least squares over the three
+  finest of MMS_LEVELS) and pass when they differ by at most MMS_ORDER_TOL (`MMSCase`).
+- requirements: the traceability table (`studies.runs.requirements.trace`): every requirement,
+  the tests tagged with it, the outcome of their last pytest run in this checkout.
 """
 from __future__ import annotations
 
 import json
 import math
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -37,9 +48,95 @@ from fem.loosening import fit_open_omega2
 from fem.solver import FitSolver, Superposition
 from meshes.section import two_cylinder_section
 from studies.runs.report_tools import md_table
+from studies.runs.requirements import trace
 
 TOLERANCE = 0.005          # issue 2: every Lamé case within 0.5 % on the default mesh
 REL_FLOOR_MPa = 1e-9
+#: structured-mesh levels of the manufactured solutions (cells across the inner material: h = 5 mm
+#: / n, 6 mm / n with the solid shaft; up to 134 000 DOF, a few seconds)
+MMS_LEVELS = (8, 16, 32, 64)
+#: an observed order passes within this of the element's order (P2: 3 in L2, 2 in energy)
+MMS_ORDER_TOL = 0.2
+
+
+@dataclass(frozen=True)
+class VerifyCase:
+    """One closed-form comparison: name, kind ("lame_fit", "lame_displacement", "lame_bounds",
+    "free_thermal", "rotating_fit", "rotating_displacement", "rotating_free", "fit_open_speed"),
+    the inputs that recompute the closed form (names and units of shared/spec/cli.md), the FE and
+    closed-form values by name, the relative error, and what a kind adds (`extra`: e.g.
+    within_bounds and note of lame_bounds)."""
+    name: str
+    kind: str
+    inputs: dict
+    fe: dict
+    closed_form: dict
+    rel_error: float
+    extra: tuple = ()
+
+    @property
+    def passed(self) -> bool:
+        """Within TOLERANCE, or (lame_bounds) between the two 2-D idealisations."""
+        return bool(dict(self.extra)["within_bounds"]) if self.kind == "lame_bounds" \
+            else self.rel_error <= TOLERANCE
+
+    def to_json(self) -> dict:
+        return {"name": self.name, "kind": self.kind, "inputs": self.inputs, "fe": self.fe,
+                "closed_form": self.closed_form, "rel_error": self.rel_error, **dict(self.extra)}
+
+
+@dataclass(frozen=True)
+class VerifyRun:
+    """Everything `run` wrote: the closed-form cases, the mesh-convergence cases (dicts of
+    `convergence_case`), the manufactured-solution studies and the traceability rows."""
+    cases: list
+    convergence: list
+    mms: list
+    requirements: list
+
+
+@dataclass(frozen=True)
+class MMSCase:
+    """One manufactured-solution convergence study: the operator, the norm of the error, the
+    element's order and the observed one over the levels (`fem.mms.MMSLevel`, relative errors)."""
+    name: str
+    operator: str
+    norm: str                    # "L2" or "energy"
+    expected_order: float
+    observed_order: float
+    levels: tuple
+
+    @property
+    def passed(self) -> bool:
+        return abs(self.observed_order - self.expected_order) <= MMS_ORDER_TOL
+
+    def to_json(self) -> dict:
+        key = "l2_rel" if self.norm == "L2" else "energy_rel"
+        return {"name": self.name, "operator": self.operator, "norm": self.norm,
+                "expected_order": self.expected_order, "observed_order": self.observed_order,
+                "pass": self.passed, "tolerance": MMS_ORDER_TOL,
+                "levels": [{"h_mm": lv.h_mm, "dofs": lv.dofs, "rel_error": getattr(lv, key)}
+                           for lv in self.levels]}
+
+
+def mms_cases(levels: tuple[int, ...] = MMS_LEVELS) -> list[MMSCase]:
+    """The manufactured-solution studies of `fem.mms` (TC4 inside, 9Cr18 outside the fit): a
+    hollow shaft in a ring (thermo-elastic and conduction) and a solid shaft (thermo-elastic,
+    the axis inside the domain)."""
+    from fem import mms
+
+    box = mms.TwoMaterialBox()
+    el = [mms.elastic_fit_level(mms.ElasticFitField(box), n)[0] for n in levels]
+    ax = [mms.elastic_fit_level(mms.axis_field(), n)[0] for n in levels]
+    th = [mms.conduction_level(mms.ConductionField(box), n) for n in levels]
+    ops = (("thermoelastic_fit_TC4_9Cr18", "axisymmetric thermo-elasticity, two materials, closed "
+            "frictionless fit (fem.forms, fem.solver)", el),
+           ("thermoelastic_fit_solid_shaft", "the same with a solid shaft (the axis, u_r = 0, inside "
+            "the domain)", ax),
+           ("conduction_TC4_9Cr18", "steady axisymmetric conduction, two conductivities, perfect "
+            "contact (fem.forms, fem.thermal)", th))
+    return [MMSCase(f"{name}_{norm}", op, norm, order, mms.observed_order(lv, norm), tuple(lv))
+            for name, op, lv in ops for norm, order in (("L2", 3.0), ("energy", 2.0))]
 
 
 def _solve_two_cylinder(section, T_C: float, T_ref_C: float, interference_um: float):
@@ -54,7 +151,7 @@ def _solve_two_cylinder(section, T_C: float, T_ref_C: float, interference_um: fl
 def lame_fit_case(name: str, r_inner_mm: float, r_fit_mm: float, r_outer_mm: float,
                   inner_material: str, outer_material: str, interference_um: float,
                   assumption: str = "plane_stress", T_C: float = 20.0, T_ref_C: float = 20.0,
-                  length_mm: float = 10.0, mesh_factor: float = 1.0) -> list[dict]:
+                  length_mm: float = 10.0, mesh_factor: float = 1.0) -> list[VerifyCase]:
     """A two-cylinder fit: FE vs Lamé fit pressure and ring outer-surface displacement."""
     mi, mo = get_material(inner_material), get_material(outer_material)
     sec = two_cylinder_section(r_inner_mm, r_fit_mm, r_outer_mm, inner_material, outer_material,
@@ -74,25 +171,23 @@ def lame_fit_case(name: str, r_inner_mm: float, r_fit_mm: float, r_outer_mm: flo
     # with rollers the thermal strain is not free axially: only isothermal plane-strain cases
     scale = max(p_cf, float(lame.fit_pressure_MPa(**common, interference_um=abs(eff) or 1.0,
                                                   assumption=assumption)))
-    cases = [{"name": name, "kind": "lame_fit", "inputs": inputs,
-              "fe": {"fit_pressure_MPa": p_fe}, "closed_form": {"fit_pressure_MPa": p_cf},
-              "rel_error": abs(p_fe - p_cf) / max(scale, REL_FLOOR_MPa)}]
+    cases = [VerifyCase(name, "lame_fit", inputs, {"fit_pressure_MPa": p_fe},
+                        {"fit_pressure_MPa": p_cf}, abs(p_fe - p_cf) / max(scale, REL_FLOOR_MPa))]
     P = model.probe_matrix(np.array([[r_outer_mm], [length_mm / 2]]))
     u_fe = float((P @ sol.u)[0])
     u_cf = float(lame.fit_displacement_mm(r_outer_mm, "outer", **common, interference_um=eff,
                                           assumption=assumption)) + mo.thermal_strain(T_C, T_ref_C) * r_outer_mm
     if abs(u_cf) > 0:
-        cases.append({"name": name + "_ring_expansion", "kind": "lame_displacement",
-                      "inputs": dict(inputs, r_mm=r_outer_mm),
-                      "fe": {"u_r_um": 1e3 * u_fe}, "closed_form": {"u_r_um": 1e3 * u_cf},
-                      "rel_error": abs(u_fe - u_cf) / abs(u_cf)})
+        cases.append(VerifyCase(name + "_ring_expansion", "lame_displacement",
+                                dict(inputs, r_mm=r_outer_mm), {"u_r_um": 1e3 * u_fe},
+                                {"u_r_um": 1e3 * u_cf}, abs(u_fe - u_cf) / abs(u_cf)))
     return cases
 
 
 def rotating_fit_cases(name: str, r_inner_mm: float, r_fit_mm: float, r_outer_mm: float,
                        inner_material: str, outer_material: str, interference_um: float,
                        speed_rpm: float, assumption: str = "plane_strain", length_mm: float = 10.0,
-                       mesh_factor: float = 1.0) -> list[dict]:
+                       mesh_factor: float = 1.0) -> list[VerifyCase]:
     """A two-cylinder fit spinning at speed_rpm: FE vs the rotating Lamé closed form (fit
     pressure, ring outer-radius displacement, fit-opening speed). Isothermal."""
     mi, mo = get_material(inner_material), get_material(outer_material)
@@ -113,32 +208,29 @@ def rotating_fit_cases(name: str, r_inner_mm: float, r_fit_mm: float, r_outer_mm
                   rho_inner_kg_m3=mi.density_kg_m3, rho_outer_kg_m3=mo.density_kg_m3,
                   omega_rad_s=omega, speed_rpm=speed_rpm, inner_material=inner_material,
                   outer_material=outer_material, length_mm=length_mm, dofs=model.ndofs)
-    cases = [{"name": name, "kind": "rotating_fit", "inputs": inputs,
-              "fe": {"fit_pressure_MPa": p_fe}, "closed_form": {"fit_pressure_MPa": p_cf},
-              "rel_error": abs(p_fe - p_cf) / max(p_cf, REL_FLOOR_MPa)}]
+    cases = [VerifyCase(name, "rotating_fit", inputs, {"fit_pressure_MPa": p_fe},
+                        {"fit_pressure_MPa": p_cf}, abs(p_fe - p_cf) / max(p_cf, REL_FLOOR_MPa))]
     P = model.probe_matrix(np.array([[r_outer_mm], [length_mm / 2]]))
     u_fe = float((P @ sol.u)[0])
     u_cf = float(lame.rotating_fit_displacement_mm(
         r_outer_mm, "outer", **common, interference_um=interference_um, **rho, omega_rad_s=omega,
         assumption=assumption))
-    cases.append({"name": name + "_ring_expansion", "kind": "rotating_displacement",
-                  "inputs": dict(inputs, r_mm=r_outer_mm),
-                  "fe": {"u_r_um": 1e3 * u_fe}, "closed_form": {"u_r_um": 1e3 * u_cf},
-                  "rel_error": abs(u_fe - u_cf) / abs(u_cf)})
+    cases.append(VerifyCase(name + "_ring_expansion", "rotating_displacement",
+                            dict(inputs, r_mm=r_outer_mm), {"u_r_um": 1e3 * u_fe},
+                            {"u_r_um": 1e3 * u_cf}, abs(u_fe - u_cf) / abs(u_cf)))
     w2 = fit_open_omega2(Superposition(solver), np.zeros((1, len(model.part_names))),
                          np.array([delta]), 0, (100.0 * omega) ** 2)[0]
     w_cf = float(lame.fit_open_speed_rad_s(**common, interference_um=interference_um, **rho,
                                            assumption=assumption))
     to_rpm = 60.0 / (2.0 * math.pi)
-    cases.append({"name": name + "_open_speed", "kind": "fit_open_speed", "inputs": inputs,
-                  "fe": {"fit_open_speed_rpm": to_rpm * math.sqrt(w2)},
-                  "closed_form": {"fit_open_speed_rpm": to_rpm * w_cf},
-                  "rel_error": abs(math.sqrt(w2) - w_cf) / w_cf})
+    cases.append(VerifyCase(name + "_open_speed", "fit_open_speed", inputs,
+                            {"fit_open_speed_rpm": to_rpm * math.sqrt(w2)},
+                            {"fit_open_speed_rpm": to_rpm * w_cf}, abs(math.sqrt(w2) - w_cf) / w_cf))
     return cases
 
 
 def rotating_free_case(material: str = "9Cr18", r_in_mm: float = 10.0, r_out_mm: float = 20.0,
-                       speed_rpm: float = 30000.0, mesh_factor: float = 1.0) -> dict:
+                       speed_rpm: float = 30000.0, mesh_factor: float = 1.0) -> VerifyCase:
     """A free hollow cylinder (one material, the fit interface tied by zero interference and
     the same speed on both sides), plane strain: u_r at the outer radius vs T&G §32."""
     r_mid = 0.5 * (r_in_mm + r_out_mm)
@@ -151,16 +243,15 @@ def rotating_free_case(material: str = "9Cr18", r_in_mm: float = 10.0, r_out_mm:
     u_fe = float((model.probe_matrix(np.array([[r_out_mm], [5.0]])) @ sol.u)[0])
     u_cf = float(lame.rotating_displacement_mm(r_out_mm, r_in_mm, r_out_mm, m.E_MPa, m.nu,
                                                m.density_N_s2_mm4, omega, "plane_strain"))
-    return {"name": f"free_rotating_cylinder_{material}", "kind": "rotating_free",
-            "inputs": {"material": material, "r_inner_mm": r_in_mm, "r_outer_mm": r_out_mm,
+    return VerifyCase(f"free_rotating_cylinder_{material}", "rotating_free",
+                      {"material": material, "r_inner_mm": r_in_mm, "r_outer_mm": r_out_mm,
                        "E_MPa": m.E_MPa, "nu": m.nu, "rho_kg_m3": m.density_kg_m3,
                        "omega_rad_s": omega, "speed_rpm": speed_rpm, "r_mm": r_out_mm,
                        "assumption": "plane_strain", "dofs": model.ndofs},
-            "fe": {"u_r_um": 1e3 * u_fe}, "closed_form": {"u_r_um": 1e3 * u_cf},
-            "rel_error": abs(u_fe - u_cf) / abs(u_cf)}
+                      {"u_r_um": 1e3 * u_fe}, {"u_r_um": 1e3 * u_cf}, abs(u_fe - u_cf) / abs(u_cf))
 
 
-def rotating_cases(mesh_factor: float = 1.0) -> list[dict]:
+def rotating_cases(mesh_factor: float = 1.0) -> list[VerifyCase]:
     """The rotating reference cases of issue 12: a solid steel shaft and a hollow TC4 shaft with
     a 9Cr18 ring at 65..75 % of their fit-opening speed (plane strain: exact), the solid pair as
     a thin disc (1 mm on a 15 mm radius, plane stress: the 3-D correction is of order
@@ -177,7 +268,7 @@ def rotating_cases(mesh_factor: float = 1.0) -> list[dict]:
             + [rotating_free_case(mesh_factor=f)])
 
 
-def short_ring_case(mesh_factor: float = 1.0) -> dict:
+def short_ring_case(mesh_factor: float = 1.0) -> VerifyCase:
     """A 9Cr18 ring of length 4 mm on a 40 mm long solid 52100 shaft: FE between the bounds?"""
     r_f, r_o, L, Lr, d_um = 10.0, 14.0, 40.0, 4.0, 10.0
     sec = two_cylinder_section(0.0, r_f, r_o, "52100", "9Cr18", L, ring_length_mm=Lr).scaled(mesh_factor)
@@ -188,17 +279,19 @@ def short_ring_case(mesh_factor: float = 1.0) -> dict:
     ps = float(lame.fit_pressure_MPa(**common, assumption="plane_stress"))
     pe = float(lame.fit_pressure_MPa(**common, assumption="plane_strain"))
     lo, hi = min(ps, pe), max(ps, pe)
-    return {"name": "short_ring_on_long_shaft", "kind": "lame_bounds",
-            "inputs": dict(common, ring_length_mm=Lr, shaft_length_mm=L, dofs=model.ndofs),
-            "fe": {"fit_pressure_MPa": p_fe},
-            "closed_form": {"fit_pressure_plane_stress_MPa": ps, "fit_pressure_plane_strain_MPa": pe},
-            "within_bounds": bool(lo <= p_fe <= hi),
-            "rel_error": 0.0 if lo <= p_fe <= hi else min(abs(p_fe - lo), abs(p_fe - hi)) / lo,
-            "note": "a short ring sits on a shaft stiffened by its unloaded length on both sides, "
-                    "so the FE pressure need not lie between the two 2-D idealisations"}
+    return VerifyCase(
+        "short_ring_on_long_shaft", "lame_bounds",
+        dict(common, ring_length_mm=Lr, shaft_length_mm=L, dofs=model.ndofs),
+        {"fit_pressure_MPa": p_fe},
+        {"fit_pressure_plane_stress_MPa": ps, "fit_pressure_plane_strain_MPa": pe},
+        0.0 if lo <= p_fe <= hi else min(abs(p_fe - lo), abs(p_fe - hi)) / lo,
+        (("within_bounds", bool(lo <= p_fe <= hi)),
+         ("note", "a short ring sits on a shaft stiffened by its unloaded length on both sides, "
+                  "so the FE pressure need not lie between the two 2-D idealisations")))
 
 
-def free_thermal_case(material: str = "9Cr18", dT_K: float = 100.0, mesh_factor: float = 1.0) -> dict:
+def free_thermal_case(material: str = "9Cr18", dT_K: float = 100.0,
+                      mesh_factor: float = 1.0) -> VerifyCase:
     """One material, uniform dT: u_r = theta r at the outer radius and no stress."""
     sec = two_cylinder_section(5.0, 10.0, 15.0, material, material, 10.0).scaled(mesh_factor)
     model, sol, theta, p_fe = _solve_two_cylinder(sec, 20.0 + dT_K, 20.0, 0.0)
@@ -206,13 +299,12 @@ def free_thermal_case(material: str = "9Cr18", dT_K: float = 100.0, mesh_factor:
     u_fe = float((P @ sol.u)[0])
     u_cf = float(theta[0]) * 15.0
     vm = element_stresses(model, sol.u, theta_per_element(model, theta))["von_mises_MPa"]
-    return {"name": f"free_thermal_{material}", "kind": "free_thermal",
-            "inputs": {"material": material, "dT_K": dT_K, "r_mm": 15.0,
+    return VerifyCase(f"free_thermal_{material}", "free_thermal",
+                      {"material": material, "dT_K": dT_K, "r_mm": 15.0,
                        "alpha_per_K": get_material(material).alpha_per_K},
-            "fe": {"u_r_um": 1e3 * u_fe, "max_von_mises_MPa": float(vm.max()),
-                   "fit_pressure_MPa": p_fe},
-            "closed_form": {"u_r_um": 1e3 * u_cf, "max_von_mises_MPa": 0.0},
-            "rel_error": abs(u_fe - u_cf) / abs(u_cf)}
+                      {"u_r_um": 1e3 * u_fe, "max_von_mises_MPa": float(vm.max()),
+                       "fit_pressure_MPa": p_fe},
+                      {"u_r_um": 1e3 * u_cf, "max_von_mises_MPa": 0.0}, abs(u_fe - u_cf) / abs(u_cf))
 
 
 #: bounds on the order a three-level extrapolation uses: an observed order below 1 (values that
@@ -401,7 +493,7 @@ def discretisation_lines(case: dict) -> list[str]:
                        f"{rows[q]:.2e}"] for q, v in case["quantities"].items()]), ""]
 
 
-def lame_cases(mesh_factor: float = 1.0) -> list[dict]:
+def lame_cases(mesh_factor: float = 1.0) -> list[VerifyCase]:
     """The Lamé reference cases of issue 2."""
     f = mesh_factor
     cases = []
@@ -425,25 +517,25 @@ def lame_cases(mesh_factor: float = 1.0) -> list[dict]:
     return cases + rotating_cases(mesh_factor=f)
 
 
-def write_verification(out_dir: Path, cases: list[dict], plot_path: Path | None) -> None:
-    """verification.json and verification.md (the tables a reviewer reads)."""
-    (out_dir / "verification.json").write_text(json.dumps({"cases": cases}, indent=2, default=float))
+def write_verification(out_dir: Path, cases: list[VerifyCase], plot_path: Path | None,
+                       mms: list[MMSCase] = (), requirements=(), convergence: list[dict] = ()) -> None:
+    """verification.json and verification.md (the tables a reviewer reads): the closed-form
+    cases, then the mesh-convergence ones (`convergence_case` dicts) under "cases";
+    `requirements`: `studies.runs.requirements.RequirementTrace` rows. The one writer of both."""
+    (out_dir / "verification.json").write_text(json.dumps(
+        {"cases": [c.to_json() for c in cases] + list(convergence),
+         "mms": [m.to_json() for m in mms],
+         "requirements": [r.to_json() for r in requirements]}, indent=2, default=float))
     lines = ["# bearingfem verification", "",
              "FE (axisymmetric P2, exact contact, fit pressure from contact reactions) against closed "
              "forms. Tolerance for every Lamé case: 0.5 %.", "",
              "| case | kind | FE | closed form | rel. error | pass |", "|---|---|---|---|---|---|"]
     for c in cases:
-        if c["kind"] == "mesh_convergence":
-            continue
-        fe = ", ".join(f"{k}={v:.6g}" for k, v in c["fe"].items())
-        cf = ", ".join(f"{k}={v:.6g}" for k, v in c["closed_form"].items())
-        ok = c.get("within_bounds", c["rel_error"] <= TOLERANCE) if c["kind"] != "lame_bounds" \
-            else c["within_bounds"]
-        lines.append(f"| {c['name']} | {c['kind']} | {fe} | {cf} | {c['rel_error']:.2e} | "
-                     f"{'yes' if ok else 'NO'} |")
-    for c in cases:
-        if c["kind"] != "mesh_convergence":
-            continue
+        fe = ", ".join(f"{k}={v:.6g}" for k, v in c.fe.items())
+        cf = ", ".join(f"{k}={v:.6g}" for k, v in c.closed_form.items())
+        lines.append(f"| {c.name} | {c.kind} | {fe} | {cf} | {c.rel_error:.2e} | "
+                     f"{'yes' if c.passed else 'NO'} |")
+    for c in convergence:
         qs = list(c["quantities"])
         lines += ["", f"## Mesh convergence: {c['name']}", "",
                   "| level | size (mm) | fit size (mm) | DOF | " + " | ".join(qs) + " |",
@@ -468,13 +560,47 @@ def write_verification(out_dir: Path, cases: list[dict], plot_path: Path | None)
               "factor; the family then converges at order 1.2..2 (studies/model/mesh_size.py)."]
     if plot_path is not None:
         lines += ["", f"![mesh convergence]({plot_path.name})"]
-    bounds = [c for c in cases if c["kind"] == "lame_bounds"]
-    for c in bounds:
-        lines += ["", f"Short ring: FE {c['fe']['fit_pressure_MPa']:.4g} MPa, plane stress "
-                  f"{c['closed_form']['fit_pressure_plane_stress_MPa']:.4g}, plane strain "
-                  f"{c['closed_form']['fit_pressure_plane_strain_MPa']:.4g}: "
-                  f"{'between the bounds' if c['within_bounds'] else 'outside the bounds'}. {c['note']}."]
+    for c in (c for c in cases if c.kind == "lame_bounds"):
+        ex = dict(c.extra)
+        lines += ["", f"Short ring: FE {c.fe['fit_pressure_MPa']:.4g} MPa, plane stress "
+                  f"{c.closed_form['fit_pressure_plane_stress_MPa']:.4g}, plane strain "
+                  f"{c.closed_form['fit_pressure_plane_strain_MPa']:.4g}: "
+                  f"{'between the bounds' if ex['within_bounds'] else 'outside the bounds'}. {ex['note']}."]
+    lines += mms_lines(mms) + requirement_lines(requirements)
     (out_dir / "verification.md").write_text("\n".join(lines) + "\n")
+
+
+def mms_lines(mms: list[MMSCase]) -> list[str]:
+    """Markdown: the manufactured-solution table (expected vs observed order, pass/fail)."""
+    if not mms:
+        return []
+    rows = [[m.name, m.operator, m.norm, f"{m.expected_order:g}", f"{m.observed_order:.3f}",
+             ", ".join(f"{(lv.l2_rel if m.norm == 'L2' else lv.energy_rel):.2e}" for lv in m.levels),
+             "PASS" if m.passed else "FAIL"] for m in mms]
+    h = ", ".join(f"{lv.h_mm:g}" for lv in mms[0].levels)
+    return ["", "## Manufactured solutions (code verification)", "",
+            "Fields in sin/cos/exp of r and z with the source terms that make them exact (fem/mms.py), "
+            "two materials across a fit (TC4 inside, 9Cr18 outside: E, nu, alpha, k differ); the "
+            "elastic field has a closed frictionless fit (u_r jumps by the interference, zero shear, "
+            "continuous compressive normal stress, axial slip), the thermal one perfect contact. "
+            f"Structured meshes, h = {h} mm (x 1.2 for the solid shaft); relative errors; observed "
+            "order = least-squares slope over "
+            f"the three finest levels; pass within {MMS_ORDER_TOL:g} of the P2 order.", "",
+            md_table(["case", "operator", "norm", "expected order", "observed order",
+                      "relative errors", "result"], rows)]
+
+
+def requirement_lines(requirements) -> list[str]:
+    """Markdown: the traceability table requirement -> tests -> last result."""
+    if not requirements:
+        return []
+    rows = [[r.id, r.text, "<br>".join(f"`{t}`" for t in r.tests) or "(none)", r.result]
+            for r in requirements]
+    return ["", "## Requirements traceability", "",
+            "Each requirement, the tests tagged with it (`@pytest.mark.requirement`), and the result "
+            "of their last pytest run in this checkout (recorded by tests/conftest.py; \"not run\" "
+            "when none of its tests has run here).", "",
+            md_table(["requirement", "statement", "tests", "last result"], rows)]
 
 
 def plot_convergence(path: Path, cases: list[dict]) -> Path:
@@ -535,7 +661,7 @@ def _plot_assembly_errors(ax, case: dict, h: np.ndarray) -> None:
     ax.legend(fontsize=6, ncol=2)
 
 
-def run(out_dir: Path, progress=print, mesh_factor: float = 1.0, assembly=None) -> list[dict]:
+def run(out_dir: Path, progress=print, mesh_factor: float = 1.0, assembly=None) -> VerifyRun:
     """All verification cases into out_dir (verification.json, verification.md, PNG): the
     built-in Lamé cases and the mesh convergence (observed order, GCI) of an assembly's own
     stack: `assembly` (`verify --assembly`), else the shipped seed 000 stack. mesh_factor > 1
@@ -550,7 +676,8 @@ def run(out_dir: Path, progress=print, mesh_factor: float = 1.0, assembly=None) 
     conv = [lame_convergence_case(progress=progress),
             mesh_convergence_case(asm, progress=progress, used=2,
                                   factors=tuple(mesh_factor * f for f in (4.0, 2.0, 1.0, 0.5)))]
-    cases += conv
     plot = plot_convergence(out_dir / "mesh_convergence.png", conv)
-    write_verification(out_dir, cases, plot)
-    return cases
+    progress("manufactured solutions ...")
+    result = VerifyRun(cases, conv, mms_cases(), trace())
+    write_verification(out_dir, result.cases, plot, result.mms, result.requirements, result.convergence)
+    return result

@@ -1,0 +1,65 @@
+"""`bearingfem verify`: the manufactured-solution table and the requirement traceability
+(studies/runs/verify.py, studies/runs/requirements.py, the marker plugin in tests/conftest.py)."""
+import json
+from pathlib import Path
+
+from studies.runs import verify
+from studies.runs.requirements import (REQUIREMENTS, RESULTS_RELPATH, repository_root,
+                                       tagged_tests, trace)
+
+TESTS = Path(__file__).resolve().parent
+
+
+def test_every_tag_is_registered_and_every_requirement_has_a_test():
+    tagged = tagged_tests(TESTS)
+    unknown = sorted(set(tagged) - set(REQUIREMENTS))
+    untested = sorted(set(REQUIREMENTS) - set(tagged))
+    assert not unknown, f"tags missing from studies/runs/requirements.py: {unknown}"
+    assert not untested, f"requirements without a tagged test: {untested}"
+    assert repository_root() == TESTS.parent
+
+
+def test_trace_gives_the_last_result_of_each_requirement(tmp_path):
+    """A checkout with three tagged tests and a record of two of them: passed, failed, not run;
+    a parametrised test is failed when one of its cases failed."""
+    (tmp_path / "tests").mkdir()
+    (tmp_path / "tests" / "test_a.py").write_text(
+        "import pytest\n\n"
+        '@pytest.mark.requirement("R-HERTZ")\ndef test_one():\n    pass\n\n'
+        '@pytest.mark.requirement("R-TORQUE")\n@pytest.mark.parametrize("x", [1, 2])\n'
+        "def test_two(x):\n    pass\n\n"
+        '@pytest.mark.requirement("R-TORQUE")\ndef test_three():\n    pass\n')
+    rec = {"tests/test_a.py::test_one": {"outcome": "passed", "when": "2026-01-02T03:04:05+00:00"},
+           "tests/test_a.py::test_two[1]": {"outcome": "passed", "when": "2026-01-01T00:00:00+00:00"},
+           "tests/test_a.py::test_two[2]": {"outcome": "failed", "when": "2026-01-01T00:00:00+00:00"}}
+    path = tmp_path / RESULTS_RELPATH
+    path.parent.mkdir(parents=True)
+    path.write_text(json.dumps({"tests": rec}))
+    rows = {r.id: r for r in trace(tmp_path)}
+    assert rows["R-HERTZ"].result == "passed, last run 2026-01-02T03:04:05+00:00"
+    assert rows["R-HERTZ"].tests == ("tests/test_a.py::test_one",)
+    assert rows["R-TORQUE"].result == "failed (1 of 2), last run 2026-01-01T00:00:00+00:00"
+    assert rows["R-FE-LAME"].result == "not run" and rows["R-FE-LAME"].tests == ()
+    path.unlink()
+    assert all(r.result == "not run" for r in trace(tmp_path))
+
+
+def test_verification_json_and_report_carry_mms_and_traceability(tmp_path):
+    """The spec's keys: "mms" entries {name, operator, norm, expected_order, observed_order,
+    pass} (coarser levels than the command: the orders are asserted in tests/test_mms.py) and
+    "requirements" entries {id, text, tests, result}; the Markdown lists both."""
+    mms = verify.mms_cases((4, 8, 16))
+    verify.write_verification(tmp_path, [], None, mms, trace())
+    data = json.loads((tmp_path / "verification.json").read_text())
+    assert len(data["mms"]) == 6 and {m["norm"] for m in data["mms"]} == {"L2", "energy"}
+    for m in data["mms"]:
+        assert {"name", "operator", "norm", "expected_order", "observed_order", "pass"} <= set(m)
+        assert m["pass"] is (abs(m["observed_order"] - m["expected_order"]) <= 0.2)
+        if "solid_shaft" not in m["name"]:     # pre-asymptotic on these coarse levels (test_mms)
+            assert m["pass"] is True
+    assert [r["id"] for r in data["requirements"]] == list(REQUIREMENTS)
+    assert all({"id", "text", "tests", "result"} <= set(r) and r["tests"] for r in data["requirements"])
+    md = (tmp_path / "verification.md").read_text()
+    assert "## Manufactured solutions" in md and "## Requirements traceability" in md
+    assert md.count("| PASS |") + md.count("| FAIL |") == 6 and md.count("| PASS |") >= 4
+    assert "R-FE-MMS-ELASTIC" in md
