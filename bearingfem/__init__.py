@@ -59,6 +59,6 @@ def simulate(assembly, conditions: Mapping, effects: Mapping | None = None) -> d
         if effects:
             raise TableError('effects: not available with [thermal] mode = "transient"')
         check_columns("conditions", cols, allowed=set(CONDITION_COLUMNS) | set(TRANSIENT_COLUMNS))
-        return run_transient(Pipeline.shared(assembly), cols).out
+        return run_transient(Pipeline.shared(assembly), cols).columns()
     check_columns("conditions", cols, allowed=set(CONDITION_COLUMNS))
     return simulate_table(assembly, cols, dict(effects or {}), pipeline=Pipeline.shared(assembly))

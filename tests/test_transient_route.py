@@ -39,7 +39,7 @@ def test_without_heat_the_long_run_ends_uniform_at_the_ambient_as_the_given_rout
 
     t = np.array([0.0, 1.0, 4e5])
     cols = {"time_s": t, "T_ambient_C": np.array([25.0, 45.0, 45.0]), "speed_rpm": np.zeros(3)}
-    r = run_transient(pl, cols, dt_s=2000.0).out
+    r = run_transient(pl, cols, dt_s=2000.0).columns()
     for p in ("shaft", "inner_ring", "ball", "outer_ring", "housing", "spacer"):
         assert abs(r[f"T_{p}_C"][-1] - 45.0) < 1e-6 * 20.0, p
     assert abs(r["T_max_C"][-1] - 45.0) < 1e-6 * 20 and abs(r["T_min_C"][-1] - 45.0) < 1e-6 * 20
@@ -66,8 +66,8 @@ def test_heat_up_couples_and_the_coupling_interval_is_converged(pl):
     t = np.linspace(0.0, 1200.0, 5)
     cols = {"time_s": t, "T_ambient_C": np.full(5, 25.0), "speed_rpm": np.full(5, 1500.0),
             "preload_assembled_N": np.full(5, 1500.0)}
-    every5 = run_transient(pl, cols).out
-    every1 = run_transient(pl, cols, couple_every=1).out
+    every5 = run_transient(pl, cols).columns()
+    every1 = run_transient(pl, cols, couple_every=1).columns()
     T = {p: every5[f"T_{p}_C"][-1] for p in ("ball", "inner_ring", "outer_ring", "housing")}
     assert T["ball"] > T["inner_ring"] > T["outer_ring"] > T["housing"] > 25.0
     P1 = every1["preload_N"]
@@ -179,7 +179,7 @@ def test_simulate_file_in_transient_mode_writes_the_transient_columns(pl, tmp_pa
         assert c in got.columns, c
     assert any(c.startswith("flag_") for c in got.columns)
     ref = run_transient(pl, {"time_s": np.array([0.0, 300, 600]), "T_ambient_C": np.array([25.0, 25, 30]),
-                             "speed_rpm": np.full(3, 1000.0), "heat_W": np.array([0.0, 2, 2])}).out
+                             "speed_rpm": np.full(3, 1000.0), "heat_W": np.array([0.0, 2, 2])}).columns()
     for c in ("preload_N", "T_ball_C", "heat_bearing_W"):
         assert np.allclose(got[c], ref[c], rtol=1e-9, atol=0), c     # written with 10 digits
     assert np.all(got["heat_bearing_W"][1:] > 2.0)
@@ -242,6 +242,6 @@ def test_in_vacuum_the_stack_radiates_to_the_sink_of_the_thermal_section():
     pl = Pipeline(asm, mesh_factor=MESH_FACTOR)
     t = np.array([0.0, 3600.0, 10 * 3600.0, 1.5e6])
     r = run_transient(pl, {"time_s": t, "T_ambient_C": np.full(4, 25.0), "speed_rpm": np.zeros(4)},
-                      dt_s=3000.0).out
+                      dt_s=3000.0).columns()
     assert abs(r["T_max_C"][-1] + 20.0) < 1e-6 * 45 and abs(r["T_min_C"][-1] + 20.0) < 1e-6 * 45
     assert 25.0 > r["T_housing_C"][1] > r["T_housing_C"][2] > -20.0

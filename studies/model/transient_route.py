@@ -299,14 +299,43 @@ def environment(asm: Assembly, cols: dict, where: str = "conditions") -> Environ
 
 
 @dataclass(frozen=True)
+class RowTemperatures:
+    """What the transient route adds to the rows (docs/cli.md "Transient conduction").
+
+    T_parts_C (n, len(PARTS)): computed volume mean of each `inputs.PARTS` group (NaN where the
+    stack has no such part); T_max_C, T_min_C (n,): extremes of the field (ball nodes included);
+    heat_bearing_W (n,): the pair's friction heat at the row's state plus the extra heat_W;
+    reduction_error_est (n,): |P_m - P_m/2| / |P_m| (module docstring)."""
+    T_parts_C: np.ndarray
+    T_max_C: np.ndarray
+    T_min_C: np.ndarray
+    heat_bearing_W: np.ndarray
+    reduction_error_est: np.ndarray
+
+    def part_columns(self) -> dict[str, np.ndarray]:
+        return {f"T_{p}_C": self.T_parts_C[:, i] for i, p in enumerate(PARTS)
+                if not np.isnan(self.T_parts_C[:, i]).any()}
+
+
+@dataclass(frozen=True)
 class TransientRun:
-    """A transient table's outputs. out: column -> (n_rows,) (the pipeline's outputs and the
-    transient columns of docs/cli.md); grid_s, q: the time grid and reduced states of the run;
-    heat_W (n_steps,): heat into the stack at each step (the pair's plus the extra)."""
-    out: dict
+    """A transient table's answer. outputs: the one route's result of the rows at their
+    computed states (`Pipeline.run_from_fe`'s columns); rows: `RowTemperatures`; grid_s, q:
+    the time grid and the reduced states on it; heat_W (n_steps,): heat into the stack at each
+    step (the pair's at the coupling plus the extra)."""
+    outputs: dict
+    rows: RowTemperatures
     grid_s: np.ndarray
     q: np.ndarray
     heat_W: np.ndarray
+
+    def columns(self) -> dict[str, np.ndarray]:
+        """The output columns of `simulate` in transient mode: the computed part temperatures,
+        T_max_C, T_min_C, the route's columns, heat_bearing_W, reduction_error_est."""
+        r = self.rows
+        return {**r.part_columns(), "T_max_C": r.T_max_C, "T_min_C": r.T_min_C,
+                **self.outputs, "heat_bearing_W": r.heat_bearing_W,
+                "reduction_error_est": r.reduction_error_est}
 
 
 def _grid(t: np.ndarray, dt_s: float = DT_S) -> np.ndarray:
@@ -381,14 +410,14 @@ def run_transient(pl: Pipeline, cols: dict, progress=None, first_row: int = 0,
     Q, Qh = np.array(Q), np.array(Qh)
     heat_in[0] = heat_in[1] if grid.size > 1 else 0.0
     q_rows, qh_rows = _interp_rows(grid, t, Q), _interp_rows(grid, t, Qh)
-    out = _evaluate_rows(pl, tm, tm.rc, tm.ms, q_rows, base, first_row)
-    out_h = _evaluate_rows(pl, tm, tm.half, tm.ms_half, qh_rows, base, first_row)
-    P, Ph = out["preload_N"], out_h["preload_N"]
+    T, out, heat_W = _evaluate_rows(pl, tm, tm.rc, tm.ms, q_rows, base, first_row)
+    _, out_h, _ = _evaluate_rows(pl, tm, tm.half, tm.ms_half, qh_rows, base, first_row)
+    P, Ph = _preload_N(out), _preload_N(out_h)
     with np.errstate(divide="ignore", invalid="ignore"):
-        out["reduction_error_est"] = np.where(np.abs(P) > 0, np.abs(P - Ph) / np.abs(P), 0.0)
-    out["heat_bearing_W"] = out.pop("_heat_W") + env.heat_W
-    out_h.pop("_heat_W")
-    return TransientRun(out, grid, Q, heat_in)
+        est = np.where(np.abs(P) > 0, np.abs(P - Ph) / np.abs(P), 0.0)
+    field = q_rows @ tm.rc.V.T              # (n, n_total) nodal temperatures and ball nodes
+    rows = RowTemperatures(T, field.max(axis=1), field.min(axis=1), heat_W + env.heat_W, est)
+    return TransientRun(out, rows, grid, Q, heat_in)
 
 
 def _extra_share(key: str, h: dict) -> float:
@@ -425,15 +454,14 @@ def _inputs(base: PhysicsInputs, T: np.ndarray, speed, preload, axial, radial, m
 
 
 def _pair_heat(pl: Pipeline, inp: PhysicsInputs, fe: FEState, ref: FEState) -> PairHeat:
-    """The pair's heat split (W) at one state: its equilibrium and torque through the pipeline."""
-    out, pair = pl.run_from_fe(inp, fe, ref, return_pair=True, remember=False)
-    return pair_heat_W(pl.geom, pair, inp.speed_rpm, MU_TRACTION, out["torque_viscous_Nmm"])
+    """The pair's heat split (W) at one state: its equilibrium and torque through the route."""
+    return _route(pl, inp, fe, ref)[1]
 
 
 def _evaluate_rows(pl: Pipeline, tm: ThermalModel, rc: ReducedConduction, ms: ModalStructure,
-                   q: np.ndarray, base: PhysicsInputs, first_row: int) -> dict:
-    """The pipeline's outputs of the rows at reduced states q, the part temperatures computed."""
-    n = q.shape[0]
+                   q: np.ndarray, base: PhysicsInputs, first_row: int):
+    """The rows at reduced states q through the one route: (group temperatures (n,
+    len(PARTS)), the route's outputs, the pair's friction heat (n,) W)."""
     T = _groups_C(tm, rc, q)
     Tc = {p: T[:, i] for i, p in enumerate(PARTS)}
     for p in PARTS:
@@ -443,16 +471,21 @@ def _evaluate_rows(pl: Pipeline, tm: ThermalModel, rc: ReducedConduction, ms: Mo
     delta = pl.deltas_mm(*pl.fits_um(inputs))
     fe, _ = fe_states(pl, ms, q, delta, pl.omega2(inputs))
     ref = pl.fe(pl.reference_inputs(inputs), remember=False)
+    out, heat = _route(pl, inputs, fe, ref, first_row)
+    return T, out, np.asarray(heat.total_W, float).reshape(q.shape[0])
+
+
+def _route(pl: Pipeline, inputs: PhysicsInputs, fe: FEState, ref: FEState, first_row: int = 0):
+    """The one route from given FE states (rows, assembly states): (its outputs, the pair's heat
+    split `analytic.heat.PairHeat` at MU_TRACTION)."""
     out, pair = pl.run_from_fe(inputs, fe, ref, return_pair=True, first_row=first_row,
                                remember=False)
     heat = pair_heat_W(pl.geom, pair, inputs.speed_rpm, MU_TRACTION, out["torque_viscous_Nmm"])
-    field = q @ rc.V.T                       # (n, n_total) nodal temperatures and ball nodes
-    cols = {f"T_{p}_C": T[:, i] for i, p in enumerate(PARTS) if not np.isnan(T[:, i]).any()}
-    cols["T_max_C"] = field.max(axis=1)
-    cols["T_min_C"] = field.min(axis=1)
-    cols.update(out)
-    cols["_heat_W"] = np.asarray(heat.total_W, float).reshape(n)
-    return cols
+    return out, heat
+
+
+def _preload_N(out) -> np.ndarray:
+    return out["preload_N"]
 
 
 def simulate_transient_file(asm: Assembly, conditions, out, effects: dict | None = None,
@@ -478,14 +511,15 @@ def simulate_transient_file(asm: Assembly, conditions, out, effects: dict | None
     pl = pipeline or Pipeline.shared(asm, progress=progress)
     run = run_transient(pl, cols, progress)
     tally = CheckTally(assembly_checks(asm))
+    outputs = run.columns()
     res = dict(cols)
-    res.update(run.out)
-    res.update(tally.add(run.out, 0))
+    res.update(outputs)
+    res.update(tally.add(outputs, 0))
     with TableWriter(out, provenance) as w:
         w.write(res)
     is_T = lambda k: k.startswith("T_") and k.endswith("_C")           # noqa: E731
     temps = {k: np.asarray(v, float) for k, v in res.items() if is_T(k)}
     given = {k: v for k, v in temps.items() if k in cols}     # the warnings read the inputs
-    outputs = {k: run.out[k] for k in WARNING_OUTPUTS if k in run.out}
+    warn_cols = {k: outputs[k] for k in WARNING_OUTPUTS if k in outputs}
     n = len(cols["time_s"])
-    return SimulateRun(n, tally.violations(), plausibility_warnings(asm, given, outputs), temps)
+    return SimulateRun(n, tally.violations(), plausibility_warnings(asm, given, warn_cols), temps)

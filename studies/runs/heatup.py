@@ -65,7 +65,7 @@ def heat_up(pl: Pipeline, speed_rpm: float, duration_s: float = DURATION_S,
     cols = {"time_s": t, "T_ambient_C": np.full(n, AMBIENT_C), "speed_rpm": np.full(n, speed_rpm),
             "preload_assembled_N": np.full(n, PRELOAD_N)}
     run = run_transient(pl, cols, progress)
-    return {**cols, **run.out}, run
+    return {**cols, **run.columns()}, run
 
 
 def findings(out: dict, speed_rpm: float) -> Findings:
