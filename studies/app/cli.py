@@ -71,6 +71,7 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("conditions", type=Path, nargs="?", default=None,
                    help="conditions table (default: the assembly's operating temperature range)")
     r.add_argument("--out", type=Path, required=True)
+    r.add_argument("--pdf", action="store_true", help="also report.pdf (typst, no LaTeX)")
 
     bb = sub.add_parser("bearing", help="one bearing under radial, axial and moment loads")
     bb.add_argument("bearing", type=Path, help="TOML file with a [bearing] table")

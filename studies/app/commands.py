@@ -158,13 +158,16 @@ def cmd_report(args) -> None:
     try:
         asm, cond, inputs = _assembly_and_conditions(args)
         with atomic_dir(args.out) as tmp:
+            command = ["bearingfem", "report", str(args.assembly)] + \
+                ([str(args.conditions)] if args.conditions is not None else []) + \
+                ["--out", str(args.out)] + (["--pdf"] if args.pdf else [])
             notes = assembly_report.run(asm, cond, tmp, provenance("report", inputs),
-                                        progress=progress)
+                                        progress=progress, pdf=args.pdf, command=command)
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
     for line in notes:
         print(f"bearingfem report: warning: {line}", file=sys.stderr)
-    print(f"report: {args.out}/report.md and report.html")
+    print(f"report: {args.out}/report.md, report.html" + (" and report.pdf" if args.pdf else ""))
 
 
 def cmd_tolerance(args) -> None:

@@ -25,6 +25,7 @@ from studies.model.table import write_table
 from analytic import lame
 from analytic.bearing.land import land_diameters_mm
 from studies.model.tolerances import has_tolerances
+from studies.runs import report_margins, report_pdf
 from studies.runs.report_tools import (field_images, line_plot, md_table, safety_section,
                                        significant, write_report_files)
 
@@ -51,12 +52,16 @@ def nice_step(span: float, n: int) -> float:
 
 def run(asm, conditions: dict | None, out: Path, provenance: dict, progress=print,
         mesh_factor: float = 1.0, rig_sections: list[str] | None = None,
-        field_temperatures_C: tuple[float, ...] | None = None) -> list[str]:
+        field_temperatures_C: tuple[float, ...] | None = None, pdf: bool = False,
+        command: list[str] | None = None) -> list[str]:
     """Write the report into `out`; returns the warning lines (also in the report).
 
     rig_sections: markdown lines a study of a particular rig adds (its own questions, the
     published measurement beside the model), placed after the safety table.
-    field_temperatures_C: where to draw field images (default: coldest, reference, hottest)."""
+    field_temperatures_C: where to draw field images (default: coldest, reference, hottest).
+    pdf: also report.pdf (studies/runs/report_pdf.py); command: the command line that made it
+    (the "Reproduce" section). The front sections (margins, pedigree, assumptions, credibility,
+    environment, command): studies/runs/report_margins.py."""
     from studies.runs.verify import mesh_convergence_case
 
     cond = dict(conditions) if conditions is not None else default_conditions(asm)
@@ -79,9 +84,15 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, progress=prin
     progress("report: discretisation error of this mesh (three levels) ...")
     conv = mesh_convergence_case(asm, factors=tuple(mesh_factor * f for f in (2.0, 1.0, 0.5)),
                                  used=1)
+    front = report_margins.front_lines(asm, cond, res, flags, conv, provenance, command, pl,
+                                       Pipeline.shared(asm, mesh_factor=0.5 * mesh_factor))
     lines = _text(asm, provenance, cond, res, flags, violations, warnings, plots, images, conv, pl, x,
                   xlabel, speed + (rig_sections or []))
+    k = next(i for i, line in enumerate(lines) if line.startswith("## "))
+    lines = lines[:k] + front + lines[k:]           # after the title and the summary
     write_report_files(out, lines, asm.name)
+    if pdf:
+        report_pdf.write_pdf(out, lines, f"Assembly report: {asm.name}")
     return warnings + [v.summary(n, cond) for v in violations]
 
 

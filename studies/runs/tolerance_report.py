@@ -50,6 +50,16 @@ def failures(asm, r: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
             "contact_pressure_over_limit": r["max_contact_pressure_MPa"] > limit}
 
 
+def worst_case(pl, cond: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+    """The four corners of the two interference bands (`tol.worst_case_bands`) at every
+    condition through the pipeline: QUANTITIES as (4, C) arrays."""
+    bands = tol.worst_case_bands(pl.asm)
+    corners = [(bi, bo) for bi in (bands[0].lower_um, bands[0].upper_um)
+               for bo in (bands[1].lower_um, bands[1].upper_um)]
+    return tol.evaluate(pl, cond, np.array([c[0] - bands[0].nominal_um for c in corners]),
+                        np.array([c[1] - bands[1].nominal_um for c in corners]))
+
+
 def _linear(asm, pl, cond, limit_p):
     """Linear-normal estimate per condition: gradients by central differences at the mid-band
     fits (one tenth of each band), variances summed."""
@@ -93,11 +103,7 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, samples: int,
     lim = tol.deviation_limits_um(asm)
     bands = tol.worst_case_bands(asm)
 
-    # worst case: the four corners of the two interference bands
-    corners = [(bi, bo) for bi in (bands[0].lower_um, bands[0].upper_um)
-               for bo in (bands[1].lower_um, bands[1].upper_um)]
-    wc = tol.evaluate(pl, cond, np.array([c[0] - bands[0].nominal_um for c in corners]),
-                      np.array([c[1] - bands[1].nominal_um for c in corners]))
+    wc = worst_case(pl, cond)
 
     progress(f"tolerance: {samples} samples x {C} conditions through the exact model ...")
     dev = tol.sample_deviations_um(asm, samples, seed)

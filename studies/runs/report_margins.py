@@ -1,0 +1,424 @@
+"""The front of the engineer's report (`bearingfem report`): the margin table, the inputs with
+their pedigree, the numbered assumptions, the credibility table, the environment and the command
+that reproduces it (shared/spec/cli.md, "report").
+
+Everything here is read from what the run already computed: the result columns, the flag and
+margin columns of studies/model/checks.py (`apply_checks`), the discretisation error of the
+assembly's mesh (`studies.runs.verify.mesh_convergence_case`), the traceability record of the
+tests (`studies.runs.requirements`). Nothing is recomputed but the headline numbers on the next
+finer mesh of the same family, for their discretisation error.
+
+Mesh error of a headline number (Richardson extrapolation, Roache 1998 ch. 5): with the value
+f_1 on the mesh used and f_h on the mesh of half its sizes (`Section.scaled(0.5)`), and the
+order p of the mesh family in its factor (studies/model/mesh_size.py ORDER = 1.5),
+
+    error(f_1) ~= |f_1 - f_h| * 2^p / (2^p - 1) / |f_1|           (relative, -)
+"""
+from __future__ import annotations
+
+import os
+import platform
+import re
+import shlex
+from dataclasses import dataclass, fields
+from datetime import datetime, timezone
+from importlib import metadata
+from pathlib import Path
+
+import numpy as np
+
+from studies.runs.report_tools import md_table
+
+#: the packages whose versions the "Environment" section lists
+PACKAGES = ("numpy", "scipy", "scikit-fem", "gmsh", "meshio", "matplotlib", "pyvista", "pandas",
+            "markdown", "typst")
+#: fits the pipeline may report (studies/model/checks.py flags those assembled with interference)
+FITS = ("inner", "outer", "sleeve", "cartridge")
+
+
+@dataclass(frozen=True)
+class MarginRow:
+    """One line of the margin table. `value_text`: the range or governing value over the
+    operating points; `margin_text`: the margin column of the check at its governing point (or
+    the distance to a zero limit); `status`: "PASS", "FAIL" or "no limit"; `mesh_error`: the
+    relative discretisation error of the governing value (None: not an FE-dependent number)."""
+    item: str
+    value_text: str
+    allowable_text: str
+    margin_text: str
+    status: str
+    mesh_error: float | None
+    source: str
+
+
+@dataclass(frozen=True)
+class Headline:
+    """A headline number: the column, which row governs (min or max) and its value."""
+    column: str
+    row: int
+    value: float
+
+
+def headlines(res: dict) -> dict[str, Headline]:
+    """The numbers of the margin table: name -> (column, governing row, value)."""
+    out = {}
+
+    def add(name, col, use_max):
+        v = np.asarray(res[col], float)
+        i = int(np.argmax(v) if use_max else np.argmin(v))
+        out[name] = Headline(col, i, float(v[i]))
+    add("preload_min", "preload_N", False)
+    add("preload_max", "preload_N", True)
+    add("contact_pressure_max", "max_contact_pressure_MPa", True)
+    for fit in FITS:
+        if f"fit_pressure_{fit}_MPa" in res:
+            add(f"fit_{fit}_min", f"fit_pressure_{fit}_MPa", False)
+            add(f"fit_{fit}_max", f"fit_pressure_{fit}_MPa", True)
+    add("static_safety_min", "static_safety", False)
+    add("torque_min", "torque_Nmm", False)
+    add("torque_max", "torque_Nmm", True)
+    return out
+
+
+def headline_mesh_errors(cond: dict, res: dict, fine_pipeline, order: float) -> dict[str, float]:
+    """Relative discretisation error of each headline number (module docstring): the governing
+    rows run again through the pipeline on the finer mesh. An open fit (zero pressure on either
+    mesh) has no error to speak of: NaN."""
+    from studies.model.pipeline import simulate_table
+
+    hl = headlines(res)
+    rows = sorted({h.row for h in hl.values()})
+    sub = {k: np.asarray(v)[rows] for k, v in cond.items()}
+    fine = simulate_table(fine_pipeline.asm, sub, pipeline=fine_pipeline)
+    gain = 2.0 ** order / (2.0 ** order - 1.0)
+    out = {}
+    for name, h in hl.items():
+        f_h = float(np.asarray(fine[h.column])[rows.index(h.row)])
+        out[name] = (abs(h.value - f_h) * gain / abs(h.value)
+                     if h.value != 0 and f_h != 0 else float("nan"))
+    return out
+
+
+def margin_rows(asm, res: dict, flags: dict, mesh_error: dict[str, float]) -> list[MarginRow]:
+    """The margin table from the result, flag and margin columns (no check recomputed)."""
+    from studies.model.checks import assembly_checks
+
+    checks = {c.name: c for c in assembly_checks(asm)}
+    hl = headlines(res)
+    n = len(np.asarray(res["preload_N"]))
+
+    def status(flag):
+        bad = int(np.sum(np.asarray(flags[flag]) > 0))
+        return "PASS" if bad == 0 else f"FAIL ({bad} of {n})"
+
+    rows = []
+    lo, hi = hl["preload_min"], hl["preload_max"]
+    rows.append(MarginRow(
+        "preload band", f"{lo.value:.4g} .. {hi.value:.4g} N", "> 0 N",
+        f"{lo.value:.4g} N above 0 (row {lo.row + 1})", status("flag_preload_lost"),
+        _worst(mesh_error, "preload_min", "preload_max"), checks["preload_lost"].source))
+    c, h = checks["max_contact_pressure_MPa"], hl["contact_pressure_max"]
+    rows.append(MarginRow(
+        "peak contact pressure", f"{h.value:.4g} MPa", f"<= {c.allowable:g} MPa",
+        f"{float(np.asarray(flags['margin_max_contact_pressure_MPa'])[h.row]):+.3f} (row {h.row + 1})",
+        status("flag_max_contact_pressure_MPa"), mesh_error.get("contact_pressure_max"), c.source))
+    for fit in FITS:
+        if f"fit_{fit}_min" not in hl:
+            continue
+        h = hl[f"fit_{fit}_min"]
+        p = np.asarray(res[f"fit_pressure_{fit}_MPa"], float)
+        n_open = int(np.sum(p <= 0))
+        state = "closed" if n_open == 0 else ("open" if n_open == n else f"open in {n_open} of {n}")
+        chk = checks.get(f"fit_open_{fit}")
+        rows.append(MarginRow(
+            f"{fit} fit ({state})", f"{h.value:.4g} .. {float(np.max(p)):.4g} MPa",
+            "> 0 MPa" if chk else "clearance fit: may open",
+            f"{h.value:.4g} MPa above 0 (row {h.row + 1})" if chk else "",
+            status(f"flag_fit_open_{fit}") if chk else "no limit",
+            _worst(mesh_error, f"fit_{fit}_min", f"fit_{fit}_max"),
+            chk.source if chk else "designed with clearance"))
+    c, h = checks["static_safety"], hl["static_safety_min"]
+    rows.append(MarginRow(
+        "static safety s0", f"{h.value:.4g}", f">= {c.allowable:g}",
+        f"{float(np.asarray(flags['margin_static_safety'])[h.row]):+.3f} (row {h.row + 1})",
+        status("flag_static_safety"), mesh_error.get("static_safety_min"), c.source))
+    lo, hi = hl["torque_min"], hl["torque_max"]
+    rows.append(MarginRow(
+        "friction torque", f"{lo.value:.4g} .. {hi.value:.4g} N mm", "none given", "",
+        "no limit", _worst(mesh_error, "torque_min", "torque_max"), "no torque limit in the assembly"))
+    return rows
+
+
+def _worst(err: dict, *names) -> float | None:
+    vals = [err[k] for k in names if k in err and np.isfinite(err[k])]
+    return max(vals) if vals else None
+
+
+def _err_text(e: float | None) -> str:
+    return "" if e is None or not np.isfinite(e) else f"{100 * e:.2g} %"
+
+
+def margin_lines(rows: list[MarginRow], n_points: int, where: str) -> list[str]:
+    """Markdown section "Margins" (first in the report)."""
+    return ["## Margins", "",
+            f"Over {n_points} operating points ({where}); every check `simulate` applies "
+            "(studies/model/checks.py), the margin at the governing point (allowable / actual - 1 "
+            "for an upper limit, actual / allowable - 1 for a lower one; for a zero limit the "
+            "distance to it); mesh error: the discretisation error of the governing value "
+            "(Richardson, see Credibility).", "",
+            md_table(["item", "over the operating range", "allowable", "margin", "PASS/FAIL",
+                      "mesh error", "allowable from"],
+                     [[r.item, r.value_text, r.allowable_text, r.margin_text, r.status,
+                       _err_text(r.mesh_error), r.source] for r in rows]), ""]
+
+
+# ------------------------------------------------------------------------------- pedigree
+def config_comments(path: Path) -> dict[tuple[str, str], str]:
+    """(table, key) -> the comment on that key's line in the assembly file (its own pedigree:
+    the template asks for the source of every number in its comment)."""
+    out, table = {}, ""
+    try:
+        text = Path(path).read_text(encoding="utf-8-sig")
+    except OSError:
+        return out
+    for line in text.splitlines():
+        m = re.match(r"\s*\[([^\]]+)\]", line)
+        if m:
+            table = m.group(1).strip()
+            continue
+        m = re.match(r"\s*([A-Za-z0-9_]+)\s*=[^#]*#\s*(.*)$", line)
+        if m and m.group(2).strip():
+            out[(table, m.group(1))] = m.group(2).strip()
+    return out
+
+
+def material_references() -> dict[str, str]:
+    """Material source key -> its full reference, from analytic/materials.py's source list."""
+    from analytic import materials
+
+    refs, key = {}, None
+    for line in (materials.__doc__ or "").splitlines():
+        m = re.match(r"\s*\[([^\]]+)\]\s+(.*)", line)
+        if m:
+            key = m.group(1)
+            refs[key] = m.group(2).strip()
+        elif key and line.startswith("      ") and line.strip():
+            refs[key] += " " + line.strip()
+        else:
+            key = None
+    return refs
+
+
+def pedigree_lines(asm, assembly_path: Path | None) -> list[str]:
+    """Markdown section "Inputs and their sources": each material with its reference, the
+    bearing's catalogue sources, every key of the assembly with the comment it carries, the
+    tolerance classes."""
+    from analytic.catalogue import CATALOGUE
+
+    refs = material_references()
+    mats = {}
+    for part in ("shaft", "housing", "nut", "cover", "inner_spacer", "outer_spacer", "inner_ring",
+                 "ball", *(n for n, _ in asm.layers())):
+        m = asm.material(part)
+        mats.setdefault(m.name, [m, []])[1].append(part)
+    mat_rows = [[name, ", ".join(parts), f"{m.E_MPa:.6g}", f"{m.nu:g}", f"{m.alpha_per_K * 1e6:.4g}",
+                 f"[{m.source}] {refs.get(m.source, '')}".strip()]
+                for name, (m, parts) in mats.items()]
+    comments = config_comments(assembly_path) if assembly_path else {}
+    cat = CATALOGUE.get(asm.bearing.designation)
+    key_rows = []
+    for name in ("shaft", "housing", "nut", "cover", "inner_spacer", "outer_spacer", "bearing",
+                 "fits", "preload", "lubrication", "limits", "operating"):
+        sec = getattr(asm, name)
+        for f in fields(sec):
+            src = comments.get((name, f.name))
+            if src is None and name == "bearing" and cat is not None and f.name in cat.sources:
+                src = f"catalogue {asm.bearing.designation}: {cat.sources[f.name]}"
+            if src is None:
+                continue                     # not in the file: a default (the echo lists it)
+            key_rows.append([f"[{name}] {f.name}", str(getattr(sec, f.name)), src])
+    f = asm.fits
+    classes = [("inner shaft seat", f.inner_shaft_class or _limits(f.inner_shaft_deviation_um)),
+               ("inner ring bore", f.inner_ring_bore_class or _limits(f.inner_ring_bore_deviation_um)),
+               ("housing bore", f.outer_housing_class or _limits(f.outer_housing_deviation_um)),
+               ("outer ring OD", f.outer_ring_od_class or _limits(f.outer_ring_od_deviation_um))]
+    tol = ("Tolerance classes (ISO 286 seats, ISO 492 rings; analytic/tolerances.py): "
+           + "; ".join(f"{k} {v or 'none given'}" for k, v in classes)
+           + f"; deviations {f.distribution} within their limits.")
+    return ["## Inputs and their sources", "",
+            f"Assembly: {asm.source or 'no source given'}.", "",
+            md_table(["material", "parts", "E (MPa)", "nu", "CTE (1e-6/K)", "source"], mat_rows), "",
+            tol, "",
+            "Each key of the assembly file with the source its comment gives (keys not in the "
+            "file take their documented defaults; the full echo is under Inputs below):", "",
+            md_table(["key", "value", "source (comment in the assembly file)"], key_rows), ""]
+
+
+def _limits(dev) -> str:
+    return "" if not dev else f"limits {tuple(dev)} um"
+
+
+# ---------------------------------------------------------------------------- assumptions
+def assumption_lines(asm) -> list[str]:
+    """Markdown section "Assumptions", numbered; those that follow from the configuration name
+    the key that sets them."""
+    ball = {"static": "quasi-static balls (no centrifugal force or gyroscopic moment)",
+            "quasi_dynamic": "quasi-dynamic balls (centrifugal force, gyroscopic moment, "
+                             f"{asm.operating.raceway_control} raceway control)"}
+    items = [
+        "The stack is axisymmetric (shaft, rings, spacers, nut, cover, housing in one r-z "
+        "section); radial load and moment act on the pair's analytic model, not on the FE.",
+        "Linear elastic, small strain, P2 elements; material properties constant except the "
+        "CTE law of analytic/materials.py.",
+        "Each part at one uniform temperature per operating point (parts without their own "
+        "column follow the ambient temperature).",
+        f"Fits are exact contact, {asm.fits.contact} (`[fits] contact`); an interference fit may "
+        "open, a clearance fit may close.",
+        f"Fits and preload ({asm.preload.kind} preload, {asm.preload.assembled_N:g} N) are set at "
+        f"T_ref = {asm.T_ref_C:g} C; with tolerance classes the fits are the middle of their bands.",
+        f"Nut and cover: {asm.nut.clamp} / {asm.cover.clamp} clamp (`[nut] clamp`, `[cover] clamp`).",
+        "The rings' deformation enters the bearing model only through the groove-centre shifts "
+        f"of the FE ({asm.mesh.ring_section} ring sections, `[mesh] ring_section`); "
+        "Hertz point contact at each ball, pair equilibrium; " + ball[asm.operating.ball_model] + ".",
+        "Friction torque: hysteresis, differential sliding, spin, load and viscous (Palmgren) "
+        f"terms (analytic/torque.py); {asm.lubrication.kind} lubrication.",
+        "Discretisation: the mesh sized by studies/model/mesh_size.py for its target error; the "
+        "error achieved is in Credibility.",
+    ]
+    return ["## Assumptions", ""] + [f"{i}. {t}" for i, t in enumerate(items, 1)] + [""]
+
+
+# ---------------------------------------------------------------------------- credibility
+#: the model compared with published measurements: (case, published, what is compared and how
+#: closely, the test that asserts it (None: printed by the study only))
+VALIDATION = (
+    ("seed 000: fit-change rates", "-0.05 / +0.07 um/C (inner / outer)",
+     "within 0.005 um/C", "tests/test_verify_seed000.py::"
+     "test_fit_rates_and_closing_temperature_are_the_published_ones"),
+    ("seed 000: outer clearance closing temperature", "about 41 C", "within 0.5 K",
+     "tests/test_verify_seed000.py::test_fit_rates_and_closing_temperature_are_the_published_ones"),
+    ("seed 000: preload trend (the paper's simplified axial model, its eqs. 14-20; "
+     "analytic/axial_stack.py)", "-40 .. +40 N over -60 .. 80 C (its Fig. 9b)",
+     "sign and monotonic rise, within 50 % of the size; this model's axial part between the "
+     "limits of that stack (the radial effects it leaves out reverse the cold end)",
+     "tests/test_verify_seed000.py::test_the_papers_axial_model_gives_the_published_trend"),
+    ("seed 001: torque ratios against 20 C", "+33 .. 50 % at -20 C, -25 % at 60 C",
+     "printed beside the published ones by `bearingfem study seed001`", None),
+    ("seed 003: ball-screw support heat at 1000 / 1500 rpm", "heat-up measured on the rig",
+     "printed by `bearingfem study seed003`; the heat balance is asserted, not the measurement",
+     None),
+)
+
+
+#: the quantities whose worst case over the tolerance bands the report gives
+TOLERANCE_QUANTITIES = ("preload_N", "max_contact_pressure_MPa", "fit_pressure_inner_MPa",
+                        "fit_pressure_outer_MPa", "torque_Nmm")
+
+
+def tolerance_lines(asm, res: dict, worst: dict | None) -> list[str]:
+    """The uncertainty from the fit tolerances: the worst case of the interference bands (four
+    corners, `studies.runs.tolerance_report.worst_case`) beside the mid-band result."""
+    if worst is None:
+        return ["Uncertainty from the fit tolerances: no tolerance classes or limit deviations "
+                "in `[fits]`; the fits are as given.", ""]
+    rows = [[q, f"{np.min(res[q]):.4g} .. {np.max(res[q]):.4g}",
+             f"{np.min(worst[q]):.4g}", f"{np.max(worst[q]):.4g}"] for q in TOLERANCE_QUANTITIES]
+    return ["Uncertainty from the fit tolerances: the four corners of the two interference bands "
+            "(every deviation at a limit) at every operating point, beside the mid-band result "
+            "above; the Monte Carlo and the probabilities: `bearingfem tolerance`.", "",
+            md_table(["quantity", "mid-band (this report)", "worst case min", "worst case max"],
+                     rows), ""]
+
+
+def credibility_lines(conv: dict, mesh_error: dict[str, float], order: float,
+                      traces=None, test_results=None, tolerance: list[str] = ()) -> list[str]:
+    """Markdown section "Credibility": code verification (the requirement traceability of
+    `verify`, last results of their tests), this mesh's error, the validation cases and
+    their agreement, input pedigree, the tolerance uncertainty."""
+    from studies.runs.requirements import read_results, repository_root, trace
+
+    traces = trace() if traces is None else traces
+    results = read_results(repository_root()) if test_results is None else test_results
+    req_rows = [[t.id, t.text, t.result] for t in traces]
+    val_rows = []
+    for case, pub, how, test in VALIDATION:
+        res = "not asserted by a test" if test is None else \
+            " ".join(results.get(test, ("not run here", ""))).strip()
+        val_rows.append([case, pub, how, res])
+    target = conv.get("target_error")
+    err_rows = [[name, _err_text(e)] for name, e in mesh_error.items()]
+    return ["## Credibility", "",
+            "### Code verification", "",
+            "Requirements and the last results of the tests that prove them in this checkout "
+            "(studies/runs/requirements.py; `bearingfem verify` writes the same table with the "
+            "manufactured-solution orders and the Lamé cases into verification.json).", "",
+            md_table(["requirement", "statement", "last result"], req_rows), "",
+            "### This mesh's error", "",
+            f"Largest error of the FE quantities that feed the bearing model (fit pressures, "
+            f"groove-centre shifts) against their Richardson values: {100 * conv['error_max']:.2g} %"
+            + ("" if target is None else f" (target {100 * target:g} %: "
+               f"{'met' if conv['within_target'] else 'NOT met'})")
+            + ". Headline numbers: relative error from the mesh used and the mesh of half its "
+              f"sizes, |f1 - fh| 2^p / (2^p - 1) / |f1| with p = {order:g} (Roache 1998):", "",
+            md_table(["headline number", "mesh error"], err_rows), "",
+            "### Validation", "",
+            "The published measurements the model has been compared with (the seed studies) "
+            "and their agreement:", "",
+            md_table(["case", "published", "agreement", "test result"], val_rows), "",
+            "### Input pedigree and uncertainty", "",
+            "Sources of every material and catalogue value and of each assembly key: "
+            "\"Inputs and their sources\" above.", ""] + list(tolerance)
+
+
+# ---------------------------------------------------------------------- environment, command
+def report_date() -> str:
+    """The report's date (UTC): SOURCE_DATE_EPOCH when set (reproducible builds), else now."""
+    epoch = os.environ.get("SOURCE_DATE_EPOCH")
+    t = datetime.fromtimestamp(int(epoch), timezone.utc) if epoch else datetime.now(timezone.utc)
+    return t.strftime("%Y-%m-%d %H:%M UTC")
+
+
+def environment_lines(prov: dict) -> list[str]:
+    """Markdown section "Environment": tool, Python, packages, the SHA-256 of each input."""
+    def version(p):
+        try:
+            return metadata.version(p)
+        except metadata.PackageNotFoundError:
+            return "not installed"
+    rows = [["bearingfem", str(prov.get("version", ""))],
+            ["Python", platform.python_version()], ["platform", platform.platform()]]
+    rows += [[p, version(p)] for p in PACKAGES]
+    inputs = [[k, v["path"], v["sha256"]] for k, v in prov.get("inputs", {}).items()]
+    return ["## Environment", "", md_table(["tool / package", "version"], rows), "",
+            md_table(["input", "path", "SHA-256"], inputs), ""]
+
+
+def reproduce_lines(command: list[str] | None) -> list[str]:
+    """Markdown section "Reproduce": the command line (shell-quoted)."""
+    cmd = shlex.join(command) if command else "(run from Python: no command line)"
+    return ["## Reproduce", "", "Re-running this command reproduces the report (and, with "
+            "SOURCE_DATE_EPOCH set, its date):", "", f"`{cmd}`", ""]
+
+
+def front_lines(asm, cond: dict, res: dict, flags: dict, conv: dict, prov: dict,
+                command: list[str] | None, pipeline, fine_pipeline) -> list[str]:
+    """The report's front sections in order: date, Margins, Inputs and their sources,
+    Assumptions, Credibility, Environment, Reproduce. `pipeline`: the one of the results (the
+    tolerance corners), `fine_pipeline`: its mesh at half the sizes (the headline errors)."""
+    from studies.model.mesh_size import ORDER
+    from studies.model.tolerances import has_tolerances
+    from studies.runs.tolerance_report import worst_case
+
+    worst = worst_case(pipeline, cond) if has_tolerances(asm) else None
+
+    err = headline_mesh_errors(cond, res, fine_pipeline, ORDER)
+    n = len(np.asarray(res["preload_N"]))
+    where = ("the conditions given" if "conditions" in prov.get("inputs", {}) else
+             f"{asm.operating.T_min_C:g} .. {asm.operating.T_max_C:g} C, `[operating]`")
+    path = prov.get("inputs", {}).get("assembly", {}).get("path")
+    return ([f"Date: {report_date()}", ""]
+            + margin_lines(margin_rows(asm, res, flags, err), n, where)
+            + pedigree_lines(asm, Path(path) if path else None)
+            + assumption_lines(asm)
+            + credibility_lines(conv, err, ORDER, tolerance=tolerance_lines(asm, res, worst))
+            + environment_lines(prov) + reproduce_lines(command))
