@@ -22,7 +22,30 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from analytic.bearing.geometry import BearingSpec
+
+@dataclass(frozen=True)
+class BearingSpec:
+    """A bearing as its user states it (an assembly's [bearing] table, a catalogue entry):
+    boundary dimensions, internal geometry (Harris & Kotzalas Vol. 1 ch. 2 notation) and the
+    effective ring sections the FE uses, in mm; materials by name.
+    `analytic.bearing.geometry.BearingGeometry.from_spec` resolves it for the bearing model (kept
+    here, with the data, so that the catalogue imports nothing of `analytic.bearing`)."""
+    designation: str
+    bore_mm: float
+    outside_diameter_mm: float
+    width_mm: float
+    ball_diameter_mm: float
+    ball_count: int
+    pitch_diameter_mm: float
+    inner_groove_ratio: float        # f_i = r_i / Dw
+    outer_groove_ratio: float        # f_o = r_o / Dw
+    contact_angle_free_deg: float
+    inner_ring_outer_diameter_mm: float   # effective FE section of the inner ring
+    outer_ring_inner_diameter_mm: float   # effective FE section of the outer ring
+    ring_material: str
+    ball_material: str
+    inner_land_diameter_mm: float = 0.0   # shoulder on the loaded side; 0: inferred (bearing/land.py)
+    outer_land_diameter_mm: float = 0.0
 
 
 @dataclass(frozen=True)

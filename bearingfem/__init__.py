@@ -11,16 +11,12 @@ an equal assembly (`Pipeline.shared`). BLAS runs single-threaded inside the FE s
 """
 from __future__ import annotations
 
-from importlib import metadata
 from pathlib import Path
 from typing import Mapping
 
 import numpy as np
 
-try:
-    __version__ = metadata.version("bearingfem")
-except metadata.PackageNotFoundError:      # a source tree that was not installed
-    __version__ = "unknown"
+from infra.version import __version__
 
 __all__ = ["__version__", "load_assembly", "simulate"]
 

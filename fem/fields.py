@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from fem.model import StackModel
+from infra.signals import deferred_signals
 
 
 def vertex_values(model: StackModel, u: np.ndarray) -> np.ndarray:
@@ -21,7 +22,7 @@ def vertex_values(model: StackModel, u: np.ndarray) -> np.ndarray:
 def write_vtu(path: Path, model: StackModel, u: np.ndarray, cell_data: dict[str, np.ndarray],
               T_vertex_C: np.ndarray | None = None) -> Path:
     """Write the deformed-state fields of one solution to a .vtu file (meshio)."""
-    import meshio
+    import meshio  # noqa: PLC0415 -- deferred: only VTU output needs it
 
     pts = np.column_stack([model.mesh.p.T, np.zeros(model.mesh.p.shape[1])])
     disp = vertex_values(model, u)
@@ -37,7 +38,7 @@ def write_vtu(path: Path, model: StackModel, u: np.ndarray, cell_data: dict[str,
 
 
 def _grid(model: StackModel, pts_xy: np.ndarray):
-    import pyvista as pv
+    import pyvista as pv  # noqa: PLC0415 -- deferred: pyvista/VTK load only for images
 
     t = model.mesh.t.T
     cells = np.hstack([np.full((t.shape[0], 1), 3), t]).ravel()
@@ -88,7 +89,7 @@ def render_fields(out_dir: Path, stem: str, model: StackModel, u: np.ndarray,
     image names the parts on the section and carries a scale bar in mm under it. balls_rz_d_mm:
     (r, z, diameter) in mm of each bearing's ball, drawn as a circle at its nominal centre (the
     balls are analytic, not meshed)."""
-    import pyvista as pv
+    import pyvista as pv  # noqa: PLC0415 -- deferred: pyvista/VTK load only for images
 
     pv.OFF_SCREEN = True
     try:
@@ -116,33 +117,46 @@ def render_fields(out_dir: Path, stem: str, model: StackModel, u: np.ndarray,
             grid.point_data[name] = values
         else:
             grid.cell_data[name] = values
-        p = pv.Plotter(off_screen=True, window_size=(800, 640))
-        p.add_mesh(grid, scalars=name, cmap="viridis", show_edges=False,
-                   scalar_bar_args={"title": label, "vertical": True, "fmt": "%.3g",
-                                     "position_x": 0.78, "position_y": 0.15, "width": 0.06,
-                                     "height": 0.7, "title_font_size": 16,
-                                     "label_font_size": 14})
-        outline = _grid(model, pts).extract_feature_edges(boundary_edges=True, feature_edges=False,
-                                                          manifold_edges=False)
-        p.add_mesh(outline, color="black", line_width=1)
-        for r, z, d in balls_rz_d_mm:
-            ring = ball_outline_rz_mm(r, z, d)
-            p.add_mesh(pv.lines_from_points(np.column_stack([ring, np.full(len(ring), 0.01 * extent)])),
-                       color="black", line_width=2)
-        where, names = part_label_points(model, pts)
-        p.add_point_labels(np.column_stack([where, np.full(len(where), 0.01 * extent)]), names,
-                           font_size=11, point_size=1, shape_opacity=0.6, always_visible=True,
-                           show_points=False)
-        bar = scale_bar_mm(extent)
-        x0, y0 = pts[:, 0].min(), pts[:, 1].min() - 0.06 * extent
-        p.add_ruler([x0, y0, 0.0], [x0 + bar, y0, 0.0], title=f"{bar:g} mm", number_labels=2,
-                    show_labels=False, font_size_factor=0.8, label_size_factor=0.8)
-        shape = f", deformed shape x{exaggeration:g}" if name == "displacement_um" else ""
-        p.add_text(f"{title}: {label}{shape}", font_size=10)
-        p.view_xy()
-        p.add_axes(xlabel="r", ylabel="z", zlabel="")
         path = out_dir / f"{stem}_{name}.png"
-        p.screenshot(str(path))
-        p.close()
+        # VTK interrupted between making a render window and closing it crashed the interpreter
+        # (a segmentation fault in 1 of 12 Ctrl-C trials): Ctrl-C and SIGTERM wait for the close
+        with deferred_signals():
+            p = pv.Plotter(off_screen=True, window_size=(800, 640))
+            try:
+                _draw(p, grid, name, label, pts, model, title, exaggeration, balls_rz_d_mm, extent)
+                p.screenshot(str(path))
+            finally:
+                p.close()
         paths.append(path)
     return paths
+
+
+def _draw(p, grid, name: str, label: str, pts: np.ndarray, model: StackModel, title: str,
+          exaggeration: float, balls_rz_d_mm, extent: float) -> None:
+    """Put one field of `render_fields` on the plotter `p`: the field, the outline, the balls, the
+    part names, a scale bar (mm; `extent`: the undeformed section's size) and the title."""
+    import pyvista as pv  # noqa: PLC0415 -- deferred: pyvista/VTK load only for images
+
+    p.add_mesh(grid, scalars=name, cmap="viridis", show_edges=False,
+               scalar_bar_args={"title": label, "vertical": True, "fmt": "%.3g",
+                                "position_x": 0.78, "position_y": 0.15, "width": 0.06,
+                                "height": 0.7, "title_font_size": 16, "label_font_size": 14})
+    outline = _grid(model, pts).extract_feature_edges(boundary_edges=True, feature_edges=False,
+                                                      manifold_edges=False)
+    p.add_mesh(outline, color="black", line_width=1)
+    for r, z, d in balls_rz_d_mm:
+        ring = ball_outline_rz_mm(r, z, d)
+        p.add_mesh(pv.lines_from_points(np.column_stack([ring, np.full(len(ring), 0.01 * extent)])),
+                   color="black", line_width=2)
+    where, names = part_label_points(model, pts)
+    p.add_point_labels(np.column_stack([where, np.full(len(where), 0.01 * extent)]), names,
+                       font_size=11, point_size=1, shape_opacity=0.6, always_visible=True,
+                       show_points=False)
+    bar = scale_bar_mm(extent)
+    x0, y0 = pts[:, 0].min(), pts[:, 1].min() - 0.06 * extent
+    p.add_ruler([x0, y0, 0.0], [x0 + bar, y0, 0.0], title=f"{bar:g} mm", number_labels=2,
+                show_labels=False, font_size_factor=0.8, label_size_factor=0.8)
+    shape = f", deformed shape x{exaggeration:g}" if name == "displacement_um" else ""
+    p.add_text(f"{title}: {label}{shape}", font_size=10)
+    p.view_xy()
+    p.add_axes(xlabel="r", ylabel="z", zlabel="")

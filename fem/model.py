@@ -19,11 +19,19 @@ import numpy as np
 import scipy.sparse as sp
 from skfem import Basis, ElementTriP2, ElementVector, MeshTri, asm
 
-from analytic.materials import Material
+from analytic.materials import Material, get_material
 from fem.forms import centrifugal_load, elasticity, lame_parameters, thermal_load
-from fem.setup import part_materials
 from meshes.section import Section, Split
-from meshes.build import SectionMesh
+from meshes.build import SectionMesh, section_mesh
+
+
+def part_materials(section: Section, materials: dict[str, Material] | None = None
+                   ) -> dict[str, Material]:
+    """The material of every FE part of `section` (part order): `materials[part]` when given,
+    else the library material the section names for it."""
+    return {p: (materials or {}).get(p) or get_material(section.material_of(p))
+            for p in section.parts()}
+
 
 TOL_MM = 1e-7
 
@@ -241,6 +249,4 @@ def build_model(section: Section, contact: str = "frictionless",
                 materials: dict[str, Material] | None = None,
                 rotating_parts: tuple[str, ...] = ()) -> StackModel:
     """Mesh the section (cached) and assemble its model (`rotating_parts`: the parts that spin)."""
-    from meshes.build import section_mesh
-
     return StackModel(section, section_mesh(section), contact, materials, rotating_parts)

@@ -15,6 +15,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from fem.forms import stress_components, von_mises
+
 if TYPE_CHECKING:                    # only the model's fits and basis are read here
     from fem.model import StackModel
 
@@ -126,8 +128,6 @@ def circle_centre_weights(points_rz_mm: np.ndarray, centre_rz_mm,
 def element_stresses(model: StackModel, u: np.ndarray, theta_e: np.ndarray) -> dict[str, np.ndarray]:
     """Element-mean stresses (MPa): sigma_rr, sigma_zz, sigma_tt (hoop), tau_rz, von_mises.
     theta_e: thermal strain per element (uniform per part)."""
-    from fem.forms import stress_components, von_mises
-
     b = model.basis
     uf = b.interpolate(u)
     r = b.mapping.F(b.quadrature[0])[0]

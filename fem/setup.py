@@ -26,16 +26,16 @@ from typing import TYPE_CHECKING, Callable
 
 import numpy as np
 
-from analytic.materials import Material, get_material
-from fem.solver import Condensed
-from meshes.cache import cache_dir, cached_file, remove_stale
+from analytic.materials import Material
+from fem.compliance import preload_path_compliance_mm_per_N
+from fem.model import StackModel, build_model, part_materials
+from fem.solver import Condensed, FitSolver, condense
+from infra.version import __version__
+from meshes.cache import cache_dir, cached_file
 from meshes.section import Section
 
 if TYPE_CHECKING:
     import scipy.sparse as sp
-
-    from fem.model import StackModel
-    from fem.solver import FitSolver
 
 #: version of the stored layout and of the computation behind it (2: a centrifugal load column
 #: (omega^2) after the part thermal strains; 3: loops of ties at ring corners of bonded fits no
@@ -45,14 +45,6 @@ FORMAT = 3
 
 class SetupError(RuntimeError):
     """A stored set-up is unusable (damaged, foreign, inconsistent); one-line message."""
-
-
-def part_materials(section: Section, materials: dict[str, Material] | None = None
-                   ) -> dict[str, Material]:
-    """The material of every FE part of `section` (part order): `materials[part]` when given,
-    else the library material the section names for it."""
-    return {p: (materials or {}).get(p) or get_material(section.material_of(p))
-            for p in section.parts()}
 
 
 @dataclass(frozen=True)
@@ -98,8 +90,6 @@ class SetupSpec:
 
 
 def _versions() -> dict[str, str]:
-    from bearingfem import __version__
-
     out = {"bearingfem": __version__}
     for dist in ("gmsh", "scikit-fem"):
         try:
@@ -136,9 +126,6 @@ class FullFE:
 
 def full_fe(spec: SetupSpec) -> FullFE:
     """Mesh (from the mesh cache), assemble and wrap the FE model of `spec`."""
-    from fem.model import build_model
-    from fem.solver import FitSolver
-
     model = build_model(spec.section, spec.contact, dict(spec.materials), spec.rotating_parts)
     return FullFE(model, FitSolver(model), model.probe_matrix(np.array(spec.probe_points_rz).T))
 
@@ -146,9 +133,6 @@ def full_fe(spec: SetupSpec) -> FullFE:
 def compute_setup(spec: SetupSpec, fe: FullFE) -> FESetup:
     """The set-up of `spec` from its full FE (the uncached route; `cached_setup` stores its
     result): condensation (`fem.solver.condense`) and, when planned, the compliance."""
-    from fem.compliance import preload_path_compliance_mm_per_N
-    from fem.solver import condense
-
     m = fe.model
     c = spec.compliance
     comp = (np.nan if c is None else preload_path_compliance_mm_per_N(
@@ -163,7 +147,6 @@ def cached_setup(spec: SetupSpec, fe: Callable[[], FullFE], progress=None) -> FE
     """The set-up of `spec` from the cache, else computed from `fe()` (called only then) and
     stored. A stored file that is unusable is rebuilt with one warning line."""
     d = cache_dir("setups", "FE set-up")
-    remove_stale(d, "setup", ".npz")
     key = spec.key()
 
     def make(tmp: Path) -> None:

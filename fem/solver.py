@@ -32,6 +32,8 @@ import scipy.sparse as sp
 from scipy.sparse.linalg import splu
 from threadpoolctl import ThreadpoolController
 
+from infra.memo import Memo
+
 if TYPE_CHECKING:                    # the model is only handed through here
     from fem.model import StackModel
 
@@ -79,7 +81,7 @@ class FitSolver:
         self.master_z = np.concatenate([f.master_z for f in fits]) if fits else np.zeros(0, int)
         self.slave_z = np.concatenate([f.slave_z for f in fits]) if fits else np.zeros(0, int)
         self.bonded = model.contact == "bonded"
-        self._cache: dict[bytes, tuple] = {}
+        self._cache = Memo(max_items=None)    # factorisation per contact status (infra.memo)
         self.n_factorisations = 0
 
     @property
@@ -96,8 +98,9 @@ class FitSolver:
 
     def _system(self, closed: np.ndarray):
         key = np.packbits(closed).tobytes() + bytes([closed.size % 8])
-        if key in self._cache:
-            return self._cache[key]
+        hit = self._cache.get(key)
+        if hit is not None:
+            return hit
         m = self.model
         N = m.ndofs
         masters = [m.tie_master, self.master[closed]]
@@ -131,7 +134,7 @@ class FitSolver:
             raise SolveError(f"singular stiffness matrix ({exc}): a part is not held "
                              "(missing fit, tie or support)") from None
         self.n_factorisations += 1
-        self._cache[key] = (T, lu)
+        self._cache.put(key, (T, lu))
         return T, lu
 
     def _g(self, closed: np.ndarray, delta_mm_by_fit: np.ndarray) -> np.ndarray:
@@ -222,7 +225,7 @@ class Superposition:
         self._cho_factor = cho_factor
         self.condensed, self._solver_of = c, solver_of
         self.n_parts, self.n_fits = c.n_parts, c.n_fits
-        self._chol: dict[bytes, tuple] = {}
+        self._chol = Memo(max_items=None)     # Cholesky factor per closed set (infra.memo)
         self.block = 128         # states tried per active set (sweeps and samples alike: measured)
         self.pfit, self.B, self.A = c.fit_of_pair, c.B, c.A
         self.n_loads = c.n_parts + 1          # load columns: thermal strain per part, omega^2
@@ -255,9 +258,8 @@ class Superposition:
 
     def _factor(self, closed: np.ndarray):
         key = np.packbits(closed).tobytes()
-        if key not in self._chol:
-            self._chol[key] = self._cho_factor(self.A[np.ix_(closed, closed)], check_finite=False)
-        return self._chol[key]
+        return self._chol.get_or_make(key, lambda: self._cho_factor(self.A[np.ix_(closed, closed)],
+                                                                    check_finite=False))
 
     def _solve_set(self, closed: np.ndarray, g0: np.ndarray):
         """lambda on the closed set for states g0 (n_pairs, k): A_CC lambda_C = -g0_C."""

@@ -7,13 +7,17 @@ back with meshio (`read_section_mesh`).
 """
 from __future__ import annotations
 
+import contextlib
+import io
 import os
+import signal
+import threading
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from meshes.cache import cache_dir, cached_file, remove_stale
+from meshes.cache import cache_dir, cached_file
 from meshes.section import Section
 
 
@@ -84,7 +88,6 @@ def section_mesh(section: Section) -> "SectionMesh":
 def _cached(section: Section, refresh: bool):
     check_size(section)
     d = cache_dir("meshes", "mesh")
-    remove_stale(d, "section", ".msh")
     path = d / f"section_{section.key()}.msh"
     mesh = cached_file(path, lambda tmp: _mesh_with_gmsh(section, tmp),
                        lambda p: validated(p, section), what="mesh", writer="gmsh",
@@ -118,10 +121,27 @@ def validated(path: Path, section: Section) -> "SectionMesh":
     return mesh
 
 
+def restore_signal_handlers() -> None:
+    """Set the C-level handlers of SIGTERM and SIGPIPE back to what Python has installed.
+
+    `gmsh.initialize` resets both to their defaults (measured with sigaction: SIGTERM from
+    Python's handler to SIG_DFL, SIGPIPE from SIG_IGN to SIG_DFL), so from the first mesh on a
+    SIGTERM killed the process outright, leaving its temporary output file, folder and mesh behind,
+    and a closed pipe killed it silently. Only the main thread may set handlers; elsewhere (a Dask
+    worker thread) this does nothing."""
+    if threading.current_thread() is not threading.main_thread():
+        return
+    for sig in (signal.SIGTERM, signal.SIGPIPE):
+        handler = signal.getsignal(sig)
+        if handler is not None:
+            signal.signal(sig, handler)
+
+
 def _mesh_with_gmsh(section: Section, tmp: Path) -> None:
-    import gmsh
+    import gmsh  # noqa: PLC0415 -- deferred: gmsh loads a large native library, meshing is rare
 
     gmsh.initialize(interruptible=False)
+    restore_signal_handlers()
     try:
         gmsh.option.setNumber("General.Terminal", 0)
         occ = gmsh.model.occ
@@ -278,10 +298,7 @@ def _point_tags(gmsh, points: list[tuple[float, float]]) -> list[int]:
 def read_section_mesh(path: Path) -> SectionMesh:
     """Read a section .msh with meshio: corner nodes of the triangle6 cells, the part of each
     triangle (physical surface names) and the named physical curves (line3 -> corner pairs)."""
-    import contextlib
-    import io
-
-    import meshio
+    import meshio  # noqa: PLC0415 -- deferred: a run with its FE set-up cached never reads a mesh
 
     with contextlib.redirect_stdout(io.StringIO()):      # meshio prints a stray blank line
         m = meshio.read(str(path))

@@ -1,26 +1,26 @@
 """The on-disk cache of bearingfem: meshes and FE set-ups, one folder per kind.
 
 Every entry is a file named by a hash of everything it depends on. It is written atomically (to a
-temporary file `<stem>.<pid><suffix>` beside it, read back and checked, then renamed), and checked
-again whenever it is read: a damaged, truncated or foreign file is removed and rebuilt with one
-warning line, never used. Temporary files of killed runs are removed (their PID is gone, or they
-are older than STALE_AGE_S). The location is BEARINGFEM_CACHE (default ~/.cache/bearingfem); when
-it cannot be written, a private temporary folder serves the run (one warning).
+hidden temporary beside it, `infra.files.temporary_path`, read back and checked, then renamed), and
+checked again whenever it is read: a damaged, truncated or foreign file is removed and rebuilt with
+one warning line, never used. The temporaries of killed runs are removed when a run first uses the
+folder (`infra.files.sweep_stale`: their PID is gone, or they are older than a day). The location
+is BEARINGFEM_CACHE (default ~/.cache/bearingfem); when it cannot be written, a private temporary
+folder serves the run (one warning).
 """
 from __future__ import annotations
 
 import os
+import re
 import shutil
 import sys
 import tempfile
-import time
 from pathlib import Path
 from typing import Callable, TypeVar
 
-T = TypeVar("T")
+from infra.files import sweep_stale, temporary_path
 
-#: temporary cache files of killed runs older than this are removed whatever their PID (s)
-STALE_AGE_S = 24 * 3600.0
+T = TypeVar("T")
 
 
 def warn(msg: str) -> None:
@@ -38,6 +38,8 @@ def cache_dir(kind: str = "meshes", what: str = "mesh") -> Path:
         d.mkdir(parents=True, exist_ok=True)
         if not os.access(d, os.W_OK | os.X_OK):
             raise PermissionError(13, "not writable")
+        sweep_stale(d, ".")                    # the temporaries of killed runs
+        _sweep_legacy(d)
         return d
     except OSError as exc:
         known = _fallback.get(str(base))
@@ -53,31 +55,22 @@ def cache_dir(kind: str = "meshes", what: str = "mesh") -> Path:
 _fallback: dict[str, Path] = {}
 
 
-def remove_stale(d: Path, stem: str, suffix: str) -> None:
-    """Temporary files of killed runs in `d`: `<stem>_<key>.<pid><suffix>` whose process is gone,
-    or older than STALE_AGE_S."""
-    now = time.time()
-    for f in d.glob(f"{stem}_*.*{suffix}"):
-        try:
-            pid = int(f.suffixes[-2][1:])
-        except (ValueError, IndexError):
-            continue
-        try:
-            alive = pid != os.getpid() and _pid_alive(pid)
-            if not alive or now - f.stat().st_mtime > STALE_AGE_S:
-                f.unlink()
-        except OSError:
-            pass
+#: temporaries of bearingfem 0.2.0 and before: `<stem>_<key>.<pid><suffix>`
+_LEGACY = re.compile(r"^[a-z]+_[0-9a-f]+\.(\d+)\.(msh|npz)$")
 
 
-def _pid_alive(pid: int) -> bool:
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except PermissionError:
-        return True
-    return True
+def _sweep_legacy(d: Path) -> None:
+    """Remove the temporaries that killed runs of earlier versions left (named as _LEGACY; their
+    PID no longer runs)."""
+    for f in d.iterdir():
+        m = _LEGACY.match(f.name)
+        if m and int(m[1]) != os.getpid():
+            try:
+                os.kill(int(m[1]), 0)
+            except ProcessLookupError:
+                f.unlink(missing_ok=True)
+            except OSError:
+                pass
 
 
 def cached_file(path: Path, make: Callable[[Path], None], read: Callable[[Path], T], *,
@@ -99,7 +92,7 @@ def cached_file(path: Path, make: Callable[[Path], None], read: Callable[[Path],
             except OSError as exc2:
                 raise error(f"cannot remove the unusable cached {what} {path} "
                             f"({exc2.strerror})") from None
-    tmp = path.with_suffix(f".{os.getpid()}{path.suffix}")
+    tmp = temporary_path(path, keep_suffix=True)   # the writer may choose the format by it
     try:
         make(tmp)
         try:
@@ -109,6 +102,5 @@ def cached_file(path: Path, make: Callable[[Path], None], read: Callable[[Path],
                         f"{path.parent} full?") from None
         os.replace(tmp, path)
     finally:
-        if tmp.exists():
-            tmp.unlink()
+        tmp.unlink(missing_ok=True)
     return content

@@ -7,10 +7,15 @@ import os
 import re
 import signal
 import stat
+import subprocess
+import sys
+import time
+from pathlib import Path
 
 import numpy as np
 import pytest
 
+from infra.files import HOST_TAG
 from meshes.build import MeshError, build_mesh, check_size, section_mesh
 from meshes.section import two_cylinder_section
 from studies.app.cli import main
@@ -177,10 +182,16 @@ def test_unusable_cache_location_meshes_in_a_temporary_folder(tmp_path, monkeypa
 def test_temporary_meshes_of_killed_runs_are_removed(cache):
     build_mesh(SEC)
     dead = 2 ** 22 + 12345                        # above the default pid_max: no such process
-    stale = cache / f"section_{SEC.key()}.{dead}.msh"
-    stale.write_text("half written")
+    # infra.files.temporary_path: .<name>.<pid>.<8 hex of this host><8 random hex><suffix>
+    stale = cache / f".section_{SEC.key()}.msh.{dead}.{HOST_TAG}deadbeef.msh"
+    alive = cache / f".section_{SEC.key()}.msh.{os.getpid()}.{HOST_TAG}beefdead.msh"
+    elsewhere = cache / f".section_{SEC.key()}.msh.{dead}.{'0' * 8 if HOST_TAG != '0' * 8 else '1' * 8}deadbeef.msh"
+    legacy = cache / f"section_{SEC.key()}.{dead}.msh"      # as bearingfem 0.2.0 named them
+    for p in (stale, alive, elsewhere, legacy):
+        p.write_text("half written")
     section_mesh(OTHER)
-    assert not stale.exists()
+    assert not stale.exists() and not legacy.exists()
+    assert alive.exists() and elsewhere.exists()    # a live run's, and another machine's
 
 
 # ------------------------------------------------------------------ no limit on problem size
@@ -315,3 +326,160 @@ def test_a_sidecar_path_that_is_a_link_is_refused(tmp_path, capsys, cond):
     code, err = run_cli(["simulate", CFG, cond, "-o", tmp_path / "o.csv"], capsys)
     assert_refused(code, err, "symbolic link", tmp_path, {target: digest(target), cond: digest(cond)})
     assert not (tmp_path / "o.csv").exists()
+
+
+# ------------------------------------------------------------------ signals in a real process
+# Each runs the command in a subprocess, sends the signal at a point it can see (a hidden file
+# appearing) or at a fixed delay inside the start-up, and checks the exit code, the one stderr line
+# and that nothing is left: the output, the temporaries beside it, the cache's temporaries.
+BIN = Path(sys.executable).with_name("bearingfem")
+
+
+def _start(argv, cache_dir, **kw):
+    env = dict(os.environ, BEARINGFEM_CACHE=str(cache_dir))
+    env.pop("BEARINGFEM_VERBOSE", None)
+    return subprocess.Popen([str(BIN), *map(str, argv)], env=env, stdout=subprocess.DEVNULL,
+                            stderr=subprocess.PIPE, text=True, **kw)
+
+
+def _wait_for(proc, pattern_dir: Path, pattern: str, timeout_s: float = 120.0) -> list[Path]:
+    t0 = time.monotonic()
+    while time.monotonic() - t0 < timeout_s:
+        found = list(pattern_dir.glob(pattern)) if pattern_dir.is_dir() else []
+        if found:
+            return found
+        assert proc.poll() is None, f"finished before {pattern} appeared: {proc.stderr.read()}"
+        time.sleep(0.005)
+    proc.kill()
+    raise AssertionError(f"{pattern} did not appear in {timeout_s} s")
+
+
+def _sigint_as_in_a_terminal() -> None:
+    """Run in the child before exec: SIGINT to its default action, as a shell started from a
+    terminal has it (pytest-xdist workers ignore SIGINT, and a child inherits that)."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
+def _leftovers(*folders: Path) -> list[str]:
+    return sorted(str(p) for d in folders if d.is_dir() for p in d.rglob(".*"))
+
+
+def test_gmsh_leaves_sigterm_to_python(tmp_path):
+    """gmsh.initialize resets SIGTERM (and SIGPIPE) to the default action: without undoing it,
+    SIGTERM after the first mesh killed the process outright (rc -15) and no clean-up ran."""
+    code = ("import os, signal, sys\n"
+            "signal.signal(signal.SIGTERM, lambda s, f: sys.exit(43))\n"
+            "from meshes.build import build_mesh\n"
+            "from meshes.section import two_cylinder_section\n"
+            "build_mesh(two_cylinder_section(0.0, 10.0, 15.0, '9Cr18', '9Cr18', 8.0, size_mm=2.0,"
+            " fit_size_mm=1.0))\n"
+            "os.kill(os.getpid(), signal.SIGTERM)\n"
+            "signal.pause()\n")
+    env = dict(os.environ, BEARINGFEM_CACHE=str(tmp_path / "cache"))
+    done = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True,
+                          timeout=120)
+    assert done.returncode == 43, done.stderr
+
+
+@pytest.mark.slow          # ~10 s: a cold mesh and FE set-up (the cause: test_gmsh_leaves_sigterm_...)
+def test_sigterm_on_a_cold_cache_after_the_output_is_opened_leaves_nothing(tmp_path):
+    """The FE set-up of a cold cache runs gmsh; SIGTERM once the hidden output file exists (rows
+    not written yet: 20 000 of them) must end with 143 and leave neither it nor a sidecar."""
+    cond = tmp_path / "cond.csv"
+    cond.write_text("T_ambient_C\n" + "".join(f"{20 + 1e-3 * i:.3f}\n" for i in range(20_000)))
+    out_dir = tmp_path / "out"
+    proc = _start(["simulate", CFG, cond, "-o", out_dir / "o.csv"], tmp_path / "cache")
+    _wait_for(proc, out_dir, ".o.csv.*")
+    proc.send_signal(signal.SIGTERM)
+    err = proc.communicate(timeout=60)[1].strip().splitlines()
+    assert proc.returncode == 143 and err == ["bearingfem: terminated"], (proc.returncode, err)
+    assert not out_dir.exists() and not _leftovers(tmp_path / "cache")
+
+
+@pytest.mark.slow
+def test_sigterm_during_mesh_convergence_leaves_nothing(tmp_path):
+    """SIGTERM while the study meshes its finer levels (after the first level's mesh is cached):
+    no temporary output folder and no temporary mesh in the cache."""
+    cache = tmp_path / "cache"
+    proc = _start(["study", "mesh_convergence", "--out", tmp_path / "mc"], cache)
+    _wait_for(proc, cache / "meshes", "section_*.msh")
+    time.sleep(0.5)
+    proc.send_signal(signal.SIGTERM)
+    err = proc.communicate(timeout=120)[1].strip().splitlines()
+    assert proc.returncode == 143 and err == ["bearingfem: terminated"], (proc.returncode, err)
+    assert not (tmp_path / "mc").exists() and not _leftovers(tmp_path, cache)
+
+
+@pytest.mark.parametrize("module", ["numpy", "studies.model.config"])
+def test_ctrl_c_during_start_up_is_one_line(tmp_path, module):
+    """Ctrl-C while the command loads its modules: one line, exit 130. The signal is sent when
+    the command starts to import `module` (an import hook in the process: a fixed point, where a
+    delay would depend on the machine's load), the way the console script starts the command."""
+    cond = tmp_path / "cond.csv"
+    cond.write_text("T_ambient_C\n20\n")
+    code = ("import os, signal, sys\n"
+            "class Hook:\n"
+            "    def find_spec(self, name, path=None, target=None):\n"
+            f"        if name == {module!r}:\n"
+            "            os.kill(os.getpid(), signal.SIGINT)\n"
+            "sys.meta_path.insert(0, Hook())\n"
+            "from studies.app.cli import main\n"
+            "sys.exit(main())\n")
+    env = dict(os.environ, BEARINGFEM_CACHE=str(tmp_path / "cache"))
+    done = subprocess.run([sys.executable, "-c", code, "simulate", str(CFG), str(cond), "-o",
+                           str(tmp_path / "o.csv")], env=env, capture_output=True, text=True,
+                          timeout=120, preexec_fn=_sigint_as_in_a_terminal)
+    err = done.stderr.strip().splitlines()
+    assert done.returncode == 130 and err == ["bearingfem: interrupted"], err
+    assert not (tmp_path / "o.csv").exists() and not _leftovers(tmp_path)
+
+
+def test_ctrl_c_while_an_image_renders_waits_for_the_plotter(tmp_path):
+    """Ctrl-C inside VTK's rendering (here: at the screenshot call) is delivered once the image is
+    written and its plotter closed, not in the middle of VTK calls (which crashed the interpreter
+    in 1 of 12 trials): the first image exists, no second was started."""
+    code = ("import os, signal, sys\n"
+            "from pathlib import Path\n"
+            "import numpy as np, pyvista as pv\n"
+            "from fem.fields import render_fields\n"
+            "from fem.model import build_model\n"
+            "from meshes.section import two_cylinder_section\n"
+            "model = build_model(two_cylinder_section(5.0, 10.0, 15.0, 'TC4', '9Cr18', 10.0))\n"
+            "real = pv.Plotter.screenshot\n"
+            "def screenshot(self, *a, **k):\n"
+            "    os.kill(os.getpid(), signal.SIGINT)\n"
+            "    return real(self, *a, **k)\n"
+            "pv.Plotter.screenshot = screenshot\n"
+            "try:\n"
+            "    render_fields(Path(sys.argv[1]), 'f', model, np.zeros(model.ndofs), {}, 't',\n"
+            "                  T_vertex_C=np.zeros(model.mesh.p.shape[1]))\n"
+            "except KeyboardInterrupt:\n"
+            "    sys.exit(130)\n")
+    env = dict(os.environ, BEARINGFEM_CACHE=str(tmp_path / "cache"))
+    done = subprocess.run([sys.executable, "-c", code, str(tmp_path / "img")], env=env,
+                          capture_output=True, text=True, timeout=120,
+                          preexec_fn=_sigint_as_in_a_terminal)
+    assert done.returncode == 130, done.stderr
+    assert [p.name for p in (tmp_path / "img").iterdir()] == ["f_temperature_C.png"]
+
+
+@pytest.mark.parametrize("argv,hidden", [
+    (["study", "lubricant_viscosity", "--out", "{d}/sout"], ".sout.*"),
+    pytest.param(["simulate", CFG, "{d}/cond.csv", "-o", "{d}/o.csv"], ".o.csv.*",
+                 marks=pytest.mark.slow),      # ~10 s: a cold FE set-up before the file opens
+])
+def test_temporaries_of_a_run_killed_outright_are_removed_by_the_next(tmp_path, capsys, argv,
+                                                                      hidden):
+    """SIGKILL leaves the hidden temporary (nothing can clean up); the next run to the same output
+    removes it at once (its PID is gone), not only after a day."""
+    (tmp_path / "cond.csv").write_text("T_ambient_C\n" + "".join(f"{20 + 1e-3 * i:.3f}\n"
+                                                                   for i in range(20_000)))
+    argv = [str(a).format(d=tmp_path) for a in argv]
+    proc = _start(argv, tmp_path / "cache")
+    left = _wait_for(proc, tmp_path, hidden)
+    proc.kill()
+    proc.communicate(timeout=60)
+    assert all(p.exists() for p in left)
+    (tmp_path / "cond.csv").write_text("T_ambient_C\n20\n")
+    assert run_cli(argv, capsys)[0] == 0
+    assert not any(p.exists() for p in left)

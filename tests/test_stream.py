@@ -3,6 +3,8 @@ table and its check summaries are those of the whole table computed at once, bad
 stops the run before any FE work with one line and no output, and memory beyond a chunk does not
 grow with the rows."""
 import csv
+import os
+import re
 import tracemalloc
 
 import numpy as np
@@ -263,3 +265,16 @@ def test_simulate_with_an_unreachable_scheduler_is_one_line_and_no_output(tmp_pa
     err = capsys.readouterr().err.strip().splitlines()
     assert code == 2 and not out.exists()
     assert len(err) == 1 and "--scheduler tcp://127.0.0.1:9: cannot connect" in err[0], err
+
+
+def test_the_table_being_written_is_a_hidden_temporary_named_by_this_process(tmp_path):
+    """While rows are written the table is `.NAME.<pid>.<16 hex>` beside NAME (what the sweeper of
+    a later run reads the PID from); an error inside the block leaves nothing."""
+    out = tmp_path / "o.csv"
+    with pytest.raises(KeyboardInterrupt):
+        with TableWriter(out, provenance={"command": "test"}) as w:
+            w.write({"T_ambient_C": np.array([20.0, 40.0])})
+            (tmp,) = tmp_path.iterdir()
+            assert re.fullmatch(rf"\.o\.csv\.{os.getpid()}\.[0-9a-f]{{16}}", tmp.name), tmp.name
+            raise KeyboardInterrupt
+    assert not list(tmp_path.iterdir())

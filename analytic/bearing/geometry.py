@@ -8,31 +8,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from analytic import hertz
+from analytic.catalogue import BearingSpec, get_entry  # BearingSpec: re-exported, its old home
 from analytic.materials import Material, get_material
-
-
-@dataclass(frozen=True)
-class BearingSpec:
-    """A bearing as its user states it (an assembly's [bearing] table, a catalogue entry):
-    boundary dimensions, internal geometry (Harris & Kotzalas Vol. 1 ch. 2 notation) and the
-    effective ring sections the FE uses, in mm; materials by name. `BearingGeometry.from_spec`
-    resolves it for the bearing model."""
-    designation: str
-    bore_mm: float
-    outside_diameter_mm: float
-    width_mm: float
-    ball_diameter_mm: float
-    ball_count: int
-    pitch_diameter_mm: float
-    inner_groove_ratio: float        # f_i = r_i / Dw
-    outer_groove_ratio: float        # f_o = r_o / Dw
-    contact_angle_free_deg: float
-    inner_ring_outer_diameter_mm: float   # effective FE section of the inner ring
-    outer_ring_inner_diameter_mm: float   # effective FE section of the outer ring
-    ring_material: str
-    ball_material: str
-    inner_land_diameter_mm: float = 0.0   # shoulder on the loaded side; 0: inferred (bearing/land.py)
-    outer_land_diameter_mm: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -62,7 +39,6 @@ class BearingGeometry:
     @classmethod
     def from_catalogue(cls, name: str) -> "BearingGeometry":
         """From `analytic.catalogue` (designation or alias)."""
-        from analytic.catalogue import get_entry
         return cls.from_spec(get_entry(name).spec)
 
     @property

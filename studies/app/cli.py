@@ -14,8 +14,7 @@ import signal  # noqa: E402
 import sys  # noqa: E402
 from pathlib import Path  # noqa: E402
 
-import numpy as np  # noqa: E402
-
+from infra.version import __version__  # noqa: E402
 from studies.app import commands  # noqa: E402
 from studies.app.output import UserError  # noqa: E402
 from studies.runs import STUDIES  # noqa: E402
@@ -37,7 +36,6 @@ def build_parser() -> argparse.ArgumentParser:
     p = _Parser(prog="bearingfem", description=(
         "Thermal-structural FE + analytic bearing model of a preloaded angular-contact ball "
         "bearing pair on a shaft in a housing."))
-    from bearingfem import __version__
     p.add_argument("--version", action="version", version=f"bearingfem {__version__}")
     sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND", parser_class=_Parser)
 
@@ -182,9 +180,28 @@ def _join_signed_values(argv: list[str]) -> list[str]:
 
 
 def main(argv=None) -> int:
+    """Run one command; the exit code. Ctrl-C at any point, the start-up included, is one line
+    ("bearingfem: interrupted") and exit code 130, SIGTERM one line and 143."""
+    try:
+        return _main(argv)
+    except KeyboardInterrupt:
+        print("bearingfem: interrupted", file=sys.stderr)
+        return 130
+    except ImportError as exc:
+        if isinstance(exc.__context__, KeyboardInterrupt):   # Ctrl-C inside a lazy import
+            print("bearingfem: interrupted", file=sys.stderr)
+            return 130
+        raise
+
+
+def _main(argv) -> int:
     argv = _join_signed_values(list(sys.argv[1:] if argv is None else argv))
     args = build_parser().parse_args(argv)
-    from studies.model.config import ConfigError
+    # deferred (numpy, the model's config): the start-up before them is short, and Ctrl-C while
+    # they load is caught by `main`
+    import numpy as np  # noqa: PLC0415
+
+    from studies.model.config import ConfigError  # noqa: PLC0415
 
     previous = signal.signal(signal.SIGTERM, _terminate)
     try:
@@ -193,17 +210,9 @@ def main(argv=None) -> int:
     except (UserError, ConfigError) as exc:
         print(f"bearingfem {args.command}: {exc}", file=sys.stderr)
         return 2
-    except KeyboardInterrupt:
-        print("bearingfem: interrupted", file=sys.stderr)
-        return 130
     except Terminated:
         print("bearingfem: terminated", file=sys.stderr)
         return 143
-    except ImportError as exc:
-        if isinstance(exc.__context__, KeyboardInterrupt):   # Ctrl-C inside a lazy import
-            print("bearingfem: interrupted", file=sys.stderr)
-            return 130
-        raise
     finally:
         signal.signal(signal.SIGTERM, previous)
     return code

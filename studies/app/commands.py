@@ -1,4 +1,10 @@
-"""Implementations of `bearingfem simulate`, `study` and `diagnose` (argument parsing: cli.py)."""
+"""Implementations of `bearingfem simulate`, `study` and `diagnose` (argument parsing: cli.py).
+
+Each command imports the model it needs inside its function, on purpose: the command line starts
+(and `--help`, `--version` and usage errors answer) without loading numpy, scipy, scikit-fem,
+gmsh, pyvista or Dask, and Ctrl-C while they load is caught by `cli.main` (one line, exit 130).
+None of these deferred imports hides a cycle (tests/test_imports.py counts them as edges).
+"""
 from __future__ import annotations
 
 import os

@@ -6,13 +6,11 @@ are written to a temporary folder and renamed, so no partial output is left behi
 from __future__ import annotations
 
 import os
-import shutil
 import sys
-import tempfile
 from contextlib import contextmanager
 from pathlib import Path
 
-from studies.model.table import remove_stale
+from infra.files import atomic_folder
 
 
 class UserError(Exception):
@@ -40,7 +38,7 @@ def progress_bar(desc: str, unit: str = "block"):
         if not watched():
             return
         if "bar" not in state:
-            from tqdm import tqdm
+            from tqdm import tqdm  # noqa: PLC0415 -- deferred: only when a person watches
 
             state["bar"] = tqdm(total=total, desc=desc, unit=unit, file=sys.stderr, leave=False)
         bar = state["bar"]
@@ -55,7 +53,8 @@ MARKER = ".bearingfem-output"
 
 @contextmanager
 def atomic_dir(out: Path):
-    """Yield a temporary folder beside `out`; move it to `out` only when the block succeeds.
+    """Yield a temporary folder beside `out`; move it to `out` only when the block succeeds
+    (`infra.files.atomic_folder`, which also sweeps the temporaries of killed runs).
 
     An existing `out` is replaced only if it is empty or holds exactly what bearingfem wrote there
     (the marker file lists it); a folder with anything else in it (the user's own files, or files
@@ -70,33 +69,19 @@ def atomic_dir(out: Path):
             more = f" and {len(foreign) - 3} more" if len(foreign) > 3 else ""
             raise UserError(f"{out}: holds files bearingfem did not write ({', '.join(foreign[:3])}"
                             f"{more}); choose a new or empty folder (nothing was changed)")
-    remove_stale(out.parent, f".{out.name}.")
+    started = False
     try:
-        out.parent.mkdir(parents=True, exist_ok=True)
-        tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", dir=out.parent))
+        with atomic_folder(out) as tmp:
+            started = True
+            yield tmp
+            written = sorted(str(p.relative_to(tmp)) for p in tmp.rglob("*") if p.is_file())
+            (tmp / MARKER).write_text("written by bearingfem; the next run replaces these files:\n"
+                                      + "".join(f"{w}\n" for w in written))
     except OSError as exc:
-        raise UserError(f"{out}: cannot create the output folder ({exc.strerror})") from None
-    try:
-        tmp.chmod(0o777 & ~_umask())
-        yield tmp
-        written = sorted(str(p.relative_to(tmp)) for p in tmp.rglob("*") if p.is_file())
-        (tmp / MARKER).write_text("written by bearingfem; the next run replaces these files:\n"
-                                  + "".join(f"{w}\n" for w in written))
-        if out.exists():
-            old = out.with_name(f".{out.name}.old")
-            shutil.rmtree(old, ignore_errors=True)
-            out.rename(old)
-            tmp.rename(out)
-            shutil.rmtree(old, ignore_errors=True)
-        else:
-            tmp.rename(out)
-    except OSError as exc:
-        shutil.rmtree(tmp, ignore_errors=True)
+        if not started:
+            raise UserError(f"{out}: cannot create the output folder ({exc.strerror})") from None
         raise UserError(f"{out}: cannot write the results ({exc.strerror or exc}); nothing was "
                         "changed") from None
-    except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
-        raise
 
 
 def _foreign_files(out: Path) -> list[str]:
@@ -108,9 +93,3 @@ def _foreign_files(out: Path) -> list[str]:
     return sorted(str(p.relative_to(out)) for p in out.rglob("*")
                   if (p.is_file() or p.is_symlink()) and p != marker
                   and str(p.relative_to(out)) not in listed)
-
-
-def _umask() -> int:
-    mask = os.umask(0)
-    os.umask(mask)
-    return mask

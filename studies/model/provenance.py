@@ -5,11 +5,11 @@ from __future__ import annotations
 import hashlib
 from pathlib import Path
 
+from infra.version import __version__
+
 
 def provenance(command: str, inputs: dict[str, Path], effects: dict | None = None) -> dict:
     """{"command", "version", "inputs": {name: {"path", "sha256"}}, "effects"}."""
-    from bearingfem import __version__
-
     return {"command": f"bearingfem {command}", "version": __version__,
             "inputs": {k: {"path": str(p), "sha256": _sha256(p)} for k, p in inputs.items()},
             "effects": {k: dict(v) for k, v in (effects or {}).items()}}

@@ -1,7 +1,14 @@
 """Conditions / measured CSV tables: strict reading with one-line errors, atomic writing.
 
-Format (shared/spec/cli.md): header row, comma separated, `#` lines are comments. Every value
-numeric and finite; `time_s` strictly increasing when present.
+Read (docs/cli.md): header row, comma separated, `#` lines are comments. Every value numeric and
+finite; `time_s` strictly increasing when present.
+
+Written: the one CSV dialect of bearingfem, for `simulate` and every study table alike
+(`write_table`, `TableWriter`): UTF-8, a header row of column names (units in the names), no
+comment lines, comma separated, "\n" line ends, numbers as '%.10g' of their float value, booleans
+1/0, text as it is (quoted by the csv module when it holds a comma or a quote); what a table is
+goes into its provenance sidecar or the report beside it. `pandas.read_csv(path)` reads it with
+its defaults.
 """
 from __future__ import annotations
 
@@ -9,15 +16,11 @@ import codecs
 import csv
 import json
 import math
-import os
-import shutil
-import stat
-import tempfile
-import time
 from pathlib import Path
 
 import numpy as np
 
+from infra.files import AtomicFile, write_atomic
 from studies.model.inputs import CONDITION_COLUMNS
 
 
@@ -210,35 +213,24 @@ def sidecar_path(path: Path) -> Path:
 
 class TableWriter:
     """A CSV table written chunk by chunk (`write`, the same columns every time) into a temporary
-    file beside `path`, renamed onto `path` when the `with` block ends without an error, its
-    provenance sidecar written just before (see `write_table`, whose bytes it writes for the
-    chunks put together). On an error or an interruption the temporary file, a new sidecar and
-    the folders created for them are removed: no partial output."""
+    file beside `path` (`infra.files.AtomicFile`), renamed onto `path` when the `with` block ends
+    without an error, its provenance sidecar written just before (see `write_table`, whose bytes
+    it writes for the chunks put together). On an error or an interruption the temporary file, a
+    new sidecar and the folders created for them are removed: no partial output."""
 
     def __init__(self, path: Path, provenance: dict | None = None):
         self.path, self.provenance = Path(path), provenance
         self.rows = 0
         self._names: list[str] | None = None
+        self._file = AtomicFile(self.path)
 
     def __enter__(self) -> "TableWriter":
-        path = self.path
-        self._created = [p for p in reversed(path.parents) if not p.exists()]
-        self._side = sidecar_path(path) if self.provenance is not None else None
+        self._side = sidecar_path(self.path) if self.provenance is not None else None
         self._side_existed = self._side is not None and self._side.exists()
-        remove_stale(path.parent, f".{path.name}.")
         try:
-            path.parent.mkdir(parents=True, exist_ok=True)
-            fd, self._tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
+            self._fh = self._file.open()
         except OSError as exc:
-            _remove_folders(self._created)
-            raise TableError(f"{path}: cannot write ({exc.strerror})") from None
-        try:
-            os.chmod(self._tmp, stat.S_IMODE(path.stat().st_mode) if path.exists() else _default_mode())
-            self._fh = os.fdopen(fd, "w", newline="")
-        except BaseException as exc:
-            os.close(fd)
-            self._discard()
-            raise self._error(exc) from None
+            raise TableError(f"{self.path}: cannot write ({exc.strerror or exc})") from None
         self._csv = csv.writer(self._fh, lineterminator="\n")
         return self
 
@@ -264,92 +256,22 @@ class TableWriter:
 
     def __exit__(self, exc_type, exc_value, tb) -> bool:
         if exc_type is not None:
-            self._discard()
+            self._file.discard()
             return False
         try:
             if self._names is None:
                 self._csv.writerow([])          # no columns: what write_table({}) always wrote
-            self._fh.close()
             if self._side is not None:
-                _atomic_write(self._side, json.dumps(self.provenance, indent=2) + "\n")
-            os.replace(self._tmp, self.path)
+                write_atomic(self._side, json.dumps(self.provenance, indent=2) + "\n")
+            self._file.commit()
         except BaseException as exc:
             if self._side is not None and not self._side_existed:
                 self._side.unlink(missing_ok=True)     # no partial output: the new sidecar goes
-            self._discard()
-            raise self._error(exc) from None
+            self._file.discard()
+            if isinstance(exc, OSError):
+                raise TableError(f"{self.path}: cannot write ({exc.strerror or exc})") from None
+            raise
         return False
-
-    def _discard(self) -> None:
-        try:
-            self._fh.close()
-        except (AttributeError, OSError):
-            pass
-        try:
-            os.unlink(self._tmp)
-        except OSError:
-            pass
-        _remove_folders(self._created)
-
-    def _error(self, exc: BaseException) -> BaseException:
-        if isinstance(exc, TableError) or not isinstance(exc, OSError):
-            return exc
-        return TableError(f"{self.path}: cannot write ({exc.strerror or exc})")
-
-
-def _atomic_write(path: Path, text: str) -> None:
-    created = [p for p in reversed(path.parents) if not p.exists()]
-    remove_stale(path.parent, f".{path.name}.")
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
-    except OSError as exc:
-        _remove_folders(created)
-        raise TableError(f"{path}: cannot write ({exc.strerror})") from None
-    try:
-        os.chmod(tmp, stat.S_IMODE(path.stat().st_mode) if path.exists() else _default_mode())
-        with os.fdopen(fd, "w", newline="") as fh:
-            fh.write(text)
-        os.replace(tmp, path)
-    except BaseException as exc:
-        os.unlink(tmp)
-        _remove_folders(created)
-        if isinstance(exc, OSError):
-            raise TableError(f"{path}: cannot write ({exc.strerror or exc})") from None
-        raise
-
-
-#: temporary outputs of runs killed outright (SIGKILL, power loss) older than this are removed
-STALE_AGE_S = 24 * 3600.0
-
-
-def remove_stale(folder: Path, prefix: str) -> None:
-    """Remove temporary files and folders `<prefix>*` in `folder` older than STALE_AGE_S (what a
-    run killed before it could clean up leaves behind)."""
-    if not folder.is_dir():
-        return
-    now = time.time()
-    for p in folder.glob(f"{prefix}*"):
-        try:
-            if now - p.lstat().st_mtime > STALE_AGE_S:
-                shutil.rmtree(p) if p.is_dir() and not p.is_symlink() else p.unlink()
-        except OSError:
-            pass
-
-
-def _default_mode() -> int:
-    """0666 less the process umask: what a new file of the user's would get."""
-    mask = os.umask(0)
-    os.umask(mask)
-    return 0o666 & ~mask
-
-
-def _remove_folders(created: list[Path]) -> None:
-    for p in reversed(created):
-        try:
-            p.rmdir()
-        except OSError:
-            pass
 
 
 def format_rows(arrays: list[np.ndarray]) -> str:

@@ -17,7 +17,7 @@ from studies.runs.bench_clock import Clock
 
 
 def main(workers: int | None = 2) -> None:
-    from bearingfem import __version__
+    from infra.version import __version__
     from studies.model.config import load_shipped
     from studies.runs import design_search
 

@@ -27,7 +27,6 @@ Writes `confusion_matrix.json` (every trial, the rates, the look-alike matrices)
 """
 from __future__ import annotations
 
-import csv
 import json
 from pathlib import Path
 
@@ -35,6 +34,7 @@ import numpy as np
 
 from studies.diagnosis.designs import cycles, speed_steps
 from studies.diagnosis.operating import MAGNITUDES, Design, markdown, run_matrix
+from studies.model.table import write_table
 
 REPS = 3
 N_NULL = 20
@@ -88,13 +88,16 @@ def run(out_dir: Path, progress=print, designs=tuple(DESIGNS), reps: int = REPS,
     data = mx.to_json()
     data["noise_sigma"] = {d.name: d.sigma for d in ds}
     (out_dir / "confusion_matrix.json").write_text(json.dumps(data, indent=1))
-    with open(out_dir / "confusion_matrix.csv", "w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(["design", "hidden", "magnitude_sigma", "rep", "verdict", "cause",
-                    "indistinguishable", "open_world_lead", "seconds"])
-        for t in mx.trials:
-            w.writerow([t.design, t.hidden, t.magnitude_sigma, t.rep, t.verdict, t.cause or "",
-                        ";".join(t.indistinguishable), t.open_world_lead or "", f"{t.seconds:.2f}"])
+    tr = mx.trials
+    write_table(out_dir / "confusion_matrix.csv", {     # the one CSV dialect (as `simulate`)
+        "design": np.array([t.design for t in tr], str),
+        "hidden": np.array([t.hidden for t in tr], str),
+        "magnitude_sigma": np.array([t.magnitude_sigma for t in tr], float),
+        "rep": np.array([t.rep for t in tr], float), "verdict": np.array([t.verdict for t in tr], str),
+        "cause": np.array([t.cause or "" for t in tr], str),
+        "indistinguishable": np.array([";".join(t.indistinguishable) for t in tr], str),
+        "open_world_lead": np.array([t.open_world_lead or "" for t in tr], str),
+        "seconds": np.array([t.seconds for t in tr], float)})
     secs = [t.seconds for t in mx.trials]
     L = ["# Operating characteristics of the diagnosis (confusion matrix)\n",
          __doc__.split("\n\n", 1)[1].split("Writes")[0].strip() + "\n",

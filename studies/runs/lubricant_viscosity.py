@@ -22,7 +22,6 @@ point is never used by either model when it is scored.
 """
 from __future__ import annotations
 
-import csv
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -31,6 +30,7 @@ from scipy.optimize import brentq
 
 from analytic.lubrication import (csv_sources, fit_vogel, fit_walther, lubricant_library,
                                   walther_transform)
+from studies.model.table import write_table
 
 SISTER = {
     "Nye 2001a (Pennzane MAC)": "Pennzane SHF X-2000 (base MAC)",
@@ -151,43 +151,42 @@ def run(out_dir: Path, progress=print) -> None:
     rows = leave_one_out()
 
     # ---- tables
-    with open(out_dir / "leave_one_out.csv", "w", newline="") as fh:
-        fh.write("# Leave-one-out on every measured point outside 40/100 C. Errors: 100*(pred/measured-1).\n")
-        w = csv.writer(fh)
-        w.writerow(["lubricant", "family", "temperature_C", "measured_mm2_s", "source",
-                    "two_point_basis", "two_point_mm2_s", "two_point_error_pct",
-                    "extended_basis", "extended_mm2_s", "extended_error_pct",
-                    "lsq_walther_mm2_s", "lsq_walther_error_pct", "vogel_mm2_s", "vogel_error_pct",
-                    "equivalent_slope_factor"])
-        for r in rows:
-            w.writerow([r.lubricant, r.family, f"{r.temperature_C:g}", f"{r.measured_mm2_s:g}",
-                        r.source, r.baseline_basis, f"{r.two_point_mm2_s:.6g}",
-                        f"{r.err(r.two_point_mm2_s):.3f}", r.extended_basis,
-                        f"{r.extended_mm2_s:.6g}", f"{r.err(r.extended_mm2_s):.3f}",
-                        f"{r.lsq_walther_mm2_s:.6g}", f"{r.err(r.lsq_walther_mm2_s):.3f}",
-                        f"{r.vogel_mm2_s:.6g}", f"{r.err(r.vogel_mm2_s):.3f}",
-                        f"{r.equivalent_slope_factor:.4f}"])
-    with open(out_dir / "predictions.csv", "w", newline="") as fh:
-        fh.write("# Every kinematic-viscosity point of the study oils vs the two-point (40/100 C) "
-                 "Walther law of the oil (or of its sister, for Brayco 815Z).\n")
-        w = csv.writer(fh)
-        w.writerow(["lubricant", "temperature_C", "measured_mm2_s", "source", "two_point_basis",
-                    "two_point_mm2_s", "two_point_error_pct"])
-        for name in STUDY_OILS:
-            base = _two_point_basis(lib, name)
-            law = lib[base].walther([40.0, 100.0])
-            for T, nu, src in lib[name].viscosity_points:
-                p = float(law.nu_mm2_s(T))
-                w.writerow([name, f"{T:g}", f"{nu:g}", src, f"{SHORT[base]} 40/100 C",
-                            f"{p:.6g}", f"{100 * (p / nu - 1):.3f}"])
+    # the one CSV dialect of bearingfem (studies.model.table.write_table, as `simulate`): a header
+    # row, numbers as %.10g; what each table is, the report says (## Files)
+    write_table(out_dir / "leave_one_out.csv", {
+        "lubricant": np.array([r.lubricant for r in rows]),
+        "family": np.array([r.family for r in rows]),
+        "temperature_C": np.array([r.temperature_C for r in rows]),
+        "measured_mm2_s": np.array([r.measured_mm2_s for r in rows]),
+        "source": np.array([r.source for r in rows]),
+        "two_point_basis": np.array([r.baseline_basis for r in rows]),
+        "two_point_mm2_s": np.array([r.two_point_mm2_s for r in rows]),
+        "two_point_error_pct": np.array([r.err(r.two_point_mm2_s) for r in rows]),
+        "extended_basis": np.array([r.extended_basis for r in rows]),
+        "extended_mm2_s": np.array([r.extended_mm2_s for r in rows]),
+        "extended_error_pct": np.array([r.err(r.extended_mm2_s) for r in rows]),
+        "lsq_walther_mm2_s": np.array([r.lsq_walther_mm2_s for r in rows]),
+        "lsq_walther_error_pct": np.array([r.err(r.lsq_walther_mm2_s) for r in rows]),
+        "vogel_mm2_s": np.array([r.vogel_mm2_s for r in rows]),
+        "vogel_error_pct": np.array([r.err(r.vogel_mm2_s) for r in rows]),
+        "equivalent_slope_factor": np.array([r.equivalent_slope_factor for r in rows])})
+    pred = []
+    for name in STUDY_OILS:
+        base = _two_point_basis(lib, name)
+        law = lib[base].walther([40.0, 100.0])
+        for T, nu, src in lib[name].viscosity_points:
+            p = float(law.nu_mm2_s(T))
+            pred.append((name, T, nu, src, f"{SHORT[base]} 40/100 C", p, 100 * (p / nu - 1)))
+    write_table(out_dir / "predictions.csv", {
+        name: np.array([row[i] for row in pred]) for i, name in enumerate(
+            ["lubricant", "temperature_C", "measured_mm2_s", "source", "two_point_basis",
+             "two_point_mm2_s", "two_point_error_pct"])})
     T_grid = np.arange(-60.0, 120.01, 2.0)
-    with open(out_dir / "curves.csv", "w", newline="") as fh:
-        w = csv.writer(fh)
-        names = [n for n in STUDY_OILS if {40.0, 100.0} <= set(lib[n].T_points_C)]
-        w.writerow(["temperature_C"] + [f"{SHORT[n]} two_point_mm2_s" for n in names])
-        laws = [lib[n].walther([40.0, 100.0]) for n in names]
-        for T in T_grid:
-            w.writerow([f"{T:g}"] + [f"{float(l.nu_mm2_s(T)):.6g}" for l in laws])
+    names = [n for n in STUDY_OILS if {40.0, 100.0} <= set(lib[n].T_points_C)]
+    write_table(out_dir / "curves.csv", {
+        "temperature_C": T_grid,
+        **{f"{SHORT[n]} two_point_mm2_s": np.array([float(lib[n].walther([40.0, 100.0]).nu_mm2_s(T))
+                                                    for T in T_grid]) for n in names}})
 
     # ---- plot (Walther chart axes: log-log viscosity vs log T)
     fig, (ax, axe) = plt.subplots(1, 2, figsize=(13, 5.5), gridspec_kw={"width_ratios": [3, 2]})
@@ -320,4 +319,11 @@ def run(out_dir: Path, progress=print) -> None:
         "", "![viscosity vs temperature](viscosity_temperature.png)", "", "## Sources", ""]
     lines += [f"- [{k}] {v}" for k, v in src.items() if not k.startswith("_")]
     lines += [f"- CSV notes: {src.get('_notes', '')}", ""]
+    lines += ["", "## Files", "",
+              "- `leave_one_out.csv`: leave-one-out on every measured point outside 40/100 C; "
+              "errors 100·(predicted/measured − 1).",
+              "- `predictions.csv`: every kinematic-viscosity point of the study oils vs the "
+              "two-point (40/100 C) Walther law of the oil (or of its sister, for Brayco 815Z).",
+              "- `curves.csv`: the two-point Walther law of each oil with 40/100 C data, -60..120 C.",
+              ""]
     (out_dir / "report.md").write_text("\n".join(lines))

@@ -23,7 +23,6 @@ grooved, absolute and relative difference), `mesh_error.csv` (per assembly and s
 from __future__ import annotations
 
 import argparse
-import csv
 import dataclasses
 from datetime import date
 from pathlib import Path
@@ -32,6 +31,7 @@ import numpy as np
 
 import bearingfem
 from studies.model.config import CONFIG_DIR
+from studies.model.table import write_table
 
 #: the shipped assemblies, short name -> file in studies/configs
 ASSEMBLIES = {"seed000": "seed000_71807C_TC4.toml", "seed001": "seed001_flywheel_hybrid.toml",
@@ -228,18 +228,14 @@ def main(out_dir: Path, progress=print, assemblies=None, errors: bool = True) ->
             errs[name] = e
     cols = ["assembly", "T_C", "speed_rpm", "quantity", "rectangle", "grooved", "difference",
             "relative_percent", "resolved"]
-    with open(out_dir / "ring_sections.csv", "w", newline="") as fh:
-        w = csv.DictWriter(fh, cols)
-        w.writeheader()
-        w.writerows({k: (f"{v:.8g}" if isinstance(v, float) else v) for k, v in r.items()} for r in rows)
-    with open(out_dir / "mesh_error.csv", "w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(["assembly", "section", "dofs", "error_max", "worst_quantity", "target_error",
-                    "within_target"])
-        for name, e in errs.items():
-            for s, v in e.items():
-                w.writerow([name, s, v["dofs"], f"{v['error_max']:.4g}", v["worst"],
-                            v["target_error"], v["within_target"]])
+    # the one CSV dialect of bearingfem (studies.model.table.write_table, as `simulate`)
+    write_table(out_dir / "ring_sections.csv", {c: np.array([r[c] for r in rows]) for c in cols})
+    err_rows = [(name, s, v["dofs"], v["error_max"], v["worst"], v["target_error"], v["within_target"])
+                for name, e in errs.items() for s, v in e.items()]
+    write_table(out_dir / "mesh_error.csv", {
+        c: np.array([row[i] for row in err_rows]) for i, c in enumerate(
+            ["assembly", "section", "dofs", "error_max", "worst_quantity", "target_error",
+             "within_target"])})
     write_report_files(out_dir, markdown(rows, errs), "Ring sections: rectangle vs grooved")
     return rows
 
