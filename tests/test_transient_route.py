@@ -159,18 +159,21 @@ def test_the_reduced_basis_is_cached_and_a_damaged_entry_rebuilt(pl, capsys):
 
 
 def test_simulate_file_in_transient_mode_writes_the_transient_columns(pl, tmp_path):
-    """`simulate`'s file route in transient mode: the condition columns, the computed part
+    """`simulate`'s file route in transient mode (`simulate_transient_file`; the chunked
+    `stream.simulate_file` refuses a transient assembly): the condition columns, the computed part
     temperatures and the transient columns of docs/cli.md, the numbers those of
     `run_transient` (one route), flags and margins as in given mode."""
     import pandas as pd
 
     from studies.model.stream import simulate_file
-    from studies.model.transient_route import run_transient
+    from studies.model.transient_route import run_transient, simulate_transient_file
 
     cond = tmp_path / "c.csv"
     cond.write_text("time_s,T_ambient_C,speed_rpm,heat_W\n0,25,1000,0\n300,25,1000,2\n600,30,1000,2\n")
     out = tmp_path / "o.csv"
-    run = simulate_file(pl.asm, cond, out, pipeline=pl)
+    with pytest.raises(ValueError, match="simulate_transient_file"):
+        simulate_file(pl.asm, cond, out, pipeline=pl)
+    run = simulate_transient_file(pl.asm, cond, out, pipeline=pl)
     assert run.n_rows == 3
     got = pd.read_csv(out)
     for c in ("time_s", "T_ambient_C", "heat_W", "T_shaft_C", "T_inner_ring_C", "T_ball_C",

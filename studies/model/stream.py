@@ -76,19 +76,12 @@ class SimulateRun:
         return [v.summary(self.n_rows, self.kept) for v in self.violations]
 
 
-def condition_columns(asm) -> set[str]:
-    """The columns a conditions file of `asm` may have (transient mode: its own, see
-    `studies.model.transient_route`; the part temperatures are refused there with their reason)."""
-    if asm is not None and asm.thermal.mode == "transient":
-        from studies.model.transient_route import TRANSIENT_COLUMNS
-        return set(CONDITION_COLUMNS) | set(TRANSIENT_COLUMNS)
-    return set(CONDITION_COLUMNS)
-
-
-def check_conditions(path: Path, chunk_rows: int = CHUNK_ROWS, asm=None) -> int:
+def check_conditions(path: Path, chunk_rows: int = CHUNK_ROWS, columns: set[str] | None = None) -> int:
     """Read and check a whole conditions file, one chunk in memory at a time; its row count.
-    Bad input raises the one-line `TableError` of `table.iter_table`."""
-    return sum(len(c["_line"]) for c in iter_table(path, condition_columns(asm), chunk_rows))
+    Bad input raises the one-line `TableError` of `table.iter_table`. columns: the allowed
+    columns (default CONDITION_COLUMNS; transient mode: `transient_route.condition_columns`)."""
+    allowed = set(CONDITION_COLUMNS) if columns is None else columns
+    return sum(len(c["_line"]) for c in iter_table(path, allowed, chunk_rows))
 
 
 def simulate_file(asm, conditions: Path, out: Path, effects: dict | None = None,
@@ -106,10 +99,9 @@ def simulate_file(asm, conditions: Path, out: Path, effects: dict | None = None,
     function, so the same bytes. See the module docstring."""
     from studies.model.parallel import Blocks
 
-    if asm.thermal.mode == "transient":          # rows in time order through the transient loop
-        from studies.model.transient_route import simulate_transient_file
-        return simulate_transient_file(asm, conditions, out, effects, provenance, direct,
-                                       pipeline, progress, workers, scheduler)
+    if asm.thermal.mode == "transient":
+        raise ValueError("simulate_file: [thermal] mode = \"transient\" runs through "
+                         "studies.model.transient_route.simulate_transient_file")
     total = check_conditions(conditions, chunk_rows) if n_rows is None else n_rows
     tally = CheckTally(assembly_checks(asm))
     kept: dict[str, np.ndarray] = {}

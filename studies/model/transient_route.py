@@ -232,10 +232,9 @@ def cached_basis(pl: Pipeline, tc: TransientConduction, training, inputs, say=No
     """`fem.reduced_thermal.krylov_basis` of the stack, cached beside the FE set-ups
     (`meshes.cache`: hash-named .npz, atomic write, checked on read, rebuilt with a warning)."""
     from fem.reduced_thermal import ReducedBasis
-    from meshes.cache import cache_dir, cached_file, remove_stale
+    from meshes.cache import cache_dir, cached_file
 
     d = cache_dir("setups", "reduced thermal basis")
-    remove_stale(d, "thermal", ".npz")
     key = basis_key(pl, tc, training, inputs)
 
     def make(tmp):
@@ -488,16 +487,24 @@ def _preload_N(out) -> np.ndarray:
     return out["preload_N"]
 
 
+def condition_columns() -> set[str]:
+    """The columns a conditions file may have in transient mode (the part temperatures among
+    them only to be refused with their reason, `environment`)."""
+    from studies.model.inputs import CONDITION_COLUMNS
+    return set(CONDITION_COLUMNS) | set(TRANSIENT_COLUMNS)
+
+
 def simulate_transient_file(asm: Assembly, conditions, out, effects: dict | None = None,
                             provenance: dict | None = None, direct: bool = False,
                             pipeline: Pipeline | None = None, progress=None,
-                            workers: int | None = None, scheduler: str | None = None):
+                            workers: int | None = None, scheduler: str | None = None,
+                            n_rows: int | None = None):
     """`bearingfem simulate` of an assembly in transient mode: the whole conditions file (rows
     are successive instants, evaluated in order), the checks of `studies.model.checks` per row,
     one atomic output file (`table.TableWriter`). Effects, direct solves and Dask workers are
-    refused (one line): the route has its own temperatures and runs in time order."""
+    refused (one line): the route has its own temperatures and runs in time order. n_rows: not
+    needed (the whole table is read at once), accepted as `stream.simulate_file` takes it."""
     from studies.model.checks import assembly_checks, plausibility_warnings
-    from studies.model.inputs import CONDITION_COLUMNS
     from studies.model.stream import WARNING_OUTPUTS, CheckTally, SimulateRun
     from studies.model.table import TableWriter, read_table
 
@@ -505,7 +512,7 @@ def simulate_transient_file(asm: Assembly, conditions, out, effects: dict | None
                       (workers is not None or scheduler is not None, "--workers/--scheduler")):
         if bad:
             raise ConfigError(f"{what}: not available with [thermal] mode = \"transient\"")
-    cols = read_table(conditions, allowed=set(CONDITION_COLUMNS) | set(TRANSIENT_COLUMNS))
+    cols = read_table(conditions, allowed=condition_columns())
     cols = {k: v for k, v in cols.items() if not k.startswith("_")}
     environment(asm, cols, str(conditions))           # bad input before any FE work
     pl = pipeline or Pipeline.shared(asm, progress=progress)
