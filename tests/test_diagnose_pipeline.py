@@ -26,18 +26,22 @@ pipeline, so the mesh error is not a model error here.
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 
 import numpy as np
 import pytest
-from scipy import optimize
+from scipy import optimize, stats
 
 from studies.model.config import load_shipped
 from studies.diagnosis.files import NUISANCE, ModelPredictor, candidate_effects
 from studies.diagnosis.engine import diagnose_full
+from studies.diagnosis.result import to_json
 from studies.model.effects import EFFECTS, ORDER
 from studies.model.pipeline import Pipeline
+from studies.diagnosis import fitspec
 from studies.diagnosis.designs import cycles
+from studies.diagnosis.operating import stated_false_alarm_level
 
 MESH_FACTOR = 2.0
 MU_TRUE = 1.25          # the rig's friction coefficient / the configured one (nuisance, unknown)
@@ -154,6 +158,43 @@ def largest_change_sigma(pl, cond, effects, sigma, mu_scale=MU_TRUE):
     return float(np.max(np.abs(res(x))))
 
 
+def baseline_error_rms(pl, cond, effects, sigma, mu_scale=MU_TRUE) -> dict[str, float]:
+    """RMS per column (column unit) of what the calibrated baseline cannot reproduce of the
+    noise-free data with the effects: the model error, from a least-squares fit of mu_scale
+    alone (scipy, independent of the engine)."""
+    cols = tuple(sigma)
+    pred = ModelPredictor(pl, cond, cols)
+    truth = pred(effects, {"mu_scale": mu_scale})
+    lo, hi = NUISANCE["mu_scale"][:2]
+
+    def res(x):
+        b = pred({}, {"mu_scale": float(x[0])})
+        return np.concatenate([(truth[c] - b[c]) / sigma[c] for c in cols])
+    x = optimize.least_squares(res, [mu_scale], bounds=([lo], [hi]), diff_step=1e-4).x
+    b = pred({}, {"mu_scale": float(x[0])})
+    return {c: float(np.sqrt(np.mean((truth[c] - b[c]) ** 2))) for c in cols}
+
+
+def assert_heldout_gain(pl, cond, effects, sigma, res, mu_scale=MU_TRUE):
+    """The held-out RMSEs against what the known noise level and effect size give, in the first
+    compared column: the extended (right) model predicts held-out rows to the noise level sigma
+    (refitting k parameters on the other blocks inflates it by sqrt(1 + k/n) at most), the
+    baseline no better than sigma and the model error e0 together, sqrt(sigma^2 + e0^2) (its
+    in-sample best). A root-mean-square of n values with noise has a relative standard error
+    of 1/sqrt(2 n): 4 of them are allowed. Hence the ratio is at most
+    sigma sqrt(1 + k/n) / sqrt(sigma^2 + e0^2) x (1 + 4/sqrt(2n)) / (1 - 4/sqrt(2n))."""
+    c0 = res["columns"][0]
+    n = int(np.isfinite(np.asarray(cond[next(iter(cond))], float)).sum())
+    s, e0 = sigma[c0], baseline_error_rms(pl, cond, effects, sigma, mu_scale)[c0]
+    k = len(res["parameters"]) + 1
+    rel = 4.0 / math.sqrt(2 * n)
+    ext, base = res["extended"]["heldout_rmse"][c0], res["baseline"]["heldout_rmse"][c0]
+    assert s * (1 - rel) <= ext <= s * math.sqrt(1 + k / n) * (1 + rel), (ext, s)
+    assert base >= math.hypot(s, e0) * (1 - rel), (base, s, e0)
+    bound = s * math.sqrt(1 + k / n) / math.hypot(s, e0) * (1 + rel) / (1 - rel)
+    assert res["gain"]["heldout_rmse_ratio"] <= bound, (res["gain"], bound, e0)
+
+
 def measured(pl, cond, effects, sigma, seed, mu_scale=MU_TRUE, drift=None):
     """Noisy measured columns: model + effects + N(0, sigma); `drift` (N mm over the whole test,
     linear in time) is added to the torque as a sensor drift."""
@@ -173,7 +214,7 @@ def diagnose_real(pl, cond, meas):
     pred = ModelPredictor(pl, cond, meas.keys())
     out = diagnose_full(pred, meas, cond, candidate_effects(pl.asm), NUISANCE,
                         T_ref_C=pl.asm.T_ref_C, predict_at=pred.at)
-    return out.result
+    return to_json(out)
 
 
 def summary(res):
@@ -252,12 +293,12 @@ def test_hidden_effect_is_named(pipelines, name, params, seed_name, design, sigm
     assert (res["verdict"], res["cause"]) == ("explained", name), summary(res)
     assert res["indistinguishable"] == [] and res["separating_test"] is None
     assert res["candidates"][0]["effect"] == name
-    assert res["gain"]["heldout_rmse_ratio"] < 1.0
+    assert_heldout_gain(pl, cond, eff, sigma, res)
     assert set(res["parameters"]) == SPEC_PARAMETERS[name]
     unc = res["parameter_uncertainty"]
     for p, v in params.items():
         got = res["parameters"][p]
-        if p in EFFECTS[name].profile:
+        if p in fitspec.profile(EFFECTS[name]):
             # a profiled threshold is only determined up to the rows it switches: the fitted
             # value must switch at the same row as the true one
             T = cond["T_ambient_C"]
@@ -289,10 +330,12 @@ def test_interference_error_in_preload_sweep_local_minimum(pl000):
     # the two fits trade against each other in this design (a valley in inner/outer), so only the
     # verdict and the quality of the fit are required, not the parameters
     assert (res["verdict"], res["cause"]) == ("explained", "interference_error"), summary(res)
-    assert res["gain"]["heldout_rmse_ratio"] < 1.0
+    assert_heldout_gain(pl000, cond, eff, sigma, res, mu_scale=0.85)
 
 
 # ============================================================================ 2. null data
+#: noise draws of every null test: the first three of a fixed sequence, the same for every design
+NULL_DRAWS = (101, 102, 103)
 NULL = [
     pytest.param("seed000", cycles, SIGMA_000, marks=SLOW),
     ("seed000", preload_sweep, SIGMA_000_TORQUE),
@@ -305,21 +348,30 @@ NULL = [
                          ids=[(lambda v: f"{v[0]}-{v[1].__name__}")(getattr(n, "values", n))
                               for n in NULL])
 def test_null_data_no_discrepancy(pipelines, seed_name, design, sigma):
+    """Null data (the model with the rig's friction, plus noise) on NULL_DRAWS noise draws of a
+    fixed sequence (not chosen by their outcome): a false alarm (any verdict but
+    `no_discrepancy`) is allowed on at most as many draws as the 99.5 % binomial quantile at the
+    stated false-alarm level (alpha_structure + alpha_lr: at most 1 of 3), so the test does not
+    depend on the draws; every draw without a false alarm reports no cause and the baseline as
+    the extended model. The rate over many draws is measured by the slow test."""
     pl = pipelines[seed_name]
     cond = design()
-    # noise draw 6: with the structure tests at 1 % (Bonferroni), about 1 null dataset in 100
-    # is called "unexplained" by design (draw 5 of the seed 003 design is one: its noise alone
-    # has a smoother F-test p of 0.0014); the rate over many draws is measured by the slow test
-    res = diagnose_real(pl, cond, measured(pl, cond, {}, sigma, seed=6))
-    assert res["verdict"] == "no_discrepancy", summary(res)
-    assert res["cause"] is None and res["parameters"] == {} and res["indistinguishable"] == []
-    assert res["gain"]["heldout_rmse_ratio"] == 1.0      # extended model = the baseline
-    assert res["nuisance"]["baseline"]["mu_scale"] == pytest.approx(MU_TRUE, rel=0.05)
-    for c, s in sigma.items():
-        # the noise level is estimated from the data (second differences): within 20 % of the
-        # truth at >= 105 rows (relative standard error of a variance estimate ~ sqrt(2/n) ~ 14 %
-        # of the variance, half that of sigma; plus the trimming)
-        assert res["noise_sigma"][c] == pytest.approx(s, rel=0.2)
+    allowed = int(stats.binom.ppf(0.995, len(NULL_DRAWS), stated_false_alarm_level()))
+    alarms = []
+    for seed in NULL_DRAWS:
+        res = diagnose_real(pl, cond, measured(pl, cond, {}, sigma, seed=seed))
+        assert res["nuisance"]["baseline"]["mu_scale"] == pytest.approx(MU_TRUE, rel=0.05)
+        for c, s in sigma.items():
+            # the noise level is estimated from the data (second differences): within 20 % of
+            # the truth at >= 105 rows (relative standard error of a variance estimate ~ sqrt(2/n)
+            # ~ 14 % of the variance, half that of sigma; plus the trimming)
+            assert res["noise_sigma"][c] == pytest.approx(s, rel=0.2)
+        if res["verdict"] != "no_discrepancy":
+            alarms.append(summary(res))
+            continue
+        assert res["cause"] is None and res["parameters"] == {} and res["indistinguishable"] == []
+        assert res["gain"]["heldout_rmse_ratio"] == 1.0      # extended model = the baseline
+    assert len(alarms) <= allowed, alarms
 
 
 @pytest.mark.slow

@@ -20,7 +20,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from studies.diagnosis import fitspec
 from studies.diagnosis.engine import diagnose, diagnose_full
+from studies.diagnosis.result import to_json
 from studies.diagnosis.stats import chibar_pvalue, noise_sigma
 from studies.model.effects import (EFFECTS, apply_effects, resolve_friction_coefficient,
                              resolve_interference_um)
@@ -126,11 +128,17 @@ def make_data(model, cond, effects, seed, sigma=SIGMA, drift=None, mu_scale=1.0)
     return meas
 
 
-def run(model, cond, meas, candidates=None, **kw):
+def run_full(model, cond, meas, candidates=None, **kw):
+    """The typed `DiagnosisResult`."""
     predict, predict_at = model.predictor(cond)
     cands = [EFFECTS[n] for n in (candidates or EFFECTS)]
-    return diagnose(predict, meas, cond, cands, NUISANCE, predict_at=predict_at, T_ref_C=T_REF,
-                    **kw)
+    return diagnose_full(predict, meas, cond, cands, NUISANCE, predict_at=predict_at,
+                         T_ref_C=T_REF, **kw)
+
+
+def run(model, cond, meas, candidates=None, **kw):
+    """The result as diagnosis.json holds it."""
+    return to_json(run_full(model, cond, meas, candidates, **kw))
 
 
 # ------------------------------------------------------------------------ unit pieces
@@ -190,7 +198,7 @@ def test_hidden_effect_is_named(name, params, design):
                                            res["indistinguishable"])
     assert res["cause"] == name
     for p, v in params.items():
-        if EFFECTS[name].profile and p in EFFECTS[name].profile:
+        if p in fitspec.profile(EFFECTS[name]):
             continue
         unc = res["parameter_uncertainty"][p]
         assert abs(res["parameters"][p] - v) < 5 * unc + 1e-12 * abs(v), (p, res["parameters"], unc)
@@ -248,16 +256,20 @@ def test_report_written(solid, tmp_path):
     predict, predict_at = solid.predictor(cond)
     out = diagnose_full(predict, meas, cond, list(EFFECTS.values()), NUISANCE,
                         predict_at=predict_at)
-    path = write_report(out.result, cond, meas, out.baseline_pred, out.extended_pred, tmp_path)
+    path = write_report(out, cond, meas, tmp_path)
     text = path.read_text()
-    assert out.result["cause"] == "preload_settling"
+    assert out.cause == "preload_settling"
     assert "Verdict: `explained`" in text and "`loss_N`" in text
+    # the loss the report states is the injected 5 N within 5 of its stated uncertainties
+    row = next(line for line in text.splitlines() if line.startswith("| `loss_N` |"))
+    value, unc = (float(x) for x in row.split("|")[2].split("±"))
+    assert abs(value - 5.0) < 5 * unc, row
     for c in ("torque_Nmm", "preload_N"):
         for f in (f"fit_{c}.png", f"residuals_{c}.png"):
             assert f"({f})" in text and (tmp_path / f).stat().st_size > 1000
     assert (tmp_path / "candidates.png").exists()
     # the profiled threshold brackets the true onset (the largest excursion before it)
-    thr = out.result["parameter_uncertainty"]["threshold_K"]["interval"]
+    thr = out.parameter_uncertainty["threshold_K"]["interval"]
     assert thr[0] - 5 <= 40.0 <= thr[1] + 5
 
 

@@ -1,6 +1,6 @@
-"""The diagnosis on worker processes (`studies.diagnosis.workers`, issue 11 performance): the same
-result as in one process, to the last bit; `fork_map` keeps the items' order, counts the workers'
-model calls and raises a task's exception."""
+"""The diagnosis on worker processes (`studies.model.parallel.parallel_map`, issue 11
+performance): the same result as in one process, to the last bit; the map keeps the items' order,
+counts the workers' model calls and raises a task's exception."""
 from __future__ import annotations
 
 import json
@@ -8,11 +8,12 @@ import json
 import numpy as np
 import pytest
 
-from studies.diagnosis.core import CachedModel, jsonable
+from studies.diagnosis.core import CachedModel
 from studies.diagnosis.designs import cycles
 from studies.diagnosis.engine import diagnose_full
 from studies.diagnosis.files import NUISANCE, ModelPredictor, candidate_effects
-from studies.diagnosis.workers import can_fork, fork_map
+from studies.diagnosis.result import to_json
+from studies.model.parallel import can_fork, parallel_map
 from studies.model.config import load_shipped
 from studies.model.pipeline import Pipeline
 
@@ -33,7 +34,7 @@ def _without(x, keys=VARYING):
 
 @needs_fork
 @pytest.mark.parametrize("workers", [1, 2])
-def test_fork_map_order_counts_and_errors(workers):
+def test_parallel_map_order_counts_and_errors(workers):
     model = CachedModel(lambda eff, nuis: {"y": np.full(3, nuis["a"])}, 3)
 
     def task(a):
@@ -41,11 +42,11 @@ def test_fork_map_order_counts_and_errors(workers):
             raise ValueError("three")
         return float(model({}, {"a": a})["y"].sum())
 
-    assert fork_map(model, task, [0.0, 1.0, 2.0], workers, first=[2]) == [0.0, 3.0, 6.0]
+    assert parallel_map(task, [0.0, 1.0, 2.0], workers, first=[2], state=model) == [0.0, 3.0, 6.0]
     assert model.calls == 3 and len(model.cache) == 3     # the workers' calls and results
     assert model({}, {"a": 1.0})["y"][0] == 1.0 and model.calls == 3     # a cache hit here
     with pytest.raises(ValueError, match="three"):
-        fork_map(model, task, [4.0, 3.0], workers)
+        parallel_map(task, [4.0, 3.0], workers, state=model)
 
 
 @needs_fork
@@ -66,6 +67,6 @@ def test_diagnosis_on_two_workers_equals_one_process():
         pred = ModelPredictor(pl, cond, tuple(sigma))
         res = diagnose_full(pred, meas, cond, candidate_effects(pl.asm), NUISANCE,
                             T_ref_C=pl.asm.T_ref_C, predict_at=pred.at, workers=workers)
-        out[workers] = json.dumps(_without(jsonable(res.result)), sort_keys=True)
+        out[workers] = json.dumps(_without(to_json(res)), sort_keys=True)
     assert json.loads(out[1])["verdict"] == "explained"
     assert out[2] == out[1]

@@ -12,6 +12,7 @@ import pytest
 from studies.model.effects import (EFFECTS, ORDER, EffectError, apply_effects, get_effect,
                              parse_effect_arg, resolve_friction_coefficient,
                              resolve_interference_um)
+from studies.diagnosis.fitspec import settling_grid
 from studies.model.effects.thermal_lag import lag_response
 from studies.model.inputs import PARTS, PhysicsInputs, baseline_inputs
 
@@ -221,6 +222,26 @@ def test_thermal_lag_acts_on_ambient_following_parts_only():
     assert 0 < lags[0] < lags[1] < lags[2]
 
 
+def test_thermal_lag_leaves_a_measured_part_at_the_ambient_alone():
+    """A part whose temperature column was given is measured even when its readings equal the
+    ambient's (a sensor beside the chamber's): the lag must not replace them. The lagged parts
+    follow the closed-form first-order response (`lag_response`, tested against the ramp
+    solution above)."""
+    t = np.arange(40) * 60.0
+    amb = 20.0 + 0.05 * t
+    base = baseline_inputs({"time_s": t, "T_ambient_C": amb, "T_housing_C": amb.copy()}, t.size,
+                           T_REF, 100.0, 60.0)
+    assert base.measured_parts == {"housing"}
+    for name, params in (("thermal_lag", {"tau_s": 600.0}),
+                         ("thermal_lag.per_part", {"tau_s": 600.0, "tau_shaft_s": 900.0})):
+        out = get_effect(name).apply(base, params, T_REF)
+        np.testing.assert_array_equal(out.T_C["housing"], amb, err_msg=name)      # measured
+        np.testing.assert_array_equal(out.T_C["outer_ring"], lag_response(t, amb, 600.0),
+                                      err_msg=name)
+        # on a heating ramp the lagged part is cooler than the ambient by r tau (1 - e^-t/tau)
+        assert out.T_C["outer_ring"][-1] < amb[-1] - 0.05 * 600.0 * 0.9
+
+
 def test_friction_temperature_linear_in_ring_mean():
     base = cycle_inputs()
     T = dict(base.T_C)
@@ -256,7 +277,8 @@ def test_preload_settling_only_after_first_excursion():
     out = EFFECTS["preload_settling"].apply(cold, {"loss_N": 3.0, "threshold_K": 30.0}, T_REF)
     np.testing.assert_array_equal(out.preload_loss_N, [0, 0, 0, 3, 3, 3, 3, 3])
     # the grid gives one threshold per distinct onset row
-    g = EFFECTS["preload_settling"].grid({"time_s": t, "T_ambient_C": amb}, T_REF, min_rows=1)
+    g = settling_grid(EFFECTS["preload_settling"], {"time_s": t, "T_ambient_C": amb}, T_REF,
+                      min_rows=1)
     assert g["threshold_K"] == [7.5, 20.0, 28.5, 36.0]
 
 

@@ -161,12 +161,32 @@ def test_cte_curvature_strain_is_the_integral_of_alpha(T_ref):
 
 
 def test_cte_curvature_reaches_the_pipeline_strains():
-    """The form writes the curvature of the shaft and housing; the pipeline's strains then follow
-    the quadratic law (checked on the material objects the FE uses)."""
+    """The form writes the curvature of the shaft and housing; the strains the pipeline hands
+    the FE (`Pipeline.thetas`, per FE part) then follow the quadratic law: the shaft's and the
+    cover's (TC4, seed 000) equal the integral of alpha0 + a1 (T' - 20) + a2 (T' - 20)^2 by
+    adaptive quadrature (an independent method), the rings' (9Cr18) are the baseline's."""
+    from studies.model.config import load_shipped
+    from studies.model.pipeline import Pipeline
+
     f = GENERALISED["cte_nonlinearity.curvature"]
-    out = f.apply(cycle_inputs(), ON["cte_nonlinearity.curvature"], T_REF)
+    base = cycle_inputs(n=12)
+    out = f.apply(base, ON["cte_nonlinearity.curvature"], T_REF)
     assert out.d2alpha_per_K3 == {"shaft": 1e-10, "housing": 1e-10}
     assert out.dalpha_per_K2 == {"shaft": 5e-9, "housing": 5e-9}
+    pl = Pipeline(load_shipped("seed000"), mesh_factor=2.0)
+    theta, theta0 = pl.thetas(out), pl.thetas(base)
+    a0 = MATERIALS["TC4"].alpha_per_K
+    T_ref = pl.asm.T_ref_C
+    for part in ("shaft", "cover"):
+        j = pl.part_names.index(part)
+        T = out.T_C["shaft" if part == "shaft" else "housing"]
+        ref = [integrate.quad(lambda x: a0 + 5e-9 * (x - T_CTE_REF_C)
+                              + 1e-10 * (x - T_CTE_REF_C) ** 2, T_ref, Ti,
+                              epsabs=1e-16, epsrel=1e-13)[0] for Ti in T]
+        # 1e-15 absolute: round-off of strains of order 1e-3
+        np.testing.assert_allclose(theta[:, j], ref, rtol=0, atol=1e-15, err_msg=part)
+    j = pl.part_names.index("inner_ring_A")
+    np.testing.assert_array_equal(theta[:, j], theta0[:, j])
 
 
 def test_gradient_lag_after_a_speed_step_closed_form():

@@ -22,6 +22,7 @@ from studies.diagnosis.designs import cycles
 from studies.diagnosis.engine import diagnose_full
 from studies.diagnosis.files import NUISANCE, ModelPredictor, candidate_effects
 from studies.diagnosis.report import write_report
+from studies.diagnosis.result import to_json
 from studies.model.config import load_shipped
 from studies.model.pipeline import Pipeline, simulate_table
 
@@ -51,8 +52,8 @@ def run(pl, cond, meas, report_dir=None):
     out = diagnose_full(pred, meas, cond, candidate_effects(pl.asm), NUISANCE,
                         T_ref_C=pl.asm.T_ref_C, predict_at=pred.at)
     if report_dir is not None:
-        write_report(out.result, cond, meas, out.baseline_pred, out.extended_pred, report_dir)
-    return out.result
+        write_report(out, cond, meas, report_dir)
+    return to_json(out)
 
 
 def onset_row(T, T_ref, threshold):

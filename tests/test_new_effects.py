@@ -18,6 +18,8 @@ import pytest
 from studies.diagnosis.designs import cycles
 from studies.diagnosis.engine import diagnose_full
 from studies.diagnosis.files import NUISANCE, ModelPredictor
+from studies.diagnosis.fitspec import RUNIN_PER_DECADE
+from studies.diagnosis.result import to_json
 from studies.model.config import load_shipped
 from studies.model.effects import EFFECTS, ORDER
 from studies.model.effects.preload_path_compliance import UM_PER_KN
@@ -135,8 +137,8 @@ def test_compliance_off_is_baseline_exactly(pl001):
 def _diagnose(pl, cond, meas):
     pred = ModelPredictor(pl, cond, meas.keys())
     cands = [EFFECTS[n].for_assembly(pl.asm) for n in ORDER]
-    return diagnose_full(pred, meas, cond, cands, NUISANCE, T_ref_C=pl.asm.T_ref_C,
-                         predict_at=pred.at).result
+    return to_json(diagnose_full(pred, meas, cond, cands, NUISANCE, T_ref_C=pl.asm.T_ref_C,
+                                 predict_at=pred.at))
 
 
 def _noisy(pl, cond, eff, sigma, seed, mu_scale=1.25):
@@ -158,7 +160,7 @@ def test_hidden_runin_is_recovered(pl000):
     u = res["parameter_uncertainty"]
     assert abs(res["parameters"]["dmu"] + 0.004) <= 3 * u["dmu"], (res["parameters"], u)
     lo, hi = u["runin_krev"]["interval"]
-    step = 10 ** (1 / EFFECTS["solid_film_runin"].PER_DECADE)
+    step = 10 ** (1 / RUNIN_PER_DECADE)
     assert lo / step <= 10.0 <= hi * step, (res["parameters"], u)
 
 

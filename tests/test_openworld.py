@@ -96,24 +96,29 @@ def test_null_selects_nothing(design):
 
 def test_engine_reports_open_world_for_an_unlisted_drift(tmp_path):
     sys.path.insert(0, str(Path(__file__).parent))
-    from test_diagnosis_engine import ToyBearing, cycles as toy_cycles, make_data, run
+    from test_diagnosis_engine import ToyBearing, cycles as toy_cycles, make_data, run_full
     from studies.diagnosis.report import write_report
 
     model = ToyBearing()
     cond = toy_cycles()
-    res = run(model, cond, make_data(model, cond, {}, 7, drift=0.1))    # 5 sigma torque drift
-    assert res["verdict"] == "unexplained" and res["cause"] is None
-    ow = res["open_world"]
-    tq = next(c for c in ow["columns"] if c["column"] == "torque_Nmm")
-    assert tq["depends"] and tq["selected"][0] == "time_since_start_s" and tq["heldout_gain"] > 0
-    pre = next(c for c in ow["columns"] if c["column"] == "preload_N")
-    assert not pre["depends"]                  # the drift was on the torque sensor only
-    null = run(model, cond, make_data(model, cond, {}, 7))
-    assert null["verdict"] == "no_discrepancy" and null["open_world"] is None
-    meas = make_data(model, cond, {}, 7, drift=0.1)
-    path = write_report(res, cond, meas, {c: meas[c] for c in meas}, {c: meas[c] for c in meas},
-                        tmp_path)
-    assert "## What the residual depends on (open world)" in path.read_text()
+    meas = make_data(model, cond, {}, 7, drift=0.1)                  # 5 sigma torque drift
+    res = run_full(model, cond, meas)
+    assert res.verdict == "unexplained" and res.cause is None
+    ow = res.open_world
+    tq = next(c for c in ow.columns if c.column == "torque_Nmm")
+    assert tq.depends and tq.selected[0] == "time_since_start_s" and tq.heldout_gain > 0
+    pre = next(c for c in ow.columns if c.column == "preload_N")
+    assert not pre.depends                     # the drift was on the torque sensor only
+    null = run_full(model, cond, make_data(model, cond, {}, 7))
+    assert null.verdict == "no_discrepancy" and null.open_world is None
+    text = write_report(res, cond, meas, tmp_path).read_text()
+    assert "## What the residual depends on (open world)" in text
+    # the change over the data the report states is the injected drift, 0.1 N mm over the test,
+    # within 10 % (the drift is linear in time_since_start_s)
+    row = next(line for line in text.splitlines() if line.startswith("| `torque_Nmm` |")
+               and "time_since_start_s:" in line)
+    change = float(row.split("time_since_start_s:")[1].split(",")[0].split("|")[0])
+    assert abs(change - 0.1) < 0.01, row
 
 
 def test_engine_names_an_unlisted_dTdt_dependence():

@@ -3,6 +3,7 @@ arithmetic of the limit deviations, and the Monte Carlo through the exact model 
 closed-form probability of the summed deviations."""
 import json
 
+import dask.config as dask_config
 import numpy as np
 import pytest
 from scipy import stats
@@ -11,6 +12,7 @@ from analytic.tolerances import iso286_limits_um, iso492_limits_um
 from studies.app.cli import main
 from studies.model.config import CONFIG_DIR, ConfigError, load_assembly
 from studies.model import tolerances as tol
+from studies.model.parallel import WORKER_CONFIG, Blocks
 
 CFG000 = CONFIG_DIR / "seed000_71807C_TC4.toml"
 
@@ -223,11 +225,16 @@ def test_dask_workers_give_the_single_process_numbers(fits_only):
     tol.CHUNK_ROWS = 200                      # several blocks, so both workers get some
     try:
         here = tol.run_samples(asm, cond, di, do)
-        dask = tol.run_samples(asm, cond, di, do, workers=2)
+        with Blocks(workers=2) as where:
+            dask = tol.run_samples(asm, cond, di, do, where=where)
+            # the workers run with the profiler and the GIL monitor off (parallel.WORKER_CONFIG)
+            seen = {k: where.client.run(dask_config.get, k) for k in WORKER_CONFIG}
     finally:
         tol.CHUNK_ROWS = old
     for q in tol.QUANTITIES:
         np.testing.assert_array_equal(dask[q], here[q], err_msg=q)
+    for k, v in WORKER_CONFIG.items():
+        assert list(seen[k].values()) == [v, v], k
 
 
 def test_samples_reordered_into_blocks_come_back_in_their_own_rows(fits_only):

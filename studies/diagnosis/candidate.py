@@ -18,6 +18,18 @@ WORKING = ("sensitivity", "profile_fixed", "profile_grid")
 
 
 @dataclass
+class HeldoutGain:
+    """Paired block bootstrap of the held-out RMSE difference, baseline (or listed form) minus
+    candidate, in noise units: the point value, the (q, 1 - q) interval, the blocks where the
+    candidate is better, the blocks used and whether the interval excludes zero."""
+    rmse_gain: float
+    ci: list[float]
+    blocks_improved: int
+    n_blocks: int
+    excludes_zero: bool
+
+
+@dataclass
 class Candidate:
     effect: str
     parameters: dict = field(default_factory=dict)          # fitted values (effect units)
@@ -41,7 +53,7 @@ class Candidate:
     heldout_profile_values: list | None = None
     heldout_failed: str | None = None
     heldout_untestable: list | None = None                  # blocks the kept blocks cannot test
-    heldout_gain: dict | None = None                        # paired block bootstrap
+    heldout_gain: HeldoutGain | None = None                 # paired block bootstrap
     # working state (WORKING): d(prediction)/d(parameter) at off, profiled parameters' values
     sensitivity: np.ndarray | None = field(default=None, repr=False)
     profile_fixed: dict | None = None

@@ -3,10 +3,11 @@ space, a fit, and what the phases hand to each other (`Baseline`, `Screening`, `
 A candidate is `studies.diagnosis.candidate.Candidate`."""
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from collections import OrderedDict
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -40,7 +41,10 @@ class ModelFailure(RuntimeError):
 
 
 def jsonable(x):
-    """Numbers, arrays and containers as plain JSON values (non-finite floats -> null)."""
+    """Numbers, arrays, containers and dataclasses as plain JSON values (non-finite floats ->
+    null)."""
+    if dataclasses.is_dataclass(x) and not isinstance(x, type):
+        return jsonable({f.name: getattr(x, f.name) for f in dataclasses.fields(x)})
     if isinstance(x, dict):
         return {str(k): jsonable(v) for k, v in x.items()}
     if isinstance(x, (list, tuple)):
@@ -92,6 +96,23 @@ class CachedModel:
         self.remember(key, out)
         return out
 
+    # the state a forked worker's calls add (`studies.model.parallel.parallel_map`)
+    def snapshot(self) -> tuple[int, float, set]:
+        return self.calls, self.seconds, set(self.cache)
+
+    def delta(self, snapshot: tuple[int, float, set]) -> tuple[int, float, list]:
+        """Calls, model seconds and new cache entries since `snapshot`."""
+        calls0, sec0, known = snapshot
+        return (self.calls - calls0, self.seconds - sec0,
+                [(k, v) for k, v in self.cache.items() if k not in known])
+
+    def merge(self, delta: tuple[int, float, list]) -> None:
+        calls, seconds, new = delta
+        self.calls += calls
+        self.seconds += seconds
+        for k, v in new:
+            self.remember(k, v)
+
     def remember(self, key, out: dict) -> None:
         """Keep a result (the newest; the least recently used goes beyond `maxsize`)."""
         self.cache[key] = out
@@ -136,6 +157,23 @@ class Space:
 
 
 @dataclass
+class Linearisation:
+    """A candidate at one value of its profiled parameter, linearised: the standardised
+    residual z and its Jacobian J (effect parameters, then nuisance) in `space`; for a grid
+    point of the in-sample profile also the start u0, the step bounds lo / hi, the bounded
+    linear fit's step du and chi-square sse."""
+    value: float
+    space: Space
+    J: np.ndarray
+    z: np.ndarray
+    u0: np.ndarray | None = None
+    lo: np.ndarray | None = None
+    hi: np.ndarray | None = None
+    sse: float = math.inf
+    du: np.ndarray | None = None
+
+
+@dataclass
 class Fit:
     space: Space
     u: np.ndarray
@@ -143,7 +181,39 @@ class Fit:
     J: np.ndarray               # d z / d u at u
     chi2: float
     pred: dict
-    extra: dict = field(default_factory=dict)
+    # a profiled fit: the profiled value, the grid's linearisations, the chi-square-1 interval
+    profile_value: float | None = None
+    grid: list[Linearisation] | None = None
+    interval: list[float] | None = None
+
+
+@dataclass
+class ColumnResiduals:
+    """Residual statistics of one column (`Problem.describe_column`): bias (column unit) and
+    its p value, RMSE, the noise level and AR(1) coefficient used, reduced chi-square, lag-1
+    autocorrelation and its p, the smoother's F statistic, p and held-out gain, and the p the
+    structure decision uses (1 for AR(1) noise when the smoother does not predict held-out
+    blocks)."""
+    bias: float
+    bias_p: float
+    rmse: float
+    noise_sigma: float
+    noise_ar1: float
+    chi2_reduced: float
+    lag1_autocorr: float
+    lag1_p: float
+    smoother_F: float
+    smoother_p: float
+    smoother_heldout_gain: float
+    smoother_p_used: float
+
+
+@dataclass
+class Residuals:
+    """Residual statistics per compared column and the smallest p value, Bonferroni-adjusted
+    over the tests and columns."""
+    columns: dict[str, ColumnResiduals]
+    p_min_adjusted: float
 
 
 @dataclass
@@ -151,7 +221,7 @@ class Baseline:
     """Phase 1: the calibrated baseline."""
     fit: Fit
     nuisance: dict               # fitted nuisance values
-    residuals: dict              # `describe` of its residuals
+    residuals: Residuals         # `describe` of its residuals
     structure: bool              # residual structure beyond noise
     heldout_z: np.ndarray        # held-out standardised residuals
     nuisance_span: np.ndarray    # orthonormal basis of what the calibration can produce
@@ -166,12 +236,33 @@ class Screening:
 
 
 @dataclass
+class JointFit:
+    """The best candidate fitted jointly with another (or with the unlisted sensor drift):
+    chi-squares of each alone and of both, the p values of adding one to the other, whether the
+    best carries the weight; `p` the drift check's p of adding the best to the drift; `error`
+    when the joint fit failed (the best cannot be shown to carry the weight)."""
+    best_carries_weight: bool
+    chi2_best: float | None = None
+    chi2_other: float | None = None
+    chi2_joint: float | None = None
+    p_add_other_to_best: float | None = None
+    p_add_best_to_other: float | None = None
+    p: float | None = None
+    error: str | None = None
+
+    def to_json(self) -> dict:
+        """The fields that are set (a failed joint fit: its error)."""
+        return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)
+                if getattr(self, f.name) is not None}
+
+
+@dataclass
 class Decision:
     """Phase 5: the verdict."""
     verdict: str
     cause: str | None
     best: str | None
     rivals: list
-    best_residuals: dict | None
-    joint_fits: dict
+    best_residuals: Residuals | None
+    joint_fits: dict[str, JointFit]
     reasons: list[str]

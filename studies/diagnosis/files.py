@@ -16,10 +16,11 @@ import numpy as np
 from studies.model.config import load_assembly
 from studies.diagnosis.engine import diagnose_full
 from studies.diagnosis.report import write_report
-from studies.diagnosis.workers import available_workers
+from studies.diagnosis.result import DiagnosisResult, to_json
 from studies.model.effects import (EFFECTS, ORDER, apply_effects, assembly_bounds,
                                    resolve_friction_coefficient)
 from studies.model.inputs import CONDITION_COLUMNS, baseline_inputs
+from studies.model.parallel import available_workers
 from studies.model.pipeline import Pipeline
 from studies.model.checks import CHECK_COLUMNS
 from studies.model.table import TableError, read_table
@@ -29,6 +30,7 @@ COMPARABLE = ("torque_Nmm", "preload_N", "contact_angle_deg", "interference_inne
               "interference_outer_um", "fit_pressure_inner_MPa", "fit_pressure_outer_MPa",
               "max_contact_pressure_MPa", "axial_stiffness_N_per_um")
 NUISANCE = {"mu_scale": (0.3, 3.0, 1.0, 0.05)}
+NUISANCE_TEXT = "mu_scale: scale on the friction coefficient (0.3..3)"
 #: every column `simulate` may write besides the comparable ones (accepted, not compared)
 OUTPUT_NAMES = {
     "torque_hysteresis_Nmm", "torque_differential_Nmm", "torque_spin_Nmm", "torque_inner_contacts_Nmm",
@@ -118,20 +120,19 @@ def diagnose_files(assembly_path: Path, measured_path: Path, out_dir: Path, prog
     progress(f"diagnosing {len(next(iter(measured.values())))} rows, columns "
              f"{', '.join(measured)}, {len(candidates)} candidate effects ...")
     workers = available_workers() if workers is None else workers
-    outcome = diagnose_full(predict, measured, conditions, candidates, NUISANCE,
-                            T_ref_C=asm.T_ref_C, predict_at=predict.at, workers=workers)
-    result = outcome.result
-    result.setdefault("nuisance_calibration", "mu_scale: scale on the friction coefficient (0.3..3)")
-    result["model_calls"] = result["n_predict_calls"]      # the workers' calls included
-    (out_dir / "diagnosis.json").write_text(json.dumps(result, indent=2, default=_json_default))
-    write_report(result, conditions, measured, outcome.baseline_pred, outcome.extended_pred, out_dir,
-                 workers=workers)
-    return result
+    result = diagnose_full(predict, measured, conditions, candidates, NUISANCE,
+                           T_ref_C=asm.T_ref_C, predict_at=predict.at, workers=workers)
+    doc = write_diagnosis_json(result, out_dir / "diagnosis.json")
+    write_report(result, conditions, measured, out_dir, workers=workers)
+    return doc
 
 
-def _json_default(x):
-    if isinstance(x, (np.floating, np.integer)):
-        return x.item()
-    if isinstance(x, np.ndarray):
-        return x.tolist()
-    raise TypeError(f"not JSON serialisable: {type(x)}")
+def write_diagnosis_json(result: DiagnosisResult, path: Path) -> dict:
+    """diagnosis.json from the typed result (`studies.diagnosis.result.to_json`, the keys of
+    docs/cli.md), with the nuisance calibration `diagnose` allows and the model calls (the
+    workers' included); returns what it wrote."""
+    doc = to_json(result)
+    doc["nuisance_calibration"] = NUISANCE_TEXT
+    doc["model_calls"] = doc["n_predict_calls"]
+    path.write_text(json.dumps(doc, indent=2))
+    return doc

@@ -8,232 +8,255 @@ import math
 
 import numpy as np
 
-from studies.diagnosis.core import Baseline, Fit, ModelFailure, Screening
+from studies.diagnosis import fitspec
+from studies.diagnosis.core import Baseline, Fit, Linearisation, ModelFailure, Screening
+from studies.diagnosis.problem import Problem
 from studies.diagnosis.stats import blsq, chibar_pvalue
 
 
-class FittingPhase:
-    def fit_all(self, s: Screening, b: Baseline) -> dict[str, Fit]:
-        """Fit the identifiable candidates (those whose fit fails leave `s.identifiable`)."""
-        th = self.th
-        base, base_nuis, cands, names_id = b.fit, b.nuisance, s.candidates, s.identifiable
-        lnN = math.log(self.N)
-        fits: dict[str, Fit] = {}
+def fit_all(pb: Problem, s: Screening, b: Baseline) -> dict[str, Fit]:
+    """Fit the identifiable candidates (those whose fit fails leave `s.identifiable`)."""
+    th = pb.th
+    base, base_nuis, cands = b.fit, b.nuisance, s.candidates
+    lnN = math.log(pb.N)
+    fits: dict[str, Fit] = {}
 
-        def fit_one(name):
-            """(fit or None, profile summary, failure message or None, model calls)."""
-            e, info = self.effect(name), cands[name]
-            calls0 = self.model.calls
-            try:
-                f = (self.fit_profiled(e, info, base, base_nuis) if e.profile
-                     else self.fit_candidate(e, info, base))
-            except ModelFailure as exc:
-                return None, None, str(exc), self.model.calls - calls0
-            return f, info.profile, None, self.model.calls - calls0
+    def fit_one(name):
+        """(fit or None, profile summary, failure message or None, model calls)."""
+        e, info = pb.effect(name), cands[name]
+        calls0 = pb.model.calls
+        try:
+            f = (fit_profiled(pb, e, info, base, base_nuis) if fitspec.profile(e)
+                 else fit_candidate(pb, e, info, base))
+        except ModelFailure as exc:
+            return None, None, str(exc), pb.model.calls - calls0
+        return f, info.profile, None, pb.model.calls - calls0
 
-        # the candidates' fits are independent: on the engine's workers (profiled first: longest)
-        names = list(names_id)
-        done = self.parallel(fit_one, names,
-                             first=[i for i, n in enumerate(names) if self.effect(n).profile])
-        for name, (f, profile, failed, calls) in zip(names, done):
-            e = self.effect(name)
-            info = cands[name]
-            if failed is not None:
-                info.set_status("model_failed", f"fit failed: {failed}")
-                names_id.remove(name)
-                continue
-            fits[name] = f
-            info.profile = profile
-            info.predict_calls_fit = calls
-            lr = max(base.chi2 - f.chi2, 0.0)
-            r = info.rank
-            n_two = sum(1 for p in self.free_params(e) if e.sign(p) == 0)
-            n_free = min(r, n_two) + len(e.profile)
-            n_bound = r - min(r, n_two)
-            k_eff = r + len(e.profile)
-            info.lr = lr
-            info.df = {"free": n_free, "on_bound": n_bound}
-            info.p_lr = chibar_pvalue(lr, n_free, n_bound)
-            info.delta_bic = -lr + k_eff * lnN
-            info.k = k_eff
-            eff_vals, nuis_vals = f.space.unpack(f.u)
-            info.parameters = {p: eff_vals[name][p] for p in e.parameters}
-            held = list(e.held_fixed(self.conditions))
-            if held:
-                info.held_at_off = {p: e.off[p] for p in held}
-            info.nuisance = nuis_vals
-            info.uncertainty = self.uncertainty(f, e)
-            info.rmse = self.col_rmse(f.z)
-        # Holm over the identifiable candidates
-        order = sorted(names_id, key=lambda n: cands[n].p_lr)
-        m = len(order)
-        still = True
-        for j, name in enumerate(order):
-            ok = still and cands[name].p_lr <= th["alpha_lr"] / (m - j)
-            still = ok
-            cands[name].lr_significant = bool(ok)
+    # the candidates' fits are independent: on the engine's workers (profiled first: longest)
+    names = list(s.identifiable)
+    done = pb.parallel(fit_one, names,
+                         first=[i for i, n in enumerate(names) if fitspec.profile(pb.effect(n))])
+    for name, (f, profile, failed, calls) in zip(names, done):
+        e = pb.effect(name)
+        info = cands[name]
+        if failed is not None:
+            info.set_status("model_failed", f"fit failed: {failed}")
+            continue
+        fits[name] = f
+        info.profile = profile
+        info.predict_calls_fit = calls
+        lr = max(base.chi2 - f.chi2, 0.0)
+        r = info.rank
+        n_two = sum(1 for p in pb.free_params(e) if e.sign(p) == 0)
+        n_free = min(r, n_two) + len(fitspec.profile(e))
+        n_bound = r - min(r, n_two)
+        k_eff = r + len(fitspec.profile(e))
+        info.lr = lr
+        info.df = {"free": n_free, "on_bound": n_bound}
+        info.p_lr = chibar_pvalue(lr, n_free, n_bound)
+        info.delta_bic = -lr + k_eff * lnN
+        info.k = k_eff
+        eff_vals, nuis_vals = f.space.unpack(f.u)
+        info.parameters = {p: eff_vals[name][p] for p in e.parameters}
+        held = list(fitspec.held_fixed(e, pb.conditions))
+        if held:
+            info.held_at_off = {p: e.off[p] for p in held}
+        info.nuisance = nuis_vals
+        info.uncertainty = uncertainty(pb, f, e)
+        info.rmse = pb.col_rmse(f.z)
+    # Holm over the identifiable candidates
+    order = sorted(fits, key=lambda n: cands[n].p_lr)
+    m = len(order)
+    still = True
+    for j, name in enumerate(order):
+        ok = still and cands[name].p_lr <= th["alpha_lr"] / (m - j)
+        still = ok
+        cands[name].lr_significant = bool(ok)
 
-        return fits
+    return fits
 
-    def _nuis_correct(self, z, Jn):
-        """Residual after the best linear nuisance correction (for choosing starts)."""
-        if Jn.shape[1] == 0:
-            return z
-        d, *_ = np.linalg.lstsq(Jn, -z, rcond=None)
-        return z + Jn @ d
-
-
-    def fit_candidate(self, e, info, base: Fit) -> Fit:
-        space = self.space([e])
-        k = space.k
-        nq = len(self.nuis_names)
-        Jn = base.J                       # d z / d u_nuisance at the baseline
-        Jc = -info.sensitivity                 # d z / d u_effect at off (sensitivity is -dz)
-        u_nuis = base.u
-        starts = []
-        # Gauss-Newton step from off
-        A = np.column_stack([Jc, Jn])
-        d, *_ = np.linalg.lstsq(A, -base.z, rcond=None)
-        starts.append(np.concatenate([d[:k], u_nuis + d[k:]]))
-        for s in e.starts(self.conditions, self.T_ref_C):
-            vals = [s.get(p, e.off[p]) for (_, p) in space.eff_params]
-            uu = np.concatenate([(np.array(vals) - space.origin[:k]) / space.scale[:k], u_nuis])
-            starts.append(uu)
-        scored = []
-        for uu in starts:
-            uu = space.clip(uu)
-            try:
-                z, _ = self.eval(space, uu)
-            except ModelFailure:
-                continue
-            if nq:
-                dn, *_ = np.linalg.lstsq(Jn, -z, rcond=None)
-                uu = space.clip(np.concatenate([uu[:k], uu[k:] + dn]))
-                zc = z + Jn @ dn
-            else:
-                zc = z
-            scored.append((float(zc @ zc), len(scored), uu))
-        if not scored:
-            raise ModelFailure("the model fails at every starting point")
-        scored.sort(key=lambda t: t[:2])
-        # local optimisation from the two most promising starts (fits that open or close, lags
-        # and thresholds make the problem non-convex)
-        # the Gauss-Newton step from "off" (index 0) is always refined too: a grid start can sit
-        # where a fit is open and the outputs do not depend on a parameter (a flat local minimum)
-        gn = [t for t in scored if t[1] == 0 and t not in scored[:2]]
-        f = None
-        for sse0, idx, uu in scored[:2] + gn:
-            if f is not None and idx != 0 and sse0 > f.chi2 + max(10.0, 0.2 * (base.chi2 - f.chi2)):
-                continue                  # not promising enough
-            try:
-                fi = self.fit(space, uu)
-            except ModelFailure:
-                continue
-            if f is None or fi.chi2 < f.chi2:
-                f = fi
-        if f is None:
-            raise ModelFailure("the fits fail from every starting point")
-        if f.chi2 > base.chi2:           # never worse than the baseline (off is admissible)
-            f2 = self.fit(space, np.concatenate([np.zeros(k), base.u]))
-            f = f2 if f2.chi2 < f.chi2 else f
-        return f
+def _start_points(pb: Problem, e, info, base: Fit, space) -> list[np.ndarray]:
+    """Starting points of a candidate's fit (scaled coordinates): the Gauss-Newton step from off
+    (first), then the fit specification's starts with the baseline's nuisance."""
+    k = space.k
+    Jc = -info.sensitivity            # d z / d u_effect at off (sensitivity is -dz)
+    A = np.column_stack([Jc, base.J])
+    d, *_ = np.linalg.lstsq(A, -base.z, rcond=None)
+    starts = [np.concatenate([d[:k], base.u + d[k:]])]
+    for s in fitspec.starts(e, pb.conditions, pb.T_ref_C):
+        vals = [s.get(p, e.off[p]) for (_, p) in space.eff_params]
+        starts.append(np.concatenate([(np.array(vals) - space.origin[:k]) / space.scale[:k],
+                                      base.u]))
+    return starts
 
 
-    def fit_profiled(self, e, info, base: Fit, base_nuis) -> Fit:
-        """Profile the `profile` parameter (one) over its grid with a linearised inner fit, then
-        refine the best value with a full bounded least-squares fit."""
-        (pp,) = e.profile
-        values = list(info.profile_grid[pp])
-        nq = len(self.nuis_names)
-
-        def lin(value):
-            space = self.space([e], fixed={e.name: {pp: value}})
-            k = space.k
-            cols = []
-            for i in range(k):
-                du = np.zeros(k + nq)
-                du[i] = 1.0 if space.hi[i] >= 1.0 else -1.0
-                z, _ = self.eval(space, np.concatenate([du[:k], base.u]))
-                cols.append((z - base.z) / du[i])
-            J = np.column_stack(cols + [base.J])
-            u0 = np.concatenate([np.zeros(k), base.u])
-            lo, hi = space.lo - u0, space.hi - u0
-            x = blsq(J, -base.z, lo, hi)
-            sse = float(np.sum((base.z + J @ x) ** 2))
-            return {"value": value, "space": space, "J": J, "z": base.z, "u0": u0, "lo": lo,
-                    "hi": hi, "sse": sse, "du": x}
-
-        def lin_safe(value):
-            try:
-                return lin(value)
-            except ModelFailure:
-                return None
-
-        if len(values) > 16:
-            # coarse grid, then bisect towards the best onset on both sides
-            lins = {int(i): lin_safe(values[i])
-                    for i in np.unique(np.linspace(0, len(values) - 1, 12).round().astype(int))}
-            while True:
-                ok = sorted(i for i in lins if lins[i] is not None)
-                if not ok:
-                    break
-                ib = min(ok, key=lambda i: lins[i]["sse"])
-                left = max([i for i in lins if i < ib], default=None)
-                right = min([i for i in lins if i > ib], default=None)
-                new = [m for m in ((None if left is None else (left + ib) // 2),
-                                   (None if right is None else (ib + right + 1) // 2))
-                       if m is not None and m not in lins]
-                if not new:
-                    break
-                for m in new:
-                    lins[m] = lin_safe(values[m])
-            grid_lin = [lins[i] for i in sorted(lins) if lins[i] is not None]
+def _score_starts(pb: Problem, space, starts: list[np.ndarray], Jn: np.ndarray) -> list[tuple]:
+    """(chi-square with the nuisance corrected linearly, index, start) of every start the model
+    evaluates, best first."""
+    k, nq = space.k, len(pb.nuisance.names)
+    scored = []
+    for uu in starts:
+        uu = space.clip(uu)
+        try:
+            z, _ = pb.eval(space, uu)
+        except ModelFailure:
+            continue
+        if nq:
+            dn, *_ = np.linalg.lstsq(Jn, -z, rcond=None)
+            uu = space.clip(np.concatenate([uu[:k], uu[k:] + dn]))
+            zc = z + Jn @ dn
         else:
-            grid_lin = [g for g in map(lin_safe, values) if g is not None]
-        if not grid_lin:
-            raise ModelFailure(f"the model fails for every {pp} on the grid")
-        ranked = sorted(grid_lin, key=lambda g: g["sse"])
-        ranked = [g for g in ranked[:2] if g["sse"] <= ranked[0]["sse"] + 1.0]
-        best = None
-        for g in ranked:
-            try:
-                f = self.fit(g["space"], g["u0"] + g["du"])
-            except ModelFailure:
-                continue
-            if best is None or f.chi2 < best.chi2:
-                best = f
-                best.extra["value"] = g["value"]
-        if best is None:
-            raise ModelFailure(f"the fits at the best values of {pp} fail")
-        # profile interval: values whose linearised chi-square is within 1 of the best
-        sse_min = min(g["sse"] for g in grid_lin)
-        near = [g["value"] for g in grid_lin if g["sse"] <= sse_min + 1.0]
-        best.extra.update(grid_lin=grid_lin, interval=[min(near), max(near)])
-        info.profile = {pp: {"grid_size": len(values), "evaluated": len(grid_lin),
-                                "interval_chi2_1": [min(near), max(near)]}}
-        return best
+            zc = z
+        scored.append((float(zc @ zc), len(scored), uu))
+    if not scored:
+        raise ModelFailure("the model fails at every starting point")
+    scored.sort(key=lambda t: t[:2])
+    return scored
 
 
-    def uncertainty(self, f: Fit, e) -> dict:
-        """Standard uncertainty of the fitted effect parameters (linearised, scaled by the
-        reduced chi-square when above 1); None when not separately identifiable."""
-        J = f.J
-        dof = max(self.N - J.shape[1], 1)
-        s2 = max(1.0, f.chi2 / dof)
-        out = {}
-        U, s, Vt = np.linalg.svd(J, full_matrices=False)
-        tiny = s < 1e-8 * (s[0] if s.size else 1.0)
-        with np.errstate(divide="ignore"):
-            inv = np.where(tiny, np.inf, 1.0 / np.where(tiny, 1.0, s) ** 2)
-        for i, (en, p) in enumerate(f.space.eff_params):
-            v = Vt[:, i]
-            if np.any(tiny & (np.abs(v) > 1e-6)):
-                out[p] = None
-            else:
-                out[p] = float(math.sqrt(s2 * np.sum(v ** 2 * np.where(tiny, 0.0, inv)))
-                               * f.space.scale[i])
-        if "interval" in f.extra:
-            for p in e.profile:
-                out[p] = {"interval": f.extra["interval"]}
-        return out
+def fit_candidate(pb: Problem, e, info, base: Fit) -> Fit:
+    """A candidate without a profiled parameter: bounded least squares from the two most
+    promising starts (`_score_starts`) and from the Gauss-Newton step; never worse than the
+    baseline."""
+    space = pb.space([e])
+    scored = _score_starts(pb, space, _start_points(pb, e, info, base, space), base.J)
+    # local optimisation from the two most promising starts (fits that open or close, lags
+    # and thresholds make the problem non-convex)
+    # the Gauss-Newton step from "off" (index 0) is always refined too: a grid start can sit
+    # where a fit is open and the outputs do not depend on a parameter (a flat local minimum)
+    gn = [t for t in scored if t[1] == 0 and t not in scored[:2]]
+    f = None
+    for sse0, idx, uu in scored[:2] + gn:
+        if f is not None and idx != 0 and sse0 > f.chi2 + max(10.0, 0.2 * (base.chi2 - f.chi2)):
+            continue                  # not promising enough
+        try:
+            fi = pb.fit(space, uu)
+        except ModelFailure:
+            continue
+        if f is None or fi.chi2 < f.chi2:
+            f = fi
+    if f is None:
+        raise ModelFailure("the fits fail from every starting point")
+    if f.chi2 > base.chi2:           # never worse than the baseline (off is admissible)
+        f2 = pb.fit(space, np.concatenate([np.zeros(space.k), base.u]))
+        f = f2 if f2.chi2 < f.chi2 else f
+    return f
+
+
+def _linearised(pb: Problem, e, pp: str, value: float, base: Fit) -> Linearisation | None:
+    """The candidate at profiled value `value`, linearised about the baseline (one model call
+    per parameter), and its bounded linear fit; None when the model fails."""
+    space = pb.space([e], fixed={e.name: {pp: value}})
+    k = space.k
+    nq = len(pb.nuisance.names)
+    cols = []
+    try:
+        for i in range(k):
+            du = np.zeros(k + nq)
+            du[i] = 1.0 if space.hi[i] >= 1.0 else -1.0
+            z, _ = pb.eval(space, np.concatenate([du[:k], base.u]))
+            cols.append((z - base.z) / du[i])
+    except ModelFailure:
+        return None
+    J = np.column_stack(cols + [base.J])
+    u0 = np.concatenate([np.zeros(k), base.u])
+    lo, hi = space.lo - u0, space.hi - u0
+    x = blsq(J, -base.z, lo, hi)
+    sse = float(np.sum((base.z + J @ x) ** 2))
+    return Linearisation(value, space, J, base.z, u0, lo, hi, sse, x)
+
+
+#: grids longer than this are searched coarse first (COARSE points), then bisected
+LONG_GRID = 16
+COARSE = 12
+
+
+def _bisected(values: list, lin) -> list[Linearisation]:
+    """A long grid's linearisations: COARSE points, then bisect towards the best onset on both
+    sides until neighbours are evaluated."""
+    lins = {int(i): lin(values[i])
+            for i in np.unique(np.linspace(0, len(values) - 1, COARSE).round().astype(int))}
+    new = _bisection(lins)
+    while new:
+        for m in new:
+            lins[m] = lin(values[m])
+        new = _bisection(lins)
+    return [lins[i] for i in sorted(lins) if lins[i] is not None]
+
+
+def _bisection(lins: dict[int, Linearisation | None]) -> list[int]:
+    """Grid indices halfway from the best evaluated one to its evaluated neighbours, not yet
+    evaluated (none when every neighbour is adjacent or nothing evaluates)."""
+    ok = sorted(i for i in lins if lins[i] is not None)
+    if not ok:
+        return []
+    ib = min(ok, key=lambda i: lins[i].sse)
+    left = max([i for i in lins if i < ib], default=None)
+    right = min([i for i in lins if i > ib], default=None)
+    mids = []
+    if left is not None:
+        mids.append((left + ib) // 2)
+    if right is not None:
+        mids.append((ib + right + 1) // 2)
+    return [m for m in mids if m not in lins]
+
+
+def fit_profiled(pb: Problem, e, info, base: Fit, base_nuis) -> Fit:
+    """Profile the `profile` parameter (one) over its grid with a linearised inner fit, then
+    refine the best value with a full bounded least-squares fit."""
+    (pp,) = fitspec.profile(e)
+    values = list(info.profile_grid[pp])
+
+    def lin(value):
+        return _linearised(pb, e, pp, value, base)
+
+    grid_lin = (_bisected(values, lin) if len(values) > LONG_GRID
+                else [g for g in map(lin, values) if g is not None])
+    if not grid_lin:
+        raise ModelFailure(f"the model fails for every {pp} on the grid")
+    ranked = sorted(grid_lin, key=lambda g: g.sse)
+    ranked = [g for g in ranked[:2] if g.sse <= ranked[0].sse + 1.0]
+    best = None
+    for g in ranked:
+        try:
+            f = pb.fit(g.space, g.u0 + g.du)
+        except ModelFailure:
+            continue
+        if best is None or f.chi2 < best.chi2:
+            best = f
+            best.profile_value = g.value
+    if best is None:
+        raise ModelFailure(f"the fits at the best values of {pp} fail")
+    # profile interval: values whose linearised chi-square is within 1 of the best
+    sse_min = min(g.sse for g in grid_lin)
+    near = [g.value for g in grid_lin if g.sse <= sse_min + 1.0]
+    best.grid, best.interval = grid_lin, [min(near), max(near)]
+    info.profile = {pp: {"grid_size": len(values), "evaluated": len(grid_lin),
+                         "interval_chi2_1": [min(near), max(near)]}}
+    return best
+
+
+def uncertainty(pb: Problem, f: Fit, e) -> dict:
+    """Standard uncertainty of the fitted effect parameters (linearised, scaled by the
+    reduced chi-square when above 1); None when not separately identifiable."""
+    J = f.J
+    dof = max(pb.N - J.shape[1], 1)
+    s2 = max(1.0, f.chi2 / dof)
+    out = {}
+    U, s, Vt = np.linalg.svd(J, full_matrices=False)
+    tiny = s < 1e-8 * (s[0] if s.size else 1.0)
+    with np.errstate(divide="ignore"):
+        inv = np.where(tiny, np.inf, 1.0 / np.where(tiny, 1.0, s) ** 2)
+    for i, (en, p) in enumerate(f.space.eff_params):
+        v = Vt[:, i]
+        if np.any(tiny & (np.abs(v) > 1e-6)):
+            out[p] = None
+        else:
+            out[p] = float(math.sqrt(s2 * np.sum(v ** 2 * np.where(tiny, 0.0, inv)))
+                           * f.space.scale[i])
+    if f.interval is not None:
+        for p in fitspec.profile(e):
+            out[p] = {"interval": f.interval}
+    return out
+
 

@@ -24,11 +24,17 @@ beat its listed form out of sample, so a listed effect is never reported as an e
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass, fields
 from types import SimpleNamespace
 
 import numpy as np
 
-from studies.diagnosis.core import Baseline, Decision, Fit, ModelFailure, Screening
+from studies.diagnosis import fitspec
+from studies.diagnosis.candidate import HeldoutGain
+from studies.diagnosis.core import Baseline, Decision, Fit, ModelFailure, Residuals, Screening
+from studies.diagnosis.fitting import fit_profiled, uncertainty
+from studies.diagnosis.heldout import bootstrap_gain, heldout_linear
+from studies.diagnosis.problem import Problem
 from studies.diagnosis.stats import chibar_pvalue
 from studies.model.effects.generalised import forms_of
 
@@ -38,157 +44,234 @@ MAX_FAMILIES = 2
 N_RUNS = 3
 
 
-class GeneralisedPhase:
-    def generalise(self, s: Screening, fits: dict[str, Fit], ho: dict, b: Baseline,
-                   d: Decision) -> tuple[Decision, list[dict], dict | None]:
-        """Try the generalised forms (module docstring); returns the (possibly new) decision, one
-        entry per form tried and the chosen form (fit, held-out residuals, entry) or None."""
-        if not getattr(self, "try_generalised", True) or d.verdict not in ("unexplained",
-                                                                          "explained"):
-            return d, [], None
-        cands = s.candidates
-        if d.verdict == "explained":        # the listed cause's own forms, nested in it
-            fams = [d.cause] if forms_of(d.cause) else []
-        else:
-            fams = [n for n in sorted(fits, key=lambda n: cands[n].delta_bic)
-                    if forms_of(n) and cands[n].delta_bic < 0 and cands[n].lr_significant]
-        tried = [(fam, f) for fam in fams[:MAX_FAMILIES] for f in forms_of(fam)
-                 if f.applicable(self.conditions) is None]
-        entries, ok = [], []
-        for fam, form in tried:
-            listed = self.effect(fam)
-            form = form.with_bounds(**{p: listed.bounds[p] for p in form.parameters
-                                       if p in listed.bounds})
-            try:
-                entry, f_ext, ho_ext = self.fit_form(form, listed, fits[fam], ho[fam], cands[fam],
-                                                     b, len(tried))
-            except ModelFailure as exc:
-                entries.append({"effect": fam, "form": form.form, "name": form.name,
-                                "status": "model_failed", "reason": str(exc)})
-                continue
-            entries.append(entry)
-            if entry["status"] == "explains":
-                ok.append((f_ext.chi2, entry, f_ext, ho_ext))
-        if not ok:
-            return d, entries, None
-        ok.sort(key=lambda t: t[0])
-        _, entry, f_ext, ho_ext = ok[0]
-        reasons = list(d.reasons) + [
-            f"the generalised form {entry['text']} beats the listed form {entry['effect']} in "
-            f"sample (p = {entry['p_vs_listed']:.2g}) and on held-out blocks and leaves no "
-            "structure"]
-        new = Decision("explained", entry["effect"], entry["effect"], [], entry["residuals"],
-                       d.joint_fits, reasons)
-        return new, entries, {"fit": f_ext, "heldout_z": ho_ext, "entry": entry}
+@dataclass
+class FormEntry:
+    """One generalised form tried (an entry of `generalised_forms` in diagnosis.json): the
+    family (`effect`), the form's names, and unless the model failed its fitted parameters
+    (units), uncertainties, the listed fit's parameters, the refitted nuisance, the tests
+    against the listed form (chi-squares, likelihood ratio, degrees of freedom, Bonferroni-
+    adjusted p, delta BIC, held-out gains against the listed form and the baseline), held-out
+    and in-sample RMSE per column, the residual description; its status and why."""
+    effect: str
+    form: str
+    name: str
+    status: str            # explains | passes_but_leaves_structure | rejected | model_failed
+    reason: str
+    label: str | None = None
+    text: str | None = None
+    parameters: dict[str, float] | None = None
+    units: dict[str, str] | None = None
+    parameter_uncertainty: dict | None = None
+    listed_parameters: dict[str, float] | None = None
+    nuisance: dict[str, float] | None = None
+    chi2_listed: float | None = None
+    chi2: float | None = None
+    lr_vs_listed: float | None = None
+    df_vs_listed: dict[str, int] | None = None
+    p_vs_listed: float | None = None
+    delta_bic_vs_listed: float | None = None
+    heldout_gain_vs_listed: HeldoutGain | None = None
+    heldout_gain_vs_baseline: HeldoutGain | None = None
+    heldout_rmse: dict[str, float] | None = None
+    rmse: dict[str, float] | None = None
+    residuals: Residuals | None = None
+    profiled: dict | None = None
 
-    def fit_form(self, form, listed, f_listed: Fit, ho_listed: np.ndarray, cand, b: Baseline,
-                 m: int):
-        """Nested fit of one generalised form from the listed fit and its tests (module
-        docstring, steps 1-4). Returns (entry, fit, held-out residuals)."""
-        th = self.th
-        vals_listed = dict(cand.parameters)
-        fixed = {form.name: {p: vals_listed[p] for p in form.profile}}
-        space = self.space([form], fixed)
-        k, nq = space.k, len(self.nuis_names)
-        u_nuis = f_listed.u[f_listed.space.k:]
-        start_vals = [form.from_listed(vals_listed)]
-        start_vals += [{**start_vals[0], **x} for x in form.extra_starts(vals_listed, self.conditions)]
-        Jn = f_listed.J[:, f_listed.space.k:]       # d z / d u_nuisance at the listed fit
+    def to_json(self) -> dict:
+        """The fields that are set (a form the model failed on: names, status, reason)."""
+        return {f.name: getattr(self, f.name) for f in fields(self)
+                if getattr(self, f.name) is not None}
 
-        def score(iv):
-            """(chi-square with the nuisance refitted linearly, index, start) or None."""
-            i, v = iv
-            x = np.array([v[p] for (_, p) in space.eff_params], float)
-            u = space.clip(np.concatenate([(x - space.origin[:k]) / space.scale[:k], u_nuis]))
-            try:
-                z, _ = self.eval(space, u)
-            except ModelFailure:
-                return None
-            if nq:                                   # linearised nuisance refit for the score
-                dn, *_ = np.linalg.lstsq(Jn, -z, rcond=None)
-                u = space.clip(np.concatenate([u[:k], u[k:] + dn]))
-                z = z + Jn @ dn
-            return float(z @ z), i, u
 
-        # one model call per start, independent: on the engine's workers
-        scored = [t for t in self.parallel(score, list(enumerate(start_vals))) if t is not None]
-        if not scored:
-            raise ModelFailure("the model fails at every start of the generalised form")
-        scored.sort(key=lambda t: t[:2])
-        # local fits from the listed fit (index 0) and the two most promising other starts
-        # (another start only when its score already beats the listed fit: otherwise the data
-        # give the extra parameter nothing to do, and a listed effect costs one local fit)
-        runs = [t for t in scored if t[1] == 0] + [
-            t for t in scored if t[1] != 0 and t[0] < f_listed.chi2][:N_RUNS - 1]
-        profiled = bool(form.profile and cand.profile_grid)
+@dataclass
+class ChosenForm:
+    """The generalised form that explains the data: its fit, held-out residuals and entry."""
+    fit: Fit
+    heldout_z: np.ndarray
+    entry: FormEntry
 
-        def local_fit(u):
-            """The local fit from start u (None: the profiled fit over the listed grid), or None
-            when the model fails."""
-            try:
-                if u is None:
-                    return self.fit_profiled(form, SimpleNamespace(profile_grid=cand.profile_grid),
-                                             b.fit, b.nuisance)
-                return self.fit(space, u)
-            except ModelFailure:
-                return None
 
-        # the local fits are independent: on the engine's workers (the profiled one first)
-        got = self.parallel(local_fit, [u for _, _, u in runs] + [None] * profiled,
-                            first=[len(runs)] if profiled else None)
-        f_ext = None
-        for fi in got[:len(runs)]:
-            if fi is not None and (f_ext is None or fi.chi2 < f_ext.chi2):
-                f_ext = fi
-        fp = got[-1] if profiled else None
-        if fp is not None and (f_ext is None or fp.chi2 < f_ext.chi2):
-            f_ext = fp
-        if f_ext is None:
-            raise ModelFailure("the fits of the generalised form fail from every start")
-        eff_vals, nuis_vals = f_ext.space.unpack(f_ext.u)
-        params = dict(eff_vals[form.name])
-        n_bound = sum(1 for p in form.extra if form.on_bound(p))
-        n_free = len(form.extra) - n_bound
-        lr = max(f_listed.chi2 - f_ext.chi2, 0.0)
-        p = chibar_pvalue(lr, n_free, n_bound)
-        p_adj = min(1.0, p * m)
-        dbic = -lr + len(form.extra) * math.log(self.N)
-        ho_ext = self.heldout_linear(f_ext)
-        g_listed = self.bootstrap_gain(ho_listed, ho_ext)
-        g_base = self.bootstrap_gain(b.heldout_z, ho_ext)
-        desc = self.describe(f_ext.pred, nq + (cand.k or 0) + len(form.extra))
-        reasons = []
-        if not p_adj < th["alpha_lr"]:
-            reasons.append(f"not significant against the listed form (p = {p_adj:.2g}, "
-                           f"Bonferroni over {m})")
-        if not dbic < -th["bic_margin"]:
-            reasons.append(f"BIC not better than the listed form (delta {dbic:.1f})")
-        if not g_listed["excludes_zero"]:
-            reasons.append("no held-out gain over the listed form (bootstrap interval "
-                           f"[{g_listed['ci'][0]:.3g}, {g_listed['ci'][1]:.3g}] includes 0)")
-        if not g_base["excludes_zero"]:
-            reasons.append("no held-out gain over the baseline")
-        if not reasons and desc["p_min_adjusted"] < th["alpha_residual"]:
-            status = "passes_but_leaves_structure"
-            reasons.append("beats the listed form but leaves structure (adjusted p = "
-                           f"{desc['p_min_adjusted']:.2g})")
-        else:
-            status = "rejected" if reasons else "explains"
-        entry = {
-            "effect": form.family, "form": form.form, "name": form.name, "label": form.label,
-            "text": form.text(params), "parameters": params,
-            "units": {q: form.units[q] for q in form.parameters},
-            "parameter_uncertainty": self.uncertainty(f_ext, form),
-            "listed_parameters": vals_listed, "nuisance": nuis_vals,
-            "chi2_listed": f_listed.chi2, "chi2": f_ext.chi2, "lr_vs_listed": lr,
-            "df_vs_listed": {"free": n_free, "on_bound": n_bound}, "p_vs_listed": p_adj,
-            "delta_bic_vs_listed": dbic,
-            "heldout_gain_vs_listed": g_listed, "heldout_gain_vs_baseline": g_base,
-            "heldout_rmse": self.col_rmse(ho_ext), "rmse": self.col_rmse(f_ext.z),
-            "residuals": desc, "status": status,
-            "reason": "; ".join(reasons) if reasons else
-                      "beats the listed form in sample and on held-out blocks, no structure left"}
-        if form.profile:
-            entry["profiled"] = {q: {"value": params[q], "listed_fit": vals_listed[q]}
-                                 for q in form.profile}
-        return entry, f_ext, ho_ext
+@dataclass
+class Generalisation:
+    """Phase 5b: the (possibly new) decision, one entry per form tried, the chosen form."""
+    decision: Decision
+    forms: list[FormEntry]
+    chosen: ChosenForm | None
+
+
+def _families(pb: Problem, s: Screening, fits: dict[str, Fit], d: Decision) -> list[str]:
+    """Listed families whose forms are tried: the cause's own (explained), else the fitted
+    candidates better than the baseline (delta BIC < 0, significant), best first."""
+    cands = s.candidates
+    if d.verdict == "explained":        # the listed cause's own forms, nested in it
+        return [d.cause] if forms_of(d.cause) else []
+    return [n for n in sorted(fits, key=lambda n: cands[n].delta_bic)
+            if forms_of(n) and cands[n].delta_bic < 0 and cands[n].lr_significant]
+
+
+def generalise(pb: Problem, s: Screening, fits: dict[str, Fit], ho: dict, b: Baseline,
+               d: Decision, rng: np.random.Generator) -> Generalisation:
+    """Try the generalised forms (module docstring)."""
+    if not pb.try_generalised or d.verdict not in ("unexplained", "explained"):
+        return Generalisation(d, [], None)
+    cands = s.candidates
+    tried = [(fam, f) for fam in _families(pb, s, fits, d)[:MAX_FAMILIES] for f in forms_of(fam)
+             if f.applicable(pb.conditions) is None]
+    entries, ok = [], []
+    for fam, form in tried:
+        listed = pb.effect(fam)
+        form = form.with_bounds(**{p: listed.bounds[p] for p in form.parameters
+                                   if p in listed.bounds})
+        try:
+            entry, f_ext, ho_ext = fit_form(pb, form, fits[fam], ho[fam], cands[fam], b,
+                                            len(tried), rng)
+        except ModelFailure as exc:
+            entries.append(FormEntry(fam, form.form, form.name, "model_failed", str(exc)))
+            continue
+        entries.append(entry)
+        if entry.status == "explains":
+            ok.append((f_ext.chi2, entry, f_ext, ho_ext))
+    if not ok:
+        return Generalisation(d, entries, None)
+    ok.sort(key=lambda t: t[0])
+    _, entry, f_ext, ho_ext = ok[0]
+    reasons = list(d.reasons) + [
+        f"the generalised form {entry.text} beats the listed form {entry.effect} in "
+        f"sample (p = {entry.p_vs_listed:.2g}) and on held-out blocks and leaves no "
+        "structure"]
+    new = Decision("explained", entry.effect, entry.effect, [], entry.residuals,
+                   d.joint_fits, reasons)
+    return Generalisation(new, entries, ChosenForm(f_ext, ho_ext, entry))
+
+
+def _scored_starts(pb: Problem, form, space, vals_listed: dict, f_listed: Fit) -> list[tuple]:
+    """(chi-square with the nuisance refitted linearly, index, start) of the form's starts:
+    the listed fit's reducing value first, then the fit specification's extra starts; one model
+    call each, on the workers; best first."""
+    k, nq = space.k, len(pb.nuisance.names)
+    u_nuis = f_listed.u[f_listed.space.k:]
+    start_vals = [form.from_listed(vals_listed)]
+    start_vals += [{**start_vals[0], **x}
+                   for x in fitspec.extra_starts(form, vals_listed, pb.conditions)]
+    Jn = f_listed.J[:, f_listed.space.k:]       # d z / d u_nuisance at the listed fit
+
+    def score(iv):
+        i, v = iv
+        x = np.array([v[p] for (_, p) in space.eff_params], float)
+        u = space.clip(np.concatenate([(x - space.origin[:k]) / space.scale[:k], u_nuis]))
+        try:
+            z, _ = pb.eval(space, u)
+        except ModelFailure:
+            return None
+        if nq:                                   # linearised nuisance refit for the score
+            dn, *_ = np.linalg.lstsq(Jn, -z, rcond=None)
+            u = space.clip(np.concatenate([u[:k], u[k:] + dn]))
+            z = z + Jn @ dn
+        return float(z @ z), i, u
+
+    scored = [t for t in pb.parallel(score, list(enumerate(start_vals))) if t is not None]
+    if not scored:
+        raise ModelFailure("the model fails at every start of the generalised form")
+    scored.sort(key=lambda t: t[:2])
+    return scored
+
+
+def _best_local_fit(pb: Problem, form, space, scored: list[tuple], f_listed: Fit, cand,
+                    b: Baseline) -> Fit:
+    """Local fits from the listed fit (index 0) and the two most promising other starts
+    (another start only when its score already beats the listed fit: otherwise the data give
+    the extra parameter nothing to do, and a listed effect costs one local fit), and with a
+    profiled parameter the profiled fit over the listed grid; the best."""
+    runs = [t for t in scored if t[1] == 0] + [
+        t for t in scored if t[1] != 0 and t[0] < f_listed.chi2][:N_RUNS - 1]
+    profiled = bool(fitspec.profile(form) and cand.profile_grid)
+
+    def local_fit(u):
+        """The local fit from start u (None: the profiled fit over the listed grid), or None
+        when the model fails."""
+        try:
+            if u is None:
+                return fit_profiled(pb, form, SimpleNamespace(profile_grid=cand.profile_grid),
+                                    b.fit, b.nuisance)
+            return pb.fit(space, u)
+        except ModelFailure:
+            return None
+
+    # the local fits are independent: on the workers (the profiled one first)
+    got = pb.parallel(local_fit, [u for _, _, u in runs] + [None] * profiled,
+                      first=[len(runs)] if profiled else None)
+    # the best of the local fits, then the profiled one only when strictly better
+    f_ext = _lowest(got[:len(runs)])
+    if profiled:
+        f_ext = _lowest([f_ext, got[-1]])
+    if f_ext is None:
+        raise ModelFailure("the fits of the generalised form fail from every start")
+    return f_ext
+
+
+def _lowest(fits: list[Fit | None]) -> Fit | None:
+    """The fit of lowest chi-square (the first of equals), None when none succeeded."""
+    best = None
+    for f in fits:
+        if f is not None and (best is None or f.chi2 < best.chi2):
+            best = f
+    return best
+
+
+def _form_status(th, m: int, p_adj: float, dbic: float, g_listed: HeldoutGain,
+                 g_base: HeldoutGain,
+                 desc: Residuals) -> tuple[str, list[str]]:
+    """explains | passes_but_leaves_structure | rejected, and why (module docstring, 2-4)."""
+    reasons = []
+    if not p_adj < th["alpha_lr"]:
+        reasons.append(f"not significant against the listed form (p = {p_adj:.2g}, "
+                       f"Bonferroni over {m})")
+    if not dbic < -th["bic_margin"]:
+        reasons.append(f"BIC not better than the listed form (delta {dbic:.1f})")
+    if not g_listed.excludes_zero:
+        reasons.append("no held-out gain over the listed form (bootstrap interval "
+                       f"[{g_listed.ci[0]:.3g}, {g_listed.ci[1]:.3g}] includes 0)")
+    if not g_base.excludes_zero:
+        reasons.append("no held-out gain over the baseline")
+    if not reasons and desc.p_min_adjusted < th["alpha_residual"]:
+        reasons.append("beats the listed form but leaves structure (adjusted p = "
+                       f"{desc.p_min_adjusted:.2g})")
+        return "passes_but_leaves_structure", reasons
+    return ("rejected" if reasons else "explains"), reasons
+
+
+def fit_form(pb: Problem, form, f_listed: Fit, ho_listed: np.ndarray, cand, b: Baseline,
+             m: int, rng: np.random.Generator) -> tuple[FormEntry, Fit, np.ndarray]:
+    """Nested fit of one generalised form from the listed fit and its tests (module
+    docstring, steps 1-4). Returns (entry, fit, held-out residuals)."""
+    vals_listed = dict(cand.parameters)
+    space = pb.space([form], {form.name: {p: vals_listed[p] for p in fitspec.profile(form)}})
+    scored = _scored_starts(pb, form, space, vals_listed, f_listed)
+    f_ext = _best_local_fit(pb, form, space, scored, f_listed, cand, b)
+    eff_vals, nuis_vals = f_ext.space.unpack(f_ext.u)
+    params = dict(eff_vals[form.name])
+    n_bound = sum(1 for p in form.extra if form.on_bound(p))
+    n_free = len(form.extra) - n_bound
+    lr = max(f_listed.chi2 - f_ext.chi2, 0.0)
+    p_adj = min(1.0, chibar_pvalue(lr, n_free, n_bound) * m)
+    dbic = -lr + len(form.extra) * math.log(pb.N)
+    ho_ext = heldout_linear(pb, f_ext)
+    g_listed = bootstrap_gain(pb, rng, ho_listed, ho_ext)
+    g_base = bootstrap_gain(pb, rng, b.heldout_z, ho_ext)
+    desc = pb.describe(f_ext.pred, len(pb.nuisance.names) + (cand.k or 0) + len(form.extra))
+    status, reasons = _form_status(pb.th, m, p_adj, dbic, g_listed, g_base, desc)
+    reason = ("; ".join(reasons) if reasons else
+              "beats the listed form in sample and on held-out blocks, no structure left")
+    profiled = ({q: {"value": params[q], "listed_fit": vals_listed[q]}
+                 for q in fitspec.profile(form)} if fitspec.profile(form) else None)
+    entry = FormEntry(
+        form.family, form.form, form.name, status, reason, label=form.label,
+        text=form.text(params), parameters=params,
+        units={q: form.units[q] for q in form.parameters},
+        parameter_uncertainty=uncertainty(pb, f_ext, form), listed_parameters=vals_listed,
+        nuisance=nuis_vals, chi2_listed=f_listed.chi2, chi2=f_ext.chi2, lr_vs_listed=lr,
+        df_vs_listed={"free": n_free, "on_bound": n_bound}, p_vs_listed=p_adj,
+        delta_bic_vs_listed=dbic, heldout_gain_vs_listed=g_listed,
+        heldout_gain_vs_baseline=g_base, heldout_rmse=pb.col_rmse(ho_ext),
+        rmse=pb.col_rmse(f_ext.z), residuals=desc, profiled=profiled)
+    return entry, f_ext, ho_ext

@@ -19,7 +19,10 @@ import math
 
 import numpy as np
 
-from studies.diagnosis.core import Baseline, Fit, ModelFailure, Screening
+from studies.diagnosis import fitspec
+from studies.diagnosis.candidate import HeldoutGain
+from studies.diagnosis.core import Baseline, Fit, Linearisation, ModelFailure, Screening
+from studies.diagnosis.problem import Problem
 from studies.diagnosis.stats import blsq
 
 #: relative size below which two predictions (or sensitivities) count as equal: round-off of a
@@ -46,258 +49,250 @@ def _lin_sse(J, z, lo, hi) -> tuple[float, np.ndarray]:
 MIN_TESTABLE_BLOCKS = 3
 
 
-class HeldoutPhase:
-    def validate(self, s: Screening, fits: dict[str, Fit], b: Baseline):
-        """Held-out residuals per candidate and the names of the candidates that pass."""
-        th = self.th
-        base_ho, cands, names_id = b.heldout_z, s.candidates, s.identifiable
-        ho = {}
+def validate(pb: Problem, s: Screening, fits: dict[str, Fit], b: Baseline,
+             rng: np.random.Generator):
+    """Held-out residuals per candidate and the names of the candidates that pass."""
+    th = pb.th
+    base_ho, cands, names_id = b.heldout_z, s.candidates, list(fits)
+    ho = {}
 
-        def refit(name):
-            """(held-out residuals, chosen profiled values or None, untestable blocks, failure
-            message or None): the model calls of one candidate, no random numbers."""
-            e = self.effect(name)
+    def refit(name):
+        """(held-out residuals, chosen profiled values or None, untestable blocks, failure
+        message or None): the model calls of one candidate, no random numbers."""
+        e = pb.effect(name)
+        try:
+            if fitspec.profile(e):
+                return (*heldout_profile(pb, fits[name], e, base_ho), None)
+            return heldout_linear(pb, fits[name]), None, {}, None
+        except ModelFailure as exc:
+            return None, None, {}, str(exc)
+
+    # the candidates' refits are independent: on the engine's workers; the bootstraps below
+    # draw from the engine's random numbers in the candidates' order
+    names = list(names_id)
+    done = pb.parallel(refit, names,
+                         first=[i for i, n in enumerate(names) if fitspec.profile(pb.effect(n))])
+    for name, (z_ho, chosen, untestable, failed) in zip(names, done):
+        e = pb.effect(name)
+        if failed is not None:
+            # no honest held-out number: the candidate cannot pass
+            cands[name].heldout_failed = failed
+            ho[name] = base_ho.copy()
+        else:
+            ho[name] = z_ho
+            if fitspec.profile(e):
+                cands[name].heldout_profile_values = chosen
+                cands[name].heldout_untestable = [
+                    {"block": int(bk) + 1, "rows": pb.block_rows(bk), "reason": why}
+                    for bk, why in sorted(untestable.items())]
+        cands[name].heldout_rmse = pb.col_rmse(ho[name])
+        keep = np.ones(pb.n_blocks, bool)
+        keep[list(untestable)] = False
+        cands[name].heldout_gain = bootstrap_gain(pb, rng, base_ho, ho[name], keep)
+    passing = []
+    for name in names_id:
+        c = cands[name]
+        reasons = []
+        if not c.lr_significant:
+            reasons.append(f"likelihood ratio not significant (p = {c.p_lr:.2g}, Holm)")
+        if not c.delta_bic < -th["bic_margin"]:
+            reasons.append(f"BIC not better than the baseline (delta {c.delta_bic:.1f})")
+        need = min(MIN_TESTABLE_BLOCKS, pb.n_blocks)
+        g = c.heldout_gain
+        if g.n_blocks < need:
+            reasons.append(f"only {g.n_blocks} held-out blocks can test it (need {need})")
+        elif not g.excludes_zero:
+            reasons.append("no held-out gain beyond noise (bootstrap interval "
+                           f"[{g.ci[0]:.3g}, {g.ci[1]:.3g}] includes 0)")
+        c.status = "passed" if not reasons else "rejected"
+        c.reason = "; ".join(reasons) if reasons else "beats the baseline in sample and " \
+                                                         "on held-out blocks"
+        if not reasons:
+            passing.append(name)
+
+    return ho, passing
+
+def heldout_linear(pb: Problem, fit: Fit) -> np.ndarray:
+    """Held-out standardised residual per stacked entry: per fold, one bounded Gauss-Newton
+    step from `fit` on the training entries (halved once if it does not lower the training
+    chi-square), then a real model call."""
+    z_ho = np.empty(pb.N)
+    sp = fit.space
+
+    def fold(b):
+        """The held-out block's residuals (its model call from the training-rows step)."""
+        te = pb.entry_block == b
+        tr = ~te
+        J, z = fit.J[tr], fit.z[tr]
+        if J.shape[1]:
+            lo = np.minimum(sp.lo - fit.u, 0.0)
+            hi = np.maximum(sp.hi - fit.u, 0.0)
+            du = blsq(J, -z, lo, hi)
+        else:
+            du = np.zeros(0)
+        sse0 = float(z @ z)
+        for damp in (1.0, 0.5):
             try:
-                if e.profile:
-                    return (*self.heldout_profile(fits[name], e, base_ho), None)
-                return self.heldout_linear(fits[name]), None, {}, None
-            except ModelFailure as exc:
-                return None, None, {}, str(exc)
-
-        # the candidates' refits are independent: on the engine's workers; the bootstraps below
-        # draw from the engine's random numbers in the candidates' order
-        names = list(names_id)
-        done = self.parallel(refit, names,
-                             first=[i for i, n in enumerate(names) if self.effect(n).profile])
-        for name, (z_ho, chosen, untestable, failed) in zip(names, done):
-            e = self.effect(name)
-            if failed is not None:
-                # no honest held-out number: the candidate cannot pass
-                cands[name].heldout_failed = failed
-                ho[name] = base_ho.copy()
-            else:
-                ho[name] = z_ho
-                if e.profile:
-                    cands[name].heldout_profile_values = chosen
-                    cands[name].heldout_untestable = [
-                        {"block": int(bk) + 1, "rows": self._block_rows(bk), "reason": why}
-                        for bk, why in sorted(untestable.items())]
-            cands[name].heldout_rmse = self.col_rmse(ho[name])
-            keep = np.ones(self.n_blocks, bool)
-            keep[list(untestable)] = False
-            cands[name].heldout_gain = self.bootstrap_gain(base_ho, ho[name], keep)
-        passing = []
-        for name in names_id:
-            c = cands[name]
-            reasons = []
-            if not c.lr_significant:
-                reasons.append(f"likelihood ratio not significant (p = {c.p_lr:.2g}, Holm)")
-            if not c.delta_bic < -th["bic_margin"]:
-                reasons.append(f"BIC not better than the baseline (delta {c.delta_bic:.1f})")
-            need = min(MIN_TESTABLE_BLOCKS, self.n_blocks)
-            if c.heldout_gain["n_blocks"] < need:
-                reasons.append(f"only {c.heldout_gain['n_blocks']} held-out blocks can test it "
-                               f"(need {need})")
-            elif not c.heldout_gain["excludes_zero"]:
-                reasons.append("no held-out gain beyond noise (bootstrap interval "
-                               f"[{c.heldout_gain['ci'][0]:.3g}, "
-                               f"{c.heldout_gain['ci'][1]:.3g}] includes 0)")
-            c.status = "passed" if not reasons else "rejected"
-            c.reason = "; ".join(reasons) if reasons else "beats the baseline in sample and " \
-                                                             "on held-out blocks"
-            if not reasons:
-                passing.append(name)
-
-        return ho, passing
-
-    def heldout_linear(self, fit: Fit) -> np.ndarray:
-        """Held-out standardised residual per stacked entry: per fold, one bounded Gauss-Newton
-        step from `fit` on the training entries (halved once if it does not lower the training
-        chi-square), then a real model call."""
-        z_ho = np.empty(self.N)
-        sp = fit.space
-
-        def fold(b):
-            """The held-out block's residuals (its model call from the training-rows step)."""
-            te = self.entry_block == b
-            tr = ~te
-            J, z = fit.J[tr], fit.z[tr]
-            if J.shape[1]:
-                lo = np.minimum(sp.lo - fit.u, 0.0)
-                hi = np.maximum(sp.hi - fit.u, 0.0)
-                du = blsq(J, -z, lo, hi)
-            else:
-                du = np.zeros(0)
-            sse0 = float(z @ z)
-            for damp in (1.0, 0.5):
-                try:
-                    zz, _ = self.eval(sp, sp.clip(fit.u + damp * du))
-                except ModelFailure:
-                    continue
-                if float(zz[tr] @ zz[tr]) <= sse0 * (1 + 1e-9):
-                    break
-            else:
-                zz = fit.z             # keep the full-data fit (no better training fit found)
-            return zz[te]
-
-        # the folds are independent: on the engine's workers (inside a worker: one by one)
-        blocks = [b for b in range(self.n_blocks) if (self.entry_block == b).any()]
-        for b, z_te in zip(blocks, self.parallel(fold, blocks)):
-            z_ho[self.entry_block == b] = z_te
-        return z_ho
-
-
-    def heldout_profile(self, fit: Fit, e, base_ho: np.ndarray
-                        ) -> tuple[np.ndarray, list, dict[int, str]]:
-        """Held-out residuals for a candidate with a profiled parameter (a threshold), all its
-        parameters refitted on the kept blocks (module docstring). Per held-out block:
-
-        1. a global profile over the grid values the in-sample profile evaluated: each value's
-           linearisation (at the baseline) is fitted to the kept rows; the TOP_VALUES best are
-           linearised again about the full-data fit (cached across blocks) and the best of those
-           on the kept rows is chosen;
-        2. untestable (left out, see `_untestable`) or refined: every other parameter and the
-           nuisance refitted on the kept rows by a chord (simplified Gauss-Newton) iteration to
-           convergence with the Jacobian about the full fit, each step a real model call; the
-           held-out block is predicted at the result.
-
-        Returns the stacked held-out residuals (untestable blocks keep the baseline's: no gain
-        claimed there), the chosen value per testable block and {block: reason} for the
-        untestable ones."""
-        (pp,) = e.profile
-        grid_lin = fit.extra["grid_lin"]
-        k = fit.space.k
-        u = fit.u
-        Jn = fit.J[:, k:]
-        relin: dict[float, dict | None] = {}
-
-        def about_fit(g):
-            v = g["value"]
-            if v not in relin:
-                space = g["space"]                # same coordinates for every value of pp
-                try:
-                    z0, _ = self.eval(space, u)
-                    cols = []
-                    for i in range(k):
-                        h = 1.0 if u[i] + 1.0 <= space.hi[i] else -1.0
-                        du = np.zeros_like(u)
-                        du[i] = h
-                        cols.append((self.eval(space, u + du)[0] - z0) / h)
-                    relin[v] = {"value": v, "space": space, "z": z0,
-                                "J": np.column_stack(cols + [Jn])}
-                except ModelFailure:
-                    relin[v] = None
-            return relin[v]
-
-        lo, hi = fit.space.lo - u, fit.space.hi - u
-        z_ho = base_ho.copy()
-        chosen, untestable = [], {}
-        for b in range(self.n_blocks):
-            te = self.entry_block == b
-            tr = ~te
-            if not te.any():
+                zz, _ = pb.eval(sp, sp.clip(fit.u + damp * du))
+            except ModelFailure:
                 continue
-            ranked = sorted(grid_lin, key=lambda g: _lin_sse(g["J"][tr], g["z"][tr], g["lo"],
-                                                             g["hi"])[0])
-            best = None
-            for g in ranked[:TOP_VALUES]:
-                L = about_fit(g)
-                if L is None:
-                    continue
-                sse, x = _lin_sse(L["J"][tr], L["z"][tr], lo, hi)
-                if best is None or sse < best[0]:
-                    best = (sse, L, x, g)
-            if best is None:
-                raise ModelFailure(f"the model fails at every {pp} about the fit")
-            _, L, x, g = best
-            why = self._untestable(g, grid_lin, tr, te, pp)
-            if why:
-                untestable[b] = why
+            if float(zz[tr] @ zz[tr]) <= sse0 * (1 + 1e-9):
+                break
+        else:
+            zz = fit.z             # keep the full-data fit (no better training fit found)
+        return zz[te]
+
+    # the folds are independent: on the engine's workers (inside a worker: one by one)
+    blocks = [b for b in range(pb.n_blocks) if (pb.entry_block == b).any()]
+    for b, z_te in zip(blocks, pb.parallel(fold, blocks)):
+        z_ho[pb.entry_block == b] = z_te
+    return z_ho
+
+
+def heldout_profile(pb: Problem, fit: Fit, e, base_ho: np.ndarray
+                    ) -> tuple[np.ndarray, list, dict[int, str]]:
+    """Held-out residuals for a candidate with a profiled parameter (a threshold), all its
+    parameters refitted on the kept blocks (module docstring). Per held-out block:
+
+    1. a global profile over the grid values the in-sample profile evaluated: each value's
+       linearisation (at the baseline) is fitted to the kept rows; the TOP_VALUES best are
+       linearised again about the full-data fit (cached across blocks) and the best of those
+       on the kept rows is chosen;
+    2. untestable (left out, see `_untestable`) or refined: every other parameter and the
+       nuisance refitted on the kept rows by a chord (simplified Gauss-Newton) iteration to
+       convergence with the Jacobian about the full fit, each step a real model call; the
+       held-out block is predicted at the result.
+
+    Returns the stacked held-out residuals (untestable blocks keep the baseline's: no gain
+    claimed there), the chosen value per testable block and {block: reason} for the
+    untestable ones."""
+    (pp,) = fitspec.profile(e)
+    grid_lin = fit.grid
+    k = fit.space.k
+    u = fit.u
+    Jn = fit.J[:, k:]
+    relin: dict[float, Linearisation | None] = {}
+
+    def about_fit(g):
+        v = g.value
+        if v not in relin:
+            space = g.space                   # same coordinates for every value of pp
+            try:
+                z0, _ = pb.eval(space, u)
+                cols = []
+                for i in range(k):
+                    h = 1.0 if u[i] + 1.0 <= space.hi[i] else -1.0
+                    du = np.zeros_like(u)
+                    du[i] = h
+                    cols.append((pb.eval(space, u + du)[0] - z0) / h)
+                relin[v] = Linearisation(v, space, np.column_stack(cols + [Jn]), z0)
+            except ModelFailure:
+                relin[v] = None
+        return relin[v]
+
+    lo, hi = fit.space.lo - u, fit.space.hi - u
+    z_ho = base_ho.copy()
+    chosen, untestable = [], {}
+    for b in range(pb.n_blocks):
+        te = pb.entry_block == b
+        tr = ~te
+        if not te.any():
+            continue
+        ranked = sorted(grid_lin, key=lambda g: _lin_sse(g.J[tr], g.z[tr], g.lo, g.hi)[0])
+        best = None
+        for g in ranked[:TOP_VALUES]:
+            L = about_fit(g)
+            if L is None:
                 continue
-            zz = self._refit_rows(L["space"], u + x, tr, L["J"])
-            z_ho[te] = zz[te]
-            chosen.append(L["value"])
-        return z_ho, chosen, untestable
+            sse, x = _lin_sse(L.J[tr], L.z[tr], lo, hi)
+            if best is None or sse < best[0]:
+                best = (sse, L, x, g)
+        if best is None:
+            raise ModelFailure(f"the model fails at every {pp} about the fit")
+        _, L, x, g = best
+        why = _untestable(g, grid_lin, tr, te, pp)
+        if why:
+            untestable[b] = why
+            continue
+        zz = _refit_rows(pb, L.space, u + x, tr, L.J)
+        z_ho[te] = zz[te]
+        chosen.append(L.value)
+    return z_ho, chosen, untestable
 
-    def _untestable(self, g: dict, grid_lin: list[dict], tr, te, pp: str) -> str | None:
-        """Why the kept entries (`tr`) cannot test the held-out block (`te`) at the chosen value
-        (`g`, its linearisation at the baseline: the effect's sensitivity per parameter), or
-        None: a parameter whose sensitivity vanishes on the kept rows (the effect acts only in
-        this block), or another value whose sensitivity equals the chosen one's on the kept rows
-        but not on this block (where the trigger falls inside this block cannot be learnt)."""
-        k = g["space"].k
-        Jg = g["J"][:, :k]
-        ref = max(float(np.max(np.abs(Jg), initial=0.0)), 1e-300)
-        for i, (_, p) in enumerate(g["space"].eff_params):
-            full = float(np.max(np.abs(Jg[:, i])))
-            if full > 0 and float(np.max(np.abs(Jg[tr, i]), initial=0.0)) <= SAME_RTOL * full:
-                return (f"{p} does not change the predictions of the other blocks (at {pp} = "
-                        f"{g['value']:g} the effect acts only in this block)")
-        for h in grid_lin:
-            if h is g:
-                continue
-            Jh = h["J"][:, :k]
-            if (np.max(np.abs(Jh[tr] - Jg[tr]), initial=0.0) <= SAME_RTOL * ref
-                    and np.max(np.abs(Jh[te] - Jg[te]), initial=0.0) > SAME_RTOL * ref):
-                a, c = sorted((g["value"], h["value"]))
-                return (f"{pp} = {a:g} and {c:g} act identically on the other blocks but not on "
-                        "this one: the trigger falls inside this block, and where cannot be "
-                        "learnt from the others")
-        return None
+def _untestable(g: Linearisation, grid_lin: list[Linearisation], tr, te, pp: str) -> str | None:
+    """Why the kept entries (`tr`) cannot test the held-out block (`te`) at the chosen value
+    (`g`, its linearisation at the baseline: the effect's sensitivity per parameter), or
+    None: a parameter whose sensitivity vanishes on the kept rows (the effect acts only in
+    this block), or another value whose sensitivity equals the chosen one's on the kept rows
+    but not on this block (where the trigger falls inside this block cannot be learnt)."""
+    k = g.space.k
+    Jg = g.J[:, :k]
+    ref = max(float(np.max(np.abs(Jg), initial=0.0)), 1e-300)
+    for i, (_, p) in enumerate(g.space.eff_params):
+        full = float(np.max(np.abs(Jg[:, i])))
+        if full > 0 and float(np.max(np.abs(Jg[tr, i]), initial=0.0)) <= SAME_RTOL * full:
+            return (f"{p} does not change the predictions of the other blocks (at {pp} = "
+                    f"{g.value:g} the effect acts only in this block)")
+    for h in grid_lin:
+        if h is g:
+            continue
+        Jh = h.J[:, :k]
+        if (np.max(np.abs(Jh[tr] - Jg[tr]), initial=0.0) <= SAME_RTOL * ref
+                and np.max(np.abs(Jh[te] - Jg[te]), initial=0.0) > SAME_RTOL * ref):
+            a, c = sorted((g.value, h.value))
+            return (f"{pp} = {a:g} and {c:g} act identically on the other blocks but not on "
+                    "this one: the trigger falls inside this block, and where cannot be "
+                    "learnt from the others")
+    return None
 
-    def _refit_rows(self, space, u0, rows, J) -> np.ndarray:
-        """Bounded least squares on the stacked entries `rows` only: chord iterations (the
-        Jacobian `J` held, each step a real model call, halved while it does not lower the
-        kept rows' chi-square) until the step or the gain is negligible. Returns the stacked
-        standardised residuals at the result (all entries)."""
-        u = space.clip(np.asarray(u0, float))
-        z, _ = self.eval(space, u)
-        sse = float(z[rows] @ z[rows])
-        Jr = J[rows]
-        for _ in range(CHORD_ITER):
-            du = blsq(Jr, -z[rows], space.lo - u, space.hi - u)
-            if not np.any(np.abs(du) > CHORD_STEP):
+def _refit_rows(pb: Problem, space, u0, rows, J) -> np.ndarray:
+    """Bounded least squares on the stacked entries `rows` only: chord iterations (the
+    Jacobian `J` held, each step a real model call, halved while it does not lower the
+    kept rows' chi-square) until the step or the gain is negligible. Returns the stacked
+    standardised residuals at the result (all entries)."""
+    u = space.clip(np.asarray(u0, float))
+    z, _ = pb.eval(space, u)
+    sse = float(z[rows] @ z[rows])
+    Jr = J[rows]
+    for _ in range(CHORD_ITER):
+        du = blsq(Jr, -z[rows], space.lo - u, space.hi - u)
+        if not np.any(np.abs(du) > CHORD_STEP):
+            break
+        for damp in (1.0, 0.5, 0.25):
+            un = space.clip(u + damp * du)
+            zn, _ = pb.eval(space, un)
+            ssen = float(zn[rows] @ zn[rows])
+            if ssen <= sse:
                 break
-            for damp in (1.0, 0.5, 0.25):
-                un = space.clip(u + damp * du)
-                zn, _ = self.eval(space, un)
-                ssen = float(zn[rows] @ zn[rows])
-                if ssen <= sse:
-                    break
-            else:
-                break
-            gain = sse - ssen
-            u, z, sse = un, zn, ssen
-            if gain <= 1e-6 * max(sse, 1.0):
-                break
-        return z
+        else:
+            break
+        gain = sse - ssen
+        u, z, sse = un, zn, ssen
+        if gain <= 1e-6 * max(sse, 1.0):
+            break
+    return z
 
-    def _block_rows(self, b: int) -> list[int]:
-        """First and last row (1-based, as in the file) of held-out block b."""
-        rows = np.flatnonzero(self.blocks == b)
-        return [int(rows[0]) + 1, int(rows[-1]) + 1]
+def bootstrap_gain(pb: Problem, rng: np.random.Generator, z_base_ho, z_cand_ho,
+                   keep=None) -> HeldoutGain:
+    """Paired block bootstrap of RMSE(baseline) - RMSE(candidate), standardised, held-out,
+    over the blocks `keep` (boolean per block; default all)."""
+    B = int(pb.th["n_boot"])
+    keep = np.ones(pb.n_blocks, bool) if keep is None else np.asarray(keep, bool)
+    sb = np.bincount(pb.entry_block, weights=z_base_ho ** 2, minlength=pb.n_blocks)[keep]
+    sc = np.bincount(pb.entry_block, weights=z_cand_ho ** 2, minlength=pb.n_blocks)[keep]
+    nb = np.bincount(pb.entry_block, minlength=pb.n_blocks).astype(float)[keep]
+    m = int(keep.sum())
+    if m == 0:
+        return HeldoutGain(0.0, [0.0, 0.0], 0, 0, False)
+    idx = rng.integers(0, m, size=(B, m))
+    cnt = np.zeros((B, m))
+    np.add.at(cnt, (np.repeat(np.arange(B), m), idx.ravel()), 1.0)
+    nn = cnt @ nb
+    d = np.sqrt(cnt @ sb / nn) - np.sqrt(cnt @ sc / nn)
+    q = float(pb.th["heldout_quantile"])
+    point = math.sqrt(sb.sum() / nb.sum()) - math.sqrt(sc.sum() / nb.sum())
+    lo, hi = np.quantile(d, [q, 1 - q])
+    return HeldoutGain(float(point), [float(lo), float(hi)], int(np.sum(sb > sc)), m,
+                       bool(lo > 0))
 
-    def bootstrap_gain(self, z_base_ho, z_cand_ho, keep=None) -> dict:
-        """Paired block bootstrap of RMSE(baseline) - RMSE(candidate), standardised, held-out,
-        over the blocks `keep` (boolean per block; default all)."""
-        B = int(self.th["n_boot"])
-        keep = np.ones(self.n_blocks, bool) if keep is None else np.asarray(keep, bool)
-        sb = np.bincount(self.entry_block, weights=z_base_ho ** 2, minlength=self.n_blocks)[keep]
-        sc = np.bincount(self.entry_block, weights=z_cand_ho ** 2, minlength=self.n_blocks)[keep]
-        nb = np.bincount(self.entry_block, minlength=self.n_blocks).astype(float)[keep]
-        m = int(keep.sum())
-        if m == 0:
-            return {"rmse_gain": 0.0, "ci": [0.0, 0.0], "blocks_improved": 0, "n_blocks": 0,
-                    "excludes_zero": False}
-        idx = self.rng.integers(0, m, size=(B, m))
-        cnt = np.zeros((B, m))
-        np.add.at(cnt, (np.repeat(np.arange(B), m), idx.ravel()), 1.0)
-        nn = cnt @ nb
-        d = np.sqrt(cnt @ sb / nn) - np.sqrt(cnt @ sc / nn)
-        q = float(self.th["heldout_quantile"])
-        point = math.sqrt(sb.sum() / nb.sum()) - math.sqrt(sc.sum() / nb.sum())
-        lo, hi = np.quantile(d, [q, 1 - q])
-        return {"rmse_gain": float(point), "ci": [float(lo), float(hi)],
-                "blocks_improved": int(np.sum(sb > sc)), "n_blocks": m,
-                "excludes_zero": bool(lo > 0)}
 

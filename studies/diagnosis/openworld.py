@@ -134,6 +134,24 @@ def named_features(conditions: Mapping[str, np.ndarray]) -> tuple[dict[str, np.n
     Returns (features, descriptions, aliases): features that do not vary are left out; a feature
     proportional to an earlier one is left out and named in aliases."""
     c = {k: np.asarray(v, float) for k, v in conditions.items()}
+    feats: dict[str, np.ndarray] = {}
+    desc: dict[str, str] = {}
+    aliases: dict[str, str] = {}
+    for name, x, what in _candidate_features(c):
+        if not np.all(np.isfinite(x)) or np.std(x) == 0:
+            continue
+        same = next((k for k, y in feats.items()
+                     if abs(np.corrcoef(x, y)[0, 1]) > ALIAS_CORR), None)
+        if same is not None:
+            aliases[name] = same
+            continue
+        feats[name], desc[name] = x, what
+    return feats, desc, aliases
+
+
+def _candidate_features(c: Mapping[str, np.ndarray]) -> list[tuple[str, np.ndarray, str]]:
+    """(name, values, description) of every named feature these conditions give (formulas:
+    `named_features`), in the order they are preferred when two are the same quantity."""
     t = c.get("time_s")
     timed = t is not None and t.size > 2 and np.all(np.diff(t) > 0)
     T = _temperature(c)
@@ -161,19 +179,7 @@ def named_features(conditions: Mapping[str, np.ndarray]) -> tuple[dict[str, np.n
                     ("radial_load_N", "external radial load (N)")):
         if k in c:
             cand.append((k, c[k], what))
-    feats: dict[str, np.ndarray] = {}
-    desc: dict[str, str] = {}
-    aliases: dict[str, str] = {}
-    for name, x, what in cand:
-        if not np.all(np.isfinite(x)) or np.std(x) == 0:
-            continue
-        same = next((k for k, y in feats.items()
-                     if abs(np.corrcoef(x, y)[0, 1]) > ALIAS_CORR), None)
-        if same is not None:
-            aliases[name] = same
-            continue
-        feats[name], desc[name] = x, what
-    return feats, desc, aliases
+    return cand
 
 
 def _bic(sse: float, n: int, k: int) -> float:
@@ -238,7 +244,21 @@ def characterise_column(column: str, residual: np.ndarray, feats: Mapping[str, n
     _, coef = _sse(A, y)
     slopes = {names[j]: float(coef[i + 1] * sigma_w / sd[j]) for i, j in enumerate(chosen)}
     ranges = {k: float(slopes[k] * np.ptp(feats[k])) for k in sel}
-    # nested block cross-validation
+    gain, ho_sel = _nested_cv_gain(y, X, one, blocks, names)
+    depends = bool(sel) and gain > 0.0
+    out = ColumnCharacterisation(column, sel, slopes, ranges,
+                                 [{"feature": None, "bic": path[0]}]
+                                 + [{"feature": k, "bic": v} for k, v in zip(sel, path[1:])],
+                                 float(gain), ho_sel, depends)
+    if depends:
+        _name_hypothesis(out, feats)
+    return out
+
+
+def _nested_cv_gain(y: np.ndarray, X: np.ndarray, one: np.ndarray, blocks: np.ndarray,
+                    names: list[str]) -> tuple[float, list[list[str]]]:
+    """Nested block cross-validation (step 3): per held-out block the selection redone on the
+    other blocks; 1 - SSE / SSE(intercept only) over the held-out blocks, and the selections."""
     sse_cv = sse_0 = 0.0
     ho_sel: list[list[str]] = []
     for b in np.unique(blocks):
@@ -252,22 +272,21 @@ def characterise_column(column: str, residual: np.ndarray, feats: Mapping[str, n
         sse_cv += float(np.sum((y[te] - At[te] @ c) ** 2))
         c0 = float(one[tr] @ y[tr]) / float(one[tr] @ one[tr])
         sse_0 += float(np.sum((y[te] - one[te] * c0) ** 2))
-    gain = 1.0 - sse_cv / sse_0 if sse_0 > 0 else 0.0
-    depends = bool(sel) and gain > 0.0
-    out = ColumnCharacterisation(column, sel, slopes, ranges,
-                                 [{"feature": None, "bic": path[0]}]
-                                 + [{"feature": k, "bic": v} for k, v in zip(sel, path[1:])],
-                                 float(gain), ho_sel, depends)
-    if depends:
-        lead = max(sel, key=lambda k: abs(ranges[k]))
-        out.hypothesis, out.confirming_test = HYPOTHESES.get(
-            lead, (f"a dependence on {lead} the model lacks", f"vary {lead} alone"))
-        for k in sel:
-            near = [m for m in names if m != k
-                    and abs(np.corrcoef(feats[k], feats[m])[0, 1]) > SEPARABLE_CORR]
-            if near:
-                out.not_separable[k] = near
-    return out
+    return (1.0 - sse_cv / sse_0 if sse_0 > 0 else 0.0), ho_sel
+
+
+def _name_hypothesis(out: ColumnCharacterisation, feats: Mapping[str, np.ndarray]) -> None:
+    """Step 4: the class of cause from the selected feature that moves the residual most, and
+    the features each selected one cannot be separated from here."""
+    sel, names = out.selected, list(feats)
+    lead = max(sel, key=lambda k: abs(out.range_effect[k]))
+    out.hypothesis, out.confirming_test = HYPOTHESES.get(
+        lead, (f"a dependence on {lead} the model lacks", f"vary {lead} alone"))
+    for k in sel:
+        near = [m for m in names if m != k
+                and abs(np.corrcoef(feats[k], feats[m])[0, 1]) > SEPARABLE_CORR]
+        if near:
+            out.not_separable[k] = near
 
 
 def characterise(residuals: Mapping[str, np.ndarray], valid: Mapping[str, np.ndarray],
@@ -297,29 +316,29 @@ def characterise(residuals: Mapping[str, np.ndarray], valid: Mapping[str, np.nda
     return OpenWorld(residual_of, desc, aliases, cols, summary)
 
 
-def report_lines(ow: dict | None) -> list[str]:
-    """The report section (markdown lines) for the `open_world` entry of the result."""
-    if not ow:
+def report_lines(ow: OpenWorld | None) -> list[str]:
+    """The report section (markdown lines) for the open-world characterisation of a result."""
+    if ow is None:
         return []
     L = ["## What the residual depends on (open world)\n",
-         f"No listed effect removes the structure, so the {ow['residual_of']} residual was "
+         f"No listed effect removes the structure, so the {ow.residual_of} residual was "
          "regressed on named conditions (forward selection by BIC, nested block "
          "cross-validation). **Hypotheses, not findings**: confirm with the test named.\n",
-         f"Summary: {ow['summary']}.\n",
+         f"Summary: {ow.summary}.\n",
          "| column | depends on | change over the data (column unit) | held-out gain | "
          "hypothesis | confirming test |",
          "| --- | --- | --- | --- | --- | --- |"]
-    for c in ow["columns"]:
-        dep = ", ".join(f"`{k}`" for k in c["selected"]) or "–"
-        rng = ", ".join(f"{k}: {v:+.3g}" for k, v in c["range_effect"].items()) or "–"
-        hyp = c["hypothesis"] or "–"
-        if c["not_separable"]:
+    for c in ow.columns:
+        dep = ", ".join(f"`{k}`" for k in c.selected) or "–"
+        rng = ", ".join(f"{k}: {v:+.3g}" for k, v in c.range_effect.items()) or "–"
+        hyp = c.hypothesis or "–"
+        if c.not_separable:
             hyp += " (not separable here from: " + "; ".join(
-                f"{k} ~ {', '.join(v)}" for k, v in c["not_separable"].items()) + ")"
-        L.append(f"| `{c['column']}` | {dep} | {rng} | {c['heldout_gain']:.3f} | {hyp} | "
-                 f"{c['confirming_test'] or '–'} |")
+                f"{k} ~ {', '.join(v)}" for k, v in c.not_separable.items()) + ")"
+        L.append(f"| `{c.column}` | {dep} | {rng} | {c.heldout_gain:.3f} | {hyp} | "
+                 f"{c.confirming_test or '–'} |")
     L.append("")
-    if ow["aliases"]:
+    if ow.aliases:
         L.append("Same quantity in this design (left out): " + ", ".join(
-            f"`{a}` = `{b}`" for a, b in ow["aliases"].items()) + ".\n")
+            f"`{a}` = `{b}`" for a, b in ow.aliases.items()) + ".\n")
     return L

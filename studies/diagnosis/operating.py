@@ -33,9 +33,10 @@ from typing import Callable, Mapping, Sequence
 import numpy as np
 from scipy import optimize, stats
 
+from studies.diagnosis import fitspec
 from studies.diagnosis.core import DEFAULT_THRESHOLDS
 from studies.diagnosis.decision import SENSOR_DRIFT
-from studies.diagnosis.engine import diagnose, lookalike_matrix
+from studies.diagnosis.engine import diagnose_full, lookalike_matrix
 
 #: magnitudes of the injected causes: RMS visible change in noise sigmas
 MAGNITUDES = (0.25, 0.5)
@@ -73,7 +74,7 @@ def setting(effect, conditions: Mapping[str, np.ndarray] | None = None,
     out = {p: float(np.clip(effect.off[p] + 5.0 * effect.scale[p], *effect.bounds[p]))
            for p in effect.parameters}
     if conditions is not None:
-        for p, g in effect.grid(conditions, T_ref_C).items():
+        for p, g in fitspec.grid(effect, conditions, T_ref_C).items():
             if len(g):
                 g = np.asarray(g, float)
                 out[p] = float(g[np.argmin(np.abs(np.log(g / (PROFILE_SHARE * g.max()))))])
@@ -201,18 +202,18 @@ def run_matrix(designs: Sequence[Design], magnitudes=MAGNITUDES, reps: int = 3, 
                 progress(f"{d.name}: {hidden} at its setting is not visible here; left out")
                 continue
             t0 = time.perf_counter()
-            res = diagnose(predict, meas, d.conditions, d.candidates, d.nuisance,
-                           predict_at=predict_at, T_ref_C=d.T_ref_C, seed=k)
-            ow = res.get("open_world") or {}
-            lead = next((c["selected"][0] for c in ow.get("columns", [])
-                         if c["depends"] and c["column"] == next(iter(d.sigma))), None)
-            drift = (res.get("joint_fits") or {}).get(SENSOR_DRIFT) or {}
-            trials.append(Trial(d.name, hidden, m, k, res["verdict"], res["cause"],
-                                list(res["indistinguishable"]), lead,
+            res = diagnose_full(predict, meas, d.conditions, d.candidates, d.nuisance,
+                                predict_at=predict_at, T_ref_C=d.T_ref_C, seed=k)
+            ow_columns = res.open_world.columns if res.open_world is not None else []
+            lead = next((c.selected[0] for c in ow_columns
+                         if c.depends and c.column == next(iter(d.sigma))), None)
+            drift = res.joint_fits.get(SENSOR_DRIFT)
+            trials.append(Trial(d.name, hidden, m, k, res.verdict, res.cause,
+                                list(res.indistinguishable), lead,
                                 time.perf_counter() - t0,
-                                (res.get("best_partial") or {}).get("effect"),
-                                drift.get("p_add_other_to_best")))
-            progress(f"{d.name}: {hidden} at {m:g} sigma #{k}: {res['verdict']} {res['cause']}")
+                                res.best_partial.effect if res.best_partial else None,
+                                drift.p_add_other_to_best if drift else None))
+            progress(f"{d.name}: {hidden} at {m:g} sigma #{k}: {res.verdict} {res.cause}")
     out = Matrix(tuple(magnitudes), trials, look, not_visible=skipped)
     summarise(out)
     return out

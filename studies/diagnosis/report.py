@@ -1,6 +1,6 @@
 """Human-readable diagnosis report: `report.md` with PNG plots (matplotlib, Agg, no pyplot state).
 
-`write_report(result, conditions, measured, baseline_pred, extended_pred, out_dir)` writes
+`write_report(result, conditions, measured, out_dir)` writes
 
 - `report.md`: verdict and cause with fitted parameters and uncertainties, held-out gain, what the
   baseline gets wrong (residual statistics per column), the candidate table, identifiability and
@@ -11,11 +11,12 @@
   the noise band (+-2 sigma);
 - `candidates.png`: delta BIC and held-out RMSE ratio per candidate.
 
-`result` is the dict from `studies.diagnosis.diagnose` (JSON-ready), the predictions come from
-`diagnose_full` (`DiagnosisOutcome.baseline_pred / extended_pred`).
+`result` is the typed `DiagnosisResult` of `studies.diagnosis.engine.diagnose_full` (with the
+baseline and extended predictions). Each section of report.md is one small function.
 """
 from __future__ import annotations
 
+import math
 from functools import partial
 from pathlib import Path
 from typing import Mapping
@@ -25,7 +26,8 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
 from studies.diagnosis.openworld import report_lines
-from studies.diagnosis.workers import fork_map
+from studies.diagnosis.result import HELDOUT_METHOD, DiagnosisResult
+from studies.model.parallel import parallel_map
 
 MAX_PANELS = 6
 
@@ -46,6 +48,8 @@ def _fmt(v, digits=4):
         return str(int(v))
     if isinstance(v, (float, np.floating)):
         v = float(v)
+        if not math.isfinite(v):
+            return "–"
         if v == 0:
             return "0"
         if abs(v) >= 1e5 or abs(v) < 1e-3:
@@ -128,16 +132,16 @@ def _plot_residuals(col, conditions, measured, base, ext, cause, sigma, out: Pat
     _save(fig, out)
 
 
-def _plot_candidates(result, out: Path):
-    cands = [c for c in result["candidates"] if c.get("delta_bic") is not None]
+def _plot_candidates(result: DiagnosisResult, out: Path):
+    cands = [c for c in result.candidates if c.delta_bic is not None]
     if not cands:
         return False
-    c0 = result["columns"][0]
-    base_ho = result["baseline"]["heldout_rmse"][c0]
-    names = [c["effect"] for c in cands]
-    dbic = [c["delta_bic"] for c in cands]
-    ratio = [c["heldout_rmse"][c0] / base_ho if base_ho else 1.0 for c in cands]
-    colors = ["tab:green" if c["status"] == "passed" else "0.6" for c in cands]
+    c0 = result.columns[0]
+    base_ho = result.baseline.heldout_rmse[c0]
+    names = [c.effect for c in cands]
+    dbic = [c.delta_bic for c in cands]
+    ratio = [c.heldout_rmse[c0] / base_ho if base_ho else 1.0 for c in cands]
+    colors = ["tab:green" if c.status == "passed" else "0.6" for c in cands]
     fig = Figure(figsize=(10, 0.5 * len(cands) + 1.8), layout="constrained")
     a1, a2 = fig.subplots(1, 2)
     y = np.arange(len(cands))[::-1]
@@ -155,207 +159,245 @@ def _plot_candidates(result, out: Path):
     return True
 
 
-def write_report(result: dict, conditions: Mapping[str, np.ndarray],
-                 measured: Mapping[str, np.ndarray], baseline_pred: Mapping[str, np.ndarray],
-                 extended_pred: Mapping[str, np.ndarray], out_dir, workers: int = 1) -> Path:
-    """Write report.md and the PNG plots into out_dir; return the path of report.md. workers:
-    processes drawing the plots (`studies.diagnosis.workers.fork_map`; the files are the same)."""
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    cols = list(result["columns"])
-    n = int(result.get("n_rows", len(next(iter(measured.values())))))
-    cause = result["cause"]
+def _draw_plots(result: DiagnosisResult, conditions, measured, out: Path, workers: int
+                ) -> tuple[list[tuple[str, str, str]], bool]:
+    """The PNG plots (on `workers` processes, the same files): per column (column, fit plot,
+    residual plot) and whether the candidates' plot was drawn."""
+    n = result.n_rows
     figs, plots = [], []
-    for c in cols:
+    for c in result.columns:
         m = np.asarray(measured[c], float)
-        b = np.asarray(baseline_pred[c], float)
-        e = np.asarray(extended_pred[c], float)
+        b = np.asarray(result.baseline_pred[c], float)
+        e = np.asarray(result.extended_pred[c], float)
         safe = c.replace("/", "_")
-        plots.append(partial(_plot_fits, c, conditions, m, b, e, cause, out / f"fit_{safe}.png", n))
-        plots.append(partial(_plot_residuals, c, conditions, m, b, e, cause,
-                             result["noise_sigma"].get(c), out / f"residuals_{safe}.png", n))
+        plots.append(partial(_plot_fits, c, conditions, m, b, e, result.cause,
+                             out / f"fit_{safe}.png", n))
+        plots.append(partial(_plot_residuals, c, conditions, m, b, e, result.cause,
+                             result.noise.sigma.get(c), out / f"residuals_{safe}.png", n))
         figs.append((c, f"fit_{safe}.png", f"residuals_{safe}.png"))
     plots.append(partial(_plot_candidates, result, out / "candidates.png"))
-    has_cand_plot = fork_map(None, lambda plot: plot(), plots, workers)[-1]
+    return figs, parallel_map(lambda plot: plot(), plots, workers)[-1]
 
-    L: list[str] = []
-    w = L.append
-    w("# Diagnosis report\n")
-    verdict = result["verdict"]
+
+def _headline(r: DiagnosisResult) -> list[str]:
     headline = {
         "no_discrepancy": "**No discrepancy**: the baseline residuals are consistent with the "
                           "noise level estimated from the data.",
-        "explained": f"**Explained** by `{cause}`.",
-        "ambiguous": f"**Ambiguous**: `{cause}` and "
-                     + ", ".join(f"`{x}`" for x in result["indistinguishable"])
+        "explained": f"**Explained** by `{r.cause}`.",
+        "ambiguous": f"**Ambiguous**: `{r.cause}` and "
+                     + ", ".join(f"`{x}`" for x in r.indistinguishable)
                      + " explain the data about equally well.",
         "unexplained": "**Unexplained**: the baseline is clearly wrong, but no candidate effect "
                        "removes the structure from the residuals.",
-    }[verdict]
-    w(f"Verdict: `{verdict}`. {headline}\n")
-    for r in result.get("reasons", []):
-        w(f"- {r}")
-    w("")
-    if cause:
-        w("## Cause and fitted parameters\n")
-        unc = result.get("parameter_uncertainty", {})
-        w("| parameter | value ± standard uncertainty |")
-        w("| --- | --- |")
-        for p, v in result["parameters"].items():
-            w(f"| `{p}` | {_pm(v, unc.get(p))} |")
-        w("")
-        ext = result.get("extended_form")
-        if ext:
-            g = ext["heldout_gain_vs_listed"]
-            w(f"Extended form: **{ext['text']}** (`{ext['name']}`), beats the listed form "
-              f"in sample (p = {ext['p_vs_listed']:.2g}) and on held-out blocks (RMSE gain "
-              f"{g['rmse_gain']:.3g} noise units, interval [{g['ci'][0]:.3g}, {g['ci'][1]:.3g}]).\n")
-            w("| parameter | value ± standard uncertainty |")
-            w("| --- | --- |")
-            for p, v in ext["parameters"].items():
-                w(f"| `{p}` | {_pm(v, ext['parameter_uncertainty'].get(p))} {ext['units'][p]} |")
-            w("")
-    c0 = cols[0]
-    w("## Gain on held-out data\n")
-    w(f"Held-out RMSE ratio (extended / baseline, `{c0}`): "
-      f"**{_fmt(result['gain']['heldout_rmse_ratio'])}**.\n")
-    w("| column | noise sigma (est.) | baseline RMSE | baseline held-out | extended RMSE | "
-      "extended held-out |")
-    w("| --- | --- | --- | --- | --- | --- |")
-    for c in cols:
-        w(f"| `{c}` | {_fmt(result['noise_sigma'][c])} | {_fmt(result['baseline']['rmse'][c])} | "
-          f"{_fmt(result['baseline']['heldout_rmse'][c])} | {_fmt(result['extended']['rmse'][c])}"
-          f" | {_fmt(result['extended']['heldout_rmse'][c])} |")
-    w("")
-    w(f"Held-out rows: {result['heldout']['blocks']} {result['heldout']['method']}.\n")
-    unt = result.get("heldout_untestable") or []
-    if unt:
-        w(f"Blocks that cannot test `{cause}` (left out of its held-out gain; their rows keep the "
-          "baseline's held-out residual):\n")
-        for u in unt:
-            w(f"- block {u['block']} (rows {u['rows'][0]}..{u['rows'][1]}): {u['reason']}")
-        w("")
+    }[r.verdict]
+    return ["# Diagnosis report\n", f"Verdict: `{r.verdict}`. {headline}\n",
+            *(f"- {x}" for x in r.reasons), ""]
 
-    w("## What the baseline gets wrong\n")
-    nu = result["nuisance"]
-    allowed = ", ".join(f"`{k}` in [{_fmt(a)}, {_fmt(b)}]" for k, (a, b) in nu["bounds"].items())
-    w(f"The baseline was allowed the calibration {allowed or '(none)'}; fitted: "
-      + ", ".join(f"`{k}` = {_fmt(v)}" for k, v in nu["baseline"].items())
-      + ("; with the extended model: " + ", ".join(f"`{k}` = {_fmt(v)}" for k, v in
-                                                     nu["extended"].items()) if cause else "")
-      + ".\n")
-    desc = result["residuals"]["baseline"]["columns"]
-    w("| column | bias | reduced chi² | lag-1 autocorr. (p) | smoother F test p | "
-      "smoother held-out gain | bias p |")
-    w("| --- | --- | --- | --- | --- | --- | --- |")
-    for c in cols:
-        d = desc[c]
-        w(f"| `{c}` | {_fmt(d['bias'])} | {_fmt(d['chi2_reduced'])} | {_fmt(d['lag1_autocorr'], 2)}"
-          f" ({_fmt(d['lag1_p'], 2)}) | {_fmt(d['smoother_p'], 2)} | "
-          f"{_fmt(d['smoother_heldout_gain'], 2)} | {_fmt(d['bias_p'], 2)} |")
-    w("")
-    w(f"Structure beyond noise: **{_fmt(result['residuals']['baseline_structure'])}** "
-      f"(smallest p, Bonferroni-adjusted over tests and columns: "
-      f"{_fmt(result['residuals']['baseline']['p_min_adjusted'], 2)}; threshold "
-      f"{_fmt(result['thresholds']['alpha_structure'])}). The reduced chi² uses the noise level "
-      "estimated from second differences of the residuals; the smoother is a cubic polynomial in "
-      "each varying condition and in time plus the rates of change of the conditions, its gain "
-      "measured on held-out blocks.\n")
-    ext = result["residuals"].get("extended")
+
+def _cause_section(r: DiagnosisResult) -> list[str]:
+    if not r.cause:
+        return []
+    L = ["## Cause and fitted parameters\n", "| parameter | value ± standard uncertainty |",
+         "| --- | --- |"]
+    L += [f"| `{p}` | {_pm(v, r.parameter_uncertainty.get(p))} |" for p, v in r.parameters.items()]
+    L.append("")
+    ext = r.extended_form
     if ext:
-        w(f"After `{cause}`: smallest adjusted p of the same tests "
-          f"{_fmt(ext['p_min_adjusted'], 2)} (structure left if below "
-          f"{_fmt(result['thresholds']['alpha_residual'])}).\n")
-    if result.get("best_partial"):
-        bp = result["best_partial"]
-        w(f"Best partial candidate: `{bp['effect']}` ({_fmt(bp['parameters'])}); it leaves "
-          f"structure (adjusted p {_fmt(bp['residuals']['p_min_adjusted'], 2)}).\n")
-    for c, f1, f2 in figs:
-        w(f"![{c}: measured vs models]({f1})\n")
-        w(f"![{c}: residuals]({f2})\n")
+        g = ext.heldout_gain_vs_listed
+        L.append(f"Extended form: **{ext.text}** (`{ext.name}`), beats the listed form "
+                 f"in sample (p = {ext.p_vs_listed:.2g}) and on held-out blocks (RMSE gain "
+                 f"{g.rmse_gain:.3g} noise units, interval [{g.ci[0]:.3g}, "
+                 f"{g.ci[1]:.3g}]).\n")
+        L += ["| parameter | value ± standard uncertainty |", "| --- | --- |"]
+        L += [f"| `{p}` | {_pm(v, ext.parameter_uncertainty.get(p))} {ext.units[p]} |"
+              for p, v in ext.parameters.items()]
+        L.append("")
+    return L
 
-    L.extend(report_lines(result.get("open_world")))     # unexplained: what it depends on
-    w("## Candidates\n")
-    w("Sorted best first. `delta BIC` is relative to the calibrated baseline (negative = better); "
-      "`p (LR)` is the likelihood-ratio p-value (half-chi-square mixture for parameters with a "
-      "sign), before the Holm correction; the held-out gain is the baseline minus candidate "
-      "held-out RMSE in noise units with its paired block-bootstrap interval.\n")
-    w(f"| effect | status | parameters | delta BIC | p (LR) | held-out RMSE `{c0}` | "
-      "held-out gain [interval] | note |")
-    w("| --- | --- | --- | --- | --- | --- | --- | --- |")
-    for c in result["candidates"]:
-        hg = c.get("heldout_gain")
-        gain = (f"{_fmt(hg['rmse_gain'], 3)} [{_fmt(hg['ci'][0], 3)}, {_fmt(hg['ci'][1], 3)}]"
-                if hg else "–")
-        ho = c["heldout_rmse"][c0] if c.get("heldout_rmse") else None
-        params = ", ".join(f"{k}={_fmt(v)}" for k, v in c["parameters"].items()) or "–"
-        note = c["reason"]
-        if c.get("heldout_untestable"):
-            note += ("; " if note else "") + "held-out blocks it cannot test: " + ", ".join(
-                f"{u['block']} (rows {u['rows'][0]}..{u['rows'][1]})" for u in c["heldout_untestable"])
-        if c.get("held_at_off"):
-            note += ("; " if note else "") + "held at its off value (not separable in this data): " \
-                + ", ".join(c["held_at_off"])
-        w(f"| `{c['effect']}` | {c['status']} | {params} | {_fmt(c['delta_bic'])} | "
-          f"{_fmt(c.get('p_lr'), 2)} | {_fmt(ho)} | {gain} | {note} |")
-    w("")
-    if has_cand_plot:
-        w("![candidates](candidates.png)\n")
-    if result.get("not_identifiable"):
-        w("Not testable with this data:\n")
-        for k, v in result["not_identifiable"].items():
-            w(f"- `{k}`: {v}")
-        w("")
-    look = result.get("lookalike") or {}
-    if len(look) > 1:
-        names = list(look)
-        w("### Look-alike matrix\n")
-        w("Cosine of the smallest principal angle between the candidates' sensitivities after "
-          "removing what the baseline calibration can produce (1 = same residual shape; "
-          f"reported as look-alike above {_fmt(result['thresholds']['lookalike_cos'])}).\n")
-        w("| | " + " | ".join(f"`{x}`" for x in names) + " |")
-        w("| --- " * (len(names) + 1) + "|")
-        for a in names:
-            w(f"| `{a}` | " + " | ".join(
-                (f"**{look[a][b]:.2f}**" if a != b and look[a][b] >= result["thresholds"]
-                 ["lookalike_cos"] else f"{look[a][b]:.2f}") for b in names) + " |")
-        w("")
-    if result.get("joint_fits"):
-        w("### Comparison with the best candidate (joint fits)\n")
-        w("| other | chi² best | chi² other | chi² joint | p (add other to best) | "
-          "p (add best to other) | best carries the weight |")
-        w("| --- | --- | --- | --- | --- | --- | --- |")
-        for o, j in result["joint_fits"].items():
-            w(f"| `{o}` | {_fmt(j['chi2_best'])} | {_fmt(j['chi2_other'])} | "
-              f"{_fmt(j['chi2_joint'])} | {_fmt(j['p_add_other_to_best'], 2)} | "
-              f"{_fmt(j['p_add_best_to_other'], 2)} | {_fmt(j['best_carries_weight'])} |")
-        w("")
-    if result.get("separating_test"):
-        w("## Separating test\n")
-        w(result["separating_test"] + "\n")
-        items = [i for i in result.get("separating_tests", []) if i["kind"] != "measured_conditions"]
-        if items:
-            for i in items[:10]:
-                w(f"- {i['text']}")
-            w("")
-    w("## Method and thresholds\n")
-    w("1. Baseline calibrated (nuisance only); noise level per column from second differences of "
-      "the residuals; residual structure tested (bias, lag-1 autocorrelation, smoother F test).")
-    w("2. Each candidate's sensitivity at 'off', with the part the calibration can produce "
-      "projected out: too little left = not identifiable; overlaps = look-alike matrix.")
-    w("3. Bounded least-squares fit of each candidate with the nuisance; likelihood ratio (Holm "
-      "over candidates) and a BIC margin.")
-    w("4. Held-out gain on contiguous blocks with a paired block bootstrap interval excluding 0 "
-      "(history effects refitted in full on the kept blocks; blocks they cannot test left out).")
-    w("5. Several passing: joint fits; ambiguous unless the best clearly carries the weight.\n")
-    w("| threshold | value |")
-    w("| --- | --- |")
-    for k, v in result["thresholds"].items():
-        w(f"| `{k}` | {_fmt(v)} |")
-    w("")
-    w(f"{result['n_rows']} rows, columns compared: {', '.join(f'`{c}`' for c in cols)}; "
-      f"{result['n_predict_calls']} model evaluations, {_fmt(result['seconds']['total'], 3)} s "
-      f"({_fmt(result['seconds']['predict'], 3)} s in the model).\n")
+
+def _gain_section(r: DiagnosisResult) -> list[str]:
+    c0 = r.columns[0]
+    L = ["## Gain on held-out data\n",
+         f"Held-out RMSE ratio (extended / baseline, `{c0}`): "
+         f"**{_fmt(r.heldout_rmse_ratio)}**.\n",
+         "| column | noise sigma (est.) | baseline RMSE | baseline held-out | extended RMSE | "
+         "extended held-out |", "| --- | --- | --- | --- | --- | --- |"]
+    for c in r.columns:
+        L.append(f"| `{c}` | {_fmt(r.noise.sigma[c])} | {_fmt(r.baseline.rmse[c])} | "
+                 f"{_fmt(r.baseline.heldout_rmse[c])} | {_fmt(r.extended.rmse[c])}"
+                 f" | {_fmt(r.extended.heldout_rmse[c])} |")
+    L += ["", f"Held-out rows: {r.heldout_blocks} {HELDOUT_METHOD}.\n"]
+    if r.heldout_untestable:
+        L.append(f"Blocks that cannot test `{r.cause}` (left out of its held-out gain; their "
+                 "rows keep the baseline's held-out residual):\n")
+        L += [f"- block {u['block']} (rows {u['rows'][0]}..{u['rows'][1]}): {u['reason']}"
+              for u in r.heldout_untestable]
+        L.append("")
+    return L
+
+
+def _nuisance_line(r: DiagnosisResult) -> str:
+    nu = r.nuisance
+    allowed = ", ".join(f"`{k}` in [{_fmt(a)}, {_fmt(b)}]" for k, (a, b) in nu.bounds.items())
+    ext = ("; with the extended model: " + ", ".join(f"`{k}` = {_fmt(v)}" for k, v in
+                                                     nu.extended.items()) if r.cause else "")
+    return (f"The baseline was allowed the calibration {allowed or '(none)'}; fitted: "
+            + ", ".join(f"`{k}` = {_fmt(v)}" for k, v in nu.baseline.items()) + ext + ".\n")
+
+
+def _baseline_section(r: DiagnosisResult, figs) -> list[str]:
+    L = ["## What the baseline gets wrong\n", _nuisance_line(r),
+         "| column | bias | reduced chi² | lag-1 autocorr. (p) | smoother F test p | "
+         "smoother held-out gain | bias p |", "| --- | --- | --- | --- | --- | --- | --- |"]
+    for c in r.columns:
+        d = r.residuals_baseline.columns[c]
+        L.append(f"| `{c}` | {_fmt(d.bias)} | {_fmt(d.chi2_reduced)} | "
+                 f"{_fmt(d.lag1_autocorr, 2)} ({_fmt(d.lag1_p, 2)}) | "
+                 f"{_fmt(d.smoother_p, 2)} | {_fmt(d.smoother_heldout_gain, 2)} | "
+                 f"{_fmt(d.bias_p, 2)} |")
+    L += ["", f"Structure beyond noise: **{_fmt(r.baseline_structure)}** "
+          f"(smallest p, Bonferroni-adjusted over tests and columns: "
+          f"{_fmt(r.residuals_baseline.p_min_adjusted, 2)}; threshold "
+          f"{_fmt(r.thresholds['alpha_structure'])}). The reduced chi² uses the noise level "
+          "estimated from second differences of the residuals; the smoother is a cubic polynomial "
+          "in each varying condition and in time plus the rates of change of the conditions, its "
+          "gain measured on held-out blocks.\n"]
+    if r.residuals_extended:
+        L.append(f"After `{r.cause}`: smallest adjusted p of the same tests "
+                 f"{_fmt(r.residuals_extended.p_min_adjusted, 2)} (structure left if below "
+                 f"{_fmt(r.thresholds['alpha_residual'])}).\n")
+    bp = r.best_partial
+    if bp:
+        L.append(f"Best partial candidate: `{bp.effect}` ({_fmt(bp.parameters)}); it leaves "
+                 f"structure (adjusted p {_fmt(bp.residuals.p_min_adjusted, 2)}).\n")
+    for c, f1, f2 in figs:
+        L += [f"![{c}: measured vs models]({f1})\n", f"![{c}: residuals]({f2})\n"]
+    return L
+
+
+def _candidate_note(c) -> str:
+    note = c.reason
+    if c.heldout_untestable:
+        note += ("; " if note else "") + "held-out blocks it cannot test: " + ", ".join(
+            f"{u['block']} (rows {u['rows'][0]}..{u['rows'][1]})" for u in c.heldout_untestable)
+    if c.held_at_off:
+        note += (("; " if note else "") + "held at its off value (not separable in this data): "
+                 + ", ".join(c.held_at_off))
+    return note
+
+
+def _candidate_row(c, c0: str) -> str:
+    hg = c.heldout_gain
+    gain = (f"{_fmt(hg.rmse_gain, 3)} [{_fmt(hg.ci[0], 3)}, {_fmt(hg.ci[1], 3)}]"
+            if hg else "–")
+    ho = c.heldout_rmse[c0] if c.heldout_rmse else None
+    params = ", ".join(f"{k}={_fmt(v)}" for k, v in c.parameters.items()) or "–"
+    return (f"| `{c.effect}` | {c.status} | {params} | {_fmt(c.delta_bic)} | "
+            f"{_fmt(c.p_lr, 2)} | {_fmt(ho)} | {gain} | {_candidate_note(c)} |")
+
+
+def _candidates_section(r: DiagnosisResult, has_plot: bool) -> list[str]:
+    c0 = r.columns[0]
+    L = ["## Candidates\n",
+         "Sorted best first. `delta BIC` is relative to the calibrated baseline (negative = "
+         "better); `p (LR)` is the likelihood-ratio p-value (half-chi-square mixture for "
+         "parameters with a sign), before the Holm correction; the held-out gain is the baseline "
+         "minus candidate held-out RMSE in noise units with its paired block-bootstrap "
+         "interval.\n",
+         f"| effect | status | parameters | delta BIC | p (LR) | held-out RMSE `{c0}` | "
+         "held-out gain [interval] | note |", "| --- | --- | --- | --- | --- | --- | --- | --- |"]
+    L += [_candidate_row(c, c0) for c in r.candidates]
+    L.append("")
+    if has_plot:
+        L.append("![candidates](candidates.png)\n")
+    if r.not_identifiable:
+        L.append("Not testable with this data:\n")
+        L += [f"- `{k}`: {v}" for k, v in r.not_identifiable.items()]
+        L.append("")
+    return L
+
+
+def _lookalike_section(r: DiagnosisResult) -> list[str]:
+    look = r.lookalike or {}
+    if len(look) <= 1:
+        return []
+    names = list(look)
+    cut = r.thresholds["lookalike_cos"]
+    L = ["### Look-alike matrix\n",
+         "Cosine of the smallest principal angle between the candidates' sensitivities after "
+         "removing what the baseline calibration can produce (1 = same residual shape; "
+         f"reported as look-alike above {_fmt(cut)}).\n",
+         "| | " + " | ".join(f"`{x}`" for x in names) + " |", "| --- " * (len(names) + 1) + "|"]
+    for a in names:
+        L.append(f"| `{a}` | " + " | ".join(
+            (f"**{look[a][b]:.2f}**" if a != b and look[a][b] >= cut else f"{look[a][b]:.2f}")
+            for b in names) + " |")
+    L.append("")
+    return L
+
+
+def _joint_fits_section(r: DiagnosisResult) -> list[str]:
+    if not r.joint_fits:
+        return []
+    L = ["### Comparison with the best candidate (joint fits)\n",
+         "| other | chi² best | chi² other | chi² joint | p (add other to best) | "
+         "p (add best to other) | best carries the weight |",
+         "| --- | --- | --- | --- | --- | --- | --- |"]
+    for o, j in r.joint_fits.items():
+        L.append(f"| `{o}` | {_fmt(j.chi2_best)} | {_fmt(j.chi2_other)} | "
+                 f"{_fmt(j.chi2_joint)} | {_fmt(j.p_add_other_to_best, 2)} | "
+                 f"{_fmt(j.p_add_best_to_other, 2)} | {_fmt(j.best_carries_weight)} |")
+    L.append("")
+    return L
+
+
+def _separating_section(r: DiagnosisResult) -> list[str]:
+    if not r.separating_test:
+        return []
+    L = ["## Separating test\n", r.separating_test + "\n"]
+    items = [i for i in r.separating_tests if i["kind"] != "measured_conditions"]
+    if items:
+        L += [f"- {i['text']}" for i in items[:10]]
+        L.append("")
+    return L
+
+
+def _method_section(r: DiagnosisResult) -> list[str]:
+    L = ["## Method and thresholds\n",
+         "1. Baseline calibrated (nuisance only); noise level per column from second differences "
+         "of the residuals; residual structure tested (bias, lag-1 autocorrelation, smoother F "
+         "test).",
+         "2. Each candidate's sensitivity at 'off', with the part the calibration can produce "
+         "projected out: too little left = not identifiable; overlaps = look-alike matrix.",
+         "3. Bounded least-squares fit of each candidate with the nuisance; likelihood ratio "
+         "(Holm over candidates) and a BIC margin.",
+         "4. Held-out gain on contiguous blocks with a paired block bootstrap interval excluding "
+         "0 (history effects refitted in full on the kept blocks; blocks they cannot test left "
+         "out).",
+         "5. Several passing: joint fits; ambiguous unless the best clearly carries the "
+         "weight.\n",
+         "| threshold | value |", "| --- | --- |"]
+    L += [f"| `{k}` | {_fmt(v)} |" for k, v in r.thresholds.items()]
+    cost = r.cost
+    L += ["", f"{r.n_rows} rows, columns compared: {', '.join(f'`{c}`' for c in r.columns)}; "
+          f"{cost.n_predict_calls} model evaluations, {_fmt(cost.seconds_total, 3)} s "
+          f"({_fmt(cost.seconds_predict, 3)} s in the model).\n"]
+    return L
+
+
+def write_report(result: DiagnosisResult, conditions: Mapping[str, np.ndarray],
+                 measured: Mapping[str, np.ndarray], out_dir, workers: int = 1) -> Path:
+    """Write report.md and the PNG plots into out_dir; return the path of report.md. workers:
+    processes drawing the plots (`studies.model.parallel.parallel_map`; the files are the
+    same)."""
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    figs, has_cand_plot = _draw_plots(result, conditions, measured, out, workers)
+    L = (_headline(result) + _cause_section(result) + _gain_section(result)
+         + _baseline_section(result, figs)
+         + report_lines(result.open_world)          # unexplained: what it depends on
+         + _candidates_section(result, has_cand_plot) + _lookalike_section(result)
+         + _joint_fits_section(result) + _separating_section(result) + _method_section(result))
     path = out / "report.md"
     path.write_text("\n".join(L), encoding="utf-8")
     return path

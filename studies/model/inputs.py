@@ -18,6 +18,11 @@ Conventions for the fields effects write (see studies/effects/__init__.py):
 - `preload_loss_N`: permanent loss subtracted from the assembled preload per row.
 - `extra_compliance_mm_per_N`: axial compliance added in series to each bearing's preload path
   (mm/N, on top of the assembly's `[preload] path_compliance`); zero in the baseline.
+
+`measured_parts` names the parts whose temperature the conditions table gave in its own column
+(`T_<part>_C`); every other part follows the ambient. Effects that act on the ambient-following
+parts (a thermal lag) read this flag, never compare arrays (a measured part that happens to sit
+at the ambient is still measured).
 """
 from __future__ import annotations
 
@@ -56,6 +61,7 @@ class PhysicsInputs:
     radial_load_N: np.ndarray | None = None            # on the shaft at the pair's mid-point
     moment_Nmm: np.ndarray | None = None               # tilting moment on the shaft (N mm)
     d2alpha_per_K3: dict[str, float] = field(default_factory=lambda: dict(NO_CTE_SLOPE))
+    measured_parts: frozenset[str] = frozenset()       # parts with their own T_<part>_C column
 
     def copy(self, **changes) -> "PhysicsInputs":
         """Shallow copy with fields replaced (arrays are never modified in place)."""
@@ -86,8 +92,9 @@ class PhysicsInputs:
 
 def baseline_inputs(columns: dict[str, np.ndarray], n_rows: int, T_ref_C: float,
                     preload_N: float, speed_rpm: float) -> PhysicsInputs:
-    """Baseline: uniform temperature, no lag. A part column overrides the ambient for that part;
-    with no ambient column the reference temperature is used."""
+    """Baseline: uniform temperature, no lag. A part column overrides the ambient for that part
+    (and flags it in `measured_parts`); with no ambient column the reference temperature is
+    used."""
     amb = columns.get("T_ambient_C")
     base = amb if amb is not None else np.full(n_rows, T_ref_C)
     T = {p: np.asarray(columns.get(f"T_{p}_C", base), float) for p in PARTS}
@@ -102,4 +109,6 @@ def baseline_inputs(columns: dict[str, np.ndarray], n_rows: int, T_ref_C: float,
                          radial_load_N=col("radial_load_N", 0.0), moment_Nmm=col("moment_Nmm", 0.0),
                          interference_inner_um=np.zeros(n_rows), interference_outer_um=np.zeros(n_rows),
                          friction_coefficient=np.zeros(n_rows), preload_loss_N=np.zeros(n_rows),
-                         time_s=columns.get("time_s"), T_ambient_C=amb)
+                         time_s=columns.get("time_s"), T_ambient_C=amb,
+                         measured_parts=frozenset(p for p in PARTS if columns.get(f"T_{p}_C")
+                                                  is not None))

@@ -13,11 +13,24 @@ submitted and not yet yielded (memory bounded for any number of blocks; a stream
 
 Per-assembly set-up inside `fn` (the FE model, its unit solutions) is done once per worker
 process: `Pipeline.shared` keeps it for the life of the process.
+
+`parallel_map(task, items, workers)` is the map of work that shares this process's state (the
+diagnosis's candidate fits: the FE set-up, the pipeline and the model cache as they are now):
+[task(item) for item in items] on forked worker processes (`concurrent.futures`, fork start
+method), so that nothing is pickled but the items' indices and the results, and the task may be a
+closure. Each task is a pure function of the state at the fork and its item, so every result is
+the one a serial run computes, to the last bit; results come back in the items' order. A `state`
+object (e.g. the diagnosis's `CachedModel`) can carry what the tasks add to it back to this
+process (`snapshot` / `delta` in the worker, `merge` here).
 """
 from __future__ import annotations
 
+import multiprocessing
+import os
+import signal
 from collections import deque
-from typing import Callable, Iterable, Iterator, Sequence
+from concurrent.futures import ProcessPoolExecutor
+from typing import Any, Callable, Iterable, Iterator, Protocol, Sequence
 
 #: environment of every local worker process (and pre-spawn environment of any nanny):
 #: - one BLAS/OpenMP thread per worker process: the workers share the cores already;
@@ -30,6 +43,21 @@ from typing import Callable, Iterable, Iterator, Sequence
 #:   pre-spawn environment): glibc reads it once, at start.
 WORKER_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1",
               "MALLOC_TRIM_THRESHOLD_": str(2 ** 30), "MALLOC_MMAP_THRESHOLD_": str(2 ** 25)}
+
+#: Dask configuration of the local workers (set before the cluster starts; a nanny hands its
+#: configuration to the worker process it spawns): the worker's own monitors run on its event
+#: loop between the blocks' work and cost CPU per second of wall time, not per sample. The
+#: statistical profiler samples every thread's stack every 10 ms, the GIL monitor every 1 ms,
+#: the memory monitor every 100 ms. With them off or slowed a worker process spent 3.86 s CPU
+#: on 10 tolerance blocks of 1e4 samples whose own work took 3.77 s (2 %), with the defaults
+#: 4.53 s for 3.92 s (15 %; measured 2026-11-25 on a loaded 2-core machine, bench --tolerance).
+#: The dashboard's task-stream and profile pages lose their data; an existing scheduler's
+#: workers (`--scheduler`) keep their own configuration.
+WORKER_CONFIG = {"distributed.worker.profile.enabled": False,
+                 "distributed.admin.system-monitor.gil.enabled": False,
+                 "distributed.admin.system-monitor.interval": "2s",
+                 "distributed.admin.tick.interval": "500ms",
+                 "distributed.worker.memory.monitor-interval": "1s"}
 
 
 #: seconds to wait for an existing scheduler (`--scheduler`) before giving up
@@ -60,6 +88,7 @@ class Blocks:
 
         dask.config.set({f"distributed.nanny.pre-spawn-environ.{k}": v
                          for k, v in WORKER_ENV.items() if k.startswith("MALLOC")})
+        dask.config.set(WORKER_CONFIG)
         if self.scheduler is not None:
             try:
                 self.client = Client(self.scheduler, timeout=CONNECT_TIMEOUT_S)
@@ -143,3 +172,94 @@ def map_blocks(fn: Callable, blocks: Sequence[tuple], workers: int | None = None
         return where.map(fn, blocks, progress)
     with Blocks(workers, scheduler) as opened:
         return opened.map(fn, blocks, progress)
+
+
+# ---------------------------------------------------------------------- work sharing this process
+class SharedState(Protocol):
+    """What a forked task adds to shared state (a cache, counters), carried back to the parent."""
+
+    def snapshot(self) -> Any: ...
+
+    def delta(self, snapshot: Any) -> Any: ...
+
+    def merge(self, delta: Any) -> None: ...
+
+
+#: the job of the forked workers: (task, items, state), set just before the pool forks
+_JOB: tuple | None = None
+#: True in a forked worker: a task's own `parallel_map` runs serially there (no pool in a pool)
+_IN_WORKER = False
+
+
+def available_workers() -> int:
+    """CPUs this process may run on (its affinity mask where the OS has one)."""
+    try:
+        return max(len(os.sched_getaffinity(0)), 1)
+    except AttributeError:                  # not Linux
+        return max(os.cpu_count() or 1, 1)
+
+
+def can_fork() -> bool:
+    """Whether worker processes can be forked here (fork start method, not a worker of
+    `parallel_map` or another daemonic process)."""
+    return ("fork" in multiprocessing.get_all_start_methods() and not _IN_WORKER
+            and not multiprocessing.current_process().daemon)
+
+
+def _worker_init() -> None:
+    """A worker ends quietly when the parent ends the pool (the parent's SIGTERM handler, e.g.
+    the CLI's, is not inherited), leaves Ctrl-C to the parent and runs its tasks' own maps
+    serially."""
+    global _IN_WORKER
+    _IN_WORKER = True
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def _run_item(i: int) -> tuple:
+    """One task in a worker: ("ok", value) or ("err", exception), and the state's delta."""
+    task, items, state = _JOB
+    before = None if state is None else state.snapshot()
+    try:
+        out = ("ok", task(items[i]))
+    except Exception as exc:                # re-raised in the parent, in the items' order
+        out = ("err", exc)
+    return out, (None if state is None else state.delta(before))
+
+
+def parallel_map(task: Callable, items: Sequence, workers: int, first: Sequence[int] | None = None,
+                 state: SharedState | None = None) -> list:
+    """[task(item) for item in items], on up to `workers` forked processes when `workers` > 1,
+    there are at least two items and `can_fork()`; else serially here (module docstring).
+    `first`: indices of items to start first (the longest tasks: better balance; results keep
+    the items' order). `state`: merged with each task's delta, in the items' order. An exception
+    of a task is raised here, the first in the items' order."""
+    items = list(items)
+    n = min(int(workers), len(items))
+    if n <= 1 or not can_fork():
+        return [task(it) for it in items]
+    global _JOB
+    order = list(dict.fromkeys(list(first or ()) + list(range(len(items)))))
+    _JOB = (task, items, state)
+    pool = ProcessPoolExecutor(n, mp_context=multiprocessing.get_context("fork"),
+                               initializer=_worker_init)
+    try:
+        futures = {i: pool.submit(_run_item, i) for i in order}
+        got = {i: futures[i].result() for i in order}
+    except BaseException:
+        pool.shutdown(wait=False, cancel_futures=True)
+        for proc in list(getattr(pool, "_processes", {}).values()):   # no public terminate
+            proc.terminate()
+        raise
+    finally:
+        _JOB = None
+    pool.shutdown(wait=True)
+    results = []
+    for i in range(len(items)):
+        (kind, value), delta = got[i]
+        if state is not None:
+            state.merge(delta)
+        if kind == "err":
+            raise value
+        results.append(value)
+    return results

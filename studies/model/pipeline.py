@@ -110,7 +110,8 @@ class Pipeline:
     """One assembly: FE set-up, unit solutions and bearing geometry, built once.
 
     The superposition's arrays and the preload-path compliance come from `fem.setup`: from the
-    on-disk cache when this stack was set up before (`cache=False`: always computed). The full
+    on-disk cache when this stack was set up before (`cache=False`: always computed;
+    `setup_of(spec)`: from elsewhere, e.g. `fem.parametric` for a design search's family). The full
     FE model (`model`, `solver`, `probe`: mesh, assembly, factorisations) is built only when
     something needs it: a set-up not cached yet, `direct` solves, whole fields."""
 
@@ -133,7 +134,7 @@ class Pipeline:
         return hit
 
     def __init__(self, asm: Assembly, mesh_factor: float = 1.0, progress=None,
-                 superpose: bool = True, cache: bool = True):
+                 superpose: bool = True, cache: bool = True, setup_of=None):
         self._say = progress or (lambda s: None)
         self.asm = asm
         self.mesh_factor = float(mesh_factor)
@@ -159,7 +160,8 @@ class Pipeline:
                                  rotating_parts=rotor)
         self.materials = dict(self.spec.materials)
         self._full: FullFE | None = None
-        self.setup: FESetup = (cached_setup(self.spec, self.full_fe, progress=self._say) if cache
+        self.setup: FESetup = (setup_of(self.spec) if setup_of is not None   # fem.parametric
+                               else cached_setup(self.spec, self.full_fe, progress=self._say) if cache
                                else compute_setup(self.spec, self.full_fe()))
         self.part_names = self.setup.part_names
         self.sup = (Superposition.from_condensed(self.setup.condensed, lambda: self.solver)

@@ -15,7 +15,7 @@ engine's work depends on how many candidates pass, and two generalised forms (pe
 300 s / 360 s, settling creeping 3 N/h), where the engine also fits the generalised forms of the
 family (`studies.diagnosis.generalised`); the column `form` gives the extended form reported.
 The candidates are the CLI's (`files.candidate_effects`), and so are the worker processes
-(`--workers`, default every CPU the process may use, `studies.diagnosis.workers`).
+(`--workers`, default every CPU the process may use, `studies.model.parallel.parallel_map`).
 Times: the FE set-up (mesh from the cache, unit solutions) once; per dataset the engine alone
 (`diagnose_full`, what the goal is about) and the whole `diagnose_files` (reading the CSV, the
 engine, JSON and the report with its plots), with the set-up pipeline passed in; wall seconds
@@ -57,7 +57,8 @@ def main(argv=None) -> None:
     from studies.diagnosis.files import (NUISANCE, ModelPredictor, candidate_effects,
                                          diagnose_files)
     from studies.diagnosis.engine import diagnose_full
-    from studies.diagnosis.workers import available_workers
+    from studies.diagnosis.result import to_json
+    from studies.model.parallel import available_workers
     from studies.runs.bench_clock import Clock
     from studies.model.pipeline import Pipeline
     from studies.model.table import write_table
@@ -92,7 +93,7 @@ def main(argv=None) -> None:
             with Clock() as engine:
                 out = diagnose_full(pred, meas, cond, cands, NUISANCE, T_ref_C=asm.T_ref_C,
                                     predict_at=pred.at, workers=workers)
-            r = out.result
+            r = to_json(out)
             with tempfile.TemporaryDirectory() as tmp:
                 csv = Path(tmp) / "measured.csv"
                 write_table(csv, {**cond, **meas})

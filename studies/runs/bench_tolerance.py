@@ -7,7 +7,9 @@ um at the nominal diameters) at one temperature (80 C) through the exact model
 W workers only (cluster start and per-worker FE set-up, read from the cache, included, and
 printed apart from the blocks' own time). Without: in this process, then on 1 and on 2 workers,
 the speed-up of 2 workers over 1 (wall, whole and blocks alone) and a check that all three give
-the same numbers bit for bit.
+the same numbers bit for bit. Per mode the CPU seconds per sample of the blocks: this process's,
+or the worker processes' (all their threads) while the blocks ran, which a loaded machine
+inflates much less than the wall time.
 """
 from __future__ import annotations
 
@@ -29,6 +31,21 @@ def _assembly():
                                    **TOLERANCES))
 
 
+def _process_cpu_s() -> float:
+    """User + system CPU seconds of the calling process (all its threads)."""
+    import resource
+
+    r = resource.getrusage(resource.RUSAGE_SELF)
+    return r.ru_utime + r.ru_stime
+
+
+def _workers_cpu_s(where) -> float:
+    """Summed CPU seconds of the worker processes so far (0 when the blocks run here)."""
+    if where.client is None:
+        return 0.0
+    return float(sum(where.client.run(_process_cpu_s).values()))
+
+
 def main(samples: int, workers: int | None = None) -> None:
     from studies.model import tolerances as tol
     from studies.model.parallel import Blocks
@@ -47,20 +64,29 @@ def main(samples: int, workers: int | None = None) -> None:
         with Clock() as c:
             Pipeline.shared(asm)
         print(f"{'FE set-up':>16}: {c.line()}")
-    runs, clocks, blocks_s = {}, {}, {}
+    runs, clocks, blocks_s, cpu_us = {}, {}, {}, {}
     for label, w in modes:
         with Clock() as c:
             with Blocks(workers=w) as where:
                 where.on_every_worker(tol.warm, asm)
+                before = _workers_cpu_s(where)
                 with Clock() as c_blocks:
                     runs[label] = tol.run_samples(asm, cond, di, do, where=where)
+                # CPU of the blocks: this process's, or the worker processes' (every thread:
+                # the task and the worker's own event loop and monitors) during the blocks
+                cpu = (c_blocks.cpu_s if where.client is None
+                       else _workers_cpu_s(where) - before)
         clocks[label], blocks_s[label] = c, c_blocks.wall_s
+        cpu_us[label] = 1e6 * cpu / samples
         print(f"{label:>16}: {samples} samples at 80 C, {c.line()}, "
               f"{samples / c.wall_s:8.0f} samples/s", flush=True)
         if w is not None:
             print(f"{'':>16}  of which cluster start and FE set-up per worker "
                   f"{c.wall_s - c_blocks.wall_s:.2f} s wall, the blocks {c_blocks.wall_s:.2f} s "
                   f"wall ({samples / c_blocks.wall_s:.0f} samples/s)", flush=True)
+        print(f"{'':>16}  CPU per sample of the blocks: {cpu_us[label]:.1f} us "
+              f"({'this process' if w is None else 'the worker processes, every thread'})",
+              flush=True)
     if workers is None:
         one, two = clocks["Dask, 1 worker"], clocks["Dask, 2 workers"]
         print(f"speed-up of 2 workers over 1: wall {one.wall_s / two.wall_s:.2f}x "
@@ -69,6 +95,9 @@ def main(samples: int, workers: int | None = None) -> None:
         same = all(np.array_equal(runs[k][q], runs["this process"][q])
                    for k in ("Dask, 1 worker", "Dask, 2 workers") for q in tol.QUANTITIES)
         print(f"identical results in all three: {same}")
+        print(f"CPU per sample, one worker / this process: "
+              f"{cpu_us['Dask, 1 worker'] / cpu_us['this process']:.3f}; two workers / this "
+              f"process: {cpu_us['Dask, 2 workers'] / cpu_us['this process']:.3f}")
     r = next(iter(runs.values()))
     p, se = tol.probability(r["fit_pressure_inner_MPa"][:, 0] <= 0)
     print(f"P(inner fit open at 80 C) = {p:.4g} +- {se:.2g}; preload mean "

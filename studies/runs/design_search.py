@@ -7,10 +7,16 @@ Design variables (the assembly's own values are one candidate):
 - the clamp scheme of nut and cover (rigid or compliant faces), with `--clamps`;
 - the assembled preload, `PRELOAD_FACTORS` x the assembly's (no new FE: one bearing run).
 
-Every stack is its own FE model (mesh, unit solutions): the search screens all of them on a mesh
-twice as coarse (`SCREEN_MESH_FACTOR`) and re-evaluates the best ones on the assembly's mesh, so
-the ranking printed is the fine one. Over the temperature range (uniform temperature, round
-steps) each candidate gets its preload range (max - min), its smallest preload, whether each fit
+Every stack is its own FE model: the search screens all of them on a mesh twice as coarse
+(`SCREEN_MESH_FACTOR`) and re-evaluates the best ones on the assembly's mesh (each through the
+normal, cached FE set-up), so the ranking printed is the fine one. The screening's FE set-ups come
+from `fem.parametric`: the stacks of one spacer length and clamp scheme (a family) share one
+reference FE (mesh, assembly, factorisation, unit solutions, the spacers of the assembly's
+materials), and a member's set-up follows from it exactly by condensing the two spacers and a
+low-rank update (equal to the stack's own set-up to round-off, about 1e-12 relative: tests/
+test_parametric.py); no stack is meshed or factorised on its own, only one stack per family.
+
+Over the temperature range (uniform temperature, round steps) each candidate gets its preload range (max - min), its smallest preload, whether each fit
 assembled with interference stays closed, its largest contact pressure against the limit
 `simulate` checks, and its largest torque. Feasible: fits closed, preload kept, contact pressure
 within the limit; `in_band`: the preload stays inside the band (x the assembled preload) at every
@@ -27,15 +33,17 @@ from __future__ import annotations
 
 import json
 from dataclasses import dataclass, replace
+from functools import partial
 from pathlib import Path
 
 import numpy as np
 
-from analytic.materials import MATERIALS
+from analytic.materials import MATERIALS, get_material
+from fem.parametric import parametric_setup
 from studies.model.checks import assembly_checks
 from studies.model.inputs import baseline_inputs
 from studies.model.memory import release_freed_memory
-from studies.model.parallel import map_blocks
+from studies.model.parallel import Blocks, map_blocks
 from studies.model.pipeline import Pipeline
 from studies.runs.assembly_report import nice_step
 from studies.runs.report_tools import line_plot, md_table, write_report_files
@@ -45,6 +53,8 @@ PRELOAD_FACTORS = (0.5, 0.75, 1.0, 1.25, 1.5)
 SCREEN_MESH_FACTOR = 2.0
 N_TEMPERATURES = 15
 CONFIRM = 5                      # best designs re-evaluated on the assembly's mesh
+#: the parts whose material the search varies (the screening's FE set-up family, fem.parametric)
+SPACERS = ("inner_spacer", "outer_spacer")
 
 
 @dataclass(frozen=True)
@@ -105,12 +115,29 @@ def candidates(asm, clamps: bool = False, length_factors=LENGTH_FACTORS,
     return out
 
 
+def parametric_setup_of(asm):
+    """The screening's FE set-up route for the stacks of `asm`: `fem.parametric` with the spacers
+    as the variable parts, their reference materials the assembly's own (fixed, so the numbers do
+    not depend on which worker sees which stack first)."""
+    ref = {p: get_material(getattr(asm, p).material, asm.materials) for p in SPACERS}
+    return partial(parametric_setup, variable=SPACERS, reference=ref)
+
+
+def _family_of(s: Stack) -> tuple:
+    """What puts a stack in another FE family than its neighbours (all but the spacer
+    materials)."""
+    return (s.spacer_length_mm, s.nut_clamp, s.cover_clamp, s.ring_section_delta_mm)
+
+
 def evaluate_stack(asm, stack: Stack, T_C: np.ndarray, preloads_N: np.ndarray,
-                   mesh_factor: float) -> dict:
+                   mesh_factor: float, parametric: bool = False) -> dict:
     """Preload, contact pressure, fit pressures and torque of one stack at every temperature
-    and preload: arrays (n_preloads, n_T). One task of the search."""
+    and preload: arrays (n_preloads, n_T). One task of the search. `parametric`: the FE set-up
+    from the stack's family (`fem.parametric`, equal to the full set-up to round-off) instead of
+    the stack's own (cached) one."""
     a = stack.assembly(asm)
-    pl = Pipeline(a, mesh_factor=mesh_factor)
+    setup_of = parametric_setup_of(asm) if parametric and asm.fits.contact == "frictionless" else None
+    pl = Pipeline(a, mesh_factor=mesh_factor, setup_of=setup_of)
     nT, nP = T_C.size, preloads_N.size
     cols = {"T_ambient_C": np.tile(T_C, nP), "preload_assembled_N": np.repeat(preloads_N, nT)}
     res = pl.run(baseline_inputs(cols, nT * nP, a.T_ref_C, a.preload.assembled_N,
@@ -180,20 +207,30 @@ def run(asm, T_min_C: float, T_max_C: float, out: Path, provenance: dict, band=(
     stacks = candidates(asm, clamps, length_factors, materials)
     progress(f"design: {len(stacks)} stacks x {P0.size} preloads x {T.size} temperatures "
              f"(screening mesh x{screen_mesh_factor:g}) ...")
-    screened = map_blocks(evaluate_stack, [(asm, s, T, P0, screen_mesh_factor) for s in stacks],
-                          workers=workers, scheduler=scheduler,
+    with Blocks(workers, scheduler) as where:      # one cluster for screening and confirm
+        # submitted family by family (spacer length, clamps, ring sections): a worker then
+        # builds few of the families (fem.parametric); the results go back to the stacks' order
+        order = sorted(range(len(stacks)), key=lambda i: _family_of(stacks[i]))
+        done = map_blocks(evaluate_stack, [(asm, stacks[i], T, P0, screen_mesh_factor, True)
+                                           for i in order],
+                          where=where,
                           progress=bar or (lambda d, n: progress(f"  stack {d} of {n}")
                                            if d % 20 == 0 or d == n else None))
-    designs = []
-    for i, (s, r) in enumerate(zip(stacks, screened)):
-        for m in _metrics(s.assembly(asm), r, P0, band):
-            designs.append({"stack": i, **s.__dict__, **m, "is_given": i == 0, "mesh": "screen"})
-    # confirm the best feasible ones (and the assembly as given) on the fine mesh
-    ranked = sorted(designs, key=rank_key)
-    best_stacks = list(dict.fromkeys([0] + [d["stack"] for d in ranked if d["feasible"]][:CONFIRM]))
-    progress(f"design: confirming {len(best_stacks)} stacks on the assembly's mesh ...")
-    fine = map_blocks(evaluate_stack, [(asm, stacks[i], T, P0, confirm_mesh_factor)
-                                       for i in best_stacks], workers=workers, scheduler=scheduler)
+        screened = [None] * len(stacks)
+        for i, r in zip(order, done):
+            screened[i] = r
+        designs = []
+        for i, (s, r) in enumerate(zip(stacks, screened)):
+            for m in _metrics(s.assembly(asm), r, P0, band):
+                designs.append({"stack": i, **s.__dict__, **m, "is_given": i == 0,
+                                "mesh": "screen"})
+        # confirm the best feasible ones (and the assembly as given) on the fine mesh
+        ranked = sorted(designs, key=rank_key)
+        best_stacks = list(dict.fromkeys([0] + [d["stack"] for d in ranked
+                                                if d["feasible"]][:CONFIRM]))
+        progress(f"design: confirming {len(best_stacks)} stacks on the assembly's mesh ...")
+        fine = map_blocks(evaluate_stack, [(asm, stacks[i], T, P0, confirm_mesh_factor)
+                                           for i in best_stacks], where=where)
     confirmed = []
     for i, r in zip(best_stacks, fine):
         for m in _metrics(stacks[i].assembly(asm), r, P0, band):

@@ -24,7 +24,7 @@ by 1.6e-9 /K^2 over 80 K. 5e-10 /K^3 bounds structural metals between -100 and 1
 from __future__ import annotations
 
 from .cte_nonlinearity import PARTS, CteNonlinearity
-from .generalised import GeneralisedForm
+from .base import GeneralisedForm
 
 
 class CteCurvature(GeneralisedForm):

@@ -17,7 +17,7 @@ temperature, more when cryogenic. +-3e-8 /K^2 bounds any structural metal betwee
 """
 from __future__ import annotations
 
-from . import Effect
+from .base import Effect
 
 PARTS = ("shaft", "housing")
 

@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import Effect
+from .base import Effect
 
 
 class FrictionTemperature(Effect):

@@ -16,55 +16,13 @@ makes data with it.
 """
 from __future__ import annotations
 
-from typing import Mapping
+from .base import GeneralisedForm
+from .thermal_lag_per_part import ThermalLagPerPart
+from .preload_settling_creep import PreloadSettlingCreep
+from .cte_curvature import CteCurvature
+from .radial_gradient_lag import RadialGradientLag
 
-from . import Effect
-
-
-class GeneralisedForm(Effect):
-    """Base class of a generalised form. Subclasses set, besides the `Effect` attributes:
-
-    family : name of the listed effect generalised (its parameters keep their names and meaning).
-    form : short name of the form (`name` = family + "." + form).
-    label : what the form adds, for reports ("per-part time constants").
-    extra : the parameters the listed form does not have.
-    reduces : extra parameter -> value at which the form is the listed one, or the name of a
-        listed parameter whose value it then takes (per-part lag: tau_shaft_s = tau_s).
-    """
-
-    family: str = ""
-    form: str = ""
-    label: str = ""
-    extra: tuple[str, ...] = ()
-    reduces: dict[str, float | str] = {}
-
-    def from_listed(self, listed: Mapping[str, float]) -> dict[str, float]:
-        """The form's parameters at which it equals the listed form with parameters `listed`."""
-        out = {p: float(listed[p]) for p in self.parameters if p not in self.extra}
-        for p in self.extra:
-            v = self.reduces[p]
-            out[p] = float(listed[v]) if isinstance(v, str) else float(v)
-        return out
-
-    def on_bound(self, p: str) -> bool:
-        """True when the reducing value of extra parameter p is a bound of p (one-sided test)."""
-        v = self.reduces[p]
-        return not isinstance(v, str) and v in self.bounds[p]
-
-    def text(self, params: Mapping[str, float]) -> str:
-        """One line for reports: "thermal_lag, per-part time constants: housing 900 s, ..."."""
-        raise NotImplementedError
-
-    def extra_starts(self, listed: Mapping[str, float], conditions) -> list[dict[str, float]]:
-        """Starting values of the extra parameters (besides the reducing value) for a fit that
-        begins at the listed fit."""
-        return []
-
-
-from .thermal_lag_per_part import ThermalLagPerPart  # noqa: E402
-from .preload_settling_creep import PreloadSettlingCreep  # noqa: E402
-from .cte_curvature import CteCurvature  # noqa: E402
-from .radial_gradient_lag import RadialGradientLag  # noqa: E402
+__all__ = ["GeneralisedForm", "GENERALISED", "forms_of"]
 
 GENERALISED: dict[str, GeneralisedForm] = {f.name: f for f in (
     ThermalLagPerPart(), PreloadSettlingCreep(), CteCurvature(), RadialGradientLag())}

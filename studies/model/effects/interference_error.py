@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import Effect
+from .base import Effect
 
 
 class InterferenceError(Effect):
@@ -34,24 +34,6 @@ class InterferenceError(Effect):
     hint = ("measure the fits directly (bore/seat diameters after disassembly) or the preload at "
             "the reference temperature; an interference error does not depend on speed or on the "
             "rate of temperature change")
-
-    #: step (um) of the global search along each parameter, and the coarse 2-D grid per side
-    SEARCH_STEP_UM = 1.0
-    GRID = 5
-
-    def starts(self, conditions, T_ref_C):
-        """A global search over the bounds (the assembly's, when narrowed by its tolerances):
-        each fit alone on a SEARCH_STEP_UM line (the residual of a fit that opens or closes inside
-        the test is piecewise smooth with narrow valleys: at 2 % noise a 1 um error is tens of
-        sigma), and a coarse GRID x GRID grid of both. The diagnosis scores every point (with the
-        nuisance corrected linearly) and refines the best by a local fit."""
-        (a0, a1), (b0, b1) = self.bounds["inner_um"], self.bounds["outer_um"]
-        h = self.SEARCH_STEP_UM
-        out = [{"inner_um": float(a), "outer_um": 0.0} for a in np.arange(a0, a1 + h / 2, h)]
-        out += [{"inner_um": 0.0, "outer_um": float(b)} for b in np.arange(b0, b1 + h / 2, h)]
-        out += [{"inner_um": float(a), "outer_um": float(b)}
-                for a in np.linspace(a0, a1, self.GRID) for b in np.linspace(b0, b1, self.GRID)]
-        return [p for p in out if (p["inner_um"], p["outer_um"]) != (0.0, 0.0)]
 
     def _apply(self, inputs, p, T_ref_C):
         return inputs.copy(

@@ -31,9 +31,7 @@ seed001`). Compliances of bolted and clamped joints in series: VDI 2230 Part 1 (
 """
 from __future__ import annotations
 
-import numpy as np
-
-from . import Effect
+from .base import Effect
 
 #: um/kN -> mm/N
 UM_PER_KN = 1e-6
@@ -53,9 +51,3 @@ class PreloadPathCompliance(Effect):
     def _apply(self, inputs, p, T_ref_C):
         return inputs.copy(extra_compliance_mm_per_N=inputs.extra_compliance_mm_per_N
                            + UM_PER_KN * p["extra_compliance_um_per_kN"])
-
-    def starts(self, conditions, T_ref_C):
-        """The response saturates (a path much softer than the bearings carries the whole
-        thermal change): starting points over the bounded range, 1 um/kN to the upper bound."""
-        hi = self.bounds["extra_compliance_um_per_kN"][1]
-        return [{"extra_compliance_um_per_kN": float(v)} for v in np.geomspace(1.0, hi, 10)]

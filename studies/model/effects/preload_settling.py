@@ -28,16 +28,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import Effect
+from .base import Effect
 
 
 def excursion(T: np.ndarray, T_ref_C: float) -> np.ndarray:
     """Running maximum of |T - T_ref| (the largest excursion so far, per row)."""
     return np.maximum.accumulate(np.abs(np.asarray(T, float) - T_ref_C))
-
-
-def _state_from_conditions(conditions) -> np.ndarray | None:
-    return np.asarray(conditions["T_ambient_C"], float) if "T_ambient_C" in conditions else None
 
 
 class PreloadSettling(Effect):
@@ -48,7 +44,6 @@ class PreloadSettling(Effect):
     off = {"loss_N": 0.0, "threshold_K": 20.0}
     requires = ("time_s", "T_ambient_C")     # the excursion is of the environment temperature
     scale = {"loss_N": 5.0, "threshold_K": 5.0}
-    profile = ("threshold_K",)
     hint = ("measure the preload (or torque) at the reference temperature before and after the "
             "first excursion, and repeat the cycle: a settling loss appears once and stays")
 
@@ -60,30 +55,3 @@ class PreloadSettling(Effect):
         settled = excursion(T, T_ref_C) > p["threshold_K"]
         loss = np.where(settled, p["loss_N"], 0.0)
         return inputs.copy(preload_loss_N=np.asarray(inputs.preload_loss_N, float) + loss)
-
-    def steps(self, conditions):
-        return {"loss_N": self.scale["loss_N"]}
-
-    def grid(self, conditions, T_ref_C, min_rows: int = 3):
-        """Thresholds that give distinct onset rows (midpoints between successive values of the
-        running excursion) over the whole bounded range, keeping at least `min_rows` rows before
-        and after the onset. A one-off settling is usually triggered on the first ramp of a test:
-        a rule that kept a share of the rows (it once kept 2 %) before the onset cut the true
-        threshold out of the search (30 K at row 8 of a 615-row cycle test)."""
-        T = _state_from_conditions(conditions)
-        if T is None or T.size < 2 * min_rows:
-            return {"threshold_K": []}
-        m = excursion(T, T_ref_C)
-        n = m.size
-        lo, hi = self.bounds["threshold_K"]
-        keep = min_rows
-        vals = np.unique(m)
-        out = []
-        for a, b in zip(vals[:-1], vals[1:]):
-            thr = 0.5 * (a + b)
-            if not (lo <= thr <= hi):
-                continue
-            onset = int(np.argmax(m > thr))
-            if keep <= onset <= n - keep:
-                out.append(float(thr))
-        return {"threshold_K": out}

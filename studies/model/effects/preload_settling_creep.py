@@ -34,7 +34,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .generalised import GeneralisedForm
+from .base import GeneralisedForm
 from .preload_settling import PreloadSettling
 
 
@@ -58,7 +58,6 @@ class PreloadSettlingCreep(GeneralisedForm):
     off = {"loss_N": 0.0, "threshold_K": 20.0, "creep_N_per_h": 0.0}
     requires = ("time_s", "T_ambient_C")
     scale = {"loss_N": 5.0, "threshold_K": 5.0, "creep_N_per_h": 1.0}
-    profile = ("threshold_K",)
     hint = PreloadSettling.hint + "; hold the assembly hot for different durations"
 
     def active_parameters(self):
@@ -71,16 +70,6 @@ class PreloadSettlingCreep(GeneralisedForm):
         L = np.asarray(listed.preload_loss_N, float)
         room = np.maximum(np.asarray(inputs.preload_assembled_N, float) - L, 0.0)
         return listed.copy(preload_loss_N=L + np.minimum(p["creep_N_per_h"] * H, room))
-
-    def steps(self, conditions):
-        return {"loss_N": self.scale["loss_N"], "creep_N_per_h": self.scale["creep_N_per_h"]}
-
-    def grid(self, conditions, T_ref_C):
-        return PreloadSettling().grid(conditions, T_ref_C)
-
-    def extra_starts(self, listed, conditions):
-        return [{"loss_N": 0.5 * listed["loss_N"], "creep_N_per_h": 1.0},
-                {"loss_N": 0.0, "creep_N_per_h": 2.0}]
 
     def text(self, params):
         return (f"preload_settling, loss growing with time beyond the threshold: "

@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import Effect
+from .base import Effect
 
 INNER_PARTS = ("shaft", "inner_ring", "ball")
 
@@ -39,18 +39,6 @@ class RadialGradient(Effect):
     scale = {"dT_K": 1.0, "dT_per_krpm_K": 1.0}
     hint = ("measure the inner-ring (or shaft) temperature beside the outer-ring temperature, or "
             "repeat the test at a second speed (the gradient grows with speed)")
-
-    def held_fixed(self, conditions):
-        """At a single speed only dT_K + dT_per_krpm_K * n/1000 is determined: fit the total as
-        dT_K and hold the speed-proportional part at 0."""
-        n = conditions.get("speed_rpm")
-        if n is None or np.ptp(np.asarray(n, float)) == 0:
-            return ("dT_per_krpm_K",)
-        return ()
-
-    def starts(self, conditions, T_ref_C):
-        """Larger gradients as extra starting points (a fit may open or close on the way)."""
-        return [{"dT_K": 5.0}, {"dT_K": 15.0}]
 
     def _apply(self, inputs, p, T_ref_C):
         dT = p["dT_K"] + p["dT_per_krpm_K"] * np.asarray(inputs.speed_rpm, float) / 1000.0

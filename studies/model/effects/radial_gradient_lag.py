@@ -26,9 +26,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .generalised import GeneralisedForm
+from .base import GeneralisedForm
 from .radial_gradient import INNER_PARTS, RadialGradient
-from .thermal_lag import ThermalLag, lag_response
+from .thermal_lag import lag_response
 
 
 class RadialGradientLag(GeneralisedForm):
@@ -53,9 +53,6 @@ class RadialGradientLag(GeneralisedForm):
             why = "needs a speed_rpm column that changes"
         return why
 
-    def held_fixed(self, conditions):
-        return RadialGradient().held_fixed(conditions)
-
     def _apply(self, inputs, p, T_ref_C):
         # the listed form's expression with the speed replaced by its lagged value (at
         # tau_gradient_s = 0 `lag_response` returns the speed itself: the same numbers)
@@ -65,15 +62,6 @@ class RadialGradientLag(GeneralisedForm):
         for part in INNER_PARTS:
             T[part] = np.asarray(T[part], float) + dT
         return inputs.copy(T_C=T)
-
-    def steps(self, conditions):
-        s = ThermalLag().steps(conditions)["tau_s"]
-        return {"dT_K": 1.0, "dT_per_krpm_K": 1.0, "tau_gradient_s": s}
-
-    def extra_starts(self, listed, conditions):
-        t = np.asarray(conditions.get("time_s", [0.0, 600.0]), float)
-        span = float(t[-1] - t[0]) if t.size > 1 else 600.0
-        return [{"tau_gradient_s": span * f} for f in (0.01, 0.03, 0.1)]
 
     def text(self, params):
         return (f"radial_gradient, own time constant after speed changes: {params['dT_K']:.3g} K "

@@ -37,7 +37,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import Effect
+from .base import Effect
 
 
 def revolutions(t_s: np.ndarray, speed_rpm: np.ndarray) -> np.ndarray:
@@ -59,14 +59,9 @@ class SolidFilmRunin(Effect):
     off = {"dmu": 0.0, "runin_krev": 10.0}
     requires = ("time_s",)
     scale = {"dmu": 1e-3, "runin_krev": 1.0}
-    profile = ("runin_krev",)
     hint = ("repeat the same temperature cycle several times (a run-in changes the torque from "
             "cycle to cycle and then settles; a temperature effect repeats), or run at constant "
             "temperature for many revolutions")
-    #: grid points per decade of the run-in constant (profile, 12 %/step)
-    PER_DECADE = 20
-    #: rows the shortest run-in on the grid spans
-    MIN_ROWS = 3
 
     def active_parameters(self):
         return ("dmu",)
@@ -75,9 +70,6 @@ class SolidFilmRunin(Effect):
         N = revolutions(inputs.time_s, inputs.speed_rpm)
         d = p["dmu"] * -np.expm1(-N / (1000.0 * p["runin_krev"]))
         return inputs.copy(friction_coefficient=np.asarray(inputs.friction_coefficient, float) + d)
-
-    def steps(self, conditions):
-        return {"dmu": self.scale["dmu"]}
 
     #: set by `for_assembly`: the configured speed (rpm) and lubrication kind
     speed_rpm: float | None = None
@@ -100,24 +92,3 @@ class SolidFilmRunin(Effect):
         if why is None and "speed_rpm" not in conditions and self.speed_rpm is None:
             why = "needs the condition column speed_rpm (or the assembly's configured speed)"
         return why
-
-    def grid(self, conditions, T_ref_C):
-        """Run-in constants on a log grid (PER_DECADE per decade) from the revolutions of the
-        first MIN_ROWS sample intervals (a run-in over fewer rows is a constant change of mu,
-        which the baseline's friction calibration already makes) to the revolutions of the whole
-        table (beyond it the run-in is a straight line in N: dmu and runin_krev trade), inside
-        the bounds. The speed: the `speed_rpm` column, else the configured one
-        (`for_assembly`)."""
-        if "time_s" not in conditions or ("speed_rpm" not in conditions and self.speed_rpm is None):
-            return {"runin_krev": []}
-        t = np.asarray(conditions["time_s"], float)
-        n = np.asarray(conditions.get("speed_rpm", np.full(t.size, self.speed_rpm or 0.0)), float)
-        N = revolutions(t, n) / 1000.0
-        if t.size < 2 * self.MIN_ROWS or N[-1] <= 0.0:
-            return {"runin_krev": []}
-        lo, hi = self.bounds["runin_krev"]
-        a, b = max(float(N[min(self.MIN_ROWS, N.size - 1)]), lo), min(float(N[-1]), hi)
-        if b <= a:
-            return {"runin_krev": []}
-        k = max(int(np.ceil(self.PER_DECADE * np.log10(b / a))), 1) + 1
-        return {"runin_krev": [float(v) for v in np.geomspace(a, b, k)]}

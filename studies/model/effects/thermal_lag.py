@@ -13,7 +13,8 @@ equation is integrated exactly over each interval (no time-step error):
     T_{k+1} = u_{k+1} - tau_s s_k + a_k (T_k - u_k + tau_s s_k),
 
 starting in equilibrium at the first sample (T_0 = u_0). Parts with their own measured temperature
-(an array different from `T_ambient_C`) are left as they are. Apply it before `radial_gradient`
+(`PhysicsInputs.measured_parts`, flagged from the conditions table) are left as they are, even
+when they read the ambient. Apply it before `radial_gradient`
 (`apply_effects` does).
 
 Parameters:
@@ -30,7 +31,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import Effect
+from .base import Effect
 
 
 def lag_response(t_s: np.ndarray, u: np.ndarray, tau_s: float) -> np.ndarray:
@@ -72,24 +73,7 @@ class ThermalLag(Effect):
         amb = np.asarray(inputs.T_ambient_C, float)
         lagged = lag_response(inputs.time_s, amb, p["tau_s"])
         T = dict(inputs.T_C)
-        for part, arr in T.items():
-            if np.array_equal(np.asarray(arr, float), amb):   # follows the ambient
+        for part in T:
+            if part not in inputs.measured_parts:              # follows the ambient
                 T[part] = lagged.copy()
         return inputs.copy(T_C=T)
-
-    def steps(self, conditions):
-        t = np.asarray(conditions.get("time_s", [0.0, 600.0]), float)
-        dt = np.diff(t)
-        dt = dt[dt > 0]
-        return {"tau_s": 0.1 * float(np.median(dt)) if dt.size else 60.0}
-
-    def starts(self, conditions, T_ref_C):
-        t = np.asarray(conditions.get("time_s", []), float)
-        if t.size < 3:
-            return []
-        dt = float(np.median(np.diff(t)))
-        span = float(t[-1] - t[0])
-        lo, hi = max(0.3 * dt, 1e-3), min(0.5 * span, self.bounds["tau_s"][1])
-        if hi <= lo:
-            return []
-        return [{"tau_s": float(v)} for v in np.geomspace(lo, hi, 8)]

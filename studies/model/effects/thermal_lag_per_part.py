@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .generalised import GeneralisedForm
+from .base import GeneralisedForm
 from .thermal_lag import ThermalLag, lag_response
 
 SHAFT_SIDE = ("shaft", "inner_ring", "ball")
@@ -54,22 +54,11 @@ class ThermalLagPerPart(GeneralisedForm):
         lagged = {tau: lag_response(inputs.time_s, amb, tau)
                   for tau in {p["tau_s"], p["tau_shaft_s"]}}
         T = dict(inputs.T_C)
-        for part, arr in T.items():
-            if np.array_equal(np.asarray(arr, float), amb):   # follows the ambient
+        for part in T:
+            if part not in inputs.measured_parts:              # follows the ambient
                 tau = p["tau_shaft_s"] if part in SHAFT_SIDE else p["tau_s"]
                 T[part] = lagged[tau].copy()
         return inputs.copy(T_C=T)
-
-    def steps(self, conditions):
-        s = ThermalLag().steps(conditions)["tau_s"]
-        return {"tau_s": s, "tau_shaft_s": s}
-
-    def extra_starts(self, listed, conditions):
-        """A grid of both time constants about the listed one (factors 0.35..2.8): the two lags
-        trade against each other and against the friction calibration (local minima)."""
-        tau = max(float(listed["tau_s"]), 1.0)
-        f = (0.35, 0.5, 0.7, 1.0, 1.4, 2.0, 2.8)
-        return [{"tau_s": tau * a, "tau_shaft_s": tau * b} for a in f for b in f if a != b]
 
     def text(self, params):
         return (f"thermal_lag, per-part time constants: housing {params['tau_s']:.0f} s, "

@@ -19,7 +19,7 @@ oil.
 """
 from __future__ import annotations
 
-from . import Effect
+from .base import Effect
 
 
 class ViscosityTemperature(Effect):

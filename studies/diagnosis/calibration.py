@@ -1,0 +1,116 @@
+"""Phase 1 of the diagnosis: the calibrated baseline and the noise model (module docstring of
+`studies.diagnosis.engine`, step 1).
+
+`calibrate(problem)` fits the nuisance alone, leaves isolated sensor spikes out, estimates each
+column's noise level from the baseline residuals (and its AR(1) coefficient in a time series),
+refits, and describes the residuals. It returns the calibrated `Problem` (the noise model and
+the compared entries the later phases use) with the `Baseline`.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+from scipy import stats
+
+from studies.diagnosis.core import Baseline
+from studies.diagnosis.heldout import heldout_linear
+from studies.diagnosis.problem import ROUND_OFF, Noise, Problem, data_sigma
+from studies.diagnosis.stats import ar1_regression_ml, ar1_whiten, noise_sigma, orth
+
+#: likelihood-ratio statistic (chi-square, 1 df) of AR(1) errors against white ones, with the
+#: conditions' smoother as the regression, above which a column's noise is taken as AR(1) and
+#: whitened (slowly drifting sensors); 9 = a 3-sigma level
+AR1_LR = 9.0
+#: a residual this many robust standard deviations from the smoother is a spike (P = 2e-9 for
+#: Gaussian noise), if such entries are at most MAX_SPIKE_SHARE of the column
+SPIKE_SIGMA = 6.0
+MAX_SPIKE_SHARE = 0.05
+
+
+def calibrate(pb: Problem) -> tuple[Problem, Baseline]:
+    """Nuisance-only fit in two passes (noise from the measured data, then from the baseline
+    residuals), its residual description and held-out residuals."""
+    bspace = pb.space([])
+    base = pb.fit(bspace, np.zeros(bspace.k + len(pb.nuisance.names)))
+    spiked = drop_spikes(pb, base.pred)
+    if spiked is not pb:
+        pb = spiked
+        base = pb.fit(bspace, base.u)
+    pb = replace(pb, noise=baseline_noise(pb, base.pred))
+    base = pb.fit(bspace, base.u)
+    base_nuis = bspace.unpack(base.u)[1]
+    desc_base = pb.describe(base.pred, len(pb.nuisance.names))
+    structure = desc_base.p_min_adjusted < pb.th["alpha_structure"]
+    return pb, Baseline(base, base_nuis, desc_base, bool(structure), heldout_linear(pb, base),
+                        orth(base.J))
+
+
+def drop_spikes(pb: Problem, pred: dict) -> Problem:
+    """Isolated outliers (sensor spikes): entries whose baseline residual, after the
+    conditions' smoother, lies beyond SPIKE_SIGMA robust standard deviations (1.4826 MAD) are
+    left out of every fit and test and reported; a model error is smooth in the conditions
+    and stays. Returns the problem without them (the same object when there are none)."""
+    X = pb.features
+    valid, spikes = dict(pb.valid), {}
+    for c in pb.columns:
+        m = valid[c]
+        rows = np.flatnonzero(m)
+        if rows.size < 20:
+            continue
+        r = (pb.measured[c] - pred[c])[m]
+        A = np.column_stack([np.ones(rows.size), X[m]])
+        coef, *_ = np.linalg.lstsq(A, r, rcond=None)
+        e = r - A @ coef
+        s = stats.median_abs_deviation(e, scale="normal")
+        bad = np.abs(e - np.median(e)) > SPIKE_SIGMA * s if s > 0 else np.zeros(e.size, bool)
+        if bad.any() and bad.sum() <= MAX_SPIKE_SHARE * rows.size:
+            valid[c] = m.copy()
+            valid[c][rows[bad]] = False
+            spikes[c] = [int(i) + 1 for i in rows[bad]]      # 1-based, as in the file
+    if not spikes:
+        return pb
+    note = "spikes left out (row numbers): " + "; ".join(
+        f"{c}: {', '.join(map(str, v))}" for c, v in spikes.items())
+    return replace(pb, valid=valid, spikes=spikes, notes=pb.notes + (note,))
+
+
+def baseline_noise(pb: Problem, pred: dict) -> Noise:
+    """Each column's noise level from the baseline residuals (given levels kept), never below
+    round-off (ROUND_OFF x its largest value), and its AR(1) coefficient (`noise_ar1`)."""
+    sigma, sigma_w = dict(pb.noise.sigma), dict(pb.noise.sigma_w)
+    rho, source = dict(pb.noise.rho), dict(pb.noise.source)
+    for c in pb.columns:
+        if c in pb.noise.given:
+            continue
+        s, source[c] = data_sigma(pb, c, pb.measured[c] - pred[c])
+        floor = ROUND_OFF * max(np.nanmax(np.abs(pb.measured[c])), 1e-300)
+        sigma[c] = sigma_w[c] = max(s, floor)
+        ar1 = noise_ar1(pb, c, pred[c], floor)
+        if ar1 is not None:
+            rho[c], sigma_w[c], sigma[c] = ar1
+    return Noise(sigma, sigma_w, rho, source, pb.noise.given)
+
+
+def noise_ar1(pb: Problem, c: str, pred: np.ndarray, floor: float
+              ) -> tuple[float, float, float] | None:
+    """Serial correlation of column c's noise: the maximum-likelihood AR(1) coefficient of the
+    baseline residuals regressed on the smoother in the conditions (what a model error would
+    look like is taken out first; `stats.ar1_regression_ml`). When significant (likelihood
+    ratio > AR1_LR): (rho, the innovation level from the whitened residuals' second differences,
+    the marginal level sigma_w / sqrt(1 - rho^2)); else None (white noise).
+    Only for time series (`time_s` increasing): in a table of steady points the row order
+    means nothing, and neighbouring rows of a grid share a model error, not a noise."""
+    if not pb.is_time_series:
+        return None
+    m = pb.valid[c]
+    r = (pb.measured[c] - pred)[m]
+    seg = pb.blocks[m]
+    A = np.column_stack([np.ones(r.size), pb.features[m]])
+    rho, lr = ar1_regression_ml(r, A, seg)
+    if lr <= AR1_LR or rho <= 0.0:
+        return None
+    u = ar1_whiten(r, seg, rho)
+    s_w = max(noise_sigma(u, seg), floor * math.sqrt(1 - rho * rho))
+    return rho, s_w, s_w / math.sqrt(1 - rho * rho)

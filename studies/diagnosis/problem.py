@@ -1,0 +1,446 @@
+"""What one diagnosis works on, immutable: the measured data, the cached model, the nuisance, the
+held-out blocks, the noise model, and the computations every phase shares on them (standardised
+residuals, parameter spaces, a bounded least-squares fit, the residual description).
+
+`make_problem` checks the inputs (one-line `DiagnosisError`s) and fixes the compared columns; the
+calibration phase (`studies.diagnosis.calibration`) returns a new `Problem` with the noise model
+estimated from the baseline residuals and any sensor spikes left out. No phase changes a
+`Problem`: each gets it as an argument, with the typed results of the phases before it
+(`Baseline`, `Screening`, `Fitting`, `Validation`, `Decision`, ...).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Callable, Mapping, Sequence
+
+import numpy as np
+from scipy import optimize, stats
+
+from studies.diagnosis import fitspec
+from studies.diagnosis.core import (FIRST_COLUMNS, CachedModel, ColumnResiduals, DiagnosisError,
+                                    Fit, ModelFailure, Residuals, Space)
+from studies.diagnosis.stats import (ar1_unwhiten, ar1_whiten, auto_blocks, noise_sigma,
+                                     noise_sigma_steady, orth)
+from studies.model.parallel import parallel_map
+
+#: relative noise floor: a CSV keeps 10 significant digits (half a unit in the last is 5e-10 of the
+#: value); twice that, so that round-off alone never looks like structure
+ROUND_OFF = 1e-9
+
+
+@dataclass(frozen=True)
+class Nuisance:
+    """The nuisance calibration refitted with every model: names, bounds, start and scale."""
+    names: tuple[str, ...]
+    lo: np.ndarray
+    hi: np.ndarray
+    x0: np.ndarray
+    scale: np.ndarray
+
+    @classmethod
+    def from_spec(cls, nuisance: Mapping[str, tuple]) -> "Nuisance":
+        """{name: (lo, hi[, start[, scale]])}: start 1 when inside the bounds (a scale factor),
+        else the middle; scale a tenth of the start (or 1e-4 of the range)."""
+        lo, hi, x0, sc = [], [], [], []
+        for name, spec in nuisance.items():
+            spec = tuple(spec)
+            a, b = float(spec[0]), float(spec[1])
+            x = float(spec[2]) if len(spec) > 2 else (1.0 if a <= 1.0 <= b else 0.5 * (a + b))
+            s = float(spec[3]) if len(spec) > 3 else 0.1 * max(abs(x), 1e-3 * (b - a))
+            if not (a <= x <= b) or s <= 0:
+                raise DiagnosisError(f"nuisance {name}: start {x} outside [{a}, {b}]")
+            lo.append(a), hi.append(b), x0.append(x), sc.append(s)
+        return cls(tuple(nuisance), np.array(lo), np.array(hi), np.array(x0), np.array(sc))
+
+    @property
+    def start(self) -> dict[str, float]:
+        return dict(zip(self.names, self.x0))
+
+
+@dataclass(frozen=True)
+class Noise:
+    """Noise model per compared column: marginal level `sigma`, AR(1) coefficient `rho` (0 for
+    white noise), innovation level `sigma_w` (= sigma for white noise), how it was obtained."""
+    sigma: Mapping[str, float]
+    sigma_w: Mapping[str, float]
+    rho: Mapping[str, float]
+    source: Mapping[str, str]
+    given: frozenset[str] = frozenset()
+
+    def describe(self, c: str) -> str:
+        if c in self.given:
+            return "given"
+        return self.source[c] + (f", AR(1) rho {self.rho[c]:.2f}" if self.rho[c] else "")
+
+
+@dataclass(frozen=True, eq=False)
+class Problem:
+    """One diagnosis's data and model (module docstring). Arrays are never modified."""
+    model: CachedModel
+    conditions: Mapping[str, np.ndarray]
+    measured: Mapping[str, np.ndarray]          # compared columns only
+    columns: tuple[str, ...]
+    candidates: tuple
+    nuisance: Nuisance
+    blocks: np.ndarray                          # held-out block per row, 0..n_blocks-1
+    valid: Mapping[str, np.ndarray]             # entries compared per column
+    noise: Noise
+    th: Mapping[str, float]
+    T_ref_C: float
+    predict_at: Callable | None = None
+    workers: int = 1
+    try_generalised: bool = True
+    spikes: Mapping[str, list[int]] = field(default_factory=dict)
+    notes: tuple[str, ...] = ()
+
+    # ------------------------------------------------------------------ layout
+    @property
+    def n(self) -> int:
+        return int(self.blocks.size)
+
+    @property
+    def n_blocks(self) -> int:
+        return int(self.blocks.max()) + 1
+
+    @cached_property
+    def entry_row(self) -> np.ndarray:
+        """Row of each stacked entry (valid rows of every column, column after column)."""
+        return np.concatenate([np.flatnonzero(self.valid[c]) for c in self.columns])
+
+    @cached_property
+    def entry_col(self) -> np.ndarray:
+        return np.concatenate([np.full(self.valid[c].sum(), j)
+                               for j, c in enumerate(self.columns)])
+
+    @cached_property
+    def entry_block(self) -> np.ndarray:
+        return self.blocks[self.entry_row]
+
+    @property
+    def N(self) -> int:
+        return int(self.entry_row.size)
+
+    @cached_property
+    def features(self) -> np.ndarray:
+        """The conditions' smoother: powers (cubic with enough rows) of every varying condition
+        standardised (and of the row number without time), plus the rates of change of the
+        conditions (history effects: lags, hysteresis) in a time series."""
+        cols = []
+        keys = [k for k in self.conditions if np.nanstd(self.conditions[k]) > 0]
+        if "time_s" not in keys:
+            cols.append(("row", np.arange(self.n, dtype=float)))
+        cols += [(k, self.conditions[k]) for k in keys]
+        deg = 3 if self.n >= 12 * 3 * len(cols) + 10 else 1
+        F = []
+        for _, x in cols:
+            x = (x - np.mean(x)) / (np.std(x) or 1.0)
+            for d in range(1, deg + 1):
+                F.append(x ** d)
+        if "time_s" in self.conditions and self.n >= 12 * 4 * len(cols) + 10:
+            F += _rates(cols, self.conditions["time_s"])
+        return np.array(F).T if F else np.zeros((self.n, 0))
+
+    @property
+    def is_time_series(self) -> bool:
+        """Rows in time order (`time_s` strictly increasing)."""
+        t = self.conditions.get("time_s")
+        return t is not None and t.size >= 3 and bool(np.all(np.diff(t) > 0))
+
+    def block_rows(self, b: int) -> list[int]:
+        """First and last row (1-based, as in the file) of held-out block b."""
+        rows = np.flatnonzero(self.blocks == b)
+        return [int(rows[0]) + 1, int(rows[-1]) + 1]
+
+    # ------------------------------------------------------------------ candidates
+    def effect(self, name: str):
+        return next(e for e in self.candidates if e.name == name)
+
+    def free_params(self, e) -> list[str]:
+        """Parameters fitted by gradients: not profiled, not held at "off" for these conditions
+        (e.g. a speed-proportional part when every row has the same speed)."""
+        held = set(fitspec.held_fixed(e, self.conditions))
+        prof = fitspec.profile(e)
+        return [p for p in e.parameters if p not in prof and p not in held]
+
+    # ------------------------------------------------------------------ residuals
+    def zvec(self, pred: Mapping[str, np.ndarray]) -> np.ndarray:
+        """Standardised residuals, stacked: per column whitened for its AR(1) noise (within the
+        held-out blocks) and divided by the innovation level; plain r / sigma for white noise."""
+        parts = []
+        for c in self.columns:
+            m = self.valid[c]
+            r = self.measured[c][m] - pred[c][m]
+            parts.append(ar1_whiten(r, self.blocks[m], self.noise.rho[c]) / self.noise.sigma_w[c])
+        z = np.concatenate(parts)
+        if not np.all(np.isfinite(z)):
+            raise ModelFailure("the model returned non-finite values")
+        return z
+
+    def col_rmse(self, z_stacked: np.ndarray) -> dict[str, float]:
+        """RMSE per column in its own unit (the standardised residuals un-whitened)."""
+        out = {}
+        for j, c in enumerate(self.columns):
+            zz = z_stacked[self.entry_col == j]
+            r = ar1_unwhiten(zz * self.noise.sigma_w[c], self.blocks[self.valid[c]],
+                             self.noise.rho[c])
+            out[c] = float(np.sqrt(np.mean(r ** 2)))
+        return out
+
+    # ------------------------------------------------------------------ spaces and fits
+    def space(self, effects: Sequence, fixed: dict | None = None) -> Space:
+        """Space fitting the non-profile parameters of `effects` (effect objects) + nuisance;
+        `fixed` gives values for profiled parameters."""
+        fixed = fixed or {}
+        eff_params, origin, scale, lo, hi = [], [], [], [], []
+        fx = {}
+        for e in effects:
+            steps = fitspec.steps(e, self.conditions)
+            fx[e.name] = dict(e.off)
+            fx[e.name].update(fixed.get(e.name, {}))
+            for p in self.free_params(e):
+                s = float(steps.get(p, e.scale[p]))
+                eff_params.append((e.name, p))
+                origin.append(e.off[p]), scale.append(s)
+                lo.append((e.bounds[p][0] - e.off[p]) / s), hi.append((e.bounds[p][1] - e.off[p]) / s)
+        nu = self.nuisance
+        origin += list(nu.x0)
+        scale += list(nu.scale)
+        lo += list((nu.lo - nu.x0) / nu.scale)
+        hi += list((nu.hi - nu.x0) / nu.scale)
+        return Space(eff_params, fx, list(nu.names), np.array(origin, float),
+                     np.array(scale, float), np.array(lo, float), np.array(hi, float))
+
+    def eval(self, space: Space, u) -> tuple[np.ndarray, dict]:
+        """Standardised residuals and predictions at u (clipped to the bounds)."""
+        pred = self.model(*space.unpack(space.clip(u)))
+        return self.zvec(pred), pred
+
+    def fit(self, space: Space, u0, max_nfev=None) -> Fit:
+        """Bounded least squares (trust-region reflective) from u0; a model failure during the
+        search steers it back (a large residual), at the start it is raised."""
+        u0 = space.clip(np.asarray(u0, float))
+        lo, hi = space.lo, space.hi
+        span = hi - lo
+        u0 = np.clip(u0, lo + 1e-10 * np.maximum(span, 1), hi - 1e-10 * np.maximum(span, 1))
+        dim = u0.size
+        big = np.full(self.N, 1e6)
+        self.eval(space, u0)              # the start must evaluate (else ModelFailure)
+
+        def fun(u):
+            try:
+                return self.eval(space, u)[0]
+            except ModelFailure:          # outside the model's range: steer the optimiser back
+                return big
+
+        res = optimize.least_squares(fun, u0, bounds=(lo, hi), method="trf", diff_step=1e-3,
+                                     x_scale=1.0, ftol=1e-8, xtol=1e-8, gtol=1e-8,
+                                     max_nfev=max_nfev or 40 * (dim + 1))
+        z, pred = self.eval(space, res.x)
+        return Fit(space, res.x, z, np.asarray(res.jac, float), float(z @ z), pred)
+
+    def parallel(self, task: Callable, items: Sequence, first: Sequence[int] | None = None
+                 ) -> list:
+        """[task(item) for item in items] on this diagnosis's `workers` processes
+        (`studies.model.parallel.parallel_map`, the model's calls and results counted here):
+        the same results as serially."""
+        return parallel_map(task, items, self.workers, first=first, state=self.model)
+
+    # ------------------------------------------------------------------ residual description
+    def describe(self, pred: Mapping[str, np.ndarray], n_params: int) -> Residuals:
+        """Residual statistics per column (`describe_column`) and the smallest p value,
+        Bonferroni-adjusted over the tests and columns."""
+        out = {}
+        pvals = []
+        for c in self.columns:
+            out[c] = self.describe_column(c, pred[c], n_params)
+            pvals += [out[c].bias_p, out[c].lag1_p, out[c].smoother_p_used]
+        p_adj = min(1.0, min(pvals) * len(pvals))
+        return Residuals(out, p_adj)
+
+    def describe_column(self, c: str, pred_c: np.ndarray, n_params: int) -> ColumnResiduals:
+        """Bias (t test), reduced chi-square, lag-1 autocorrelation, the conditions' smoother
+        (F test and held-out gain) of column c's residuals, generalised least squares for AR(1)
+        noise (residuals and regressors whitened alike; the white-noise statistics at rho 0)."""
+        m = self.valid[c]
+        r = (self.measured[c] - pred_c)[m]
+        seg = self.blocks[m]
+        rho = self.noise.rho[c]
+        z = ar1_whiten(r, seg, rho) / self.noise.sigma_w[c]
+        one = ar1_whiten(np.ones_like(r), seg, rho)
+        nn = z.size
+        b_hat = float(one @ z) / float(one @ one)
+        bias_p = float(2 * stats.norm.sf(abs(b_hat) * math.sqrt(float(one @ one))))
+        # lag-1 autocorrelation within blocks, in row order (of the whitened residuals)
+        zc = z - one * b_hat
+        same = seg[1:] == seg[:-1]
+        den = float(zc @ zc) or 1.0
+        num = float(np.sum(zc[1:][same] * zc[:-1][same]))
+        r1 = num / den
+        npairs = max(int(same.sum()), 1)
+        # significant only if it is both (self-normalised autocorrelation, and the lag-1
+        # product sum in units of the noise level: structure far below the noise is none)
+        auto_p = float(max(stats.norm.sf(r1 * math.sqrt(npairs)),
+                           stats.norm.sf(num / math.sqrt(npairs))))
+        A = ar1_whiten(np.column_stack([np.ones(nn), self.features[m]]), seg, rho)
+        Fst, F_p = _smoother_test(A, zc, den)
+        cv_gain = _smoother_cv_gain(A, z, one, seg)
+        # AR(1) noise: the smoother must also predict held-out blocks
+        p_used = 1.0 if rho > 0.0 and cv_gain < AR1_MIN_CV_GAIN else F_p
+        return ColumnResiduals(float(np.mean(r)), bias_p, float(np.sqrt(np.mean(r ** 2))),
+                               self.noise.sigma[c], rho, float(z @ z / max(nn - n_params, 1)),
+                               r1, auto_p, float(Fst), F_p, float(cv_gain), p_used)
+
+
+def _rates(cols: list[tuple[str, np.ndarray]], t: np.ndarray) -> list[np.ndarray]:
+    """Standardised rates of change d x / d t of the varying conditions (not of time itself) in
+    a time series (`t` strictly increasing; else none)."""
+    if not np.all(np.diff(t) > 0):
+        return []
+    out = []
+    for k, x in cols:
+        if k in ("time_s", "row"):
+            continue
+        g = np.gradient(x, t)
+        if np.std(g) > 0:
+            out.append((g - g.mean()) / g.std())
+    return out
+
+
+#: with AR(1) noise the whitening uses an estimated rho and the in-sample F test of the smoother
+#: is anti-conservative; the smoother must then also predict the held-out blocks (block cross-
+#: validation gain above this share of the residual variance) to count as structure
+AR1_MIN_CV_GAIN = 0.1
+
+
+def _smoother_test(A: np.ndarray, zc: np.ndarray, den: float) -> tuple[float, float]:
+    """F statistic of the smoother (columns of A beyond the constant) on the centred residuals
+    zc (sum of squares den) and its p value: the larger of the F test's and the known-sigma
+    chi-square test's."""
+    nn = zc.size
+    q = orth(A)
+    fitted = q @ (q.T @ zc)
+    ss1 = float(np.sum((zc - fitted) ** 2))
+    p_feat = q.shape[1] - 1
+    if p_feat > 0 and nn - p_feat - 1 > 0 and ss1 > 0:
+        Fst = ((den - ss1) / p_feat) / (ss1 / (nn - p_feat - 1))
+        return Fst, float(max(stats.f.sf(Fst, p_feat, nn - p_feat - 1),
+                              stats.chi2.sf(den - ss1, p_feat)))
+    if p_feat > 0 and nn - p_feat - 1 > 0:
+        return math.inf, float(stats.chi2.sf(den - ss1, p_feat))
+    return 0.0, 1.0
+
+
+def _smoother_cv_gain(A: np.ndarray, z: np.ndarray, one: np.ndarray, blocks: np.ndarray) -> float:
+    """The smoother's held-out gain: 1 - SSE(smoother) / SSE(constant), each held-out block
+    predicted from the others (block cross-validation)."""
+    sse_cv = 0.0
+    sse_0 = 0.0
+    for b in np.unique(blocks):
+        tr, te = blocks != b, blocks == b
+        if tr.sum() <= A.shape[1] + 1:
+            continue
+        coef, *_ = np.linalg.lstsq(A[tr], z[tr], rcond=None)
+        sse_cv += float(np.sum((z[te] - A[te] @ coef) ** 2))
+        b_tr = float(one[tr] @ z[tr]) / float(one[tr] @ one[tr])
+        sse_0 += float(np.sum((z[te] - one[te] * b_tr) ** 2))
+    return 1.0 - sse_cv / sse_0 if sse_0 > 0 else 0.0
+
+
+# ---------------------------------------------------------------------- construction
+def make_problem(predict: Callable, measured: Mapping[str, np.ndarray],
+                 conditions: Mapping[str, np.ndarray], candidates: Sequence,
+                 nuisance: Mapping[str, tuple], blocks=None, *,
+                 noise_sigma: Mapping[str, float] | None = None, T_ref_C: float = 20.0,
+                 predict_at: Callable | None = None, thresholds: Mapping | None = None,
+                 columns: Sequence[str] | None = None, workers: int = 1,
+                 generalised: bool = True) -> Problem:
+    """The problem as given (noise from the measured data, before the baseline calibration);
+    one-line `DiagnosisError` for unusable input. One model call (the columns it predicts)."""
+    from studies.diagnosis.core import DEFAULT_THRESHOLDS
+
+    th = dict(DEFAULT_THRESHOLDS)
+    th.update(thresholds or {})
+    cond = {k: np.asarray(v, float) for k, v in conditions.items()}
+    cands = tuple(candidates)
+    names = [c.name for c in cands]
+    if len(set(names)) != len(names):
+        raise DiagnosisError("candidate effects must have distinct names")
+    meas = {k: np.asarray(v, float) for k, v in measured.items()}
+    n = _row_count(meas, cond)
+    nu = Nuisance.from_spec(nuisance)
+    model = CachedModel(predict, n)
+    cols = _compared_columns(meas, model({}, nu.start), columns)
+    labels = _block_labels(blocks, n, int(th["n_blocks"]))
+    meas = {c: meas[c] for c in cols}
+    valid = {c: np.isfinite(meas[c]) for c in cols}
+    given = {c: float(v) for c, v in (noise_sigma or {}).items()}
+    pb = Problem(model, cond, meas, cols, cands, nu, labels, valid,
+                 Noise({}, {}, {}, {}, frozenset(given)), th, float(T_ref_C), predict_at,
+                 int(workers), bool(generalised))
+    sigma, source = {}, {}
+    for c in cols:
+        if c in given:
+            sigma[c] = given[c]
+            continue
+        floor = ROUND_OFF * float(np.nanmax(np.abs(meas[c]), initial=0.0))
+        s, source[c] = data_sigma(pb, c, meas[c])
+        s = max(s, floor)
+        sigma[c] = s if s > 0 else 1.0     # a column of zeros
+    noise = Noise(sigma, dict(sigma), {c: 0.0 for c in cols}, source, frozenset(given))
+    return Problem(model, cond, meas, cols, cands, nu, labels, valid, noise, th, float(T_ref_C),
+                   predict_at, int(workers), bool(generalised))
+
+
+def data_sigma(pb: Problem, c: str, r: np.ndarray) -> tuple[float, str]:
+    """Noise level of column c from residuals r, and how: in a time series from second
+    differences in time (within blocks); in a table of steady points from the design
+    (replicates, or second differences along each condition: `stats.noise_sigma_steady`)."""
+    t = pb.conditions.get("time_s")
+    if t is None or not np.all(np.diff(t) > 0):
+        m = pb.valid[c]
+        s, how = noise_sigma_steady(r[m], {k: v[m] for k, v in pb.conditions.items()})
+        if s > 0:
+            return s, how
+    return noise_sigma(r, pb.blocks), "second differences of the baseline residuals"
+
+
+def _row_count(meas: Mapping[str, np.ndarray], cond: Mapping[str, np.ndarray]) -> int:
+    if not meas:
+        raise DiagnosisError("no measured output columns")
+    sizes = {v.size for v in meas.values()} | {v.size for v in cond.values()}
+    if len(sizes) != 1:
+        raise DiagnosisError(f"columns have different lengths: {sorted(sizes)}")
+    n = sizes.pop()
+    if n < 8:
+        raise DiagnosisError(f"too few rows to diagnose ({n}; need at least 8)")
+    return n
+
+
+def _compared_columns(meas: Mapping, pred0: Mapping, columns: Sequence[str] | None
+                      ) -> tuple[str, ...]:
+    """Measured columns the model predicts (restricted to `columns` when given), FIRST_COLUMNS
+    first."""
+    common = [c for c in meas if c in pred0]
+    if columns is not None:
+        common = [c for c in columns if c in common]
+    if not common:
+        raise DiagnosisError("no measured column is predicted by the model (measured: "
+                             f"{', '.join(meas)})")
+    first = [c for c in FIRST_COLUMNS if c in common]
+    return tuple(first + [c for c in common if c not in first])
+
+
+def _block_labels(blocks, n: int, n_auto: int) -> np.ndarray:
+    """Held-out block per row, 0..k-1: the given labels, or n_auto contiguous blocks."""
+    if blocks is None:
+        labels = auto_blocks(n, n_auto)
+    else:
+        b = np.asarray(blocks)
+        if b.size != n:
+            raise DiagnosisError("block labels must have one entry per row")
+        _, labels = np.unique(b, return_inverse=True)
+    if int(labels.max()) + 1 < 2:
+        raise DiagnosisError("need at least two held-out blocks")
+    return labels
