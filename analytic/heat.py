@@ -41,18 +41,18 @@ def pair_heat_W(g, pair, speed_rpm, mu_traction: float, viscous_torque_Nmm) -> P
     inner_W + outer_W = sliding_W + spin_W + viscous_W.
     """
     n = np.asarray(speed_rpm, float)
-    part = {"sliding_inner": 0.0, "sliding_outer": 0.0, "spin_inner": 0.0, "spin_outer": 0.0}
+    sl_i = sl_o = sp_i = sp_o = 0.0         # both bearings' torques per contact, N*mm
     for j in (0, 1):
         cin, cout = contact_inputs(pair, j)
         alpha_i, alpha_o = contact_angles_rad(pair, j)
         t = sliding_spin_torque_Nmm(g.Z, g.Dw_mm, g.dm_mm, g.f_i, g.f_o, alpha_i, cin, cout,
                                     mu_traction, alpha_outer_rad=alpha_o)
-        for k in part:
-            part[k] = part[k] + t[f"{k}_Nmm"]
+        sl_i, sl_o = sl_i + t.sliding_inner_Nmm, sl_o + t.sliding_outer_Nmm
+        sp_i, sp_o = sp_i + t.spin_inner_Nmm, sp_o + t.spin_outer_Nmm
     visc = np.asarray(viscous_torque_Nmm, float)
     return PairHeat(
-        sliding_W=power_W(part["sliding_inner"] + part["sliding_outer"], n),
-        spin_W=power_W(part["spin_inner"] + part["spin_outer"], n),
+        sliding_W=power_W(sl_i + sl_o, n),
+        spin_W=power_W(sp_i + sp_o, n),
         viscous_W=power_W(visc, n),
-        inner_W=power_W(part["sliding_inner"] + part["spin_inner"] + 0.5 * visc, n),
-        outer_W=power_W(part["sliding_outer"] + part["spin_outer"] + 0.5 * visc, n))
+        inner_W=power_W(sl_i + sp_i + 0.5 * visc, n),
+        outer_W=power_W(sl_o + sp_o + 0.5 * visc, n))

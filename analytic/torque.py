@@ -43,7 +43,7 @@ GB/T 28878.2-2016 Annex B form M = f1 F dm + c f0 (nu n)^(2/3) dm^3.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from math import cos, pi
 
 import numpy as np
@@ -170,10 +170,29 @@ class ContactInput:
     Rx_mm: np.ndarray            # effective radius along rolling
 
 
+@dataclass(frozen=True)
+class ContactTorques:
+    """Friction torque of one bearing (`solid_film_torque_Nmm`) by dissipation and contact, N*mm,
+    arrays over operating points (or over (balls, points) for a per-ball evaluation).
+    total_Nmm is the sum of the six components (stored: a per-ball sum sums the balls' totals)."""
+    hysteresis_inner_Nmm: np.ndarray
+    hysteresis_outer_Nmm: np.ndarray
+    differential_inner_Nmm: np.ndarray
+    differential_outer_Nmm: np.ndarray
+    spin_inner_Nmm: np.ndarray
+    spin_outer_Nmm: np.ndarray
+    total_Nmm: np.ndarray
+
+    def where(self, mask, other: "ContactTorques") -> "ContactTorques":
+        """These torques, with `other`'s summed over its first axis (the balls) where `mask`."""
+        return ContactTorques(*(np.where(mask, getattr(other, f.name).sum(axis=0),
+                                         getattr(self, f.name)) for f in fields(self)))
+
+
 def solid_film_torque_Nmm(Z: int, Dw_mm: float, dm_mm: float, f_i: float, f_o: float,
                           alpha_rad, inner: ContactInput, outer: ContactInput, mu,
                           hysteresis_loss, ring_compliance_per_MPa=1.0,
-                          ball_compliance_per_MPa=1.0, alpha_outer_rad=None) -> dict[str, np.ndarray]:
+                          ball_compliance_per_MPa=1.0, alpha_outer_rad=None) -> ContactTorques:
     """Friction torque of one solid-film (MoS2) lubricated bearing, N*mm, by components.
 
     Seed 000 structure (after Todd & Stevens / Snare): inner M_i = M_E,i + M_d,i + M_s,i,
@@ -184,25 +203,23 @@ def solid_film_torque_Nmm(Z: int, Dw_mm: float, dm_mm: float, f_i: float, f_o: f
       spin        (3/8) mu Q a E(m) * spin_j
     alpha_rad: contact angle of the inner contact, alpha_outer_rad that of the outer one (default
     equal: quasi-static balls; quasi-dynamic balls at speed give two, and the kinematics follow
-    them).  Returns keys hysteresis_inner_Nmm, hysteresis_outer_Nmm, differential_inner_Nmm,
-    differential_outer_Nmm, spin_inner_Nmm, spin_outer_Nmm, total_Nmm.
+    them).  Returns the `ContactTorques` (each component of each contact, and their total).
     """
     kin = ball_kinematics(dm_mm, Dw_mm, alpha_rad, alpha_outer_rad)
     Rc_i = contact_surface_radius_mm(Dw_mm, f_i, ring_compliance_per_MPa, ball_compliance_per_MPa)
     Rc_o = contact_surface_radius_mm(Dw_mm, f_o, ring_compliance_per_MPa, ball_compliance_per_MPa)
     half_dm = 0.5 * dm_mm
-    out = {
-        "hysteresis_inner_Nmm": Z * hysteresis_rolling_force_N(hysteresis_loss, inner.Q_N, inner.b_mm,
-                                                               inner.Rx_mm) * half_dm * kin.roll_inner,
-        "hysteresis_outer_Nmm": Z * hysteresis_rolling_force_N(hysteresis_loss, outer.Q_N, outer.b_mm,
-                                                               outer.Rx_mm) * half_dm * kin.roll_outer,
-        "differential_inner_Nmm": Z * heathcote_power_per_rate(mu, inner.Q_N, inner.a_mm, Rc_i) * kin.slip_inner,
-        "differential_outer_Nmm": Z * heathcote_power_per_rate(mu, outer.Q_N, outer.a_mm, Rc_o) * kin.slip_outer,
-        "spin_inner_Nmm": Z * spin_moment_Nmm(mu, inner.Q_N, inner.a_mm, inner.E_ell) * kin.spin_inner,
-        "spin_outer_Nmm": Z * spin_moment_Nmm(mu, outer.Q_N, outer.a_mm, outer.E_ell) * kin.spin_outer,
-    }
-    out["total_Nmm"] = sum(out.values())
-    return out
+    parts = (
+        Z * hysteresis_rolling_force_N(hysteresis_loss, inner.Q_N, inner.b_mm,
+                                       inner.Rx_mm) * half_dm * kin.roll_inner,
+        Z * hysteresis_rolling_force_N(hysteresis_loss, outer.Q_N, outer.b_mm,
+                                       outer.Rx_mm) * half_dm * kin.roll_outer,
+        Z * heathcote_power_per_rate(mu, inner.Q_N, inner.a_mm, Rc_i) * kin.slip_inner,
+        Z * heathcote_power_per_rate(mu, outer.Q_N, outer.a_mm, Rc_o) * kin.slip_outer,
+        Z * spin_moment_Nmm(mu, inner.Q_N, inner.a_mm, inner.E_ell) * kin.spin_inner,
+        Z * spin_moment_Nmm(mu, outer.Q_N, outer.a_mm, outer.E_ell) * kin.spin_outer,
+    )
+    return ContactTorques(*parts, sum(parts))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -260,32 +277,43 @@ def power_W(torque_Nmm, n_rpm):
     return np.asarray(torque_Nmm, float) * np.abs(np.asarray(n_rpm, float)) * RPM_TO_RAD_S * 1e-3
 
 
-def friction_heat_W(components_Nmm: dict[str, np.ndarray], n_rpm) -> dict[str, np.ndarray]:
-    """Heat (W) of each torque component at speed n_rpm for a thermal network; keys renamed
-    *_Nmm -> *_W.  The sliding (differential), spin and hysteresis parts of `solid_film_torque_Nmm`
+def friction_heat_W(components_Nmm, n_rpm) -> dict[str, np.ndarray]:
+    """Heat (W) of each torque component at speed n_rpm for a thermal network, by name: the
+    fields of a torque dataclass (`ContactTorques`, `SlidingSpinTorques`) or the keys of a
+    mapping, renamed *_Nmm -> *_W (a display helper; None fields are left out).  The sliding (differential), spin and hysteresis parts of `solid_film_torque_Nmm`
     or of `sliding_spin_torque_Nmm` map to seed 003's H_B1 (sliding) and H_B3 (spin); the viscous
     term of `palmgren_viscous_torque_Nmm` to H_B2."""
+    items = (components_Nmm.items() if isinstance(components_Nmm, dict)
+             else ((f.name, getattr(components_Nmm, f.name)) for f in fields(components_Nmm)))
     return {k[:-4] + "_W" if k.endswith("_Nmm") else k + "_W": power_W(v, n_rpm)
-            for k, v in components_Nmm.items()}
+            for k, v in items if v is not None}
+
+
+@dataclass(frozen=True)
+class SlidingSpinTorques:
+    """Sliding (differential slip) and spin torques of one bearing's inner and outer contacts,
+    N*mm (`sliding_spin_torque_Nmm`)."""
+    sliding_inner_Nmm: np.ndarray
+    sliding_outer_Nmm: np.ndarray
+    spin_inner_Nmm: np.ndarray
+    spin_outer_Nmm: np.ndarray
 
 
 def sliding_spin_torque_Nmm(Z: int, Dw_mm, dm_mm, f_i, f_o, alpha_rad, inner: ContactInput,
                             outer: ContactInput, mu_slide, mu_spin=None,
                             ring_compliance_per_MPa=1.0, ball_compliance_per_MPa=1.0,
-                            alpha_outer_rad=None):
+                            alpha_outer_rad=None) -> SlidingSpinTorques:
     """Sliding (differential slip) and spin torques of an oil-lubricated bearing with boundary /
     traction coefficients mu_slide, mu_spin (default mu_slide), N*mm (same contact models as
     `solid_film_torque_Nmm` without hysteresis).  Multiply by the speed (`friction_heat_W`) for
     seed 003's sliding and spin heat."""
-    out = solid_film_torque_Nmm(Z, Dw_mm, dm_mm, f_i, f_o, alpha_rad, inner, outer, mu_slide, 0.0,
-                                ring_compliance_per_MPa, ball_compliance_per_MPa, alpha_outer_rad)
+    t = solid_film_torque_Nmm(Z, Dw_mm, dm_mm, f_i, f_o, alpha_rad, inner, outer, mu_slide, 0.0,
+                              ring_compliance_per_MPa, ball_compliance_per_MPa, alpha_outer_rad)
+    spin_i, spin_o = t.spin_inner_Nmm, t.spin_outer_Nmm
     if mu_spin is not None and mu_slide != 0:
         scale = mu_spin / mu_slide
-        out["spin_inner_Nmm"] = out["spin_inner_Nmm"] * scale
-        out["spin_outer_Nmm"] = out["spin_outer_Nmm"] * scale
-    return {"sliding_inner_Nmm": out["differential_inner_Nmm"],
-            "sliding_outer_Nmm": out["differential_outer_Nmm"],
-            "spin_inner_Nmm": out["spin_inner_Nmm"], "spin_outer_Nmm": out["spin_outer_Nmm"]}
+        spin_i, spin_o = spin_i * scale, spin_o * scale
+    return SlidingSpinTorques(t.differential_inner_Nmm, t.differential_outer_Nmm, spin_i, spin_o)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -319,78 +347,111 @@ def ball_contact_inputs(radial, j: int) -> tuple[ContactInput, ContactInput]:
                  for Q, c in ((Q_i, radial.ball_inner), (Q_o, radial.ball_outer)))
 
 
+@dataclass(frozen=True)
+class TorqueComponents:
+    """Friction torque of a bearing pair (`pair_torque`), N*mm, arrays (n,) over operating points.
+
+    model: "solid_film" or "oil" (which of the component fields are set; the others are None).
+    torque_Nmm: the pair's torque (bearing A + bearing B); torque_A_Nmm, torque_B_Nmm: per bearing.
+    heat_W: dissipated power of the pair, W (`power_W`; None when no speed was given).
+    Solid film: hysteresis_Nmm, differential_Nmm, spin_Nmm (each dissipation, both bearings,
+    inner + outer contacts), inner_contacts_Nmm, outer_contacts_Nmm (every component of the
+    inner or of the outer contacts, both bearings).
+    Oil: load_Nmm (the load term, both bearings), viscous_Nmm (Palmgren's viscous term, both
+    bearings), viscosity_mm2_s (the kinematic viscosity the viscous term used, mm^2/s)."""
+    model: str
+    torque_Nmm: np.ndarray
+    torque_A_Nmm: np.ndarray
+    torque_B_Nmm: np.ndarray
+    heat_W: np.ndarray | None = None
+    hysteresis_Nmm: np.ndarray | None = None
+    differential_Nmm: np.ndarray | None = None
+    spin_Nmm: np.ndarray | None = None
+    inner_contacts_Nmm: np.ndarray | None = None
+    outer_contacts_Nmm: np.ndarray | None = None
+    load_Nmm: np.ndarray | None = None
+    viscous_Nmm: np.ndarray | None = None
+    viscosity_mm2_s: np.ndarray | None = None
+
+
 def pair_torque(g, pair, *, model: str = "solid_film", mu=0.02, hysteresis_loss=0.0,
-                speed_rpm=None, f0=0.0, nu_mm2_s=0.0, f1=None, load_term: str = "coulomb"):
-    """Friction torque of a bearing pair from its `bearing.PairState`, vectorised, N*mm.
+                speed_rpm=None, f0=0.0, nu_mm2_s=0.0, f1=None,
+                load_term: str = "coulomb") -> TorqueComponents:
+    """Friction torque of a bearing pair from its `bearing.PairState`, vectorised, N*mm
+    (`TorqueComponents`).
 
     model "solid_film": `solid_film_torque_Nmm` per bearing (mu: film friction coefficient,
       hysteresis_loss: alpha_h); at points where the balls of a bearing carry unequal loads
       (radial load or tilt: `pair.radial`) the sum over every ball's own contacts and contact
-      angle instead of Z times the representative ball; returns torque_Nmm and torque_{hysteresis,differential,spin}_Nmm
-      (both bearings, inner + outer), torque_{inner,outer}_contacts_Nmm (all components of the
-      inner or of the outer contacts) and the per-bearing totals torque_A_Nmm, torque_B_Nmm.
+      angle instead of Z times the representative ball; sets the hysteresis, differential and
+      spin parts (both bearings, inner + outer), the inner- and outer-contact sums and the
+      per-bearing totals.
     model "oil": load term per bearing (load_term "coulomb": mu F_a dm/2; "palmgren": f1 F_a dm;
       F_a = sum_k Q_k sin(alpha_k) the bearing's axial force, which under a radial load includes
       the axial component the radial load induces; Harris Vol. 2 gives P1 = F_a - 0.1 F_r for an
       angular-contact bearing, not applied here)
-      plus Palmgren's viscous term per bearing (f0, nu_mm2_s, speed_rpm); returns torque_Nmm,
-      torque_load_Nmm, torque_viscous_Nmm, torque_A_Nmm, torque_B_Nmm.
+      plus Palmgren's viscous term per bearing (f0, nu_mm2_s, speed_rpm); sets the load and
+      viscous terms (both bearings), the viscosity used and the per-bearing totals.
     With speed_rpm given, also heat_W (total dissipated power).
     g: `bearing.BearingGeometry`.
     """
-    out: dict[str, np.ndarray] = {}
-    per = {}
     if model == "solid_film":
-        c_ring = (1.0 - g.ring.nu ** 2) / g.ring.E_MPa
-        c_ball = (1.0 - g.ball.nu ** 2) / g.ball.E_MPa
-        acc = {"hysteresis": 0.0, "differential": 0.0, "spin": 0.0}
-        side = {"inner": 0.0, "outer": 0.0}
-        for j in "AB":
-            cin, cout = contact_inputs(pair, "AB".index(j))
-            alpha, alpha_o = contact_angles_rad(pair, "AB".index(j))
-            comp = solid_film_torque_Nmm(g.Z, g.Dw_mm, g.dm_mm, g.f_i, g.f_o, alpha, cin, cout,
-                                         mu, hysteresis_loss, c_ring, c_ball, alpha_o)
-            r = pair.radial
-            if r is not None and r.ball_inner is not None and np.any(r.unequal_balls):
-                # balls with unequal loads: every ball's own contacts and kinematics, summed
-                bin_, bout = ball_contact_inputs(r, "AB".index(j))
-                a_o = (None if r.ball_contact_angles_outer_deg is None
-                       else np.radians(r.ball_contact_angles_outer_deg["AB".index(j)]))
-                balls = solid_film_torque_Nmm(
-                    1, g.Dw_mm, g.dm_mm, g.f_i, g.f_o,
-                    np.radians(r.ball_contact_angles_deg["AB".index(j)]), bin_, bout,
-                    mu, hysteresis_loss, c_ring, c_ball, a_o)
-                comp = {k: np.where(r.unequal_balls, balls[k].sum(axis=0), v)
-                        for k, v in comp.items()}
-            for key in acc:
-                acc[key] = acc[key] + comp[f"{key}_inner_Nmm"] + comp[f"{key}_outer_Nmm"]
-                for c in side:
-                    side[c] = side[c] + comp[f"{key}_{c}_Nmm"]
-            per[j] = comp["total_Nmm"]
-        for key, v in acc.items():
-            out[f"torque_{key}_Nmm"] = v
-        for c, v in side.items():
-            out[f"torque_{c}_contacts_Nmm"] = v
+        per, parts = _solid_film_pair(g, pair, mu, hysteresis_loss)
     elif model == "oil":
-        load = 0.0
-        visc = palmgren_viscous_torque_Nmm(f0, nu_mm2_s, 0.0 if speed_rpm is None else speed_rpm,
-                                           g.dm_mm)
-        for j in "AB":
-            Fa = pair.axial_force_N["AB".index(j)]
-            if load_term == "coulomb":
-                m1 = coulomb_load_torque_Nmm(mu, Fa, 0.5 * g.dm_mm)
-            elif load_term == "palmgren":
-                m1 = palmgren_load_torque_Nmm(f1, Fa, g.dm_mm)
-            else:
-                raise ValueError(f"load_term must be 'coulomb' or 'palmgren', got {load_term!r}")
-            load = load + m1
-            per[j] = m1 + visc
-        out["torque_load_Nmm"] = load
-        out["torque_viscous_Nmm"] = 2.0 * visc * np.ones_like(load)
+        per, parts = _oil_pair(g, pair, mu, speed_rpm, f0, nu_mm2_s, f1, load_term)
+        parts["viscosity_mm2_s"] = nu_mm2_s
     else:
         raise ValueError(f"model must be 'solid_film' or 'oil', got {model!r}")
-    out["torque_A_Nmm"], out["torque_B_Nmm"] = per["A"], per["B"]
-    out["torque_Nmm"] = per["A"] + per["B"]
-    if speed_rpm is not None:
-        out["heat_W"] = power_W(out["torque_Nmm"], speed_rpm)
-    return out
+    total = per[0] + per[1]
+    heat = None if speed_rpm is None else power_W(total, speed_rpm)
+    return TorqueComponents(model, total, per[0], per[1], heat, **parts)
+
+
+def _solid_film_pair(g, pair, mu, hysteresis_loss) -> tuple[list, dict]:
+    """Per-bearing totals and the pair's solid-film components (`pair_torque`), N*mm."""
+    c_ring = (1.0 - g.ring.nu ** 2) / g.ring.E_MPa
+    c_ball = (1.0 - g.ball.nu ** 2) / g.ball.E_MPa
+    hyst = diff = spin = inner = outer = 0.0
+    per = []
+    for j in range(2):
+        cin, cout = contact_inputs(pair, j)
+        alpha, alpha_o = contact_angles_rad(pair, j)
+        c = solid_film_torque_Nmm(g.Z, g.Dw_mm, g.dm_mm, g.f_i, g.f_o, alpha, cin, cout,
+                                  mu, hysteresis_loss, c_ring, c_ball, alpha_o)
+        r = pair.radial
+        if r is not None and r.ball_inner is not None and np.any(r.unequal_balls):
+            # balls with unequal loads: every ball's own contacts and kinematics, summed
+            bin_, bout = ball_contact_inputs(r, j)
+            a_o = (None if r.ball_contact_angles_outer_deg is None
+                   else np.radians(r.ball_contact_angles_outer_deg[j]))
+            balls = solid_film_torque_Nmm(
+                1, g.Dw_mm, g.dm_mm, g.f_i, g.f_o, np.radians(r.ball_contact_angles_deg[j]),
+                bin_, bout, mu, hysteresis_loss, c_ring, c_ball, a_o)
+            c = c.where(r.unequal_balls, balls)
+        hyst = hyst + c.hysteresis_inner_Nmm + c.hysteresis_outer_Nmm
+        diff = diff + c.differential_inner_Nmm + c.differential_outer_Nmm
+        spin = spin + c.spin_inner_Nmm + c.spin_outer_Nmm
+        inner = inner + c.hysteresis_inner_Nmm + c.differential_inner_Nmm + c.spin_inner_Nmm
+        outer = outer + c.hysteresis_outer_Nmm + c.differential_outer_Nmm + c.spin_outer_Nmm
+        per.append(c.total_Nmm)
+    return per, dict(hysteresis_Nmm=hyst, differential_Nmm=diff, spin_Nmm=spin,
+                     inner_contacts_Nmm=inner, outer_contacts_Nmm=outer)
+
+
+def _oil_pair(g, pair, mu, speed_rpm, f0, nu_mm2_s, f1, load_term) -> tuple[list, dict]:
+    """Per-bearing totals and the pair's load and viscous terms (`pair_torque`), N*mm."""
+    load = 0.0
+    visc = palmgren_viscous_torque_Nmm(f0, nu_mm2_s, 0.0 if speed_rpm is None else speed_rpm,
+                                       g.dm_mm)
+    per = []
+    for j in range(2):
+        Fa = pair.axial_force_N[j]
+        if load_term == "coulomb":
+            m1 = coulomb_load_torque_Nmm(mu, Fa, 0.5 * g.dm_mm)
+        elif load_term == "palmgren":
+            m1 = palmgren_load_torque_Nmm(f1, Fa, g.dm_mm)
+        else:
+            raise ValueError(f"load_term must be 'coulomb' or 'palmgren', got {load_term!r}")
+        load = load + m1
+        per.append(m1 + visc)
+    return per, dict(load_Nmm=load, viscous_Nmm=2.0 * visc * np.ones_like(load))

@@ -4,9 +4,11 @@
     asm = bearingfem.load_assembly("my_pair.toml")
     out = bearingfem.simulate(asm, {"T_ambient_C": [-40, 20, 80]})
 
-`simulate` returns a dict of numpy arrays, one per output column of `bearingfem simulate`
-(docs/cli.md: `torque_Nmm`, `preload_N`, `contact_angle_deg`, ...; units in every name). Pass it
-to `pandas.DataFrame(out)` for a table. The FE set-up of an assembly is kept for the next call with
+`simulate` returns a `pandas.DataFrame`, one row per condition row and the output columns of
+`bearingfem simulate` in its order (docs/cli.md: `torque_Nmm`, `preload_N`, `contact_angle_deg`,
+..., then the `flag_*` and `margin_*` checks; units in every name). The typed result behind it
+(`studies.model.result.SimulationResult`: FE state, `PairState`, torque components, checks) is
+`studies.model.pipeline.simulate_table`. The FE set-up of an assembly is kept for the next call with
 an equal assembly (`Pipeline.shared`). BLAS runs single-threaded inside the FE superposition by itself.
 """
 from __future__ import annotations
@@ -28,7 +30,7 @@ def load_assembly(path: str | Path):
     return load(path)
 
 
-def simulate(assembly, conditions: Mapping, effects: Mapping | None = None) -> dict[str, np.ndarray]:
+def simulate(assembly, conditions: Mapping, effects: Mapping | None = None):
     """Model outputs per row of `conditions`.
 
     assembly: an `Assembly` (`load_assembly`) or the path of its TOML file.
@@ -37,9 +39,13 @@ def simulate(assembly, conditions: Mapping, effects: Mapping | None = None) -> d
         `axial_load_N` and `radial_load_N` in N, `moment_Nmm` in N mm, part temperatures
         `T_<part>_C`, `time_s`), all of equal length.
     effects: {effect name: {parameter: value}} switched on, as `simulate --effect`.
-    Returns {output column: array}, units in the names. Bad input raises ValueError subclasses
-    (TableError, EffectError, ModelError) with one-line messages naming the column or row.
+    Returns a `pandas.DataFrame` of the output columns (`studies.model.columns.to_columns`),
+    units in the names. Bad input raises ValueError subclasses (TableError, EffectError,
+    ModelError) with one-line messages naming the column or row.
     """
+    import pandas as pd
+
+    from studies.model.columns import to_columns
     from studies.model.inputs import CONDITION_COLUMNS
     from studies.model.pipeline import Pipeline, simulate_table
     from studies.model.table import TableError, check_columns
@@ -55,6 +61,7 @@ def simulate(assembly, conditions: Mapping, effects: Mapping | None = None) -> d
         if effects:
             raise TableError('effects: not available with [thermal] mode = "transient"')
         check_columns("conditions", cols, allowed=set(CONDITION_COLUMNS) | set(TRANSIENT_COLUMNS))
-        return run_transient(Pipeline.shared(assembly), cols).columns()
+        return pd.DataFrame(run_transient(Pipeline.shared(assembly), cols).columns())
     check_columns("conditions", cols, allowed=set(CONDITION_COLUMNS))
-    return simulate_table(assembly, cols, dict(effects or {}), pipeline=Pipeline.shared(assembly))
+    result = simulate_table(assembly, cols, dict(effects or {}), pipeline=Pipeline.shared(assembly))
+    return pd.DataFrame(to_columns(result))

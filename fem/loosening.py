@@ -33,9 +33,9 @@ def _opening(sup: Superposition, theta, delta, k: int, c_k: float, w2: np.ndarra
     """h(omega^2) of fit k for every state (see the module docstring)."""
     res = sup.evaluate(theta, delta, w2)
     sel = sup.pfit == k
-    F = res["force_N"][:, sel].sum(axis=1)
-    closed = (res["force_N"][:, sel] > 0).any(axis=1)
-    return np.where(closed, F, -c_k * res["gap_mm"][:, sel].min(axis=1))
+    F = res.force_N[:, sel].sum(axis=1)
+    closed = (res.force_N[:, sel] > 0).any(axis=1)
+    return np.where(closed, F, -c_k * res.gap_mm[:, sel].min(axis=1))
 
 
 def fit_open_omega2(sup: Superposition, theta: np.ndarray, delta_mm: np.ndarray, fit: int,

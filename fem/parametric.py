@@ -255,7 +255,7 @@ def _compliance(cond: Condensed, raceway: np.ndarray, plan) -> float:
     npair = cond.fit_of_pair.size
     sup = Superposition.from_condensed(cond, lambda: None)
     res = sup.evaluate(np.zeros((1, cond.n_parts)), np.array([plan.delta_assembled_mm]))
-    closed = res["closed_sets"][res["status"][0]]
+    closed = res.closed_sets[res.status[0]]
     b, p = raceway[:npair], raceway[npair:]
     lam = np.zeros(npair)
     if closed.any():

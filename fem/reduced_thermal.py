@@ -59,7 +59,7 @@ from scipy.sparse.linalg import splu
 from skfem import BilinearForm, asm
 
 from fem.forms import TWO_PI, strains
-from fem.solver import Condensed, FitSolver, Superposition, condense
+from fem.solver import Condensed, FitSolver, SuperposedStates, Superposition, condense
 from fem.transient import (PER_M2_TO_PER_MM2, SCHEMES, StepLoads, ThermalParameters,
                            TransientConduction, element_average, radiation_h_W_mm2K,
                            radiation_remainder_W_mm2)
@@ -243,6 +243,13 @@ class ReducedStepper:
 
 # ------------------------------------------------------------------ structural response per mode
 @dataclass(frozen=True)
+class ModalStates(SuperposedStates):
+    """`SuperposedStates` of reduced temperature states, and ring_strain (n_states, n_rings):
+    each ring's mean thermal strain (-)."""
+    ring_strain: np.ndarray | None = None
+
+
+@dataclass(frozen=True)
 class ModalStructure:
     """The exact contact superposition with the thermal modes as load columns.
 
@@ -255,14 +262,14 @@ class ModalStructure:
     ring_strain: np.ndarray
     q_ref: np.ndarray
 
-    def evaluate(self, q: np.ndarray, delta_mm: np.ndarray, omega2_rad2_s2=None) -> dict:
+    def evaluate(self, q: np.ndarray, delta_mm: np.ndarray, omega2_rad2_s2=None) -> ModalStates:
         """`Superposition.evaluate` of states q (n_states, m) (reduced temperature coordinates)
-        at radial interferences delta_mm (n_states, n_fits); adds "ring_strain" (n_states,
-        n_rings)."""
+        at radial interferences delta_mm (n_states, n_fits), with the rings' mean strains
+        (`ModalStates.ring_strain`, (n_states, n_rings))."""
         c = np.atleast_2d(q) - self.q_ref[None, :]
         out = self.sup.evaluate(c, delta_mm, omega2_rad2_s2)
-        out["ring_strain"] = c @ self.ring_strain.T
-        return out
+        return ModalStates(out.force_N, out.gap_mm, out.status, out.closed_sets, out.probe,
+                           c @ self.ring_strain.T)
 
 
 def modal_structure(solver: FitSolver, probe: sp.csr_matrix, rc: ReducedConduction,

@@ -288,21 +288,21 @@ class Superposition:
         self._chol.clear()
 
     @single_thread_blas
-    def evaluate(self, theta: np.ndarray, delta_mm: np.ndarray, omega2_rad2_s2=None) -> dict:
+    def evaluate(self, theta: np.ndarray, delta_mm: np.ndarray,
+                 omega2_rad2_s2=None) -> "SuperposedStates":
         """theta: (n_states, n_parts), delta_mm: (n_states, n_fits), omega2_rad2_s2: (n_states,)
         the square of the rotor speed (rad^2/s^2; None = at rest). Returns per state the
         contact force (N, + compression) and gap (mm) per pair, probe values, and the index of
-        the active set used (states sharing an active set are solved together)."""
+        the active set used (states sharing an active set are solved together): a
+        `SuperposedStates`."""
         theta, delta = np.atleast_2d(theta), np.atleast_2d(delta_mm)
         theta = load_columns(theta, omega2_rad2_s2)
         if self.condensed.bonded:
             C = np.hstack([theta, delta])
             n = self.n_pairs
-            out = {"force_N": C @ self.condensed.bonded_force.T, "gap_mm": np.zeros((C.shape[0], n)),
-                   "status": np.zeros(C.shape[0], int), "closed_sets": [np.ones(n, bool)]}
-            if self.PU is not None:
-                out["probe"] = C @ self.PU.T
-            return out
+            return SuperposedStates(C @ self.condensed.bonded_force.T, np.zeros((C.shape[0], n)),
+                                    np.zeros(C.shape[0], int), [np.ones(n, bool)],
+                                    None if self.PU is None else C @ self.PU.T)
         G0 = self.B @ theta.T - delta[:, self.pfit].T          # (n_pairs, n_states)
         n = G0.shape[1]
         lam, gap = np.zeros_like(G0), np.zeros_like(G0)
@@ -324,10 +324,9 @@ class Superposition:
             which[todo[ok]] = len(sets)
             sets.append(closed.copy())
         gap[np.abs(gap) < 1e-15] = 0.0
-        out = {"force_N": lam.T, "gap_mm": gap.T, "status": which, "closed_sets": sets}
-        if self.PU is not None:
-            out["probe"] = (self.PU[:, :self.n_loads] @ theta.T + self.PU[:, self.n_loads:] @ lam).T
-        return out
+        probe = (None if self.PU is None
+                 else (self.PU[:, :self.n_loads] @ theta.T + self.PU[:, self.n_loads:] @ lam).T)
+        return SuperposedStates(lam.T, gap.T, which, sets, probe)
 
     def field(self, theta: np.ndarray, delta_mm: np.ndarray, omega2_rad2_s2: float = 0.0
               ) -> np.ndarray:
@@ -340,12 +339,27 @@ class Superposition:
                 self._bonded_units = s.solve_status(np.ones(s.n_pairs, bool), *_bonded_units_load(s))
             return self._bonded_units @ np.concatenate([theta, [omega2_rad2_s2], delta_mm])
         res = self.evaluate(theta[None, :], delta_mm[None, :], np.array([omega2_rad2_s2]))
-        lam = res["force_N"][0]
+        lam = res.force_N[0]
         f = self.model.unit_loads @ theta + omega2_rad2_s2 * self.model.spin_load
         np.add.at(f, self.ps, lam)
         np.add.at(f, self.pm, -lam)
         T, lu = s.factorize(np.zeros(s.n_pairs, bool))
         return T @ _lu_solve(lu, T.T @ f)
+
+
+@dataclass(frozen=True)
+class SuperposedStates:
+    """What `Superposition.evaluate` returns for n states with n_pairs contact node pairs.
+
+    force_N (n, n_pairs): contact force per pair, N (+ compression); gap_mm (n, n_pairs): the gap
+    of each pair, mm (0 where closed); status (n,): the index into closed_sets of the active set
+    each state was solved with; closed_sets: the active sets (bool (n_pairs,) each, True =
+    closed); probe (n, n_probe): the probed displacements, mm (None without a probe matrix)."""
+    force_N: np.ndarray
+    gap_mm: np.ndarray
+    status: np.ndarray
+    closed_sets: list
+    probe: np.ndarray | None
 
 
 @dataclass(frozen=True)

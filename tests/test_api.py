@@ -4,6 +4,7 @@ import csv
 from importlib import metadata
 
 import numpy as np
+import pandas as pd
 import pytest
 
 import bearingfem
@@ -18,10 +19,14 @@ def test_three_lines_reproduce_simulate(tmp_path):
     cond.write_text("T_ambient_C,preload_assembled_N\n-40,100\n20,150\n80,200\n")
     assert main(["simulate", str(CFG), str(cond), "-o", str(tmp_path / "o.csv")]) == 0
     with open(tmp_path / "o.csv") as f:
-        rows = list(csv.DictReader(r for r in f if not r.startswith("#")))
+        reader = csv.DictReader(r for r in f if not r.startswith("#"))
+        rows = list(reader)
 
     asm = bearingfem.load_assembly(CFG)
     out = bearingfem.simulate(asm, {"T_ambient_C": [-40, 20, 80], "preload_assembled_N": [100, 150, 200]})
+    # a table with the file's output columns in the file's order (after its condition columns)
+    assert isinstance(out, pd.DataFrame) and len(out) == 3
+    assert list(out.columns) == reader.fieldnames[2:]
 
     for k in ("preload_N", "torque_Nmm", "contact_angle_deg", "fit_pressure_inner_MPa",
               "max_contact_pressure_MPa", "interference_outer_um"):

@@ -83,15 +83,20 @@ def test_diagnose_reads_simulate_output_with_its_check_columns(tmp_path, capsys)
 def test_limit_behaviour_of_every_check():
     """At the limit: a contact pressure equal to its limit and a static safety equal to the
     required one pass; a preload or fit pressure of exactly 0 is lost / open."""
-    from studies.model.checks import Check, apply_checks
+    from operator import itemgetter
 
-    checks = [Check("max_contact_pressure_MPa", "p", 1500.0, True, "MPa", "test"),
-              Check("static_safety", "s", 3.0, False, "", "test"),
-              Check("preload_lost", "P", 0.0, False, "N", "test", strict=True),
-              Check("fit_open_inner", "f", 0.0, False, "MPa", "test", strict=True)]
+    from studies.model.checks import Check, evaluate_checks
+
+    checks = [Check("max_contact_pressure_MPa", "p", 1500.0, True, "MPa", "test", itemgetter("p")),
+              Check("static_safety", "s", 3.0, False, "", "test", itemgetter("s")),
+              Check("preload_lost", "P", 0.0, False, "N", "test", itemgetter("P"), strict=True),
+              Check("fit_open_inner", "f", 0.0, False, "MPa", "test", itemgetter("f"), strict=True)]
     out = {"p": np.array([1200.0, 1500.0, 1600.0]), "s": np.array([3.0, 2.99, 4.0]),
            "P": np.array([120.0, 0.0, 1e-9]), "f": np.array([0.0, 2.0, 0.5])}
-    cols, viol = apply_checks(out, checks)
+    res = evaluate_checks(out, checks)
+    viol = res.violations()
+    cols = {f"flag_{o.check.name}": o.violated.astype(float) for o in res.outcomes}
+    cols.update({f"margin_{o.check.name}": o.margin for o in res.outcomes if o.margin is not None})
     assert cols["flag_max_contact_pressure_MPa"].tolist() == [0, 0, 1]
     assert cols["flag_static_safety"].tolist() == [0, 1, 0]
     assert cols["flag_preload_lost"].tolist() == [0, 1, 0]

@@ -8,6 +8,7 @@ from studies.app.cli import main
 from studies.model.config import CONFIG_DIR, load_shipped
 from studies.model.provenance import provenance
 from studies.runs import design_search as ds
+from studies.model.columns import to_columns
 
 
 @pytest.fixture(scope="module")
@@ -81,8 +82,8 @@ def test_inverse_search_finds_a_planted_trend():
                         ring_deltas_mm=(0.0, 1.0))
     planted = stacks[3]
     a = planted.assembly(asm)
-    P = simulate_table(a, {"T_ambient_C": np.array([-60.0, 20.0, 80.0])},
-                       pipeline=Pipeline(a, mesh_factor=4.0))["preload_N"]
+    P = to_columns(simulate_table(a, {"T_ambient_C": np.array([-60.0, 20.0, 80.0])},
+                       pipeline=Pipeline(a, mesh_factor=4.0)))["preload_N"]
     target = (P[0] - P[1], P[2] - P[1])
     m = match_trend(asm, stacks, (-60.0, 80.0), target, mesh_factor=4.0)
     assert m[0].stack == planted and m[0].miss_N <= 1e-9 * np.max(np.abs(P))

@@ -41,6 +41,7 @@ from studies.model.effects import EFFECTS, ORDER
 from studies.model.pipeline import Pipeline
 from studies.diagnosis import fitspec
 from studies.diagnosis.designs import cycles
+from studies.model.columns import to_columns
 from studies.diagnosis.operating import stated_false_alarm_level
 
 MESH_FACTOR = 2.0
@@ -247,7 +248,7 @@ def test_predictor_is_simulate(pl000):
     eff = {"thermal_lag": {"tau_s": 300.0}, "friction_temperature": {"dmu_per_K": 2e-5}}
     cols = ("torque_Nmm", "preload_N", "interference_inner_um")
     a = noise_free(pl000, cond, eff, cols, mu_scale=1.0)
-    b = simulate_table(pl000.asm, cond, eff, pipeline=pl000)
+    b = to_columns(simulate_table(pl000.asm, cond, eff, pipeline=pl000))
     for c in cols:
         np.testing.assert_allclose(a[c], b[c], rtol=1e-12, atol=0)
     # and the effects do change the data (else every test below would be vacuous)

@@ -27,6 +27,7 @@ from studies.diagnosis.engine import diagnose
 from studies.model.effects import EFFECTS
 
 from test_diagnosis_engine import NUISANCE, SIGMA, T_REF, ToyBearing, cycles, speed_steps
+from studies.model.columns import to_columns
 
 pytestmark = pytest.mark.slow
 
@@ -50,7 +51,7 @@ class PipelineModel:
         s = nuisance.get("mu_scale", 1.0)      # mu -> s * (mu_config + change)
         d = np.zeros(n) if pi.friction_coefficient is None else pi.friction_coefficient
         pi = pi.copy(friction_coefficient=(s - 1.0) * a.lubrication.friction_coefficient + s * d)
-        return self.pipeline.run(pi)
+        return to_columns(self.pipeline.run(pi))
 
     predictor = ToyBearing.predictor
 

@@ -101,15 +101,15 @@ def test_superposition_equals_direct_across_fit_opening_and_closing():
     theta = np.array([[model.materials[p].thermal_strain(t, 20.0) for p in model.part_names] for t in T])
     delta = np.tile([0.0025, 0.0025, -0.00075, -0.00075], (T.size, 1))
     res = sup.evaluate(theta, delta)
-    p_sup = fit_mean_pressures(model, solver.fit_of_pair, res["force_N"])
+    p_sup = fit_mean_pressures(model, solver.fit_of_pair, res.force_N)
     assert p_sup[0, 0] > 0 and p_sup[-1, 0] == 0          # inner fit opened
     assert p_sup[0, 2] == 0 and p_sup[-1, 2] > 0          # outer fit closed
     for i in range(T.size):
         d = solver.solve(model.unit_loads @ theta[i], delta[i])
         scale = np.abs(d.force_N).max() + 1e-30
-        assert np.abs(res["force_N"][i] - d.force_N).max() <= 1e-8 * max(scale, 1.0)
+        assert np.abs(res.force_N[i] - d.force_N).max() <= 1e-8 * max(scale, 1.0)
         up = probe @ d.u
-        assert np.abs(res["probe"][i] - up).max() <= 1e-8 * np.abs(up).max()
+        assert np.abs(res.probe[i] - up).max() <= 1e-8 * np.abs(up).max()
     u_field = sup.field(theta[5], delta[5])
     d = solver.solve(model.unit_loads @ theta[5], delta[5])
     assert np.abs(u_field - d.u).max() <= 1e-8 * np.abs(d.u).max()

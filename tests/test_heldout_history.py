@@ -25,6 +25,7 @@ from studies.diagnosis.report import write_report
 from studies.diagnosis.result import to_json
 from studies.model.config import load_shipped
 from studies.model.pipeline import Pipeline, simulate_table
+from studies.model.columns import to_columns
 
 LOSS_N, THRESHOLD_K = 20.0, 30.0
 NOISE_SHARE = 0.02           # noise, share of the mean torque
@@ -42,7 +43,7 @@ def three_cycles():
 
 
 def noisy(pl, cond, effects, seed):
-    truth = simulate_table(pl.asm, cond, effects, pipeline=pl)["torque_Nmm"]
+    truth = to_columns(simulate_table(pl.asm, cond, effects, pipeline=pl))["torque_Nmm"]
     sig = NOISE_SHARE * float(np.mean(np.abs(truth)))
     return {"torque_Nmm": truth + np.random.default_rng(seed).normal(0.0, sig, truth.size)}, sig
 
@@ -66,8 +67,8 @@ def test_one_off_settling_in_three_cycles_is_explained(pl000, tmp_path):
     eff = {"preload_settling": {"loss_N": LOSS_N, "threshold_K": THRESHOLD_K}}
     meas, sig = noisy(pl000, cond, eff, seed=1)
     # the effect is visible: largest torque change against the noise (independent of the engine)
-    base = simulate_table(pl000.asm, cond, {}, pipeline=pl000)["torque_Nmm"]
-    truth = simulate_table(pl000.asm, cond, eff, pipeline=pl000)["torque_Nmm"]
+    base = to_columns(simulate_table(pl000.asm, cond, {}, pipeline=pl000))["torque_Nmm"]
+    truth = to_columns(simulate_table(pl000.asm, cond, eff, pipeline=pl000))["torque_Nmm"]
     assert np.max(np.abs(truth - base)) > 8 * sig
     res = run(pl000, cond, meas, tmp_path)
     assert (res["verdict"], res["cause"]) == ("explained", "preload_settling"), res["reasons"]

@@ -26,6 +26,7 @@ from studies.model.effects.preload_path_compliance import UM_PER_KN
 from studies.model.effects.solid_film_runin import revolutions
 from studies.model.inputs import baseline_inputs
 from studies.model.pipeline import Pipeline, simulate_table
+from studies.model.columns import to_columns
 
 T_REF = 20.0
 
@@ -64,12 +65,12 @@ def test_runin_changes_only_the_friction_torque(pl000):
     the preload is untouched and the torque falls by the friction part only (a lower mu, the
     same load): the torque change has the sign of dmu and grows with the revolutions."""
     cond = cycles(n=60, dt=600.0)
-    base = simulate_table(pl000.asm, cond, {}, pipeline=pl000)
-    off = simulate_table(pl000.asm, cond, {"solid_film_runin": {"dmu": 0.0}}, pipeline=pl000)
+    base = to_columns(simulate_table(pl000.asm, cond, {}, pipeline=pl000))
+    off = to_columns(simulate_table(pl000.asm, cond, {"solid_film_runin": {"dmu": 0.0}}, pipeline=pl000))
     for c in ("torque_Nmm", "preload_N"):
         np.testing.assert_array_equal(off[c], base[c])
-    on = simulate_table(pl000.asm, cond, {"solid_film_runin": {"dmu": -0.005, "runin_krev": 5.0}},
-                        pipeline=pl000)
+    on = to_columns(simulate_table(pl000.asm, cond, {"solid_film_runin": {"dmu": -0.005, "runin_krev": 5.0}},
+                        pipeline=pl000))
     np.testing.assert_array_equal(on["preload_N"], base["preload_N"])
     d = on["torque_Nmm"] - base["torque_Nmm"]
     assert d[0] == 0.0 and np.all(d[1:] < 0)
@@ -79,7 +80,7 @@ def test_runin_changes_only_the_friction_torque(pl000):
 def _ref_state(pl, effects, dT_K=0.01):
     cond = {"T_ambient_C": np.array([T_REF, T_REF + dT_K, T_REF + 10 * dT_K]),
             "speed_rpm": np.zeros(3)}                                       # at rest
-    return simulate_table(pl.asm, cond, effects, pipeline=pl)
+    return to_columns(simulate_table(pl.asm, cond, effects, pipeline=pl))
 
 
 @pytest.mark.parametrize("cx_um_per_kN", [50.0, 500.0, 5000.0])
@@ -121,14 +122,14 @@ def bearing_stiffness_N_per_um(pl):
     from the pair state the pipeline returns."""
     inp = baseline_inputs({"T_ambient_C": np.array([T_REF])}, 1, T_REF,
                           pl.asm.preload.assembled_N, speed_rpm=0.0)
-    _, pair = pl.run(inp, return_pair=True)
+    pair = pl.run(inp).pair
     return np.asarray(pair.axial_stiffness_N_per_um, float)[:, 0]
 
 
 def test_compliance_off_is_baseline_exactly(pl001):
     cond = {"T_ambient_C": np.array([-20.0, 20.0, 40.0])}
-    base = simulate_table(pl001.asm, cond, {}, pipeline=pl001)
-    off = simulate_table(pl001.asm, cond, {"preload_path_compliance": {}}, pipeline=pl001)
+    base = to_columns(simulate_table(pl001.asm, cond, {}, pipeline=pl001))
+    off = to_columns(simulate_table(pl001.asm, cond, {"preload_path_compliance": {}}, pipeline=pl001))
     for c in ("torque_Nmm", "preload_N", "axial_stiffness_N_per_um"):
         np.testing.assert_array_equal(off[c], base[c])
 

@@ -11,6 +11,7 @@ from studies.app.cli import main
 from studies.model.config import CONFIG_DIR, load_shipped
 from studies.model.inputs import baseline_inputs
 from studies.model.pipeline import Pipeline
+from studies.model.columns import to_columns
 
 CFG = str(CONFIG_DIR / "seed000_71807C_TC4.toml")
 
@@ -29,7 +30,7 @@ def _inp(asm, T, **cols):
 def test_superposed_pipeline_equals_direct_fe_across_the_outer_fit_closing(pl000):
     T = np.linspace(-60.0, 80.0, 8)            # the outer clearance closes near 41 C
     inp = _inp(pl000.asm, T)
-    sup, direct = pl000.run(inp), pl000.run(inp, direct=True)
+    sup, direct = to_columns(pl000.run(inp)), to_columns(pl000.run(inp, direct=True))
     assert direct["fit_pressure_outer_MPa"][0] == 0 and direct["fit_pressure_outer_MPa"][-1] > 0
     for k in ("torque_Nmm", "preload_N", "contact_angle_deg", "fit_pressure_inner_MPa",
               "fit_pressure_outer_MPa", "groove_shift_dr_A_um", "groove_shift_dz_B_um"):
@@ -56,7 +57,7 @@ def test_row_field_equals_a_direct_fe_solve(pl000, T):
 def test_free_interference_follows_the_cte_difference(pl000):
     a = pl000.asm
     T = np.array([-60.0, 0.0, 80.0])
-    out = pl000.run(_inp(a, T))
+    out = to_columns(pl000.run(_inp(a, T)))
     ti, ring, th = get_material("TC4"), get_material("9Cr18"), get_material("TC4")
     expect_i = a.fits.inner_interference_um + (ti.thermal_strain(T, 20) - ring.thermal_strain(T, 20)) * 35e3
     expect_o = a.fits.outer_interference_um + (ring.thermal_strain(T, 20) - th.thermal_strain(T, 20)) * 47e3
@@ -75,7 +76,7 @@ def test_uniform_expansion_of_a_one_material_stack_is_a_pure_scale_change():
                                                         outer_interference_um=0.0), **same)
     pl = Pipeline(a, mesh_factor=2.0)
     T = np.array([-40.0, 20.0, 70.0])
-    out = pl.run(_inp(a, T, speed_rpm=np.zeros(3)))
+    out = to_columns(pl.run(_inp(a, T, speed_rpm=np.zeros(3))))
     g = pl.geom
     th = get_material("9Cr18").thermal_strain(T, 20.0)
     a0 = np.radians(g.alpha0_deg)
@@ -88,8 +89,8 @@ def test_uniform_expansion_of_a_one_material_stack_is_a_pure_scale_change():
 
 def test_part_columns_override_the_ambient(pl000):
     a = pl000.asm
-    both = pl000.run(_inp(a, [20.0, 20.0], T_shaft_C=[20.0, 60.0]))
-    hot = pl000.run(_inp(a, [60.0]))
+    both = to_columns(pl000.run(_inp(a, [20.0, 20.0], T_shaft_C=[20.0, 60.0])))
+    hot = to_columns(pl000.run(_inp(a, [60.0])))
     # a hot shaft in a cold ring tightens the inner fit; a uniform 60 C loosens it (TC4 < 9Cr18)
     assert both["interference_inner_um"][1] > both["interference_inner_um"][0] > hot["interference_inner_um"][0]
 
@@ -159,7 +160,7 @@ def test_diagnose_accepts_every_column_simulate_writes(pl000):
     """`diagnose` must read a `simulate` file: every output is comparable or a known extra."""
     from studies.diagnosis.files import COMPARABLE, OUTPUT_NAMES
 
-    out = pl000.run(_inp(pl000.asm, [20.0]))
+    out = to_columns(pl000.run(_inp(pl000.asm, [20.0])))
     assert set(out) <= set(COMPARABLE) | OUTPUT_NAMES, set(out) - set(COMPARABLE) - OUTPUT_NAMES
 
 
@@ -199,8 +200,8 @@ def test_quasi_dynamic_balls_through_the_pipeline(pl000):
     for radial in ([0.0] * 4, [0.0, 150.0, 40.0, 0.0]):
         inp = _inp(pl000.asm, [-40.0, 20.0, 80.0, 20.0], speed_rpm=[0.0, 0.0, 0.0, 20000.0],
                    radial_load_N=radial, moment_Nmm=[0.0, 0.0, 800.0, 0.0])
-        st = pl000.run(inp, ball_model="static")
-        dy = pl000.run(inp, ball_model="quasi_dynamic")
+        st = to_columns(pl000.run(inp, ball_model="static"))
+        dy = to_columns(pl000.run(inp, ball_model="quasi_dynamic"))
         for k in ("torque_Nmm", "preload_N", "contact_angle_deg", "contact_angle_outer_A_deg",
                   "ball_load_outer_B_N", "max_contact_pressure_MPa", "heat_W", "tilt_mrad",
                   "radial_force_A_N"):
@@ -213,3 +214,31 @@ def test_quasi_dynamic_balls_through_the_pipeline(pl000):
     omega_c = kin.cage * 20000.0 * 2.0 * np.pi / 60.0
     assert dy["centrifugal_force_N"][3] == pytest.approx(m * omega_c ** 2 * g.dm_mm / 2.0, rel=1e-12)
     assert ao < ai and st["centrifugal_force_N"][3] == 0.0
+
+
+def test_fe_options_split_the_preload_change_into_its_causes_to_first_order(pl000):
+    """`FEOptions(shifts=...)` holds one set of groove-centre shifts at its assembly-state value
+    (exactly); `FEOptions(states=...)` evaluates given FE answers. The preload P(dr, dz, T) of
+    the pair is smooth, so its change from T_ref splits into the radial-shift, axial-shift and
+    temperature-only (both shifts held) parts to first order (Taylor):
+    dP_full - dP_radial - dP_axial + dP_neither = O(dT^2), i.e. relative to dP_full O(dT): the
+    remainder falls 10x (8..12x) from 2 K to 0.2 K. An option that kept or dropped the wrong
+    shifts leaves a first-order remainder that does not fall so."""
+    from studies.model.pipeline import FEOptions
+
+    a = pl000.asm
+    P0 = pl000.run(_inp(a, [a.T_ref_C])).preload_N[0]
+    rel = []
+    for dT in (2.0, 0.2):
+        inp = _inp(a, [a.T_ref_C + dT])
+        full = pl000.run(inp)
+        radial = pl000.run(inp, fe_options=FEOptions(shifts="radial_only"))
+        axial = pl000.run(inp, fe_options=FEOptions(shifts="axial_only"))
+        neither = pl000.run(inp, fe_options=FEOptions(states=(full.fe_ref, full.fe_ref)))
+        np.testing.assert_array_equal(radial.fe.dz_mm, full.fe_ref.dz_mm)
+        np.testing.assert_array_equal(radial.fe.dr_mm, full.fe.dr_mm)
+        np.testing.assert_array_equal(axial.fe.dr_mm, full.fe_ref.dr_mm)
+        np.testing.assert_array_equal(axial.fe.dz_mm, full.fe.dz_mm)
+        d = [r.preload_N[0] - P0 for r in (full, radial, axial, neither)]
+        rel.append(abs((d[0] - d[1] - d[2] + d[3]) / d[0]))
+    assert rel[0] < 0.01 and 8.0 < rel[0] / rel[1] < 12.0, rel

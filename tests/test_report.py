@@ -12,6 +12,7 @@ from studies.app.cli import main
 from studies.model.config import CONFIG_DIR, load_assembly
 from studies.model.pipeline import Pipeline, simulate_table
 from studies.runs import assembly_report
+from studies.model.columns import to_columns
 
 TEMPLATE = CONFIG_DIR / "template.toml"
 
@@ -36,7 +37,7 @@ def test_report_of_a_users_assembly(tmp_path):
     assert html.count("data:image/png;base64,") >= 8 and 'src="fits.png"' not in html
     with open(tmp_path / "results.csv") as f:
         rows = list(csv.DictReader(f))
-    ref = simulate_table(asm, cond, pipeline=Pipeline(asm, mesh_factor=3.0))
+    ref = to_columns(simulate_table(asm, cond, pipeline=Pipeline(asm, mesh_factor=3.0)))
     np.testing.assert_allclose([float(r["preload_N"]) for r in rows], ref["preload_N"], rtol=1e-9)
     assert "flag_max_contact_pressure_MPa" in rows[0]
     _check_numbers(asm, md, {k: np.array([float(r[k]) for r in rows]) for k in rows[0]})

@@ -6,11 +6,14 @@ the date line is the time of the run)."""
 import csv
 import re
 
+from types import SimpleNamespace
+
 import numpy as np
 import pytest
 
 from studies.app.cli import main
-from studies.model.checks import apply_checks, assembly_checks
+from studies.model.checks import assembly_checks, evaluate_checks
+from studies.model.columns import check_columns
 from studies.model.config import CONFIG_DIR, load_assembly
 
 TEMPLATE = CONFIG_DIR / "template.toml"
@@ -140,7 +143,14 @@ def test_a_violated_check_is_a_fail_with_its_count():
            "fit_pressure_inner_MPa": np.array([3.0, 0.0, 1.0]),
            "fit_pressure_outer_MPa": np.array([0.0, 0.0, 2.0]),
            "static_safety": np.array([5.0, 1.5, 1.0]), "torque_Nmm": np.array([1.0, 2.0, 3.0])}
-    flags, _ = apply_checks(res, assembly_checks(asm))
+    # what the checks read of a result (`studies.model.checks`), from these columns
+    quantities = SimpleNamespace(
+        pair=SimpleNamespace(max_contact_pressure_MPa=res["max_contact_pressure_MPa"],
+                             preload_N=res["preload_N"]),
+        summary=SimpleNamespace(static_safety=res["static_safety"]),
+        fits=SimpleNamespace(inner_MPa=res["fit_pressure_inner_MPa"],
+                             outer_MPa=res["fit_pressure_outer_MPa"]))
+    flags = check_columns(evaluate_checks(quantities, assembly_checks(asm)))
     rows = {r.item.split(" (")[0]: r for r in margin_rows(asm, res, flags, {})}
     assert rows["peak contact pressure"].status == "FAIL (2 of 3)"
     assert _numbers(rows["peak contact pressure"].margin_text)[0] == pytest.approx(

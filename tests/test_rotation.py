@@ -13,6 +13,7 @@ from meshes.section import two_cylinder_section
 from studies.model.config import load_shipped
 from studies.model.pipeline import Pipeline, table_inputs
 from studies.runs.verify import TOLERANCE, rotating_cases
+from studies.model.columns import to_columns
 
 
 def _hooke_stresses(u, r, h, E, nu, assumption):
@@ -133,7 +134,7 @@ def test_speed_loosens_the_inner_fit_as_omega_squared_and_leaves_the_outer(pl001
     (a short ring tied to its neighbours: within 10 %; measured 3.6 % at mesh x3)."""
     a = pl001.asm
     n = np.array([0.0, 3000.0, 6000.0])
-    out = pl001.run(table_inputs(a, {"T_ambient_C": np.full(3, 20.0), "speed_rpm": n}))
+    out = to_columns(pl001.run(table_inputs(a, {"T_ambient_C": np.full(3, 20.0), "speed_rpm": n})))
     p = out["fit_pressure_inner_MPa"]
     assert p[2] - p[0] == pytest.approx(4 * (p[1] - p[0]), rel=1e-7)
     assert p[2] < p[0]
@@ -148,14 +149,14 @@ def test_fit_open_speed_brackets_the_opening(pl001):
     and it lies within 10 % of the two-cylinder Lamé value (plane stress), its neighbour."""
     a = pl001.asm
     inp = table_inputs(a, {"T_ambient_C": np.array([20.0])})
-    n_open = pl001.fit_open_speed_rpm(inp)["fit_inner_A"][0]
+    n_open = pl001.fit_open_speed_rpm(inp).of("fit_inner_A")[0]
     k = [f.name for f in pl001.section.fits].index("fit_inner_A")
     probe = table_inputs(a, {"T_ambient_C": np.full(2, 20.0),
                              "speed_rpm": n_open * np.array([1 - 1e-6, 1 + 1e-6])})
     p = pl001.fe(probe).fit_pressure_MPa[:, k]
     assert p[0] > 0 and p[1] == 0
     ms, mr = pl001.materials["shaft"], pl001.materials["inner_ring_A"]
-    d_um = pl001.run(inp)["interference_inner_um"][0]
+    d_um = to_columns(pl001.run(inp))["interference_inner_um"][0]
     w = lame.fit_open_speed_rad_s(a.shaft.bore_diameter_mm / 2, a.shaft.seat_diameter_mm / 2,
                                   a.bearing.inner_ring_outer_diameter_mm / 2, ms.E_MPa, ms.nu,
                                   mr.E_MPa, mr.nu, d_um, ms.density_N_s2_mm4, mr.density_N_s2_mm4)
@@ -211,7 +212,7 @@ def test_bonded_superposition_at_speed_equals_direct_fe():
     w2 = (2 * np.pi * 20000 / 60) ** 2
     res = sup.evaluate(theta, np.array([[0.002]]), np.array([w2]))
     sol = solver.solve(model.unit_loads @ theta[0] + w2 * model.spin_load, [0.002])
-    np.testing.assert_allclose(res["force_N"][0], sol.force_N, rtol=0,
+    np.testing.assert_allclose(res.force_N[0], sol.force_N, rtol=0,
                                atol=1e-8 * np.abs(sol.force_N).max())
     assert np.isinf(fit_open_omega2(sup, theta, np.array([[0.002]]), 0, 1e12)).all()
 

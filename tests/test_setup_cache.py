@@ -13,6 +13,7 @@ from meshes.section import two_cylinder_section
 from studies.model.config import load_shipped
 from studies.model.inputs import baseline_inputs
 from studies.model.pipeline import Pipeline
+from studies.model.columns import to_columns
 
 SEC = two_cylinder_section(0.0, 10.0, 15.0, "TC4", "9Cr18", 8.0, size_mm=2.0, fit_size_mm=1.0)
 PTS = np.array([[15.0], [4.0]])                        # one probe point (r, z) in mm
@@ -55,13 +56,13 @@ def test_cached_and_uncached_pipelines_give_the_same_outputs(cache, monkeypatch,
     asm = load_shipped("seed000")
     asm = dataclasses.replace(asm, fits=dataclasses.replace(asm.fits, contact=contact))
     inp = _inputs(asm, np.linspace(-60.0, 80.0, 9))      # the outer fit closes near 41 C
-    reference = Pipeline(asm, mesh_factor=3.0, cache=False).run(inp)
+    reference = to_columns(Pipeline(asm, mesh_factor=3.0, cache=False).run(inp))
     cold = Pipeline(asm, mesh_factor=3.0)                   # computes and stores the set-up
     assert list(cache.glob("setup_*.npz"))
-    outputs_equal(cold.run(inp), reference)
+    outputs_equal(to_columns(cold.run(inp)), reference)
     monkeypatch.setattr(fs, "full_fe", no_fe)               # a second run: no FE at all
     warm = Pipeline(asm, mesh_factor=3.0)
-    out = warm.run(inp)
+    out = to_columns(warm.run(inp))
     outputs_equal(out, reference)
     assert warm._full is None and warm.ndofs == cold.ndofs
     assert warm.compliance_mm_per_N == cold.compliance_mm_per_N > 0

@@ -20,6 +20,7 @@ from fem.solver import FitSolver
 from meshes.section import Fit, Rect, Section, Split
 from studies.model.config import CONFIG_DIR, ConfigError, assembly_from_dict
 from studies.model.pipeline import Pipeline, table_inputs
+from studies.model.columns import to_columns
 
 
 def _template(**changes):
@@ -49,7 +50,7 @@ def test_bonded_sleeve_of_housing_material_is_the_housing():
         if sleeve:
             raw = _with_sleeve(raw, 3.0, raw["housing"]["material"], sleeve_interference_um=0.0)
         a = assembly_from_dict(raw)
-        outs.append(Pipeline(a, cache=False).run(table_inputs(a, T)))
+        outs.append(to_columns(Pipeline(a, cache=False).run(table_inputs(a, T))))
     plain, sleeved = outs
     scale = np.abs(plain["fit_pressure_outer_MPa"]).max()
     for k in ("fit_pressure_outer_A_MPa", "fit_pressure_outer_B_MPa", "fit_pressure_inner_MPa"):
@@ -126,7 +127,7 @@ def test_sleeve_and_cartridge_together_mesh_and_report_their_fits():
     a = assembly_from_dict(raw)
     pl = Pipeline(a, cache=False)
     assert pl.setup.fit_names[-2:] == ("fit_sleeve", "fit_cartridge")
-    out = pl.run(table_inputs(a, {"T_ambient_C": np.array([20.0])}))
+    out = to_columns(pl.run(table_inputs(a, {"T_ambient_C": np.array([20.0])})))
     assert out["fit_pressure_sleeve_MPa"][0] > 0          # 3 um interference: closed
 
 
@@ -147,7 +148,7 @@ def test_sleeve_fit_pressures_have_their_multilayer_lame_neighbours():
     where the FE contact does: closed at 20 C, open at 60 C (the aluminium grows away by
     (23.6 - 10.8)e-6 /K x 40 K x 48 mm = 25 um)."""
     a = assembly_from_dict(_with_sleeve(_template(), 3.0, "17-4PH", sleeve_interference_um=4.0))
-    out = Pipeline(a, cache=False).run(table_inputs(a, {"T_ambient_C": np.array([20.0, 60.0])}))
+    out = to_columns(Pipeline(a, cache=False).run(table_inputs(a, {"T_ambient_C": np.array([20.0, 60.0])})))
     for k in ("outer", "sleeve"):
         assert np.all(np.isfinite(out[f"fit_pressure_{k}_lame_MPa"])), k
     fe, cf = out["fit_pressure_sleeve_MPa"], out["fit_pressure_sleeve_lame_MPa"]

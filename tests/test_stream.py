@@ -7,16 +7,19 @@ import os
 import re
 import tracemalloc
 
+from types import SimpleNamespace
+
 import numpy as np
 import pytest
 
 from studies.app.cli import main
 from studies.model import stream
-from studies.model.checks import apply_checks, assembly_checks, plausibility_warnings
+from studies.model.checks import assembly_checks, evaluate_checks, plausibility_warnings
 from studies.model.config import CONFIG_DIR, load_shipped
 from studies.model.pipeline import ModelError, Pipeline, check_answers, simulate_table
 from studies.model.stream import CheckTally, check_conditions, simulate_file
 from studies.model.table import TableError, TableWriter, iter_table, read_table, write_table
+from studies.model.columns import to_columns
 
 CFG = CONFIG_DIR / "seed000_71807C_TC4.toml"
 
@@ -58,9 +61,10 @@ def test_streamed_table_and_summaries_are_the_whole_tables(tmp_path, pipes, name
     assert (tmp_path / "o5.csv").read_bytes() == (tmp_path / "o23.csv").read_bytes()
     # the whole table at once, through the functions simulate used before it streamed
     whole = read_table(cond)
-    res = simulate_table(asm, whole, effects, pipeline=pl)
-    flags, violations = apply_checks(res, assembly_checks(asm))
-    cols = {**{k: v for k, v in whole.items() if k != "_line"}, **res, **flags}
+    result = simulate_table(asm, whole, effects, pipeline=pl)
+    res = to_columns(result)                    # with the flag and margin columns
+    violations = result.checks.violations()
+    cols = {**{k: v for k, v in whole.items() if k != "_line"}, **res}
     header, table = parsed(tmp_path / "o5.csv")
     assert header == list(cols) and table.shape == (23, len(cols))
     for j, k in enumerate(header):          # printed with 10 significant digits
@@ -83,19 +87,30 @@ def test_check_tally_equals_the_checks_of_the_whole_table():
     checks = assembly_checks(asm)
     rng = np.random.default_rng(5)
     n = 200
-    out = {"max_contact_pressure_MPa": rng.choice([4000.0, 4300.0, 4500.0], n),
-           "static_safety": rng.choice([2.0, 2.5, 4.0], n), "preload_N": rng.choice([0.0, 50.0], n),
-           "fit_pressure_inner_MPa": rng.uniform(-1, 5, n), "fit_pressure_outer_MPa": rng.uniform(-1, 5, n)}
-    flags, expect = apply_checks(out, checks)                  # equal worst values in many rows
+    p, s0, P = (rng.choice([4000.0, 4300.0, 4500.0], n), rng.choice([2.0, 2.5, 4.0], n),
+                rng.choice([0.0, 50.0], n))
+    fi, fo = rng.uniform(-1, 5, n), rng.uniform(-1, 5, n)
+
+    def rows(a, b):             # what the checks read of a result, rows a..b
+        return SimpleNamespace(pair=SimpleNamespace(max_contact_pressure_MPa=p[a:b], preload_N=P[a:b]),
+                               summary=SimpleNamespace(static_safety=s0[a:b]),
+                               fits=SimpleNamespace(inner_MPa=fi[a:b], outer_MPa=fo[a:b]))
+
+    whole = evaluate_checks(rows(0, n), checks)
+    expect = whole.violations()                                # equal worst values in many rows
     for cuts in ([0, n], [0, 1, 2, 77, 150, n], list(range(0, n + 1, 9)) + [n]):
         tally = CheckTally(checks)
-        got_flags = [tally.add({k: v[a:b] for k, v in out.items()}, a) for a, b in zip(cuts, cuts[1:])
-                     if b > a]
+        parts = []
+        for a, b in zip(cuts, cuts[1:]):
+            if b > a:
+                parts.append(evaluate_checks(rows(a, b), checks))
+                tally.add(parts[-1], a)
         got = tally.violations()
         assert [(v.check, v.rows.tolist(), v.worst_row, v.worst_value) for v in got] == \
             [(v.check, v.rows.tolist(), v.worst_row, v.worst_value) for v in expect]
-        for k, v in flags.items():
-            np.testing.assert_array_equal(np.concatenate([f[k] for f in got_flags]), v)
+        for k, o in enumerate(whole.outcomes):
+            np.testing.assert_array_equal(
+                np.concatenate([c.outcomes[k].violated for c in parts]), o.violated)
 
 
 def test_chunks_put_together_are_the_table(tmp_path):

@@ -12,6 +12,7 @@ from studies.model.pipeline import simulate_table
 from studies.model.config import load_shipped
 from studies.model.pipeline import Pipeline
 from studies.runs import study_module
+from studies.model.columns import to_columns
 
 MESH_FACTOR = 4.0
 #: relative to the value compared: both routes do the same arithmetic, and the study's CSV keeps 10
@@ -49,7 +50,7 @@ def _pipeline(name):
 
 def _simulate(name, columns):
     pl = _pipeline(name)
-    return simulate_table(pl.asm, columns, pipeline=pl)
+    return to_columns(simulate_table(pl.asm, columns, pipeline=pl))
 
 
 def _close(a, b, what):

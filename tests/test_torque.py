@@ -59,8 +59,8 @@ def _solid(Q, alpha_deg, mu=0.02, loss=0.01):
 
 def test_zero_spin_at_zero_contact_angle():
     t0 = _solid(20.0, 0.0)
-    assert t0["spin_inner_Nmm"] == 0.0 and t0["spin_outer_Nmm"] == 0.0
-    assert _solid(20.0, 15.0)["spin_inner_Nmm"] > 0.0
+    assert t0.spin_inner_Nmm == 0.0 and t0.spin_outer_Nmm == 0.0
+    assert _solid(20.0, 15.0).spin_inner_Nmm > 0.0
 
 
 def test_torque_linear_in_mu_and_loss_factor():
@@ -68,9 +68,9 @@ def test_torque_linear_in_mu_and_loss_factor():
     to the loss factor and independent of mu."""
     t1, t2 = _solid(30.0, 16.0, mu=0.02, loss=0.01), _solid(30.0, 16.0, mu=0.05, loss=0.03)
     for key in ("differential_inner_Nmm", "differential_outer_Nmm", "spin_inner_Nmm"):
-        assert t2[key] / t1[key] == pytest.approx(2.5, rel=1e-14)
+        assert getattr(t2, key) / getattr(t1, key) == pytest.approx(2.5, rel=1e-14)
     for key in ("hysteresis_inner_Nmm", "hysteresis_outer_Nmm"):
-        assert t2[key] / t1[key] == pytest.approx(3.0, rel=1e-14)
+        assert getattr(t2, key) / getattr(t1, key) == pytest.approx(3.0, rel=1e-14)
 
 
 def test_hysteresis_scales_with_load_to_four_thirds():
@@ -193,13 +193,13 @@ def test_power_from_torque_matches_seed003_constant():
 def test_pair_torque_of_symmetric_pair_is_twice_one_bearing():
     pair = solve_pair(G, "DB", preload_assembled_N=np.array([50.0, 200.0]))
     t = torque.pair_torque(G, pair, mu=0.02, hysteresis_loss=0.01, speed_rpm=60.0)
-    assert np.allclose(t["torque_A_Nmm"], t["torque_B_Nmm"], rtol=1e-12)
-    one = [_solid(pair.ball_load_N[0][i], pair.contact_angle_deg[0][i])["total_Nmm"] for i in range(2)]
-    assert np.allclose(t["torque_Nmm"], 2 * np.array(one, float).ravel(), rtol=1e-9)
-    parts = t["torque_hysteresis_Nmm"] + t["torque_differential_Nmm"] + t["torque_spin_Nmm"]
-    assert np.allclose(parts, t["torque_Nmm"], rtol=1e-14)
-    assert np.all(np.diff(t["torque_Nmm"]) > 0)        # more preload, more torque (seed 000)
-    assert np.allclose(t["heat_W"], torque.power_W(t["torque_Nmm"], 60.0), rtol=1e-15)
+    assert np.allclose(t.torque_A_Nmm, t.torque_B_Nmm, rtol=1e-12)
+    one = [_solid(pair.ball_load_N[0][i], pair.contact_angle_deg[0][i]).total_Nmm for i in range(2)]
+    assert np.allclose(t.torque_Nmm, 2 * np.array(one, float).ravel(), rtol=1e-9)
+    parts = t.hysteresis_Nmm + t.differential_Nmm + t.spin_Nmm
+    assert np.allclose(parts, t.torque_Nmm, rtol=1e-14)
+    assert np.all(np.diff(t.torque_Nmm) > 0)        # more preload, more torque (seed 000)
+    assert np.allclose(t.heat_W, torque.power_W(t.torque_Nmm, 60.0), rtol=1e-15)
 
 
 def test_oil_pair_torque_terms():
@@ -208,10 +208,10 @@ def test_oil_pair_torque_terms():
     hyb = BearingGeometry.from_catalogue("flywheel")
     pair = solve_pair(hyb, "DF", preload_assembled_N=np.array([7.0, 14.0]))
     t = torque.pair_torque(hyb, pair, model="oil", mu=0.0029, f0=1.7, nu_mm2_s=30.0, speed_rpm=6000.0)
-    assert np.allclose(t["torque_load_Nmm"], 2 * 0.0029 * np.array([7.0, 14.0]) * hyb.dm_mm / 2, rtol=1e-12)
+    assert np.allclose(t.load_Nmm, 2 * 0.0029 * np.array([7.0, 14.0]) * hyb.dm_mm / 2, rtol=1e-12)
     M0 = torque.palmgren_viscous_torque_Nmm(1.7, 30.0, 6000.0, hyb.dm_mm)
-    assert np.allclose(t["torque_viscous_Nmm"], 2 * M0, rtol=1e-14)
-    assert np.allclose(t["torque_Nmm"], t["torque_load_Nmm"] + t["torque_viscous_Nmm"], rtol=1e-14)
+    assert np.allclose(t.viscous_Nmm, 2 * M0, rtol=1e-14)
+    assert np.allclose(t.torque_Nmm, t.load_Nmm + t.viscous_Nmm, rtol=1e-14)
 
 
 def test_sliding_spin_heat_for_thermal_network():
@@ -221,8 +221,8 @@ def test_sliding_spin_heat_for_thermal_network():
     cin, cout = _contact(40.0, 20.0, "inner"), _contact(40.0, 20.0, "outer")
     oil = torque.sliding_spin_torque_Nmm(G.Z, G.Dw_mm, G.dm_mm, G.f_i, G.f_o, np.radians(20.0),
                                          cin, cout, mu_slide=0.04, mu_spin=0.02)
-    assert oil["sliding_inner_Nmm"] == pytest.approx(base["differential_inner_Nmm"], rel=1e-14)
-    assert oil["sliding_outer_Nmm"] == pytest.approx(base["differential_outer_Nmm"], rel=1e-14)
-    assert oil["spin_inner_Nmm"] == pytest.approx(0.5 * base["spin_inner_Nmm"], rel=1e-14)
+    assert oil.sliding_inner_Nmm == pytest.approx(base.differential_inner_Nmm, rel=1e-14)
+    assert oil.sliding_outer_Nmm == pytest.approx(base.differential_outer_Nmm, rel=1e-14)
+    assert oil.spin_inner_Nmm == pytest.approx(0.5 * base.spin_inner_Nmm, rel=1e-14)
     heat = torque.friction_heat_W(oil, 1500.0)
-    assert heat["spin_inner_W"] == pytest.approx(oil["spin_inner_Nmm"] * 1500 * 2 * np.pi / 60e3, rel=1e-14)
+    assert heat["spin_inner_W"] == pytest.approx(oil.spin_inner_Nmm * 1500 * 2 * np.pi / 60e3, rel=1e-14)

@@ -25,9 +25,9 @@ def test_vanishing_radial_load_gives_the_axial_only_torque():
                       bearing_span_mm=SPAN)
     assert tiny.radial.unequal_balls.all()
     radial = pair_torque(G, tiny, **FILM)
-    for key in ("torque_Nmm", "torque_hysteresis_Nmm", "torque_spin_Nmm",
-                "torque_differential_Nmm"):
-        np.testing.assert_allclose(radial[key], axial[key], rtol=1e-7, err_msg=key)
+    for key in ("torque_Nmm", "hysteresis_Nmm", "spin_Nmm", "differential_Nmm"):
+        np.testing.assert_allclose(getattr(radial, key), getattr(axial, key), rtol=1e-7,
+                                   err_msg=key)
 
 
 def _rolling_resistance_Nmm(Q, alpha_deg):
@@ -50,7 +50,7 @@ def test_rolling_resistance_under_radial_load_is_the_sum_over_every_balls_hertz_
     it summed the balls) is an overestimate at every load."""
     Fr = np.array([50.0, 200.0, 800.0])
     pair = solve_pair(G, "DB", preload_assembled_N=100.0, radial_load_N=Fr, bearing_span_mm=SPAN)
-    got = pair_torque(G, pair, model="solid_film", mu=0.0, hysteresis_loss=0.1)["torque_Nmm"]
+    got = pair_torque(G, pair, model="solid_film", mu=0.0, hysteresis_loss=0.1).torque_Nmm
     r = pair.radial
     want = sum(_rolling_resistance_Nmm(r.ball_loads_N[j], r.ball_contact_angles_deg[j])
                for j in range(2))

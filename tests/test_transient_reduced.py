@@ -90,15 +90,15 @@ def test_modal_structure_equals_the_direct_contact_solve(setup):
     m = pl.model
     T = rc.field(q)
     sol = pl.solver.solve(m.thermal_load_vector(tc.theta_field(T, 25.0)) + w2 * m.spin_load, delta)
-    assert np.abs(res["force_N"][0] - sol.force_N).max() < 1e-8 * np.abs(sol.force_N).max()
+    assert np.abs(res.force_N[0] - sol.force_N).max() < 1e-8 * np.abs(sol.force_N).max()
     probe = pl.full_fe().probe @ sol.u
-    assert np.abs(res["probe"][0] - probe).max() < 1e-8 * np.abs(probe).max()
+    assert np.abs(res.probe[0] - probe).max() < 1e-8 * np.abs(probe).max()
     # ring mean strains: the mean of alpha (T - T_ref) over the ring elements by area
     dx = m.basis.dx
     th = tc.theta_field(T, 25.0)
     for k, r in enumerate(RINGS):
         sel = m.part_of == r
-        assert res["ring_strain"][0, k] == pytest.approx((th[sel] * dx[sel]).sum() / dx[sel].sum(),
+        assert res.ring_strain[0, k] == pytest.approx((th[sel] * dx[sel]).sum() / dx[sel].sum(),
                                                          rel=1e-9)
 
 

@@ -34,6 +34,7 @@ def test_without_heat_the_long_run_ends_uniform_at_the_ambient_as_the_given_rout
     one fluid temperature and no source: T = T_amb everywhere). Its preload, fit pressures and
     groove shifts then equal those of the given-temperature route (`Pipeline.run`, every part
     at 45 C: per-part unit solutions, not the modal response): to 1e-6 of the change from 25 C."""
+    from studies.model.columns import to_columns
     from studies.model.inputs import baseline_inputs
     from studies.model.transient_route import run_transient
 
@@ -44,8 +45,9 @@ def test_without_heat_the_long_run_ends_uniform_at_the_ambient_as_the_given_rout
         assert abs(r[f"T_{p}_C"][-1] - 45.0) < 1e-6 * 20.0, p
     assert abs(r["T_max_C"][-1] - 45.0) < 1e-6 * 20 and abs(r["T_min_C"][-1] - 45.0) < 1e-6 * 20
     asm = pl.asm
-    given = pl.run(baseline_inputs({"T_ambient_C": np.array([25.0, 45.0]), "speed_rpm": np.zeros(2)},
-                                   2, asm.T_ref_C, asm.preload.assembled_N, 0.0))
+    given = to_columns(pl.run(baseline_inputs({"T_ambient_C": np.array([25.0, 45.0]),
+                                               "speed_rpm": np.zeros(2)},
+                                              2, asm.T_ref_C, asm.preload.assembled_N, 0.0)))
     for k in ("preload_N", "groove_shift_dr_A_um", "groove_shift_dz_A_um"):
         change = abs(given[k][1] - given[k][0])
         assert change > 0, k

@@ -23,6 +23,7 @@ from studies.model.inputs import CONDITION_COLUMNS, baseline_inputs
 from studies.model.parallel import available_workers
 from studies.model.pipeline import Pipeline
 from studies.model.checks import CHECK_COLUMNS
+from studies.model.columns import to_columns
 from studies.model.table import TableError, read_table
 
 #: output columns `diagnose` can compare (what `simulate` writes and a rig can measure)
@@ -72,14 +73,14 @@ class ModelPredictor:
 
     def __call__(self, effects, nuisance):
         self.calls += 1
-        out = self.pl.run(self.inputs(effects, nuisance))
+        out = to_columns(self.pl.run(self.inputs(effects, nuisance)), flags=False)
         return {c: out[c] for c in self.columns}
 
     def at(self, effects, nuisance, conditions):
         a = self.pl.asm
         n = len(next(iter(conditions.values())))
         base = baseline_inputs(conditions, n, a.T_ref_C, a.preload.assembled_N, a.lubrication.speed_rpm)
-        out = self.pl.run(self.inputs(effects, nuisance, base))
+        out = to_columns(self.pl.run(self.inputs(effects, nuisance, base)), flags=False)
         return {c: out[c] for c in self.columns}
 
 

@@ -13,6 +13,7 @@ Checks and their allowables (docs/cli.md, "simulate: limits"):
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Callable
 
 import numpy as np
 
@@ -28,13 +29,20 @@ CHECK_COLUMNS = frozenset(
 
 @dataclass(frozen=True)
 class Check:
-    name: str                 # flag_<name>, margin_<name>
-    column: str               # the output column checked
+    """One check: `value` of a result (per row, in `unit`) against `allowable`.
+    name: flag_<name>, margin_<name>; column: the output column checked (docs/cli.md);
+    upper: True for value <= allowable, False for value >= (strict: >) allowable; source: where
+    the allowable comes from; value: the checked quantity of a `SimulationResult` (a module-level
+    function, so that checks travel to Dask workers); strict: a lower limit of 0 that must be
+    exceeded (no margin)."""
+    name: str
+    column: str
     allowable: float
-    upper: bool               # True: column <= allowable; False: column >= (or >) allowable
+    upper: bool
     unit: str
-    source: str               # where the allowable comes from
-    strict: bool = False      # a lower limit of 0 that must be exceeded (no margin column)
+    source: str
+    value: Callable[[object], np.ndarray]
+    strict: bool = False
 
 
 @dataclass(frozen=True)
@@ -55,6 +63,59 @@ class Violation:
                 f"{rel} {c.allowable:g} {c.unit} at {at}; limit: {c.source})")
 
 
+@dataclass(frozen=True)
+class CheckOutcome:
+    """One check over the rows of a result. value: the checked quantity per row (check.unit);
+    violated: bool per row; margin: allowable / value - 1 (upper limit) or value / allowable - 1
+    (lower limit), >= 0 inside, inf where not finite (an unloaded row); None for a strict check."""
+    check: Check
+    value: np.ndarray
+    violated: np.ndarray
+    margin: np.ndarray | None
+
+    def violation(self) -> Violation | None:
+        """The rows violating the check and the worst of them (the first of equal worst values),
+        or None."""
+        if not self.violated.any():
+            return None
+        v, rows = self.value, np.flatnonzero(self.violated)
+        worst = int(rows[np.argmax(v[rows])] if self.check.upper else rows[np.argmin(v[rows])])
+        return Violation(self.check, rows, worst, float(v[worst]))
+
+
+@dataclass(frozen=True)
+class Checks:
+    """Every check of an assembly (`assembly_checks`) over the rows of a result, in order."""
+    outcomes: tuple[CheckOutcome, ...]
+
+    def violations(self) -> list[Violation]:
+        """The violated checks (0-based rows of this result)."""
+        return [v for v in (o.violation() for o in self.outcomes) if v is not None]
+
+
+def _max_contact_pressure_MPa(result) -> np.ndarray:
+    return result.pair.max_contact_pressure_MPa
+
+
+def _static_safety(result) -> np.ndarray:
+    return result.summary.static_safety
+
+
+def _preload_N(result) -> np.ndarray:
+    return result.pair.preload_N
+
+
+def _fit_pressure_inner_MPa(result) -> np.ndarray:
+    return result.fits.inner_MPa
+
+
+def _fit_pressure_outer_MPa(result) -> np.ndarray:
+    return result.fits.outer_MPa
+
+
+_FIT_PRESSURE = {"inner": _fit_pressure_inner_MPa, "outer": _fit_pressure_outer_MPa}
+
+
 def assembly_checks(asm) -> list[Check]:
     """The checks that apply to an assembly, with their allowables and sources."""
     lim = asm.limits
@@ -63,25 +124,27 @@ def assembly_checks(asm) -> list[Check]:
         Check("max_contact_pressure_MPa", "max_contact_pressure_MPa",
               p_max if np.isfinite(p_max) else ISO76_CONTACT_PRESSURE_MPa, True, "MPa",
               "[limits] max_contact_pressure_MPa" if np.isfinite(p_max)
-              else "ISO 76 static limit, no [limits] value given"),
+              else "ISO 76 static limit, no [limits] value given", _max_contact_pressure_MPa),
         Check("static_safety", "static_safety",
               lim.min_static_safety if lim.min_static_safety > 0 else GBT_LAUNCH_SAFETY, False,
               "", "[limits] min_static_safety" if lim.min_static_safety > 0
-              else "GB/T 28878.2 B.4 default, no [limits] value given"),
-        Check("preload_lost", "preload_N", 0.0, False, "N", "a preloaded pair", strict=True)]
+              else "GB/T 28878.2 B.4 default, no [limits] value given", _static_safety),
+        Check("preload_lost", "preload_N", 0.0, False, "N", "a preloaded pair", _preload_N,
+              strict=True)]
     for side, interference in zip(("inner", "outer"), asm.mean_fits_um()):
         if interference > 0:              # a designed clearance is allowed to be open
             checks.append(Check(f"fit_open_{side}", f"fit_pressure_{side}_MPa", 0.0, False, "MPa",
-                                "a fit assembled with interference", strict=True))
+                                "a fit assembled with interference", _FIT_PRESSURE[side],
+                                strict=True))
     return checks
 
 
-def apply_checks(out: dict[str, np.ndarray], checks: list[Check]
-                 ) -> tuple[dict[str, np.ndarray], list[Violation]]:
-    """Flag and margin columns for every check, and the violated checks."""
-    cols, violations = {}, []
+def evaluate_checks(result, checks: list[Check]) -> Checks:
+    """Every check over the rows of `result` (a `SimulationResult`, or whatever the checks'
+    `value` functions read)."""
+    outcomes = []
     for c in checks:
-        v = np.asarray(out[c.column], float)
+        v = np.asarray(c.value(result), float)
         with np.errstate(divide="ignore", invalid="ignore"):     # an unloaded row: infinite margin
             if c.upper:
                 bad = v > c.allowable
@@ -89,14 +152,10 @@ def apply_checks(out: dict[str, np.ndarray], checks: list[Check]
             else:
                 bad = v <= c.allowable if c.strict else v < c.allowable
                 margin = v / c.allowable - 1.0 if not c.strict else None
-        cols[f"flag_{c.name}"] = bad.astype(float)
         if margin is not None:
-            cols[f"margin_{c.name}"] = np.where(np.isfinite(margin), margin, np.inf)
-        if bad.any():
-            rows = np.flatnonzero(bad)
-            worst = int(rows[np.argmax(v[rows])] if c.upper else rows[np.argmin(v[rows])])
-            violations.append(Violation(c, rows, worst, float(v[worst])))
-    return cols, violations
+            margin = np.where(np.isfinite(margin), margin, np.inf)
+        outcomes.append(CheckOutcome(c, v, bad, margin))
+    return Checks(tuple(outcomes))
 
 
 # ---------------------------------------------------------------------- plausibility warnings

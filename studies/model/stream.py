@@ -3,14 +3,15 @@
 The conditions file is read a chunk of rows at a time (`studies.model.table.iter_table`), twice:
 `check_conditions` checks all of it first (bad input anywhere stops the run before any FE work),
 then `simulate_file` evaluates each chunk through the one route (`pipeline.table_inputs` ->
-`Pipeline.run`) and streams its rows into the temporary output file (`table.TableWriter`),
+`Pipeline.run` -> `columns.to_columns`) and streams its rows into the temporary output file
+(`table.TableWriter`),
 renamed onto the output only at the end. An effect may depend on earlier rows (a thermal lag, a
 settling after the first excursion): with effects switched on, the inputs of the whole table are
 formed first (the condition columns and `PhysicsInputs`, about 0.1 kB per row) and evaluated
 chunk by chunk.
 
-The checks of `studies.model.checks` run on each chunk (the flag and margin columns are per row);
-`CheckTally` combines their violations over all rows. The plausibility warnings and the violation
+The checks of `studies.model.checks` run on each chunk inside the route (the flag and margin
+columns are per row); `CheckTally` combines their violations over all rows. The plausibility warnings and the violation
 summaries read a few columns over all rows, kept for them (8 bytes per row each): the
 temperature columns of the conditions and WARNING_OUTPUTS; the rows of a violated check are kept
 as indices (8 bytes per violating row). Everything else lives for one chunk.
@@ -24,9 +25,11 @@ from typing import Callable, Iterator
 
 import numpy as np
 
-from studies.model.checks import Check, Violation, apply_checks, assembly_checks, plausibility_warnings
+from studies.model.checks import Check, Checks, Violation, assembly_checks, plausibility_warnings
+from studies.model.columns import to_columns
 from studies.model.inputs import CONDITION_COLUMNS
 from studies.model.pipeline import Pipeline, table_inputs
+from studies.model.result import SimulationResult
 from studies.model.table import CHUNK_ROWS, TableError, TableWriter, iter_table
 
 #: output columns `plausibility_warnings` reads over all rows (a test holds the streamed warnings
@@ -36,25 +39,24 @@ WARNING_OUTPUTS = ("torque_viscous_Nmm", "torque_load_Nmm", "land_margin_inner_d
 
 
 class CheckTally:
-    """The violations of `checks` over a table evaluated chunk by chunk: `add` applies the checks
-    to one chunk (returning its flag and margin columns), `violations` gives what `apply_checks`
-    gives for the whole table (rows, worst row and value, the first of equal worst values)."""
+    """The violations of `checks` over a table evaluated chunk by chunk: `add` takes one chunk's
+    checks (`SimulationResult.checks`), `violations` gives what `Checks.violations` gives for
+    the whole table (rows, worst row and value, the first of equal worst values)."""
 
     def __init__(self, checks: list[Check]):
         self.checks = checks
         self._rows: dict[str, list[np.ndarray]] = {c.name: [] for c in checks}
         self._worst: dict[str, tuple[int, float]] = {}
 
-    def add(self, out: dict[str, np.ndarray], first_row: int) -> dict[str, np.ndarray]:
-        """Check the rows of `out` (0-based rows first_row, first_row + 1, ... of the table)."""
-        flags, violations = apply_checks(out, self.checks)
-        for v in violations:
+    def add(self, checks: Checks, first_row: int) -> None:
+        """Add the checks of one chunk (0-based rows first_row, first_row + 1, ... of the
+        table)."""
+        for v in checks.violations():
             name = v.check.name
             self._rows[name].append(v.rows + first_row)
             old = self._worst.get(name)
             if old is None or (v.worst_value > old[1] if v.check.upper else v.worst_value < old[1]):
                 self._worst[name] = (v.worst_row + first_row, v.worst_value)
-        return flags
 
     def violations(self) -> list[Violation]:
         return [Violation(c, np.concatenate(self._rows[c.name]), *self._worst[c.name])
@@ -127,11 +129,12 @@ def simulate_file(asm, conditions: Path, out: Path, effects: dict | None = None,
             if n + m > total:
                 raise TableError(f"{conditions}: changed while it was read")
             cols = {k: v for k, v in cond.items() if not k.startswith("_")}
-            cols.update(res)
-            cols.update(tally.add(res, n))
+            out_cols = to_columns(res)
+            cols.update(out_cols)
+            tally.add(res.checks, n)
             w.write(cols)
             keep = [c for c in cols if c.startswith("T_") and c.endswith("_C")]
-            for k in keep + [c for c in WARNING_OUTPUTS if c in res]:
+            for k in keep + [c for c in WARNING_OUTPUTS if c in out_cols]:
                 kept.setdefault(k, np.empty(total))[n:n + m] = cols[k]
             n += m
             if progress:
@@ -143,8 +146,8 @@ def simulate_file(asm, conditions: Path, out: Path, effects: dict | None = None,
     return SimulateRun(n, tally.violations(), plausibility_warnings(asm, temps, outputs), temps)
 
 
-def run_block(asm, mesh_factor: float, inputs, direct: bool, first_row: int) -> dict[str, np.ndarray]:
-    """The model outputs of one chunk's inputs on this process's shared pipeline of `asm` at
+def run_block(asm, mesh_factor: float, inputs, direct: bool, first_row: int) -> SimulationResult:
+    """The model's result for one chunk's inputs on this process's shared pipeline of `asm` at
     `mesh_factor` (one Dask task of `simulate_file`; rows numbered from 0-based `first_row` in
     its errors)."""
     return Pipeline.shared(asm, mesh_factor).run(inputs, direct=direct, first_row=first_row,

@@ -140,7 +140,9 @@ def evaluate(pl, conditions: dict[str, np.ndarray], d_inner_um: np.ndarray,
     """Every sample (interference offsets from the [fits] values, length S) at every condition
     (length C) through the pipeline, whose rows are the mean (mid-band) assembly with its preload
     (`Assembly.mean_fits_um`); returns QUANTITIES as (S, C) arrays."""
+    from studies.model.columns import to_columns
     from studies.model.inputs import baseline_inputs
+    from studies.model.pipeline import FEOptions
 
     a = pl.asm
     C = len(next(iter(conditions.values())))
@@ -153,10 +155,10 @@ def evaluate(pl, conditions: dict[str, np.ndarray], d_inner_um: np.ndarray,
     order = sample_order(d_inner_um, d_outer_um)
     rows_c, rows_s = np.repeat(np.arange(C), S), np.tile(order, C)
     inp = base.take(rows_c)
-    design = pl.reference_inputs(inp)                       # the mean assembly
     inp = inp.copy(interference_inner_um=d_inner_um[rows_s] - mid_i,
                    interference_outer_um=d_outer_um[rows_s] - mid_o)
-    res = pl.run_from_fe(inp, pl.fe(inp), pl.fe(design))
+    # the preload is set in the mean assembly (the [fits] values), whatever the sample's fits
+    res = to_columns(pl.run(inp, fe_options=FEOptions(reference="nominal_fits")), flags=False)
     out = {}
     for q in QUANTITIES:
         v = np.empty((S, C))

@@ -17,7 +17,7 @@ the state at its start (explicit coupling, as seed 003's network does; the heat 
 minutes, the step is seconds). Conditions between rows are interpolated linearly in time; the
 state at a row between grid points is the linear interpolation of the two neighbours' reduced
 coordinates. Every row is then evaluated through the pipeline's one route for given FE states
-(`Pipeline.run_from_fe`) with the computed part temperatures (volume means of the FE parts by
+(`Pipeline.run` with `FEOptions(states=...)`) with the computed part temperatures (volume means of the FE parts by
 `pipeline.FE_PART_GROUP`, the ball nodes for the balls).
 
 The initial state is uniform at the first row's environment temperature. The ball-raceway
@@ -46,7 +46,10 @@ from fem.transient import (StepLoads, ThermalParameters, TransientConduction,
                            bearing_heat_inputs_W, fit_conductances_W_m2K)
 from studies.model.config import Assembly, ConfigError
 from studies.model.inputs import PARTS, PhysicsInputs, baseline_inputs
-from studies.model.pipeline import FE_PART_GROUP, RINGS, FEState, Pipeline
+from studies.model.columns import to_columns
+from studies.model.pipeline import RINGS, FEOptions, FEState, Pipeline
+from studies.model.result import SimulationResult
+from studies.model.stages.fe import FE_PART_GROUP
 from studies.model.table import TableError
 
 #: sliding and spin traction coefficient of the heat split (assumption: EHL traction, as seed 003)
@@ -126,12 +129,10 @@ def fe_states(pl: Pipeline, ms: ModalStructure, q: np.ndarray, delta_mm: np.ndar
     (n, m) and the mean open gap per fit (n, n_fits, um): the modal superposition (exact contact
     per state); the interferences of a conduction field are not defined (NaN)."""
     r = ms.evaluate(q, delta_mm, omega2)
-    p = pl.fit_pressures(r["force_N"])
-    c = pl._centres(r["probe"], r["ring_strain"])
-    dr = np.stack([c[:, 0, 0] - c[:, 2, 0], c[:, 1, 0] - c[:, 3, 0]])
-    dz = np.stack([c[:, 0, 1] - c[:, 2, 1], c[:, 1, 1] - c[:, 3, 1]])
-    fe = FEState(p, np.full((p.shape[0], 2), np.nan), dr, dz, r["probe"][:, :8])
-    return fe, _gap_um(pl, r["gap_mm"])
+    p = pl.fe_stage.fit_pressures(r.force_N)
+    dr, dz = pl.fe_stage.grooves.shifts_mm(r.probe, r.ring_strain)
+    fe = FEState(p, np.full((p.shape[0], 2), np.nan), dr, dz, r.probe[:, :8])
+    return fe, _gap_um(pl, r.gap_mm)
 
 
 def _group_rows(tc: TransientConduction) -> np.ndarray:
@@ -169,7 +170,7 @@ def thermal_model(pl: Pipeline, progress=None) -> ThermalModel:
     T_ref = asm.T_ref_C
     say("transient conduction: the reduced model of the stack ...")
     inp0 = baseline_inputs({}, 1, T_ref, asm.preload.assembled_N, asm.lubrication.speed_rpm)
-    _, pair0 = pl.run(inp0, return_pair=True)
+    pair0 = pl.run(inp0).pair
     kb = g.ball.conductivity_W_mK
     kr = m.materials["inner_ring_A"].conductivity_W_mK
     G = [1.0 / float(np.mean(tn.ball_raceway_resistance_K_W(c.a_mm[0], c.b_mm[0], kb, kr, g.Z)))
@@ -181,8 +182,8 @@ def thermal_model(pl: Pipeline, progress=None) -> ThermalModel:
     if pressure:
         delta0 = pl.deltas_mm(*pl.fits_um(inp0))
         r0 = pl.sup.evaluate(pl.thetas(inp0), delta0, np.zeros(1))
-        h_fit = fit_conductances_W_m2K(m, pl.fit_pressures(r0["force_N"])[0],
-                                       _gap_um(pl, r0["gap_mm"])[0])
+        h_fit = fit_conductances_W_m2K(m, pl.fe_stage.fit_pressures(r0.force_N)[0],
+                                       _gap_um(pl, r0.gap_mm)[0])
     else:
         h_fit = np.full(len(m.section.fits), float(th.fit_conductance))
     emis = ({k: th.emissivity for k in tc.groups if not k.startswith("raceway_")}
@@ -318,11 +319,11 @@ class RowTemperatures:
 
 @dataclass(frozen=True)
 class TransientRun:
-    """A transient table's answer. outputs: the one route's result of the rows at their
-    computed states (`Pipeline.run_from_fe`'s columns); rows: `RowTemperatures`; grid_s, q:
+    """A transient table's answer. outputs: the one route's `SimulationResult` of the rows at
+    their computed states; rows: `RowTemperatures`; grid_s, q:
     the time grid and the reduced states on it; heat_W (n_steps,): heat into the stack at each
     step (the pair's at the coupling plus the extra)."""
-    outputs: dict
+    outputs: SimulationResult
     rows: RowTemperatures
     grid_s: np.ndarray
     q: np.ndarray
@@ -330,11 +331,14 @@ class TransientRun:
 
     def columns(self) -> dict[str, np.ndarray]:
         """The output columns of `simulate` in transient mode: the computed part temperatures,
-        T_max_C, T_min_C, the route's columns, heat_bearing_W, reduction_error_est."""
+        T_max_C, T_min_C, the route's columns (`columns.to_columns`, flags and margins last),
+        heat_bearing_W, reduction_error_est before the flags."""
         r = self.rows
-        return {**r.part_columns(), "T_max_C": r.T_max_C, "T_min_C": r.T_min_C,
-                **self.outputs, "heat_bearing_W": r.heat_bearing_W,
-                "reduction_error_est": r.reduction_error_est}
+        cols = to_columns(self.outputs)
+        flags = {k: cols.pop(k) for k in list(cols) if k.startswith(("flag_", "margin_"))}
+        return {**r.part_columns(), "T_max_C": r.T_max_C, "T_min_C": r.T_min_C, **cols,
+                "heat_bearing_W": r.heat_bearing_W, "reduction_error_est": r.reduction_error_est,
+                **flags}
 
 
 def _grid(t: np.ndarray, dt_s: float = DT_S) -> np.ndarray:
@@ -468,7 +472,7 @@ def _evaluate_rows(pl: Pipeline, tm: ThermalModel, rc: ReducedConduction, ms: Mo
             Tc[p] = Tc["shaft"]
     inputs = base.copy(T_C=Tc)
     delta = pl.deltas_mm(*pl.fits_um(inputs))
-    fe, _ = fe_states(pl, ms, q, delta, pl.omega2(inputs))
+    fe, _ = fe_states(pl, ms, q, delta, pl.fe_stage.omega2(inputs))
     ref = pl.fe(pl.reference_inputs(inputs), remember=False)
     out, heat = _route(pl, inputs, fe, ref, first_row)
     return T, out, np.asarray(heat.total_W, float).reshape(q.shape[0])
@@ -477,14 +481,14 @@ def _evaluate_rows(pl: Pipeline, tm: ThermalModel, rc: ReducedConduction, ms: Mo
 def _route(pl: Pipeline, inputs: PhysicsInputs, fe: FEState, ref: FEState, first_row: int = 0):
     """The one route from given FE states (rows, assembly states): (its outputs, the pair's heat
     split `analytic.heat.PairHeat` at MU_TRACTION)."""
-    out, pair = pl.run_from_fe(inputs, fe, ref, return_pair=True, first_row=first_row,
-                               remember=False)
-    heat = pair_heat_W(pl.geom, pair, inputs.speed_rpm, MU_TRACTION, out["torque_viscous_Nmm"])
-    return out, heat
+    res = pl.run(inputs, first_row=first_row, remember=False,
+                 fe_options=FEOptions(states=(fe, ref)))
+    heat = pair_heat_W(pl.geom, res.pair, inputs.speed_rpm, MU_TRACTION, res.torque.viscous_Nmm)
+    return res, heat
 
 
-def _preload_N(out) -> np.ndarray:
-    return out["preload_N"]
+def _preload_N(out: SimulationResult) -> np.ndarray:
+    return out.pair.preload_N
 
 
 def condition_columns() -> set[str]:
@@ -519,9 +523,9 @@ def simulate_transient_file(asm: Assembly, conditions, out, effects: dict | None
     run = run_transient(pl, cols, progress)
     tally = CheckTally(assembly_checks(asm))
     outputs = run.columns()
+    tally.add(run.outputs.checks, 0)
     res = dict(cols)
     res.update(outputs)
-    res.update(tally.add(outputs, 0))
     with TableWriter(out, provenance) as w:
         w.write(res)
     is_T = lambda k: k.startswith("T_") and k.endswith("_C")           # noqa: E731

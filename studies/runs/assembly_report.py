@@ -19,7 +19,8 @@ from pathlib import Path
 
 import numpy as np
 
-from studies.model.checks import apply_checks, assembly_checks, plausibility_warnings
+from studies.model.checks import assembly_checks, plausibility_warnings
+from studies.model.columns import to_columns
 from studies.model.pipeline import SPEED_SEARCH_MAX_RPM, Pipeline, simulate_table, table_inputs
 from studies.model.table import write_table
 from analytic import lame
@@ -68,11 +69,12 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, progress=prin
     cond = {k: np.asarray(v, float) for k, v in cond.items() if not k.startswith("_")}
     pl = Pipeline.shared(asm, mesh_factor=mesh_factor, progress=progress)
     progress(f"report: {len(next(iter(cond.values())))} operating points ...")
-    res = simulate_table(asm, cond, pipeline=pl)
-    flags, violations = apply_checks(res, assembly_checks(asm))
+    result = simulate_table(asm, cond, pipeline=pl)
+    res = to_columns(result)            # the report's tables and plots read columns by name
+    violations = result.checks.violations()
     warnings = plausibility_warnings(asm, cond, res)
-    n = len(res["preload_N"])
-    write_table(out / "results.csv", {**cond, **res, **flags}, provenance=provenance)
+    n = result.n_rows
+    write_table(out / "results.csv", {**cond, **res}, provenance=provenance)
     x, xlabel = _x_axis(cond, n)
     plots = _plots(out, asm, x, xlabel, res)
     progress("report: field images ...")
@@ -84,9 +86,10 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, progress=prin
     progress("report: discretisation error of this mesh (three levels) ...")
     conv = mesh_convergence_case(asm, factors=tuple(mesh_factor * f for f in (2.0, 1.0, 0.5)),
                                  used=1)
-    front = report_margins.front_lines(asm, cond, res, flags, conv, provenance, command, pl,
+    # the columns view holds the flag and margin columns the margin table reads
+    front = report_margins.front_lines(asm, cond, res, res, conv, provenance, command, pl,
                                        Pipeline.shared(asm, mesh_factor=0.5 * mesh_factor))
-    lines = _text(asm, provenance, cond, res, flags, violations, warnings, plots, images, conv, pl, x,
+    lines = _text(asm, provenance, cond, res, result, violations, warnings, plots, images, conv, pl, x,
                   xlabel, speed + (rig_sections or []))
     k = next(i for i, line in enumerate(lines) if line.startswith("## "))
     lines = lines[:k] + front + lines[k:]           # after the title and the summary
@@ -107,13 +110,14 @@ def speed_lines(asm, pl: Pipeline) -> list[str]:
     T = np.array(sorted({op.T_min_C, asm.T_ref_C, op.T_max_C}), float)
     TT = np.repeat(T, 2)
     inp = table_inputs(asm, {"T_ambient_C": TT, "speed_rpm": np.tile([0.0, n_max], T.size)})
-    r = pl.run(inp)
+    res = pl.run(inp)
+    r = to_columns(res, flags=False)
     n_open = pl.fit_open_speed_rpm(inp.take(np.arange(0, TT.size, 2)))
     ms, mr = pl.materials["shaft"], pl.materials["inner_ring_A"]
     n_lame = 60.0 / (2.0 * np.pi) * lame.fit_open_speed_rad_s(
         asm.shaft.bore_diameter_mm / 2, asm.shaft.seat_diameter_mm / 2,
         asm.bearing.inner_ring_outer_diameter_mm / 2, ms.E_MPa, ms.nu, mr.E_MPa, mr.nu,
-        r["interference_inner_um"][0::2], ms.density_N_s2_mm4, mr.density_N_s2_mm4)
+        res.fe.interference_um[0::2, 0], ms.density_N_s2_mm4, mr.density_N_s2_mm4)
 
     def rpm(v):
         return f"> {SPEED_SEARCH_MAX_RPM:.0e}" if np.isinf(v) else f"{v:.0f}"
@@ -121,12 +125,12 @@ def speed_lines(asm, pl: Pipeline) -> list[str]:
     rows = []
     for i, Tc in enumerate(T):
         a, b = 2 * i, 2 * i + 1
-        rows.append([f"{Tc:g}"] + [rpm(v[i]) for v in n_open.values()] + [rpm(n_lame[i])]
+        rows.append([f"{Tc:g}"] + [rpm(v) for v in n_open.speed_rpm[i]] + [rpm(n_lame[i])]
                     + [f"{r['fit_pressure_inner_MPa'][a]:.4g}", f"{r['fit_pressure_inner_MPa'][b]:.4g}",
                        f"{r['fit_pressure_inner_lame_MPa'][b]:.4g}",
                        f"{r['preload_N'][a]:.4g}", f"{r['preload_N'][b]:.4g}",
                        f"{r['groove_shift_dr_A_um'][b] - r['groove_shift_dr_A_um'][a]:+.3g}"])
-    head = (["T (C)"] + [f"{k.replace('fit_', '')} opens at (rpm)" for k in n_open]
+    head = (["T (C)"] + [f"{k.replace('fit_', '')} opens at (rpm)" for k in n_open.names]
             + ["Lamé opens at (rpm)"]
             + ["inner fit p at rest (MPa)", f"at {n_max:g} rpm (MPa)", "Lamé at speed (MPa)",
                "preload at rest (N)", f"at {n_max:g} rpm (N)", "dr_A change (um)"])
@@ -152,7 +156,8 @@ def ball_speed_lines(asm, pl: Pipeline, n_max: float) -> list[str]:
         return []
     inp = table_inputs(asm, {"T_ambient_C": np.full(2, asm.T_ref_C),
                              "speed_rpm": np.array([0.0, n_max])})
-    runs = {m: pl.run(inp, ball_model=m) for m in ("static", "quasi_dynamic")}
+    runs = {m: to_columns(pl.run(inp, ball_model=m), flags=False)
+            for m in ("static", "quasi_dynamic")}
     cols = [("preload_N", "preload (N)", ".4g"), ("contact_angle_A_deg", "A inner angle (deg)", ".3f"),
             ("contact_angle_outer_A_deg", "A outer angle (deg)", ".3f"),
             ("ball_load_A_N", "A inner ball load (N)", ".4g"),
@@ -244,7 +249,7 @@ def _echo(asm) -> list[str]:
     return out
 
 
-def _text(asm, prov, cond, r, flags, violations, warnings, plots, images, conv, pl, x, xlabel,
+def _text(asm, prov, cond, r, result, violations, warnings, plots, images, conv, pl, x, xlabel,
           rig_sections):
     n = len(r["preload_N"])
     idx = np.unique(np.linspace(0, n - 1, min(n, RESULT_ROWS)).round().astype(int))
@@ -281,7 +286,7 @@ def _text(asm, prov, cond, r, flags, violations, warnings, plots, images, conv, 
     for key in ("fits", "fit_pressure", "groove_shifts", "preload", "contact_angle",
                 "contact_pressure", "stiffness", "torque"):
         lines += [f"![{key}]({plots[key].name})", ""]
-    lines += [safety_section(asm, r, title="all operating points")]
+    lines += [safety_section(asm, result, title="all operating points")]
     d_land = land_diameters_mm(asm.bearing, asm.materials)
     lines += [f"Contact ellipse and groove edge: land diameters {d_land[0]:.3f} / {d_land[1]:.3f} mm "
               f"(inner / outer; {d_land[2]}); smallest angle between the ellipse's edge and the "

@@ -34,7 +34,7 @@ from fem.transient import (StepLoads, Stepper, ThermalParameters, TransientCondu
                            bearing_heat_inputs_W, fit_conductances_W_m2K)
 from studies.model.config import CONFIG_DIR, SHIPPED, load_assembly
 from studies.model.inputs import baseline_inputs
-from studies.model.pipeline import RINGS, FEState, Pipeline
+from studies.model.pipeline import RINGS, FEOptions, FEState, Pipeline
 from studies.runs.bench_clock import Clock
 
 SPEED_RPM = 1500.0
@@ -125,8 +125,9 @@ def run(n_steps: int = 900, dt_s: float = 2.0, stride: int = 1, update_every: in
     T_ref = asm.T_ref_C
     # heat, ball conductances and fit conductances at the assembled state
     inp0 = _inputs(pl, [T_ref], [T_ref], [T_ref])
-    out0, pair0 = pl.run(inp0, return_pair=True)
-    heat0 = pair_heat_W(g, pair0, np.array([SPEED_RPM]), MU_TRACTION, out0["torque_viscous_Nmm"])
+    out0 = pl.run(inp0)
+    pair0 = out0.pair
+    heat0 = pair_heat_W(g, pair0, np.array([SPEED_RPM]), MU_TRACTION, out0.torque.viscous_Nmm)
     kb, kr = g.ball.conductivity_W_mK, m.materials["inner_ring_A"].conductivity_W_mK
     G_i = 1.0 / float(np.mean(tn.ball_raceway_resistance_K_W(pair0.inner.a_mm[0], pair0.inner.b_mm[0], kb, kr, g.Z)))
     G_o = 1.0 / float(np.mean(tn.ball_raceway_resistance_K_W(pair0.outer.a_mm[0], pair0.outer.b_mm[0], kb, kr, g.Z)))
@@ -134,8 +135,8 @@ def run(n_steps: int = 900, dt_s: float = 2.0, stride: int = 1, update_every: in
     delta0 = pl.deltas_mm(*pl.fits_um(inp0))[0]
     w2 = (SPEED_RPM * 2 * np.pi / 60) ** 2
     res0 = pl.sup.evaluate(pl.thetas(inp0), delta0[None, :], np.array([w2]))
-    h_fit = fit_conductances_W_m2K(m, pl.fit_pressures(res0["force_N"])[0],
-                                   _gap_um(pl, res0["gap_mm"])[0])
+    h_fit = fit_conductances_W_m2K(m, pl.fit_pressures(res0.force_N)[0],
+                                   _gap_um(pl, res0.gap_mm)[0])
 
     tc = TransientConduction(m, ball_capacity_J_K=C_ball)
     nominal = ThermalParameters(film_W_m2K=films(tc), fit_conductance_W_m2K=tuple(h_fit),
@@ -173,13 +174,14 @@ def run(n_steps: int = 900, dt_s: float = 2.0, stride: int = 1, update_every: in
             if i and i % update_every == 0:
                 r = msm.evaluate(Q[-1][None, :], delta[:1], w2s[:1])
                 st.set_parameters(check.with_fits(fit_conductances_W_m2K(
-                    m, pl.fit_pressures(r["force_N"])[0], _gap_um(pl, r["gap_mm"])[0])))
+                    m, pl.fit_pressures(r.force_N)[0], _gap_um(pl, r.gap_mm)[0])))
             Q.append(st.step(ld))
         Q = np.array(Q)
         r = msm.evaluate(Q, delta, w2s)
-        fe = _state(pl, r["force_N"], r["probe"], r["ring_strain"])
+        fe = _state(pl, r.force_N, r.probe, r.ring_strain)
         T3 = Q @ means(rcm).T
-        return fe, pl.run_from_fe(_inputs(pl, T3[:, 0], T3[:, 1], T3[:, 2]), fe, fe_ref)
+        return fe, pl.run(_inputs(pl, T3[:, 0], T3[:, 1], T3[:, 2]),
+                          fe_options=FEOptions(states=(fe, fe_ref)))
 
     with Clock() as c_run:
         fe_r, out_r = reduced_run(rc, ms)
@@ -209,8 +211,9 @@ def run(n_steps: int = 900, dt_s: float = 2.0, stride: int = 1, update_every: in
                     T3.append((pm["inner_ring_A"], pm["outer_ring_A"], T[tc.N]))
         fe_f = _cat([states[i][0] for i in rows])
         T3 = np.array(T3)
-        out_f = pl.run_from_fe(_inputs(pl, T3[:, 0], T3[:, 1], T3[:, 2]), fe_f, fe_ref.take(rows))
-    P_f, P_r, P_h = out_f["preload_N"], out_r["preload_N"][rows], out_h["preload_N"][rows]
+        out_f = pl.run(_inputs(pl, T3[:, 0], T3[:, 1], T3[:, 2]),
+                       fe_options=FEOptions(states=(fe_f, fe_ref.take(rows))))
+    P_f, P_r, P_h = out_f.preload_N, out_r.preload_N[rows], out_h.preload_N[rows]
     shift = lambda fe: np.vstack([fe.dr_mm, fe.dz_mm])
     s_f, s_r, s_h = shift(fe_f), shift(fe_r)[:, rows], shift(fe_h)[:, rows]
     p_f, p_r, p_h = (fe_f.fit_pressure_MPa, fe_r.fit_pressure_MPa[rows], fe_h.fit_pressure_MPa[rows])

@@ -44,7 +44,7 @@ from studies.model.checks import assembly_checks
 from studies.model.inputs import baseline_inputs
 from studies.model.memory import release_freed_memory
 from studies.model.parallel import Blocks, map_blocks
-from studies.model.pipeline import Pipeline
+from studies.model.pipeline import FEOptions, Pipeline
 from studies.runs.assembly_report import nice_step
 from studies.runs.report_tools import line_plot, md_table, write_report_files
 
@@ -142,9 +142,10 @@ def evaluate_stack(asm, stack: Stack, T_C: np.ndarray, preloads_N: np.ndarray,
     cols = {"T_ambient_C": np.tile(T_C, nP), "preload_assembled_N": np.repeat(preloads_N, nT)}
     res = pl.run(baseline_inputs(cols, nT * nP, a.T_ref_C, a.preload.assembled_N,
                                  a.lubrication.speed_rpm))
-    keep = ("preload_N", "max_contact_pressure_MPa", "fit_pressure_inner_MPa",
-            "fit_pressure_outer_MPa", "torque_Nmm")
-    out = {k: res[k].reshape(nP, nT) for k in keep} | {"dofs": pl.ndofs}
+    keep = {"preload_N": res.preload_N, "max_contact_pressure_MPa": res.max_contact_pressure_MPa,
+            "fit_pressure_inner_MPa": res.fits.inner_MPa,
+            "fit_pressure_outer_MPa": res.fits.outer_MPa, "torque_Nmm": res.torque_Nmm}
+    out = {k: v.reshape(nP, nT) for k, v in keep.items()} | {"dofs": pl.ndofs}
     del pl, res
     release_freed_memory()      # one FE after another fragments the C heap (studies/model/memory.py)
     return out
@@ -260,10 +261,11 @@ def _why(asm, stacks, best, T) -> dict:
         Ts = np.array([T[0], a.T_ref_C, T[-1]])
         inp = baseline_inputs({"T_ambient_C": Ts}, 3, a.T_ref_C, best["preload_assembled_N"],
                               a.lubrication.speed_rpm)
-        fe, ref = pl.fe(inp), pl.fe(pl.reference_inputs(inp))
-        full = pl.run_from_fe(inp, fe, ref)["preload_N"]
-        radial = pl.run_from_fe(inp, fe.with_shifts(dz_mm=ref.dz_mm), ref)["preload_N"]
-        axial = pl.run_from_fe(inp, fe.with_shifts(dr_mm=ref.dr_mm), ref)["preload_N"]
+        res = pl.run(inp)
+        fe, ref = res.fe, res.fe_ref
+        full = res.preload_N
+        radial = pl.run(inp, fe_options=FEOptions(shifts="radial_only")).preload_N
+        axial = pl.run(inp, fe_options=FEOptions(shifts="axial_only")).preload_N
         out[label] = {"T_C": [float(t) for t in Ts],
                       "change_N": [float(full[k] - full[1]) for k in (0, 2)],
                       "radial_shifts_only_N": [float(radial[k] - full[1]) for k in (0, 2)],

@@ -13,6 +13,7 @@ import numpy as np
 
 from studies.model.config import load_shipped
 from studies.model.inputs import baseline_inputs
+from studies.model.columns import to_columns
 from studies.model.pipeline import Pipeline
 from studies.runs.report_tools import md_table
 from studies.model.table import write_table
@@ -31,7 +32,7 @@ def run(out: Path, progress=print) -> None:
         T = np.array(T_STATES_C)
         inp = baseline_inputs({"T_ambient_C": T}, T.size, asm.T_ref_C, asm.preload.assembled_N,
                               asm.lubrication.speed_rpm)
-        res = pl.run(inp, direct=True)
+        res = to_columns(pl.run(inp, direct=True), flags=False)     # the levels' table by name
         for i, Tc in enumerate(T_STATES_C):
             levels[Tc].append({"factor": fac, "size_mm": pl.section.size_mm,
                                "fit_size_mm": pl.section.fit_size_mm, "dofs": int(pl.ndofs),

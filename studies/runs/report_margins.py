@@ -3,7 +3,7 @@ their pedigree, the numbered assumptions, the credibility table, the environment
 that reproduces it (shared/spec/cli.md, "report").
 
 Everything here is read from what the run already computed: the result columns, the flag and
-margin columns of studies/model/checks.py (`apply_checks`), the discretisation error of the
+margin columns of studies/model/checks.py (`evaluate_checks`), the discretisation error of the
 assembly's mesh (`studies.runs.verify.mesh_convergence_case`), the traceability record of the
 tests (`studies.runs.requirements`). Nothing is recomputed but the headline numbers on the next
 finer mesh of the same family, for their discretisation error.
@@ -84,12 +84,13 @@ def headline_mesh_errors(cond: dict, res: dict, fine_pipeline, order: float) -> 
     """Relative discretisation error of each headline number (module docstring): the governing
     rows run again through the pipeline on the finer mesh. An open fit (zero pressure on either
     mesh) has no error to speak of: NaN."""
+    from studies.model.columns import to_columns
     from studies.model.pipeline import simulate_table
 
     hl = headlines(res)
     rows = sorted({h.row for h in hl.values()})
     sub = {k: np.asarray(v)[rows] for k, v in cond.items()}
-    fine = simulate_table(fine_pipeline.asm, sub, pipeline=fine_pipeline)
+    fine = to_columns(simulate_table(fine_pipeline.asm, sub, pipeline=fine_pipeline), flags=False)
     gain = 2.0 ** order / (2.0 ** order - 1.0)
     out = {}
     for name, h in hl.items():

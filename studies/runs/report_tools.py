@@ -86,25 +86,22 @@ def field_images(out_dir: Path, pipeline, T_C: float, stem: str, title: str) -> 
                          balls_rz_d_mm=balls)
 
 
-def safety_section(asm, out: dict, film_parameter=None, title: str = "over the study's operating points") -> str:
+def safety_section(asm, result, film_parameter=None, title: str = "over the study's operating points") -> str:
     """Markdown table of the checks `simulate` applies (studies/model/checks.py) at the governing
-    operating point of each, plus the EHL film parameter for oil (analytic/safety.py)."""
+    operating point of each (`result.checks` of a `SimulationResult`), plus the EHL film
+    parameter for oil (analytic/safety.py)."""
     from analytic.safety import film_parameter_flag
-    from studies.model.checks import apply_checks, assembly_checks
 
-    checks = assembly_checks(asm)
-    cols, _ = apply_checks(out, checks)
-    n = len(np.asarray(out["preload_N"]))
+    n = result.n_rows
     rows = []
-    for c in checks:
-        v = np.asarray(out[c.column], float)
+    for o in result.checks.outcomes:
+        c, v = o.check, o.value
         i = int(np.argmax(v) if c.upper else np.argmin(v))
-        bad = int(cols[f"flag_{c.name}"].sum())
-        margin = cols.get(f"margin_{c.name}")
+        bad = int(o.violated.sum())
         rel = "<=" if c.upper else (">" if c.strict else ">=")
         rows.append([c.name, f"{significant(v, i):.4g} {c.unit}".strip(), f"{rel} {c.allowable:g}",
                      "ok" if bad == 0 else f"NO ({bad} of {n})",
-                     "" if margin is None else f"{margin[i]:+.3f}", f"row {i + 1}", c.source])
+                     "" if o.margin is None else f"{o.margin[i]:+.3f}", f"row {i + 1}", c.source])
     if film_parameter is not None and asm.lubrication.kind == "oil":
         f = film_parameter_flag(film_parameter)
         rows.append([f.name, f"{f.value:.4g}", f">= {f.limit:g}", "ok" if f.ok else "NO", "",

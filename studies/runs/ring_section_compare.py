@@ -3,7 +3,7 @@ raceway groove and lands into the FE rings changes the fit pressures, the groove
 and, through them, preload, contact angle and torque.
 
 Per shipped assembly (studies/configs: seed000, seed001, seed003, template) the same conditions
-are run twice through the public route (`bearingfem.simulate`, the function `bearingfem simulate`
+are run twice through the public route (`simulate_table`, what `bearingfem simulate`
 uses), once with `[mesh] ring_section = "rectangle"` (the effective sections of `[bearing]`) and
 once with `"grooved"`; nothing else changes. Conditions: uniform temperature at `[operating]`
 T_min_C, 20 C, the assembly temperature T_ref_C and T_max_C, at the assembly's default speed (`[lubrication] speed_rpm`, what
@@ -30,7 +30,9 @@ from pathlib import Path
 import numpy as np
 
 import bearingfem
+from studies.model.columns import to_columns
 from studies.model.config import CONFIG_DIR
+from studies.model.pipeline import simulate_table
 from studies.model.table import write_table
 
 #: the shipped assemblies, short name -> file in studies/configs
@@ -103,22 +105,17 @@ def _free_centres_mm(pl, inputs) -> tuple[np.ndarray, np.ndarray]:
     return d[..., 0], d[..., 1]
 
 
-def radius_free(asm, cond: dict) -> dict[str, np.ndarray]:
-    """simulate's outputs of a grooved assembly with the groove-centre shifts read by the
+def radius_free(asm, cond: dict):
+    """simulate's result (`SimulationResult`) for a grooved assembly with the groove-centre shifts read by the
     free-radius circle fit (centre and radius fitted) instead of the model's fit with the
     radius held at its thermal growth, at the rows and their assembly states, then the same
-    bearing model (`Pipeline.run_from_fe`). The difference to `simulate` is the elastic change
+    bearing model (`FEOptions.centres`). The difference to `simulate` is the elastic change
     of the groove radius that a free fit turns into a centre shift (the bearing model receives
     the centre only). A diagnostic of this study."""
-    from studies.model.pipeline import Pipeline, table_inputs
+    from studies.model.pipeline import FEOptions, Pipeline, table_inputs
 
     pl = Pipeline.shared(asm)
-    inp = table_inputs(asm, cond)
-    ref = pl.reference_inputs(inp)
-    fe, fe_ref = pl.fe(inp), pl.fe(ref)
-    fe = fe.with_shifts(*_free_centres_mm(pl, inp))
-    fe_ref = fe_ref.with_shifts(*_free_centres_mm(pl, ref))
-    return pl.run_from_fe(inp, fe, fe_ref)
+    return pl.run(table_inputs(asm, cond), fe_options=FEOptions(centres=_free_centres_mm))
 
 
 def _error_scale(q: str, out: dict, i: int) -> float | None:
@@ -139,12 +136,12 @@ def compare(name: str, asm, progress=print, errors: bool = True) -> tuple[list[d
     for s in SECTIONS:
         a = with_section(asm, s)
         progress(f"{name}: {s} sections, {cond['T_ambient_C'].size} conditions ...")
-        outs[s] = bearingfem.simulate(a, cond)
+        outs[s] = to_columns(simulate_table(a, cond), flags=False)
         if errors:
             progress(f"{name}: {s} sections, mesh error (levels x2, x1, x0.5) ...")
             err[s] = mesh_error(a)
     progress(f"{name}: grooved, shifts read with a free-radius circle fit ...")
-    free = radius_free(with_section(asm, "grooved"), cond)
+    free = to_columns(radius_free(with_section(asm, "grooved"), cond), flags=False)
     e_ref = max((e["error_max"] for e in err.values()), default=float("nan"))
     R, G = outs["rectangle"], outs["grooved"]
     T, v = cond["T_ambient_C"], cond["speed_rpm"]

@@ -28,7 +28,9 @@ from analytic.materials import get_material
 from studies.model.config import load_shipped
 from studies.model.effects import apply_effects
 from studies.model.inputs import baseline_inputs
-from studies.model.pipeline import Pipeline
+from studies.model.columns import to_columns
+from studies.model.pipeline import FEOptions, Pipeline
+from studies.model.result import SimulationResult
 from studies.model.config import CONFIG_DIR, SHIPPED
 from studies.model.provenance import provenance
 from studies.model.table import write_table
@@ -50,14 +52,13 @@ def temperature_sweep(pl, out: Path, say) -> dict:
     T = np.arange(-60.0, 80.0 + 1e-9, 1.0)
     inp = _inputs(a, T.size, T_ambient_C=T)
     res = pl.run(inp)
-    cols = {"T_C": T, **res}
-    write_table(out / "temperature_sweep.csv", cols)
-    rate_i = np.polyfit(T, res["interference_inner_um"], 1)[0]
-    rate_o = np.polyfit(T, res["interference_outer_um"], 1)[0]
-    io = res["interference_outer_um"]
+    write_table(out / "temperature_sweep.csv", {"T_C": T, **to_columns(res, flags=False)})
+    rate_i = np.polyfit(T, res.fe.interference_um[:, 0], 1)[0]
+    rate_o = np.polyfit(T, res.fe.interference_um[:, 1], 1)[0]
+    io = res.fe.interference_um[:, 1]
     k = np.flatnonzero(np.diff(np.sign(io)) > 0)
     T_close_free = float(T[k[0]] - io[k[0]] * (T[k[0] + 1] - T[k[0]]) / (io[k[0] + 1] - io[k[0]])) if k.size else float("nan")
-    touch = np.flatnonzero(res["fit_pressure_outer_MPa"] > 0)
+    touch = np.flatnonzero(res.fits.outer_MPa > 0)
     T_touch_fe = float(T[touch[0]]) if touch.size else float("nan")
     # preload decomposition: the same pipeline run with only the radial / only the axial
     # groove-centre shifts of the FE (the other set at its assembly value plus the bearing's own
@@ -65,52 +66,54 @@ def temperature_sweep(pl, out: Path, say) -> dict:
     full = res
     parts = preload_parts(pl, inp)
     radial, axial = parts.radial, parts.axial
-    decomp = {"T_C": T, "preload_N": full["preload_N"],
-              "preload_radial_shifts_only_N": radial["preload_N"],
-              "preload_axial_shifts_only_N": axial["preload_N"]}
+    decomp = {"T_C": T, "preload_N": full.preload_N,
+              "preload_radial_shifts_only_N": radial.preload_N,
+              "preload_axial_shifts_only_N": axial.preload_N}
     write_table(out / "preload_decomposition.csv", decomp)
     line_plot(out / "preload_vs_temperature.png", T,
-              {"FE-coupled model": full["preload_N"],
-               "radial shifts only (fits, ring growth)": radial["preload_N"],
-               "axial shifts only (stack lengths)": axial["preload_N"]},
+              {"FE-coupled model": full.preload_N,
+               "radial shifts only (fits, ring growth)": radial.preload_N,
+               "axial shifts only (stack lengths)": axial.preload_N},
               "temperature (C)", "preload (N)", f"Preload vs temperature (assembled {a.preload.assembled_N:g} N at "
               f"{a.T_ref_C:g} C)")
     i20 = int(np.argmin(np.abs(T - a.T_ref_C)))
     return {"T": T, "res": res, "rate_i": rate_i, "rate_o": rate_o, "T_close_free": T_close_free,
             "T_touch_fe": T_touch_fe, "full": full, "radial": radial, "axial": axial, "i20": i20,
-            "axial_model": axial_model_comparison(a, pl.geom, T, full["preload_N"], axial["preload_N"],
+            "axial_model": axial_model_comparison(a, pl.geom, T, full.preload_N, axial.preload_N,
                                                   parts.axial_free_preload_N, parts.mismatch_mm)}
 
 
 @dataclass(frozen=True)
 class PreloadParts:
-    """The pipeline's answer with parts of the FE switched off (`preload_parts`): all outputs
-    with only the radial / only the axial groove-centre shifts, and the FE's axial mismatch of
-    the pair (mm, (n,)): the change of sum_j s_j dz_j from the assembly state beyond the bearing's
-    own uniform growth, i.e. what the stack lengths add to the pair's axial approach; and the
-    preload (N) with only the axial shifts and the radial ones of the assembly state off too
-    (the raceway expansion by the fits as built, which lowers the contact angle)."""
-    radial: dict
-    axial: dict
+    """The pipeline's answer with parts of the FE switched off (`preload_parts`): the results
+    (`SimulationResult`) with only the radial / only the axial groove-centre shifts, and the FE's
+    axial mismatch of the pair (mm, (n,)): the change of sum_j s_j dz_j from the assembly state
+    beyond the bearing's own uniform growth, i.e. what the stack lengths add to the pair's axial
+    approach; and the preload (N) with only the axial shifts and the radial ones of the assembly
+    state off too (the raceway expansion by the fits as built, which lowers the contact angle)."""
+    radial: SimulationResult
+    axial: SimulationResult
     mismatch_mm: np.ndarray
     axial_free_preload_N: np.ndarray
 
 
 def preload_parts(pl, inp) -> PreloadParts:
-    """The one place this study edits the FE answer (pipeline calls only here). Radial effects
-    off: the radial shifts at their assembly value (the fits as built) plus the free growth of the
-    bearing (`analytic.axial_stack.uniform_growth_shifts_mm`: a uniformly heated bearing keeps its
-    contact angle); axial effects off likewise. Ring temperature: the inner ring's."""
-    # an edit of the FE answer is `FEState.with_shifts` (studies/model/pipeline.py)
-    fe, fe_ref = pl.fe(inp), pl.fe(pl.reference_inputs(inp))
+    """Parts of the FE answer switched off through the route's options (`FEOptions`). Radial
+    effects off: the radial shifts at their assembly value (the fits as built) plus the free
+    growth of the bearing (`analytic.axial_stack.uniform_growth_shifts_mm`: a uniformly heated
+    bearing keeps its contact angle); axial effects off likewise; "free": the radial shifts the
+    free growth alone (the fits' raceway expansion at assembly off too). Ring temperature: the
+    inner ring's."""
+    grown = "assembly_plus_free_growth"
+    radial = pl.run(inp, fe_options=FEOptions(shifts="radial_only", held=grown))
+    axial = pl.run(inp, fe_options=FEOptions(shifts="axial_only", held=grown))
+    free = pl.run(inp, fe_options=FEOptions(shifts="axial_only", held="free_growth"))
     arr, T_ref = pl.asm.arrangement, pl.asm.T_ref_C
-    dr_u, dz_u = uniform_growth_shifts_mm(pl.geom, arr, inp.T_C["inner_ring"], T_ref)
-    radial = pl.run_from_fe(inp, fe.with_shifts(dz_mm=fe_ref.dz_mm + dz_u), fe_ref)
-    axial = pl.run_from_fe(inp, fe.with_shifts(dr_mm=fe_ref.dr_mm + dr_u), fe_ref)
-    free = pl.run_from_fe(inp, fe.with_shifts(dr_mm=dr_u), fe_ref.with_shifts(dr_mm=0 * fe_ref.dr_mm))
+    _, dz_u = uniform_growth_shifts_mm(pl.geom, arr, inp.T_C["inner_ring"], T_ref)
     s = SIGNS[arr][:, None]
+    fe, fe_ref = axial.fe, axial.fe_ref             # the axial shifts as solved
     mismatch = (s * (fe.dz_mm - fe_ref.dz_mm - dz_u)).sum(axis=0)
-    return PreloadParts(radial, axial, mismatch, free["preload_N"])
+    return PreloadParts(radial, axial, mismatch, free.preload_N)
 
 
 def axial_stack_of(a) -> AxialStack:
@@ -193,12 +196,13 @@ def torque_sweeps(pl, out: Path) -> dict:
               "temperature": ("temperature (C), 100 N assembled", "T_C")}
     for key, (x, res) in r.items():
         xl, col = labels[key]
-        write_table(out / f"torque_vs_{key}.csv", {col: x, **res})
+        write_table(out / f"torque_vs_{key}.csv", {col: x, **to_columns(res, flags=False)})
+        t = res.torque
         line_plot(out / f"torque_vs_{key}.png", x,
-                  {"total": res["torque_Nmm"], "elastic hysteresis": res["torque_hysteresis_Nmm"],
-                   "differential sliding": res["torque_differential_Nmm"],
-                   "spin": res["torque_spin_Nmm"], "inner contacts": res["torque_inner_contacts_Nmm"],
-                   "outer contacts": res["torque_outer_contacts_Nmm"]}, xl,
+                  {"total": t.torque_Nmm, "elastic hysteresis": t.hysteresis_Nmm,
+                   "differential sliding": t.differential_Nmm,
+                   "spin": t.spin_Nmm, "inner contacts": t.inner_contacts_Nmm,
+                   "outer contacts": t.outer_contacts_Nmm}, xl,
                   "friction torque of the pair (N mm)",
                   f"Torque vs {key}", markers=True)
     return r
@@ -216,18 +220,18 @@ def cycles(pl, out: Path) -> dict:
     settle = {"loss_N": 10.0, "threshold_K": 30.0}
     inp_s = apply_effects(inp, {"preload_settling": settle}, a.T_ref_C)
     sett = pl.run(inp_s)
-    write_table(out / "cycles.csv", {"time_h": t_h, "T_C": tri, "torque_baseline_Nmm": base["torque_Nmm"],
-                                     "torque_settling_Nmm": sett["torque_Nmm"],
-                                     "preload_baseline_N": base["preload_N"],
-                                     "preload_settling_N": sett["preload_N"]})
-    line_plot(out / "cycles.png", t_h, {"baseline (quasi-static)": base["torque_Nmm"],
-                                        "with preload_settling 10 N after |dT| > 30 K": sett["torque_Nmm"]},
+    write_table(out / "cycles.csv", {"time_h": t_h, "T_C": tri, "torque_baseline_Nmm": base.torque_Nmm,
+                                     "torque_settling_Nmm": sett.torque_Nmm,
+                                     "preload_baseline_N": base.preload_N,
+                                     "preload_settling_N": sett.preload_N})
+    line_plot(out / "cycles.png", t_h, {"baseline (quasi-static)": base.torque_Nmm,
+                                        "with preload_settling 10 N after |dT| > 30 K": sett.torque_Nmm},
               "time (h)", "friction torque (N mm)", "Three -60 <-> 80 C cycles")
     cyc = np.floor(t_h / 4.0).clip(0, 2)
 
     def extremes(tq):
         return [(tq[cyc == c].max(), tq[cyc == c].min()) for c in range(3)]
-    return {"baseline": extremes(base["torque_Nmm"]), "settling": extremes(sett["torque_Nmm"]),
+    return {"baseline": extremes(base.torque_Nmm), "settling": extremes(sett.torque_Nmm),
             "settle": settle}
 
 
@@ -389,11 +393,11 @@ def rig_sections(pl, ts, tq, cy, rings) -> list[str]:
     """This rig's questions, each beside the published measurement (markdown lines)."""
     a = pl.asm
     T, i20 = ts["T"], ts["i20"]
-    P = ts["full"]["preload_N"]
+    P = ts["full"].preload_N
     dP_cold, dP_hot = P[0] - P[i20], P[-1] - P[i20]
-    dPr = (ts["radial"]["preload_N"][0] - P[i20], ts["radial"]["preload_N"][-1] - P[i20])
-    dPa = (ts["axial"]["preload_N"][0] - P[i20], ts["axial"]["preload_N"][-1] - P[i20])
-    rng = {k: float(np.ptp(v[1]["torque_Nmm"])) for k, v in tq.items()}
+    dPr = (ts["radial"].preload_N[0] - P[i20], ts["radial"].preload_N[-1] - P[i20])
+    dPa = (ts["axial"].preload_N[0] - P[i20], ts["axial"].preload_N[-1] - P[i20])
+    rng = {k: float(np.ptp(v[1].torque_Nmm)) for k, v in tq.items()}
     rank = " > ".join(sorted(rng, key=rng.get, reverse=True))
     b, s = cy["baseline"], cy["settling"]
     rows = [
@@ -409,7 +413,7 @@ def rig_sections(pl, ts, tq, cy, rings) -> list[str]:
         ["cycle-to-cycle change of torque max / min (N mm)", "-1.7 / +0.9",
          f"{b[2][0] - b[0][0]:+.3f} / {b[2][1] - b[0][1]:+.3f} (baseline)", "see below"],
     ]
-    comp = tq["temperature"][1]
+    comp, comp_preload = tq["temperature"][1].torque, tq["temperature"][1].preload_N
     return [
         "## This rig against the published measurement", "",
         f"9Cr18 rings and balls in a TC4 shaft and housing, MoS2 film (mu = "
@@ -432,8 +436,8 @@ def rig_sections(pl, ts, tq, cy, rings) -> list[str]:
         md_table(["ring", "T (C)", "max von Mises (MPa)", "max hoop (MPa)", "min hoop (MPa)"], rings), "",
         "### Preload vs temperature: which effect dominates", "",
         md_table(["T (C)", "preload (N)", "radial shifts only (N)", "axial shifts only (N)"],
-                 [[float(T[i]), float(P[i]), float(ts["radial"]["preload_N"][i]),
-                   float(ts["axial"]["preload_N"][i])] for i in (0, 40, i20, 100, 120, len(T) - 1)]),
+                 [[float(T[i]), float(P[i]), float(ts["radial"].preload_N[i]),
+                   float(ts["axial"].preload_N[i])] for i in (0, 40, i20, 100, 120, len(T) - 1)]),
         "", f"Axial shifts alone (stack lengths: the 9Cr18 outer spacer grows faster than the TC4-set "
         f"inner-ring spacing) raise the DB preload on heating, as the paper says: {dPa[0]:+.1f} N at -60 C, "
         f"{dPa[1]:+.1f} N at 80 C. The radial shifts act the other way and are larger: {dPr[0]:+.1f} N at -60 C, "
@@ -447,14 +451,14 @@ def rig_sections(pl, ts, tq, cy, rings) -> list[str]:
         f"{rng['interference']:.3f} N mm. Ranking: {rank}.", "",
         md_table(["T (C)", "total (N mm)", "hysteresis", "differential", "spin", "inner contacts",
                   "outer contacts", "preload (N)"],
-                 [[float(tq["temperature"][0][i]), float(comp["torque_Nmm"][i]),
-                   float(comp["torque_hysteresis_Nmm"][i]), float(comp["torque_differential_Nmm"][i]),
-                   float(comp["torque_spin_Nmm"][i]), float(comp["torque_inner_contacts_Nmm"][i]),
-                   float(comp["torque_outer_contacts_Nmm"][i]), float(comp["preload_N"][i])]
+                 [[float(tq["temperature"][0][i]), float(comp.torque_Nmm[i]),
+                   float(comp.hysteresis_Nmm[i]), float(comp.differential_Nmm[i]),
+                   float(comp.spin_Nmm[i]), float(comp.inner_contacts_Nmm[i]),
+                   float(comp.outer_contacts_Nmm[i]), float(comp_preload[i])]
                   for i in range(len(tq["temperature"][0]))]),
         "", "In this model the torque follows the preload, so over 0..80 C it falls and rises with it "
         "(the published measurement rose monotonically). Inner/outer: "
-        f"{float(comp['torque_inner_contacts_Nmm'][2] / comp['torque_outer_contacts_Nmm'][2]):.2f} at 20 C "
+        f"{float(comp.inner_contacts_Nmm[2] / comp.outer_contacts_Nmm[2]):.2f} at 20 C "
         "(published: the inner-ring torque increase is 1.2-1.5 times the outer one; with outer-race "
         "control the spin sits at the inner contact).", "",
         "![torque vs preload](torque_vs_preload.png)", "", "![torque vs temperature](torque_vs_temperature.png)", "",

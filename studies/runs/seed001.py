@@ -18,7 +18,8 @@ import numpy as np
 from analytic import lubrication as lub
 from studies.model.config import load_shipped
 from studies.model.inputs import baseline_inputs
-from studies.model.pipeline import Pipeline
+from studies.model.columns import to_columns
+from studies.model.pipeline import FEOptions, Pipeline
 from analytic.safety import film_parameter_flag
 from studies.model.config import CONFIG_DIR, SHIPPED
 from studies.model.provenance import provenance
@@ -34,14 +35,15 @@ ROUGHNESS_UM = {"ball": 0.01, "ring": 0.04}   # assumption: Si3N4 grade-5 ball, 
 
 
 def _film(pl, pair, T, speed):
-    """Hamrock-Dowson minimum film and lambda at the inner contact of bearing A."""
+    """Hamrock-Dowson minimum film and lambda at the inner contact of bearing A of the pair
+    state `pair` (`analytic.bearing.PairState`)."""
     g, lubr = pl.geom, pl.lubricant
-    alpha = pair["contact_angle_A_deg"]
+    alpha = pair.contact_angle_deg[0]
     Rx, Ry = lub.ball_raceway_radii_mm(g.Dw_mm, g.dm_mm, alpha, g.f_i, "inner")
     Ep = lub.reduced_modulus_MPa(g.ring.E_MPa, g.ring.nu, g.ball.E_MPa, g.ball.nu)
     u = lub.entrainment_speed_mm_s(speed, g.Dw_mm, g.dm_mm, alpha)
     film = lub.hamrock_dowson_film(Rx, Ry, Ep, lubr.eta_Pa_s(T), lubr.alpha_per_Pa, u,
-                                   np.maximum(pair["ball_load_A_N"], 1e-6))
+                                   np.maximum(pair.ball_load_N[0], 1e-6))
     lam = lub.film_parameter(film.h_min_um, ROUGHNESS_UM["ball"], ROUGHNESS_UM["ring"])
     return film.h_min_um, lam
 
@@ -59,9 +61,9 @@ def run(out: Path, progress=print, mesh_factor: float = 1.0) -> None:
     for n in SPEEDS_RPM:
         inp = baseline_inputs({"T_ambient_C": T, "speed_rpm": np.full(T.size, n)}, T.size, a.T_ref_C,
                               a.preload.assembled_N, n)
-        sweep[n] = pl.run(inp)
-        h, lam = _film(pl, sweep[n], T, n)
-        sweep[n]["h_min_um"], sweep[n]["film_parameter"] = h, lam
+        res = pl.run(inp)
+        h, lam = _film(pl, res.pair, T, n)
+        sweep[n] = {**to_columns(res, flags=False), "h_min_um": h, "film_parameter": lam}
         write_table(out / f"torque_vs_temperature_{n:.0f}rpm.csv", {"T_C": T, **sweep[n]})
     line_plot(out / "torque_vs_temperature.png", T,
               {f"{n:.0f} rpm": sweep[n]["torque_Nmm"] for n in SPEEDS_RPM},
@@ -82,13 +84,14 @@ def run(out: Path, progress=print, mesh_factor: float = 1.0) -> None:
     grid = inp3.take(np.tile(np.arange(3), nc))         # the 3 temperatures per compliance
     # the FE of the grid once, then every (compliance, f0) in one pipeline call: rows ordered
     # (f0, compliance, temperature)
-    fe, fe_ref = pl.fe(grid), pl.fe(pl.reference_inputs(grid))
+    first = pl.run(grid)
+    fe, fe_ref = first.fe, first.fe_ref
     rows = np.tile(np.arange(grid.n_rows), nf)
-    res = pl.run_from_fe(grid.take(rows), fe.take(rows), fe_ref.take(rows),
-                         compliance_mm_per_N=np.tile(np.repeat(comp, 3), nf),
-                         viscous_factor_f0=np.repeat(f0, grid.n_rows))
-    P = res["preload_N"][:grid.n_rows].reshape(nc, 3)
-    M = res["torque_Nmm"].reshape(nf, nc, 3).transpose(1, 0, 2)              # (nc, nf, 3)
+    res = pl.run(grid.take(rows), compliance_mm_per_N=np.tile(np.repeat(comp, 3), nf),
+                 viscous_factor_f0=np.repeat(f0, grid.n_rows),
+                 fe_options=FEOptions(states=(fe.take(rows), fe_ref.take(rows))))
+    P = res.preload_N[:grid.n_rows].reshape(nc, 3)
+    M = res.torque_Nmm.reshape(nf, nc, 3).transpose(1, 0, 2)              # (nc, nf, 3)
     r_cold, r_hot = M[..., 0] / M[..., 1], M[..., 2] / M[..., 1]
     target = 0.5 * sum(PUBLISHED_RATIO_COLD)
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -109,16 +112,17 @@ def run(out: Path, progress=print, mesh_factor: float = 1.0) -> None:
     # temperature (the same FE; only the pair equilibrium differs), every f0 in one call
     spring = Pipeline.shared(replace(a, preload=replace(a.preload, kind="spring")),
                              mesh_factor=mesh_factor)
-    fe3, fe3_ref = spring.fe(inp3), spring.fe(spring.reference_inputs(inp3))
+    first3 = spring.run(inp3)
+    fe3, fe3_ref = first3.fe, first3.fe_ref
     rows3 = np.tile(np.arange(3), nf)
-    rs = spring.run_from_fe(inp3.take(rows3), fe3.take(rows3), fe3_ref.take(rows3),
-                            viscous_factor_f0=np.repeat(f0, 3))
-    Ms = rs["torque_Nmm"].reshape(nf, 3)
+    rs = spring.run(inp3.take(rows3), viscous_factor_f0=np.repeat(f0, 3),
+                    fe_options=FEOptions(states=(fe3.take(rows3), fe3_ref.take(rows3))))
+    Ms = rs.torque_Nmm.reshape(nf, 3)
     rs_cold, rs_hot = Ms[:, 0] / Ms[:, 1], Ms[:, 2] / Ms[:, 1]
     with np.errstate(divide="ignore", invalid="ignore"):
         miss_s = np.hypot(np.log(rs_cold / target), np.log(rs_hot / PUBLISHED_RATIO_HOT))
     js = int(np.nanargmin(miss_s))
-    Ps = rs["preload_N"][:3]
+    Ps = rs.preload_N[:3]
     rows_table.append([f"spring preload {a.preload.assembled_N:g} N, best f0", "-", f"{f0[js]:.3g}",
                        float(Ps[0]), float(Ps[2]), f"{100 * (rs_cold[js] - 1):+.0f} %",
                        f"{100 * (rs_hot[js] - 1):+.0f} %"])

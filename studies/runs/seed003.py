@@ -25,7 +25,7 @@ from analytic import thermal_network as tn
 from analytic.heat import pair_heat_W
 from studies.model.config import load_shipped
 from studies.model.inputs import baseline_inputs
-from studies.model.pipeline import Pipeline
+from studies.model.pipeline import FEOptions, Pipeline
 from studies.model.config import CONFIG_DIR, SHIPPED
 from studies.model.provenance import provenance
 from studies.model.table import write_table
@@ -72,9 +72,9 @@ def _network(pl, pair):
 def _heat(pl, inputs):
     """Pipeline outputs and the pair's heat (`analytic.heat.PairHeat`, W) at the given part
     temperatures."""
-    out, pair = pl.run(inputs, return_pair=True)
-    heat = pair_heat_W(pl.geom, pair, inputs.speed_rpm, MU_TRACTION, out["torque_viscous_Nmm"])
-    return heat, out, pair
+    out = pl.run(inputs)
+    heat = pair_heat_W(pl.geom, out.pair, inputs.speed_rpm, MU_TRACTION, out.torque.viscous_Nmm)
+    return heat, out, out.pair
 
 
 def _inputs(pl, T_nodes, speed):
@@ -100,8 +100,8 @@ def heat_up(pl, speed, progress) -> dict:
     def record(heat, out):          # heat and model state at the temperatures of the last row
         for key in ("sliding", "spin", "viscous"):
             hist[f"heat_{key}_W"].append(float(getattr(heat, f"{key}_W")[0]))
-        hist["preload_N"].append(float(out["preload_N"][0]))
-        hist["contact_angle_deg"].append(float(out["contact_angle_deg"][0]))
+        hist["preload_N"].append(float(out.preload_N[0]))
+        hist["contact_angle_deg"].append(float(out.contact_angle_deg[0]))
 
     for k in range(t.size - 1):
         heat, out, _ = _heat(pl, _inputs(pl, T, speed))
@@ -157,9 +157,9 @@ def run(out: Path, progress=print, mesh_factor: float = 1.0) -> None:
         o = r["steady_out"]
         uni = pl.run(_inputs(pl, np.full(5, r["steady"][0]), n))
         amb = pl.run(_inputs(pl, np.full(5, a.T_ref_C), n))
-        fb.append([f"{n:.0f}", float(amb["preload_N"][0]), float(uni["preload_N"][0]), float(o["preload_N"][0]),
-                   float(amb["contact_angle_deg"][0]), float(o["contact_angle_deg"][0]),
-                   float(o["fit_pressure_inner_MPa"][0]), float(o["fit_pressure_outer_MPa"][0])])
+        fb.append([f"{n:.0f}", float(amb.preload_N[0]), float(uni.preload_N[0]), float(o.preload_N[0]),
+                   float(amb.contact_angle_deg[0]), float(o.contact_angle_deg[0]),
+                   float(o.fits.inner_MPa[0]), float(o.fits.outer_MPa[0])])
         heat = r["steady_heat"]
         rows.append([f"{n:.0f}"] + [float(x) for x in r["steady"]]
                     + [float(heat.sliding_W[0]), float(heat.spin_W[0]), float(heat.viscous_W[0]),
@@ -274,19 +274,19 @@ def conduction_check(pl, res, speed, out: Path):
     theta_q = cm.theta_field(T, a.T_ref_C)
     inp = _inputs(pl, res["steady"], speed)
     fe, u = pl.fe_field(theta_q, inp)
-    fe_ref = pl.fe(pl.reference_inputs(inp))
     mean = {k: cm.mean_temperature_C(T, k) for k in ("raceway_inner_ring_A", "raceway_outer_ring_A",
                                                      "housing_outer")}
     # the bearing sees the rings at their raceway temperatures, the balls at the network's
     T_C = dict(inp.T_C, inner_ring=np.array([mean["raceway_inner_ring_A"]]),
                outer_ring=np.array([mean["raceway_outer_ring_A"]]))
-    field_out = pl.run_from_fe(inp.copy(T_C=T_C), fe, fe_ref)
+    field_out = pl.run(inp.copy(T_C=T_C),
+                       fe_options=FEOptions(states=(fe, o_uni.fe_ref)))
     Ts = res["steady"]
     rows = [["network, uniform per part", float(Ts[3]), float(Ts[1]), float(Ts[0]),
-             float(o_uni["groove_shift_dr_A_um"][0]), float(o_uni["preload_N"][0])],
+             1e3 * float(o_uni.fe.dr_mm[0, 0]), float(o_uni.preload_N[0])],
             ["FE conduction field (balls at the network's temperature)", mean["raceway_inner_ring_A"],
              mean["raceway_outer_ring_A"], mean["housing_outer"], 1e3 * float(fe.dr_mm[0, 0]),
-             float(field_out["preload_N"][0])]]
+             float(field_out.preload_N[0])]]
     theta_e = (theta_q * pl.model.basis.dx).sum(1) / pl.model.basis.dx.sum(1)
     st = element_stresses(pl.model, u, theta_e)
     Tv = cm.vertex_temperatures(T)

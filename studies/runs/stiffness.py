@@ -26,6 +26,7 @@ from analytic.bearing.state import PairState
 from analytic.bearing.stiffness import PairStiffness, pair_stiffness
 from studies.model.inputs import PhysicsInputs
 from studies.model.pipeline import ModelError, Pipeline, table_inputs
+from studies.model.result import SimulationResult
 from studies.model.table import TableError, TableWriter, read_conditions
 
 #: output columns (shared/spec/cli.md "stiffness"): name -> (row, column of the 5 x 5 matrix in
@@ -55,7 +56,7 @@ class StiffnessRunError(ValueError):
 @dataclass(frozen=True)
 class Equilibrium:
     """The pair's equilibrium at the rows and what it was solved with."""
-    columns: dict                # the model's output columns (`Pipeline.run`)
+    result: SimulationResult     # the model's result at the rows (`Pipeline.run`)
     pair: PairState
     pair_args: dict              # keyword arguments of `analytic.bearing.solve_pair`
 
@@ -65,9 +66,9 @@ def equilibrium(pipe: Pipeline, inputs: PhysicsInputs, first_row: int = 0) -> Eq
     shifts -> pair equilibrium), and the solver arguments it used (the FE answers are the
     pipeline's remembered ones, so the same arrays).  first_row: the 0-based table row the
     inputs start at (rows named in errors)."""
-    columns, pair = pipe.run(inputs, return_pair=True, first_row=first_row)
-    args = pipe.pair_arguments(inputs, pipe.fe(inputs), pipe.fe(pipe.reference_inputs(inputs)))
-    return Equilibrium(columns, pair, args)
+    result = pipe.run(inputs, first_row=first_row)
+    args = pipe.pair_arguments(inputs, result.fe, result.fe_ref)
+    return Equilibrium(result, result.pair, args)
 
 
 def stiffness_at(pipe: Pipeline, inputs: PhysicsInputs, first_row: int = 0) -> PairStiffness:

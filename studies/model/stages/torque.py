@@ -1,0 +1,43 @@
+"""Torque stage: the friction torque of the pair (`analytic.torque.pair_torque` ->
+`TorqueComponents`) with the assembly's lubrication.
+
+Solid film: the film friction coefficient of the row and the hysteresis loss factor. Oil: the
+viscosity of the configured lubricant (ASTM D341 fit of its datasheet points, slope scaled by the
+viscosity_temperature effect) at the mean of the ring and ball temperatures, Palmgren's f0 (the
+assembly's or a run's), the load term as configured; with load_term "palmgren", f1 = 0.001
+(P0/C0)^0.33 (Palmgren 1959) with C0 from ISO 76 and P0 the axial force of the more loaded
+bearing (a pure axial preload). Units N, mm, rpm, mm^2/s, C.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from analytic.bearing import BearingGeometry, PairState
+from analytic.safety import static_load_rating_C0_N
+from analytic.torque import TorqueComponents, palmgren_f1_angular_contact, pair_torque
+from studies.model.inputs import PhysicsInputs
+
+
+def pair_friction_torque(asm, geom: BearingGeometry, lubricant, pair: PairState,
+                         inputs: PhysicsInputs, mu: np.ndarray,
+                         viscous_factor_f0=None) -> TorqueComponents:
+    """Friction torque of the pair at the rows' speeds and temperatures (see the module
+    docstring). asm: the `studies.model.config.Assembly`; lubricant: the oil's `analytic.lubrication` lubricant (None for a solid film);
+    mu: friction coefficient per row (-); viscous_factor_f0: Palmgren's f0 in place of the
+    assembly's (scalar or per row)."""
+    lub = asm.lubrication
+    speed = np.asarray(inputs.speed_rpm, float)
+    if lub.kind == "solid_film":
+        return pair_torque(geom, pair, model="solid_film", mu=mu,
+                           hysteresis_loss=lub.hysteresis_loss_factor, speed_rpm=speed)
+    T_oil = (np.asarray(inputs.T_C["inner_ring"], float) + inputs.T_C["outer_ring"]
+             + inputs.T_C["ball"]) / 3.0
+    nu = lubricant.nu_mm2_s(T_oil, slope_factor=inputs.viscosity_slope_factor)
+    f1 = None
+    if lub.load_term == "palmgren":
+        C0 = static_load_rating_C0_N(geom.Z, geom.Dw_mm, geom.dm_mm, geom.alpha0_deg)
+        P0 = pair.axial_force_N.max(axis=0)
+        f1 = palmgren_f1_angular_contact(P0, C0)
+    return pair_torque(geom, pair, model="oil", mu=mu, speed_rpm=speed,
+                       f0=lub.viscous_factor_f0 if viscous_factor_f0 is None else viscous_factor_f0,
+                       nu_mm2_s=nu, load_term=lub.load_term, f1=f1)
