@@ -30,7 +30,14 @@ def newton_increasing(fun, x0, lo=None, hi=None, step0=1e-3, xtol=1e-15, max_ite
         hi = np.where(r >= 0.0, np.minimum(hi, x), hi)
         with np.errstate(divide="ignore", invalid="ignore"):
             cand = x - r / dr
-        ok = (dr > 0.0) & np.isfinite(cand) & (cand >= lo) & (cand <= hi)
+        # a Newton step onto the far end of the bracket returns to a point already evaluated
+        # (its residual has the other sign): from there Newton may step straight back, a
+        # two-cycle that never shrinks the bracket (a residual that jumps by more than
+        # dr * xtol, e.g. one evaluated through a nested root solve). Bisect instead, unless
+        # the step is already within the tolerance.
+        back = ((cand == lo) & (x != lo)) | ((cand == hi) & (x != hi))
+        back &= np.abs(cand - x) > xtol * (1.0 + np.abs(x))
+        ok = (dr > 0.0) & np.isfinite(cand) & (cand >= lo) & (cand <= hi) & ~back
         both = np.isfinite(lo) & np.isfinite(hi)
         new = np.where(ok, cand, np.where(both, 0.5 * (lo + hi),
                                           np.where(r < 0.0, x + step, x - step)))

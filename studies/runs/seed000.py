@@ -34,7 +34,7 @@ from studies.model.result import SimulationResult
 from studies.model.config import CONFIG_DIR, SHIPPED
 from studies.model.provenance import provenance
 from studies.model.table import write_table
-from studies.runs import assembly_report
+from studies.runs import assembly_report, published_as_data
 from studies.runs.report_tools import line_plot, md_table
 
 #: the published measurement (the paper named in the configuration's `source`)
@@ -254,10 +254,12 @@ def run(out: Path, progress=print, mesh_factor: float = 1.0,
     if inverse_search:
         progress("seed000: which plausible stack reproduces the published preload trend ...")
         inverse = published_trend_search(asm, out, mesh_factor)
+    progress("seed000: the published cycle-to-cycle torque change as data ...")
+    as_data = published_as_data.seed000_section(mesh_factor)
     assembly_report.run(asm, None, out, provenance("study seed000",
                                                     {"assembly": CONFIG_DIR / SHIPPED["seed000"]}),
                         progress=progress, mesh_factor=mesh_factor,
-                        rig_sections=rig_sections(pl, ts, tq, cy, rings) + inverse,
+                        rig_sections=rig_sections(pl, ts, tq, cy, rings) + inverse + as_data,
                         field_temperatures_C=field_temperatures_C)
 
 

@@ -1,0 +1,465 @@
+"""Published measurements as data (issue 23 item 7): one model extension at a time, its one
+parameter fitted on ONE published number, the other published number held out and predicted.
+
+Seed 001 (flywheel hybrid pair, 7 N position preload, MAC oil): torque(-20 C)/torque(20 C) =
+1.333..1.50 and torque(60 C)/torque(20 C) = 0.75 (the paper's conclusion 2). Each candidate's
+parameter is fitted on the cold ratio alone (to the geometric centre of the published band, within
+the parameter's physical bounds); the hot ratio is then its prediction. Candidates: the listed
+effects (`studies.model.effects`, their own bounds and sources) and the switches of the assembly
+file the configuration does not use (a starved film: a lower Palmgren f0; the bearing's own
+temperature above the chamber's; a spring preload; quasi-dynamic balls; another oil of the
+project's library).
+
+Seed 000 (MoS2 pair, 100 N position preload): after repeated -60 <-> 80 C cycles the torque maximum
+of a cycle is 1.7 N mm lower and its minimum 0.9 N mm higher than in the first cycle. The history
+candidates the brief names (`solid_film_runin`, `preload_settling`, `preload_settling.creep`) are
+fitted on one of the two numbers and predict the other.
+
+Every model number comes through `studies.model.pipeline.simulate_table` (the one route) with the
+effects by name; nothing here computes torque itself. Units: N, mm, C, K, s.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from typing import Callable
+
+import numpy as np
+from scipy.optimize import brentq, minimize_scalar
+
+from analytic.lubrication import lubricant_library
+from studies.diagnosis.designs import cycles as cycle_design
+from studies.model.config import Assembly, load_shipped
+from studies.model.effects import get_effect
+from studies.model.pipeline import Pipeline, simulate_table
+from studies.model.result import SimulationResult
+
+#: seed 001, the paper's conclusion 2: +33.3..50.0 % at -20 C, -25 % at 60 C (against 20 C)
+SEED001_COLD_BAND = (1.333, 1.500)
+SEED001_HOT = 0.75
+SEED001_T_C = (-20.0, 20.0, 60.0)
+#: the tolerance a held-out hot ratio is judged with: the relative half-width of the published
+#: cold band, (1.5 - 1.333) / (1.5 + 1.333) = 5.9 %, the only statement of the rig's scatter the
+#: paper gives (the hot point is one rounded number, "25 %")
+SEED001_REL_TOL = (SEED001_COLD_BAND[1] - SEED001_COLD_BAND[0]) / sum(SEED001_COLD_BAND)
+#: seed 000 (Fig. 11 and conclusion 3): steady cycle minus first cycle, torque max and min, N mm
+SEED000_MAX_CHANGE_NMM = -1.7
+SEED000_MIN_CHANGE_NMM = 0.9
+#: half the last printed digit of the published 1.7 / 0.9 N mm
+SEED000_TOL_NMM = 0.05
+#: seed 000's cycle (`studies.diagnosis.designs.cycles`: 20 C start, -60 <-> 80 C at 2 K/min with
+#: one-hour dwells, 410 min per cycle), five cycles sampled every 10 min: the first and the last
+SEED000_CYCLE_MIN = 410.0
+SEED000_CYCLES = 5
+SEED000_DT_S = 600.0
+
+#: bearing temperature above the chamber, K: upper bound (assumption, stated in the report): the
+#: MAC oil kept below about 120 C at the 60 C chamber point (the Pennzane family's usual upper
+#: operating temperature; not a datum of this project's lubricant table)
+SELF_HEATING_MAX_K = 60.0
+
+
+@dataclass(frozen=True)
+class Candidate:
+    """One model extension with at most one free parameter (empty `parameter`: a model form with
+    nothing to fit, both published numbers are then predictions)."""
+    name: str
+    parameter: str
+    bounds: tuple[float, float]
+    bound_source: str
+    #: value -> (assembly, extra condition columns per base row, effects)
+    setup: Callable[[float], tuple[Assembly, dict, dict | None]]
+    #: seed 000: the extension acts from the second cycle on (the first cycle is the baseline)
+    after_first_cycle: bool = False
+
+
+@dataclass(frozen=True)
+class HeldOutFit:
+    """A candidate fitted on one published number and its prediction of the other."""
+    candidate: str
+    parameter: str
+    bounds: tuple[float, float]
+    bound_source: str
+    value: float                 # fitted value (NaN: nothing to fit)
+    reaches: bool                # the target is reached inside the bounds (else: closest value)
+    fitted: float                # the model's value of the fitted number at `value`
+    fit_in_band: bool            # ... inside the published band (or tolerance)
+    predicted: float             # the held-out number predicted
+    predicted_ok: bool           # ... within the published value's tolerance
+
+
+@dataclass(frozen=True)
+class PublishedAsData:
+    """All candidates against one published pair of numbers."""
+    fitted_name: str
+    fitted_target: float
+    fitted_band: tuple[float, float]
+    held_out_name: str
+    held_out_published: float
+    held_out_tol: float          # absolute tolerance of the held-out comparison
+    configured: tuple[float, float]   # the configured model's (fitted, held-out) numbers
+    fits: tuple[HeldOutFit, ...]
+
+    @property
+    def best(self) -> HeldOutFit:
+        """The candidate whose fitted number comes closest to its band (relative distance; the
+        first of several inside it)."""
+        lo, hi = self.fitted_band
+        return min(self.fits, key=lambda f: _band_distance(f.fitted, lo, hi))
+
+    @property
+    def any_fits(self) -> bool:
+        return any(f.fit_in_band for f in self.fits)
+
+
+def _band_distance(v: float, lo: float, hi: float) -> float:
+    """Distance of v from the band [lo, hi], relative (0 inside), sign-safe for changes."""
+    if lo <= v <= hi:
+        return 0.0
+    scale = max(abs(lo), abs(hi), 1e-300)
+    return min(abs(v - lo), abs(v - hi)) / scale
+
+
+def _grid(lo: float, hi: float, n: int) -> np.ndarray:
+    """Linear and (on each side of zero) logarithmic points over [lo, hi]: responses that
+    saturate (a compliance, a clipped friction coefficient) change within a small part of the
+    range."""
+    pts = [np.linspace(lo, hi, n)]
+    if hi > 0:
+        pts.append(np.geomspace(max(lo, 1e-4 * hi) if lo > 0 else 1e-4 * hi, hi, n))
+    if lo < 0:
+        pts.append(-np.geomspace(max(-hi, 1e-4 * -lo) if hi < 0 else 1e-4 * -lo, -lo, n))
+    g = np.unique(np.concatenate(pts))
+    return g[(g >= lo) & (g <= hi)]
+
+
+def _fit_one(cand: Candidate, quantity: Callable[[Candidate, float], tuple[float, float]],
+             target: float, band: tuple[float, float], published: float, tol: float,
+             n_grid: int = 7) -> HeldOutFit:
+    """Fit the candidate's parameter so that the first number of `quantity` meets `target`:
+    brentq on the first grid interval that brackets it; if none does, the grid value closest to
+    it, refined by a bounded scalar minimisation of the miss between its neighbours. Then
+    predict the second number."""
+    if not cand.parameter:
+        q, h = quantity(cand, np.nan)
+        return HeldOutFit(cand.name, "", cand.bounds, cand.bound_source, float("nan"), False,
+                          float(q), bool(band[0] <= q <= band[1]), float(h),
+                          bool(abs(h - published) <= tol))
+    lo, hi = cand.bounds
+    grid = _grid(lo, hi, n_grid)
+    vals = np.array([quantity(cand, x)[0] for x in grid])
+    r = vals - target
+    idx = np.flatnonzero(r[:-1] * r[1:] <= 0)
+    if idx.size:
+        i = int(idx[0])
+        v = (grid[i] if r[i] == 0 else grid[i + 1] if r[i + 1] == 0 else
+             brentq(lambda x: quantity(cand, x)[0] - target, grid[i], grid[i + 1],
+                    rtol=1e-9, xtol=1e-12 * max(abs(lo), abs(hi))))
+    else:
+        i = int(np.argmin(np.abs(r)))
+        a, b = grid[max(i - 1, 0)], grid[min(i + 1, grid.size - 1)]
+        res = minimize_scalar(lambda x: abs(quantity(cand, x)[0] - target), bounds=(a, b),
+                              method="bounded", options={"xatol": 1e-6 * (hi - lo)})
+        v = res.x if abs(res.fun) < abs(r[i]) else grid[i]
+    q, h = quantity(cand, float(v))
+    return HeldOutFit(cand.name, cand.parameter, cand.bounds, cand.bound_source, float(v),
+                      bool(idx.size), float(q), bool(band[0] <= q <= band[1]), float(h),
+                      bool(abs(h - published) <= tol))
+
+
+# --------------------------------------------------------------------------------- seed 001
+def _effect_bounds(name: str, parameter: str) -> tuple[float, float]:
+    return tuple(float(b) for b in get_effect(name).bounds[parameter])
+
+
+def seed001_candidates(asm: Assembly) -> list[Candidate]:
+    """The single-parameter extensions and the parameter-free model forms tried on seed 001."""
+    lub = asm.lubrication
+    cands = []
+    for eff, par, src in (
+            ("viscosity_temperature", "slope_factor",
+             "effect bounds: ASTM D341 slopes of space oils (effects/viscosity_temperature.py)"),
+            ("friction_temperature", "dmu_per_K",
+             "effect bounds: MoS2/boundary friction data (effects/friction_temperature.py)"),
+            ("preload_path_compliance", "extra_compliance_um_per_kN",
+             "effect bounds: 0 to a wave-spring preload, VDI 2230 (effects/preload_path_compliance.py)")):
+        cands.append(Candidate(eff, par, _effect_bounds(eff, par), src,
+                               lambda v, e=eff, p=par: (asm, {}, {e: {p: v}})))
+    cands.append(Candidate(
+        "starved film (Palmgren f0)", "viscous_factor_f0", (0.0, float(lub.viscous_factor_f0)),
+        "0: no viscous drag; the paper's oil-bath value 1.7 (Palmgren; Harris & Kotzalas Vol. 2 "
+        "ch. 2 f0 table) as the upper bound: an oil-impregnated cage feeds less, not more",
+        lambda v: (replace(asm, lubrication=replace(lub, viscous_factor_f0=v)), {}, None)))
+    for parts, label in (("bearing", "rings and balls above the rest of the stack"),
+                         ("stack", "the whole stack above the chamber")):
+        cands.append(Candidate(
+            f"self-heating: {label}", "dT_K", (0.0, SELF_HEATING_MAX_K),
+            f"0: no self-heating; {SELF_HEATING_MAX_K:g} K: assumption, the MAC oil below about "
+            "120 C at the 60 C point (the oil's usual upper operating temperature)",
+            lambda v, w=parts: (asm, {"dT_K": v, "parts": w}, None)))
+    cands.append(Candidate("spring preload (same 7 N)", "", (np.nan, np.nan), "no parameter",
+                           lambda v: (replace(asm, preload=replace(asm.preload, kind="spring")),
+                                      {}, None)))
+    cands.append(Candidate("quasi-dynamic balls", "", (np.nan, np.nan), "no parameter",
+                           lambda v: (replace(asm, operating=replace(asm.operating,
+                                                                     ball_model="quasi_dynamic")),
+                                      {}, None)))
+    for name, oil in lubricant_library().items():
+        if name == lub.lubricant:
+            continue
+        try:
+            oil.walther()
+        except ValueError:          # fewer than two viscosity points in the project data
+            continue
+        cands.append(Candidate(f"oil: {name}", "", (np.nan, np.nan), "the project's oil table",
+                               lambda v, n=name: (replace(asm, lubrication=replace(lub, lubricant=n)),
+                                                  {}, None)))
+    return cands
+
+
+def seed001_torques(asm: Assembly, columns: dict | None = None, effects: dict | None = None,
+                    dT_K: float = 0.0, mesh_factor: float = 1.0,
+                    parts: str = "bearing") -> SimulationResult:
+    """The model at the three published chamber temperatures: the typed `simulate_table` result. With
+    `dT_K`, parts="bearing": the rings and balls dT_K above the chamber, the shaft, spacers and
+    housing at it; parts="stack": every part dT_K above it."""
+    T = np.array(SEED001_T_C)
+    cols = {"T_ambient_C": T}
+    if dT_K and parts == "stack":
+        cols["T_ambient_C"] = T + dT_K
+    elif dT_K:
+        for k in ("T_inner_ring_C", "T_outer_ring_C", "T_ball_C"):
+            cols[k] = T + dT_K
+    cols.update(columns or {})
+    return simulate_table(asm, cols, effects, pipeline=Pipeline.shared(asm, mesh_factor=mesh_factor))
+
+
+def seed001(mesh_factor: float = 1.0) -> PublishedAsData:
+    """Every seed 001 candidate fitted on the cold ratio, the hot ratio held out."""
+    asm = load_shipped("seed001")
+    lo, hi = SEED001_COLD_BAND
+    target = float(np.sqrt(lo * hi))
+    tol = SEED001_REL_TOL * SEED001_HOT
+
+    def ratios(cand: Candidate, v: float) -> tuple[float, float]:
+        a, extra, eff = cand.setup(v)
+        M = seed001_torques(a, None, eff, float(extra.get("dT_K", 0.0)), mesh_factor,
+                            extra.get("parts", "bearing")).torque_Nmm
+        return float(M[0] / M[1]), float(M[2] / M[1])
+
+    base = Candidate("as configured", "", (np.nan, np.nan), "", lambda v: (asm, {}, None))
+    configured = ratios(base, np.nan)
+    fits = tuple(_fit_one(c, ratios, target, SEED001_COLD_BAND, SEED001_HOT, tol)
+                 for c in seed001_candidates(asm))
+    return PublishedAsData("torque -20 C / 20 C", target, SEED001_COLD_BAND, "torque 60 C / 20 C",
+                           SEED001_HOT, tol, configured, fits)
+
+
+@dataclass(frozen=True)
+class SelfHeatingUnbounded:
+    """A self-heating candidate with its bound lifted: the offset the cold ratio asks for and what
+    it then predicts (NaN when not reached below the search limit)."""
+    parts: str
+    dT_K: float
+    ratio_hot: float
+    preload_20C_N: float
+
+
+def self_heating_unbounded(parts: str, mesh_factor: float = 1.0,
+                           upper_K: float = 150.0) -> SelfHeatingUnbounded:
+    """The self-heating offset (K) that puts the cold ratio at the centre of the band with the
+    bound lifted (searched up to `upper_K`), and the hot ratio and 20 C preload it gives."""
+    asm = load_shipped("seed001")
+    target = float(np.sqrt(np.prod(SEED001_COLD_BAND)))
+
+    def f(dT):
+        M = seed001_torques(asm, None, None, dT, mesh_factor, parts).torque_Nmm
+        return M[0] / M[1] - target
+    if f(0.0) * f(upper_K) >= 0:
+        return SelfHeatingUnbounded(parts, *(float("nan"),) * 3)
+    dT = float(brentq(f, 0.0, upper_K, rtol=1e-9))
+    o = seed001_torques(asm, None, None, dT, mesh_factor, parts)
+    return SelfHeatingUnbounded(parts, dT, float(o.torque_Nmm[2] / o.torque_Nmm[1]),
+                                float(o.preload_N[1]))
+
+
+# --------------------------------------------------------------------------------- seed 000
+def seed000_design() -> dict[str, np.ndarray]:
+    """Five seed 000 cycles (`designs.cycles`), 10 min samples."""
+    n = int(round(SEED000_CYCLES * SEED000_CYCLE_MIN * 60.0 / SEED000_DT_S))
+    return cycle_design(n=n, dt=SEED000_DT_S)
+
+
+def cycle_extremes(time_s: np.ndarray, torque_Nmm: np.ndarray) -> tuple[float, float]:
+    """(max, min) change of the torque from the first cycle to the last one, N mm."""
+    k = np.floor(np.asarray(time_s, float) / (60.0 * SEED000_CYCLE_MIN)).astype(int)
+    first, last = torque_Nmm[k == 0], torque_Nmm[k == k.max()]
+    return float(last.max() - first.max()), float(last.min() - first.min())
+
+
+def seed000_candidates(asm: Assembly) -> list[Candidate]:
+    """History candidates with one free parameter each (the others fixed as stated)."""
+    P = float(asm.preload.assembled_N)
+    return [
+        Candidate("preload_settling (threshold 70 K)", "loss_N", (0.0, P),
+                  f"0 to the assembled {P:g} N (a pair cannot lose more); the threshold between "
+                  "the +60 K and -80 K excursions so that the first cycle's maximum precedes it",
+                  lambda v: (asm, {}, {"preload_settling": {"loss_N": v, "threshold_K": 70.0}})),
+        Candidate("preload_settling.creep (threshold 20 K, no step)", "creep_N_per_h",
+                  _effect_bounds("preload_settling.creep", "creep_N_per_h"),
+                  "effect bounds (effects/preload_settling_creep.py: VDI 2230 embedding and creep)",
+                  lambda v: (asm, {}, {"preload_settling.creep": {"loss_N": 0.0, "threshold_K": 20.0,
+                                                                  "creep_N_per_h": v}})),
+        Candidate("solid_film_runin (10 krev)", "dmu", _effect_bounds("solid_film_runin", "dmu"),
+                  "effect bounds (effects/solid_film_runin.py: Roberts 1990 MoS2 films)",
+                  lambda v: (asm, {}, {"solid_film_runin": {"dmu": v, "runin_krev": 10.0}})),
+        Candidate("preload path softened after the first cycle", "extra_compliance_um_per_kN",
+                  _effect_bounds("preload_path_compliance", "extra_compliance_um_per_kN"),
+                  "effect bounds (effects/preload_path_compliance.py: VDI 2230); embedding of the "
+                  "clamped faces in the first cycle taken as a softer path, not a lost preload",
+                  lambda v: (asm, {}, {"preload_path_compliance": {"extra_compliance_um_per_kN": v}}),
+                  after_first_cycle=True),
+    ]
+
+
+def seed000(fit_on: str = "max", mesh_factor: float = 1.0) -> PublishedAsData:
+    """The seed 000 history candidates fitted on the cycle-to-cycle change of the torque maximum
+    (fit_on="max") or minimum ("min"), the other change held out."""
+    asm = load_shipped("seed000")
+    cols = seed000_design()
+    pl = Pipeline.shared(asm, mesh_factor=mesh_factor)
+    i_fit = 0 if fit_on == "max" else 1
+    pub = (SEED000_MAX_CHANGE_NMM, SEED000_MIN_CHANGE_NMM)
+
+    M0 = simulate_table(asm, cols, None, pipeline=pl).torque_Nmm
+    first = np.floor(cols["time_s"] / (60.0 * SEED000_CYCLE_MIN)) == 0
+
+    def changes(cand: Candidate, v: float) -> tuple[float, float]:
+        a, _, eff = cand.setup(v)
+        M = simulate_table(a, cols, eff, pipeline=pl).torque_Nmm
+        if cand.after_first_cycle:     # the static model has no memory: the first cycle as built
+            M = np.where(first, M0, M)
+        ch = cycle_extremes(cols["time_s"], M)
+        return ch[i_fit], ch[1 - i_fit]
+
+    t = pub[i_fit]
+    base = Candidate("as configured", "", (np.nan, np.nan), "", lambda v: (asm, {}, None))
+    configured = changes(base, np.nan)
+    fits = tuple(_fit_one(c, changes, t, (t - SEED000_TOL_NMM, t + SEED000_TOL_NMM), pub[1 - i_fit],
+                          SEED000_TOL_NMM) for c in seed000_candidates(asm))
+    names = ("torque max, steady - first cycle (N mm)", "torque min, steady - first cycle (N mm)")
+    return PublishedAsData(names[i_fit], t, (t - SEED000_TOL_NMM, t + SEED000_TOL_NMM),
+                           names[1 - i_fit], pub[1 - i_fit], SEED000_TOL_NMM, configured, fits)
+
+
+# --------------------------------------------------------------------------------- report
+def _value_text(f: HeldOutFit) -> str:
+    if not f.parameter:
+        return "(no parameter)"
+    lo, hi = f.bounds
+    return (f"{f.parameter} = {f.value:.3g} in [{lo:g}, {hi:g}]"
+            + ("" if f.reaches else " (target not reached: closest value)"))
+
+
+def fits_table(r: PublishedAsData, fmt: str = "{:.3g}") -> str:
+    """Markdown table of the candidates of one comparison."""
+    from studies.runs.report_tools import md_table
+    rows = [["as configured", "-", fmt.format(r.configured[0]), fmt.format(r.configured[1]), "-"]]
+    for f in r.fits:
+        rows.append([f.candidate, _value_text(f), fmt.format(f.fitted)
+                     + (" (in band)" if f.fit_in_band else ""),
+                     fmt.format(f.predicted), "yes" if f.predicted_ok else "no"])
+    lo, hi = r.fitted_band
+    return md_table(["candidate", "fitted parameter (bounds)",
+                     f"{r.fitted_name}: fitted (published {lo:.4g}..{hi:.4g})",
+                     f"{r.held_out_name}: predicted (published {r.held_out_published:g})",
+                     f"within +-{r.held_out_tol:.2g}"], rows)
+
+
+def bound_sources(r: PublishedAsData) -> list[str]:
+    return [f"- {f.candidate}: {f.bound_source}" for f in r.fits if f.parameter]
+
+
+def _named(r: PublishedAsData, start: str) -> HeldOutFit:
+    return next(f for f in r.fits if f.candidate.startswith(start))
+
+
+def seed001_section(mesh_factor: float = 1.0) -> list[str]:
+    """Markdown lines: seed 001's published ratios as data (for the seed 001 report)."""
+    r = seed001(mesh_factor)
+    hb = self_heating_unbounded("bearing", mesh_factor)
+    hs = self_heating_unbounded("stack", mesh_factor)
+    asm = load_shipped("seed001")
+    base = seed001_torques(asm, mesh_factor=mesh_factor)
+    visc_share = float(base.torque.viscous_Nmm[1] / base.torque_Nmm[1])
+    visc = _named(r, "viscosity_temperature")
+    oils = min(f.fitted for f in r.fits if f.candidate.startswith("oil"))
+    lines = ["### The published ratios as data: one extension at a time", "",
+             "Each candidate's one parameter is fitted on the cold ratio alone (to "
+             f"{r.fitted_target:.3f}, the geometric centre of the published +33..50 %), within its "
+             "bounds; the hot ratio is then predicted and compared with the published 0.75 "
+             f"(tolerance +-{SEED001_REL_TOL:.1%}, the relative half-width of the published cold "
+             "band: the paper states no other scatter). Candidates without a parameter predict "
+             "both ratios.", "", fits_table(r), "", "Bounds and their sources:", "",
+             *bound_sources(r), ""]
+    if r.any_fits:
+        b = r.best
+        lines += [f"Best: {b.candidate} ({_value_text(b)}) predicts {b.predicted:.3f} for the "
+                  f"hot ratio against the published 0.75.", ""]
+        return lines
+    reach = (f"with the bound lifted, the rings and balls would have to run {hb.dT_K:.0f} K above "
+             f"the rest of the stack; that predicts x{hb.ratio_hot:.2f} for the hot point "
+             f"({'within' if abs(hb.ratio_hot - SEED001_HOT) <= r.held_out_tol else 'outside'} the "
+             f"tolerance of 0.75), but only through a preload of {hb.preload_20C_N:.0f} N at 20 C "
+             f"(the rings expand away from the cooler shaft and housing) instead of the assembled "
+             f"{asm.preload.assembled_N:g} N: a load term, not a viscous one, and a rig that would "
+             "not have kept its 7 N" if np.isfinite(hb.dT_K) else
+             "even without its bound the rings-and-balls offset does not reach the band")
+    stack = ("the whole stack warmer does not reach the band's centre below 150 K (with the "
+             "oil's law extrapolated far beyond its data)" if not np.isfinite(hs.dT_K)
+             else f"the whole stack would need {hs.dT_K:.0f} K")
+    lines += [
+        "**No single candidate brings the cold ratio into the published band within its "
+        f"bounds.** Why: as configured {visc_share:.1%} of the torque at 20 C is Palmgren's "
+        "viscous term, which follows (nu(-20 C) / nu(20 C))^(2/3): the load-side candidates "
+        "(friction slope, preload-path compliance, a spring preload, quasi-dynamic balls, a "
+        "starved film, which only raises the share of the load term that the rigid position "
+        "preload multiplies when cold) leave the ratio near x8.7. Only the viscosity side moves "
+        f"it: the Walther slope at its bound {visc.value:.3g} gives x{visc.fitted:.2f}, the "
+        f"flattest oil of the project's table x{oils:.2f}; {stack}; {reach}. Two parameters "
+        "together (the preload-path compliance and f0 of the table above) can match both "
+        "ratios, but that is two numbers fitted with two parameters, not a test.", "",
+        "What would decide: the outer-ring temperature in vacuum at each test point (the "
+        "self-heating candidates need tens of kelvin), the torque at two speeds at each "
+        "temperature (the viscous term grows as (nu n)^(2/3), the load term does not), and the "
+        "absolute torque at 20 C (the configured model gives "
+        f"{base['torque_Nmm'][1]:.0f} N mm, almost all of it viscous).", ""]
+    return lines
+
+
+def seed000_section(mesh_factor: float = 1.0) -> list[str]:
+    """Markdown lines: seed 000's first-cycle vs steady-cycle torque extremes as data (for the
+    seed 000 report: `lines += published_as_data.seed000_section(mesh_factor)`)."""
+    on_max, on_min = seed000("max", mesh_factor), seed000("min", mesh_factor)
+    soft = next(f for f in on_max.fits if f.candidate.startswith("preload path softened"))
+    ok = [f for r in (on_max, on_min) for f in r.fits if f.fit_in_band and f.predicted_ok]
+    lines = ["### The published cycle-to-cycle change as data", "",
+             f"Five -60 <-> 80 C cycles ({SEED000_CYCLE_MIN:g} min each); each candidate's one "
+             "parameter is fitted on one published change (the last cycle minus the first) and "
+             "predicts the other (tolerance +-0.05 N mm: half the last printed digit).", "",
+             "Fitted on the change of the maximum (-1.7 N mm):", "", fits_table(on_max), "",
+             "Fitted on the change of the minimum (+0.9 N mm):", "", fits_table(on_min), "",
+             "Bounds and their sources:", "", *bound_sources(on_max), ""]
+    if ok:
+        lines += [f"Consistent with both numbers: {', '.join(f.candidate for f in ok)}.", ""]
+    else:
+        lines += [
+            "**No candidate matches both numbers.** The maximum fell and the minimum rose: the "
+            "torque's swing over a cycle shrank by 2.6 N mm while its middle moved by -0.4 N mm. "
+            "A preload loss (settling, creep) or a changed friction coefficient (run-in) moves "
+            "both extremes the same way, so each predicts the held-out change with the wrong sign "
+            "or zero. A preload path that softens in the first cycle (embedding taken as "
+            f"compliance, not loss) fits the maximum with {soft.value:.3g} um/kN and is the only "
+            f"one with the right sign for the minimum (+{soft.predicted:.2f} against +0.9 N mm). "
+            "What would decide: the preload (or the pair's axial stiffness) at 20 C before and "
+            "after the first cycle, and the torque-temperature slope of each cycle.", ""]
+    return lines

@@ -1,0 +1,111 @@
+"""The published measurements of seeds 001 and 000 as data (studies/runs/published_as_data.py):
+one-parameter candidates fitted on one published number, the other held out and compared with
+the published value. References: the published numbers themselves, Palmgren's viscous torque in
+closed form with the oil's Walther law, and the timing of the cycle design."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from analytic.lubrication import get_lubricant, lubricant_library
+from studies.model.config import load_shipped
+from studies.model.effects import get_effect
+from studies.runs import published_as_data as pad
+
+#: a coarser FE mesh than the shipped one (the ratios depend on the mesh through the groove-centre
+#: shifts only, far below the 5.9 % tolerance); the study report runs the shipped mesh
+MESH = 2.0
+
+
+@pytest.fixture(scope="module")
+def s001():
+    return pad.seed001(MESH)
+
+
+def _palmgren_ratio(lub, T1_C, T2_C, slope_factor=1.0):
+    """Palmgren's viscous torque ratio at the same speed, f0 and dm: (nu1 / nu2)^(2/3)
+    (Harris & Kotzalas Vol. 2 ch. 2; nu from the oil's ASTM D341 law)."""
+    return float((lub.nu_mm2_s(T1_C, slope_factor=slope_factor)
+                  / lub.nu_mm2_s(T2_C, slope_factor=slope_factor)) ** (2.0 / 3.0))
+
+
+def test_seed001_viscous_term_follows_palmgren_and_no_oil_side_change_reaches_the_band(s001):
+    """Why no candidate fits: the configured torque is Palmgren's viscous term, whose cold ratio is
+    (nu(-20) / nu(20))^(2/3) in closed form; at the viscosity slope's bound and for every oil of
+    the project's table that ratio alone stays above the band's top (1.5). The cold ratio of the
+    whole torque is at least the viscous ratio times the viscous share at 20 C:
+    (Mv1 + Ml1) / (Mv2 + Ml2) >= Mv1 / M2 (Ml >= 0)."""
+    asm = load_shipped("seed001")
+    lub = get_lubricant(asm.lubrication.lubricant)
+    out = pad.seed001_torques(asm, mesh_factor=MESH)
+    Mv = out.torque.viscous_Nmm
+    np.testing.assert_allclose(Mv[0] / Mv[1], _palmgren_ratio(lub, -20.0, 20.0), rtol=1e-9)
+    lo_slope = get_effect("viscosity_temperature").bounds["slope_factor"][0]
+    assert _palmgren_ratio(lub, -20.0, 20.0, lo_slope) > pad.SEED001_COLD_BAND[1]
+    for name, oil in lubricant_library().items():
+        try:
+            oil.walther()
+        except ValueError:
+            continue
+        assert _palmgren_ratio(oil, -20.0, 20.0) > pad.SEED001_COLD_BAND[1], name
+    lower = Mv[0] / out.torque_Nmm[1]
+    assert s001.configured[0] >= lower * (1 - 1e-12)
+    assert not s001.any_fits
+    for f in s001.fits:                      # every candidate stays above the band's top
+        assert f.fitted > pad.SEED001_COLD_BAND[1], f.candidate
+        if f.parameter:                      # and a fit that misses sits on a bound or a plateau
+            assert not f.reaches
+
+
+def test_seed001_self_heating_fitted_on_the_cold_ratio_predicts_the_hot_one():
+    """Held out: the rings-and-balls offset fitted on the cold ratio alone (bound lifted) predicts
+    the hot ratio within the tolerance of the published 0.75 (5.9 %, the relative half-width of
+    the published cold band), but only through a preload far above the assembled 7 N (the
+    report's reason to reject it). The whole stack warmer does not reach the band's centre
+    within the 150 K searched: then the ratio is the configured one at shifted temperatures, all
+    viscous (the preload is lost hot), and Palmgren's closed form at the largest shift,
+    (nu(130 C) / nu(170 C))^(2/3), is still above the centre."""
+    h = pad.self_heating_unbounded("bearing", MESH)
+    assert pad.SELF_HEATING_MAX_K < h.dT_K < 150.0
+    assert abs(h.ratio_hot - pad.SEED001_HOT) <= pad.SEED001_REL_TOL * pad.SEED001_HOT
+    assert h.preload_20C_N > 100 * load_shipped("seed001").preload.assembled_N
+    s = pad.self_heating_unbounded("stack", MESH)
+    assert np.isnan(s.dT_K)
+    lub = get_lubricant(load_shipped("seed001").lubrication.lubricant)
+    assert _palmgren_ratio(lub, 130.0, 170.0) > np.sqrt(np.prod(pad.SEED001_COLD_BAND))
+
+
+@pytest.fixture(scope="module")
+def s000():
+    return pad.seed000("max", MESH), pad.seed000("min", MESH)
+
+
+def test_seed000_settling_cannot_move_the_minimum(s000):
+    """A one-off preload loss at the first excursion beyond 70 K comes, in the cycle design,
+    after the first cycle's maximum (the +60 K dwell) and before its minimum (the -80 K dwell):
+    both minima carry the loss, so the held-out minimum change is zero whatever the loss, against
+    the published +0.9 N mm."""
+    cols = pad.seed000_design()
+    t, T = cols["time_s"], cols["T_ambient_C"]
+    first = t < 60.0 * pad.SEED000_CYCLE_MIN
+    trigger = t[np.flatnonzero(np.abs(T - 20.0) > 70.0)[0]]
+    assert trigger > t[first][np.argmax(T[first])]
+    assert trigger <= t[first][np.argmin(T[first])]
+    on_max, _ = s000
+    f = next(f for f in on_max.fits if f.candidate.startswith("preload_settling ("))
+    assert f.fit_in_band and abs(f.fitted - pad.SEED000_MAX_CHANGE_NMM) <= pad.SEED000_TOL_NMM
+    assert abs(f.predicted) <= 1e-9
+
+
+def test_seed000_no_history_candidate_predicts_the_held_out_change(s000):
+    """Against the published pair (-1.7, +0.9 N mm; tolerance half the last digit): no candidate
+    fitted on one change predicts the other. Fitted on the maximum, only the softened preload path
+    predicts a rise of the minimum at all; fitted on the minimum, nothing predicts the fall of
+    the maximum."""
+    on_max, on_min = s000
+    for r in (on_max, on_min):
+        assert not any(f.fit_in_band and f.predicted_ok for f in r.fits)
+    rising = [f.candidate for f in on_max.fits if f.fit_in_band and f.predicted > 1e-9]
+    assert rising == ["preload path softened after the first cycle"]
+    assert all(f.predicted > pad.SEED000_MAX_CHANGE_NMM + pad.SEED000_TOL_NMM
+               for f in on_min.fits if f.fit_in_band)
