@@ -18,7 +18,7 @@ minutes, the step is seconds). Conditions between rows are interpolated linearly
 state at a row between grid points is the linear interpolation of the two neighbours' reduced
 coordinates. Every row is then evaluated through the pipeline's one route for given FE states
 (`Pipeline.run` with `FEOptions(states=...)`) with the computed part temperatures (volume means of the FE parts by
-`pipeline.FE_PART_GROUP`, the ball nodes for the balls).
+`stages.fe.FE_PART_GROUP`, the ball nodes for the balls).
 
 The initial state is uniform at the first row's environment temperature. The ball-raceway
 conductances (Holm constriction over the Hertz ellipses, `analytic.thermal_network`) are taken at
