@@ -65,6 +65,27 @@ class WaltherLaw:
         x = np.log10(np.asarray(T_C, float) + K0)
         return walther_inverse(law.A - law.B * x)
 
+    def T_C(self, nu_mm2_s):
+        """The temperature (C) at which this law gives nu_mm2_s (its inverse)."""
+        return 10.0 ** ((self.A - walther_transform(nu_mm2_s)) / self.B) - K0
+
+    def extrapolation_warning(self, nu_mm2_s, name: str) -> str | None:
+        """One line when any of the viscosities nu_mm2_s (mm^2/s, from this law) lies at a
+        temperature outside `fit_range_C` (beyond 0.01 K): the law is then an extrapolation."""
+        nu = np.asarray(nu_mm2_s, float).ravel()
+        nu = nu[np.isfinite(nu)]
+        lo, hi = self.fit_range_C
+        if not nu.size or not np.isfinite(lo):
+            return None
+        T = self.T_C(nu)
+        out = (T < lo - 0.01) | (T > hi + 0.01)
+        if not out.any():
+            return None
+        return (f"lubricant {name}: oil temperature {T[out].min():.1f}..{T[out].max():.1f} C in "
+                f"{int(out.sum())} "
+                f"of {T.size} rows is outside the Walther fit's range {lo:g}..{hi:g} C: the "
+                "viscosity there is extrapolated (give viscosity points that span the range)")
+
     def with_slope_factor(self, slope_factor: float, T_pivot_C: float = T_PIVOT_C) -> "WaltherLaw":
         """Same nu at T_pivot_C, slope B scaled by slope_factor (> 0)."""
         if not slope_factor > 0:
@@ -190,7 +211,7 @@ class Lubricant:
     alpha_source: str
     viscosity_index: float | None = None
     pour_point_C: float | None = None
-    extra: dict = field(default_factory=dict)
+    extra: dict = field(default_factory=dict, hash=False, compare=False)
 
     @property
     def T_points_C(self) -> np.ndarray:
@@ -210,9 +231,21 @@ class Lubricant:
         if T.size < 2:
             raise ValueError(f"{self.name}: fewer than two viscosity points"
                              f"{'' if temperatures_C is None else ' at ' + str(temperatures_C)}"
-                             " - no Walther law can be fitted from the project data")
+                             " - no Walther law can be fitted from the project data (give the "
+                             "oil as a [lubricants.NAME] table with two or more points)")
         srcs = sorted({p[2] for p in self.viscosity_points if p[0] in T})
         return fit_walther(T, nu, source=f"{self.name}: Walther fit to {list(T)} C ({', '.join(srcs)})")
+
+    def statement(self) -> str:
+        """One sentence for a report: the oil, its Walther fit (points, temperature range), density
+        and pressure-viscosity coefficient with their sources."""
+        law = self.walther()
+        lo, hi = law.fit_range_C
+        pts = ", ".join(f"{nu:g} cSt at {T:g} C" for T, nu, _ in self.viscosity_points)
+        return (f"Oil {self.name}: viscosity by the Walther (ASTM D341) fit through {pts}, "
+                f"valid {lo:g}..{hi:g} C (extrapolated outside, a warning says so); density "
+                f"{self.density_kg_m3:g} kg/m^3 ({self.density_source}); pressure-viscosity "
+                f"coefficient {self.alpha_per_Pa * 1e9:g} 1/GPa ({self.alpha_source}).")
 
     def nu_mm2_s(self, T_C, slope_factor: float = 1.0):
         """Kinematic viscosity (mm^2/s) from the Walther law of all datasheet points."""
@@ -297,14 +330,76 @@ def csv_sources(path: str | Path = DATA_CSV) -> dict[str, str]:
     return dict(_library(str(path))[0])
 
 
-def get_lubricant(name: str, path: str | Path = DATA_CSV) -> Lubricant:
-    """Look an oil up by full CSV name or alias (e.g. 'Fomblin Z25', 'X-2000', '815Z')."""
+def get_lubricant(name: str, user: tuple[Lubricant, ...] = (),
+                  path: str | Path = DATA_CSV) -> Lubricant:
+    """Look an oil up: first among `user` (a config's own `[lubricants.NAME]` tables, which may
+    take a library name), then by full CSV name or alias (e.g. 'Fomblin Z25', 'X-2000', '815Z').
+    KeyError names the known ones."""
+    for lub in user:
+        if lub.name == name:
+            return lub
     lib = lubricant_library(path)
     key = ALIASES.get(name, name)
     if key not in lib:
+        own = f"; the file's own: {', '.join(u.name for u in user)}" if user else ""
         raise KeyError(f"unknown lubricant '{name}' (known: {', '.join(sorted(lib))}; "
-                       f"aliases: {', '.join(sorted(ALIASES))})")
+                       f"aliases: {', '.join(sorted(ALIASES))}{own}; or give a "
+                       f"[lubricants.NAME] table)")
     return lib[key]
+
+
+#: keys of a `[lubricants.NAME]` table (units in the names); all but `source` required
+LUBRICANT_TABLE_KEYS = ("kinematic_viscosity_cSt", "density_kg_m3", "pressure_viscosity_per_GPa",
+                        "source")
+
+
+def _finite(v) -> bool:
+    return (not isinstance(v, bool) and isinstance(v, (int, float)) and v == v
+            and abs(v) != float("inf"))
+
+
+def lubricant_from_table(name: str, table: dict) -> Lubricant:
+    """A user's oil from a `[lubricants.NAME]` table:
+    `kinematic_viscosity_cSt = [[T_C, nu], ...]` (at least two points at distinct temperatures,
+    nu >= 2 mm^2/s = cSt, the validity of ASTM D341 with Z = nu + 0.7), `density_kg_m3` (> 0,
+    taken constant in temperature as for the library oils), `pressure_viscosity_per_GPa` (the
+    Barus coefficient alpha of eta = eta0 exp(alpha p), > 0; 1/GPa = 1e-9 1/Pa) and `source`
+    (text). The viscosity-temperature law is the Walther fit through the points (`fit_walther`),
+    valid over their temperature span. ValueError (one line naming the key) on a missing, unknown
+    or out-of-range value; the caller adds the file."""
+    pre = f"lubricants.{name}"
+    for key in table:
+        if key not in LUBRICANT_TABLE_KEYS:
+            raise ValueError(f"{pre}.{key}: unknown key (known: {', '.join(LUBRICANT_TABLE_KEYS)})")
+    missing = [k for k in LUBRICANT_TABLE_KEYS[:3] if k not in table]
+    if missing:
+        raise ValueError(f"{pre}: missing {', '.join(missing)}")
+    pts = table["kinematic_viscosity_cSt"]
+    key = f"{pre}.kinematic_viscosity_cSt"
+    if (not isinstance(pts, list) or not all(isinstance(p, list) and len(p) == 2
+                                             and all(_finite(v) for v in p) for p in pts)):
+        raise ValueError(f"{key}: give [[T_C, nu_cSt], ...], pairs of finite numbers")
+    if len({float(p[0]) for p in pts}) < 2 or len({float(p[0]) for p in pts}) != len(pts):
+        raise ValueError(f"{key}: needs at least two points at distinct temperatures for the "
+                         f"Walther fit (ASTM D341), got {len(pts)}")
+    for T, nu in pts:
+        if not -150.0 <= T <= 300.0:
+            raise ValueError(f"{key}: temperature {T:g} C outside -150..300 C")
+        if nu < 2.0:
+            raise ValueError(f"{key}: {nu:g} cSt at {T:g} C is below 2 cSt, where ASTM D341 "
+                             "(Z = nu + 0.7) is not valid")
+    for k in ("density_kg_m3", "pressure_viscosity_per_GPa"):
+        v = table[k]
+        if not _finite(v) or v <= 0:
+            raise ValueError(f"{pre}.{k}: must be a finite number > 0, got {v!r}")
+    src = str(table.get("source", ""))
+    return Lubricant(
+        name=name, family="user", viscosity_points=tuple(sorted(
+            (float(T), float(nu), src or "config") for T, nu in pts)),
+        density_kg_m3=float(table["density_kg_m3"]),
+        density_source=src or "the config's [lubricants] table",
+        alpha_per_Pa=float(table["pressure_viscosity_per_GPa"]) * 1e-9,
+        alpha_source=src or "the config's [lubricants] table")
 
 
 # --------------------------------------------------------------------------- EHL film

@@ -349,3 +349,95 @@ def test_cli_bearing_bad_input(tmp_path, edit, loads_text, expect):
     lines = r.stderr.strip().splitlines()
     assert len(lines) == 1 and expect in lines[0], r.stderr
     assert not out.exists() and not Path(f"{out}.json").exists()
+
+
+# ------------------------------------------------------------ torque of one bearing (issue 24)
+OIL = """
+[lubrication]
+kind = "oil"
+lubricant = "MyOil"
+friction_coefficient = 0.002
+viscous_factor_f0 = 2.0
+speed_rpm = 1000.0
+
+[lubricants.MyOil]
+kinematic_viscosity_cSt = [[40.0, 100.0], [100.0, 10.0]]
+density_kg_m3 = 860.0
+pressure_viscosity_per_GPa = 20.0
+"""
+
+FILM = """
+[lubrication]
+kind = "solid_film"
+friction_coefficient = 0.02
+hysteresis_loss_factor = 0.01
+"""
+
+
+def _torque_table(tmp_path, lubrication, loads_text):
+    import pandas as pd
+
+    from studies.app.cli import main
+
+    b = tmp_path / "b.toml"
+    b.write_text(BEARING_TOML + lubrication)
+    loads = tmp_path / "loads.csv"
+    loads.write_text(loads_text)
+    out = tmp_path / "out.csv"
+    assert main(["bearing", str(b), str(loads), "-o", str(out)]) == 0
+    return pd.read_csv(out)
+
+
+def test_bearing_torque_oil_is_palmgren_with_the_applied_axial_load(tmp_path):
+    """Oil: M = mu F_a dm/2 + 1e-7 f0 (nu n)^(2/3) dm^3 (SKF's simplified load term with r = dm/2;
+    Palmgren 1959), written out here: F_a the applied axial load (a radial load on top adds no
+    load term: the balls' axial forces still sum to F_a), nu the table's point at the row's oil
+    temperature (a two-point Walther law passes through both), n = [lubrication] speed_rpm."""
+    df = _torque_table(tmp_path, OIL, "axial_load_N,radial_load_N,T_oil_C\n500,0,40\n1500,0,100\n"
+                                      "500,800,40\n")
+    dm = 38.5
+    expect = [0.002 * Fa * dm / 2 + 1e-7 * 2.0 * (nu * 1000.0) ** (2 / 3) * dm ** 3
+              for Fa, nu in ((500.0, 100.0), (1500.0, 10.0), (500.0, 100.0))]
+    np.testing.assert_allclose(df["torque_Nmm"], expect, rtol=1e-9)
+
+
+def test_bearing_torque_solid_film_is_z_times_one_ball_under_axial_load(tmp_path):
+    """Solid film under a pure axial load: every ball alike, so the sum over the balls' own
+    contacts is Z times one ball with Q = F_a / (Z sin a) (a the reported contact angle) and
+    Hertz ellipses from the textbook radii (`hertz.ball_raceway_radii_mm`, the exact point
+    contact `hertz_point_contact`), through the pair's film model `solid_film_torque_Nmm`."""
+    from analytic.torque import ContactInput, solid_film_torque_Nmm
+
+    df = _torque_table(tmp_path, FILM, "axial_load_N\n300\n1200\n")
+    g = _geometry()
+    E_star = hertz.contact_modulus_MPa(g.ring.E_MPa, g.ring.nu, g.ball.E_MPa, g.ball.nu)
+    c_ring = (1.0 - g.ring.nu ** 2) / g.ring.E_MPa
+    c_ball = (1.0 - g.ball.nu ** 2) / g.ball.E_MPa
+    for Fa, alpha_deg, got in zip((300.0, 1200.0), df["contact_angle_inner_deg"], df["torque_Nmm"]):
+        Q = Fa / (g.Z * np.sin(np.radians(alpha_deg)))
+        contacts = []
+        for race, f in (("inner", g.f_i), ("outer", g.f_o)):
+            Rx, Ry = hertz.ball_raceway_radii_mm(g.Dw_mm, g.dm_mm, alpha_deg, f, race)
+            h = hertz.hertz_point_contact(Q, Rx, Ry, E_star)
+            contacts.append(ContactInput(np.array([Q]), h.a_mm, h.b_mm, h.E_elliptic, Rx))
+        t = solid_film_torque_Nmm(g.Z, g.Dw_mm, g.dm_mm, g.f_i, g.f_o,
+                                  np.array([np.radians(alpha_deg)]), *contacts, 0.02, 0.01,
+                                  c_ring, c_ball)
+        assert got == pytest.approx(float(t.total_Nmm[0]), rel=1e-6)
+        assert got > 0
+
+
+def test_bearing_torque_needs_lubrication_and_an_oil_temperature(tmp_path):
+    """No [lubrication]: the column is there, empty. An oil without a T_oil_C column: one line,
+    exit 2, no output."""
+    df = _cli_table(tmp_path, "axial_load_N\n100\n")
+    assert "torque_Nmm" in df.columns and df["torque_Nmm"].isna().all()
+    b = tmp_path / "b.toml"
+    b.write_text(BEARING_TOML + OIL)
+    loads = tmp_path / "loads.csv"
+    loads.write_text("axial_load_N\n100\n")
+    out = tmp_path / "out2.csv"
+    r = _cli("bearing", b, loads, "-o", out)
+    assert r.returncode == 2
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and "T_oil_C" in lines[0] and not out.exists()

@@ -71,7 +71,7 @@ def _template_keys() -> dict[tuple[str, str], tuple[str, str]]:
         if m := re.match(r"^(?:# )?\[([A-Za-z_.]+)\]", line):
             table = m.group(1)
         elif (m := re.match(r"^(?:# )?(\w+) = (.+?)\s+#\s*(.*)$", line)) and table:
-            if not table.startswith("materials"):
+            if not table.startswith(("materials", "lubricants")):
                 assert (table, m.group(1)) not in out, (table, m.group(1))
                 out[(table, m.group(1))] = (m.group(2), m.group(3))
     return out

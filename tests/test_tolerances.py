@@ -255,3 +255,85 @@ def test_samples_reordered_into_blocks_come_back_in_their_own_rows(fits_only):
         tol.CHUNK_ROWS = old
     hand = asm.fits.inner_interference_um + dev["inner_shaft"] - dev["inner_ring_bore"]
     np.testing.assert_allclose(r["interference_inner_um"][:, 0], hand, rtol=0, atol=1e-12)
+
+
+# ------------------------------------------------- designed state, worst case per condition (#24)
+OUTER_BAND_UM = (-7.62, 0.0)      # ring OD limits; no housing tolerance: the band of the outer fit
+
+
+@pytest.fixture(scope="module")
+def clearance_run(tmp_path_factory):
+    """seed 000 (TC4 housing, 9Cr18 rings) with the outer fit designed with clearance: nominal 0,
+    ring OD -7.62..0 um (the band of issue 24), inner fit +5 um untoleranced; `tolerance` at
+    -60, 20 and 80 C, 2000 samples."""
+    from studies.runs import tolerance_report as tr
+
+    d = tmp_path_factory.mktemp("clear")
+    asm = load_assembly(_with_fits(d, [f"outer_ring_od_deviation_um = [{OUTER_BAND_UM[0]}, "
+                                       f"{OUTER_BAND_UM[1]}]"], inner=5.0))
+    cond = {"T_ambient_C": np.array([-60.0, 20.0, 80.0])}
+    res = tr.run(asm, cond, d, {"version": "test"}, 2000, 3, progress=lambda s: None)
+    return asm, cond, res, d
+
+
+def _outer_thermal_um(T_C, T_ref_C=20.0):
+    """Hand arithmetic: change of the outer fit's free diametral interference at a uniform T,
+    D (theta_ring - theta_housing) with theta = alpha (T - T_ref) + dalpha/2 ((T-20)^2 - (T_ref-20)^2)
+    (the integral of the linear CTE law), D = 47 mm (71807C outside diameter)."""
+    from analytic.materials import get_material
+
+    def theta(m):
+        return m.alpha_per_K * (T_C - T_ref_C) + 0.5 * m.dalpha_per_K2 * ((T_C - 20.0) ** 2
+                                                                           - (T_ref_C - 20.0) ** 2)
+    return 47.0 * 1e3 * (theta(get_material("9Cr18")) - theta(get_material("TC4")))
+
+
+def test_a_fit_designed_with_clearance_fails_only_when_it_closes(clearance_run):
+    """Issue 24: the outer fit, designed with clearance (mean -3.81 um), was counted as failed
+    wherever it was open (0.9 of the samples). Now it fails only by closing: never at -60 C (the
+    9Cr18 rings shrink more than the TC4 housing: the clearance grows) nor at 20 C (at most line
+    to line), and at 80 C with the probability of the hand arithmetic: the free interference is
+    U(-7.62, 0) + Delta(80 C) > 0 with probability Delta / 7.62 (within 4 standard errors)."""
+    asm, cond, res, _ = clearance_run
+    assert res["fit_design"] == {"inner": "interference", "outer": "clearance"}
+    pc = res["per_condition"]["fit_open_outer"]
+    assert pc["probability"][0] == 0.0 and pc["probability"][1] == 0.0
+    delta = _outer_thermal_um(80.0)
+    assert 0.0 < delta < 7.62
+    exact = delta / 7.62
+    assert abs(pc["probability"][2] - exact) <= 4 * np.sqrt(exact * (1 - exact) / 2000), (pc, exact)
+    assert res["probabilities"]["fit_open_inner"] == 0.0          # +5 um, closed everywhere
+
+
+def test_worst_case_per_condition_is_the_hand_arithmetic(clearance_run):
+    """The worst case of the outer interference at each temperature is the band moved by the
+    thermal change there (hand arithmetic at -60 and 80 C), not one min/max over all conditions
+    drawn flat (the overall `worst_case` stays: the extremes of the per-condition ones)."""
+    asm, cond, res, _ = clearance_run
+    wc = res["worst_case_per_condition"]["interference_outer_um"]
+    for c, T in ((0, -60.0), (2, 80.0)):
+        d = _outer_thermal_um(T)
+        assert wc["min"][c] == pytest.approx(OUTER_BAND_UM[0] + d, abs=1e-9)
+        assert wc["max"][c] == pytest.approx(OUTER_BAND_UM[1] + d, abs=1e-9)
+    assert res["worst_case"]["interference_outer_um"] == {"min": min(wc["min"]), "max": max(wc["max"])}
+    assert wc["max"][0] < res["worst_case"]["interference_outer_um"]["max"]   # not flat
+
+
+def test_sobol_indices_hidden_where_the_interval_spans_the_value(clearance_run):
+    """A Sobol' index is shown with its 95 % half-width only when the interval excludes zero
+    (half-width < |value|); `0.869 +- 2.067` (issue 24) is shown as `- (+- 2.07)`. In the report,
+    each cell of the table follows the rule (at -60 C the preload does not vary: all 0)."""
+    from studies.model import sobol
+
+    assert sobol.display(0.869, 2.067) == "- (+- 2.07)"
+    assert sobol.display(0.512, 0.031) == "0.512 +- 0.031"
+    assert sobol.display(-0.05, 0.05) == "- (+- 0.05)"
+    assert sobol.display(0.0, 0.0) == "- (+- 0)"
+    _, _, res, d = clearance_run
+    report = (d / "report.md").read_text()
+    sob = res["preload_sobol"]["outer_ring_od"]
+    for c, T in enumerate((-60.0, 20.0, 80.0)):
+        row = (f"| {T:g} | {sobol.display(sob['S1'][c], sob['S1_conf'][c])} | "
+               f"{sobol.display(sob['ST'][c], sob['ST_conf'][c])} |")
+        assert row in report, row
+    assert "+- 0.000" not in report

@@ -56,7 +56,7 @@ from analytic.bearing.contact import axial_state, ball_azimuths_rad, contact_sti
 from analytic.bearing.geometry import BearingGeometry, thermal_geometry
 from analytic.bearing.land import groove_centre_radius_mm
 from analytic.bearing.roots import Root
-from analytic.bearing.state import contact_ellipses
+from analytic.bearing.state import ContactEllipses, contact_ellipses
 from analytic.torque import ball_kinematics
 
 CONVENTIONS = ("exact", "iso16281")
@@ -102,6 +102,8 @@ class BallsState:
     max_contact_pressure_MPa: np.ndarray     # of the ball's two contacts
     loads: np.ndarray                        # (5, N): F_z, F_x, F_y (N), M_x, M_y (N mm) they carry
     outer_control: np.ndarray | None = None  # quasi-dynamic: True where the outer raceway controls
+    ellipse_inner: ContactEllipses | None = None   # Hertz ellipses of the inner contacts, (Z, N)
+    ellipse_outer: ContactEllipses | None = None   # and of the outer contacts
 
     @property
     def max_ball_load_N(self) -> np.ndarray:
@@ -407,8 +409,11 @@ def balls_at_displacement(g: BearingGeometry, axial_mm, radial_x_mm=0.0, radial_
         raise ValueError(f"ball_model must be one of {', '.join(BALL_MODELS)}, got {ball_model!r}")
 
     def ell(cs, Q, side):
-        return contact_ellipses(g, cs, Q.reshape(np.shape(cs.Kn)), side).p_max_MPa.reshape(X.shape)
-    p = np.maximum(ell(cs_i, Q_i, 0), ell(cs_o, Q_o, 1))
+        e = contact_ellipses(g, cs, Q.reshape(np.shape(cs.Kn)), side)
+        return ContactEllipses(*(np.broadcast_to(getattr(e, f), np.shape(e.a_mm)).reshape(X.shape)
+                                 for f in ("a_mm", "b_mm", "p_max_MPa", "E_ell", "Rx_mm")))
+    e_i, e_o = ell(cs_i, Q_i, 0), ell(cs_o, Q_o, 1)
+    p = np.maximum(e_i.p_max_MPa, e_o.p_max_MPa)
     psi = ball_azimuths_rad(g.Z)[:, None]
     sa, ca = Fa_k, Fr_k
     loads = np.stack([sa.sum(axis=0), (ca * np.cos(psi)).sum(axis=0),
@@ -416,5 +421,5 @@ def balls_at_displacement(g: BearingGeometry, axial_mm, radial_x_mm=0.0, radial_
                       (sa * R_m * np.sin(psi)).sum(axis=0) + couple[0],
                       -(sa * R_m * np.cos(psi)).sum(axis=0) + couple[1]])
     return BallsState(np.degrees(a_i), np.degrees(a_o), Q_i, Q_o, d_i, d_o, Fc, Mg, sr, p, loads,
-                      ctl)
+                      ctl, e_i, e_o)
 

@@ -194,6 +194,13 @@ def plausibility_warnings(asm, conditions: dict | None = None, out: dict | None 
             msgs.append(f"viscous torque up to {ratio:.0f}x the load torque: Palmgren f0 = "
                         f"{asm.lubrication.viscous_factor_f0:g} is an oil-bath value; a bearing with "
                         "a few milligrams of oil runs far below it")
+    oil = asm.oil()
+    if oil is not None and out is not None and "viscosity_mm2_s" in out:
+        # the oil temperature of each row from its viscosity through the unscaled law (exact
+        # without the viscosity_temperature effect, which moves the law about 40 C)
+        law = oil.walther()
+        if (msg := law.extrapolation_warning(out["viscosity_mm2_s"], oil.name)) is not None:
+            msgs.append(msg)
     for side in ("inner", "outer"):
         m = None if out is None else out.get(f"land_margin_{side}_deg")
         if m is not None and np.any(np.asarray(m) < 0):

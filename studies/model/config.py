@@ -21,6 +21,7 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from analytic.bearing.geometry import BearingGeometry, BearingSpec
+from analytic.lubrication import Lubricant, get_lubricant, lubricant_from_table
 from analytic.materials import Material, get_material, material_from_table
 from studies.model.config_checks import check_assembly, check_bearing
 from studies.model.config_schema import (ASSEMBLY_KEYS, LAYERS, MATERIAL_T_RANGE_C, SIGNED,
@@ -33,7 +34,7 @@ __all__ = ["Assembly", "BearingSpec", "CONFIG_DIR", "Clamp", "ConfigError", "Fit
            "LAYERS", "Layer", "Limits", "Lubrication", "Mesh", "OPTIONAL_SECTIONS", "Operating",
            "Preload", "SECTIONS", "SHIPPED", "Shaft", "SingleBearingConfig", "Spacer", "Thermal",
            "TOLERANCE_SURFACES", "assembly_from_dict", "check_bearing", "load_assembly",
-           "load_bearing", "load_shipped", "parse_materials"]
+           "load_bearing", "load_shipped", "parse_lubricants", "parse_materials"]
 
 _MM = "mm"
 
@@ -153,7 +154,8 @@ class Preload:
 @dataclass(frozen=True, kw_only=True)
 class Lubrication:
     kind: str = choice("solid_film", "oil")
-    lubricant: str = text("oil: one of analytic/lubrication.py's library", default="")
+    lubricant: str = text("oil: a library oil (analytic/lubrication.py) or one of the file's "
+                               "[lubricants.NAME]", default="")
     friction_coefficient: float = number("-", "oil: Coulomb load term mu F dm/2; solid film: mu "
                                               "of the film", sign=ZERO_OK, default=0.0,
                                          bounds=Range(hi=1.0, error="must not exceed 1"))
@@ -270,6 +272,14 @@ class Assembly:
     sleeve: Layer | None = None
     cartridge: Layer | None = None
     materials: tuple[Material, ...] = ()   # the config's own [materials.NAME] tables
+    lubricants: tuple[Lubricant, ...] = ()  # the config's own [lubricants.NAME] tables
+
+    def oil(self) -> Lubricant | None:
+        """The oil of `[lubrication] lubricant` (the file's own table first, then the library);
+        None for a solid film."""
+        if self.lubrication.kind != "oil":
+            return None
+        return get_lubricant(self.lubrication.lubricant, self.lubricants)
 
     def layers(self) -> list[tuple[str, Layer]]:
         """The sleeve and cartridge present, from the inside out: (name, layer)."""
@@ -355,10 +365,18 @@ class SingleBearingConfig:
     spec: BearingSpec
     materials: tuple[Material, ...]
     radial_internal_clearance_um: float | None
+    lubrication: Lubrication | None = None   # optional [lubrication]: the friction torque
+    lubricants: tuple[Lubricant, ...] = ()   # the file's own [lubricants.NAME] tables
 
     @property
     def geometry(self) -> BearingGeometry:
         return BearingGeometry.from_spec(self.spec, self.materials)
+
+    def oil(self) -> Lubricant | None:
+        """The oil of `[lubrication] lubricant`, None without [lubrication] or for a film."""
+        if self.lubrication is None or self.lubrication.kind != "oil":
+            return None
+        return get_lubricant(self.lubrication.lubricant, self.lubricants)
 
 
 def load_bearing(path: str | Path) -> SingleBearingConfig:
@@ -366,16 +384,17 @@ def load_bearing(path: str | Path) -> SingleBearingConfig:
     assembly's [bearing] section (parsed by the same `_section`, checked by `check_bearing`),
     either `contact_angle_free_deg` or `radial_internal_clearance_um` (total diametral play,
     ISO 5753; the free contact angle follows from cos a0 = 1 - P_d / (2 A0),
-    `analytic.bearing.single.free_contact_angle_deg`), and optional [materials.NAME] tables.
-    ConfigError (one line naming file and key) on any problem."""
+    `analytic.bearing.single.free_contact_angle_deg`), optional [materials.NAME] tables, and an
+    optional [lubrication] section (the assembly's keys; its friction torque) with optional
+    [lubricants.NAME] tables. ConfigError (one line naming file and key) on any problem."""
     from analytic.bearing.single import free_contact_angle_deg
 
     path = str(path)
     raw = _read_toml(path)
     for name in raw:
-        if name not in ("bearing", "materials"):
-            raise ConfigError(f"{path}: [{name}]: unknown section (a bearing file has [bearing] "
-                              "and [materials.NAME] tables)")
+        if name not in ("bearing", "materials", "lubrication", "lubricants"):
+            raise ConfigError(f"{path}: [{name}]: unknown section (a bearing file has [bearing], "
+                              "[lubrication], [materials.NAME] and [lubricants.NAME] tables)")
     table = raw.get("bearing")
     if not isinstance(table, dict):
         raise ConfigError(f"{path}: [bearing]: missing section")
@@ -397,7 +416,15 @@ def load_bearing(path: str | Path) -> SingleBearingConfig:
             raise ConfigError(f"{path}: bearing.{_CLEARANCE}: {exc.args[0]}") from None
         spec = replace(spec, contact_angle_free_deg=alpha0)
     check_bearing(spec, materials, path)
-    return SingleBearingConfig(spec, materials, None if clearance is None else float(clearance))
+    lubrication = _section(path, raw, "lubrication") if "lubrication" in raw else None
+    cfg = SingleBearingConfig(spec, materials, None if clearance is None else float(clearance),
+                              lubrication, parse_lubricants(raw, path))
+    if lubrication is not None and lubrication.kind == "oil":   # an oil needs a Walther law
+        try:
+            cfg.oil().walther()
+        except (KeyError, ValueError) as exc:
+            raise ConfigError(f"{path}: lubrication.lubricant: {exc.args[0]}") from None
+    return cfg
 
 
 _CLEARANCE = "radial_internal_clearance_um"
@@ -428,11 +455,12 @@ def assembly_from_dict(raw: dict, path: str = "<config>") -> Assembly:
     between keys (config_checks.check_assembly). ConfigError (one line) on the first problem."""
     top = _header(path, raw.get("assembly"))
     for name in raw:
-        if name not in ("assembly", "materials") and name not in SECTIONS:
+        if name not in ("assembly", "materials", "lubricants") and name not in SECTIONS:
             raise ConfigError(f"{path}: [{name}]: unknown section")
     parts = {name: _section(path, raw, name) for name in SECTIONS
              if name not in LAYERS or name in raw}
-    asm = Assembly(**top, materials=parse_materials(raw, path), **parts)
+    asm = Assembly(**top, materials=parse_materials(raw, path),
+                   lubricants=parse_lubricants(raw, path), **parts)
     check_assembly(asm, path)
     return asm
 
@@ -466,6 +494,18 @@ def parse_materials(raw: dict, path: str) -> tuple[Material, ...]:
         raise ConfigError(f"{path}: [materials]: give one table per material, [materials.NAME]")
     try:
         return tuple(material_from_table(name, t) for name, t in tables.items())
+    except ValueError as exc:
+        raise ConfigError(f"{path}: {exc.args[0]}") from None
+
+
+def parse_lubricants(raw: dict, path: str) -> tuple[Lubricant, ...]:
+    """A config's `[lubricants.NAME]` tables (analytic.lubrication.lubricant_from_table), in
+    file order; ConfigError (one line naming the file and key) on a bad table."""
+    tables = raw.get("lubricants", {})
+    if not isinstance(tables, dict) or not all(isinstance(t, dict) for t in tables.values()):
+        raise ConfigError(f"{path}: [lubricants]: give one table per oil, [lubricants.NAME]")
+    try:
+        return tuple(lubricant_from_table(name, t) for name, t in tables.items())
     except ValueError as exc:
         raise ConfigError(f"{path}: {exc.args[0]}") from None
 

@@ -20,7 +20,6 @@ import numpy as np
 
 from analytic.axial_stack import uniform_growth_shifts_mm
 from analytic.bearing import PairState
-from analytic.lubrication import get_lubricant
 from studies.model.checks import assembly_checks, evaluate_checks
 from studies.model.config import Assembly
 from studies.model.effects import resolve_friction_coefficient, resolve_interference_um
@@ -111,8 +110,7 @@ class Pipeline:
                                 lambda inputs: resolve_interference_um(inputs, *asm.mean_fits_um()),
                                 progress, superpose, cache, setup_of)
         self.bearing.compliance_mm_per_N = self.fe_stage.compliance_mm_per_N
-        self.lubricant = (get_lubricant(asm.lubrication.lubricant)
-                          if asm.lubrication.kind == "oil" else None)
+        self.lubricant = asm.oil()
         self.checks = assembly_checks(asm)
         self._fe_cache: dict[bytes, FEState] = {}
         self._pair_memo = Memo()        # pair equilibria by their exact inputs

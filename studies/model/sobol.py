@@ -34,6 +34,21 @@ class SobolIndices:
     ST_conf: np.ndarray
 
 
+def resolved(value, conf) -> np.ndarray:
+    """Whether an index estimate is resolved: its 95 % interval value +- conf excludes 0
+    (conf < |value|). An interval that spans the value's own size (0.869 +- 2.067) says the
+    estimate is noise of the bootstrap, not a share of the variance."""
+    return np.abs(np.asarray(conf, float)) < np.abs(np.asarray(value, float))
+
+
+def display(value: float, conf: float) -> str:
+    """An index for a report: `0.512 +- 0.031` when resolved, else `- (+- 2.07)`: the value
+    hidden, the half-width kept so the reader sees why (more samples narrow it)."""
+    if resolved(value, conf):
+        return f"{value:.3f} +- {conf:.3f}"
+    return f"- (+- {conf:.3g})"
+
+
 def _problem(inputs: dict[str, tuple[str, float, float]]) -> dict:
     """SALib problem of inputs name -> ('uniform', low, high) or ('normal', mean, sd)."""
     dists = {"uniform": "unif", "normal": "norm"}

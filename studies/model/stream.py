@@ -35,7 +35,7 @@ from studies.model.table import CHUNK_ROWS, TableError, TableWriter, iter_table
 #: output columns `plausibility_warnings` reads over all rows (a test holds the streamed warnings
 #: equal to those of the whole table, so a column read there and missing here is caught)
 WARNING_OUTPUTS = ("torque_viscous_Nmm", "torque_load_Nmm", "land_margin_inner_deg",
-                   "land_margin_outer_deg")
+                   "land_margin_outer_deg", "viscosity_mm2_s")
 
 
 class CheckTally:

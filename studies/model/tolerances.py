@@ -91,6 +91,15 @@ def worst_case_bands(asm) -> list[InterferenceBand]:
     return bands
 
 
+def designed_closed(asm) -> dict[str, bool]:
+    """The design intent of each fit (inner, outer) at the reference temperature: closed (True)
+    when the mean assembly (every deviation at mid-band, `Assembly.mean_fits_um`) has
+    interference, open (False) when it is designed with clearance (or line-to-line). `tolerance`
+    counts a fit as failed only when it leaves this state (the rule of `simulate`'s
+    fit_open checks, studies/model/checks.py, which flag only a fit assembled with interference)."""
+    return {fit: bool(v > 0.0) for fit, v in zip(("inner", "outer"), asm.mean_fits_um())}
+
+
 def sample_deviations_um(asm, n: int, seed: int) -> dict[str, np.ndarray]:
     """n independent draws per toleranced surface (numpy PCG64 with `seed`)."""
     rng = np.random.default_rng(seed)

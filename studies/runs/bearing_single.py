@@ -4,10 +4,13 @@ bearing, rigid rings, inner ring with 5 DOF under the rows of LOADS.csv
 (`analytic.bearing.single.solve_single`; shared/spec/cli.md section "bearing").
 
 Columns in (any subset): radial_load_N (along x), radial_load_y_N, axial_load_N, moment_x_Nmm,
-moment_y_Nmm, speed_rpm.  A file with a speed_rpm column runs the quasi-dynamic ball model
+moment_y_Nmm, speed_rpm, T_oil_C (the oil's temperature, for its viscosity: required with an oil
+[lubrication]).  A file with a speed_rpm column runs the quasi-dynamic ball model
 (`analytic.bearing.ball_dynamics`, outer-race control unless --control says inner or jones;
 identical to the quasi-static one at speed 0), otherwise the quasi-static one.  Columns out: the input columns, then OUTPUT_COLUMNS,
 then `convention`.  Units in every name; displacements of the inner ring against the outer.
+With a [lubrication] section in BEARING.toml, `torque_Nmm` is the bearing's friction torque by the
+pair's torque model (analytic/torque.py) applied to this one bearing (`bearing_torque_Nmm`).
 """
 from __future__ import annotations
 
@@ -15,12 +18,16 @@ from pathlib import Path
 
 import numpy as np
 
-from analytic.bearing.single import solve_single
+from analytic.bearing.single import SingleBearingState, solve_single
+from analytic.safety import static_load_rating_C0_N
+from analytic.torque import (ContactInput, coulomb_load_torque_Nmm, palmgren_f1_angular_contact,
+                             palmgren_load_torque_Nmm, palmgren_viscous_torque_Nmm,
+                             solid_film_torque_Nmm)
 from studies.model.config import load_bearing
 from studies.model.table import TableError, read_table, write_table
 
 LOAD_COLUMNS = ("radial_load_N", "radial_load_y_N", "axial_load_N", "moment_x_Nmm",
-                "moment_y_Nmm", "speed_rpm")
+                "moment_y_Nmm", "speed_rpm", "T_oil_C")
 
 #: output columns and their meaning (docs/cli.md "Single bearing")
 OUTPUT_COLUMNS = {
@@ -41,6 +48,8 @@ OUTPUT_COLUMNS = {
     "spin_to_roll": "spin-to-roll ratio at the inner contact of the most loaded ball",
     "outer_race_control": "1 where the outer raceway controls the most loaded ball, 0 the inner "
                           "(--control; empty without a speed_rpm column)",
+    "torque_Nmm": "friction torque of the bearing (the pair's torque model, one bearing; empty "
+                  "without [lubrication] in BEARING.toml)",
 }
 
 
@@ -63,6 +72,11 @@ def run(bearing_path: Path, loads_path: Path, out: Path, convention: str = "exac
                       speed_rpm=get("speed_rpm"),
                       ball_model="quasi_dynamic" if quasi else "static", convention=convention,
                       control=control)
+    lub = cfg.lubrication
+    if lub is not None and lub.kind == "oil" and "T_oil_C" not in cols:
+        raise BearingRunError(f"{loads_path}: no T_oil_C column: an oil-lubricated bearing "
+                              "([lubrication] kind = \"oil\") needs the oil temperature for its "
+                              "viscosity")
     bad = np.flatnonzero(~st.converged)
     if bad.size:
         raise BearingRunError(f"{loads_path}: line {cols['_line'][bad[0]]}: no equilibrium found "
@@ -87,6 +101,8 @@ def run(bearing_path: Path, loads_path: Path, out: Path, convention: str = "exac
         "spin_to_roll": st.most_loaded("spin_to_roll"),
         "outer_race_control": (st.most_loaded("outer_control").astype(float) if quasi
                                else np.full(n, np.nan)),
+        "torque_Nmm": (np.full(n, np.nan) if lub is None else bearing_torque_Nmm(
+            cfg, st, get("speed_rpm") if quasi else np.full(n, lub.speed_rpm), get("T_oil_C"))),
         "convention": np.full(n, convention),
     })
     try:
@@ -94,3 +110,37 @@ def run(bearing_path: Path, loads_path: Path, out: Path, convention: str = "exac
     except TableError as exc:
         raise BearingRunError(str(exc)) from None
     return n
+
+
+def bearing_torque_Nmm(cfg, st: SingleBearingState, speed_rpm, T_oil_C) -> np.ndarray:
+    """Friction torque (N*mm) of one bearing in the state `st`, by the pair's torque model
+    (`analytic.torque.pair_torque`, one bearing) with the file's [lubrication]:
+    solid film: `solid_film_torque_Nmm` summed over every ball's own contacts (Z = 1 per ball:
+      load, Hertz ellipse, inner and outer contact angle), mu = friction_coefficient, alpha_h =
+      hysteresis_loss_factor; independent of the speed (a torque from a power per unit speed);
+    oil: the load term (coulomb mu F_a dm/2, or palmgren f1 F_a dm with f1 = 0.001 (F_a/C0)^0.33,
+      C0 of ISO 76) with F_a = |sum_k Q_k sin a_k| the axial force the balls carry (the applied
+      axial load at equilibrium), plus Palmgren's viscous term 1e-7 f0 (nu n)^(2/3) dm^3 at the
+      oil's viscosity at T_oil_C (its Walther law) and the inner ring's speed_rpm.
+    speed_rpm and T_oil_C: (N,) per row."""
+    lub, g, b = cfg.lubrication, cfg.geometry, st.balls
+    if lub.kind == "solid_film":
+        c_ring = (1.0 - g.ring.nu ** 2) / g.ring.E_MPa
+        c_ball = (1.0 - g.ball.nu ** 2) / g.ball.E_MPa
+        e_i, e_o = b.ellipse_inner, b.ellipse_outer
+        inner = ContactInput(b.load_inner_N, e_i.a_mm, e_i.b_mm, e_i.E_ell, e_i.Rx_mm)
+        outer = ContactInput(b.load_outer_N, e_o.a_mm, e_o.b_mm, e_o.E_ell, e_o.Rx_mm)
+        dynamic = st.ball_model == "quasi_dynamic"
+        t = solid_film_torque_Nmm(1, g.Dw_mm, g.dm_mm, g.f_i, g.f_o,
+                                  np.radians(b.contact_angle_inner_deg), inner, outer,
+                                  lub.friction_coefficient, lub.hysteresis_loss_factor, c_ring,
+                                  c_ball, np.radians(b.contact_angle_outer_deg) if dynamic else None)
+        return t.total_Nmm.sum(axis=0)
+    Fa = np.abs(b.loads[0])
+    if lub.load_term == "palmgren":
+        C0 = static_load_rating_C0_N(g.Z, g.Dw_mm, g.dm_mm, g.alpha0_deg)
+        load = palmgren_load_torque_Nmm(palmgren_f1_angular_contact(Fa, C0), Fa, g.dm_mm)
+    else:
+        load = coulomb_load_torque_Nmm(lub.friction_coefficient, Fa, 0.5 * g.dm_mm)
+    nu = cfg.oil().nu_mm2_s(np.asarray(T_oil_C, float))
+    return load + palmgren_viscous_torque_Nmm(lub.viscous_factor_f0, nu, speed_rpm, g.dm_mm)

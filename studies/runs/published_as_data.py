@@ -432,7 +432,7 @@ def seed001_section(mesh_factor: float = 1.0) -> list[str]:
         "self-heating candidates need tens of kelvin), the torque at two speeds at each "
         "temperature (the viscous term grows as (nu n)^(2/3), the load term does not), and the "
         "absolute torque at 20 C (the configured model gives "
-        f"{base['torque_Nmm'][1]:.0f} N mm, almost all of it viscous).", ""]
+        f"{base.torque_Nmm[1]:.0f} N mm, almost all of it viscous).", ""]
     return lines
 
 

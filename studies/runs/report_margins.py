@@ -249,7 +249,7 @@ def pedigree_lines(asm, assembly_path: Path | None) -> list[str]:
     return ["## Inputs and their sources", "",
             f"Assembly: {asm.source or 'no source given'}.", "",
             md_table(["material", "parts", "E (MPa)", "nu", "CTE (1e-6/K)", "source"], mat_rows), "",
-            tol, "",
+            tol, "", *([asm.oil().statement(), ""] if asm.oil() is not None else []),
             "Each key of the assembly file with the source its comment gives (keys not in the "
             "file take their documented defaults; the full echo is under Inputs below):", "",
             md_table(["key", "value", "source (comment in the assembly file)"], key_rows), ""]

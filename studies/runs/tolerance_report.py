@@ -41,12 +41,15 @@ def default_conditions(asm) -> dict[str, np.ndarray]:
 
 
 def failures(asm, r: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
-    """Boolean (S, C) events: each fit open (pressure 0), preload lost, contact pressure above
-    the limit `simulate` checks against."""
+    """Boolean (S, C) events: each fit out of its designed state (`fit_open_<fit>`: a fit
+    designed with interference open, pressure 0; a fit designed with clearance closed, pressure
+    > 0; `tolerances.designed_closed`), preload lost, contact pressure above the limit `simulate`
+    checks against."""
     limit = next(c.allowable for c in assembly_checks(asm) if c.name == "max_contact_pressure_MPa")
-    return {"fit_open_inner": r["fit_pressure_inner_MPa"] <= 0.0,
-            "fit_open_outer": r["fit_pressure_outer_MPa"] <= 0.0,
-            "preload_lost": r["preload_N"] <= 0.0,
+    closed = tol.designed_closed(asm)
+    ev = {f"fit_open_{fit}": (r[f"fit_pressure_{fit}_MPa"] <= 0.0) if closed[fit]
+          else (r[f"fit_pressure_{fit}_MPa"] > 0.0) for fit in ("inner", "outer")}
+    return {**ev, "preload_lost": r["preload_N"] <= 0.0,
             "contact_pressure_over_limit": r["max_contact_pressure_MPa"] > limit}
 
 
@@ -78,8 +81,9 @@ def _linear(asm, pl, cond, limit_p):
             for q in r}                                             # (n_surfaces, C)
     sigma = np.array([sig[s] for s in names])
     C = len(next(iter(cond.values())))
-    events = {"fit_open_inner": ("interference_inner_um", 0.0, False),
-              "fit_open_outer": ("interference_outer_um", 0.0, False),
+    closed = tol.designed_closed(asm)       # out of the designed state: open, or closed
+    events = {"fit_open_inner": ("interference_inner_um", 0.0, not closed["inner"]),
+              "fit_open_outer": ("interference_outer_um", 0.0, not closed["outer"]),
               "preload_lost": ("preload_N", 0.0, False),
               "contact_pressure_over_limit": ("max_contact_pressure_MPa", limit_p, True)}
     return {e: np.array([tol.linear_probability(r[q][0, c], grad[q][:, c], sigma, limit, upper)
@@ -140,8 +144,13 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, samples: int,
         "probabilities": probs, "standard_errors": ses,
         "per_condition": per_cond,
         "percentiles": pct, "percentiles_per_condition": pct_c,
+        "fit_design": {f: "interference" if c else "clearance"
+                       for f, c in tol.designed_closed(asm).items()},
         "worst_case": {q: {"min": float(wc[q].min()), "max": float(wc[q].max())}
                        for q in tol.QUANTITIES},
+        "worst_case_per_condition": {q: {"min": [float(v) for v in wc[q].min(axis=0)],
+                                         "max": [float(v) for v in wc[q].max(axis=0)]}
+                                     for q in tol.QUANTITIES},
         "preload_rank_correlation": sens,
         "preload_sobol": sobol_json, "sobol_base_samples": SOBOL_BASE_SAMPLES,
         "provenance": provenance,
@@ -175,8 +184,9 @@ def _report(asm, out, cond, res, mc, fail, lin):
         plots[q] = line_plot(out / f"band_{q}.png", x, {
             "p01": np.array(pc[q]["p01"]), "median": np.array(pc[q]["p50"]),
             "p99": np.array(pc[q]["p99"]),
-            "worst case (min over corners)": np.full(C, res["worst_case"][q]["min"]),
-            "worst case (max over corners)": np.full(C, res["worst_case"][q]["max"])}, xlabel, label,
+            "worst case (min over corners)": np.array(res["worst_case_per_condition"][q]["min"]),
+            "worst case (max over corners)": np.array(res["worst_case_per_condition"][q]["max"])},
+            xlabel, label,
             f"{label}: Monte Carlo percentiles ({S} samples)")
     series = {}
     for e in fail:
@@ -202,6 +212,10 @@ def _report(asm, out, cond, res, mc, fail, lin):
                       [[f, b["nominal"], b["lower"], b["upper"]]
                        for f, b in res["interference_bands_um"].items()]), "",
              "## Failure probabilities", "",
+             "A fit fails when it leaves its designed state at the reference temperature "
+             f"(inner: {res['fit_design']['inner']}, outer: {res['fit_design']['outer']}; the mean "
+             "assembly): a fit designed with interference by opening, one designed with clearance "
+             "by closing (`fit_open_<fit>` counts either).", "",
              "Anywhere over the conditions (a sample fails if it fails at one of them), with the "
              "Monte Carlo standard error sqrt(p(1-p)/N); per condition in the plot and in "
              "`tolerance.json`, beside the linear-normal estimate a stack-up tool gives (outputs "
@@ -215,6 +229,9 @@ def _report(asm, out, cond, res, mc, fail, lin):
                        for e in fail]), "",
              f"![probability]({plots['probability'].name})", "",
              "## Distributions", "",
+             "Percentiles over all samples and conditions; the worst case (the four corners of "
+             "the interference bands) over all conditions here, per condition in the plots and in "
+             "`tolerance.json` (`worst_case_per_condition`).", "",
              md_table(["quantity", "p01", "median", "p99", "worst-case min", "worst-case max"],
                       [[q, v["p01"], v["p50"], v["p99"], res["worst_case"][q]["min"],
                         res["worst_case"][q]["max"]] for q, v in res["percentiles"].items()]), "",
@@ -230,9 +247,10 @@ def _report(asm, out, cond, res, mc, fail, lin):
     lines += [f"Sobol' indices of the preload (first order S1: the share of its variance a surface "
               f"causes alone; total ST: with its interactions; +- the 95 % bootstrap half-width; "
               f"{res['sobol_base_samples']} x (surfaces + 2) model runs, Saltelli et al. 2010 "
-              f"with SALib).", "",
+              f"with SALib). An index whose interval reaches zero (half-width at least its value) "
+              f"is not resolved by these runs and shown as `-` with its half-width.", "",
               md_table([xlabel] + [f"{s} {k}" for s in sob for k in ("S1", "ST")],
-                       [[float(x[c])] + [f"{sob[s][k][c]:.3f} +- {sob[s][k + '_conf'][c]:.3f}"
+                       [[float(x[c])] + [sobol.display(sob[s][k][c], sob[s][k + '_conf'][c])
                                          for s in sob for k in ("S1", "ST")] for c in range(C)]), ""]
     write_report_files(out, lines, f"Tolerance analysis: {asm.name}")
 
