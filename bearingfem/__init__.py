@@ -55,6 +55,13 @@ def simulate(assembly, conditions: Mapping, effects: Mapping | None = None):
     cols = {str(k): np.asarray(v, float).ravel() for k, v in dict(conditions).items()}
     if not cols:
         raise TableError("conditions: no columns")
+    if assembly.thermal.mode == "transient":     # part temperatures computed, rows in time order
+        from studies.model.transient_route import TRANSIENT_COLUMNS, run_transient
+
+        if effects:
+            raise TableError('effects: not available with [thermal] mode = "transient"')
+        check_columns("conditions", cols, allowed=set(CONDITION_COLUMNS) | set(TRANSIENT_COLUMNS))
+        return pd.DataFrame(run_transient(Pipeline.shared(assembly), cols).columns())
     check_columns("conditions", cols, allowed=set(CONDITION_COLUMNS))
     result = simulate_table(assembly, cols, dict(effects or {}), pipeline=Pipeline.shared(assembly))
     return pd.DataFrame(to_columns(result))

@@ -142,6 +142,9 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--diagnose", action="store_true",
                    help="instead: time of a 500-row diagnosis with all candidates (seed000), per "
                         "phase in model calls and in the engine")
+    b.add_argument("--transient", action="store_true",
+                   help="instead: seed 003's 30-minute heat-up (900 steps of 2 s): reduction, "
+                        "reduced and full-FE transient times, preload error reduced vs full")
     b.add_argument("--assembly", type=Path, action="append", default=[],
                    help="with --simulate: one more assembly to time (may repeat)")
     return p

@@ -86,14 +86,19 @@ def cmd_simulate(args) -> None:
     try:
         check_output_file(args.out, (args.assembly, args.conditions))
         asm = _load(args.assembly)
-        n_rows = check_conditions(args.conditions)  # all of it, before any FE work
+        transient = asm.thermal.mode == "transient"
+        if transient:          # part temperatures computed: rows in time order, one route
+            from studies.model.transient_route import condition_columns, simulate_transient_file
+        n_rows = check_conditions(args.conditions,    # all of it, before any FE work
+                                  columns=condition_columns() if transient else None)
         effects = {}
         for text in args.effect:
             name, params = parse_effect_arg(text)
             if name in effects:
                 raise UserError(f"--effect {name}: given twice")
             effects[name] = params
-        run = simulate_file(asm, args.conditions, args.out, effects, direct=args.direct,
+        run = (simulate_transient_file if transient else simulate_file)(
+                            asm, args.conditions, args.out, effects, direct=args.direct,
                             provenance=provenance("simulate", {"assembly": args.assembly,
                                                                "conditions": args.conditions},
                                                   effects),
@@ -273,6 +278,11 @@ def cmd_verify(args) -> None:
 
 
 def cmd_bench(args) -> None:
+    if args.transient:
+        from studies.runs.bench_transient import main as bench_transient
+
+        bench_transient([])
+        return
     if args.diagnose:
         from studies.runs import bench_diagnose
 

@@ -25,12 +25,14 @@ from analytic.lubrication import Lubricant, get_lubricant, lubricant_from_table
 from analytic.materials import Material, get_material, material_from_table
 from studies.model.config_checks import check_assembly, check_bearing
 from studies.model.config_schema import (ASSEMBLY_KEYS, LAYERS, MATERIAL_T_RANGE_C, SIGNED,
-                                         TOLERANCE_SURFACES, ZERO_OK, ConfigError, Range, choice, keys_of, limits,
-                                         material, number, parse_table, text, unit_hint)
+                                         TOLERANCE_SURFACES, ZERO_OK, ConfigError, Range, choice,
+                                         choice_or_number, keys_of, limits,
+                                         material, number, parse_table, table as _field_table,
+                                         text, unit_hint)
 
 __all__ = ["Assembly", "BearingSpec", "CONFIG_DIR", "Clamp", "ConfigError", "Fits", "Housing",
            "LAYERS", "Layer", "Limits", "Lubrication", "Mesh", "OPTIONAL_SECTIONS", "Operating",
-           "Preload", "SECTIONS", "SHIPPED", "Shaft", "SingleBearingConfig", "Spacer",
+           "Preload", "SECTIONS", "SHIPPED", "Shaft", "SingleBearingConfig", "Spacer", "Thermal",
            "TOLERANCE_SURFACES", "assembly_from_dict", "check_bearing", "load_assembly",
            "load_bearing", "load_shipped", "parse_lubricants", "parse_materials"]
 
@@ -221,6 +223,32 @@ class Mesh:
                                    '(studies/model/stack.py)')
 
 
+@dataclass(frozen=True, kw_only=True)
+class Thermal:
+    """How the part temperatures of a row are found: given by the conditions, or computed by the
+    transient conduction FE of the stack (studies/model/transient_route.py)."""
+    mode: str = choice("given", "transient", default="given",
+                       doc='"given": part temperatures from the conditions; "transient": computed '
+                           'by the transient conduction FE from time_s and the environment')
+    films: tuple = _field_table("W/m2K", "transient: film coefficient per face group "
+                                "([thermal.films]; a name may be a pattern such as raceway_*, an "
+                                "exact name wins; docs/cli.md lists the groups)",
+                                default=(), default_text="none: adiabatic")
+    sink_C: float = number("C", "transient: radiation sink when the conditions give no "
+                                "T_sink_C", sign=SIGNED, infinite_ok=True, default=math.inf,
+                           default_text="none: the environment (T_ambient_C)")
+    emissivity: float = number("-", "transient: of every exterior face but the raceways "
+                                    "(radiation to the sink)", sign=ZERO_OK, default=0.0,
+                               bounds=Range(hi=1.0, error="must lie in 0..1, got {v:g}"))
+    fit_conductance: object = choice_or_number(
+        "pressure", unit="W/m2K", default="pressure",
+        doc='transient: thermal contact conductance of every fit; "pressure": from the fit '
+            'pressure each step (Yovanovich; an open fit: gas gap)')
+
+    def films_W_m2K(self) -> dict[str, float]:
+        return dict(self.films)
+
+
 @dataclass(frozen=True)
 class Assembly:
     name: str
@@ -239,6 +267,7 @@ class Assembly:
     limits: Limits = field(default_factory=Limits)
     mesh: Mesh = field(default_factory=Mesh)
     operating: Operating = field(default_factory=Operating)
+    thermal: Thermal = field(default_factory=Thermal)
     source: str = ""
     sleeve: Layer | None = None
     cartridge: Layer | None = None
@@ -290,9 +319,10 @@ class Assembly:
 SECTIONS = {"shaft": Shaft, "housing": Housing, "nut": Clamp, "cover": Clamp,
             "inner_spacer": Spacer, "outer_spacer": Spacer, "bearing": BearingSpec,
             "sleeve": Layer, "cartridge": Layer, "fits": Fits, "preload": Preload,
-            "lubrication": Lubrication, "limits": Limits, "mesh": Mesh, "operating": Operating}
+            "lubrication": Lubrication, "limits": Limits, "mesh": Mesh, "operating": Operating,
+            "thermal": Thermal}
 #: sections that may be left out (their defaults); the LAYERS are optional parts
-OPTIONAL_SECTIONS = {"limits", "mesh", "operating"}
+OPTIONAL_SECTIONS = {"limits", "mesh", "operating", "thermal"}
 
 
 def _section(path: str, raw: dict, name: str):

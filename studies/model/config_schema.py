@@ -84,7 +84,9 @@ class Key:
     """One key of a config table.
 
     kind: "number" (float), "integer", "text", "choice" (one of `choices`), "material" (a
-    material by name, resolved with the assembly) or "limits" ([lower, upper] in um, or []).
+    material by name, resolved with the assembly), "limits" ([lower, upper] in um, or []),
+    "choice_or_number" (one of `choices` or a number with `sign`) or "table" (a table of names
+    to numbers >= 0 in `unit`, held as sorted (name, value) pairs).
     `default` is REQUIRED for a key the file must give; `default_text` says what a default means when the
     value alone does not (inf = no limit). `note`: a rule with other keys, checked with the
     assembly (config_checks.py)."""
@@ -101,8 +103,9 @@ class Key:
     note: str = ""
 
     def __post_init__(self):
-        assert self.kind in ("number", "integer", "text", "choice", "material", "limits"), self.kind
-        assert (self.kind == "choice") == bool(self.choices)
+        assert self.kind in ("number", "integer", "text", "choice", "material", "limits",
+                             "choice_or_number", "table"), self.kind
+        assert (self.kind in ("choice", "choice_or_number")) == bool(self.choices)
 
     @property
     def required(self) -> bool:
@@ -117,13 +120,19 @@ class Key:
         return ", ".join(p for p in parts if p)
 
     def _unit_text(self) -> str:
-        return self.unit if self.kind in ("number", "limits") else ""
+        return self.unit if self.kind in ("number", "limits", "choice_or_number", "table") else ""
 
     def allowed(self) -> str:
         """What the key accepts, in words (`> 0`, `"DB" or "DF"`, `integer >= 3`)."""
         if self.kind == "choice":
             q = [f'"{c}"' for c in self.choices]
             return ", ".join(q[:-1]) + " or " + q[-1]
+        if self.kind == "choice_or_number":
+            q = [f'"{c}"' for c in self.choices]
+            return " or ".join([*q, "a number " + {POSITIVE: "> 0", ZERO_OK: ">= 0",
+                                                   SIGNED: ""}[self.sign]]).strip()
+        if self.kind == "table":
+            return "table of name = number >= 0"
         if self.kind != "number":
             return {"integer": f"integer >= {self.minimum}", "material": "material by name",
                     "limits": "[lower, upper] or []", "text": "text"}[self.kind]
@@ -168,6 +177,14 @@ MATERIAL_DOC = "a library material (analytic/materials.py) or one of the file's 
 
 def material(doc: str = MATERIAL_DOC, **kw):
     return _field(Key("material", "-", doc, **kw))
+
+
+def choice_or_number(*choices: str, unit: str, doc: str = "", **kw):
+    return _field(Key("choice_or_number", unit, doc, choices=choices, **kw))
+
+
+def table(unit: str, doc: str = "", **kw):
+    return _field(Key("table", unit, doc, **kw))
 
 
 def limits(doc: str = "", **kw):
@@ -270,6 +287,25 @@ def _integer(key: Key, v) -> int:
     return v
 
 
+def _choice_or_number(key: Key, v):
+    if isinstance(v, str):
+        return _string(key, v)
+    if not _is_number(v):
+        raise _Bad(f"must be {key.allowed()}, got {v!r}")
+    return _number(key, v)
+
+
+def _table(key: Key, v) -> tuple:
+    if v == ():
+        return ()
+    if not isinstance(v, dict):
+        raise _Bad(f"must be a table of name = number in {key.unit}, got {v!r}")
+    for name, x in v.items():
+        if not _is_number(x) or not math.isfinite(x) or x < 0:
+            raise _Bad(f"{name}: must be a finite number >= 0 ({key.unit}), got {x!r}")
+    return tuple(sorted((str(n), float(x)) for n, x in v.items()))
+
+
 def _number(key: Key, v) -> float:
     if not _is_number(v) or not math.isfinite(v):
         if key.infinite_ok and v == math.inf:
@@ -284,7 +320,8 @@ def _number(key: Key, v) -> float:
 
 
 _PARSERS = {"text": _string, "choice": _string, "material": _string, "limits": _limits,
-            "integer": _integer, "number": _number}
+            "integer": _integer, "number": _number, "choice_or_number": _choice_or_number,
+            "table": _table}
 
 
 def _is_number(v) -> bool:

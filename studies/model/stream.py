@@ -78,10 +78,12 @@ class SimulateRun:
         return [v.summary(self.n_rows, self.kept) for v in self.violations]
 
 
-def check_conditions(path: Path, chunk_rows: int = CHUNK_ROWS) -> int:
+def check_conditions(path: Path, chunk_rows: int = CHUNK_ROWS, columns: set[str] | None = None) -> int:
     """Read and check a whole conditions file, one chunk in memory at a time; its row count.
-    Bad input raises the one-line `TableError` of `table.iter_table`."""
-    return sum(len(c["_line"]) for c in iter_table(path, set(CONDITION_COLUMNS), chunk_rows))
+    Bad input raises the one-line `TableError` of `table.iter_table`. columns: the allowed
+    columns (default CONDITION_COLUMNS; transient mode: `transient_route.condition_columns`)."""
+    allowed = set(CONDITION_COLUMNS) if columns is None else columns
+    return sum(len(c["_line"]) for c in iter_table(path, allowed, chunk_rows))
 
 
 def simulate_file(asm, conditions: Path, out: Path, effects: dict | None = None,
@@ -99,6 +101,9 @@ def simulate_file(asm, conditions: Path, out: Path, effects: dict | None = None,
     function, so the same bytes. See the module docstring."""
     from studies.model.parallel import Blocks
 
+    if asm.thermal.mode == "transient":
+        raise ValueError("simulate_file: [thermal] mode = \"transient\" runs through "
+                         "studies.model.transient_route.simulate_transient_file")
     total = check_conditions(conditions, chunk_rows) if n_rows is None else n_rows
     tally = CheckTally(assembly_checks(asm))
     kept: dict[str, np.ndarray] = {}

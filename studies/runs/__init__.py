@@ -16,6 +16,7 @@ STUDIES = {
     "lubricant_viscosity": "studies.runs.lubricant_viscosity",
     "confusion_matrix": "studies.runs.confusion_matrix",
     "ring_sections": "studies.runs.ring_section_compare",
+    "heatup": "studies.runs.heatup",
 }
 
 

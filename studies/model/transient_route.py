@@ -1,0 +1,536 @@
+"""`simulate` in transient mode (`[thermal] mode = "transient"`): the part temperatures of every
+row are computed by the transient conduction FE of the stack, not given.
+
+The loop, closed at every time step (docs/cli.md "Transient conduction"):
+
+    temperature field (reduced coordinates q) -> fit pressures, groove-centre shifts (the
+    structural response per thermal mode, `fem.reduced_thermal.ModalStructure`) -> pair
+    equilibrium -> torque -> heat split (`analytic.heat.pair_heat_W`) -> heat at the raceways
+    and ball nodes (`fem.transient.bearing_heat_inputs_W`) -> next step
+
+The conduction FE (`fem.transient.TransientConduction`, one ball node per bearing) is reduced once
+per assembly (`fem.reduced_thermal.krylov_basis`, kept affine in films and conductances, so the
+rows' `film_scale` and the fit conductances updated from the fit pressures need no new reduction)
+and stepped with BDF2 (`ReducedStepper`) on a fixed grid: step DT_S, longer when the table spans
+more than MAX_STEPS of them, the last step ending at the last row. The heat of a step is taken at
+the state at its start (explicit coupling, as seed 003's network does; the heat changes over
+minutes, the step is seconds). Conditions between rows are interpolated linearly in time; the
+state at a row between grid points is the linear interpolation of the two neighbours' reduced
+coordinates. Every row is then evaluated through the pipeline's one route for given FE states
+(`Pipeline.run` with `FEOptions(states=...)`) with the computed part temperatures (volume means of the FE parts by
+`stages.fe.FE_PART_GROUP`, the ball nodes for the balls).
+
+The initial state is uniform at the first row's environment temperature. The ball-raceway
+conductances (Holm constriction over the Hertz ellipses, `analytic.thermal_network`) are taken at
+the assembled state at the assembly's default speed and held. Sliding and spin traction
+coefficient MU_TRACTION = 0.03 (assumption for EHL traction, as the seed 003 study).
+
+`reduction_error_est` (per row): |P_m - P_m/2| / |P_m|, the preload of the reduced model against
+the same run with the leading half of its modes (`fem.reduced_thermal` module docstring; the bench
+`bearingfem bench --transient` measures the error against the full FE on a check case).
+Units: mm, N, s, C, W inside; film coefficients and conductances in W/(m^2 K).
+"""
+from __future__ import annotations
+
+import fnmatch
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from analytic import thermal_network as tn
+from analytic.heat import PairHeat, pair_heat_W
+from fem.reduced_thermal import (ModalStructure, ReducedConduction, ReducedStepper, krylov_basis,
+                                 modal_structure)
+from fem.solver import single_thread_blas
+from fem.transient import (StepLoads, ThermalParameters, TransientConduction,
+                           bearing_heat_inputs_W, fit_conductances_W_m2K)
+from studies.model.config import Assembly, ConfigError
+from studies.model.inputs import PARTS, PhysicsInputs, baseline_inputs
+from studies.model.columns import to_columns
+from studies.model.pipeline import RINGS, FEOptions, FEState, Pipeline
+from studies.model.result import SimulationResult
+from studies.model.stages.fe import FE_PART_GROUP
+from studies.model.table import TableError
+
+#: sliding and spin traction coefficient of the heat split (assumption: EHL traction, as seed 003)
+MU_TRACTION = 0.03
+#: time step of the reduced transient (s) and the most steps a table gets (longer steps beyond)
+DT_S = 2.0
+MAX_STEPS = 20_000
+#: the coupling (pair equilibrium, torque, heat, fit conductances) is refreshed every this many
+#: steps (10 s at DT_S): the pair's equilibrium costs ~30 ms, a reduced step ~0.1 ms; the heat
+#: changes over minutes (tests/test_transient_route.py holds every step and every 5th close)
+COUPLE_EVERY = 5
+#: condition columns of transient mode (part temperatures are computed, not given)
+TRANSIENT_COLUMNS = ("time_s", "T_ambient_C", "T_sink_C", "film_scale", "heat_W", "speed_rpm",
+                     "preload_assembled_N", "axial_load_N", "radial_load_N", "moment_Nmm")
+#: training of the reduction: film and fit-conductance factors about the nominal set
+TRAINING = ((0.5, 0.3), (2.0, 3.0), (0.5, 3.0), (2.0, 0.3))
+#: modes of the estimate's smaller model: this fraction of the modes
+HALF = 0.5
+
+
+@dataclass(frozen=True)
+class ThermalModel:
+    """The reduced transient model of one assembly's stack (built once per pipeline).
+
+    nominal: coefficients at film_scale 1 (fit conductances at the assembled state);
+    group_rows (len(PARTS), n_total): volume mean of each `inputs.PARTS` group (ball: the mean
+    of the ball nodes); inputs: the heat inputs of the basis."""
+    tc: TransientConduction
+    rc: ReducedConduction
+    half: ReducedConduction
+    ms: ModalStructure
+    ms_half: ModalStructure
+    nominal: ThermalParameters
+    group_rows: np.ndarray
+    pressure_conductance: bool
+
+    def groups_per_mode(self, rc: ReducedConduction) -> np.ndarray:
+        """(len(PARTS), m): the group means per reduced coordinate of rc (NaN rows: a group the
+        stack lacks)."""
+        key = rc.m
+        cache = self.__dict__.setdefault("_per_mode", {})
+        if key not in cache:
+            cache[key] = self.group_rows @ rc.V
+        return cache[key]
+
+
+def resolve_films(patterns: dict[str, float], groups) -> dict[str, float]:
+    """Film coefficient (W/(m^2 K)) per face group from `[thermal.films]`: an exact name wins,
+    else the longest matching fnmatch pattern; groups nothing matches are adiabatic. A name that
+    matches no group is a ConfigError (one line, the groups listed)."""
+    groups = list(groups)
+    for name in patterns:
+        if not fnmatch.filter(groups, name):
+            raise ConfigError(f"thermal.films.{name}: matches no face group of this stack "
+                              f"(groups: {', '.join(sorted(groups))})")
+    out = {}
+    for g in groups:
+        if g in patterns:
+            out[g] = float(patterns[g])
+            continue
+        hits = sorted((p for p in patterns if fnmatch.fnmatchcase(g, p)), key=len)
+        if hits:
+            out[g] = float(patterns[hits[-1]])
+    return out
+
+
+def _gap_um(pl: Pipeline, gap_mm: np.ndarray) -> np.ndarray:
+    """(n, n_fits) mean radial gap (um) of each fit's open pairs (closed pairs count 0)."""
+    fop = pl.setup.condensed.fit_of_pair
+    g = np.maximum(np.atleast_2d(gap_mm), 0.0)
+    return 1e3 * np.column_stack([g[:, fop == k].mean(axis=1) for k in range(len(pl.setup.fit_names))])
+
+
+def fe_states(pl: Pipeline, ms: ModalStructure, q: np.ndarray, delta_mm: np.ndarray,
+              omega2: np.ndarray) -> tuple[FEState, np.ndarray]:
+    """FE states (fit pressures, groove-centre shifts) of reduced temperature coordinates q
+    (n, m) and the mean open gap per fit (n, n_fits, um): the modal superposition (exact contact
+    per state); the interferences of a conduction field are not defined (NaN)."""
+    r = ms.evaluate(q, delta_mm, omega2)
+    p = pl.fe_stage.fit_pressures(r.force_N)
+    dr, dz = pl.fe_stage.grooves.shifts_mm(r.probe, r.ring_strain)
+    fe = FEState(p, np.full((p.shape[0], 2), np.nan), dr, dz, r.probe[:, :8])
+    return fe, _gap_um(pl, r.gap_mm)
+
+
+def _group_rows(tc: TransientConduction) -> np.ndarray:
+    """(len(PARTS), n_total) rows giving each PARTS group's volume mean (ring measure) of T."""
+    m = tc.model
+    b = m.sbasis
+    w = b.dx * b.mapping.F(b.quadrature[0])[0]
+    vol = {p: float(w[m.part_of == p].sum()) for p in m.part_names}
+    rows = tc.part_mean_rows()
+    out = np.zeros((len(PARTS), tc.n_total))
+    for i, g in enumerate(PARTS):
+        if g == "ball":
+            balls = [k for k in ("ball_A", "ball_B") if k in tc.a]
+            out[i] = sum(tc.a[k] for k in balls) / len(balls)
+            continue
+        parts = [p for p in m.part_names if FE_PART_GROUP[p] == g]
+        if not parts:        # no such part in the stack: its neighbours' mean is not it; NaN
+            out[i] = np.nan
+            continue
+        tot = sum(vol[p] for p in parts)
+        out[i] = sum(vol[p] / tot * rows[m.part_names.index(p)] for p in parts)
+    return out
+
+
+@single_thread_blas
+def thermal_model(pl: Pipeline, progress=None) -> ThermalModel:
+    """The reduced transient model of `pl`'s assembly (module docstring), built on first use and
+    kept on the pipeline."""
+    hit = getattr(pl, "_thermal_model", None)
+    if hit is not None:
+        return hit
+    say = progress or (lambda s: None)
+    asm, g, m = pl.asm, pl.geom, pl.model
+    th = asm.thermal
+    T_ref = asm.T_ref_C
+    say("transient conduction: the reduced model of the stack ...")
+    inp0 = baseline_inputs({}, 1, T_ref, asm.preload.assembled_N, asm.lubrication.speed_rpm)
+    pair0 = pl.run(inp0).pair
+    kb = g.ball.conductivity_W_mK
+    kr = m.materials["inner_ring_A"].conductivity_W_mK
+    G = [1.0 / float(np.mean(tn.ball_raceway_resistance_K_W(c.a_mm[0], c.b_mm[0], kb, kr, g.Z)))
+         for c in (pair0.inner, pair0.outer)]
+    C_ball = float(tn.heat_capacity_J_K(tn.ball_set_mass_kg(g.Dw_mm, g.Z, g.ball), g.ball))
+    tc = TransientConduction(m, ball_capacity_J_K=C_ball)
+    films = resolve_films(th.films_W_m2K(), tc.groups)
+    pressure = th.fit_conductance == "pressure"
+    if pressure:
+        delta0 = pl.deltas_mm(*pl.fits_um(inp0))
+        r0 = pl.sup.evaluate(pl.thetas(inp0), delta0, np.zeros(1))
+        h_fit = fit_conductances_W_m2K(m, pl.fe_stage.fit_pressures(r0.force_N)[0],
+                                       _gap_um(pl, r0.gap_mm)[0])
+    else:
+        h_fit = np.full(len(m.section.fits), float(th.fit_conductance))
+    emis = ({k: th.emissivity for k in tc.groups if not k.startswith("raceway_")}
+            if th.emissivity > 0 else {})
+    nominal = ThermalParameters(film_W_m2K=films, fit_conductance_W_m2K=tuple(h_fit),
+                                ball_inner_W_K=G[0], ball_outer_W_K=G[1], emissivity=emis,
+                                T_rad_lin_C=T_ref)
+    training = [replace(nominal, film_W_m2K={k: s * v for k, v in films.items()},
+                        fit_conductance_W_m2K=tuple(h_fit * c)) for s, c in TRAINING]
+    inputs = [f"raceway_{r}" for r in RINGS if f"raceway_{r}" in tc.a] + \
+             [k for k in ("ball_A", "ball_B") if k in tc.a]
+    rc = ReducedConduction(tc, cached_basis(pl, tc, training, inputs, say))
+    half = rc.truncated(max(1, int(HALF * rc.m)))
+    probe = pl.full_fe().probe
+    try:
+        ms = modal_structure(pl.solver, probe, rc, T_ref, RINGS, pl.setup.condensed)
+    except ValueError as exc:     # a CTE slope or bonded fits: not linear in the modes
+        raise ConfigError(f'thermal.mode = "transient": {exc}') from None
+    ms_half = modal_structure(pl.solver, probe, half, T_ref, RINGS, pl.setup.condensed)
+    out = ThermalModel(tc, rc, half, ms, ms_half, nominal, _group_rows(tc), pressure)
+    pl._thermal_model = out
+    return out
+
+
+#: format of the cached reduced basis (raise when the file layout or the basis changes)
+BASIS_FORMAT = 1
+
+
+class BasisCacheError(RuntimeError):
+    """A cached reduced basis that is not sound for its key (one line)."""
+
+
+def basis_key(pl: Pipeline, tc: TransientConduction, training, inputs) -> str:
+    """SHA-256 (24 hex digits) of what the basis depends on: the FE set-up's key (section,
+    materials, code versions), the model's size, the training coefficient sets, the inputs,
+    the capacities (ball nodes included) and BASIS_FORMAT."""
+    import hashlib
+    import json
+
+    data = {"format": BASIS_FORMAT, "setup": pl.setup.key, "n_total": int(tc.n_total),
+            "training": [repr(prm) for prm in training], "inputs": list(inputs),
+            "capacity_J_K": float(tc.M.diagonal().sum())}     # the ball nodes' included
+    return hashlib.sha256(json.dumps(data, sort_keys=True).encode()).hexdigest()[:24]
+
+
+def cached_basis(pl: Pipeline, tc: TransientConduction, training, inputs, say=None):
+    """`fem.reduced_thermal.krylov_basis` of the stack, cached beside the FE set-ups
+    (`meshes.cache`: hash-named .npz, atomic write, checked on read, rebuilt with a warning)."""
+    from fem.reduced_thermal import ReducedBasis
+    from meshes.cache import cache_dir, cached_file
+
+    d = cache_dir("setups", "reduced thermal basis")
+    key = basis_key(pl, tc, training, inputs)
+
+    def make(tmp):
+        if say:
+            say("transient conduction: reducing the stack (once; cached) ...")
+        b = krylov_basis(tc, training, inputs)
+        with open(tmp, "wb") as fh:
+            np.savez(fh, key=np.array(key), V=b.V, energy=b.energy)
+
+    def read(path):
+        try:
+            with np.load(path, allow_pickle=False) as z:
+                a = {k: z[k] for k in z.files}
+        except Exception as exc:       # a damaged or foreign file
+            raise BasisCacheError(f"unreadable: {type(exc).__name__}") from None
+        if set(a) != {"key", "V", "energy"} or str(a["key"]) != key:
+            raise BasisCacheError("not the basis of this stack")
+        V, e = a["V"], a["energy"]
+        if V.ndim != 2 or V.shape[0] != tc.n_total or e.ndim != 1 or not np.all(np.isfinite(V)):
+            raise BasisCacheError("its arrays are not sound")
+        return ReducedBasis(V, e)
+
+    return cached_file(d / f"thermal_{key}.npz", make, read, what="reduced thermal basis",
+                       writer="bearingfem", error=BasisCacheError)
+
+
+@dataclass(frozen=True)
+class Environment:
+    """The transient conditions of a table (arrays per row): films' fluid temperature, radiation
+    sink, film factor, extra heat into the pair (W)."""
+    T_ambient_C: np.ndarray
+    T_sink_C: np.ndarray
+    film_scale: np.ndarray
+    heat_W: np.ndarray
+
+
+def environment(asm: Assembly, cols: dict, where: str = "conditions") -> Environment:
+    """The environment columns of a transient table, checked (TableError, one line)."""
+    n = len(cols["time_s"]) if "time_s" in cols else 0
+    if "time_s" not in cols:
+        raise TableError(f"{where}: column 'time_s': required in transient mode "
+                         "([thermal] mode = \"transient\")")
+    for c in cols:
+        if c.startswith("T_") and c.endswith("_C") and c not in ("T_ambient_C", "T_sink_C"):
+            raise TableError(f"{where}: column '{c}': part temperatures are computed in transient "
+                             "mode; give T_ambient_C or T_sink_C")
+    if "T_ambient_C" not in cols and "T_sink_C" not in cols:
+        raise TableError(f"{where}: needs the column T_ambient_C or T_sink_C in transient mode")
+    amb = np.asarray(cols.get("T_ambient_C", cols.get("T_sink_C")), float)
+    sink_default = asm.thermal.sink_C if np.isfinite(asm.thermal.sink_C) else amb
+    sink = np.asarray(cols.get("T_sink_C", np.broadcast_to(sink_default, (n,))), float)
+    scale = np.asarray(cols.get("film_scale", np.ones(n)), float)
+    heat = np.asarray(cols.get("heat_W", np.zeros(n)), float)
+    for name, v, lo in (("T_ambient_C", amb, -273.15), ("T_sink_C", sink, -273.15),
+                        ("film_scale", scale, 0.0), ("heat_W", heat, 0.0)):
+        bad = np.flatnonzero(~np.isfinite(v) | (v < lo))
+        if bad.size:
+            raise TableError(f"{where}: row {bad[0] + 1}, column '{name}': {v[bad[0]]:g} below "
+                             f"{lo:g}")
+    return Environment(amb, sink, scale, heat)
+
+
+@dataclass(frozen=True)
+class RowTemperatures:
+    """What the transient route adds to the rows (docs/cli.md "Transient conduction").
+
+    T_parts_C (n, len(PARTS)): computed volume mean of each `inputs.PARTS` group (NaN where the
+    stack has no such part); T_max_C, T_min_C (n,): extremes of the field (ball nodes included);
+    heat_bearing_W (n,): the pair's friction heat at the row's state plus the extra heat_W;
+    reduction_error_est (n,): |P_m - P_m/2| / |P_m| (module docstring)."""
+    T_parts_C: np.ndarray
+    T_max_C: np.ndarray
+    T_min_C: np.ndarray
+    heat_bearing_W: np.ndarray
+    reduction_error_est: np.ndarray
+
+    def part_columns(self) -> dict[str, np.ndarray]:
+        return {f"T_{p}_C": self.T_parts_C[:, i] for i, p in enumerate(PARTS)
+                if not np.isnan(self.T_parts_C[:, i]).any()}
+
+
+@dataclass(frozen=True)
+class TransientRun:
+    """A transient table's answer. outputs: the one route's `SimulationResult` of the rows at
+    their computed states; rows: `RowTemperatures`; grid_s, q:
+    the time grid and the reduced states on it; heat_W (n_steps,): heat into the stack at each
+    step (the pair's at the coupling plus the extra)."""
+    outputs: SimulationResult
+    rows: RowTemperatures
+    grid_s: np.ndarray
+    q: np.ndarray
+    heat_W: np.ndarray
+
+    def columns(self) -> dict[str, np.ndarray]:
+        """The output columns of `simulate` in transient mode: the computed part temperatures,
+        T_max_C, T_min_C, the route's columns (`columns.to_columns`, flags and margins last),
+        heat_bearing_W, reduction_error_est before the flags."""
+        r = self.rows
+        cols = to_columns(self.outputs)
+        flags = {k: cols.pop(k) for k in list(cols) if k.startswith(("flag_", "margin_"))}
+        return {**r.part_columns(), "T_max_C": r.T_max_C, "T_min_C": r.T_min_C, **cols,
+                "heat_bearing_W": r.heat_bearing_W, "reduction_error_est": r.reduction_error_est,
+                **flags}
+
+
+def _grid(t: np.ndarray, dt_s: float = DT_S) -> np.ndarray:
+    """The time grid from the first to the last row: equal steps of dt_s or a little less
+    (longer when the table spans more than MAX_STEPS of them)."""
+    span = float(t[-1] - t[0])
+    if span <= 0:
+        return t[:1].astype(float)
+    k = int(np.ceil(span / max(dt_s, span / MAX_STEPS) - 1e-9))
+    return t[0] + span * np.arange(k + 1) / k
+
+
+def _interp_rows(grid: np.ndarray, t: np.ndarray, Q: np.ndarray) -> np.ndarray:
+    """Q (n_grid, m) linearly interpolated to the times t."""
+    return np.column_stack([np.interp(t, grid, Q[:, j]) for j in range(Q.shape[1])])
+
+
+@single_thread_blas
+def run_transient(pl: Pipeline, cols: dict, progress=None, first_row: int = 0,
+                  couple_every: int = COUPLE_EVERY, dt_s: float = DT_S) -> TransientRun:
+    """Every row of a transient conditions table (column -> array, TRANSIENT_COLUMNS) through
+    the reduced transient loop (module docstring); the coupling refreshed every `couple_every`
+    steps, the step dt_s (s; `_grid`)."""
+    asm = pl.asm
+    env = environment(asm, cols)
+    tm = thermal_model(pl, progress)
+    t = np.asarray(cols["time_s"], float)
+    n = t.size
+    base = baseline_inputs({k: v for k, v in cols.items() if k not in ("T_ambient_C",)}, n,
+                           asm.T_ref_C, asm.preload.assembled_N, asm.lubrication.speed_rpm)
+    grid = _grid(t, dt_s)
+    at = lambda v: np.interp(grid, t, np.asarray(v, float))        # noqa: E731
+    amb, sink, scale, extra = at(env.T_ambient_C), at(env.T_sink_C), at(env.film_scale), at(env.heat_W)
+    speed, preload = at(base.speed_rpm), at(base.preload_assembled_N)
+    axial, radial, moment = at(base.axial_load_N), at(base.radial_load_N), at(base.moment_Nmm)
+    delta = pl.deltas_mm(*pl.fits_um(base))[:1]
+    w2 = (speed * (2.0 * np.pi / 60.0)) ** 2
+    ref1 = pl.fe(pl.reference_inputs(base.take(np.zeros(1, int))))
+    steppers = []
+    for rc in (tm.rc, tm.half):
+        st = ReducedStepper(rc, _params(tm, 1.0, None), grid[1] - grid[0] if grid.size > 1 else DT_S,
+                            float(amb[0]))
+        steppers.append(st)
+    Q = [steppers[0].q.copy()]
+    Qh = [steppers[1].q.copy()]
+    heat_in = np.zeros(grid.size)
+    h_pair: dict[str, float] = {}
+    fits_W_m2K = tm.nominal.fit_conductance_W_m2K
+    pair_W = 0.0
+    for k in range(1, grid.size):
+        if (k - 1) % couple_every == 0:
+            # the coupling at the state at the start of the step
+            fe, gap = fe_states(pl, tm.ms, Q[-1][None, :], delta, w2[k - 1:k])
+            T3 = _groups_C(tm, tm.rc, Q[-1][None, :])
+            inp = _inputs(base, T3, speed[k - 1], preload[k - 1], axial[k - 1], radial[k - 1],
+                          moment[k - 1])
+            heat = _pair_heat(pl, inp, fe, ref1)
+            pair_W = float(heat.total_W[0])
+            h_pair = bearing_heat_inputs_W(heat, ball_nodes=bool(tm.tc.ball_nodes))
+            if tm.pressure_conductance:
+                fits_W_m2K = fit_conductances_W_m2K(pl.model, fe.fit_pressure_MPa[0], gap[0])
+        h = {key: v + float(extra[k]) * _extra_share(key, h_pair) for key, v in h_pair.items()}
+        heat_in[k] = pair_W + float(extra[k])
+        loads = StepLoads(float(amb[k]), float(sink[k]), heat_W=h)
+        prm = _params(tm, float(scale[k]), fits_W_m2K)
+        for st, QQ in ((steppers[0], Q), (steppers[1], Qh)):
+            if prm != st.prm:
+                st.set_parameters(prm)
+            QQ.append(st.step(loads).copy())
+        if progress and k % 500 == 0:
+            progress(f"transient: step {k} of {grid.size - 1}")
+    Q, Qh = np.array(Q), np.array(Qh)
+    heat_in[0] = heat_in[1] if grid.size > 1 else 0.0
+    q_rows, qh_rows = _interp_rows(grid, t, Q), _interp_rows(grid, t, Qh)
+    T, out, heat_W = _evaluate_rows(pl, tm, tm.rc, tm.ms, q_rows, base, first_row)
+    _, out_h, _ = _evaluate_rows(pl, tm, tm.half, tm.ms_half, qh_rows, base, first_row)
+    P, Ph = _preload_N(out), _preload_N(out_h)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        est = np.where(np.abs(P) > 0, np.abs(P - Ph) / np.abs(P), 0.0)
+    field = q_rows @ tm.rc.V.T              # (n, n_total) nodal temperatures and ball nodes
+    rows = RowTemperatures(T, field.max(axis=1), field.min(axis=1), heat_W + env.heat_W, est)
+    return TransientRun(out, rows, grid, Q, heat_in)
+
+
+def _extra_share(key: str, h: dict) -> float:
+    """Share of the extra heat (heat_W) of one heat input: like the pair's own split (half to
+    the raceways, half to the balls, equally per bearing); without ball nodes all to the
+    raceways."""
+    balls = [k for k in h if k.startswith("ball_")]
+    races = [k for k in h if k.startswith("raceway_")]
+    if balls:
+        return 0.5 / len(balls) if key in balls else 0.5 / len(races)
+    return 1.0 / len(races)
+
+
+def _params(tm: ThermalModel, film_scale: float, fit_W_m2K) -> ThermalParameters:
+    prm = replace(tm.nominal, film_W_m2K={k: film_scale * v for k, v in tm.nominal.film_W_m2K.items()})
+    return prm if fit_W_m2K is None else prm.with_fits(fit_W_m2K)
+
+
+def _groups_C(tm: ThermalModel, rc: ReducedConduction, q: np.ndarray) -> np.ndarray:
+    """(n, len(PARTS)) group mean temperatures (C) of reduced states q (n, m)."""
+    return q @ tm.groups_per_mode(rc).T
+
+
+def _inputs(base: PhysicsInputs, T: np.ndarray, speed, preload, axial, radial, moment) -> PhysicsInputs:
+    """One row of inputs at group temperatures T (1, len(PARTS)) and the step's conditions."""
+    one = base.take(np.zeros(1, int))
+    Tc = {p: T[:, i] for i, p in enumerate(PARTS)}
+    for p in PARTS:          # a group the stack lacks (no spacer): not used by the FE state
+        if np.isnan(Tc[p]).any():
+            Tc[p] = Tc["shaft"]
+    return one.copy(T_C=Tc, speed_rpm=np.array([speed]), preload_assembled_N=np.array([preload]),
+                    axial_load_N=np.array([axial]), radial_load_N=np.array([radial]),
+                    moment_Nmm=np.array([moment]))
+
+
+def _pair_heat(pl: Pipeline, inp: PhysicsInputs, fe: FEState, ref: FEState) -> PairHeat:
+    """The pair's heat split (W) at one state: its equilibrium and torque through the route."""
+    return _route(pl, inp, fe, ref)[1]
+
+
+def _evaluate_rows(pl: Pipeline, tm: ThermalModel, rc: ReducedConduction, ms: ModalStructure,
+                   q: np.ndarray, base: PhysicsInputs, first_row: int):
+    """The rows at reduced states q through the one route: (group temperatures (n,
+    len(PARTS)), the route's outputs, the pair's friction heat (n,) W)."""
+    T = _groups_C(tm, rc, q)
+    Tc = {p: T[:, i] for i, p in enumerate(PARTS)}
+    for p in PARTS:
+        if np.isnan(Tc[p]).any():
+            Tc[p] = Tc["shaft"]
+    inputs = base.copy(T_C=Tc)
+    delta = pl.deltas_mm(*pl.fits_um(inputs))
+    fe, _ = fe_states(pl, ms, q, delta, pl.fe_stage.omega2(inputs))
+    ref = pl.fe(pl.reference_inputs(inputs), remember=False)
+    out, heat = _route(pl, inputs, fe, ref, first_row)
+    return T, out, np.asarray(heat.total_W, float).reshape(q.shape[0])
+
+
+def _route(pl: Pipeline, inputs: PhysicsInputs, fe: FEState, ref: FEState, first_row: int = 0):
+    """The one route from given FE states (rows, assembly states): (its outputs, the pair's heat
+    split `analytic.heat.PairHeat` at MU_TRACTION)."""
+    res = pl.run(inputs, first_row=first_row, remember=False,
+                 fe_options=FEOptions(states=(fe, ref)))
+    heat = pair_heat_W(pl.geom, res.pair, inputs.speed_rpm, MU_TRACTION, res.torque.viscous_Nmm)
+    return res, heat
+
+
+def _preload_N(out: SimulationResult) -> np.ndarray:
+    return out.pair.preload_N
+
+
+def condition_columns() -> set[str]:
+    """The columns a conditions file may have in transient mode (the part temperatures among
+    them only to be refused with their reason, `environment`)."""
+    from studies.model.inputs import CONDITION_COLUMNS
+    return set(CONDITION_COLUMNS) | set(TRANSIENT_COLUMNS)
+
+
+def simulate_transient_file(asm: Assembly, conditions, out, effects: dict | None = None,
+                            provenance: dict | None = None, direct: bool = False,
+                            pipeline: Pipeline | None = None, progress=None,
+                            workers: int | None = None, scheduler: str | None = None,
+                            n_rows: int | None = None):
+    """`bearingfem simulate` of an assembly in transient mode: the whole conditions file (rows
+    are successive instants, evaluated in order), the checks of `studies.model.checks` per row,
+    one atomic output file (`table.TableWriter`). Effects, direct solves and Dask workers are
+    refused (one line): the route has its own temperatures and runs in time order. n_rows: not
+    needed (the whole table is read at once), accepted as `stream.simulate_file` takes it."""
+    from studies.model.checks import assembly_checks, plausibility_warnings
+    from studies.model.stream import WARNING_OUTPUTS, CheckTally, SimulateRun
+    from studies.model.table import TableWriter, read_table
+
+    for bad, what in ((effects, "--effect"), (direct, "--direct"),
+                      (workers is not None or scheduler is not None, "--workers/--scheduler")):
+        if bad:
+            raise ConfigError(f"{what}: not available with [thermal] mode = \"transient\"")
+    cols = read_table(conditions, allowed=condition_columns())
+    cols = {k: v for k, v in cols.items() if not k.startswith("_")}
+    environment(asm, cols, str(conditions))           # bad input before any FE work
+    pl = pipeline or Pipeline.shared(asm, progress=progress)
+    run = run_transient(pl, cols, progress)
+    tally = CheckTally(assembly_checks(asm))
+    outputs = run.columns()
+    tally.add(run.outputs.checks, 0)
+    res = dict(cols)
+    res.update(outputs)
+    with TableWriter(out, provenance) as w:
+        w.write(res)
+    is_T = lambda k: k.startswith("T_") and k.endswith("_C")           # noqa: E731
+    temps = {k: np.asarray(v, float) for k, v in res.items() if is_T(k)}
+    given = {k: v for k, v in temps.items() if k in cols}     # the warnings read the inputs
+    warn_cols = {k: outputs[k] for k in WARNING_OUTPUTS if k in outputs}
+    n = len(cols["time_s"])
+    return SimulateRun(n, tally.violations(), plausibility_warnings(asm, given, warn_cols), temps)

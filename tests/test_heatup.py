@@ -1,0 +1,40 @@
+"""`bearingfem study heatup` (studies/runs/heatup.py): seed 003's ball-screw support heating up
+through simulate's transient route, against the seed's qualitative findings (seed 003 section 5,
+fig. 9: the balls run hottest, the heat and temperatures level off towards a thermal
+equilibrium, the rings' temperature difference falls below 4 K)."""
+import pytest
+
+from studies.runs import STUDIES, heatup
+
+
+def test_heatup_is_a_registered_study_and_its_short_coarse_run_writes_its_report(tmp_path):
+    """The loop on a coarse mesh for 20 minutes at both speeds: tables, plots, report; the balls
+    are already the hottest part (they take half of every contact's heat, Burton & Staph) and
+    the faster pair is warmer everywhere (more heat: torque x speed)."""
+    assert STUDIES["heatup"] == "studies.runs.heatup"
+    found = heatup.run(tmp_path, progress=lambda s: None, mesh_factor=2.0, duration_s=1200.0,
+                       images=False)
+    for n in heatup.SPEEDS_RPM:
+        assert (tmp_path / f"heatup_{n:.0f}rpm.csv").is_file()
+        assert found[n].ball_hottest
+    assert all(found[1500.0].T_end_C[p] > found[1000.0].T_end_C[p] for p in heatup.PARTS)
+    for name in ("report.md", "preload.png", "torque.png", "heat.png"):
+        assert (tmp_path / name).is_file(), name
+
+
+@pytest.mark.slow
+def test_heatup_reproduces_the_seeds_findings_at_equilibrium(tmp_path):
+    """Three hours at 1000 and 1500 rpm on the study's mesh: the balls are the hottest part at
+    both speeds, the run has reached equilibrium (every part changes by less than 0.05 K/h over
+    the last 10 minutes; the heat by less than 0.1 % over the last 30), and at 1000 rpm the
+    inner ring runs less than 4 K above the outer. (At 1500 rpm the rings differ by 5.3 K and
+    ring-to-ball differences are 6.5 K / 10.3 K at 1000 / 1500 rpm, above the seed's 4 K: stated
+    in the report, not asserted; the ball-raceway conductance here is Holm's constriction over
+    the Hertz ellipses, the seed's network its own.)"""
+    found = heatup.run(tmp_path, progress=lambda s: None)
+    for n, f in found.items():
+        assert f.ball_hottest, n
+        assert f.end_rate_K_per_h < 0.05, (n, f.end_rate_K_per_h)
+        assert f.heat_change_last_30min < 1e-3, (n, f.heat_change_last_30min)
+    assert 0.0 < found[1000.0].inner_outer_dT_K < 4.0
+    assert list(tmp_path.glob("field_1500rpm_*_temperature_C.png"))
