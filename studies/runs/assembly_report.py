@@ -27,7 +27,7 @@ from analytic import lame
 from analytic.bearing.land import land_diameters_mm
 from studies.model.tolerances import has_tolerances
 from studies.runs import report_margins, report_pdf
-from studies.runs.report_tools import (field_images, line_plot, md_table, safety_section,
+from studies.runs.report_tools import (field_images, nice_step, line_plot, md_table, safety_section,
                                        significant, write_report_files)
 
 N_SWEEP = 25            # about this many points in the default temperature sweep
@@ -42,13 +42,6 @@ def default_conditions(asm) -> dict[str, np.ndarray]:
     T = np.unique(np.concatenate([[op.T_min_C, op.T_max_C, asm.T_ref_C], grid]))
     T = T[(T >= op.T_min_C) & (T <= op.T_max_C)]
     return {"T_ambient_C": T}
-
-
-def nice_step(span: float, n: int) -> float:
-    """The smallest 1, 2 or 5 x 10^k step that divides `span` into at most n - 1 intervals."""
-    raw = span / max(n - 1, 1)
-    k = 10.0 ** np.floor(np.log10(raw)) if raw > 0 else 1.0
-    return float(next(m * k for m in (1, 2, 5, 10) if m * k >= raw * (1 - 1e-12)))
 
 
 def run(asm, conditions: dict | None, out: Path, provenance: dict, progress=print,

@@ -45,7 +45,7 @@ from studies.model.inputs import baseline_inputs
 from studies.model.memory import release_freed_memory
 from studies.model.parallel import Blocks, map_blocks
 from studies.model.pipeline import FEOptions, Pipeline
-from studies.runs.assembly_report import nice_step
+from studies.runs.report_tools import nice_step
 from studies.runs.report_tools import line_plot, md_table, write_report_files
 
 LENGTH_FACTORS = (0.5, 1.0, 1.5, 2.0)

@@ -135,3 +135,10 @@ def write_report_files(out: Path, lines: list[str], title: str) -> None:
     (out / "report.html").write_text(
         f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>{title}</title>"
         f"<style>{style}</style></head><body>{body}</body></html>\n")
+
+
+def nice_step(span: float, n: int) -> float:
+    """The smallest 1, 2 or 5 x 10^k step that divides `span` into at most n - 1 intervals."""
+    raw = span / max(n - 1, 1)
+    k = 10.0 ** np.floor(np.log10(raw)) if raw > 0 else 1.0
+    return float(next(m * k for m in (1, 2, 5, 10) if m * k >= raw * (1 - 1e-12)))

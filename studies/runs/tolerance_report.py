@@ -20,7 +20,7 @@ from studies.model import tolerances as tol
 from studies.model.checks import assembly_checks
 from studies.model.pipeline import Pipeline
 from studies.model.table import write_table
-from studies.runs.assembly_report import nice_step
+from studies.runs.report_tools import nice_step
 from studies.runs.report_tools import line_plot, md_table, write_report_files
 
 N_CONDITIONS = 8          # about this many temperatures in the default conditions
