@@ -11,6 +11,7 @@ from scipy import stats
 from analytic.tolerances import iso286_limits_um, iso492_limits_um
 from studies.app.cli import main
 from studies.model.config import CONFIG_DIR, ConfigError, load_assembly
+from studies.model import tolerance_samples as tsm
 from studies.model import tolerances as tol
 from studies.model.parallel import WORKER_CONFIG, Blocks
 
@@ -161,7 +162,7 @@ def test_monte_carlo_fit_opening_agrees_with_the_closed_form(fits_only, dist):
     S = 3000
     dev = tol.sample_deviations_um(asm, S, seed=7)
     di, do = tol.interference_offsets_um(dev, S)
-    r = tol.evaluate(pl, {"T_ambient_C": np.array([asm.T_ref_C])}, di, do)
+    r = tsm.evaluate(pl, {"T_ambient_C": np.array([asm.T_ref_C])}, di, do)
     p, se = tol.probability(r["fit_pressure_inner_MPa"][:, 0] <= 0.0)
     if dist == "uniform":        # X = shaft + 4 in [0, 10], Y = -bore in [0, 6]: X + Y <= 4
         exact = _uniform_sum_cdf(4.0, 10.0, 6.0)
@@ -178,7 +179,7 @@ def test_mid_band_fits_give_the_assembled_preload(fits_only):
     asm = fits_only["uniform"]
     mid_i, mid_o = tol.mid_band_offsets_um(asm)
     assert (mid_i, mid_o) == (4.0, 0.0)                  # 1 - (-3)
-    r = tol.evaluate(Pipeline.shared(asm), {"T_ambient_C": np.array([asm.T_ref_C]),
+    r = tsm.evaluate(Pipeline.shared(asm), {"T_ambient_C": np.array([asm.T_ref_C]),
                                             "speed_rpm": np.array([0.0])},
                      np.array([mid_i, mid_i + 2.0]), np.array([mid_o, mid_o]))
     assert r["preload_N"][0, 0] == pytest.approx(asm.preload.assembled_N, rel=1e-9)
@@ -221,16 +222,16 @@ def test_dask_workers_give_the_single_process_numbers(fits_only):
     dev = tol.sample_deviations_um(asm, S, seed=3)
     di, do = tol.interference_offsets_um(dev, S)
     cond = {"T_ambient_C": np.array([-20.0, 60.0])}
-    old = tol.CHUNK_ROWS
-    tol.CHUNK_ROWS = 200                      # several blocks, so both workers get some
+    old = tsm.CHUNK_ROWS
+    tsm.CHUNK_ROWS = 200                      # several blocks, so both workers get some
     try:
-        here = tol.run_samples(asm, cond, di, do)
+        here = tsm.run_samples(asm, cond, di, do)
         with Blocks(workers=2) as where:
-            dask = tol.run_samples(asm, cond, di, do, where=where)
+            dask = tsm.run_samples(asm, cond, di, do, where=where)
             # the workers run with the profiler and the GIL monitor off (parallel.WORKER_CONFIG)
             seen = {k: where.client.run(dask_config.get, k) for k in WORKER_CONFIG}
     finally:
-        tol.CHUNK_ROWS = old
+        tsm.CHUNK_ROWS = old
     for q in tol.QUANTITIES:
         np.testing.assert_array_equal(dask[q], here[q], err_msg=q)
     for k, v in WORKER_CONFIG.items():
@@ -246,13 +247,13 @@ def test_samples_reordered_into_blocks_come_back_in_their_own_rows(fits_only):
     S = 600
     dev = tol.sample_deviations_um(asm, S, seed=5)
     di, do = tol.interference_offsets_um(dev, S)
-    assert not np.array_equal(tol.sample_order(di, do), np.arange(S))
-    old = tol.CHUNK_ROWS
-    tol.CHUNK_ROWS = 150                          # four blocks
+    assert not np.array_equal(tsm.sample_order(di, do), np.arange(S))
+    old = tsm.CHUNK_ROWS
+    tsm.CHUNK_ROWS = 150                          # four blocks
     try:
-        r = tol.run_samples(asm, {"T_ambient_C": np.array([asm.T_ref_C])}, di, do)
+        r = tsm.run_samples(asm, {"T_ambient_C": np.array([asm.T_ref_C])}, di, do)
     finally:
-        tol.CHUNK_ROWS = old
+        tsm.CHUNK_ROWS = old
     hand = asm.fits.inner_interference_um + dev["inner_shaft"] - dev["inner_ring_bore"]
     np.testing.assert_allclose(r["interference_inner_um"][:, 0], hand, rtol=0, atol=1e-12)
 

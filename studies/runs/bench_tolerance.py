@@ -47,6 +47,7 @@ def _workers_cpu_s(where) -> float:
 
 
 def main(samples: int, workers: int | None = None) -> None:
+    from studies.model import tolerance_samples as tsm
     from studies.model import tolerances as tol
     from studies.model.parallel import Blocks
     from studies.model.pipeline import Pipeline
@@ -68,10 +69,10 @@ def main(samples: int, workers: int | None = None) -> None:
     for label, w in modes:
         with Clock() as c:
             with Blocks(workers=w) as where:
-                where.on_every_worker(tol.warm, asm)
+                where.on_every_worker(tsm.warm, asm)
                 before = _workers_cpu_s(where)
                 with Clock() as c_blocks:
-                    runs[label] = tol.run_samples(asm, cond, di, do, where=where)
+                    runs[label] = tsm.run_samples(asm, cond, di, do, where=where)
                 # CPU of the blocks: this process's, or the worker processes' (every thread:
                 # the task and the worker's own event loop and monitors) during the blocks
                 cpu = (c_blocks.cpu_s if where.client is None

@@ -16,12 +16,12 @@ import numpy as np
 from scipy import stats
 
 from studies.model import sobol
+from studies.model import tolerance_samples as tsm
 from studies.model import tolerances as tol
 from studies.model.checks import assembly_checks
 from studies.model.pipeline import Pipeline
 from studies.model.table import write_table
-from studies.runs.report_tools import nice_step
-from studies.runs.report_tools import line_plot, md_table, write_report_files
+from studies.runs.report_tools import line_plot, md_table, nice_step, write_report_files
 
 N_CONDITIONS = 8          # about this many temperatures in the default conditions
 SOBOL_BASE_SAMPLES = 512  # Sobol' design: 512 x (surfaces + 2) samples (studies/model/sobol.py)
@@ -59,7 +59,7 @@ def worst_case(pl, cond: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
     bands = tol.worst_case_bands(pl.asm)
     corners = [(bi, bo) for bi in (bands[0].lower_um, bands[0].upper_um)
                for bo in (bands[1].lower_um, bands[1].upper_um)]
-    return tol.evaluate(pl, cond, np.array([c[0] - bands[0].nominal_um for c in corners]),
+    return tsm.evaluate(pl, cond, np.array([c[0] - bands[0].nominal_um for c in corners]),
                         np.array([c[1] - bands[1].nominal_um for c in corners]))
 
 
@@ -76,7 +76,7 @@ def _linear(asm, pl, cond, limit_p):
         dev[s][1 + 2 * k] += h[s]
         dev[s][2 + 2 * k] -= h[s]
     di, do = tol.interference_offsets_um(dev, 2 * n + 1)
-    r = tol.evaluate(pl, cond, di, do)
+    r = tsm.evaluate(pl, cond, di, do)
     grad = {q: np.array([(r[q][1 + 2 * k] - r[q][2 + 2 * k]) / (2 * h[s]) for k, s in enumerate(names)])
             for q in r}                                             # (n_surfaces, C)
     sigma = np.array([sig[s] for s in names])
@@ -112,7 +112,7 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, samples: int,
     progress(f"tolerance: {samples} samples x {C} conditions through the exact model ...")
     dev = tol.sample_deviations_um(asm, samples, seed)
     di, do = tol.interference_offsets_um(dev, samples)
-    mc = tol.run_samples(asm, cond, di, do, workers=workers, scheduler=scheduler,
+    mc = tsm.run_samples(asm, cond, di, do, workers=workers, scheduler=scheduler,
                          progress=bar or (lambda done, total: progress(f"  block {done} of {total}")))
     fail = failures(asm, mc)
     limit_p = next(c.allowable for c in assembly_checks(asm) if c.name == "max_contact_pressure_MPa")
