@@ -131,11 +131,11 @@ def test_schema_declares_every_field_once_with_the_dataclass_default():
 
 def test_docs_key_tables_are_the_schemas():
     """docs/cli.md carries every table's key table as generated from the schema (regenerate with
-    `python -m studies.model.config_schema docs/cli.md`)."""
-    from studies.model.config_schema import section_tables, with_tables
+    `python -m studies.model.config_docs docs/cli.md`)."""
+    from studies.model.config_docs import section_tables, with_tables
 
     doc = (CONFIG_DIR.parents[1] / "docs" / "cli.md").read_text()
-    assert with_tables(doc) == doc, "run: python -m studies.model.config_schema docs/cli.md"
+    assert with_tables(doc) == doc, "run: python -m studies.model.config_docs docs/cli.md"
     for name, table in section_tables().items():
         assert f"<!-- keys [{name}]: generated from studies/model/config_schema.py -->\n{table}\n" \
             in doc, name

@@ -24,7 +24,8 @@ from analytic.bearing.geometry import BearingGeometry, BearingSpec
 from analytic.lubrication import Lubricant, get_lubricant, lubricant_from_table
 from analytic.materials import Material, get_material, material_from_table
 from studies.model.config_checks import check_assembly, check_bearing
-from studies.model.config_schema import (ASSEMBLY_KEYS, LAYERS, MATERIAL_T_RANGE_C, SIGNED,
+from studies.model.config_schema import (ASSEMBLY_KEYS, LAYERS, MATERIAL_T_RANGE_C, MESH_TARGET_RANGE,
+                                         SIGNED,
                                          TOLERANCE_SURFACES, ZERO_OK, ConfigError, Range, choice,
                                          choice_or_number, keys_of, limits,
                                          material, number, parse_table, table as _field_table,
@@ -214,9 +215,9 @@ class Mesh:
                                    note="at most fit_size_mm")
     target_error: float = number("-", "relative discretisation error of fit pressures and "
                                       "groove-centre shifts the sizes left at 0 are chosen for",
-                                 default=1e-3, bounds=Range(3e-4, 1e-2),
+                                 default=1e-3, bounds=Range(*MESH_TARGET_RANGE),
                                  note="the range the size rule was measured over "
-                                      "(studies/model/mesh_size.py TARGET_RANGE)")
+                                      "(studies/model/mesh_size.py)")
     ring_section: str = choice("grooved", "rectangle", default="rectangle",
                                doc='"rectangle": the effective ring sections of [bearing]; '
                                    '"grooved": rings with their raceway grooves and lands '

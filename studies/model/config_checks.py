@@ -12,7 +12,8 @@ from analytic.bearing.geometry import BearingGeometry, BearingSpec
 from analytic.bearing.land import groove_bottom_diameter_mm
 from analytic.materials import Material, get_material
 from analytic.safety import static_load_rating_C0_N
-from studies.model.config_schema import LAYERS, MATERIAL_T_RANGE_C, TOLERANCE_SURFACES, ConfigError
+from studies.model.config_schema import (LAYERS, MATERIAL_T_RANGE_C, MESH_TARGET_RANGE,
+                                         TOLERANCE_SURFACES, ConfigError)
 
 if TYPE_CHECKING:
     from studies.model.config import Assembly
@@ -249,10 +250,8 @@ def _check_grooved(a: Assembly, g: BearingGeometry, need) -> None:
 def _check_mesh(a: Assembly, need) -> None:
     """Given sizes in order (corner <= fit <= size <= bearing width); a target the size rule was
     measured for (studies/model/mesh_size.py)."""
-    from studies.model.mesh_size import TARGET_RANGE
-
     m, B = a.mesh, a.bearing.width_mm
-    lo, hi = TARGET_RANGE
+    lo, hi = MESH_TARGET_RANGE
     need(lo <= m.target_error <= hi, "mesh.target_error",
          f"{m.target_error:g} is outside {lo:g}..{hi:g} (the range the size rule was measured "
          "over); give explicit sizes for other meshes")

@@ -8,7 +8,7 @@ which knows nothing of files), are declared here as tables of the same `Key`s. F
 the parsing of one value (`parse_value`, the one-line messages of `ConfigError`), the summary the
 template states for the key (`Key.summary`, tested against studies/configs/template.toml) and the
 rows of the key tables in docs/cli.md (`markdown_table`, tested against the file;
-`python -m studies.model.config_schema docs/cli.md` rewrites them).
+`python -m studies.model.config_docs docs/cli.md` rewrites them).
 
 Relations between keys (a bore smaller than its seat, a preload below C0, T_min_C below T_max_C)
 are checked with the assembly as a whole (studies/model/config_checks.py); a key's `note` says
@@ -24,9 +24,11 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import sys
 from dataclasses import dataclass
 from typing import Any
+
+#: mesh.target_error: the targets the mesh-size rule was measured over (studies/model/mesh_size.py)
+MESH_TARGET_RANGE = (3e-4, 1e-2)
 
 
 class ConfigError(ValueError):
@@ -369,42 +371,3 @@ def markdown_table(keys: dict[str, Key]) -> str:
         rows.append(f"| `{k}` | {key.unit} | {key.allowed().replace('|', '/')} | "
                     f"{default.replace('|', '/')} | {meaning} |")
     return "\n".join(rows)
-
-
-def section_tables() -> dict[str, str]:
-    """The markdown key table of every table of the assembly file, in file order; tables with
-    the same keys (nut and cover, the two spacers, sleeve and cartridge) share one, named
-    "nut, cover"."""
-    from studies.model.config import SECTIONS
-
-    groups: dict[type, list[str]] = {}
-    for name, cls in SECTIONS.items():
-        groups.setdefault(cls, []).append(name)
-    return {"assembly": markdown_table(ASSEMBLY_KEYS),
-            **{", ".join(names): markdown_table(keys_of(cls)) for cls, names in groups.items()}}
-
-
-def _block(name: str) -> tuple[str, str]:
-    return f"<!-- keys [{name}]: generated from studies/model/config_schema.py -->", "<!-- /keys -->"
-
-
-def with_tables(doc: str) -> str:
-    """`doc` with every generated key table block (between its two markers) rewritten."""
-    for name, table in section_tables().items():
-        start, end = _block(name)
-        i = doc.find(start)
-        if i < 0:
-            continue
-        j = doc.index(end, i)
-        doc = doc[:i] + start + "\n" + table + "\n" + doc[j:]
-    return doc
-
-
-if __name__ == "__main__":            # python -m studies.model.config_schema docs/cli.md
-    for p in sys.argv[1:]:
-        with open(p, encoding="utf-8") as fh:
-            old = fh.read()
-        new = with_tables(old)
-        if new != old:
-            with open(p, "w", encoding="utf-8") as fh:
-                fh.write(new)
