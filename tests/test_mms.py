@@ -114,14 +114,19 @@ def test_manufactured_fields_satisfy_the_frictionless_fit_and_perfect_contact(ax
     co = ELASTIC_.coefficients()
     st = [elastic_stress(sides[k][0], sides[k][1], a, co[k].lam, co[k].mu, sides[k][2])
           for k in (0, 1)]
-    assert np.allclose(sides[1][0].v - sides[0][0].v, ELASTIC_.delta_mm, rtol=0, atol=1e-15)
+    # round-off of the displacements (scale: the interference and the fields' own size)
+    u_scale = max(abs(ELASTIC_.delta_mm), np.abs(sides[0][0].v).max(), np.abs(sides[1][0].v).max())
+    assert np.allclose(sides[1][0].v - sides[0][0].v, ELASTIC_.delta_mm, rtol=0,
+                       atol=16 * np.finfo(float).eps * u_scale)
     scale = abs(ELASTIC_.S0_MPa)
     for k in (0, 1):
         assert np.allclose(st[k][3], 0.0, atol=1e-12 * scale)
     assert np.allclose(st[0][0], st[1][0], atol=1e-12 * scale) and (st[0][0] < 0).all()
     assert not np.allclose(sides[0][1].v, sides[1][1].v)          # the fit slips axially
     if axis:
-        assert np.allclose(ELASTIC_.fields(0 * z, z, 0)[0].v, 0.0, rtol=0, atol=1e-18)
+        u_axis = ELASTIC_.fields(0 * z, z, 0)[0].v       # regular field: u_r vanishes on the axis
+        u_scale = np.abs(ELASTIC_.fields(a, z, 0)[0].v).max()
+        assert np.allclose(u_axis, 0.0, rtol=0, atol=16 * np.finfo(float).eps * u_scale)
         return
     T = [THERMAL.field(a, z, k) for k in (0, 1)]
     assert np.allclose(T[0].v, T[1].v, atol=1e-12 * np.abs(T[0].v).max())
