@@ -103,3 +103,15 @@ def stress_components(grad, value, r, lam, mu, theta):
 def von_mises(srr, szz, stt, trz):
     """Von Mises equivalent stress (MPa) of an axisymmetric stress state."""
     return np.sqrt(0.5 * ((srr - szz) ** 2 + (szz - stt) ** 2 + (stt - srr) ** 2) + 3 * trz ** 2)
+
+
+@BilinearForm
+def heat_capacity(T, v, w):
+    """m(T, v) = int rho c T v 2 pi r dA (rho c in J/(mm^3 K) gives J/K)."""
+    return TWO_PI * w.x[0] * w.rho_c * T * v
+
+
+@LinearForm
+def volume_source(v, w):
+    """l(v) = int s v 2 pi r dA: a heat source s (W/mm^3) spread over a part."""
+    return TWO_PI * w.x[0] * w.s * v

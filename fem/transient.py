@@ -56,31 +56,18 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.linalg import splu
-from skfem import BilinearForm, FacetBasis, LinearForm, asm
+from skfem import FacetBasis, asm
 
-from fem.forms import boundary_flux, conduction, convection
+from fem.forms import boundary_flux, conduction, convection, heat_capacity
 from fem.model import TOL_MM, StackModel, facets_on_line, node_pairs_on, nodes_on_line
 from fem.solver import _tie_representatives
 from meshes.section import boundary_lines
 
-TWO_PI = 2.0 * np.pi
 #: Stefan-Boltzmann constant, W/(mm^2 K^4) (CODATA 2018: 5.670374419e-8 W/(m^2 K^4))
 SIGMA_W_MM2_K4 = 5.670374419e-14
 KELVIN = 273.15
 #: W/(m^2 K) -> W/(mm^2 K)
 PER_M2_TO_PER_MM2 = 1e-6
-
-
-@BilinearForm
-def heat_capacity(T, v, w):
-    """m(T, v) = int rho c T v 2 pi r dA (rho c in J/(mm^3 K) gives J/K)."""
-    return TWO_PI * w.x[0] * w.rho_c * T * v
-
-
-@LinearForm
-def volume_source(v, w):
-    """l(v) = int s v 2 pi r dA: a heat source s (W/mm^3) spread over a part."""
-    return TWO_PI * w.x[0] * w.s * v
 
 
 # ------------------------------------------------------------------------ contact conductance
@@ -226,7 +213,7 @@ class StepLoads:
     of every film; T_sink_C: the radiation sink (None: T_ambient_C); heat_W: face group or ball
     node ("ball_A", "ball_B") -> heat input (W); T_fixed_C: fixed face group -> temperature;
     source_W: a load vector (W per DOF, (n_total,)) added as it is, e.g. a volume source field
-    assembled with `volume_source` (its total is counted as heat in)."""
+    assembled with `fem.forms.volume_source` (its total is counted as heat in)."""
     T_ambient_C: float = 20.0
     T_sink_C: float | None = None
     heat_W: dict = field(default_factory=dict)

@@ -19,8 +19,9 @@ from skfem import asm
 
 from analytic.materials import get_material
 from fem.model import build_model
+from fem.forms import volume_source
 from fem.transient import (PER_M2_TO_PER_MM2, StepLoads, Stepper, ThermalParameters,
-                           TransientConduction, volume_source)
+                           TransientConduction)
 from meshes.section import two_cylinder_section
 
 RI, RF, RO, L = 5.0, 10.0, 15.0, 10.0
