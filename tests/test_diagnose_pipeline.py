@@ -193,7 +193,7 @@ def assert_heldout_gain(pl, cond, effects, sigma, res, mu_scale=MU_TRUE):
     assert s * (1 - rel) <= ext <= s * math.sqrt(1 + k / n) * (1 + rel), (ext, s)
     assert base >= math.hypot(s, e0) * (1 - rel), (base, s, e0)
     bound = s * math.sqrt(1 + k / n) / math.hypot(s, e0) * (1 + rel) / (1 - rel)
-    assert res["gain"]["heldout_rmse_ratio"] <= bound, (res["gain"], bound, e0)
+    assert res["gain"]["heldout_rmse_ratio_first"] <= bound, (res["gain"], bound, e0)
 
 
 def measured(pl, cond, effects, sigma, seed, mu_scale=MU_TRUE, drift=None):
@@ -371,7 +371,7 @@ def test_null_data_no_discrepancy(pipelines, seed_name, design, sigma):
             alarms.append(summary(res))
             continue
         assert res["cause"] is None and res["parameters"] == {} and res["indistinguishable"] == []
-        assert res["gain"]["heldout_rmse_ratio"] == 1.0      # extended model = the baseline
+        assert res["gain"]["heldout_rmse_ratio_first"] == 1.0      # extended model = the baseline
     assert len(alarms) <= allowed, alarms
 
 
@@ -584,8 +584,8 @@ def test_cli_diagnose_end_to_end(tmp_path, capsys):
             assert list(res[part][k]) == cols
             assert all(isinstance(v, float) and v >= 0 for v in res[part][k].values())
     ratio = res["extended"]["heldout_rmse"]["torque_Nmm"] / res["baseline"]["heldout_rmse"]["torque_Nmm"]
-    assert res["gain"]["heldout_rmse_ratio"] == pytest.approx(ratio, rel=1e-9)
-    assert res["gain"]["heldout_rmse_ratio"] < 1.0
+    assert res["gain"]["heldout_rmse_ratio_first"] == pytest.approx(ratio, rel=1e-9)
+    assert res["gain"]["heldout_rmse_ratio_first"] < 1.0
     assert {c["effect"] for c in res["candidates"]} == set(ORDER)
     for c in res["candidates"]:
         assert set(c) >= {"effect", "parameters", "delta_bic", "heldout_rmse"}

@@ -173,7 +173,7 @@ def test_null_data_no_discrepancy(solid):
         assert res["cause"] is None and res["parameters"] == {} and res["indistinguishable"] == []
         assert res["separating_test"] is None
         assert res["nuisance"]["baseline"]["mu_scale"] == pytest.approx(1.3, rel=0.02)
-        assert res["gain"]["heldout_rmse_ratio"] == 1.0
+        assert res["gain"]["heldout_rmse_ratio_first"] == 1.0
         # the noise level was estimated from the data
         assert res["noise_sigma"]["torque_Nmm"] == pytest.approx(0.02, rel=0.15)
         # solid film: the viscosity law cannot matter
@@ -202,7 +202,7 @@ def test_hidden_effect_is_named(name, params, design):
             continue
         unc = res["parameter_uncertainty"][p]
         assert abs(res["parameters"][p] - v) < 5 * unc + 1e-12 * abs(v), (p, res["parameters"], unc)
-    assert res["gain"]["heldout_rmse_ratio"] < 0.9
+    assert res["gain"]["heldout_rmse_ratio_first"] < 0.9
     assert res["candidates"][0]["effect"] == name
 
 

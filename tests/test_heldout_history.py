@@ -89,7 +89,7 @@ def test_one_off_settling_in_three_cycles_is_explained(pl000, tmp_path):
     assert c["heldout_untestable"] == unt
     assert c["heldout_gain"]["n_blocks"] == res["heldout"]["blocks"] - 1
     assert c["heldout_gain"]["excludes_zero"]
-    assert res["gain"]["heldout_rmse_ratio"] < 1.0
+    assert res["gain"]["heldout_rmse_ratio_first"] < 1.0
     report = (tmp_path / "report.md").read_text()
     assert f"block {unt[0]['block']} (rows {unt[0]['rows'][0]}..{unt[0]['rows'][1]})" in report
 

@@ -33,7 +33,7 @@ def calibrate(pb: Problem) -> tuple[Problem, Baseline]:
     """Nuisance-only fit in two passes (noise from the measured data, then from the baseline
     residuals), its residual description and held-out residuals."""
     bspace = pb.space([])
-    base = pb.fit(bspace, np.zeros(bspace.k + len(pb.nuisance.names)))
+    base = pb.fit(bspace, np.zeros(bspace.lo.size))
     spiked = drop_spikes(pb, base.pred)
     if spiked is not pb:
         pb = spiked
@@ -87,6 +87,7 @@ def baseline_noise(pb: Problem, pred: dict) -> Noise:
         s, source[c] = data_sigma(pb, c, pb.measured[c] - pred[c])
         floor = ROUND_OFF * max(np.nanmax(np.abs(pb.measured[c])), 1e-300)
         sigma[c] = sigma_w[c] = max(s, floor)
+        rho[c] = 0.0
         ar1 = noise_ar1(pb, c, pred[c], floor)
         if ar1 is not None:
             rho[c], sigma_w[c], sigma[c] = ar1

@@ -1,13 +1,14 @@
 """What a candidate is: one effect tried as the cause, and everything the phases learn about it.
 
-The screening phase fills the identifiability and the sensitivity, the fit phase the fitted
-parameters and the likelihood-ratio statistics, the held-out phase the out-of-sample numbers, the
-decision its status and reason. `to_json` gives the candidate's entry of `diagnosis.json` (keys of
+A `Candidate` is immutable: the screening phase makes it (identifiability, sensitivity), the fit
+phase returns a copy with the fitted parameters and the likelihood-ratio statistics
+(`dataclasses.replace`), the held-out phase one with the out-of-sample numbers and its status,
+the decision's notes are added when the result is assembled. `to_json` gives the candidate's entry of `diagnosis.json` (keys of
 docs/cli.md first; a field never set is left out); the working arrays never reach the file.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field, fields, replace
 
 import numpy as np
 
@@ -17,7 +18,7 @@ ALWAYS = ("effect", "parameters", "delta_bic", "heldout_rmse", "status", "reason
 WORKING = ("sensitivity", "profile_fixed", "profile_grid")
 
 
-@dataclass
+@dataclass(frozen=True)
 class HeldoutGain:
     """Paired block bootstrap of the held-out RMSE difference, baseline (or listed form) minus
     candidate, in noise units: the point value, the (q, 1 - q) interval, the blocks where the
@@ -29,7 +30,7 @@ class HeldoutGain:
     excludes_zero: bool
 
 
-@dataclass
+@dataclass(frozen=True)
 class Candidate:
     effect: str
     parameters: dict = field(default_factory=dict)          # fitted values (effect units)
@@ -59,8 +60,9 @@ class Candidate:
     profile_fixed: dict | None = None
     profile_grid: dict | None = None
 
-    def set_status(self, status: str, reason: str) -> None:
-        self.status, self.reason = status, reason
+    def with_status(self, status: str, reason: str) -> "Candidate":
+        """A copy with this status and reason."""
+        return replace(self, status=status, reason=reason)
 
     @property
     def fitted(self) -> bool:

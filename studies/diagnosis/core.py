@@ -123,7 +123,10 @@ class CachedModel:
 
 @dataclass
 class Space:
-    """Fitted parameters in scaled coordinates u: value = origin + scale * u."""
+    """Fitted parameters in scaled coordinates u: value = origin + scale * u. The candidate's
+    effect parameters (`eff_params`, `k` of them) come first, then the parameters of causes
+    already accepted (`base_params`, refitted with every model like the nuisance), then the
+    nuisance: everything after the first `k` is "the baseline's" part of u."""
     eff_params: list[tuple[str, str]]          # (effect name, parameter)
     fixed: dict[str, dict[str, float]]        # effect -> all its parameters at their fixed values
     nuis: list[str]
@@ -131,15 +134,17 @@ class Space:
     scale: np.ndarray
     lo: np.ndarray
     hi: np.ndarray
+    base_params: list[tuple[str, str]] = dataclasses.field(default_factory=list)
 
     def unpack(self, u) -> tuple[dict, dict]:
         v = self.origin + self.scale * np.asarray(u, float)
         v = np.clip(v, self.lo * self.scale + self.origin, self.hi * self.scale + self.origin)
         effects = {e: dict(p) for e, p in self.fixed.items()}
         k = len(self.eff_params)
-        for (e, p), x in zip(self.eff_params, v[:k]):
+        kb = k + len(self.base_params)
+        for (e, p), x in zip(self.eff_params + self.base_params, v[:kb]):
             effects[e][p] = float(x)
-        nuis = {n: float(x) for n, x in zip(self.nuis, v[k:])}
+        nuis = {n: float(x) for n, x in zip(self.nuis, v[kb:])}
         return effects, nuis
 
     def values(self, u) -> np.ndarray:
@@ -256,9 +261,11 @@ class JointFit:
                 if getattr(self, f.name) is not None}
 
 
-@dataclass
+@dataclass(frozen=True)
 class Decision:
-    """Phase 5: the verdict."""
+    """Phase 5: the verdict. `goodness`: the best candidate's goodness of fit
+    (`studies.diagnosis.goodness.GoodnessOfFit`, None when nothing passes); `beaten`: a note
+    for the reason of each passing candidate the best clearly beats."""
     verdict: str
     cause: str | None
     best: str | None
@@ -266,3 +273,5 @@ class Decision:
     best_residuals: Residuals | None
     joint_fits: dict[str, JointFit]
     reasons: list[str]
+    goodness: object | None = None
+    beaten: dict[str, str] = dataclasses.field(default_factory=dict)

@@ -5,11 +5,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Mapping
 
 import numpy as np
 
 from studies.diagnosis import fitspec
-from studies.diagnosis.core import Baseline, Decision, Fit, JointFit, ModelFailure, Screening
+from studies.diagnosis.candidate import Candidate
+from studies.diagnosis.core import Baseline, Decision, Fit, JointFit, ModelFailure
+from studies.diagnosis.goodness import goodness
 from studies.diagnosis.problem import Problem
 from studies.diagnosis.stats import ar1_whiten, chibar_pvalue
 
@@ -19,24 +22,26 @@ from studies.diagnosis.stats import ar1_whiten, chibar_pvalue
 SENSOR_DRIFT = "unlisted: sensor zero drift linear in time"
 
 
-def decide(pb: Problem, s: Screening, fits: dict[str, Fit], passing: list[str],
-           b: Baseline) -> Decision:
+def decide(pb: Problem, cands: Mapping[str, Candidate], fits: dict[str, Fit],
+           passing: list[str], b: Baseline, ho: Mapping[str, np.ndarray]) -> Decision:
     """Phase 5: the verdict (module docstring of `studies.diagnosis.engine`, step 5). The
-    passing candidates beaten by the best get a note in their reason."""
-    cands = s.candidates
+    passing candidates beaten by the best get a note (`Decision.beaten`) for their reason.
+
+    The best passing candidate (lowest BIC) is compared with its rivals (joint fits) and with
+    the unlisted sensor drift; then its goodness of fit (`goodness.goodness`): `explained`
+    when it carries the weight and leaves no structure, `explained_partly` when it carries the
+    weight but leaves structure, `ambiguous` when rivals fit as well (`unexplained` when they
+    also leave structure), `unexplained` when it does not beat the drift."""
     if not passing:
         return _nothing_passes(b)
     best = min(passing, key=lambda n: cands[n].delta_bic)
-    best_desc = pb.describe(fits[best].pred, len(pb.nuisance.names) + cands[best].k)
-    if best_desc.p_min_adjusted < pb.th["alpha_residual"]:
-        return Decision("unexplained", None, best, [], best_desc, {}, [
-            f"the best candidate, {best}, passes but leaves structure in the "
-            f"residuals (adjusted p = {best_desc.p_min_adjusted:.2g})"])
+    n_par = len(pb.nuisance.names) + cands[best].k
+    best_desc = pb.describe(fits[best].pred, n_par)
+    gof = goodness(pb, fits[best], ho[best], n_par, best_desc)
     rivals, joint = compare(pb, best, fits, cands, list(fits))
-    for o in passing:
-        if o != best and o not in rivals:
-            cands[o].reason += (f"; but clearly beaten by {best} (chi-square "
-                                f"{fits[o].chi2 - fits[best].chi2:+.1f})")
+    beaten = {o: (f"; but clearly beaten by {best} (chi-square "
+                  f"{fits[o].chi2 - fits[best].chi2:+.1f})")
+              for o in passing if o != best and o not in rivals}
     drift = versus_sensor_drift(pb, fits[best], _df(cands[best]), b)
     if drift is not None:
         joint[SENSOR_DRIFT] = drift
@@ -49,13 +54,22 @@ def decide(pb: Problem, s: Screening, fits: dict[str, Fit], passing: list[str],
             f"{a:g}; adding the drift to {best}: p = "
             f"{drift.p_add_other_to_best:.2g}, needs >= {a:g}); "
             "a test at other speeds or a repeat of the programme separates a drift "
-            "in time from the effect"])
+            "in time from the effect"], gof, beaten)
+    left = "; ".join(x.text for x in gof.left)
+    if rivals and gof.leaves_structure:
+        return Decision("unexplained", None, best, rivals, best_desc, joint, [
+            f"the best candidate, {best}, passes but leaves structure ({left}) and "
+            f"{', '.join(rivals)} fit about as well"], gof, beaten)
     if rivals:
         return Decision("ambiguous", best, best, rivals, best_desc, joint, [
-            f"{best} and {', '.join(rivals)} explain the data about equally well"])
+            f"{best} and {', '.join(rivals)} explain the data about equally well"], gof, beaten)
+    if gof.leaves_structure:
+        return Decision("explained_partly", best, best, rivals, best_desc, joint, [
+            f"{best} beats the baseline on held-out blocks and clearly beats every other "
+            f"candidate, but leaves structure: {left}"], gof, beaten)
     return Decision("explained", best, best, rivals, best_desc, joint, [
         f"{best} beats the baseline on held-out blocks and clearly beats every other "
-        "candidate"])
+        "candidate"], gof, beaten)
 
 
 def _nothing_passes(b: Baseline) -> Decision:

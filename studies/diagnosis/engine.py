@@ -58,7 +58,7 @@ structure behind).
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Callable, Mapping, Sequence
 
 import numpy as np
@@ -72,9 +72,10 @@ from studies.diagnosis.generalised import ChosenForm, generalise
 from studies.diagnosis.heldout import validate
 from studies.diagnosis.openworld import characterise
 from studies.diagnosis.problem import Problem, make_problem
-from studies.diagnosis.result import (BestPartial, Cost, DiagnosisResult, ModelRmse, NuisanceFit,
-                                      to_json)
+from studies.diagnosis.result import (BestPartial, ColumnEvidence, Cost, DiagnosisResult,
+                                      ModelRmse, NuisanceFit, to_json)
 from studies.diagnosis.screening import screen
+from studies.diagnosis.selection import Selection, select
 
 
 @dataclass
@@ -99,92 +100,151 @@ class _Clock:
                     self.pb.model.seconds, out)
 
 
-def run(pb: Problem, seed: int = 0, t0: float | None = None) -> DiagnosisResult:
-    """The diagnosis in its phases (module docstring), each a function of the problem and the
-    typed results before it. `seed`: the bootstrap's random numbers (phase 4, 5b); `t0`: the
-    clock's start (default now)."""
-    clock = _Clock(pb) if t0 is None else _Clock(pb, t0)
-    rng = np.random.default_rng(seed)
+@dataclass(frozen=True)
+class Pass:
+    """One pass of phases 1-5b on a problem (the first on the data as given; later ones with
+    the causes accepted so far in the baseline): the calibrated problem and every phase's
+    result."""
+    pb: Problem
+    baseline: Baseline
+    screening: Screening
+    fits: dict[str, Fit]
+    candidates: dict[str, Candidate]
+    heldout: dict[str, np.ndarray]
+    passing: list[str]
+    decision: Decision
+    forms: list
+    chosen: ChosenForm | None
+
+
+def one_pass(pb: Problem, rng: np.random.Generator, clock: "_Clock", tag: str = "") -> Pass:
+    """Phases 1-5b (module docstring) on `pb`; `tag` suffixes the clock's phase labels."""
     pb, b = calibrate(pb)
     clock.pb = pb
-    clock.phase("baseline")
+    clock.phase("baseline" + tag)
     s = screen(pb, b)
-    clock.phase("sensitivities")
-    fits = fit_all(pb, s, b)
-    clock.phase("fits")
-    ho, passing = validate(pb, s, fits, b, rng)
-    clock.phase("heldout")
-    d = decide(pb, s, fits, passing, b)
-    clock.phase("compare")
-    g = generalise(pb, s, fits, ho, b, d, rng)
-    d, forms, chosen = g.decision, g.forms, g.chosen
-    clock.phase("generalised")
-    sep = (separating(pb, d.best, d.rivals, fits, b.fit) if d.verdict == "ambiguous"
-           else Separation(None, [], []))
+    clock.phase("sensitivities" + tag)
+    fits, cands = fit_all(pb, s, b)
+    clock.phase("fits" + tag)
+    ho, passing, cands = validate(pb, cands, fits, b, rng)
+    clock.phase("heldout" + tag)
+    d = decide(pb, cands, fits, passing, b, ho)
+    clock.phase("compare" + tag)
+    g = generalise(pb, cands, fits, ho, b, d, rng)
+    clock.phase("generalised" + tag)
+    return Pass(pb, b, s, fits, cands, ho, passing, g.decision, g.forms, g.chosen)
+
+
+def run(pb: Problem, seed: int = 0, t0: float | None = None) -> DiagnosisResult:
+    """The diagnosis in its phases (module docstring), each a function of the problem and the
+    typed results before it, then the forward selection of further causes
+    (`studies.diagnosis.selection`). `seed`: the bootstrap's random numbers (phase 4, 5b);
+    `t0`: the clock's start (default now)."""
+    clock = _Clock(pb) if t0 is None else _Clock(pb, t0)
+    rng = np.random.default_rng(seed)
+    first = one_pass(pb, rng, clock)
+    d = first.decision
+    sep = (separating(first.pb, d.best, d.rivals, first.fits, first.baseline.fit)
+           if d.verdict == "ambiguous" else Separation(None, [], []))
     clock.phase("separating")
-    return assemble(pb, b, s, fits, ho, passing, d, forms, chosen, sep, clock.cost())
+    sel = select(first, lambda q, k: one_pass(q, rng, clock, f"_cause{k}"))
+    return assemble(first, sel, sep, clock.cost())
 
 
-def _cause_values(pb: Problem, s: Screening, d: Decision, chosen: ChosenForm | None
-                  ) -> tuple[dict, dict, dict | None]:
+def _cause_values(p: Pass) -> tuple[dict, dict, dict | None]:
     """The cause's parameters, their uncertainties and the nuisance refitted with it (None: no
     cause), from the generalised form when one explains the data."""
+    d, chosen, pb = p.decision, p.chosen, p.pb
     cause = d.cause
     if chosen:
         entry = chosen.entry
         own = pb.effect(cause).parameters
-        return ({p: v for p, v in entry.parameters.items() if p in own},
-                {p: v for p, v in entry.parameter_uncertainty.items() if p in own},
+        return ({q: v for q, v in entry.parameters.items() if q in own},
+                {q: v for q, v in entry.parameter_uncertainty.items() if q in own},
                 entry.nuisance)
     if cause:
-        c = s.candidates[cause]
+        c = p.candidates[cause]
         return dict(c.parameters), dict(c.uncertainty), c.nuisance
     return {}, {}, None
 
 
-def _extended(b: Baseline, fits: dict[str, Fit], ho: dict, cause: str | None,
-              chosen: ChosenForm | None) -> tuple[Fit, np.ndarray]:
+def _extended(p: Pass) -> tuple[Fit, np.ndarray]:
     """The extended model's fit and held-out residuals: the chosen generalised form's, else the
     cause's, else the baseline's."""
-    if chosen:
-        return chosen.fit, chosen.heldout_z
-    if cause:
-        return fits[cause], ho[cause]
-    return b.fit, b.heldout_z
+    if p.chosen:
+        return p.chosen.fit, p.chosen.heldout_z
+    if p.decision.cause:
+        return p.fits[p.decision.cause], p.heldout[p.decision.cause]
+    return p.baseline.fit, p.baseline.heldout_z
 
 
-def _ordered_candidates(s: Screening, passing: list[str]) -> list[Candidate]:
-    """Fitted candidates first (passing ones, then by delta BIC), then the others."""
-    cands = s.candidates
+def _ordered_candidates(p: Pass) -> list[Candidate]:
+    """Fitted candidates first (passing ones, then by delta BIC), then the others; a passing
+    candidate the best clearly beats with that note in its reason."""
+    cands = {n: (replace(c, reason=c.reason + p.decision.beaten[n])
+                 if n in p.decision.beaten else c) for n, c in p.candidates.items()}
     fitted = sorted((n for n in cands if cands[n].fitted),
-                    key=lambda n: (n not in passing, cands[n].delta_bic))
+                    key=lambda n: (n not in p.passing, cands[n].delta_bic))
     return [cands[n] for n in fitted + [n for n in cands if not cands[n].fitted]]
 
 
-def assemble(pb: Problem, b: Baseline, s: Screening, fits: dict[str, Fit], ho: dict,
-             passing: list[str], d: Decision, forms: list[dict], chosen: ChosenForm | None,
-             sep: Separation, cost: Cost) -> DiagnosisResult:
-    """The typed result of the phases."""
+def column_evidence(pb: Problem, base: ModelRmse, ext: ModelRmse, z_base: np.ndarray,
+                    z_ext: np.ndarray) -> dict[str, ColumnEvidence]:
+    """Per compared column: the baseline's misfit in noise units (RMS / sigma), the held-out
+    RMSE ratio and gain (noise units) of the extended model, and its share of the in-sample
+    chi-square drop (standardised residuals `z_base`, `z_ext` of the same problem)."""
+    drops = {}
+    for j, c in enumerate(pb.columns):
+        sel = pb.entry_col == j
+        drops[c] = float(z_base[sel] @ z_base[sel] - z_ext[sel] @ z_ext[sel])
+    total = sum(max(v, 0.0) for v in drops.values())
+    out = {}
+    for c in pb.columns:
+        s = pb.noise.sigma[c]
+        bh = base.heldout_rmse[c]
+        out[c] = ColumnEvidence(base.rmse[c] / s, ext.heldout_rmse[c] / bh if bh > 0 else 1.0,
+                                (bh - ext.heldout_rmse[c]) / s, drops[c],
+                                max(drops[c], 0.0) / total if total > 0 else 0.0)
+    return out
+
+
+def assemble(first: Pass, sel: Selection, sep: Separation, cost: Cost) -> DiagnosisResult:
+    """The typed result of the phases and the forward selection."""
+    pb, b, s, d = first.pb, first.baseline, first.screening, first.decision
     cause = d.cause
-    ext_fit, ext_ho = _extended(b, fits, ho, cause, chosen)
-    params, unc, nuis_ext = _cause_values(pb, s, d, chosen)
+    ext_fit, ext_ho = _extended(first)
+    params, unc, nuis_ext = _cause_values(first)
     base = ModelRmse(pb.col_rmse(b.fit.z), pb.col_rmse(b.heldout_z))
     ext = ModelRmse(pb.col_rmse(ext_fit.z), pb.col_rmse(ext_ho))
+    z_ext = ext_fit.z
+    if sel.rmse is not None:          # the joint model of every accepted cause
+        ext = ModelRmse(sel.rmse, sel.heldout_rmse)
+        params = dict(sel.causes[0].parameters)
+        z_ext = pb.zvec(sel.pred)
     c0 = pb.columns[0]
     ratio = ext.heldout_rmse[c0] / base.heldout_rmse[c0] if base.heldout_rmse[c0] > 0 else 1.0
+    ratios = {c: (ext.heldout_rmse[c] / base.heldout_rmse[c] if base.heldout_rmse[c] > 0
+                  else 1.0) for c in pb.columns}
+    evidence = column_evidence(pb, base, ext, b.fit.z, z_ext)
+    decisive = max(pb.columns, key=lambda c: evidence[c].baseline_misfit_sigma)
     nu = pb.nuisance
-    best_partial = (None if d.verdict != "unexplained" or d.best is None else
-                    BestPartial(d.best, s.candidates[d.best].parameters, d.best_residuals))
+    verdict = sel.verdict if sel.causes else d.verdict
+    reasons = list(d.reasons) + list(sel.reasons)
+    best_partial = (None if verdict != "unexplained" or d.best is None else
+                    BestPartial(d.best, first.candidates[d.best].parameters, d.best_residuals))
     open_world = (characterise({c: pb.measured[c] - b.fit.pred[c] for c in pb.columns},
                                pb.valid, pb.conditions, pb.blocks, pb.noise.sigma_w,
                                pb.noise.rho)
-                  if d.verdict == "unexplained" else None)
+                  if verdict == "unexplained" else None)
+    chosen = first.chosen
     return DiagnosisResult(
-        verdict=d.verdict, cause=cause, parameters=params, parameter_uncertainty=unc,
+        verdict=verdict, cause=cause, parameters=params, parameter_uncertainty=unc,
         indistinguishable=list(d.rivals), separating_test=sep.text, baseline=base, extended=ext,
-        heldout_rmse_ratio=float(ratio), candidates=_ordered_candidates(s, passing),
-        extended_form=chosen.entry if chosen else None, generalised_forms=list(forms),
-        reasons=list(d.reasons), columns=list(pb.columns), noise=pb.noise,
+        heldout_rmse_ratio=ratios, heldout_rmse_ratio_first=float(ratio),
+        decisive_column=decisive, evidence=evidence,
+        candidates=_ordered_candidates(first),
+        extended_form=chosen.entry if chosen else None, generalised_forms=list(first.forms),
+        reasons=reasons, columns=list(pb.columns), noise=pb.noise,
         nuisance=NuisanceFit(list(nu.names),
                              {n: (float(a), float(c)) for n, a, c in zip(nu.names, nu.lo, nu.hi)},
                              b.nuisance, nuis_ext if nuis_ext is not None else b.nuisance),
@@ -192,11 +252,14 @@ def assemble(pb: Problem, b: Baseline, s: Screening, fits: dict[str, Fit], ho: d
         baseline_structure=bool(b.structure), best_partial=best_partial, lookalike=s.lookalike,
         joint_fits=d.joint_fits, separating_tests=sep.items,
         heldout_blocks=pb.n_blocks,
-        heldout_untestable=list(s.candidates[cause].heldout_untestable or []) if cause else [],
+        heldout_untestable=(list(first.candidates[cause].heldout_untestable or [])
+                            if cause else []),
         thresholds=dict(pb.th), notes=list(pb.notes) + sep.notes, spikes=dict(pb.spikes),
         n_rows=pb.n, cost=cost, open_world=open_world,
-        baseline_pred=b.fit.pred, extended_pred=ext_fit.pred,
-        candidate_preds={n: f.pred for n, f in fits.items()})
+        causes=list(sel.causes), left=list(sel.left), at_bound=list(sel.at_bound),
+        goodness=sel.goodness, noise_final=sel.noise,
+        baseline_pred=b.fit.pred, extended_pred=sel.pred if sel.pred else ext_fit.pred,
+        candidate_preds={n: f.pred for n, f in first.fits.items()})
 
 
 # ============================================================================ public API

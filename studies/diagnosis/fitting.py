@@ -5,19 +5,23 @@ the baseline with the chi-bar-square null, Holm over the candidates, BIC (module
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 
 from studies.diagnosis import fitspec
+from studies.diagnosis.candidate import Candidate
 from studies.diagnosis.core import Baseline, Fit, Linearisation, ModelFailure, Screening
 from studies.diagnosis.problem import Problem
 from studies.diagnosis.stats import blsq, chibar_pvalue
 
 
-def fit_all(pb: Problem, s: Screening, b: Baseline) -> dict[str, Fit]:
-    """Fit the identifiable candidates (those whose fit fails leave `s.identifiable`)."""
+def fit_all(pb: Problem, s: Screening, b: Baseline
+            ) -> tuple[dict[str, Fit], dict[str, Candidate]]:
+    """Fit the identifiable candidates: their fits (those whose fit fails are left out) and
+    every candidate, the fitted ones with their fit's numbers (new records)."""
     th = pb.th
-    base, base_nuis, cands = b.fit, b.nuisance, s.candidates
+    base, cands = b.fit, dict(s.candidates)
     lnN = math.log(pb.N)
     fits: dict[str, Fit] = {}
 
@@ -26,11 +30,14 @@ def fit_all(pb: Problem, s: Screening, b: Baseline) -> dict[str, Fit]:
         e, info = pb.effect(name), cands[name]
         calls0 = pb.model.calls
         try:
-            f = (fit_profiled(pb, e, info, base, base_nuis) if fitspec.profile(e)
-                 else fit_candidate(pb, e, info, base))
+            if fitspec.profile(e):
+                f = fit_profiled(pb, e, info.profile_grid, base)
+                profile = profile_summary(f, e, info.profile_grid)
+            else:
+                f, profile = fit_candidate(pb, e, info, base), None
         except ModelFailure as exc:
             return None, None, str(exc), pb.model.calls - calls0
-        return f, info.profile, None, pb.model.calls - calls0
+        return f, profile, None, pb.model.calls - calls0
 
     # the candidates' fits are independent: on the engine's workers (profiled first: longest)
     names = list(s.identifiable)
@@ -40,30 +47,24 @@ def fit_all(pb: Problem, s: Screening, b: Baseline) -> dict[str, Fit]:
         e = pb.effect(name)
         info = cands[name]
         if failed is not None:
-            info.set_status("model_failed", f"fit failed: {failed}")
+            cands[name] = info.with_status("model_failed", f"fit failed: {failed}")
             continue
         fits[name] = f
-        info.profile = profile
-        info.predict_calls_fit = calls
         lr = max(base.chi2 - f.chi2, 0.0)
         r = info.rank
         n_two = sum(1 for p in pb.free_params(e) if e.sign(p) == 0)
         n_free = min(r, n_two) + len(fitspec.profile(e))
         n_bound = r - min(r, n_two)
         k_eff = r + len(fitspec.profile(e))
-        info.lr = lr
-        info.df = {"free": n_free, "on_bound": n_bound}
-        info.p_lr = chibar_pvalue(lr, n_free, n_bound)
-        info.delta_bic = -lr + k_eff * lnN
-        info.k = k_eff
         eff_vals, nuis_vals = f.space.unpack(f.u)
-        info.parameters = {p: eff_vals[name][p] for p in e.parameters}
         held = list(fitspec.held_fixed(e, pb.conditions))
-        if held:
-            info.held_at_off = {p: e.off[p] for p in held}
-        info.nuisance = nuis_vals
-        info.uncertainty = uncertainty(pb, f, e)
-        info.rmse = pb.col_rmse(f.z)
+        cands[name] = replace(
+            info, profile=profile, predict_calls_fit=calls, lr=lr,
+            df={"free": n_free, "on_bound": n_bound}, p_lr=chibar_pvalue(lr, n_free, n_bound),
+            delta_bic=-lr + k_eff * lnN, k=k_eff,
+            parameters={p: eff_vals[name][p] for p in e.parameters},
+            held_at_off={p: e.off[p] for p in held} if held else None,
+            nuisance=nuis_vals, uncertainty=uncertainty(pb, f, e), rmse=pb.col_rmse(f.z))
     # Holm over the identifiable candidates
     order = sorted(fits, key=lambda n: cands[n].p_lr)
     m = len(order)
@@ -71,9 +72,8 @@ def fit_all(pb: Problem, s: Screening, b: Baseline) -> dict[str, Fit]:
     for j, name in enumerate(order):
         ok = still and cands[name].p_lr <= th["alpha_lr"] / (m - j)
         still = ok
-        cands[name].lr_significant = bool(ok)
-
-    return fits
+        cands[name] = replace(cands[name], lr_significant=bool(ok))
+    return fits, cands
 
 def _start_points(pb: Problem, e, info, base: Fit, space) -> list[np.ndarray]:
     """Starting points of a candidate's fit (scaled coordinates): the Gauss-Newton step from off
@@ -201,11 +201,12 @@ def _bisection(lins: dict[int, Linearisation | None]) -> list[int]:
     return [m for m in mids if m not in lins]
 
 
-def fit_profiled(pb: Problem, e, info, base: Fit, base_nuis) -> Fit:
-    """Profile the `profile` parameter (one) over its grid with a linearised inner fit, then
-    refine the best value with a full bounded least-squares fit."""
+def fit_profiled(pb: Problem, e, profile_grid: dict, base: Fit) -> Fit:
+    """Profile the `profile` parameter (one) over its grid (`profile_grid`: {parameter:
+    values}) with a linearised inner fit, then refine the best value with a full bounded
+    least-squares fit."""
     (pp,) = fitspec.profile(e)
-    values = list(info.profile_grid[pp])
+    values = list(profile_grid[pp])
 
     def lin(value):
         return _linearised(pb, e, pp, value, base)
@@ -223,17 +224,20 @@ def fit_profiled(pb: Problem, e, info, base: Fit, base_nuis) -> Fit:
         except ModelFailure:
             continue
         if best is None or f.chi2 < best.chi2:
-            best = f
-            best.profile_value = g.value
+            best = replace(f, profile_value=g.value)
     if best is None:
         raise ModelFailure(f"the fits at the best values of {pp} fail")
     # profile interval: values whose linearised chi-square is within 1 of the best
     sse_min = min(g.sse for g in grid_lin)
     near = [g.value for g in grid_lin if g.sse <= sse_min + 1.0]
-    best.grid, best.interval = grid_lin, [min(near), max(near)]
-    info.profile = {pp: {"grid_size": len(values), "evaluated": len(grid_lin),
-                         "interval_chi2_1": [min(near), max(near)]}}
-    return best
+    return replace(best, grid=grid_lin, interval=[min(near), max(near)])
+
+
+def profile_summary(f: Fit, e, profile_grid: dict) -> dict:
+    """The profiled parameter's grid size, values evaluated and chi-square-1 interval."""
+    (pp,) = fitspec.profile(e)
+    return {pp: {"grid_size": len(profile_grid[pp]), "evaluated": len(f.grid),
+                 "interval_chi2_1": list(f.interval)}}
 
 
 def uncertainty(pb: Problem, f: Fit, e) -> dict:

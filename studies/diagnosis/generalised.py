@@ -25,13 +25,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields
-from types import SimpleNamespace
+from typing import Mapping
 
 import numpy as np
 
 from studies.diagnosis import fitspec
-from studies.diagnosis.candidate import HeldoutGain
-from studies.diagnosis.core import Baseline, Decision, Fit, ModelFailure, Residuals, Screening
+from studies.diagnosis.candidate import Candidate, HeldoutGain
+from studies.diagnosis.core import Baseline, Decision, Fit, ModelFailure, Residuals
+from studies.diagnosis.goodness import GoodnessOfFit, goodness
 from studies.diagnosis.fitting import fit_profiled, uncertainty
 from studies.diagnosis.heldout import bootstrap_gain, heldout_linear
 from studies.diagnosis.problem import Problem
@@ -85,10 +86,12 @@ class FormEntry:
 
 @dataclass
 class ChosenForm:
-    """The generalised form that explains the data: its fit, held-out residuals and entry."""
+    """The generalised form that explains the data: its fit, held-out residuals, entry and the
+    form's effect object."""
     fit: Fit
     heldout_z: np.ndarray
     entry: FormEntry
+    form: object = None
 
 
 @dataclass
@@ -99,23 +102,23 @@ class Generalisation:
     chosen: ChosenForm | None
 
 
-def _families(pb: Problem, s: Screening, fits: dict[str, Fit], d: Decision) -> list[str]:
+def _families(cands: Mapping[str, Candidate], fits: dict[str, Fit], d: Decision) -> list[str]:
     """Listed families whose forms are tried: the cause's own (explained), else the fitted
     candidates better than the baseline (delta BIC < 0, significant), best first."""
-    cands = s.candidates
     if d.verdict == "explained":        # the listed cause's own forms, nested in it
         return [d.cause] if forms_of(d.cause) else []
     return [n for n in sorted(fits, key=lambda n: cands[n].delta_bic)
             if forms_of(n) and cands[n].delta_bic < 0 and cands[n].lr_significant]
 
 
-def generalise(pb: Problem, s: Screening, fits: dict[str, Fit], ho: dict, b: Baseline,
-               d: Decision, rng: np.random.Generator) -> Generalisation:
-    """Try the generalised forms (module docstring)."""
-    if not pb.try_generalised or d.verdict not in ("unexplained", "explained"):
+def generalise(pb: Problem, cands: Mapping[str, Candidate], fits: dict[str, Fit], ho: dict,
+               b: Baseline, d: Decision, rng: np.random.Generator) -> Generalisation:
+    """Try the generalised forms (module docstring; `explained_partly` as `unexplained`: the
+    forms of the two best families)."""
+    if not pb.try_generalised or d.verdict not in ("unexplained", "explained",
+                                                    "explained_partly"):
         return Generalisation(d, [], None)
-    cands = s.candidates
-    tried = [(fam, f) for fam in _families(pb, s, fits, d)[:MAX_FAMILIES] for f in forms_of(fam)
+    tried = [(fam, f) for fam in _families(cands, fits, d)[:MAX_FAMILIES] for f in forms_of(fam)
              if f.applicable(pb.conditions) is None]
     entries, ok = [], []
     for fam, form in tried:
@@ -123,25 +126,25 @@ def generalise(pb: Problem, s: Screening, fits: dict[str, Fit], ho: dict, b: Bas
         form = form.with_bounds(**{p: listed.bounds[p] for p in form.parameters
                                    if p in listed.bounds})
         try:
-            entry, f_ext, ho_ext = fit_form(pb, form, fits[fam], ho[fam], cands[fam], b,
+            entry, f_ext, ho_ext, gof = fit_form(pb, form, fits[fam], ho[fam], cands[fam], b,
                                             len(tried), rng)
         except ModelFailure as exc:
             entries.append(FormEntry(fam, form.form, form.name, "model_failed", str(exc)))
             continue
         entries.append(entry)
         if entry.status == "explains":
-            ok.append((f_ext.chi2, entry, f_ext, ho_ext))
+            ok.append((f_ext.chi2, entry, f_ext, ho_ext, gof))
     if not ok:
         return Generalisation(d, entries, None)
     ok.sort(key=lambda t: t[0])
-    _, entry, f_ext, ho_ext = ok[0]
+    _, entry, f_ext, ho_ext, gof = ok[0]
     reasons = list(d.reasons) + [
         f"the generalised form {entry.text} beats the listed form {entry.effect} in "
         f"sample (p = {entry.p_vs_listed:.2g}) and on held-out blocks and leaves no "
         "structure"]
     new = Decision("explained", entry.effect, entry.effect, [], entry.residuals,
-                   d.joint_fits, reasons)
-    return Generalisation(new, entries, ChosenForm(f_ext, ho_ext, entry))
+                   d.joint_fits, reasons, gof, d.beaten)
+    return Generalisation(new, entries, ChosenForm(f_ext, ho_ext, entry, form))
 
 
 def _scored_starts(pb: Problem, form, space, vals_listed: dict, f_listed: Fit) -> list[tuple]:
@@ -191,8 +194,7 @@ def _best_local_fit(pb: Problem, form, space, scored: list[tuple], f_listed: Fit
         when the model fails."""
         try:
             if u is None:
-                return fit_profiled(pb, form, SimpleNamespace(profile_grid=cand.profile_grid),
-                                    b.fit, b.nuisance)
+                return fit_profiled(pb, form, cand.profile_grid, b.fit)
             return pb.fit(space, u)
         except ModelFailure:
             return None
@@ -219,8 +221,8 @@ def _lowest(fits: list[Fit | None]) -> Fit | None:
 
 
 def _form_status(th, m: int, p_adj: float, dbic: float, g_listed: HeldoutGain,
-                 g_base: HeldoutGain,
-                 desc: Residuals) -> tuple[str, list[str]]:
+                 g_base: HeldoutGain, desc: Residuals,
+                 gof: GoodnessOfFit) -> tuple[str, list[str]]:
     """explains | passes_but_leaves_structure | rejected, and why (module docstring, 2-4)."""
     reasons = []
     if not p_adj < th["alpha_lr"]:
@@ -233,17 +235,18 @@ def _form_status(th, m: int, p_adj: float, dbic: float, g_listed: HeldoutGain,
                        f"[{g_listed.ci[0]:.3g}, {g_listed.ci[1]:.3g}] includes 0)")
     if not g_base.excludes_zero:
         reasons.append("no held-out gain over the baseline")
-    if not reasons and desc.p_min_adjusted < th["alpha_residual"]:
+    if not reasons and gof.leaves_structure:
         reasons.append("beats the listed form but leaves structure (adjusted p = "
-                       f"{desc.p_min_adjusted:.2g})")
+                       f"{min(desc.p_min_adjusted, gof.p_adjusted):.2g})")
         return "passes_but_leaves_structure", reasons
     return ("rejected" if reasons else "explains"), reasons
 
 
 def fit_form(pb: Problem, form, f_listed: Fit, ho_listed: np.ndarray, cand, b: Baseline,
-             m: int, rng: np.random.Generator) -> tuple[FormEntry, Fit, np.ndarray]:
+             m: int, rng: np.random.Generator
+             ) -> tuple[FormEntry, Fit, np.ndarray, GoodnessOfFit]:
     """Nested fit of one generalised form from the listed fit and its tests (module
-    docstring, steps 1-4). Returns (entry, fit, held-out residuals)."""
+    docstring, steps 1-4). Returns (entry, fit, held-out residuals, goodness of fit)."""
     vals_listed = dict(cand.parameters)
     space = pb.space([form], {form.name: {p: vals_listed[p] for p in fitspec.profile(form)}})
     scored = _scored_starts(pb, form, space, vals_listed, f_listed)
@@ -258,8 +261,10 @@ def fit_form(pb: Problem, form, f_listed: Fit, ho_listed: np.ndarray, cand, b: B
     ho_ext = heldout_linear(pb, f_ext)
     g_listed = bootstrap_gain(pb, rng, ho_listed, ho_ext)
     g_base = bootstrap_gain(pb, rng, b.heldout_z, ho_ext)
-    desc = pb.describe(f_ext.pred, len(pb.nuisance.names) + (cand.k or 0) + len(form.extra))
-    status, reasons = _form_status(pb.th, m, p_adj, dbic, g_listed, g_base, desc)
+    n_par = len(pb.nuisance.names) + (cand.k or 0) + len(form.extra)
+    desc = pb.describe(f_ext.pred, n_par)
+    gof = goodness(pb, f_ext, ho_ext, n_par, desc)
+    status, reasons = _form_status(pb.th, m, p_adj, dbic, g_listed, g_base, desc, gof)
     reason = ("; ".join(reasons) if reasons else
               "beats the listed form in sample and on held-out blocks, no structure left")
     profiled = ({q: {"value": params[q], "listed_fit": vals_listed[q]}
@@ -274,4 +279,4 @@ def fit_form(pb: Problem, form, f_listed: Fit, ho_listed: np.ndarray, cand, b: B
         delta_bic_vs_listed=dbic, heldout_gain_vs_listed=g_listed,
         heldout_gain_vs_baseline=g_base, heldout_rmse=pb.col_rmse(ho_ext),
         rmse=pb.col_rmse(f_ext.z), residuals=desc, profiled=profiled)
-    return entry, f_ext, ho_ext
+    return entry, f_ext, ho_ext, gof

@@ -16,11 +16,13 @@ selection, Statistics Surveys 4, on dependent data and blocks)."""
 from __future__ import annotations
 
 import math
+from dataclasses import replace
+from typing import Mapping
 
 import numpy as np
 
 from studies.diagnosis import fitspec
-from studies.diagnosis.candidate import HeldoutGain
+from studies.diagnosis.candidate import Candidate, HeldoutGain
 from studies.diagnosis.core import Baseline, Fit, Linearisation, ModelFailure, Screening
 from studies.diagnosis.problem import Problem
 from studies.diagnosis.stats import blsq
@@ -49,11 +51,15 @@ def _lin_sse(J, z, lo, hi) -> tuple[float, np.ndarray]:
 MIN_TESTABLE_BLOCKS = 3
 
 
-def validate(pb: Problem, s: Screening, fits: dict[str, Fit], b: Baseline,
-             rng: np.random.Generator):
-    """Held-out residuals per candidate and the names of the candidates that pass."""
+def validate(pb: Problem, cands: Mapping[str, Candidate], fits: dict[str, Fit], b: Baseline,
+             rng: np.random.Generator
+             ) -> tuple[dict[str, np.ndarray], list[str], dict[str, Candidate]]:
+    """Held-out residuals per fitted candidate, the names of the candidates that pass, and
+    every candidate (the fitted ones with their held-out numbers, status and reason: new
+    records)."""
     th = pb.th
-    base_ho, cands, names_id = b.heldout_z, s.candidates, list(fits)
+    base_ho, names_id = b.heldout_z, list(fits)
+    cands = dict(cands)
     ho = {}
 
     def refit(name):
@@ -72,45 +78,51 @@ def validate(pb: Problem, s: Screening, fits: dict[str, Fit], b: Baseline,
     names = list(names_id)
     done = pb.parallel(refit, names,
                          first=[i for i, n in enumerate(names) if fitspec.profile(pb.effect(n))])
+    passing = []
     for name, (z_ho, chosen, untestable, failed) in zip(names, done):
         e = pb.effect(name)
+        new = {}
         if failed is not None:
             # no honest held-out number: the candidate cannot pass
-            cands[name].heldout_failed = failed
+            new["heldout_failed"] = failed
             ho[name] = base_ho.copy()
         else:
             ho[name] = z_ho
             if fitspec.profile(e):
-                cands[name].heldout_profile_values = chosen
-                cands[name].heldout_untestable = [
+                new["heldout_profile_values"] = chosen
+                new["heldout_untestable"] = [
                     {"block": int(bk) + 1, "rows": pb.block_rows(bk), "reason": why}
                     for bk, why in sorted(untestable.items())]
-        cands[name].heldout_rmse = pb.col_rmse(ho[name])
         keep = np.ones(pb.n_blocks, bool)
         keep[list(untestable)] = False
-        cands[name].heldout_gain = bootstrap_gain(pb, rng, base_ho, ho[name], keep)
-    passing = []
-    for name in names_id:
-        c = cands[name]
-        reasons = []
-        if not c.lr_significant:
-            reasons.append(f"likelihood ratio not significant (p = {c.p_lr:.2g}, Holm)")
-        if not c.delta_bic < -th["bic_margin"]:
-            reasons.append(f"BIC not better than the baseline (delta {c.delta_bic:.1f})")
-        need = min(MIN_TESTABLE_BLOCKS, pb.n_blocks)
-        g = c.heldout_gain
-        if g.n_blocks < need:
-            reasons.append(f"only {g.n_blocks} held-out blocks can test it (need {need})")
-        elif not g.excludes_zero:
-            reasons.append("no held-out gain beyond noise (bootstrap interval "
-                           f"[{g.ci[0]:.3g}, {g.ci[1]:.3g}] includes 0)")
-        c.status = "passed" if not reasons else "rejected"
-        c.reason = "; ".join(reasons) if reasons else "beats the baseline in sample and " \
-                                                         "on held-out blocks"
-        if not reasons:
-            passing.append(name)
+        c = replace(cands[name], heldout_rmse=pb.col_rmse(ho[name]),
+                    heldout_gain=bootstrap_gain(pb, rng, base_ho, ho[name], keep), **new)
+        reasons = _rejections(pb, c, e)
+        cands[name] = c.with_status(
+            "passed" if not reasons else "rejected",
+            "; ".join(reasons) if reasons else "beats the baseline in sample and on held-out "
+                                               "blocks")
+    passing = [n for n in names_id if cands[n].status == "passed"]
+    return ho, passing, cands
 
-    return ho, passing
+
+def _rejections(pb: Problem, c: Candidate, e) -> list[str]:
+    """Why a fitted candidate with its held-out gain does not pass (empty: it passes)."""
+    th = pb.th
+    reasons = []
+    if not c.lr_significant:
+        reasons.append(f"likelihood ratio not significant (p = {c.p_lr:.2g}, Holm)")
+    if not c.delta_bic < -th["bic_margin"]:
+        reasons.append(f"BIC not better than the baseline (delta {c.delta_bic:.1f})")
+    need = min(MIN_TESTABLE_BLOCKS, pb.n_blocks)
+    g = c.heldout_gain
+    if g.n_blocks < need:
+        reasons.append(f"only {g.n_blocks} held-out blocks can test it (need {need})")
+    elif not g.excludes_zero:
+        reasons.append("no held-out gain beyond noise (bootstrap interval "
+                       f"[{g.ci[0]:.3g}, {g.ci[1]:.3g}] includes 0)")
+    return reasons
+
 
 def heldout_linear(pb: Problem, fit: Fit) -> np.ndarray:
     """Held-out standardised residual per stacked entry: per fold, one bounded Gauss-Newton

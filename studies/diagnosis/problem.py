@@ -75,6 +75,16 @@ class Noise:
         return self.source[c] + (f", AR(1) rho {self.rho[c]:.2f}" if self.rho[c] else "")
 
 
+@dataclass(frozen=True)
+class Accepted:
+    """A cause accepted by an earlier step of the forward selection: its effect object (a
+    listed effect or a generalised form), all its parameters at their accepted values, and the
+    ones refitted in later models (the profiled ones stay at their accepted value)."""
+    effect: object
+    values: Mapping[str, float]
+    free: tuple[str, ...]
+
+
 @dataclass(frozen=True, eq=False)
 class Problem:
     """One diagnosis's data and model (module docstring). Arrays are never modified."""
@@ -94,6 +104,9 @@ class Problem:
     try_generalised: bool = True
     spikes: Mapping[str, list[int]] = field(default_factory=dict)
     notes: tuple[str, ...] = ()
+    #: causes already accepted (forward selection, `studies.diagnosis.selection`): in every
+    #: model, their free parameters refitted with the nuisance from their accepted values
+    base: tuple["Accepted", ...] = ()
 
     # ------------------------------------------------------------------ layout
     @property
@@ -204,13 +217,24 @@ class Problem:
                 eff_params.append((e.name, p))
                 origin.append(e.off[p]), scale.append(s)
                 lo.append((e.bounds[p][0] - e.off[p]) / s), hi.append((e.bounds[p][1] - e.off[p]) / s)
+        base_params = []
+        for a in self.base:
+            fx[a.effect.name] = dict(a.values)
+            steps = fitspec.steps(a.effect, self.conditions)
+            for p in a.free:
+                s = float(steps.get(p, a.effect.scale[p]))
+                b_lo, b_hi = a.effect.bounds[p]
+                base_params.append((a.effect.name, p))
+                origin.append(a.values[p]), scale.append(s)
+                lo.append((b_lo - a.values[p]) / s), hi.append((b_hi - a.values[p]) / s)
         nu = self.nuisance
         origin += list(nu.x0)
         scale += list(nu.scale)
         lo += list((nu.lo - nu.x0) / nu.scale)
         hi += list((nu.hi - nu.x0) / nu.scale)
         return Space(eff_params, fx, list(nu.names), np.array(origin, float),
-                     np.array(scale, float), np.array(lo, float), np.array(hi, float))
+                     np.array(scale, float), np.array(lo, float), np.array(hi, float),
+                     base_params)
 
     def eval(self, space: Space, u) -> tuple[np.ndarray, dict]:
         """Standardised residuals and predictions at u (clipped to the bounds)."""

@@ -183,7 +183,14 @@ def _headline(r: DiagnosisResult) -> list[str]:
     headline = {
         "no_discrepancy": "**No discrepancy**: the baseline residuals are consistent with the "
                           "noise level estimated from the data.",
-        "explained": f"**Explained** by `{r.cause}`.",
+        "explained": f"**Explained** by `{r.cause}`."
+                     + (" Further causes: " + ", ".join(f"`{c.effect}`" for c in r.causes[1:])
+                        + "." if len(r.causes) > 1 else ""),
+        "explained_partly": f"**Explained in part** by `{r.cause}`"
+                            + (" and " + ", ".join(f"`{c.effect}`" for c in r.causes[1:])
+                               if len(r.causes) > 1 else "")
+                            + ": it carries weight, but the extended model leaves structure "
+                              "(below).",
         "ambiguous": f"**Ambiguous**: `{r.cause}` and "
                      + ", ".join(f"`{x}`" for x in r.indistinguishable)
                      + " explain the data about equally well.",
@@ -216,22 +223,58 @@ def _cause_section(r: DiagnosisResult) -> list[str]:
 
 
 def _gain_section(r: DiagnosisResult) -> list[str]:
-    c0 = r.columns[0]
-    L = ["## Gain on held-out data\n",
-         f"Held-out RMSE ratio (extended / baseline, `{c0}`): "
-         f"**{_fmt(r.heldout_rmse_ratio)}**.\n",
+    L = ["## Gain on held-out data, per column\n",
+         "Held-out RMSE ratio (extended / baseline): "
+         + ", ".join(f"`{c}` **{_fmt(v)}**" for c, v in r.heldout_rmse_ratio.items())
+         + f"; decisive column (largest baseline misfit in noise units): "
+           f"`{r.decisive_column}`.\n",
          "| column | noise sigma (est.) | baseline RMSE | baseline held-out | extended RMSE | "
-         "extended held-out |", "| --- | --- | --- | --- | --- | --- |"]
+         "extended held-out | baseline misfit (sigma) | held-out ratio | held-out gain (sigma) "
+         "| chi² drop (share) |", "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
     for c in r.columns:
+        ev = r.evidence[c]
         L.append(f"| `{c}` | {_fmt(r.noise.sigma[c])} | {_fmt(r.baseline.rmse[c])} | "
                  f"{_fmt(r.baseline.heldout_rmse[c])} | {_fmt(r.extended.rmse[c])}"
-                 f" | {_fmt(r.extended.heldout_rmse[c])} |")
+                 f" | {_fmt(r.extended.heldout_rmse[c])} | {_fmt(ev.baseline_misfit_sigma, 3)} | "
+                 f"{_fmt(ev.heldout_rmse_ratio, 3)} | {_fmt(ev.heldout_gain_sigma, 3)} | "
+                 f"{_fmt(ev.chi2_drop, 4)} ({ev.chi2_drop_share:.0%}) |")
     L += ["", f"Held-out rows: {r.heldout_blocks} {HELDOUT_METHOD}.\n"]
     if r.heldout_untestable:
         L.append(f"Blocks that cannot test `{r.cause}` (left out of its held-out gain; their "
                  "rows keep the baseline's held-out residual):\n")
         L += [f"- block {u['block']} (rows {u['rows'][0]}..{u['rows'][1]}): {u['reason']}"
               for u in r.heldout_untestable]
+        L.append("")
+    return L
+
+
+def _causes_section(r: DiagnosisResult) -> list[str]:
+    """The accepted causes in order with their own gain, what is left, parameters at a bound."""
+    L = []
+    if len(r.causes) > 1:
+        L += ["## Causes, in the order accepted\n",
+              "Each after the ones before it are in the model (noise re-estimated from their "
+              "residual); own gain = held-out RMSE with it / before it.\n",
+              "| step | cause | parameters | own held-out RMSE ratio | held-out gain (sigma) "
+              "[interval] | noise sigma of its step |", "| --- | --- | --- | --- | --- | --- |"]
+        for c in r.causes:
+            g = c.heldout_gain
+            gain = (f"{_fmt(g.rmse_gain, 3)} [{_fmt(g.ci[0], 3)}, {_fmt(g.ci[1], 3)}]"
+                    if g else "–")
+            L.append(f"| {c.step} | `{c.form or c.effect}` | "
+                     + ", ".join(f"{k}={_fmt(v)}" for k, v in c.parameters.items())
+                     + " | " + ", ".join(f"`{k}` {_fmt(v, 3)}"
+                                         for k, v in c.heldout_rmse_ratio.items())
+                     + f" | {gain} | " + ", ".join(f"`{k}` {_fmt(v, 3)}"
+                                                    for k, v in c.noise_sigma.items()) + " |")
+        L.append("")
+    if r.left:
+        L.append("## What is left\n")
+        L += [f"- {x.text}" for x in r.left]
+        L.append("")
+    if r.at_bound:
+        L.append("## Parameters at a bound\n")
+        L += [f"- {x.text}" for x in r.at_bound]
         L.append("")
     return L
 
@@ -393,7 +436,8 @@ def write_report(result: DiagnosisResult, conditions: Mapping[str, np.ndarray],
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     figs, has_cand_plot = _draw_plots(result, conditions, measured, out, workers)
-    L = (_headline(result) + _cause_section(result) + _gain_section(result)
+    L = (_headline(result) + _cause_section(result) + _causes_section(result)
+         + _gain_section(result)
          + _baseline_section(result, figs)
          + report_lines(result.open_world)          # unexplained: what it depends on
          + _candidates_section(result, has_cand_plot) + _lookalike_section(result)

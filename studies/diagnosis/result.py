@@ -13,8 +13,10 @@ import numpy as np
 from studies.diagnosis.candidate import Candidate
 from studies.diagnosis.core import JointFit, Residuals, jsonable
 from studies.diagnosis.generalised import FormEntry
+from studies.diagnosis.goodness import AtBound, GoodnessOfFit, Left
 from studies.diagnosis.openworld import OpenWorld
 from studies.diagnosis.problem import Noise
+from studies.diagnosis.selection import AcceptedCause
 
 #: how the held-out gain is measured (the `heldout.method` text of the file)
 HELDOUT_METHOD = ("contiguous blocks; parameters refitted on the other blocks (one Gauss-Newton "
@@ -28,6 +30,19 @@ class ModelRmse:
     """In-sample and held-out RMSE per compared column (column units) of one model."""
     rmse: dict[str, float]
     heldout_rmse: dict[str, float]
+
+
+@dataclass(frozen=True)
+class ColumnEvidence:
+    """The verdict's evidence in one compared column: the baseline's misfit (in-sample RMS in
+    noise units), the extended model's held-out RMSE ratio (extended / baseline) and held-out
+    gain (baseline minus extended held-out RMSE, noise units), its in-sample chi-square drop
+    (standardised residuals) and that drop's share over the columns."""
+    baseline_misfit_sigma: float
+    heldout_rmse_ratio: float
+    heldout_gain_sigma: float
+    chi2_drop: float
+    chi2_drop_share: float
 
 
 @dataclass
@@ -60,7 +75,7 @@ class Cost:
 @dataclass
 class DiagnosisResult:
     """One diagnosis (verdicts and keys: docs/cli.md; method: `studies.diagnosis.engine`)."""
-    verdict: str                    # no_discrepancy | explained | ambiguous | unexplained
+    verdict: str        # no_discrepancy | explained | explained_partly | ambiguous | unexplained
     cause: str | None
     parameters: dict[str, float]    # the cause's fitted parameters (effect units)
     parameter_uncertainty: dict     # standard uncertainty, None, or {"interval": [a, b]}
@@ -68,7 +83,10 @@ class DiagnosisResult:
     separating_test: str | None
     baseline: ModelRmse
     extended: ModelRmse
-    heldout_rmse_ratio: float       # extended / baseline held-out RMSE of the first column
+    heldout_rmse_ratio: dict[str, float]    # extended / baseline held-out RMSE per column
+    heldout_rmse_ratio_first: float         # the same of the first column (the old scalar)
+    decisive_column: str                    # the largest baseline misfit in noise units
+    evidence: dict[str, ColumnEvidence]     # per column
     candidates: list[Candidate]     # fitted first (passing, then by delta BIC), then the rest
     extended_form: FormEntry | None     # the generalised form that explains the data
     generalised_forms: list[FormEntry]
@@ -91,6 +109,12 @@ class DiagnosisResult:
     n_rows: int
     cost: Cost
     open_world: OpenWorld | None
+    # forward selection and goodness of fit (`studies.diagnosis.selection`, `goodness`)
+    causes: list[AcceptedCause] = field(default_factory=list)
+    left: list[Left] = field(default_factory=list)
+    at_bound: list[AtBound] = field(default_factory=list)
+    goodness: GoodnessOfFit | None = None
+    noise_final: Noise | None = None    # the noise model of the selection's last pass
     # the predictions (column arrays) behind the report's plots; not part of the file
     baseline_pred: dict[str, np.ndarray] = field(default_factory=dict, repr=False)
     extended_pred: dict[str, np.ndarray] = field(default_factory=dict, repr=False)
@@ -116,9 +140,19 @@ def to_json(r: DiagnosisResult) -> dict:
         "separating_test": r.separating_test,
         "baseline": {"rmse": r.baseline.rmse, "heldout_rmse": r.baseline.heldout_rmse},
         "extended": {"rmse": r.extended.rmse, "heldout_rmse": r.extended.heldout_rmse},
-        "gain": {"heldout_rmse_ratio": float(r.heldout_rmse_ratio)},
+        "gain": {"heldout_rmse_ratio": dict(r.heldout_rmse_ratio),
+                 "decisive_column": r.decisive_column,
+                 "heldout_rmse_ratio_first": float(r.heldout_rmse_ratio_first)},
         "candidates": [c.to_json() for c in r.candidates],
+        "left": r.left,
+        "at_bound": r.at_bound,
+        "causes": r.causes,
         # ---- extras
+        "evidence": r.evidence,
+        "goodness_of_fit": r.goodness,
+        "noise_final": (None if r.noise_final is None else
+                        {"sigma": dict(r.noise_final.sigma), "ar1": dict(r.noise_final.rho),
+                         "source": {c: r.noise_final.describe(c) for c in r.columns}}),
         "parameter_uncertainty": r.parameter_uncertainty,
         "extended_form": None if r.extended_form is None else r.extended_form.to_json(),
         "generalised_forms": [f.to_json() for f in r.generalised_forms],

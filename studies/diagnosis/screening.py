@@ -19,33 +19,34 @@ def screen(pb: Problem, b: Baseline) -> Screening:
     cands = {}
     proj = {}
     for e in pb.candidates:
-        info = Candidate(e.name)
-        cands[e.name] = info
-        why, grid = _applicability(pb, e)
-        if why is not None:
-            info.set_status("not_applicable", why)
-            continue
-        best = _sensitivity_kept(pb, e, grid, b)
-        if not isinstance(best, tuple):
-            info.set_status("model_failed", f"model failed with the effect on: {best}")
-            continue
-        fixed, Jc, names, Jp, frac, raw, left = best
-        reach = _reach_sigma(pb, e, names, left)
-        info.identifiability = {"remaining_fraction": dict(zip(names, frac)),
-                                "reach_sigma": float(reach)}
-        why = _not_identifiable(pb, raw, frac, reach)
-        if why is not None:
-            info.set_status("not_identifiable", why)
-            continue
-        Q = orth(Jp, 1e-6)
-        proj[e.name] = Q
-        info.sensitivity = Jc
-        info.profile_fixed = fixed
-        info.profile_grid = grid
-        info.rank = int(Q.shape[1])
+        cands[e.name], Q = _screen_one(pb, e, b)
+        if Q is not None:
+            proj[e.name] = Q
     names_id = list(proj)
     look = {a: {c: max_cosine(proj[a], proj[c]) for c in names_id} for a in names_id}
     return Screening(cands, names_id, look)
+
+
+def _screen_one(pb: Problem, e, b: Baseline) -> tuple[Candidate, np.ndarray | None]:
+    """The candidate of effect `e` after screening and, when identifiable, the orthonormal basis
+    of its projected sensitivity (else None)."""
+    why, grid = _applicability(pb, e)
+    if why is not None:
+        return Candidate(e.name, status="not_applicable", reason=why), None
+    best = _sensitivity_kept(pb, e, grid, b)
+    if not isinstance(best, tuple):
+        return Candidate(e.name, status="model_failed",
+                         reason=f"model failed with the effect on: {best}"), None
+    fixed, Jc, names, Jp, frac, raw, left = best
+    reach = _reach_sigma(pb, e, names, left)
+    ident = {"remaining_fraction": dict(zip(names, frac)), "reach_sigma": float(reach)}
+    why = _not_identifiable(pb, raw, frac, reach)
+    if why is not None:
+        return Candidate(e.name, status="not_identifiable", reason=why,
+                         identifiability=ident), None
+    Q = orth(Jp, 1e-6)
+    return Candidate(e.name, identifiability=ident, rank=int(Q.shape[1]), sensitivity=Jc,
+                     profile_fixed=fixed, profile_grid=grid), Q
 
 
 def _applicability(pb: Problem, e) -> tuple[str | None, dict]:
@@ -73,7 +74,7 @@ def _sensitivity_kept(pb: Problem, e, grid: dict, b: Baseline):
     for q in ((0.5, 0.25, 0.75) if prof else (0.5,)):
         fixed = {p: float(np.quantile(grid[p], q, method="nearest")) for p in prof}
         try:
-            Jc, names = sensitivity(pb, e, b.nuisance, b.fit.pred, fixed)
+            Jc, names = sensitivity(pb, e, b, fixed)
         except ModelFailure as exc:
             best = best or exc
             continue
@@ -109,8 +110,10 @@ def _not_identifiable(pb: Problem, raw: np.ndarray, frac: np.ndarray, reach: flo
     return None
 
 
-def sensitivity(pb: Problem, e, base_nuis: dict, base_pred: dict, fixed: dict | None = None):
-    """d(pred)/sigma per unit step of each non-profile parameter at off (N x k, stacked)."""
+def sensitivity(pb: Problem, e, b: Baseline, fixed: dict | None = None):
+    """d(pred)/sigma per unit step of each non-profile parameter at off (N x k, stacked), about
+    the calibrated baseline (with the causes already accepted at their fitted values)."""
+    base_eff, base_nuis = b.fit.space.unpack(b.fit.u)
     steps = fitspec.steps(e, pb.conditions)
     cols = []
     names = []
@@ -122,10 +125,8 @@ def sensitivity(pb: Problem, e, base_nuis: dict, base_pred: dict, fixed: dict | 
         if e.off[p] + h > hi:
             h = -h
         params[p] = e.off[p] + h
-        pred = pb.model({e.name: params}, base_nuis)
+        pred = pb.model({**base_eff, e.name: params}, base_nuis)
         # d(pred)/sigma per unit scaled step in the +u direction
-        cols.append(-(pb.zvec(pred) - pb.zvec(base_pred)) * np.sign(h))
+        cols.append(-(pb.zvec(pred) - pb.zvec(b.fit.pred)) * np.sign(h))
         names.append(p)
     return (np.column_stack(cols) if cols else np.zeros((pb.N, 0))), names
-
-

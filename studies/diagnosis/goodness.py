@@ -1,0 +1,183 @@
+"""Goodness of fit of an explanation (issue 23): does the extended model leave structure, where,
+and does a fitted parameter sit at its bound?
+
+An explanation that carries weight (it beats the baseline and every rival) can still leave
+structure. Besides the residual tests of `Problem.describe` (bias, lag-1 autocorrelation, the
+conditions' smoother), two tests compare the extended model's misfit with the noise level:
+
+- in sample: the column's chi-square of the standardised (whitened) residuals per degree of
+  freedom against an F distribution F(dof, nu): the noise level is itself estimated from the
+  data (second differences, replicates), with nu = NU_SHARE x the column's entries degrees of
+  freedom (Satterthwaite 1946, An approximate distribution of estimates of variance components,
+  Biometrics Bulletin 2: the variance of the second-difference estimator of a white noise's
+  variance is about 3.9 sigma^4 / n, against 2 sigma^4 / n for a chi-square with n degrees of
+  freedom, so nu ~ 0.51 n); a given noise level: chi-square with dof degrees of freedom;
+- out of sample: the held-out mean square of the standardised residuals against F(n, nu)
+  (held-out residuals of parameters refitted on the other blocks are noise of variance
+  1 + O(k / n) when the model is right).
+
+Bonferroni over the two tests and the columns; the model leaves structure when this adjusted p
+or the residual tests' (`Residuals.p_min_adjusted`) is below `alpha_residual`. What is left is
+described per column: which test, the RMS misfit beyond the noise in noise units
+(sqrt(max(chi2_reduced - 1, 0))), and the named condition the residual depends on most (the
+open-world forward selection, `openworld.characterise_column`) with its range in noise units.
+
+A fitted parameter at a bound that is not its "off" value is listed in `at_bound` with a
+sentence: the data want more than the bound allows (an as-built fit outside its tolerance band,
+a larger effect than the physics bound, or another cause).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import stats
+
+from studies.diagnosis.core import Fit, Residuals
+from studies.diagnosis.openworld import characterise_column, named_features
+from studies.diagnosis.problem import Problem
+
+#: degrees of freedom of an estimated noise variance per compared entry (module docstring)
+NU_SHARE = 0.5
+#: a fitted value within this share of its parameter's range from a bound is at the bound
+AT_BOUND_RTOL = 1e-6
+
+
+@dataclass(frozen=True)
+class ColumnFit:
+    """One column of the extended model: reduced chi-square and its p (F against the estimated
+    noise), held-out RMSE in noise units and its p, the smallest p of the residual tests
+    (bias, lag-1, smoother)."""
+    column: str
+    chi2_reduced: float
+    chi2_p: float
+    heldout_rmse_sigma: float
+    heldout_p: float
+    residual_tests_p: float
+
+
+@dataclass(frozen=True)
+class Left:
+    """Structure the extended model leaves in one column: the test that finds it, its adjusted
+    p, the RMS misfit beyond the noise (noise units), the condition the residual depends on most
+    and the residual's range along it (noise units), one sentence."""
+    column: str
+    test: str
+    p_adjusted: float
+    size_sigma: float
+    against: str | None
+    range_sigma: float | None
+    text: str
+
+
+@dataclass(frozen=True)
+class AtBound:
+    """A fitted parameter at a bound that is not its off value."""
+    effect: str
+    parameter: str
+    value: float
+    bound: float
+    text: str
+
+
+@dataclass(frozen=True)
+class GoodnessOfFit:
+    """The extended model's goodness of fit (module docstring)."""
+    columns: dict[str, ColumnFit]
+    p_adjusted: float              # chi-square and held-out tests, Bonferroni
+    leaves_structure: bool         # this or the residual tests below alpha_residual
+    left: list[Left]
+
+
+def _f_sf(x: float, d1: float, d2: float | None) -> float:
+    """P(F(d1, d2) > x); d2 None: a known noise level, P(chi2(d1) / d1 > x)."""
+    if d2 is None:
+        return float(stats.chi2.sf(x * d1, d1))
+    return float(stats.f.sf(x, d1, d2))
+
+
+def goodness(pb: Problem, fit: Fit, heldout_z: np.ndarray, n_params: int,
+             desc: Residuals) -> GoodnessOfFit:
+    """The goodness of fit of `fit` (its held-out standardised residuals `heldout_z`, its
+    residual description `desc`, `n_params` fitted parameters shared by the columns)."""
+    cols, pvals = {}, []
+    for j, c in enumerate(pb.columns):
+        sel = pb.entry_col == j
+        n = int(sel.sum())
+        dof = max(n - n_params * n / pb.N, 1.0)
+        nu = None if c in pb.noise.given else max(NU_SHARE * n, 1.0)
+        chi2_red = float(fit.z[sel] @ fit.z[sel]) / dof
+        ms_ho = float(heldout_z[sel] @ heldout_z[sel]) / n
+        d = desc.columns[c]
+        cf = ColumnFit(c, chi2_red, _f_sf(chi2_red, dof, nu), math.sqrt(ms_ho),
+                       _f_sf(ms_ho, n, nu), min(d.bias_p, d.lag1_p, d.smoother_p_used))
+        cols[c] = cf
+        pvals += [cf.chi2_p, cf.heldout_p]
+    m = len(pvals)
+    p_adj = min(1.0, min(pvals) * m) if pvals else 1.0
+    a = pb.th["alpha_residual"]
+    leaves = bool(p_adj < a or desc.p_min_adjusted < a)
+    left = _left(pb, fit, cols, m, len(pb.columns) * 3, a) if leaves else []
+    return GoodnessOfFit(cols, p_adj, leaves, left)
+
+
+def _left(pb: Problem, fit: Fit, cols: dict[str, ColumnFit], m_fit: int, m_res: int,
+          a: float) -> list[Left]:
+    """Per column whose tests fire (adjusted p below `a`): what is left and where."""
+    feats, _, _ = named_features(pb.conditions)
+    out = []
+    for c, cf in cols.items():
+        tests = [("chi-square against the noise", cf.chi2_p * m_fit),
+                 ("held-out RMSE against the noise", cf.heldout_p * m_fit),
+                 ("residual tests (bias, lag-1, smoother)", cf.residual_tests_p * m_res)]
+        test, p = min(tests, key=lambda t: t[1])
+        if p >= a:
+            continue
+        m = pb.valid[c]
+        r = (pb.measured[c] - fit.pred[c])[m]
+        ch = characterise_column(c, r, {k: v[m] for k, v in feats.items()}, pb.blocks[m],
+                                 float(pb.noise.sigma_w[c]), float(pb.noise.rho[c]))
+        size = math.sqrt(max(cf.chi2_reduced - 1.0, 0.0))
+        against = ch.selected[0] if ch.selected else None
+        rng = (abs(ch.range_effect[against]) / pb.noise.sigma[c]) if against else None
+        where = (f", mostly against {against} ({rng:.2g} sigma over the data)" if against
+                 else ", not along any named condition")
+        out.append(Left(c, test, float(min(p, 1.0)), size, against, rng,
+                        f"{c}: {test} (adjusted p = {p:.2g}); misfit beyond the noise "
+                        f"{size:.2g} sigma RMS{where}"))
+    return out
+
+
+def at_bound(pb: Problem, fit: Fit) -> list[AtBound]:
+    """The fitted effect parameters of `fit` (its candidate's and the accepted causes') at a
+    bound that is not their off value (module docstring)."""
+    effects, _ = fit.space.unpack(fit.u)
+    out = []
+    for name, p in fit.space.eff_params + fit.space.base_params:
+        e = _effect(pb, name)
+        lo, hi = e.bounds[p]
+        v = float(effects[name][p])
+        tol = AT_BOUND_RTOL * max(hi - lo, 1e-300)
+        for bound in (lo, hi):
+            if abs(v - bound) <= tol and bound != e.off[p]:
+                out.append(AtBound(name, p, v, float(bound), _bound_text(name, p, lo, hi, bound)))
+    return out
+
+
+def _effect(pb: Problem, name: str):
+    for a in pb.base:
+        if a.effect.name == name:
+            return a.effect
+    return pb.effect(name)
+
+
+def _bound_text(effect: str, p: str, lo: float, hi: float, bound: float) -> str:
+    side = "more" if bound == hi else "less"
+    if effect.startswith("interference_error"):
+        return (f"{effect}.{p} = {bound:.4g} at the edge of the tolerance band [{lo:.4g}, "
+                f"{hi:.4g}]: the fit wants {side} than the tolerance band allows: as-built error "
+                "outside the band?")
+    return (f"{effect}.{p} = {bound:.4g} at its bound [{lo:.4g}, {hi:.4g}]: the fit wants "
+            f"{side} than the bound allows: a larger effect than the physics or data sheet "
+            "allow, or another cause?")

@@ -1,0 +1,194 @@
+"""More than one cause (issue 23): forward selection after the first cause is accepted.
+
+A rig rarely has one cause. Once a pass of the diagnosis (phases 1-5b, `engine.one_pass`) has
+accepted a cause (`explained` or `explained_partly`), the search goes on on what is left: the
+accepted cause joins the baseline (its free parameters refitted with the nuisance in every later
+model, a profiled one held at its accepted value: `problem.Accepted`), and the next pass runs the
+same phases on the remaining candidates: the same calibration, screening, likelihood-ratio and
+held-out rules, the same joint fits against rivals and against the unlisted sensor drift. The
+noise level of the next pass is estimated from the residual of the model with the accepted
+causes (`calibration.calibrate`), i.e. from what no candidate can absorb: a large first effect
+that the conditions' smoother cannot follow otherwise shows up as strongly correlated noise of
+inflated level (issue 23: 117 N mm against a true 17) and hides a second cause.
+
+The search stops when a pass accepts nothing (no discrepancy left, or structure no candidate
+removes, or an ambiguous further cause), after MAX_CAUSES causes, or when the first cause was
+`explained` (leaves no structure) and the noise level estimated from its residual is within
+NOISE_RTOL of the one the pass used (nothing was hiding under an inflated noise: no further
+pass is run). The final verdict is `explained` when the model of the accepted causes leaves no
+structure under the last noise estimate (`goodness.goodness`), else `explained_partly` with what
+is left. Each accepted cause is listed in order with its own held-out gain: the held-out RMSE of
+the model with it against the model before it, per column, under the noise of its pass.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+from typing import Callable
+
+import numpy as np
+
+from studies.diagnosis.calibration import baseline_noise
+from studies.diagnosis.candidate import HeldoutGain
+from studies.diagnosis.core import Fit
+from studies.diagnosis.goodness import AtBound, GoodnessOfFit, Left, at_bound, goodness
+from studies.diagnosis.problem import Accepted, Noise, Problem
+
+#: most causes accepted in one diagnosis
+MAX_CAUSES = 3
+#: relative drop of a column's noise level (re-estimated from the first cause's residual) above
+#: which the first pass's noise counts as inflated by the effect (a further pass is run)
+NOISE_RTOL = 0.2
+
+
+@dataclass(frozen=True)
+class AcceptedCause:
+    """One accepted cause (an entry of `causes` in diagnosis.json): the listed effect, the
+    generalised form when one explains it, the step of the selection (1 = first), the verdict
+    of its pass, its parameters (in the model of every accepted cause) and their uncertainty
+    (at its own step), its own held-out gain per column (held-out RMSE with it / before it)
+    and the bootstrap of that gain (noise units), delta BIC and likelihood-ratio p against the
+    model before it, and the noise level of its pass."""
+    effect: str
+    form: str | None
+    step: int
+    verdict: str
+    parameters: dict[str, float]
+    parameter_uncertainty: dict
+    heldout_rmse_ratio: dict[str, float]
+    heldout_gain: HeldoutGain | None
+    delta_bic: float | None
+    p_lr: float | None
+    noise_sigma: dict[str, float]
+    kind: str = "effect"
+
+
+@dataclass(frozen=True)
+class Selection:
+    """The forward selection's outcome: the final verdict (with causes), the accepted causes
+    in order, reasons, what is left, parameters at a bound, the final goodness of fit, the
+    joint model of several causes (RMSE per column in-sample and held-out, predictions) and
+    the passes run."""
+    verdict: str | None = None
+    causes: list[AcceptedCause] = field(default_factory=list)
+    reasons: list[str] = field(default_factory=list)
+    left: list[Left] = field(default_factory=list)
+    at_bound: list[AtBound] = field(default_factory=list)
+    goodness: GoodnessOfFit | None = None
+    rmse: dict[str, float] | None = None
+    heldout_rmse: dict[str, float] | None = None
+    pred: dict | None = None
+    passes: int = 1
+    noise: Noise | None = None          # the last pass's noise model
+
+
+def _extended(p) -> tuple[Fit, np.ndarray, object]:
+    """A pass's extended fit, its held-out residuals and the accepted effect object."""
+    if p.chosen:
+        return p.chosen.fit, p.chosen.heldout_z, p.chosen.form
+    c = p.decision.cause
+    return p.fits[c], p.heldout[c], p.pb.effect(c)
+
+
+def _cause(p, step: int) -> AcceptedCause:
+    """The cause a pass accepted (module docstring)."""
+    fit, ho, eff = _extended(p)
+    name = p.decision.cause
+    cand = p.candidates[name]
+    before = p.pb.col_rmse(p.baseline.heldout_z)
+    after = p.pb.col_rmse(ho)
+    ratio = {c: after[c] / before[c] if before[c] > 0 else 1.0 for c in p.pb.columns}
+    if p.chosen:
+        e = p.chosen.entry
+        own = p.pb.effect(name).parameters
+        params = {q: v for q, v in e.parameters.items() if q in own}
+        unc = {q: v for q, v in e.parameter_uncertainty.items() if q in own}
+        gain = e.heldout_gain_vs_baseline
+    else:
+        params, unc, gain = dict(cand.parameters), dict(cand.uncertainty), cand.heldout_gain
+    return AcceptedCause(name, p.chosen.entry.name if p.chosen else None, step,
+                         p.decision.verdict, params, unc, ratio, gain, cand.delta_bic,
+                         cand.p_lr, dict(p.pb.noise.sigma))
+
+
+def _next_problem(p) -> Problem:
+    """The problem of the next pass: the pass's cause joins the accepted ones (every accepted
+    cause at its value in this pass's fit), its family leaves the candidates, the nuisance
+    starts at this fit's values."""
+    fit, _, eff = _extended(p)
+    pb = p.pb
+    effects, nuis = fit.space.unpack(fit.u)
+    base = tuple(Accepted(a.effect, dict(effects[a.effect.name]), a.free) for a in pb.base)
+    base += (Accepted(eff, dict(effects[eff.name]), tuple(pb.free_params(eff))),)
+    fam = p.decision.cause
+    cands = tuple(e for e in pb.candidates
+                  if e.name != fam and getattr(e, "family", e.name) != fam)
+    nu = pb.nuisance
+    x0 = np.clip(np.array([nuis[n] for n in nu.names], float), nu.lo, nu.hi)
+    return replace(pb, base=base, candidates=cands, nuisance=replace(nu, x0=x0))
+
+
+def noise_inflated(pb: Problem, fit: Fit) -> bool:
+    """Is the noise level the pass used more than NOISE_RTOL above the one estimated from the
+    residual of `fit` (its cause taken out) in some column?"""
+    new = baseline_noise(pb, fit.pred)
+    return any(new.sigma[c] < (1.0 - NOISE_RTOL) * pb.noise.sigma[c] for c in pb.columns
+               if c not in pb.noise.given)
+
+
+def _n_params(pb: Problem, fit: Fit) -> int:
+    return int(fit.u.size)
+
+
+def select(first, run_pass: Callable) -> Selection:
+    """Forward selection after the first pass `first` (module docstring); `run_pass(problem,
+    step)` runs phases 1-5b on a problem and returns its pass."""
+    if first.decision.verdict not in ("explained", "explained_partly"):
+        return Selection()
+    cur, causes, reasons, passes = first, [_cause(first, 1)], [], 1
+    final: GoodnessOfFit = first.decision.goodness
+    final_pb, (final_fit, final_ho, _) = first.pb, _extended(first)
+    while True:
+        fit = _extended(cur)[0]
+        nxt_pb = _next_problem(cur)
+        if len(causes) >= MAX_CAUSES or not nxt_pb.candidates:
+            break
+        if cur.decision.verdict == "explained" and not noise_inflated(cur.pb, fit):
+            break
+        nxt = run_pass(nxt_pb, len(causes) + 1)
+        passes += 1
+        d = nxt.decision
+        if d.verdict in ("explained", "explained_partly"):
+            causes.append(_cause(nxt, len(causes) + 1))
+            reasons.append(f"with {', '.join(c.effect for c in causes[:-1])} in the model "
+                           f"(noise re-estimated from its residual), {d.reasons[-1]}")
+            cur, final = nxt, d.goodness
+            final_pb, (final_fit, final_ho, _) = nxt.pb, _extended(nxt)
+            continue
+        b = nxt.baseline
+        final = goodness(nxt.pb, b.fit, b.heldout_z, _n_params(nxt.pb, b.fit), b.residuals)
+        final_pb, final_fit, final_ho = nxt.pb, b.fit, b.heldout_z
+        names = ", ".join(c.effect for c in causes)
+        if d.verdict == "ambiguous":
+            reasons.append(f"with {names} in the model a further cause is ambiguous: "
+                           f"{d.cause} or {', '.join(d.rivals)}")
+        elif d.verdict == "unexplained" and final.leaves_structure:
+            reasons.append(f"with {names} in the model (noise re-estimated from its residual) "
+                           "structure is left that no other candidate removes")
+        break
+    sel = Selection(passes=passes)
+    if len(causes) > 1:
+        effects, _ = final_fit.space.unpack(final_fit.u)
+        fam = {c.effect: (c.form or c.effect) for c in causes}
+        causes = [replace(c, parameters={q: effects[fam[c.effect]][q] for q in c.parameters})
+                  for c in causes]
+        sel = replace(sel, rmse=final_pb.col_rmse(final_fit.z),
+                      heldout_rmse=final_pb.col_rmse(final_ho), pred=final_fit.pred)
+    verdict = "explained_partly" if final.leaves_structure else "explained"
+    if verdict == "explained" and first.decision.verdict == "explained_partly":
+        reasons.append("the structure left under the first noise estimate is noise once the "
+                       "noise is estimated from the residual of the accepted causes")
+    if verdict == "explained_partly" and final.left:
+        reasons.append("left: " + "; ".join(x.text for x in final.left))
+    return replace(sel, verdict=verdict, causes=causes, reasons=reasons, left=list(final.left),
+                   at_bound=at_bound(final_pb, final_fit), goodness=final,
+                   noise=final_pb.noise)
