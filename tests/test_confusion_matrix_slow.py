@@ -50,8 +50,8 @@ def _named_and_unlisted(mx):
     assert not other, other
     assert len(chance) <= stats.binom.ppf(0.99, len(listed), a), chance
     for r in mx.rates:
-        if r["hidden"] == UNLISTED:
-            assert r["cause_claimed"] == 0, r
+        if r.hidden == UNLISTED:
+            assert r.cause_claimed == 0, r
 
 
 def test_reduced_confusion_matrix():
@@ -64,8 +64,8 @@ def test_reduced_confusion_matrix():
     print("\n" + "\n".join(markdown(mx)))
     fa = mx.false_alarm
     level = stated_false_alarm_level()
-    assert fa["false_alarms"] <= stats.binom.ppf(0.99, fa["trials"], level), fa
-    injected = {d: {r["hidden"] for r in mx.rates if r["design"] == d} - {NONE, UNLISTED}
+    assert fa.false_alarms <= stats.binom.ppf(0.99, fa.trials, level), fa
+    injected = {d: {r.hidden for r in mx.rates if r.design == d} - {NONE, UNLISTED}
                 for d in ("cycles", "speed_steps")}
     # the run-in is physical (and identifiable) on the solid film only; preload settling at its
     # 40 K threshold is reached by the -60..80 C cycles, not by 0..60 C steps from 20 C
@@ -101,10 +101,10 @@ def test_unlisted_drift_is_not_run_in_at_several_speeds():
     mx = run_matrix([d], MAGNITUDES, reps=4, n_null=5, seed=11)
     print("\n" + "\n".join(markdown(mx)))
     assert "solid_film_runin" in mx.lookalike["cycles_speeds"]
-    drift = [r for r in mx.rates if r["hidden"] == UNLISTED]
-    assert sorted(r["magnitude_sigma"] for r in drift) == sorted(MAGNITUDES)
+    drift = [r for r in mx.rates if r.hidden == UNLISTED]
+    assert sorted(r.magnitude_sigma for r in drift) == sorted(MAGNITUDES)
     for r in drift:
-        assert r["cause_claimed"] == 0, r
+        assert r.cause_claimed == 0, r
 
 
 def test_real_model_lookalikes_stated_in_the_docs():

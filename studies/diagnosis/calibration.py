@@ -17,7 +17,8 @@ from scipy import stats
 from studies.diagnosis.core import Baseline
 from studies.diagnosis.heldout import heldout_linear
 from studies.diagnosis.problem import ROUND_OFF, Noise, Problem, data_sigma
-from studies.diagnosis.stats import ar1_regression_ml, ar1_whiten, noise_sigma, orth
+from studies.diagnosis.stats import (ar1_regression_reml, ar1_whiten, auto_blocks, noise_sigma,
+                                     orth)
 
 #: likelihood-ratio statistic (chi-square, 1 df) of AR(1) errors against white ones, with the
 #: conditions' smoother as the regression, above which a column's noise is taken as AR(1) and
@@ -39,12 +40,39 @@ def calibrate(pb: Problem) -> tuple[Problem, Baseline]:
         pb = spiked
         base = pb.fit(bspace, base.u)
     pb = replace(pb, noise=baseline_noise(pb, base.pred))
+    longer = blocks_for_correlation(pb)
+    if longer is not pb:
+        pb = replace(longer, noise=baseline_noise(longer, base.pred))
     base = pb.fit(bspace, base.u)
     base_nuis = bspace.unpack(base.u)[1]
     desc_base = pb.describe(base.pred, len(pb.nuisance.names))
     structure = desc_base.p_min_adjusted < pb.th["alpha_structure"]
     return pb, Baseline(base, base_nuis, desc_base, bool(structure), heldout_linear(pb, base),
                         orth(base.J))
+
+
+#: fewest automatic held-out blocks when their length follows the noise's correlation time
+MIN_BLOCKS_CORRELATED = 5
+
+
+def blocks_for_correlation(pb: Problem) -> Problem:
+    """Automatic held-out blocks at least as long as the noise's integrated correlation time
+    (1 + rho) / (1 - rho) rows of AR(1) noise (Sokal 1997, Monte Carlo methods in statistical
+    mechanics, eq. 2.19; the block bootstrap needs nearly independent blocks: Kuensch 1989, The
+    jackknife and the bootstrap for general stationary observations, Ann. Statist. 17): fewer
+    blocks (not below MIN_BLOCKS_CORRELATED nor above the present number) when the largest
+    coefficient of the columns asks for it; the same problem when the blocks were given or are
+    long enough."""
+    rho = max(pb.noise.rho.values(), default=0.0)
+    if not pb.auto_blocks or rho <= 0.0:
+        return pb
+    length = math.ceil((1.0 + rho) / (1.0 - rho))
+    k = max(min(pb.n // length, pb.n_blocks), min(MIN_BLOCKS_CORRELATED, pb.n_blocks))
+    if k >= pb.n_blocks:
+        return pb
+    note = (f"held-out blocks: {k} instead of {pb.n_blocks}, each at least the noise's "
+            f"correlation time ({length} rows at AR(1) rho {rho:.2f}) where the data allow")
+    return replace(pb, blocks=auto_blocks(pb.n, k), notes=pb.notes + (note,))
 
 
 def drop_spikes(pb: Problem, pred: dict) -> Problem:
@@ -96,22 +124,24 @@ def baseline_noise(pb: Problem, pred: dict) -> Noise:
 
 def noise_ar1(pb: Problem, c: str, pred: np.ndarray, floor: float
               ) -> tuple[float, float, float] | None:
-    """Serial correlation of column c's noise: the maximum-likelihood AR(1) coefficient of the
-    baseline residuals regressed on the smoother in the conditions (what a model error would
-    look like is taken out first; `stats.ar1_regression_ml`). When significant (likelihood
-    ratio > AR1_LR): (rho, the innovation level from the whitened residuals' second differences,
-    the marginal level sigma_w / sqrt(1 - rho^2)); else None (white noise).
+    """Serial correlation of column c's noise: the restricted maximum-likelihood AR(1)
+    coefficient of the baseline residuals regressed on the smoother in the conditions, over the
+    whole series as one AR(1) chain (what a model error would look like is taken out first; the
+    restricted likelihood does not charge the smoother's degrees of freedom to the noise:
+    `stats.ar1_regression_reml`). When significant (restricted likelihood ratio > AR1_LR):
+    (rho, the innovation level from the second differences of the whitened residuals over the
+    whole series, the marginal level sigma_w / sqrt(1 - rho^2)); else None (white noise).
     Only for time series (`time_s` increasing): in a table of steady points the row order
     means nothing, and neighbouring rows of a grid share a model error, not a noise."""
     if not pb.is_time_series:
         return None
     m = pb.valid[c]
     r = (pb.measured[c] - pred)[m]
-    seg = pb.blocks[m]
+    whole = np.zeros(r.size, int)
     A = np.column_stack([np.ones(r.size), pb.features[m]])
-    rho, lr = ar1_regression_ml(r, A, seg)
+    rho, lr = ar1_regression_reml(r, A)
     if lr <= AR1_LR or rho <= 0.0:
         return None
-    u = ar1_whiten(r, seg, rho)
-    s_w = max(noise_sigma(u, seg), floor * math.sqrt(1 - rho * rho))
+    u = ar1_whiten(r, whole, rho)
+    s_w = max(noise_sigma(u, whole), floor * math.sqrt(1 - rho * rho))
     return rho, s_w, s_w / math.sqrt(1 - rho * rho)

@@ -112,7 +112,7 @@ def versus_sensor_drift(pb: Problem, f: Fit, df: dict, b: Baseline) -> JointFit 
     for j, c in enumerate(pb.columns):
         m = pb.valid[c]
         k = int(m.sum())
-        D[i0:i0 + k, j] = ar1_whiten(ramp[m], pb.blocks[m], pb.noise.rho[c]) / pb.noise.sigma_w[c]
+        D[i0:i0 + k, j] = ar1_whiten(ramp[m], pb.chain(c), pb.noise.rho[c]) / pb.noise.sigma_w[c]
         i0 += k
 
     def chi2_lin(fit: Fit, drift: bool) -> float:

@@ -117,15 +117,45 @@ class Trial:
     drift_adds_p: float | None = None        # p of adding a sensor drift to the best candidate
 
 
+@dataclass(frozen=True)
+class FalseAlarm:
+    """The null trials: how many, how many with a verdict other than `no_discrepancy`, how many
+    with a cause claimed (`explained`, `explained_partly` or `ambiguous`), the rate, the stated
+    level and its binomial 99 % upper quantile for this many trials."""
+    trials: int
+    false_alarms: int
+    cause_claimed: int
+    rate: float | None
+    stated_level: float
+    binomial_99_bound: int | None
+
+
+@dataclass(frozen=True)
+class Rate:
+    """Outcomes of the trials of one design, hidden cause and magnitude (module docstring)."""
+    design: str
+    hidden: str
+    magnitude_sigma: float
+    trials: int
+    explained_right: int
+    named: int
+    explained_wrong: int
+    cause_claimed: int
+    unexplained: int
+    no_discrepancy: int
+    open_world_time: int
+    explained_partly: int = 0
+
+
 @dataclass
 class Matrix:
-    """Every trial, the look-alike matrices and the summary rates."""
+    """Every trial, the look-alike matrices and the summary rates (`summarise`)."""
     magnitudes_sigma: tuple
     trials: list[Trial]
     lookalike: dict[str, dict[str, dict[str, float]]]      # design -> a -> b -> cosine
-    false_alarm: dict = field(default_factory=dict)
+    false_alarm: FalseAlarm | None = None
     not_visible: dict[str, list[str]] = field(default_factory=dict)   # design -> effects
-    rates: list[dict] = field(default_factory=list)
+    rates: list[Rate] = field(default_factory=list)
 
     def to_json(self) -> dict:
         return asdict(self)
@@ -224,41 +254,43 @@ def stated_false_alarm_level(th: Mapping = DEFAULT_THRESHOLDS) -> float:
     return float(th["alpha_structure"] + th["alpha_lr"])
 
 
+#: verdicts that claim a cause
+CLAIMS = ("explained", "explained_partly", "ambiguous")
+
+
 def summarise(mx: Matrix) -> None:
-    """Fill the false-alarm entry and the per-(design, hidden, magnitude) rates."""
+    """Fill the false-alarm entry and the per-(design, hidden, magnitude) rates. A cause is
+    claimed by `explained`, `explained_partly` (the cause carries weight) and `ambiguous`; a
+    wrong explanation is `explained` or `explained_partly` with another cause."""
     nulls = [t for t in mx.trials if t.hidden == NONE]
     level = stated_false_alarm_level()
     fa = sum(t.verdict != "no_discrepancy" for t in nulls)
-    claims = sum(t.verdict in ("explained", "ambiguous") for t in nulls)
-    mx.false_alarm = {"trials": len(nulls), "false_alarms": fa, "cause_claimed": claims,
-                      "rate": fa / len(nulls) if nulls else None, "stated_level": level,
-                      "binomial_99_bound": (int(stats.binom.ppf(0.99, len(nulls), level))
-                                            if nulls else None)}
+    claims = sum(t.verdict in CLAIMS for t in nulls)
+    mx.false_alarm = FalseAlarm(len(nulls), fa, claims, fa / len(nulls) if nulls else None,
+                                level, (int(stats.binom.ppf(0.99, len(nulls), level))
+                                        if nulls else None))
     groups: dict[tuple, list[Trial]] = {}
     for t in mx.trials:
         groups.setdefault((t.design, t.hidden, t.magnitude_sigma), []).append(t)
-    rates = []
-    for (dn, h, m), ts in groups.items():
-        n = len(ts)
-        hit = sum(t.verdict == "explained" and t.cause == h for t in ts)
-        named = sum(t.verdict in ("explained", "ambiguous") and (t.cause == h or h in
-                                                                 t.indistinguishable) for t in ts)
-        claimed = sum(t.verdict in ("explained", "ambiguous") for t in ts)
-        wrong = sum(t.verdict == "explained" and t.cause != h for t in ts)
-        rates.append({"design": dn, "hidden": h, "magnitude_sigma": m, "trials": n,
-                      "explained_right": hit, "named": named, "explained_wrong": wrong,
-                      "cause_claimed": claimed,
-                      "unexplained": sum(t.verdict == "unexplained" for t in ts),
-                      "no_discrepancy": sum(t.verdict == "no_discrepancy" for t in ts),
-                      "open_world_time": sum(t.open_world_lead == "time_since_start_s"
-                                             for t in ts)})
-    mx.rates = rates
+    explains = ("explained", "explained_partly")
+    mx.rates = [Rate(
+        dn, h, m, len(ts),
+        explained_right=sum(t.verdict in explains and t.cause == h for t in ts),
+        named=sum(t.verdict in CLAIMS and (t.cause == h or h in t.indistinguishable)
+                  for t in ts),
+        explained_wrong=sum(t.verdict in explains and t.cause != h for t in ts),
+        cause_claimed=sum(t.verdict in CLAIMS for t in ts),
+        unexplained=sum(t.verdict == "unexplained" for t in ts),
+        no_discrepancy=sum(t.verdict == "no_discrepancy" for t in ts),
+        open_world_time=sum(t.open_world_lead == "time_since_start_s" for t in ts),
+        explained_partly=sum(t.verdict == "explained_partly" for t in ts))
+        for (dn, h, m), ts in groups.items()]
 
 
 def column_label(t: Trial) -> str:
     """The confusion-matrix column of a trial's outcome."""
-    if t.verdict == "explained":
-        return f"explained: {t.cause}"
+    if t.verdict in ("explained", "explained_partly"):
+        return f"{t.verdict}: {t.cause}"
     return t.verdict
 
 
@@ -266,10 +298,10 @@ def markdown(mx: Matrix) -> list[str]:
     """The confusion matrices (one per design), rates and look-alike matrices as markdown."""
     L = []
     fa = mx.false_alarm
-    L.append(f"False alarms on nulls (verdict other than `no_discrepancy`): {fa['false_alarms']}/"
-             f"{fa['trials']} = {fa['rate']:.1%} (stated level {fa['stated_level']:.0%}, binomial "
-             f"99 % bound {fa['binomial_99_bound']}); cause claimed on nulls: "
-             f"{fa['cause_claimed']}/{fa['trials']}.\n")
+    L.append(f"False alarms on nulls (verdict other than `no_discrepancy`): {fa.false_alarms}/"
+             f"{fa.trials} = {fa.rate:.1%} (stated level {fa.stated_level:.0%}, binomial "
+             f"99 % bound {fa.binomial_99_bound}); cause claimed on nulls: "
+             f"{fa.cause_claimed}/{fa.trials}.\n")
     for dn in dict.fromkeys(t.design for t in mx.trials):
         ts = [t for t in mx.trials if t.design == dn]
         cols = sorted({column_label(t) for t in ts},
@@ -278,14 +310,14 @@ def markdown(mx: Matrix) -> list[str]:
                  "columns: verdict / cause; counts)\n")
         L.append("| hidden | sigma | " + " | ".join(cols) + " | named | wrong |")
         L.append("| --- | --- |" + " --- |" * (len(cols) + 2))
-        for r in (r for r in mx.rates if r["design"] == dn):
-            sub = [t for t in ts if t.hidden == r["hidden"]
-                   and t.magnitude_sigma == r["magnitude_sigma"]]
+        for r in (r for r in mx.rates if r.design == dn):
+            sub = [t for t in ts if t.hidden == r.hidden
+                   and t.magnitude_sigma == r.magnitude_sigma]
             cnt = Counter(column_label(t) for t in sub)
-            extra = (f"{r['named']}/{r['trials']} | {r['explained_wrong']}"
-                     if r["hidden"] not in (NONE, UNLISTED)
-                     else f"– | {r['cause_claimed']} claimed")
-            L.append(f"| `{r['hidden']}` | {r['magnitude_sigma']:g} | "
+            extra = (f"{r.named}/{r.trials} | {r.explained_wrong}"
+                     if r.hidden not in (NONE, UNLISTED)
+                     else f"– | {r.cause_claimed} claimed")
+            L.append(f"| `{r.hidden}` | {r.magnitude_sigma:g} | "
                      + " | ".join(str(cnt.get(c, "")) for c in cols) + f" | {extra} |")
         L.append("")
         if mx.not_visible.get(dn):

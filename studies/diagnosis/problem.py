@@ -107,6 +107,9 @@ class Problem:
     #: causes already accepted (forward selection, `studies.diagnosis.selection`): in every
     #: model, their free parameters refitted with the nuisance from their accepted values
     base: tuple["Accepted", ...] = ()
+    #: the held-out blocks were chosen here (no labels given): their number may follow the
+    #: noise's correlation time (`calibration.blocks_for_correlation`)
+    auto_blocks: bool = False
 
     # ------------------------------------------------------------------ layout
     @property
@@ -178,14 +181,22 @@ class Problem:
         return [p for p in e.parameters if p not in prof and p not in held]
 
     # ------------------------------------------------------------------ residuals
+    def chain(self, c: str) -> np.ndarray:
+        """Segment labels of column c's compared entries for the AR(1) whitening: one chain over
+        the whole series (AR(1) noise is only estimated in a time series, whose held-out blocks
+        are contiguous in time: restarting the chain at every block would count each block's
+        first entry as a fresh draw of the marginal noise and overstate what the data say about
+        a constant offset by up to twice at rho 0.9)."""
+        return np.zeros(int(self.valid[c].sum()), int)
+
     def zvec(self, pred: Mapping[str, np.ndarray]) -> np.ndarray:
-        """Standardised residuals, stacked: per column whitened for its AR(1) noise (within the
-        held-out blocks) and divided by the innovation level; plain r / sigma for white noise."""
+        """Standardised residuals, stacked: per column whitened for its AR(1) noise (one chain,
+        `chain`) and divided by the innovation level; plain r / sigma for white noise."""
         parts = []
         for c in self.columns:
             m = self.valid[c]
             r = self.measured[c][m] - pred[c][m]
-            parts.append(ar1_whiten(r, self.blocks[m], self.noise.rho[c]) / self.noise.sigma_w[c])
+            parts.append(ar1_whiten(r, self.chain(c), self.noise.rho[c]) / self.noise.sigma_w[c])
         z = np.concatenate(parts)
         if not np.all(np.isfinite(z)):
             raise ModelFailure("the model returned non-finite values")
@@ -196,7 +207,7 @@ class Problem:
         out = {}
         for j, c in enumerate(self.columns):
             zz = z_stacked[self.entry_col == j]
-            r = ar1_unwhiten(zz * self.noise.sigma_w[c], self.blocks[self.valid[c]],
+            r = ar1_unwhiten(zz * self.noise.sigma_w[c], self.chain(c),
                              self.noise.rho[c])
             out[c] = float(np.sqrt(np.mean(r ** 2)))
         return out
@@ -291,8 +302,9 @@ class Problem:
         r = (self.measured[c] - pred_c)[m]
         seg = self.blocks[m]
         rho = self.noise.rho[c]
-        z = ar1_whiten(r, seg, rho) / self.noise.sigma_w[c]
-        one = ar1_whiten(np.ones_like(r), seg, rho)
+        ch = self.chain(c)
+        z = ar1_whiten(r, ch, rho) / self.noise.sigma_w[c]
+        one = ar1_whiten(np.ones_like(r), ch, rho)
         nn = z.size
         b_hat = float(one @ z) / float(one @ one)
         bias_p = float(2 * stats.norm.sf(abs(b_hat) * math.sqrt(float(one @ one))))
@@ -307,7 +319,7 @@ class Problem:
         # product sum in units of the noise level: structure far below the noise is none)
         auto_p = float(max(stats.norm.sf(r1 * math.sqrt(npairs)),
                            stats.norm.sf(num / math.sqrt(npairs))))
-        A = ar1_whiten(np.column_stack([np.ones(nn), self.features[m]]), seg, rho)
+        A = ar1_whiten(np.column_stack([np.ones(nn), self.features[m]]), ch, rho)
         Fst, F_p = _smoother_test(A, zc, den)
         cv_gain = _smoother_cv_gain(A, z, one, seg)
         # AR(1) noise: the smoother must also predict held-out blocks
@@ -414,7 +426,7 @@ def make_problem(predict: Callable, measured: Mapping[str, np.ndarray],
         sigma[c] = s if s > 0 else 1.0     # a column of zeros
     noise = Noise(sigma, dict(sigma), {c: 0.0 for c in cols}, source, frozenset(given))
     return Problem(model, cond, meas, cols, cands, nu, labels, valid, noise, th, float(T_ref_C),
-                   predict_at, int(workers), bool(generalised))
+                   predict_at, int(workers), bool(generalised), auto_blocks=blocks is None)
 
 
 def data_sigma(pb: Problem, c: str, r: np.ndarray) -> tuple[float, str]:

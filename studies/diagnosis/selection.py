@@ -32,6 +32,7 @@ from studies.diagnosis.candidate import HeldoutGain
 from studies.diagnosis.core import Fit
 from studies.diagnosis.goodness import AtBound, GoodnessOfFit, Left, at_bound, goodness
 from studies.diagnosis.problem import Accepted, Noise, Problem
+from studies.diagnosis.stats import auto_blocks
 
 #: most causes accepted in one diagnosis
 MAX_CAUSES = 3
@@ -124,7 +125,8 @@ def _next_problem(p) -> Problem:
                   if e.name != fam and getattr(e, "family", e.name) != fam)
     nu = pb.nuisance
     x0 = np.clip(np.array([nuis[n] for n in nu.names], float), nu.lo, nu.hi)
-    return replace(pb, base=base, candidates=cands, nuisance=replace(nu, x0=x0))
+    blocks = auto_blocks(pb.n, int(pb.th["n_blocks"])) if pb.auto_blocks else pb.blocks
+    return replace(pb, base=base, candidates=cands, nuisance=replace(nu, x0=x0), blocks=blocks)
 
 
 def noise_inflated(pb: Problem, fit: Fit) -> bool:
