@@ -25,6 +25,9 @@ from studies.diagnosis.stats import (ar1_unwhiten, ar1_whiten, auto_blocks, nois
                                      noise_sigma_steady, orth)
 from studies.model.parallel import parallel_map
 
+#: scaled coordinates below this size start a fit at exactly 0 (`Problem.fit`)
+TINY_U = 1e-9
+
 #: relative noise floor: a CSV keeps 10 significant digits (half a unit in the last is 5e-10 of the
 #: value); twice that, so that round-off alone never looks like structure
 ROUND_OFF = 1e-9
@@ -256,6 +259,10 @@ class Problem:
         """Bounded least squares (trust-region reflective) from u0; a model failure during the
         search steers it back (a large residual), at the start it is raised."""
         u0 = space.clip(np.asarray(u0, float))
+        # scipy's relative finite-difference step is relative to |u| (exactly 0 excepted): at
+        # |u| ~ 1e-14 it is below the model's resolution and the Jacobian column vanishes;
+        # start such a coordinate at 0 (one scaled unit is a physically meaningful step)
+        u0 = np.where(np.abs(u0) < TINY_U, 0.0, u0)
         lo, hi = space.lo, space.hi
         span = hi - lo
         u0 = np.clip(u0, lo + 1e-10 * np.maximum(span, 1), hi - 1e-10 * np.maximum(span, 1))

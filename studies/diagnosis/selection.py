@@ -126,7 +126,10 @@ def _next_problem(p) -> Problem:
     nu = pb.nuisance
     x0 = np.clip(np.array([nuis[n] for n in nu.names], float), nu.lo, nu.hi)
     blocks = auto_blocks(pb.n, int(pb.th["n_blocks"])) if pb.auto_blocks else pb.blocks
-    return replace(pb, base=base, candidates=cands, nuisance=replace(nu, x0=x0), blocks=blocks)
+    nxt = replace(pb, base=base, candidates=cands, nuisance=replace(nu, x0=x0), blocks=blocks)
+    # the first fit of the next calibration already with the noise of what the accepted causes
+    # leave (a noise inflated by the cause, e.g. AR(1) rho 0.99, makes that fit ill-conditioned)
+    return replace(nxt, noise=baseline_noise(nxt, fit.pred))
 
 
 def noise_inflated(pb: Problem, fit: Fit) -> bool:
