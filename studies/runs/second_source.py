@@ -344,8 +344,9 @@ CASES: dict[str, CaseSpec] = {
         "model_form", "cycles", ("sleeve",), ("sleeve",),
         "the outer rings in a 2 mm 9Cr18 sleeve in the TC4 housing; the config has none"),
     "spring_preload": CaseSpec(
-        "model_form", "cycles", ("preload_spring",), ("preload_spring",),
-        "a spring preload (constant force) under a position-preload config"),
+        "model_form", "cycles", ("preload_spring",), ("preload_spring", "preload_path_compliance"),
+        "a spring preload (constant force) under a position-preload config (a preload path "
+        "compliant without limit: `preload_path_compliance` names the same mechanism)"),
     "unlogged_moment": CaseSpec(
         "model_form", "steady_grid", ("unlogged_load",), ("unlogged_load",),
         "a constant tilting moment of 5000 N mm nobody logged"),
