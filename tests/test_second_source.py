@@ -181,3 +181,6 @@ def test_judge_outcomes():
     assert ss.judge(two, "explained", "thermal_lag") == "partial"
     assert ss.judge(two, "explained", ["thermal_lag", "interference_error"]) == "right"
     assert ss.judge(two, "explained", ["thermal_lag", "preload_settling"]) == "wrong"
+    spring = ss.CASES["spring_preload"]
+    assert ss.judge(spring, "explained", "preload_path_compliance") == "right"
+    assert ss.judge(spring, "explained", "interference_error") == "wrong"

@@ -582,7 +582,8 @@ def judge(case: Case | CaseSpec, verdict: str, causes: Sequence[str] | str | Non
 
     - `wrong`: a cause claimed (explained, explained_partly, or ambiguous with no right cause
       among the rivals) that is not in `case.right`;
-    - `right`: every cause of the truth named (explained / explained_partly); on a null or an
+    - `right`: every cause of the truth named (explained / explained_partly: as many distinct
+      names of `case.right` as true causes); on a null or an
       invisible truth `no_discrepancy`; on a truth no candidate can name (`right` empty)
       `unexplained`;
     - `partial`: some but not all of several true causes named, nothing wrong;
@@ -596,15 +597,13 @@ def judge(case: Case | CaseSpec, verdict: str, causes: Sequence[str] | str | Non
         causes = [causes]
     named = [family(c) for c in (causes or []) if c]
     right = set(case.right)
-    truth_right = set(case.truth) & right or right
     vis = (case.visible if isinstance(case, Case) else True) if visible is None else visible
     if verdict in ("explained", "explained_partly"):
-        if not named or any(c not in right for c in named):
+        if not named or any(c not in right for c in named) or not case.truth:
             return "wrong"
-        if not case.truth:
-            return "wrong"
-        return "right" if len(set(named) & truth_right) >= min(len(truth_right),
-                                                                len(case.truth)) else "partial"
+        # every true cause covered: as many distinct right names as causes (`right` may hold
+        # alternatives: `fits_in_band` for a fit error, a path compliance for a spring)
+        return "right" if len(set(named)) >= len(case.truth) else "partial"
     if verdict == "ambiguous":
         pool = {*named, *(family(r) for r in rivals)}
         return "named" if case.truth and pool & right else "wrong"
