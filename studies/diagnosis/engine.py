@@ -117,9 +117,11 @@ class Pass:
     chosen: ChosenForm | None
 
 
-def one_pass(pb: Problem, rng: np.random.Generator, clock: "_Clock", tag: str = "") -> Pass:
-    """Phases 1-5b (module docstring) on `pb`; `tag` suffixes the clock's phase labels."""
-    pb, b = calibrate(pb)
+def one_pass(pb: Problem, rng: np.random.Generator, clock: "_Clock", tag: str = "",
+             calibrated: tuple[Problem, Baseline] | None = None) -> Pass:
+    """Phases 1-5b (module docstring) on `pb` (`calibrated`: phase 1's result when already
+    computed); `tag` suffixes the clock's phase labels."""
+    pb, b = calibrated or calibrate(pb)
     clock.pb = pb
     clock.phase("baseline" + tag)
     s = screen(pb, b)
@@ -147,7 +149,7 @@ def run(pb: Problem, seed: int = 0, t0: float | None = None) -> DiagnosisResult:
     sep = (separating(first.pb, d.best, d.rivals, first.fits, first.baseline.fit)
            if d.verdict == "ambiguous" else Separation(None, [], []))
     clock.phase("separating")
-    sel = select(first, lambda q, k: one_pass(q, rng, clock, f"_cause{k}"))
+    sel = select(first, lambda q, k, cal: one_pass(q, rng, clock, f"_cause{k}", cal))
     return assemble(first, sel, sep, clock.cost())
 
 

@@ -11,8 +11,10 @@ causes (`calibration.calibrate`), i.e. from what no candidate can absorb: a larg
 that the conditions' smoother cannot follow otherwise shows up as strongly correlated noise of
 inflated level (issue 23: 117 N mm against a true 17) and hides a second cause.
 
-The search stops when a pass accepts nothing (no discrepancy left, or structure no candidate
-removes, or an ambiguous further cause), after MAX_CAUSES causes, or when the first cause was
+The search stops when the model of the accepted causes, calibrated with the noise re-estimated
+from its residual, shows no structure (then no candidate is fitted again), when a pass accepts
+nothing (structure no candidate removes, or an ambiguous further cause), after MAX_CAUSES
+causes, or when the first cause was
 `explained` (leaves no structure) and the noise level estimated from its residual is within
 NOISE_RTOL of the one the pass used (nothing was hiding under an inflated noise: no further
 pass is run). The final verdict is `explained` when the model of the accepted causes leaves no
@@ -27,7 +29,7 @@ from typing import Callable
 
 import numpy as np
 
-from studies.diagnosis.calibration import baseline_noise
+from studies.diagnosis.calibration import baseline_noise, calibrate
 from studies.diagnosis.candidate import HeldoutGain
 from studies.diagnosis.core import Fit
 from studies.diagnosis.goodness import AtBound, GoodnessOfFit, Left, at_bound, goodness
@@ -144,9 +146,19 @@ def _n_params(pb: Problem, fit: Fit) -> int:
     return int(fit.u.size)
 
 
+def _misfit(pb: Problem, b) -> bool:
+    """Does the calibrated model of the accepted causes miss the data beyond the re-estimated
+    noise (chi-square or held-out RMSE against it, `goodness`, at alpha_structure)?"""
+    g = goodness(pb, b.fit, b.heldout_z, _n_params(pb, b.fit), b.residuals)
+    return g.p_adjusted < pb.th["alpha_structure"]
+
+
 def select(first, run_pass: Callable) -> Selection:
     """Forward selection after the first pass `first` (module docstring); `run_pass(problem,
-    step)` runs phases 1-5b on a problem and returns its pass."""
+    step, calibrated)` runs phases 1-5b on a problem (phase 1 already done: `calibrated`) and
+    returns its pass. A further pass searches only when the model of the accepted causes, with
+    the noise re-estimated from its residual, still shows structure (the residual tests at
+    alpha_structure, or its chi-square or held-out RMSE against the noise)."""
     if first.decision.verdict not in ("explained", "explained_partly"):
         return Selection()
     cur, causes, reasons, passes = first, [_cause(first, 1)], [], 1
@@ -159,7 +171,14 @@ def select(first, run_pass: Callable) -> Selection:
             break
         if cur.decision.verdict == "explained" and not noise_inflated(cur.pb, fit):
             break
-        nxt = run_pass(nxt_pb, len(causes) + 1)
+        pb_c, b_c = calibrate(nxt_pb)
+        if not (b_c.structure or _misfit(pb_c, b_c)):
+            # nothing beyond the re-estimated noise is left: no further search
+            final = goodness(pb_c, b_c.fit, b_c.heldout_z, _n_params(pb_c, b_c.fit),
+                             b_c.residuals)
+            final_pb, final_fit, final_ho = pb_c, b_c.fit, b_c.heldout_z
+            break
+        nxt = run_pass(nxt_pb, len(causes) + 1, (pb_c, b_c))
         passes += 1
         d = nxt.decision
         if d.verdict in ("explained", "explained_partly"):
