@@ -192,7 +192,7 @@ class Fit:
     interval: list[float] | None = None
 
 
-@dataclass
+@dataclass(frozen=True)
 class ColumnResiduals:
     """Residual statistics of one column (`Problem.describe_column`): bias (column unit) and
     its p value, RMSE, the noise level and AR(1) coefficient used, reduced chi-square, lag-1
@@ -213,7 +213,7 @@ class ColumnResiduals:
     smoother_p_used: float
 
 
-@dataclass
+@dataclass(frozen=True)
 class Residuals:
     """Residual statistics per compared column and the smallest p value, Bonferroni-adjusted
     over the tests and columns."""
@@ -221,7 +221,7 @@ class Residuals:
     p_min_adjusted: float
 
 
-@dataclass
+@dataclass(frozen=True)
 class Baseline:
     """Phase 1: the calibrated baseline."""
     fit: Fit
@@ -232,7 +232,7 @@ class Baseline:
     nuisance_span: np.ndarray    # orthonormal basis of what the calibration can produce
 
 
-@dataclass
+@dataclass(frozen=True)
 class Screening:
     """Phase 2: every candidate with its identifiability; the identifiable ones in order."""
     candidates: dict[str, Candidate]
@@ -240,7 +240,7 @@ class Screening:
     lookalike: dict[str, dict[str, float]]
 
 
-@dataclass
+@dataclass(frozen=True)
 class JointFit:
     """The best candidate fitted jointly with another (or with the unlisted sensor drift):
     chi-squares of each alone and of both, the p values of adding one to the other, whether the
