@@ -37,6 +37,7 @@ from scipy import stats
 from studies.diagnosis.core import Fit, Residuals
 from studies.diagnosis.openworld import characterise_column, named_features
 from studies.diagnosis.problem import Problem
+from studies.model.effects.generalised import GENERALISED
 
 #: degrees of freedom of an estimated noise variance per compared entry (module docstring)
 NU_SHARE = 0.5
@@ -151,25 +152,30 @@ def _left(pb: Problem, fit: Fit, cols: dict[str, ColumnFit], m_fit: int, m_res: 
 
 def at_bound(pb: Problem, fit: Fit) -> list[AtBound]:
     """The fitted effect parameters of `fit` (its candidate's and the accepted causes') at a
-    bound that is not their off value (module docstring)."""
-    effects, _ = fit.space.unpack(fit.u)
+    bound that is not their off value (module docstring); bounds as the fit's space has them
+    (a tolerance band, a generalised form's bounds narrowed to its listed effect's)."""
+    sp = fit.space
+    k = len(sp.eff_params) + len(sp.base_params)
+    vals = sp.origin[:k] + sp.scale[:k] * np.clip(fit.u[:k], sp.lo[:k], sp.hi[:k])
+    lo = sp.origin[:k] + sp.scale[:k] * sp.lo[:k]
+    hi = sp.origin[:k] + sp.scale[:k] * sp.hi[:k]
     out = []
-    for name, p in fit.space.eff_params + fit.space.base_params:
-        e = _effect(pb, name)
-        lo, hi = e.bounds[p]
-        v = float(effects[name][p])
-        tol = AT_BOUND_RTOL * max(hi - lo, 1e-300)
-        for bound in (lo, hi):
-            if abs(v - bound) <= tol and bound != e.off[p]:
-                out.append(AtBound(name, p, v, float(bound), _bound_text(name, p, lo, hi, bound)))
+    for i, (name, p) in enumerate(sp.eff_params + sp.base_params):
+        off = _off(pb, name, p)
+        tol = AT_BOUND_RTOL * max(float(hi[i] - lo[i]), 1e-300)
+        for bound in (float(lo[i]), float(hi[i])):
+            if abs(float(vals[i]) - bound) <= tol and (off is None or abs(bound - off) > tol):
+                out.append(AtBound(name, p, float(vals[i]), bound,
+                                   _bound_text(name, p, float(lo[i]), float(hi[i]), bound)))
     return out
 
 
-def _effect(pb: Problem, name: str):
-    for a in pb.base:
-        if a.effect.name == name:
-            return a.effect
-    return pb.effect(name)
+def _off(pb: Problem, name: str, p: str) -> float | None:
+    """The off value of parameter p of effect `name` (an accepted cause, a candidate or a
+    generalised form), None when unknown."""
+    effects = [a.effect for a in pb.base] + list(pb.candidates) + list(GENERALISED.values())
+    e = next((e for e in effects if e.name == name), None)
+    return None if e is None else float(e.off[p])
 
 
 def _bound_text(effect: str, p: str, lo: float, hi: float, bound: float) -> str:
