@@ -109,6 +109,7 @@ def baseline_noise(pb: Problem, pred: dict) -> Noise:
     round-off (ROUND_OFF x its largest value), and its AR(1) coefficient (`noise_ar1`)."""
     sigma, sigma_w = dict(pb.noise.sigma), dict(pb.noise.sigma_w)
     rho, source = dict(pb.noise.rho), dict(pb.noise.source)
+    rho_hi = {c: v for c, v in pb.noise.rho_hi.items() if c in pb.noise.given}
     for c in pb.columns:
         if c in pb.noise.given:
             continue
@@ -118,8 +119,8 @@ def baseline_noise(pb: Problem, pred: dict) -> Noise:
         rho[c] = 0.0
         ar1 = noise_ar1(pb, c, pred[c], floor)
         if ar1 is not None:
-            rho[c], sigma_w[c], sigma[c] = ar1
-    return Noise(sigma, sigma_w, rho, source, pb.noise.given)
+            rho[c], sigma_w[c], sigma[c], rho_hi[c] = ar1
+    return Noise(sigma, sigma_w, rho, source, pb.noise.given, rho_hi)
 
 
 def noise_ar1(pb: Problem, c: str, pred: np.ndarray, floor: float
@@ -130,7 +131,8 @@ def noise_ar1(pb: Problem, c: str, pred: np.ndarray, floor: float
     restricted likelihood does not charge the smoother's degrees of freedom to the noise:
     `stats.ar1_regression_reml`). When significant (restricted likelihood ratio > AR1_LR):
     (rho, the innovation level from the second differences of the whitened residuals over the
-    whole series, the marginal level sigma_w / sqrt(1 - rho^2)); else None (white noise).
+    whole series, the marginal level sigma_w / sqrt(1 - rho^2), the 99.9 % upper profile bound
+    of rho); else None (white noise).
     Only for time series (`time_s` increasing): in a table of steady points the row order
     means nothing, and neighbouring rows of a grid share a model error, not a noise."""
     if not pb.is_time_series:
@@ -139,9 +141,9 @@ def noise_ar1(pb: Problem, c: str, pred: np.ndarray, floor: float
     r = (pb.measured[c] - pred)[m]
     whole = np.zeros(r.size, int)
     A = np.column_stack([np.ones(r.size), pb.features[m]])
-    rho, lr = ar1_regression_reml(r, A)
+    rho, lr, rho_hi = ar1_regression_reml(r, A)
     if lr <= AR1_LR or rho <= 0.0:
         return None
     u = ar1_whiten(r, whole, rho)
     s_w = max(noise_sigma(u, whole), floor * math.sqrt(1 - rho * rho))
-    return rho, s_w, s_w / math.sqrt(1 - rho * rho)
+    return rho, s_w, s_w / math.sqrt(1 - rho * rho), rho_hi

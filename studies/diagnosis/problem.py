@@ -71,6 +71,8 @@ class Noise:
     rho: Mapping[str, float]
     source: Mapping[str, str]
     given: frozenset[str] = frozenset()
+    #: 99.9 % upper profile-likelihood bound of rho (AR(1) columns; `describe_column`'s bias test)
+    rho_hi: Mapping[str, float] = field(default_factory=dict)
 
     def describe(self, c: str) -> str:
         if c in self.given:
@@ -315,6 +317,8 @@ class Problem:
         nn = z.size
         b_hat = float(one @ z) / float(one @ one)
         bias_p = float(2 * stats.norm.sf(abs(b_hat) * math.sqrt(float(one @ one))))
+        if rho > 0.0 and c in self.noise.rho_hi:
+            bias_p = _bias_p_bound(r, self.noise.rho_hi[c], bias_p)
         # lag-1 autocorrelation within blocks, in row order (of the whitened residuals)
         zc = z - one * b_hat
         same = seg[1:] == seg[:-1]
@@ -334,6 +338,31 @@ class Problem:
         return ColumnResiduals(float(np.mean(r)), bias_p, float(np.sqrt(np.mean(r ** 2))),
                                self.noise.sigma[c], rho, float(z @ z / max(nn - n_params, 1)),
                                r1, auto_p, float(Fst), F_p, float(cv_gain), p_used)
+
+
+#: confidence level spent on the AR coefficient in the bias test (`_bias_p_bound`)
+RHO_CI_GAMMA = 0.001
+
+
+def _bias_p_bound(r: np.ndarray, rho_hi: float, p_at_rho: float) -> float:
+    """The bias test's p under AR(1) noise maximised over rho's 1 - RHO_CI_GAMMA confidence set,
+    plus RHO_CI_GAMMA (Berger & Boos 1994, P values maximized over a confidence set for the
+    nuisance parameter, JASA 89): the variance of a mean grows with rho, so the largest p is at
+    the set's upper bound `rho_hi`, where the test is the generalised-least-squares t test of a
+    constant with the innovation variance estimated from the whitened residuals. Near rho = 1 an
+    AR coefficient estimated 0.05 low halves the variance of the mean and a constant offset of the
+    noise looks like a bias (issue 23: toy AR(1) nulls at phi 0.95)."""
+    ch = np.zeros(r.size, int)
+    u = ar1_whiten(r, ch, rho_hi)
+    one = ar1_whiten(np.ones_like(r), ch, rho_hi)
+    oo = float(one @ one)
+    b = float(one @ u) / oo
+    dof = max(r.size - 1, 1)
+    s2 = float(np.sum((u - one * b) ** 2)) / dof
+    if s2 <= 0.0:
+        return p_at_rho
+    t = abs(b) * math.sqrt(oo / s2)
+    return float(min(1.0, max(p_at_rho, 2 * stats.t.sf(t, dof)) + RHO_CI_GAMMA))
 
 
 def _rates(cols: list[tuple[str, np.ndarray]], t: np.ndarray) -> list[np.ndarray]:

@@ -155,8 +155,8 @@ def ar1_regression_ml(r: np.ndarray, A: np.ndarray, seg: np.ndarray,
 AR1_GRID = np.round(np.linspace(0.0, 0.99, 100), 2)
 
 
-def ar1_regression_reml(r: np.ndarray, A: np.ndarray, grid: np.ndarray = AR1_GRID
-                        ) -> tuple[float, float]:
+def ar1_regression_reml(r: np.ndarray, A: np.ndarray, grid: np.ndarray = AR1_GRID,
+                        ci_lr: float = 10.83) -> tuple[float, float, float]:
     """Restricted maximum-likelihood AR(1) coefficient of the errors of the regression r ~ A
     over the whole series (one AR(1) chain, Prais-Winsten transform; the REML log likelihood
     -(n - p)/2 log(SSE_w / (n - p)) + 1/2 log(1 - rho^2) - 1/2 log det(B^T B), B the whitened
@@ -172,6 +172,7 @@ def ar1_regression_reml(r: np.ndarray, A: np.ndarray, grid: np.ndarray = AR1_GRI
     seg = np.zeros(n, int)
     p = int(np.linalg.matrix_rank(A)) if A.size else 0
     best, ll0, ll_best = 0.0, None, -np.inf
+    lls = []
     for rho in grid:
         rho = float(rho)
         u = ar1_whiten(r, seg, rho)
@@ -185,11 +186,13 @@ def ar1_regression_reml(r: np.ndarray, A: np.ndarray, grid: np.ndarray = AR1_GRI
         logdet = float(2.0 * np.sum(np.log(sv)))
         ll = (-0.5 * (n - p) * math.log(sse / (n - p)) + 0.5 * math.log(1.0 - rho * rho)
               - 0.5 * logdet)
+        lls.append((rho, ll))
         if rho == 0.0:
             ll0 = ll
         if ll > ll_best:
             best, ll_best = rho, ll
-    return best, (2.0 * (ll_best - ll0) if ll0 is not None else 0.0)
+    hi = max((x for x, ll in lls if 2.0 * (ll_best - ll) <= ci_lr), default=best)
+    return best, (2.0 * (ll_best - ll0) if ll0 is not None else 0.0), float(hi)
 
 
 def noise_sigma_steady(r: np.ndarray, conditions: dict[str, np.ndarray]) -> tuple[float, str]:
