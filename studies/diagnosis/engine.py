@@ -153,11 +153,10 @@ def run(pb: Problem, seed: int = 0, t0: float | None = None) -> DiagnosisResult:
     return assemble(first, sel, sep, clock.cost())
 
 
-def _cause_values(p: Pass) -> tuple[dict, dict, dict | None]:
+def _cause_values(p: Pass, cause: str | None) -> tuple[dict, dict, dict | None]:
     """The cause's parameters, their uncertainties and the nuisance refitted with it (None: no
     cause), from the generalised form when one explains the data."""
-    d, chosen, pb = p.decision, p.chosen, p.pb
-    cause = d.cause
+    chosen, pb = p.chosen, p.pb
     if chosen:
         entry = chosen.entry
         own = pb.effect(cause).parameters
@@ -170,14 +169,14 @@ def _cause_values(p: Pass) -> tuple[dict, dict, dict | None]:
     return {}, {}, None
 
 
-def _extended(p: Pass) -> tuple[Fit, np.ndarray]:
+def _extended(p: Pass, cause: str | None) -> tuple[Fit, np.ndarray]:
     """The extended model's fit and held-out residuals: the chosen generalised form's, else the
     cause's, else the baseline's."""
+    if not cause:
+        return p.baseline.fit, p.baseline.heldout_z
     if p.chosen:
         return p.chosen.fit, p.chosen.heldout_z
-    if p.decision.cause:
-        return p.fits[p.decision.cause], p.heldout[p.decision.cause]
-    return p.baseline.fit, p.baseline.heldout_z
+    return p.fits[cause], p.heldout[cause]
 
 
 def _ordered_candidates(p: Pass) -> list[Candidate]:
@@ -213,9 +212,11 @@ def column_evidence(pb: Problem, base: ModelRmse, ext: ModelRmse, z_base: np.nda
 def assemble(first: Pass, sel: Selection, sep: Separation, cost: Cost) -> DiagnosisResult:
     """The typed result of the phases and the forward selection."""
     pb, b, s, d = first.pb, first.baseline, first.screening, first.decision
-    cause = d.cause
-    ext_fit, ext_ho = _extended(first)
-    params, unc, nuis_ext = _cause_values(first)
+    verdict = sel.verdict or d.verdict
+    # a first cause the selection turned down (it leaves structure it cannot own): no cause
+    cause = d.cause if verdict != "unexplained" else None
+    ext_fit, ext_ho = _extended(first, cause)
+    params, unc, nuis_ext = _cause_values(first, cause)
     base = ModelRmse(pb.col_rmse(b.fit.z), pb.col_rmse(b.heldout_z))
     ext = ModelRmse(pb.col_rmse(ext_fit.z), pb.col_rmse(ext_ho))
     z_ext = ext_fit.z
@@ -230,7 +231,6 @@ def assemble(first: Pass, sel: Selection, sep: Separation, cost: Cost) -> Diagno
     evidence = column_evidence(pb, base, ext, b.fit.z, z_ext)
     decisive = max(pb.columns, key=lambda c: evidence[c].baseline_misfit_sigma)
     nu = pb.nuisance
-    verdict = sel.verdict if sel.causes else d.verdict
     reasons = list(d.reasons) + list(sel.reasons)
     best_partial = (None if verdict != "unexplained" or d.best is None else
                     BestPartial(d.best, first.candidates[d.best].parameters, d.best_residuals))
@@ -238,10 +238,10 @@ def assemble(first: Pass, sel: Selection, sep: Separation, cost: Cost) -> Diagno
                                pb.valid, pb.conditions, pb.blocks, pb.noise.sigma_w,
                                pb.noise.rho)
                   if verdict == "unexplained" else None)
-    chosen = first.chosen
+    chosen = first.chosen if cause else None
     return DiagnosisResult(
         verdict=verdict, cause=cause, parameters=params, parameter_uncertainty=unc,
-        indistinguishable=list(d.rivals), separating_test=sep.text, baseline=base, extended=ext,
+        indistinguishable=list(d.rivals) if cause else [], separating_test=sep.text, baseline=base, extended=ext,
         heldout_rmse_ratio=ratios, heldout_rmse_ratio_first=float(ratio),
         decisive_column=decisive, evidence=evidence,
         candidates=_ordered_candidates(first),

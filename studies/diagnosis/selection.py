@@ -19,8 +19,13 @@ causes, or when the first cause was
 NOISE_RTOL of the one the pass used (nothing was hiding under an inflated noise: no further
 pass is run). The final verdict is `explained` when the model of the accepted causes leaves no
 structure under the last noise estimate (`goodness.goodness`), else `explained_partly` with what
-is left. Each accepted cause is listed in order with its own held-out gain: the held-out RMSE of
-the model with it against the model before it, per column, under the noise of its pass.
+is left, but only when that structure can be laid at the causes' door: a parameter at a bound
+(the data want more of the cause than its bounds allow) or several causes accepted; a single
+cause that leaves structure with its parameters inside their bounds may be a look-alike of a cause
+outside the list and the verdict is `unexplained` (with it as the best partial candidate), as on
+an unlisted groove curvature on steady points. Each accepted cause is listed in order with its
+own held-out gain: the held-out RMSE of the model with it against the model before it, per
+column, under the noise of its pass.
 """
 from __future__ import annotations
 
@@ -207,12 +212,23 @@ def select(first, run_pass: Callable) -> Selection:
                   for c in causes]
         sel = replace(sel, rmse=final_pb.col_rmse(final_fit.z),
                       heldout_rmse=final_pb.col_rmse(final_ho), pred=final_fit.pred)
-    verdict = "explained_partly" if final.leaves_structure else "explained"
+    bound = at_bound(final_pb, final_fit)
+    verdict = "explained"
+    if final.leaves_structure:
+        verdict = "explained_partly" if (bound or len(causes) > 1) else "unexplained"
     if verdict == "explained" and first.decision.verdict == "explained_partly":
         reasons.append("the structure left under the first noise estimate is noise once the "
                        "noise is estimated from the residual of the accepted causes")
+    left = "; ".join(x.text for x in final.left)
+    if verdict == "unexplained":
+        # one cause, structure left, no parameter at a bound: nothing says the structure is
+        # more of the same cause, so the cause may be a look-alike of one outside the list
+        return replace(sel, verdict=verdict, reasons=reasons + [
+            f"{causes[0].effect} carries the weight but leaves structure ({left}) and none of "
+            "its parameters is at a bound: the structure may come from a cause outside the "
+            "list, which the best candidate only imitates"], goodness=final,
+            noise=final_pb.noise)
     if verdict == "explained_partly" and final.left:
-        reasons.append("left: " + "; ".join(x.text for x in final.left))
+        reasons.append("left: " + left)
     return replace(sel, verdict=verdict, causes=causes, reasons=reasons, left=list(final.left),
-                   at_bound=at_bound(final_pb, final_fit), goodness=final,
-                   noise=final_pb.noise)
+                   at_bound=bound, goodness=final, noise=final_pb.noise)
