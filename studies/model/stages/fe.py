@@ -304,7 +304,7 @@ class FEStage:
         carries `clamp_force_N` in the nominal assembly (T_ref, at rest, the `[fits]` values
         at mid-band): a clamp is tightened to its force once, at assembly. Each face's force is
         monotone in its own delta; the root is bracketed and found by Brent's method (scipy)
-        to 1e-9 of the force. Raises ValueError when a face cannot carry the force."""
+        to 1e-13 of delta. Raises ValueError when a face cannot carry the force."""
         from scipy.optimize import brentq
 
         inner, outer = self.asm.mean_fits_um()
@@ -321,10 +321,10 @@ class FEStage:
                 lam = sup.evaluate(theta, row, np.zeros(1)).force_N
                 return float(self.face_forces_N(lam)[0, j]) - F
 
-            hi = 1e-6
+            hi, hi_max = 1e-6, 10.0 + 10.0 * F * face.compliance_mm_per_N   # mm
             while residual(hi) < 0:
                 hi *= 4
-                if hi > 10.0:
+                if hi > hi_max:
                     raise ValueError(f"the {face.key} face cannot be tightened to {F:g} N")
             lo = -hi
             while residual(lo) > 0:
