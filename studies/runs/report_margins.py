@@ -146,7 +146,7 @@ def margin_rows(asm, res: dict, flags: dict, mesh_error: dict[str, float]) -> li
         c, h = checks["clamp_open"], hl["clamp_margin_min"]
         lo, hi = hl["clamp_force_min"], hl["clamp_force_max"]
         rows.append(MarginRow(
-            "clamp force", f"{lo.value:.4g} .. {hi.value:.4g} N", "> |axial load| (N)",
+            "clamp force", f"{lo.value:.4g} .. {hi.value:.4g} N", "> the axial load (N)",
             f"{h.value:.4g} N left (row {h.row + 1})", status("flag_clamp_open"),
             _worst(mesh_error, "clamp_force_min", "clamp_force_max"), c.source))
     c, h = checks["static_safety"], hl["static_safety_min"]
