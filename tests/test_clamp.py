@@ -188,6 +188,13 @@ def test_a_clamp_force_used_up_opens_the_stack_and_the_fit_returns_to_lame():
     np.testing.assert_allclose(out["margin_clamp_N"], [500.0, 0.0, -100.0], rtol=1e-9, atol=1e-9 * 500)
     assert out["flag_clamp_open"].tolist() == [0.0, 1.0, 1.0]
     assert "clamp_force_N" not in to_columns(rigid)                # only with a clamp force
+    # the superposition against a full FE solve per row (the clamp's spring in the stiffness)
+    direct = simulate_table(assembly_from_dict(_sleeved("force", 500.0), "force.toml"), cond,
+                            direct=True)
+    for a, b in ((direct.fe.fit_pressure_MPa, force.fe.fit_pressure_MPa),
+                 (direct.fe.face_force_N, force.fe.face_force_N),
+                 (direct.fe.dz_mm, force.fe.dz_mm)):
+        np.testing.assert_allclose(a, b, rtol=0, atol=1e-8 * np.abs(b).max())
 
 
 def test_a_clamp_without_force_or_stiffness_is_the_compliant_cover():
@@ -226,3 +233,32 @@ def test_clamp_keys_are_checked(change, expect):
     raw["fits"]["contact"] = "bonded"
     with pytest.raises(ConfigError, match='cover.clamp: "force" needs fits.contact = "frictionless"'):
         assembly_from_dict(raw, "x.toml")
+
+
+def test_design_search_family_holds_the_clamp_spring():
+    """The design search's parametric set-up (fem/parametric.py) of a stack with a force clamp
+    equals the stack's own full set-up (a second method) to 1e-9 of each array: the clamp's
+    spring on the diagonal of the flexibility and the face closed for the preload-path
+    compliance."""
+    from fem.parametric import Family
+    from fem.setup import compute_setup, full_fe
+    from studies.model.pipeline import Pipeline
+    from studies.runs.design_search import SPACERS, Stack
+
+    raw = _raw()
+    raw["cover"].update(clamp="force", clamp_force_N=2000.0)
+    asm = assembly_from_dict(raw, "f.toml")
+    L = asm.inner_spacer.length_mm
+
+    def spec(inner, outer):
+        stack = Stack(inner, outer, L, asm.nut.clamp, asm.cover.clamp)
+        return Pipeline(stack.assembly(asm), mesh_factor=4.0, superpose=False).spec
+
+    fam = Family(spec("TC4", "9Cr18"), SPACERS)
+    s = spec("6061", "Si3N4")
+    par, own = fam.setup(s), compute_setup(s, full_fe(s))
+    assert own.fit_names[-1] == "face_clamp_cover"
+    for name in ("B", "A", "probe_units"):
+        a, b = getattr(par.condensed, name), getattr(own.condensed, name)
+        assert np.abs(a - b).max() <= 1e-9 * np.abs(b).max(), name
+    assert par.compliance_mm_per_N == pytest.approx(own.compliance_mm_per_N, rel=1e-9)
