@@ -5,7 +5,8 @@ Steps (each a small function):
    so a fit can open, close or slide; everything else stays tied (shared nodes).
 2. `StackModel`: scikit-fem MeshTri + vector P2 basis; stiffness K (whole-ring measure 2 pi r);
    one thermal load vector per part for unit thermal strain; node pairs of each fit (radial and
-   axial DOFs of the inner member = master, of the outer member = slave); Dirichlet DOFs: u_r = 0
+   axial DOFs of the inner member = master, of the outer member = slave) and of each clamped face
+   held as a contact (`meshes.section.Face`: u_z across the face, a clamp with a force); Dirichlet DOFs: u_r = 0
    on the axis, rollers, and one u_z per free-floating body (rigid axial mode, statically
    determinate, so it adds no stress). `spin_load`: the centrifugal load of the spinning parts
    (`rotating_parts`, e.g. the rotor sub-assembly) at omega = 1 rad/s; at omega it scales by

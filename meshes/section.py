@@ -4,7 +4,8 @@ A `Section` is pure data: rectangles (parts, each with a material and a sub-asse
 raceway grooves cut into ring rectangles (`Groove`: a disc removed; none = rectangular rings), the
 radial lines along which the inner-side and outer-side parts are separated ("splits": fits and free
 sliding bores), the fits on them, roller supports, and the lines to refine. Everything not split is
-tied (shared mesh nodes): clamped ring/spacer/shoulder/nut/cover faces.
+tied (shared mesh nodes): clamped ring/spacer/shoulder/nut/cover faces; an axial split is tied in
+u_z unless it is a `Face` (a clamp with a force: a unilateral contact with a spring in series).
 
 Element sizes: `size_mm` in the bulk, `fit_size_mm` along the refined lines (fits, raceways) and,
 when `corner_size_mm` > 0, a size graded down to `corner_size_mm` at the corner points: where a

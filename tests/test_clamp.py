@@ -262,3 +262,17 @@ def test_design_search_family_holds_the_clamp_spring():
         a, b = getattr(par.condensed, name), getattr(own.condensed, name)
         assert np.abs(a - b).max() <= 1e-9 * np.abs(b).max(), name
     assert par.compliance_mm_per_N == pytest.approx(own.compliance_mm_per_N, rel=1e-9)
+
+
+def test_the_shipped_rig_runs_with_its_clamp_force():
+    """studies/configs/rig_cartridge_sleeve.toml (issue 24's rig): tightened to 3.89 kN at T_ref;
+    at +60 C its aluminium housing has outgrown the stack and used the force up (flagged)."""
+    from studies.model.columns import to_columns
+    from studies.model.config import load_assembly
+    from studies.model.pipeline import simulate_table
+
+    asm = load_assembly(CONFIG_DIR / "rig_cartridge_sleeve.toml")
+    assert asm.cover.clamp == "force" and asm.cover.clamp_force_N == 3890.0
+    out = to_columns(simulate_table(asm, {"T_ambient_C": np.array([20.0, 60.0])}))
+    assert out["clamp_force_N"][0] == pytest.approx(3890.0, rel=1e-9)
+    assert out["flag_clamp_open"].tolist() == [0.0, 1.0]
