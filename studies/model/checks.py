@@ -28,7 +28,7 @@ CHECK_COLUMNS = frozenset(
     [f"flag_{n}" for n in ("max_contact_pressure_MPa", "static_safety", "preload_lost",
                            "fit_open_inner", "fit_open_outer")]
     + [f"margin_{n}" for n in ("max_contact_pressure_MPa", "static_safety")]
-    + ["flag_clamp_open", "margin_clamp_N", "clamp_force_N"])     # clamp = "force" only
+    + ["flag_clamp_open", "margin_clamp_N"])                     # clamp = "force" only
 
 
 @dataclass(frozen=True)

@@ -168,7 +168,7 @@ class ClampState:
     stack carries through the clamped faces. That takes the whole external load off the clamped
     faces: the bolted joint's separation load is F_i / (1 - C) >= F_i for any joint constant C
     (`analytic.clamp`), so the margin is on the safe side by C |axial_load_N| at most.
-    open (n,): margin_N <= 0, or a face already open in the FE."""
+    open (n,): margin_N <= 0 (a face open in the FE has force 0, so its margin is <= 0)."""
     names: tuple[str, ...]
     force_N: np.ndarray
     margin_N: np.ndarray
@@ -343,8 +343,7 @@ class FEStage:
         names = tuple(f.key.removeprefix("clamp_") for f in self.section.faces)
         load = np.abs(np.broadcast_to(np.asarray(axial_load_N, float), (fe.n_rows,)))
         margin = (fe.face_force_N - load[:, None]).min(axis=1)
-        p = fe.fit_pressure_MPa[:, self.face_columns()]
-        return ClampState(names, fe.face_force_N, margin, (margin <= 0) | (p <= 0).any(axis=1))
+        return ClampState(names, fe.face_force_N, margin, margin <= 0)
 
     def loads(self, inputs: PhysicsInputs) -> FELoads:
         """What the FE of the rows is solved for (`FELoads`)."""
