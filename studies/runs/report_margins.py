@@ -161,13 +161,18 @@ def margin_rows(asm, res: dict, flags: dict, mesh_error: dict[str, float]) -> li
     return rows
 
 
-def _clamp_text(c) -> str:
-    """A clamp as the assumptions name it: its kind, and a force clamp's force and stiffness."""
+def _clamp_text(asm, name: str) -> str:
+    """A clamp as the assumptions name it: its kind, and a force clamp's force and stiffness
+    (`studies.model.stack.clamp_stiffness_N_per_mm`: given, or from its section)."""
+    from studies.model.stack import clamp_stiffness_N_per_mm
+
+    c = getattr(asm, name)
     if c.clamp != "force":
         return c.clamp
-    k = (f"{c.clamp_stiffness_N_per_um:g} N/um" if c.clamp_stiffness_N_per_um > 0
-         else "stiffness from its section (VDI 2230)")
-    return f"{c.clamp_force_N:g} N force ({k}; its face opens when the force is used up)"
+    k = 1e-3 * clamp_stiffness_N_per_mm(asm, name)
+    how = "given" if c.clamp_stiffness_N_per_um > 0 else "from its section, VDI 2230"
+    return (f"{c.clamp_force_N:g} N force, {k:.4g} N/um in series ({how}); its face opens when "
+            "the force is used up")
 
 
 def _worst(err: dict, *names) -> float | None:
@@ -297,7 +302,7 @@ def assumption_lines(asm) -> list[str]:
         "open, a clearance fit may close.",
         f"Fits and preload ({asm.preload.kind} preload, {asm.preload.assembled_N:g} N) are set at "
         f"T_ref = {asm.T_ref_C:g} C; with tolerance classes the fits are the middle of their bands.",
-        f"Nut and cover: {_clamp_text(asm.nut)} / {_clamp_text(asm.cover)} clamp (`[nut] clamp`, "
+        f"Clamps: nut {_clamp_text(asm, 'nut')}; cover {_clamp_text(asm, 'cover')} (`[nut] clamp`, "
         "`[cover] clamp`; \"rigid\" and \"compliant\" are the limits of a clamp with a force: "
         "infinitely stiff and never opening, or without force and stiffness).",
         "The rings' deformation enters the bearing model only through the groove-centre shifts "
