@@ -219,6 +219,28 @@ def test_a_mesh_too_fine_is_refused_before_meshing(tmp_path, capsys, cond):
         check_size(SEC.scaled(1e-3))
 
 
+@pytest.mark.parametrize("key,value,spacer,spacer_value,fragment", [
+    # seed 000 (71807C: dm 41, Dw 3.969 mm): groove bottoms near dm -+ Dw = 37.03 / 44.97 mm
+    ("inner_ring_outer_diameter_mm", 35.2, "inner_spacer", 35.1, "35.2 mm leaves the inner ring "
+     "thinner than the metal under its groove (groove bottom at 37.0"),
+    ("outer_ring_inner_diameter_mm", 46.8, "outer_spacer", 46.9, "46.8 mm leaves the outer ring "
+     "thinner than the metal under its groove (groove bottom at 44.9"),
+])
+def test_a_ring_section_thinner_than_its_groove_is_refused(tmp_path, capsys, cond, key, value,
+                                                           spacer, spacer_value, fragment):
+    # before: the 0.1 mm inner section passed every check, sized the mesh to 0.1 mm and the
+    # fits' condensation grew to 18 GB until the process was killed
+    text = re.sub(rf"(?m)^{key}\s*=\s*[^#\n]*", f"{key} = {value} ", CFG.read_text())
+    start = text.index(f"[{spacer}]")
+    text = text[:start] + re.sub(r"(?m)^diameter_mm\s*=\s*[^#\n]*", f"diameter_mm = {spacer_value} ",
+                                 text[start:], count=1)
+    asm = tmp_path / "asm.toml"
+    asm.write_text(text)
+    code, err = run_cli(["simulate", asm, cond, "-o", tmp_path / "o.csv"], capsys)
+    assert_refused(code, err, f"bearing.{key}: {fragment}", tmp_path, {asm: digest(asm), cond: digest(cond)})
+    assert not (tmp_path / "o.csv").exists()
+
+
 # ------------------------------------------------------------------ signals, ranges, usage
 def test_sigterm_cleans_up_and_exits_143(tmp_path, capsys, cond, monkeypatch):
     from studies.model import pipeline
