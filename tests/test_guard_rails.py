@@ -219,6 +219,34 @@ def test_a_mesh_too_fine_is_refused_before_meshing(tmp_path, capsys, cond):
         check_size(SEC.scaled(1e-3))
 
 
+def test_the_condensation_estimate_matches_a_real_set_up():
+    # the estimate's dense condensation (DOFs x pairs, three float64 arrays) against the assembled
+    # model's, given the mesh's real triangle count (estimate_elements is its own estimate): P2
+    # has about 4 DOF per triangle (2 nodes per triangle in a large mesh), a pair per half fit size
+    from fem.model import build_model
+    from fem.solver import FitSolver
+    from meshes.build import estimate_memory_GB
+
+    sec = two_cylinder_section(0.0, 10.0, 15.0, "9Cr18", "9Cr18", 8.0, size_mm=1.0, fit_size_mm=0.25)
+    model = build_model(sec)
+    n = section_mesh(sec).triangles.shape[1]
+    real = 3 * 8e-9 * model.ndofs * FitSolver(model).n_pairs
+    est = estimate_memory_GB(sec, n) - 4e-6 * n
+    assert est == pytest.approx(real, rel=0.1)   # boundary nodes: 4 DOF/triangle is ~6 % low here
+
+
+def test_a_section_whose_fits_would_condense_beyond_memory_is_refused(monkeypatch):
+    # few triangles (a coarse bulk) but a long fit at a fine fit size: the triangle count passes,
+    # the dense condensation (DOFs x pairs) does not
+    monkeypatch.setenv("BEARINGFEM_MAX_ELEMENTS", "20000")
+    sec = two_cylinder_section(0.0, 10.0, 15.0, "9Cr18", "9Cr18", 400.0, size_mm=2.0,
+                               fit_size_mm=0.25)
+    from meshes.build import estimate_elements
+    assert estimate_elements(sec) < 20000
+    with pytest.raises(MeshError, match="condensation"):
+        check_size(sec)
+
+
 @pytest.mark.parametrize("key,value,spacer,spacer_value,fragment", [
     # seed 000 (71807C: dm 41, Dw 3.969 mm): groove bottoms near dm -+ Dw = 37.03 / 44.97 mm
     ("inner_ring_outer_diameter_mm", 35.2, "inner_spacer", 35.1, "35.2 mm leaves the inner ring "
