@@ -179,6 +179,16 @@ def _check_geometry(a: Assembly, path: str) -> None:
          "cover.diameter_mm", "must lie between the inner ring OD and the housing bore"
          if not t_layers else "must lie between the inner ring OD and the bearing OD")
     g = check_bearing(b, a.materials, path)
+    # the effective section of a ring holds at least the metal under its groove: a thinner one
+    # (a typo, or the ball's diameter for the ring's) also sizes the mesh to that thickness, and
+    # the condensation of its fits ran out of memory (a 0.1 mm section: 18 GB, killed)
+    for key, d, side in (("bearing.inner_ring_outer_diameter_mm", b.inner_ring_outer_diameter_mm, "inner"),
+                         ("bearing.outer_ring_inner_diameter_mm", b.outer_ring_inner_diameter_mm, "outer")):
+        bottom = groove_bottom_diameter_mm(g, side)
+        need(d >= bottom if side == "inner" else d <= bottom, key,
+             f"{d:g} mm leaves the {side} ring thinner than the metal under its groove (groove "
+             f"bottom at {bottom:.3f} mm): an effective section lies between the groove bottom and "
+             "the land")
     # a typo in one dimension (a housing 1e9 mm wide) would mesh until memory runs out: every
     # length of the stack stays within 20 bearing outside diameters
     big = 20.0 * b.outside_diameter_mm
