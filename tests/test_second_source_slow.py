@@ -11,7 +11,8 @@ item that fixes them (measured 2026-11-25 on seed 0 of each case, mesh factor 2)
   change below the visible level): item 2 (`ring_section_grooved`) and item 3 (goodness of fit);
 - `chamber_offset` -> `explained: cte_nonlinearity` (a 0.5 K thermometer offset within its class,
   largest change 0.8 sigma: a claim on what is practically a null): items 3 and 4;
-- `fit_error_and_lag` -> `explained: thermal_lag` only (`partial`): item 5, more than one cause.
+- `fit_error_and_lag` -> `explained: thermal_lag` only (`partial`) before item 5 (more than one
+  cause, `studies/diagnosis/selection.py`); both named since (2026-11-25).
 The per-design rates over several draws are the confusion-matrix study's (docs/diagnosis.md).
 """
 from __future__ import annotations
@@ -51,8 +52,6 @@ def test_no_wrong_cause_on_second_source_data(name):
         (name, res.verdict, ss.named_causes(res), list(res.indistinguishable))
 
 
-@pytest.mark.xfail(strict=True, reason="issue 23 item 5: forward selection after the first cause "
-                                       "(today: explained: thermal_lag alone)")
 def test_two_causes_are_both_named():
     """A 4 um inner fit error and a 1500 s lag on the cycle (81.6 sigma): both causes named."""
     c = ss.make_case("fit_error_and_lag", seed=0, mesh_factor=MESH_FACTOR)

@@ -11,7 +11,9 @@ causes (`calibration.calibrate`), i.e. from what no candidate can absorb: a larg
 that the conditions' smoother cannot follow otherwise shows up as strongly correlated noise of
 inflated level (issue 23: 117 N mm against a true 17) and hides a second cause.
 
-The search stops when the model of the accepted causes, calibrated with the noise re-estimated
+The search stops when an accepted cause has a parameter at its bound (what is left is the data
+wanting more of that cause: an as-built fit outside its tolerance band is not a fit error plus a
+path compliance), when the model of the accepted causes, calibrated with the noise re-estimated
 from its residual, shows no structure (then no candidate is fitted again), when a pass accepts
 nothing (structure no candidate removes, or an ambiguous further cause), after MAX_CAUSES
 causes, or when the first cause was
@@ -172,7 +174,9 @@ def select(first, run_pass: Callable) -> Selection:
     while True:
         fit = _extended(cur)[0]
         nxt_pb = _next_problem(cur)
-        if len(causes) >= MAX_CAUSES or not nxt_pb.candidates:
+        if len(causes) >= MAX_CAUSES or not nxt_pb.candidates or at_bound(cur.pb, fit):
+            # a cause at its bound: what it leaves is the data wanting more of it, not a
+            # further cause (another candidate would only imitate its excess)
             break
         if cur.decision.verdict == "explained" and not noise_inflated(cur.pb, fit):
             break
