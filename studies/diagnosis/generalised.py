@@ -133,11 +133,11 @@ def generalise(pb: Problem, cands: Mapping[str, Candidate], fits: dict[str, Fit]
             continue
         entries.append(entry)
         if entry.status == "explains":
-            ok.append((f_ext.chi2, entry, f_ext, ho_ext, gof))
+            ok.append((f_ext.chi2, entry, f_ext, ho_ext, gof, form))
     if not ok:
         return Generalisation(d, entries, None)
-    ok.sort(key=lambda t: t[0])
-    _, entry, f_ext, ho_ext, gof = ok[0]
+    ok.sort(key=lambda t: t[:1])
+    _, entry, f_ext, ho_ext, gof, form = ok[0]
     reasons = list(d.reasons) + [
         f"the generalised form {entry.text} beats the listed form {entry.effect} in "
         f"sample (p = {entry.p_vs_listed:.2g}) and on held-out blocks and leaves no "
