@@ -69,8 +69,6 @@ def test_quasi_dynamic_balls_are_explained_by_their_rung():
     assert ss.judge_result(c, res) == "right", (res.verdict, ss.named_causes(res))
 
 
-@pytest.mark.xfail(strict=True, reason="issue 23 item 3: explained_partly with the offset at its "
-                                       "bound (today: unexplained)")
 def test_fit_outside_its_band_is_explained_partly_at_the_bound():
     """The inner fit 2.5 um tighter than its ISO band allows (13.9 sigma): the fit error is named
     and, held inside the band, leaves structure: `explained_partly`."""

@@ -14,7 +14,8 @@ inflated level (issue 23: 117 N mm against a true 17) and hides a second cause.
 The search stops when an accepted cause has a parameter at its bound (what is left is the data
 wanting more of that cause: an as-built fit outside its tolerance band is not a fit error plus a
 path compliance), when the model of the accepted causes, calibrated with the noise re-estimated
-from its residual, shows no structure (then no candidate is fitted again), when a pass accepts
+from its residual, shows no structure and white noise (then no candidate is fitted again), when
+a pass accepts
 nothing (structure no candidate removes, or an ambiguous further cause), after MAX_CAUSES
 causes, or when the first cause was
 `explained` (leaves no structure) and the noise level estimated from its residual is within
@@ -165,7 +166,9 @@ def select(first, run_pass: Callable) -> Selection:
     step, calibrated)` runs phases 1-5b on a problem (phase 1 already done: `calibrated`) and
     returns its pass. A further pass searches only when the model of the accepted causes, with
     the noise re-estimated from its residual, still shows structure (the residual tests at
-    alpha_structure, or its chi-square or held-out RMSE against the noise)."""
+    alpha_structure, or its chi-square or held-out RMSE against the noise) or its noise is
+    AR(1) (the residual tests are weak there: a further cause may be what looks like slowly
+    correlated noise)."""
     if first.decision.verdict not in ("explained", "explained_partly"):
         return Selection()
     cur, causes, reasons, passes = first, [_cause(first, 1)], [], 1
@@ -181,7 +184,8 @@ def select(first, run_pass: Callable) -> Selection:
         if cur.decision.verdict == "explained" and not noise_inflated(cur.pb, fit):
             break
         pb_c, b_c = calibrate(nxt_pb)
-        if not (b_c.structure or _misfit(pb_c, b_c)):
+        white = not any(v > 0.0 for v in pb_c.noise.rho.values())
+        if white and not (b_c.structure or _misfit(pb_c, b_c)):
             # nothing beyond the re-estimated noise is left: no further search
             final = goodness(pb_c, b_c.fit, b_c.heldout_z, _n_params(pb_c, b_c.fit),
                              b_c.residuals)
