@@ -12,12 +12,16 @@ conditions' smoother), two tests compare the extended model's misfit with the no
   Biometrics Bulletin 2: the variance of the second-difference estimator of a white noise's
   variance is about 3.9 sigma^4 / n, against 2 sigma^4 / n for a chi-square with n degrees of
   freedom, so nu ~ 0.51 n); a given noise level: chi-square with dof degrees of freedom;
-- out of sample: the held-out mean square of the standardised residuals against F(n, nu)
-  (held-out residuals of parameters refitted on the other blocks are noise of variance
-  1 + O(k / n) when the model is right).
+- out of sample, reported but not decided on: the held-out mean square of the standardised
+  residuals against F(n, nu). Held-out residuals of parameters refitted on the other blocks are
+  noise of variance 1 + O(k / n) only when the refit is good; the refit is one Gauss-Newton step
+  for most candidates, and near a fit that opens (a strongly nonlinear parameter) that step leaves
+  held-out residuals well above the noise on a true cause (seed 000, a fit error near opening:
+  held-out p 3e-7 with the in-sample chi-square at the noise,
+  `tests/test_diagnose_pipeline.py::test_a_fit_error_near_opening_is_found_by_the_global_search`).
 
-Bonferroni over the two tests and the columns; the model leaves structure when this adjusted p
-or the residual tests' (`Residuals.p_min_adjusted`) is below `alpha_residual`. What is left is
+Bonferroni over the columns; the model leaves structure when this adjusted p or the residual
+tests' (`Residuals.p_min_adjusted`) is below `alpha_residual`. What is left is
 described per column: which test, the RMS misfit beyond the noise in noise units
 (sqrt(max(chi2_reduced - 1, 0))), and the named condition the residual depends on most (the
 open-world forward selection, `openworld.characterise_column`) with its range in noise units.
@@ -86,7 +90,7 @@ class AtBound:
 class GoodnessOfFit:
     """The extended model's goodness of fit (module docstring)."""
     columns: dict[str, ColumnFit]
-    p_adjusted: float              # chi-square and held-out tests, Bonferroni
+    p_adjusted: float              # chi-square tests, Bonferroni over the columns
     leaves_structure: bool         # this or the residual tests below alpha_residual
     left: list[Left]
 
@@ -114,7 +118,7 @@ def goodness(pb: Problem, fit: Fit, heldout_z: np.ndarray, n_params: int,
         cf = ColumnFit(c, chi2_red, _f_sf(chi2_red, dof, nu), math.sqrt(ms_ho),
                        _f_sf(ms_ho, n, nu), min(d.bias_p, d.lag1_p, d.smoother_p_used))
         cols[c] = cf
-        pvals += [cf.chi2_p, cf.heldout_p]
+        pvals.append(cf.chi2_p)
     m = len(pvals)
     p_adj = min(1.0, min(pvals) * m) if pvals else 1.0
     a = pb.th["alpha_residual"]
@@ -130,7 +134,6 @@ def _left(pb: Problem, fit: Fit, cols: dict[str, ColumnFit], m_fit: int, m_res: 
     out = []
     for c, cf in cols.items():
         tests = [("chi-square against the noise", cf.chi2_p * m_fit),
-                 ("held-out RMSE against the noise", cf.heldout_p * m_fit),
                  ("residual tests (bias, lag-1, smoother)", cf.residual_tests_p * m_res)]
         test, p = min(tests, key=lambda t: t[1])
         if p >= a:
