@@ -39,10 +39,11 @@ import numpy as np
 
 from studies.diagnosis.calibration import baseline_noise, calibrate
 from studies.diagnosis.candidate import HeldoutGain
-from studies.diagnosis.core import Fit
+from studies.diagnosis.core import Fit, ModelFailure
 from studies.diagnosis.goodness import AtBound, GoodnessOfFit, Left, at_bound, goodness
 from studies.diagnosis.problem import Accepted, Noise, Problem
 from studies.diagnosis.stats import auto_blocks
+from studies.model.effects.generalised import forms_of
 
 #: most causes accepted in one diagnosis
 MAX_CAUSES = 3
@@ -161,6 +162,34 @@ def _misfit(pb: Problem, b) -> bool:
     return g.p_adjusted < pb.th["alpha_structure"]
 
 
+def _own_form_fits_as_well(pb: Problem, nxt) -> str | None:
+    """The name of a generalised form of an accepted cause that, in that cause's place (from
+    its reducing value, `GeneralisedForm.from_listed`, refitted with the other accepted causes
+    and the nuisance under the same noise), fits the data about as well as the accepted causes
+    plus the further cause of pass `nxt` (chi-square within `clear_chi2` of it), or None: a
+    further cause must clearly beat the accepted causes' own other forms, else what it fits is
+    the misfit of their listed form (issue 23: a part-by-part lag from the transient FE is one
+    lag of another form, not a lag plus a second cause)."""
+    fit_c = _extended(nxt)[0]
+    for i, a in enumerate(pb.base):
+        for form in forms_of(a.effect.name):
+            if form.applicable(pb.conditions) is not None:
+                continue
+            form = form.with_bounds(**{q: a.effect.bounds[q] for q in form.parameters
+                                       if q in a.effect.bounds})
+            alt = Accepted(form, form.from_listed(dict(a.values)),
+                           tuple(pb.free_params(form)))
+            q = replace(pb, base=pb.base[:i] + (alt,) + pb.base[i + 1:])
+            sp = q.space([])
+            try:
+                f = q.fit(sp, np.zeros(sp.lo.size))
+            except ModelFailure:
+                continue
+            if f.chi2 <= fit_c.chi2 + pb.th["clear_chi2"]:
+                return form.name
+    return None
+
+
 def select(first, run_pass: Callable) -> Selection:
     """Forward selection after the first pass `first` (module docstring); `run_pass(problem,
     step, calibrated)` runs phases 1-5b on a problem (phase 1 already done: `calibrated`) and
@@ -194,6 +223,17 @@ def select(first, run_pass: Callable) -> Selection:
         nxt = run_pass(nxt_pb, len(causes) + 1, (pb_c, b_c))
         passes += 1
         d = nxt.decision
+        form = (_own_form_fits_as_well(pb_c, nxt)
+                if d.verdict in ("explained", "explained_partly") else None)
+        if form is not None:
+            reasons.append(f"with {', '.join(c.effect for c in causes)} in the model, "
+                           f"{d.cause} fits what is left, but so does {form} in place of "
+                           f"{form.split('.')[0]}: the structure left is that cause's other "
+                           "form, not a further cause")
+            b = nxt.baseline
+            final = goodness(nxt.pb, b.fit, b.heldout_z, _n_params(nxt.pb, b.fit), b.residuals)
+            final_pb, final_fit, final_ho = nxt.pb, b.fit, b.heldout_z
+            break
         if d.verdict in ("explained", "explained_partly"):
             causes.append(_cause(nxt, len(causes) + 1))
             reasons.append(f"with {', '.join(c.effect for c in causes[:-1])} in the model "
