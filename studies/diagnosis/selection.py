@@ -11,7 +11,9 @@ causes (`calibration.calibrate`), i.e. from what no candidate can absorb: a larg
 that the conditions' smoother cannot follow otherwise shows up as strongly correlated noise of
 inflated level (issue 23: 117 N mm against a true 17) and hides a second cause.
 
-The search stops when an accepted cause has a parameter at its bound (what is left is the data
+The search stops when a cause was accepted in a generalised form (the listed form left
+structure; what the form leaves is its own mismatch, which other candidates imitate), when an
+accepted cause has a parameter at its bound (what is left is the data
 wanting more of that cause: an as-built fit outside its tolerance band is not a fit error plus a
 path compliance), when the model of the accepted causes, calibrated with the noise re-estimated
 from its residual, shows no structure and white noise (then no candidate is fitted again), when
@@ -172,7 +174,9 @@ def _own_form_fits_as_well(pb: Problem, nxt) -> str | None:
     lag of another form, not a lag plus a second cause)."""
     fit_c = _extended(nxt)[0]
     for i, a in enumerate(pb.base):
-        for form in forms_of(a.effect.name):
+        for form in forms_of(getattr(a.effect, "family", "") or a.effect.name):
+            if form.name == a.effect.name:
+                continue
             if form.applicable(pb.conditions) is not None:
                 continue
             form = form.with_bounds(**{q: a.effect.bounds[q] for q in form.parameters
@@ -206,7 +210,11 @@ def select(first, run_pass: Callable) -> Selection:
     while True:
         fit = _extended(cur)[0]
         nxt_pb = _next_problem(cur)
-        if len(causes) >= MAX_CAUSES or not nxt_pb.candidates or at_bound(cur.pb, fit):
+        if (len(causes) >= MAX_CAUSES or not nxt_pb.candidates or at_bound(cur.pb, fit)
+                or cur.chosen is not None):
+            # a generalised form chosen for the cause: its listed form left structure, and what
+            # the form leaves is its own mismatch, which other candidates imitate (a transient
+            # FE's part-by-part lags took a 0.6 um fit error as a second cause)
             # a cause at its bound: what it leaves is the data wanting more of it, not a
             # further cause (another candidate would only imitate its excess)
             break
