@@ -169,6 +169,25 @@ class UnloggedLoad(Effect):
         return "model form: " + self.change
 
 
+class NotTried(Effect):
+    """A rung that is not a candidate of its own (carried by a listed effect, or not bounded):
+    listed among the candidates as not applicable, with the reason (`Rung.why_not`)."""
+    parameters = ()
+    kind = KIND
+    cost = "inputs"
+
+    def __init__(self, rung: "Rung"):
+        self.name, self.acts_through, self.change = rung.name, rung.acts_through, rung.change
+        self.reason = (f"carried by {rung.covered_by}: " if rung.covered_by else "") + rung.why_not
+        self.hint = self.reason
+
+    def applicable(self, conditions):
+        return self.reason
+
+    def describe(self) -> str:
+        return f"model form: {self.change} (not a candidate of its own)"
+
+
 def unlogged_load_starts(effect, conditions, T_ref_C) -> list[dict]:
     """Starting points of `unlogged_load` (fitspec): the response is even in a load acting alone
     (a radial load's first-order change cancels around the ring), so the Gauss-Newton step from
@@ -274,8 +293,11 @@ def _bearing_span_mm(asm: Assembly) -> float:
 
 
 def candidates(asm: Assembly) -> list[Effect]:
-    """The ladder's candidates for this assembly, cheapest first (FE set-up rungs last)."""
-    return [r.candidate for r in ladder(asm) if r.candidate is not None]
+    """The ladder's candidates for this assembly, cheapest first (FE set-up rungs last); a rung
+    that is not a candidate of its own is listed as `NotTried` (not applicable, with why)."""
+    rungs = ladder(asm)
+    return ([r.candidate for r in rungs if r.candidate is not None]
+            + [NotTried(r) for r in rungs if r.candidate is None])
 
 
 def is_form(effect) -> bool:
