@@ -59,7 +59,7 @@ def test_ar1_null_case_carries_its_noise_and_no_cause_is_claimed(ar1_case):
         r1 = ss.lag1_autocorrelation(c.measured[col] - c.noise_free[col])
         assert abs(r1 - 0.9) < 4 * math.sqrt((1 - 0.81) / n) + (1 + 3.6) / n, (col, r1)
     res = ss.diagnose_case(c)
-    assert ss.judge(c, res.verdict, res.cause, res.indistinguishable) in ("right", "false_alarm"), \
+    assert ss.judge_result(c, res) in ("right", "false_alarm"), \
         (res.verdict, res.cause)
 
 
@@ -131,7 +131,7 @@ def test_transient_fe_lag_is_not_a_wrong_cause(transient_case):
     c = transient_case
     assert c.change_sigma > ss.VISIBLE_SIGMA
     res = ss.diagnose_case(c)
-    assert ss.judge(c, res.verdict, res.cause, res.indistinguishable) != "wrong", \
+    assert ss.judge_result(c, res) != "wrong", \
         (res.verdict, res.cause)
 
 
@@ -157,7 +157,7 @@ def test_spring_preload_truth_holds_its_force_and_is_not_a_wrong_cause(spring_ca
     position = pred({}, {"mu_scale": ss.MU_TRUE})["preload_N"]
     assert np.ptp(position) > 10 * c.sigma["preload_N"]
     res = ss.diagnose_case(c)
-    assert ss.judge(c, res.verdict, res.cause, res.indistinguishable) != "wrong", \
+    assert ss.judge_result(c, res) != "wrong", \
         (res.verdict, res.cause)
 
 
@@ -181,3 +181,6 @@ def test_judge_outcomes():
     assert ss.judge(two, "explained", "thermal_lag") == "partial"
     assert ss.judge(two, "explained", ["thermal_lag", "interference_error"]) == "right"
     assert ss.judge(two, "explained", ["thermal_lag", "preload_settling"]) == "wrong"
+    spring = ss.CASES["spring_preload"]
+    assert ss.judge(spring, "explained", "preload_path_compliance") == "right"
+    assert ss.judge(spring, "explained", "interference_error") == "wrong"

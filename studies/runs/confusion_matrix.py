@@ -128,9 +128,8 @@ def run_second_source(cases=None, trials: int = 2, mesh_factor: float = 1.0,
             r = ss.diagnose_case(c)
             out.append(SecondTrial(
                 name, c.kind, c.design, "+".join(c.truth) or "none", seed, c.change_sigma,
-                r.verdict, r.cause, list(r.indistinguishable),
-                r.best_partial.effect if r.best_partial else None,
-                ss.judge(c, r.verdict, r.cause, r.indistinguishable),
+                r.verdict, "+".join(ss.named_causes(r)) or None, list(r.indistinguishable),
+                r.best_partial.effect if r.best_partial else None, ss.judge_result(c, r),
                 time.perf_counter() - t0))
             progress(f"second source {name} #{seed}: {r.verdict} {r.cause} -> {out[-1].outcome}")
     return out
