@@ -68,8 +68,8 @@ def test_rungs_are_the_forms_the_file_does_not_use():
 
 def test_unlogged_load_bounds_are_the_static_rating():
     """The radial bound is one bearing's C0 (ISO 76:2006 eq. 1: C0r = f0 Z Dw^2 cos(alpha),
-    f0 from the standard's table through `analytic.safety`); check it against the closed form
-    with f0 read back, and the moment bound = C0 x the bearing span."""
+    f0 from the standard's table through `analytic.safety`): the f0 read back from the bound
+    lies in the table's range, and the moment bound is C0 x the bearing span."""
     from analytic.safety import static_load_rating_C0_N
 
     asm = load_shipped("seed000")
@@ -78,7 +78,7 @@ def test_unlogged_load_bounds_are_the_static_rating():
     C0 = static_load_rating_C0_N(g.ball_count, g.ball_diameter_mm, g.pitch_diameter_mm,
                                  g.contact_angle_free_deg)
     f0 = C0 / (g.ball_count * g.ball_diameter_mm ** 2 * np.cos(np.radians(g.contact_angle_free_deg)))
-    assert 10.0 < f0 < 17.0          # ISO 76 Table 1: f0 of ball bearings lies in 12.3..16.5
+    assert 9.4 <= f0 <= 16.5         # ISO 76:2006 Table 1: f0 of ball bearings, 9.4..16.5
     assert e.bounds["radial_load_N"] == (0.0, pytest.approx(C0))
     span = Pipeline(asm, mesh_factor=MESH_FACTOR).bearing_span_mm
     assert e.bounds["moment_Nmm"][1] == pytest.approx(C0 * span)
