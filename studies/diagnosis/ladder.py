@@ -399,8 +399,7 @@ def indication(pb, b) -> Indication:
             feats |= set(col.selected)
             for near in col.not_separable.values():
                 feats |= set(near)
-    feats |= {ow.aliases[a] for a in ow.aliases if ow.aliases[a] in feats}
-    feats |= {a for a, k in ow.aliases.items() if k in feats}
+    feats |= {a for a, k in ow.aliases.items() if k in feats}    # the same quantity here
     return Indication(True, frozenset(feats))
 
 
