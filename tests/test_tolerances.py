@@ -163,7 +163,7 @@ def test_monte_carlo_fit_opening_agrees_with_the_closed_form(fits_only, dist):
     dev = tol.sample_deviations_um(asm, S, seed=7)
     di, do = tol.interference_offsets_um(dev, S)
     r = tsm.evaluate(pl, {"T_ambient_C": np.array([asm.T_ref_C])}, di, do)
-    p, se = tol.probability(r["fit_pressure_inner_MPa"][:, 0] <= 0.0)
+    p, se = tol.probability(r.fit_pressure_inner_MPa[:, 0] <= 0.0)
     if dist == "uniform":        # X = shaft + 4 in [0, 10], Y = -bore in [0, 6]: X + Y <= 4
         exact = _uniform_sum_cdf(4.0, 10.0, 6.0)
     else:                        # limits at +-3 sigma: mean 1 - (-3) = 4, sigma^2 = (10/6)^2 + 1
@@ -182,8 +182,8 @@ def test_mid_band_fits_give_the_assembled_preload(fits_only):
     r = tsm.evaluate(Pipeline.shared(asm), {"T_ambient_C": np.array([asm.T_ref_C]),
                                             "speed_rpm": np.array([0.0])},
                      np.array([mid_i, mid_i + 2.0]), np.array([mid_o, mid_o]))
-    assert r["preload_N"][0, 0] == pytest.approx(asm.preload.assembled_N, rel=1e-9)
-    assert r["preload_N"][1, 0] > asm.preload.assembled_N     # a tighter inner fit adds preload
+    assert r.preload_N[0, 0] == pytest.approx(asm.preload.assembled_N, rel=1e-9)
+    assert r.preload_N[1, 0] > asm.preload.assembled_N     # a tighter inner fit adds preload
 
 
 def test_tolerance_command_writes_the_documented_json_and_repeats_for_a_seed(tmp_path, capsys):
@@ -232,8 +232,8 @@ def test_dask_workers_give_the_single_process_numbers(fits_only):
             seen = {k: where.client.run(dask_config.get, k) for k in WORKER_CONFIG}
     finally:
         tsm.CHUNK_ROWS = old
-    for q in tol.QUANTITIES:
-        np.testing.assert_array_equal(dask[q], here[q], err_msg=q)
+    for q, v in here.columns().items():
+        np.testing.assert_array_equal(dask.columns()[q], v, err_msg=q)
     for k, v in WORKER_CONFIG.items():
         assert list(seen[k].values()) == [v, v], k
 
@@ -255,7 +255,7 @@ def test_samples_reordered_into_blocks_come_back_in_their_own_rows(fits_only):
     finally:
         tsm.CHUNK_ROWS = old
     hand = asm.fits.inner_interference_um + dev["inner_shaft"] - dev["inner_ring_bore"]
-    np.testing.assert_allclose(r["interference_inner_um"][:, 0], hand, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(r.interference_inner_um[:, 0], hand, rtol=0, atol=1e-12)
 
 
 # ------------------------------------------------- designed state, worst case per condition (#24)

@@ -112,5 +112,5 @@ def preload_indices(asm, conditions: dict[str, np.ndarray], n_base: int = 1024, 
         n = len(next(iter(dev.values())))
         di, do = tol.interference_offsets_um(dev, n)
         return tsm.run_samples(asm, conditions, di, do, workers=workers,
-                               scheduler=scheduler)["preload_N"]
+                               scheduler=scheduler).preload_N
     return indices(surface_inputs(asm), model, n_base, seed)

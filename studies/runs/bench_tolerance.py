@@ -93,13 +93,14 @@ def main(samples: int, workers: int | None = None) -> None:
         print(f"speed-up of 2 workers over 1: wall {one.wall_s / two.wall_s:.2f}x "
               f"(CPU {one.cpu_s:.1f} s vs {two.cpu_s:.1f} s); the blocks alone "
               f"{blocks_s['Dask, 1 worker'] / blocks_s['Dask, 2 workers']:.2f}x")
-        same = all(np.array_equal(runs[k][q], runs["this process"][q])
-                   for k in ("Dask, 1 worker", "Dask, 2 workers") for q in tol.QUANTITIES)
+        same = all(np.array_equal(v, runs["this process"].columns()[q])
+                   for k in ("Dask, 1 worker", "Dask, 2 workers")
+                   for q, v in runs[k].columns().items())
         print(f"identical results in all three: {same}")
         print(f"CPU per sample, one worker / this process: "
               f"{cpu_us['Dask, 1 worker'] / cpu_us['this process']:.3f}; two workers / this "
               f"process: {cpu_us['Dask, 2 workers'] / cpu_us['this process']:.3f}")
     r = next(iter(runs.values()))
-    p, se = tol.probability(r["fit_pressure_inner_MPa"][:, 0] <= 0)
+    p, se = tol.probability(r.fit_pressure_inner_MPa[:, 0] <= 0)
     print(f"P(inner fit open at 80 C) = {p:.4g} +- {se:.2g}; preload mean "
-          f"{r['preload_N'].mean():.2f} N, sd {r['preload_N'].std():.2f} N")
+          f"{r.preload_N.mean():.2f} N, sd {r.preload_N.std():.2f} N")
