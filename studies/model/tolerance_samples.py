@@ -63,8 +63,11 @@ def evaluate(pl, conditions: dict[str, np.ndarray], d_inner_um: np.ndarray,
 
 
 def warm(asm) -> None:
-    """Build this process's shared pipeline of `asm` (what the first block would do)."""
-    Pipeline.shared(asm)
+    """Build this process's shared pipeline of `asm` and run one sample (the [fits] values)
+    through it: the set-up and the lazy imports the first block would otherwise do (the results
+    of later blocks do not depend on it)."""
+    evaluate(Pipeline.shared(asm), {"T_ambient_C": np.array([asm.T_ref_C])}, np.zeros(1),
+             np.zeros(1))
 
 
 def evaluate_block(asm, conditions: dict[str, np.ndarray], d_inner_um: np.ndarray,
