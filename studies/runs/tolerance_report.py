@@ -19,6 +19,7 @@ from studies.model import sobol
 from studies.model import tolerance_samples as tsm
 from studies.model import tolerances as tol
 from studies.model.checks import assembly_checks
+from studies.model.parallel import Blocks
 from studies.model.pipeline import Pipeline
 from studies.model.table import write_table
 from studies.runs.report_tools import line_plot, md_table, nice_step, write_report_files
@@ -118,8 +119,13 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, samples: int,
     progress(f"tolerance: {samples} samples x {C} conditions through the exact model ...")
     dev = tol.sample_deviations_um(asm, samples, seed)
     di, do = tol.interference_offsets_um(dev, samples)
-    mc = tsm.run_samples(asm, cond, di, do, workers=workers, scheduler=scheduler,
-                         progress=bar or (lambda done, total: progress(f"  block {done} of {total}")))
+    # one cluster (or none) for the Monte Carlo and the Sobol' samples; opened after the
+    # pipeline's set-up above, which a local cluster's forked workers inherit
+    with Blocks(workers, scheduler) as where:
+        mc = tsm.run_samples(asm, cond, di, do, where=where, progress=bar or (
+            lambda done, total: progress(f"  block {done} of {total}")))
+        # Sobol' indices of the preload per surface (studies/model/sobol.py): their own design
+        sob = sobol.preload_indices(asm, cond, SOBOL_BASE_SAMPLES, seed, where=where)
     fail = failures(asm, mc)
     limit_p = next(c.allowable for c in assembly_checks(asm) if c.name == "max_contact_pressure_MPa")
     lin = _linear(asm, pl, cond, limit_p)
@@ -138,8 +144,6 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, samples: int,
     # sensitivity of the preload to each surface: Spearman rank correlation per condition
     sens = {s: [float(stats.spearmanr(dev[s], mc.preload_N[:, c]).statistic)
                 if np.ptp(mc.preload_N[:, c]) > 0 else 0.0 for c in range(C)] for s in dev}
-    # Sobol' indices of the preload per surface (studies/model/sobol.py): their own sample design
-    sob = sobol.preload_indices(asm, cond, SOBOL_BASE_SAMPLES, seed, workers, scheduler)
     sobol_json = {s: {k: [float(getattr(r, k)[i]) for r in sob]
                       for k in ("S1", "S1_conf", "ST", "ST_conf")} for i, s in enumerate(sob[0].names)}
     result = {
