@@ -14,6 +14,7 @@ from studies.model.config import CONFIG_DIR, ConfigError, load_assembly
 from studies.model import tolerance_samples as tsm
 from studies.model import tolerances as tol
 from studies.model.parallel import WORKER_CONFIG, Blocks
+from studies.model.pipeline import Pipeline
 
 CFG000 = CONFIG_DIR / "seed000_71807C_TC4.toml"
 
@@ -216,7 +217,9 @@ def test_tolerance_without_tolerances_is_refused(tmp_path, capsys):
 
 def test_dask_workers_give_the_single_process_numbers(fits_only):
     """The Monte Carlo on a local Dask cluster (2 worker processes, each building its own FE
-    set-up) equals the single-process run for the same samples, bit for bit."""
+    set-up) equals the single-process run for the same samples, bit for bit. The cluster is
+    opened with no shared pipeline here (its forked workers would inherit it, with the FE
+    results and pair memo of earlier blocks), and this process runs its blocks after it."""
     asm = fits_only["uniform"]
     S = 400
     dev = tol.sample_deviations_um(asm, S, seed=3)
@@ -224,12 +227,13 @@ def test_dask_workers_give_the_single_process_numbers(fits_only):
     cond = {"T_ambient_C": np.array([-20.0, 60.0])}
     old = tsm.CHUNK_ROWS
     tsm.CHUNK_ROWS = 200                      # several blocks, so both workers get some
+    Pipeline._shared.clear()
     try:
-        here = tsm.run_samples(asm, cond, di, do)
         with Blocks(workers=2) as where:
             dask = tsm.run_samples(asm, cond, di, do, where=where)
             # the workers run with the profiler and the GIL monitor off (parallel.WORKER_CONFIG)
             seen = {k: where.client.run(dask_config.get, k) for k in WORKER_CONFIG}
+        here = tsm.run_samples(asm, cond, di, do)
     finally:
         tsm.CHUNK_ROWS = old
     for q, v in here.columns().items():
