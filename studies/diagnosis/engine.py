@@ -70,6 +70,7 @@ from studies.diagnosis.decision import Separation, decide, separating
 from studies.diagnosis.fitting import fit_all
 from studies.diagnosis.generalised import ChosenForm, generalise
 from studies.diagnosis.heldout import validate
+from studies.diagnosis.ladder import is_form
 from studies.diagnosis.openworld import characterise
 from studies.diagnosis.problem import Problem, make_problem
 from studies.diagnosis.result import (BestPartial, ColumnEvidence, Cost, DiagnosisResult,
@@ -236,7 +237,8 @@ def assemble(first: Pass, sel: Selection, sep: Separation, cost: Cost) -> Diagno
                     BestPartial(d.best, first.candidates[d.best].parameters, d.best_residuals))
     open_world = (characterise({c: pb.measured[c] - b.fit.pred[c] for c in pb.columns},
                                pb.valid, pb.conditions, pb.blocks, pb.noise.sigma_w,
-                               pb.noise.rho)
+                               pb.noise.rho, forms={e.name: e.acts_through
+                                                    for e in pb.candidates if is_form(e)})
                   if verdict == "unexplained" else None)
     chosen = first.chosen if cause else None
     return DiagnosisResult(

@@ -1,12 +1,14 @@
 """Phase 2 of the diagnosis: which candidates the data can see. For every candidate the
 finite-difference sensitivity at its off value, the part the baseline calibration cannot produce,
 its reach inside the physical bounds in noise units, and the look-alike cosines between
-candidates (module docstring of `studies.diagnosis.engine`, step 2)."""
+candidates (module docstring of `studies.diagnosis.engine`, step 2). A model form of the ladder
+(`studies.diagnosis.ladder`) is screened only where the baseline residual points at a condition
+it acts through (`ladder.indication`), else it is not applicable with the reason."""
 from __future__ import annotations
 
 import numpy as np
 
-from studies.diagnosis import fitspec
+from studies.diagnosis import fitspec, ladder
 from studies.diagnosis.candidate import Candidate
 from studies.diagnosis.core import Baseline, ModelFailure, Screening
 from studies.diagnosis.problem import Problem
@@ -18,8 +20,9 @@ def screen(pb: Problem, b: Baseline) -> Screening:
     the candidates' order with their projected sensitivities' look-alike cosines."""
     cands = {}
     proj = {}
+    gate = ladder.indication(pb, b) if any(map(ladder.is_form, pb.candidates)) else None
     for e in pb.candidates:
-        cands[e.name], Q = _screen_one(pb, e, b)
+        cands[e.name], Q = _screen_one(pb, e, b, gate)
         if Q is not None:
             proj[e.name] = Q
     names_id = list(proj)
@@ -27,25 +30,29 @@ def screen(pb: Problem, b: Baseline) -> Screening:
     return Screening(cands, names_id, look)
 
 
-def _screen_one(pb: Problem, e, b: Baseline) -> tuple[Candidate, np.ndarray | None]:
+def _screen_one(pb: Problem, e, b: Baseline, gate=None) -> tuple[Candidate, np.ndarray | None]:
     """The candidate of effect `e` after screening and, when identifiable, the orthonormal basis
-    of its projected sensitivity (else None)."""
+    of its projected sensitivity (else None); `gate`: the model-form ladder's indication
+    (`ladder.indication`), a model form only where the residual points."""
+    kind = getattr(e, "kind", "effect")
     why, grid = _applicability(pb, e)
+    if why is None and gate is not None:
+        why = gate.why_not(e)
     if why is not None:
-        return Candidate(e.name, status="not_applicable", reason=why), None
+        return Candidate(e.name, kind, status="not_applicable", reason=why), None
     best = _sensitivity_kept(pb, e, grid, b)
     if not isinstance(best, tuple):
-        return Candidate(e.name, status="model_failed",
+        return Candidate(e.name, kind, status="model_failed",
                          reason=f"model failed with the effect on: {best}"), None
     fixed, Jc, names, Jp, frac, raw, left = best
     reach = _reach_sigma(pb, e, names, left)
     ident = {"remaining_fraction": dict(zip(names, frac)), "reach_sigma": float(reach)}
     why = _not_identifiable(pb, raw, frac, reach)
     if why is not None:
-        return Candidate(e.name, status="not_identifiable", reason=why,
+        return Candidate(e.name, kind, status="not_identifiable", reason=why,
                          identifiability=ident), None
     Q = orth(Jp, 1e-6)
-    return Candidate(e.name, identifiability=ident, rank=int(Q.shape[1]), sensitivity=Jc,
+    return Candidate(e.name, kind, identifiability=ident, rank=int(Q.shape[1]), sensitivity=Jc,
                      profile_fixed=fixed, profile_grid=grid), Q
 
 
