@@ -121,7 +121,7 @@ def _cause(p, step: int) -> AcceptedCause:
         params, unc, gain = dict(cand.parameters), dict(cand.uncertainty), cand.heldout_gain
     return AcceptedCause(name, p.chosen.entry.name if p.chosen else None, step,
                          p.decision.verdict, params, unc, ratio, gain, cand.delta_bic,
-                         cand.p_lr, dict(p.pb.noise.sigma))
+                         cand.p_lr, dict(p.pb.noise.sigma), cand.kind)
 
 
 def _next_problem(p) -> Problem:
