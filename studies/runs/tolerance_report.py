@@ -48,19 +48,21 @@ def failures(asm, r: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
     limit = next(c.allowable for c in assembly_checks(asm) if c.name == "max_contact_pressure_MPa")
     closed = tol.designed_closed(asm)
     ev = {f"fit_open_{fit}": (r[f"fit_pressure_{fit}_MPa"] <= 0.0) if closed[fit]
-          else (r[f"fit_pressure_{fit}_MPa"] > 0.0) for fit in ("inner", "outer")}
+          else (r[f"fit_pressure_{fit}_MPa"] > 0.0) for fit in tol.fits_of(asm)}
     return {**ev, "preload_lost": r["preload_N"] <= 0.0,
             "contact_pressure_over_limit": r["max_contact_pressure_MPa"] > limit}
 
 
 def worst_case(pl, cond: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
-    """The four corners of the two interference bands (`tol.worst_case_bands`) at every
-    condition through the pipeline: QUANTITIES as (4, C) arrays."""
+    """The corners of the interference bands (`tol.worst_case_bands`: four of the inner and
+    outer bands, times two per sleeve / cartridge band) at every condition through the pipeline:
+    `tol.quantities` as (corners, C) arrays."""
+    import itertools
+
     bands = tol.worst_case_bands(pl.asm)
-    corners = [(bi, bo) for bi in (bands[0].lower_um, bands[0].upper_um)
-               for bo in (bands[1].lower_um, bands[1].upper_um)]
-    return tsm.evaluate(pl, cond, np.array([c[0] - bands[0].nominal_um for c in corners]),
-                        np.array([c[1] - bands[1].nominal_um for c in corners]))
+    off = np.array([[c - b.nominal_um for c, b in zip(corner, bands)] for corner in
+                    itertools.product(*((b.lower_um, b.upper_um) for b in bands))])
+    return tsm.evaluate(pl, cond, off[:, 0], off[:, 1], off[:, 2:] if len(bands) > 2 else None)
 
 
 def _linear(asm, pl, cond, limit_p):
@@ -76,14 +78,14 @@ def _linear(asm, pl, cond, limit_p):
         dev[s][1 + 2 * k] += h[s]
         dev[s][2 + 2 * k] -= h[s]
     di, do = tol.interference_offsets_um(dev, 2 * n + 1)
-    r = tsm.evaluate(pl, cond, di, do)
+    r = tsm.evaluate(pl, cond, di, do, tol.layer_offsets_um(asm, dev, 2 * n + 1))
     grad = {q: np.array([(r[q][1 + 2 * k] - r[q][2 + 2 * k]) / (2 * h[s]) for k, s in enumerate(names)])
             for q in r}                                             # (n_surfaces, C)
     sigma = np.array([sig[s] for s in names])
     C = len(next(iter(cond.values())))
     closed = tol.designed_closed(asm)       # out of the designed state: open, or closed
-    events = {"fit_open_inner": ("interference_inner_um", 0.0, not closed["inner"]),
-              "fit_open_outer": ("interference_outer_um", 0.0, not closed["outer"]),
+    events = {**{f"fit_open_{fit}": (f"interference_{fit}_um", 0.0, not closed[fit])
+                 for fit in tol.fits_of(asm)},
               "preload_lost": ("preload_N", 0.0, False),
               "contact_pressure_over_limit": ("max_contact_pressure_MPa", limit_p, True)}
     return {e: np.array([tol.linear_probability(r[q][0, c], grad[q][:, c], sigma, limit, upper)
@@ -113,7 +115,8 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, samples: int,
     dev = tol.sample_deviations_um(asm, samples, seed)
     di, do = tol.interference_offsets_um(dev, samples)
     mc = tsm.run_samples(asm, cond, di, do, workers=workers, scheduler=scheduler,
-                         progress=bar or (lambda done, total: progress(f"  block {done} of {total}")))
+                         progress=bar or (lambda done, total: progress(f"  block {done} of {total}")),
+                         d_layers_um=tol.layer_offsets_um(asm, dev, samples))
     fail = failures(asm, mc)
     limit_p = next(c.allowable for c in assembly_checks(asm) if c.name == "max_contact_pressure_MPa")
     lin = _linear(asm, pl, cond, limit_p)
@@ -125,9 +128,9 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, samples: int,
         per_cond[e] = {"probability": [p for p, _ in pc], "standard_error": [s for _, s in pc],
                        "linear_estimate": [float(v) for v in lin[e]]}
     pct = {q: {k: float(np.percentile(mc[q], v)) for k, v in PERCENTILES.items()}
-           for q in tol.QUANTITIES}
+           for q in tol.quantities(asm)}
     pct_c = {q: {k: [float(x) for x in np.percentile(mc[q], v, axis=0)] for k, v in PERCENTILES.items()}
-             for q in tol.QUANTITIES}
+             for q in tol.quantities(asm)}
     # sensitivity of the preload to each surface: Spearman rank correlation per condition
     sens = {s: [float(stats.spearmanr(dev[s], mc["preload_N"][:, c]).statistic)
                 if np.ptp(mc["preload_N"][:, c]) > 0 else 0.0 for c in range(C)] for s in dev}
@@ -147,10 +150,10 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, samples: int,
         "fit_design": {f: "interference" if c else "clearance"
                        for f, c in tol.designed_closed(asm).items()},
         "worst_case": {q: {"min": float(wc[q].min()), "max": float(wc[q].max())}
-                       for q in tol.QUANTITIES},
+                       for q in tol.quantities(asm)},
         "worst_case_per_condition": {q: {"min": [float(v) for v in wc[q].min(axis=0)],
                                          "max": [float(v) for v in wc[q].max(axis=0)]}
-                                     for q in tol.QUANTITIES},
+                                     for q in tol.quantities(asm)},
         "preload_rank_correlation": sens,
         "preload_sobol": sobol_json, "sobol_base_samples": SOBOL_BASE_SAMPLES,
         "provenance": provenance,
@@ -159,7 +162,7 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, samples: int,
     cols = {"sample": np.repeat(np.arange(1, samples + 1, dtype=float), C)}
     cols.update({k: np.tile(v, samples) for k, v in cond.items()})
     cols.update({f"{s}_deviation_um": np.repeat(v, C) for s, v in dev.items()})
-    cols.update({q: mc[q].ravel() for q in tol.QUANTITIES})
+    cols.update({q: mc[q].ravel() for q in tol.quantities(asm)})
     if samples * C <= 2_000_000:
         write_table(out / "samples.csv", cols, provenance=provenance)
     _report(asm, out, cond, result, mc, fail, lin)
@@ -177,8 +180,9 @@ def _report(asm, out, cond, res, mc, fail, lin):
     S = res["samples"]
     pc = res["percentiles_per_condition"]
     plots = {}
-    for q, label in (("preload_N", "preload (N)"), ("fit_pressure_inner_MPa", "inner fit pressure (MPa)"),
-                     ("fit_pressure_outer_MPa", "outer fit pressure (MPa)"),
+    for q, label in (("preload_N", "preload (N)"),
+                     *((f"fit_pressure_{fit}_MPa", f"{fit} fit pressure (MPa)")
+                       for fit in tol.fits_of(asm)),
                      ("max_contact_pressure_MPa", "max contact pressure (MPa)"),
                      ("torque_Nmm", "friction torque (N mm)")):
         plots[q] = line_plot(out / f"band_{q}.png", x, {
@@ -213,7 +217,7 @@ def _report(asm, out, cond, res, mc, fail, lin):
                        for f, b in res["interference_bands_um"].items()]), "",
              "## Failure probabilities", "",
              "A fit fails when it leaves its designed state at the reference temperature "
-             f"(inner: {res['fit_design']['inner']}, outer: {res['fit_design']['outer']}; the mean "
+             f"({', '.join(f'{k}: {v}' for k, v in res['fit_design'].items())}; the mean "
              "assembly): a fit designed with interference by opening, one designed with clearance "
              "by closing (`fit_open_<fit>` counts either).", "",
              "Anywhere over the conditions (a sample fails if it fails at one of them), with the "
