@@ -180,6 +180,7 @@ def test_verify_assembly_runs_lame_on_the_users_own_material_and_sleeve_fit():
     a = assembly_from_dict(raw)
     cases = assembly_fit_cases(a)
     assert {c.inputs["fit"] for c in cases} == {"inner", "outer", "sleeve"}
+    assert {c.kind for c in cases} == {"lame_multilayer"}
     assert all(c.passed for c in cases), [(c.name, c.rel_error) for c in cases]
     c = next(c for c in cases if c.inputs["fit"] == "sleeve" and c.inputs["T_C"] == 20.0)
     assert c.inputs["E_MPa"][1] == 1.9e5

@@ -269,7 +269,8 @@ def cmd_verify(args) -> None:
             result = verify.run(tmp, progress=progress, assembly=asm)
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
-    bad = [c.name for c in result.cases if c.kind in ("lame_fit", "lame_displacement", "free_thermal")
+    bad = [c.name for c in result.cases if c.kind in ("lame_fit", "lame_multilayer", "lame_displacement",
+                                                           "free_thermal")
            and c.rel_error > verify.TOLERANCE] + [m.name for m in result.mms if not m.passed]
     print(f"verification: {len(result.cases) + len(result.convergence)} cases and "
           f"{len(result.mms)} manufactured-solution orders written to {args.out}/verification.md"

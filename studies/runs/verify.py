@@ -7,6 +7,10 @@ Cases (`VerifyCase`, written per shared/spec/cli.md by `VerifyCase.to_json`; `re
   Lamé solution exact in 3-D (sigma_r + sigma_theta is constant, so the axial strain is uniform);
   rollers on both ends make the plane-strain solution exact. So the only difference is
   discretisation.
+- lame_multilayer: an assembly's own fits (`verify --assembly`, `assembly_fit_cases`): its
+  shaft and inner ring, and its outer ring / sleeve / cartridge / housing as concentric cylinders
+  of one length with its materials and mean fits, free ends, frictionless: FE vs the multi-layer
+  plane-stress Lamé solution (exact there), one case per fit and temperature.
 - lame_displacement: the ring's outer-surface radial displacement vs Lamé.
 - lame_bounds: a short ring on a long shaft, FE against both plane-stress and plane-strain values.
 - free_thermal: one material, uniform temperature: u_r = theta r, zero stress.
@@ -61,7 +65,7 @@ MMS_ORDER_TOL = 0.2
 
 @dataclass(frozen=True)
 class VerifyCase:
-    """One closed-form comparison: name, kind ("lame_fit", "lame_displacement", "lame_bounds",
+    """One closed-form comparison: name, kind ("lame_fit", "lame_multilayer", "lame_displacement", "lame_bounds",
     "free_thermal", "rotating_fit", "rotating_displacement", "rotating_free", "fit_open_speed"),
     the inputs that recompute the closed form (names and units of shared/spec/cli.md), the FE and
     closed-form values by name, the relative error, and what a kind adds (`extra`: e.g.
@@ -558,7 +562,7 @@ def concentric_fit_case(name: str, radii_mm, parts: tuple[str, ...], materials, 
                   interference_nominal_um=[float(v) for v in d_um],
                   interference_um=[float(v) for v in eff], T_C=T_C, T_ref_C=T_ref_C,
                   length_mm=L, assumption="plane_stress", dofs=model.ndofs)
-    return [VerifyCase(f"{name}_{key}_fit", "lame_fit", dict(inputs, fit=key),
+    return [VerifyCase(f"{name}_{key}_fit", "lame_multilayer", dict(inputs, fit=key),
                        {"fit_pressure_MPa": float(p_fe[k])}, {"fit_pressure_MPa": float(p_cf[k])},
                        abs(float(p_fe[k]) - float(p_cf[k])) / scale)
             for k, key in enumerate(fit_keys)]
