@@ -192,3 +192,25 @@ def test_verify_assembly_runs_lame_on_the_users_own_material_and_sleeve_fit():
     assert c.closed_form["fit_pressure_MPa"] == pytest.approx(ref.pressures_MPa[1], rel=1e-12)
     assert c.fe["fit_pressure_MPa"] == pytest.approx(ref.pressures_MPa[1], rel=1e-3)
     assert ref.pressures_MPa[1] > 0
+
+
+def test_report_shows_every_fit_with_its_flag_and_the_naming_picture(tmp_path):
+    """The report of the sleeve design (coarse mesh): the margin table has the sleeve's fit
+    with its failures (open at 40 C, closed at 20 C), the results table its interference,
+    pressure and Lamé neighbour, the fit plots its curves, and the naming picture is there."""
+    from studies.runs import assembly_report
+
+    a = assembly_from_dict(_with_layer(_template(sleeve_interference_um=1.0), "sleeve", 3.0,
+                                       "17-4PH"))
+    cond = {"T_ambient_C": np.array([20.0, 40.0])}
+    prov = {"version": "test", "inputs": {}}
+    warnings = assembly_report.run(a, cond, tmp_path, prov, progress=lambda s: None,
+                                   mesh_factor=3.0)
+    md = (tmp_path / "report.md").read_text()
+    row = next(line for line in md.splitlines() if line.startswith("| sleeve fit"))
+    assert "FAIL (1 of 2)" in row and "a fit assembled with interference" in row
+    head = next(line for line in md.splitlines() if line.startswith("| ambient temperature"))
+    for col in ("interference_sleeve_um", "fit_pressure_sleeve_MPa", "fit_pressure_sleeve_lame_MPa"):
+        assert col in head, col
+    assert "## Fits and their names" in md and (tmp_path / "fit_naming.png").stat().st_size > 1000
+    assert any("fit_open_sleeve" in w for w in warnings)
