@@ -214,3 +214,29 @@ def test_report_shows_every_fit_with_its_flag_and_the_naming_picture(tmp_path):
         assert col in head, col
     assert "## Fits and their names" in md and (tmp_path / "fit_naming.png").stat().st_size > 1000
     assert any("fit_open_sleeve" in w for w in warnings)
+
+
+@pytest.mark.slow
+def test_thin_section_hub_rig_runs_and_its_report_shows_every_fit(tmp_path):
+    """Issue 24's second rig (studies/configs/rig_thin_section_hub.toml) runs through `report`
+    (coarse mesh): its three fits (inner, outer, the hub in the gear) each have a margin row and
+    their columns in the results table; the aluminium shaft and hub shrink away from the steel
+    rings and gear when cold, so the inner and hub fits open at -45 C (flagged), by at least the
+    free mismatch of the nominal mean fits, (23.6 - 11.5)e-6 /K x 65 K x 101.6 mm = 80 um > the
+    inner fit's 25.4 um."""
+    from studies.model.config import load_assembly
+    from studies.runs import assembly_report
+
+    a = load_assembly(CONFIG_DIR / "rig_thin_section_hub.toml")
+    assert tol.fits_of(a) == ("inner", "outer", "sleeve")
+    assert all(tol.designed_closed(a).values())
+    cond = {"T_ambient_C": np.array([-45.0, 20.0, 70.0])}
+    warnings = assembly_report.run(a, cond, tmp_path, {"version": "test", "inputs": {}},
+                                   progress=lambda s: None, mesh_factor=3.0)
+    md = (tmp_path / "report.md").read_text()
+    for fit in ("inner", "outer", "sleeve"):
+        row = next(line for line in md.splitlines() if line.startswith(f"| {fit} fit"))
+        assert "a fit assembled with interference" in row, row
+        assert f"fit_pressure_{fit}_MPa" in md
+    assert any("fit_open_inner" in w for w in warnings)
+    assert any("fit_open_sleeve" in w for w in warnings)
