@@ -240,3 +240,15 @@ def test_thin_section_hub_rig_runs_and_its_report_shows_every_fit(tmp_path):
         assert f"fit_pressure_{fit}_MPa" in md
     assert any("fit_open_inner" in w for w in warnings)
     assert any("fit_open_sleeve" in w for w in warnings)
+
+
+def test_diagnosis_bounds_of_an_assembly_with_a_sleeve_band_stay_the_inner_and_outer_ones(banded):
+    """The interference_error effect has inner_um / outer_um only: a sleeve band does not add a
+    parameter it does not have (this raised KeyError before)."""
+    from studies.model.effects import assembly_bounds
+
+    raw = _with_layer(_template(sleeve_interference_um=0.0, sleeve_shaft_deviation_um=[0.0, 7.62],
+                                inner_shaft_deviation_um=[2.0, 13.0]), "sleeve", 3.0, "17-4PH")
+    b = assembly_bounds(assembly_from_dict(raw))["interference_error"]
+    assert set(b) == {"inner_um", "outer_um"}
+    assert b["inner_um"] == pytest.approx((-5.5, 5.5))
