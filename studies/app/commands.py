@@ -198,7 +198,8 @@ def cmd_tolerance(args) -> None:
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
     p = res["probabilities"]
-    print(f"tolerance: {res['samples']} samples; P(inner fit opens) {p['fit_open_inner']:.3g}, "
+    fits = ", ".join(f"{f} {p[f'fit_open_{f}']:.3g}" for f in res["fit_design"])
+    print(f"tolerance: {res['samples']} samples; P(fit leaves its designed state) {fits}, "
           f"P(preload lost) {p['preload_lost']:.3g}; report in {args.out}/report.md")
 
 
