@@ -10,7 +10,10 @@ Checks and their allowables (docs/cli.md, "simulate: limits"):
 - fit_open_inner / fit_open_outer / fit_open_sleeve / fit_open_cartridge: the fit pressure must
   stay above 0 MPa, for a fit designed with interference only (the mean assembly at the reference
   temperature, `tolerances.designed_closed`; a fit designed as a clearance is not flagged for
-  being open). The sleeve's and cartridge's fits are the fits on their outside.
+  being open). The sleeve's and cartridge's fits are the fits on their outside;
+- clamp_open (a `[nut]`/`[cover]` with clamp = "force" only): the clamp force left before a
+  stack face opens, `margin_clamp_N` (N, `studies.model.stages.fe.ClampState`), must stay above
+  0 N; its margin is that column in newtons (a strict check: no relative margin).
 """
 from __future__ import annotations
 
@@ -28,7 +31,8 @@ CHECK_COLUMNS = frozenset(
     [f"flag_{n}" for n in ("max_contact_pressure_MPa", "static_safety", "preload_lost",
                            "fit_open_inner", "fit_open_outer", "fit_open_sleeve",
                            "fit_open_cartridge")]
-    + [f"margin_{n}" for n in ("max_contact_pressure_MPa", "static_safety")])
+    + [f"margin_{n}" for n in ("max_contact_pressure_MPa", "static_safety")]
+    + ["flag_clamp_open", "margin_clamp_N"])                     # clamp = "force" only
 
 
 @dataclass(frozen=True)
@@ -129,6 +133,10 @@ _FIT_PRESSURE = {"inner": _fit_pressure_inner_MPa, "outer": _fit_pressure_outer_
                  "sleeve": _fit_pressure_sleeve_MPa, "cartridge": _fit_pressure_cartridge_MPa}
 
 
+def _margin_clamp_N(result) -> np.ndarray:
+    return result.clamp.margin_N
+
+
 def assembly_checks(asm) -> list[Check]:
     """The checks that apply to an assembly, with their allowables and sources."""
     lim = asm.limits
@@ -149,6 +157,10 @@ def assembly_checks(asm) -> list[Check]:
             checks.append(Check(f"fit_open_{side}", f"fit_pressure_{side}_MPa", 0.0, False, "MPa",
                                 "a fit assembled with interference", _FIT_PRESSURE[side],
                                 strict=True))
+    if "force" in (asm.nut.clamp, asm.cover.clamp):
+        checks.append(Check("clamp_open", "margin_clamp_N", 0.0, False, "N",
+                            'the clamp force left before a stack face opens (clamp = "force")',
+                            _margin_clamp_N, strict=True))
     return checks
 
 
