@@ -139,8 +139,8 @@ def test_sleeve_band_is_sampled_and_its_design_state_is_closed(banded):
     di, do = tol.interference_offsets_um(dev, S)
     r = tsm.evaluate(Pipeline.shared(a), {"T_ambient_C": np.array([a.T_ref_C])}, di, do,
                      tol.layer_offsets_um(a, dev, S))
-    assert r["interference_sleeve_um"][:, 0] == pytest.approx(dev["sleeve_shaft"], abs=1e-9)
-    p = r["fit_pressure_sleeve_MPa"][:, 0]
+    assert r.interference_sleeve_um[:, 0] == pytest.approx(dev["sleeve_shaft"], abs=1e-9)
+    p = r.fit_pressure_sleeve_MPa[:, 0]
     assert p[0] == 0.0 and np.all(np.diff(p) > 0)
 
 
@@ -149,9 +149,10 @@ def test_tolerance_counts_a_sleeve_fit_failed_only_when_it_leaves_its_designed_s
     clearance band (-7.62 .. 0) it fails by closing, not by being open."""
     from studies.runs.tolerance_report import failures
 
-    r = {"fit_pressure_inner_MPa": np.array([[1.0]]), "fit_pressure_outer_MPa": np.array([[0.0]]),
-         "fit_pressure_sleeve_MPa": np.array([[0.0], [0.5]]),
-         "preload_N": np.array([[100.0]]), "max_contact_pressure_MPa": np.array([[1000.0]])}
+    one = np.ones((2, 1))
+    r = tol.SampleResults(one, one, one, 0 * one, 100 * one, 15 * one, 1000 * one, one,
+                          interference_sleeve_um=one,
+                          fit_pressure_sleeve_MPa=np.array([[0.0], [0.5]]))
     assert failures(banded, r)["fit_open_sleeve"][:, 0].tolist() == [True, False]
     raw = _with_layer(_template(sleeve_interference_um=0.0,
                                 sleeve_shaft_deviation_um=[-7.62, 0.0]), "sleeve", 3.0, "17-4PH")
@@ -165,9 +166,10 @@ def test_worst_case_takes_the_corners_of_every_band(banded):
     from studies.runs.tolerance_report import worst_case
 
     wc = worst_case(Pipeline.shared(banded), {"T_ambient_C": np.array([banded.T_ref_C])})
-    assert wc["interference_sleeve_um"].shape == (8, 1)
-    assert wc["interference_sleeve_um"].min() == pytest.approx(0.0, abs=1e-9)
-    assert wc["interference_sleeve_um"].max() == pytest.approx(7.62, abs=1e-9)
+    assert wc.interference_sleeve_um.shape == (8, 1)
+    assert wc.interference_sleeve_um.min() == pytest.approx(0.0, abs=1e-9)
+    assert wc.interference_sleeve_um.max() == pytest.approx(7.62, abs=1e-9)
+    assert "fit_pressure_sleeve_MPa" in wc.columns() and wc.interference_cartridge_um is None
 
 
 def test_verify_assembly_runs_lame_on_the_users_own_material_and_sleeve_fit():

@@ -5,11 +5,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from studies.model.columns import to_columns
 from studies.model.inputs import baseline_inputs
 from studies.model.parallel import map_blocks
 from studies.model.pipeline import FEOptions, Pipeline
-from studies.model.tolerances import mid_band_fit_offsets_um, mid_band_offsets_um, quantities
+from studies.model.tolerances import SampleResults, mid_band_fit_offsets_um, mid_band_offsets_um
 
 
 #: rows (samples x conditions) evaluated together: bounds memory for any number of samples
@@ -29,11 +28,11 @@ def sample_order(d_inner_um: np.ndarray, d_outer_um: np.ndarray) -> np.ndarray:
 
 
 def evaluate(pl, conditions: dict[str, np.ndarray], d_inner_um: np.ndarray,
-             d_outer_um: np.ndarray, d_layers_um: np.ndarray | None = None) -> dict[str, np.ndarray]:
+             d_outer_um: np.ndarray, d_layers_um: np.ndarray | None = None) -> SampleResults:
     """Every sample (interference offsets from the [fits] values, length S; d_layers_um (S,
     n_layers) those of the sleeve / cartridge fits, None = nominal) at every condition (length C)
     through the pipeline, whose rows are the mean (mid-band) assembly with its preload
-    (`Assembly.mean_fits_um`); returns `tolerances.quantities` as (S, C) arrays."""
+    (`Assembly.mean_fits_um`); returns the `SampleResults` as (S, C) arrays."""
     a = pl.asm
     C = len(next(iter(conditions.values())))
     S = len(d_inner_um)
@@ -51,22 +50,35 @@ def evaluate(pl, conditions: dict[str, np.ndarray], d_inner_um: np.ndarray,
     for k, (name, _) in enumerate(a.layers() if d_layers_um is not None else ()):
         inp = inp.copy(**{f"interference_{name}_um": d_layers_um[rows_s, k] - mid[name]})
     # the preload is set in the mean assembly (the [fits] values), whatever the sample's fits
-    res = to_columns(pl.run(inp, fe_options=FEOptions(reference="nominal_fits")), flags=False)
-    out = {}
-    for q in quantities(a):
+    res = pl.run(inp, fe_options=FEOptions(reference="nominal_fits"))
+
+    def per_sample(rows: np.ndarray) -> np.ndarray:
         v = np.empty((S, C))
-        v[rows_s, rows_c] = res[q]
-        out[q] = v
-    return out
+        v[rows_s, rows_c] = rows
+        return v
+    return SampleResults(
+        interference_inner_um=per_sample(res.fe.interference_um[:, 0]),
+        interference_outer_um=per_sample(res.fe.interference_um[:, 1]),
+        fit_pressure_inner_MPa=per_sample(res.fits.inner_MPa),
+        fit_pressure_outer_MPa=per_sample(res.fits.outer_MPa),
+        preload_N=per_sample(res.preload_N), contact_angle_deg=per_sample(res.contact_angle_deg),
+        max_contact_pressure_MPa=per_sample(res.max_contact_pressure_MPa),
+        torque_Nmm=per_sample(res.torque_Nmm),
+        **{q: per_sample(v) for k, (name, _) in enumerate(a.layers())
+           for q, v in ((f"interference_{name}_um", res.fe.layer_interference_um[:, k]),
+                        (f"fit_pressure_{name}_MPa", res.fits.layer_MPa(name)))})
 
 
 def warm(asm) -> None:
-    """Build this process's shared pipeline of `asm` (what the first block would do)."""
-    Pipeline.shared(asm)
+    """Build this process's shared pipeline of `asm` and run one sample (the [fits] values)
+    through it: the set-up and the lazy imports the first block would otherwise do (the results
+    of later blocks do not depend on it)."""
+    evaluate(Pipeline.shared(asm), {"T_ambient_C": np.array([asm.T_ref_C])}, np.zeros(1),
+             np.zeros(1))
 
 
 def evaluate_block(asm, conditions: dict[str, np.ndarray], d_inner_um: np.ndarray,
-                   d_outer_um: np.ndarray, d_layers_um: np.ndarray | None = None) -> dict[str, np.ndarray]:
+                   d_outer_um: np.ndarray, d_layers_um: np.ndarray | None = None) -> SampleResults:
     """`evaluate` on the process's shared pipeline of `asm`: one task of `run_samples`."""
     return evaluate(Pipeline.shared(asm), conditions, d_inner_um, d_outer_um, d_layers_um)
 
@@ -74,7 +86,7 @@ def evaluate_block(asm, conditions: dict[str, np.ndarray], d_inner_um: np.ndarra
 def run_samples(asm, conditions: dict[str, np.ndarray], d_inner_um: np.ndarray,
                 d_outer_um: np.ndarray, workers: int | None = None, scheduler: str | None = None,
                 progress=None, where=None,
-                d_layers_um: np.ndarray | None = None) -> dict[str, np.ndarray]:
+                d_layers_um: np.ndarray | None = None) -> SampleResults:
     """All samples in blocks of whole samples (about CHUNK_ROWS rows each), here or on Dask
     (`studies.model.parallel.map_blocks`): the same blocks in every mode, so the same numbers.
     The samples are put in `sample_order` before the blocks are cut and the results put back in
@@ -89,9 +101,9 @@ def run_samples(asm, conditions: dict[str, np.ndarray], d_inner_um: np.ndarray,
                None if dl is None else dl[s0:s0 + per]) for s0 in range(0, S, per)]
     parts = map_blocks(evaluate_block, blocks, workers=workers, scheduler=scheduler,
                        progress=progress, where=where)
-    out = {}
-    for q in quantities(asm):
-        v = np.empty((S, C))
-        v[order] = np.concatenate([p[q] for p in parts])
-        out[q] = v
-    return out
+
+    def put_back(v: np.ndarray) -> np.ndarray:
+        out = np.empty_like(v)
+        out[order] = v
+        return out
+    return SampleResults.concatenate(parts).map(put_back)

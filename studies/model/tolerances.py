@@ -27,7 +27,7 @@ pipeline; this module sits below it, beside the config that reads its bands).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import MISSING, dataclass, fields
 
 import numpy as np
 
@@ -44,22 +44,63 @@ SURFACE_FIT = {"inner_shaft": ("inner", +1.0), "inner_ring_bore": ("inner", -1.0
                **{f"{n}_bore": (n, -1.0) for n in LAYERS}}
 #: surfaces whose ISO 286 class is a shaft's (lower case); the other ISO 286 ones are holes
 SHAFT_SURFACES = ("inner_shaft", *(f"{n}_shaft" for n in LAYERS))
-#: quantities the Monte Carlo keeps per sample and condition
-QUANTITIES = ("interference_inner_um", "interference_outer_um", "fit_pressure_inner_MPa",
-              "fit_pressure_outer_MPa", "preload_N", "contact_angle_deg",
-              "max_contact_pressure_MPa", "torque_Nmm")
+
+
+@dataclass(frozen=True)
+class SampleResults:
+    """What the Monte Carlo keeps per sample and condition: (S, C) arrays, samples by
+    conditions (`tolerance_samples.evaluate`); a sleeve's / cartridge's interference and fit
+    pressure only for an assembly with that layer (None otherwise). Named columns only at the
+    file edge (`columns`)."""
+    interference_inner_um: np.ndarray
+    interference_outer_um: np.ndarray
+    fit_pressure_inner_MPa: np.ndarray
+    fit_pressure_outer_MPa: np.ndarray
+    preload_N: np.ndarray
+    contact_angle_deg: np.ndarray
+    max_contact_pressure_MPa: np.ndarray
+    torque_Nmm: np.ndarray
+    interference_sleeve_um: np.ndarray | None = None
+    fit_pressure_sleeve_MPa: np.ndarray | None = None
+    interference_cartridge_um: np.ndarray | None = None
+    fit_pressure_cartridge_MPa: np.ndarray | None = None
+
+    def present(self) -> tuple[str, ...]:
+        """The quantities held: QUANTITIES, then the layers' when present."""
+        return QUANTITIES + tuple(q for q in LAYER_QUANTITIES if getattr(self, q) is not None)
+
+    def columns(self) -> dict[str, np.ndarray]:
+        """{name: (S, C) array} of `present`, for the writers (tolerance.json, samples.csv)."""
+        return {q: getattr(self, q) for q in self.present()}
+
+    def fit_pressure_MPa(self, fit: str) -> np.ndarray:
+        """(S, C) mean pressure of a fit (inner, outer, sleeve, cartridge), MPa."""
+        return getattr(self, f"fit_pressure_{fit}_MPa")
+
+    def interference_um(self, fit: str) -> np.ndarray:
+        """(S, C) free diametral interference of a fit at the conditions, um."""
+        return getattr(self, f"interference_{fit}_um")
+
+    def map(self, fn) -> "SampleResults":
+        """The same quantities with `fn(array)` applied to each (rows put in order, joined)."""
+        return SampleResults(**{q: fn(getattr(self, q)) for q in self.present()})
+
+    @staticmethod
+    def concatenate(parts: "list[SampleResults]") -> "SampleResults":
+        """The samples of `parts` one after the other (each quantity joined along the samples)."""
+        return SampleResults(**{q: np.concatenate([getattr(p, q) for p in parts])
+                                for q in parts[0].present()})
+
+
+#: quantities the Monte Carlo keeps per sample and condition (the fields of `SampleResults`
+#: every assembly has), and those of a sleeve / cartridge
+QUANTITIES = tuple(f.name for f in fields(SampleResults) if f.default is MISSING)
+LAYER_QUANTITIES = tuple(f.name for f in fields(SampleResults) if f.default is not MISSING)
 
 
 def fits_of(asm) -> tuple[str, ...]:
     """The fits of an assembly, from the inside out: inner, outer and its sleeve / cartridge."""
     return ("inner", "outer", *(n for n, _ in asm.layers()))
-
-
-def quantities(asm) -> tuple[str, ...]:
-    """QUANTITIES, then each layer's interference and fit pressure (the Monte Carlo keeps these
-    per sample and condition for this assembly)."""
-    return QUANTITIES + tuple(q for n, _ in asm.layers()
-                              for q in (f"interference_{n}_um", f"fit_pressure_{n}_MPa"))
 
 
 def deviation_limits_um(asm) -> dict[str, tuple[float, float]]:

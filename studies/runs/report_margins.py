@@ -348,7 +348,7 @@ TOLERANCE_QUANTITIES = ("preload_N", "max_contact_pressure_MPa", "fit_pressure_i
                         "fit_pressure_outer_MPa", "torque_Nmm")
 
 
-def tolerance_lines(asm, res: dict, worst: dict | None) -> list[str]:
+def tolerance_lines(asm, res: dict, worst=None) -> list[str]:
     """The uncertainty from the fit tolerances: the worst case of the interference bands (four
     corners, `studies.runs.tolerance_report.worst_case`) beside the mid-band result."""
     if worst is None:
@@ -357,7 +357,8 @@ def tolerance_lines(asm, res: dict, worst: dict | None) -> list[str]:
     layers = [n for n, _ in asm.layers()]
     qs = TOLERANCE_QUANTITIES + tuple(f"fit_pressure_{n}_MPa" for n in layers)
     rows = [[q, f"{np.min(res[q]):.4g} .. {np.max(res[q]):.4g}",
-             f"{np.min(worst[q]):.4g}", f"{np.max(worst[q]):.4g}"] for q in qs]
+             f"{np.min(getattr(worst, q)):.4g}", f"{np.max(getattr(worst, q)):.4g}"]
+            for q in qs]
     bands = ("the four corners of the two interference bands" if not layers else
              f"the {2 ** (2 + len(layers))} corners of the {2 + len(layers)} interference bands "
              f"(inner, outer, {', '.join(layers)})")
