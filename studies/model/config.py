@@ -147,6 +147,30 @@ class Fits:
     inner_ring_bore_deviation_um: tuple = limits("limit deviations of the inner ring bore")
     outer_housing_deviation_um: tuple = limits("limit deviations of the housing bore")
     outer_ring_od_deviation_um: tuple = limits("limit deviations of the outer ring OD")
+    # the sleeve's and cartridge's fits (docs/cli.md "Sleeve and cartridge"): the layer's outside
+    # diameter (`<layer>_shaft`, the inside member of its fit) and the bore it sits in
+    # (`<layer>_bore`: the cartridge's or the housing's); ISO 286 classes at the fit's diameter
+    sleeve_shaft_class: str = text('ISO 286 shaft class of the sleeve OD; "" = none', default="",
+                                   note="only with a [sleeve]; the class or "
+                                        "sleeve_shaft_deviation_um, not both")
+    sleeve_bore_class: str = text('ISO 286 hole class of the bore the sleeve sits in; "" = none',
+                                  default="", note="only with a [sleeve]; the class or "
+                                                   "sleeve_bore_deviation_um, not both")
+    cartridge_shaft_class: str = text('ISO 286 shaft class of the cartridge OD; "" = none',
+                                      default="", note="only with a [cartridge]; the class or "
+                                                       "cartridge_shaft_deviation_um, not both")
+    cartridge_bore_class: str = text('ISO 286 hole class of the housing bore the cartridge sits '
+                                     'in; "" = none', default="",
+                                     note="only with a [cartridge]; the class or "
+                                          "cartridge_bore_deviation_um, not both")
+    sleeve_shaft_deviation_um: tuple = limits("limit deviations of the sleeve OD",
+                                              note="only with a [sleeve]")
+    sleeve_bore_deviation_um: tuple = limits("limit deviations of the bore the sleeve sits in",
+                                             note="only with a [sleeve]")
+    cartridge_shaft_deviation_um: tuple = limits("limit deviations of the cartridge OD",
+                                                 note="only with a [cartridge]")
+    cartridge_bore_deviation_um: tuple = limits("limit deviations of the housing bore the "
+                                                "cartridge sits in", note="only with a [cartridge]")
     distribution: str = choice("uniform", "normal", default="uniform",
                                doc='of a deviation: "uniform" within the limits or "normal" '
                                    '(limits at +-3 sigma)')
@@ -301,6 +325,29 @@ class Assembly:
         """Diameter of the outer rings' fit (mm): the housing bore, or with a sleeve or a
         cartridge the bearing outside diameter (their bore)."""
         return self.bearing.outside_diameter_mm if self.layers() else self.housing.bore_diameter_mm
+
+    def fit_diameter_mm(self, fit: str) -> float:
+        """Nominal diameter (mm) of a fit: inner (the shaft seat), outer (`outer_seat_diameter_mm`),
+        sleeve / cartridge (the layer's outside: the bearing OD plus twice the thickness of it and
+        of the layers inside it)."""
+        if fit == "inner":
+            return self.shaft.seat_diameter_mm
+        if fit == "outer":
+            return self.outer_seat_diameter_mm
+        d = self.bearing.outside_diameter_mm
+        for name, layer in self.layers():
+            d += 2 * layer.radial_thickness_mm
+            if name == fit:
+                return d
+        raise ValueError(f"the assembly has no {fit} fit")
+
+    def mean_fit_um(self, fit: str) -> float:
+        """Diametral interference (um) of one fit (inner, outer, sleeve, cartridge) of the mean
+        assembly: its [fits] value plus, where tolerances are given, every deviation at the
+        middle of its band (`mean_fits_um` for the inner and outer fits)."""
+        from studies.model.tolerances import mid_band_fit_offsets_um
+
+        return getattr(self.fits, f"{fit}_interference_um") + mid_band_fit_offsets_um(self)[fit]
 
     def mean_fits_um(self) -> tuple[float, float]:
         """Diametral interference (inner, outer) in um of the mean assembly: the [fits] values

@@ -216,6 +216,10 @@ def _check_geometry(a: Assembly, path: str) -> None:
     for name in LAYERS:
         need(getattr(a, name) is not None or getattr(a.fits, f"{name}_interference_um") == 0,
              f"fits.{name}_interference_um", f"given, but the assembly has no [{name}]")
+        for m in ("shaft", "bore"):
+            for k in (f"{name}_{m}_class", f"{name}_{m}_deviation_um"):
+                need(getattr(a, name) is not None or not getattr(a.fits, k), f"fits.{k}",
+                     f"given, but the assembly has no [{name}]")
     C0 = static_load_rating_C0_N(b.ball_count, Dw, dm, b.contact_angle_free_deg)
     need(a.preload.assembled_N <= C0, "preload.assembled_N",
          f"{a.preload.assembled_N:g} N exceeds the bearing's static load rating C0 = {C0:.0f} N "
