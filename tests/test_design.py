@@ -24,17 +24,18 @@ def search(tmp_path_factory):
 def test_search_finds_a_stack_with_less_preload_variation(search):
     asm, res, out = search
     P0 = asm.preload.assembled_N
-    given = res["given"]
-    assert given["is_given"] and given["preload_assembled_N"] == P0
-    same_preload = [d for d in res["screened"] if d["feasible"] and d["preload_assembled_N"] == P0
-                    and not d["is_given"]]
-    best = min(same_preload, key=lambda d: d["preload_variation"])
-    given_screen = next(d for d in res["screened"] if d["is_given"] and d["preload_assembled_N"] == P0)
-    assert best["preload_variation"] < 0.8 * given_screen["preload_variation"]
-    # the report explains it with the radial / axial split of the preload change
+    given = res.given
+    assert given.is_given and given.metrics.preload_assembled_N == P0
+    same_preload = [d for d in res.screened if d.metrics.feasible
+                    and d.metrics.preload_assembled_N == P0 and not d.is_given]
+    best = min(same_preload, key=lambda d: d.metrics.preload_variation)
+    given_screen = next(d for d in res.screened
+                        if d.is_given and d.metrics.preload_assembled_N == P0)
+    assert best.metrics.preload_variation < 0.8 * given_screen.metrics.preload_variation
+    # the report explains it with the split of the preload change
     report = (out / "report.md").read_text()
     assert "## Why the best design works" in report and "axial shifts" in report
-    assert set(res["why"]) == {"given", "best"}
+    assert len(res.why.given) == len(res.why.best) == 2
     doc = json.loads((out / "design.json").read_text())
     assert {"designs", "pareto", "given", "range_C"} <= set(doc)
     assert all("preload_range_N" in d for d in doc["designs"])
@@ -42,16 +43,16 @@ def test_search_finds_a_stack_with_less_preload_variation(search):
 
 def test_pareto_set_is_not_dominated(search):
     _, res, _ = search
-    front = res["pareto"]
-    feas = [d for d in res["screened"] if d["feasible"]]
+    front = [d.metrics for d in res.pareto]
+    feas = [d.metrics for d in res.screened if d.metrics.feasible]
     for d in front:
         for e in feas:
-            better = (e["preload_variation"] <= d["preload_variation"]
-                      and e["torque_max_Nmm"] <= d["torque_max_Nmm"]
-                      and e["contact_pressure_margin"] >= d["contact_pressure_margin"])
-            strictly = (e["preload_variation"] < d["preload_variation"]
-                        or e["torque_max_Nmm"] < d["torque_max_Nmm"]
-                        or e["contact_pressure_margin"] > d["contact_pressure_margin"])
+            better = (e.preload_variation <= d.preload_variation
+                      and e.torque_max_Nmm <= d.torque_max_Nmm
+                      and e.contact_pressure_margin >= d.contact_pressure_margin)
+            strictly = (e.preload_variation < d.preload_variation
+                        or e.torque_max_Nmm < d.torque_max_Nmm
+                        or e.contact_pressure_margin > d.contact_pressure_margin)
             assert not (better and strictly)
 
 

@@ -85,8 +85,8 @@ def test_design_screening_equals_full_route(family):
     own = evaluate_stack(asm, stack, T, P0, MESH_FACTOR, parametric=False)
     for k in ("preload_N", "max_contact_pressure_MPa", "fit_pressure_inner_MPa",
               "fit_pressure_outer_MPa", "torque_Nmm"):
-        assert _rel(par[k], own[k]) < RTOL, k
-    rng = lambda r: np.ptp(r["preload_N"], axis=1)      # noqa: E731
+        assert _rel(getattr(par, k), getattr(own, k)) < RTOL, k
+    rng = lambda r: np.ptp(r.preload_N, axis=1)      # noqa: E731
     assert np.all(np.abs(rng(par) - rng(own)) < RTOL * rng(own))
     assert parametric_setup_of(asm).keywords["variable"] == SPACERS
 
@@ -107,4 +107,4 @@ def test_screening_on_workers_equals_this_process(family):
     there = map_blocks(evaluate_stack, blocks, workers=2)
     for a, b in zip(here, there):
         for k in ("preload_N", "fit_pressure_inner_MPa", "torque_Nmm"):
-            np.testing.assert_array_equal(a[k], b[k], err_msg=k)
+            np.testing.assert_array_equal(getattr(a, k), getattr(b, k), err_msg=k)
