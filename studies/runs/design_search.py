@@ -574,35 +574,40 @@ def run(asm, T_min_C: float, T_max_C: float, out: Path, provenance: dict,
     return result
 
 
+def preload_split(asm, T_ends_C, preload_N: float, setting: Setting | None = None,
+                  mesh_factor: float = 1.0) -> tuple[PreloadSplit, ...]:
+    """The preload change from the reference temperature to each of `T_ends_C` (uniform
+    temperature) of `asm` under `setting` at the assembled preload `preload_N`, split into the
+    bearing's own growth, the radial- and the axial-shift parts and their interaction
+    (`PreloadSplit`: four pipeline runs on the same FE answer, `FEOptions`)."""
+    a = asm if setting is None else setting.assembly(asm)
+    pl = Pipeline(a, mesh_factor=mesh_factor)
+    Ts = np.concatenate([[a.T_ref_C], np.asarray(T_ends_C, float)])
+    inp = baseline_inputs({"T_ambient_C": Ts}, Ts.size, a.T_ref_C, preload_N,
+                          a.lubrication.speed_rpm)
+    if setting is not None and setting.extra_compliance_mm_per_N:
+        inp = inp.copy(extra_compliance_mm_per_N=setting.extra_compliance_mm_per_N)
+    res = pl.run(inp)
+    fe, ref = res.fe, res.fe_ref
+    f_RA = res.preload_N
+    f_R0 = pl.run(inp, fe_options=FEOptions(shifts="radial_only")).preload_N
+    f_0A = pl.run(inp, fe_options=FEOptions(shifts="axial_only")).preload_N
+    held = fe.with_shifts(dr_mm=ref.dr_mm, dz_mm=ref.dz_mm)        # both sets at assembly
+    f_00 = pl.run(inp, fe_options=FEOptions(states=(held, ref))).preload_N
+    return tuple(PreloadSplit(float(Ts[k]), float(f_RA[k] - f_RA[0]), float(f_00[k] - f_RA[0]),
+                              float(f_R0[k] - f_00[k]), float(f_0A[k] - f_00[k]),
+                              float(f_RA[k] - f_R0[k] - f_0A[k] + f_00[k]),
+                              float(1e3 * (fe.dz_mm[0, k] - ref.dz_mm[0, k])),
+                              float(1e3 * (fe.dr_mm[0, k] - ref.dr_mm[0, k])))
+                 for k in range(1, Ts.size))
+
+
 def _why(asm, best: Design, T) -> Why:
-    """The preload change (end of range minus reference) split into the bearing's own growth,
-    the radial- and the axial-shift parts and their interaction (`PreloadSplit`), for the
-    assembly as given and the best design, at the best design's assembled preload."""
-    out = {}
-    for label, stack, setting in (("given", None, None), ("best", best.stack, best.setting)):
-        a = asm if stack is None else setting.assembly(stack.assembly(asm))
-        pl = Pipeline(a)
-        Ts = np.array([T[0], a.T_ref_C, T[-1]])
-        inp = baseline_inputs({"T_ambient_C": Ts}, 3, a.T_ref_C,
-                              best.metrics.preload_assembled_N, a.lubrication.speed_rpm)
-        if setting is not None and setting.extra_compliance_mm_per_N:
-            inp = inp.copy(extra_compliance_mm_per_N=setting.extra_compliance_mm_per_N)
-        res = pl.run(inp)
-        fe, ref = res.fe, res.fe_ref
-        f_RA = res.preload_N
-        f_R0 = pl.run(inp, fe_options=FEOptions(shifts="radial_only")).preload_N
-        f_0A = pl.run(inp, fe_options=FEOptions(shifts="axial_only")).preload_N
-        held = fe.with_shifts(dr_mm=ref.dr_mm, dz_mm=ref.dz_mm)     # both sets at assembly
-        f_00 = pl.run(inp, fe_options=FEOptions(states=(held, ref))).preload_N
-        ref_N = f_RA[1]
-        out[label] = tuple(
-            PreloadSplit(float(Ts[k]), float(f_RA[k] - ref_N), float(f_00[k] - ref_N),
-                         float(f_R0[k] - f_00[k]), float(f_0A[k] - f_00[k]),
-                         float(f_RA[k] - f_R0[k] - f_0A[k] + f_00[k]),
-                         float(1e3 * (fe.dz_mm[0, k] - ref.dz_mm[0, k])),
-                         float(1e3 * (fe.dr_mm[0, k] - ref.dr_mm[0, k])))
-            for k in (0, 2))
-    return Why(out["given"], out["best"])
+    """`preload_split` at both ends of the range for the assembly as given and the best design,
+    at the best design's assembled preload (the assembly's mesh)."""
+    P = best.metrics.preload_assembled_N
+    return Why(preload_split(asm, (T[0], T[-1]), P),
+               preload_split(best.stack.assembly(asm), (T[0], T[-1]), P, best.setting))
 
 
 def _label(d: Design, given: Setting) -> str:
