@@ -218,3 +218,25 @@ def test_no_fe_objects_outlive_a_stack(monkeypatch):
         gc.enable()
     assert len({ds._family_of(s) for s in stacks}) == 3
     assert live == 0 and len(fp._FAMILIES) <= 2
+
+
+# ------------------------------------------------------------------ progress on a terminal
+def test_progress_bar_on_a_terminal_only(monkeypatch):
+    """The design command's stack bar (`progress_bar`, tqdm on stderr): drawn when stderr is a
+    terminal (its 'done/total' counter), nothing when it is not (a file, a pipe, the test runner)."""
+    import io
+    import sys
+
+    from studies.app.output import progress_bar
+
+    class Terminal(io.StringIO):
+        def isatty(self):
+            return True
+
+    monkeypatch.delenv("BEARINGFEM_VERBOSE", raising=False)
+    for stream, drawn in ((Terminal(), True), (io.StringIO(), False)):
+        monkeypatch.setattr(sys, "stderr", stream)
+        bar = progress_bar("stacks", "stack")
+        for d in range(1, 8):
+            bar(d, 7)
+        assert ("stacks:" in stream.getvalue() and "/7" in stream.getvalue()) is drawn

@@ -5,7 +5,11 @@ Design variables (the assembly's own values are one candidate):
   materials with equal E, nu and CTE are one choice);
 - the common spacer length, `LENGTH_FACTORS` x the assembly's;
 - the clamp scheme of nut and cover (rigid or compliant faces), with `--clamps`;
-- the assembled preload, `PRELOAD_FACTORS` x the assembly's (no new FE: one bearing run).
+- the assembled preload, `PRELOAD_FACTORS` x the assembly's (no new FE: one bearing run);
+- with `--vary`, settings beside the stack (`Setting`): the preload kind and spring rate, the
+  free contact angle, the ISO 286 classes of the shaft seat and the housing bore. They leave the
+  stack's FE alone: one task evaluates a stack under all its settings on one FE set-up
+  (`_TaskSetups`: a spec seen before is reused; the fit classes stay in the stack's family).
 
 Every stack is its own FE model: the search screens all of them on a mesh twice as coarse
 (`SCREEN_MESH_FACTOR`) and re-evaluates the best ones on the assembly's mesh (each through the
@@ -15,19 +19,26 @@ reference FE (mesh, assembly, factorisation, unit solutions, the spacers of the 
 materials), and a member's set-up follows from it exactly by condensing the two spacers and a
 low-rank update (equal to the stack's own set-up to round-off, about 1e-12 relative: tests/
 test_parametric.py); no stack is meshed or factorised on its own, only one stack per family.
+A task frees its FE objects before it returns (`_release`: collected, then the heap trimmed), so
+a worker's memory stays flat over any number of stacks (`bench --design` measures it).
 
-Over the temperature range (uniform temperature, round steps) each candidate gets its preload range (max - min), its smallest preload, whether each fit
-assembled with interference stays closed, its largest contact pressure against the limit
-`simulate` checks, and its largest torque. Feasible: fits closed, preload kept, contact pressure
-within the limit; `in_band`: the preload stays inside the band (x the assembled preload) at every
-temperature. Ranked by the relative preload variation (range / assembled preload: the band is
-relative too); the Pareto set is the feasible designs no other beats on all of relative preload
-variation, largest torque and contact-pressure margin.
+Over the temperature range (uniform temperature, round steps) each candidate gets its preload
+range (max - min), its smallest preload, whether each fit assembled with interference stays
+closed, its largest contact pressure against the limit `simulate` checks, and its largest torque.
+Feasible: fits closed, preload kept, contact pressure within the limit; `in_band`: the preload
+stays inside the band (`Band`: x the assembled preload, or in N) at every temperature. Ranked by
+the relative preload variation (range / assembled preload); the Pareto set is the feasible
+designs no other beats on all of relative preload variation, largest torque and
+contact-pressure margin.
 
-Why a design works: for the best design and the assembly as given, the preload change from the
-reference temperature to each end of the range is split into the part the radial groove-centre
-shifts cause (fits, ring growth) and the part the axial ones cause (stack lengths), with the same
-pipeline run on the FE answer with only one set of shifts (as the seed 000 study does).
+Why a design works (`preload_split`): for the best design and the assembly as given, the preload
+change from the reference temperature to each end of the range split into parts that add up to
+it: the bearing's own thermal geometry, the radial groove-centre shifts (fits, ring growth), the
+axial ones (stack lengths) and their interaction, with the same pipeline run on the FE answer
+with shifts held at their assembly values (`FEOptions`).
+
+Results are typed (`DesignResult`, `Design`, `Metrics`, `StackAnswers`); columns only in
+design.json (`DesignResult.to_json`).
 """
 from __future__ import annotations
 
