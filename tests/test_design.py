@@ -240,3 +240,28 @@ def test_progress_bar_on_a_terminal_only(monkeypatch):
         for d in range(1, 8):
             bar(d, 7)
         assert ("stacks:" in stream.getvalue() and "/7" in stream.getvalue()) is drawn
+
+
+def test_search_with_settings_keeps_the_given_numbers(tmp_path):
+    """`--vary` adds settings beside the stacks without touching the rest: the assembly as given
+    gets bit for bit the numbers of the search without settings, every setting of every stack is
+    a design at every preload, and design.json carries each design's setting."""
+    asm = load_shipped("seed000")
+    kw = dict(progress=lambda s: None, materials=["TC4"], length_factors=(1.0,),
+              screen_mesh_factor=4.0, confirm_mesh_factor=4.0)
+    (tmp_path / "a").mkdir()
+    (tmp_path / "b").mkdir()
+    plain = ds.run(asm, -60.0, 80.0, tmp_path / "a", provenance("design", {}), **kw)
+    varied = ds.run(asm, -60.0, 80.0, tmp_path / "b", provenance("design", {}),
+                    vary={"preload_kind": ("position", "spring"),
+                          "spring_rate_N_per_mm": (0.0, 200.0)}, **kw)
+    assert varied.n_settings == 3 and plain.n_settings == 1
+    assert varied.n_designs == 3 * plain.n_designs
+    assert varied.given.metrics == plain.given.metrics
+    doc = json.loads((tmp_path / "b" / "design.json").read_text())
+    kinds = {(d["preload_kind"], d["spring_rate_N_per_mm"]) for d in doc["screened"]}
+    assert kinds == {("position", 0.0), ("spring", 0.0), ("spring", 200.0)}
+    # a constant-force spring holds the preload at every temperature: its range is round-off
+    const = [d for d in varied.screened if d.setting.preload_kind == "spring"
+             and d.setting.spring_rate_N_per_mm == 0.0]
+    assert all(d.metrics.preload_range_N <= 1e-9 * d.metrics.preload_assembled_N for d in const)
