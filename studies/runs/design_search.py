@@ -269,6 +269,10 @@ def settings_of(asm, vary: dict[str, tuple] | None = None) -> list[Setting]:
     for v in vary.get("contact_angle_free_deg", ()):
         if not 0 < v < 60:
             raise DesignError(f"--vary contact_angle_free_deg={v:g}: outside 0..60 deg")
+    if "spring_rate_N_per_mm" in vary and "spring" not in vary.get("preload_kind",
+                                                                   (g.preload_kind,)):
+        raise DesignError("--vary spring_rate_N_per_mm: a rate needs a spring preload (the "
+                          f"assembly's is {g.preload_kind}); add --vary preload_kind=spring")
     axes = [vary.get(k, (getattr(g, k),)) for k in SETTING_KEYS]
     out = [g]
     for values in itertools.product(*axes):
@@ -568,7 +572,7 @@ def run(asm, T_min_C: float, T_max_C: float, out: Path, provenance: dict,
         # confirm the best feasible ones (and the assembly as given) on the fine mesh
         ranked = sorted(designs, key=rank_key)
         best = list(dict.fromkeys([(0, 0)] + [(d.stack_index, d.setting_index) for d in ranked
-                                              if d.metrics.feasible]))[:CONFIRM + 1]
+                                              if d.metrics.feasible][:CONFIRM]))
         progress(f"design: confirming {len(best)} candidates on the assembly's mesh ...")
         fine = map_blocks(evaluate_stack, [(asm, stacks[i], T, P0, confirm_mesh_factor, False,
                                             settings[j]) for i, j in best], where=where)
