@@ -23,6 +23,9 @@ from studies.runs.bench_clock import Clock
 #: stacks the memory line runs, and after how many the first reading is taken
 MEMORY_STACKS = 1000
 MEMORY_WARMUP = 100
+#: the same on the full set-up route, cold (each stack meshed and factorised: ~1 s a stack)
+FULL_STACKS = 60
+FULL_WARMUP = 10
 
 
 def rss_MB() -> float:
@@ -42,9 +45,12 @@ def _rss_everywhere(where) -> list[float]:
 
 
 def memory_per_stack(asm, workers: int | None, n_stacks: int = MEMORY_STACKS,
-                     warmup: int = MEMORY_WARMUP) -> tuple[float, float, float]:
+                     warmup: int = MEMORY_WARMUP,
+                     parametric: bool = True) -> tuple[float, float, float]:
     """(RSS after the warm-up, RSS at the end, growth per stack), MB, the workers' mean: the
-    screening task of the design search over n_stacks of the `--clamps` candidates."""
+    screening task of the design search over n_stacks of the `--clamps` candidates
+    (`parametric=False`: every stack's own full set-up, the route of fits that are not
+    frictionless; cold when BEARINGFEM_CACHE is an empty folder)."""
     import numpy as np
 
     from studies.model.parallel import Blocks
@@ -55,8 +61,8 @@ def memory_per_stack(asm, workers: int | None, n_stacks: int = MEMORY_STACKS,
     T = np.linspace(-60.0, 80.0, ds.N_TEMPERATURES)
     P0 = asm.preload.assembled_N * np.array(ds.PRELOAD_FACTORS)
     order = sorted(range(len(stacks)), key=lambda i: ds._family_of(stacks[i]))
-    blocks = [(asm, stacks[order[k % len(order)]], settings, T, P0, ds.SCREEN_MESH_FACTOR, True)
-              for k in range(n_stacks)]
+    blocks = [(asm, stacks[order[k % len(order)]], settings, T, P0, ds.SCREEN_MESH_FACTOR,
+               parametric) for k in range(n_stacks)]
     with Blocks(workers) as where:
         where.map(ds.evaluate_settings, blocks[:warmup])
         before = _rss_everywhere(where)
@@ -91,6 +97,8 @@ def main(workers: int | None = 2) -> None:
                       f"{'this process' if w is None else f'{w} workers'}, {label}: {c.line()})",
                       flush=True)
             memory = memory_per_stack(asm, w)      # the warm cache of this temporary folder
+            os.environ["BEARINGFEM_CACHE"] = str(Path(tmp) / "cache-full")     # empty: cold
+            memory_full = memory_per_stack(asm, w, FULL_STACKS, FULL_WARMUP, parametric=False)
         finally:
             if old is None:
                 os.environ.pop("BEARINGFEM_CACHE", None)
@@ -107,3 +115,6 @@ def main(workers: int | None = 2) -> None:
     a, b, g = memory
     print(f"memory: {MEMORY_STACKS} stacks, worker RSS {a:.0f} -> {b:.0f} MB after the first "
           f"{MEMORY_WARMUP}, {g:.3f} MB per stack", flush=True)
+    a, b, g = memory_full
+    print(f"memory, full set-up route (cold): {FULL_STACKS} stacks, worker RSS {a:.0f} -> "
+          f"{b:.0f} MB after the first {FULL_WARMUP}, {g:.3f} MB per stack", flush=True)
