@@ -378,7 +378,7 @@ def _task_memory():
     """Give a task's native memory back when it ends (`studies.model.memory`). The FE objects
     of a stack form reference cycles (the FE stage and its superposition's solver callback), so
     dropping them frees nothing until Python's cycle collector runs, and a heap trim before
-    that finds nothing to return: a Dask worker (trim threshold 1 GiB) grew ~18 MB a stack on
+    that finds nothing to return: a Dask worker (trim threshold 1 GiB) grew 11..19 MB a stack on
     the full set-up route. So: collect, then trim. The objects alive when the task starts are
     frozen for its duration (`gc.freeze`), so the collection scans only what the task made
     (about a millisecond, not the ~40 ms of a full collection in a loaded process)."""
