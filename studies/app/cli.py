@@ -137,7 +137,7 @@ def build_parser() -> argparse.ArgumentParser:
                         "workers (wall, CPU, load)")
     b.add_argument("--design", action="store_true",
                    help="instead: the design search of seed 000 (324 stacks), cold and warm FE "
-                        "cache (wall, CPU, load)")
+                        "cache (wall, CPU, load), and the workers' memory per stack")
     b.add_argument("--workers", type=int, default=None,
                    help="with --tolerance: only on N Dask workers; with --design: N workers "
                         "(default 2, 0 = this process)")
