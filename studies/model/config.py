@@ -448,7 +448,7 @@ def load_bearing(path: str | Path) -> SingleBearingConfig:
     from analytic.bearing.single import free_contact_angle_deg
 
     path = str(path)
-    raw = _read_toml(path)
+    raw = lubricant_alias(_read_toml(path), path)
     for name in raw:
         if name not in ("bearing", "materials", "lubrication", "lubricants"):
             raise ConfigError(f"{path}: [{name}]: unknown section (a bearing file has [bearing], "
@@ -511,6 +511,7 @@ def _clearance_um(path: str, table: dict) -> float | None:
 def assembly_from_dict(raw: dict, path: str = "<config>") -> Assembly:
     """An assembly from a parsed TOML file: each section against its keys, then the relations
     between keys (config_checks.check_assembly). ConfigError (one line) on the first problem."""
+    raw = lubricant_alias(raw, path)
     top = _header(path, raw.get("assembly"))
     for name in raw:
         if name not in ("assembly", "materials", "lubricants") and name not in SECTIONS:
@@ -521,6 +522,27 @@ def assembly_from_dict(raw: dict, path: str = "<config>") -> Assembly:
                    lubricants=parse_lubricants(raw, path), **parts)
     check_assembly(asm, path)
     return asm
+
+
+def lubricant_alias(raw: dict, path: str) -> dict:
+    """`[lubricant] name = "X"` (the CLI contract's spelling) is `[lubrication] lubricant = "X"`:
+    the file with the one moved into the other. ConfigError (one line) for any other key in
+    [lubricant], or the oil given both ways."""
+    alias = raw.get("lubricant")
+    if alias is None:
+        return raw
+    if not isinstance(alias, dict) or set(alias) != {"name"}:
+        extra = sorted(set(alias) - {"name"}) if isinstance(alias, dict) else []
+        raise ConfigError(f"{path}: [lubricant]{' ' + extra[0] if extra else ''}: only `name` (the "
+                          "oil, same as [lubrication] lubricant); the other keys belong in "
+                          "[lubrication]")
+    lub = raw.get("lubrication", {})
+    if isinstance(lub, dict) and "lubricant" in lub:
+        raise ConfigError(f"{path}: [lubricant] name: the oil is also given as [lubrication] "
+                          "lubricant; give it once")
+    out = {k: v for k, v in raw.items() if k != "lubricant"}
+    out["lubrication"] = {**(lub if isinstance(lub, dict) else {}), "lubricant": alias["name"]}
+    return out
 
 
 def _header(path: str, top) -> dict:
