@@ -104,7 +104,7 @@ def test_screening_on_workers_equals_this_process(family):
     T, P0 = np.array([-60.0, 80.0]), np.array([asm.preload.assembled_N])
     blocks = [(asm, s, T, P0, MESH_FACTOR, True) for s in stacks]
     import fem.parametric
-    fem.parametric._FAMILIES.clear()    # local workers are forks: none starts with a family built here
+    fem.parametric._FAMILIES.clear()    # neither the workers nor this process start with a family
     there = map_blocks(evaluate_stack, blocks, workers=2)
     here = map_blocks(evaluate_stack, blocks[::-1])[::-1]       # another order than the workers'
     for a, b in zip(here, there):

@@ -121,8 +121,8 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, samples: int,
     progress(f"tolerance: {samples} samples x {C} conditions through the exact model ...")
     dev = tol.sample_deviations_um(asm, samples, seed)
     di, do = tol.interference_offsets_um(dev, samples)
-    # one cluster (or none) for the Monte Carlo and the Sobol' samples; opened after the
-    # pipeline's set-up above, which a local cluster's forked workers inherit
+    # one cluster (or none) for the Monte Carlo and the Sobol' samples (its workers read the
+    # pipeline's set-up above from the FE cache)
     with Blocks(workers, scheduler) as where:
         mc = tsm.run_samples(asm, cond, di, do, where=where, progress=bar or (
             lambda done, total: progress(f"  block {done} of {total}")),
