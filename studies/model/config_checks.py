@@ -6,17 +6,15 @@ of one line naming the file and the key."""
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
 
 from analytic.bearing.geometry import BearingGeometry, BearingSpec
 from analytic.bearing.land import groove_bottom_diameter_mm
 from analytic.materials import Material, get_material
 from analytic.safety import static_load_rating_C0_N
+from studies.model.assembly import Assembly
 from studies.model.config_schema import (LAYERS, MATERIAL_T_RANGE_C, MESH_TARGET_RANGE,
                                          TOLERANCE_SURFACES, ConfigError)
 
-if TYPE_CHECKING:
-    from studies.model.config import Assembly
 
 
 def check_assembly(a: Assembly, path: str) -> None:
