@@ -208,8 +208,9 @@ def thermal_model(pl: Pipeline, progress=None) -> ThermalModel:
     return out
 
 
-#: format of the cached reduced basis (raise when the file layout or the basis changes)
-BASIS_FORMAT = 1
+#: format of the cached reduced basis (raise when the file layout or the basis changes; 2: one
+#: energy per mode, the files of 1 held one per moment)
+BASIS_FORMAT = 2
 
 
 class BasisCacheError(RuntimeError):
@@ -254,7 +255,8 @@ def cached_basis(pl: Pipeline, tc: TransientConduction, training, inputs, say=No
         if set(a) != {"key", "V", "energy"} or str(a["key"]) != key:
             raise BasisCacheError("not the basis of this stack")
         V, e = a["V"], a["energy"]
-        if V.ndim != 2 or V.shape[0] != tc.n_total or e.ndim != 1 or not np.all(np.isfinite(V)):
+        if (V.ndim != 2 or V.shape[0] != tc.n_total or e.shape != (V.shape[1],)
+                or not np.all(np.isfinite(V))):
             raise BasisCacheError("its arrays are not sound")
         return ReducedBasis(V, e)
 
