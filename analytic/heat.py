@@ -33,10 +33,11 @@ class PairHeat:
     viscous_W: np.ndarray        # viscous (lubricant) losses
     inner_W: np.ndarray          # everything generated at the inner contacts (half the viscous part)
     outer_W: np.ndarray          # everything generated at the outer contacts (half the viscous part)
+    hysteresis_W: np.ndarray | float = 0.0   # elastic hysteresis (solid-film model)
 
     @property
     def total_W(self) -> np.ndarray:
-        return self.sliding_W + self.spin_W + self.viscous_W
+        return self.sliding_W + self.spin_W + self.viscous_W + self.hysteresis_W
 
 
 def pair_heat_W(g, pair, speed_rpm, mu_traction: float, viscous_torque_Nmm) -> PairHeat:
@@ -66,6 +67,21 @@ def pair_heat_W(g, pair, speed_rpm, mu_traction: float, viscous_torque_Nmm) -> P
         viscous_W=power_W(visc, n),
         inner_W=power_W(sl_i + sp_i + 0.5 * visc, n),
         outer_W=power_W(sl_o + sp_o + 0.5 * visc, n))
+
+
+def solid_film_pair_heat_W(torque, speed_rpm) -> PairHeat:
+    """Heat of a solid-film lubricated pair (W) from its torque components (`analytic.torque.
+    pair_torque` with model "solid_film": differential slip, spin and hysteresis, each summed
+    over both bearings, and the same torque split into inner and outer contacts): P = M |omega|
+    per component (`torque.power_W`); no viscous part. inner_W + outer_W = total_W."""
+    if torque.model != "solid_film":
+        raise ValueError(f"solid_film_pair_heat_W needs a solid-film torque, got '{torque.model}'")
+    n = np.asarray(speed_rpm, float)
+    return PairHeat(sliding_W=power_W(torque.differential_Nmm, n), spin_W=power_W(torque.spin_Nmm, n),
+                    viscous_W=np.zeros_like(power_W(torque.spin_Nmm, n)),
+                    inner_W=power_W(torque.inner_contacts_Nmm, n),
+                    outer_W=power_W(torque.outer_contacts_Nmm, n),
+                    hysteresis_W=power_W(torque.hysteresis_Nmm, n))
 
 
 # ------------------------------------------------------------------ rolling contact conductance

@@ -91,3 +91,16 @@ def test_rolling_contact_resistance_falls_with_speed_and_the_film_adds_in_series
     # resists more (sqrt(kappa)/k at high Pe), so the ring takes more than half
     hyb = rolling_contact_conductance(0.55, 0.08, 1700.0, MATERIALS["Si3N4"], st, 14)
     assert hyb.ring_share > 0.5
+
+
+def test_solid_film_heat_is_the_torque_times_the_speed():
+    """A solid-film pair's heat is its friction torque times |omega| (omega = 2 pi n / 60), the
+    contact split adding up to it (nothing lost, nothing viscous)."""
+    from analytic.torque import pair_torque
+    t = pair_torque(G, PAIR, model="solid_film", mu=0.02, hysteresis_loss=0.01, speed_rpm=N_RPM)
+    from analytic.heat import solid_film_pair_heat_W
+    h = solid_film_pair_heat_W(t, N_RPM)
+    w = 2 * np.pi * np.abs(N_RPM) / 60.0 * 1e-3          # N mm/s -> W
+    assert np.allclose(h.total_W, t.torque_Nmm * w, rtol=1e-12)
+    assert np.allclose(h.inner_W + h.outer_W, h.total_W, rtol=1e-12)
+    assert np.all(h.viscous_W == 0.0)

@@ -41,7 +41,8 @@ import numpy as np
 
 from analytic import lubrication as lub
 from analytic import thermal_network as tn
-from analytic.heat import ContactConductance, pair_heat_W, rolling_contact_conductance
+from analytic.heat import (ContactConductance, pair_heat_W, rolling_contact_conductance,
+                           solid_film_pair_heat_W)
 from fem.reduced_thermal import (ModalStructure, ReducedConduction, ReducedStepper, krylov_basis,
                                  modal_structure)
 from fem.solver import single_thread_blas
@@ -522,7 +523,11 @@ def _route(pl: Pipeline, inputs: PhysicsInputs, fe: FEState, ref: FEState, first
     split `analytic.heat.PairHeat` at MU_TRACTION)."""
     res = pl.run(inputs, first_row=first_row, remember=False,
                  fe_options=FEOptions(states=(fe, ref)))
-    heat = pair_heat_W(pl.geom, res.pair, inputs.speed_rpm, MU_TRACTION, res.torque.viscous_Nmm)
+    if res.torque.model == "solid_film":       # the film's own dissipation (its friction coefficient)
+        heat = solid_film_pair_heat_W(res.torque, inputs.speed_rpm)
+    else:
+        heat = pair_heat_W(pl.geom, res.pair, inputs.speed_rpm, MU_TRACTION,
+                           res.torque.viscous_Nmm)
     return res, heat
 
 
