@@ -114,16 +114,17 @@ def cycle_plot(path: Path, rows: dict) -> Path:
 
 
 def run(out: Path, progress=print, mesh_factor: float = 1.0, time_scale: float = 1.0,
-        images: bool = True) -> CycleSummary:
+        images: bool = True, dt_s: float = DT_S) -> CycleSummary:
     """Write the study's table, plot, field images and report into `out`; mesh_factor > 1
-    coarsens the FE mesh and time_scale < 1 compresses the cycle (smoke tests)."""
+    coarsens the FE mesh, time_scale < 1 compresses the cycle and dt_s (s) sets the step
+    (smoke tests)."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     a = assembly()
     pl = Pipeline.shared(a, mesh_factor=mesh_factor, progress=progress)
     cols = conditions(time_scale)
     progress(f"tvac: {cols['time_s'][-1] / 3600:g} h cycle ...")
-    r = run_transient(pl, cols, progress, couple_every=COUPLE_EVERY, dt_s=DT_S * time_scale)
+    r = run_transient(pl, cols, progress, couple_every=COUPLE_EVERY, dt_s=dt_s)
     rows = {**cols, **r.columns()}
     keep = ["time_s", "T_sink_C", *(f"T_{p}_C" for p in PARTS), "T_max_C", "T_min_C",
             "preload_N", "torque_Nmm", "heat_bearing_W", "fit_pressure_inner_MPa",
