@@ -438,6 +438,62 @@ def run_transient(pl: Pipeline, cols: dict, progress=None, first_row: int = 0,
     return TransientRun(out, rows, grid, Q, heat_in)
 
 
+@dataclass(frozen=True)
+class PartTemperatures:
+    """Part temperatures over time from the transient conduction FE (`part_temperatures`).
+
+    time_s (n,): the instants; T_C (n, len(parts)): volume mean temperature of each part group
+    (C); parts: the group names (`inputs.PARTS`: shaft, inner_ring, ball, outer_ring, housing,
+    spacer; a group the stack lacks is left out); reduction_error_est (n,): the reduced model's
+    estimated relative preload error (`TransientRun.rows`)."""
+    time_s: np.ndarray
+    T_C: np.ndarray
+    parts: tuple
+    reduction_error_est: np.ndarray
+
+    def of(self, part: str) -> np.ndarray:
+        """(n,) temperatures (C) of one part group."""
+        return self.T_C[:, self.parts.index(part)]
+
+
+def part_temperatures(asm: Assembly, time_s, T_environment_C, speed_rpm=None, *,
+                      sink: bool = False, pipeline: Pipeline | None = None,
+                      progress=None) -> PartTemperatures:
+    """Part temperatures over time from the transient conduction FE for an assembly and a time
+    series: the second source of lagged temperatures for the diagnosis (a helper such as
+    `studies/runs/second_source.py` calls it in place of the first-order `thermal_lag` effect).
+
+    asm: the assembly; its `[thermal]` section gives the films, emissivity, sink and gas (mode
+    "given" is taken as "transient" here: the films must be set for the environment to reach
+    the stack). time_s (n,): strictly increasing instants (s); T_environment_C (n,): the
+    chamber's temperature (C), the films' fluid (sink=False, `T_ambient_C`) or the radiation
+    sink (sink=True, `T_sink_C`); speed_rpm (n,) or None (the assembly's speed): the bearing's
+    friction heat is fed back as in `simulate`. pipeline: an existing `Pipeline` of the same
+    assembly in transient mode (its reduced model is built once and kept on it).
+    The route is `run_transient` (one route: the rows' part temperatures are those `simulate`
+    in transient mode writes as T_<part>_C).
+
+        from studies.model.transient_route import part_temperatures
+        pt = part_temperatures(asm, data["time_s"], data["T_ambient_C"], data["speed_rpm"])
+        lagged = {f"T_{p}_C": pt.of(p) for p in pt.parts}
+    """
+    if asm.thermal.mode != "transient":
+        asm = replace(asm, thermal=replace(asm.thermal, mode="transient"))
+    if not asm.thermal.films and asm.thermal.emissivity == 0:
+        raise ConfigError("thermal: no films and no emissivity: the environment cannot reach the "
+                          "stack (set [thermal.films] or emissivity)")
+    t = np.asarray(time_s, float)
+    cols = {"time_s": t, ("T_sink_C" if sink else "T_ambient_C"):
+            np.broadcast_to(np.asarray(T_environment_C, float), t.shape).copy()}
+    if speed_rpm is not None:
+        cols["speed_rpm"] = np.broadcast_to(np.asarray(speed_rpm, float), t.shape).copy()
+    pl = pipeline if pipeline is not None else Pipeline.shared(asm, progress=progress)
+    run = run_transient(pl, cols, progress)
+    keep = [i for i in range(len(PARTS)) if not np.isnan(run.rows.T_parts_C[:, i]).any()]
+    return PartTemperatures(t, run.rows.T_parts_C[:, keep], tuple(PARTS[i] for i in keep),
+                            run.rows.reduction_error_est)
+
+
 def _extra_share(key: str, h: dict) -> float:
     """Share of the extra heat (heat_W) of one heat input: like the pair's own split (half to
     the raceways, half to the balls, equally per bearing); without ball nodes all to the
