@@ -146,3 +146,17 @@ def test_basis_energy_has_one_value_per_mode_and_is_the_kept_pod_spectrum(setup)
     kept = w[w > tol * w[0]]
     assert kept.size < w.size, "the case must drop modes"
     assert np.allclose(e, kept, rtol=1e-8, atol=1e-12 * w[0])
+
+
+def test_bearing_heat_with_a_partition_per_raceway_is_deposited_without_loss():
+    """Ring shares per raceway (inner 0.4, outer 0.7, as `analytic.heat.
+    rolling_contact_conductance` gives them for unlike materials): the inputs still add up to
+    the pair's heat, each raceway takes its share, the balls the rest."""
+    h = PairHeat(np.array([3.0]), np.array([1.0]), np.array([2.0]), np.array([3.5]), np.array([2.5]))
+    q = bearing_heat_inputs_W(h, ring_share=(0.4, 0.7))
+    assert sum(q.values()) == pytest.approx(6.0, rel=1e-14)
+    assert q["raceway_inner_ring_B"] == pytest.approx(0.4 * 3.5 * 0.5, rel=1e-14)
+    assert q["raceway_outer_ring_A"] == pytest.approx(0.7 * 2.5 * 0.5, rel=1e-14)
+    assert q["ball_A"] == pytest.approx((0.6 * 3.5 + 0.3 * 2.5) * 0.5, rel=1e-14)
+    with pytest.raises(ValueError):
+        bearing_heat_inputs_W(h, ring_share=(0.4, 1.2))
