@@ -46,7 +46,8 @@ def preload_path_compliance_mm_per_N(solver: FitSolver, probe: sp.csr_matrix,
                   "outer_ring_A": signs[0], "outer_ring_B": signs[1]}
     F = raceway_unit_loads(m, ring_signs)
     zero_delta = np.zeros(len(m.fits))
-    closed = solver.solve(np.zeros(m.ndofs), delta_assembled_mm).closed
+    # a clamped face held as a contact is closed at assembly (the clamp is tightened on it)
+    closed = solver.solve(np.zeros(m.ndofs), delta_assembled_mm).closed | solver.face_pair
     u = (solver.solve_status(closed, F, zero_delta)[:, 0]
          - solver.solve_status(closed, np.zeros(m.ndofs), zero_delta)[:, 0])
     pz = (probe @ u)[1::2]                              # u_z at the 4 raceway points

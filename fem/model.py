@@ -5,7 +5,8 @@ Steps (each a small function):
    so a fit can open, close or slide; everything else stays tied (shared nodes).
 2. `StackModel`: scikit-fem MeshTri + vector P2 basis; stiffness K (whole-ring measure 2 pi r);
    one thermal load vector per part for unit thermal strain; node pairs of each fit (radial and
-   axial DOFs of the inner member = master, of the outer member = slave); Dirichlet DOFs: u_r = 0
+   axial DOFs of the inner member = master, of the outer member = slave) and of each clamped face
+   held as a contact (`meshes.section.Face`: u_z across the face, a clamp with a force); Dirichlet DOFs: u_r = 0
    on the axis, rollers, and one u_z per free-floating body (rigid axial mode, statically
    determinate, so it adds no stress). `spin_load`: the centrifugal load of the spinning parts
    (`rotating_parts`, e.g. the rotor sub-assembly) at omega = 1 rad/s; at omega it scales by
@@ -86,7 +87,14 @@ def node_pairs_on(x: np.ndarray, on: np.ndarray, el_dofs: np.ndarray, part_of: n
 
 @dataclass
 class FitPairs:
-    """DOF pairs of one fit, sorted by z. master = inner member, slave = outer member."""
+    """DOF pairs of one fit, sorted by z. master = inner member, slave = outer member.
+
+    A clamped face (`meshes.section.Face`, axis "z") is held the same way with the roles of the
+    directions swapped: master_r / slave_r are then the u_z DOFs (the normal, the contact
+    direction), master_z / slave_z the u_r DOFs, z_mm the nodes' radii (sorted), r_mm the mean
+    radius and length_mm the radial width, so that sum(force) / (2 pi r_mm length_mm) is the mean
+    face pressure. compliance_mm_per_N (n_pairs,): the spring in series with each pair's contact
+    (0: none; a face's clamp layer, `face_weights`)."""
     name: str
     key: str
     r_mm: float
@@ -96,6 +104,33 @@ class FitPairs:
     slave_r: np.ndarray
     master_z: np.ndarray
     slave_z: np.ndarray
+    axis: str = "r"
+    compliance_mm_per_N: np.ndarray | None = None
+
+    def pair_compliance_mm_per_N(self) -> np.ndarray:
+        """(n_pairs,) series compliance of each pair, mm/N (0: a rigid contact)."""
+        c = self.compliance_mm_per_N
+        return np.zeros(self.master_r.size) if c is None else c
+
+
+def face_weights(r_mm: np.ndarray) -> np.ndarray:
+    """Consistent nodal weights (mm^2) of a uniform pressure on a flat annular face meshed with
+    quadratic line elements: w_i = integral of N_i 2 pi r dr. `r_mm`: the face's nodes sorted by
+    radius, vertex, mid-side, vertex, ... (odd count). Per element of length h from r_a to r_b
+    (mid r_m): 2 pi h (r_a / 6, 2 r_m / 3, r_b / 6), exact for the quadratic shape functions
+    (N_0 = (1 - s)(1 - 2 s), N_1 = 4 s (1 - s), N_2 = s (2 s - 1), r linear in s; Zienkiewicz &
+    Taylor, The Finite Element Method Vol. 1, 7th ed., ch. 6 (axisymmetric loads)). Their sum is
+    the face area pi (r_1^2 - r_0^2)."""
+    r = np.asarray(r_mm, float)
+    if r.size < 3 or r.size % 2 == 0:
+        raise RuntimeError(f"a face of {r.size} nodes is not a chain of quadratic elements")
+    w = np.zeros(r.size)
+    for e in range(0, r.size - 2, 2):
+        h = r[e + 2] - r[e]
+        w[e] += 2 * np.pi * h * r[e] / 6
+        w[e + 1] += 2 * np.pi * h * 2 * r[e + 1] / 3
+        w[e + 2] += 2 * np.pi * h * r[e + 2] / 6
+    return w
 
 
 def _components(tris: np.ndarray, n_nodes: int) -> np.ndarray:
@@ -140,7 +175,8 @@ class StackModel:
                         for p in self.part_of])
         self.spin_load = asm(centrifugal_load, self.basis,
                              rho_w2=np.repeat(rho[:, None], nq, 1))     # N per (rad/s)^2
-        self.fits = [self._fit_pairs(f) for f in section.fits]
+        self.fits = ([self._fit_pairs(f) for f in section.fits]
+                     + [self._face_pairs(f) for f in section.faces])
         self.tie_master, self.tie_slave = self._face_ties()
         self.dirichlet = self._dirichlet()
 
@@ -173,6 +209,26 @@ class StackModel:
                                "not pair up (non-conforming interface)")
         return FitPairs(f.name, f.key, f.r_mm, f.z1_mm - f.z0_mm, x[1, inner],
                         2 * inner, 2 * outer, 2 * inner + 1, 2 * outer + 1)
+
+    def _face_pairs(self, f) -> FitPairs:
+        """The node pairs of a clamped face (`meshes.section.Face`) as a contact in u_z, its
+        clamp layer spread as a uniform pressure (`face_weights`): pair i gets the compliance
+        c_face W / w_i (W = sum w), so the layer's springs add up to 1 / c_face."""
+        x, el = self.sbasis.doflocs, self.sbasis.element_dofs
+        line = Split(f.name, "z", f.z_mm, f.r0_mm, f.r1_mm, (), ())
+        a, b = node_pairs_on(x, nodes_on_line(x, line), el, self.part_of, f.inner_parts,
+                             f.outer_parts)
+        order = np.argsort(x[0, a])
+        a, b = a[order], b[order]
+        if a.size < 3 or not np.allclose(x[:, a], x[:, b]):
+            raise RuntimeError(f"face '{f.name}': {a.size} node pairs (is its split tied?)")
+        r = x[0, a]
+        w = face_weights(r)
+        comp = (f.compliance_mm_per_N * w.sum() / w if f.compliance_mm_per_N > 0
+                else np.zeros(a.size))
+        r0, r1 = float(r[0]), float(r[-1])
+        return FitPairs(f.name, f.key, 0.5 * (r0 + r1), r1 - r0, r, 2 * a + 1, 2 * b + 1,
+                        2 * a, 2 * b, "z", comp)
 
     def _face_ties(self) -> tuple[np.ndarray, np.ndarray]:
         """u_z DOF pairs (master, slave) across the clamped faces (axis-"z" splits)."""

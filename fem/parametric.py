@@ -25,7 +25,8 @@ the reference member's FE without a new mesh, assembly or factorisation:
 - The preload-path compliance (`fem.compliance`) is the response to the raceway unit loads with the
   contact status of the assembled fits held: from the condensed arrays, the assembled status by the
   same complementarity problem the superposition solves (`fem.solver.Superposition`), then the
-  closed pairs' forces lambda_C = -A_CC^-1 b_C of the raceway load column.
+  closed pairs' forces lambda_C = -A_CC^-1 b_C of the raceway load column (a clamp's face, clamp
+  = "force", closed, as `fem.compliance` holds it).
 
 The algebra is exact: a member's set-up equals the full set-up of its own spec to round-off
 (tests/test_parametric.py holds the two equal). Only frictionless fits (the all-open system).
@@ -127,6 +128,9 @@ class Family:
         self.fit_r_mm = np.array([f.r_mm for f in m.fits], float)
         self.fit_length_mm = np.array([f.length_mm for f in m.fits], float)
         self.fit_of_pair = s.fit_of_pair.copy()
+        #: a clamp's spring in series with its face's pairs (`fem.solver.condense`) and which
+        #: pairs are clamped faces (closed at assembly, `fem.compliance`)
+        self.pair_compliance, self.face_pair = s.compliance.copy(), s.face_pair.copy()
         npair = s.n_pairs
         T, lu = s.factorize(np.zeros(npair, bool))
         T = sp.csr_matrix(T)
@@ -236,16 +240,17 @@ class Family:
         B, A = loads[:npair], pairs[:npair]
         PU = np.hstack([loads[npair:], pairs[npair:]])
         cond = Condensed(False, len(self.part_names), len(self.fit_names), self.fit_of_pair.copy(),
-                         np.ascontiguousarray(B), 0.5 * (A + A.T), np.ascontiguousarray(PU),
+                         np.ascontiguousarray(B), 0.5 * (A + A.T) + np.diag(self.pair_compliance),
+                         np.ascontiguousarray(PU),
                          np.zeros((0, 0)))
         comp = np.nan
         if self.compliance is not None:
-            comp = _compliance(cond, QY[:, nf + 1], self.compliance)
+            comp = _compliance(cond, QY[:, nf + 1], self.compliance, self.face_pair)
         return FESetup(spec.key(), self.ndofs, self.part_names, self.fit_names,
                        self.fit_r_mm.copy(), self.fit_length_mm.copy(), cond, float(comp))
 
 
-def _compliance(cond: Condensed, raceway: np.ndarray, plan) -> float:
+def _compliance(cond: Condensed, raceway: np.ndarray, plan, face_pair: np.ndarray) -> float:
     """The preload-path compliance (mm/N, `fem.compliance`) from the condensed problem: the
     assembled fits' contact status (the complementarity problem at zero load, the assembled
     interferences), then the raceway unit loads' response with that status held: gap on the
@@ -255,7 +260,7 @@ def _compliance(cond: Condensed, raceway: np.ndarray, plan) -> float:
     npair = cond.fit_of_pair.size
     sup = Superposition.from_condensed(cond, lambda: None)
     res = sup.evaluate(np.zeros((1, cond.n_parts)), np.array([plan.delta_assembled_mm]))
-    closed = res.closed_sets[res.status[0]]
+    closed = res.closed_sets[res.status[0]] | face_pair    # clamped faces: closed at assembly
     b, p = raceway[:npair], raceway[npair:]
     lam = np.zeros(npair)
     if closed.any():

@@ -80,7 +80,10 @@ class SetupSpec:
 
     def key(self) -> str:
         """Hex SHA-256 (24 digits) of the spec, FORMAT and the versions of the code."""
-        data = {"format": FORMAT, "versions": _versions(), "section": asdict(self.section),
+        section = asdict(self.section)
+        if not section["faces"]:           # (sections without contact faces keep their keys)
+            del section["faces"]
+        data = {"format": FORMAT, "versions": _versions(), "section": section,
                 "contact": self.contact, "probe_points_rz": self.probe_points_rz,
                 "compliance": None if self.compliance is None else asdict(self.compliance),
                 "materials": [[p, asdict(m)] for p, m in self.materials],
@@ -210,9 +213,9 @@ def read_setup(path: Path, spec: SetupSpec, key: str | None = None) -> FESetup:
     sec = spec.section
     if tuple(a["part_names"].tolist()) != tuple(sec.parts()):
         raise SetupError("its parts are not this section's")
-    if tuple(a["fit_names"].tolist()) != tuple(f.name for f in sec.fits):
+    if tuple(a["fit_names"].tolist()) != sec.contact_names():
         raise SetupError("its fits are not this section's")
-    c = _condensed(a, len(sec.parts()), len(sec.fits), 2 * len(spec.probe_points_rz))
+    c = _condensed(a, len(sec.parts()), len(sec.contact_names()), 2 * len(spec.probe_points_rz))
     comp = float(a["compliance_mm_per_N"])
     if (spec.compliance is None) != np.isnan(comp) or np.isinf(comp):
         raise SetupError("its compliance does not match the plan")

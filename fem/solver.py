@@ -4,7 +4,12 @@ A closed fit node pair (master m on the inner member, slave s on the outer membe
 
     u_r(s) - u_r(m) = delta_r          (delta_r = radial interference = diametral / 2, mm)
 
-and for the bonded variant also u_z(s) = u_z(m); across clamped faces u_z is always tied. The slave DOFs are eliminated, u = T q + g, and
+and for the bonded variant also u_z(s) = u_z(m); across clamped faces u_z is tied, except on a
+face held as a contact (`meshes.section.Face`: a clamp with a force), whose pairs are the same
+unilateral contact in u_z (u_z(s) - u_z(m) = delta, the clamp's axial overlap), possibly with a
+spring in series (compliance c_p per pair: closed, the pair is that spring, k_p = 1 / c_p, with
+force k_p (delta - u_z(s) + u_z(m)); its gap counts the spring, gap = u(s) - u(m) - delta + c_p
+lambda). The slave DOFs are eliminated, u = T q + g, and
 the reduced system T^T K T q = T^T (f - K g) is factorised once per contact status (scipy splu with
 MMD_AT_PLUS_A ordering). The contact force on the outer member at a closed pair is the reaction
 lambda = (K u - f)[s] (N, whole ring); compression is positive. Open pairs must have a gap
@@ -80,6 +85,12 @@ class FitSolver:
                                            enumerate(fits)]) if fits else np.zeros(0, int)
         self.master_z = np.concatenate([f.master_z for f in fits]) if fits else np.zeros(0, int)
         self.slave_z = np.concatenate([f.slave_z for f in fits]) if fits else np.zeros(0, int)
+        #: series compliance (mm/N) of each pair's contact (a clamp layer; 0: a rigid contact)
+        #: and whether the pair is on a clamped face (`meshes.section.Face`) rather than a fit
+        self.compliance = (np.concatenate([f.pair_compliance_mm_per_N() for f in fits]) if fits
+                           else np.zeros(0))
+        self.face_pair = (np.concatenate([np.full(f.master_r.size, f.axis == "z") for f in fits])
+                          if fits else np.zeros(0, bool))
         self.bonded = model.contact == "bonded"
         self._cache = Memo(max_items=None)    # factorisation per contact status (infra.memo)
         self.n_factorisations = 0
@@ -103,8 +114,9 @@ class FitSolver:
             return hit
         m = self.model
         N = m.ndofs
-        masters = [m.tie_master, self.master[closed]]
-        slaves = [m.tie_slave, self.slave[closed]]
+        rigid = closed & (self.compliance == 0)   # closed springs are stiffness, not ties
+        masters = [m.tie_master, self.master[rigid]]
+        slaves = [m.tie_slave, self.slave[rigid]]
         if self.bonded:
             masters.append(self.master_z)
             slaves.append(self.slave_z)
@@ -127,7 +139,7 @@ class FitSolver:
         rows = np.concatenate([free, slaves[ok]])
         cols = np.concatenate([np.arange(free.size), red[masters[ok]]])
         T = sp.csr_matrix((np.ones(rows.size), (rows, cols)), shape=(N, free.size))
-        Kr = (T.T @ m.K @ T).tocsc()
+        Kr = (T.T @ self.stiffness(closed) @ T).tocsc()
         try:
             lu = splu(Kr, permc_spec="MMD_AT_PLUS_A")
         except RuntimeError as exc:
@@ -137,12 +149,45 @@ class FitSolver:
         self._cache.put(key, (T, lu))
         return T, lu
 
+    def _springs(self, closed: np.ndarray) -> np.ndarray:
+        """The closed pairs whose contact has a spring in series (a clamp layer)."""
+        return np.flatnonzero(closed & (self.compliance > 0))
+
+    def stiffness(self, closed: np.ndarray) -> sp.csr_matrix:
+        """The model's stiffness plus the springs of the closed spring pairs (N/mm): between
+        master m and slave s of pair p, k_p = 1 / c_p on (m, m), (s, s) and -k_p on (m, s), (s, m)."""
+        K = self.model.K
+        p = self._springs(closed)
+        if p.size == 0:
+            return K
+        k = 1.0 / self.compliance[p]
+        m, s = self.master[p], self.slave[p]
+        Ks = sp.csr_matrix((np.concatenate([k, k, -k, -k]),
+                            (np.concatenate([m, s, m, s]), np.concatenate([m, s, s, m]))),
+                           shape=K.shape)
+        return (K + Ks).tocsr()
+
     def _g(self, closed: np.ndarray, delta_mm_by_fit: np.ndarray) -> np.ndarray:
-        """Prescribed slave offsets: delta_r at closed radial slaves (columns: one per state)."""
+        """Prescribed slave offsets: delta_r at closed radial slaves (columns: one per state);
+        a closed pair with a spring in series is not prescribed (`_spring_loads`)."""
         delta = np.atleast_2d(delta_mm_by_fit)            # (n_states, n_fits)
         g = np.zeros((self.model.ndofs, delta.shape[0]))
-        g[self.slave[closed], :] = delta[:, self.fit_of_pair[closed]].T
+        rigid = closed & (self.compliance == 0)
+        g[self.slave[rigid], :] = delta[:, self.fit_of_pair[rigid]].T
         return g
+
+    def _spring_loads(self, closed: np.ndarray, delta_mm_by_fit: np.ndarray) -> np.ndarray:
+        """Loads (N) of the closed spring pairs' overlaps: the spring of pair p, compressed by
+        delta_p when the faces meet, pushes the slave with +k_p delta_p and the master with
+        -k_p delta_p (columns: one per state)."""
+        delta = np.atleast_2d(delta_mm_by_fit)
+        f = np.zeros((self.model.ndofs, delta.shape[0]))
+        p = self._springs(closed)
+        if p.size:
+            kd = delta[:, self.fit_of_pair[p]].T / self.compliance[p][:, None]
+            np.add.at(f, self.slave[p], kd)
+            np.add.at(f, self.master[p], -kd)
+        return f
 
     def solve_status(self, closed: np.ndarray, f: np.ndarray, delta_mm_by_fit: np.ndarray):
         """Solve with a fixed status. f: (N,) or (N, k); delta: (n_fits,) or (k, n_fits)."""
@@ -152,17 +197,22 @@ class FitSolver:
         if g.shape[1] != F.shape[1]:
             g = np.broadcast_to(g, (g.shape[0], F.shape[1])) if g.shape[1] == 1 else g
             F = np.broadcast_to(F, g.shape) if F.shape[1] == 1 else F
-        u = T @ _lu_solve(lu, T.T @ (F - self.model.K @ g)) + g
+        fs = self._spring_loads(closed, delta_mm_by_fit)
+        if fs.any():
+            F = F + fs
+        u = T @ _lu_solve(lu, T.T @ (F - self.stiffness(closed) @ g)) + g
         if not np.all(np.isfinite(u)):
             raise SolveError("the FE solve returned non-finite displacements (singular system)")
         return u
 
     def pair_values(self, u: np.ndarray, f: np.ndarray, delta_mm_by_fit: np.ndarray):
-        """Contact force (N) and gap (mm) at every pair for solution(s) u under load f."""
+        """Contact force (N) and gap (mm) at every pair for solution(s) u under load f. The gap
+        of a pair with a spring in series counts the spring's shortening, c_p force_p."""
         U = u.reshape(self.model.ndofs, -1)
         R = self.model.K @ U - f.reshape(self.model.ndofs, -1)
         delta = np.atleast_2d(delta_mm_by_fit)[:, self.fit_of_pair].T
-        return R[self.slave], U[self.slave] - U[self.master] - delta
+        return (R[self.slave],
+                U[self.slave] - U[self.master] - delta + self.compliance[:, None] * R[self.slave])
 
     def solve(self, f: np.ndarray, delta_mm_by_fit, closed: np.ndarray | None = None,
               max_iter: int = 60) -> Solution:
@@ -454,7 +504,7 @@ def condense(solver: FitSolver, probe: sp.csr_matrix | None = None) -> Condensed
     F = np.hstack([_unit_loads(m), E])
     U = T @ _lu_solve(lu, T.T @ F)
     rel = U[s.slave] - U[s.master]
-    A = rel[:, n_loads:]
+    A = rel[:, n_loads:] + np.diag(s.compliance)     # a pair's series spring: c_p on its diagonal
     PU = np.zeros((0, n_loads + npair)) if probe is None else probe @ U
     return Condensed(False, n_parts, n_fits, s.fit_of_pair.copy(), np.ascontiguousarray(rel[:, :n_loads]),
                      0.5 * (A + A.T), np.ascontiguousarray(PU), none)

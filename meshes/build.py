@@ -50,15 +50,26 @@ def estimate_elements(section: Section) -> int:
     return int(n)
 
 
+def estimate_memory_GB(section: Section, n_triangles: int) -> float:
+    """Memory of the FE set-up, GB: ~4 kB per triangle (assembly, factorisation) plus the dense
+    condensation of the fits (`fem.solver.condense`: three float64 arrays of DOFs x contact pairs;
+    P2: about 4 DOF per triangle, a pair per half fit size along each fit). The second term grows
+    as the product of the two and dominates for thin sections (a 0.1 mm ring: 1362 pairs)."""
+    pairs = sum((f.z1_mm - f.z0_mm) / (0.5 * section.fit_size_mm) + 1 for f in section.fits)
+    return 4e-6 * n_triangles + 3 * 8e-9 * (4 * n_triangles) * pairs
+
+
 def check_size(section: Section) -> int:
-    """Refuse (MeshError, one line) a section whose mesh would exceed the element limit: a typo
-    in a dimension or a mesh size would otherwise mesh until the machine runs out of memory."""
+    """Refuse (MeshError, one line) a section whose mesh would exceed the element limit or the
+    memory that many triangles take: a typo in a dimension or a mesh size would otherwise mesh
+    and condense until the machine runs out of memory."""
     limit = int(float(os.environ.get("BEARINGFEM_MAX_ELEMENTS", MAX_ELEMENTS)))
     n = estimate_elements(section)
-    if n > limit:
-        raise MeshError(f"the mesh would have about {n:.2g} triangles (~{4e-6 * n:.1f} GB), above "
-                        f"the limit of {limit:.2g} (BEARINGFEM_MAX_ELEMENTS): check the section "
-                        "dimensions and the [mesh] sizes")
+    gb = estimate_memory_GB(section, n)
+    if n > limit or gb > 4e-6 * limit:
+        raise MeshError(f"the mesh would have about {n:.2g} triangles (~{gb:.1f} GB with its fits' "
+                        f"condensation), above the limit of {limit:.2g} triangles (~{4e-6 * limit:.1f} "
+                        "GB; BEARINGFEM_MAX_ELEMENTS): check the section dimensions and the [mesh] sizes")
     return n
 
 

@@ -4,7 +4,8 @@ A `Section` is pure data: rectangles (parts, each with a material and a sub-asse
 raceway grooves cut into ring rectangles (`Groove`: a disc removed; none = rectangular rings), the
 radial lines along which the inner-side and outer-side parts are separated ("splits": fits and free
 sliding bores), the fits on them, roller supports, and the lines to refine. Everything not split is
-tied (shared mesh nodes): clamped ring/spacer/shoulder/nut/cover faces.
+tied (shared mesh nodes): clamped ring/spacer/shoulder/nut/cover faces; an axial split is tied in
+u_z unless it is a `Face` (a clamp with a force: a unilateral contact with a spring in series).
 
 Element sizes: `size_mm` in the bulk, `fit_size_mm` along the refined lines (fits, raceways) and,
 when `corner_size_mm` > 0, a size graded down to `corner_size_mm` at the corner points: where a
@@ -65,6 +66,25 @@ class Fit:
 
 
 @dataclass(frozen=True)
+class Face:
+    """A clamped face as a unilateral contact (`[cover]`/`[nut]` clamp = "force"): the line
+    z = z_mm, r in [r0_mm, r1_mm], on an axis-"z" split that is not tied. `inner_parts` are on the
+    -z side, `outer_parts` on the +z side; the pair gap is u_z(outer) - u_z(inner) - delta (delta:
+    the axial overlap the clamp is tightened with, `key` names it). In series with the contact a
+    layer of springs of total stiffness 1 / compliance_mm_per_N (0: none), spread over the face
+    as a uniform pressure is (the clamp's own spring: thread or bolts, `fem.model.face_weights`).
+    """
+    name: str
+    inner_parts: tuple[str, ...]
+    outer_parts: tuple[str, ...]
+    z_mm: float
+    r0_mm: float
+    r1_mm: float
+    key: str = "clamp"
+    compliance_mm_per_N: float = 0.0
+
+
+@dataclass(frozen=True)
 class Groove:
     """A raceway groove of a ring part: the disc of radius `radius_mm` about the groove curvature
     centre (r_mm, z_mm) is cut from the part's rectangle (it must leave the bore and the side
@@ -92,6 +112,7 @@ class Section:
     fit_size_mm: float = 0.25
     corner_size_mm: float = 0.0     # size at `corner_points()`, graded up to the others; 0 = none
     grooves: tuple[Groove, ...] = ()  # raceway grooves cut from ring rectangles; () = rectangles
+    faces: tuple[Face, ...] = ()     # clamped faces as unilateral contacts (not in the mesh key)
 
     def parts(self) -> list[str]:
         seen = []
@@ -124,7 +145,12 @@ class Section:
         return Section(self.rects, self.splits, self.fits, self.rollers_z_mm, self.refine_lines,
                        self.raceway_points, self.size_mm * factor, self.fit_size_mm * factor,
                        self.corner_size_mm * factor ** 2,
-                       tuple(replace(g, size_mm=g.size_mm * factor) for g in self.grooves))
+                       tuple(replace(g, size_mm=g.size_mm * factor) for g in self.grooves),
+                       self.faces)
+
+    def contact_names(self) -> tuple[str, ...]:
+        """The FE contact interfaces in model order: the fits, then the faces."""
+        return tuple(f.name for f in self.fits) + tuple(f.name for f in self.faces)
 
     def groove_of(self, part: str) -> "Groove | None":
         """The groove cut into `part`, or None (a rectangular ring, or not a ring)."""

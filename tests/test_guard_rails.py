@@ -219,6 +219,56 @@ def test_a_mesh_too_fine_is_refused_before_meshing(tmp_path, capsys, cond):
         check_size(SEC.scaled(1e-3))
 
 
+def test_the_condensation_estimate_matches_a_real_set_up():
+    # the estimate's dense condensation (DOFs x pairs, three float64 arrays) against the assembled
+    # model's, given the mesh's real triangle count (estimate_elements is its own estimate): P2
+    # has about 4 DOF per triangle (2 nodes per triangle in a large mesh), a pair per half fit size
+    from fem.model import build_model
+    from fem.solver import FitSolver
+    from meshes.build import estimate_memory_GB
+
+    sec = two_cylinder_section(0.0, 10.0, 15.0, "9Cr18", "9Cr18", 8.0, size_mm=1.0, fit_size_mm=0.25)
+    model = build_model(sec)
+    n = section_mesh(sec).triangles.shape[1]
+    real = 3 * 8e-9 * model.ndofs * FitSolver(model).n_pairs
+    est = estimate_memory_GB(sec, n) - 4e-6 * n
+    assert est == pytest.approx(real, rel=0.1)   # boundary nodes: 4 DOF/triangle is ~6 % low here
+
+
+def test_a_section_whose_fits_would_condense_beyond_memory_is_refused(monkeypatch):
+    # few triangles (a coarse bulk) but a long fit at a fine fit size: the triangle count passes,
+    # the dense condensation (DOFs x pairs) does not
+    monkeypatch.setenv("BEARINGFEM_MAX_ELEMENTS", "20000")
+    sec = two_cylinder_section(0.0, 10.0, 15.0, "9Cr18", "9Cr18", 400.0, size_mm=2.0,
+                               fit_size_mm=0.25)
+    from meshes.build import estimate_elements
+    assert estimate_elements(sec) < 20000
+    with pytest.raises(MeshError, match="condensation"):
+        check_size(sec)
+
+
+@pytest.mark.parametrize("key,value,spacer,spacer_value,fragment", [
+    # seed 000 (71807C: dm 41, Dw 3.969 mm): groove bottoms near dm -+ Dw = 37.03 / 44.97 mm
+    ("inner_ring_outer_diameter_mm", 35.2, "inner_spacer", 35.1, "35.2 mm leaves the inner ring "
+     "thinner than the metal under its groove (groove bottom at 37.0"),
+    ("outer_ring_inner_diameter_mm", 46.8, "outer_spacer", 46.9, "46.8 mm leaves the outer ring "
+     "thinner than the metal under its groove (groove bottom at 44.9"),
+])
+def test_a_ring_section_thinner_than_its_groove_is_refused(tmp_path, capsys, cond, key, value,
+                                                           spacer, spacer_value, fragment):
+    # before: the 0.1 mm inner section passed every check, sized the mesh to 0.1 mm and the
+    # fits' condensation grew to 18 GB until the process was killed
+    text = re.sub(rf"(?m)^{key}\s*=\s*[^#\n]*", f"{key} = {value} ", CFG.read_text())
+    start = text.index(f"[{spacer}]")
+    text = text[:start] + re.sub(r"(?m)^diameter_mm\s*=\s*[^#\n]*", f"diameter_mm = {spacer_value} ",
+                                 text[start:], count=1)
+    asm = tmp_path / "asm.toml"
+    asm.write_text(text)
+    code, err = run_cli(["simulate", asm, cond, "-o", tmp_path / "o.csv"], capsys)
+    assert_refused(code, err, f"bearing.{key}: {fragment}", tmp_path, {asm: digest(asm), cond: digest(cond)})
+    assert not (tmp_path / "o.csv").exists()
+
+
 # ------------------------------------------------------------------ signals, ranges, usage
 def test_sigterm_cleans_up_and_exits_143(tmp_path, capsys, cond, monkeypatch):
     from studies.model import pipeline

@@ -3,6 +3,8 @@
 import json
 from pathlib import Path
 
+import pytest
+
 from studies.runs import verify
 from studies.runs.requirements import (REQUIREMENTS, RESULTS_RELPATH, repository_root,
                                        tagged_tests, trace)
@@ -63,3 +65,21 @@ def test_verification_json_and_report_carry_mms_and_traceability(tmp_path):
     assert "## Manufactured solutions" in md and "## Requirements traceability" in md
     assert md.count("| PASS |") + md.count("| FAIL |") == 6 and md.count("| PASS |") >= 4
     assert "R-FE-MMS-ELASTIC" in md
+
+
+def test_richardson_recovers_the_order_and_limit_of_a_known_sequence():
+    # f(h) = f0 + C h^p on h = 4, 2, 1 (ratio 2): the observed order is p and the extrapolation f0
+    # exactly (Roache 1998); GCI_fine = 1.25 |f2 - f3| / |f3| / (2^p - 1)
+    from studies.runs.verify import richardson
+
+    f0, C, p = 3.0, 0.2, 2.0
+    f = [f0 + C * h ** p for h in (4.0, 2.0, 1.0)]
+    r = richardson(f)
+    assert r.observed_order == pytest.approx(p, rel=1e-12)
+    assert r.extrapolated == pytest.approx(f0, rel=1e-12)
+    assert r.gci_fine == pytest.approx(1.25 * abs(f[2] - f[1]) / abs(f[2]) / 3.0, rel=1e-12)
+    assert r.monotone
+    # oscillating levels are not extrapolated: the finest stands, Fs = 3 on the larger change
+    osc = richardson([1.0, 1.2, 1.1])
+    assert not osc.monotone and osc.extrapolated == 1.1
+    assert osc.gci_fine == pytest.approx(3.0 * 0.2 / 1.1, rel=1e-12)

@@ -30,10 +30,10 @@ def test_fit_rates_and_closing_temperature_are_the_published_ones(sweep):
     clearance closing near 41 C (from the CTE difference: 1.5 um / (1.5e-6/K x 47 mm) = 21.3 K
     above 20 C; within 0.5 K); the FE's first contact of the outer fit within the next degree of
     the 1 C sweep."""
-    assert sweep["rate_i"] == pytest.approx(PUBLISHED["rate_inner_um_per_C"], abs=0.005)
-    assert sweep["rate_o"] == pytest.approx(PUBLISHED["rate_outer_um_per_C"], abs=0.005)
-    assert sweep["T_close_free"] == pytest.approx(PUBLISHED["outer_closes_C"], abs=0.5)
-    assert sweep["T_close_free"] <= sweep["T_touch_fe"] <= sweep["T_close_free"] + 1.0
+    assert sweep.rate_i == pytest.approx(PUBLISHED["rate_inner_um_per_C"], abs=0.005)
+    assert sweep.rate_o == pytest.approx(PUBLISHED["rate_outer_um_per_C"], abs=0.005)
+    assert sweep.T_close_free == pytest.approx(PUBLISHED["outer_closes_C"], abs=0.5)
+    assert sweep.T_close_free <= sweep.T_touch_fe <= sweep.T_close_free + 1.0
 
 
 @pytest.mark.requirement("R-SEED000-PRELOAD")
@@ -42,7 +42,7 @@ def test_the_papers_axial_model_gives_the_published_trend(sweep):
     with temperature, falls when cold and rises when hot, by the published order (about 40 N,
     read from its Fig. 9b; our ring sections, ball set and spacer lengths are assumptions, so
     within 50 % of it)."""
-    c = sweep["axial_model"]
+    c = sweep.axial_model
     assert np.all(np.diff(c.dP_paper_N) > 0)
     lo, hi = c.at(-60.0), c.at(80.0)
     assert c.dP_paper_N[lo] < 0 < c.dP_paper_N[hi]
@@ -72,7 +72,7 @@ def test_this_models_axial_part_lies_between_the_limits_of_the_papers_stack(swee
     (which leave out the compliance of shoulder, nut and cover: the FE below them) and the rigid
     inner stack (the shaft takes the whole clamp mismatch), at -60 and 80 C; the paper's rigid
     stack above both. The whole model with the radial effects reverses the cold-end change."""
-    c = sweep["axial_model"]
+    c = sweep.axial_model
     for i in (c.at(-60.0), c.at(80.0)):
         s = np.sign(c.mismatch_paper_um[i])
         assert s * c.mismatch_rigid_stack_um[i] < s * c.mismatch_fe_um[i] < s * c.mismatch_bars_um[i] \

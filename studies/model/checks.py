@@ -8,7 +8,10 @@ Checks and their allowables (docs/cli.md, "simulate: limits"):
 - static_safety >= `[limits] min_static_safety`; without it 3 (GB/T 28878.2-2016 B.4, launch);
 - preload_lost: the pair's preload must stay above 0 N (a bearing unloaded);
 - fit_open_inner / fit_open_outer: the fit pressure must stay above 0 MPa, for a fit assembled
-  with interference only (a fit designed as a clearance is not flagged for being open).
+  with interference only (a fit designed as a clearance is not flagged for being open);
+- clamp_open (a `[nut]`/`[cover]` with clamp = "force" only): the clamp force left before a
+  stack face opens, `margin_clamp_N` (N, `studies.model.stages.fe.ClampState`), must stay above
+  0 N; its margin is that column in newtons (a strict check: no relative margin).
 """
 from __future__ import annotations
 
@@ -24,7 +27,8 @@ from analytic.safety import GBT_LAUNCH_SAFETY, ISO76_CONTACT_PRESSURE_MPa
 CHECK_COLUMNS = frozenset(
     [f"flag_{n}" for n in ("max_contact_pressure_MPa", "static_safety", "preload_lost",
                            "fit_open_inner", "fit_open_outer")]
-    + [f"margin_{n}" for n in ("max_contact_pressure_MPa", "static_safety")])
+    + [f"margin_{n}" for n in ("max_contact_pressure_MPa", "static_safety")]
+    + ["flag_clamp_open", "margin_clamp_N"])                     # clamp = "force" only
 
 
 @dataclass(frozen=True)
@@ -116,6 +120,10 @@ def _fit_pressure_outer_MPa(result) -> np.ndarray:
 _FIT_PRESSURE = {"inner": _fit_pressure_inner_MPa, "outer": _fit_pressure_outer_MPa}
 
 
+def _margin_clamp_N(result) -> np.ndarray:
+    return result.clamp.margin_N
+
+
 def assembly_checks(asm) -> list[Check]:
     """The checks that apply to an assembly, with their allowables and sources."""
     lim = asm.limits
@@ -136,6 +144,10 @@ def assembly_checks(asm) -> list[Check]:
             checks.append(Check(f"fit_open_{side}", f"fit_pressure_{side}_MPa", 0.0, False, "MPa",
                                 "a fit assembled with interference", _FIT_PRESSURE[side],
                                 strict=True))
+    if "force" in (asm.nut.clamp, asm.cover.clamp):
+        checks.append(Check("clamp_open", "margin_clamp_N", 0.0, False, "N",
+                            'the clamp force left before a stack face opens (clamp = "force")',
+                            _margin_clamp_N, strict=True))
     return checks
 
 

@@ -31,7 +31,8 @@ def to_columns(result: SimulationResult, flags: bool = True) -> dict[str, np.nda
            "max_contact_pressure_MPa": pair.max_contact_pressure_MPa}
     out.update(_torque_columns(t))
     for k, name in enumerate(result.fits.names):
-        out[f"{name.replace('fit_', 'fit_pressure_')}_MPa"] = result.fits.per_fit_MPa[:, k]
+        if name.startswith("fit_"):              # (a clamped face's pressure: `_clamp_columns`)
+            out[f"{name.replace('fit_', 'fit_pressure_')}_MPa"] = result.fits.per_fit_MPa[:, k]
     out.update(_lame_columns(result))
     for j, J in enumerate(AB):
         out[f"groove_shift_dr_{J}_um"] = 1e3 * fe.dr_mm[j]
@@ -50,6 +51,7 @@ def to_columns(result: SimulationResult, flags: bool = True) -> dict[str, np.nda
     out["preload_lost"] = pair.preload_lost.astype(float)
     out["static_safety"] = s.static_safety
     out["friction_coefficient"] = result.friction_coefficient
+    out.update(_clamp_columns(result))
     if flags:
         out.update(check_columns(result.checks))
     return out
@@ -64,6 +66,16 @@ def check_columns(checks: Checks) -> dict[str, np.ndarray]:
         if o.margin is not None:
             out[f"margin_{o.check.name}"] = o.margin
     return out
+
+
+def _clamp_columns(result: SimulationResult) -> dict[str, np.ndarray]:
+    """With a clamp of clamp = "force" only (other assemblies keep their columns): the clamp
+    force at the row's state (N; of the clamp with the least margin when nut and cover both
+    have one) and `margin_clamp_N`, the force left before a face opens (`stages.fe.ClampState`)."""
+    c = result.clamp
+    if c is None:
+        return {}
+    return {"clamp_force_N": c.force_N.min(axis=1), "margin_clamp_N": c.margin_N}
 
 
 def _torque_columns(t) -> dict[str, np.ndarray]:

@@ -73,10 +73,20 @@ class Clamp:
                                 note="nut: between the shaft seat and the outer ring ID; cover: "
                                      "between the inner ring OD and the housing bore")
     width_mm: float = number(_MM)
-    clamp: str = choice("rigid", "compliant", default="rigid",
-                        doc='"rigid": the clamped face is tied axially (the clamp sets the stack '
-                            'length); "compliant": the face is not tied (a soft clamp: the stack '
-                            'keeps its own length)')
+    clamp: str = choice("rigid", "compliant", "force", default="rigid",
+                        doc='"force": a preloaded clamp (nut or bolted cover) tightened to '
+                            'clamp_force_N at T_ref, its face a contact that opens when the '
+                            'force is used up, a spring of clamp_stiffness_N_per_um in series; '
+                            '"rigid" and "compliant" are its two limits: "rigid" ties the face '
+                            'axially (infinitely stiff, never opens: it may pull the stack), '
+                            '"compliant" leaves it untied (no force, no stiffness)')
+    clamp_force_N: float = number("N", "the clamp force at T_ref, at rest (clamp = \"force\")",
+                                  sign=ZERO_OK, default=0.0,
+                                  note='> 0 with clamp = "force", which needs frictionless fits')
+    clamp_stiffness_N_per_um: float = number(
+        "N/um", "the clamp's own spring (thread or bolts) in series with the clamped face "
+        '(clamp = "force")', sign=ZERO_OK, default=0.0,
+        default_text="0 = from the part's section (VDI 2230 engaged thread and nut)")
 
 
 @dataclass(frozen=True, kw_only=True)

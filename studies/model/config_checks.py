@@ -25,6 +25,7 @@ def check_assembly(a: Assembly, path: str) -> None:
     _check_units(a, path)
     _check_geometry(a, path)
     _check_tolerances(a, path)
+    _check_clamps(a, path)
     if a.lubrication.kind == "oil":      # an oil needs its data: a Walther law (>= 2 points)
         try:
             a.oil().walther()
@@ -39,6 +40,28 @@ def check_assembly(a: Assembly, path: str) -> None:
 #: 5 mm up); a 25.4x too small catalogue bearing (ISO 15 bores from 10 mm: a 7000 series ring
 #: 26 mm x 8 mm with 4.8 mm balls becomes 1.02 mm x 0.31 mm with 0.19 mm balls) falls far below.
 INCH_SUSPECT_MM = {"ball_diameter_mm": 0.5, "width_mm": 1.5, "outside_diameter_mm": 25.4}
+
+
+def _check_clamps(a: Assembly, path: str) -> None:
+    """A clamp with a force (clamp = "force") needs the force, frictionless fits (its face is a
+    contact like theirs; bonded fits tie every interface) and given part temperatures (the
+    transient route keeps the faces tied); its force and stiffness keys mean nothing otherwise."""
+    for name in ("nut", "cover"):
+        c = getattr(a, name)
+        if c.clamp == "force":
+            if not c.clamp_force_N > 0:
+                raise ConfigError(f'{path}: {name}.clamp_force_N: clamp = "force" needs the '
+                                  "clamp force (N, > 0)")
+            if a.fits.contact != "frictionless":
+                raise ConfigError(f'{path}: {name}.clamp: "force" needs fits.contact = '
+                                  f'"frictionless", got "{a.fits.contact}"')
+            if a.thermal.mode != "given":
+                raise ConfigError(f'{path}: {name}.clamp: "force" is not available with '
+                                  'thermal.mode = "transient" (use "rigid" or "compliant")')
+        elif c.clamp_force_N > 0 or c.clamp_stiffness_N_per_um > 0:
+            key = "clamp_force_N" if c.clamp_force_N > 0 else "clamp_stiffness_N_per_um"
+            raise ConfigError(f'{path}: {name}.{key}: only used with clamp = "force", '
+                              f'got clamp = "{c.clamp}"')
 
 
 def _check_units(a: Assembly, path: str) -> None:
@@ -156,6 +179,16 @@ def _check_geometry(a: Assembly, path: str) -> None:
          "cover.diameter_mm", "must lie between the inner ring OD and the housing bore"
          if not t_layers else "must lie between the inner ring OD and the bearing OD")
     g = check_bearing(b, a.materials, path)
+    # the effective section of a ring holds at least the metal under its groove: a thinner one
+    # (a typo, or the ball's diameter for the ring's) also sizes the mesh to that thickness, and
+    # the condensation of its fits ran out of memory (a 0.1 mm section: 18 GB, killed)
+    for key, d, side in (("bearing.inner_ring_outer_diameter_mm", b.inner_ring_outer_diameter_mm, "inner"),
+                         ("bearing.outer_ring_inner_diameter_mm", b.outer_ring_inner_diameter_mm, "outer")):
+        bottom = groove_bottom_diameter_mm(g, side)
+        need(d >= bottom if side == "inner" else d <= bottom, key,
+             f"{d:g} mm leaves the {side} ring thinner than the metal under its groove (groove "
+             f"bottom at {bottom:.3f} mm): an effective section lies between the groove bottom and "
+             "the land")
     # a typo in one dimension (a housing 1e9 mm wide) would mesh until memory runs out: every
     # length of the stack stays within 20 bearing outside diameters
     big = 20.0 * b.outside_diameter_mm

@@ -242,7 +242,8 @@ class Pipeline:
                                           viscous_factor_f0)
         fits = FitPressures.of(self.setup.fit_names, fe)
         result = SimulationResult(fe, fe_ref, fits, lame_neighbours(self.fe_stage, fe, inputs),
-                                  pair, self.bearing.summary(pair), torque, mu, None)
+                                  pair, self.bearing.summary(pair), torque, mu, None,
+                                  self.fe_stage.clamp_state(fe, inputs.axial_load_N))
         check_answers(_checked_outputs(result), pair.converged, first_row)
         return replace(result, checks=evaluate_checks(result, self.checks))
 

@@ -12,6 +12,8 @@
     result.torque               torque stage (`analytic.torque.TorqueComponents`)
     result.friction_coefficient the friction coefficient the torque used, per row
     result.checks               the assembly's checks per row (`studies.model.checks.Checks`)
+    result.clamp                the preloaded clamps (`stages.fe.ClampState`; None unless a
+                                `[nut]`/`[cover]` has clamp = "force")
 
 Every array has one entry per row (axis -1 for the (2, n) per-bearing arrays of the pair and the
 shifts, axis 0 otherwise). Units are in the field names (mm, N, MPa, deg, N*mm, W, C).
@@ -29,7 +31,7 @@ from analytic.bearing import PairState
 from analytic.torque import TorqueComponents
 from studies.model.checks import Checks
 from studies.model.stages.bearing import PairSummary
-from studies.model.stages.fe import FEState
+from studies.model.stages.fe import ClampState, FEState
 from studies.model.stages.lame import LameNeighbours
 
 
@@ -66,6 +68,7 @@ class SimulationResult:
     torque: TorqueComponents
     friction_coefficient: np.ndarray
     checks: Checks
+    clamp: ClampState | None = None
 
     @property
     def n_rows(self) -> int:

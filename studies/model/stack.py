@@ -19,7 +19,9 @@ import numpy as np
 from analytic.bearing.geometry import SIGNS, BearingGeometry
 from analytic.bearing.land import (groove_centre_rz_mm, groove_point_rz_mm, land_angle_deg,
                                    land_diameters_mm)
-from meshes.section import Fit, Groove, Rect, Section, Split
+from analytic.clamp import annulus_area_mm2, thread_clamp_stiffness_N_per_mm
+from analytic.materials import get_material
+from meshes.section import Face, Fit, Groove, Rect, Section, Split
 from studies.model.config import Assembly
 from studies.model.mesh_size import mesh_sizes
 
@@ -148,7 +150,7 @@ def section_from_assembly(a: Assembly) -> Section:
         Split("face_inner_spacer_B", "z", zc, r_seat, min(r_iro, r_isp), ("inner_spacer",),
               ("inner_ring_B",)),
         Split("face_inner_B_nut", "z", z["nut"][0], r_seat, min(r_iro, a.nut.diameter_mm / 2),
-              ("inner_ring_B",), ("nut",), a.nut.clamp == "rigid"),
+              ("inner_ring_B",), ("nut",), a.nut.clamp == "rigid"),   # "force": a Face
         Split("face_housing_shoulder", "z", 0.0, h.shoulder_diameter_mm / 2, r_hb, ("housing",),
               ("outer_ring_A", *sliding)),
         Split("face_outer_A_spacer", "z", B, max(r_ori, r_osp), r_od, ("outer_ring_A",),
@@ -177,5 +179,37 @@ def section_from_assembly(a: Assembly) -> Section:
         raceways = {f"inner_ring_{j}": (r_iro, sum(z[f"inner_ring_{j}"]) / 2) for j in "AB"}
         raceways.update({f"outer_ring_{j}": (r_ori, sum(z[f"outer_ring_{j}"]) / 2) for j in "AB"})
     sizes = mesh_sizes(a)
+    faces = tuple(Face(f"face_clamp_{name}", split.inner_parts, split.outer_parts, split.at_mm,
+                       split.lo_mm, split.hi_mm, f"clamp_{name}",
+                       1.0 / clamp_stiffness_N_per_mm(a, name))
+                  for name, split in (("nut", next(x for x in splits if x.name == "face_inner_B_nut")),
+                                      ("cover", next(x for x in splits
+                                                     if x.name == "face_outer_B_cover")))
+                  if getattr(a, name).clamp == "force")
     return Section(tuple(rects), splits, fits, (), refine, raceways, sizes.size_mm,
-                   sizes.fit_size_mm, sizes.corner_size_mm, grooves)
+                   sizes.fit_size_mm, sizes.corner_size_mm, grooves, faces)
+
+
+def clamp_stiffness_N_per_mm(a: Assembly, name: str) -> float:
+    """The stiffness (N/mm) of the clamp `name` ("nut" or "cover") in series with its face:
+    `clamp_stiffness_N_per_um` when given, else from the part's section
+    (`analytic.clamp.thread_clamp_stiffness_N_per_mm`): the nut on a thread of the shaft seat
+    diameter (shaft annulus seat/bore, nut annulus nut/seat), the cover on a thread (or bolt
+    circle) at the housing bore diameter (housing wall annulus outer/bore, cover annulus
+    bore/cover inner diameter). The FE ties nut and cover to shaft and housing, so the thread's
+    compliance is not counted twice."""
+    c = getattr(a, name)
+    if c.clamp_stiffness_N_per_um > 0:
+        return 1e3 * c.clamp_stiffness_N_per_um
+    E_clamp = get_material(c.material, a.materials).E_MPa
+    if name == "nut":
+        d = a.shaft.seat_diameter_mm
+        return thread_clamp_stiffness_N_per_mm(
+            d, get_material(a.shaft.material, a.materials).E_MPa,
+            annulus_area_mm2(d, a.shaft.bore_diameter_mm), E_clamp,
+            annulus_area_mm2(c.diameter_mm, d))
+    d = a.housing.bore_diameter_mm
+    return thread_clamp_stiffness_N_per_mm(
+        d, get_material(a.housing.material, a.materials).E_MPa,
+        annulus_area_mm2(a.housing.outer_diameter_mm, d), E_clamp,
+        annulus_area_mm2(d, c.diameter_mm))

@@ -93,7 +93,7 @@ def main(quick: bool = False) -> None:
     rows = fe_levels(asm, (4.0, 2.0, 1.0) if quick else (4.0, 2.0, 1.0, 0.5, 0.25))
     from studies.runs.verify import richardson
 
-    ext = richardson([r[2] for r in rows])["extrapolated"]
+    ext = richardson([r[2] for r in rows]).extrapolated
     conv = [r for r in rows if abs(r[2] - ext) / abs(ext) < 1e-3]
     if conv:
         fac, dofs, p, t = conv[0]

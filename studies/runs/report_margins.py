@@ -74,6 +74,10 @@ def headlines(res: dict) -> dict[str, Headline]:
         if f"fit_pressure_{fit}_MPa" in res:
             add(f"fit_{fit}_min", f"fit_pressure_{fit}_MPa", False)
             add(f"fit_{fit}_max", f"fit_pressure_{fit}_MPa", True)
+    if "margin_clamp_N" in res:                          # a clamp with a force
+        add("clamp_margin_min", "margin_clamp_N", False)
+        add("clamp_force_min", "clamp_force_N", False)
+        add("clamp_force_max", "clamp_force_N", True)
     add("static_safety_min", "static_safety", False)
     add("torque_min", "torque_Nmm", False)
     add("torque_max", "torque_Nmm", True)
@@ -138,6 +142,13 @@ def margin_rows(asm, res: dict, flags: dict, mesh_error: dict[str, float]) -> li
             status(f"flag_fit_open_{fit}") if chk else "no limit",
             _worst(mesh_error, f"fit_{fit}_min", f"fit_{fit}_max"),
             chk.source if chk else "designed with clearance"))
+    if "clamp_margin_min" in hl:
+        c, h = checks["clamp_open"], hl["clamp_margin_min"]
+        lo, hi = hl["clamp_force_min"], hl["clamp_force_max"]
+        rows.append(MarginRow(
+            "clamp force", f"{lo.value:.4g} .. {hi.value:.4g} N", "> the axial load (N)",
+            f"{h.value:.4g} N left (row {h.row + 1})", status("flag_clamp_open"),
+            _worst(mesh_error, "clamp_force_min", "clamp_force_max"), c.source))
     c, h = checks["static_safety"], hl["static_safety_min"]
     rows.append(MarginRow(
         "static safety s0", f"{h.value:.4g}", f">= {c.allowable:g}",
@@ -148,6 +159,20 @@ def margin_rows(asm, res: dict, flags: dict, mesh_error: dict[str, float]) -> li
         "friction torque", f"{lo.value:.4g} .. {hi.value:.4g} N mm", "none given", "",
         "no limit", _worst(mesh_error, "torque_min", "torque_max"), "no torque limit in the assembly"))
     return rows
+
+
+def _clamp_text(asm, name: str) -> str:
+    """A clamp as the assumptions name it: its kind, and a force clamp's force and stiffness
+    (`studies.model.stack.clamp_stiffness_N_per_mm`: given, or from its section)."""
+    from studies.model.stack import clamp_stiffness_N_per_mm
+
+    c = getattr(asm, name)
+    if c.clamp != "force":
+        return c.clamp
+    k = 1e-3 * clamp_stiffness_N_per_mm(asm, name)
+    how = "given" if c.clamp_stiffness_N_per_um > 0 else "from its section, VDI 2230"
+    return (f"{c.clamp_force_N:g} N force, {k:.4g} N/um in series ({how}); its face opens when "
+            "the force is used up")
 
 
 def _worst(err: dict, *names) -> float | None:
@@ -277,7 +302,9 @@ def assumption_lines(asm) -> list[str]:
         "open, a clearance fit may close.",
         f"Fits and preload ({asm.preload.kind} preload, {asm.preload.assembled_N:g} N) are set at "
         f"T_ref = {asm.T_ref_C:g} C; with tolerance classes the fits are the middle of their bands.",
-        f"Nut and cover: {asm.nut.clamp} / {asm.cover.clamp} clamp (`[nut] clamp`, `[cover] clamp`).",
+        f"Clamps: nut {_clamp_text(asm, 'nut')}; cover {_clamp_text(asm, 'cover')} (`[nut] clamp`, "
+        "`[cover] clamp`; \"rigid\" and \"compliant\" are the limits of a clamp with a force: "
+        "infinitely stiff and never opening, or without force and stiffness).",
         "The rings' deformation enters the bearing model only through the groove-centre shifts "
         f"of the FE ({asm.mesh.ring_section} ring sections, `[mesh] ring_section`); "
         "Hertz point contact at each ball, pair equilibrium; " + ball[asm.operating.ball_model] + ".",

@@ -47,7 +47,33 @@ def _inputs(asm, n, **cols):
     return baseline_inputs(cols, n, asm.T_ref_C, asm.preload.assembled_N, asm.lubrication.speed_rpm)
 
 
-def temperature_sweep(pl, out: Path, say) -> dict:
+@dataclass(frozen=True)
+class TemperatureSweep:
+    """Seed 000's temperature sweep: temperatures (C), the full result, the fit-change rates
+    (um/C), the closing temperature of the free parts and the first FE contact (C), the preload
+    decomposition (radial-only and axial-only shifts) and the paper's axial model beside it."""
+    T: np.ndarray
+    full: SimulationResult
+    rate_i: float
+    rate_o: float
+    T_close_free: float
+    T_touch_fe: float
+    radial: SimulationResult
+    axial: SimulationResult
+    i20: int
+    axial_model: AxialModelComparison
+
+
+@dataclass(frozen=True)
+class CycleExtremes:
+    """Torque (max, min) per cycle (N mm) of the three -60 <-> 80 C cycles, without and with the
+    preload-settling effect, and that effect."""
+    baseline: list
+    settling: list
+    settle: dict                    # the effect's parameters, as --effect takes them
+
+
+def temperature_sweep(pl, out: Path, say) -> TemperatureSweep:
     a = pl.asm
     T = np.arange(-60.0, 80.0 + 1e-9, 1.0)
     inp = _inputs(a, T.size, T_ambient_C=T)
@@ -77,10 +103,9 @@ def temperature_sweep(pl, out: Path, say) -> dict:
               "temperature (C)", "preload (N)", f"Preload vs temperature (assembled {a.preload.assembled_N:g} N at "
               f"{a.T_ref_C:g} C)")
     i20 = int(np.argmin(np.abs(T - a.T_ref_C)))
-    return {"T": T, "res": res, "rate_i": rate_i, "rate_o": rate_o, "T_close_free": T_close_free,
-            "T_touch_fe": T_touch_fe, "full": full, "radial": radial, "axial": axial, "i20": i20,
-            "axial_model": axial_model_comparison(a, pl.geom, T, full.preload_N, axial.preload_N,
-                                                  parts.axial_free_preload_N, parts.mismatch_mm)}
+    return TemperatureSweep(T, full, rate_i, rate_o, T_close_free, T_touch_fe, radial, axial, i20,
+                            axial_model_comparison(a, pl.geom, T, full.preload_N, axial.preload_N,
+                                                   parts.axial_free_preload_N, parts.mismatch_mm))
 
 
 @dataclass(frozen=True)
@@ -208,7 +233,7 @@ def torque_sweeps(pl, out: Path) -> dict:
     return r
 
 
-def cycles(pl, out: Path) -> dict:
+def cycles(pl, out: Path) -> CycleExtremes:
     """Three -60 <-> 80 C cycles, 4 h each, 10 min samples, starting at 20 C."""
     a = pl.asm
     t_h = np.arange(0.0, 12.0 + 1e-9, 1.0 / 6.0)
@@ -231,8 +256,7 @@ def cycles(pl, out: Path) -> dict:
 
     def extremes(tq):
         return [(tq[cyc == c].max(), tq[cyc == c].min()) for c in range(3)]
-    return {"baseline": extremes(base.torque_Nmm), "settling": extremes(sett.torque_Nmm),
-            "settle": settle}
+    return CycleExtremes(extremes(base.torque_Nmm), extremes(sett.torque_Nmm), settle)
 
 
 def run(out: Path, progress=print, mesh_factor: float = 1.0,
@@ -394,21 +418,21 @@ def axial_model_lines(c: AxialModelComparison) -> list[str]:
 def rig_sections(pl, ts, tq, cy, rings) -> list[str]:
     """This rig's questions, each beside the published measurement (markdown lines)."""
     a = pl.asm
-    T, i20 = ts["T"], ts["i20"]
-    P = ts["full"].preload_N
+    T, i20 = ts.T, ts.i20
+    P = ts.full.preload_N
     dP_cold, dP_hot = P[0] - P[i20], P[-1] - P[i20]
-    dPr = (ts["radial"].preload_N[0] - P[i20], ts["radial"].preload_N[-1] - P[i20])
-    dPa = (ts["axial"].preload_N[0] - P[i20], ts["axial"].preload_N[-1] - P[i20])
+    dPr = (ts.radial.preload_N[0] - P[i20], ts.radial.preload_N[-1] - P[i20])
+    dPa = (ts.axial.preload_N[0] - P[i20], ts.axial.preload_N[-1] - P[i20])
     rng = {k: float(np.ptp(v[1].torque_Nmm)) for k, v in tq.items()}
     rank = " > ".join(sorted(rng, key=rng.get, reverse=True))
-    b, s = cy["baseline"], cy["settling"]
+    b, s = cy.baseline, cy.settling
     rows = [
-        ["inner fit rate (um/C)", PUBLISHED["rate_inner_um_per_C"], round(ts["rate_i"], 4),
-         f"{100 * (ts['rate_i'] / PUBLISHED['rate_inner_um_per_C'] - 1):+.1f} %"],
-        ["outer fit rate (um/C)", PUBLISHED["rate_outer_um_per_C"], round(ts["rate_o"], 4),
-         f"{100 * (ts['rate_o'] / PUBLISHED['rate_outer_um_per_C'] - 1):+.1f} %"],
+        ["inner fit rate (um/C)", PUBLISHED["rate_inner_um_per_C"], round(ts.rate_i, 4),
+         f"{100 * (ts.rate_i / PUBLISHED['rate_inner_um_per_C'] - 1):+.1f} %"],
+        ["outer fit rate (um/C)", PUBLISHED["rate_outer_um_per_C"], round(ts.rate_o, 4),
+         f"{100 * (ts.rate_o / PUBLISHED['rate_outer_um_per_C'] - 1):+.1f} %"],
         ["outer clearance closes (C)", "about 41 (from the CTE difference)",
-         f"{ts['T_close_free']:.1f} (free parts); first FE contact at {ts['T_touch_fe']:.0f}", ""],
+         f"{ts.T_close_free:.1f} (free parts); first FE contact at {ts.T_touch_fe:.0f}", ""],
         ["preload change -60 / +80 C vs 20 C (N)", "about -40 / +40, rising with T",
          f"{dP_cold:+.1f} / {dP_hot:+.1f}", "see below"],
         ["torque sensitivity ranking", "preload > temperature > interference", rank, ""],
@@ -425,10 +449,10 @@ def rig_sections(pl, ts, tq, cy, rings) -> list[str]:
         "### Fits", "",
         f"The fit rates follow from the CTE difference (9Cr18 {pl.model.materials['inner_ring_A'].alpha_per_K:.3g}, "
         f"TC4 {pl.model.materials['shaft'].alpha_per_K:.3g} 1/K) on the seat diameters: "
-        f"{ts['rate_i']:.4f} um/C inner (35 mm), {ts['rate_o']:.4f} um/C outer (47 mm), from a "
+        f"{ts.rate_i:.4f} um/C inner (35 mm), {ts.rate_o:.4f} um/C outer (47 mm), from a "
         "1 C sweep (`temperature_sweep.csv`). "
-        f"The outer clearance of the free parts closes at {ts['T_close_free']:.1f} C; the FE shows "
-        f"the first contact of the outer fit at {ts['T_touch_fe']:.0f} C. A difference of more than a "
+        f"The outer clearance of the free parts closes at {ts.T_close_free:.1f} C; the FE shows "
+        f"the first contact of the outer fit at {ts.T_touch_fe:.0f} C. A difference of more than a "
         "degree would mean the clamped faces bend the rings (edge contact before the mean clearance "
         "is gone). The fit plots above show both fits over the rig's range.", "",
         "Contact pressure along bearing A's fits (from the nodal contact forces, whole ring): the "
@@ -438,14 +462,14 @@ def rig_sections(pl, ts, tq, cy, rings) -> list[str]:
         md_table(["ring", "T (C)", "max von Mises (MPa)", "max hoop (MPa)", "min hoop (MPa)"], rings), "",
         "### Preload vs temperature: which effect dominates", "",
         md_table(["T (C)", "preload (N)", "radial shifts only (N)", "axial shifts only (N)"],
-                 [[float(T[i]), float(P[i]), float(ts["radial"].preload_N[i]),
-                   float(ts["axial"].preload_N[i])] for i in (0, 40, i20, 100, 120, len(T) - 1)]),
+                 [[float(T[i]), float(P[i]), float(ts.radial.preload_N[i]),
+                   float(ts.axial.preload_N[i])] for i in (0, 40, i20, 100, 120, len(T) - 1)]),
         "", f"Axial shifts alone (stack lengths: the 9Cr18 outer spacer grows faster than the TC4-set "
         f"inner-ring spacing) raise the DB preload on heating, as the paper says: {dPa[0]:+.1f} N at -60 C, "
         f"{dPa[1]:+.1f} N at 80 C. The radial shifts act the other way and are larger: {dPr[0]:+.1f} N at -60 C, "
         f"{dPr[1]:+.1f} N at 80 C (why: below). Each part keeps the bearing's own uniform growth, "
         "which alone leaves the preload unchanged.", "",
-        ] + axial_model_lines(ts["axial_model"]) + [
+        ] + axial_model_lines(ts.axial_model) + [
         "![preload](preload_vs_temperature.png)", "",
         "### Friction torque", "",
         f"Torque ranges over the published test ranges: preload 0..350 N: {rng['preload']:.3f} N mm; "
@@ -469,8 +493,8 @@ def rig_sections(pl, ts, tq, cy, rings) -> list[str]:
         md_table(["cycle", "max baseline", "min baseline", "max with settling", "min with settling"],
                  [[c + 1, float(b[c][0]), float(b[c][1]), float(s[c][0]), float(s[c][1])] for c in range(3)]),
         "", "The quasi-static baseline repeats every cycle exactly: it has no memory. A permanent "
-        f"preload loss ({cy['settle']['loss_N']:g} N after the first excursion beyond "
-        f"{cy['settle']['threshold_K']:g} K, the `preload_settling` effect, shown as an illustration, not "
+        f"preload loss ({cy.settle['loss_N']:g} N after the first excursion beyond "
+        f"{cy.settle['threshold_K']:g} K, the `preload_settling` effect, shown as an illustration, not "
         "fitted) lowers the maximum as measured, but it lowers the minimum too, while the measured "
         "minimum rose by 0.9 N mm: a single permanent preload loss does not explain both; run-in of "
         "the MoS2 film (a friction change) is a candidate the diagnosis can test against measured "

@@ -35,7 +35,7 @@ from __future__ import annotations
 
 import json
 import math
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 from pathlib import Path
 
 import numpy as np
@@ -313,7 +313,19 @@ def free_thermal_case(material: str = "9Cr18", dT_K: float = 100.0,
 ORDER_BOUNDS = (1.0, 4.0)
 
 
-def richardson(f: list[float], ratio: float = 2.0) -> dict:
+@dataclass(frozen=True)
+class Richardson:
+    """A three-level extrapolation (`richardson`): observed order, the order the extrapolation
+    used, the extrapolated value, the fine level's GCI (relative) and whether the levels converge
+    monotonically."""
+    observed_order: float
+    order_used: float
+    extrapolated: float
+    gci_fine: float
+    monotone: bool
+
+
+def richardson(f: list[float], ratio: float = 2.0) -> Richardson:
     """Observed order, extrapolated value and GCI of the three finest values f = [coarse, mid,
     fine] (Roache, Verification and Validation in Computational Science, 1998; Fs = 1.25).
 
@@ -325,15 +337,13 @@ def richardson(f: list[float], ratio: float = 2.0) -> dict:
     nan = float("nan")
     scale = abs(f3) if f3 != 0 else nan
     if e21 == 0 and e32 == 0:
-        return {"observed_order": nan, "order_used": nan, "extrapolated": f3, "gci_fine": 0.0,
-                "monotone": True}
+        return Richardson(nan, nan, f3, 0.0, True)
     if e32 != 0 and e21 / e32 >= 0:
         p = math.log(abs(e32 / e21)) / math.log(ratio) if e21 != 0 else math.inf
         pu = min(max(p, ORDER_BOUNDS[0]), ORDER_BOUNDS[1])
-        return {"observed_order": p, "order_used": pu, "extrapolated": f3 + e21 / (ratio ** pu - 1),
-                "gci_fine": 1.25 * abs(e21) / scale / (ratio ** pu - 1), "monotone": True}
-    return {"observed_order": nan, "order_used": nan, "extrapolated": f3,
-            "gci_fine": 3.0 * max(abs(e21), abs(e32)) / scale, "monotone": False}
+        return Richardson(p, pu, f3 + e21 / (ratio ** pu - 1),
+                          1.25 * abs(e21) / scale / (ratio ** pu - 1), True)
+    return Richardson(nan, nan, f3, 3.0 * max(abs(e21), abs(e32)) / scale, False)
 
 
 #: what a convergence level records besides its quantities
@@ -346,7 +356,7 @@ def convergence_case(name: str, inputs: dict, levels: list[dict], exact: dict | 
     out = {"name": name, "kind": "mesh_convergence", "inputs": dict(inputs, refinement_ratio=2.0),
            "levels": levels, "quantities": {}}
     for q in qs:
-        r = richardson([lv[q] for lv in levels])
+        r = asdict(richardson([lv[q] for lv in levels]))     # the JSON edge
         if exact and q in exact:
             err = [abs(lv[q] - exact[q]) / abs(exact[q]) for lv in levels]
             r["exact"] = exact[q]

@@ -44,12 +44,16 @@ class FEState:
     `FESetup.fit_names`). interference_um (n, 2): free diametral overlap at the row's
     temperatures, inner and outer fit (um; NaN for a conduction-field state). dr_mm, dz_mm
     (2, n): inner minus outer groove-centre shift of bearings A and B, radial and axial (mm).
-    raceway_u_mm (n, 8): u_r, u_z at the raceway points of RINGS (mm)."""
+    raceway_u_mm (n, 8): u_r, u_z at the raceway points of RINGS (mm). face_force_N (n, n_faces):
+    the axial force (N, + compression) across each clamped face held as a contact
+    (`Section.faces`, clamp = "force"), None without one; the faces' mean pressures are the last
+    columns of fit_pressure_MPa."""
     fit_pressure_MPa: np.ndarray
     interference_um: np.ndarray
     dr_mm: np.ndarray
     dz_mm: np.ndarray
     raceway_u_mm: np.ndarray
+    face_force_N: np.ndarray | None = None
 
     @property
     def n_rows(self) -> int:
@@ -67,7 +71,8 @@ class FEState:
         several bearing or torque settings in one `Pipeline.run`."""
         rows = np.asarray(rows, int)
         return FEState(self.fit_pressure_MPa[rows], self.interference_um[rows],
-                       self.dr_mm[:, rows], self.dz_mm[:, rows], self.raceway_u_mm[rows])
+                       self.dr_mm[:, rows], self.dz_mm[:, rows], self.raceway_u_mm[rows],
+                       None if self.face_force_N is None else self.face_force_N[rows])
 
 
 @dataclass(frozen=True)
@@ -154,6 +159,23 @@ class FELoads:
 
 
 @dataclass(frozen=True)
+class ClampState:
+    """The preloaded clamps (clamp = "force") of n rows. names: the clamps ("nut", "cover"), in
+    the order of the section's faces; force_N (n, n_clamps): the FE force across each clamped
+    face at the row's state (N, + compression: the clamp force left after thermal growth, fits
+    and speed); margin_N (n,): the smallest over the clamps of force_N - |axial_load_N| (N), the
+    force left before the stack's faces separate under the row's external axial load, which the
+    stack carries through the clamped faces. That takes the whole external load off the clamped
+    faces: the bolted joint's separation load is F_i / (1 - C) >= F_i for any joint constant C
+    (`analytic.clamp`), so the margin is on the safe side by C |axial_load_N| at most.
+    open (n,): margin_N <= 0 (a face open in the FE has force 0, so its margin is <= 0)."""
+    names: tuple[str, ...]
+    force_N: np.ndarray
+    margin_N: np.ndarray
+    open: np.ndarray
+
+
+@dataclass(frozen=True)
 class FitOpenSpeeds:
     """The fit-loosening speeds of the inner (rotating) fits: names (the FE fits, `fit_inner_A`,
     ...) and speed_rpm (n, n_inner_fits), rpm (0: open at rest; inf: still closed at
@@ -182,6 +204,9 @@ class FEStage:
         self.section = section
         self._fits_of = fits_of
         self.grooves = GrooveCentres.of(section, geom, asm.arrangement)
+        #: axial overlap (mm) each clamp is tightened with (`tighten`): its face key -> delta
+        #: (0 until tightened; the compliance plan closes the faces whatever it is)
+        self.clamp_delta_mm = {f.key: 0.0 for f in section.faces}
         plan = None
         if asm.preload.path_compliance == "fe":
             inner, outer = asm.mean_fits_um()
@@ -200,6 +225,8 @@ class FEStage:
         self.part_names = self.setup.part_names
         self.sup = (Superposition.from_condensed(self.setup.condensed, lambda: self.solver)
                     if superpose else None)
+        if section.faces:
+            self.clamp_delta_mm = self.tighten()
         #: preload-path compliance per bearing from the FE (mm/N); 0 for a rigid path
         self.compliance_mm_per_N = self.setup.compliance_mm_per_N if plan is not None else 0.0
 
@@ -257,7 +284,66 @@ class FEStage:
         um = {"inner": inner_um, "outer": outer_um,
               "sleeve": np.full(n, self.asm.fits.sleeve_interference_um),
               "cartridge": np.full(n, self.asm.fits.cartridge_interference_um)}
-        return np.column_stack([um[f.key] / 2000.0 for f in self.section.fits])
+        return np.column_stack([um[f.key] / 2000.0 for f in self.section.fits]
+                               + [np.full(n, self.clamp_delta_mm[f.key]) for f in self.section.faces])
+
+    # ------------------------------------------------------------------ clamps with a force
+    def face_columns(self) -> list[int]:
+        """The contact interfaces (columns of `deltas_mm`, `FESetup.fit_names`) that are faces."""
+        n_fits = len(self.section.fits)
+        return list(range(n_fits, n_fits + len(self.section.faces)))
+
+    def face_forces_N(self, force_N: np.ndarray) -> np.ndarray:
+        """(n, n_faces) total force across each clamped face (N) from the pair forces (n,
+        n_pairs)."""
+        fop = self.setup.condensed.fit_of_pair
+        return np.column_stack([force_N[:, fop == k].sum(axis=1) for k in self.face_columns()])
+
+    def tighten(self) -> dict[str, float]:
+        """The axial overlap delta (mm) of each clamp with a force: the one at which its face
+        carries `clamp_force_N` in the nominal assembly (T_ref, at rest, the `[fits]` values
+        at mid-band): a clamp is tightened to its force once, at assembly. Each face's force is
+        monotone in its own delta; the root is bracketed and found by Brent's method (scipy)
+        to 1e-13 of delta. Raises ValueError when a face cannot carry the force."""
+        from scipy.optimize import brentq
+
+        inner, outer = self.asm.mean_fits_um()
+        theta = np.zeros((1, len(self.part_names)))
+        delta = dict(self.clamp_delta_mm)
+        sup = self.sup if self.sup is not None else Superposition(self.solver, self.probe)
+        for j, (face, col) in enumerate(zip(self.section.faces, self.face_columns())):
+            F = getattr(self.asm, face.key.removeprefix("clamp_")).clamp_force_N
+
+            def residual(d):
+                delta[face.key] = d
+                self.clamp_delta_mm = delta
+                row = self.deltas_mm(np.array([inner]), np.array([outer]))
+                lam = sup.evaluate(theta, row, np.zeros(1)).force_N
+                return float(self.face_forces_N(lam)[0, j]) - F
+
+            hi, hi_max = 1e-6, 10.0 + 10.0 * F * face.compliance_mm_per_N   # mm
+            while residual(hi) < 0:
+                hi *= 4
+                if hi > hi_max:
+                    raise ValueError(f"the {face.key} face cannot be tightened to {F:g} N")
+            lo = -hi
+            while residual(lo) > 0:
+                lo *= 4
+                if lo < -10.0:
+                    raise ValueError(f"the {face.key} face carries {F:g} N untightened")
+            delta[face.key] = brentq(residual, lo, hi, xtol=1e-15, rtol=1e-13, maxiter=200)
+            self.clamp_delta_mm = delta
+        return delta
+
+    def clamp_state(self, fe: FEState, axial_load_N) -> ClampState | None:
+        """The clamps of the rows (`ClampState`) from their FE state and external axial load
+        (N); None without a clamp with a force."""
+        if fe.face_force_N is None:
+            return None
+        names = tuple(f.key.removeprefix("clamp_") for f in self.section.faces)
+        load = np.abs(np.broadcast_to(np.asarray(axial_load_N, float), (fe.n_rows,)))
+        margin = (fe.face_force_N - load[:, None]).min(axis=1)
+        return ClampState(names, fe.face_force_N, margin, margin <= 0)
 
     def loads(self, inputs: PhysicsInputs) -> FELoads:
         """What the FE of the rows is solved for (`FELoads`)."""
@@ -285,6 +371,7 @@ class FEStage:
             res = self.sup.evaluate(theta, delta, w2)
             force, probe = res.force_N, res.probe
         p = self.fit_pressures(force)
+        faces = self.face_forces_N(force) if self.section.faces else None
         idx = {p: i for i, p in enumerate(self.part_names)}
         dr, dz = self.grooves.shifts_mm(probe, theta[:, [idx[r] for r in RINGS]])
         a = self.asm
@@ -293,7 +380,7 @@ class FEStage:
         interf = np.column_stack([
             loads.inner_um + (theta[:, idx["shaft"]] - theta[:, idx["inner_ring_A"]]) * d_seat * 1e3,
             loads.outer_um + (theta[:, idx["outer_ring_A"]] - theta[:, idx[seat]]) * d_bore * 1e3])
-        return FEState(p, interf, dr, dz, probe[:, :8])
+        return FEState(p, interf, dr, dz, probe[:, :8], faces)
 
     def fit_pressures(self, force_N: np.ndarray) -> np.ndarray:
         """(n, n_fits) mean pressure (MPa) per FE fit from the pair forces (n, n_pairs) in N."""
@@ -343,4 +430,5 @@ class FEStage:
         th = np.array([[float((theta_q[m.part_of == r] * w[m.part_of == r]).sum()
                               / w[m.part_of == r].sum()) for r in RINGS]])
         dr, dz = self.grooves.shifts_mm(probe[None, :], th)
-        return FEState(p, np.full((1, 2), np.nan), dr, dz, probe[None, :8]), sol.u
+        faces = self.face_forces_N(sol.force_N[None, :]) if self.section.faces else None
+        return FEState(p, np.full((1, 2), np.nan), dr, dz, probe[None, :8], faces), sol.u
