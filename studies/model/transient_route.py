@@ -195,7 +195,9 @@ def thermal_model(pl: Pipeline, progress=None) -> ThermalModel:
             if th.emissivity > 0 else {})
     nominal = ThermalParameters(film_W_m2K=films, fit_conductance_W_m2K=tuple(h_fit),
                                 ball_inner_W_K=G[0], ball_outer_W_K=G[1], emissivity=emis,
-                                T_rad_lin_C=T_ref, **({"bore_conductance_W_m2K": 0.0} if vacuum else {}))
+                                T_rad_lin_C=T_ref,
+                                bore_conductance_W_m2K=0.0 if vacuum else
+                                ThermalParameters.bore_conductance_W_m2K)
     training = [replace(nominal, film_W_m2K={k: s * v for k, v in films.items()},
                         fit_conductance_W_m2K=tuple(h_fit * c), ball_inner_W_K=G[0] * b,
                         ball_outer_W_K=G[1] * b) for s, c, b in TRAINING]
