@@ -586,10 +586,14 @@ def test_cli_diagnose_end_to_end(tmp_path, capsys):
     ratio = res["extended"]["heldout_rmse"]["torque_Nmm"] / res["baseline"]["heldout_rmse"]["torque_Nmm"]
     assert res["gain"]["heldout_rmse_ratio"] == pytest.approx(ratio, rel=1e-9)
     assert res["gain"]["heldout_rmse_ratio"] < 1.0
-    assert {c["effect"] for c in res["candidates"]} == set(ORDER)
+    # the listed effects, then the model-form ladder's rungs (studies/diagnosis/ladder.py)
+    assert {c["effect"] for c in res["candidates"] if c["kind"] == "effect"} == set(ORDER)
+    from studies.diagnosis.ladder import ladder
+    assert ({c["effect"] for c in res["candidates"] if c["kind"] == "model_form"}
+            == {r.name for r in ladder(load_shipped("seed000"))})
     for c in res["candidates"]:
         assert set(c) >= {"effect", "parameters", "delta_bic", "heldout_rmse"}
-        if c["delta_bic"] is not None:               # fitted: the spec's parameter names
+        if c["delta_bic"] is not None and c["kind"] == "effect":   # the spec's parameter names
             assert set(c["parameters"]) == SPEC_PARAMETERS[c["effect"]]
     # sorted best first: candidates that pass by delta BIC, then the other fitted ones by delta
     # BIC, then those not fitted (not applicable / not identifiable here)

@@ -14,6 +14,7 @@ from studies.model.config import CONFIG_DIR, ConfigError, load_assembly
 from studies.model import tolerance_samples as tsm
 from studies.model import tolerances as tol
 from studies.model.parallel import WORKER_CONFIG, Blocks
+from studies.model.pipeline import Pipeline
 
 CFG000 = CONFIG_DIR / "seed000_71807C_TC4.toml"
 
@@ -163,7 +164,7 @@ def test_monte_carlo_fit_opening_agrees_with_the_closed_form(fits_only, dist):
     dev = tol.sample_deviations_um(asm, S, seed=7)
     di, do = tol.interference_offsets_um(dev, S)
     r = tsm.evaluate(pl, {"T_ambient_C": np.array([asm.T_ref_C])}, di, do)
-    p, se = tol.probability(r["fit_pressure_inner_MPa"][:, 0] <= 0.0)
+    p, se = tol.probability(r.fit_pressure_inner_MPa[:, 0] <= 0.0)
     if dist == "uniform":        # X = shaft + 4 in [0, 10], Y = -bore in [0, 6]: X + Y <= 4
         exact = _uniform_sum_cdf(4.0, 10.0, 6.0)
     else:                        # limits at +-3 sigma: mean 1 - (-3) = 4, sigma^2 = (10/6)^2 + 1
@@ -182,8 +183,8 @@ def test_mid_band_fits_give_the_assembled_preload(fits_only):
     r = tsm.evaluate(Pipeline.shared(asm), {"T_ambient_C": np.array([asm.T_ref_C]),
                                             "speed_rpm": np.array([0.0])},
                      np.array([mid_i, mid_i + 2.0]), np.array([mid_o, mid_o]))
-    assert r["preload_N"][0, 0] == pytest.approx(asm.preload.assembled_N, rel=1e-9)
-    assert r["preload_N"][1, 0] > asm.preload.assembled_N     # a tighter inner fit adds preload
+    assert r.preload_N[0, 0] == pytest.approx(asm.preload.assembled_N, rel=1e-9)
+    assert r.preload_N[1, 0] > asm.preload.assembled_N     # a tighter inner fit adds preload
 
 
 def test_tolerance_command_writes_the_documented_json_and_repeats_for_a_seed(tmp_path, capsys):
@@ -216,7 +217,9 @@ def test_tolerance_without_tolerances_is_refused(tmp_path, capsys):
 
 def test_dask_workers_give_the_single_process_numbers(fits_only):
     """The Monte Carlo on a local Dask cluster (2 worker processes, each building its own FE
-    set-up) equals the single-process run for the same samples, bit for bit."""
+    set-up) equals the single-process run for the same samples, bit for bit. The cluster is
+    opened with no shared pipeline here (its forked workers would inherit it, with the FE
+    results and pair memo of earlier blocks), and this process runs its blocks after it."""
     asm = fits_only["uniform"]
     S = 400
     dev = tol.sample_deviations_um(asm, S, seed=3)
@@ -224,16 +227,17 @@ def test_dask_workers_give_the_single_process_numbers(fits_only):
     cond = {"T_ambient_C": np.array([-20.0, 60.0])}
     old = tsm.CHUNK_ROWS
     tsm.CHUNK_ROWS = 200                      # several blocks, so both workers get some
+    Pipeline._shared.clear()
     try:
-        here = tsm.run_samples(asm, cond, di, do)
         with Blocks(workers=2) as where:
             dask = tsm.run_samples(asm, cond, di, do, where=where)
             # the workers run with the profiler and the GIL monitor off (parallel.WORKER_CONFIG)
             seen = {k: where.client.run(dask_config.get, k) for k in WORKER_CONFIG}
+        here = tsm.run_samples(asm, cond, di, do)
     finally:
         tsm.CHUNK_ROWS = old
-    for q in tol.QUANTITIES:
-        np.testing.assert_array_equal(dask[q], here[q], err_msg=q)
+    for q, v in here.columns().items():
+        np.testing.assert_array_equal(dask.columns()[q], v, err_msg=q)
     for k, v in WORKER_CONFIG.items():
         assert list(seen[k].values()) == [v, v], k
 
@@ -255,7 +259,7 @@ def test_samples_reordered_into_blocks_come_back_in_their_own_rows(fits_only):
     finally:
         tsm.CHUNK_ROWS = old
     hand = asm.fits.inner_interference_um + dev["inner_shaft"] - dev["inner_ring_bore"]
-    np.testing.assert_allclose(r["interference_inner_um"][:, 0], hand, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(r.interference_inner_um[:, 0], hand, rtol=0, atol=1e-12)
 
 
 # ------------------------------------------------- designed state, worst case per condition (#24)

@@ -12,7 +12,7 @@ from dataclasses import dataclass, field, fields
 import numpy as np
 
 #: keys every candidate entry carries, set or not (docs/cli.md), then status and reason
-ALWAYS = ("effect", "parameters", "delta_bic", "heldout_rmse", "status", "reason")
+ALWAYS = ("effect", "kind", "parameters", "delta_bic", "heldout_rmse", "status", "reason")
 #: working state of the phases, not part of the result file
 WORKING = ("sensitivity", "profile_fixed", "profile_grid")
 
@@ -32,6 +32,7 @@ class HeldoutGain:
 @dataclass
 class Candidate:
     effect: str
+    kind: str = "effect"            # "effect" (listed) or "model_form" (studies.diagnosis.ladder)
     parameters: dict = field(default_factory=dict)          # fitted values (effect units)
     delta_bic: float | None = None                          # BIC(candidate) - BIC(baseline)
     heldout_rmse: dict = field(default_factory=dict)        # column -> held-out RMSE

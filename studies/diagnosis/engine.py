@@ -70,6 +70,7 @@ from studies.diagnosis.decision import Separation, decide, separating
 from studies.diagnosis.fitting import fit_all
 from studies.diagnosis.generalised import ChosenForm, generalise
 from studies.diagnosis.heldout import validate
+from studies.diagnosis.ladder import is_form
 from studies.diagnosis.openworld import characterise
 from studies.diagnosis.problem import Problem, make_problem
 from studies.diagnosis.result import (BestPartial, Cost, DiagnosisResult, ModelRmse, NuisanceFit,
@@ -177,7 +178,8 @@ def assemble(pb: Problem, b: Baseline, s: Screening, fits: dict[str, Fit], ho: d
                     BestPartial(d.best, s.candidates[d.best].parameters, d.best_residuals))
     open_world = (characterise({c: pb.measured[c] - b.fit.pred[c] for c in pb.columns},
                                pb.valid, pb.conditions, pb.blocks, pb.noise.sigma_w,
-                               pb.noise.rho)
+                               pb.noise.rho, forms={e.name: e.acts_through
+                                                    for e in pb.candidates if is_form(e)})
                   if d.verdict == "unexplained" else None)
     return DiagnosisResult(
         verdict=d.verdict, cause=cause, parameters=params, parameter_uncertainty=unc,

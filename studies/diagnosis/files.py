@@ -15,6 +15,8 @@ import numpy as np
 
 from studies.model.config import load_assembly
 from studies.diagnosis.engine import diagnose_full
+from studies.diagnosis.ladder import FormRoute
+from studies.diagnosis.ladder import candidates as ladder_candidates
 from studies.diagnosis.report import write_report
 from studies.diagnosis.result import DiagnosisResult, to_json
 from studies.model.effects import (EFFECTS, ORDER, apply_effects, assembly_bounds,
@@ -23,7 +25,6 @@ from studies.model.inputs import CONDITION_COLUMNS, baseline_inputs
 from studies.model.parallel import available_workers
 from studies.model.pipeline import Pipeline
 from studies.model.checks import CHECK_COLUMNS
-from studies.model.columns import to_columns
 from studies.model.table import TableError, read_table
 
 #: output columns `diagnose` can compare (what `simulate` writes and a rig can measure)
@@ -62,10 +63,12 @@ class ModelPredictor:
         self.base = baseline_inputs(conditions, n, a.T_ref_C, a.preload.assembled_N,
                                     a.lubrication.speed_rpm)
         self.calls = 0
+        self.forms = FormRoute(pipeline)        # the model-form ladder's rungs (ladder.py)
 
     def inputs(self, effects, nuisance, base=None):
         a = self.pl.asm
-        inp = apply_effects(base or self.base, effects, a.T_ref_C)
+        listed, forms = self.forms.split(effects)
+        inp = self.forms.apply_inputs(apply_effects(base or self.base, listed, a.T_ref_C), forms)
         scale = float((nuisance or {}).get("mu_scale", 1.0))
         mu0 = a.lubrication.friction_coefficient
         mu = resolve_friction_coefficient(inp, mu0) * scale
@@ -73,15 +76,15 @@ class ModelPredictor:
 
     def __call__(self, effects, nuisance):
         self.calls += 1
-        out = to_columns(self.pl.run(self.inputs(effects, nuisance)), flags=False)
-        return {c: out[c] for c in self.columns}
+        return self.forms.columns(self.inputs(effects, nuisance), self.forms.split(effects)[1],
+                                  self.columns)
 
     def at(self, effects, nuisance, conditions):
         a = self.pl.asm
         n = len(next(iter(conditions.values())))
         base = baseline_inputs(conditions, n, a.T_ref_C, a.preload.assembled_N, a.lubrication.speed_rpm)
-        out = to_columns(self.pl.run(self.inputs(effects, nuisance, base)), flags=False)
-        return {c: out[c] for c in self.columns}
+        return self.forms.columns(self.inputs(effects, nuisance, base),
+                                  self.forms.split(effects)[1], self.columns)
 
 
 def read_measured(path: Path, known_outputs: set[str] | None = None) -> tuple[dict, dict]:
@@ -117,7 +120,7 @@ def diagnose_files(assembly_path: Path, measured_path: Path, out_dir: Path, prog
     pl = pipeline or Pipeline.shared(asm, progress=progress)
     conditions, measured = read_measured(measured_path, OUTPUT_NAMES)
     predict = ModelPredictor(pl, conditions, measured.keys())
-    candidates = candidate_effects(asm)
+    candidates = candidate_effects(asm) + ladder_candidates(asm)    # the model-form ladder last
     progress(f"diagnosing {len(next(iter(measured.values())))} rows, columns "
              f"{', '.join(measured)}, {len(candidates)} candidate effects ...")
     workers = available_workers() if workers is None else workers

@@ -31,6 +31,7 @@ from studies.model.effects.generalised import (PreloadSettlingCreep, RadialGradi
                                                ThermalLagPerPart)
 from studies.model.effects.preload_settling import excursion
 from studies.model.effects.solid_film_runin import revolutions
+from studies.diagnosis.ladder import UnloggedLoad, unlogged_load_starts
 
 Conditions = Mapping[str, np.ndarray]
 
@@ -251,6 +252,7 @@ SPECS: dict[type, FitSpec] = {
     SolidFilmRunin: FitSpec(profile=("runin_krev",), steps=runin_steps, grid=runin_grid),
     InterferenceError: FitSpec(starts=interference_starts),
     PreloadPathCompliance: FitSpec(starts=compliance_starts),
+    UnloggedLoad: FitSpec(starts=unlogged_load_starts),          # the model-form ladder
 }
 
 

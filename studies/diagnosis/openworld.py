@@ -97,6 +97,7 @@ class ColumnCharacterisation:
     not_separable: dict[str, list[str]] = field(default_factory=dict)
     hypothesis: str | None = None
     confirming_test: str | None = None
+    model_forms: list[str] = field(default_factory=list)   # the ladder's forms through the lead
 
 
 @dataclass
@@ -289,13 +290,30 @@ def _name_hypothesis(out: ColumnCharacterisation, feats: Mapping[str, np.ndarray
             out.not_separable[k] = near
 
 
+def _name_forms(out: ColumnCharacterisation, forms: Mapping[str, tuple[str, ...]]) -> None:
+    """The model forms acting through the lead feature (or one not separable from it), named in
+    front of the generic hypothesis (the model's own forms first: issue 23, item 2)."""
+    if not out.depends or not forms:
+        return
+    lead = max(out.selected, key=lambda k: abs(out.range_effect[k]))
+    near = {lead, *out.not_separable.get(lead, [])}
+    out.model_forms = [f for f, acts in forms.items() if near & set(acts)]
+    if out.model_forms:
+        out.hypothesis = (f"a model form acting through {lead} ({', '.join(out.model_forms)}: "
+                          f"see their entries among the candidates), else {out.hypothesis}")
+
+
 def characterise(residuals: Mapping[str, np.ndarray], valid: Mapping[str, np.ndarray],
                  conditions: Mapping[str, np.ndarray], blocks: np.ndarray,
                  sigma_w: Mapping[str, float], rho: Mapping[str, float],
-                 residual_of: str = "baseline") -> OpenWorld:
+                 residual_of: str = "baseline",
+                 forms: Mapping[str, tuple[str, ...]] | None = None) -> OpenWorld:
     """Characterise the residuals (measured - model, column unit, all rows) of every column on the
     valid rows; `blocks` are the held-out block labels per row, `sigma_w` and `rho` the noise
-    innovation level and AR(1) coefficient per column (as the engine estimated them)."""
+    innovation level and AR(1) coefficient per column (as the engine estimated them). `forms`:
+    the model forms of the ladder tried ({name: the features it acts through},
+    `studies.diagnosis.ladder`): the hypothesis names those acting through the lead feature (or
+    one not separable from it) before the generic class of cause."""
     feats, desc, aliases = named_features(conditions)
     cols = []
     for c, r in residuals.items():
@@ -303,6 +321,8 @@ def characterise(residuals: Mapping[str, np.ndarray], valid: Mapping[str, np.nda
         cols.append(characterise_column(c, np.asarray(r, float)[m],
                                         {k: v[m] for k, v in feats.items()}, np.asarray(blocks)[m],
                                         float(sigma_w[c]), float(rho.get(c, 0.0))))
+    for cc in cols:
+        _name_forms(cc, forms or {})
     hits = [cc for cc in cols if cc.depends]
     if not feats:
         summary = "no condition varies: nothing to characterise the residual by"

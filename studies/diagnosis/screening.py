@@ -1,12 +1,14 @@
 """Phase 2 of the diagnosis: which candidates the data can see. For every candidate the
 finite-difference sensitivity at its off value, the part the baseline calibration cannot produce,
 its reach inside the physical bounds in noise units, and the look-alike cosines between
-candidates (module docstring of `studies.diagnosis.engine`, step 2)."""
+candidates (module docstring of `studies.diagnosis.engine`, step 2). A model form of the ladder
+(`studies.diagnosis.ladder`) is screened only where the baseline residual points at a condition
+it acts through (`ladder.indication`), else it is not applicable with the reason."""
 from __future__ import annotations
 
 import numpy as np
 
-from studies.diagnosis import fitspec
+from studies.diagnosis import fitspec, ladder
 from studies.diagnosis.candidate import Candidate
 from studies.diagnosis.core import Baseline, ModelFailure, Screening
 from studies.diagnosis.problem import Problem
@@ -18,10 +20,13 @@ def screen(pb: Problem, b: Baseline) -> Screening:
     the candidates' order with their projected sensitivities' look-alike cosines."""
     cands = {}
     proj = {}
+    gate = ladder.indication(pb, b) if any(map(ladder.is_form, pb.candidates)) else None
     for e in pb.candidates:
-        info = Candidate(e.name)
+        info = Candidate(e.name, getattr(e, "kind", "effect"))
         cands[e.name] = info
         why, grid = _applicability(pb, e)
+        if why is None and gate is not None:     # a model form only where the residual points
+            why = gate.why_not(e)
         if why is not None:
             info.set_status("not_applicable", why)
             continue

@@ -18,6 +18,8 @@ Conventions for the fields effects write (see studies/effects/__init__.py):
 - `preload_loss_N`: permanent loss subtracted from the assembled preload per row.
 - `extra_compliance_mm_per_N`: axial compliance added in series to each bearing's preload path
   (mm/N, on top of the assembly's `[preload] path_compliance`); zero in the baseline.
+- `cte_factor[FE part]`: factor on that part's thermal strain (a material lot whose CTE differs
+  from the library's, `studies.diagnosis.ladder`); absent = 1 in the baseline.
 
 `measured_parts` names the parts whose temperature the conditions table gave in its own column
 (`T_<part>_C`); every other part follows the ambient. Effects that act on the ambient-following
@@ -62,11 +64,12 @@ class PhysicsInputs:
     moment_Nmm: np.ndarray | None = None               # tilting moment on the shaft (N mm)
     d2alpha_per_K3: dict[str, float] = field(default_factory=lambda: dict(NO_CTE_SLOPE))
     measured_parts: frozenset[str] = frozenset()       # parts with their own T_<part>_C column
+    cte_factor: dict[str, float] = field(default_factory=dict)   # FE part -> thermal strain factor
 
     def copy(self, **changes) -> "PhysicsInputs":
         """Shallow copy with fields replaced (arrays are never modified in place)."""
         new = replace(self, T_C=dict(self.T_C), dalpha_per_K2=dict(self.dalpha_per_K2),
-                      d2alpha_per_K3=dict(self.d2alpha_per_K3))
+                      d2alpha_per_K3=dict(self.d2alpha_per_K3), cte_factor=dict(self.cte_factor))
         return replace(new, **changes) if changes else new
 
     def take(self, rows: np.ndarray) -> "PhysicsInputs":
@@ -87,7 +90,7 @@ class PhysicsInputs:
                        preload_loss_N=pick(self.preload_loss_N),
                        radial_load_N=pick(self.radial_load_N), moment_Nmm=pick(self.moment_Nmm),
                        dalpha_per_K2=dict(self.dalpha_per_K2),
-                       d2alpha_per_K3=dict(self.d2alpha_per_K3))
+                       d2alpha_per_K3=dict(self.d2alpha_per_K3), cte_factor=dict(self.cte_factor))
 
 
 def baseline_inputs(columns: dict[str, np.ndarray], n_rows: int, T_ref_C: float,

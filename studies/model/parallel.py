@@ -1,33 +1,39 @@
-"""Run independent blocks of work in this process or on a Dask cluster, with the same results.
+"""The one parallel map of the project (Dask): independent pieces of work here, on forked
+processes of this machine, or on a Dask cluster, with the same results in every mode.
 
-`map_blocks(fn, blocks)` calls `fn(*block)` for every block and returns the results in block
-order. Without `workers` or `scheduler` it runs here, one block after the other; with
-`workers=N` it starts a local Dask cluster (N single-threaded worker processes), with
-`scheduler="tcp://host:port"` it uses an existing one (dask.distributed). The blocks and their
-boundaries are the same in every mode and each block is computed by the same function, so the
-results are identical bit for bit; the caller chooses blocks that do not depend on one another.
+Two kinds of work, one library (Dask graphs of independent tasks; no second pool):
 
-`Blocks` is the same as a context manager that keeps its cluster for several calls: `imap`
-yields the results in block order while later blocks still run, with at most `ahead` blocks
-submitted and not yet yielded (memory bounded for any number of blocks; a streamed `simulate`).
-
-Per-assembly set-up inside `fn` (the FE model, its unit solutions) is done once per worker
-process: `Pipeline.shared` keeps it for the life of the process.
-
-`parallel_map(task, items, workers)` is the map of work that shares this process's state (the
-diagnosis's candidate fits: the FE set-up, the pipeline and the model cache as they are now):
-[task(item) for item in items] on forked worker processes (`concurrent.futures`, fork start
-method), so that nothing is pickled but the items' indices and the results, and the task may be a
-closure. Each task is a pure function of the state at the fork and its item, so every result is
-the one a serial run computes, to the last bit; results come back in the items' order. A `state`
-object (e.g. the diagnosis's `CachedModel`) can carry what the tasks add to it back to this
-process (`snapshot` / `delta` in the worker, `merge` here).
+- Blocks that are pure functions of their arguments (`map_blocks`, `Blocks`: the tolerance Monte
+  Carlo, the streamed `simulate`, the design search): with `workers=N` on a local
+  `dask.distributed` cluster of N single-threaded processes, with `scheduler="tcp://host:port"`
+  on an existing one (another machine's workers too: docs/cli.md, `--workers` / `--scheduler`),
+  without either here, one block after the other. `map_blocks(fn, blocks)` calls `fn(*block)`
+  for every block and returns the results in block order. `Blocks` is the same as a context
+  manager that keeps its cluster for several calls: `imap` yields the results in block order
+  while later blocks still run, with at most `ahead` blocks submitted and not yet yielded
+  (memory bounded for any number of blocks; a streamed `simulate`). The blocks and their
+  boundaries are the same in every mode and each block is computed by the same function, so
+  the results are identical bit for bit; the caller chooses blocks that do not depend on one
+  another. Per-assembly set-up inside `fn` (the FE model, its unit solutions) is done once per
+  process (`Pipeline.shared` keeps it); a local cluster's workers are forked from this process
+  (`LOCAL_START_METHOD`) and start with it done.
+- Work that shares this process's state (`parallel_map(task, items, workers)`: the diagnosis's
+  candidate fits and plots, with the FE set-up, the pipeline and the model cache as they are
+  now): [task(item) for item in items] as a Dask graph on Dask's local process scheduler, over
+  processes forked from this one, so that nothing is pickled but the items' indices and the
+  results, and the task may be a closure (a cluster would need the state pickled to every
+  worker). Each task is a pure function of the state at the fork and its item, so every result
+  is the one a serial run computes, to the last bit; results come back in the items' order. A
+  `state` object (e.g. the diagnosis's `CachedModel`) can carry what the tasks add to it back to
+  this process (`snapshot` / `delta` in the worker, `merge` here).
 """
 from __future__ import annotations
 
 import multiprocessing
 import os
 import signal
+import sys
+import uuid
 from collections import deque
 from concurrent.futures import ProcessPoolExecutor
 from typing import Any, Callable, Iterable, Iterator, Protocol, Sequence
@@ -59,6 +65,21 @@ WORKER_CONFIG = {"distributed.worker.profile.enabled": False,
                  "distributed.admin.tick.interval": "500ms",
                  "distributed.worker.memory.monitor-interval": "1s"}
 
+
+#: how a local cluster's nanny starts its worker process. "fork" (Linux): the worker is a copy of
+#: this process as it is when the cluster opens: its imports and its warm per-process state
+#: (`Pipeline.shared`: the FE set-up, factorisation and unit solutions; the memo) are there
+#: already, nothing is imported or set up again. "spawn" (distributed's default) starts a new
+#: interpreter that imports distributed, then the task's modules, then sets up the FE model.
+#: Measured 2026-11-25, 2 workers, seed 000 tolerance case, loaded 2-core machine (load ~11):
+#: spawn: cluster start 4.3-5.5 s wall, 0.9 CPU s in the workers; their FE set-up 3.4-4.2 s wall,
+#: 0.9 CPU s; closing 1.8 s; fork: start 1.0-1.7 s wall, 0.05 CPU s; set-up 0.02-0.07 s, 0.01 CPU
+#: s; closing 0.04-0.12 s. A forked worker keeps this process's malloc settings (the
+#: MALLOC_* of WORKER_ENV apply to spawned workers only), so its CPU per sample is this
+#: process's. Open the cluster after the set-up the blocks need (e.g. `bench --tolerance`,
+#: `tolerance`: the pipeline warm before the Monte Carlo). An existing scheduler's workers
+#: (`--scheduler`) start as their own configuration says.
+LOCAL_START_METHOD = "fork" if sys.platform.startswith("linux") else "spawn"
 
 #: seconds to wait for an existing scheduler (`--scheduler`) before giving up
 CONNECT_TIMEOUT_S = 20.0
@@ -97,8 +118,11 @@ class Blocks:
                                      f"({type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''})"
                                      ) from None
         else:
+            dask.config.set({"distributed.worker.multiprocessing-method": LOCAL_START_METHOD})
+            # dashboard_address ":0": the scheduler's HTTP endpoint on a free port (None still
+            # tries 8787 and warns on stderr when another cluster holds it)
             self.cluster = LocalCluster(n_workers=int(self.workers), threads_per_worker=1,
-                                        processes=True, dashboard_address=None, env=WORKER_ENV)
+                                        processes=True, dashboard_address=":0", env=WORKER_ENV)
             self.client = Client(self.cluster)
         return self
 
@@ -233,19 +257,30 @@ def parallel_map(task: Callable, items: Sequence, workers: int, first: Sequence[
     there are at least two items and `can_fork()`; else serially here (module docstring).
     `first`: indices of items to start first (the longest tasks: better balance; results keep
     the items' order). `state`: merged with each task's delta, in the items' order. An exception
-    of a task is raised here, the first in the items' order."""
+    of a task is raised here, the first in the items' order.
+
+    The tasks are a Dask graph computed by Dask's local process scheduler
+    (`dask.multiprocessing.get`, one task at a time per process: chunksize 1) on a pool of
+    processes forked from this one (Dask's own pool would spawn fresh interpreters, without
+    this process's state). Independent tasks start in the order `dask.order` gives them, the
+    greatest key first: the keys count down along `first` and then the items' order."""
     items = list(items)
     n = min(int(workers), len(items))
     if n <= 1 or not can_fork():
         return [task(it) for it in items]
+    import dask.multiprocessing
+
     global _JOB
     order = list(dict.fromkeys(list(first or ()) + list(range(len(items)))))
+    name = f"parallel_map-{uuid.uuid4().hex}"
+    graph = {(name, len(order) - rank): (_run_item, i) for rank, i in enumerate(order)}
+    keys = [(name, len(order) - rank) for rank in range(len(order))]
     _JOB = (task, items, state)
     pool = ProcessPoolExecutor(n, mp_context=multiprocessing.get_context("fork"),
                                initializer=_worker_init)
     try:
-        futures = {i: pool.submit(_run_item, i) for i in order}
-        got = {i: futures[i].result() for i in order}
+        got = dict(zip(order, dask.multiprocessing.get(graph, keys, pool=pool, chunksize=1,
+                                                       optimize_graph=False)))
     except BaseException:
         pool.shutdown(wait=False, cancel_futures=True)
         for proc in list(getattr(pool, "_processes", {}).values()):   # no public terminate

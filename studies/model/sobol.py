@@ -103,8 +103,10 @@ def surface_inputs(asm) -> dict[str, tuple[str, float, float]]:
 
 
 def preload_indices(asm, conditions: dict[str, np.ndarray], n_base: int = 1024, seed: int = 1,
-                    workers: int | None = None, scheduler: str | None = None) -> list[SobolIndices]:
-    """Sobol' indices of the preload (exact model) to each toleranced surface, per condition."""
+                    workers: int | None = None, scheduler: str | None = None,
+                    where=None) -> list[SobolIndices]:
+    """Sobol' indices of the preload (exact model) to each toleranced surface, per condition;
+    the samples here, on Dask (`workers` / `scheduler`) or on an open `parallel.Blocks` (`where`)."""
     from studies.model import tolerance_samples as tsm
     from studies.model import tolerances as tol
 
@@ -112,5 +114,5 @@ def preload_indices(asm, conditions: dict[str, np.ndarray], n_base: int = 1024, 
         n = len(next(iter(dev.values())))
         di, do = tol.interference_offsets_um(dev, n)
         return tsm.run_samples(asm, conditions, di, do, workers=workers,
-                               scheduler=scheduler)["preload_N"]
+                               scheduler=scheduler, where=where).preload_N
     return indices(surface_inputs(asm), model, n_base, seed)

@@ -5,11 +5,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from studies.model.columns import to_columns
 from studies.model.inputs import baseline_inputs
 from studies.model.parallel import map_blocks
 from studies.model.pipeline import FEOptions, Pipeline
-from studies.model.tolerances import QUANTITIES, mid_band_offsets_um
+from studies.model.tolerances import SampleResults, mid_band_offsets_um
 
 
 #: rows (samples x conditions) evaluated together: bounds memory for any number of samples
@@ -29,10 +28,10 @@ def sample_order(d_inner_um: np.ndarray, d_outer_um: np.ndarray) -> np.ndarray:
 
 
 def evaluate(pl, conditions: dict[str, np.ndarray], d_inner_um: np.ndarray,
-             d_outer_um: np.ndarray) -> dict[str, np.ndarray]:
+             d_outer_um: np.ndarray) -> SampleResults:
     """Every sample (interference offsets from the [fits] values, length S) at every condition
     (length C) through the pipeline, whose rows are the mean (mid-band) assembly with its preload
-    (`Assembly.mean_fits_um`); returns QUANTITIES as (S, C) arrays."""
+    (`Assembly.mean_fits_um`); returns the `SampleResults` as (S, C) arrays."""
     a = pl.asm
     C = len(next(iter(conditions.values())))
     S = len(d_inner_um)
@@ -47,29 +46,39 @@ def evaluate(pl, conditions: dict[str, np.ndarray], d_inner_um: np.ndarray,
     inp = inp.copy(interference_inner_um=d_inner_um[rows_s] - mid_i,
                    interference_outer_um=d_outer_um[rows_s] - mid_o)
     # the preload is set in the mean assembly (the [fits] values), whatever the sample's fits
-    res = to_columns(pl.run(inp, fe_options=FEOptions(reference="nominal_fits")), flags=False)
-    out = {}
-    for q in QUANTITIES:
+    res = pl.run(inp, fe_options=FEOptions(reference="nominal_fits"))
+
+    def per_sample(rows: np.ndarray) -> np.ndarray:
         v = np.empty((S, C))
-        v[rows_s, rows_c] = res[q]
-        out[q] = v
-    return out
+        v[rows_s, rows_c] = rows
+        return v
+    return SampleResults(
+        interference_inner_um=per_sample(res.fe.interference_um[:, 0]),
+        interference_outer_um=per_sample(res.fe.interference_um[:, 1]),
+        fit_pressure_inner_MPa=per_sample(res.fits.inner_MPa),
+        fit_pressure_outer_MPa=per_sample(res.fits.outer_MPa),
+        preload_N=per_sample(res.preload_N), contact_angle_deg=per_sample(res.contact_angle_deg),
+        max_contact_pressure_MPa=per_sample(res.max_contact_pressure_MPa),
+        torque_Nmm=per_sample(res.torque_Nmm))
 
 
 def warm(asm) -> None:
-    """Build this process's shared pipeline of `asm` (what the first block would do)."""
-    Pipeline.shared(asm)
+    """Build this process's shared pipeline of `asm` and run one sample (the [fits] values)
+    through it: the set-up and the lazy imports the first block would otherwise do (the results
+    of later blocks do not depend on it)."""
+    evaluate(Pipeline.shared(asm), {"T_ambient_C": np.array([asm.T_ref_C])}, np.zeros(1),
+             np.zeros(1))
 
 
 def evaluate_block(asm, conditions: dict[str, np.ndarray], d_inner_um: np.ndarray,
-                   d_outer_um: np.ndarray) -> dict[str, np.ndarray]:
+                   d_outer_um: np.ndarray) -> SampleResults:
     """`evaluate` on the process's shared pipeline of `asm`: one task of `run_samples`."""
     return evaluate(Pipeline.shared(asm), conditions, d_inner_um, d_outer_um)
 
 
 def run_samples(asm, conditions: dict[str, np.ndarray], d_inner_um: np.ndarray,
                 d_outer_um: np.ndarray, workers: int | None = None, scheduler: str | None = None,
-                progress=None, where=None) -> dict[str, np.ndarray]:
+                progress=None, where=None) -> SampleResults:
     """All samples in blocks of whole samples (about CHUNK_ROWS rows each), here or on Dask
     (`studies.model.parallel.map_blocks`): the same blocks in every mode, so the same numbers.
     The samples are put in `sample_order` before the blocks are cut and the results put back in
@@ -82,9 +91,9 @@ def run_samples(asm, conditions: dict[str, np.ndarray], d_inner_um: np.ndarray,
     blocks = [(asm, conditions, di[s0:s0 + per], do[s0:s0 + per]) for s0 in range(0, S, per)]
     parts = map_blocks(evaluate_block, blocks, workers=workers, scheduler=scheduler,
                        progress=progress, where=where)
-    out = {}
-    for q in QUANTITIES:
-        v = np.empty((S, C))
-        v[order] = np.concatenate([p[q] for p in parts])
-        out[q] = v
-    return out
+
+    def put_back(v: np.ndarray) -> np.ndarray:
+        out = np.empty_like(v)
+        out[order] = v
+        return out
+    return SampleResults.concatenate(parts).map(put_back)

@@ -23,7 +23,7 @@ pipeline; this module sits below it, beside the config that reads its bands).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
 import numpy as np
 
@@ -33,10 +33,38 @@ SURFACES = ("inner_shaft", "inner_ring_bore", "outer_housing", "outer_ring_od")
 #: sign of each surface's deviation in its fit's interference, and the fit
 SURFACE_FIT = {"inner_shaft": ("inner", +1.0), "inner_ring_bore": ("inner", -1.0),
                "outer_ring_od": ("outer", +1.0), "outer_housing": ("outer", -1.0)}
-#: quantities the Monte Carlo keeps per sample and condition
-QUANTITIES = ("interference_inner_um", "interference_outer_um", "fit_pressure_inner_MPa",
-              "fit_pressure_outer_MPa", "preload_N", "contact_angle_deg",
-              "max_contact_pressure_MPa", "torque_Nmm")
+
+
+@dataclass(frozen=True)
+class SampleResults:
+    """What the Monte Carlo keeps per sample and condition: (S, C) arrays, samples by
+    conditions (`tolerance_samples.evaluate`). Named columns only at the file edge (`columns`)."""
+    interference_inner_um: np.ndarray
+    interference_outer_um: np.ndarray
+    fit_pressure_inner_MPa: np.ndarray
+    fit_pressure_outer_MPa: np.ndarray
+    preload_N: np.ndarray
+    contact_angle_deg: np.ndarray
+    max_contact_pressure_MPa: np.ndarray
+    torque_Nmm: np.ndarray
+
+    def columns(self) -> dict[str, np.ndarray]:
+        """{QUANTITIES name: (S, C) array}, for the writers (tolerance.json, samples.csv)."""
+        return {q: getattr(self, q) for q in QUANTITIES}
+
+    def map(self, fn) -> "SampleResults":
+        """The same quantities with `fn(array)` applied to each (rows put in order, joined)."""
+        return SampleResults(**{q: fn(getattr(self, q)) for q in QUANTITIES})
+
+    @staticmethod
+    def concatenate(parts: "list[SampleResults]") -> "SampleResults":
+        """The samples of `parts` one after the other (each quantity joined along the samples)."""
+        return SampleResults(**{q: np.concatenate([getattr(p, q) for p in parts])
+                                for q in QUANTITIES})
+
+
+#: quantities the Monte Carlo keeps per sample and condition (the fields of `SampleResults`)
+QUANTITIES = tuple(f.name for f in fields(SampleResults))
 
 
 def deviation_limits_um(asm) -> dict[str, tuple[float, float]]:

@@ -13,8 +13,10 @@ friction coefficient 1.25 x the configured one. Datasets: no effect, a thermal l
 preload settling (5 N beyond 50 K) and a solid-film run-in (-0.004 over 10 krev), because the
 engine's work depends on how many candidates pass, and two generalised forms (per-part lag
 300 s / 360 s, settling creeping 3 N/h), where the engine also fits the generalised forms of the
-family (`studies.diagnosis.generalised`); the column `form` gives the extended form reported.
-The candidates are the CLI's (`files.candidate_effects`), and so are the worker processes
+family (`studies.diagnosis.generalised`); the column `form` gives the extended form reported;
+two model forms of the ladder (grooved ring sections, a housing lot 3 % above the library's CTE),
+made through the ladder's own route (`ladder.FormRoute`). The candidates are the CLI's
+(`files.candidate_effects` and the ladder's `ladder.candidates`, after them), and so are the worker processes
 (`--workers`, default every CPU the process may use, `studies.model.parallel.parallel_map`).
 Times: the FE set-up (mesh from the cache, unit solutions) once; per dataset the engine alone
 (`diagnose_full`, what the goal is about) and the whole `diagnose_files` (reading the CSV, the
@@ -49,7 +51,10 @@ DATASETS = {"no effect": {}, "thermal_lag tau_s=300": {"thermal_lag": {"tau_s": 
                 {"thermal_lag.per_part": {"tau_s": 300.0, "tau_shaft_s": 360.0}},
             "preload_settling.creep 5 N, 50 K, 3 N/h":
                 {"preload_settling.creep": {"loss_N": 5.0, "threshold_K": 50.0,
-                                            "creep_N_per_h": 3.0}}}
+                                            "creep_N_per_h": 3.0}},
+            # model forms of the ladder (issue 23): the FE set-up rung and an inputs rung
+            "ring_section_grooved (model form)": {"ring_section_grooved": {"share": 1.0}},
+            "material_lot housing CTE x 1.03": {"material_lot": {"cte_factor_housing": 1.03}}}
 
 
 def main(argv=None) -> None:
@@ -57,6 +62,7 @@ def main(argv=None) -> None:
     from studies.diagnosis.files import (NUISANCE, ModelPredictor, candidate_effects,
                                          diagnose_files)
     from studies.diagnosis.engine import diagnose_full
+    from studies.diagnosis.ladder import candidates as ladder_candidates
     from studies.diagnosis.result import to_json
     from studies.model.parallel import available_workers
     from studies.runs.bench_clock import Clock
@@ -75,7 +81,7 @@ def main(argv=None) -> None:
     t0 = time.perf_counter()
     pl = Pipeline(asm, mesh_factor=args.mesh_factor)
     t_setup = time.perf_counter() - t0
-    cands = candidate_effects(asm)
+    cands = candidate_effects(asm) + ladder_candidates(asm)      # as the CLI: the ladder last
     print(f"FE set-up (once per run of the CLI): {t_setup:.2f} s")
     for n_rows in args.rows:
         cond = cycles(n_rows, 60.0)

@@ -22,12 +22,27 @@ design), every listed effect the design can identify (before-data screening), an
 torque-sensor drift, each at the magnitudes `operating.MAGNITUDES` (RMS visible change in noise
 sigmas) with REPS trials. Method and rates: `studies.diagnosis.operating`.
 
+Second source (issue 23 item 1; `studies.runs.second_source`): beside the same-model matrix, the
+same diagnosis on data made another way than the model it fits (finer mesh and direct FE, model
+forms the config lacks, transient-FE and network temperatures, two causes, strongly correlated
+noise, spikes, sensor drift and offsets), each trial judged against the case's truth label
+(`second_source.judge`: right, named, partial, unexplained, missed, false_alarm, wrong).
+
+Size. The default run is small enough for a loaded 2-core machine (`SMALL`: 1 trial per listed
+cell, 6 nulls per design, the `cycles` and `speed_steps` designs, 2 trials per second-source case);
+`python -m studies.runs.confusion_matrix --out DIR --full` runs the full rates (`FULL`).
+
 Writes `confusion_matrix.json` (every trial, the rates, the look-alike matrices),
-`confusion_matrix.csv` (one row per trial) and `report.md` / `report.html`.
+`confusion_matrix.csv` (one row per trial), `second_source.json` / `second_source.csv` (every
+second-source trial) and `report.md` / `report.html`.
 """
 from __future__ import annotations
 
+import argparse
 import json
+import time
+from collections import Counter
+from dataclasses import asdict, dataclass
 from pathlib import Path
 
 import numpy as np
@@ -38,6 +53,12 @@ from studies.model.table import write_table
 
 REPS = 3
 N_NULL = 20
+#: run sizes: listed-cause trials per cell, nulls per design, same-model designs, mesh factor of
+#: the diagnosed model, trials per second-source case
+SMALL = {"reps": 1, "n_null": 6, "designs": ("cycles", "speed_steps"), "second_trials": 2,
+         "mesh_factor": 1.0}
+FULL = {"reps": REPS, "n_null": N_NULL, "designs": ("cycles", "speed_steps", "cycles_speeds"),
+        "second_trials": 8, "mesh_factor": 1.0}
 #: base noise: this share of the column's mean absolute baseline value
 NOISE_SHARE = 0.01
 COLUMNS = ("torque_Nmm", "preload_N")
@@ -76,14 +97,127 @@ def design(name: str) -> Design:
                   hidden=HIDDEN.get(name))
 
 
-def run(out_dir: Path, progress=print, designs=tuple(DESIGNS), reps: int = REPS,
-        n_null: int = N_NULL) -> dict:
-    """Run the matrix and write the files (module docstring); returns the JSON dict."""
+@dataclass
+class SecondTrial:
+    """One diagnosis of a second-source case (`second_source.Case`) and its outcome."""
+    case: str
+    kind: str
+    design: str
+    truth: str                # the truth labels joined by '+', 'none' for a null
+    seed: int
+    change_sigma: float       # largest visible change against the refitted baseline
+    verdict: str
+    cause: str | None
+    indistinguishable: list[str]
+    best_partial: str | None
+    outcome: str              # second_source.OUTCOMES
+    seconds: float
+
+
+def run_second_source(cases=None, trials: int = 2, mesh_factor: float = 1.0,
+                      progress=print) -> list[SecondTrial]:
+    """Every second-source case (default all of `second_source.CASES`) with `trials` noise draws
+    (seeds 0..trials-1), diagnosed as `diagnose` does (`second_source.diagnose_case`)."""
+    from studies.runs import second_source as ss
+
+    out = []
+    for name in (cases or list(ss.CASES)):
+        for seed in range(trials):
+            c = ss.make_case(name, seed, mesh_factor)
+            t0 = time.perf_counter()
+            r = ss.diagnose_case(c)
+            out.append(SecondTrial(
+                name, c.kind, c.design, "+".join(c.truth) or "none", seed, c.change_sigma,
+                r.verdict, "+".join(ss.named_causes(r)) or None, list(r.indistinguishable),
+                r.best_partial.effect if r.best_partial else None, ss.judge_result(c, r),
+                time.perf_counter() - t0))
+            progress(f"second source {name} #{seed}: {r.verdict} {r.cause} -> {out[-1].outcome}")
+    return out
+
+
+def second_source_markdown(trials: list[SecondTrial]) -> list[str]:
+    """The second-source confusion matrices (one per design) and the outcome totals."""
+    from studies.runs.second_source import OUTCOMES
+
+    L = []
+    tot = Counter(t.outcome for t in trials)
+    L.append("Outcomes over all second-source trials: " + ", ".join(
+        f"{o} {tot.get(o, 0)}" for o in OUTCOMES) + f" (of {len(trials)}).\n")
+    for dn in dict.fromkeys(t.design for t in trials):
+        ts = [t for t in trials if t.design == dn]
+        cols = sorted({(f"explained: {t.cause}" if t.verdict == "explained" else t.verdict)
+                       for t in ts}, key=lambda c: (not c.startswith("no_"),
+                                                    c.startswith("unexpl"), c))
+        L.append(f"### Second source, design `{dn}` (rows: case and its truth, columns: verdict / "
+                 "cause; counts)\n")
+        L.append("| case | kind | truth | change sigma | " + " | ".join(cols)
+                 + " | outcomes |")
+        L.append("| --- | --- | --- | ---: |" + " --- |" * (len(cols) + 1))
+        for name in dict.fromkeys(t.case for t in ts):
+            sub = [t for t in ts if t.case == name]
+            cnt = Counter(f"explained: {t.cause}" if t.verdict == "explained" else t.verdict
+                          for t in sub)
+            oc = Counter(t.outcome for t in sub)
+            L.append(f"| `{name}` | {sub[0].kind} | {sub[0].truth} | {sub[0].change_sigma:.1f} | "
+                     + " | ".join(str(cnt.get(c, "")) for c in cols) + " | "
+                     + ", ".join(f"{o} {k}" for o, k in oc.items()) + " |")
+        L.append("")
+    return L
+
+
+def run(out_dir: Path, progress=print, designs=None, reps: int | None = None,
+        n_null: int | None = None, full: bool = False, parts=("same", "second"),
+        second_trials: int | None = None, mesh_factor: float | None = None) -> dict:
+    """Run the matrices and write the files (module docstring); returns the JSON dict of the
+    same-model matrix (with the second-source trials under `second_source`). Sizes default to
+    SMALL (FULL with `full`); `parts`: "same" (the same-model matrix), "second" (the second
+    source) or both."""
     from studies.runs.report_tools import write_report_files
 
+    size = dict(FULL if full else SMALL)
+    for k, v in (("designs", designs), ("reps", reps), ("n_null", n_null),
+                 ("second_trials", second_trials), ("mesh_factor", mesh_factor)):
+        if v is not None:
+            size[k] = v
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
-    ds = [design(n) for n in designs]
+    L = ["# Operating characteristics of the diagnosis (confusion matrix)\n",
+         __doc__.split("\n\n", 1)[1].split("Writes")[0].strip() + "\n"]
+    data: dict = {"size": {k: list(v) if isinstance(v, tuple) else v for k, v in size.items()}}
+    if "same" in parts:
+        data.update(_run_same(out_dir, progress, size, L))
+    if "second" in parts:
+        t0 = time.perf_counter()
+        tr = run_second_source(trials=size["second_trials"], mesh_factor=size["mesh_factor"],
+                               progress=progress)
+        data["second_source"] = [asdict(t) for t in tr]
+        (out_dir / "second_source.json").write_text(json.dumps(data["second_source"], indent=1))
+        write_table(out_dir / "second_source.csv", {
+            "case": np.array([t.case for t in tr], str), "kind": np.array([t.kind for t in tr], str),
+            "design": np.array([t.design for t in tr], str),
+            "truth": np.array([t.truth for t in tr], str),
+            "seed": np.array([t.seed for t in tr], float),
+            "change_sigma": np.array([t.change_sigma for t in tr], float),
+            "verdict": np.array([t.verdict for t in tr], str),
+            "cause": np.array([t.cause or "" for t in tr], str),
+            "indistinguishable": np.array([";".join(t.indistinguishable) for t in tr], str),
+            "best_partial": np.array([t.best_partial or "" for t in tr], str),
+            "outcome": np.array([t.outcome for t in tr], str),
+            "seconds": np.array([t.seconds for t in tr], float)})
+        L.append(f"## Second source: {size['second_trials']} trials per case, diagnosed model on "
+                 f"mesh factor {size['mesh_factor']:g}; {len(tr)} diagnoses, "
+                 f"{np.mean([t.seconds for t in tr]):.1f} s each on average "
+                 f"({time.perf_counter() - t0:.0f} s with the truths)\n")
+        L += second_source_markdown(tr)
+    write_report_files(out_dir, L, "confusion matrix")
+    return data
+
+
+def _run_same(out_dir: Path, progress, size: dict, L: list[str]) -> dict:
+    """The same-model matrix (`operating.run_matrix`): its files and report lines."""
+    ds = [design(n) for n in size["designs"]]
+    reps, n_null = size["reps"], size["n_null"]
+    t0 = time.perf_counter()
     mx = run_matrix(ds, MAGNITUDES, reps=reps, n_null=n_null, progress=progress)
     data = mx.to_json()
     data["noise_sigma"] = {d.name: d.sigma for d in ds}
@@ -99,16 +233,33 @@ def run(out_dir: Path, progress=print, designs=tuple(DESIGNS), reps: int = REPS,
         "open_world_lead": np.array([t.open_world_lead or "" for t in tr], str),
         "seconds": np.array([t.seconds for t in tr], float)})
     secs = [t.seconds for t in mx.trials]
-    L = ["# Operating characteristics of the diagnosis (confusion matrix)\n",
-         __doc__.split("\n\n", 1)[1].split("Writes")[0].strip() + "\n",
-         "Noise sigma per design (column unit): " + "; ".join(
-             f"{d.name}: " + ", ".join(f"{c} {s:.3g}" for c, s in d.sigma.items()) for d in ds)
-         + ".\n",
-         f"Magnitudes: {', '.join(f'{m:g}' for m in MAGNITUDES)} sigma (RMS visible change); "
-         f"{reps} trials per cell, {n_null} nulls per design; {len(mx.trials)} diagnoses, "
-         f"{np.mean(secs):.2f} s each on average.\n",
-         "`named` = explained with the hidden cause or ambiguous with it among the rivals; "
-         "`wrong` = explained with another cause.\n"]
+    L += ["## Same model\n",
+          "Noise sigma per design (column unit): " + "; ".join(
+              f"{d.name}: " + ", ".join(f"{c} {s:.3g}" for c, s in d.sigma.items()) for d in ds)
+          + ".\n",
+          f"Magnitudes: {', '.join(f'{m:g}' for m in MAGNITUDES)} sigma (RMS visible change); "
+          f"{reps} trials per cell, {n_null} nulls per design; {len(mx.trials)} diagnoses, "
+          f"{np.mean(secs):.2f} s each on average ({time.perf_counter() - t0:.0f} s in all).\n",
+          "`named` = explained with the hidden cause or ambiguous with it among the rivals; "
+          "`wrong` = explained with another cause.\n"]
     L += markdown(mx)
-    write_report_files(out_dir, L, "confusion matrix")
     return data
+
+
+def main(argv=None) -> int:
+    """`python -m studies.runs.confusion_matrix --out DIR [--full] [--part same|second]`."""
+    ap = argparse.ArgumentParser(prog="python -m studies.runs.confusion_matrix",
+                                 description="confusion matrices of the diagnosis (module "
+                                             "docstring): same model and second source")
+    ap.add_argument("--out", required=True, type=Path)
+    ap.add_argument("--full", action="store_true", help="the full rates (FULL), not SMALL")
+    ap.add_argument("--part", choices=("same", "second"), action="append",
+                    help="only this part (repeatable; default both)")
+    ap.add_argument("--mesh-factor", type=float, default=None)
+    a = ap.parse_args(argv)
+    run(a.out, full=a.full, parts=tuple(a.part or ("same", "second")), mesh_factor=a.mesh_factor)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -343,14 +343,15 @@ TOLERANCE_QUANTITIES = ("preload_N", "max_contact_pressure_MPa", "fit_pressure_i
                         "fit_pressure_outer_MPa", "torque_Nmm")
 
 
-def tolerance_lines(asm, res: dict, worst: dict | None) -> list[str]:
+def tolerance_lines(asm, res: dict, worst=None) -> list[str]:
     """The uncertainty from the fit tolerances: the worst case of the interference bands (four
     corners, `studies.runs.tolerance_report.worst_case`) beside the mid-band result."""
     if worst is None:
         return ["Uncertainty from the fit tolerances: no tolerance classes or limit deviations "
                 "in `[fits]`; the fits are as given.", ""]
     rows = [[q, f"{np.min(res[q]):.4g} .. {np.max(res[q]):.4g}",
-             f"{np.min(worst[q]):.4g}", f"{np.max(worst[q]):.4g}"] for q in TOLERANCE_QUANTITIES]
+             f"{np.min(getattr(worst, q)):.4g}", f"{np.max(getattr(worst, q)):.4g}"]
+            for q in TOLERANCE_QUANTITIES]
     return ["Uncertainty from the fit tolerances: the four corners of the two interference bands "
             "(every deviation at a limit) at every operating point, beside the mid-band result "
             "above; the Monte Carlo and the probabilities: `bearingfem tolerance`.", "",

@@ -19,6 +19,7 @@ from studies.model import sobol
 from studies.model import tolerance_samples as tsm
 from studies.model import tolerances as tol
 from studies.model.checks import assembly_checks
+from studies.model.parallel import Blocks
 from studies.model.pipeline import Pipeline
 from studies.model.table import write_table
 from studies.runs.report_tools import line_plot, md_table, nice_step, write_report_files
@@ -40,22 +41,23 @@ def default_conditions(asm) -> dict[str, np.ndarray]:
     return {"T_ambient_C": T[(T >= op.T_min_C) & (T <= op.T_max_C)]}
 
 
-def failures(asm, r: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+def failures(asm, r: tol.SampleResults) -> dict[str, np.ndarray]:
     """Boolean (S, C) events: each fit out of its designed state (`fit_open_<fit>`: a fit
     designed with interference open, pressure 0; a fit designed with clearance closed, pressure
     > 0; `tolerances.designed_closed`), preload lost, contact pressure above the limit `simulate`
     checks against."""
     limit = next(c.allowable for c in assembly_checks(asm) if c.name == "max_contact_pressure_MPa")
     closed = tol.designed_closed(asm)
-    ev = {f"fit_open_{fit}": (r[f"fit_pressure_{fit}_MPa"] <= 0.0) if closed[fit]
-          else (r[f"fit_pressure_{fit}_MPa"] > 0.0) for fit in ("inner", "outer")}
-    return {**ev, "preload_lost": r["preload_N"] <= 0.0,
-            "contact_pressure_over_limit": r["max_contact_pressure_MPa"] > limit}
+    pressure_MPa = {"inner": r.fit_pressure_inner_MPa, "outer": r.fit_pressure_outer_MPa}
+    ev = {f"fit_open_{fit}": (p <= 0.0) if closed[fit] else (p > 0.0)
+          for fit, p in pressure_MPa.items()}
+    return {**ev, "preload_lost": r.preload_N <= 0.0,
+            "contact_pressure_over_limit": r.max_contact_pressure_MPa > limit}
 
 
-def worst_case(pl, cond: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+def worst_case(pl, cond: dict[str, np.ndarray]) -> tol.SampleResults:
     """The four corners of the two interference bands (`tol.worst_case_bands`) at every
-    condition through the pipeline: QUANTITIES as (4, C) arrays."""
+    condition through the pipeline: (4, C) arrays."""
     bands = tol.worst_case_bands(pl.asm)
     corners = [(bi, bo) for bi in (bands[0].lower_um, bands[0].upper_um)
                for bo in (bands[1].lower_um, bands[1].upper_um)]
@@ -77,17 +79,22 @@ def _linear(asm, pl, cond, limit_p):
         dev[s][2 + 2 * k] -= h[s]
     di, do = tol.interference_offsets_um(dev, 2 * n + 1)
     r = tsm.evaluate(pl, cond, di, do)
-    grad = {q: np.array([(r[q][1 + 2 * k] - r[q][2 + 2 * k]) / (2 * h[s]) for k, s in enumerate(names)])
-            for q in r}                                             # (n_surfaces, C)
+
+    def gradient(v: np.ndarray) -> np.ndarray:                      # (n_surfaces, C)
+        return np.array([(v[1 + 2 * k] - v[2 + 2 * k]) / (2 * h[s]) for k, s in enumerate(names)])
     sigma = np.array([sig[s] for s in names])
     C = len(next(iter(cond.values())))
     closed = tol.designed_closed(asm)       # out of the designed state: open, or closed
-    events = {"fit_open_inner": ("interference_inner_um", 0.0, not closed["inner"]),
-              "fit_open_outer": ("interference_outer_um", 0.0, not closed["outer"]),
-              "preload_lost": ("preload_N", 0.0, False),
-              "contact_pressure_over_limit": ("max_contact_pressure_MPa", limit_p, True)}
-    return {e: np.array([tol.linear_probability(r[q][0, c], grad[q][:, c], sigma, limit, upper)
-                         for c in range(C)]) for e, (q, limit, upper) in events.items()}
+    events = {"fit_open_inner": (r.interference_inner_um, 0.0, not closed["inner"]),
+              "fit_open_outer": (r.interference_outer_um, 0.0, not closed["outer"]),
+              "preload_lost": (r.preload_N, 0.0, False),
+              "contact_pressure_over_limit": (r.max_contact_pressure_MPa, limit_p, True)}
+    out = {}
+    for e, (v, limit, upper) in events.items():
+        g = gradient(v)
+        out[e] = np.array([tol.linear_probability(v[0, c], g[:, c], sigma, limit, upper)
+                           for c in range(C)])
+    return out
 
 
 def run(asm, conditions: dict | None, out: Path, provenance: dict, samples: int, seed: int,
@@ -112,8 +119,13 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, samples: int,
     progress(f"tolerance: {samples} samples x {C} conditions through the exact model ...")
     dev = tol.sample_deviations_um(asm, samples, seed)
     di, do = tol.interference_offsets_um(dev, samples)
-    mc = tsm.run_samples(asm, cond, di, do, workers=workers, scheduler=scheduler,
-                         progress=bar or (lambda done, total: progress(f"  block {done} of {total}")))
+    # one cluster (or none) for the Monte Carlo and the Sobol' samples; opened after the
+    # pipeline's set-up above, which a local cluster's forked workers inherit
+    with Blocks(workers, scheduler) as where:
+        mc = tsm.run_samples(asm, cond, di, do, where=where, progress=bar or (
+            lambda done, total: progress(f"  block {done} of {total}")))
+        # Sobol' indices of the preload per surface (studies/model/sobol.py): their own design
+        sob = sobol.preload_indices(asm, cond, SOBOL_BASE_SAMPLES, seed, where=where)
     fail = failures(asm, mc)
     limit_p = next(c.allowable for c in assembly_checks(asm) if c.name == "max_contact_pressure_MPa")
     lin = _linear(asm, pl, cond, limit_p)
@@ -124,15 +136,14 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, samples: int,
         pc = [tol.probability(f[:, c]) for c in range(C)]
         per_cond[e] = {"probability": [p for p, _ in pc], "standard_error": [s for _, s in pc],
                        "linear_estimate": [float(v) for v in lin[e]]}
-    pct = {q: {k: float(np.percentile(mc[q], v)) for k, v in PERCENTILES.items()}
-           for q in tol.QUANTITIES}
-    pct_c = {q: {k: [float(x) for x in np.percentile(mc[q], v, axis=0)] for k, v in PERCENTILES.items()}
-             for q in tol.QUANTITIES}
+    mc_cols, wc_cols = mc.columns(), wc.columns()           # the JSON's names (file edge)
+    pct = {q: {k: float(np.percentile(v_q, v)) for k, v in PERCENTILES.items()}
+           for q, v_q in mc_cols.items()}
+    pct_c = {q: {k: [float(x) for x in np.percentile(v_q, v, axis=0)] for k, v in PERCENTILES.items()}
+             for q, v_q in mc_cols.items()}
     # sensitivity of the preload to each surface: Spearman rank correlation per condition
-    sens = {s: [float(stats.spearmanr(dev[s], mc["preload_N"][:, c]).statistic)
-                if np.ptp(mc["preload_N"][:, c]) > 0 else 0.0 for c in range(C)] for s in dev}
-    # Sobol' indices of the preload per surface (studies/model/sobol.py): their own sample design
-    sob = sobol.preload_indices(asm, cond, SOBOL_BASE_SAMPLES, seed, workers, scheduler)
+    sens = {s: [float(stats.spearmanr(dev[s], mc.preload_N[:, c]).statistic)
+                if np.ptp(mc.preload_N[:, c]) > 0 else 0.0 for c in range(C)] for s in dev}
     sobol_json = {s: {k: [float(getattr(r, k)[i]) for r in sob]
                       for k in ("S1", "S1_conf", "ST", "ST_conf")} for i, s in enumerate(sob[0].names)}
     result = {
@@ -146,11 +157,11 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, samples: int,
         "percentiles": pct, "percentiles_per_condition": pct_c,
         "fit_design": {f: "interference" if c else "clearance"
                        for f, c in tol.designed_closed(asm).items()},
-        "worst_case": {q: {"min": float(wc[q].min()), "max": float(wc[q].max())}
-                       for q in tol.QUANTITIES},
-        "worst_case_per_condition": {q: {"min": [float(v) for v in wc[q].min(axis=0)],
-                                         "max": [float(v) for v in wc[q].max(axis=0)]}
-                                     for q in tol.QUANTITIES},
+        "worst_case": {q: {"min": float(w.min()), "max": float(w.max())}
+                       for q, w in wc_cols.items()},
+        "worst_case_per_condition": {q: {"min": [float(v) for v in w.min(axis=0)],
+                                         "max": [float(v) for v in w.max(axis=0)]}
+                                     for q, w in wc_cols.items()},
         "preload_rank_correlation": sens,
         "preload_sobol": sobol_json, "sobol_base_samples": SOBOL_BASE_SAMPLES,
         "provenance": provenance,
@@ -159,7 +170,7 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, samples: int,
     cols = {"sample": np.repeat(np.arange(1, samples + 1, dtype=float), C)}
     cols.update({k: np.tile(v, samples) for k, v in cond.items()})
     cols.update({f"{s}_deviation_um": np.repeat(v, C) for s, v in dev.items()})
-    cols.update({q: mc[q].ravel() for q in tol.QUANTITIES})
+    cols.update({q: v.ravel() for q, v in mc_cols.items()})
     if samples * C <= 2_000_000:
         write_table(out / "samples.csv", cols, provenance=provenance)
     _report(asm, out, cond, result, mc, fail, lin)
@@ -198,7 +209,7 @@ def _report(asm, out, cond, res, mc, fail, lin):
                                      {"no failure in any sample": np.zeros(C)}, xlabel,
                                      "probability", "Failure probability: exact Monte Carlo and the "
                                      "linear estimate", markers=True)
-    _histogram(out / "preload_histogram.png", x, mc["preload_N"], xlabel)
+    _histogram(out / "preload_histogram.png", x, mc.preload_N, xlabel)
     lines = [f"# Tolerance analysis: {asm.name}", "",
              f"bearingfem {res['provenance']['version']}; {S} samples (seed {res['seed']}, "
              f"{res['distribution']} within the limits{', limits at +-3 sigma' if res['distribution'] == 'normal' else ''}) "

@@ -256,7 +256,8 @@ class FEStage:
     # ------------------------------------------------------------------ loads of the rows
     def thetas(self, inputs: PhysicsInputs) -> np.ndarray:
         """(n, n_parts) thermal strain per FE part; the cte_nonlinearity effect changes the CTE
-        slope of the shaft (and nut) and housing (and cover)."""
+        slope of the shaft (and nut) and housing (and cover); `inputs.cte_factor` scales a part's
+        strain (a material lot's CTE)."""
         cols = []
         for part in self.part_names:
             group = FE_PART_GROUP[part]
@@ -264,7 +265,10 @@ class FEStage:
             if group in inputs.dalpha_per_K2:          # shaft (and nut), housing (and cover)
                 mat = mat.with_dalpha(inputs.dalpha_per_K2[group],
                                       inputs.d2alpha_per_K3.get(group, 0.0))
-            cols.append(mat.thermal_strain(np.asarray(inputs.T_C[group], float), self.asm.T_ref_C))
+            theta = mat.thermal_strain(np.asarray(inputs.T_C[group], float), self.asm.T_ref_C)
+            if part in inputs.cte_factor:               # a material lot (diagnosis ladder)
+                theta = inputs.cte_factor[part] * theta
+            cols.append(theta)
         return np.column_stack(cols)
 
     @staticmethod

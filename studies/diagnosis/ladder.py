@@ -1,0 +1,408 @@
+"""The model-form ladder: the model's own richer forms, which the given assembly file does not
+use, as candidate explanations of measured data (issue 23, item 2; docs/diagnosis.md "The
+model-form ladder").
+
+Each switch the assembly file has is a rung: one typed record (`Rung`) holding the config change
+that makes the form, the candidate (an `Effect` with the form's parameters, each bounded by physics
+or the data sheet, with its source), the conditions features it acts through (the open-world
+characterisation's names, `studies.diagnosis.openworld`) and its cost. A rung whose form the
+config already uses is not on the ladder. The rungs (names of docs/cli.md, "kind": "model_form"):
+
+| rung | config change | parameters (bounds) | cost |
+| --- | --- | --- | --- |
+| `ball_model_quasi_dynamic` | `[operating] ball_model = "quasi_dynamic"` | `share` (0..1) | pair |
+| `raceway_control` | `[operating] raceway_control`: jones (outer when the config has jones); only for a quasi-dynamic config | `share` (0..1) | pair |
+| `ring_section_grooved` | `[mesh] ring_section = "grooved"` | `share` (0..1) | FE set-up |
+| `material_lot` | the CTE of the shaft's and the housing's lot | `cte_factor_shaft`, `cte_factor_housing` (1 +- CTE_LOT_SCATTER) | inputs |
+| `unlogged_load` | a constant radial load and moment the conditions do not log | `radial_load_N` (0..C0), `moment_Nmm` (+-C0 x span) | inputs (the pair's 5-DOF solve) |
+| `preload_spring` | `[preload] kind = "spring"` | carried by the listed `preload_path_compliance` (the spring is its soft limit) | - |
+| `fits_in_band` | as-built fits anywhere in the `[fits]` tolerance band | carried by the listed `interference_error`, whose bounds are the band (`assembly_bounds`) | - |
+| `sleeve` | a `[sleeve]` the file lacks | not tried: its material and thickness are drawing data, not bounded by a data sheet | - |
+
+A switch has no continuous parameter of its own: its candidate fits `share`, the part of the
+way from the config's prediction to the form's (prediction = config + share (form - config),
+share 0 = the config exactly, 1 = the form exactly; the bound 1 is the form itself). The linear
+path lets the engine's likelihood-ratio test, BIC and held-out refits treat a switch like any
+one-parameter candidate (share has a sign: 0 is its lower bound, the chi-bar-square null of the
+engine); a fitted share near 1 says the data want the form, a share well below 1 that they want
+part of its change only (then the form is not the explanation, and the report says so through
+`at_bound` / the parameter's value).
+
+Evaluation: every rung goes through the one route, `studies.model.pipeline.Pipeline`: an
+"inputs" rung writes `PhysicsInputs` fields (`radial_load_N`, `moment_Nmm`, `cte_factor`) as an
+effect does, on the config's pipeline (a CTE factor is one more thermal strain through the
+existing superposition: no new FE); a "pair" rung runs the pipeline of the changed assembly,
+whose FE set-up equals the config's (loaded from the set-up cache); an "FE set-up" rung runs the
+pipeline of the changed assembly with its own FE set-up (mesh and unit solutions: seconds the
+first time, then from the cache). `FormRoute` holds those pipelines for one diagnosis.
+
+Cost control (`Indication`): rungs are screened only when the baseline leaves structure and the
+open-world characterisation of the baseline residual selects a feature the rung acts through
+(or one not separable from it); the others are reported `not_applicable` with the reason. The
+CLI's candidate list puts the rungs after the listed effects, the FE set-up rungs last.
+
+Units: N, N mm, mm, C; factors and shares dimensionless.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+from typing import Callable, Mapping
+
+import numpy as np
+
+from analytic.safety import static_load_rating_C0_N
+from studies.model.config import Assembly, ConfigError
+from studies.model.config_checks import check_assembly
+from studies.model.effects import Effect
+
+#: the kind of a ladder candidate in diagnosis.json (docs/cli.md); listed effects are "effect"
+KIND = "model_form"
+
+#: relative scatter of a material lot's CTE about the library value (+-): the handbooks this
+#: project's library quotes differ by this much for one alloy: Ti-6Al-4V 8.6e-6 /K (ASM) against
+#: 9.0e-6 /K (China Aeronautical Materials Handbook, TC4), 4.7 %; 9Cr18 10.5e-6 (CN handbook)
+#: against 440C 10.2e-6 (ASM), 2.9 % (`analytic.materials`, sources [MIL-TC4], [CN-9Cr18],
+#: [ASM-440C]); a lot inside the spread of the handbooks is within +-5 %.
+CTE_LOT_SCATTER = 0.05
+#: the parts whose material lot the ladder fits (bar stock bought per lot; the rings and balls are
+#: the bearing maker's, who holds their steel to tighter limits)
+LOT_PARTS = ("shaft", "housing")
+
+#: pipeline costs of a rung, cheapest first (the order the CLI screens them in)
+COSTS = ("inputs", "pair", "fe_setup")
+
+
+# ====================================================================== the candidates
+class FormShare(Effect):
+    """A switch of the assembly file as a candidate: the one parameter `share` (module
+    docstring). The inputs are not changed: `FormRoute` blends the outputs."""
+    parameters = ("share",)
+    units = {"share": "-"}
+    bounds = {"share": (0.0, 1.0)}
+    off = {"share": 0.0}
+    scale = {"share": 0.1}
+    kind = KIND
+
+    def __init__(self, name: str, hint: str, acts_through: tuple[str, ...], cost: str,
+                 change: str):
+        self.name, self.hint, self.acts_through, self.cost, self.change = (
+            name, hint, acts_through, cost, change)
+
+    def _apply(self, inputs, p, T_ref_C):
+        return inputs.copy()
+
+    def describe(self) -> str:
+        return f"model form: {self.change} (share of the form's change fitted, 0..1)"
+
+
+class MaterialLot(Effect):
+    """material_lot: the shaft's and the housing's lot have a CTE other than the library's.
+
+    Physics: the thermal strain of the part is theta = f alpha (T - T_ref) (the lot's whole CTE
+    curve scaled by f; the FE is linear in theta, so the superposition stays exact), written into
+    `PhysicsInputs.cte_factor[part]`.
+
+    Parameters: cte_factor_shaft, cte_factor_housing (-), bounds 1 +- CTE_LOT_SCATTER, off 1.
+    Source of the scatter: `CTE_LOT_SCATTER` (the spread of the handbooks for one alloy)."""
+    name = "material_lot"
+    parameters = tuple(f"cte_factor_{p}" for p in LOT_PARTS)
+    units = {p: "-" for p in parameters}
+    bounds = {p: (1.0 - CTE_LOT_SCATTER, 1.0 + CTE_LOT_SCATTER) for p in parameters}
+    off = {p: 1.0 for p in parameters}
+    scale = {p: 0.01 for p in parameters}
+    kind = KIND
+    acts_through = ("temperature_C",)
+    cost = "inputs"
+    change = "the shaft's and the housing's material lot: CTE x cte_factor (+-5 %)"
+    hint = ("measure the CTE of the lot (dilatometer, ASTM E228) or the fits at two temperatures: "
+            "a lot's CTE changes the fits linearly in T - T_ref, a CTE slope quadratically")
+
+    def _apply(self, inputs, p, T_ref_C):
+        f = dict(inputs.cte_factor)
+        for part in LOT_PARTS:
+            f[part] = f.get(part, 1.0) * p[f"cte_factor_{part}"]
+        return inputs.copy(cte_factor=f)
+
+    def describe(self) -> str:
+        return "model form: " + self.change
+
+
+class UnloggedLoad(Effect):
+    """unlogged_load: a constant radial load and tilting moment on the shaft that the conditions
+    do not log (a belt, a coupling's misalignment, the rig's own weight).
+
+    Physics: added to every row's `radial_load_N` and `moment_Nmm` (at the pair's mid-point);
+    the pair's 5-DOF equilibrium (`analytic.bearing.combined`) carries them.
+
+    Parameters: radial_load_N in [0, C0] and moment_Nmm in [-C0 L, C0 L], off 0, with C0 one
+    bearing's static load rating (ISO 76:2006 eq. 1, `analytic.safety.static_load_rating_C0_N`:
+    beyond it the raceways dent, which a rig would not carry unnoticed) and L the bearing span
+    (a moment M puts M / L on each bearing)."""
+    name = "unlogged_load"
+    parameters = ("radial_load_N", "moment_Nmm")
+    units = {"radial_load_N": "N", "moment_Nmm": "N mm"}
+    off = {"radial_load_N": 0.0, "moment_Nmm": 0.0}
+    kind = KIND
+    acts_through = ("preload_assembled_N", "axial_load_N", "radial_load_N")
+    cost = "inputs"
+    change = "a constant radial load and moment the conditions do not log"
+    hint = ("log the shaft's radial load and moment (strain gauges on the housing, a load cell "
+            "under the rig) or run with the drive uncoupled: an unlogged load changes the torque "
+            "most at low preload")
+
+    def __init__(self, C0_N: float, span_mm: float):
+        self.bounds = {"radial_load_N": (0.0, float(C0_N)),
+                       "moment_Nmm": (-float(C0_N) * span_mm, float(C0_N) * span_mm)}
+        self.scale = {"radial_load_N": 0.01 * float(C0_N),
+                      "moment_Nmm": 0.01 * float(C0_N) * span_mm}
+
+    def _apply(self, inputs, p, T_ref_C):
+        n = inputs.n_rows
+
+        def add(v, x):
+            return (np.zeros(n) if v is None else np.asarray(v, float)) + x
+
+        return inputs.copy(radial_load_N=add(inputs.radial_load_N, p["radial_load_N"]),
+                           moment_Nmm=add(inputs.moment_Nmm, p["moment_Nmm"]))
+
+    def describe(self) -> str:
+        return "model form: " + self.change
+
+
+class NotTried(Effect):
+    """A rung that is not a candidate of its own (carried by a listed effect, or not bounded):
+    listed among the candidates as not applicable, with the reason (`Rung.why_not`)."""
+    parameters = ()
+    kind = KIND
+    cost = "inputs"
+
+    def __init__(self, rung: "Rung"):
+        self.name, self.acts_through, self.change = rung.name, rung.acts_through, rung.change
+        self.reason = (f"carried by {rung.covered_by}: " if rung.covered_by else "") + rung.why_not
+        self.hint = self.reason
+
+    def applicable(self, conditions):
+        return self.reason
+
+    def describe(self) -> str:
+        return f"model form: {self.change} (not a candidate of its own)"
+
+
+def unlogged_load_starts(effect, conditions, T_ref_C) -> list[dict]:
+    """Starting points of `unlogged_load` (fitspec): the response is even in a load acting alone
+    (a radial load's first-order change cancels around the ring), so the Gauss-Newton step from
+    0 does not find it: radial loads and moments log-spaced from 0.1 % of their bound up."""
+    F, M = effect.bounds["radial_load_N"][1], effect.bounds["moment_Nmm"][1]
+    f = np.geomspace(1e-3, 0.1, 3)
+    return ([{"radial_load_N": float(F * x)} for x in f]
+            + [{"moment_Nmm": float(s * M * x)} for x in f for s in (1.0, -1.0)])
+
+
+# ====================================================================== the rungs
+@dataclass(frozen=True)
+class Rung:
+    """One model form the config does not use. name: docs/cli.md's; change: the config change in
+    words; cost: "inputs", "pair" or "fe_setup" (`COSTS`); acts_through: open-world features;
+    candidate: the effect the diagnosis fits (None when not tried); configure: the assembly
+    with the form (switch rungs); covered_by: the listed effect that carries the form;
+    why_not: why it is not a candidate of its own."""
+    name: str
+    change: str
+    cost: str
+    acts_through: tuple[str, ...]
+    candidate: Effect | None = None
+    configure: Callable[[Assembly], Assembly] | None = None
+    covered_by: str | None = None
+    why_not: str | None = None
+
+
+def _switch(name: str, change: str, cost: str, acts: tuple[str, ...], hint: str,
+            configure: Callable[[Assembly], Assembly], asm: Assembly) -> Rung:
+    """A switch rung, checked against the assembly rules (a form the file cannot hold, e.g.
+    grooves the ring section has no room for, is not tried: `why_not`)."""
+    try:
+        check_assembly(configure(asm), f"<{name}>")
+    except ConfigError as exc:
+        return Rung(name, change, cost, acts, why_not=f"the assembly cannot hold it: {exc}")
+    return Rung(name, change, cost, acts, FormShare(name, hint, acts, cost, change), configure)
+
+
+def ladder(asm: Assembly) -> list[Rung]:
+    """Every rung of the ladder for this assembly (the forms its file does not use), cheapest
+    first; the ones that are candidates have `candidate` set."""
+    op, rungs = asm.operating, []
+    rungs.append(Rung(MaterialLot.name, MaterialLot.change, "inputs", MaterialLot.acts_through,
+                      MaterialLot()))
+    g = asm.bearing
+    C0 = float(static_load_rating_C0_N(g.ball_count, g.ball_diameter_mm, g.pitch_diameter_mm,
+                                       g.contact_angle_free_deg))
+    span = _bearing_span_mm(asm)
+    rungs.append(Rung(UnloggedLoad.name, UnloggedLoad.change, "inputs", UnloggedLoad.acts_through,
+                      UnloggedLoad(C0, span)))
+    if op.ball_model == "static":
+        rungs.append(_switch(
+            "ball_model_quasi_dynamic", '[operating] ball_model = "quasi_dynamic"', "pair",
+            ("speed_rpm", "revolutions"),
+            "measure at two speeds at one temperature: the balls' centrifugal force and "
+            "gyroscopic moment change the contact angles and the torque with the square of the "
+            "speed", lambda a: replace(a, operating=replace(a.operating,
+                                                             ball_model="quasi_dynamic")), asm))
+    else:
+        other = "outer" if op.raceway_control == "jones" else "jones"
+        rungs.append(_switch(
+            "raceway_control", f'[operating] raceway_control = "{other}"', "pair",
+            ("speed_rpm", "revolutions"),
+            "measure the torque at two speeds: the raceway control sets which contact spins",
+            lambda a: replace(a, operating=replace(a.operating, raceway_control=other)), asm))
+    if asm.mesh.ring_section == "rectangle":
+        rungs.append(_switch(
+            "ring_section_grooved", '[mesh] ring_section = "grooved"', "fe_setup",
+            ("temperature_C", "preload_assembled_N"),
+            "measure the fits and the preload over a temperature range: the grooved rings are "
+            "softer than their effective rectangles, so the fits pass less of the thermal change "
+            "to the raceways",
+            lambda a: replace(a, mesh=replace(a.mesh, ring_section="grooved")), asm))
+    if asm.preload.kind == "position":
+        rungs.append(Rung("preload_spring", '[preload] kind = "spring"', "inputs",
+                          ("temperature_C", "preload_assembled_N"),
+                          covered_by="preload_path_compliance",
+                          why_not="a spring preload is the soft limit of the preload path's "
+                                  "compliance: the listed preload_path_compliance reaches it "
+                                  "(bound 5e4 um/kN, as soft as a wave spring)"))
+    rungs.append(Rung("fits_in_band", "as-built fits anywhere in their tolerance band", "inputs",
+                      ("temperature_C",), covered_by="interference_error",
+                      why_not="the listed interference_error is bounded to the tolerance band "
+                              "when [fits] gives tolerances (studies.model.effects."
+                              "assembly_bounds), else to +-20 um"))
+    if asm.sleeve is None:
+        rungs.append(Rung("sleeve", "a [sleeve] between the outer rings and the housing",
+                          "fe_setup", ("temperature_C",),
+                          why_not="a sleeve's material and thickness are drawing data, not "
+                                  "bounded by a data sheet: give them in [sleeve] and diagnose "
+                                  "again"))
+    return sorted(rungs, key=lambda r: COSTS.index(r.cost))
+
+
+def _bearing_span_mm(asm: Assembly) -> float:
+    """Distance of the ball planes of bearings A and B (mm): the inner rings' mid-planes
+    (`studies.model.stack.stack_positions`, as the pipeline's bearing stage takes it)."""
+    from studies.model.stack import stack_positions
+
+    z = stack_positions(asm)
+    return 0.5 * (sum(z["inner_ring_B"]) - sum(z["inner_ring_A"]))
+
+
+def candidates(asm: Assembly) -> list[Effect]:
+    """The ladder's candidates for this assembly, cheapest first (FE set-up rungs last); a rung
+    that is not a candidate of its own is listed as `NotTried` (not applicable, with why)."""
+    rungs = ladder(asm)
+    return ([r.candidate for r in rungs if r.candidate is not None]
+            + [NotTried(r) for r in rungs if r.candidate is None])
+
+
+def is_form(effect) -> bool:
+    """True for a ladder candidate."""
+    return getattr(effect, "kind", "effect") == KIND
+
+
+# ====================================================================== evaluation
+class FormRoute:
+    """The model forms of one assembly evaluated through its pipeline: inputs rungs as effects,
+    switch rungs by the pipeline of the changed assembly (built on first use, kept here)."""
+
+    def __init__(self, pipeline):
+        self.pl = pipeline
+        self.rungs = {r.name: r for r in ladder(pipeline.asm) if r.candidate is not None}
+        self._pipelines: dict = {}
+
+    def split(self, effects: Mapping[str, Mapping[str, float]]) -> tuple[dict, dict]:
+        """(listed effects, ladder rungs) of an effects dict {name: parameters}."""
+        listed = {k: v for k, v in (effects or {}).items() if k not in self.rungs}
+        forms = {k: v for k, v in (effects or {}).items() if k in self.rungs}
+        return listed, forms
+
+    def apply_inputs(self, inputs, forms: Mapping[str, Mapping[str, float]]):
+        """The inputs with the inputs rungs applied (`Effect.apply`, validated)."""
+        for name, params in forms.items():
+            rung = self.rungs[name]
+            if not isinstance(rung.candidate, FormShare):
+                inputs = rung.candidate.apply(inputs, params, self.pl.asm.T_ref_C)
+        return inputs
+
+    def pipeline(self, name: str):
+        """The pipeline of the assembly with rung `name`'s form (same mesh factor)."""
+        from studies.model.pipeline import Pipeline
+
+        hit = self._pipelines.get(name)
+        if hit is None:
+            asm = self.rungs[name].configure(self.pl.asm)
+            hit = self._pipelines[name] = Pipeline(asm, mesh_factor=self.pl.mesh_factor)
+        return hit
+
+    def columns(self, inputs, forms: Mapping[str, Mapping[str, float]],
+                columns: tuple[str, ...]) -> dict[str, np.ndarray]:
+        """The named columns of the inputs (inputs rungs already applied) through the config's
+        pipeline, each switch rung's share of its form's change added (module docstring)."""
+        from studies.model.columns import to_columns
+
+        base = to_columns(self.pl.run(inputs), flags=False)
+        out = {c: np.asarray(base[c], float) for c in columns}
+        for name, params in forms.items():
+            rung = self.rungs[name]
+            if not isinstance(rung.candidate, FormShare):
+                continue
+            share = rung.candidate.validate(params)["share"]
+            if share == 0.0:
+                continue
+            form = to_columns(self.pipeline(name).run(inputs), flags=False)
+            for c in columns:
+                out[c] = out[c] + share * (np.asarray(form[c], float) - base[c])
+        return out
+
+
+# ====================================================================== cost control
+@dataclass(frozen=True)
+class Indication:
+    """What the baseline residual points at (module docstring, "Cost control"): whether it has
+    structure, and the open-world features selected on it (with the ones not separable from
+    them)."""
+    structure: bool
+    features: frozenset[str] = field(default_factory=frozenset)
+
+    def why_not(self, effect) -> str | None:
+        """None when the rung is to be screened, else the reason it is not (listed effects:
+        always None)."""
+        if not is_form(effect):
+            return None
+        if not self.structure:
+            return "model form not tried: the baseline leaves no structure"
+        if not set(effect.acts_through) & self.features:
+            found = ", ".join(sorted(self.features)) or "no named condition"
+            return (f"model form not indicated: it acts through "
+                    f"{', '.join(effect.acts_through)}; the baseline residual depends on {found}")
+        return None
+
+
+def indication(pb, b) -> Indication:
+    """The `Indication` of a calibrated problem (`studies.diagnosis.problem.Problem`) and its
+    `Baseline`: the open-world characterisation (`studies.diagnosis.openworld.characterise`) of
+    the baseline residual, when it has structure."""
+    from studies.diagnosis.openworld import characterise
+
+    if not b.structure:
+        return Indication(False)
+    ow = characterise({c: pb.measured[c] - b.fit.pred[c] for c in pb.columns}, pb.valid,
+                      pb.conditions, pb.blocks, pb.noise.sigma_w, pb.noise.rho)
+    feats: set[str] = set()
+    for col in ow.columns:
+        if col.depends:
+            feats |= set(col.selected)
+            for near in col.not_separable.values():
+                feats |= set(near)
+    feats |= {a for a, k in ow.aliases.items() if k in feats}    # the same quantity here
+    return Indication(True, frozenset(feats))
+
+
+def forms_through(effects, feature: str) -> list[str]:
+    """Names of the ladder candidates among `effects` that act through an open-world feature."""
+    return [e.name for e in effects if is_form(e) and feature in e.acts_through]

@@ -1,0 +1,186 @@
+"""The second source of measured data (studies/runs/second_source.py, issue 23 item 1): data made
+another way than the model the diagnosis fits, one case per kind in the default suite.
+
+Each test first checks that the data really differ from the diagnosed model by the stated
+mechanism, against a reference that is not the code under test:
+- noise: the AR(1) generator's lag-1 autocorrelation against phi within its sampling error
+  (Bartlett), its marginal standard deviation against sigma;
+- history: the transient conduction FE's part temperatures against the lumped-capacitance lag
+  with tau = C / (h A) (Incropera ch. 5; the stack's Biot number is about 0.01), and the parts
+  lagging by different amounts, which the one-constant `thermal_lag` cannot do; the two-node
+  network's ramp delays against the closed form (a series of first-order lags: delays add);
+- model form: a spring preload holds its force (the truth's preload is the assembled one at
+  every temperature) where the diagnosed position preload moves by many sigma.
+Then today's diagnosis (`second_source.diagnose_case`, the CLI's candidates, coarse mesh family
+member `MESH_FACTOR`) must not claim a wrong cause on it (`second_source.judge`). Cases where
+today's diagnosis does claim a wrong cause are `xfail(strict=True)` in the slow suite, naming the
+issue 23 item that fixes them.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from studies.runs import second_source as ss
+
+MESH_FACTOR = 2.0           # the diagnosed model and its truth on the coarse mesh family member
+
+
+# ============================================================================ noise
+@pytest.mark.parametrize("phi", [0.5, 0.9, 0.95])
+def test_ar1_generator_has_the_stated_correlation_and_level(phi):
+    """40 000 samples: r1 within 4 standard errors of phi (Bartlett: sqrt((1 - phi^2)/n), plus
+    the O(1/n) small-sample bias (1 + 4 phi)/n, Box-Jenkins-Reinsel ch. 2.1.6) and the marginal
+    standard deviation within 4 standard errors of sigma (the variance of an AR(1) sample
+    variance: 2 sigma^4 (1 + phi^2) / (n (1 - phi^2)))."""
+    n, sigma = 40_000, 0.7
+    e = ss.ar1(np.random.default_rng(1), n, sigma, phi)
+    se = math.sqrt((1 - phi ** 2) / n)
+    assert abs(ss.lag1_autocorrelation(e) - phi) < 4 * se + (1 + 4 * phi) / n
+    se_var = math.sqrt(2 * (1 + phi ** 2) / (n * (1 - phi ** 2))) * sigma ** 2
+    assert abs(np.var(e) - sigma ** 2) < 4 * se_var
+
+
+@pytest.fixture(scope="module")
+def ar1_case():
+    return ss.make_case("ar1_090_null", seed=0, mesh_factor=MESH_FACTOR)
+
+
+def test_ar1_null_case_carries_its_noise_and_no_cause_is_claimed(ar1_case):
+    """The case's noise (measured - noise-free, 240 rows) has r1 within 4 standard errors and the
+    small-sample bias of 0.9 in every column; nothing is hidden, so the diagnosis must claim no
+    cause (no `explained`, `explained_partly` or `ambiguous`; issue 23 saw 1 claim in 8 draws,
+    the rate is the study's)."""
+    c = ar1_case
+    n = len(c.measured["torque_Nmm"])
+    for col in c.columns:
+        r1 = ss.lag1_autocorrelation(c.measured[col] - c.noise_free[col])
+        assert abs(r1 - 0.9) < 4 * math.sqrt((1 - 0.81) / n) + (1 + 3.6) / n, (col, r1)
+    res = ss.diagnose_case(c)
+    assert ss.judge_result(c, res) in ("right", "false_alarm"), \
+        (res.verdict, res.cause)
+
+
+def test_spikes_and_quantisation_are_what_the_case_states():
+    """`add_noise`: every reading on the quantum grid; the spikes where it says, 50..150 sigma."""
+    rng = np.random.default_rng(3)
+    truth = {"torque_Nmm": np.linspace(1.0, 2.0, 200), "preload_N": np.full(200, 100.0)}
+    noise = ss.Noise(sigma={"torque_Nmm": 0.01, "preload_N": 0.5}, spikes=5,
+                     quantum={"torque_Nmm": 0.015, "preload_N": 0.75})
+    m, rows = ss.add_noise(truth, noise, rng)
+    for c, q in noise.quantum.items():
+        k = m[c] / q
+        assert np.max(np.abs(k - np.round(k))) < 1e-9, c
+    dev = np.abs(m["torque_Nmm"] - truth["torque_Nmm"]) / 0.01
+    assert rows.size == 5 and np.all(dev[rows - 1] > 50 - 5 - 1.5)      # 5 sigma noise, q/2
+    others = np.setdiff1d(np.arange(200), rows - 1)
+    assert np.all(dev[others] < 6.0)
+
+
+# ============================================================================ history
+def test_network_ramp_delays_add():
+    """A ramp of rate a from equilibrium: after many time constants the outer node trails the
+    chamber by a tau_o and the rotor by a (tau_o + tau_r) (series of first-order lags; Laplace
+    transform of a ramp through 1/((1 + s tau_o)(1 + s tau_r))), to 1e-6 of the delay."""
+    t = np.linspace(0.0, 40_000.0, 4001)
+    a = 2.0 / 60.0
+    T = ss.network_temperatures(t, 20.0 + a * t, tau_outer_s=600.0, tau_rotor_s=240.0)
+    late = t > 20_000.0
+    amb = 20.0 + a * t
+    np.testing.assert_allclose((amb - T["T_housing_C"])[late], a * 600.0, rtol=1e-6)
+    np.testing.assert_allclose((amb - T["T_shaft_C"])[late], a * 840.0, rtol=1e-6)
+
+
+@pytest.fixture(scope="module")
+def transient_case():
+    return ss.make_case("transient_fe_lag", seed=0, mesh_factor=MESH_FACTOR)
+
+
+def test_transient_fe_temperatures_are_a_lumped_lag_per_part(transient_case):
+    """The transient conduction FE's part temperatures on the -60 <-> 80 C cycle against the
+    lumped-capacitance lag tau = C / (h A) of the whole stack (C = the stack's heat capacity,
+    h A = the film conductance of its faces; Incropera ch. 5.1, valid for Biot numbers below
+    0.1: here h L / k = 15 x 6.5e-3 / 6.7 = 0.015): every part within 8 % of the largest lag
+    (measured 0.5..4 %). And the parts lag differently, which the one-constant `thermal_lag`
+    cannot make: shaft and housing differ by more than 0.5 K on the ramps (measured ~1.2 K),
+    i.e. by more than the lumped law's own error would allow if they were one body."""
+    from studies.model.effects.thermal_lag import lag_response
+    from studies.model.pipeline import Pipeline
+    from studies.model.transient_route import thermal_model
+
+    c = transient_case
+    pl = Pipeline.shared(ss.transient_asm(c.assembly), mesh_factor=MESH_FACTOR)
+    tm = thermal_model(pl)
+    C_J_K = float(tm.tc.M.sum())            # 1^T M 1 = integral of rho c over the stack
+    hA_W_K = sum(h * 1e-6 * tm.tc.area_mm2[g] for g, h in tm.nominal.film_W_m2K.items())
+    t, amb = c.conditions["time_s"], c.conditions["T_ambient_C"]
+    T = ss.transient_fe_temperatures(c.assembly, t, amb, MESH_FACTOR)
+    lumped = lag_response(t, amb, C_J_K / hA_W_K)
+    largest = float(np.max(np.abs(lumped - amb)))
+    assert largest > 10.0                                   # the lag is large on 2 K/min ramps
+    for k, v in T.items():
+        assert np.max(np.abs(v - lumped)) < 0.08 * largest, k
+    assert np.max(np.abs(T["T_shaft_C"] - T["T_housing_C"])) > 0.5
+
+
+def test_transient_fe_lag_is_not_a_wrong_cause(transient_case):
+    """Lagged temperatures made by the conduction FE (57 sigma against the baseline on the
+    coarse mesh): the diagnosis names the lag family or says it cannot (never another cause)."""
+    c = transient_case
+    assert c.change_sigma > ss.VISIBLE_SIGMA
+    res = ss.diagnose_case(c)
+    assert ss.judge_result(c, res) != "wrong", \
+        (res.verdict, res.cause)
+
+
+# ============================================================================ model form
+@pytest.fixture(scope="module")
+def spring_case():
+    return ss.make_case("spring_preload", seed=0, mesh_factor=MESH_FACTOR)
+
+
+def test_spring_preload_truth_holds_its_force_and_is_not_a_wrong_cause(spring_case):
+    """A spring preload (force-controlled) keeps the assembled 100 N at every temperature of the
+    cycle (the closed form: the spring's force, its stiffness negligible), to 1e-9; the diagnosed
+    position preload moves by more than 10 sigma over the cycle. The diagnosis then names the
+    spring (or a path compliance, its finite form) or no cause; never another one."""
+    from studies.diagnosis.files import ModelPredictor
+    from studies.model.pipeline import Pipeline
+
+    c = spring_case
+    P0 = c.assembly.preload.assembled_N
+    np.testing.assert_allclose(c.noise_free["preload_N"], P0, rtol=1e-9)
+    pred = ModelPredictor(Pipeline.shared(c.assembly, mesh_factor=MESH_FACTOR), c.conditions,
+                          ("preload_N",))
+    position = pred({}, {"mu_scale": ss.MU_TRUE})["preload_N"]
+    assert np.ptp(position) > 10 * c.sigma["preload_N"]
+    res = ss.diagnose_case(c)
+    assert ss.judge_result(c, res) != "wrong", \
+        (res.verdict, res.cause)
+
+
+# ============================================================================ the judge
+def test_judge_outcomes():
+    """The outcome table of `judge` (its docstring), on the labels of three cases."""
+    lag, null, drift = ss.CASES["transient_fe_lag"], ss.CASES["ar1_090_null"], ss.CASES["torque_drift"]
+    two = ss.CASES["fit_error_and_lag"]
+    assert ss.judge(lag, "explained", "thermal_lag.per_part") == "right"
+    assert ss.judge(lag, "explained_partly", "thermal_lag") == "right"
+    assert ss.judge(lag, "explained", "solid_film_runin") == "wrong"
+    assert ss.judge(lag, "ambiguous", "radial_gradient", ["thermal_lag"]) == "named"
+    assert ss.judge(lag, "ambiguous", "radial_gradient", ["cte_nonlinearity"]) == "wrong"
+    assert ss.judge(lag, "unexplained", None) == "unexplained"
+    assert ss.judge(lag, "no_discrepancy", None) == "missed"
+    assert ss.judge(null, "no_discrepancy", None) == "right"
+    assert ss.judge(null, "unexplained", None) == "false_alarm"
+    assert ss.judge(null, "explained", "preload_settling") == "wrong"
+    assert ss.judge(drift, "unexplained", None) == "right"
+    assert ss.judge(drift, "explained", "solid_film_runin") == "wrong"
+    assert ss.judge(two, "explained", "thermal_lag") == "partial"
+    assert ss.judge(two, "explained", ["thermal_lag", "interference_error"]) == "right"
+    assert ss.judge(two, "explained", ["thermal_lag", "preload_settling"]) == "wrong"
+    spring = ss.CASES["spring_preload"]
+    assert ss.judge(spring, "explained", "preload_path_compliance") == "right"
+    assert ss.judge(spring, "explained", "interference_error") == "wrong"
