@@ -2,7 +2,8 @@
 reference FE model (the design search's spacer materials).
 
 Within a family (same section geometry, contact variant, probes, compliance plan and rotating
-parts; only the materials of the `variable` parts differ) the set-up of any member
+parts; only the materials of the `variable` parts and the fits the compliance is taken at differ)
+the set-up of any member
 (`fem.setup.FESetup`: the condensed contact problem and the preload-path compliance) follows from
 the reference member's FE without a new mesh, assembly or factorisation:
 
@@ -56,13 +57,18 @@ class FamilyError(ValueError):
 
 
 def family_key(spec: SetupSpec, variable: tuple[str, ...]) -> str:
-    """Hex SHA-256 (24 digits) of the spec with the materials of the `variable` parts left out:
-    equal for every member of one family."""
+    """Hex SHA-256 (24 digits) of the spec with the materials of the `variable` parts and the
+    compliance plan's assembled interferences left out: equal for every member of one family (the
+    interferences only choose the contact status the compliance is taken at, `_compliance`; the
+    design search's fit classes change them and nothing else)."""
     sec = replace(spec.section, rects=tuple(replace(r, material="") if r.part in variable else r
                                             for r in spec.section.rects))
     mats = [[p, None if p in variable else asdict(m)] for p, m in spec.materials]
-    data = {"spec": replace(spec, section=sec, materials=()).key(), "materials": mats,
-            "variable": list(variable)}
+    plan = spec.compliance
+    if plan is not None:
+        plan = replace(plan, delta_assembled_mm=())
+    data = {"spec": replace(spec, section=sec, materials=(), compliance=plan).key(),
+            "materials": mats, "variable": list(variable)}
     return hashlib.sha256(json.dumps(data, sort_keys=True).encode()).hexdigest()[:24]
 
 
@@ -154,7 +160,6 @@ class Family:
                              for p in m.part_of])
         nq = m.basis.X.shape[1]
         cols.append(asm(centrifugal_load, m.basis, rho_w2=np.repeat(rest_rho[:, None], nq, 1)))
-        self.compliance = spec.compliance
         if spec.compliance is not None:
             from fem.compliance import raceway_unit_loads
             sg = spec.compliance.signs
@@ -244,8 +249,8 @@ class Family:
                          np.ascontiguousarray(PU),
                          np.zeros((0, 0)))
         comp = np.nan
-        if self.compliance is not None:
-            comp = _compliance(cond, QY[:, nf + 1], self.compliance, self.face_pair)
+        if spec.compliance is not None:        # the member's own plan (its assembled fits)
+            comp = _compliance(cond, QY[:, nf + 1], spec.compliance, self.face_pair)
         return FESetup(spec.key(), self.ndofs, self.part_names, self.fit_names,
                        self.fit_r_mm.copy(), self.fit_length_mm.copy(), cond, float(comp))
 

@@ -18,11 +18,6 @@ LAYERS = ("infra", "analytic", "meshes", "fem", "studies", "studies.model", "bea
           "studies.diagnosis", "studies.runs", "studies.app")
 PACKAGES = ("infra", "analytic", "meshes", "fem", "studies", "bearingfem")
 
-#: the one edge left in a cycle (issue 22, still open): config <-> config_checks, where the checks
-#: of relations between keys annotate their argument with `Assembly` (an import under
-#: TYPE_CHECKING, never executed); listed so that no *new* module joins it (the pipeline,
-#: tolerances, mesh-size, docs-table, effects and report cycles are gone)
-KNOWN_CYCLE_MODULES = frozenset({"studies.model.config", "studies.model.config_checks"})
 
 
 def modules(root: Path = ROOT) -> dict[str, Path]:
@@ -117,8 +112,8 @@ def upward_imports(graph) -> list[str]:
                   if layer(t) > layer(m) and not (LAYERS[layer(m)] == "studies"))
 
 
-def test_no_import_cycle_outside_the_known_ones():
-    bad = [c for c in cycles(import_graph()) if not set(c) <= KNOWN_CYCLE_MODULES]
+def test_no_import_cycle():
+    bad = cycles(import_graph())
     assert not bad, "import cycles:\n" + "\n".join(" -> ".join(c) for c in bad)
 
 

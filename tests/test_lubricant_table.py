@@ -154,3 +154,22 @@ def test_the_report_states_the_fit_and_its_range(tmp_path):
     text = load_assembly(cfg).oil().statement()
     assert "Walther (ASTM D341)" in text and "valid 40..100 C" in text
     assert "107 cSt at 40 C, 14.3 cSt at 100 C" in text and "Bessette 1997" in text
+
+
+def test_lubricant_name_alias_is_the_lubrication_key(tmp_path):
+    """`[lubricant] name = "X"` (the CLI contract's spelling) loads the same assembly as
+    `[lubrication] lubricant = "X"`; another key in [lubricant], or the oil given both ways, is
+    one line naming [lubricant]."""
+    base = load_assembly(_with_oil(tmp_path, "Fomblin Z25"))
+    text = _with_oil(tmp_path, "Fomblin Z25").read_text()
+    moved = text.replace('lubricant = "Fomblin Z25"', "", 1) + '\n[lubricant]\nname = "Fomblin Z25"\n'
+    p = tmp_path / "alias.toml"
+    p.write_text(moved)
+    assert load_assembly(p) == base
+    p.write_text(text.replace('lubricant = "Fomblin Z25"', "", 1)
+                 + '\n[lubricant]\nname = "Fomblin Z25"\nspeed_rpm = 3000\n')
+    with pytest.raises(ConfigError, match=r"\[lubricant\] speed_rpm: only `name`"):
+        load_assembly(p)
+    p.write_text(text + '\n[lubricant]\nname = "Fomblin Z25"\n')
+    with pytest.raises(ConfigError, match="give it once"):
+        load_assembly(p)

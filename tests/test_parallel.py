@@ -1,5 +1,5 @@
 """The one parallel map (`studies.model.parallel`): a local Dask cluster's workers are forked from
-this process and start with its state; `parallel_map` hands its `first` items to Dask's local
+a fork server with the model imported; `parallel_map` hands its `first` items to Dask's local
 process scheduler first. Results equal to one process: tests/test_tolerances.py (Monte Carlo),
 tests/test_stream.py (simulate), tests/test_diagnosis_workers.py (the diagnosis)."""
 from __future__ import annotations
@@ -10,32 +10,25 @@ import time
 import pytest
 
 from studies.model import parallel
-from studies.model.config import load_shipped
 from studies.model.parallel import Blocks, can_fork, parallel_map
-from studies.model.pipeline import Pipeline
-
-#: set in this process before a cluster opens; a forked worker must see it
-MARK: list = []
-
 
 def _seen() -> tuple:
-    """In a worker: its process id and what it holds of this process's state."""
-    return os.getpid(), list(MARK), any(k[1] == 2.0 for k in Pipeline._shared)
+    """In a worker: its process id, the start method's parent and whether the model's route is
+    imported before the worker ran anything of it."""
+    import multiprocessing
+    import sys
+    return os.getpid(), multiprocessing.parent_process() is not None, \
+        "studies.model.tolerance_samples" in sys.modules
 
 
-@pytest.mark.skipif(parallel.LOCAL_START_METHOD != "fork", reason="workers spawned here")
-def test_local_cluster_workers_inherit_this_process_state():
-    """The pipeline built here (its FE set-up) and a module's state set before the cluster
-    opens are in each worker process without being sent: the workers are forks of this one."""
-    Pipeline.shared(load_shipped("seed000"), mesh_factor=2.0)
-    MARK.append("set here")
-    try:
-        with Blocks(workers=2) as where:
-            seen = list(where.client.run(_seen).values())
-    finally:
-        MARK.clear()
+@pytest.mark.skipif(parallel.LOCAL_START_METHOD != "forkserver", reason="workers spawned here")
+def test_local_cluster_workers_start_from_the_fork_server_with_the_model_imported():
+    """Each worker is its own process (not this one), forked from the fork server that imported
+    FORKSERVER_PRELOAD once: the model's route is there before any task ran."""
+    with Blocks(workers=2) as where:
+        seen = list(where.client.run(_seen).values())
     assert len(seen) == 2 and len({pid for pid, _, _ in seen} | {os.getpid()}) == 3
-    assert all(mark == ["set here"] and warm for _, mark, warm in seen)
+    assert all(imported for _, _, imported in seen)
 
 
 def _record(path_and_item) -> int:

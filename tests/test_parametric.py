@@ -85,8 +85,8 @@ def test_design_screening_equals_full_route(family):
     own = evaluate_stack(asm, stack, T, P0, MESH_FACTOR, parametric=False)
     for k in ("preload_N", "max_contact_pressure_MPa", "fit_pressure_inner_MPa",
               "fit_pressure_outer_MPa", "torque_Nmm"):
-        assert _rel(par[k], own[k]) < RTOL, k
-    rng = lambda r: np.ptp(r["preload_N"], axis=1)      # noqa: E731
+        assert _rel(getattr(par, k), getattr(own, k)) < RTOL, k
+    rng = lambda r: np.ptp(r.preload_N, axis=1)      # noqa: E731
     assert np.all(np.abs(rng(par) - rng(own)) < RTOL * rng(own))
     assert parametric_setup_of(asm).keywords["variable"] == SPACERS
 
@@ -104,9 +104,30 @@ def test_screening_on_workers_equals_this_process(family):
     T, P0 = np.array([-60.0, 80.0]), np.array([asm.preload.assembled_N])
     blocks = [(asm, s, T, P0, MESH_FACTOR, True) for s in stacks]
     import fem.parametric
-    fem.parametric._FAMILIES.clear()    # local workers are forks: none starts with a family built here
+    fem.parametric._FAMILIES.clear()    # neither the workers nor this process start with a family
     there = map_blocks(evaluate_stack, blocks, workers=2)
     here = map_blocks(evaluate_stack, blocks[::-1])[::-1]       # another order than the workers'
     for a, b in zip(here, there):
         for k in ("preload_N", "fit_pressure_inner_MPa", "torque_Nmm"):
-            np.testing.assert_array_equal(a[k], b[k], err_msg=k)
+            np.testing.assert_array_equal(getattr(a, k), getattr(b, k), err_msg=k)
+
+
+def test_fit_class_stays_in_the_family_and_its_compliance_is_the_full_setups(family):
+    """Fit classes change only the assembled interferences the preload-path compliance is taken
+    at: k5 on the shaft (the mean inner fit +7.5 um) and P6 in the housing (ISO 286, 30..50 mm:
+    -37..-21 um, the outer fit from -1.5 um clearance to +27.5 um interference: its status at
+    assembly changes). Each is the same family (no new reference FE), and its compliance equals
+    the full set-up's of its own spec to round-off (RTOL); P6's differs from the given fits'."""
+    from dataclasses import replace
+
+    asm, fam = family
+    stack = Stack("6061", "Si3N4", asm.inner_spacer.length_mm, asm.nut.clamp, asm.cover.clamp)
+    given = fam.setup(_spec(asm, stack)).compliance_mm_per_N
+    for cls in ({"inner_shaft_class": "k5"}, {"outer_housing_class": "P6"}):
+        spec = _spec(replace(asm, fits=replace(asm.fits, **cls)), stack)
+        assert spec.compliance != _spec(asm, stack).compliance
+        assert family_key(spec, SPACERS) == fam.key
+        par = fam.setup(spec)
+        own = compute_setup(spec, full_fe(spec))
+        assert abs(par.compliance_mm_per_N / own.compliance_mm_per_N - 1) < RTOL
+    assert abs(par.compliance_mm_per_N / given - 1) > 1e3 * RTOL

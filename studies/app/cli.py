@@ -110,8 +110,13 @@ def build_parser() -> argparse.ArgumentParser:
     dz.add_argument("assembly", type=Path)
     dz.add_argument("--range", required=True, metavar="T_MIN:T_MAX",
                     help="temperature range in C, e.g. -60:80")
-    dz.add_argument("--band", default="0.8:1.2", metavar="LOW:HIGH",
+    dz.add_argument("--band", default=None, metavar="LOW:HIGH",
                     help="preload band as fractions of the assembled preload (default 0.8:1.2)")
+    dz.add_argument("--band-N", dest="band_N", default=None, metavar="LOW:HIGH",
+                    help="instead: the preload band in N, e.g. 44.5:445")
+    dz.add_argument("--vary", action="append", default=[], metavar="KEY=V1,V2,...",
+                    help="also vary a setting (may repeat): preload_kind, spring_rate_N_per_mm, "
+                         "contact_angle_free_deg, inner_shaft_class, outer_housing_class")
     dz.add_argument("--clamps", action="store_true",
                     help="also try rigid and compliant nut and cover faces")
     dz.add_argument("--out", type=Path, required=True)
@@ -132,7 +137,7 @@ def build_parser() -> argparse.ArgumentParser:
                         "workers (wall, CPU, load)")
     b.add_argument("--design", action="store_true",
                    help="instead: the design search of seed 000 (324 stacks), cold and warm FE "
-                        "cache (wall, CPU, load)")
+                        "cache (wall, CPU, load), and the workers' memory per stack")
     b.add_argument("--workers", type=int, default=None,
                    help="with --tolerance: only on N Dask workers; with --design: N workers "
                         "(default 2, 0 = this process)")

@@ -7,8 +7,10 @@ Checks and their allowables (docs/cli.md, "simulate: limits"):
   static limit of 4200 MPa (ball bearings, clause 3.1), said so in the summary;
 - static_safety >= `[limits] min_static_safety`; without it 3 (GB/T 28878.2-2016 B.4, launch);
 - preload_lost: the pair's preload must stay above 0 N (a bearing unloaded);
-- fit_open_inner / fit_open_outer: the fit pressure must stay above 0 MPa, for a fit assembled
-  with interference only (a fit designed as a clearance is not flagged for being open);
+- fit_open_inner / fit_open_outer / fit_open_sleeve / fit_open_cartridge: the fit pressure must
+  stay above 0 MPa, for a fit designed with interference only (the mean assembly at the reference
+  temperature, `tolerances.designed_closed`; a fit designed as a clearance is not flagged for
+  being open). The sleeve's and cartridge's fits are the fits on their outside;
 - clamp_open (a `[nut]`/`[cover]` with clamp = "force" only): the clamp force left before a
   stack face opens, `margin_clamp_N` (N, `studies.model.stages.fe.ClampState`), must stay above
   0 N; its margin is that column in newtons (a strict check: no relative margin).
@@ -21,12 +23,14 @@ from typing import Callable
 import numpy as np
 
 from analytic.safety import GBT_LAUNCH_SAFETY, ISO76_CONTACT_PRESSURE_MPa
+from studies.model.tolerances import designed_closed
 
 
 #: every flag and margin column `simulate` may write (the checks of any assembly)
 CHECK_COLUMNS = frozenset(
     [f"flag_{n}" for n in ("max_contact_pressure_MPa", "static_safety", "preload_lost",
-                           "fit_open_inner", "fit_open_outer")]
+                           "fit_open_inner", "fit_open_outer", "fit_open_sleeve",
+                           "fit_open_cartridge")]
     + [f"margin_{n}" for n in ("max_contact_pressure_MPa", "static_safety")]
     + ["flag_clamp_open", "margin_clamp_N"])                     # clamp = "force" only
 
@@ -117,7 +121,16 @@ def _fit_pressure_outer_MPa(result) -> np.ndarray:
     return result.fits.outer_MPa
 
 
-_FIT_PRESSURE = {"inner": _fit_pressure_inner_MPa, "outer": _fit_pressure_outer_MPa}
+def _fit_pressure_sleeve_MPa(result) -> np.ndarray:
+    return result.fits.layer_MPa("sleeve")
+
+
+def _fit_pressure_cartridge_MPa(result) -> np.ndarray:
+    return result.fits.layer_MPa("cartridge")
+
+
+_FIT_PRESSURE = {"inner": _fit_pressure_inner_MPa, "outer": _fit_pressure_outer_MPa,
+                 "sleeve": _fit_pressure_sleeve_MPa, "cartridge": _fit_pressure_cartridge_MPa}
 
 
 def _margin_clamp_N(result) -> np.ndarray:
@@ -139,8 +152,8 @@ def assembly_checks(asm) -> list[Check]:
               else "GB/T 28878.2 B.4 default, no [limits] value given", _static_safety),
         Check("preload_lost", "preload_N", 0.0, False, "N", "a preloaded pair", _preload_N,
               strict=True)]
-    for side, interference in zip(("inner", "outer"), asm.mean_fits_um()):
-        if interference > 0:              # a designed clearance is allowed to be open
+    for side, closed in designed_closed(asm).items():
+        if closed:                        # a designed clearance is allowed to be open
             checks.append(Check(f"fit_open_{side}", f"fit_pressure_{side}_MPa", 0.0, False, "MPa",
                                 "a fit assembled with interference", _FIT_PRESSURE[side],
                                 strict=True))
@@ -187,7 +200,9 @@ def plausibility_warnings(asm, conditions: dict | None = None, out: dict | None 
         msgs.append(f"bearing.contact_angle_free_deg = {b.contact_angle_free_deg:g} deg looks like "
                     "radians (an angular-contact bearing has 10-40 deg)")
     for key, v in (("fits.inner_interference_um", f.inner_interference_um),
-                   ("fits.outer_interference_um", f.outer_interference_um)):
+                   ("fits.outer_interference_um", f.outer_interference_um),
+                   *((f"fits.{n}_interference_um", getattr(f, f"{n}_interference_um"))
+                     for n, _ in asm.layers())):
         if 0.0 < abs(v) < 0.1:
             msgs.append(f"{key} = {v:g} um looks like millimetres (bearing fits are a few um)")
     if asm.T_ref_C > 200.0:

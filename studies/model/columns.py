@@ -26,6 +26,7 @@ def to_columns(result: SimulationResult, flags: bool = True) -> dict[str, np.nda
            "contact_angle_deg": s.contact_angle_deg,
            "interference_inner_um": fe.interference_um[:, 0],
            "interference_outer_um": fe.interference_um[:, 1],
+           **_layer_interference_columns(result),
            "fit_pressure_inner_MPa": result.fits.inner_MPa,
            "fit_pressure_outer_MPa": result.fits.outer_MPa,
            "max_contact_pressure_MPa": pair.max_contact_pressure_MPa}
@@ -66,6 +67,16 @@ def check_columns(checks: Checks) -> dict[str, np.ndarray]:
         if o.margin is not None:
             out[f"margin_{o.check.name}"] = o.margin
     return out
+
+
+def _layer_interference_columns(result: SimulationResult) -> dict[str, np.ndarray]:
+    """`interference_<layer>_um` of each sleeve / cartridge (free diametral overlap of its fit at
+    the row's temperatures; NaN for a conduction-field state), none without layers."""
+    fe, names = result.fe, result.lame.layer_names
+    li = fe.layer_interference_um
+    n = fe.interference_um.shape[0]
+    return {f"interference_{name}_um": np.full(n, np.nan) if li is None else li[:, k]
+            for k, name in enumerate(names)}
 
 
 def _clamp_columns(result: SimulationResult) -> dict[str, np.ndarray]:

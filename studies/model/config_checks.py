@@ -6,17 +6,15 @@ of one line naming the file and the key."""
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
 
 from analytic.bearing.geometry import BearingGeometry, BearingSpec
 from analytic.bearing.land import groove_bottom_diameter_mm
 from analytic.materials import Material, get_material
 from analytic.safety import static_load_rating_C0_N
+from studies.model.assembly import Assembly
 from studies.model.config_schema import (LAYERS, MATERIAL_T_RANGE_C, MESH_TARGET_RANGE,
                                          TOLERANCE_SURFACES, ConfigError)
 
-if TYPE_CHECKING:
-    from studies.model.config import Assembly
 
 
 def check_assembly(a: Assembly, path: str) -> None:
@@ -216,6 +214,10 @@ def _check_geometry(a: Assembly, path: str) -> None:
     for name in LAYERS:
         need(getattr(a, name) is not None or getattr(a.fits, f"{name}_interference_um") == 0,
              f"fits.{name}_interference_um", f"given, but the assembly has no [{name}]")
+        for m in ("shaft", "bore"):
+            for k in (f"{name}_{m}_class", f"{name}_{m}_deviation_um"):
+                need(getattr(a, name) is not None or not getattr(a.fits, k), f"fits.{k}",
+                     f"given, but the assembly has no [{name}]")
     C0 = static_load_rating_C0_N(b.ball_count, Dw, dm, b.contact_angle_free_deg)
     need(a.preload.assembled_N <= C0, "preload.assembled_N",
          f"{a.preload.assembled_N:g} N exceeds the bearing's static load rating C0 = {C0:.0f} N "

@@ -38,8 +38,11 @@ class ConfigError(ValueError):
 #: the optional layers between outer rings and housing, from the inside out (tables [sleeve],
 #: [cartridge] and keys `[fits] <layer>_interference_um`)
 LAYERS = ("sleeve", "cartridge")
-#: the toleranced surfaces of the two fits (keys `[fits] <surface>_class`, `<surface>_deviation_um`)
-TOLERANCE_SURFACES = ("inner_shaft", "inner_ring_bore", "outer_housing", "outer_ring_od")
+#: the toleranced surfaces of the fits (keys `[fits] <surface>_class`, `<surface>_deviation_um`):
+#: the inner and outer fits' four, then per layer the outside of the layer (`<layer>_shaft`, the
+#: member inside the fit) and the bore it sits in (`<layer>_bore`: the next layer's or the housing's)
+TOLERANCE_SURFACES = ("inner_shaft", "inner_ring_bore", "outer_housing", "outer_ring_od",
+                      *(f"{n}_{m}" for n in LAYERS for m in ("shaft", "bore")))
 
 
 class _Required:

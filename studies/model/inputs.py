@@ -9,7 +9,9 @@ All arrays have one entry per row. Units in names: C, um, N, rpm, s, 1/K^2.
 
 Conventions for the fields effects write (see studies/effects/__init__.py):
 - `interference_inner_um` / `interference_outer_um`: offset from the config's nominal diametral
-  fit at T_ref (um); zero in the baseline; offsets add up.
+  fit at T_ref (um); zero in the baseline; offsets add up. `interference_sleeve_um` /
+  `interference_cartridge_um`: the same for a sleeve's / cartridge's fit (None = zero; the
+  tolerance samples set them).
 - `friction_coefficient`: change from the config's coefficient per row; zero in the baseline; the
   resolved coefficient is clipped at 0.
 - `dalpha_per_K2["shaft"|"housing"]`: CTE slope of those parts (and nut / cover); zero in the
@@ -65,6 +67,8 @@ class PhysicsInputs:
     d2alpha_per_K3: dict[str, float] = field(default_factory=lambda: dict(NO_CTE_SLOPE))
     measured_parts: frozenset[str] = frozenset()       # parts with their own T_<part>_C column
     cte_factor: dict[str, float] = field(default_factory=dict)   # FE part -> thermal strain factor
+    interference_sleeve_um: np.ndarray | None = None    # offset of the sleeve's fit (um; None: 0)
+    interference_cartridge_um: np.ndarray | None = None  # offset of the cartridge's fit
 
     def copy(self, **changes) -> "PhysicsInputs":
         """Shallow copy with fields replaced (arrays are never modified in place)."""
@@ -86,6 +90,8 @@ class PhysicsInputs:
                        T_ambient_C=pick(self.T_ambient_C),
                        interference_inner_um=pick(self.interference_inner_um),
                        interference_outer_um=pick(self.interference_outer_um),
+                       interference_sleeve_um=pick(self.interference_sleeve_um),
+                       interference_cartridge_um=pick(self.interference_cartridge_um),
                        friction_coefficient=pick(self.friction_coefficient),
                        preload_loss_N=pick(self.preload_loss_N),
                        radial_load_N=pick(self.radial_load_N), moment_Nmm=pick(self.moment_Nmm),

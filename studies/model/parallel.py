@@ -15,8 +15,8 @@ Two kinds of work, one library (Dask graphs of independent tasks; no second pool
   boundaries are the same in every mode and each block is computed by the same function, so
   the results are identical bit for bit; the caller chooses blocks that do not depend on one
   another. Per-assembly set-up inside `fn` (the FE model, its unit solutions) is done once per
-  process (`Pipeline.shared` keeps it); a local cluster's workers are forked from this process
-  (`LOCAL_START_METHOD`) and start with it done.
+  process (`Pipeline.shared` keeps it); a local cluster's workers are forked from a fork server
+  with the model's modules imported (`LOCAL_START_METHOD`) and read the set-up from the cache.
 - Work that shares this process's state (`parallel_map(task, items, workers)`: the diagnosis's
   candidate fits and plots, with the FE set-up, the pipeline and the model cache as they are
   now): [task(item) for item in items] as a Dask graph on Dask's local process scheduler, over
@@ -66,20 +66,33 @@ WORKER_CONFIG = {"distributed.worker.profile.enabled": False,
                  "distributed.worker.memory.monitor-interval": "1s"}
 
 
-#: how a local cluster's nanny starts its worker process. "fork" (Linux): the worker is a copy of
-#: this process as it is when the cluster opens: its imports and its warm per-process state
-#: (`Pipeline.shared`: the FE set-up, factorisation and unit solutions; the memo) are there
-#: already, nothing is imported or set up again. "spawn" (distributed's default) starts a new
-#: interpreter that imports distributed, then the task's modules, then sets up the FE model.
-#: Measured 2026-11-25, 2 workers, seed 000 tolerance case, loaded 2-core machine (load ~11):
-#: spawn: cluster start 4.3-5.5 s wall, 0.9 CPU s in the workers; their FE set-up 3.4-4.2 s wall,
-#: 0.9 CPU s; closing 1.8 s; fork: start 1.0-1.7 s wall, 0.05 CPU s; set-up 0.02-0.07 s, 0.01 CPU
-#: s; closing 0.04-0.12 s. A forked worker keeps this process's malloc settings (the
-#: MALLOC_* of WORKER_ENV apply to spawned workers only), so its CPU per sample is this
-#: process's. Open the cluster after the set-up the blocks need (e.g. `bench --tolerance`,
-#: `tolerance`: the pipeline warm before the Monte Carlo). An existing scheduler's workers
-#: (`--scheduler`) start as their own configuration says.
-LOCAL_START_METHOD = "fork" if sys.platform.startswith("linux") else "spawn"
+#: how a local cluster's nanny starts its worker process. "forkserver" (Linux, macOS): a server
+#: process, started once with the modules of FORKSERVER_PRELOAD imported, forks each worker, so a
+#: worker imports nothing and reads the FE set-up from the cache (0.04 CPU s). Not "fork": the
+#: cluster's scheduler and nannies run on threads of this process, and a worker forked while
+#: another thread held a lock hung at start (seen twice in the test suite, under pytest-xdist).
+#: "spawn" (distributed's default) starts a new interpreter that imports distributed, then the
+#: task's modules, then sets up the FE model. Measured 2026-11-25, 2 workers, seed 000 tolerance
+#: case, loaded 2-core machine (load ~11): spawn: cluster start 4.3-5.5 s wall, 0.9 CPU s in the
+#: workers; their set-up 3.4-4.2 s wall, 0.9 CPU s; closing 1.8 s; fork: start 1.0-1.7 s wall,
+#: set-up 0.02-0.07 s, closing 0.04-0.12 s (forkserver: `bench --tolerance` prints it). An
+#: existing scheduler's workers (`--scheduler`) start as their own configuration says.
+LOCAL_START_METHOD = "forkserver" if "forkserver" in multiprocessing.get_all_start_methods() else "spawn"
+#: what the fork server imports once (distributed's own list: the library and its dependencies;
+#: here the model's route too, so that a worker's first block imports nothing)
+FORKSERVER_PRELOAD = ("distributed", "numpy", "scipy.sparse.linalg", "pandas", "skfem",
+                      "studies.model.pipeline", "studies.model.tolerance_samples")
+
+
+def _preload_fork_server() -> None:
+    """Set the fork server's imports before distributed starts it (distributed sets its own list
+    once per process in `get_mp_context`; a list set after that and before the server's first
+    start wins; a server already running keeps its imports)."""
+    from distributed.utils import get_mp_context
+
+    ctx = get_mp_context()
+    if LOCAL_START_METHOD == "forkserver":
+        ctx.set_forkserver_preload(list(FORKSERVER_PRELOAD))
 
 #: seconds to wait for an existing scheduler (`--scheduler`) before giving up
 CONNECT_TIMEOUT_S = 20.0
@@ -119,6 +132,7 @@ class Blocks:
                                      ) from None
         else:
             dask.config.set({"distributed.worker.multiprocessing-method": LOCAL_START_METHOD})
+            _preload_fork_server()
             # dashboard_address ":0": the scheduler's HTTP endpoint on a free port (None still
             # tries 8787 and warns on stderr when another cluster holds it)
             self.cluster = LocalCluster(n_workers=int(self.workers), threads_per_worker=1,

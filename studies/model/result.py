@@ -55,6 +55,10 @@ class FitPressures:
         p_out = p[:, [k for k, n in enumerate(names) if n.startswith("fit_outer")]]
         return cls(names, p, p_in.mean(axis=1), p_out.mean(axis=1))
 
+    def layer_MPa(self, layer: str) -> np.ndarray:
+        """(n,) pressure of a sleeve's or cartridge's fit (`fit_<layer>`), MPa."""
+        return self.per_fit_MPa[:, self.names.index(f"fit_{layer}")]
+
 
 @dataclass(frozen=True)
 class SimulationResult:

@@ -113,6 +113,6 @@ def preload_indices(asm, conditions: dict[str, np.ndarray], n_base: int = 1024, 
     def model(dev):
         n = len(next(iter(dev.values())))
         di, do = tol.interference_offsets_um(dev, n)
-        return tsm.run_samples(asm, conditions, di, do, workers=workers,
-                               scheduler=scheduler, where=where).preload_N
+        return tsm.run_samples(asm, conditions, di, do, workers=workers, scheduler=scheduler,
+                               where=where, d_layers_um=tol.layer_offsets_um(asm, dev, n)).preload_N
     return indices(surface_inputs(asm), model, n_base, seed)

@@ -8,7 +8,7 @@ import numpy as np
 from studies.model.inputs import baseline_inputs
 from studies.model.parallel import map_blocks
 from studies.model.pipeline import FEOptions, Pipeline
-from studies.model.tolerances import SampleResults, mid_band_offsets_um
+from studies.model.tolerances import SampleResults, mid_band_fit_offsets_um, mid_band_offsets_um
 
 
 #: rows (samples x conditions) evaluated together: bounds memory for any number of samples
@@ -28,9 +28,10 @@ def sample_order(d_inner_um: np.ndarray, d_outer_um: np.ndarray) -> np.ndarray:
 
 
 def evaluate(pl, conditions: dict[str, np.ndarray], d_inner_um: np.ndarray,
-             d_outer_um: np.ndarray) -> SampleResults:
-    """Every sample (interference offsets from the [fits] values, length S) at every condition
-    (length C) through the pipeline, whose rows are the mean (mid-band) assembly with its preload
+             d_outer_um: np.ndarray, d_layers_um: np.ndarray | None = None) -> SampleResults:
+    """Every sample (interference offsets from the [fits] values, length S; d_layers_um (S,
+    n_layers) those of the sleeve / cartridge fits, None = nominal) at every condition (length C)
+    through the pipeline, whose rows are the mean (mid-band) assembly with its preload
     (`Assembly.mean_fits_um`); returns the `SampleResults` as (S, C) arrays."""
     a = pl.asm
     C = len(next(iter(conditions.values())))
@@ -45,6 +46,9 @@ def evaluate(pl, conditions: dict[str, np.ndarray], d_inner_um: np.ndarray,
     inp = base.take(rows_c)
     inp = inp.copy(interference_inner_um=d_inner_um[rows_s] - mid_i,
                    interference_outer_um=d_outer_um[rows_s] - mid_o)
+    mid = mid_band_fit_offsets_um(a)
+    for k, (name, _) in enumerate(a.layers() if d_layers_um is not None else ()):
+        inp = inp.copy(**{f"interference_{name}_um": d_layers_um[rows_s, k] - mid[name]})
     # the preload is set in the mean assembly (the [fits] values), whatever the sample's fits
     res = pl.run(inp, fe_options=FEOptions(reference="nominal_fits"))
 
@@ -59,7 +63,10 @@ def evaluate(pl, conditions: dict[str, np.ndarray], d_inner_um: np.ndarray,
         fit_pressure_outer_MPa=per_sample(res.fits.outer_MPa),
         preload_N=per_sample(res.preload_N), contact_angle_deg=per_sample(res.contact_angle_deg),
         max_contact_pressure_MPa=per_sample(res.max_contact_pressure_MPa),
-        torque_Nmm=per_sample(res.torque_Nmm))
+        torque_Nmm=per_sample(res.torque_Nmm),
+        **{q: per_sample(v) for k, (name, _) in enumerate(a.layers())
+           for q, v in ((f"interference_{name}_um", res.fe.layer_interference_um[:, k]),
+                        (f"fit_pressure_{name}_MPa", res.fits.layer_MPa(name)))})
 
 
 def warm(asm) -> None:
@@ -71,14 +78,15 @@ def warm(asm) -> None:
 
 
 def evaluate_block(asm, conditions: dict[str, np.ndarray], d_inner_um: np.ndarray,
-                   d_outer_um: np.ndarray) -> SampleResults:
+                   d_outer_um: np.ndarray, d_layers_um: np.ndarray | None = None) -> SampleResults:
     """`evaluate` on the process's shared pipeline of `asm`: one task of `run_samples`."""
-    return evaluate(Pipeline.shared(asm), conditions, d_inner_um, d_outer_um)
+    return evaluate(Pipeline.shared(asm), conditions, d_inner_um, d_outer_um, d_layers_um)
 
 
 def run_samples(asm, conditions: dict[str, np.ndarray], d_inner_um: np.ndarray,
                 d_outer_um: np.ndarray, workers: int | None = None, scheduler: str | None = None,
-                progress=None, where=None) -> SampleResults:
+                progress=None, where=None,
+                d_layers_um: np.ndarray | None = None) -> SampleResults:
     """All samples in blocks of whole samples (about CHUNK_ROWS rows each), here or on Dask
     (`studies.model.parallel.map_blocks`): the same blocks in every mode, so the same numbers.
     The samples are put in `sample_order` before the blocks are cut and the results put back in
@@ -88,7 +96,9 @@ def run_samples(asm, conditions: dict[str, np.ndarray], d_inner_um: np.ndarray,
     per = max(1, CHUNK_ROWS // C)
     order = sample_order(d_inner_um, d_outer_um)     # blocks of neighbouring fits
     di, do = np.asarray(d_inner_um, float)[order], np.asarray(d_outer_um, float)[order]
-    blocks = [(asm, conditions, di[s0:s0 + per], do[s0:s0 + per]) for s0 in range(0, S, per)]
+    dl = None if d_layers_um is None else np.asarray(d_layers_um, float)[order]
+    blocks = [(asm, conditions, di[s0:s0 + per], do[s0:s0 + per],
+               None if dl is None else dl[s0:s0 + per]) for s0 in range(0, S, per)]
     parts = map_blocks(evaluate_block, blocks, workers=workers, scheduler=scheduler,
                        progress=progress, where=where)
 

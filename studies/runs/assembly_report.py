@@ -25,8 +25,8 @@ from studies.model.pipeline import SPEED_SEARCH_MAX_RPM, Pipeline, simulate_tabl
 from studies.model.table import write_table
 from analytic import lame
 from analytic.bearing.land import land_diameters_mm
-from studies.model.tolerances import has_tolerances
-from studies.runs import report_margins, report_pdf
+from studies.model.tolerances import fits_of, has_tolerances
+from studies.runs import fit_naming, report_margins, report_pdf
 from studies.runs.report_tools import (field_images, nice_step, line_plot, md_table, safety_section,
                                        significant, write_report_files)
 
@@ -82,8 +82,9 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, progress=prin
     # the columns view holds the flag and margin columns the margin table reads
     front = report_margins.front_lines(asm, cond, res, res, conv, provenance, command, pl,
                                        Pipeline.shared(asm, mesh_factor=0.5 * mesh_factor))
+    naming = fit_naming.report_lines(asm, out)      # which layer is which (with a layer only)
     lines = _text(asm, provenance, cond, res, result, violations, warnings, plots, images, conv, pl, x,
-                  xlabel, speed + (rig_sections or []))
+                  xlabel, naming + speed + (rig_sections or []))
     k = next(i for i, line in enumerate(lines) if line.startswith("## "))
     lines = lines[:k] + front + lines[k:]           # after the title and the summary
     write_report_files(out, lines, asm.name)
@@ -181,15 +182,14 @@ def _x_axis(cond, n):
 
 def _plots(out: Path, asm, x, xlabel, r) -> dict[str, Path]:
     p = {}
+    fits = fits_of(asm)               # every fit present: inner, outer, sleeve, cartridge
     p["fits"] = line_plot(out / "fits.png", x, {
-        "inner: free interference (um)": r["interference_inner_um"],
-        "outer: free interference (um)": r["interference_outer_um"]}, xlabel,
+        f"{f}: free interference (um)": r[f"interference_{f}_um"] for f in fits}, xlabel,
         "diametral interference (um; < 0 clearance)", "Fits at temperature")
     p["fit_pressure"] = line_plot(out / "fit_pressure.png", x, {
-        "inner fit, FE": r["fit_pressure_inner_MPa"],
-        "inner fit, Lamé (plane stress)": r["fit_pressure_inner_lame_MPa"],
-        "outer fit, FE": r["fit_pressure_outer_MPa"],
-        "outer fit, Lamé (plane stress)": r["fit_pressure_outer_lame_MPa"]}, xlabel,
+        label: v for f in fits for label, v in ((f"{f} fit, FE", r[f"fit_pressure_{f}_MPa"]),
+                                                (f"{f} fit, Lamé (plane stress)",
+                                                 r[f"fit_pressure_{f}_lame_MPa"]))}, xlabel,
         "mean fit pressure (MPa)", "Fit pressures: FE and the closed form beside it")
     p["groove_shifts"] = line_plot(out / "groove_shifts.png", x, {
         k: r[f"groove_shift_{k}_um"] for k in ("dr_A", "dz_A", "dr_B", "dz_B")}, xlabel,
@@ -267,12 +267,17 @@ def _text(asm, prov, cond, r, result, violations, warnings, plots, images, conv,
     cols = ["preload_N", "contact_angle_deg", "torque_Nmm", "max_contact_pressure_MPa",
             "interference_inner_um", "fit_pressure_inner_MPa", "fit_pressure_inner_lame_MPa",
             "interference_outer_um", "fit_pressure_outer_MPa", "fit_pressure_outer_lame_MPa",
+            *(c for n, _ in asm.layers() for c in (f"interference_{n}_um", f"fit_pressure_{n}_MPa",
+                                                   f"fit_pressure_{n}_lame_MPa")),
             "axial_stiffness_N_per_um"]
     lines += ["## Results", "",
               f"{n} operating points (all of them in `results.csv`, with every output, flag and "
               "margin column; `results.csv.json` says what made it). FE fit pressures with the "
               "two-cylinder Lamé value beside them (plane stress; a short ring tied to its "
-              "neighbours need not equal it).", "",
+              "neighbours need not equal it)"
+              + ("" if not asm.layers() else
+                 "; the outer, sleeve and cartridge fits with the multi-layer Lamé value of the "
+                 "concentric outer ring / layers / housing (analytic/lame.py)") + ".", "",
               md_table([xlabel] + cols, [[float(x[i])] + [significant(r[c], i) for c in cols]
                                          for i in idx]),
               ""]

@@ -20,6 +20,58 @@ from pathlib import Path
 
 from studies.runs.bench_clock import Clock
 
+#: stacks the memory line runs, and after how many the first reading is taken
+MEMORY_STACKS = 1000
+MEMORY_WARMUP = 100
+#: the same on the full set-up route, cold (each stack meshed and factorised: ~1 s a stack)
+FULL_STACKS = 60
+FULL_WARMUP = 10
+
+
+def rss_MB() -> float:
+    """This process's resident memory, MB (Linux /proc/self/statm; nan elsewhere)."""
+    try:
+        with open("/proc/self/statm") as f:
+            return int(f.read().split()[1]) * os.sysconf("SC_PAGE_SIZE") / 2 ** 20
+    except (OSError, ValueError, IndexError):
+        return float("nan")
+
+
+def _rss_everywhere(where) -> list[float]:
+    """RSS (MB) of every worker process (of this process with no workers)."""
+    if where.client is None:
+        return [rss_MB()]
+    return [float(v) for v in where.client.run(rss_MB).values()]
+
+
+def memory_per_stack(asm, workers: int | None, n_stacks: int = MEMORY_STACKS,
+                     warmup: int = MEMORY_WARMUP,
+                     parametric: bool = True) -> tuple[float, float, float]:
+    """(RSS after the warm-up, RSS at the end, growth per stack), MB, the workers' mean: the
+    screening task of the design search over n_stacks of the `--clamps` candidates
+    (`parametric=False`: every stack's own full set-up, the route of fits that are not
+    frictionless; cold when BEARINGFEM_CACHE is an empty folder)."""
+    import numpy as np
+
+    from studies.model.parallel import Blocks
+    from studies.runs import design_search as ds
+
+    stacks = ds.candidates(asm, clamps=True)
+    settings = (ds.Setting.given(asm),)
+    T = np.linspace(-60.0, 80.0, ds.N_TEMPERATURES)
+    P0 = asm.preload.assembled_N * np.array(ds.PRELOAD_FACTORS)
+    order = sorted(range(len(stacks)), key=lambda i: ds._family_of(stacks[i]))
+    blocks = [(asm, stacks[order[k % len(order)]], settings, T, P0, ds.SCREEN_MESH_FACTOR,
+               parametric) for k in range(n_stacks)]
+    with Blocks(workers) as where:
+        where.map(ds.evaluate_settings, blocks[:warmup])
+        before = _rss_everywhere(where)
+        where.map(ds.evaluate_settings, blocks[warmup:])
+        after = _rss_everywhere(where)
+    per_worker = (n_stacks - warmup) / len(after)
+    growth = sum(b - a for a, b in zip(before, after)) / len(after) / per_worker
+    return sum(before) / len(before), sum(after) / len(after), growth
+
 
 def main(workers: int | None = 2) -> None:
     from infra.version import __version__
@@ -40,19 +92,29 @@ def main(workers: int | None = 2) -> None:
                                             {"command": "bench --design", "version": __version__},
                                             workers=w,
                                             progress=lambda s: None)
-                print(f"{label.split()[0]}: {res['n_stacks']} stacks in {c.wall_s:.1f} s", flush=True)
-                print(f"  ({res['n_designs']} designs, "
+                print(f"{label.split()[0]}: {res.n_stacks} stacks in {c.wall_s:.1f} s", flush=True)
+                print(f"  ({res.n_designs} designs, "
                       f"{'this process' if w is None else f'{w} workers'}, {label}: {c.line()})",
                       flush=True)
+            memory = memory_per_stack(asm, w)      # the warm cache of this temporary folder
+            os.environ["BEARINGFEM_CACHE"] = str(Path(tmp) / "cache-full")     # empty: cold
+            memory_full = memory_per_stack(asm, w, FULL_STACKS, FULL_WARMUP, parametric=False)
         finally:
             if old is None:
                 os.environ.pop("BEARINGFEM_CACHE", None)
             else:
                 os.environ["BEARINGFEM_CACHE"] = old
-    best = res["designs"][0]
-    print(f"best: {best['inner_spacer_material']} / {best['outer_spacer_material']} spacers, "
-          f"{best['spacer_length_mm']} mm, preload {best['preload_assembled_N']:.0f} N: variation "
-          f"{100 * best['preload_variation']:.1f} % (given {100 * res['given']['preload_variation']:.1f} %)")
-    print(f"Pareto set (screening): {len(res['pareto'])} designs, preload ranges "
-          + ", ".join(f"{d['preload_range_N']:.4f}" for d in res["pareto"][:5])
-          + (" ..." if len(res["pareto"]) > 5 else "") + " N")
+    best = res.designs[0]
+    print(f"best: {best.stack.inner_spacer_material} / {best.stack.outer_spacer_material} spacers, "
+          f"{best.stack.spacer_length_mm} mm, preload {best.metrics.preload_assembled_N:.0f} N: "
+          f"variation {100 * best.metrics.preload_variation:.1f} % (given "
+          f"{100 * res.given.metrics.preload_variation:.1f} %)")
+    print(f"Pareto set (screening): {len(res.pareto)} designs, preload ranges "
+          + ", ".join(f"{d.metrics.preload_range_N:.4f}" for d in res.pareto[:5])
+          + (" ..." if len(res.pareto) > 5 else "") + " N")
+    a, b, g = memory
+    print(f"memory: {MEMORY_STACKS} stacks, worker RSS {a:.0f} -> {b:.0f} MB after the first "
+          f"{MEMORY_WARMUP}, {g:.3f} MB per stack", flush=True)
+    a, b, g = memory_full
+    print(f"memory, full set-up route (cold): {FULL_STACKS} stacks, worker RSS {a:.0f} -> "
+          f"{b:.0f} MB after the first {FULL_WARMUP}, {g:.3f} MB per stack", flush=True)

@@ -8,8 +8,8 @@ pipeline from the FE cache and one sample through it, `tolerance_samples.warm`: 
 `bearingfem tolerance` does before its Monte Carlo), then the blocks in each mode: in this
 process, on a local Dask cluster of 1 and of 2 workers (with `--workers W`: W workers only;
 the Dask modes run first, so that no mode inherits the caches another one filled).
-Per Dask mode the breakdown: cluster start, the workers' set-up (forked workers inherit this
-process's, `parallel.LOCAL_START_METHOD`), the blocks, closing the cluster; "whole" is the FE
+Per Dask mode the breakdown: cluster start, the workers' set-up (from the FE cache, in workers
+forked from a fork server with the model imported, `parallel.LOCAL_START_METHOD`), the blocks, closing the cluster; "whole" is the FE
 set-up plus all of these, what a command spends. Then the speed-up of 2 workers over this
 process (whole and the blocks alone; issue 27 asks >= 1.7x whole on an idle 2-core machine), the
 CPU seconds per sample of the blocks (this process's, or the worker processes' with all their
@@ -74,9 +74,8 @@ def main(samples: int, workers: int | None = None) -> None:
         tsm.warm(asm)
     print(f"{'FE set-up':>16}: {c_setup.line()} (this process: the pipeline from the FE cache "
           f"and one sample)")
-    # the Dask modes first: a forked worker starts with this process's caches (the pipeline's
-    # FE results and pair memo of the last blocks, `Pipeline._fe_cache`, `Memo`), so this process
-    # runs its blocks last, and every mode starts from the state right after the set-up
+    # the Dask modes first, then this process: every mode starts from the state right after the
+    # set-up (no mode reuses the caches another one filled)
     modes = [1, 2, None] if workers is None else [workers]
     runs, whole, blocks, cpu_us, parent_cpu = {}, {}, {}, {}, {}
     for w in modes:

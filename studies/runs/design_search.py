@@ -5,7 +5,11 @@ Design variables (the assembly's own values are one candidate):
   materials with equal E, nu and CTE are one choice);
 - the common spacer length, `LENGTH_FACTORS` x the assembly's;
 - the clamp scheme of nut and cover (rigid or compliant faces), with `--clamps`;
-- the assembled preload, `PRELOAD_FACTORS` x the assembly's (no new FE: one bearing run).
+- the assembled preload, `PRELOAD_FACTORS` x the assembly's (no new FE: one bearing run);
+- with `--vary`, settings beside the stack (`Setting`): the preload kind and spring rate, the
+  free contact angle, the ISO 286 classes of the shaft seat and the housing bore. They leave the
+  stack's FE alone: one task evaluates a stack under all its settings on one FE set-up
+  (`_TaskSetups`: a spec seen before is reused; the fit classes stay in the stack's family).
 
 Every stack is its own FE model: the search screens all of them on a mesh twice as coarse
 (`SCREEN_MESH_FACTOR`) and re-evaluates the best ones on the assembly's mesh (each through the
@@ -15,24 +19,34 @@ reference FE (mesh, assembly, factorisation, unit solutions, the spacers of the 
 materials), and a member's set-up follows from it exactly by condensing the two spacers and a
 low-rank update (equal to the stack's own set-up to round-off, about 1e-12 relative: tests/
 test_parametric.py); no stack is meshed or factorised on its own, only one stack per family.
+A task frees its FE objects before it returns (`_task_memory`: collected, then the heap trimmed), so
+a worker's memory stays flat over any number of stacks (`bench --design` measures it).
 
-Over the temperature range (uniform temperature, round steps) each candidate gets its preload range (max - min), its smallest preload, whether each fit
-assembled with interference stays closed, its largest contact pressure against the limit
-`simulate` checks, and its largest torque. Feasible: fits closed, preload kept, contact pressure
-within the limit; `in_band`: the preload stays inside the band (x the assembled preload) at every
-temperature. Ranked by the relative preload variation (range / assembled preload: the band is
-relative too); the Pareto set is the feasible designs no other beats on all of relative preload
-variation, largest torque and contact-pressure margin.
+Over the temperature range (uniform temperature, round steps) each candidate gets its preload
+range (max - min), its smallest preload, whether each fit assembled with interference stays
+closed, its largest contact pressure against the limit `simulate` checks, and its largest torque.
+Feasible: fits closed, preload kept, contact pressure within the limit; `in_band`: the preload
+stays inside the band (`Band`: x the assembled preload, or in N) at every temperature. Ranked by
+the relative preload variation (range / assembled preload); the Pareto set is the feasible
+designs no other beats on all of relative preload variation, largest torque and
+contact-pressure margin.
 
-Why a design works: for the best design and the assembly as given, the preload change from the
-reference temperature to each end of the range is split into the part the radial groove-centre
-shifts cause (fits, ring growth) and the part the axial ones cause (stack lengths), with the same
-pipeline run on the FE answer with only one set of shifts (as the seed 000 study does).
+Why a design works (`preload_split`): for the best design and the assembly as given, the preload
+change from the reference temperature to each end of the range split into parts that add up to
+it: the bearing's own thermal geometry, the radial groove-centre shifts (fits, ring growth), the
+axial ones (stack lengths) and their interaction, with the same pipeline run on the FE answer
+with shifts held at their assembly values (`FEOptions`).
+
+Results are typed (`DesignResult`, `Design`, `Metrics`, `StackAnswers`); columns only in
+design.json (`DesignResult.to_json`).
 """
 from __future__ import annotations
 
+import gc
+import itertools
 import json
-from dataclasses import dataclass, replace
+from contextlib import contextmanager
+from dataclasses import asdict, dataclass, replace
 from functools import partial
 from pathlib import Path
 
@@ -40,6 +54,7 @@ import numpy as np
 
 from analytic.materials import MATERIALS, get_material
 from fem.parametric import parametric_setup
+from fem.setup import cached_setup, full_fe
 from studies.model.checks import assembly_checks
 from studies.model.inputs import baseline_inputs
 from studies.model.memory import release_freed_memory
@@ -129,184 +144,540 @@ def _family_of(s: Stack) -> tuple:
     return (s.spacer_length_mm, s.nut_clamp, s.cover_clamp, s.ring_section_delta_mm)
 
 
-def evaluate_stack(asm, stack: Stack, T_C: np.ndarray, preloads_N: np.ndarray,
-                   mesh_factor: float, parametric: bool = False) -> dict:
-    """Preload, contact pressure, fit pressures and torque of one stack at every temperature
-    and preload: arrays (n_preloads, n_T). One task of the search. `parametric`: the FE set-up
-    from the stack's family (`fem.parametric`, equal to the full set-up to round-off) instead of
-    the stack's own (cached) one."""
-    a = stack.assembly(asm)
-    setup_of = parametric_setup_of(asm) if parametric and asm.fits.contact == "frictionless" else None
-    pl = Pipeline(a, mesh_factor=mesh_factor, setup_of=setup_of)
-    nT, nP = T_C.size, preloads_N.size
-    cols = {"T_ambient_C": np.tile(T_C, nP), "preload_assembled_N": np.repeat(preloads_N, nT)}
-    res = pl.run(baseline_inputs(cols, nT * nP, a.T_ref_C, a.preload.assembled_N,
-                                 a.lubrication.speed_rpm))
-    keep = {"preload_N": res.preload_N, "max_contact_pressure_MPa": res.max_contact_pressure_MPa,
-            "fit_pressure_inner_MPa": res.fits.inner_MPa,
-            "fit_pressure_outer_MPa": res.fits.outer_MPa, "torque_Nmm": res.torque_Nmm}
-    out = {k: v.reshape(nP, nT) for k, v in keep.items()} | {"dofs": pl.ndofs}
-    del pl, res
-    release_freed_memory()      # one FE after another fragments the C heap (studies/model/memory.py)
+@dataclass(frozen=True)
+class Band:
+    """The preload band a design should keep at every temperature: `low`..`high` as fractions of
+    the assembled preload (`--band`, the default 0.8..1.2) or, with `absolute`, in newtons
+    (`--band-N`)."""
+    low: float
+    high: float
+    absolute: bool = False
+
+    def limits_N(self, assembled_N: float) -> tuple[float, float]:
+        """(lowest, highest) preload in the band for this assembled preload, N."""
+        if self.absolute:
+            return self.low, self.high
+        return self.low * assembled_N, self.high * assembled_N
+
+    def text(self) -> str:
+        """The band in words (the report)."""
+        if self.absolute:
+            return f"{self.low:g}..{self.high:g} N"
+        return f"{self.low:g}..{self.high:g} x the assembled preload"
+
+
+#: the design variables that leave the stack's FE alone (`--vary KEY=V1,V2,...`), by key: the
+#: parser of one value. Fit classes change the FE set-up only through the contact status the
+#: preload-path compliance is taken at (`fem.parametric.family_key`: same family).
+SETTING_KEYS = {"preload_kind": str, "spring_rate_N_per_mm": float,
+                "contact_angle_free_deg": float, "inner_shaft_class": str,
+                "outer_housing_class": str}
+
+
+@dataclass(frozen=True)
+class Setting:
+    """The design variables of a candidate beside its stack (no new FE model: one stack's FE
+    serves every setting).
+
+    preload_kind: "position" (a rigid offset) or "spring". spring_rate_N_per_mm: the rate k of
+    the preload spring (N/mm), compressed at assembly to the assembled preload; 0 with "spring":
+    a constant force (`analytic.bearing.solve_pair`, preload_kind "spring"); k > 0: the spring's
+    compliance 1/k sits in the preload loop in series with the path and the two bearings, i.e.
+    1/(2k) per bearing added to the path compliance (`analytic.bearing.axial`: each bearing
+    X + c F(X) = X_nom, the loop A - path - B carries 2c; springs in series add compliances:
+    Timoshenko & Gere, Mechanics of Materials, ch. 2). Always 0 with "position".
+    contact_angle_free_deg: the bearing's free contact angle (deg). inner_shaft_class,
+    outer_housing_class: ISO 286 classes of the shaft seat and the housing bore
+    (`analytic.tolerances.iso286_limits_um`; "" = as given); the mean assembly sits at the middle
+    of each band (`Assembly.mean_fits_um`)."""
+    preload_kind: str
+    spring_rate_N_per_mm: float
+    contact_angle_free_deg: float
+    inner_shaft_class: str
+    outer_housing_class: str
+
+    @classmethod
+    def given(cls, asm) -> "Setting":
+        """The assembly's own values."""
+        f = asm.fits
+        return cls(asm.preload.kind, 0.0, float(asm.bearing.contact_angle_free_deg),
+                   f.inner_shaft_class, f.outer_housing_class)
+
+    @property
+    def extra_compliance_mm_per_N(self) -> float:
+        """The spring's compliance per bearing in the preload path, mm/N (0 without)."""
+        k = self.spring_rate_N_per_mm
+        return 0.5 / k if self.preload_kind == "spring" and k > 0 else 0.0
+
+    def assembly(self, asm):
+        """`asm` with this setting (unchanged values leave the assembly equal to `asm`)."""
+        kind = "spring" if self.preload_kind == "spring" and self.spring_rate_N_per_mm == 0 \
+            else "position"
+        f = asm.fits
+        if self.inner_shaft_class != f.inner_shaft_class:
+            f = replace(f, inner_shaft_class=self.inner_shaft_class, inner_shaft_deviation_um=())
+        if self.outer_housing_class != f.outer_housing_class:
+            f = replace(f, outer_housing_class=self.outer_housing_class,
+                        outer_housing_deviation_um=())
+        b = asm.bearing
+        if self.contact_angle_free_deg != b.contact_angle_free_deg:
+            b = replace(b, contact_angle_free_deg=self.contact_angle_free_deg)
+        p = asm.preload if kind == asm.preload.kind else replace(asm.preload, kind=kind)
+        return replace(asm, fits=f, bearing=b, preload=p)
+
+    def label(self, given: "Setting") -> str:
+        """What differs from `given`, in words ("" when nothing does)."""
+        parts = []
+        if (self.preload_kind, self.spring_rate_N_per_mm) != (given.preload_kind,
+                                                              given.spring_rate_N_per_mm):
+            parts.append("position preload" if self.preload_kind == "position" else
+                         "constant-force spring" if self.spring_rate_N_per_mm == 0 else
+                         f"spring {self.spring_rate_N_per_mm:g} N/mm")
+        if self.contact_angle_free_deg != given.contact_angle_free_deg:
+            parts.append(f"contact angle {self.contact_angle_free_deg:g} deg")
+        if self.inner_shaft_class != given.inner_shaft_class:
+            parts.append(f"shaft {self.inner_shaft_class or 'no class'}")
+        if self.outer_housing_class != given.outer_housing_class:
+            parts.append(f"housing {self.outer_housing_class or 'no class'}")
+        return ", ".join(parts)
+
+
+class DesignError(ValueError):
+    """A design variable the search cannot take: one line naming the flag and the value."""
+
+
+def settings_of(asm, vary: dict[str, tuple] | None = None) -> list[Setting]:
+    """The assembly's own setting first, then every combination of the values of `vary` (key of
+    SETTING_KEYS -> values; keys not given keep the assembly's value). A spring rate applies to
+    the spring preload only (a position preload has none). DesignError (one line) for an unknown
+    key, a spring rate below 0, a contact angle outside 0..60 deg or a class the ISO 286 tables
+    do not carry for the seat's diameter."""
+    from studies.model.tolerances import deviation_limits_um
+
+    g = Setting.given(asm)
+    vary = dict(vary or {})
+    for key, values in vary.items():
+        if key not in SETTING_KEYS:
+            raise DesignError(f"--vary {key}: unknown (known: {', '.join(SETTING_KEYS)})")
+        if not values:
+            raise DesignError(f"--vary {key}: no values")
+    for v in vary.get("preload_kind", ()):
+        if v not in ("position", "spring"):
+            raise DesignError(f"--vary preload_kind={v}: 'position' or 'spring'")
+    for v in vary.get("spring_rate_N_per_mm", ()):
+        if not v >= 0:
+            raise DesignError(f"--vary spring_rate_N_per_mm={v:g}: must be >= 0 (0: constant force)")
+    for v in vary.get("contact_angle_free_deg", ()):
+        if not 0 < v < 60:
+            raise DesignError(f"--vary contact_angle_free_deg={v:g}: outside 0..60 deg")
+    if "spring_rate_N_per_mm" in vary and "spring" not in vary.get("preload_kind",
+                                                                   (g.preload_kind,)):
+        raise DesignError("--vary spring_rate_N_per_mm: a rate needs a spring preload (the "
+                          f"assembly's is {g.preload_kind}); add --vary preload_kind=spring")
+    axes = [vary.get(k, (getattr(g, k),)) for k in SETTING_KEYS]
+    out = [g]
+    for values in itertools.product(*axes):
+        s = Setting(*values)
+        if s.preload_kind == "position":
+            s = replace(s, spring_rate_N_per_mm=0.0)
+        if s not in out:
+            out.append(s)
+    for s in out:
+        try:
+            deviation_limits_um(s.assembly(asm))
+        except ValueError as exc:
+            raise DesignError(f"--vary: {exc.args[0]}") from None
     return out
 
 
-def _metrics(asm, r: dict, preloads_N, band) -> list[dict]:
+@dataclass(frozen=True)
+class StackAnswers:
+    """One candidate's answers at every assembled preload and temperature, arrays
+    (n_preloads, n_T): preload (N), largest contact pressure (MPa), inner and outer fit pressure
+    (MPa), friction torque (N mm); dofs: the FE model's displacement DOFs."""
+    preload_N: np.ndarray
+    max_contact_pressure_MPa: np.ndarray
+    fit_pressure_inner_MPa: np.ndarray
+    fit_pressure_outer_MPa: np.ndarray
+    torque_Nmm: np.ndarray
+    dofs: int
+
+
+class _TaskSetups:
+    """The FE set-ups of one task's pipelines (a `setup_of` for `Pipeline`): a spec seen before
+    is handed back, so the settings that leave the FE alone share one set-up; a new one comes
+    from the stack's family (`fem.parametric`, when `family` is given) or from the normal cached
+    route (`fem.setup.cached_setup`, the full FE built only when the cache has none; one full
+    FE per section, whatever the compliance plan). Lives for one task only: nothing is kept
+    between stacks."""
+
+    def __init__(self, family=None):
+        self.family = family
+        self.setups: dict[str, object] = {}
+        self.full: dict[str, object] = {}
+
+    def _full_fe(self, spec):
+        key = replace(spec, compliance=None).key()
+        if key not in self.full:
+            self.full[key] = full_fe(spec)
+        return self.full[key]
+
+    def __call__(self, spec):
+        key = spec.key()
+        if key not in self.setups:
+            self.setups[key] = (self.family(spec) if self.family is not None
+                                else cached_setup(spec, lambda: self._full_fe(spec)))
+        return self.setups[key]
+
+
+def evaluate_settings(asm, stack: Stack, settings: tuple[Setting, ...], T_C: np.ndarray,
+                      preloads_N: np.ndarray, mesh_factor: float,
+                      parametric: bool = False) -> tuple[StackAnswers, ...]:
+    """Preload, contact pressure, fit pressures and torque of one stack under each setting at
+    every temperature and preload. One task of the search. `parametric`: the FE set-up from the
+    stack's family (`fem.parametric`, equal to the full set-up to round-off) instead of the
+    stack's own (cached) one. Every FE object of the task is released before it returns
+    (`_task_memory`)."""
+    with _task_memory():
+        return _evaluate(asm, stack, settings, T_C, preloads_N, mesh_factor, parametric)
+
+
+def _evaluate(asm, stack, settings, T_C, preloads_N, mesh_factor, parametric):
+    a = stack.assembly(asm)
+    family = parametric_setup_of(asm) if parametric and asm.fits.contact == "frictionless" else None
+    setups = _TaskSetups(family)
+    nT, nP = T_C.size, preloads_N.size
+    cols = {"T_ambient_C": np.tile(T_C, nP), "preload_assembled_N": np.repeat(preloads_N, nT)}
+    out = []
+    for s in settings:
+        a_s = s.assembly(a)
+        pl = Pipeline(a_s, mesh_factor=mesh_factor, setup_of=setups)
+        inp = baseline_inputs(cols, nT * nP, a_s.T_ref_C, a_s.preload.assembled_N,
+                              a_s.lubrication.speed_rpm)
+        if s.extra_compliance_mm_per_N:
+            inp = inp.copy(extra_compliance_mm_per_N=s.extra_compliance_mm_per_N)
+        res = pl.run(inp)
+        out.append(StackAnswers(res.preload_N.reshape(nP, nT),
+                                res.max_contact_pressure_MPa.reshape(nP, nT),
+                                res.fits.inner_MPa.reshape(nP, nT),
+                                res.fits.outer_MPa.reshape(nP, nT),
+                                res.torque_Nmm.reshape(nP, nT), int(pl.ndofs)))
+    return tuple(out)
+
+
+def evaluate_stack(asm, stack: Stack, T_C: np.ndarray, preloads_N: np.ndarray,
+                   mesh_factor: float, parametric: bool = False,
+                   setting: Setting | None = None) -> StackAnswers:
+    """`evaluate_settings` of one setting (default: the assembly's own)."""
+    return evaluate_settings(asm, stack, (setting or Setting.given(asm),), T_C, preloads_N,
+                             mesh_factor, parametric)[0]
+
+
+@contextmanager
+def _task_memory():
+    """Give a task's native memory back when it ends (`studies.model.memory`). The FE objects
+    of a stack form reference cycles (the FE stage and its superposition's solver callback), so
+    dropping them frees nothing until Python's cycle collector runs, and a heap trim before
+    that finds nothing to return: a Dask worker (trim threshold 1 GiB) grew 11..19 MB a stack on
+    the full set-up route. So: collect, then trim. The objects alive when the task starts are
+    frozen for its duration (`gc.freeze`), so the collection scans only what the task made
+    (about a millisecond, not the ~40 ms of a full collection in a loaded process)."""
+    gc.freeze()
+    try:
+        yield
+    finally:
+        gc.collect()
+        gc.unfreeze()
+        release_freed_memory()
+
+
+@dataclass(frozen=True)
+class Metrics:
+    """What the search ranks a candidate at one assembled preload by (over the temperatures).
+
+    preload_range_N: max - min preload; preload_variation: that / the assembled preload;
+    fits_closed: every fit assembled with interference stays closed; contact_pressure_margin:
+    limit / largest contact pressure - 1; feasible: fits closed, preload kept, contact pressure
+    within the limit; in_band: feasible and the preload inside the band at every temperature."""
+    preload_assembled_N: float
+    preload_range_N: float
+    preload_variation: float
+    preload_min_N: float
+    preload_max_N: float
+    fits_closed: bool
+    max_contact_pressure_MPa: float
+    contact_pressure_margin: float
+    torque_max_Nmm: float
+    feasible: bool
+    in_band: bool
+
+
+def _metrics(asm, r: StackAnswers, preloads_N, band: Band) -> list[Metrics]:
     limit = next(c.allowable for c in assembly_checks(asm) if c.name == "max_contact_pressure_MPa")
     fi, fo = asm.mean_fits_um()
     out = []
     for k, P0 in enumerate(preloads_N):
-        P = r["preload_N"][k]
-        lo, hi = band[0] * P0, band[1] * P0
-        closed = ((fi <= 0 or r["fit_pressure_inner_MPa"][k].min() > 0)
-                  and (fo <= 0 or r["fit_pressure_outer_MPa"][k].min() > 0))
-        p_max = float(r["max_contact_pressure_MPa"][k].max())
-        m = {"preload_assembled_N": float(P0), "preload_range_N": float(np.ptp(P)),
-             "preload_variation": float(np.ptp(P) / P0),
-             "preload_min_N": float(P.min()), "preload_max_N": float(P.max()),
-             "fits_closed": bool(closed), "max_contact_pressure_MPa": p_max,
-             "contact_pressure_margin": float(limit / p_max - 1) if p_max > 0 else float("inf"),
-             "torque_max_Nmm": float(r["torque_Nmm"][k].max())}
-        m["feasible"] = bool(closed and P.min() > 0 and p_max <= limit)
-        m["in_band"] = bool(m["feasible"] and P.min() >= lo and P.max() <= hi)
-        out.append(m)
+        P = r.preload_N[k]
+        lo, hi = band.limits_N(float(P0))
+        closed = ((fi <= 0 or r.fit_pressure_inner_MPa[k].min() > 0)
+                  and (fo <= 0 or r.fit_pressure_outer_MPa[k].min() > 0))
+        p_max = float(r.max_contact_pressure_MPa[k].max())
+        feasible = bool(closed and P.min() > 0 and p_max <= limit)
+        out.append(Metrics(float(P0), float(np.ptp(P)), float(np.ptp(P) / P0), float(P.min()),
+                           float(P.max()), bool(closed), p_max,
+                           float(limit / p_max - 1) if p_max > 0 else float("inf"),
+                           float(r.torque_Nmm[k].max()), feasible,
+                           bool(feasible and P.min() >= lo and P.max() <= hi)))
     return out
 
 
-def rank_key(d):
+@dataclass(frozen=True)
+class Design:
+    """One candidate at one assembled preload: its stack (index into the search's stacks) and
+    setting, its metrics, on which mesh ("screen" or "fine")."""
+    stack_index: int
+    stack: Stack
+    setting_index: int
+    setting: Setting
+    metrics: Metrics
+    is_given: bool
+    mesh: str
+
+    def row(self) -> dict:
+        """The design as design.json writes it (the file edge)."""
+        return {"stack": self.stack_index, **asdict(self.stack), "setting": self.setting_index,
+                **asdict(self.setting), **asdict(self.metrics), "is_given": self.is_given,
+                "mesh": self.mesh}
+
+
+def rank_key(d: Design):
     """Sort key: feasible first, then the smaller relative preload variation."""
-    return (not d["feasible"], d["preload_variation"])
+    return (not d.metrics.feasible, d.metrics.preload_variation)
 
 
-def pareto(designs: list[dict]) -> list[dict]:
+def pareto(designs: list[Design]) -> list[Design]:
     """Feasible designs that no other feasible design beats on all of relative preload variation
     (lower), largest torque (lower) and contact-pressure margin (higher)."""
-    feas = [d for d in designs if d["feasible"]]
+    feas = [d for d in designs if d.metrics.feasible]
 
     def key(d):
-        return np.array([d["preload_variation"], d["torque_max_Nmm"], -d["contact_pressure_margin"]])
+        m = d.metrics
+        return np.array([m.preload_variation, m.torque_max_Nmm, -m.contact_pressure_margin])
     front = []
     for d in feas:
         kd = key(d)
         if not any(np.all(key(e) <= kd) and np.any(key(e) < kd) for e in feas if e is not d):
             front.append(d)
-    return sorted(front, key=lambda d: d["preload_variation"])
+    return sorted(front, key=lambda d: d.metrics.preload_variation)
 
 
-def run(asm, T_min_C: float, T_max_C: float, out: Path, provenance: dict, band=(0.8, 1.2),
-        clamps: bool = False, progress=print, workers: int | None = None,
-        scheduler: str | None = None, screen_mesh_factor: float = SCREEN_MESH_FACTOR,
-        confirm_mesh_factor: float = 1.0, length_factors=LENGTH_FACTORS,
-        materials: list[str] | None = None, bar=None) -> dict:
-    """Search, write design.json, plots and the report into `out`; returns design.json.
-    `bar(done, total)` follows the stacks (the command line's progress bar)."""
+@dataclass(frozen=True)
+class PreloadSplit:
+    """The preload change from the reference temperature to one end of the range (N), split so
+    that the parts add up: with f(R, A) the preload with the radial (R) and axial (A)
+    groove-centre shifts of the FE applied or held at their assembly values (0),
+      own         = f(0, 0) - f_ref       the bearing's own thermal geometry (rings, balls)
+      radial      = f(R, 0) - f(0, 0)     the fits and ring growth
+      axial       = f(0, A) - f(0, 0)     the stack lengths
+      interaction = f(R, A) - f(R, 0) - f(0, A) + f(0, 0)
+    change = own + radial + axial + interaction exactly (a two-factor decomposition; the
+    interaction is what the radial and axial parts do together beyond their sum: the pair's
+    stiffness is not linear). `residual_N` is the round-off left. dz_A_um, dr_A_um: bearing A's
+    axial and radial groove-centre shift change (um)."""
+    T_C: float
+    change_N: float
+    own_N: float
+    radial_N: float
+    axial_N: float
+    interaction_N: float
+    dz_A_um: float
+    dr_A_um: float
+
+    @property
+    def residual_N(self) -> float:
+        return self.change_N - (self.own_N + self.radial_N + self.axial_N + self.interaction_N)
+
+
+@dataclass(frozen=True)
+class Why:
+    """The preload change split at the cold and the hot end (`PreloadSplit`), for the assembly
+    as given and for the best design, at the best design's assembled preload."""
+    given: tuple[PreloadSplit, PreloadSplit]
+    best: tuple[PreloadSplit, PreloadSplit]
+
+
+@dataclass(frozen=True)
+class DesignResult:
+    """What `run` found. designs: confirmed on the assembly's mesh, ranked; screened: every
+    design on the screening mesh, ranked; pareto: the screened Pareto set; why: None when no
+    design is feasible. `to_json` is design.json (the file edge)."""
+    range_C: tuple[float, float]
+    temperatures_C: tuple[float, ...]
+    band: Band
+    n_stacks: int
+    n_settings: int
+    n_designs: int
+    given: Design
+    designs: list[Design]
+    screened: list[Design]
+    pareto: list[Design]
+    why: Why | None
+    provenance: dict
+
+    def to_json(self) -> dict:
+        w = self.why
+        return {"range_C": list(self.range_C), "temperatures_C": list(self.temperatures_C),
+                "band": [self.band.low, self.band.high],
+                "band_unit": "N" if self.band.absolute else "fraction of the assembled preload",
+                "n_stacks": self.n_stacks, "n_settings": self.n_settings,
+                "n_designs": self.n_designs, "given": self.given.row(),
+                "designs": [d.row() for d in self.designs],
+                "screened": [d.row() for d in self.screened],
+                "pareto": [d.row() for d in self.pareto],
+                "why": None if w is None else {
+                    label: [{**asdict(e), "residual_N": e.residual_N} for e in getattr(w, label)]
+                    for label in ("given", "best")},
+                "provenance": self.provenance}
+
+
+def _designs(asm, stacks, settings, items, answers, P0, band, mesh) -> list[Design]:
+    """The designs of evaluated (stack, setting) pairs at every assembled preload."""
+    out = []
+    for (i, j), r in zip(items, answers):
+        a = settings[j].assembly(stacks[i].assembly(asm))
+        for m in _metrics(a, r, P0, band):
+            out.append(Design(i, stacks[i], j, settings[j], m, i == 0 and j == 0, mesh))
+    return out
+
+
+def run(asm, T_min_C: float, T_max_C: float, out: Path, provenance: dict,
+        band: Band = Band(0.8, 1.2), clamps: bool = False, progress=print,
+        workers: int | None = None, scheduler: str | None = None,
+        screen_mesh_factor: float = SCREEN_MESH_FACTOR, confirm_mesh_factor: float = 1.0,
+        length_factors=LENGTH_FACTORS, materials: list[str] | None = None, bar=None,
+        vary: dict[str, tuple] | None = None) -> DesignResult:
+    """Search, write design.json, plots and the report into `out`. `bar(done, total)` follows
+    the stacks (the command line's progress bar); `vary`: the settings' values
+    (`settings_of`)."""
     step = nice_step(T_max_C - T_min_C, N_TEMPERATURES)
     T = np.unique(np.concatenate([[T_min_C, T_max_C, asm.T_ref_C],
                                   step * np.arange(np.ceil(T_min_C / step), np.floor(T_max_C / step) + 1)]))
     T = T[(T >= T_min_C) & (T <= T_max_C)]
     P0 = asm.preload.assembled_N * np.array(PRELOAD_FACTORS)
     stacks = candidates(asm, clamps, length_factors, materials)
-    progress(f"design: {len(stacks)} stacks x {P0.size} preloads x {T.size} temperatures "
-             f"(screening mesh x{screen_mesh_factor:g}) ...")
+    settings = settings_of(asm, vary)
+    every = tuple(range(len(settings)))
+    progress(f"design: {len(stacks)} stacks x {len(settings)} settings x {P0.size} preloads x "
+             f"{T.size} temperatures (screening mesh x{screen_mesh_factor:g}) ...")
     with Blocks(workers, scheduler) as where:      # one cluster for screening and confirm
         # submitted family by family (spacer length, clamps, ring sections): a worker then
         # builds few of the families (fem.parametric); the results go back to the stacks' order
         order = sorted(range(len(stacks)), key=lambda i: _family_of(stacks[i]))
-        done = map_blocks(evaluate_stack, [(asm, stacks[i], T, P0, screen_mesh_factor, True)
-                                           for i in order],
-                          where=where,
+        done = map_blocks(evaluate_settings,
+                          [(asm, stacks[i], settings, T, P0, screen_mesh_factor, True)
+                           for i in order], where=where,
                           progress=bar or (lambda d, n: progress(f"  stack {d} of {n}")
                                            if d % 20 == 0 or d == n else None))
-        screened = [None] * len(stacks)
-        for i, r in zip(order, done):
-            screened[i] = r
-        designs = []
-        for i, (s, r) in enumerate(zip(stacks, screened)):
-            for m in _metrics(s.assembly(asm), r, P0, band):
-                designs.append({"stack": i, **s.__dict__, **m, "is_given": i == 0,
-                                "mesh": "screen"})
+        by_stack = dict(zip(order, done))
+        items = [(i, j) for i in range(len(stacks)) for j in every]
+        designs = _designs(asm, stacks, settings, items,
+                           [by_stack[i][j] for i, j in items], P0, band, "screen")
         # confirm the best feasible ones (and the assembly as given) on the fine mesh
         ranked = sorted(designs, key=rank_key)
-        best_stacks = list(dict.fromkeys([0] + [d["stack"] for d in ranked
-                                                if d["feasible"]][:CONFIRM]))
-        progress(f"design: confirming {len(best_stacks)} stacks on the assembly's mesh ...")
-        fine = map_blocks(evaluate_stack, [(asm, stacks[i], T, P0, confirm_mesh_factor)
-                                           for i in best_stacks], where=where)
-    confirmed = []
-    for i, r in zip(best_stacks, fine):
-        for m in _metrics(stacks[i].assembly(asm), r, P0, band):
-            confirmed.append({"stack": i, **stacks[i].__dict__, **m, "is_given": i == 0, "mesh": "fine"})
-    confirmed.sort(key=rank_key)
-    given = next(d for d in confirmed if d["is_given"]
-                 and d["preload_assembled_N"] == asm.preload.assembled_N)
-    best = next((d for d in confirmed if d["feasible"]), None)
-    why = _why(asm, stacks, best, T) if best is not None else None
-    result = {"range_C": [T_min_C, T_max_C], "temperatures_C": [float(t) for t in T],
-              "band": list(band), "n_stacks": len(stacks), "n_designs": len(designs),
-              "given": given, "designs": confirmed, "screened": sorted(
-                  designs, key=rank_key),
-              "pareto": pareto(designs), "why": why, "provenance": provenance}
-    (out / "design.json").write_text(json.dumps(result, indent=1, default=float) + "\n")
-    _report(asm, out, result, stacks, T, P0, fine, best_stacks)
+        best = list(dict.fromkeys([(0, 0)] + [(d.stack_index, d.setting_index) for d in ranked
+                                              if d.metrics.feasible][:CONFIRM]))
+        progress(f"design: confirming {len(best)} candidates on the assembly's mesh ...")
+        fine = map_blocks(evaluate_stack, [(asm, stacks[i], T, P0, confirm_mesh_factor, False,
+                                            settings[j]) for i, j in best], where=where)
+    confirmed = sorted(_designs(asm, stacks, settings, best, fine, P0, band, "fine"), key=rank_key)
+    given = next(d for d in confirmed if d.is_given
+                 and d.metrics.preload_assembled_N == asm.preload.assembled_N)
+    top = next((d for d in confirmed if d.metrics.feasible), None)
+    why = _why(asm, top, T) if top is not None else None
+    result = DesignResult((T_min_C, T_max_C), tuple(float(t) for t in T), band, len(stacks),
+                          len(settings), len(designs), given, confirmed,
+                          sorted(designs, key=rank_key), pareto(designs), why, provenance)
+    (out / "design.json").write_text(json.dumps(result.to_json(), indent=1, default=float) + "\n")
+    _report(asm, out, result, T, P0, fine, best)
     return result
 
 
-def _why(asm, stacks, best, T) -> dict:
-    """Preload change (end of range minus reference) split into radial- and axial-shift parts,
-    for the assembly as given and the best design, at the best design's assembled preload."""
-    out = {}
-    for label, i in (("given", 0), ("best", best["stack"])):
-        a = stacks[i].assembly(asm)
-        pl = Pipeline(a)
-        Ts = np.array([T[0], a.T_ref_C, T[-1]])
-        inp = baseline_inputs({"T_ambient_C": Ts}, 3, a.T_ref_C, best["preload_assembled_N"],
-                              a.lubrication.speed_rpm)
-        res = pl.run(inp)
-        fe, ref = res.fe, res.fe_ref
-        full = res.preload_N
-        radial = pl.run(inp, fe_options=FEOptions(shifts="radial_only")).preload_N
-        axial = pl.run(inp, fe_options=FEOptions(shifts="axial_only")).preload_N
-        out[label] = {"T_C": [float(t) for t in Ts],
-                      "change_N": [float(full[k] - full[1]) for k in (0, 2)],
-                      "radial_shifts_only_N": [float(radial[k] - full[1]) for k in (0, 2)],
-                      "axial_shifts_only_N": [float(axial[k] - full[1]) for k in (0, 2)],
-                      "dz_A_um": [float(1e3 * (fe.dz_mm[0, k] - ref.dz_mm[0, k])) for k in (0, 2)],
-                      "dr_A_um": [float(1e3 * (fe.dr_mm[0, k] - ref.dr_mm[0, k])) for k in (0, 2)]}
-    return out
+def preload_split(asm, T_ends_C, preload_N: float, setting: Setting | None = None,
+                  mesh_factor: float = 1.0) -> tuple[PreloadSplit, ...]:
+    """The preload change from the reference temperature to each of `T_ends_C` (uniform
+    temperature) of `asm` under `setting` at the assembled preload `preload_N`, split into the
+    bearing's own growth, the radial- and the axial-shift parts and their interaction
+    (`PreloadSplit`: four pipeline runs on the same FE answer, `FEOptions`)."""
+    a = asm if setting is None else setting.assembly(asm)
+    pl = Pipeline(a, mesh_factor=mesh_factor)
+    Ts = np.concatenate([[a.T_ref_C], np.asarray(T_ends_C, float)])
+    inp = baseline_inputs({"T_ambient_C": Ts}, Ts.size, a.T_ref_C, preload_N,
+                          a.lubrication.speed_rpm)
+    if setting is not None and setting.extra_compliance_mm_per_N:
+        inp = inp.copy(extra_compliance_mm_per_N=setting.extra_compliance_mm_per_N)
+    res = pl.run(inp)
+    fe, ref = res.fe, res.fe_ref
+    f_RA = res.preload_N
+    f_R0 = pl.run(inp, fe_options=FEOptions(shifts="radial_only")).preload_N
+    f_0A = pl.run(inp, fe_options=FEOptions(shifts="axial_only")).preload_N
+    held = fe.with_shifts(dr_mm=ref.dr_mm, dz_mm=ref.dz_mm)        # both sets at assembly
+    f_00 = pl.run(inp, fe_options=FEOptions(states=(held, ref))).preload_N
+    return tuple(PreloadSplit(float(Ts[k]), float(f_RA[k] - f_RA[0]), float(f_00[k] - f_RA[0]),
+                              float(f_R0[k] - f_00[k]), float(f_0A[k] - f_00[k]),
+                              float(f_RA[k] - f_R0[k] - f_0A[k] + f_00[k]),
+                              float(1e3 * (fe.dz_mm[0, k] - ref.dz_mm[0, k])),
+                              float(1e3 * (fe.dr_mm[0, k] - ref.dr_mm[0, k])))
+                 for k in range(1, Ts.size))
 
 
-def _label(d) -> str:
-    return (f"spacers {d['inner_spacer_material']}/{d['outer_spacer_material']} "
-            f"{d['spacer_length_mm']:g} mm, clamps {d['nut_clamp']}/{d['cover_clamp']}, "
-            f"{d['preload_assembled_N']:g} N")
+def _why(asm, best: Design, T) -> Why:
+    """`preload_split` at both ends of the range for the assembly as given and the best design,
+    at the best design's assembled preload (the assembly's mesh)."""
+    P = best.metrics.preload_assembled_N
+    return Why(preload_split(asm, (T[0], T[-1]), P),
+               preload_split(best.stack.assembly(asm), (T[0], T[-1]), P, best.setting))
 
 
-def _report(asm, out, res, stacks, T, P0, fine, best_stacks):
+def _label(d: Design, given: Setting) -> str:
+    s = d.stack
+    extra = d.setting.label(given)
+    return (f"spacers {s.inner_spacer_material}/{s.outer_spacer_material} "
+            f"{s.spacer_length_mm:g} mm, clamps {s.nut_clamp}/{s.cover_clamp}, "
+            f"{d.metrics.preload_assembled_N:g} N" + (f", {extra}" if extra else ""))
+
+
+def _report(asm, out, res: DesignResult, T, P0, fine, best):
     k0 = int(np.argmin(np.abs(P0 - asm.preload.assembled_N)))
+    g0 = Setting.given(asm)
     series = {}
-    for i, r in zip(best_stacks, fine):
-        s = stacks[i]
-        lab = ("as given" if i == 0 else f"{s.inner_spacer_material}/{s.outer_spacer_material} "
-               f"{s.spacer_length_mm:g} mm")
-        series[lab] = r["preload_N"][k0]
+    for (i, j), r in zip(best, fine):
+        d = next(x for x in res.designs if (x.stack_index, x.setting_index) == (i, j))
+        s, extra = d.stack, d.setting.label(g0)
+        lab = ("as given" if (i, j) == (0, 0) else f"{s.inner_spacer_material}/"
+               f"{s.outer_spacer_material} {s.spacer_length_mm:g} mm"
+               + (f", {extra}" if extra else ""))
+        series[lab] = r.preload_N[k0]
     line_plot(out / "preload_vs_temperature.png", T, series, "temperature (C)", "preload (N)",
               f"Preload over the range, assembled {P0[k0]:g} N (fine mesh)", markers=True)
     _scatter(out / "pareto.png", res)
-    g, rows = res["given"], []
-    for d in res["designs"][:10]:
-        rows.append([_label(d), d["preload_variation"], d["preload_range_N"], d["preload_min_N"],
-                     d["preload_max_N"], "yes" if d["fits_closed"] else "NO",
-                     d["contact_pressure_margin"], d["torque_max_Nmm"],
-                     "yes" if d["feasible"] else "no", "yes" if d["in_band"] else "no"])
+    g, rows = res.given, []
+    for d in res.designs[:10]:
+        m = d.metrics
+        rows.append([_label(d, g0), m.preload_variation, m.preload_range_N, m.preload_min_N,
+                     m.preload_max_N, "yes" if m.fits_closed else "NO",
+                     m.contact_pressure_margin, m.torque_max_Nmm,
+                     "yes" if m.feasible else "no", "yes" if m.in_band else "no"])
+    gm = g.metrics
     lines = [f"# Athermal stack search: {asm.name}", "",
-             f"bearingfem {res['provenance']['version']}; range {res['range_C'][0]:g}..{res['range_C'][1]:g} C "
-             f"({len(T)} temperatures), preload band {res['band'][0]:g}..{res['band'][1]:g} x the "
-             f"assembled preload; {res['n_stacks']} stacks x {len(P0)} assembled preloads = "
-             f"{res['n_designs']} designs, each stack its own FE model (screened on a coarser mesh, "
-             "the best re-evaluated on the assembly's mesh: the numbers below).", "",
-             f"As given: {_label(g)}: preload range {g['preload_range_N']:.1f} N over the range "
-             f"({g['preload_min_N']:.1f}..{g['preload_max_N']:.1f} N, "
-             f"{100 * g['preload_variation']:.0f} % of the assembled preload).", "",
+             f"bearingfem {res.provenance['version']}; range {res.range_C[0]:g}..{res.range_C[1]:g} C "
+             f"({len(T)} temperatures), preload band {res.band.text()}; {res.n_stacks} stacks"
+             + (f" x {res.n_settings} settings" if res.n_settings > 1 else "")
+             + f" x {len(P0)} assembled preloads = {res.n_designs} designs, each stack its own FE "
+             "model (screened on a coarser mesh, the best re-evaluated on the assembly's mesh: the "
+             "numbers below).", "",
+             f"As given: {_label(g, g0)}: preload range {gm.preload_range_N:.1f} N over the range "
+             f"({gm.preload_min_N:.1f}..{gm.preload_max_N:.1f} N, "
+             f"{100 * gm.preload_variation:.0f} % of the assembled preload).", "",
              "## Best designs (fine mesh)", "",
              md_table(["design", "range / assembled", "preload range (N)", "min (N)", "max (N)",
                        "fits closed", "contact-pressure margin", "max torque (N mm)", "feasible",
@@ -316,57 +687,63 @@ def _report(asm, out, res, stacks, T, P0, fine, best_stacks):
              "Feasible designs that no other beats on relative preload variation, largest torque and "
              "contact-pressure margin at once.", "",
              md_table(["design", "range / assembled", "max torque (N mm)", "contact-pressure margin"],
-                      [[_label(d), d["preload_variation"], d["torque_max_Nmm"],
-                        d["contact_pressure_margin"]] for d in res["pareto"][:15]]), "",
+                      [[_label(d, g0), d.metrics.preload_variation, d.metrics.torque_max_Nmm,
+                        d.metrics.contact_pressure_margin] for d in res.pareto[:15]]), "",
              "![pareto](pareto.png)", ""]
-    w = res["why"]
+    w = res.why
     if w is not None:
-        b = res["designs"][0]
         lines += ["## Why the best design works", "",
-                  md_table(["stack", "end", "preload change (N)", "radial shifts only (N)",
-                            "axial shifts only (N)", "dz A change (um)", "dr A change (um)"],
-                           [[lab, f"{w[lab]['T_C'][2 * e]:g} C", w[lab]["change_N"][e],
-                             w[lab]["radial_shifts_only_N"][e], w[lab]["axial_shifts_only_N"][e],
-                             w[lab]["dz_A_um"][e], w[lab]["dr_A_um"][e]]
-                            for lab in ("given", "best") for e in (0, 1)]), "",
-                  _explain(w, b), ""]
+                  "The preload change from the reference temperature to each end of the range, "
+                  "split into parts that add up to it: the bearing's own thermal geometry (every "
+                  "groove-centre shift held at its assembly value), the radial shifts (fits, ring "
+                  "growth), the axial shifts (stack lengths), and their interaction (what the "
+                  "radial and axial shifts do together beyond the sum of each alone: the pair's "
+                  "stiffness is not linear). The last column is what is left of the change after "
+                  "the four parts (round-off).", "",
+                  md_table(["stack", "end", "preload change (N)", "own growth (N)",
+                            "radial shifts (N)", "axial shifts (N)", "interaction (N)",
+                            "residual (N)", "dz A change (um)", "dr A change (um)"],
+                           [[lab, f"{e.T_C:g} C", e.change_N, e.own_N, e.radial_N, e.axial_N,
+                             e.interaction_N, f"{e.residual_N:.1e}", e.dz_A_um, e.dr_A_um]
+                            for lab in ("given", "best") for e in getattr(w, lab)]), "",
+                  _explain(w, res.designs[0]), ""]
     write_report_files(out, lines, f"Athermal stack search: {asm.name}")
 
 
-def _explain(w, best) -> str:
+def _explain(w: Why, best: Design) -> str:
     """The decomposition in words, end by end, from the numbers (nothing assumed)."""
-    g, b = w["given"], w["best"]
     parts = []
     for e, end in ((0, "cold"), (1, "hot")):
-        r, a, t = b["radial_shifts_only_N"][e], b["axial_shifts_only_N"][e], b["change_N"][e]
-        how = "against" if r * a < 0 else "with"
-        parts.append(f"at the {end} end ({b['T_C'][2 * e]:g} C) the axial shifts act {how} the "
-                     f"radial ones ({a:+.1f} N vs {r:+.1f} N; as given {g['axial_shifts_only_N'][e]:+.1f} "
-                     f"vs {g['radial_shifts_only_N'][e]:+.1f} N), total {t:+.1f} N (as given "
-                     f"{g['change_N'][e]:+.1f} N)")
-    return (f"With {best['inner_spacer_material']} inner and {best['outer_spacer_material']} outer "
-            f"spacers of {best['spacer_length_mm']:g} mm the spacers' axial growth difference "
+        b, g = w.best[e], w.given[e]
+        how = "against" if b.radial_N * b.axial_N < 0 else "with"
+        parts.append(f"at the {end} end ({b.T_C:g} C) the axial shifts act {how} the radial ones "
+                     f"({b.axial_N:+.1f} N vs {b.radial_N:+.1f} N; as given {g.axial_N:+.1f} vs "
+                     f"{g.radial_N:+.1f} N), interaction {b.interaction_N:+.1f} N, own growth "
+                     f"{b.own_N:+.1f} N, total {b.change_N:+.1f} N (as given {g.change_N:+.1f} N)")
+    s = best.stack
+    return (f"With {s.inner_spacer_material} inner and {s.outer_spacer_material} outer "
+            f"spacers of {s.spacer_length_mm:g} mm the spacers' axial growth difference "
             "changes the axial groove-centre shifts, while the radial ones (fits, ring growth) stay "
             "almost as they were: " + "; ".join(parts) + ". The radial part is not linear in "
             "temperature (a fit tightens or opens), the axial part nearly is, so a spacer choice "
             "can balance the two only on average over the range.")
 
 
-def _scatter(path, res):
+def _scatter(path, res: DesignResult):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     fig, ax = plt.subplots(figsize=(6.4, 4.2))
-    d = res["screened"]
-    feas = [x for x in d if x["feasible"]]
-    inf = [x for x in d if not x["feasible"]]
-    ax.scatter([x["preload_variation"] for x in inf], [x["torque_max_Nmm"] for x in inf], s=6,
+    d = res.screened
+    feas = [x.metrics for x in d if x.metrics.feasible]
+    inf = [x.metrics for x in d if not x.metrics.feasible]
+    ax.scatter([x.preload_variation for x in inf], [x.torque_max_Nmm for x in inf], s=6,
                c="lightgrey", label="infeasible")
-    ax.scatter([x["preload_variation"] for x in feas], [x["torque_max_Nmm"] for x in feas], s=8,
+    ax.scatter([x.preload_variation for x in feas], [x.torque_max_Nmm for x in feas], s=8,
                c="tab:blue", label="feasible")
-    p = res["pareto"]
-    ax.scatter([x["preload_variation"] for x in p], [x["torque_max_Nmm"] for x in p], s=18,
+    p = [x.metrics for x in res.pareto]
+    ax.scatter([x.preload_variation for x in p], [x.torque_max_Nmm for x in p], s=18,
                c="tab:red", label="Pareto set")
     ax.set_xlabel("preload range over the temperature range / assembled preload")
     ax.set_ylabel("largest friction torque (N mm)")

@@ -37,7 +37,7 @@ def match_trend(asm, stacks: list[Stack], T_target_C, change_target_N,
     idx = [int(np.flatnonzero(T == t)[0]) for t in T_target_C]
     out = []
     for s, r in zip(stacks, res):
-        P = r["preload_N"][0]
+        P = r.preload_N[0]
         change = tuple(float(P[i] - P[i_ref]) for i in idx)
         miss = float(np.max(np.abs(np.array(change) - np.asarray(change_target_N, float))))
         out.append(TrendMatch(s, change, miss))

@@ -268,6 +268,11 @@ def pedigree_lines(asm, assembly_path: Path | None) -> list[str]:
                ("inner ring bore", f.inner_ring_bore_class or _limits(f.inner_ring_bore_deviation_um)),
                ("housing bore", f.outer_housing_class or _limits(f.outer_housing_deviation_um)),
                ("outer ring OD", f.outer_ring_od_class or _limits(f.outer_ring_od_deviation_um))]
+    for n, _ in asm.layers():
+        classes += [(f"{n} OD", getattr(f, f"{n}_shaft_class")
+                     or _limits(getattr(f, f"{n}_shaft_deviation_um"))),
+                    (f"bore the {n} sits in", getattr(f, f"{n}_bore_class")
+                     or _limits(getattr(f, f"{n}_bore_deviation_um")))]
     tol = ("Tolerance classes (ISO 286 seats, ISO 492 rings; analytic/tolerances.py): "
            + "; ".join(f"{k} {v or 'none given'}" for k, v in classes)
            + f"; deviations {f.distribution} within their limits.")
@@ -349,10 +354,15 @@ def tolerance_lines(asm, res: dict, worst=None) -> list[str]:
     if worst is None:
         return ["Uncertainty from the fit tolerances: no tolerance classes or limit deviations "
                 "in `[fits]`; the fits are as given.", ""]
+    layers = [n for n, _ in asm.layers()]
+    qs = TOLERANCE_QUANTITIES + tuple(f"fit_pressure_{n}_MPa" for n in layers)
     rows = [[q, f"{np.min(res[q]):.4g} .. {np.max(res[q]):.4g}",
              f"{np.min(getattr(worst, q)):.4g}", f"{np.max(getattr(worst, q)):.4g}"]
-            for q in TOLERANCE_QUANTITIES]
-    return ["Uncertainty from the fit tolerances: the four corners of the two interference bands "
+            for q in qs]
+    bands = ("the four corners of the two interference bands" if not layers else
+             f"the {2 ** (2 + len(layers))} corners of the {2 + len(layers)} interference bands "
+             f"(inner, outer, {', '.join(layers)})")
+    return [f"Uncertainty from the fit tolerances: {bands} "
             "(every deviation at a limit) at every operating point, beside the mid-band result "
             "above; the Monte Carlo and the probabilities: `bearingfem tolerance`.", "",
             md_table(["quantity", "mid-band (this report)", "worst case min", "worst case max"],

@@ -48,7 +48,7 @@ def failures(asm, r: tol.SampleResults) -> dict[str, np.ndarray]:
     checks against."""
     limit = next(c.allowable for c in assembly_checks(asm) if c.name == "max_contact_pressure_MPa")
     closed = tol.designed_closed(asm)
-    pressure_MPa = {"inner": r.fit_pressure_inner_MPa, "outer": r.fit_pressure_outer_MPa}
+    pressure_MPa = {fit: r.fit_pressure_MPa(fit) for fit in tol.fits_of(asm)}
     ev = {f"fit_open_{fit}": (p <= 0.0) if closed[fit] else (p > 0.0)
           for fit, p in pressure_MPa.items()}
     return {**ev, "preload_lost": r.preload_N <= 0.0,
@@ -56,13 +56,15 @@ def failures(asm, r: tol.SampleResults) -> dict[str, np.ndarray]:
 
 
 def worst_case(pl, cond: dict[str, np.ndarray]) -> tol.SampleResults:
-    """The four corners of the two interference bands (`tol.worst_case_bands`) at every
-    condition through the pipeline: (4, C) arrays."""
+    """The corners of the interference bands (`tol.worst_case_bands`: four of the inner and
+    outer bands, times two per sleeve / cartridge band) at every condition through the pipeline:
+    (corners, C) arrays."""
+    import itertools
+
     bands = tol.worst_case_bands(pl.asm)
-    corners = [(bi, bo) for bi in (bands[0].lower_um, bands[0].upper_um)
-               for bo in (bands[1].lower_um, bands[1].upper_um)]
-    return tsm.evaluate(pl, cond, np.array([c[0] - bands[0].nominal_um for c in corners]),
-                        np.array([c[1] - bands[1].nominal_um for c in corners]))
+    off = np.array([[c - b.nominal_um for c, b in zip(corner, bands)] for corner in
+                    itertools.product(*((b.lower_um, b.upper_um) for b in bands))])
+    return tsm.evaluate(pl, cond, off[:, 0], off[:, 1], off[:, 2:] if len(bands) > 2 else None)
 
 
 def _linear(asm, pl, cond, limit_p):
@@ -78,15 +80,15 @@ def _linear(asm, pl, cond, limit_p):
         dev[s][1 + 2 * k] += h[s]
         dev[s][2 + 2 * k] -= h[s]
     di, do = tol.interference_offsets_um(dev, 2 * n + 1)
-    r = tsm.evaluate(pl, cond, di, do)
+    r = tsm.evaluate(pl, cond, di, do, tol.layer_offsets_um(asm, dev, 2 * n + 1))
 
     def gradient(v: np.ndarray) -> np.ndarray:                      # (n_surfaces, C)
         return np.array([(v[1 + 2 * k] - v[2 + 2 * k]) / (2 * h[s]) for k, s in enumerate(names)])
     sigma = np.array([sig[s] for s in names])
     C = len(next(iter(cond.values())))
     closed = tol.designed_closed(asm)       # out of the designed state: open, or closed
-    events = {"fit_open_inner": (r.interference_inner_um, 0.0, not closed["inner"]),
-              "fit_open_outer": (r.interference_outer_um, 0.0, not closed["outer"]),
+    events = {**{f"fit_open_{fit}": (r.interference_um(fit), 0.0, not closed[fit])
+                 for fit in tol.fits_of(asm)},
               "preload_lost": (r.preload_N, 0.0, False),
               "contact_pressure_over_limit": (r.max_contact_pressure_MPa, limit_p, True)}
     out = {}
@@ -119,11 +121,12 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, samples: int,
     progress(f"tolerance: {samples} samples x {C} conditions through the exact model ...")
     dev = tol.sample_deviations_um(asm, samples, seed)
     di, do = tol.interference_offsets_um(dev, samples)
-    # one cluster (or none) for the Monte Carlo and the Sobol' samples; opened after the
-    # pipeline's set-up above, which a local cluster's forked workers inherit
+    # one cluster (or none) for the Monte Carlo and the Sobol' samples (its workers read the
+    # pipeline's set-up above from the FE cache)
     with Blocks(workers, scheduler) as where:
         mc = tsm.run_samples(asm, cond, di, do, where=where, progress=bar or (
-            lambda done, total: progress(f"  block {done} of {total}")))
+            lambda done, total: progress(f"  block {done} of {total}")),
+            d_layers_um=tol.layer_offsets_um(asm, dev, samples))
         # Sobol' indices of the preload per surface (studies/model/sobol.py): their own design
         sob = sobol.preload_indices(asm, cond, SOBOL_BASE_SAMPLES, seed, where=where)
     fail = failures(asm, mc)
@@ -188,8 +191,9 @@ def _report(asm, out, cond, res, mc, fail, lin):
     S = res["samples"]
     pc = res["percentiles_per_condition"]
     plots = {}
-    for q, label in (("preload_N", "preload (N)"), ("fit_pressure_inner_MPa", "inner fit pressure (MPa)"),
-                     ("fit_pressure_outer_MPa", "outer fit pressure (MPa)"),
+    for q, label in (("preload_N", "preload (N)"),
+                     *((f"fit_pressure_{fit}_MPa", f"{fit} fit pressure (MPa)")
+                       for fit in tol.fits_of(asm)),
                      ("max_contact_pressure_MPa", "max contact pressure (MPa)"),
                      ("torque_Nmm", "friction torque (N mm)")):
         plots[q] = line_plot(out / f"band_{q}.png", x, {
@@ -224,7 +228,7 @@ def _report(asm, out, cond, res, mc, fail, lin):
                        for f, b in res["interference_bands_um"].items()]), "",
              "## Failure probabilities", "",
              "A fit fails when it leaves its designed state at the reference temperature "
-             f"(inner: {res['fit_design']['inner']}, outer: {res['fit_design']['outer']}; the mean "
+             f"({', '.join(f'{k}: {v}' for k, v in res['fit_design'].items())}; the mean "
              "assembly): a fit designed with interference by opening, one designed with clearance "
              "by closing (`fit_open_<fit>` counts either).", "",
              "Anywhere over the conditions (a sample fails if it fails at one of them), with the "

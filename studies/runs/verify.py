@@ -7,6 +7,10 @@ Cases (`VerifyCase`, written per shared/spec/cli.md by `VerifyCase.to_json`; `re
   Lamé solution exact in 3-D (sigma_r + sigma_theta is constant, so the axial strain is uniform);
   rollers on both ends make the plane-strain solution exact. So the only difference is
   discretisation.
+- lame_multilayer: an assembly's own fits (`verify --assembly`, `assembly_fit_cases`): its
+  shaft and inner ring, and its outer ring / sleeve / cartridge / housing as concentric cylinders
+  of one length with its materials and mean fits, free ends, frictionless: FE vs the multi-layer
+  plane-stress Lamé solution (exact there), one case per fit and temperature.
 - lame_displacement: the ring's outer-surface radial displacement vs Lamé.
 - lame_bounds: a short ring on a long shaft, FE against both plane-stress and plane-strain values.
 - free_thermal: one material, uniform temperature: u_r = theta r, zero stress.
@@ -61,7 +65,7 @@ MMS_ORDER_TOL = 0.2
 
 @dataclass(frozen=True)
 class VerifyCase:
-    """One closed-form comparison: name, kind ("lame_fit", "lame_displacement", "lame_bounds",
+    """One closed-form comparison: name, kind ("lame_fit", "lame_multilayer", "lame_displacement", "lame_bounds",
     "free_thermal", "rotating_fit", "rotating_displacement", "rotating_free", "fit_open_speed"),
     the inputs that recompute the closed form (names and units of shared/spec/cli.md), the FE and
     closed-form values by name, the relative error, and what a kind adds (`extra`: e.g.
@@ -527,6 +531,85 @@ def lame_cases(mesh_factor: float = 1.0) -> list[VerifyCase]:
     return cases + rotating_cases(mesh_factor=f)
 
 
+def concentric_fit_case(name: str, radii_mm, parts: tuple[str, ...], materials, fit_keys,
+                        interference_um, T_C: float, T_ref_C: float, length_mm: float,
+                        mesh_factor: float = 1.0) -> list[VerifyCase]:
+    """N concentric cylinders of one length (parts inside out, `materials` their
+    `analytic.materials.Material`s, radii N+1), frictionless fits of the given diametral
+    interferences (N-1, at T_ref) on the N-1 interfaces, free ends, every part at T_C: FE mean
+    fit pressures vs the multi-layer plane-stress Lamé solution (`lame.multilayer_pressures_MPa`,
+    exact here: sigma_r + sigma_theta is constant per layer and the layers slide axially), one
+    case per fit (`fit_keys`: the fit each interface is, e.g. "inner", "outer", "sleeve").
+    The Lamé interference of an interface: its fit plus the free thermal mismatch of its two
+    layers, (theta_in - theta_out) x the diameter."""
+    from meshes.section import Fit, Rect, Section, Split
+
+    r, L = [float(x) for x in radii_mm], float(length_mm)
+    rects = tuple(Rect(p, r[k], r[k + 1], 0.0, L, m.name) for k, (p, m) in enumerate(zip(parts, materials)))
+    splits = tuple(Split(f"s{k}", "r", r[k + 1], 0.0, L, parts[:k + 1], parts[k + 1:])
+                   for k in range(len(parts) - 1))
+    fits = tuple(Fit(f"fit_{key}", parts[k], parts[k + 1], r[k + 1], 0.0, L, key)
+                 for k, key in enumerate(fit_keys))
+    h = (r[-1] - r[0]) / 16
+    sec = Section(rects, splits, fits, (), tuple((f.r_mm, 0.0, f.r_mm, L) for f in fits),
+                  {parts[0]: (r[0], L / 2)}, h, h / 2).scaled(mesh_factor)
+    model = build_model(sec, materials=dict(zip(parts, materials)))
+    solver = FitSolver(model)
+    theta = np.array([m.thermal_strain(T_C, T_ref_C) for m in materials])
+    d_um = np.asarray(interference_um, float)
+    sol = solver.solve(model.unit_loads @ theta, d_um / 2000.0)
+    p_fe = fit_mean_pressures(model, solver.fit_of_pair, sol.force_N)[0]
+    eff = d_um + (theta[:-1] - theta[1:]) * 2.0 * np.asarray(r[1:-1]) * 1e3
+    E, nu = [m.E_MPa for m in materials], [m.nu for m in materials]
+    p_cf = lame.multilayer_pressures_MPa(r, E, nu, eff[None, :])[0]
+    # the scale of a pressure error: the largest pressure of the case, or of the same stack with
+    # every interface closed by its |interference| (an open case has zero pressures)
+    scale = max(float(np.max(p_cf)),
+                float(np.max(lame.multilayer_pressures_MPa(r, E, nu, np.abs(eff)[None, :]))),
+                REL_FLOOR_MPa)
+    inputs = dict(radii_mm=r, parts=list(parts), materials=[m.name for m in materials],
+                  E_MPa=E, nu=nu, cte_per_K=[m.alpha_per_K for m in materials],
+                  interference_nominal_um=[float(v) for v in d_um],
+                  interference_um=[float(v) for v in eff], T_C=T_C, T_ref_C=T_ref_C,
+                  length_mm=L, assumption="plane_stress", dofs=model.ndofs)
+    return [VerifyCase(f"{name}_{key}_fit", "lame_multilayer", dict(inputs, fit=key),
+                       {"fit_pressure_MPa": float(p_fe[k])}, {"fit_pressure_MPa": float(p_cf[k])},
+                       abs(float(p_fe[k]) - float(p_cf[k])) / scale)
+            for k, key in enumerate(fit_keys)]
+
+
+def assembly_fit_cases(asm, mesh_factor: float = 1.0) -> list[VerifyCase]:
+    """The Lamé cross-check on an assembly's own fits and materials (`verify --assembly`): at its
+    coldest, reference and hottest `[operating]` temperature with its mean fits
+    (`Assembly.mean_fit_um`, every part at the one temperature), (1) the inner fit as shaft
+    (bore to seat) and inner ring (rectangular section to its outer diameter), (2) the outer side
+    as the concentric outer ring / sleeve / cartridge / housing (to its outer diameter): every
+    fit of the assembly, FE against Lamé (`concentric_fit_case`). Each stack is as long as a
+    bearing is wide, free ended, its fits frictionless: the idealisation in which Lamé is exact,
+    so the comparison checks the FE with the assembly's materials, sizes and fits, not the
+    stack's shoulders and clamps (those the report's Lamé neighbours show)."""
+    a, b = asm, asm.bearing
+    op = a.operating
+    mat = a.material
+    inner = ((a.shaft.bore_diameter_mm / 2, a.shaft.seat_diameter_mm / 2,
+              b.inner_ring_outer_diameter_mm / 2), ("shaft", "inner_ring_A"),
+             (mat("shaft"), mat("inner_ring")), ("inner",), (a.mean_fit_um("inner"),))
+    layers = [n for n, _ in a.layers()]
+    radii = [b.outer_ring_inner_diameter_mm / 2, a.outer_seat_diameter_mm / 2]
+    for _, layer in a.layers():
+        radii.append(radii[-1] + layer.radial_thickness_mm)
+    radii.append(a.housing.outer_diameter_mm / 2)
+    outer = (tuple(radii), ("outer_ring_A", *layers, "housing"),
+             (mat("outer_ring"), *(mat(n) for n in layers), mat("housing")),
+             ("outer", *layers), (a.mean_fit_um("outer"), *(a.mean_fit_um(n) for n in layers)))
+    cases = []
+    for T in sorted({op.T_min_C, a.T_ref_C, op.T_max_C}):
+        for side, (r, parts, mats, keys, d) in (("inner", inner), ("outer", outer)):
+            cases += concentric_fit_case(f"assembly_{a.name}_at_{T:g}C", r, parts, mats, keys, d,
+                                         T, a.T_ref_C, b.width_mm, mesh_factor)
+    return cases
+
+
 def write_verification(out_dir: Path, cases: list[VerifyCase], plot_path: Path | None,
                        mms: list[MMSCase] = (), requirements=(), convergence: list[dict] = ()) -> None:
     """verification.json and verification.md (the tables a reviewer reads): the closed-form
@@ -682,6 +765,8 @@ def run(out_dir: Path, progress=print, mesh_factor: float = 1.0, assembly=None) 
     out_dir.mkdir(parents=True, exist_ok=True)
     progress("Lamé cases ...")
     cases = lame_cases()
+    progress(f"Lamé cases of the {asm.name} stack's own fits and materials ...")
+    cases += assembly_fit_cases(asm)
     progress(f"mesh convergence: Lamé reference and the {asm.name} stack ...")
     conv = [lame_convergence_case(progress=progress),
             mesh_convergence_case(asm, progress=progress, used=2,

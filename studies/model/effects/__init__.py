@@ -59,7 +59,7 @@ def assembly_bounds(asm) -> dict[str, dict[str, tuple[float, float]]]:
     if has_tolerances(asm):
         mean = dict(zip(("inner", "outer"), asm.mean_fits_um()))
         out["interference_error"] = {f"{b.fit}_um": (b.lower_um - mean[b.fit], b.upper_um - mean[b.fit])
-                                     for b in worst_case_bands(asm)}
+                                     for b in worst_case_bands(asm) if b.fit in mean}
     return out
 
 

@@ -47,13 +47,16 @@ class FEState:
     raceway_u_mm (n, 8): u_r, u_z at the raceway points of RINGS (mm). face_force_N (n, n_faces):
     the axial force (N, + compression) across each clamped face held as a contact
     (`Section.faces`, clamp = "force"), None without one; the faces' mean pressures are the last
-    columns of fit_pressure_MPa."""
+    columns of fit_pressure_MPa. layer_interference_um (n, n_layers): free diametral overlap of
+    each sleeve / cartridge fit (`Assembly.layers` order) at the row's temperatures (um); None
+    without layers or for a conduction-field state."""
     fit_pressure_MPa: np.ndarray
     interference_um: np.ndarray
     dr_mm: np.ndarray
     dz_mm: np.ndarray
     raceway_u_mm: np.ndarray
     face_force_N: np.ndarray | None = None
+    layer_interference_um: np.ndarray | None = None
 
     @property
     def n_rows(self) -> int:
@@ -72,7 +75,9 @@ class FEState:
         rows = np.asarray(rows, int)
         return FEState(self.fit_pressure_MPa[rows], self.interference_um[rows],
                        self.dr_mm[:, rows], self.dz_mm[:, rows], self.raceway_u_mm[rows],
-                       None if self.face_force_N is None else self.face_force_N[rows])
+                       None if self.face_force_N is None else self.face_force_N[rows],
+                       None if self.layer_interference_um is None
+                       else self.layer_interference_um[rows])
 
 
 @dataclass(frozen=True)
@@ -145,12 +150,14 @@ class FEOptions:
 class FELoads:
     """What the FE of n rows is solved for: theta (n, n_parts) thermal strain per FE part,
     delta_mm (n, n_fits) radial interference per FE fit, omega2 (n,) rotor speed squared
-    (rad^2/s^2), inner_um and outer_um (n,) the diametral fits at T_ref (um)."""
+    (rad^2/s^2), inner_um and outer_um (n,) the diametral fits at T_ref (um), layers_um
+    (n, n_layers) those of the sleeve / cartridge (None without them)."""
     theta: np.ndarray
     delta_mm: np.ndarray
     omega2: np.ndarray
     inner_um: np.ndarray
     outer_um: np.ndarray
+    layers_um: np.ndarray | None = None
 
     def key(self, direct: bool) -> bytes:
         """The exact inputs of the solve (cache key)."""
@@ -281,13 +288,29 @@ class FEStage:
         inputs' offsets (effects, tolerance samples)."""
         return self._fits_of(inputs)
 
-    def deltas_mm(self, inner_um: np.ndarray, outer_um: np.ndarray) -> np.ndarray:
-        """(n, n_fits) radial interference (mm) per FE fit (a sleeve's or cartridge's fit: its
-        `[fits]` value on every row)."""
+    def layer_fits_um(self, inputs: PhysicsInputs) -> np.ndarray | None:
+        """(n, n_layers) diametral fit (um) of each sleeve / cartridge at T_ref: the mean
+        assembly's (`Assembly.mean_fit_um`) plus the inputs' offsets (tolerance samples); None
+        without layers."""
+        layers = self.asm.layers()
+        if not layers:
+            return None
+        cols = []
+        for name, _ in layers:
+            off = getattr(inputs, f"interference_{name}_um")
+            cols.append(np.full(inputs.n_rows, self.asm.mean_fit_um(name))
+                        + (0.0 if off is None else np.asarray(off, float)))
+        return np.column_stack(cols)
+
+    def deltas_mm(self, inner_um: np.ndarray, outer_um: np.ndarray,
+                  layers_um: np.ndarray | None = None) -> np.ndarray:
+        """(n, n_fits) radial interference (mm) per FE fit; a sleeve's or cartridge's fit from
+        `layers_um` (n, n_layers), by default the mean assembly's on every row."""
         n = np.broadcast(inner_um, outer_um).shape
-        um = {"inner": inner_um, "outer": outer_um,
-              "sleeve": np.full(n, self.asm.fits.sleeve_interference_um),
-              "cartridge": np.full(n, self.asm.fits.cartridge_interference_um)}
+        um = {"inner": inner_um, "outer": outer_um}
+        for k, (name, _) in enumerate(self.asm.layers()):
+            um[name] = (np.full(n, self.asm.mean_fit_um(name)) if layers_um is None
+                        else layers_um[:, k])
         return np.column_stack([um[f.key] / 2000.0 for f in self.section.fits]
                                + [np.full(n, self.clamp_delta_mm[f.key]) for f in self.section.faces])
 
@@ -349,13 +372,18 @@ class FEStage:
         margin = (fe.face_force_N - load[:, None]).min(axis=1)
         return ClampState(names, fe.face_force_N, margin, margin <= 0)
 
+    def row_deltas_mm(self, inputs: PhysicsInputs) -> np.ndarray:
+        """(n, n_fits) radial interference (mm) per FE fit of the rows of `inputs`."""
+        return self.deltas_mm(*self.fits_um(inputs), self.layer_fits_um(inputs))
+
     def loads(self, inputs: PhysicsInputs) -> FELoads:
         """What the FE of the rows is solved for (`FELoads`)."""
         theta = self.thetas(inputs)
         inner_um, outer_um = self.fits_um(inputs)
-        delta = self.deltas_mm(inner_um, outer_um)
+        layers_um = self.layer_fits_um(inputs)
+        delta = self.deltas_mm(inner_um, outer_um, layers_um)
         w2 = np.broadcast_to(self.omega2(inputs), (theta.shape[0],)).copy()
-        return FELoads(theta, delta, w2, inner_um, outer_um)
+        return FELoads(theta, delta, w2, inner_um, outer_um, layers_um)
 
     # ------------------------------------------------------------------ solves
     def solve(self, loads: FELoads, direct: bool = False) -> FEState:
@@ -384,7 +412,22 @@ class FEStage:
         interf = np.column_stack([
             loads.inner_um + (theta[:, idx["shaft"]] - theta[:, idx["inner_ring_A"]]) * d_seat * 1e3,
             loads.outer_um + (theta[:, idx["outer_ring_A"]] - theta[:, idx[seat]]) * d_bore * 1e3])
-        return FEState(p, interf, dr, dz, probe[:, :8], faces)
+        return FEState(p, interf, dr, dz, probe[:, :8], faces,
+                       self._layer_interference_um(loads, theta))
+
+    def _layer_interference_um(self, loads: FELoads, theta: np.ndarray) -> np.ndarray | None:
+        """(n, n_layers) free diametral overlap of each layer's fit at the rows' temperatures
+        (um): its fit at T_ref plus the thermal mismatch with the part outside it (the next
+        layer or the housing), (theta_layer - theta_outside) x the fit diameter."""
+        a = self.asm
+        names = [n for n, _ in a.layers()]
+        if not names:
+            return None
+        idx = {p: i for i, p in enumerate(self.part_names)}
+        outside = names[1:] + ["housing"]
+        return np.column_stack([
+            loads.layers_um[:, k] + (theta[:, idx[name]] - theta[:, idx[outside[k]]])
+            * a.fit_diameter_mm(name) * 1e3 for k, name in enumerate(names)])
 
     def fit_pressures(self, force_N: np.ndarray) -> np.ndarray:
         """(n, n_fits) mean pressure (MPa) per FE fit from the pair forces (n, n_pairs) in N."""
@@ -399,7 +442,7 @@ class FEStage:
 
         sup = self.sup if self.sup is not None else Superposition(self.solver, self.probe)
         theta = self.thetas(inputs)
-        delta = self.deltas_mm(*self.fits_um(inputs))
+        delta = self.row_deltas_mm(inputs)
         w2_max = SPEED_SEARCH_MAX_RPM ** 2 * RPM2_TO_RAD2_S2
         fits = [(k, f.name) for k, f in enumerate(self.section.fits) if f.key == "inner"]
         rpm = [np.sqrt(fit_open_omega2(sup, theta, delta, k, w2_max) / RPM2_TO_RAD2_S2)
@@ -410,7 +453,7 @@ class FEStage:
         """Displacement field and contact forces of one row (superposed, or a direct solve when
         the stage was built without unit solutions)."""
         theta = self.thetas(inputs)[row]
-        delta = self.deltas_mm(*self.fits_um(inputs))[row]
+        delta = self.row_deltas_mm(inputs)[row]
         w2 = float(np.broadcast_to(self.omega2(inputs), (inputs.n_rows,))[row])
         if self.sup is None:
             sol = self.solver.solve(self.model.unit_loads @ theta + w2 * self.model.spin_load, delta)
@@ -424,8 +467,7 @@ class FEStage:
         thermal strain. Returns (FEState, displacement vector (ndofs,), mm); pass the state to
         `Pipeline.run` with `FEOptions(states=...)`."""
         m = self.model
-        inner_um, outer_um = self.fits_um(inputs)
-        delta = self.deltas_mm(inner_um, outer_um)[0]
+        delta = self.row_deltas_mm(inputs)[0]
         w2 = float(np.atleast_1d(self.omega2(inputs))[0])
         sol = self.solver.solve(m.thermal_load_vector(theta_q) + w2 * m.spin_load, delta)
         probe = self.full_fe().probe @ sol.u

@@ -76,20 +76,19 @@ def lame_neighbours(stage: FEStage, fe: FEState, inputs: PhysicsInputs) -> LameN
 def _layers_MPa(stage: FEStage, fe: FEState, inputs: PhysicsInputs, assumption: str) -> np.ndarray:
     """(n, 1 + n_layers) interface pressures (MPa) of the concentric outer ring (effective
     section) / sleeve / cartridge / housing (`lame.multilayer_pressures_MPa`), at the rows'
-    free interferences: the outer fit's `interference_um[:, 1]`, each layer's `[fits]` value
-    plus its thermal mismatch with the part outside it (thermal strain x diameter)."""
+    free interferences: the outer fit's `interference_um[:, 1]` and each layer's
+    `layer_interference_um` (its fit plus its thermal mismatch with the part outside it, from
+    the FE stage; NaN for a state without them)."""
     a, b = stage.asm, stage.asm.bearing
     parts = ["outer_ring_A"] + [n for n, _ in a.layers()] + ["housing"]
     radii = [b.outer_ring_inner_diameter_mm / 2, b.outside_diameter_mm / 2]
     for _, layer in a.layers():
         radii.append(radii[-1] + layer.radial_thickness_mm)
     radii.append(a.housing.outer_diameter_mm / 2)
-    theta = stage.thetas(inputs)
-    idx = {p: i for i, p in enumerate(stage.part_names)}
-    d_um = [fe.interference_um[:, 1]]
-    for k, (name, _) in enumerate(a.layers()):
-        d_um.append(getattr(a.fits, f"{name}_interference_um")
-                    + (theta[:, idx[name]] - theta[:, idx[parts[k + 2]]]) * 2 * radii[k + 2] * 1e3)
+    n = fe.interference_um.shape[0]
+    layers = (np.full((n, len(a.layers())), np.nan) if fe.layer_interference_um is None
+              else fe.layer_interference_um)
+    d_um = np.column_stack([fe.interference_um[:, 1], layers])
     mats = [stage.materials[p] for p in parts]
     return lame.multilayer_pressures_MPa(radii, [m.E_MPa for m in mats], [m.nu for m in mats],
-                                         np.column_stack(d_um), assumption)
+                                         d_um, assumption)
