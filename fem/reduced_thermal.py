@@ -105,9 +105,7 @@ def krylov_basis(tc: TransientConduction, training: Sequence[ThermalParameters],
     V = np.column_stack([u0, X @ (U[:, keep] / np.sqrt(w[keep]))])
     # one more M-orthogonalisation against u0 (round-off of the eigenvectors)
     V[:, 1:] -= np.outer(u0, u0 @ (M @ V[:, 1:]))
-    w = np.concatenate([[np.inf], w])
-    keep = np.ones(w.size, bool)
-    return ReducedBasis(V, w[keep])
+    return ReducedBasis(V, np.concatenate([[np.inf], w[keep]]))
 
 
 class ReducedConduction:

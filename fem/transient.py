@@ -636,7 +636,7 @@ class Stepper:
 
 
 # ------------------------------------------------------------------------ heat from the bearing
-def bearing_heat_inputs_W(heat, row: int = 0, ring_share: float = 0.5, share_A: float = 0.5,
+def bearing_heat_inputs_W(heat, row: int = 0, ring_share=0.5, share_A: float = 0.5,
                           bearings: tuple[str, ...] = ("A", "B"), ball_nodes: bool = True
                           ) -> dict[str, float]:
     """Heat inputs (W) of one step from the torque model's heat split of the pair
@@ -646,12 +646,15 @@ def bearing_heat_inputs_W(heat, row: int = 0, ring_share: float = 0.5, share_A: 
     Each contact's heat is split between the ring (ring_share, spread uniformly over its raceway
     face group) and the ball (the rest, into the bearing's ball node), equally by default
     (Burton & Staph 1967, as seed 003 and `analytic.thermal_network.bearing_heat_W` take it);
+    ring_share may be a pair (inner contacts, outer contacts), e.g. the partitions of
+    `analytic.heat.rolling_contact_conductance`;
     without ball nodes the balls' share goes to the same ring's raceway (the ball passes it on
     within a revolution). The pair's heat is split between the bearings by share_A (default
     equal: a back-to-back or face-to-face pair under pure preload loads both alike; the torque
     model sums the two). Updated every step from the current contact state by the caller
     (`analytic.heat.pair_heat_W`). Keys: raceway_<inner|outer>_ring_<j>, ball_<j>."""
-    if not 0.0 <= ring_share <= 1.0 or not 0.0 <= share_A <= 1.0:
+    s_in, s_out = (ring_share, ring_share) if np.ndim(ring_share) == 0 else ring_share
+    if not (0.0 <= s_in <= 1.0 and 0.0 <= s_out <= 1.0 and 0.0 <= share_A <= 1.0):
         raise ValueError(f"ring_share and share_A must lie in [0, 1], got {ring_share}, {share_A}")
     q_in = float(np.atleast_1d(heat.inner_W)[row])
     q_out = float(np.atleast_1d(heat.outer_W)[row])
@@ -659,10 +662,10 @@ def bearing_heat_inputs_W(heat, row: int = 0, ring_share: float = 0.5, share_A: 
     out: dict[str, float] = {}
     for j in bearings:
         s = share[j] if len(bearings) == 2 else 1.0
-        ball = (1.0 - ring_share) * (q_in + q_out) * s
-        r = ring_share if ball_nodes else 1.0
-        out[f"raceway_inner_ring_{j}"] = r * q_in * s
-        out[f"raceway_outer_ring_{j}"] = r * q_out * s
+        ball = ((1.0 - s_in) * q_in + (1.0 - s_out) * q_out) * s
+        r_in, r_out = (s_in, s_out) if ball_nodes else (1.0, 1.0)
+        out[f"raceway_inner_ring_{j}"] = r_in * q_in * s
+        out[f"raceway_outer_ring_{j}"] = r_out * q_out * s
         if ball_nodes:
             out[f"ball_{j}"] = ball
     return out

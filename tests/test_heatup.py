@@ -1,7 +1,8 @@
 """`bearingfem study heatup` (studies/runs/heatup.py): seed 003's ball-screw support heating up
-through simulate's transient route, against the seed's qualitative findings (seed 003 section 5,
-fig. 9: the balls run hottest, the heat and temperatures level off towards a thermal
-equilibrium, the rings' temperature difference falls below 4 K)."""
+through simulate's transient route, against the seed's qualitative findings (seed 003 section 3,
+fig. 9, conclusions 1 and 2: the balls run hottest, the inner ring warmer than the outer, the heat
+falls and levels off towards a thermal equilibrium; the ring-to-ball difference below 4 K is
+stated in the report, not asserted: it is 5.0 K at 1500 rpm here)."""
 import pytest
 
 from studies.runs import STUDIES, heatup
@@ -24,17 +25,21 @@ def test_heatup_is_a_registered_study_and_its_short_coarse_run_writes_its_report
 
 @pytest.mark.slow
 def test_heatup_reproduces_the_seeds_findings_at_equilibrium(tmp_path):
-    """Three hours at 1000 and 1500 rpm on the study's mesh: the balls are the hottest part at
-    both speeds, the run has reached equilibrium (every part changes by less than 0.05 K/h over
-    the last 10 minutes; the heat by less than 0.1 % over the last 30), and at 1000 rpm the
-    inner ring runs less than 4 K above the outer. (At 1500 rpm the rings differ by 5.3 K and
-    ring-to-ball differences are 6.5 K / 10.3 K at 1000 / 1500 rpm, above the seed's 4 K: stated
-    in the report, not asserted; the ball-raceway conductance here is Holm's constriction over
-    the Hertz ellipses, the seed's network its own.)"""
+    """Three hours at 1000 and 1500 rpm on the study's mesh, against seed 003's statements
+    (section 3, fig. 9; conclusions 1 and 2): the balls are the hottest part and the inner ring
+    runs warmer than the outer at both speeds; the heat falls as the oil warms and thins and
+    levels off (the run has reached equilibrium: every part changes by less than 0.05 K/h over
+    the last 10 minutes, the heat by less than 0.1 % over the last 30). Not asserted, stated in
+    the report: the seed's ring-to-ball difference below 4 K at 1500 rpm. Here it is 5.0 K at
+    1500 rpm (3.3 K at 1000 rpm): the ball-raceway conductance is the moving-source constriction
+    with the EHL film in series at the oil's ambient-pressure conductivity, an upper bound of the
+    film's resistance (analytic/heat.py); the seed's own contact resistance formula is lost in
+    our copy."""
     found = heatup.run(tmp_path, progress=lambda s: None)
     for n, f in found.items():
         assert f.ball_hottest, n
+        assert f.inner_outer_dT_K > 0.0, n
+        assert f.heat_ratio_end_to_5min < 1.0, (n, f.heat_ratio_end_to_5min)
         assert f.end_rate_K_per_h < 0.05, (n, f.end_rate_K_per_h)
         assert f.heat_change_last_30min < 1e-3, (n, f.heat_change_last_30min)
-    assert 0.0 < found[1000.0].inner_outer_dT_K < 4.0
     assert list(tmp_path.glob("field_1500rpm_*_temperature_C.png"))

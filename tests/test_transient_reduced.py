@@ -114,3 +114,49 @@ def test_bearing_heat_is_deposited_without_loss():
     q2 = bearing_heat_inputs_W(h, ball_nodes=False)
     assert sum(q2.values()) == pytest.approx(6.0, rel=1e-14) and "ball_A" not in q2
     assert q2["raceway_outer_ring_B"] == pytest.approx(2.5 * 0.5, rel=1e-14)
+
+
+def test_basis_energy_has_one_value_per_mode_and_is_the_kept_pod_spectrum(setup):
+    """`ReducedBasis.energy` holds one POD eigenvalue per column of V (inf for the uniform field
+    first), non-increasing, every kept one above tol x the largest: with a tolerance that drops
+    modes (1e-2 here) the lengths must still agree, and the kept modes are those the eigenvalues
+    of the moments' Gram matrix in the M inner product select (a second, dense computation)."""
+    pl, tc, rc, scale = setup
+    tol = 1e-2
+    b = krylov_basis(tc, [scale(1.0, 1.0)], ["ball_A", "raceway_outer_ring_B"],
+                     shifts_per_s=(0.0, 1e-2), tol=tol)
+    assert b.energy.shape == (b.V.shape[1],)
+    assert np.isinf(b.energy[0]) and np.all(np.isfinite(b.energy[1:]))
+    e = b.energy[1:]
+    assert np.all(np.diff(e) <= 0) and e[-1] > tol * e[0]
+    # the POD spectrum recomputed: moments without the uniform part, normalised, Gram in M
+    from scipy.sparse.linalg import splu
+    A = tc.operator(scale(1.0, 1.0))
+    B = np.column_stack([tc.load(scale(1.0, 1.0), StepLoads(1.0, 1.0)), tc.a["ball_A"],
+                         tc.a["raceway_outer_ring_B"]])     # the ambient drive, the inputs
+    X = []
+    for s in (0.0, 1e-2):
+        lu = splu((tc.P.T @ (s * tc.M + A) @ tc.P).tocsc())
+        X.append(tc.P @ lu.solve(np.asfortranarray(tc.P.T @ B)))
+    X = np.column_stack(X)
+    u0 = np.ones(tc.n_total) / np.sqrt(np.ones(tc.n_total) @ (tc.M @ np.ones(tc.n_total)))
+    X = X - np.outer(u0, u0 @ (tc.M @ X))
+    X = X / np.sqrt(np.einsum("ij,ij->j", X, tc.M @ X))
+    w = np.sort(np.linalg.eigvalsh(X.T @ (tc.M @ X)))[::-1]
+    kept = w[w > tol * w[0]]
+    assert kept.size < w.size, "the case must drop modes"
+    assert np.allclose(e, kept, rtol=1e-8, atol=1e-12 * w[0])
+
+
+def test_bearing_heat_with_a_partition_per_raceway_is_deposited_without_loss():
+    """Ring shares per raceway (inner 0.4, outer 0.7, as `analytic.heat.
+    rolling_contact_conductance` gives them for unlike materials): the inputs still add up to
+    the pair's heat, each raceway takes its share, the balls the rest."""
+    h = PairHeat(np.array([3.0]), np.array([1.0]), np.array([2.0]), np.array([3.5]), np.array([2.5]))
+    q = bearing_heat_inputs_W(h, ring_share=(0.4, 0.7))
+    assert sum(q.values()) == pytest.approx(6.0, rel=1e-14)
+    assert q["raceway_inner_ring_B"] == pytest.approx(0.4 * 3.5 * 0.5, rel=1e-14)
+    assert q["raceway_outer_ring_A"] == pytest.approx(0.7 * 2.5 * 0.5, rel=1e-14)
+    assert q["ball_A"] == pytest.approx((0.6 * 3.5 + 0.3 * 2.5) * 0.5, rel=1e-14)
+    with pytest.raises(ValueError):
+        bearing_heat_inputs_W(h, ring_share=(0.4, 1.2))

@@ -250,3 +250,22 @@ def test_in_vacuum_the_stack_radiates_to_the_sink_of_the_thermal_section():
                       dt_s=3000.0).columns()
     assert abs(r["T_max_C"][-1] + 20.0) < 1e-6 * 45 and abs(r["T_min_C"][-1] + 20.0) < 1e-6 * 45
     assert 25.0 > r["T_housing_C"][1] > r["T_housing_C"][2] > -20.0
+
+
+def test_part_temperatures_for_the_second_source_are_simulates_columns(pl):
+    """`part_temperatures` (the diagnosis's second source of lagged temperatures) gives the part
+    temperatures `simulate` in transient mode writes (the same route, bit for bit), starts at
+    the first environment temperature and, at rest, stays between the environment's extremes
+    (maximum principle: no source), lagging it: after a step up every part is still below it."""
+    from studies.model.transient_route import part_temperatures, run_transient
+
+    t = np.array([0.0, 60.0, 600.0, 1800.0])
+    amb = np.array([20.0, 40.0, 40.0, 40.0])
+    pt = part_temperatures(pl.asm, t, amb, np.zeros(4), pipeline=pl)
+    cols = run_transient(pl, {"time_s": t, "T_ambient_C": amb, "speed_rpm": np.zeros(4)}).columns()
+    for p in pt.parts:
+        assert np.array_equal(pt.of(p), cols[f"T_{p}_C"]), p
+    assert "ball" in pt.parts and "spacer" in pt.parts
+    assert np.allclose(pt.T_C[0], 20.0, atol=1e-9)
+    assert np.all(pt.T_C >= 20.0 - 1e-9) and np.all(pt.T_C[1:] < 40.0)
+    assert np.all(np.diff(pt.T_C, axis=0) >= -1e-9)      # heating only

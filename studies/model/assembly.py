@@ -252,6 +252,9 @@ class Thermal:
     emissivity: float = number("-", "transient: of every exterior face but the raceways "
                                     "(radiation to the sink)", sign=ZERO_OK, default=0.0,
                                bounds=Range(hi=1.0, error="must lie in 0..1, got {v:g}"))
+    gas: str = choice("air", "vacuum", default="air",
+                      doc='transient: the gas in the gaps of fits and spacer bores: "air" (gas '
+                          'conduction across them) or "vacuum" (none: an open fit conducts nothing)')
     fit_conductance: object = choice_or_number(
         "pressure", unit="W/m2K", default="pressure",
         doc='transient: thermal contact conductance of every fit; "pressure": from the fit '

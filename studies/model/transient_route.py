@@ -21,9 +21,11 @@ coordinates. Every row is then evaluated through the pipeline's one route for gi
 `stages.fe.FE_PART_GROUP`, the ball nodes for the balls).
 
 The initial state is uniform at the first row's environment temperature. The ball-raceway
-conductances (Holm constriction over the Hertz ellipses, `analytic.thermal_network`) are taken at
-the assembled state at the assembly's default speed and held. Sliding and spin traction
-coefficient MU_TRACTION = 0.03 (assumption for EHL traction, as the seed 003 study).
+conductances and the partition of each contact's heat between ball and ring
+(`analytic.heat.rolling_contact_conductance`: moving-source constriction on both sides at the
+rolling speed, the EHL film's conduction in series for an oil, Blok's partition) are refreshed
+with the heat from the contact state (`ball_contacts`). Sliding and spin traction coefficient
+MU_TRACTION = 0.03 (assumption for EHL traction, as the seed 003 study).
 
 `reduction_error_est` (per row): |P_m - P_m/2| / |P_m|, the preload of the reduced model against
 the same run with the leading half of its modes (`fem.reduced_thermal` module docstring; the bench
@@ -37,12 +39,14 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from analytic import lubrication as lub
 from analytic import thermal_network as tn
-from analytic.heat import PairHeat, pair_heat_W
+from analytic.heat import (ContactConductance, pair_heat_W, rolling_contact_conductance,
+                           solid_film_pair_heat_W)
 from fem.reduced_thermal import (ModalStructure, ReducedConduction, ReducedStepper, krylov_basis,
                                  modal_structure)
 from fem.solver import single_thread_blas
-from fem.transient import (StepLoads, ThermalParameters, TransientConduction,
+from fem.transient import (StepLoads, SurfacePair, ThermalParameters, TransientConduction,
                            bearing_heat_inputs_W, fit_conductances_W_m2K)
 from studies.model.config import Assembly, ConfigError
 from studies.model.inputs import PARTS, PhysicsInputs, baseline_inputs
@@ -64,8 +68,9 @@ COUPLE_EVERY = 5
 #: condition columns of transient mode (part temperatures are computed, not given)
 TRANSIENT_COLUMNS = ("time_s", "T_ambient_C", "T_sink_C", "film_scale", "heat_W", "speed_rpm",
                      "preload_assembled_N", "axial_load_N", "radial_load_N", "moment_Nmm")
-#: training of the reduction: film and fit-conductance factors about the nominal set
-TRAINING = ((0.5, 0.3), (2.0, 3.0), (0.5, 3.0), (2.0, 0.3))
+#: training of the reduction: film, fit-conductance and ball-conductance factors about the
+#: nominal set (the ball conductances follow the speed and the contact state)
+TRAINING = ((0.5, 0.3, 3.0), (2.0, 3.0, 0.3), (0.5, 3.0, 0.3), (2.0, 0.3, 3.0))
 #: modes of the estimate's smaller model: this fraction of the modes
 HALF = 0.5
 
@@ -85,6 +90,7 @@ class ThermalModel:
     nominal: ThermalParameters
     group_rows: np.ndarray
     pressure_conductance: bool
+    surfaces: SurfacePair = SurfacePair()
 
     def groups_per_mode(self, rc: ReducedConduction) -> np.ndarray:
         """(len(PARTS), m): the group means per reduced coordinate of rc (NaN rows: a group the
@@ -171,28 +177,30 @@ def thermal_model(pl: Pipeline, progress=None) -> ThermalModel:
     say("transient conduction: the reduced model of the stack ...")
     inp0 = baseline_inputs({}, 1, T_ref, asm.preload.assembled_N, asm.lubrication.speed_rpm)
     pair0 = pl.run(inp0).pair
-    kb = g.ball.conductivity_W_mK
-    kr = m.materials["inner_ring_A"].conductivity_W_mK
-    G = [1.0 / float(np.mean(tn.ball_raceway_resistance_K_W(c.a_mm[0], c.b_mm[0], kb, kr, g.Z)))
-         for c in (pair0.inner, pair0.outer)]
+    G = [c.G_W_K for c in ball_contacts(pl, pair0, asm.lubrication.speed_rpm, T_ref)]
     C_ball = float(tn.heat_capacity_J_K(tn.ball_set_mass_kg(g.Dw_mm, g.Z, g.ball), g.ball))
     tc = TransientConduction(m, ball_capacity_J_K=C_ball)
     films = resolve_films(th.films_W_m2K(), tc.groups)
     pressure = th.fit_conductance == "pressure"
+    vacuum = th.gas == "vacuum"
+    surf = SurfacePair(gas_conductivity_W_mK=0.0) if vacuum else SurfacePair()
     if pressure:
         delta0 = pl.deltas_mm(*pl.fits_um(inp0))
         r0 = pl.sup.evaluate(pl.thetas(inp0), delta0, np.zeros(1))
         h_fit = fit_conductances_W_m2K(m, pl.fe_stage.fit_pressures(r0.force_N)[0],
-                                       _gap_um(pl, r0.gap_mm)[0])
+                                       _gap_um(pl, r0.gap_mm)[0], surf)
     else:
         h_fit = np.full(len(m.section.fits), float(th.fit_conductance))
     emis = ({k: th.emissivity for k in tc.groups if not k.startswith("raceway_")}
             if th.emissivity > 0 else {})
     nominal = ThermalParameters(film_W_m2K=films, fit_conductance_W_m2K=tuple(h_fit),
                                 ball_inner_W_K=G[0], ball_outer_W_K=G[1], emissivity=emis,
-                                T_rad_lin_C=T_ref)
+                                T_rad_lin_C=T_ref,
+                                bore_conductance_W_m2K=0.0 if vacuum else
+                                ThermalParameters.bore_conductance_W_m2K)
     training = [replace(nominal, film_W_m2K={k: s * v for k, v in films.items()},
-                        fit_conductance_W_m2K=tuple(h_fit * c)) for s, c in TRAINING]
+                        fit_conductance_W_m2K=tuple(h_fit * c), ball_inner_W_K=G[0] * b,
+                        ball_outer_W_K=G[1] * b) for s, c, b in TRAINING]
     inputs = [f"raceway_{r}" for r in RINGS if f"raceway_{r}" in tc.a] + \
              [k for k in ("ball_A", "ball_B") if k in tc.a]
     rc = ReducedConduction(tc, cached_basis(pl, tc, training, inputs, say))
@@ -203,13 +211,14 @@ def thermal_model(pl: Pipeline, progress=None) -> ThermalModel:
     except ValueError as exc:     # a CTE slope or bonded fits: not linear in the modes
         raise ConfigError(f'thermal.mode = "transient": {exc}') from None
     ms_half = modal_structure(pl.solver, probe, half, T_ref, RINGS, pl.setup.condensed)
-    out = ThermalModel(tc, rc, half, ms, ms_half, nominal, _group_rows(tc), pressure)
+    out = ThermalModel(tc, rc, half, ms, ms_half, nominal, _group_rows(tc), pressure, surf)
     pl._thermal_model = out
     return out
 
 
-#: format of the cached reduced basis (raise when the file layout or the basis changes)
-BASIS_FORMAT = 1
+#: format of the cached reduced basis (raise when the file layout or the basis changes; 2: one
+#: energy per mode, the files of 1 held one per moment)
+BASIS_FORMAT = 2
 
 
 class BasisCacheError(RuntimeError):
@@ -254,7 +263,8 @@ def cached_basis(pl: Pipeline, tc: TransientConduction, training, inputs, say=No
         if set(a) != {"key", "V", "energy"} or str(a["key"]) != key:
             raise BasisCacheError("not the basis of this stack")
         V, e = a["V"], a["energy"]
-        if V.ndim != 2 or V.shape[0] != tc.n_total or e.ndim != 1 or not np.all(np.isfinite(V)):
+        if (V.ndim != 2 or V.shape[0] != tc.n_total or e.shape != (V.shape[1],)
+                or not np.all(np.isfinite(V))):
             raise BasisCacheError("its arrays are not sound")
         return ReducedBasis(V, e)
 
@@ -387,6 +397,7 @@ def run_transient(pl: Pipeline, cols: dict, progress=None, first_row: int = 0,
     heat_in = np.zeros(grid.size)
     h_pair: dict[str, float] = {}
     fits_W_m2K = tm.nominal.fit_conductance_W_m2K
+    balls = (tm.nominal.ball_inner_W_K, tm.nominal.ball_outer_W_K)
     pair_W = 0.0
     for k in range(1, grid.size):
         if (k - 1) % couple_every == 0:
@@ -395,15 +406,21 @@ def run_transient(pl: Pipeline, cols: dict, progress=None, first_row: int = 0,
             T3 = _groups_C(tm, tm.rc, Q[-1][None, :])
             inp = _inputs(base, T3, speed[k - 1], preload[k - 1], axial[k - 1], radial[k - 1],
                           moment[k - 1])
-            heat = _pair_heat(pl, inp, fe, ref1)
+            res, heat = _route(pl, inp, fe, ref1)
             pair_W = float(heat.total_W[0])
-            h_pair = bearing_heat_inputs_W(heat, ball_nodes=bool(tm.tc.ball_nodes))
+            T_oil = float(np.mean(T3[0, [PARTS.index(p) for p in ("inner_ring", "outer_ring",
+                                                                   "ball")]]))
+            cc = ball_contacts(pl, res.pair, float(speed[k - 1]), T_oil)
+            balls = (cc[0].G_W_K, cc[1].G_W_K)
+            h_pair = bearing_heat_inputs_W(heat, ring_share=(cc[0].ring_share, cc[1].ring_share),
+                                           ball_nodes=bool(tm.tc.ball_nodes))
             if tm.pressure_conductance:
-                fits_W_m2K = fit_conductances_W_m2K(pl.model, fe.fit_pressure_MPa[0], gap[0])
+                fits_W_m2K = fit_conductances_W_m2K(pl.model, fe.fit_pressure_MPa[0], gap[0],
+                                                    tm.surfaces)
         h = {key: v + float(extra[k]) * _extra_share(key, h_pair) for key, v in h_pair.items()}
         heat_in[k] = pair_W + float(extra[k])
         loads = StepLoads(float(amb[k]), float(sink[k]), heat_W=h)
-        prm = _params(tm, float(scale[k]), fits_W_m2K)
+        prm = _params(tm, float(scale[k]), fits_W_m2K, balls)
         for st, QQ in ((steppers[0], Q), (steppers[1], Qh)):
             if prm != st.prm:
                 st.set_parameters(prm)
@@ -423,6 +440,62 @@ def run_transient(pl: Pipeline, cols: dict, progress=None, first_row: int = 0,
     return TransientRun(out, rows, grid, Q, heat_in)
 
 
+@dataclass(frozen=True)
+class PartTemperatures:
+    """Part temperatures over time from the transient conduction FE (`part_temperatures`).
+
+    time_s (n,): the instants; T_C (n, len(parts)): volume mean temperature of each part group
+    (C); parts: the group names (`inputs.PARTS`: shaft, inner_ring, ball, outer_ring, housing,
+    spacer; a group the stack lacks is left out); reduction_error_est (n,): the reduced model's
+    estimated relative preload error (`TransientRun.rows`)."""
+    time_s: np.ndarray
+    T_C: np.ndarray
+    parts: tuple
+    reduction_error_est: np.ndarray
+
+    def of(self, part: str) -> np.ndarray:
+        """(n,) temperatures (C) of one part group."""
+        return self.T_C[:, self.parts.index(part)]
+
+
+def part_temperatures(asm: Assembly, time_s, T_environment_C, speed_rpm=None, *,
+                      sink: bool = False, pipeline: Pipeline | None = None,
+                      progress=None) -> PartTemperatures:
+    """Part temperatures over time from the transient conduction FE for an assembly and a time
+    series: the second source of lagged temperatures for the diagnosis (a helper such as
+    `studies/runs/second_source.py` calls it in place of the first-order `thermal_lag` effect).
+
+    asm: the assembly; its `[thermal]` section gives the films, emissivity, sink and gas (mode
+    "given" is taken as "transient" here: the films must be set for the environment to reach
+    the stack). time_s (n,): strictly increasing instants (s); T_environment_C (n,): the
+    chamber's temperature (C), the films' fluid (sink=False, `T_ambient_C`) or the radiation
+    sink (sink=True, `T_sink_C`); speed_rpm (n,) or None (the assembly's speed): the bearing's
+    friction heat is fed back as in `simulate`. pipeline: an existing `Pipeline` of the same
+    assembly in transient mode (its reduced model is built once and kept on it).
+    The route is `run_transient` (one route: the rows' part temperatures are those `simulate`
+    in transient mode writes as T_<part>_C).
+
+        from studies.model.transient_route import part_temperatures
+        pt = part_temperatures(asm, data["time_s"], data["T_ambient_C"], data["speed_rpm"])
+        lagged = {f"T_{p}_C": pt.of(p) for p in pt.parts}
+    """
+    if asm.thermal.mode != "transient":
+        asm = replace(asm, thermal=replace(asm.thermal, mode="transient"))
+    if not asm.thermal.films and asm.thermal.emissivity == 0:
+        raise ConfigError("thermal: no films and no emissivity: the environment cannot reach the "
+                          "stack (set [thermal.films] or emissivity)")
+    t = np.asarray(time_s, float)
+    cols = {"time_s": t, ("T_sink_C" if sink else "T_ambient_C"):
+            np.broadcast_to(np.asarray(T_environment_C, float), t.shape).copy()}
+    if speed_rpm is not None:
+        cols["speed_rpm"] = np.broadcast_to(np.asarray(speed_rpm, float), t.shape).copy()
+    pl = pipeline if pipeline is not None else Pipeline.shared(asm, progress=progress)
+    run = run_transient(pl, cols, progress)
+    keep = [i for i in range(len(PARTS)) if not np.isnan(run.rows.T_parts_C[:, i]).any()]
+    return PartTemperatures(t, run.rows.T_parts_C[:, keep], tuple(PARTS[i] for i in keep),
+                            run.rows.reduction_error_est)
+
+
 def _extra_share(key: str, h: dict) -> float:
     """Share of the extra heat (heat_W) of one heat input: like the pair's own split (half to
     the raceways, half to the balls, equally per bearing); without ball nodes all to the
@@ -434,9 +507,39 @@ def _extra_share(key: str, h: dict) -> float:
     return 1.0 / len(races)
 
 
-def _params(tm: ThermalModel, film_scale: float, fit_W_m2K) -> ThermalParameters:
+def _params(tm: ThermalModel, film_scale: float, fit_W_m2K, balls_W_K=None) -> ThermalParameters:
     prm = replace(tm.nominal, film_W_m2K={k: film_scale * v for k, v in tm.nominal.film_W_m2K.items()})
+    if balls_W_K is not None:
+        prm = replace(prm, ball_inner_W_K=float(balls_W_K[0]), ball_outer_W_K=float(balls_W_K[1]))
     return prm if fit_W_m2K is None else prm.with_fits(fit_W_m2K)
+
+
+def ball_contacts(pl: Pipeline, pair, speed_rpm: float, T_oil_C: float
+                  ) -> tuple[ContactConductance, ContactConductance]:
+    """(inner, outer) ball set-to-raceway conductance (W/K, per bearing) and heat partition of a
+    pair state (`analytic.bearing.PairState`, first row, the two bearings' mean ellipse) at
+    speed_rpm (rpm): `analytic.heat.rolling_contact_conductance` at the rolling speed
+    (`analytic.lubrication.entrainment_speed_mm_s`), with the central EHL film of an oil
+    (`analytic.lubrication.hamrock_dowson_film` at the oil temperature T_oil_C, C: the mean of
+    rings and balls, as the torque stage takes it) in series; a solid film: no film term."""
+    g = pl.geom
+    alpha = float(np.mean(np.asarray(pair.contact_angle_deg)[:, 0]))
+    u = float(lub.entrainment_speed_mm_s(speed_rpm, g.Dw_mm, g.dm_mm, alpha))
+    ring = pl.model.materials["inner_ring_A"]
+    oil = pl.lubricant if pl.asm.lubrication.kind == "oil" else None
+    out = []
+    for c, side, f, r in ((pair.inner, "inner", g.f_i, ring),
+                          (pair.outer, "outer", g.f_o, pl.model.materials["outer_ring_A"])):
+        a, b = float(np.mean(c.a_mm[:, 0])), float(np.mean(c.b_mm[:, 0]))
+        h = 0.0
+        if oil is not None and u > 0:
+            Rx, Ry = lub.ball_raceway_radii_mm(g.Dw_mm, g.dm_mm, alpha, f, side)
+            Ep = lub.reduced_modulus_MPa(r.E_MPa, r.nu, g.ball.E_MPa, g.ball.nu)
+            Q = max(float(np.mean(np.asarray(pair.ball_load_N)[:, 0])), 1e-6)
+            h = float(lub.hamrock_dowson_film(Rx, Ry, Ep, oil.eta_Pa_s(T_oil_C), oil.alpha_per_Pa,
+                                              u, Q).h_central_um)
+        out.append(rolling_contact_conductance(a, b, u, g.ball, r, g.Z, film_um=h))
+    return out[0], out[1]
 
 
 def _groups_C(tm: ThermalModel, rc: ReducedConduction, q: np.ndarray) -> np.ndarray:
@@ -454,11 +557,6 @@ def _inputs(base: PhysicsInputs, T: np.ndarray, speed, preload, axial, radial, m
     return one.copy(T_C=Tc, speed_rpm=np.array([speed]), preload_assembled_N=np.array([preload]),
                     axial_load_N=np.array([axial]), radial_load_N=np.array([radial]),
                     moment_Nmm=np.array([moment]))
-
-
-def _pair_heat(pl: Pipeline, inp: PhysicsInputs, fe: FEState, ref: FEState) -> PairHeat:
-    """The pair's heat split (W) at one state: its equilibrium and torque through the route."""
-    return _route(pl, inp, fe, ref)[1]
 
 
 def _evaluate_rows(pl: Pipeline, tm: ThermalModel, rc: ReducedConduction, ms: ModalStructure,
@@ -483,7 +581,11 @@ def _route(pl: Pipeline, inputs: PhysicsInputs, fe: FEState, ref: FEState, first
     split `analytic.heat.PairHeat` at MU_TRACTION)."""
     res = pl.run(inputs, first_row=first_row, remember=False,
                  fe_options=FEOptions(states=(fe, ref)))
-    heat = pair_heat_W(pl.geom, res.pair, inputs.speed_rpm, MU_TRACTION, res.torque.viscous_Nmm)
+    if res.torque.model == "solid_film":       # the film's own dissipation (its friction coefficient)
+        heat = solid_film_pair_heat_W(res.torque, inputs.speed_rpm)
+    else:
+        heat = pair_heat_W(pl.geom, res.pair, inputs.speed_rpm, MU_TRACTION,
+                           res.torque.viscous_Nmm)
     return res, heat
 
 

@@ -17,6 +17,7 @@ STUDIES = {
     "confusion_matrix": "studies.runs.confusion_matrix",
     "ring_sections": "studies.runs.ring_section_compare",
     "heatup": "studies.runs.heatup",
+    "tvac": "studies.runs.tvac",
 }
 
 

@@ -35,6 +35,7 @@ from fem.transient import (StepLoads, Stepper, ThermalParameters, TransientCondu
 from studies.model.config import CONFIG_DIR, SHIPPED, load_assembly
 from studies.model.inputs import baseline_inputs
 from studies.model.pipeline import RINGS, FEOptions, FEState, Pipeline
+from studies.model.transient_route import ball_contacts
 from studies.runs.bench_clock import Clock
 
 SPEED_RPM = 1500.0
@@ -128,9 +129,8 @@ def run(n_steps: int = 900, dt_s: float = 2.0, stride: int = 1, update_every: in
     out0 = pl.run(inp0)
     pair0 = out0.pair
     heat0 = pair_heat_W(g, pair0, np.array([SPEED_RPM]), MU_TRACTION, out0.torque.viscous_Nmm)
-    kb, kr = g.ball.conductivity_W_mK, m.materials["inner_ring_A"].conductivity_W_mK
-    G_i = 1.0 / float(np.mean(tn.ball_raceway_resistance_K_W(pair0.inner.a_mm[0], pair0.inner.b_mm[0], kb, kr, g.Z)))
-    G_o = 1.0 / float(np.mean(tn.ball_raceway_resistance_K_W(pair0.outer.a_mm[0], pair0.outer.b_mm[0], kb, kr, g.Z)))
+    # the route's ball-raceway contacts (moving-source constriction, EHL film) at the speed
+    G_i, G_o = (c.G_W_K for c in ball_contacts(pl, pair0, SPEED_RPM, T_ref))
     C_ball = float(tn.heat_capacity_J_K(tn.ball_set_mass_kg(g.Dw_mm, g.Z, g.ball), g.ball))
     delta0 = pl.deltas_mm(*pl.fits_um(inp0))[0]
     w2 = (SPEED_RPM * 2 * np.pi / 60) ** 2
