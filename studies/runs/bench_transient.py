@@ -72,10 +72,8 @@ def _inputs(pl: Pipeline, T_inner, T_outer, T_ball):
 def _state(pl: Pipeline, force_N, probe, ring_strain) -> FEState:
     """FEState of rows from pair forces, probed displacements and ring strains (as
     `Pipeline.fe_field` builds it for a conduction field)."""
-    p = pl.fit_pressures(force_N)
-    c = pl._centres(probe, ring_strain)
-    dr = np.stack([c[:, 0, 0] - c[:, 2, 0], c[:, 1, 0] - c[:, 3, 0]])
-    dz = np.stack([c[:, 0, 1] - c[:, 2, 1], c[:, 1, 1] - c[:, 3, 1]])
+    p = pl.fe_stage.fit_pressures(force_N)
+    dr, dz = pl.fe_stage.grooves.shifts_mm(probe, ring_strain)
     return FEState(p, np.full((p.shape[0], 2), np.nan), dr, dz, probe[:, :8])
 
 
@@ -135,7 +133,7 @@ def run(n_steps: int = 900, dt_s: float = 2.0, stride: int = 1, update_every: in
     delta0 = pl.deltas_mm(*pl.fits_um(inp0))[0]
     w2 = (SPEED_RPM * 2 * np.pi / 60) ** 2
     res0 = pl.sup.evaluate(pl.thetas(inp0), delta0[None, :], np.array([w2]))
-    h_fit = fit_conductances_W_m2K(m, pl.fit_pressures(res0.force_N)[0],
+    h_fit = fit_conductances_W_m2K(m, pl.fe_stage.fit_pressures(res0.force_N)[0],
                                    _gap_um(pl, res0.gap_mm)[0])
 
     tc = TransientConduction(m, ball_capacity_J_K=C_ball)
@@ -174,7 +172,7 @@ def run(n_steps: int = 900, dt_s: float = 2.0, stride: int = 1, update_every: in
             if i and i % update_every == 0:
                 r = msm.evaluate(Q[-1][None, :], delta[:1], w2s[:1])
                 st.set_parameters(check.with_fits(fit_conductances_W_m2K(
-                    m, pl.fit_pressures(r.force_N)[0], _gap_um(pl, r.gap_mm)[0])))
+                    m, pl.fe_stage.fit_pressures(r.force_N)[0], _gap_um(pl, r.gap_mm)[0])))
             Q.append(st.step(ld))
         Q = np.array(Q)
         r = msm.evaluate(Q, delta, w2s)
