@@ -277,7 +277,10 @@ def clearance_run(tmp_path_factory):
     asm = load_assembly(_with_fits(d, [f"outer_ring_od_deviation_um = [{OUTER_BAND_UM[0]}, "
                                        f"{OUTER_BAND_UM[1]}]"], inner=5.0))
     cond = {"T_ambient_C": np.array([-60.0, 20.0, 80.0])}
-    res = tr.run(asm, cond, d, {"version": "test"}, 2000, 3, progress=lambda s: None)
+    summary = tr.run(asm, cond, d, {"version": "test"}, 2000, 3, progress=lambda s: None)
+    res = json.loads((d / "tolerance.json").read_text())         # what the command wrote
+    assert summary.fit_leaves_design == {f: res["probabilities"][f"fit_open_{f}"]
+                                         for f in ("inner", "outer")}
     return asm, cond, res, d
 
 

@@ -197,10 +197,9 @@ def cmd_tolerance(args) -> None:
                                        bar=progress_bar("Monte Carlo"))
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
-    p = res["probabilities"]
-    fits = ", ".join(f"{f} {p[f'fit_open_{f}']:.3g}" for f in res["fit_design"])
-    print(f"tolerance: {res['samples']} samples; P(fit leaves its designed state) {fits}, "
-          f"P(preload lost) {p['preload_lost']:.3g}; report in {args.out}/report.md")
+    fits = ", ".join(f"{f} {p:.3g}" for f, p in res.fit_leaves_design.items())
+    print(f"tolerance: {res.samples} samples; P(fit leaves its designed state) {fits}, "
+          f"P(preload lost) {res.preload_lost:.3g}; report in {args.out}/report.md")
 
 
 def _pair(text: str, flag: str) -> tuple[float, float]:

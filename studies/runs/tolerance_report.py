@@ -10,6 +10,7 @@ plots and `report.md` / `report.html`.
 from __future__ import annotations
 
 import json
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -99,10 +100,20 @@ def _linear(asm, pl, cond, limit_p):
     return out
 
 
+@dataclass(frozen=True)
+class ToleranceSummary:
+    """What `tolerance` prints: the samples, each fit's probability of leaving its designed state
+    (by fit name, over every sample and condition) and the probability of losing the preload."""
+    samples: int
+    fit_leaves_design: dict[str, float]
+    preload_lost: float
+
+
 def run(asm, conditions: dict | None, out: Path, provenance: dict, samples: int, seed: int,
         progress=print, workers: int | None = None, scheduler: str | None = None,
-        bar=None) -> dict:
-    """Write the tolerance analysis into `out`; returns the tolerance.json content. The Monte
+        bar=None) -> ToleranceSummary:
+    """Write the tolerance analysis into `out` (tolerance.json is its whole content); returns the
+    summary the command prints. The Monte
     Carlo runs here, or on a local Dask cluster of `workers` processes, or on the cluster at
     `scheduler`, with the same numbers (`studies.model.parallel`); `bar(done, total)` follows
     its blocks (the command line's progress bar)."""
@@ -177,7 +188,9 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, samples: int,
     if samples * C <= 2_000_000:
         write_table(out / "samples.csv", cols, provenance=provenance)
     _report(asm, out, cond, result, mc, fail, lin)
-    return result
+    return ToleranceSummary(int(samples), {f: float(probs[f"fit_open_{f}"])
+                                           for f in tol.designed_closed(asm)},
+                            float(probs["preload_lost"]))
 
 
 def _x(cond):
