@@ -338,15 +338,18 @@ class Assembly:
         mid_i, mid_o = mid_band_offsets_um(self)
         return self.fits.inner_interference_um + mid_i, self.fits.outer_interference_um + mid_o
 
+    def material_keys(self) -> dict[str, tuple[str, str]]:
+        """Per part (shaft, housing, nut, cover, inner_spacer, outer_spacer, inner_ring,
+        outer_ring, ball, the sleeve / cartridge present): the file's key naming its material and
+        the name given there."""
+        parts = {"shaft": self.shaft, "housing": self.housing, "nut": self.nut,
+                 "cover": self.cover, "inner_spacer": self.inner_spacer,
+                 "outer_spacer": self.outer_spacer, **dict(self.layers())}
+        return {**{p: (f"{p}.material", t.material) for p, t in parts.items()},
+                "inner_ring": ("bearing.ring_material", self.bearing.ring_material),
+                "outer_ring": ("bearing.ring_material", self.bearing.ring_material),
+                "ball": ("bearing.ball_material", self.bearing.ball_material)}
+
     def material(self, part: str) -> Material:
-        """Material of a part: shaft, housing, nut, cover, inner_spacer, outer_spacer,
-        inner_ring, outer_ring, ball."""
-        names = {"shaft": self.shaft.material, "housing": self.housing.material,
-                 "nut": self.nut.material, "cover": self.cover.material,
-                 "inner_spacer": self.inner_spacer.material,
-                 "outer_spacer": self.outer_spacer.material,
-                 "inner_ring": self.bearing.ring_material,
-                 "outer_ring": self.bearing.ring_material,
-                 "ball": self.bearing.ball_material,
-                 **{n: layer.material for n, layer in self.layers()}}
-        return get_material(names[part], self.materials)
+        """Material of a part (`material_keys`' parts)."""
+        return get_material(self.material_keys()[part][1], self.materials)

@@ -92,13 +92,7 @@ def _check_tolerances(a: Assembly, path: str) -> None:
 
 
 def _check_materials(a: Assembly, path: str) -> None:
-    keys = {"shaft.material": a.shaft.material, "housing.material": a.housing.material,
-            "nut.material": a.nut.material, "cover.material": a.cover.material,
-            "inner_spacer.material": a.inner_spacer.material,
-            "outer_spacer.material": a.outer_spacer.material,
-            "bearing.ring_material": a.bearing.ring_material,
-            "bearing.ball_material": a.bearing.ball_material,
-            **{f"{n}.material": layer.material for n, layer in a.layers()}}
+    keys = dict(a.material_keys().values())
     for key, name in keys.items():
         try:
             get_material(name, a.materials)
