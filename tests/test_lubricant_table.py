@@ -2,6 +2,8 @@
 through the user's points against the published points (analytic/data/space_oil_viscosity.csv,
 the project copy of the reference data), its stated range and the warning outside it; library
 oils with one viscosity point and bad tables refused at config time with one line, exit 2."""
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -10,6 +12,7 @@ from analytic.lubrication import get_lubricant, lubricant_from_table
 from studies.app.cli import main
 from studies.model.checks import plausibility_warnings
 from studies.model.config import CONFIG_DIR, ConfigError, load_assembly
+from refusal import simulate_is_refused
 
 TEMPLATE = CONFIG_DIR / "template.toml"
 
@@ -101,13 +104,7 @@ def test_library_oil_with_one_point_refused_at_config_time(tmp_path, capsys, oil
     cfg = _with_oil(tmp_path, oil)
     with pytest.raises(ConfigError, match="lubrication.lubricant: .*fewer than two viscosity points"):
         load_assembly(cfg)
-    cond = tmp_path / "c.csv"
-    cond.write_text("T_ambient_C\n20\n")
-    out = tmp_path / "o.csv"
-    assert main(["simulate", str(cfg), str(cond), "-o", str(out)]) == 2
-    err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and "[lubricants.NAME]" in err[0]
-    assert not out.exists()
+    simulate_is_refused(tmp_path, capsys, cfg, "[lubricants.NAME]")
     assert main(["report", str(cfg), "--out", str(tmp_path / "rep")]) == 2
     assert len(capsys.readouterr().err.strip().splitlines()) == 1
     assert not (tmp_path / "rep").exists() or not any((tmp_path / "rep").iterdir())
@@ -130,13 +127,7 @@ def test_bad_lubricant_tables_one_line_exit_2(tmp_path, capsys, table, message):
     with pytest.raises(ConfigError) as exc:
         load_assembly(cfg)
     assert message in str(exc.value) and str(exc.value).startswith(str(cfg))
-    cond = tmp_path / "c.csv"
-    cond.write_text("T_ambient_C\n20\n")
-    out = tmp_path / "o.csv"
-    assert main(["simulate", str(cfg), str(cond), "-o", str(out)]) == 2
-    err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and message in err[0]
-    assert not out.exists()
+    simulate_is_refused(tmp_path, capsys, cfg, message)
 
 
 def test_a_table_may_take_a_library_name_and_wins():

@@ -7,8 +7,8 @@ import pytest
 import bearingfem
 from analytic.bearing.geometry import BearingGeometry
 from analytic.materials import get_material, material_from_table
-from studies.app.cli import main
 from studies.model.config import CONFIG_DIR, ConfigError, load_assembly
+from refusal import simulate_is_refused
 
 SEED000 = CONFIG_DIR / "seed000_71807C_TC4.toml"
 D_OUTER_FIT_MM = 47.0          # seed000: housing bore = 71807C outside diameter
@@ -76,10 +76,4 @@ def test_bad_material_tables_one_line_exit_2(tmp_path, capsys, table, message):
     with pytest.raises(ConfigError, match=r"asm\.toml: " + message.replace("[", r"\[").replace("]", r"\]")
                        .replace("(", r"\(").replace(".", r"\.")):
         load_assembly(cfg)
-    cond = tmp_path / "c.csv"
-    cond.write_text("T_ambient_C\n20\n")
-    out = tmp_path / "o.csv"
-    assert main(["simulate", str(cfg), str(cond), "-o", str(out)]) == 2
-    err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and message in err[0]
-    assert not out.exists()
+    simulate_is_refused(tmp_path, capsys, cfg, message)

@@ -5,8 +5,8 @@ import re
 
 import pytest
 
-from studies.app.cli import main
 from studies.model.config import CONFIG_DIR, SHIPPED, ConfigError, load_assembly
+from refusal import simulate_is_refused
 
 TEMPLATE = CONFIG_DIR / "template.toml"
 TEST_DATA = CONFIG_DIR.parents[1] / "tests" / "data"
@@ -30,13 +30,7 @@ def test_the_template_in_inches_is_refused_naming_inches(tmp_path, capsys, um_to
     cfg.write_text(text)
     with pytest.raises(ConfigError, match="looks typed in inches"):
         load_assembly(cfg)
-    cond = tmp_path / "c.csv"
-    cond.write_text("T_ambient_C\n20\n")
-    out = tmp_path / "o.csv"
-    assert main(["simulate", str(cfg), str(cond), "-o", str(out)]) == 2
-    err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and "inches" in err[0] and "x 25.4 = 6.35, 12, 42 mm" in err[0]
-    assert not out.exists()
+    simulate_is_refused(tmp_path, capsys, cfg, "inches", "x 25.4 = 6.35, 12, 42 mm")
 
 
 def test_every_shipped_and_test_assembly_passes_the_units_check():
