@@ -229,28 +229,26 @@ def _header(path: str, top) -> dict:
             "source": str(top.get("source", ""))}
 
 
-def parse_materials(raw: dict, path: str) -> tuple[Material, ...]:
-    """A config's `[materials.NAME]` tables (analytic.materials.material_from_table), in file
-    order; ConfigError (one line naming the file and key) on a bad table."""
-    tables = raw.get("materials", {})
+def _named_tables(raw: dict, path: str, section: str, what: str, build) -> tuple:
+    """A config's `[SECTION.NAME]` tables, each built by `build(name, table)`, in file order;
+    ConfigError (one line naming the file and key) on a bad table."""
+    tables = raw.get(section, {})
     if not isinstance(tables, dict) or not all(isinstance(t, dict) for t in tables.values()):
-        raise ConfigError(f"{path}: [materials]: give one table per material, [materials.NAME]")
+        raise ConfigError(f"{path}: [{section}]: give one table per {what}, [{section}.NAME]")
     try:
-        return tuple(material_from_table(name, t) for name, t in tables.items())
+        return tuple(build(name, t) for name, t in tables.items())
     except ValueError as exc:
         raise ConfigError(f"{path}: {exc.args[0]}") from None
+
+
+def parse_materials(raw: dict, path: str) -> tuple[Material, ...]:
+    """A config's `[materials.NAME]` tables (analytic.materials.material_from_table)."""
+    return _named_tables(raw, path, "materials", "material", material_from_table)
 
 
 def parse_lubricants(raw: dict, path: str) -> tuple[Lubricant, ...]:
-    """A config's `[lubricants.NAME]` tables (analytic.lubrication.lubricant_from_table), in
-    file order; ConfigError (one line naming the file and key) on a bad table."""
-    tables = raw.get("lubricants", {})
-    if not isinstance(tables, dict) or not all(isinstance(t, dict) for t in tables.values()):
-        raise ConfigError(f"{path}: [lubricants]: give one table per oil, [lubricants.NAME]")
-    try:
-        return tuple(lubricant_from_table(name, t) for name, t in tables.items())
-    except ValueError as exc:
-        raise ConfigError(f"{path}: {exc.args[0]}") from None
+    """A config's `[lubricants.NAME]` tables (analytic.lubrication.lubricant_from_table)."""
+    return _named_tables(raw, path, "lubricants", "oil", lubricant_from_table)
 
 
 CONFIG_DIR = Path(__file__).parents[1] / "configs"
