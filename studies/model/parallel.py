@@ -1,98 +1,52 @@
-"""The one parallel map of the project (Dask): independent pieces of work here, on forked
-processes of this machine, or on a Dask cluster, with the same results in every mode.
+"""The one parallel map of the project: independent pieces of work here, on worker processes
+forked from this one, or on a Dask cluster, with the same results in every mode.
 
-Two kinds of work, one library (Dask graphs of independent tasks; no second pool):
+One route (`_in_order`: submit, keep at most `ahead` results pending, yield them in order) for
+two kinds of work:
 
 - Blocks that are pure functions of their arguments (`map_blocks`, `Blocks`: the tolerance Monte
-  Carlo, the streamed `simulate`, the design search): with `workers=N` on a local
-  `dask.distributed` cluster of N single-threaded processes, with `scheduler="tcp://host:port"`
-  on an existing one (another machine's workers too: docs/cli.md, `--workers` / `--scheduler`),
-  without either here, one block after the other. `map_blocks(fn, blocks)` calls `fn(*block)`
-  for every block and returns the results in block order. `Blocks` is the same as a context
-  manager that keeps its cluster for several calls: `imap` yields the results in block order
-  while later blocks still run, with at most `ahead` blocks submitted and not yet yielded
-  (memory bounded for any number of blocks; a streamed `simulate`). The blocks and their
-  boundaries are the same in every mode and each block is computed by the same function, so
-  the results are identical bit for bit; the caller chooses blocks that do not depend on one
-  another. Per-assembly set-up inside `fn` (the FE model, its unit solutions) is done once per
-  process (`Pipeline.shared` keeps it); a local cluster's workers are forked from a fork server
-  with the model's modules imported (`LOCAL_START_METHOD`) and read the set-up from the cache.
+  Carlo, the streamed `simulate`, the design search): with `workers=N` on N single-threaded
+  worker processes forked from this one (`_Pool`), with `scheduler="tcp://host:port"` on an
+  existing Dask cluster (`dask.distributed`; another machine's workers too: docs/cli.md,
+  `--workers` / `--scheduler`), without either here, one block after the other.
+  `map_blocks(fn, blocks)` calls `fn(*block)` for every block and returns the results in block
+  order. `Blocks` is the same as a context manager that keeps its workers for several calls:
+  `imap` yields the results in block order while later blocks still run, with at most `ahead`
+  blocks submitted and not yet yielded (memory bounded for any number of blocks; a streamed
+  `simulate`). The blocks and their boundaries are the same in every mode and each block is
+  computed by the same function, so the results are identical bit for bit; the caller chooses
+  blocks that do not depend on one another. Per-assembly set-up inside `fn` (the FE model, its
+  unit solutions) is done once per process (`Pipeline.shared` keeps it): a forked worker starts
+  with this process's (a command builds it before its blocks), else reads it from the FE cache.
 - Work that shares this process's state (`parallel_map(task, items, workers)`: the diagnosis's
   candidate fits and plots, with the FE set-up, the pipeline and the model cache as they are
-  now): [task(item) for item in items] as a Dask graph on Dask's local process scheduler, over
-  processes forked from this one, so that nothing is pickled but the items' indices and the
-  results, and the task may be a closure (a cluster would need the state pickled to every
-  worker). Each task is a pure function of the state at the fork and its item, so every result
-  is the one a serial run computes, to the last bit; results come back in the items' order. A
-  `state` object (e.g. the diagnosis's `CachedModel`) can carry what the tasks add to it back to
-  this process (`snapshot` / `delta` in the worker, `merge` here).
+  now): [task(item) for item in items] on the same forked workers, set up with the task and the
+  items before they fork, so that nothing is pickled but the items' indices and the results,
+  and the task may be a closure. Each task is a pure function of the state at the fork and its
+  item, so every result is the one a serial run computes, to the last bit; results come back in
+  the items' order. A `state` object (e.g. the diagnosis's `CachedModel`) can carry what the
+  tasks add to it back to this process (`snapshot` / `delta` in the worker, `merge` here).
+
+Why local workers are not a local Dask cluster (`distributed.LocalCluster`, the route before
+2026-11-25): its start cost 1.3 s wall on an idle 2-core machine (a fork server that imports
+distributed, 0.77 s, and the model; the scheduler and a nanny per worker) and its scheduler and
+client ran on threads of this process, 1.5 CPU s over 1e6 tolerance samples, beside two workers
+on two cores (`bench --tolerance`: the cold 2-worker run was 1.60x one process). Forking after
+the command's set-up costs milliseconds and the workers start with its imports and warm
+pipeline; the workers are forked before any thread of a cluster exists (a worker forked by
+distributed's nanny while a scheduler thread held a lock hung at start, twice in the test suite).
+Dask's local process scheduler (`dask.multiprocessing.get`, the diagnosis's map before) computes
+a whole graph at once and cannot stream `simulate`'s unbounded chunks, so the local route is a
+`concurrent.futures` pool of forked processes; Dask stays the route to other machines.
 """
 from __future__ import annotations
 
 import multiprocessing
 import os
 import signal
-import sys
-import uuid
 from collections import deque
-from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures import Future, ProcessPoolExecutor
 from typing import Any, Callable, Iterable, Iterator, Protocol, Sequence
-
-#: environment of every local worker process (and pre-spawn environment of any nanny):
-#: - one BLAS/OpenMP thread per worker process: the workers share the cores already;
-#: - MALLOC_TRIM_THRESHOLD_: distributed's nanny sets 64 KiB so workers return memory early;
-#:   the pipeline allocates many mid-size arrays per block and ran 1.6x slower with it (measured);
-#: - MALLOC_MMAP_THRESHOLD_ = 32 MiB: glibc's default serves arrays over 128 kB..32 MB by fresh
-#:   mmap, and every block's temporaries then page-fault anew (a worker's minor page faults over
-#:   19 tolerance blocks of 1e4 samples: 2.4e6 without it, 1.3e4 with it, measured 2026-11-24;
-#:   glibc mallopt(3) M_MMAP_THRESHOLD). Set before the worker process starts (the nanny's
-#:   pre-spawn environment): glibc reads it once, at start.
-WORKER_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1",
-              "MALLOC_TRIM_THRESHOLD_": str(2 ** 30), "MALLOC_MMAP_THRESHOLD_": str(2 ** 25)}
-
-#: Dask configuration of the local workers (set before the cluster starts; a nanny hands its
-#: configuration to the worker process it spawns): the worker's own monitors run on its event
-#: loop between the blocks' work and cost CPU per second of wall time, not per sample. The
-#: statistical profiler samples every thread's stack every 10 ms, the GIL monitor every 1 ms,
-#: the memory monitor every 100 ms. With them off or slowed a worker process spent 3.86 s CPU
-#: on 10 tolerance blocks of 1e4 samples whose own work took 3.77 s (2 %), with the defaults
-#: 4.53 s for 3.92 s (15 %; measured 2026-11-25 on a loaded 2-core machine, bench --tolerance).
-#: The dashboard's task-stream and profile pages lose their data; an existing scheduler's
-#: workers (`--scheduler`) keep their own configuration.
-WORKER_CONFIG = {"distributed.worker.profile.enabled": False,
-                 "distributed.admin.system-monitor.gil.enabled": False,
-                 "distributed.admin.system-monitor.interval": "2s",
-                 "distributed.admin.tick.interval": "500ms",
-                 "distributed.worker.memory.monitor-interval": "1s"}
-
-
-#: how a local cluster's nanny starts its worker process. "forkserver" (Linux, macOS): a server
-#: process, started once with the modules of FORKSERVER_PRELOAD imported, forks each worker, so a
-#: worker imports nothing and reads the FE set-up from the cache (0.04 CPU s). Not "fork": the
-#: cluster's scheduler and nannies run on threads of this process, and a worker forked while
-#: another thread held a lock hung at start (seen twice in the test suite, under pytest-xdist).
-#: "spawn" (distributed's default) starts a new interpreter that imports distributed, then the
-#: task's modules, then sets up the FE model. Measured 2026-11-25, 2 workers, seed 000 tolerance
-#: case, loaded 2-core machine (load ~11): spawn: cluster start 4.3-5.5 s wall, 0.9 CPU s in the
-#: workers; their set-up 3.4-4.2 s wall, 0.9 CPU s; closing 1.8 s; fork: start 1.0-1.7 s wall,
-#: set-up 0.02-0.07 s, closing 0.04-0.12 s (forkserver: `bench --tolerance` prints it). An
-#: existing scheduler's workers (`--scheduler`) start as their own configuration says.
-LOCAL_START_METHOD = "forkserver" if "forkserver" in multiprocessing.get_all_start_methods() else "spawn"
-#: what the fork server imports once (distributed's own list: the library and its dependencies;
-#: here the model's route too, so that a worker's first block imports nothing)
-FORKSERVER_PRELOAD = ("distributed", "numpy", "scipy.sparse.linalg", "pandas", "skfem",
-                      "studies.model.pipeline", "studies.model.tolerance_samples")
-
-
-def _preload_fork_server() -> None:
-    """Set the fork server's imports before distributed starts it (distributed sets its own list
-    once per process in `get_mp_context`; a list set after that and before the server's first
-    start wins; a server already running keeps its imports)."""
-    from distributed.utils import get_mp_context
-
-    ctx = get_mp_context()
-    if LOCAL_START_METHOD == "forkserver":
-        ctx.set_forkserver_preload(list(FORKSERVER_PRELOAD))
 
 #: seconds to wait for an existing scheduler (`--scheduler`) before giving up
 CONNECT_TIMEOUT_S = 20.0
@@ -102,110 +56,200 @@ class SchedulerError(ValueError):
     """The Dask scheduler given cannot be reached: one line naming its address."""
 
 
+# ------------------------------------------------------------------------------ worker processes
+#: the job of `parallel_map`'s forked workers: (task, items, state), set just before they fork
+_JOB: tuple | None = None
+#: True in a worker process: its tasks' own maps run serially there (no pool in a pool)
+_IN_WORKER = False
+#: in a worker: the barrier of its pool (`_Pool.on_every_worker`), one party per worker
+_BARRIER = None
+#: in a worker: the BLAS / OpenMP thread limit it set (kept so that it stays set)
+_THREADS = None
+
+
+def available_workers() -> int:
+    """CPUs this process may run on (its affinity mask where the OS has one)."""
+    try:
+        return max(len(os.sched_getaffinity(0)), 1)
+    except AttributeError:                  # not Linux
+        return max(os.cpu_count() or 1, 1)
+
+
+def can_fork() -> bool:
+    """Whether worker processes can be forked here (fork start method, not a worker of
+    `parallel_map` or `Blocks` or another daemonic process)."""
+    return "fork" in multiprocessing.get_all_start_methods() and not _nested()
+
+
+def _nested() -> bool:
+    return _IN_WORKER or multiprocessing.current_process().daemon
+
+
+def _worker_init(barrier) -> None:
+    """A worker process's start: one BLAS / OpenMP thread (threadpoolctl: the workers share the
+    cores already; the superposition's solves limit themselves too, `fem.solver`), ends quietly
+    when the parent ends the pool (the parent's SIGTERM handler, e.g. the CLI's, is not
+    inherited), leaves Ctrl-C to the parent and runs its tasks' own maps serially."""
+    global _IN_WORKER, _BARRIER, _THREADS
+    import numpy  # noqa: F401, PLC0415 -- its BLAS loaded before the limit (a spawned worker)
+    from threadpoolctl import threadpool_limits  # noqa: PLC0415
+
+    _IN_WORKER, _BARRIER = True, barrier
+    _THREADS = threadpool_limits(limits=1)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def _once_in_this_worker(fn: Callable, args: tuple) -> Any:
+    """fn(*args), then wait until every worker of the pool has done the same (so that each of
+    the pool's n calls runs in another worker)."""
+    try:
+        return fn(*args)
+    finally:
+        _BARRIER.wait()
+
+
+class _Pool:
+    """`n` single-threaded worker processes forked from this process when it is set up (spawned
+    where the OS cannot fork: they then import the modules and read the FE set-up themselves).
+    `job`: what `parallel_map`'s workers read (`_JOB`) from the fork."""
+
+    def __init__(self, n: int, job: tuple | None = None):
+        global _JOB
+        method = "fork" if "fork" in multiprocessing.get_all_start_methods() else "spawn"
+        ctx = multiprocessing.get_context(method)
+        self.n = n
+        barrier = ctx.Barrier(n)
+        self.executor = ProcessPoolExecutor(n, mp_context=ctx, initializer=_worker_init,
+                                            initargs=(barrier,))
+        _JOB = job
+        try:
+            # with fork, the first task forks all n workers now (concurrent.futures forks them
+            # at once, before its own manager thread starts); it returns when one has run it
+            self.executor.submit(int).result()
+        except BaseException:
+            self.close(cancel=True)
+            raise
+        finally:
+            _JOB = None
+
+    def submit(self, fn: Callable, *args) -> Future:
+        return self.executor.submit(fn, *args)
+
+    def on_every_worker(self, fn: Callable, *args) -> list:
+        futures = [self.executor.submit(_once_in_this_worker, fn, args) for _ in range(self.n)]
+        return [f.result() for f in futures]
+
+    def close(self, cancel: bool = False) -> None:
+        """Wait for the workers to end (they are then reaped: their CPU counts in this process's
+        RUSAGE_CHILDREN); `cancel`: drop the tasks not started and end the workers now."""
+        if not cancel:
+            self.executor.shutdown(wait=True)
+            return
+        # no public terminate in concurrent.futures; shutdown forgets the processes
+        processes = list((getattr(self.executor, "_processes", None) or {}).values())
+        self.executor.shutdown(wait=False, cancel_futures=True)
+        for proc in processes:
+            proc.terminate()         # reaped by the pool's own thread, which sees them end
+
+
+def _in_order(submit: Callable[[Any], Future], items: Iterable, ahead: int) -> Iterator:
+    """submit(item) for each item, the results yielded in the items' order, with at most
+    `ahead` items submitted and not yet yielded."""
+    pending: deque = deque()
+    for item in items:
+        pending.append(submit(item))
+        if len(pending) >= ahead:
+            yield pending.popleft().result()
+    while pending:
+        yield pending.popleft().result()
+
+
+# -------------------------------------------------------------------------- pure blocks: Blocks
 class Blocks:
-    """Where blocks run: here (no workers, no scheduler), a local Dask cluster of `workers`
-    single-threaded processes, or the Dask scheduler at `scheduler`. Use as a context manager."""
+    """Where blocks run: here (no workers, no scheduler; also inside a worker), `workers`
+    single-threaded processes forked from this one, or the Dask scheduler at `scheduler`. Use
+    as a context manager: the workers are forked (or the scheduler connected) on entering."""
 
     def __init__(self, workers: int | None = None, scheduler: str | None = None):
         self.workers, self.scheduler = workers, scheduler
-        self.client = self.cluster = None
+        self._pool: _Pool | None = None
+        self._client = None
 
     @property
     def here(self) -> bool:
-        return self.workers is None and self.scheduler is None
+        return self.scheduler is None and (self.workers is None or _nested())
 
     def __enter__(self) -> "Blocks":
-        if self.here:
-            return self
-        import dask
-        from dask.distributed import Client, LocalCluster
-
-        dask.config.set({f"distributed.nanny.pre-spawn-environ.{k}": v
-                         for k, v in WORKER_ENV.items() if k.startswith("MALLOC")})
-        dask.config.set(WORKER_CONFIG)
         if self.scheduler is not None:
+            from dask.distributed import Client  # noqa: PLC0415 -- only for a cluster
+
             try:
-                self.client = Client(self.scheduler, timeout=CONNECT_TIMEOUT_S)
+                self._client = Client(self.scheduler, timeout=CONNECT_TIMEOUT_S)
             except (OSError, TimeoutError, ValueError) as exc:
                 raise SchedulerError(f"--scheduler {self.scheduler}: cannot connect "
                                      f"({type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''})"
                                      ) from None
-        else:
-            dask.config.set({"distributed.worker.multiprocessing-method": LOCAL_START_METHOD})
-            _preload_fork_server()
-            # dashboard_address ":0": the scheduler's HTTP endpoint on a free port (None still
-            # tries 8787 and warns on stderr when another cluster holds it)
-            self.cluster = LocalCluster(n_workers=int(self.workers), threads_per_worker=1,
-                                        processes=True, dashboard_address=":0", env=WORKER_ENV)
-            self.client = Client(self.cluster)
+        elif not self.here:
+            self._pool = _Pool(max(1, int(self.workers)))
         return self
 
-    def __exit__(self, *exc) -> bool:
-        if self.client is not None:
-            self.client.close()
-        if self.cluster is not None:
-            self.cluster.close()
-        self.client = self.cluster = None
+    def __exit__(self, exc_type, *exc) -> bool:
+        if self._client is not None:
+            self._client.close()
+        if self._pool is not None:
+            self._pool.close(cancel=exc_type is not None)
+        self._pool = self._client = None
         return False
 
-    def on_every_worker(self, fn: Callable, *args) -> None:
-        """fn(*args) once in every worker process (here: once in this process), e.g. to build
-        the per-process FE set-up before timing blocks (`bench --tolerance`)."""
-        if self.client is None:
-            fn(*args)
-        else:
-            self.client.run(fn, *args)
+    def on_every_worker(self, fn: Callable, *args) -> list:
+        """[fn(*args)] once in every worker process (here: once in this process), e.g. to
+        build the per-process FE set-up or read a worker's CPU time (`bench --tolerance`)."""
+        if self._pool is not None:
+            return self._pool.on_every_worker(fn, *args)
+        if self._client is not None:
+            return list(self._client.run(fn, *args).values())
+        return [fn(*args)]
 
     def slots(self) -> int:
-        """Worker threads available (1 here)."""
-        if self.client is None:
-            return 1
-        return max(1, sum(self.client.nthreads().values()))
+        """Worker processes (threads on a Dask cluster) available; 1 here."""
+        if self._pool is not None:
+            return self._pool.n
+        if self._client is not None:
+            return max(1, sum(self._client.nthreads().values()))
+        return 1
 
     def imap(self, fn: Callable, blocks: Iterable[tuple], ahead: int | None = None) -> Iterator:
-        """fn(*b) for each block, yielded in block order; on Dask at most `ahead` blocks
-        (default 2 per worker thread) are submitted and not yet yielded."""
-        if self.client is None:
+        """fn(*b) for each block, yielded in block order; with workers at most `ahead` blocks
+        (default 2 per worker) are submitted and not yet yielded."""
+        if self._pool is not None:
+            submit = lambda b: self._pool.submit(fn, *b)  # noqa: E731
+        elif self._client is not None:
+            submit = lambda b: self._client.submit(fn, *b, pure=False)  # noqa: E731
+        else:
             for b in blocks:
                 yield fn(*b)
             return
-        ahead = ahead or 2 * self.slots()
-        pending: deque = deque()
-        for b in blocks:
-            pending.append(self.client.submit(fn, *b, pure=False))
-            if len(pending) >= ahead:
-                yield pending.popleft().result()
-        while pending:
-            yield pending.popleft().result()
+        yield from _in_order(submit, blocks, ahead or 2 * self.slots())
 
     def map(self, fn: Callable, blocks: Sequence[tuple],
             progress: Callable[[int, int], None] | None = None) -> list:
-        """[fn(*b) for b in blocks], all submitted at once on Dask."""
+        """[fn(*b) for b in blocks], all submitted at once to the workers; `progress(done,
+        total)` as the results come back in block order."""
         total = len(blocks)
-        if self.client is None:
-            out = []
-            for i, b in enumerate(blocks):
-                out.append(fn(*b))
-                if progress is not None:
-                    progress(i + 1, total)
-            return out
-        from dask.distributed import as_completed
-
-        futures = [self.client.submit(fn, *b, pure=False) for b in blocks]
-        index = {f.key: i for i, f in enumerate(futures)}
-        results = [None] * total
-        for done, fut in enumerate(as_completed(futures), start=1):
-            results[index[fut.key]] = fut.result()
+        out = []
+        for r in self.imap(fn, blocks, ahead=max(total, 1)):
+            out.append(r)
             if progress is not None:
-                progress(done, total)
-        return results
+                progress(len(out), total)
+        return out
 
 
 def map_blocks(fn: Callable, blocks: Sequence[tuple], workers: int | None = None,
                scheduler: str | None = None, progress: Callable[[int, int], None] | None = None,
                where: Blocks | None = None) -> list:
-    """[fn(*b) for b in blocks], here or on Dask (see the module docstring); `where`: an open
-    `Blocks` to use (and leave open) instead of workers / scheduler."""
+    """[fn(*b) for b in blocks], here, on forked workers or on Dask (see the module docstring);
+    `where`: an open `Blocks` to use (and leave open) instead of workers / scheduler."""
     if where is not None:
         return where.map(fn, blocks, progress)
     with Blocks(workers, scheduler) as opened:
@@ -221,37 +265,6 @@ class SharedState(Protocol):
     def delta(self, snapshot: Any) -> Any: ...
 
     def merge(self, delta: Any) -> None: ...
-
-
-#: the job of the forked workers: (task, items, state), set just before the pool forks
-_JOB: tuple | None = None
-#: True in a forked worker: a task's own `parallel_map` runs serially there (no pool in a pool)
-_IN_WORKER = False
-
-
-def available_workers() -> int:
-    """CPUs this process may run on (its affinity mask where the OS has one)."""
-    try:
-        return max(len(os.sched_getaffinity(0)), 1)
-    except AttributeError:                  # not Linux
-        return max(os.cpu_count() or 1, 1)
-
-
-def can_fork() -> bool:
-    """Whether worker processes can be forked here (fork start method, not a worker of
-    `parallel_map` or another daemonic process)."""
-    return ("fork" in multiprocessing.get_all_start_methods() and not _IN_WORKER
-            and not multiprocessing.current_process().daemon)
-
-
-def _worker_init() -> None:
-    """A worker ends quietly when the parent ends the pool (the parent's SIGTERM handler, e.g.
-    the CLI's, is not inherited), leaves Ctrl-C to the parent and runs its tasks' own maps
-    serially."""
-    global _IN_WORKER
-    _IN_WORKER = True
-    signal.signal(signal.SIGTERM, signal.SIG_DFL)
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
 def _run_item(i: int) -> tuple:
@@ -270,39 +283,21 @@ def parallel_map(task: Callable, items: Sequence, workers: int, first: Sequence[
     """[task(item) for item in items], on up to `workers` forked processes when `workers` > 1,
     there are at least two items and `can_fork()`; else serially here (module docstring).
     `first`: indices of items to start first (the longest tasks: better balance; results keep
-    the items' order). `state`: merged with each task's delta, in the items' order. An exception
-    of a task is raised here, the first in the items' order.
-
-    The tasks are a Dask graph computed by Dask's local process scheduler
-    (`dask.multiprocessing.get`, one task at a time per process: chunksize 1) on a pool of
-    processes forked from this one (Dask's own pool would spawn fresh interpreters, without
-    this process's state). Independent tasks start in the order `dask.order` gives them, the
-    greatest key first: the keys count down along `first` and then the items' order."""
+    the items' order): the items are handed to the workers in that order, one at a time per
+    free worker. `state`: merged with each task's delta, in the items' order. An exception of a
+    task is raised here, the first in the items' order."""
     items = list(items)
     n = min(int(workers), len(items))
     if n <= 1 or not can_fork():
         return [task(it) for it in items]
-    import dask.multiprocessing
-
-    global _JOB
     order = list(dict.fromkeys(list(first or ()) + list(range(len(items)))))
-    name = f"parallel_map-{uuid.uuid4().hex}"
-    graph = {(name, len(order) - rank): (_run_item, i) for rank, i in enumerate(order)}
-    keys = [(name, len(order) - rank) for rank in range(len(order))]
-    _JOB = (task, items, state)
-    pool = ProcessPoolExecutor(n, mp_context=multiprocessing.get_context("fork"),
-                               initializer=_worker_init)
+    pool = _Pool(n, job=(task, items, state))
     try:
-        got = dict(zip(order, dask.multiprocessing.get(graph, keys, pool=pool, chunksize=1,
-                                                       optimize_graph=False)))
+        got = dict(zip(order, _in_order(lambda i: pool.submit(_run_item, i), order, len(order))))
     except BaseException:
-        pool.shutdown(wait=False, cancel_futures=True)
-        for proc in list(getattr(pool, "_processes", {}).values()):   # no public terminate
-            proc.terminate()
+        pool.close(cancel=True)
         raise
-    finally:
-        _JOB = None
-    pool.shutdown(wait=True)
+    pool.close()
     results = []
     for i in range(len(items)):
         (kind, value), delta = got[i]

@@ -39,9 +39,7 @@ def rss_MB() -> float:
 
 def _rss_everywhere(where) -> list[float]:
     """RSS (MB) of every worker process (of this process with no workers)."""
-    if where.client is None:
-        return [rss_MB()]
-    return [float(v) for v in where.client.run(rss_MB).values()]
+    return [float(v) for v in where.on_every_worker(rss_MB)]
 
 
 def memory_per_stack(asm, workers: int | None, n_stacks: int = MEMORY_STACKS,

@@ -6,15 +6,16 @@ um at the nominal diameters) at one temperature (80 C) through the exact model
 (`tolerance_samples.run_samples`, blocks of 1e4 samples). First this process's FE set-up (the
 pipeline from the FE cache and one sample through it, `tolerance_samples.warm`: what
 `bearingfem tolerance` does before its Monte Carlo), then the blocks in each mode: in this
-process, on a local Dask cluster of 1 and of 2 workers (with `--workers W`: W workers only;
-the Dask modes run first, so that no mode inherits the caches another one filled).
-Per Dask mode the breakdown: cluster start, the workers' set-up (from the FE cache, in workers
-forked from a fork server with the model imported, `parallel.LOCAL_START_METHOD`), the blocks, closing the cluster; "whole" is the FE
-set-up plus all of these, what a command spends. Then the speed-up of 2 workers over this
+process, on 1 and on 2 worker processes (`--workers`, `parallel.Blocks`; with `--workers W`:
+W workers only; the worker modes run first, so that no mode inherits the caches another one
+filled). Per worker mode the breakdown: the workers' start (forked from this process after its
+set-up), the workers' set-up (`warm` in each: they have this process's pipeline from the fork),
+the blocks, closing the workers; "whole" is the FE set-up plus all of these, what a command
+spends. Then the speed-up of 2 workers over this
 process (whole and the blocks alone; issue 27 asks >= 1.7x whole on an idle 2-core machine), the
 CPU seconds per sample of the blocks (this process's, or the worker processes' with all their
 threads while the blocks ran; issue 27: a worker within 10 % of the process), the CPU this
-process spent meanwhile (scheduler and client), and a check that every mode gives the same
+process spent meanwhile (handing out blocks, taking results), and a check that every mode gives the same
 numbers bit for bit. On a loaded machine the CPU seconds move much less than the wall times.
 """
 from __future__ import annotations
@@ -48,13 +49,13 @@ def _process_cpu_s() -> float:
 
 def _workers_cpu_s(where) -> float:
     """Summed CPU seconds of the worker processes so far (0 when the blocks run here)."""
-    if where.client is None:
+    if where.here:
         return 0.0
-    return float(sum(where.client.run(_process_cpu_s).values()))
+    return float(sum(where.on_every_worker(_process_cpu_s)))
 
 
 def _label(w: int | None) -> str:
-    return HERE if w is None else f"Dask, {w} worker{'s' if w > 1 else ''}"
+    return HERE if w is None else f"{w} worker{'s' if w > 1 else ''}"
 
 
 def main(samples: int, workers: int | None = None) -> None:
@@ -62,7 +63,7 @@ def main(samples: int, workers: int | None = None) -> None:
 
     from studies.model import tolerance_samples as tsm
     from studies.model import tolerances as tol
-    from studies.model.parallel import LOCAL_START_METHOD, Blocks
+    from studies.model.parallel import Blocks
 
     asm = _assembly()
     cond = {"T_ambient_C": np.array([80.0])}
@@ -74,10 +75,8 @@ def main(samples: int, workers: int | None = None) -> None:
         tsm.warm(asm)
     print(f"{'FE set-up':>16}: {c_setup.line()} (this process: the pipeline from the FE cache "
           f"and one sample)")
-    # the Dask modes first, then this process: every mode starts from the state right after the
-    # set-up (no mode reuses the caches another one filled); 2 workers before 1, so that the mode
-    # the speed-up is stated for starts the fork server (about 1.2 s of imports) itself, as a
-    # `tolerance --workers 2` does
+    # the worker modes first, then this process: every mode starts from the state right after
+    # the set-up (no mode reuses the caches another one filled: the workers fork from it)
     modes = [2, 1, None] if workers is None else [workers]
     runs, whole, blocks, cpu_us, parent_cpu = {}, {}, {}, {}, {}
     for w in modes:
@@ -94,7 +93,7 @@ def main(samples: int, workers: int | None = None) -> None:
                     runs[label] = tsm.run_samples(asm, cond, di, do, where=where)
                 # CPU of the blocks: this process's, or the worker processes' (every thread:
                 # the task and the worker's own event loop and monitors) during the blocks
-                cpu = (c_blocks.cpu_s if where.client is None
+                cpu = (c_blocks.cpu_s if where.here
                        else _workers_cpu_s(where) - before)
                 parent_cpu[label] = _process_cpu_s() - here_before
                 t0 = time.perf_counter()
@@ -104,14 +103,14 @@ def main(samples: int, workers: int | None = None) -> None:
         print(f"{label:>16}: {samples} samples at 80 C, {c.line()}, "
               f"{samples / c_blocks.wall_s:8.0f} samples/s in the blocks", flush=True)
         if w is not None:
-            print(f"{'':>16}  cluster start {t_start:.2f} s ({LOCAL_START_METHOD}), the workers' "
+            print(f"{'':>16}  workers' start {t_start:.2f} s (forked), the workers' "
                   f"set-up {t_warm:.2f} s, the blocks {c_blocks.wall_s:.2f} s, closing "
                   f"{t_close:.2f} s (wall)", flush=True)
         print(f"{'':>16}  whole (FE set-up {c_setup.wall_s:.2f} s + the above) "
               f"{whole[label]:.2f} s wall", flush=True)
         print(f"{'':>16}  CPU per sample of the blocks: {cpu_us[label]:.1f} us "
               f"({HERE if w is None else 'the worker processes, every thread'})"
-              + ("" if w is None else f"; this process meanwhile (scheduler, client) "
+              + ("" if w is None else f"; this process meanwhile (handing out blocks) "
                                       f"{parent_cpu[label]:.2f} s CPU"), flush=True)
     if workers is None:
         two = _label(2)
