@@ -50,7 +50,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="exit 1 when a row violates a limit (flag_* columns; summary on stderr)")
     swhere = s.add_mutually_exclusive_group()
     swhere.add_argument("--workers", type=int, default=None,
-                        help="evaluate the row chunks on a local Dask cluster of N processes")
+                        help="evaluate the row chunks on N worker processes")
     swhere.add_argument("--scheduler", default=None,
                         help="evaluate them on an existing Dask cluster (tcp://host:port)")
 
@@ -101,7 +101,7 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--out", type=Path, required=True)
     where = t.add_mutually_exclusive_group()
     where.add_argument("--workers", type=int, default=None,
-                       help="run the Monte Carlo on a local Dask cluster of N processes")
+                       help="run the Monte Carlo on N worker processes")
     where.add_argument("--scheduler", default=None,
                        help="run it on an existing Dask cluster (tcp://host:port)")
 
@@ -122,7 +122,7 @@ def build_parser() -> argparse.ArgumentParser:
     dz.add_argument("--out", type=Path, required=True)
     dwhere = dz.add_mutually_exclusive_group()
     dwhere.add_argument("--workers", type=int, default=None,
-                        help="evaluate the stacks on a local Dask cluster of N processes")
+                        help="evaluate the stacks on N worker processes")
     dwhere.add_argument("--scheduler", default=None,
                         help="evaluate them on an existing Dask cluster (tcp://host:port)")
 
@@ -139,7 +139,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="instead: the design search of seed 000 (324 stacks), cold and warm FE "
                         "cache (wall, CPU, load), and the workers' memory per stack")
     b.add_argument("--workers", type=int, default=None,
-                   help="with --tolerance: only on N Dask workers; with --design: N workers "
+                   help="with --tolerance: only on N workers; with --design: N workers "
                         "(default 2, 0 = this process)")
     b.add_argument("--simulate", action="store_true",
                    help="instead: whole-process simulate times (3 rows, cold and warm cache) per "

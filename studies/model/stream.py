@@ -95,10 +95,10 @@ def simulate_file(asm, conditions: Path, out: Path, effects: dict | None = None,
     """Evaluate the conditions file `conditions` chunk by chunk and write the output table `out`
     (condition columns, model outputs, flag and margin columns; with its provenance sidecar) as
     one atomic file: nothing is left at `out` on an error. `n_rows`: the file's row count when
-    known (`check_conditions`), else it is counted first. With `workers` (a local Dask cluster)
-    or `scheduler` (an existing one) the chunks are evaluated as Dask tasks (`run_block` on each
-    worker's shared pipeline, `studies.model.parallel.Blocks.imap`), the same chunks by the same
-    function, so the same bytes. See the module docstring."""
+    known (`check_conditions`), else it is counted first. With `workers` (processes forked from
+    this one) or `scheduler` (an existing Dask cluster) the chunks are evaluated as tasks
+    (`run_block` on each worker's shared pipeline, `studies.model.parallel.Blocks.imap`), the
+    same chunks by the same function, so the same bytes. See the module docstring."""
     from studies.model.parallel import Blocks
 
     if asm.thermal.mode == "transient":

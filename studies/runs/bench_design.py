@@ -10,7 +10,7 @@ and load beside them. The screening's FE set-ups come from one reference FE per 
 other member by a static condensation of the spacers and a low-rank update, no mesh or
 factorisation of its own), so cold differs from warm by the meshes and the reference set-ups of
 the families and by the confirm step's full set-ups (the assembly's mesh, cached). Default 2
-workers (a local Dask cluster); `--workers 0` runs in this process.
+worker processes (forked from this one); `--workers 0` runs in this process.
 """
 from __future__ import annotations
 

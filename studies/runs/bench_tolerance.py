@@ -11,12 +11,12 @@ W workers only; the worker modes run first, so that no mode inherits the caches 
 filled). Per worker mode the breakdown: the workers' start (forked from this process after its
 set-up), the workers' set-up (`warm` in each: they have this process's pipeline from the fork),
 the blocks, closing the workers; "whole" is the FE set-up plus all of these, what a command
-spends. Then the speed-up of 2 workers over this
-process (whole and the blocks alone; issue 27 asks >= 1.7x whole on an idle 2-core machine), the
-CPU seconds per sample of the blocks (this process's, or the worker processes' with all their
-threads while the blocks ran; issue 27: a worker within 10 % of the process), the CPU this
-process spent meanwhile (handing out blocks, taking results), and a check that every mode gives the same
-numbers bit for bit. On a loaded machine the CPU seconds move much less than the wall times.
+spends. Then the speed-up of 2 workers over this process (whole and the blocks alone; issue 27
+asks >= 1.7x whole on an idle 2-core machine), the CPU seconds per sample of the blocks (this
+process's, or the worker processes' while the blocks ran; issue 27: a worker within 10 % of the
+process), the CPU this process spent meanwhile (handing out blocks, taking results), and a
+check that every mode gives the same numbers bit for bit. On a loaded machine the CPU seconds
+move much less than the wall times.
 """
 from __future__ import annotations
 

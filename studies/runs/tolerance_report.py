@@ -114,7 +114,7 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, samples: int,
         bar=None) -> ToleranceSummary:
     """Write the tolerance analysis into `out` (tolerance.json is its whole content); returns the
     summary the command prints. The Monte
-    Carlo runs here, or on a local Dask cluster of `workers` processes, or on the cluster at
+    Carlo runs here, or on `workers` processes forked from this one, or on the Dask cluster at
     `scheduler`, with the same numbers (`studies.model.parallel`); `bar(done, total)` follows
     its blocks (the command line's progress bar)."""
     if not tol.has_tolerances(asm):
