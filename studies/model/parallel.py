@@ -142,15 +142,13 @@ class _Pool:
 
     def close(self, cancel: bool = False) -> None:
         """Wait for the workers to end (they are then reaped: their CPU counts in this process's
-        RUSAGE_CHILDREN); `cancel`: drop the tasks not started and end the workers now."""
-        if not cancel:
-            self.executor.shutdown(wait=True)
-            return
-        # no public terminate in concurrent.futures; shutdown forgets the processes
-        processes = list((getattr(self.executor, "_processes", None) or {}).values())
-        self.executor.shutdown(wait=False, cancel_futures=True)
-        for proc in processes:
-            proc.terminate()         # reaped by the pool's own thread, which sees them end
+        RUSAGE_CHILDREN); `cancel`: end the workers now and drop the tasks not started. Either
+        way the pool's own thread has ended when this returns (no thread of it is left to hold
+        a lock when this process forks again)."""
+        if cancel:               # no public terminate in concurrent.futures
+            for proc in list((getattr(self.executor, "_processes", None) or {}).values()):
+                proc.terminate()
+        self.executor.shutdown(wait=True, cancel_futures=cancel)
 
 
 def _in_order(submit: Callable[[Any], Future], items: Iterable, ahead: int) -> Iterator:
