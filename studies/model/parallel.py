@@ -30,11 +30,15 @@ two kinds of work:
 Why local workers are not a local Dask cluster (`distributed.LocalCluster`, the route before
 2026-11-25): its start cost 1.3 s wall on an idle 2-core machine (a fork server that imports
 distributed, 0.77 s, and the model; the scheduler and a nanny per worker) and its scheduler and
-client ran on threads of this process, 1.5 CPU s over 1e6 tolerance samples, beside two workers
-on two cores (`bench --tolerance`: the cold 2-worker run was 1.60x one process). Forking after
-the command's set-up costs milliseconds and the workers start with its imports and warm
-pipeline; the workers are forked before any thread of a cluster exists (a worker forked by
-distributed's nanny while a scheduler thread held a lock hung at start, twice in the test suite).
+client ran on threads of this process, 1.2..1.7 CPU s over 1e6 tolerance samples, beside two
+workers on two cores (`bench --tolerance`: the cold 2-worker run was 1.60x one process). The
+forked pool starts in 0.03..0.07 s (at a load of 11..16, where the cluster took 4.2..4.9 s), its
+workers start with this process's imports and warm pipeline, and this process spends only what
+handing out blocks costs (docs/cli.md, "Benchmarks"). No thread of a cluster exists when the
+pool forks, and concurrent.futures forks all workers before it starts its own thread (a worker
+forked by distributed's nanny while a scheduler thread held a lock hung at start, twice in the
+test suite; the local route imports no distributed).
+
 Dask's local process scheduler (`dask.multiprocessing.get`, the diagnosis's map before) computes
 a whole graph at once and cannot stream `simulate`'s unbounded chunks, so the local route is a
 `concurrent.futures` pool of forked processes; Dask stays the route to other machines.
