@@ -276,3 +276,46 @@ def test_the_shipped_rig_runs_with_its_clamp_force():
     out = to_columns(simulate_table(asm, {"T_ambient_C": np.array([20.0, 60.0])}))
     assert out["clamp_force_N"][0] == pytest.approx(3890.0, rel=1e-9)
     assert out["flag_clamp_open"].tolist() == [0.0, 1.0]
+
+
+@pytest.mark.parametrize("d,P,mu,D_Km", [(100.0, 1.5, 0.12, 103.8), (10.0, 1.25, 0.10, 13.5),
+                                          (10.0, 1.5, 0.0, 13.5), (24.0, 3.0, 0.16, 31.0)])
+def test_tightening_force_is_the_power_screw_torque(d, P, mu, D_Km):
+    """VDI 2230's tightening torque (step R13, `analytic.clamp.tightening_force_N`) against the
+    exact torque of a power screw raising a load (Shigley's Mechanical Engineering Design, 10th
+    ed., eq. 8-27: T = F d_m / 2 (l + pi f d_m sec a) / (pi d_m - f l sec a) + F f_c d_c / 2, a =
+    30 deg the ISO flank half-angle, l = P, d_m = d_2): VDI's 0.16 P and 0.58 d_2 are P / (2 pi)
+    and d_2 / (2 cos 30 deg) rounded, so the two agree to 1 %."""
+    from analytic.clamp import tightening_force_N
+
+    torque = 20000.0
+    d2 = d - 0.649519 * P
+    sec = 1.0 / np.cos(np.radians(30.0))
+    per_N = 0.5 * d2 * (P + np.pi * mu * d2 * sec) / (np.pi * d2 - mu * P * sec) + 0.5 * mu * D_Km
+    assert tightening_force_N(torque, d, P, mu, mu, D_Km) == pytest.approx(torque / per_N, rel=1e-2)
+
+
+def test_the_thin_section_rig_runs_with_its_nut_force():
+    """studies/configs/rig_thin_section_hub.toml (issue 24's second rig): its aluminium shaft
+    nut is tightened to the 1497 N of its torque (VDI 2230, in the file's comment) at T_ref; the
+    aluminium shaft outgrows the steel inner-ring stack when hot, so the nut's force falls and is
+    used up by +70 C (flagged), and rises when cold. Every fit (inner, outer, the hub = sleeve)
+    has its pressure and flag columns beside the clamp's."""
+    from analytic.clamp import tightening_force_N
+    from studies.model.columns import to_columns
+    from studies.model.config import load_assembly
+    from studies.model.pipeline import simulate_table
+
+    asm = load_assembly(CONFIG_DIR / "rig_thin_section_hub.toml")
+    assert asm.nut.clamp == "force"
+    assert asm.nut.clamp_force_N == pytest.approx(
+        tightening_force_N(20000.0, 100.0, 1.5, 0.12, 0.12, (101.6 + 106.0) / 2), abs=0.5)
+    cond = {"T_ambient_C": np.array([-45.0, 20.0, 70.0]), "speed_rpm": np.zeros(3)}   # at rest,
+    out = to_columns(simulate_table(asm, cond))        # as the nut was tightened
+    f = out["clamp_force_N"]
+    assert f[1] == pytest.approx(asm.nut.clamp_force_N, rel=1e-9)
+    assert f[0] > f[1] and f[2] == 0.0
+    assert out["flag_clamp_open"].tolist() == [0.0, 0.0, 1.0]
+    for fit in ("inner", "outer", "sleeve"):
+        for col in (f"fit_pressure_{fit}_MPa", f"flag_fit_open_{fit}", f"interference_{fit}_um"):
+            assert col in out, col
