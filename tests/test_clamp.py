@@ -21,7 +21,7 @@ import tomllib
 import numpy as np
 import pytest
 
-from fem.model import build_model, face_weights
+from fem.model import HOLD_RATIO, build_model, face_weights
 from fem.solver import FitSolver, Superposition
 from meshes.section import Face, Rect, Section, Split
 from studies.model.config import CONFIG_DIR, ConfigError, assembly_from_dict
@@ -171,7 +171,8 @@ def test_a_clamp_force_used_up_opens_the_stack_and_the_fit_returns_to_lame():
     """(b) Heated to 60 C, the aluminium housing outgrows the steel stack: the rigid cover pulls
     the stack and the outer fit carries a pressure across its free clearance (Lamé: 0); a clamp
     of 500 N is used up (force 0, flagged, margin <= 0) and the fit carries nothing. At T_ref the
-    clamp carries its force; a row whose axial load exceeds it is flagged with margin F - |Fa|."""
+    clamp carries its force; a row whose axial load exceeds it is flagged with margin F - |Fa|
+    (F the least force over the stack's faces)."""
     from studies.model.columns import to_columns
     from studies.model.pipeline import simulate_table
 
@@ -185,7 +186,19 @@ def test_a_clamp_force_used_up_opens_the_stack_and_the_fit_returns_to_lame():
     assert force.fits.outer_MPa[1] <= 1e-12 * p_ref                # Lamé's 0
     out = to_columns(force)
     np.testing.assert_allclose(out["clamp_force_N"], [500.0, 0.0, 500.0], rtol=1e-9, atol=1e-9 * 500)
-    np.testing.assert_allclose(out["margin_clamp_N"], [500.0, 0.0, -100.0], rtol=1e-9, atol=1e-9 * 500)
+    # the stack's faces (studies/model/stack.py STACK_FACES): the housing shoulder under ring A
+    # and the sleeve carries the whole clamp force (equilibrium of the stator), the two ring-
+    # spacer faces in series carry the rings' share of it, the rest goes through the sleeve
+    # beside them; the margin is the least face force less |axial_load_N|
+    ff = force.fe.face_force_N        # clamp, shoulder, ring A - spacer, spacer - ring B
+    np.testing.assert_allclose(ff[[0, 2], 1], [500.0, 500.0], rtol=1e-9)
+    # (to HOLD_RATIO: the ring faces are partly open, dished by the fits, and the weak springs
+    # across them carry HOLD_RATIO E A / L times their gap, 1e-8 of the force here)
+    np.testing.assert_allclose(ff[[0, 2], 2], ff[[0, 2], 3], rtol=HOLD_RATIO)
+    share = ff[0, 1:].min()
+    assert 0.0 < share < 500.0
+    np.testing.assert_allclose(out["margin_clamp_N"], [share, 0.0, share - 600.0], rtol=1e-9,
+                               atol=1e-9 * 500)
     assert out["flag_clamp_open"].tolist() == [0.0, 1.0, 1.0]
     assert "clamp_force_N" not in to_columns(rigid)                # only with a clamp force
     # the superposition against a full FE solve per row (the clamp's spring in the stiffness)
@@ -199,9 +212,12 @@ def test_a_clamp_force_used_up_opens_the_stack_and_the_fit_returns_to_lame():
 
 def test_a_clamp_without_force_or_stiffness_is_the_compliant_cover():
     """(c) through the whole route: a force clamp of 1e-3 N with a spring of 1e-6 N/um gives
-    every output of the compliant cover (seed 000 at -60, 20, 80 C) to 1e-5 of each column's
+    every output of the compliant cover (seed 000 at -60 and 20 C) to 1e-5 of each column's
     scale (what is left of the clamp is 1e-3 N and 1 N/mm, against a preload of 100 N and a
-    stack of about 1e6 N/mm: the force ratio 1e-5)."""
+    stack of about 1e6 N/mm: the force ratio 1e-5). The compliant cover keeps the stack's own
+    faces tied; under a force clamp they are contacts (tests/test_stack_faces.py), so at 80 C,
+    where the fits dish the ring faces and part of each opens, the two differ (by 2e-3 here:
+    the tied faces' tension, the artefact issue 24 names)."""
     from studies.model.columns import to_columns
     from studies.model.pipeline import simulate_table
 
@@ -211,9 +227,12 @@ def test_a_clamp_without_force_or_stiffness_is_the_compliant_cover():
     raw = copy.deepcopy(raw)
     raw["cover"].update(clamp="force", clamp_force_N=1e-3, clamp_stiffness_N_per_um=1e-6)
     force = to_columns(simulate_table(assembly_from_dict(raw, "f.toml"), cond))
+    worst_hot = 0.0
     for k, v in comp.items():
         scale = max(np.abs(v).max(), 1e-30)
-        np.testing.assert_allclose(force[k], v, rtol=0, atol=1e-5 * scale, err_msg=k)
+        np.testing.assert_allclose(force[k][:2], v[:2], rtol=0, atol=1e-5 * scale, err_msg=k)
+        worst_hot = max(worst_hot, abs(force[k][2] - v[2]) / scale)
+    assert worst_hot > 1e-4
 
 
 @pytest.mark.parametrize("change,expect", [
@@ -257,7 +276,7 @@ def test_design_search_family_holds_the_clamp_spring():
     fam = Family(spec("TC4", "9Cr18"), SPACERS)
     s = spec("6061", "Si3N4")
     par, own = fam.setup(s), compute_setup(s, full_fe(s))
-    assert own.fit_names[-1] == "face_clamp_cover"
+    assert "face_clamp_cover" in own.fit_names and "face_outer_A_spacer" in own.fit_names
     for name in ("B", "A", "probe_units"):
         a, b = getattr(par.condensed, name), getattr(own.condensed, name)
         assert np.abs(a - b).max() <= 1e-9 * np.abs(b).max(), name
