@@ -338,3 +338,20 @@ def test_the_thin_section_rig_runs_with_its_nut_force():
     for fit in ("inner", "outer", "sleeve"):
         for col in (f"fit_pressure_{fit}_MPa", f"flag_fit_open_{fit}", f"interference_{fit}_um"):
             assert col in out, col
+
+
+def test_a_very_soft_clamp_spring_is_warned_about():
+    """A clamp spring of 1e-3 N/um on seed 000's cover (its thread gives ~1500 N/um, VDI 2230:
+    a ratio of 7e-7, below CLAMP_SOFT_WARN) gets one warning line naming the key and the overlap
+    it is tightened by (F / k = 1000 N / 1 N/mm = 1000 mm); a bolted cover's 100 N/um gets none."""
+    from studies.model.checks import plausibility_warnings
+
+    for k, n in ((1e-3, 1), (100.0, 0)):
+        raw = _raw()
+        raw["cover"].update(clamp="force", clamp_force_N=1e3, clamp_stiffness_N_per_um=k)
+        msgs = [m for m in plausibility_warnings(assembly_from_dict(raw, "x.toml"))
+                if "clamp_stiffness" in m]
+        assert len(msgs) == n
+        if n:
+            assert "\n" not in msgs[0] and "cover.clamp_stiffness_N_per_um = 0.001" in msgs[0]
+            assert "tightened by 1e+03 mm" in msgs[0]
