@@ -9,7 +9,7 @@ hold the linear field) and the references are the closed forms of bars in series
 (a) all faces closed: the same answer as the tied stack (the model before this change), to
     round-off relative to the clamp force; the force through every face delta / sum(1/k);
 (b) an external load P at an intermediate plane (the bolted joint with the load introduced inside
-    the clamped parts: VDI 2230 Part 1 (2015) sec. 5.3, load introduction factor; Shigley's
+    the clamped parts: VDI 2230 Part 1 (2015), the load introduction factor n; Shigley's
     Mechanical Engineering Design, 10th ed., ch. 8): below the plane the faces carry
     F_i - P k_1 / (k_1 + k_2), above it F_i + P k_2 / (k_1 + k_2) (k_1, k_2 the parts below and
     above in series); the faces below open at P = F_i (k_1 + k_2) / k_1 and those above never
@@ -176,7 +176,8 @@ def test_a_load_inside_the_stack_opens_the_faces_on_its_side(column):
     open at P_1 = F_i (k_1 + k_2) / k_1; the faces above carry F_i + P k_2 / (k_1 + k_2) and,
     once the faces below are open, P itself (the clamp takes the whole load). P downwards on the
     spacer's top: the clamp face opens first, at P_2 = F_i (k_1' + k_2') / k_2'. Each to 1e-8 of
-    the clamp force (beyond the opening: 10 HOLD_RATIO, the weak spring across the open face)."""
+    the clamp force; beyond the opening the weak spring across the open face carries k_w g (the
+    ring's equilibrium, to 1e-8), 2 k_w / k_2 of P at most."""
     solver, _ = column
     F_i = DELTA * _series(*(_k(p) for p, _, _ in PARTS), K_B)
     d = _deltas(solver)
