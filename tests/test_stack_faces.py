@@ -18,7 +18,9 @@ hold the linear field) and the references are the closed forms of bars in series
     zero force;
 (d) a part whose faces both open (the ring, when the spacer above it is lifted off it) is held by
     the weak springs of its faces (`fem.model.HOLD_RATIO`): its two gaps split as the springs'
-    flexibilities, and what they carry is HOLD_RATIO-small.
+    flexibilities, and what they carry is HOLD_RATIO-small;
+(e) parallel paths (a ring column beside a sleeve column between rigid plates): the clamp force
+    splits by their stiffness, and a sleeve that outgrows the rings opens the ring column first.
 """
 from __future__ import annotations
 
@@ -276,3 +278,76 @@ def test_a_part_whose_faces_all_open_is_held_by_its_weak_springs(column):
     # (mean gaps; to 10 HOLD_RATIO, the springs' local deformation as above)
     assert g_below.mean() + g_above.mean() == pytest.approx(
         F_c * (1.0 / _k("cover") + C_B) - DELTA, rel=10 * HOLD_RATIO)
+
+
+# ------------------------------------------------------------------ parallel paths
+#: two columns side by side between a base and a plate (a ring stack and a sleeve beside it,
+#: 1 mm apart radially, each with its own faces), base and plate of a modulus 1e8 x steel (rigid
+#: with their bending to about 1e-6), the clamp's spring and a nut above the plate on a roller;
+#: the plate is held by a weak spring on the sleeve's face only (which stays closed)
+PR0, PR1, PR1G, PR2 = 10.0, 12.0, 13.0, 20.0
+PL, PW, NW = 10.0, 2.0, 3.0              # column length, plate and nut width (mm)
+
+
+def _rigid(name: str):
+    from analytic.materials import Material
+
+    return Material(name, 2.0e13, 0.3, 0.0, 7800.0, 50.0, 460.0)
+
+
+def _parallel_section() -> Section:
+    zc, zp, zn = 2.0, 2.0 + PL, 2.0 + PL + PW
+    rects = (Rect("base", PR0, PR2, 0.0, zc, "9Cr18"),
+             Rect("ring", PR0, PR1, zc, zp, "9Cr18"),
+             Rect("sleeve", PR1G, PR2, zc, zp, "6061"),
+             Rect("plate", PR0, PR2, zp, zn, "9Cr18"),
+             Rect("nut", PR0, PR2, zn, zn + NW, "17-4PH"))
+    cols = ("ring", "sleeve")
+    splits = (Split("face_base", "z", zc, PR0, PR2, ("base",), cols, False),
+              Split("face_plate", "z", zp, PR0, PR2, cols, ("plate",), False),
+              Split("face_clamp", "z", zn, PR0, PR2, ("plate",), ("nut",), False))
+    faces = (Face("face_clamp", ("plate",), ("nut",), zn, PR0, PR2, "clamp", C_B),
+             Face("face_base_ring", ("base",), ("ring",), zc, PR0, PR1, "stack", 0.0, HOLD_RATIO),
+             Face("face_base_sleeve", ("base",), ("sleeve",), zc, PR1G, PR2, "stack", 0.0,
+                  HOLD_RATIO),
+             Face("face_ring_plate", ("ring",), ("plate",), zp, PR0, PR1, "stack", 0.0, 0.0),
+             Face("face_sleeve_plate", ("sleeve",), ("plate",), zp, PR1G, PR2, "stack", 0.0,
+                  HOLD_RATIO))
+    return Section(rects, splits, (), (0.0, zn + NW), (), {}, 1.0, 0.5, 0.0, (), faces)
+
+
+def test_parallel_paths_split_the_clamp_force_and_the_ring_opens_first():
+    """The sleeve column (6061) beside the ring column (steel), the sleeve heated by a free growth
+    e: while both are closed the plate (rigid) moves up by u = (k_s e - k_c DELTA) / (k_r + k_s
+    + k_c) (k = E A / PL of each column, k_c the clamp's spring and the nut in series), the ring
+    column carries -k_r u, the sleeve k_s (e - u) and the clamp their sum (the bolted joint's
+    parallel members share by stiffness: VDI 2230 Part 1; Shigley ch. 8); the ring's share falls
+    as the sleeve grows, and it opens first, where u = 0 (e = k_c DELTA / k_s); beyond, the sleeve
+    alone carries (e + DELTA) k_s k_c / (k_s + k_c). Each face force to 1e-5 of the clamp force
+    (measured 1.4e-6: the rigid parts' bending)."""
+    mats = {"base": _rigid("rigid"), "plate": _rigid("rigid")}
+    solver = FitSolver(build_model(_parallel_section(), materials=mats))
+    m = solver.model
+    k_r = get_material("9Cr18").E_MPa * np.pi * (PR1 ** 2 - PR0 ** 2) / PL
+    k_s = get_material("6061").E_MPa * np.pi * (PR2 ** 2 - PR1G ** 2) / PL
+    k_n = get_material("17-4PH").E_MPa * np.pi * (PR2 ** 2 - PR0 ** 2) / NW
+    k_c = _series(1.0 / C_B, k_n)
+    d = np.array([DELTA if f.key == "clamp" else 0.0 for f in m.section.faces])
+    i_s = m.part_names.index("sleeve")
+    F0 = DELTA * k_c * (k_r + k_s) / (k_r + k_s + k_c)
+    e_open = k_c * DELTA / k_s
+    for frac in (0.0, 0.5, 0.95, 1.05, 2.0):
+        e = frac * e_open
+        theta = np.zeros(len(m.part_names))
+        theta[i_s] = e / PL
+        f = _face_forces(solver, solver.solve(m.unit_loads @ theta, d).force_N)
+        u = (k_s * e - k_c * DELTA) / (k_r + k_s + k_c)
+        if u < 0:                                              # both columns closed
+            ring, sleeve = -k_r * u, k_s * (e - u)
+        else:                                                  # the ring column open
+            ring, sleeve = 0.0, k_s * k_c / (k_s + k_c) * (e + DELTA)
+        for name, v in (("face_base_ring", ring), ("face_ring_plate", ring),
+                        ("face_base_sleeve", sleeve), ("face_sleeve_plate", sleeve),
+                        ("face_clamp", ring + sleeve)):
+            assert f[name] == pytest.approx(v, abs=1e-5 * F0), (frac, name)
+        assert (f["face_ring_plate"] == 0.0) == (frac > 1.0)
