@@ -189,11 +189,42 @@ def evaluate_checks(result, checks: list[Check]) -> Checks:
 #: large means the viscous term decides everything and the lubrication amount must be known
 VISCOUS_TO_LOAD_WARN = 50.0
 
+#: a clamp's given spring below this fraction of its thread's own stiffness (VDI 2230 default)
+#: is warned about: the force clamp is then the compliant limit, tightened by an overlap of
+#: F / k, and the round-off of the contact problem grows as k_thread / k
+CLAMP_SOFT_WARN = 1e-4
+
+
+def _soft_clamp_warnings(asm) -> list[str]:
+    """One line per clamp with a force whose `clamp_stiffness_N_per_um` is below CLAMP_SOFT_WARN
+    of the stiffness its section gives (`studies.model.stack.clamp_stiffness_N_per_mm`)."""
+    from dataclasses import replace
+
+    from studies.model.stack import clamp_stiffness_N_per_mm
+
+    msgs = []
+    for name in ("nut", "cover"):
+        c = getattr(asm, name)
+        if c.clamp != "force" or not c.clamp_stiffness_N_per_um > 0:
+            continue
+        own = clamp_stiffness_N_per_mm(replace(asm, **{name: replace(c, clamp_stiffness_N_per_um=0.0)}),
+                                       name)
+        k = 1e3 * c.clamp_stiffness_N_per_um
+        if k < CLAMP_SOFT_WARN * own:
+            msgs.append(f"{name}.clamp_stiffness_N_per_um = {c.clamp_stiffness_N_per_um:g} is "
+                        f"{k / own:.1e} of its thread's own stiffness ({own / 1e3:.4g} N/um, VDI "
+                        f"2230): a spring that soft is the compliant limit, tightened by "
+                        f"{c.clamp_force_N / k:.3g} mm, and makes the contact problem "
+                        f"ill-conditioned (round-off x {own / k:.1e})")
+    return msgs
+
+
 def plausibility_warnings(asm, conditions: dict | None = None, out: dict | None = None) -> list[str]:
     """Legal but implausible inputs and results, one line each (the run goes on):
     units typed wrong (kelvin for Celsius, radians for degrees, mm for um), a viscous torque
     that dwarfs the load torque (an oil-bath Palmgren f0 on a lightly lubricated bearing) and a
-    contact ellipse truncated by the land (`analytic/bearing/land.py`)."""
+    contact ellipse truncated by the land (`analytic/bearing/land.py`) and a clamp's spring
+    so soft it is ill-conditioned (`CLAMP_SOFT_WARN`)."""
     msgs = []
     b, f = asm.bearing, asm.fits
     if b.contact_angle_free_deg < np.pi / 2:             # 1.57: a right angle in radians
@@ -228,6 +259,7 @@ def plausibility_warnings(asm, conditions: dict | None = None, out: dict | None 
         law = oil.walther()
         if (msg := law.extrapolation_warning(out["viscosity_mm2_s"], oil.name)) is not None:
             msgs.append(msg)
+    msgs += _soft_clamp_warnings(asm)
     for side in ("inner", "outer"):
         m = None if out is None else out.get(f"land_margin_{side}_deg")
         if m is not None and np.any(np.asarray(m) < 0):
