@@ -10,7 +10,9 @@ Checks and their allowables (docs/cli.md, "simulate: limits"):
 - fit_open_inner / fit_open_outer / fit_open_sleeve / fit_open_cartridge: the fit pressure must
   stay above 0 MPa, for a fit designed with interference only (the mean assembly at the reference
   temperature, `tolerances.designed_closed`; a fit designed as a clearance is not flagged for
-  being open). The sleeve's and cartridge's fits are the fits on their outside;
+  being open). The sleeve's and cartridge's fits are the fits on their outside. Its margin
+  `margin_fit_<fit>_MPa` is the fit pressure left before the fit opens (MPa; value - 0 MPa, the
+  same kind of margin as the clamp's in newtons); a designed clearance has neither;
 - clamp_open (a `[nut]`/`[cover]` with clamp = "force" only): the clamp force left before a
   stack face opens, `margin_clamp_N` (N, `studies.model.stages.fe.ClampState`), must stay above
   0 N; its margin is that column in newtons (a strict check: no relative margin).
@@ -32,6 +34,7 @@ CHECK_COLUMNS = frozenset(
                            "fit_open_inner", "fit_open_outer", "fit_open_sleeve",
                            "fit_open_cartridge")]
     + [f"margin_{n}" for n in ("max_contact_pressure_MPa", "static_safety")]
+    + [f"margin_fit_{n}_MPa" for n in ("inner", "outer", "sleeve", "cartridge")]
     + ["flag_clamp_open", "margin_clamp_N"])                     # clamp = "force" only
 
 
@@ -42,7 +45,8 @@ class Check:
     upper: True for value <= allowable, False for value >= (strict: >) allowable; source: where
     the allowable comes from; value: the checked quantity of a `SimulationResult` (a module-level
     function, so that checks travel to Dask workers); strict: a lower limit of 0 that must be
-    exceeded (no margin)."""
+    exceeded (no relative margin); margin_column: for a strict check, the column of its margin
+    in its own unit (value - allowable), "" for none."""
     name: str
     column: str
     allowable: float
@@ -51,6 +55,7 @@ class Check:
     source: str
     value: Callable[[object], np.ndarray]
     strict: bool = False
+    margin_column: str = ""
 
 
 @dataclass(frozen=True)
@@ -75,7 +80,8 @@ class Violation:
 class CheckOutcome:
     """One check over the rows of a result. value: the checked quantity per row (check.unit);
     violated: bool per row; margin: allowable / value - 1 (upper limit) or value / allowable - 1
-    (lower limit), >= 0 inside, inf where not finite (an unloaded row); None for a strict check."""
+    (lower limit), >= 0 inside, inf where not finite (an unloaded row); for a strict check
+    value - allowable in its unit where it names a `margin_column`, else None."""
     check: Check
     value: np.ndarray
     violated: np.ndarray
@@ -156,7 +162,7 @@ def assembly_checks(asm) -> list[Check]:
         if closed:                        # a designed clearance is allowed to be open
             checks.append(Check(f"fit_open_{side}", f"fit_pressure_{side}_MPa", 0.0, False, "MPa",
                                 "a fit assembled with interference", _FIT_PRESSURE[side],
-                                strict=True))
+                                strict=True, margin_column=f"margin_fit_{side}_MPa"))
     if "force" in (asm.nut.clamp, asm.cover.clamp):
         checks.append(Check("clamp_open", "margin_clamp_N", 0.0, False, "N",
                             'the clamp force left before a stack face opens (clamp = "force")',
@@ -179,6 +185,8 @@ def evaluate_checks(result, checks: list[Check]) -> Checks:
                 margin = v / c.allowable - 1.0 if not c.strict else None
         if margin is not None:
             margin = np.where(np.isfinite(margin), margin, np.inf)
+        if c.margin_column:                           # a margin in the check's own unit
+            margin = v - c.allowable
         outcomes.append(CheckOutcome(c, v, bad, margin))
     return Checks(tuple(outcomes))
 
