@@ -538,7 +538,8 @@ def ball_contacts(pl: Pipeline, pair, speed_rpm: float, T_oil_C: float
             Q = max(float(np.mean(np.asarray(pair.ball_load_N)[:, 0])), 1e-6)
             h = float(lub.hamrock_dowson_film(Rx, Ry, Ep, oil.eta_Pa_s(T_oil_C), oil.alpha_per_Pa,
                                               u, Q).h_central_um)
-        out.append(rolling_contact_conductance(a, b, u, g.ball, r, g.Z, film_um=h))
+        p0 = float(np.mean(np.asarray(c.p_max_MPa)[:, 0]))
+        out.append(rolling_contact_conductance(a, b, u, g.ball, r, g.Z, film_um=h, p_max_MPa=p0))
     return out[0], out[1]
 
 
