@@ -402,21 +402,13 @@ def run_transient(pl: Pipeline, cols: dict, progress=None, first_row: int = 0,
     for k in range(1, grid.size):
         if (k - 1) % couple_every == 0:
             # the coupling at the state at the start of the step
-            fe, gap = fe_states(pl, tm.ms, Q[-1][None, :], delta, w2[k - 1:k])
-            T3 = _groups_C(tm, tm.rc, Q[-1][None, :])
-            inp = _inputs(base, T3, speed[k - 1], preload[k - 1], axial[k - 1], radial[k - 1],
-                          moment[k - 1])
-            res, heat = _route(pl, inp, fe, ref1)
-            pair_W = float(heat.total_W[0])
-            T_oil = float(np.mean(T3[0, [PARTS.index(p) for p in ("inner_ring", "outer_ring",
-                                                                   "ball")]]))
-            cc = ball_contacts(pl, res.pair, float(speed[k - 1]), T_oil)
-            balls = (cc[0].G_W_K, cc[1].G_W_K)
-            h_pair = bearing_heat_inputs_W(heat, ring_share=(cc[0].ring_share, cc[1].ring_share),
-                                           ball_nodes=bool(tm.tc.ball_nodes))
-            if tm.pressure_conductance:
-                fits_W_m2K = fit_conductances_W_m2K(pl.model, fe.fit_pressure_MPa[0], gap[0],
-                                                    tm.surfaces)
+            c = _couple(pl, tm, Q[-1], base, delta, w2[k - 1:k], ref1, speed[k - 1],
+                        preload[k - 1], axial[k - 1], radial[k - 1], moment[k - 1])
+            pair_W = float(c.heat.total_W[0])
+            balls = (c.contacts[0].G_W_K, c.contacts[1].G_W_K)
+            h_pair = c.heat_inputs_W
+            if c.fit_conductance_W_m2K is not None:
+                fits_W_m2K = c.fit_conductance_W_m2K
         h = {key: v + float(extra[k]) * _extra_share(key, h_pair) for key, v in h_pair.items()}
         heat_in[k] = pair_W + float(extra[k])
         loads = StepLoads(float(amb[k]), float(sink[k]), heat_W=h)
@@ -438,6 +430,55 @@ def run_transient(pl: Pipeline, cols: dict, progress=None, first_row: int = 0,
     field = q_rows @ tm.rc.V.T              # (n, n_total) nodal temperatures and ball nodes
     rows = RowTemperatures(T, field.max(axis=1), field.min(axis=1), heat_W + env.heat_W, est)
     return TransientRun(out, rows, grid, Q, heat_in)
+
+
+@dataclass(frozen=True)
+class Coupling:
+    """The loop's coupling at one state (what a step takes from the bearing): result (the one
+    route's `SimulationResult` of the row), heat (`analytic.heat.PairHeat`, W), contacts ((inner,
+    outer) `analytic.heat.ContactConductance`, per bearing), heat_inputs_W (heat input -> W, the
+    raceways' and ball nodes' shares, `fem.transient.bearing_heat_inputs_W`),
+    fit_conductance_W_m2K (per fit from its pressure or gap; None: fixed in the assembly)."""
+    result: SimulationResult
+    heat: object
+    contacts: tuple
+    heat_inputs_W: dict
+    fit_conductance_W_m2K: np.ndarray | None
+
+
+def _couple(pl: Pipeline, tm: ThermalModel, q: np.ndarray, base: PhysicsInputs, delta, w2_1,
+            ref1: FEState, speed, preload, axial, radial, moment) -> Coupling:
+    """The coupling at reduced state q (m,) under one row's conditions (module docstring)."""
+    fe, gap = fe_states(pl, tm.ms, q[None, :], delta, w2_1)
+    T3 = _groups_C(tm, tm.rc, q[None, :])
+    inp = _inputs(base, T3, speed, preload, axial, radial, moment)
+    res, heat = _route(pl, inp, fe, ref1)
+    T_oil = float(np.mean(T3[0, [PARTS.index(p) for p in ("inner_ring", "outer_ring", "ball")]]))
+    cc = ball_contacts(pl, res.pair, float(speed), T_oil)
+    h = bearing_heat_inputs_W(heat, ring_share=(cc[0].ring_share, cc[1].ring_share),
+                              ball_nodes=bool(tm.tc.ball_nodes))
+    fits = (fit_conductances_W_m2K(pl.model, fe.fit_pressure_MPa[0], gap[0], tm.surfaces)
+            if tm.pressure_conductance else None)
+    return Coupling(res, heat, cc, h, fits)
+
+
+def coupling_at(pl: Pipeline, cols: dict, q: np.ndarray, row: int = -1) -> Coupling:
+    """The coupling the loop of `run_transient` computes at reduced state q (m,) of
+    `thermal_model(pl)` under row `row` of the conditions table cols (its speed, preload and
+    loads): e.g. at the end of a run (`TransientRun.q[-1]`), for the heat balance of a ball
+    node."""
+    asm = pl.asm
+    tm = thermal_model(pl)
+    n = len(cols["time_s"])
+    base = baseline_inputs({k: v for k, v in cols.items() if k not in ("T_ambient_C",)}, n,
+                           asm.T_ref_C, asm.preload.assembled_N, asm.lubrication.speed_rpm)
+    delta = pl.deltas_mm(*pl.fits_um(base))[:1]
+    ref1 = pl.fe(pl.reference_inputs(base.take(np.zeros(1, int))))
+    r = base.take(np.array([row % n]))
+    w2 = (np.asarray(r.speed_rpm, float) * (2.0 * np.pi / 60.0)) ** 2
+    return _couple(pl, tm, np.asarray(q, float), base, delta, w2[:1], ref1,
+                   float(r.speed_rpm[0]), float(r.preload_assembled_N[0]),
+                   float(r.axial_load_N[0]), float(r.radial_load_N[0]), float(r.moment_Nmm[0]))
 
 
 @dataclass(frozen=True)
