@@ -9,8 +9,9 @@ housing and cover 15 W/m2K (natural convection + radiation), shaft and nut 60 W/
 shaft in air), the rest of the stack (bearing cavity, spacers) 30 W/m2K: the assumptions of the
 seed 003 study and of `bearingfem bench --transient`. Fit conductances from the fit pressures
 (Yovanovich). Ball-raceway contacts: moving-source constriction on both sides at the rolling
-speed with the EHL film (oil at ambient-pressure conductivity) in series, Blok's partition of each
-contact's heat (`analytic.heat.rolling_contact_conductance`), refreshed from the contact state.
+speed with the EHL film in series (the oil's conductivity raised by the Hertz pressure, Larsson et
+al. 2000), Blok's partition of each contact's heat (`analytic.heat.rolling_contact_conductance`),
+refreshed from the contact state.
 Three hours, as the seed's test.
 
 Checked against the seed's qualitative findings (its section 3, fig. 9, at 1500 r/min, and its
@@ -75,6 +76,7 @@ class Findings:
     heat_change_last_30min: float   # relative change of the total heat over the last 30 min
     heat_ratio_end_to_5min: float   # total heat at the end / at 5 minutes
     end_rate_K_per_h: float         # largest |dT/dt| of a part over the last 10 minutes
+    balances: tuple = ()            # `BallBalance` per bearing at the end (set by `run`)
 
 
 def heat_up(pl: Pipeline, speed_rpm: float, duration_s: float = DURATION_S,
@@ -205,8 +207,8 @@ def run(out: Path, progress=print, mesh_factor: float = 1.0, duration_s: float =
         progress(f"heatup: {n:.0f} rpm, {duration_s / 3600:g} h ...")
         rows, r = heat_up(pl, n, duration_s, progress=progress)
         res[n] = rows
-        found[n] = findings(rows, n)
         balances[n] = ball_balance(pl, {k: rows[k] for k in TRANSIENT_COLUMNS if k in rows}, r)
+        found[n] = replace(findings(rows, n), balances=tuple(balances[n]))
         keep = ["time_s", *(f"T_{p}_C" for p in PARTS), "T_max_C", "T_min_C", "preload_N",
                 "torque_Nmm", "heat_bearing_W", "contact_angle_deg", "fit_pressure_inner_MPa",
                 "fit_pressure_outer_MPa", "reduction_error_est"]
