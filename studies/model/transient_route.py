@@ -47,7 +47,8 @@ from fem.reduced_thermal import (ModalStructure, ReducedConduction, ReducedStepp
                                  modal_structure)
 from fem.solver import single_thread_blas
 from fem.transient import (StepLoads, SurfacePair, ThermalParameters, TransientConduction,
-                           bearing_heat_inputs_W, fit_conductances_W_m2K)
+                           bearing_heat_inputs_W, fit_conductances_W_m2K,
+                           radiation_remainder_W_mm2)
 from studies.model.config import Assembly, ConfigError
 from studies.model.inputs import PARTS, PhysicsInputs, baseline_inputs
 from studies.model.columns import to_columns
@@ -462,23 +463,88 @@ def _couple(pl: Pipeline, tm: ThermalModel, q: np.ndarray, base: PhysicsInputs, 
     return Coupling(res, heat, cc, h, fits)
 
 
-def coupling_at(pl: Pipeline, cols: dict, q: np.ndarray, row: int = -1) -> Coupling:
-    """The coupling the loop of `run_transient` computes at reduced state q (m,) of
-    `thermal_model(pl)` under row `row` of the conditions table cols (its speed, preload and
-    loads): e.g. at the end of a run (`TransientRun.q[-1]`), for the heat balance of a ball
-    node."""
+def _row_setup(pl: Pipeline, cols: dict, row: int):
+    """(base inputs, the fits' deltas, the reference FE state, the row's inputs) of row `row` of
+    a transient conditions table, as `run_transient` sets them up."""
     asm = pl.asm
-    tm = thermal_model(pl)
     n = len(cols["time_s"])
     base = baseline_inputs({k: v for k, v in cols.items() if k not in ("T_ambient_C",)}, n,
                            asm.T_ref_C, asm.preload.assembled_N, asm.lubrication.speed_rpm)
     delta = pl.deltas_mm(*pl.fits_um(base))[:1]
     ref1 = pl.fe(pl.reference_inputs(base.take(np.zeros(1, int))))
-    r = base.take(np.array([row % n]))
+    return base, delta, ref1, base.take(np.array([row % n]))
+
+
+def _couple_row(pl, tm, q, setup) -> Coupling:
+    base, delta, ref1, r = setup
     w2 = (np.asarray(r.speed_rpm, float) * (2.0 * np.pi / 60.0)) ** 2
     return _couple(pl, tm, np.asarray(q, float), base, delta, w2[:1], ref1,
                    float(r.speed_rpm[0]), float(r.preload_assembled_N[0]),
                    float(r.axial_load_N[0]), float(r.radial_load_N[0]), float(r.moment_Nmm[0]))
+
+
+def coupling_at(pl: Pipeline, cols: dict, q: np.ndarray, row: int = -1) -> Coupling:
+    """The coupling the loop of `run_transient` computes at reduced state q (m,) of
+    `thermal_model(pl)` under row `row` of the conditions table cols (its speed, preload and
+    loads): e.g. at the end of a run (`TransientRun.q[-1]`), for the heat balance of a ball
+    node."""
+    return _couple_row(pl, thermal_model(pl), q, _row_setup(pl, cols, row))
+
+
+@dataclass(frozen=True)
+class Equilibrium:
+    """The steady state of the coupled loop under fixed conditions (`equilibrium`): q the
+    reduced coordinates, T_parts_C the `inputs.PARTS` group means (C, NaN for a group the stack
+    lacks), coupling at q (`Coupling`), iterations taken, change_K the last iteration's largest
+    change of the field (K)."""
+    q: np.ndarray
+    T_parts_C: np.ndarray
+    coupling: Coupling
+    iterations: int
+    change_K: float
+
+
+@single_thread_blas
+def equilibrium(pl: Pipeline, cols: dict, row: int = -1, tol_K: float = 1e-6,
+                max_iter: int = 100) -> Equilibrium:
+    """Where the transient run under row `row` of cols, held for ever, ends: the steady state of
+    the same reduced model and coupling, found without time stepping as the fixed point
+
+        q = A(prm(q))^-1 f(heat(q), T_ambient),
+
+    prm the film factor, fit and ball conductances and heat the bearing's heat inputs of the
+    coupling at q (`coupling_at`; the extra heat_W split as in the run), A and f the reduced
+    operator and load (`fem.reduced_thermal.ReducedConduction`; radiation's remainder at the
+    current iterate). Starts uniform at the row's ambient; stops when the field changes by less
+    than tol_K (K) at every node, else after max_iter iterations (`change_K` says how far it
+    got). A second method for the end of a long run (tests/test_heatup.py)."""
+    tm = thermal_model(pl)
+    rc = tm.rc
+    env = environment(pl.asm, cols)
+    k = row % len(cols["time_s"])
+    amb, sink = float(env.T_ambient_C[k]), float(env.T_sink_C[k])
+    scale, extra = float(env.film_scale[k]), float(env.heat_W[k])
+    setup = _row_setup(pl, cols, row)
+    q = amb * rc.q_one
+    change, it, c = np.inf, 0, None
+    while it < max_iter:
+        it += 1
+        c = _couple_row(pl, tm, q, setup)
+        h = {key: v + extra * _extra_share(key, c.heat_inputs_W)
+             for key, v in c.heat_inputs_W.items()}
+        prm = _params(tm, scale, c.fit_conductance_W_m2K,
+                      (c.contacts[0].G_W_K, c.contacts[1].G_W_K))
+        f = rc.load(prm, StepLoads(amb, sink, heat_W=h))
+        if prm.emissivity:
+            dofs, Vd, VtR = rc.radiation_terms(prm)
+            f = f - VtR @ radiation_remainder_W_mm2(Vd @ q, sink, prm.T_rad_lin_C)
+        q_new = np.linalg.solve(rc.operator(prm), f)
+        change = float(np.max(np.abs(rc.field(q_new - q))))
+        q = q_new
+        if change < tol_K:
+            break
+    c = _couple_row(pl, tm, q, setup)
+    return Equilibrium(q, _groups_C(tm, rc, q[None, :])[0], c, it, change)
 
 
 @dataclass(frozen=True)

@@ -34,8 +34,8 @@ import numpy as np
 from studies.model.config import Thermal, load_shipped
 from studies.model.pipeline import Pipeline
 from studies.model.table import write_table
-from studies.model.transient_route import (TRANSIENT_COLUMNS, coupling_at, run_transient,
-                                           thermal_model)
+from studies.model.transient_route import (TRANSIENT_COLUMNS, coupling_at, equilibrium,
+                                           run_transient, thermal_model)
 from studies.runs.report_tools import line_plot, md_table
 
 #: seed 003's statements (Li & Zhao, China Mechanical Engineering 34(7), 2023; our translation):
@@ -77,15 +77,31 @@ class Findings:
     heat_ratio_end_to_5min: float   # total heat at the end / at 5 minutes
     end_rate_K_per_h: float         # largest |dT/dt| of a part over the last 10 minutes
     balances: tuple = ()            # `BallBalance` per bearing at the end (set by `run`)
+    T_equilibrium_C: dict | None = None   # the fixed point of the steady state (set by `run`)
+
+
+def conditions(speed_rpm: float, duration_s: float = DURATION_S, row_s: float = ROW_S) -> dict:
+    """The study's conditions table at one speed: rows every row_s (s) over duration_s (s),
+    ambient AMBIENT_C, preload PRELOAD_N."""
+    t = np.arange(0.0, duration_s + 0.5 * row_s, row_s)
+    n = t.size
+    return {"time_s": t, "T_ambient_C": np.full(n, AMBIENT_C), "speed_rpm": np.full(n, speed_rpm),
+            "preload_assembled_N": np.full(n, PRELOAD_N)}
+
+
+def equilibrium_C(pl: Pipeline, speed_rpm: float) -> dict[str, float]:
+    """The equilibrium part temperatures (C) at speed_rpm: the fixed point of the coupled
+    steady state (`transient_route.equilibrium`), where the heat-up ends if run for ever."""
+    from studies.model.inputs import PARTS as GROUPS
+    e = equilibrium(pl, conditions(speed_rpm, 0.0))
+    return {p: float(e.T_parts_C[GROUPS.index(p)]) for p in PARTS
+            if np.isfinite(e.T_parts_C[GROUPS.index(p)])}
 
 
 def heat_up(pl: Pipeline, speed_rpm: float, duration_s: float = DURATION_S,
             row_s: float = ROW_S, progress=None):
     """One heat-up: (rows' outputs, the `TransientRun`)."""
-    t = np.arange(0.0, duration_s + 0.5 * row_s, row_s)
-    n = t.size
-    cols = {"time_s": t, "T_ambient_C": np.full(n, AMBIENT_C), "speed_rpm": np.full(n, speed_rpm),
-            "preload_assembled_N": np.full(n, PRELOAD_N)}
+    cols = conditions(speed_rpm, duration_s, row_s)
     run = run_transient(pl, cols, progress)
     return {**cols, **run.columns()}, run
 
@@ -208,7 +224,8 @@ def run(out: Path, progress=print, mesh_factor: float = 1.0, duration_s: float =
         rows, r = heat_up(pl, n, duration_s, progress=progress)
         res[n] = rows
         balances[n] = ball_balance(pl, {k: rows[k] for k in TRANSIENT_COLUMNS if k in rows}, r)
-        found[n] = replace(findings(rows, n), balances=tuple(balances[n]))
+        found[n] = replace(findings(rows, n), balances=tuple(balances[n]),
+                           T_equilibrium_C=equilibrium_C(pl, n))
         keep = ["time_s", *(f"T_{p}_C" for p in PARTS), "T_max_C", "T_min_C", "preload_N",
                 "torque_Nmm", "heat_bearing_W", "contact_angle_deg", "fit_pressure_inner_MPa",
                 "fit_pressure_outer_MPa", "reduction_error_est"]
@@ -286,6 +303,14 @@ def _report(out: Path, found: dict, res: dict, modes: int, imgs: dict, balances:
              "The seed publishes no equilibrium temperature as a number (its figures are lost in "
              "our copy); these are this model's.", "",
              md_table(head, rows), "",
+             "The same equilibrium found without time stepping, as the fixed point of the coupled "
+             "steady state (`transient_route.equilibrium`), C:", "",
+             md_table(["rpm", *(f"T_{p} (C)" for p in PARTS if p in found[SPEEDS_RPM[0]].T_end_C),
+                       "largest |end of run - fixed point| (K)"],
+                      [[f"{n:.0f}", *(f"{f.T_equilibrium_C[p]:.3f}" for p in PARTS
+                                      if p in f.T_end_C),
+                        f"{max(abs(f.T_end_C[p] - f.T_equilibrium_C[p]) for p in f.T_end_C):.1e}"]
+                       for n, f in found.items()]), "",
              "## The seed's findings", "", *checks, "",
              "## Why the balls run hotter: the ball nodes' heat balance at the end of the run", "",
              "Each ball set takes its share of its contacts' heat (Blok's partition, one half "
