@@ -259,7 +259,7 @@ def balance_lines(balances: dict) -> list[str]:
             c_i, c_o = b.inner, b.outer
             out.append(
                 f"- {n:.0f} rpm, bearing {b.bearing}: heat into the ball set {b.heat_W:.2f} W, "
-                f"out to the raceways {b.out_W:.2f} W; ball node {b.T_ball_C:.2f} C, inner "
+                f"out to the raceways {b.out_W:.2f} W (balance residual {b.heat_W - b.out_W:+.1e} W); ball node {b.T_ball_C:.2f} C, inner "
                 f"raceway {b.T_race_inner_C:.2f} C, outer raceway {b.T_race_outer_C:.2f} C; "
                 f"ball set to inner raceway {c_i.G_W_K:.3f} W/K (per contact: ball side "
                 f"{c_i.R_ball_K_W:.2f}, film {c_i.R_film_K_W:.2f}, ring side {c_i.R_ring_K_W:.2f} "
