@@ -27,6 +27,10 @@ rolling speed, the EHL film's conduction in series for an oil, Blok's partition)
 with the heat from the contact state (`ball_contacts`). Sliding and spin traction coefficient
 MU_TRACTION = 0.03 (assumption for EHL traction, as the seed 003 study).
 
+`coupling_at` gives the coupling at a state after a run (e.g. a ball node's heat balance);
+`equilibrium` the steady state of the same loop under fixed conditions as a fixed point, without
+time stepping (where a long run ends).
+
 `reduction_error_est` (per row): |P_m - P_m/2| / |P_m|, the preload of the reduced model against
 the same run with the leading half of its modes (`fem.reduced_thermal` module docstring; the bench
 `bearingfem bench --transient` measures the error against the full FE on a check case).
@@ -377,17 +381,13 @@ def run_transient(pl: Pipeline, cols: dict, progress=None, first_row: int = 0,
     env = environment(asm, cols)
     tm = thermal_model(pl, progress)
     t = np.asarray(cols["time_s"], float)
-    n = t.size
-    base = baseline_inputs({k: v for k, v in cols.items() if k not in ("T_ambient_C",)}, n,
-                           asm.T_ref_C, asm.preload.assembled_N, asm.lubrication.speed_rpm)
+    base, delta, ref1, _ = _row_setup(pl, cols, 0)
     grid = _grid(t, dt_s)
     at = lambda v: np.interp(grid, t, np.asarray(v, float))        # noqa: E731
     amb, sink, scale, extra = at(env.T_ambient_C), at(env.T_sink_C), at(env.film_scale), at(env.heat_W)
     speed, preload = at(base.speed_rpm), at(base.preload_assembled_N)
     axial, radial, moment = at(base.axial_load_N), at(base.radial_load_N), at(base.moment_Nmm)
-    delta = pl.deltas_mm(*pl.fits_um(base))[:1]
     w2 = (speed * (2.0 * np.pi / 60.0)) ** 2
-    ref1 = pl.fe(pl.reference_inputs(base.take(np.zeros(1, int))))
     steppers = []
     for rc in (tm.rc, tm.half):
         st = ReducedStepper(rc, _params(tm, 1.0, None), grid[1] - grid[0] if grid.size > 1 else DT_S,
@@ -526,7 +526,7 @@ def equilibrium(pl: Pipeline, cols: dict, row: int = -1, tol_K: float = 1e-6,
     scale, extra = float(env.film_scale[k]), float(env.heat_W[k])
     setup = _row_setup(pl, cols, row)
     q = amb * rc.q_one
-    change, it, c = np.inf, 0, None
+    change, it = np.inf, 0
     while it < max_iter:
         it += 1
         c = _couple_row(pl, tm, q, setup)
@@ -536,7 +536,7 @@ def equilibrium(pl: Pipeline, cols: dict, row: int = -1, tol_K: float = 1e-6,
                       (c.contacts[0].G_W_K, c.contacts[1].G_W_K))
         f = rc.load(prm, StepLoads(amb, sink, heat_W=h))
         if prm.emissivity:
-            dofs, Vd, VtR = rc.radiation_terms(prm)
+            _, Vd, VtR = rc.radiation_terms(prm)
             f = f - VtR @ radiation_remainder_W_mm2(Vd @ q, sink, prm.T_rad_lin_C)
         q_new = np.linalg.solve(rc.operator(prm), f)
         change = float(np.max(np.abs(rc.field(q_new - q))))
@@ -628,7 +628,9 @@ def ball_contacts(pl: Pipeline, pair, speed_rpm: float, T_oil_C: float
     speed_rpm (rpm): `analytic.heat.rolling_contact_conductance` at the rolling speed
     (`analytic.lubrication.entrainment_speed_mm_s`), with the central EHL film of an oil
     (`analytic.lubrication.hamrock_dowson_film` at the oil temperature T_oil_C, C: the mean of
-    rings and balls, as the torque stage takes it) in series; a solid film: no film term."""
+    rings and balls, as the torque stage takes it) in series, its conductivity raised by the
+    contacts' Hertz peak pressure (`analytic.heat.hertz_mean_conductivity_ratio`); a solid film:
+    no film term."""
     g = pl.geom
     alpha = float(np.mean(np.asarray(pair.contact_angle_deg)[:, 0]))
     u = float(lub.entrainment_speed_mm_s(speed_rpm, g.Dw_mm, g.dm_mm, alpha))
