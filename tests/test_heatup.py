@@ -67,11 +67,13 @@ def test_heatup_reproduces_the_seeds_findings_at_equilibrium(tmp_path):
     difference between the rings and the balls is below the seed's 4 K (stated at 1500 rpm;
     asserted at both); the inner-outer difference has shrunk from its largest value during the
     heat-up; the heat falls as the oil warms and thins and levels off (the run has reached
-    equilibrium: every part changes by less than 0.05 K/h over the last 10 minutes, the heat by
-    less than 0.1 % over the last 30). At that equilibrium each ball node's heat balance closes
-    (conservation: what its contacts give it leaves through its two raceway conductances) to
-    1 % of its heat (the reduced model's Galerkin residual at the node, the capacity term and the
-    coupling's 10 s lag)."""
+    equilibrium: every part changes by less than 2e-3 K/h over the last 10 minutes, the heat by
+    less than 0.1 % over the last 30). A second method: the fixed point of the coupled steady
+    state (`transient_route.equilibrium`): with those end rates and the stack's time constants
+    (under an hour) the run is within 2e-3 K of it (measured 8e-5 K). At that equilibrium each
+    ball node's heat balance closes (conservation: what its contacts give it leaves through its
+    two raceway conductances) to 1e-4 of its heat (the reduced model's Galerkin residual at the
+    node, the capacity term and the coupling's 10 s lag; measured 3e-7)."""
     found = heatup.run(tmp_path, progress=lambda s: None)
     for n, f in found.items():
         assert f.ball_hottest, n
@@ -79,12 +81,10 @@ def test_heatup_reproduces_the_seeds_findings_at_equilibrium(tmp_path):
         assert f.ring_ball_dT_K < heatup.SEED_RING_BALL_DT_K, (n, f.ring_ball_dT_K)
         assert f.inner_outer_dT_K < f.inner_outer_dT_max_K, n
         assert f.heat_ratio_end_to_5min < 1.0, (n, f.heat_ratio_end_to_5min)
-        assert f.end_rate_K_per_h < 0.05, (n, f.end_rate_K_per_h)
+        assert f.end_rate_K_per_h < 2e-3, (n, f.end_rate_K_per_h)
         assert f.heat_change_last_30min < 1e-3, (n, f.heat_change_last_30min)
     for n, f in found.items():
-        # a second method: the fixed point of the coupled steady state; after 3 h (end rates
-        # below 0.05 K/h, time constants under an hour) the run is within 0.05 K of it
-        assert all(abs(f.T_end_C[p] - f.T_equilibrium_C[p]) < 0.05 for p in f.T_end_C), n
+        assert all(abs(f.T_end_C[p] - f.T_equilibrium_C[p]) < 2e-3 for p in f.T_end_C), n
         for b in f.balances:
-            assert abs(b.heat_W - b.out_W) < 1e-2 * b.heat_W, (n, b.bearing, b.heat_W, b.out_W)
+            assert abs(b.heat_W - b.out_W) < 1e-4 * b.heat_W, (n, b.bearing, b.heat_W, b.out_W)
     assert list(tmp_path.glob("field_1500rpm_*_temperature_C.png"))
