@@ -11,6 +11,7 @@ H_B1 sliding, H_B2 viscous, H_B3 spin).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -98,6 +99,15 @@ def solid_film_pair_heat_W(torque, speed_rpm) -> PairHeat:
 
 
 # ------------------------------------------------------------------ rolling contact conductance
+@lru_cache(maxsize=None)
+def _gauss_legendre(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Gauss-Legendre nodes and weights of n points on [-1, 1] (numpy's `leggauss`, read-only),
+    computed once per n: `leggauss` solves an n x n eigenvalue problem each call (25 ms at 512)."""
+    x, w = np.polynomial.legendre.leggauss(n)
+    x.flags.writeable = w.flags.writeable = False
+    return x, w
+
+
 def oil_conductivity_ratio(pressure_MPa):
     """k(p) / k(0) of a lubricant at pressure p (MPa): 1 + A p / (1 + B p), p in GPa, held at
     its value at K_OIL_PRESSURE_MAX_GPA above that (Larsson et al. 2000, the constants above);
@@ -113,7 +123,7 @@ def hertz_mean_conductivity_ratio(p_max_MPa: float, n: int = 32) -> float:
     Mechanics, 1985, eq. 4.34; rho the normalised elliptic radius, dA ~ 2 rho d rho):
     <k>/k(0) = int_0^1 ratio(p_max s) 2 s ds (s = sqrt(1 - rho^2)); Gauss-Legendre with n nodes
     (the integrand is smooth below the cap and has one kink at it: n = 32 is within 1e-4)."""
-    x, w = np.polynomial.legendre.leggauss(n)
+    x, w = _gauss_legendre(n)
     s = 0.5 * (1.0 + x)
     return float(np.sum(0.5 * w * oil_conductivity_ratio(p_max_MPa * s) * 2.0 * s))
 
@@ -142,10 +152,10 @@ def moving_contact_resistance_K_W(a_mm: float, b_mm: float, speed_mm_s: float, k
     (4/3) q l / (k sqrt(pi Pe)) averaged over the chords). k in W/(m K) (-> W/(mm K) inside),
     kappa = k / (rho c) in mm^2/s."""
     k = k_W_mK * 1e-3
-    xd, wd = np.polynomial.legendre.leggauss(n_d)
+    xd, wd = _gauss_legendre(n_d)
     d = 1.0 + xd                                   # [0, 2]
     overlap = 2.0 * np.arccos(0.5 * d) - 0.5 * d * np.sqrt(4.0 - d * d)
-    xp, wp = np.polynomial.legendre.leggauss(n_phi)
+    xp, wp = _gauss_legendre(n_phi)
     phi = 0.5 * np.pi * (1.0 + xp)                 # [0, pi]
     wphi = 0.5 * np.pi * wp
     c = np.sqrt(np.cos(phi) ** 2 / b_mm ** 2 + np.sin(phi) ** 2 / a_mm ** 2)
