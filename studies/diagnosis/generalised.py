@@ -16,7 +16,7 @@ does not pass), the generalised forms of the most promising families
    `alpha_residual` threshold of the listed candidates);
 5. and it is claimed only under the rules of any claim (`decision.form_carries_weight`): it
    clearly beats every other fitted candidate (the sensor look-alikes included) by joint fits
-   and the unlisted sensor drift. Before 2026-11-26 a form could turn an `unexplained` that the
+   and the unlisted sensor drift. Before 2026-11-25 a form could turn an `unexplained` that the
    drift check had decided into `explained` (a 0.5 K thermometer offset as a CTE curvature).
 
 A form that explains the data turns the verdict into `explained` with `cause` = the family (the

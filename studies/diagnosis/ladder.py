@@ -34,7 +34,7 @@ form and never a cause: it is fitted and compared like a candidate, and a claim 
 well is not made (`studies.diagnosis.decision.unlisted_lookalike`): a 0.5 K offset of the chamber
 thermometer moves seed 000's preload by less than a sigma per row but, over 240 rows, as a fit
 error, a CTE slope or a share of the grooved section would (issue 23's second source,
-`chamber_offset`: claimed as `cte_nonlinearity` or `interference_error` before 2026-11-26). It is
+`chamber_offset`: claimed as `cte_nonlinearity` or `interference_error` before 2026-11-25). It is
 screened under the same indication as the rungs (it acts through the temperature).
 
 Evaluation: every rung goes through the one route, `studies.model.pipeline.Pipeline`: an
