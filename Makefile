@@ -21,7 +21,9 @@ demo: setup
 verify: setup
 	$(BIN)/bearingfem verify --out $(OUT)/verify
 
-# the suite on every core up to 4, one test module per worker (module fixtures built once)
+# the suite on every core up to 4, one test module per worker (module fixtures built once; on 2
+# workers the modules' CPU split 145 / 140 s, 2026-11-26: loadscope balances, worksteal would
+# only build the modules' pipelines twice)
 PYTEST_PAR := -n auto --maxprocesses 4 --dist loadscope
 
 test: setup

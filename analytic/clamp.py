@@ -56,3 +56,25 @@ def separating_load_N(clamp_force_N: float, C: float) -> float:
     """External load (N) at which the stack's faces separate: P_0 = F_i / (1 - C) (Shigley
     ch. 8: the members' force reaches zero)."""
     return clamp_force_N / (1.0 - C)
+
+
+def tightening_force_N(torque_Nmm: float, d_mm: float, pitch_mm: float, mu_thread: float,
+                       mu_face: float, D_Km_mm: float) -> float:
+    """Assembly preload F_M (N) of a nut or screw tightened to torque_Nmm (N mm) on a metric
+    (ISO 60 deg) thread of nominal diameter d_mm and pitch pitch_mm, with thread friction
+    mu_thread (mu_G), friction mu_face (mu_K) on its face of mean friction diameter D_Km_mm:
+
+        M_A = F_M (0.16 P + 0.58 d_2 mu_G + D_Km / 2 mu_K),   d_2 = d - 0.649519 P
+
+    (0.16 P ~ P / (2 pi): the lead; 0.58 ~ 1 / (2 cos 30 deg): the thread flank's friction).
+    Source: VDI 2230 Part 1 (2015), calculation step R13 (tightening torque); d_2, the pitch
+    diameter of the basic profile, from ISO 724. Units: N, mm."""
+    for name, v in (("torque_Nmm", torque_Nmm), ("d_mm", d_mm), ("pitch_mm", pitch_mm),
+                    ("D_Km_mm", D_Km_mm)):
+        if not v > 0:
+            raise ValueError(f"{name} must be > 0, got {v}")
+    for name, v in (("mu_thread", mu_thread), ("mu_face", mu_face)):
+        if not v >= 0:
+            raise ValueError(f"{name} must be >= 0, got {v}")
+    d2 = d_mm - 0.649519 * pitch_mm
+    return torque_Nmm / (0.16 * pitch_mm + 0.58 * d2 * mu_thread + 0.5 * D_Km_mm * mu_face)

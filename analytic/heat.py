@@ -11,6 +11,7 @@ H_B1 sliding, H_B2 viscous, H_B3 spin).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -85,6 +86,15 @@ def solid_film_pair_heat_W(torque, speed_rpm) -> PairHeat:
 
 
 # ------------------------------------------------------------------ rolling contact conductance
+@lru_cache(maxsize=None)
+def _gauss_legendre(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Gauss-Legendre nodes and weights of n points on [-1, 1] (numpy's `leggauss`, read-only),
+    computed once per n: `leggauss` solves an n x n eigenvalue problem each call (25 ms at 512)."""
+    x, w = np.polynomial.legendre.leggauss(n)
+    x.flags.writeable = w.flags.writeable = False
+    return x, w
+
+
 def moving_contact_resistance_K_W(a_mm: float, b_mm: float, speed_mm_s: float, k_W_mK: float,
                                   diffusivity_mm2_s: float, n_phi: int = 512,
                                   n_d: int = 64) -> float:
@@ -109,10 +119,10 @@ def moving_contact_resistance_K_W(a_mm: float, b_mm: float, speed_mm_s: float, k
     (4/3) q l / (k sqrt(pi Pe)) averaged over the chords). k in W/(m K) (-> W/(mm K) inside),
     kappa = k / (rho c) in mm^2/s."""
     k = k_W_mK * 1e-3
-    xd, wd = np.polynomial.legendre.leggauss(n_d)
+    xd, wd = _gauss_legendre(n_d)
     d = 1.0 + xd                                   # [0, 2]
     overlap = 2.0 * np.arccos(0.5 * d) - 0.5 * d * np.sqrt(4.0 - d * d)
-    xp, wp = np.polynomial.legendre.leggauss(n_phi)
+    xp, wp = _gauss_legendre(n_phi)
     phi = 0.5 * np.pi * (1.0 + xp)                 # [0, pi]
     wphi = 0.5 * np.pi * wp
     c = np.sqrt(np.cos(phi) ** 2 / b_mm ** 2 + np.sin(phi) ** 2 / a_mm ** 2)

@@ -46,7 +46,8 @@ def preload_path_compliance_mm_per_N(solver: FitSolver, probe: sp.csr_matrix,
                   "outer_ring_A": signs[0], "outer_ring_B": signs[1]}
     F = raceway_unit_loads(m, ring_signs)
     zero_delta = np.zeros(len(m.fits))
-    # a clamped face held as a contact is closed at assembly (the clamp is tightened on it)
+    # a face held as a contact (the clamp's and, under it, the stack's) is closed at assembly:
+    # the clamp is tightened on the stack (the whole face, as the tied faces of a rigid clamp)
     closed = solver.solve(np.zeros(m.ndofs), delta_assembled_mm).closed | solver.face_pair
     u = (solver.solve_status(closed, F, zero_delta)[:, 0]
          - solver.solve_status(closed, np.zeros(m.ndofs), zero_delta)[:, 0])

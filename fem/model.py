@@ -8,7 +8,9 @@ Steps (each a small function):
    axial DOFs of the inner member = master, of the outer member = slave) and of each clamped face
    held as a contact (`meshes.section.Face`: u_z across the face, a clamp with a force); Dirichlet DOFs: u_r = 0
    on the axis, rollers, and one u_z per free-floating body (rigid axial mode, statically
-   determinate, so it adds no stress). `spin_load`: the centrifugal load of the spinning parts
+   determinate, so it adds no stress); a part held only by faces that are contacts (the stack's
+   ring-shoulder and ring-spacer faces under a clamp with a force) is held by a weak spring
+   across one of them instead (`HoldSprings`, `HOLD_RATIO`). `spin_load`: the centrifugal load of the spinning parts
    (`rotating_parts`, e.g. the rotor sub-assembly) at omega = 1 rad/s; at omega it scales by
    omega^2 (the load is linear in rho omega^2).
 """
@@ -35,6 +37,20 @@ def part_materials(section: Section, materials: dict[str, Material] | None = Non
 
 
 TOL_MM = 1e-7
+
+#: the weak spring that holds a part of the stack whose faces all open, relative to a steel
+#: part's axial stiffness E A / L (`meshes.section.Face.hold_ratio`). It is stretched only where
+#: a part is pulled off its neighbour towards the shoulder (an axial load inside the stack, or a
+#: face the fits dish partly open at the spring's node pair), and then carries this fraction of
+#: what the closed part would over the same gap; closed, it carries nothing. Its inverse sets the
+#: conditioning of the all-open system the superposition is condensed from, and the round-off of
+#: the condensed arrays grows as its square (measured on seed 000's design family, parametric vs
+#: own set-up: 1e-9 relative at 1e-3, 6e-8 at 1e-4, 7e-4 at 1e-6), which sets the value
+HOLD_RATIO = 1e-3
+#: the modulus (MPa) the weak spring is scaled with, whatever the part is made of (a steel's):
+#: the spring is then the same for every material of a part (a design family's spacers,
+#: `fem.parametric`, keep it in the part they do not vary)
+HOLD_E_MPA = 2.0e5
 
 
 def unzip(points: np.ndarray, tris: np.ndarray, part_of: np.ndarray, section: Section):
@@ -113,6 +129,23 @@ class FitPairs:
         return np.zeros(self.master_r.size) if c is None else c
 
 
+@dataclass(frozen=True)
+class HoldSprings:
+    """The weak springs that hold the parts of a stack whose faces are contacts
+    (`StackModel._hold_springs`): spring i between the u_z DOFs master[i] and slave[i] (the
+    -z and +z side of a face), k_N_per_mm[i] its stiffness (N/mm, whole ring)."""
+    master: np.ndarray
+    slave: np.ndarray
+    k_N_per_mm: np.ndarray
+
+    def stiffness(self, ndofs: int) -> sp.csr_matrix:
+        """(ndofs, ndofs) stiffness of the springs: k on (m, m), (s, s), -k on (m, s), (s, m)."""
+        m, s, k = self.master, self.slave, self.k_N_per_mm
+        return sp.csr_matrix((np.concatenate([k, k, -k, -k]),
+                              (np.concatenate([m, s, m, s]), np.concatenate([m, s, s, m]))),
+                             shape=(ndofs, ndofs))
+
+
 def face_weights(r_mm: np.ndarray) -> np.ndarray:
     """Consistent nodal weights (mm^2) of a uniform pressure on a flat annular face meshed with
     quadratic line elements: w_i = integral of N_i 2 pi r dr. `r_mm`: the face's nodes sorted by
@@ -177,6 +210,9 @@ class StackModel:
                              rho_w2=np.repeat(rho[:, None], nq, 1))     # N per (rad/s)^2
         self.fits = ([self._fit_pairs(f) for f in section.fits]
                      + [self._face_pairs(f) for f in section.faces])
+        self.hold = self._hold_springs()
+        if self.hold.k_N_per_mm.size:
+            self.K = (self.K + self.hold.stiffness(self.ndofs)).tocsr()
         self.tie_master, self.tie_slave = self._face_ties()
         self.dirichlet = self._dirichlet()
 
@@ -218,8 +254,13 @@ class StackModel:
         line = Split(f.name, "z", f.z_mm, f.r0_mm, f.r1_mm, (), ())
         a, b = node_pairs_on(x, nodes_on_line(x, line), el, self.part_of, f.inner_parts,
                              f.outer_parts)
-        order = np.argsort(x[0, a])
+        order = np.argsort(x[0, a], kind="stable")
         a, b = a[order], b[order]
+        # where two parts on one side meet at the face (a ring's and a sleeve's corner on the
+        # housing shoulder) both pair with the one node across: the first pair is kept
+        keep = np.ones(a.size, bool)
+        keep[1:] = (a[1:] != a[:-1]) & (b[1:] != b[:-1])
+        a, b = a[keep], b[keep]
         if a.size < 3 or not np.allclose(x[:, a], x[:, b]):
             raise RuntimeError(f"face '{f.name}': {a.size} node pairs (is its split tied?)")
         r = x[0, a]
@@ -229,6 +270,31 @@ class StackModel:
         r0, r1 = float(r[0]), float(r[-1])
         return FitPairs(f.name, f.key, 0.5 * (r0 + r1), r1 - r0, r, 2 * a + 1, 2 * b + 1,
                         2 * a, 2 * b, "z", comp)
+
+    def _hold_springs(self) -> "HoldSprings":
+        """The weak springs of the stack's faces (`meshes.section.Face.hold_ratio`): on each such
+        face, for each part on its +z side, one spring in u_z across the face at that part's
+        middle node pair (by radius), of stiffness hold_ratio E A / L (E = HOLD_E_MPA, a steel's
+        modulus for every material, A the part's share of the face area, the sum of its pairs'
+        `face_weights`, L its axial length)."""
+        el = self.sbasis.element_dofs
+        m_dof, s_dof, k_all = [], [], []
+        for fp, f in zip(self.fits[len(self.section.fits):], self.section.faces):
+            if f.hold_ratio <= 0:
+                continue
+            w = face_weights(fp.z_mm)
+            for part in f.outer_parts:
+                mine = np.isin(fp.slave_r // 2, el[:, self.part_of == part])
+                if not mine.any():
+                    continue
+                rects = [rc for rc in self.section.rects if rc.part == part]
+                L = max(rc.z1_mm for rc in rects) - min(rc.z0_mm for rc in rects)
+                idx = np.flatnonzero(mine)
+                mid = idx[np.argmin(np.abs(fp.z_mm[idx] - np.median(fp.z_mm[idx])))]
+                m_dof.append(fp.master_r[mid])
+                s_dof.append(fp.slave_r[mid])
+                k_all.append(f.hold_ratio * HOLD_E_MPA * w[idx].sum() / L)
+        return HoldSprings(np.array(m_dof, int), np.array(s_dof, int), np.array(k_all, float))
 
     def _face_ties(self) -> tuple[np.ndarray, np.ndarray]:
         """u_z DOF pairs (master, slave) across the clamped faces (axis-"z" splits)."""
@@ -253,7 +319,8 @@ class StackModel:
         # one axial reference per free-floating body (bonded fits join bodies)
         n = self.sbasis.N
         comp = _components(self.sbasis.element_dofs, n)
-        links = [np.vstack([self.tie_master // 2, self.tie_slave // 2])]
+        links = [np.vstack([self.tie_master // 2, self.tie_slave // 2]),
+                 np.vstack([self.hold.master // 2, self.hold.slave // 2])]
         if self.contact == "bonded":
             links += [np.vstack([fp.master_r // 2, fp.slave_r // 2]) for fp in self.fits]
         links = np.hstack(links)

@@ -85,11 +85,14 @@ class _Part:
     spin: np.ndarray            # local centrifugal load per unit rho omega^2 (zero if not spinning)
 
 
-def _touched(m, T: sp.csr_matrix) -> dict[str, np.ndarray]:
+def _touched(m, T: sp.csr_matrix, contact_dofs: np.ndarray) -> dict[str, np.ndarray]:
     """The reduced DOFs (columns of the elimination T, ndofs x n_reduced) each part's elements
-    touch, by part."""
+    touch, by part, and (key "") those of the contact pairs (`contact_dofs`): a part's face held
+    as a contact (clamp = "force": the stack's faces) is shared with the rest through its pairs."""
     el = m.basis.element_dofs
-    return {p: np.unique(T[np.unique(el[:, m.part_of == p])].indices) for p in m.part_names}
+    out = {p: np.unique(T[np.unique(el[:, m.part_of == p])].indices) for p in m.part_names}
+    out[""] = np.unique(T[np.unique(contact_dofs)].indices)
+    return out
 
 
 def _interior_and_boundary(p: str, touched: dict[str, np.ndarray]):
@@ -141,7 +144,7 @@ class Family:
         T, lu = s.factorize(np.zeros(npair, bool))
         T = sp.csr_matrix(T)
         nred = T.shape[1]
-        touched = _touched(m, T)
+        touched = _touched(m, T, np.concatenate([s.master, s.slave, s.master_z, s.slave_z]))
         split = [(p, *_interior_and_boundary(p, touched)) for p in self.variable]
         self.b = (np.unique(np.concatenate([bound for _, _, bound in split])) if split
                   else np.zeros(0, int))

@@ -34,6 +34,7 @@ from typing import TYPE_CHECKING, Callable
 
 import numpy as np
 import scipy.sparse as sp
+from scipy.linalg import get_lapack_funcs
 from scipy.sparse.linalg import splu
 from threadpoolctl import ThreadpoolController
 
@@ -43,6 +44,8 @@ if TYPE_CHECKING:                    # the model is only handed through here
     from fem.model import StackModel
 
 _BLAS = ThreadpoolController()
+#: LAPACK's Cholesky back-substitution for float64 (`scipy.linalg.cho_solve`'s routine)
+_POTRS = get_lapack_funcs(("potrs",), (np.zeros((1, 1)), np.zeros((1, 1))))[0]
 
 
 def single_thread_blas(fn):
@@ -312,12 +315,17 @@ class Superposition:
                                                                     check_finite=False))
 
     def _solve_set(self, closed: np.ndarray, g0: np.ndarray):
-        """lambda on the closed set for states g0 (n_pairs, k): A_CC lambda_C = -g0_C."""
-        from scipy.linalg import cho_solve
-
+        """lambda on the closed set for states g0 (n_pairs, k): A_CC lambda_C = -g0_C. The
+        back-substitution is LAPACK's potrs, the routine `scipy.linalg.cho_solve` calls, called
+        directly: the same numbers without cho_solve's per-call checks (about 100 calls per
+        `evaluate`; measured 2026-11-25: 10 % of the superposition's time)."""
         lam = np.zeros_like(g0)
         if closed.any():
-            lam[closed] = -cho_solve(self._factor(closed), g0[closed], check_finite=False)
+            c, lower = self._factor(closed)
+            x, info = _POTRS(c, g0[closed], lower=lower)
+            if info != 0:
+                raise SolveError(f"illegal value in argument {-info} of LAPACK potrs")
+            lam[closed] = -x
         return lam, g0 + self.A @ lam
 
     def _lcp(self, g0: np.ndarray, closed: np.ndarray, max_iter: int = 100):
@@ -365,9 +373,10 @@ class Superposition:
             j = todo[0]
             start = closed if closed is not None else G0[:, j] < 0
             _, _, closed = self._lcp(G0[:, j], start.copy())
-            L, Gp = self._solve_set(closed, G0[:, todo])
+            G0t = G0[:, todo]
+            L, Gp = self._solve_set(closed, G0t)
             sf = 1e-8 * np.maximum(np.abs(L).max(axis=0), 1e-12)
-            sg = 1e-8 * np.maximum(np.abs(G0[:, todo]).max(axis=0), 1e-12)
+            sg = 1e-8 * np.maximum(np.abs(G0t).max(axis=0), 1e-12)
             ok = ~((L[closed] < -sf).any(axis=0) | (Gp[~closed] < -sg).any(axis=0))
             ok[0] = True
             lam[:, todo[ok]], gap[:, todo[ok]] = L[:, ok], Gp[:, ok]

@@ -73,6 +73,13 @@ class Face:
     the axial overlap the clamp is tightened with, `key` names it). In series with the contact a
     layer of springs of total stiffness 1 / compliance_mm_per_N (0: none), spread over the face
     as a uniform pressure is (the clamp's own spring: thread or bolts, `fem.model.face_weights`).
+
+    A face of the stack itself (ring-shoulder, ring-spacer: key "stack", delta 0) has no spring
+    in series; its `hold_ratio` > 0 holds each +z-side part to the -z side by a weak spring at
+    one node pair, of stiffness hold_ratio x a steel part's axial stiffness (`fem.model`): a part
+    whose faces all open keeps a position (it rests on its neighbour towards the shoulder, the
+    stand-in for the fit friction that holds a loose ring), and the spring, unstretched while the
+    face is closed, changes nothing then.
     """
     name: str
     inner_parts: tuple[str, ...]
@@ -82,6 +89,7 @@ class Face:
     r1_mm: float
     key: str = "clamp"
     compliance_mm_per_N: float = 0.0
+    hold_ratio: float = 0.0
 
 
 @dataclass(frozen=True)

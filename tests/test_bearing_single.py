@@ -276,10 +276,27 @@ ball_material = "GCr15"
 
 
 def _cli(*args):
+    """`bearingfem ARGS` in a child process: its exit code and stderr as the shell sees them."""
     return subprocess.run([sys.executable, "-c",
                            "import sys; from studies.app.cli import main; sys.exit(main())",
                            *map(str, args)], capture_output=True, text=True,
                           cwd=Path(__file__).resolve().parents[1])
+
+
+def _cli_here(*args):
+    """`bearingfem ARGS` through the same entry point in this process (`main`'s return value is
+    the exit code `_cli`'s child exits with): no interpreter start and imports (about 1 CPU s a
+    call); `_cli` keeps a real child's exit code in test_bearing_torque_needs_lubrication_..."""
+    import contextlib
+    import io
+
+    from studies.app.cli import main
+
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        code = main([str(a) for a in args])
+    return subprocess.CompletedProcess(["bearingfem", *map(str, args)], code, out.getvalue(),
+                                       err.getvalue())
 
 
 def _cli_table(tmp_path, loads_text, *options):
@@ -291,7 +308,7 @@ def _cli_table(tmp_path, loads_text, *options):
     loads = tmp_path / "loads.csv"
     loads.write_text(loads_text)
     out = tmp_path / "out.csv"
-    r = _cli("bearing", b, loads, "-o", out, *options)
+    r = _cli_here("bearing", b, loads, "-o", out, *options)
     assert r.returncode == 0, r.stderr
     return pd.read_csv(out)
 
@@ -344,7 +361,7 @@ def test_cli_bearing_bad_input(tmp_path, edit, loads_text, expect):
     loads = tmp_path / "loads.csv"
     loads.write_text(loads_text)
     out = tmp_path / "out.csv"
-    r = _cli("bearing", b, loads, "-o", out)
+    r = _cli_here("bearing", b, loads, "-o", out)
     assert r.returncode == 2
     lines = r.stderr.strip().splitlines()
     assert len(lines) == 1 and expect in lines[0], r.stderr

@@ -67,6 +67,10 @@ def test_preload_lost_is_flagged_and_a_designed_clearance_is_not(tmp_path, capsy
     assert main(["simulate", str(CFG000), str(cond), "-o", str(out0)]) == 0
     t0 = read(out0)
     assert "flag_fit_open_inner" in t0 and "flag_fit_open_outer" not in t0
+    # the fit's margin in MPa: the pressure left before it opens, where it is checked only
+    np.testing.assert_array_equal(t0["margin_fit_inner_MPa"], t0["fit_pressure_inner_MPa"])
+    np.testing.assert_array_equal(t0["flag_fit_open_inner"], (t0["margin_fit_inner_MPa"] <= 0))
+    assert "margin_fit_outer_MPa" not in t0
 
 
 def test_diagnose_reads_simulate_output_with_its_check_columns(tmp_path, capsys):
@@ -78,6 +82,7 @@ def test_diagnose_reads_simulate_output_with_its_check_columns(tmp_path, capsys)
         for c in assembly_checks(load_assembly(cfg)):
             assert f"flag_{c.name}" in CHECK_COLUMNS and f"flag_{c.name}" in OUTPUT_NAMES
             assert c.strict or f"margin_{c.name}" in OUTPUT_NAMES
+            assert not c.margin_column or c.margin_column in CHECK_COLUMNS & OUTPUT_NAMES
 
 
 def test_limit_behaviour_of_every_check():

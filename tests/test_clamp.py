@@ -21,7 +21,7 @@ import tomllib
 import numpy as np
 import pytest
 
-from fem.model import build_model, face_weights
+from fem.model import HOLD_RATIO, build_model, face_weights
 from fem.solver import FitSolver, Superposition
 from meshes.section import Face, Rect, Section, Split
 from studies.model.config import CONFIG_DIR, ConfigError, assembly_from_dict
@@ -171,7 +171,8 @@ def test_a_clamp_force_used_up_opens_the_stack_and_the_fit_returns_to_lame():
     """(b) Heated to 60 C, the aluminium housing outgrows the steel stack: the rigid cover pulls
     the stack and the outer fit carries a pressure across its free clearance (Lamé: 0); a clamp
     of 500 N is used up (force 0, flagged, margin <= 0) and the fit carries nothing. At T_ref the
-    clamp carries its force; a row whose axial load exceeds it is flagged with margin F - |Fa|."""
+    clamp carries its force; a row whose axial load exceeds it is flagged with margin F - |Fa|
+    (F the least force over the stack's faces)."""
     from studies.model.columns import to_columns
     from studies.model.pipeline import simulate_table
 
@@ -185,7 +186,19 @@ def test_a_clamp_force_used_up_opens_the_stack_and_the_fit_returns_to_lame():
     assert force.fits.outer_MPa[1] <= 1e-12 * p_ref                # Lamé's 0
     out = to_columns(force)
     np.testing.assert_allclose(out["clamp_force_N"], [500.0, 0.0, 500.0], rtol=1e-9, atol=1e-9 * 500)
-    np.testing.assert_allclose(out["margin_clamp_N"], [500.0, 0.0, -100.0], rtol=1e-9, atol=1e-9 * 500)
+    # the stack's faces (studies/model/stack.py STACK_FACES): the housing shoulder under ring A
+    # and the sleeve carries the whole clamp force (equilibrium of the stator), the two ring-
+    # spacer faces in series carry the rings' share of it, the rest goes through the sleeve
+    # beside them; the margin is the least face force less |axial_load_N|
+    ff = force.fe.face_force_N        # clamp, shoulder, ring A - spacer, spacer - ring B
+    np.testing.assert_allclose(ff[[0, 2], 1], [500.0, 500.0], rtol=1e-9)
+    # (to HOLD_RATIO: the ring faces are partly open, dished by the fits, and the weak springs
+    # across them carry HOLD_RATIO E A / L times their gap, 1e-8 of the force here)
+    np.testing.assert_allclose(ff[[0, 2], 2], ff[[0, 2], 3], rtol=HOLD_RATIO)
+    share = ff[0, 1:].min()
+    assert 0.0 < share < 500.0
+    np.testing.assert_allclose(out["margin_clamp_N"], [share, 0.0, share - 600.0], rtol=1e-9,
+                               atol=1e-9 * 500)
     assert out["flag_clamp_open"].tolist() == [0.0, 1.0, 1.0]
     assert "clamp_force_N" not in to_columns(rigid)                # only with a clamp force
     # the superposition against a full FE solve per row (the clamp's spring in the stiffness)
@@ -199,9 +212,12 @@ def test_a_clamp_force_used_up_opens_the_stack_and_the_fit_returns_to_lame():
 
 def test_a_clamp_without_force_or_stiffness_is_the_compliant_cover():
     """(c) through the whole route: a force clamp of 1e-3 N with a spring of 1e-6 N/um gives
-    every output of the compliant cover (seed 000 at -60, 20, 80 C) to 1e-5 of each column's
+    every output of the compliant cover (seed 000 at -60 and 20 C) to 1e-5 of each column's
     scale (what is left of the clamp is 1e-3 N and 1 N/mm, against a preload of 100 N and a
-    stack of about 1e6 N/mm: the force ratio 1e-5)."""
+    stack of about 1e6 N/mm: the force ratio 1e-5). The compliant cover keeps the stack's own
+    faces tied; under a force clamp they are contacts (tests/test_stack_faces.py), so at 80 C,
+    where the fits dish the ring faces and part of each opens, the two differ (by 2e-3 here:
+    the tied faces' tension, the artefact issue 24 names)."""
     from studies.model.columns import to_columns
     from studies.model.pipeline import simulate_table
 
@@ -211,9 +227,12 @@ def test_a_clamp_without_force_or_stiffness_is_the_compliant_cover():
     raw = copy.deepcopy(raw)
     raw["cover"].update(clamp="force", clamp_force_N=1e-3, clamp_stiffness_N_per_um=1e-6)
     force = to_columns(simulate_table(assembly_from_dict(raw, "f.toml"), cond))
+    worst_hot = 0.0
     for k, v in comp.items():
         scale = max(np.abs(v).max(), 1e-30)
-        np.testing.assert_allclose(force[k], v, rtol=0, atol=1e-5 * scale, err_msg=k)
+        np.testing.assert_allclose(force[k][:2], v[:2], rtol=0, atol=1e-5 * scale, err_msg=k)
+        worst_hot = max(worst_hot, abs(force[k][2] - v[2]) / scale)
+    assert worst_hot > 1e-4
 
 
 @pytest.mark.parametrize("change,expect", [
@@ -257,7 +276,7 @@ def test_design_search_family_holds_the_clamp_spring():
     fam = Family(spec("TC4", "9Cr18"), SPACERS)
     s = spec("6061", "Si3N4")
     par, own = fam.setup(s), compute_setup(s, full_fe(s))
-    assert own.fit_names[-1] == "face_clamp_cover"
+    assert "face_clamp_cover" in own.fit_names and "face_outer_A_spacer" in own.fit_names
     for name in ("B", "A", "probe_units"):
         a, b = getattr(par.condensed, name), getattr(own.condensed, name)
         assert np.abs(a - b).max() <= 1e-9 * np.abs(b).max(), name
@@ -276,3 +295,102 @@ def test_the_shipped_rig_runs_with_its_clamp_force():
     out = to_columns(simulate_table(asm, {"T_ambient_C": np.array([20.0, 60.0])}))
     assert out["clamp_force_N"][0] == pytest.approx(3890.0, rel=1e-9)
     assert out["flag_clamp_open"].tolist() == [0.0, 1.0]
+
+
+@pytest.mark.parametrize("d,P,mu,D_Km", [(100.0, 1.5, 0.12, 103.8), (10.0, 1.25, 0.10, 13.5),
+                                          (10.0, 1.5, 0.0, 13.5), (24.0, 3.0, 0.16, 31.0)])
+def test_tightening_force_is_the_power_screw_torque(d, P, mu, D_Km):
+    """VDI 2230's tightening torque (step R13, `analytic.clamp.tightening_force_N`) against the
+    exact torque of a power screw raising a load (Shigley's Mechanical Engineering Design, 10th
+    ed., eq. 8-27: T = F d_m / 2 (l + pi f d_m sec a) / (pi d_m - f l sec a) + F f_c d_c / 2, a =
+    30 deg the ISO flank half-angle, l = P, d_m = d_2): VDI's 0.16 P and 0.58 d_2 are P / (2 pi)
+    and d_2 / (2 cos 30 deg) rounded, so the two agree to 1 %."""
+    from analytic.clamp import tightening_force_N
+
+    torque = 20000.0
+    d2 = d - 0.649519 * P
+    sec = 1.0 / np.cos(np.radians(30.0))
+    per_N = 0.5 * d2 * (P + np.pi * mu * d2 * sec) / (np.pi * d2 - mu * P * sec) + 0.5 * mu * D_Km
+    assert tightening_force_N(torque, d, P, mu, mu, D_Km) == pytest.approx(torque / per_N, rel=1e-2)
+
+
+def test_the_thin_section_rig_runs_with_its_nut_force():
+    """studies/configs/rig_thin_section_hub.toml (issue 24's second rig): its aluminium shaft
+    nut is tightened to the 1497 N of its torque (VDI 2230, in the file's comment) at T_ref; the
+    aluminium shaft outgrows the steel inner-ring stack when hot, so the nut's force falls and is
+    used up by +70 C (flagged), and rises when cold. Every fit (inner, outer, the hub = sleeve)
+    has its pressure and flag columns beside the clamp's."""
+    from analytic.clamp import tightening_force_N
+    from studies.model.columns import to_columns
+    from studies.model.config import load_assembly
+    from studies.model.pipeline import simulate_table
+
+    asm = load_assembly(CONFIG_DIR / "rig_thin_section_hub.toml")
+    assert asm.nut.clamp == "force"
+    assert asm.nut.clamp_force_N == pytest.approx(
+        tightening_force_N(20000.0, 100.0, 1.5, 0.12, 0.12, (101.6 + 106.0) / 2), abs=0.5)
+    cond = {"T_ambient_C": np.array([-45.0, 20.0, 70.0]), "speed_rpm": np.zeros(3)}   # at rest,
+    out = to_columns(simulate_table(asm, cond))        # as the nut was tightened
+    f = out["clamp_force_N"]
+    assert f[1] == pytest.approx(asm.nut.clamp_force_N, rel=1e-9)
+    assert f[0] > f[1] and f[2] == 0.0
+    assert out["flag_clamp_open"].tolist() == [0.0, 0.0, 1.0]
+    for fit in ("inner", "outer", "sleeve"):
+        for col in (f"fit_pressure_{fit}_MPa", f"flag_fit_open_{fit}", f"interference_{fit}_um"):
+            assert col in out, col
+
+
+def test_a_very_soft_clamp_spring_is_warned_about():
+    """A clamp spring of 1e-3 N/um on seed 000's cover (its thread gives ~1500 N/um, VDI 2230:
+    a ratio of 7e-7, below CLAMP_SOFT_WARN) gets one warning line naming the key and the overlap
+    it is tightened by (F / k = 1000 N / 1 N/mm = 1000 mm); a bolted cover's 100 N/um gets none."""
+    from studies.model.checks import plausibility_warnings
+
+    for k, n in ((1e-3, 1), (100.0, 0)):
+        raw = _raw()
+        raw["cover"].update(clamp="force", clamp_force_N=1e3, clamp_stiffness_N_per_um=k)
+        msgs = [m for m in plausibility_warnings(assembly_from_dict(raw, "x.toml"))
+                if "clamp_stiffness" in m]
+        assert len(msgs) == n
+        if n:
+            assert "\n" not in msgs[0] and "cover.clamp_stiffness_N_per_um = 0.001" in msgs[0]
+            assert "tightened by 1e+03 mm" in msgs[0]
+
+
+def test_design_varies_the_clamp_force_on_one_fe_setup(monkeypatch):
+    """`design --vary nut_clamp_force_N=...` (issue 24): the thin-section rig's nut at its 1497 N
+    and at 3000 N are one FE set-up (the set-up route called once: the set-up holds the clamp's
+    spring, not its force), and each setting's answers equal those of the assembly built with
+    that force through its own pipeline (a second route, its own set-up) to 1e-9 of the preload.
+    The stiffer clamp keeps the aluminium shaft's stack closed to a higher temperature: at 40 C
+    (above the 1497 N nut's opening, ~33 C) the two preloads differ. A force for a rigid cover
+    or a force <= 0: one line."""
+    import fem.parametric as fp
+    from studies.model.config import load_assembly
+    from studies.model.inputs import baseline_inputs
+    from studies.model.pipeline import Pipeline
+    from studies.runs import design_search as ds
+
+    asm = load_assembly(CONFIG_DIR / "rig_thin_section_hub.toml")
+    settings = ds.settings_of(asm, {"nut_clamp_force_N": (3000.0,)})
+    assert [s.nut_clamp_force_N for s in settings] == [1497.0, 3000.0]
+    assert settings[1].assembly(asm).nut.clamp_force_N == 3000.0
+    assert settings[1].label(settings[0]) == "nut 3000 N"
+    calls = []
+    real = fp.Family.setup
+    monkeypatch.setattr(fp.Family, "setup", lambda self, spec: calls.append(1) or real(self, spec))
+    stack = ds.candidates(asm, length_factors=(1.0,), materials=["17-4PH"])[0]
+    T, P0 = np.array([20.0, 40.0]), np.array([150.0])
+    r = ds.evaluate_settings(asm, stack, tuple(settings), T, P0, 4.0, parametric=True)
+    assert len(calls) == 1
+    for s, ans in zip(settings, r):
+        a = s.assembly(stack.assembly(asm))
+        cols = {"T_ambient_C": T, "preload_assembled_N": np.full(2, 150.0)}
+        own = Pipeline(a, mesh_factor=4.0).run(
+            baseline_inputs(cols, 2, a.T_ref_C, a.preload.assembled_N, a.lubrication.speed_rpm))
+        np.testing.assert_allclose(ans.preload_N[0], own.preload_N, rtol=0, atol=1e-9 * 150.0)
+    assert abs(r[1].preload_N[0, 1] - r[0].preload_N[0, 1]) > 1.0
+    for vary, frag in (({"cover_clamp_force_N": (100.0,)}, "the cover's clamp is 'rigid'"),
+                       ({"nut_clamp_force_N": (0.0,)}, "must be > 0")):
+        with pytest.raises(ds.DesignError, match=frag):
+            ds.settings_of(asm, vary)

@@ -2,6 +2,7 @@
 field images (the numbers inside are tested where they are computed; here each output's numbers
 are held to a second derivation: the textbook closed forms, Roache's formulas, the CSV beside)."""
 import csv
+import functools
 import json
 import math
 
@@ -88,8 +89,17 @@ def _md_rows(md: str, first: str) -> list[list[str]]:
     return rows
 
 
+@pytest.fixture
+def coarse_mms(monkeypatch):
+    """`verify.run` with its manufactured-solution table on the coarse levels of test_verify.py
+    (h = 1.25 .. 0.31 mm): nothing here reads that table (its keys: test_verify.py, its orders:
+    test_mms.py, at the command's levels in the slow test_mms.py::test_orders_on_finer_levels),
+    and at the command's levels it was 14 of the 16 CPU s of each verify run below."""
+    monkeypatch.setattr(verify, "mms_cases", functools.partial(verify.mms_cases, (4, 8, 16)))
+
+
 @pytest.mark.requirement("R-FE-LAME")
-def test_verify_cases_contract_and_tolerance(tmp_path):
+def test_verify_cases_contract_and_tolerance(tmp_path, coarse_mms):
     """The verification cases with the assembly's mesh-convergence levels twice as coarse (the
     Lamé cases and the Lamé convergence case as shipped); the command at full levels is slow."""
     out = tmp_path / "v"
@@ -178,7 +188,7 @@ def test_unknown_study_exits_2(tmp_path, capsys):
     assert not (tmp_path / "x").exists()
 
 
-def test_verify_runs_the_mesh_convergence_of_a_users_assembly(tmp_path, capsys):
+def test_verify_runs_the_mesh_convergence_of_a_users_assembly(tmp_path, capsys, coarse_mms):
     """`verify --assembly`: the user's own stack gets its observed order and GCI (coarse levels
     here; the command runs the default ones)."""
     from studies.model.config import CONFIG_DIR, load_assembly

@@ -109,3 +109,31 @@ def test_seed000_no_history_candidate_predicts_the_held_out_change(s000):
     assert rising == ["preload path softened after the first cycle"]
     assert all(f.predicted > pad.SEED000_MAX_CHANGE_NMM + pad.SEED000_TOL_NMM
                for f in on_min.fits if f.fit_in_band)
+
+
+def test_seed001_ladder_rungs_are_its_model_forms(s001):
+    """The model forms tried on seed 001 are the diagnosis's ladder (one route): every rung with
+    a candidate appears, one parameter at a time, and the rungs the ladder does not try are
+    stated with its reason. Independent check of the route: the quasi-dynamic switch at its
+    bound (share 1, where the fit on the cold ratio ends: no share reaches the band) predicts
+    what the assembly with `ball_model = "quasi_dynamic"` gives through `simulate_table`, to
+    round-off of the blend base + 1 (form - base) (1e-12 relative)."""
+    from dataclasses import replace
+
+    from studies.diagnosis.ladder import ladder
+
+    asm = load_shipped("seed001")
+    names = {f.candidate for f in s001.fits}
+    for rung in ladder(asm):
+        if rung.candidate is None:
+            assert any(t.startswith(rung.name) for t in pad.ladder_not_tried(asm)), rung.name
+            continue
+        for p in rung.candidate.parameters:
+            label = rung.name if len(rung.candidate.parameters) == 1 else f"{rung.name} ({p})"
+            assert f"ladder: {label}" in names
+    assert not any("spring" in n.lower() for n in names)      # the ladder's: carried, not tried
+    qd = next(f for f in s001.fits if f.candidate == "ladder: ball_model_quasi_dynamic")
+    assert qd.value == 1.0 and not qd.reaches
+    form = replace(asm, operating=replace(asm.operating, ball_model="quasi_dynamic"))
+    M = pad.seed001_torques(form, mesh_factor=MESH).torque_Nmm
+    np.testing.assert_allclose([qd.fitted, qd.predicted], [M[0] / M[1], M[2] / M[1]], rtol=1e-12)

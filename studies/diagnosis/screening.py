@@ -21,8 +21,15 @@ def screen(pb: Problem, b: Baseline) -> Screening:
     cands = {}
     proj = {}
     gate = ladder.indication(pb, b) if any(map(ladder.is_form, pb.candidates)) else None
+    # the candidates' sensitivities are independent model calls: on the engine's workers
+    # (`Problem.parallel`, the results those of a serial run), those that call the model only;
+    # a profiled one (up to three grid points) first
+    todo = [e for e in pb.candidates if _needs_model(pb, e, gate)]
+    done = dict(zip((e.name for e in todo), pb.parallel(
+        lambda e: _screen_one(pb, e, b, gate), todo,
+        first=[i for i, e in enumerate(todo) if fitspec.profile(e)])))
     for e in pb.candidates:
-        cands[e.name], Q = _screen_one(pb, e, b, gate)
+        cands[e.name], Q = done[e.name] if e.name in done else _screen_one(pb, e, b, gate)
         if Q is not None:
             proj[e.name] = Q
     names_id = list(proj)
@@ -54,6 +61,12 @@ def _screen_one(pb: Problem, e, b: Baseline, gate=None) -> tuple[Candidate, np.n
     Q = orth(Jp, 1e-6)
     return Candidate(e.name, kind, identifiability=ident, rank=int(Q.shape[1]), sensitivity=Jc,
                      profile_fixed=fixed, profile_grid=grid), Q
+
+
+def _needs_model(pb: Problem, e, gate) -> bool:
+    """Whether screening `e` calls the model (it is applicable and, a model form, indicated)."""
+    why, _ = _applicability(pb, e)
+    return why is None and (gate is None or gate.why_not(e) is None)
 
 
 def _applicability(pb: Problem, e) -> tuple[str | None, dict]:

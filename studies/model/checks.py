@@ -10,7 +10,9 @@ Checks and their allowables (docs/cli.md, "simulate: limits"):
 - fit_open_inner / fit_open_outer / fit_open_sleeve / fit_open_cartridge: the fit pressure must
   stay above 0 MPa, for a fit designed with interference only (the mean assembly at the reference
   temperature, `tolerances.designed_closed`; a fit designed as a clearance is not flagged for
-  being open). The sleeve's and cartridge's fits are the fits on their outside;
+  being open). The sleeve's and cartridge's fits are the fits on their outside. Its margin
+  `margin_fit_<fit>_MPa` is the fit pressure left before the fit opens (MPa; value - 0 MPa, the
+  same kind of margin as the clamp's in newtons); a designed clearance has neither;
 - clamp_open (a `[nut]`/`[cover]` with clamp = "force" only): the clamp force left before a
   stack face opens, `margin_clamp_N` (N, `studies.model.stages.fe.ClampState`), must stay above
   0 N; its margin is that column in newtons (a strict check: no relative margin).
@@ -32,6 +34,7 @@ CHECK_COLUMNS = frozenset(
                            "fit_open_inner", "fit_open_outer", "fit_open_sleeve",
                            "fit_open_cartridge")]
     + [f"margin_{n}" for n in ("max_contact_pressure_MPa", "static_safety")]
+    + [f"margin_fit_{n}_MPa" for n in ("inner", "outer", "sleeve", "cartridge")]
     + ["flag_clamp_open", "margin_clamp_N"])                     # clamp = "force" only
 
 
@@ -42,7 +45,8 @@ class Check:
     upper: True for value <= allowable, False for value >= (strict: >) allowable; source: where
     the allowable comes from; value: the checked quantity of a `SimulationResult` (a module-level
     function, so that checks travel to Dask workers); strict: a lower limit of 0 that must be
-    exceeded (no margin)."""
+    exceeded (no relative margin); margin_column: for a strict check, the column of its margin
+    in its own unit (value - allowable), "" for none."""
     name: str
     column: str
     allowable: float
@@ -51,6 +55,7 @@ class Check:
     source: str
     value: Callable[[object], np.ndarray]
     strict: bool = False
+    margin_column: str = ""
 
 
 @dataclass(frozen=True)
@@ -75,7 +80,8 @@ class Violation:
 class CheckOutcome:
     """One check over the rows of a result. value: the checked quantity per row (check.unit);
     violated: bool per row; margin: allowable / value - 1 (upper limit) or value / allowable - 1
-    (lower limit), >= 0 inside, inf where not finite (an unloaded row); None for a strict check."""
+    (lower limit), >= 0 inside, inf where not finite (an unloaded row); for a strict check
+    value - allowable in its unit where it names a `margin_column`, else None."""
     check: Check
     value: np.ndarray
     violated: np.ndarray
@@ -156,7 +162,7 @@ def assembly_checks(asm) -> list[Check]:
         if closed:                        # a designed clearance is allowed to be open
             checks.append(Check(f"fit_open_{side}", f"fit_pressure_{side}_MPa", 0.0, False, "MPa",
                                 "a fit assembled with interference", _FIT_PRESSURE[side],
-                                strict=True))
+                                strict=True, margin_column=f"margin_fit_{side}_MPa"))
     if "force" in (asm.nut.clamp, asm.cover.clamp):
         checks.append(Check("clamp_open", "margin_clamp_N", 0.0, False, "N",
                             'the clamp force left before a stack face opens (clamp = "force")',
@@ -179,6 +185,8 @@ def evaluate_checks(result, checks: list[Check]) -> Checks:
                 margin = v / c.allowable - 1.0 if not c.strict else None
         if margin is not None:
             margin = np.where(np.isfinite(margin), margin, np.inf)
+        if c.margin_column:                           # a margin in the check's own unit
+            margin = v - c.allowable
         outcomes.append(CheckOutcome(c, v, bad, margin))
     return Checks(tuple(outcomes))
 
@@ -189,11 +197,42 @@ def evaluate_checks(result, checks: list[Check]) -> Checks:
 #: large means the viscous term decides everything and the lubrication amount must be known
 VISCOUS_TO_LOAD_WARN = 50.0
 
+#: a clamp's given spring below this fraction of its thread's own stiffness (VDI 2230 default)
+#: is warned about: the force clamp is then the compliant limit, tightened by an overlap of
+#: F / k, and the round-off of the contact problem grows as k_thread / k
+CLAMP_SOFT_WARN = 1e-4
+
+
+def _soft_clamp_warnings(asm) -> list[str]:
+    """One line per clamp with a force whose `clamp_stiffness_N_per_um` is below CLAMP_SOFT_WARN
+    of the stiffness its section gives (`studies.model.stack.clamp_stiffness_N_per_mm`)."""
+    from dataclasses import replace
+
+    from studies.model.stack import clamp_stiffness_N_per_mm
+
+    msgs = []
+    for name in ("nut", "cover"):
+        c = getattr(asm, name)
+        if c.clamp != "force" or not c.clamp_stiffness_N_per_um > 0:
+            continue
+        own = clamp_stiffness_N_per_mm(replace(asm, **{name: replace(c, clamp_stiffness_N_per_um=0.0)}),
+                                       name)
+        k = 1e3 * c.clamp_stiffness_N_per_um
+        if k < CLAMP_SOFT_WARN * own:
+            msgs.append(f"{name}.clamp_stiffness_N_per_um = {c.clamp_stiffness_N_per_um:g} is "
+                        f"{k / own:.1e} of its thread's own stiffness ({own / 1e3:.4g} N/um, VDI "
+                        f"2230): a spring that soft is the compliant limit, tightened by "
+                        f"{c.clamp_force_N / k:.3g} mm, and makes the contact problem "
+                        f"ill-conditioned (round-off x {own / k:.1e})")
+    return msgs
+
+
 def plausibility_warnings(asm, conditions: dict | None = None, out: dict | None = None) -> list[str]:
     """Legal but implausible inputs and results, one line each (the run goes on):
     units typed wrong (kelvin for Celsius, radians for degrees, mm for um), a viscous torque
     that dwarfs the load torque (an oil-bath Palmgren f0 on a lightly lubricated bearing) and a
-    contact ellipse truncated by the land (`analytic/bearing/land.py`)."""
+    contact ellipse truncated by the land (`analytic/bearing/land.py`) and a clamp's spring
+    so soft it is ill-conditioned (`CLAMP_SOFT_WARN`)."""
     msgs = []
     b, f = asm.bearing, asm.fits
     if b.contact_angle_free_deg < np.pi / 2:             # 1.57: a right angle in radians
@@ -228,6 +267,7 @@ def plausibility_warnings(asm, conditions: dict | None = None, out: dict | None 
         law = oil.walther()
         if (msg := law.extrapolation_warning(out["viscosity_mm2_s"], oil.name)) is not None:
             msgs.append(msg)
+    msgs += _soft_clamp_warnings(asm)
     for side in ("inner", "outer"):
         m = None if out is None else out.get(f"land_margin_{side}_deg")
         if m is not None and np.any(np.asarray(m) < 0):

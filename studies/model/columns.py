@@ -59,13 +59,14 @@ def to_columns(result: SimulationResult, flags: bool = True) -> dict[str, np.nda
 
 
 def check_columns(checks: Checks) -> dict[str, np.ndarray]:
-    """Each check's `flag_<name>` (1 = violated) and `margin_<name>` columns (no margin for a
-    strict check), in the checks' order: the last columns of `to_columns`."""
+    """Each check's `flag_<name>` (1 = violated) and `margin_<name>` columns (a strict check: its
+    `margin_column` in its own unit, or none), in the checks' order: the last columns of
+    `to_columns`."""
     out = {}
     for o in checks.outcomes:
         out[f"flag_{o.check.name}"] = o.violated.astype(float)
         if o.margin is not None:
-            out[f"margin_{o.check.name}"] = o.margin
+            out[o.check.margin_column or f"margin_{o.check.name}"] = o.margin
     return out
 
 

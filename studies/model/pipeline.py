@@ -171,10 +171,12 @@ class Pipeline:
         for the next call with the same states (a table streamed in chunks does not)."""
         loads = self.fe_stage.loads(inputs)
         # a diagnosis re-evaluates the same FE states many times (friction, viscosity and preload
-        # effects leave the structure alone): keep the last few results by their exact inputs
+        # effects leave the structure alone): keep the last few results by their exact inputs,
+        # the least recently used leaving first (the reference state is asked for all along)
         key = loads.key(direct)
-        hit = self._fe_cache.get(key)
+        hit = self._fe_cache.pop(key, None)
         if hit is not None:
+            self._fe_cache[key] = hit
             return hit
         state = self.fe_stage.solve(loads, direct)
         if not remember:

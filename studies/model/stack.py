@@ -21,12 +21,21 @@ from analytic.bearing.land import (groove_centre_rz_mm, groove_point_rz_mm, land
                                    land_diameters_mm)
 from analytic.clamp import annulus_area_mm2, thread_clamp_stiffness_N_per_mm
 from analytic.materials import get_material
+from fem.model import HOLD_RATIO
 from meshes.section import Face, Fit, Groove, Rect, Section, Split
 from studies.model.config import Assembly
 from studies.model.mesh_size import mesh_sizes
 
 #: the rotor sub-assembly: the parts that spin with the shaft (centrifugal load in the FE)
 ROTOR_PARTS = ("shaft", "inner_ring_A", "inner_spacer", "inner_ring_B", "nut")
+
+#: the stack's own axial faces on each side (ring-shoulder, ring-spacer): tied (u_z) under a
+#: rigid or compliant clamp; under a clamp with a force (`[nut]` for "inner", `[cover]` for
+#: "outer") unilateral contacts like the clamp's own face (`meshes.section.Face`, key "stack",
+#: no overlap, each part held by a weak spring, `fem.model.HOLD_RATIO`): they open when thermal
+#: growth, fits or speed use the clamp force up
+STACK_FACES = {"inner": ("face_shaft_shoulder", "face_inner_A_spacer", "face_inner_spacer_B"),
+               "outer": ("face_housing_shoulder", "face_outer_A_spacer", "face_outer_spacer_B")}
 
 #: half-width (deg, at the groove centre) of the groove arc about the free contact angle whose
 #: displaced points give the groove-centre shift, and the number of points on it
@@ -136,6 +145,8 @@ def section_from_assembly(a: Assembly) -> Section:
     outside = tuple(("housing", "cover") if p == "housing" else (p,) for p in seat_of)
     r_isp, r_osp = a.inner_spacer.diameter_mm / 2, a.outer_spacer.diameter_mm / 2
     zc = z["inner_ring_B"][0]
+    # under a clamp with a force the stack's own faces on its side are contacts too (`STACK_FACES`)
+    held = {"inner": a.nut.clamp != "force", "outer": a.cover.clamp != "force"}
     splits = (
         Split("shaft_seat", "r", r_seat, 0.0, z["inner_ring_B"][1], ("shaft", "nut"),
               ("inner_ring_A", "inner_spacer", "inner_ring_B")),
@@ -144,19 +155,19 @@ def section_from_assembly(a: Assembly) -> Section:
         *[Split(f"{name}_outside", "r", r_layer[k + 1], 0.0, z_house_end, (name,), outside[k + 1])
           for k, name in enumerate(layers)],
         Split("face_shaft_shoulder", "z", 0.0, r_seat, s.shoulder_diameter_mm / 2, ("shaft",),
-              ("inner_ring_A",)),
+              ("inner_ring_A",), held["inner"]),
         Split("face_inner_A_spacer", "z", B, r_seat, min(r_iro, r_isp), ("inner_ring_A",),
-              ("inner_spacer",)),
+              ("inner_spacer",), held["inner"]),
         Split("face_inner_spacer_B", "z", zc, r_seat, min(r_iro, r_isp), ("inner_spacer",),
-              ("inner_ring_B",)),
+              ("inner_ring_B",), held["inner"]),
         Split("face_inner_B_nut", "z", z["nut"][0], r_seat, min(r_iro, a.nut.diameter_mm / 2),
               ("inner_ring_B",), ("nut",), a.nut.clamp == "rigid"),   # "force": a Face
         Split("face_housing_shoulder", "z", 0.0, h.shoulder_diameter_mm / 2, r_hb, ("housing",),
-              ("outer_ring_A", *sliding)),
+              ("outer_ring_A", *sliding), held["outer"]),
         Split("face_outer_A_spacer", "z", B, max(r_ori, r_osp), r_od, ("outer_ring_A",),
-              ("outer_spacer",)),
+              ("outer_spacer",), held["outer"]),
         Split("face_outer_spacer_B", "z", z["outer_ring_B"][0], max(r_ori, r_osp), r_od,
-              ("outer_spacer",), ("outer_ring_B",)),
+              ("outer_spacer",), ("outer_ring_B",), held["outer"]),
         Split("face_outer_B_cover", "z", z["cover"][0], max(r_ori, a.cover.diameter_mm / 2), r_hb,
               ("outer_ring_B", *sliding), ("cover",), a.cover.clamp == "rigid"),
     )
@@ -186,6 +197,10 @@ def section_from_assembly(a: Assembly) -> Section:
                                       ("cover", next(x for x in splits
                                                      if x.name == "face_outer_B_cover")))
                   if getattr(a, name).clamp == "force")
+    faces += tuple(Face(x.name, x.inner_parts, x.outer_parts, x.at_mm, x.lo_mm, x.hi_mm, "stack",
+                        0.0, HOLD_RATIO)
+                   for side in ("inner", "outer") if not held[side]
+                   for x in splits if x.name in STACK_FACES[side])
     return Section(tuple(rects), splits, fits, (), refine, raceways, sizes.size_mm,
                    sizes.fit_size_mm, sizes.corner_size_mm, grooves, faces)
 

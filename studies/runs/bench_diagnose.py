@@ -22,6 +22,15 @@ Times: the FE set-up (mesh from the cache, unit solutions) once; per dataset the
 (`diagnose_full`, what the goal is about) and the whole `diagnose_files` (reading the CSV, the
 engine, JSON and the report with its plots), with the set-up pipeline passed in; wall seconds
 and CPU seconds (this process and its workers: on a loaded machine the CPU seconds move less).
+
+`--profile` (where the time goes; `--datasets` picks datasets by a part of their label): each
+dataset's engine once more in one process, CPU seconds split into the FE superposition solves
+(`FEStage.solve` of the assembly's pipeline), the pair equilibria (`BearingStage.solve`), the
+rest of the model calls (effects, the model-form route, torque, checks, columns) and the engine
+outside the model; and per parallel map of the engine (`Problem.parallel`, in phase order) its
+items' CPU seconds, the longest item and the greedy schedule on `--workers` processes in the
+order `parallel_map` starts them: the engine's CPU critical path on that many workers (a lower
+bound of its wall time on idle cores, fork and pickling costs not counted).
 """
 from __future__ import annotations
 
@@ -32,6 +41,8 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")   # as the CLI: small dense s
 import argparse  # noqa: E402
 import tempfile  # noqa: E402
 import time  # noqa: E402
+from contextlib import contextmanager  # noqa: E402
+from dataclasses import dataclass, field  # noqa: E402
 from pathlib import Path  # noqa: E402
 
 import numpy as np  # noqa: E402
@@ -57,6 +68,91 @@ DATASETS = {"no effect": {}, "thermal_lag tau_s=300": {"thermal_lag": {"tau_s": 
             "material_lot housing CTE x 1.03": {"material_lot": {"cte_factor_housing": 1.03}}}
 
 
+@dataclass
+class Profile:
+    """CPU seconds of one engine run in one process (`--profile`): model calls, FE superposition
+    solves and pair equilibria of the assembly's pipeline (count, seconds), the model's and the
+    whole engine's seconds, and per top-level parallel map (label, item seconds, items started
+    first)."""
+    fe: list = field(default_factory=lambda: [0, 0.0])
+    pair: list = field(default_factory=lambda: [0, 0.0])
+    model: list = field(default_factory=lambda: [0, 0.0])
+    maps: list = field(default_factory=list)
+    engine_s: float = 0.0
+
+    def schedule_s(self, times: list[float], first: list[int], workers: int) -> float:
+        """Length of the greedy schedule of the items on `workers` processes, started in
+        `parallel_map`'s order (`first`, then the items' order), each on the least loaded."""
+        load = [0.0] * max(int(workers), 1)
+        for i in dict.fromkeys(list(first) + list(range(len(times)))):
+            k = load.index(min(load))
+            load[k] += times[i]
+        return max(load)
+
+    def lines(self, workers: int) -> list[str]:
+        in_maps = sum(sum(t) for _, t, _ in self.maps)
+        crit = self.engine_s - in_maps + sum(self.schedule_s(t, f, workers)
+                                             for _, t, f in self.maps)
+        (calls, model_s), rest = self.model, self.model[1] - self.fe[1] - self.pair[1]
+        out = [f"    CPU s in one process: engine {self.engine_s:.2f} = model "
+               f"{model_s:.2f} ({calls} calls: FE superposition {self.fe[1]:.2f} in "
+               f"{self.fe[0]} solves, pair {self.pair[1]:.2f} in {self.pair[0]} solves, rest "
+               f"{rest:.2f}) + engine outside the model {self.engine_s - model_s:.2f}",
+               f"    parallel maps (items, CPU s, longest item, on {workers} workers):"]
+        for label, t, f in self.maps:
+            out.append(f"      {label:<44} {len(t):3d} {sum(t):7.2f} {max(t, default=0):6.2f}"
+                       f" {self.schedule_s(t, f, workers):6.2f}")
+        out.append(f"    outside the maps {self.engine_s - in_maps:.2f} s; CPU critical path on "
+                   f"{workers} workers {crit:.2f} s (of {self.engine_s:.2f} s in one process)")
+        return out
+
+
+def timed(fn, acc: list):
+    """`fn` counting its calls and CPU seconds into acc = [calls, seconds]."""
+    def run(*a, **k):
+        t0 = time.process_time()
+        try:
+            return fn(*a, **k)
+        finally:
+            acc[0] += 1
+            acc[1] += time.process_time() - t0
+    return run
+
+
+@contextmanager
+def profiled(pl):
+    """Time the FE superposition solves and pair equilibria of pipeline `pl` and every
+    top-level `Problem.parallel` map's items (run in this process, in order, as one worker
+    runs them) into a `Profile`; restored on exit."""
+    from studies.diagnosis import problem
+
+    prof, depth = Profile(), [0]
+    fe_solve, pair_solve, parallel = pl.fe_stage.solve, pl.bearing.solve, problem.Problem.parallel
+
+    def par(self, task, items, first=None):
+        if depth[0]:                          # a map inside an item: serial, in its item's time
+            return parallel(self, task, items, first)
+        depth[0] += 1
+        out, times = [], []
+        try:
+            for it in items:
+                t0 = time.process_time()
+                out.append(task(it))
+                times.append(time.process_time() - t0)
+        finally:
+            depth[0] -= 1
+        prof.maps.append((task.__qualname__.replace(".<locals>", ""), times, list(first or ())))
+        return out
+
+    pl.fe_stage.solve, pl.bearing.solve = timed(fe_solve, prof.fe), timed(pair_solve, prof.pair)
+    problem.Problem.parallel = par
+    try:
+        yield prof
+    finally:
+        pl.fe_stage.solve, pl.bearing.solve = fe_solve, pair_solve
+        problem.Problem.parallel = parallel
+
+
 def main(argv=None) -> None:
     from studies.model.config import CONFIG_DIR, SHIPPED, load_shipped
     from studies.diagnosis.files import (NUISANCE, ModelPredictor, candidate_effects,
@@ -74,6 +170,10 @@ def main(argv=None) -> None:
     ap.add_argument("--rows", type=int, nargs="+", default=[N_ROWS])
     ap.add_argument("--workers", type=int, default=None,
                     help="worker processes of the engine (default: as the CLI, every CPU)")
+    ap.add_argument("--datasets", nargs="+", default=None,
+                    help="only the datasets whose label contains one of these")
+    ap.add_argument("--profile", action="store_true",
+                    help="also where the CPU time goes, in one process (module docstring)")
     args = ap.parse_args(argv)
     workers = available_workers() if args.workers is None else args.workers
 
@@ -95,6 +195,8 @@ def main(argv=None) -> None:
         for label, effects in DATASETS.items():
             truth = ModelPredictor(pl, cond, tuple(SIGMA))(effects, {"mu_scale": MU_TRUE})
             meas = {c: truth[c] + rng.normal(0.0, s, truth[c].size) for c, s in SIGMA.items()}
+            if args.datasets and not any(d in label for d in args.datasets):
+                continue                      # the noise draws stay those of the full list
             pred = ModelPredictor(pl, cond, tuple(SIGMA))
             with Clock() as engine:
                 out = diagnose_full(pred, meas, cond, cands, NUISANCE, T_ref_C=asm.T_ref_C,
@@ -116,6 +218,14 @@ def main(argv=None) -> None:
                 f"{k} {v['total']:.2f} ({v['predict']:.2f})"
                 for k, v in r["seconds_by_phase"].items() if v["total"] >= 0.005)
                 + f"; total {r['seconds']['total']:.2f} s ({r['seconds']['predict']:.2f} s)")
+            if args.profile:
+                pred = ModelPredictor(pl, cond, tuple(SIGMA))
+                with profiled(pl) as prof:
+                    t0 = time.process_time()
+                    diagnose_full(timed(pred, prof.model), meas, cond, cands, NUISANCE,
+                                  T_ref_C=asm.T_ref_C, predict_at=pred.at, workers=1)
+                    prof.engine_s = time.process_time() - t0
+                print("\n".join(prof.lines(workers)))
 
 
 if __name__ == "__main__":

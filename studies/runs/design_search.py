@@ -171,7 +171,8 @@ class Band:
 #: preload-path compliance is taken at (`fem.parametric.family_key`: same family).
 SETTING_KEYS = {"preload_kind": str, "spring_rate_N_per_mm": float,
                 "contact_angle_free_deg": float, "inner_shaft_class": str,
-                "outer_housing_class": str}
+                "outer_housing_class": str, "nut_clamp_force_N": float,
+                "cover_clamp_force_N": float}
 
 
 @dataclass(frozen=True)
@@ -189,19 +190,25 @@ class Setting:
     contact_angle_free_deg: the bearing's free contact angle (deg). inner_shaft_class,
     outer_housing_class: ISO 286 classes of the shaft seat and the housing bore
     (`analytic.tolerances.iso286_limits_um`; "" = as given); the mean assembly sits at the middle
-    of each band (`Assembly.mean_fits_um`)."""
+    of each band (`Assembly.mean_fits_um`). nut_clamp_force_N, cover_clamp_force_N: the force
+    (N) a clamp with a force (clamp = "force") is tightened to (0 for a rigid or compliant
+    clamp): the FE set-up holds the clamp's spring, not its force, so the stack's FE serves every
+    force (`studies.model.stages.fe.FEStage.tighten` finds the overlap per force)."""
     preload_kind: str
     spring_rate_N_per_mm: float
     contact_angle_free_deg: float
     inner_shaft_class: str
     outer_housing_class: str
+    nut_clamp_force_N: float = 0.0
+    cover_clamp_force_N: float = 0.0
 
     @classmethod
     def given(cls, asm) -> "Setting":
         """The assembly's own values."""
         f = asm.fits
         return cls(asm.preload.kind, 0.0, float(asm.bearing.contact_angle_free_deg),
-                   f.inner_shaft_class, f.outer_housing_class)
+                   f.inner_shaft_class, f.outer_housing_class,
+                   float(asm.nut.clamp_force_N), float(asm.cover.clamp_force_N))
 
     @property
     def extra_compliance_mm_per_N(self) -> float:
@@ -223,7 +230,11 @@ class Setting:
         if self.contact_angle_free_deg != b.contact_angle_free_deg:
             b = replace(b, contact_angle_free_deg=self.contact_angle_free_deg)
         p = asm.preload if kind == asm.preload.kind else replace(asm.preload, kind=kind)
-        return replace(asm, fits=f, bearing=b, preload=p)
+        clamps = {name: replace(getattr(asm, name), clamp_force_N=v)
+                  for name, v in (("nut", self.nut_clamp_force_N),
+                                  ("cover", self.cover_clamp_force_N))
+                  if v != getattr(asm, name).clamp_force_N}
+        return replace(asm, fits=f, bearing=b, preload=p, **clamps)
 
     def label(self, given: "Setting") -> str:
         """What differs from `given`, in words ("" when nothing does)."""
@@ -239,6 +250,10 @@ class Setting:
             parts.append(f"shaft {self.inner_shaft_class or 'no class'}")
         if self.outer_housing_class != given.outer_housing_class:
             parts.append(f"housing {self.outer_housing_class or 'no class'}")
+        for name in ("nut", "cover"):
+            v = getattr(self, f"{name}_clamp_force_N")
+            if v != getattr(given, f"{name}_clamp_force_N"):
+                parts.append(f"{name} {v:g} N")
         return ", ".join(parts)
 
 
@@ -270,6 +285,13 @@ def settings_of(asm, vary: dict[str, tuple] | None = None) -> list[Setting]:
     for v in vary.get("contact_angle_free_deg", ()):
         if not 0 < v < 60:
             raise DesignError(f"--vary contact_angle_free_deg={v:g}: outside 0..60 deg")
+    for name in ("nut", "cover"):
+        for v in vary.get(f"{name}_clamp_force_N", ()):
+            if getattr(asm, name).clamp != "force":
+                raise DesignError(f"--vary {name}_clamp_force_N: the {name}'s clamp is "
+                                  f"{getattr(asm, name).clamp!r}; a force needs clamp = \"force\"")
+            if not v > 0:
+                raise DesignError(f"--vary {name}_clamp_force_N={v:g}: must be > 0")
     if "spring_rate_N_per_mm" in vary and "spring" not in vary.get("preload_kind",
                                                                    (g.preload_kind,)):
         raise DesignError("--vary spring_rate_N_per_mm: a rate needs a spring preload (the "

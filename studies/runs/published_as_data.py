@@ -5,18 +5,23 @@ Seed 001 (flywheel hybrid pair, 7 N position preload, MAC oil): torque(-20 C)/to
 1.333..1.50 and torque(60 C)/torque(20 C) = 0.75 (the paper's conclusion 2). Each candidate's
 parameter is fitted on the cold ratio alone (to the geometric centre of the published band, within
 the parameter's physical bounds); the hot ratio is then its prediction. Candidates: the listed
-effects (`studies.model.effects`, their own bounds and sources) and the switches of the assembly
-file the configuration does not use (a starved film: a lower Palmgren f0; the bearing's own
-temperature above the chamber's; a spring preload; quasi-dynamic balls; another oil of the
-project's library).
+effects (`studies.model.effects`, their own bounds and sources), the rungs of the diagnosis's
+model-form ladder (`studies.diagnosis.ladder`: the forms the assembly file does not use, each with
+the ladder's parameters and bounds, one parameter at a time; a switch such as quasi-dynamic balls
+fits its `share`; a rung the ladder does not try, such as the spring preload that the listed
+preload-path compliance carries, is stated with the ladder's reason), and the assembly's own
+numbers the configuration fixes (a starved film: a lower Palmgren f0; the bearing's own
+temperature above the chamber's; another oil of the project's library).
 
 Seed 000 (MoS2 pair, 100 N position preload): after repeated -60 <-> 80 C cycles the torque maximum
 of a cycle is 1.7 N mm lower and its minimum 0.9 N mm higher than in the first cycle. The history
 candidates the brief names (`solid_film_runin`, `preload_settling`, `preload_settling.creep`) are
 fitted on one of the two numbers and predict the other.
 
-Every model number comes through `studies.model.pipeline.simulate_table` (the one route) with the
-effects by name; nothing here computes torque itself. Units: N, mm, C, K, s.
+Every model number comes through the one route: `studies.model.pipeline.simulate_table` with the
+effects by name, and for seed 001's candidates the ladder's `FormRoute` (the same pipeline, the
+ladder's rungs applied as the diagnosis applies them); nothing here computes torque itself. Units:
+N, mm, C, K, s.
 """
 from __future__ import annotations
 
@@ -28,9 +33,10 @@ from scipy.optimize import brentq, minimize_scalar
 
 from analytic.lubrication import lubricant_library
 from studies.diagnosis.designs import cycles as cycle_design
+from studies.diagnosis.ladder import CTE_LOT_SCATTER, FormRoute, FormShare, ladder
 from studies.model.config import Assembly, load_shipped
 from studies.model.effects import get_effect
-from studies.model.pipeline import Pipeline, simulate_table
+from studies.model.pipeline import Pipeline, simulate_table, table_inputs
 from studies.model.result import SimulationResult
 
 #: seed 001, the paper's conclusion 2: +33.3..50.0 % at -20 C, -25 % at 60 C (against 20 C)
@@ -196,13 +202,7 @@ def seed001_candidates(asm: Assembly) -> list[Candidate]:
             f"0: no self-heating; {SELF_HEATING_MAX_K:g} K: assumption, the MAC oil below about "
             "120 C at the 60 C point (the oil's usual upper operating temperature)",
             lambda v, w=parts: (asm, {"dT_K": v, "parts": w}, None)))
-    cands.append(Candidate("spring preload (same 7 N)", "", (np.nan, np.nan), "no parameter",
-                           lambda v: (replace(asm, preload=replace(asm.preload, kind="spring")),
-                                      {}, None)))
-    cands.append(Candidate("quasi-dynamic balls", "", (np.nan, np.nan), "no parameter",
-                           lambda v: (replace(asm, operating=replace(asm.operating,
-                                                                     ball_model="quasi_dynamic")),
-                                      {}, None)))
+    cands += ladder_candidates(asm)
     for name, oil in lubricant_library().items():
         if name == lub.lubricant:
             continue
@@ -216,12 +216,54 @@ def seed001_candidates(asm: Assembly) -> list[Candidate]:
     return cands
 
 
-def seed001_torques(asm: Assembly, columns: dict | None = None, effects: dict | None = None,
-                    dT_K: float = 0.0, mesh_factor: float = 1.0,
-                    parts: str = "bearing") -> SimulationResult:
-    """The model at the three published chamber temperatures: the typed `simulate_table` result. With
-    `dT_K`, parts="bearing": the rings and balls dT_K above the chamber, the shaft, spacers and
-    housing at it; parts="stack": every part dT_K above it."""
+#: where each ladder rung's parameter bounds come from (`studies.diagnosis.ladder`)
+LADDER_BOUND_SOURCE = {
+    "material_lot": (f"the ladder's lot scatter, 1 +- {CTE_LOT_SCATTER:g} "
+                     "(studies/diagnosis/ladder.py CTE_LOT_SCATTER, with its source)"),
+    "unlogged_load": ("the ladder's bounds: a radial load up to one bearing's C0 (ISO 76), a "
+                      "moment up to C0 x the bearing span"),
+}
+
+
+def ladder_candidates(asm: Assembly) -> list[Candidate]:
+    """The model-form ladder's candidates (`studies.diagnosis.ladder.ladder`) with one free
+    parameter each: a switch rung fits its `share` (0: the file, 1: the form), a rung with
+    several parameters gives one candidate per parameter, the others at their off values."""
+    out = []
+    for rung in ladder(asm):
+        e = rung.candidate
+        if e is None:
+            continue
+        for p in e.parameters:
+            label = rung.name if len(e.parameters) == 1 else f"{rung.name} ({p})"
+            src = (f"the ladder's switch: share 0 = the file, 1 = {rung.change}"
+                   if isinstance(e, FormShare) else LADDER_BOUND_SOURCE.get(
+                       rung.name, "the ladder's bounds (studies/diagnosis/ladder.py)"))
+            out.append(Candidate(f"ladder: {label}", p, tuple(float(b) for b in e.bounds[p]),
+                                 src, lambda v, n=rung.name, e=e, p=p:
+                                 (asm, {}, {n: {**e.off, p: v}})))
+    return out
+
+
+def ladder_not_tried(asm: Assembly) -> list[str]:
+    """The ladder's rungs that are not candidates of their own, with the ladder's reason."""
+    return [f"{r.name} ({r.change}): " + (f"carried by {r.covered_by}: " if r.covered_by else "")
+            + str(r.why_not) for r in ladder(asm) if r.candidate is None]
+
+
+#: the ladder's route per pipeline (its switch rungs' pipelines are built once)
+_ROUTES: dict[int, tuple[Pipeline, FormRoute]] = {}
+
+
+def _route(pl: Pipeline) -> FormRoute:
+    hit = _ROUTES.get(id(pl))
+    if hit is None or hit[0] is not pl:
+        hit = _ROUTES[id(pl)] = (pl, FormRoute(pl))
+    return hit[1]
+
+
+def _seed001_columns(columns: dict | None, dT_K: float, parts: str) -> dict:
+    """The conditions at the three published chamber temperatures (`seed001_torques`)."""
     T = np.array(SEED001_T_C)
     cols = {"T_ambient_C": T}
     if dT_K and parts == "stack":
@@ -230,7 +272,30 @@ def seed001_torques(asm: Assembly, columns: dict | None = None, effects: dict | 
         for k in ("T_inner_ring_C", "T_outer_ring_C", "T_ball_C"):
             cols[k] = T + dT_K
     cols.update(columns or {})
-    return simulate_table(asm, cols, effects, pipeline=Pipeline.shared(asm, mesh_factor=mesh_factor))
+    return cols
+
+
+def seed001_torque_Nmm(asm: Assembly, effects: dict | None = None, dT_K: float = 0.0,
+                       mesh_factor: float = 1.0, parts: str = "bearing") -> np.ndarray:
+    """The torque (N mm) at the three published chamber temperatures (arguments as
+    `seed001_torques`), `effects` naming listed effects and ladder rungs alike: through the
+    ladder's `FormRoute` on the assembly's shared pipeline, as the diagnosis evaluates them."""
+    pl = Pipeline.shared(asm, mesh_factor=mesh_factor)
+    route = _route(pl)
+    listed, forms = route.split(effects)
+    inputs = route.apply_inputs(table_inputs(asm, _seed001_columns(None, dT_K, parts), listed),
+                                forms)
+    return np.asarray(route.columns(inputs, forms, ("torque_Nmm",))["torque_Nmm"], float)
+
+
+def seed001_torques(asm: Assembly, columns: dict | None = None, effects: dict | None = None,
+                    dT_K: float = 0.0, mesh_factor: float = 1.0,
+                    parts: str = "bearing") -> SimulationResult:
+    """The model at the three published chamber temperatures: the typed `simulate_table` result. With
+    `dT_K`, parts="bearing": the rings and balls dT_K above the chamber, the shaft, spacers and
+    housing at it; parts="stack": every part dT_K above it."""
+    return simulate_table(asm, _seed001_columns(columns, dT_K, parts), effects,
+                          pipeline=Pipeline.shared(asm, mesh_factor=mesh_factor))
 
 
 def seed001(mesh_factor: float = 1.0) -> PublishedAsData:
@@ -242,8 +307,8 @@ def seed001(mesh_factor: float = 1.0) -> PublishedAsData:
 
     def ratios(cand: Candidate, v: float) -> tuple[float, float]:
         a, extra, eff = cand.setup(v)
-        M = seed001_torques(a, None, eff, float(extra.get("dT_K", 0.0)), mesh_factor,
-                            extra.get("parts", "bearing")).torque_Nmm
+        M = seed001_torque_Nmm(a, eff, float(extra.get("dT_K", 0.0)), mesh_factor,
+                               extra.get("parts", "bearing"))
         return float(M[0] / M[1]), float(M[2] / M[1])
 
     base = Candidate("as configured", "", (np.nan, np.nan), "", lambda v: (asm, {}, None))
@@ -393,14 +458,19 @@ def seed001_section(mesh_factor: float = 1.0) -> list[str]:
     visc_share = float(base.torque.viscous_Nmm[1] / base.torque_Nmm[1])
     visc = _named(r, "viscosity_temperature")
     oils = min(f.fitted for f in r.fits if f.candidate.startswith("oil"))
+    load = min((f for f in r.fits if f.candidate.startswith("ladder: unlogged_load")),
+               key=lambda f: f.fitted)
     lines = ["### The published ratios as data: one extension at a time", "",
              "Each candidate's one parameter is fitted on the cold ratio alone (to "
              f"{r.fitted_target:.3f}, the geometric centre of the published +33..50 %), within its "
              "bounds; the hot ratio is then predicted and compared with the published 0.75 "
              f"(tolerance +-{SEED001_REL_TOL:.1%}, the relative half-width of the published cold "
              "band: the paper states no other scatter). Candidates without a parameter predict "
-             "both ratios.", "", fits_table(r), "", "Bounds and their sources:", "",
-             *bound_sources(r), ""]
+             "both ratios; `ladder:` marks a rung of the diagnosis's model-form ladder "
+             "(studies/diagnosis/ladder.py), evaluated as the diagnosis evaluates it.", "",
+             fits_table(r), "", "Bounds and their sources:", "", *bound_sources(r), "",
+             "Rungs of the ladder that are not candidates of their own (the ladder's reason):",
+             "", *(f"- {t}" for t in ladder_not_tried(asm)), ""]
     if r.any_fits:
         b = r.best
         lines += [f"Best: {b.candidate} ({_value_text(b)}) predicts {b.predicted:.3f} for the "
@@ -421,9 +491,12 @@ def seed001_section(mesh_factor: float = 1.0) -> list[str]:
         "**No single candidate brings the cold ratio into the published band within its "
         f"bounds.** Why: as configured {visc_share:.1%} of the torque at 20 C is Palmgren's "
         "viscous term, which follows (nu(-20 C) / nu(20 C))^(2/3): the load-side candidates "
-        "(friction slope, preload-path compliance, a spring preload, quasi-dynamic balls, a "
-        "starved film, which only raises the share of the load term that the rigid position "
-        "preload multiplies when cold) leave the ratio near x8.7. Only the viscosity side moves "
+        "(friction slope, preload-path compliance, which carries the spring preload, the "
+        "ladder's quasi-dynamic balls, grooved ring sections and material lot, a starved film, "
+        "which only raises the share of the load term that the rigid position preload "
+        "multiplies when cold) leave the ratio near x8.7; an unlogged load within the ladder's "
+        f"bound ({load.parameter} = {load.value:.3g}, the closest the fit gets) adds a load term "
+        f"at every temperature and still gives x{load.fitted:.2f}. Only the viscosity side moves "
         f"it: the Walther slope at its bound {visc.value:.3g} gives x{visc.fitted:.2f}, the "
         f"flattest oil of the project's table x{oils:.2f}; {stack}; {reach}. Two parameters "
         "together (the preload-path compliance and f0 of the table above) can match both "

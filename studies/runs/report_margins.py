@@ -171,7 +171,8 @@ def _clamp_text(asm, name: str) -> str:
         return c.clamp
     k = 1e-3 * clamp_stiffness_N_per_mm(asm, name)
     how = "given" if c.clamp_stiffness_N_per_um > 0 else "from its section, VDI 2230"
-    return (f"{c.clamp_force_N:g} N force, {k:.4g} N/um in series ({how}); its face opens when "
+    return (f"{c.clamp_force_N:g} N force, {k:.4g} N/um in series ({how}); its face and the "
+            "stack's faces on its side (ring-shoulder, ring-spacer) are contacts that open when "
             "the force is used up")
 
 

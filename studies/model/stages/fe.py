@@ -45,8 +45,8 @@ class FEState:
     temperatures, inner and outer fit (um; NaN for a conduction-field state). dr_mm, dz_mm
     (2, n): inner minus outer groove-centre shift of bearings A and B, radial and axial (mm).
     raceway_u_mm (n, 8): u_r, u_z at the raceway points of RINGS (mm). face_force_N (n, n_faces):
-    the axial force (N, + compression) across each clamped face held as a contact
-    (`Section.faces`, clamp = "force"), None without one; the faces' mean pressures are the last
+    the axial force (N, + compression) across each face held as a contact (`Section.faces`, clamp
+    = "force": the clamp's own face, then the stack's faces on its side), None without one; the faces' mean pressures are the last
     columns of fit_pressure_MPa. layer_interference_um (n, n_layers): free diametral overlap of
     each sleeve / cartridge fit (`Assembly.layers` order) at the row's temperatures (um); None
     without layers or for a conduction-field state."""
@@ -170,9 +170,11 @@ class ClampState:
     """The preloaded clamps (clamp = "force") of n rows. names: the clamps ("nut", "cover"), in
     the order of the section's faces; force_N (n, n_clamps): the FE force across each clamped
     face at the row's state (N, + compression: the clamp force left after thermal growth, fits
-    and speed); margin_N (n,): the smallest over the clamps of force_N - |axial_load_N| (N), the
-    force left before the stack's faces separate under the row's external axial load, which the
-    stack carries through the clamped faces. That takes the whole external load off the clamped
+    and speed); margin_N (n,): the smallest over every face held as a contact, the clamps' own and
+    the stack's (ring-shoulder, ring-spacer: `studies.model.stack.STACK_FACES`), of its force -
+    |axial_load_N| (N): the force left before a face of the stack separates under the row's
+    external axial load, which the stack carries through its faces (a stack face that opens while
+    the clamp still holds, beside a sleeve that outgrows the rings, counts). That takes the whole external load off the clamped
     faces: the bolted joint's separation load is F_i / (1 - C) >= F_i for any joint constant C
     (`analytic.clamp`), so the margin is on the safe side by C |axial_load_N| at most.
     open (n,): margin_N <= 0 (a face open in the FE has force 0, so its margin is <= 0)."""
@@ -326,6 +328,11 @@ class FEStage:
         fop = self.setup.condensed.fit_of_pair
         return np.column_stack([force_N[:, fop == k].sum(axis=1) for k in self.face_columns()])
 
+    def clamp_faces(self) -> list[tuple[int, "object"]]:
+        """(index among the section's faces, face) of each clamp's own face (key "clamp_<name>");
+        the other faces are the stack's (key "stack", no overlap: `studies.model.stack`)."""
+        return [(j, f) for j, f in enumerate(self.section.faces) if f.key.startswith("clamp_")]
+
     def tighten(self) -> dict[str, float]:
         """The axial overlap delta (mm) of each clamp with a force: the one at which its face
         carries `clamp_force_N` in the nominal assembly (T_ref, at rest, the `[fits]` values
@@ -338,7 +345,7 @@ class FEStage:
         theta = np.zeros((1, len(self.part_names)))
         delta = dict(self.clamp_delta_mm)
         sup = self.sup if self.sup is not None else Superposition(self.solver, self.probe)
-        for j, (face, col) in enumerate(zip(self.section.faces, self.face_columns())):
+        for j, face in self.clamp_faces():
             F = getattr(self.asm, face.key.removeprefix("clamp_")).clamp_force_N
 
             def residual(d):
@@ -367,10 +374,11 @@ class FEStage:
         (N); None without a clamp with a force."""
         if fe.face_force_N is None:
             return None
-        names = tuple(f.key.removeprefix("clamp_") for f in self.section.faces)
+        clamps = self.clamp_faces()
+        names = tuple(f.key.removeprefix("clamp_") for _, f in clamps)
         load = np.abs(np.broadcast_to(np.asarray(axial_load_N, float), (fe.n_rows,)))
-        margin = (fe.face_force_N - load[:, None]).min(axis=1)
-        return ClampState(names, fe.face_force_N, margin, margin <= 0)
+        margin = (fe.face_force_N - load[:, None]).min(axis=1)      # every face: clamp and stack
+        return ClampState(names, fe.face_force_N[:, [j for j, _ in clamps]], margin, margin <= 0)
 
     def row_deltas_mm(self, inputs: PhysicsInputs) -> np.ndarray:
         """(n, n_fits) radial interference (mm) per FE fit of the rows of `inputs`."""
