@@ -20,10 +20,23 @@ from analytic.torque import contact_angles_rad, contact_inputs, power_W, sliding
 
 #: thermal conductivity of a mineral / synthetic hydrocarbon oil at ambient pressure, W/(m K)
 #: (Incropera & DeWitt, Fundamentals of Heat and Mass Transfer, 6th ed., Table A.5: unused engine
-#: oil 0.145 at 300 K, 0.138 at 350 K). Under the Hertz pressure (1-2 GPa) it is higher, by about
-#: 1.5-2.5 x (Larsson & Andersson, Proc. IMechE J 214 (2000) 337): the film resistance below
-#: taken with it is an upper bound.
+#: oil 0.145 at 300 K, 0.138 at 350 K). Under the Hertz pressure it is higher
+#: (`oil_conductivity_ratio`).
 K_OIL_W_MK = 0.14
+#: pressure rise of a lubricant's thermal conductivity, k(p) / k(0) = 1 + A p / (1 + B p) with p
+#: in GPa: Larsson, Larsson, Eriksson, Sjoberg, Hoglund, "Lubricant properties for input to
+#: hydrodynamic and elastohydrodynamic lubrication analyses", Proc. IMechE Part J 214 (2000)
+#: 17-27, the fit of their polyalphaolefin (PAO B, a synthetic hydrocarbon like the project's
+#: oils): A = 1.40 /GPa, B = 0.34 /GPa, k(0) = 0.154 W/(m K) (the coefficients as the open
+#: thermal EHL code github.com/cmeveritt/EHL, Lubrication_def.f90, takes them from the paper).
+#: k doubles by 1 GPa (2.04 x), within the 1.5-2.5 x the same group reports for mineral and
+#: synthetic oils (Larsson & Andersson, Proc. IMechE J 214 (2000) 337).
+K_OIL_PRESSURE_A_PER_GPA = 1.40
+K_OIL_PRESSURE_B_PER_GPA = 0.34
+#: the highest pressure of the measurements behind the fit, GPa (the same code caps its use of
+#: the fit there); above it the ratio is held at its value there (no extrapolation: the film's
+#: conductance is then a lower bound)
+K_OIL_PRESSURE_MAX_GPA = 1.1
 
 
 @dataclass(frozen=True)
@@ -95,6 +108,26 @@ def _gauss_legendre(n: int) -> tuple[np.ndarray, np.ndarray]:
     return x, w
 
 
+def oil_conductivity_ratio(pressure_MPa):
+    """k(p) / k(0) of a lubricant at pressure p (MPa): 1 + A p / (1 + B p), p in GPa, held at
+    its value at K_OIL_PRESSURE_MAX_GPA above that (Larsson et al. 2000, the constants above);
+    1 at p <= 0."""
+    p = np.clip(np.asarray(pressure_MPa, float) * 1e-3, 0.0, K_OIL_PRESSURE_MAX_GPA)
+    return 1.0 + K_OIL_PRESSURE_A_PER_GPA * p / (1.0 + K_OIL_PRESSURE_B_PER_GPA * p)
+
+
+def hertz_mean_conductivity_ratio(p_max_MPa: float, n: int = 32) -> float:
+    """Area mean of `oil_conductivity_ratio` over a Hertz ellipse with peak pressure p_max (MPa):
+    the film's conductance across a film of uniform thickness h is int k(p(x, y)) / h dA =
+    (A / h) <k>, with the Hertz distribution p = p_max sqrt(1 - rho^2) (Johnson, Contact
+    Mechanics, 1985, eq. 4.34; rho the normalised elliptic radius, dA ~ 2 rho d rho):
+    <k>/k(0) = int_0^1 ratio(p_max s) 2 s ds (s = sqrt(1 - rho^2)); Gauss-Legendre with n nodes
+    (the integrand is smooth below the cap and has one kink at it: n = 32 is within 1e-4)."""
+    x, w = _gauss_legendre(n)
+    s = 0.5 * (1.0 + x)
+    return float(np.sum(0.5 * w * oil_conductivity_ratio(p_max_MPa * s) * 2.0 * s))
+
+
 def moving_contact_resistance_K_W(a_mm: float, b_mm: float, speed_mm_s: float, k_W_mK: float,
                                   diffusivity_mm2_s: float, n_phi: int = 512,
                                   n_d: int = 64) -> float:
@@ -151,7 +184,8 @@ class ContactConductance:
 def rolling_contact_conductance(a_mm: float, b_mm: float, rolling_speed_mm_s: float,
                                 ball: Material, ring: Material, n_balls: int,
                                 film_um: float = 0.0,
-                                k_film_W_mK: float = K_OIL_W_MK) -> ContactConductance:
+                                k_film_W_mK: float = K_OIL_W_MK,
+                                p_max_MPa: float = 0.0) -> ContactConductance:
     """Conductance between a bearing's ball set and one raceway, and the partition of the heat
     generated in the contacts, from the Hertz ellipse (semi-axes a across, b along the rolling
     direction, mm), the rolling speed (mm/s: the speed at which ball and ring surfaces pass
@@ -161,9 +195,11 @@ def rolling_contact_conductance(a_mm: float, b_mm: float, rolling_speed_mm_s: fl
     constrictions (`moving_contact_resistance_K_W`, each surface passes through the contact at
     the rolling speed; at rest they are the stationary isoflux constriction, close to Holm's
     1/(4 k a) the lumped network uses), and a full EHL film of thickness h (um) conducts across
-    it, R_film = h / (k_film pi a b) (1-D conduction: across a 0.3 um film heat equalises in
-    h^2/kappa_oil ~ 1 us, the transit time 2b/V is ~ 100 us); h = 0 (solid film, boundary or
-    dry contact): no film term. G = Z / (R_ball + R_film + R_ring).
+    it, R_film = h / (<k_film> pi a b) (1-D conduction: across a 0.3 um film heat equalises in
+    h^2/kappa_oil ~ 1 us, the transit time 2b/V is ~ 100 us), <k_film> the oil's conductivity
+    (k_film_W_mK, W/(m K), at ambient pressure) raised by the Hertz pressure (peak p_max_MPa, MPa;
+    0: ambient pressure) and averaged over the ellipse (`hertz_mean_conductivity_ratio`); h = 0
+    (solid film, boundary or dry contact): no film term. G = Z / (R_ball + R_film + R_ring).
     Partition: the heat is generated in the film's mid-plane (or at the interface, h = 0) and
     flows into both bodies, which see the same contact temperature (Blok's partition, Proc.
     Gen. Disc. Lubrication, IMechE 1937; Archard 1959): ring share = (R_ball + R_film/2) /
@@ -174,7 +210,8 @@ def rolling_contact_conductance(a_mm: float, b_mm: float, rolling_speed_mm_s: fl
                                        _diffusivity_mm2_s(ball))
     Rr = moving_contact_resistance_K_W(a_mm, b_mm, rolling_speed_mm_s, ring.conductivity_W_mK,
                                        _diffusivity_mm2_s(ring))
-    Rf = float(film_um) * 1e-6 / (k_film_W_mK * np.pi * a_mm * b_mm * 1e-6)
+    k_f = k_film_W_mK * hertz_mean_conductivity_ratio(p_max_MPa)
+    Rf = float(film_um) * 1e-6 / (k_f * np.pi * a_mm * b_mm * 1e-6)
     R = Rb + Rf + Rr
     return ContactConductance(float(n_balls) / R, (Rb + 0.5 * Rf) / R, Rb, Rf, Rr)
 

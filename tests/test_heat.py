@@ -104,3 +104,24 @@ def test_solid_film_heat_is_the_torque_times_the_speed():
     assert np.allclose(h.total_W, t.torque_Nmm * w, rtol=1e-12)
     assert np.allclose(h.inner_W + h.outer_W, h.total_W, rtol=1e-12)
     assert np.all(h.viscous_W == 0.0)
+
+
+def test_oil_conductivity_under_hertz_pressure_matches_the_closed_form_mean():
+    """The film's mean conductivity ratio over a Hertz ellipse against the closed form of
+    int_0^1 (1 + A p0 s / (1 + B p0 s)) 2 s ds = 1 + 2 A p0 (c^2/2 - c + ln(1 + c)) / c^3,
+    c = B p0 (p0 in GPa, below the cap of the fit), to 1e-10 of the ratio; at ambient pressure
+    the ratio is 1 and the film resistance is the ambient one; under 1.0 GPa peak the film
+    resistance falls by exactly that mean ratio (everything else unchanged)."""
+    from analytic.heat import (K_OIL_PRESSURE_A_PER_GPA as A, K_OIL_PRESSURE_B_PER_GPA as B,
+                               hertz_mean_conductivity_ratio, oil_conductivity_ratio)
+    for p0 in (0.3, 0.7, 1.0):
+        c = B * p0
+        exact = 1.0 + 2.0 * A * p0 * (c * c / 2.0 - c + np.log1p(c)) / c ** 3
+        assert hertz_mean_conductivity_ratio(1e3 * p0) == pytest.approx(exact, rel=1e-10)
+    assert oil_conductivity_ratio(0.0) == 1.0 and hertz_mean_conductivity_ratio(0.0) == 1.0
+    st = MATERIALS["GCr15"]
+    amb = rolling_contact_conductance(0.55, 0.08, 1700.0, st, st, 14, film_um=0.3)
+    hp = rolling_contact_conductance(0.55, 0.08, 1700.0, st, st, 14, film_um=0.3, p_max_MPa=1000.0)
+    assert amb.R_film_K_W / hp.R_film_K_W == pytest.approx(hertz_mean_conductivity_ratio(1000.0),
+                                                           rel=1e-12)
+    assert hp.R_ball_K_W == amb.R_ball_K_W and hp.R_ring_K_W == amb.R_ring_K_W

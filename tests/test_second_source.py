@@ -11,10 +11,10 @@ mechanism, against a reference that is not the code under test:
   network's ramp delays against the closed form (a series of first-order lags: delays add);
 - model form: a spring preload holds its force (the truth's preload is the assembled one at
   every temperature) where the diagnosed position preload moves by many sigma.
+- sensor: a thermometer offset's fitted value against the offset injected.
 Then today's diagnosis (`second_source.diagnose_case`, the CLI's candidates, coarse mesh family
-member `MESH_FACTOR`) must not claim a wrong cause on it (`second_source.judge`). Cases where
-today's diagnosis does claim a wrong cause are `xfail(strict=True)` in the slow suite, naming the
-issue 23 item that fixes them.
+member `MESH_FACTOR`) must not claim a wrong cause on it (`second_source.judge`); every case over
+several draws is the slow suite's and the confusion-matrix study's.
 """
 from __future__ import annotations
 
@@ -159,6 +159,25 @@ def test_spring_preload_truth_holds_its_force_and_is_not_a_wrong_cause(spring_ca
     res = ss.diagnose_case(c)
     assert ss.judge_result(c, res) != "wrong", \
         (res.verdict, res.cause)
+
+
+# ============================================================================ sensor
+def test_thermometer_offset_is_not_claimed_as_a_cause():
+    """The chamber thermometer reads 0.5 K high (inside IEC 60751 class B): every part runs
+    0.5 K colder than logged. The largest change is below a sigma, but over 240 rows it is a
+    strong signal that a fit error, a CTE slope or curvature, a material lot or a share of the
+    grooved section all imitate (before 2026-11-25 seed 0 was `explained: cte_nonlinearity`
+    through its curvature form, other draws `interference_error`). The diagnosis must claim no
+    cause; the sensor look-alike `thermometer_offset` fits the offset within 3 standard
+    uncertainties (and 0.1 K) of the injected 0.5 K."""
+    c = ss.make_case("chamber_offset", seed=0, mesh_factor=MESH_FACTOR)
+    assert c.change_sigma < ss.VISIBLE_SIGMA
+    res = ss.diagnose_case(c)
+    assert ss.judge_result(c, res) == "right", (res.verdict, ss.named_causes(res))
+    look = next(x for x in res.candidates if x.effect == "thermometer_offset")
+    assert look.status == "passed"
+    dT, u = look.parameters["dT_K"], look.uncertainty["dT_K"]
+    assert abs(dT - 0.5) <= min(3.0 * u, 0.1), (dT, u)
 
 
 # ============================================================================ the judge

@@ -3,19 +3,21 @@
 cores): no wrong cause claimed (`second_source.judge` != "wrong", issue 23 "Done when": 0 wrong
 causes on the second-source data), two causes both named.
 
-Cases where today's diagnosis does claim a wrong cause are `xfail(strict=True)` with the issue 23
-item that fixes them (measured 2026-11-25 on seed 0 of each case, mesh factor 2):
-- (`steel_sleeve` was `explained: interference_error` (a 2 mm steel sleeve changes the outer fit
+Every case passes since 2026-11-25 (measured on seed 0 of each case, mesh factor 2); before:
+- `steel_sleeve` was `explained: interference_error` (a 2 mm steel sleeve changes the outer fit
   with temperature, no constant offset does); with the model-form ladder it is `unexplained`:
   the `material_lot` rung fits better than the offset but, at its bound, leaves structure, so
   nothing is claimed; the `sleeve` rung itself is not tried, its material and thickness not
-  being bounded by a data sheet)
-- (`grooved_sections` was `explained: cte_nonlinearity`; with the model-form ladder, item 2,
-  `ring_section_grooved` explains it: tests/test_ladder.py)
-- `chamber_offset` -> `explained: cte_nonlinearity` (a 0.5 K thermometer offset within its class,
-  largest change 0.8 sigma: a claim on what is practically a null): items 3 and 4;
-- `fit_error_and_lag` -> `explained: thermal_lag` only (`partial`) before item 5 (more than one
-  cause, `studies/diagnosis/selection.py`); both named since (2026-11-25).
+  being bounded by a data sheet;
+- `grooved_sections` was `explained: cte_nonlinearity`; with the model-form ladder
+  `ring_section_grooved` explains it (tests/test_ladder.py);
+- `chamber_offset` (a 0.5 K thermometer offset, largest change 0.8 sigma) was
+  `explained: cte_nonlinearity` (the CTE curvature form claimed after the drift check had
+  refused the listed candidates) or `ambiguous` between a fit error and a material lot; since
+  2026-11-25 a generalised form is claimed only under the rules of any claim and every claim
+  must beat the sensor look-alike `thermometer_offset` (`ladder.lookalikes`): `unexplained`;
+- `fit_error_and_lag` was `explained: thermal_lag` only (`partial`) before item 5 (more than one
+  cause, `studies/diagnosis/selection.py`).
 The per-design rates over several draws are the confusion-matrix study's (docs/diagnosis.md).
 """
 from __future__ import annotations
@@ -27,21 +29,9 @@ from studies.runs import second_source as ss
 pytestmark = pytest.mark.slow
 
 MESH_FACTOR = 2.0
-WRONG_TODAY = {
-    "chamber_offset": "issue 23 items 3 and 4: goodness of fit and a false-claim level that holds "
-                      "(today: explained: cte_nonlinearity on a 0.5 K thermometer offset whose "
-                      "largest change is 0.8 sigma)",
-}
 
 
-def _params():
-    for name in ss.CASES:
-        marks = [pytest.mark.xfail(strict=True, reason=WRONG_TODAY[name])] \
-            if name in WRONG_TODAY else []
-        yield pytest.param(name, marks=marks, id=name)
-
-
-@pytest.mark.parametrize("name", list(_params()))
+@pytest.mark.parametrize("name", list(ss.CASES))
 def test_no_wrong_cause_on_second_source_data(name):
     """Seed 0 of the case: the diagnosis names a right cause, says it cannot (unexplained), or
     finds nothing (on a null or an invisible truth); never a wrong cause."""

@@ -13,6 +13,7 @@ from studies.diagnosis import fitspec
 from studies.diagnosis.candidate import Candidate
 from studies.diagnosis.core import Baseline, Decision, Fit, JointFit, ModelFailure
 from studies.diagnosis.goodness import goodness
+from studies.diagnosis.ladder import is_lookalike
 from studies.diagnosis.problem import Problem
 from studies.diagnosis.stats import ar1_whiten, chibar_pvalue
 
@@ -27,14 +28,24 @@ def decide(pb: Problem, cands: Mapping[str, Candidate], fits: dict[str, Fit],
     """Phase 5: the verdict (module docstring of `studies.diagnosis.engine`, step 5). The
     passing candidates beaten by the best get a note (`Decision.beaten`) for their reason.
 
-    The best passing candidate (lowest BIC) is compared with its rivals (joint fits) and with
-    the unlisted sensor drift; then its goodness of fit (`goodness.goodness`): `explained`
-    when it carries the weight and leaves no structure, `explained_partly` when it carries the
-    weight but leaves structure, `ambiguous` when rivals fit as well (`unexplained` when they
-    also leave structure), `unexplained` when it does not beat the drift."""
-    if not passing:
+    The best passing candidate (lowest BIC) that can be a cause is compared with its rivals
+    (joint fits) and with the unlisted sensor drift; then its goodness of fit
+    (`goodness.goodness`): `explained` when it carries the weight and leaves no structure,
+    `explained_partly` when it carries the weight but leaves structure, `ambiguous` when rivals
+    fit as well (`unexplained` when they also leave structure), `unexplained` when it does not
+    beat the drift or an unlisted sensor look-alike (`ladder.is_lookalike`: a thermometer offset
+    within its class) fits about as well or better: a look-alike is fitted and compared like a
+    candidate but never claimed."""
+    claimable = [n for n in passing if not is_lookalike(pb.effect(n))]
+    if not claimable:
+        if passing:                 # only a sensor look-alike passes
+            lk = min(passing, key=lambda n: cands[n].delta_bic)
+            return Decision("unexplained", None, lk, [], pb.describe(fits[lk].pred, len(
+                pb.nuisance.names) + cands[lk].k), {}, [
+                f"only an unlisted sensor error passes: {lk} ({pb.effect(lk).change}); no "
+                f"listed cause or model form explains the data. {pb.effect(lk).hint}"])
         return _nothing_passes(b)
-    best = min(passing, key=lambda n: cands[n].delta_bic)
+    best = min(claimable, key=lambda n: cands[n].delta_bic)
     n_par = len(pb.nuisance.names) + cands[best].k
     best_desc = pb.describe(fits[best].pred, n_par)
     gof = goodness(pb, fits[best], ho[best], n_par, best_desc)
@@ -45,16 +56,10 @@ def decide(pb: Problem, cands: Mapping[str, Candidate], fits: dict[str, Fit],
     drift = versus_sensor_drift(pb, fits[best], _df(cands[best]), b)
     if drift is not None:
         joint[SENSOR_DRIFT] = drift
-    if drift is not None and not drift.best_carries_weight:
-        a = pb.th["alpha_joint"]
-        return Decision("unexplained", None, best, rivals, best_desc, joint, [
-            f"the best candidate, {best}, does not clearly beat a zero drift of the "
-            "sensors linear in time, a cause outside the list that a history effect "
-            f"resembles (adding {best} to that drift: p = {drift.p:.2g}, needs < "
-            f"{a:g}; adding the drift to {best}: p = "
-            f"{drift.p_add_other_to_best:.2g}, needs >= {a:g}); "
-            "a test at other speeds or a repeat of the programme separates a drift "
-            "in time from the effect"], gof, beaten)
+    why = unlisted_lookalike(pb, best, rivals, drift)
+    if why is not None:
+        return Decision("unexplained", None, best, [r for r in rivals if not is_lookalike(
+            pb.effect(r))], best_desc, joint, [why], gof, beaten)
     left = "; ".join(x.text for x in gof.left)
     if rivals and gof.leaves_structure:
         return Decision("unexplained", None, best, rivals, best_desc, joint, [
@@ -70,6 +75,47 @@ def decide(pb: Problem, cands: Mapping[str, Candidate], fits: dict[str, Fit],
     return Decision("explained", best, best, rivals, best_desc, joint, [
         f"{best} beats the baseline on held-out blocks and clearly beats every other "
         "candidate"], gof, beaten)
+
+
+def unlisted_lookalike(pb: Problem, best: str, rivals: list[str],
+                       drift: JointFit | None) -> str | None:
+    """Why `best` cannot be claimed over an unlisted look-alike (None: it can): it does not
+    clearly beat the sensor drift (`versus_sensor_drift`), or a sensor look-alike among its
+    rivals fits about as well (`compare`)."""
+    look = [r for r in rivals if is_lookalike(pb.effect(r))]
+    if look:
+        e = pb.effect(look[0])
+        return (f"the best candidate, {best}, does not clearly beat an unlisted sensor error, "
+                f"{e.name} ({e.change}), which fits the data about as well or better: "
+                f"{e.hint}")
+    if drift is not None and not drift.best_carries_weight:
+        a = pb.th["alpha_joint"]
+        return (f"the best candidate, {best}, does not clearly beat a zero drift of the "
+                "sensors linear in time, a cause outside the list that a history effect "
+                f"resembles (adding {best} to that drift: p = {drift.p:.2g}, needs < "
+                f"{a:g}; adding the drift to {best}: p = "
+                f"{drift.p_add_other_to_best:.2g}, needs >= {a:g}); "
+                "a test at other speeds or a repeat of the programme separates a drift "
+                "in time from the effect")
+    return None
+
+
+def form_carries_weight(pb: Problem, family: str, form, f_form: Fit, df: dict,
+                        cands: Mapping[str, Candidate], fits: dict[str, Fit],
+                        b: Baseline) -> tuple[str | None, dict[str, JointFit]]:
+    """The rules of a claim (`decide`) for a generalised form of `family` in its listed form's
+    place (`studies.diagnosis.generalised`): it must clearly beat every other fitted candidate
+    (the sensor look-alikes included) by joint fits, and the sensor drift. Returns (None, joint
+    fits) when it does, else (why not, joint fits). df: {"n_free", "n_bound"} of the form."""
+    rivals, joint = compare(pb, family, fits, cands, [n for n in fits if n != family],
+                            effect=form, fit=f_form, df=df)
+    drift = versus_sensor_drift(pb, f_form, df, b)
+    if drift is not None:
+        joint[SENSOR_DRIFT] = drift
+    why = unlisted_lookalike(pb, form.name, rivals, drift)
+    if why is None and rivals:
+        why = f"{form.name} does not clearly beat {', '.join(rivals)}"
+    return why, joint
 
 
 def _nothing_passes(b: Baseline) -> Decision:
@@ -132,12 +178,15 @@ def versus_sensor_drift(pb: Problem, f: Fit, df: dict, b: Baseline) -> JointFit 
     a = pb.th["alpha_joint"]
     return JointFit(bool(p < a and p_drift >= a), chi_c, chi_0, chi_j, p_drift, p, p)
 
-def compare(pb: Problem, best, fits, cands, names_id):
-    """Rivals of `best`: fitted candidates it does not clearly beat (joint fits)."""
+def compare(pb: Problem, best, fits, cands, names_id, effect=None, fit=None, df=None):
+    """Rivals of `best`: fitted candidates it does not clearly beat (joint fits). effect, fit,
+    df: another effect object, its fit and {"n_free", "n_bound"} in the place of `best`'s (a
+    generalised form of `best`)."""
     th = pb.th
     rivals, joint = [], {}
-    eb = pb.effect(best)
-    fb = fits[best]
+    eb = pb.effect(best) if effect is None else effect
+    fb = fits[best] if fit is None else fit
+    df_b = _df(cands[best]) if df is None else df
     for o in names_id:
         if o == best:
             continue
@@ -148,7 +197,8 @@ def compare(pb: Problem, best, fits, cands, names_id):
         fixed = {}
         for e, f in ((eb, fb), (eo, fo)):
             if fitspec.profile(e):
-                fixed[e.name] = {p: f.profile_value for p in fitspec.profile(e)}
+                fixed[e.name] = {p: (f.profile_value if f.profile_value is not None
+                                     else f.space.fixed[e.name][p]) for p in fitspec.profile(e)}
         space = pb.space([eb, eo], fixed)
         kb = fb.space.k
         ko = fo.space.k
@@ -171,7 +221,7 @@ def compare(pb: Problem, best, fits, cands, names_id):
         lr_o_given_b = max(fb.chi2 - chi_j, 0.0)
         lr_b_given_o = max(fo.chi2 - chi_j, 0.0)
         p_o = chibar_pvalue(lr_o_given_b, **_df(cands[o]))
-        p_b = chibar_pvalue(lr_b_given_o, **_df(cands[best]))
+        p_b = chibar_pvalue(lr_b_given_o, **df_b)
         beaten = p_b < th["alpha_joint"] and p_o >= th["alpha_joint"]
         joint[o] = JointFit(bool(beaten), fb.chi2, fo.chi2, chi_j, p_o, p_b)
         if not beaten:

@@ -13,7 +13,11 @@ does not pass), the generalised forms of the most promising families
    on the other blocks) against the listed form's held-out residuals of phase 4, paired block
    bootstrap (`bootstrap_gain`) excluding zero; and against the baseline likewise;
 4. the form explains the data when it passes 2 and 3 and leaves no structure (`describe`, the
-   `alpha_residual` threshold of the listed candidates).
+   `alpha_residual` threshold of the listed candidates);
+5. and it is claimed only under the rules of any claim (`decision.form_carries_weight`): it
+   clearly beats every other fitted candidate (the sensor look-alikes included) by joint fits
+   and the unlisted sensor drift. Before 2026-11-25 a form could turn an `unexplained` that the
+   drift check had decided into `explained` (a 0.5 K thermometer offset as a CTE curvature).
 
 A form that explains the data turns the verdict into `explained` with `cause` = the family (the
 listed cause) and `extended_form` = the form, its parameters, uncertainties, its one-line text
@@ -32,6 +36,7 @@ import numpy as np
 from studies.diagnosis import fitspec
 from studies.diagnosis.candidate import Candidate, HeldoutGain
 from studies.diagnosis.core import Baseline, Decision, Fit, ModelFailure, Residuals
+from studies.diagnosis.decision import form_carries_weight
 from studies.diagnosis.goodness import GoodnessOfFit, goodness
 from studies.diagnosis.fitting import fit_profiled, uncertainty
 from studies.diagnosis.heldout import bootstrap_gain, heldout_linear
@@ -134,16 +139,22 @@ def generalise(pb: Problem, cands: Mapping[str, Candidate], fits: dict[str, Fit]
         entries.append(entry)
         if entry.status == "explains":
             ok.append((f_ext.chi2, entry, f_ext, ho_ext, gof, form))
-    if not ok:
-        return Generalisation(d, entries, None)
     ok.sort(key=lambda t: t[:1])
-    _, entry, f_ext, ho_ext, gof, form = ok[0]
+    for i, (_, entry, f_ext, ho_ext, gof, form) in enumerate(ok):   # the rules of a claim
+        df = {"n_free": cands[entry.effect].df["free"] + entry.df_vs_listed["free"],
+              "n_bound": cands[entry.effect].df["on_bound"] + entry.df_vs_listed["on_bound"]}
+        why, joint = form_carries_weight(pb, entry.effect, form, f_ext, df, cands, fits, b)
+        if why is None:
+            break
+        entry.status, entry.reason = "rejected", f"{entry.reason}; but {why}"
+    else:
+        return Generalisation(d, entries, None)
     reasons = list(d.reasons) + [
         f"the generalised form {entry.text} beats the listed form {entry.effect} in "
         f"sample (p = {entry.p_vs_listed:.2g}) and on held-out blocks and leaves no "
         "structure"]
     new = Decision("explained", entry.effect, entry.effect, [], entry.residuals,
-                   d.joint_fits, reasons, gof, d.beaten)
+                   {**d.joint_fits, **joint}, reasons, gof, d.beaten)
     return Generalisation(new, entries, ChosenForm(f_ext, ho_ext, entry, form))
 
 

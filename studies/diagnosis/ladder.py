@@ -28,6 +28,15 @@ engine); a fitted share near 1 says the data want the form, a share well below 1
 part of its change only (then the form is not the explanation, and the report says so through
 `at_bound` / the parameter's value).
 
+Besides the rungs, the unlisted sensor look-alikes (`lookalikes`, kind "sensor"): a
+thermometer offset within its IEC 60751 class (`thermometer_offset`, dT_K +-0.8 K). It is no model
+form and never a cause: it is fitted and compared like a candidate, and a claim it fits about as
+well is not made (`studies.diagnosis.decision.unlisted_lookalike`): a 0.5 K offset of the chamber
+thermometer moves seed 000's preload by less than a sigma per row but, over 240 rows, as a fit
+error, a CTE slope or a share of the grooved section would (issue 23's second source,
+`chamber_offset`: claimed as `cte_nonlinearity` or `interference_error` before 2026-11-25). It is
+screened under the same indication as the rungs (it acts through the temperature).
+
 Evaluation: every rung goes through the one route, `studies.model.pipeline.Pipeline`: an
 "inputs" rung writes `PhysicsInputs` fields (`radial_load_N`, `moment_Nmm`, `cte_factor`) as an
 effect does, on the config's pipeline (a CTE factor is one more thermal strain through the
@@ -57,6 +66,14 @@ from studies.model.effects import Effect
 
 #: the kind of a ladder candidate in diagnosis.json (docs/cli.md); listed effects are "effect"
 KIND = "model_form"
+#: the kind of an unlisted sensor look-alike (`ThermometerOffset`): fitted and compared like a
+#: candidate, never a cause (`studies.diagnosis.decision`)
+LOOKALIKE = "sensor"
+#: IEC 60751:2022 tolerance class B of a platinum resistance thermometer, +-(0.3 + 0.005 |t|) K:
+#: its two coefficients (K, K/C), and the largest |t| (C) the bound is taken at (the rigs'
+#: -60..100 C range)
+PT100_CLASS_B_K = (0.3, 0.005)
+THERMOMETER_T_MAX_C = 100.0
 
 #: relative scatter of a material lot's CTE about the library value (+-). No lot-to-lot scatter of
 #: the CTE is specified (AMS 4928 fixes Ti-6Al-4V's composition and strength, not its CTE;
@@ -171,6 +188,43 @@ class UnloggedLoad(Effect):
 
     def describe(self) -> str:
         return "model form: " + self.change
+
+
+class ThermometerOffset(Effect):
+    """thermometer_offset: the temperature sensors read dT_K off (a calibration offset within
+    the thermometer's class), an unlisted sensor error, not a cause of the model.
+
+    Physics: every part temperature the rig gives (or derives from its chamber thermometer)
+    reads T_true + dT_K, so the model's true part temperatures are T_C - dT_K, written into
+    `PhysicsInputs.T_C` for every part.
+
+    Parameter: dT_K (K), bounds +-(0.3 + 0.005 x 100) = +-0.8 K, the IEC 60751 class B
+    tolerance of a Pt100 at 100 C (`PT100_CLASS_B_K`, `THERMOMETER_T_MAX_C`), off 0.
+
+    It is a look-alike every claim must beat (kind `LOOKALIKE`): a small uniform temperature
+    offset moves the fits, the preload and the torque by what a fit error, a CTE change or a
+    section change of a few tenths of a sigma would (docs/diagnosis.md); a claim it fits about
+    as well is not made (`studies.diagnosis.decision`)."""
+    name = "thermometer_offset"
+    parameters = ("dT_K",)
+    units = {"dT_K": "K"}
+    bounds = {"dT_K": (-(PT100_CLASS_B_K[0] + PT100_CLASS_B_K[1] * THERMOMETER_T_MAX_C),
+                       PT100_CLASS_B_K[0] + PT100_CLASS_B_K[1] * THERMOMETER_T_MAX_C)}
+    off = {"dT_K": 0.0}
+    scale = {"dT_K": 0.1}
+    kind = LOOKALIKE
+    acts_through = ("temperature_C",)
+    cost = "inputs"
+    change = "the temperature sensors read dT_K off (IEC 60751 class B: +-0.8 K at 100 C)"
+    hint = ("calibrate the thermometers against a reference (ice point, a calibrated Pt100 in "
+            "the chamber): a sensor offset is not a property of the stack")
+
+    def _apply(self, inputs, p, T_ref_C):
+        T = {k: np.asarray(v, float) - p["dT_K"] for k, v in inputs.T_C.items()}
+        return inputs.copy(T_C=T)
+
+    def describe(self) -> str:
+        return "sensor look-alike: " + self.change
 
 
 class NotTried(Effect):
@@ -296,17 +350,29 @@ def _bearing_span_mm(asm: Assembly) -> float:
     return 0.5 * (sum(z["inner_ring_B"]) - sum(z["inner_ring_A"]))
 
 
+def lookalikes() -> list[Effect]:
+    """The unlisted sensor look-alikes every claim must beat (kind `LOOKALIKE`): fitted and
+    compared like candidates, never a cause (`studies.diagnosis.decision`)."""
+    return [ThermometerOffset()]
+
+
 def candidates(asm: Assembly) -> list[Effect]:
     """The ladder's candidates for this assembly, cheapest first (FE set-up rungs last); a rung
-    that is not a candidate of its own is listed as `NotTried` (not applicable, with why)."""
+    that is not a candidate of its own is listed as `NotTried` (not applicable, with why); then
+    the sensor look-alikes (`lookalikes`)."""
     rungs = ladder(asm)
     return ([r.candidate for r in rungs if r.candidate is not None]
-            + [NotTried(r) for r in rungs if r.candidate is None])
+            + [NotTried(r) for r in rungs if r.candidate is None] + lookalikes())
 
 
 def is_form(effect) -> bool:
     """True for a ladder candidate."""
     return getattr(effect, "kind", "effect") == KIND
+
+
+def is_lookalike(effect) -> bool:
+    """True for an unlisted sensor look-alike (`ThermometerOffset`): never a cause."""
+    return getattr(effect, "kind", "effect") == LOOKALIKE
 
 
 # ====================================================================== evaluation
@@ -317,20 +383,24 @@ class FormRoute:
     def __init__(self, pipeline):
         self.pl = pipeline
         self.rungs = {r.name: r for r in ladder(pipeline.asm) if r.candidate is not None}
+        self.lookalikes = {e.name: e for e in lookalikes()}
         self._pipelines: dict = {}
 
     def split(self, effects: Mapping[str, Mapping[str, float]]) -> tuple[dict, dict]:
-        """(listed effects, ladder rungs) of an effects dict {name: parameters}."""
-        listed = {k: v for k, v in (effects or {}).items() if k not in self.rungs}
-        forms = {k: v for k, v in (effects or {}).items() if k in self.rungs}
+        """(listed effects, ladder rungs and sensor look-alikes) of an effects dict
+        {name: parameters}."""
+        mine = self.rungs.keys() | self.lookalikes.keys()
+        listed = {k: v for k, v in (effects or {}).items() if k not in mine}
+        forms = {k: v for k, v in (effects or {}).items() if k in mine}
         return listed, forms
 
     def apply_inputs(self, inputs, forms: Mapping[str, Mapping[str, float]]):
-        """The inputs with the inputs rungs applied (`Effect.apply`, validated)."""
+        """The inputs with the inputs rungs and the sensor look-alikes applied (`Effect.apply`,
+        validated)."""
         for name, params in forms.items():
-            rung = self.rungs[name]
-            if not isinstance(rung.candidate, FormShare):
-                inputs = rung.candidate.apply(inputs, params, self.pl.asm.T_ref_C)
+            e = self.lookalikes[name] if name in self.lookalikes else self.rungs[name].candidate
+            if not isinstance(e, FormShare):
+                inputs = e.apply(inputs, params, self.pl.asm.T_ref_C)
         return inputs
 
     def pipeline(self, name: str):
@@ -352,8 +422,8 @@ class FormRoute:
         base = to_columns(self.pl.run(inputs), flags=False)
         out = {c: np.asarray(base[c], float) for c in columns}
         for name, params in forms.items():
-            rung = self.rungs[name]
-            if not isinstance(rung.candidate, FormShare):
+            rung = self.rungs.get(name)
+            if rung is None or not isinstance(rung.candidate, FormShare):
                 continue
             share = rung.candidate.validate(params)["share"]
             if share == 0.0:
@@ -376,13 +446,14 @@ class Indication:
     def why_not(self, effect) -> str | None:
         """None when the rung is to be screened, else the reason it is not (listed effects:
         always None)."""
-        if not is_form(effect):
+        if not (is_form(effect) or is_lookalike(effect)):
             return None
+        what = "model form" if is_form(effect) else "sensor look-alike"
         if not self.structure:
-            return "model form not tried: the baseline leaves no structure"
+            return f"{what} not tried: the baseline leaves no structure"
         if not set(effect.acts_through) & self.features:
             found = ", ".join(sorted(self.features)) or "no named condition"
-            return (f"model form not indicated: it acts through "
+            return (f"{what} not indicated: it acts through "
                     f"{', '.join(effect.acts_through)}; the baseline residual depends on {found}")
         return None
 

@@ -27,6 +27,10 @@ rolling speed, the EHL film's conduction in series for an oil, Blok's partition)
 with the heat from the contact state (`ball_contacts`). Sliding and spin traction coefficient
 MU_TRACTION = 0.03 (assumption for EHL traction, as the seed 003 study).
 
+`coupling_at` gives the coupling at a state after a run (e.g. a ball node's heat balance);
+`equilibrium` the steady state of the same loop under fixed conditions as a fixed point, without
+time stepping (where a long run ends).
+
 `reduction_error_est` (per row): |P_m - P_m/2| / |P_m|, the preload of the reduced model against
 the same run with the leading half of its modes (`fem.reduced_thermal` module docstring; the bench
 `bearingfem bench --transient` measures the error against the full FE on a check case).
@@ -47,7 +51,8 @@ from fem.reduced_thermal import (ModalStructure, ReducedConduction, ReducedStepp
                                  modal_structure)
 from fem.solver import single_thread_blas
 from fem.transient import (StepLoads, SurfacePair, ThermalParameters, TransientConduction,
-                           bearing_heat_inputs_W, fit_conductances_W_m2K)
+                           bearing_heat_inputs_W, fit_conductances_W_m2K,
+                           radiation_remainder_W_mm2)
 from studies.model.config import Assembly, ConfigError
 from studies.model.inputs import PARTS, PhysicsInputs, baseline_inputs
 from studies.model.columns import to_columns
@@ -376,17 +381,13 @@ def run_transient(pl: Pipeline, cols: dict, progress=None, first_row: int = 0,
     env = environment(asm, cols)
     tm = thermal_model(pl, progress)
     t = np.asarray(cols["time_s"], float)
-    n = t.size
-    base = baseline_inputs({k: v for k, v in cols.items() if k not in ("T_ambient_C",)}, n,
-                           asm.T_ref_C, asm.preload.assembled_N, asm.lubrication.speed_rpm)
+    base, delta, ref1, _ = _row_setup(pl, cols, 0)
     grid = _grid(t, dt_s)
     at = lambda v: np.interp(grid, t, np.asarray(v, float))        # noqa: E731
     amb, sink, scale, extra = at(env.T_ambient_C), at(env.T_sink_C), at(env.film_scale), at(env.heat_W)
     speed, preload = at(base.speed_rpm), at(base.preload_assembled_N)
     axial, radial, moment = at(base.axial_load_N), at(base.radial_load_N), at(base.moment_Nmm)
-    delta = pl.deltas_mm(*pl.fits_um(base))[:1]
     w2 = (speed * (2.0 * np.pi / 60.0)) ** 2
-    ref1 = pl.fe(pl.reference_inputs(base.take(np.zeros(1, int))))
     steppers = []
     for rc in (tm.rc, tm.half):
         st = ReducedStepper(rc, _params(tm, 1.0, None), grid[1] - grid[0] if grid.size > 1 else DT_S,
@@ -402,21 +403,13 @@ def run_transient(pl: Pipeline, cols: dict, progress=None, first_row: int = 0,
     for k in range(1, grid.size):
         if (k - 1) % couple_every == 0:
             # the coupling at the state at the start of the step
-            fe, gap = fe_states(pl, tm.ms, Q[-1][None, :], delta, w2[k - 1:k])
-            T3 = _groups_C(tm, tm.rc, Q[-1][None, :])
-            inp = _inputs(base, T3, speed[k - 1], preload[k - 1], axial[k - 1], radial[k - 1],
-                          moment[k - 1])
-            res, heat = _route(pl, inp, fe, ref1)
-            pair_W = float(heat.total_W[0])
-            T_oil = float(np.mean(T3[0, [PARTS.index(p) for p in ("inner_ring", "outer_ring",
-                                                                   "ball")]]))
-            cc = ball_contacts(pl, res.pair, float(speed[k - 1]), T_oil)
-            balls = (cc[0].G_W_K, cc[1].G_W_K)
-            h_pair = bearing_heat_inputs_W(heat, ring_share=(cc[0].ring_share, cc[1].ring_share),
-                                           ball_nodes=bool(tm.tc.ball_nodes))
-            if tm.pressure_conductance:
-                fits_W_m2K = fit_conductances_W_m2K(pl.model, fe.fit_pressure_MPa[0], gap[0],
-                                                    tm.surfaces)
+            c = _couple(pl, tm, Q[-1], base, delta, w2[k - 1:k], ref1, speed[k - 1],
+                        preload[k - 1], axial[k - 1], radial[k - 1], moment[k - 1])
+            pair_W = float(c.heat.total_W[0])
+            balls = (c.contacts[0].G_W_K, c.contacts[1].G_W_K)
+            h_pair = c.heat_inputs_W
+            if c.fit_conductance_W_m2K is not None:
+                fits_W_m2K = c.fit_conductance_W_m2K
         h = {key: v + float(extra[k]) * _extra_share(key, h_pair) for key, v in h_pair.items()}
         heat_in[k] = pair_W + float(extra[k])
         loads = StepLoads(float(amb[k]), float(sink[k]), heat_W=h)
@@ -438,6 +431,120 @@ def run_transient(pl: Pipeline, cols: dict, progress=None, first_row: int = 0,
     field = q_rows @ tm.rc.V.T              # (n, n_total) nodal temperatures and ball nodes
     rows = RowTemperatures(T, field.max(axis=1), field.min(axis=1), heat_W + env.heat_W, est)
     return TransientRun(out, rows, grid, Q, heat_in)
+
+
+@dataclass(frozen=True)
+class Coupling:
+    """The loop's coupling at one state (what a step takes from the bearing): result (the one
+    route's `SimulationResult` of the row), heat (`analytic.heat.PairHeat`, W), contacts ((inner,
+    outer) `analytic.heat.ContactConductance`, per bearing), heat_inputs_W (heat input -> W, the
+    raceways' and ball nodes' shares, `fem.transient.bearing_heat_inputs_W`),
+    fit_conductance_W_m2K (per fit from its pressure or gap; None: fixed in the assembly)."""
+    result: SimulationResult
+    heat: object
+    contacts: tuple
+    heat_inputs_W: dict
+    fit_conductance_W_m2K: np.ndarray | None
+
+
+def _couple(pl: Pipeline, tm: ThermalModel, q: np.ndarray, base: PhysicsInputs, delta, w2_1,
+            ref1: FEState, speed, preload, axial, radial, moment) -> Coupling:
+    """The coupling at reduced state q (m,) under one row's conditions (module docstring)."""
+    fe, gap = fe_states(pl, tm.ms, q[None, :], delta, w2_1)
+    T3 = _groups_C(tm, tm.rc, q[None, :])
+    inp = _inputs(base, T3, speed, preload, axial, radial, moment)
+    res, heat = _route(pl, inp, fe, ref1)
+    T_oil = float(np.mean(T3[0, [PARTS.index(p) for p in ("inner_ring", "outer_ring", "ball")]]))
+    cc = ball_contacts(pl, res.pair, float(speed), T_oil)
+    h = bearing_heat_inputs_W(heat, ring_share=(cc[0].ring_share, cc[1].ring_share),
+                              ball_nodes=bool(tm.tc.ball_nodes))
+    fits = (fit_conductances_W_m2K(pl.model, fe.fit_pressure_MPa[0], gap[0], tm.surfaces)
+            if tm.pressure_conductance else None)
+    return Coupling(res, heat, cc, h, fits)
+
+
+def _row_setup(pl: Pipeline, cols: dict, row: int):
+    """(base inputs, the fits' deltas, the reference FE state, the row's inputs) of row `row` of
+    a transient conditions table, as `run_transient` sets them up."""
+    asm = pl.asm
+    n = len(cols["time_s"])
+    base = baseline_inputs({k: v for k, v in cols.items() if k not in ("T_ambient_C",)}, n,
+                           asm.T_ref_C, asm.preload.assembled_N, asm.lubrication.speed_rpm)
+    delta = pl.deltas_mm(*pl.fits_um(base))[:1]
+    ref1 = pl.fe(pl.reference_inputs(base.take(np.zeros(1, int))))
+    return base, delta, ref1, base.take(np.array([row % n]))
+
+
+def _couple_row(pl, tm, q, setup) -> Coupling:
+    base, delta, ref1, r = setup
+    w2 = (np.asarray(r.speed_rpm, float) * (2.0 * np.pi / 60.0)) ** 2
+    return _couple(pl, tm, np.asarray(q, float), base, delta, w2[:1], ref1,
+                   float(r.speed_rpm[0]), float(r.preload_assembled_N[0]),
+                   float(r.axial_load_N[0]), float(r.radial_load_N[0]), float(r.moment_Nmm[0]))
+
+
+def coupling_at(pl: Pipeline, cols: dict, q: np.ndarray, row: int = -1) -> Coupling:
+    """The coupling the loop of `run_transient` computes at reduced state q (m,) of
+    `thermal_model(pl)` under row `row` of the conditions table cols (its speed, preload and
+    loads): e.g. at the end of a run (`TransientRun.q[-1]`), for the heat balance of a ball
+    node."""
+    return _couple_row(pl, thermal_model(pl), q, _row_setup(pl, cols, row))
+
+
+@dataclass(frozen=True)
+class Equilibrium:
+    """The steady state of the coupled loop under fixed conditions (`equilibrium`): q the
+    reduced coordinates, T_parts_C the `inputs.PARTS` group means (C, NaN for a group the stack
+    lacks), coupling at q (`Coupling`), iterations taken, change_K the last iteration's largest
+    change of the field (K)."""
+    q: np.ndarray
+    T_parts_C: np.ndarray
+    coupling: Coupling
+    iterations: int
+    change_K: float
+
+
+@single_thread_blas
+def equilibrium(pl: Pipeline, cols: dict, row: int = -1, tol_K: float = 1e-6,
+                max_iter: int = 100) -> Equilibrium:
+    """Where the transient run under row `row` of cols, held for ever, ends: the steady state of
+    the same reduced model and coupling, found without time stepping as the fixed point
+
+        q = A(prm(q))^-1 f(heat(q), T_ambient),
+
+    prm the film factor, fit and ball conductances and heat the bearing's heat inputs of the
+    coupling at q (`coupling_at`; the extra heat_W split as in the run), A and f the reduced
+    operator and load (`fem.reduced_thermal.ReducedConduction`; radiation's remainder at the
+    current iterate). Starts uniform at the row's ambient; stops when the field changes by less
+    than tol_K (K) at every node, else after max_iter iterations (`change_K` says how far it
+    got). A second method for the end of a long run (tests/test_heatup.py)."""
+    tm = thermal_model(pl)
+    rc = tm.rc
+    env = environment(pl.asm, cols)
+    k = row % len(cols["time_s"])
+    amb, sink = float(env.T_ambient_C[k]), float(env.T_sink_C[k])
+    scale, extra = float(env.film_scale[k]), float(env.heat_W[k])
+    setup = _row_setup(pl, cols, row)
+    q = amb * rc.q_one
+    change, it = np.inf, 0
+    while it < max_iter:
+        it += 1
+        c = _couple_row(pl, tm, q, setup)
+        h = {key: v + extra * _extra_share(key, c.heat_inputs_W)
+             for key, v in c.heat_inputs_W.items()}
+        prm = _params(tm, scale, c.fit_conductance_W_m2K,
+                      (c.contacts[0].G_W_K, c.contacts[1].G_W_K))
+        f = rc.load(prm, StepLoads(amb, sink, heat_W=h))
+        if prm.emissivity:
+            _, Vd, VtR = rc.radiation_terms(prm)
+            f = f - VtR @ radiation_remainder_W_mm2(Vd @ q, sink, prm.T_rad_lin_C)
+        q_new = np.linalg.solve(rc.operator(prm), f)
+        change = float(np.max(np.abs(rc.field(q_new - q))))
+        q = q_new
+        if change < tol_K:
+            break
+    c = _couple_row(pl, tm, q, setup)
+    return Equilibrium(q, _groups_C(tm, rc, q[None, :])[0], c, it, change)
 
 
 @dataclass(frozen=True)
@@ -521,7 +628,9 @@ def ball_contacts(pl: Pipeline, pair, speed_rpm: float, T_oil_C: float
     speed_rpm (rpm): `analytic.heat.rolling_contact_conductance` at the rolling speed
     (`analytic.lubrication.entrainment_speed_mm_s`), with the central EHL film of an oil
     (`analytic.lubrication.hamrock_dowson_film` at the oil temperature T_oil_C, C: the mean of
-    rings and balls, as the torque stage takes it) in series; a solid film: no film term."""
+    rings and balls, as the torque stage takes it) in series, its conductivity raised by the
+    contacts' Hertz peak pressure (`analytic.heat.hertz_mean_conductivity_ratio`); a solid film:
+    no film term."""
     g = pl.geom
     alpha = float(np.mean(np.asarray(pair.contact_angle_deg)[:, 0]))
     u = float(lub.entrainment_speed_mm_s(speed_rpm, g.Dw_mm, g.dm_mm, alpha))
@@ -538,7 +647,8 @@ def ball_contacts(pl: Pipeline, pair, speed_rpm: float, T_oil_C: float
             Q = max(float(np.mean(np.asarray(pair.ball_load_N)[:, 0])), 1e-6)
             h = float(lub.hamrock_dowson_film(Rx, Ry, Ep, oil.eta_Pa_s(T_oil_C), oil.alpha_per_Pa,
                                               u, Q).h_central_um)
-        out.append(rolling_contact_conductance(a, b, u, g.ball, r, g.Z, film_um=h))
+        p0 = float(np.mean(np.asarray(c.p_max_MPa)[:, 0]))
+        out.append(rolling_contact_conductance(a, b, u, g.ball, r, g.Z, film_um=h, p_max_MPa=p0))
     return out[0], out[1]
 
 

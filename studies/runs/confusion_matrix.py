@@ -135,6 +135,55 @@ def run_second_source(cases=None, trials: int = 2, mesh_factor: float = 1.0,
     return out
 
 
+#: stated levels (docs/diagnosis.md): a cause claimed on a null (alpha_lr), any discrepancy
+#: reported on a null (alpha_structure + alpha_lr)
+CLAIM_LEVEL = 0.01
+ALARM_LEVEL = 0.02
+CLAIMS = ("explained", "explained_partly", "ambiguous")
+
+
+def second_source_rates(trials: list[SecondTrial]) -> list[str]:
+    """The Done-when rates of issue 23 on second-source trials, one sentence each: wrong causes
+    over all trials (with the exact one-sided 95 % upper bound of the rate, Clopper & Pearson
+    1934), claims and any discrepancy on the nulls against the binomial 99 % upper quantile at
+    the stated levels (a count above it rejects the level at 1 %), and model-form truths
+    explained by a right rung."""
+    from scipy import stats
+
+    n = len(trials)
+    wrong = sum(t.outcome == "wrong" for t in trials)
+    ub = float(stats.beta.ppf(0.95, wrong + 1, n - wrong)) if n else float("nan")
+    nulls = [t for t in trials if t.truth == "none"]
+    m = len(nulls)
+    claims = sum(t.verdict in CLAIMS for t in nulls)
+    alarms = sum(t.verdict != "no_discrepancy" for t in nulls)
+    from studies.diagnosis.ladder import ladder
+    from studies.model.config import load_shipped
+    from studies.model.effects import EFFECTS
+    from studies.runs.second_source import CASES, DESIGNS as SS_DESIGNS
+
+    def claimable(design: str) -> set[str]:
+        """Names a diagnosis of the design can claim: listed effects and tried rungs."""
+        rungs = ladder(load_shipped(SS_DESIGNS[design][0]))
+        return set(EFFECTS) | {r.name for r in rungs if r.candidate is not None}
+
+    forms = [t for t in trials if t.kind == "model_form" and t.truth != "none"]
+    nameable = [t for t in forms if set(CASES[t.case].right) & claimable(t.design)]
+    form_right = sum(t.verdict in ("explained", "explained_partly") and t.outcome == "right"
+                     for t in nameable)
+    return [
+        f"wrong causes: {wrong} of {n} trials (95 % upper bound of the rate {100 * ub:.1f} %)",
+        f"nulls (nothing hidden, {m} trials): cause claimed {claims} (stated level "
+        f"{100 * CLAIM_LEVEL:g} %: binomial 99 % upper quantile "
+        f"{int(stats.binom.ppf(0.99, m, CLAIM_LEVEL))}), any discrepancy {alarms} (level "
+        f"{100 * ALARM_LEVEL:g} %: quantile {int(stats.binom.ppf(0.99, m, ALARM_LEVEL))})",
+        f"model-form truths a candidate can name ({len(nameable)} trials): explained or "
+        f"explained_partly by a right name {form_right} "
+        f"({100 * form_right / max(len(nameable), 1):.0f} %); the {len(forms) - len(nameable)} "
+        "trials of truths no candidate names (`sleeve`: not tried; `groove_curvature`) are "
+        "right only when not claimed"]
+
+
 def second_source_markdown(trials: list[SecondTrial]) -> list[str]:
     """The second-source confusion matrices (one per design) and the outcome totals."""
     from studies.runs.second_source import OUTCOMES
@@ -143,6 +192,7 @@ def second_source_markdown(trials: list[SecondTrial]) -> list[str]:
     tot = Counter(t.outcome for t in trials)
     L.append("Outcomes over all second-source trials: " + ", ".join(
         f"{o} {tot.get(o, 0)}" for o in OUTCOMES) + f" (of {len(trials)}).\n")
+    L += [f"- {line}" for line in second_source_rates(trials)] + [""]
     for dn in dict.fromkeys(t.design for t in trials):
         ts = [t for t in trials if t.design == dn]
         cols = sorted({(f"explained: {t.cause}" if t.verdict == "explained" else t.verdict)
@@ -167,11 +217,12 @@ def second_source_markdown(trials: list[SecondTrial]) -> list[str]:
 
 def run(out_dir: Path, progress=print, designs=None, reps: int | None = None,
         n_null: int | None = None, full: bool = False, parts=("same", "second"),
-        second_trials: int | None = None, mesh_factor: float | None = None) -> dict:
+        second_trials: int | None = None, mesh_factor: float | None = None,
+        cases: list[str] | None = None) -> dict:
     """Run the matrices and write the files (module docstring); returns the JSON dict of the
     same-model matrix (with the second-source trials under `second_source`). Sizes default to
     SMALL (FULL with `full`); `parts`: "same" (the same-model matrix), "second" (the second
-    source) or both."""
+    source) or both; `cases`: the second-source cases (default all)."""
     from studies.runs.report_tools import write_report_files
 
     size = dict(FULL if full else SMALL)
@@ -188,8 +239,8 @@ def run(out_dir: Path, progress=print, designs=None, reps: int | None = None,
         data.update(_run_same(out_dir, progress, size, L))
     if "second" in parts:
         t0 = time.perf_counter()
-        tr = run_second_source(trials=size["second_trials"], mesh_factor=size["mesh_factor"],
-                               progress=progress)
+        tr = run_second_source(cases, trials=size["second_trials"],
+                               mesh_factor=size["mesh_factor"], progress=progress)
         data["second_source"] = [asdict(t) for t in tr]
         (out_dir / "second_source.json").write_text(json.dumps(data["second_source"], indent=1))
         write_table(out_dir / "second_source.csv", {
@@ -247,7 +298,8 @@ def _run_same(out_dir: Path, progress, size: dict, L: list[str]) -> dict:
 
 
 def main(argv=None) -> int:
-    """`python -m studies.runs.confusion_matrix --out DIR [--full] [--part same|second]`."""
+    """`python -m studies.runs.confusion_matrix --out DIR [--full] [--part same|second]
+    [--mesh-factor F] [--trials N] [--cases A,B,...]`."""
     ap = argparse.ArgumentParser(prog="python -m studies.runs.confusion_matrix",
                                  description="confusion matrices of the diagnosis (module "
                                              "docstring): same model and second source")
@@ -256,8 +308,13 @@ def main(argv=None) -> int:
     ap.add_argument("--part", choices=("same", "second"), action="append",
                     help="only this part (repeatable; default both)")
     ap.add_argument("--mesh-factor", type=float, default=None)
+    ap.add_argument("--trials", type=int, default=None,
+                    help="noise draws per second-source case (seeds 0..N-1)")
+    ap.add_argument("--cases", default=None,
+                    help="comma-separated second-source cases (default all)")
     a = ap.parse_args(argv)
-    run(a.out, full=a.full, parts=tuple(a.part or ("same", "second")), mesh_factor=a.mesh_factor)
+    run(a.out, full=a.full, parts=tuple(a.part or ("same", "second")), mesh_factor=a.mesh_factor,
+        second_trials=a.trials, cases=a.cases.split(",") if a.cases else None)
     return 0
 
 
