@@ -11,7 +11,7 @@ loss) leaves them to the next run's sweep.
 
 Permissions: a new file is created with mode 0666 and a new folder with 0777, less the umask, by
 the kernel (`os.open` / `os.mkdir` with a mode): the umask is never read and set back, which races
-with other threads (Dask workers run threads). A file that replaces an existing one keeps that
+with other threads (the workers of a Dask cluster, `--scheduler`, run threads). A file that replaces an existing one keeps that
 file's mode.
 """
 from __future__ import annotations

@@ -7,7 +7,7 @@ single value larger than `max_size` is not kept. With `copy=True` a value is dee
 in and out, so a caller that modifies what it got cannot change the cache (a result never depends
 on whether it came from the cache); `copy=False` hands back the object itself (for values nobody
 modifies: FE states, factorisations, pipelines). A lock makes `get`/`put`/`get_or_make` safe from
-threads (Dask workers run threads); `get_or_make` may build a missing value twice when two threads
+threads (the workers of a Dask cluster, `--scheduler`, run threads); `get_or_make` may build a missing value twice when two threads
 ask at once, never a wrong one.
 
 Users: `studies.model.pipeline` (pair equilibria by exact inputs) and, with its own rules,

@@ -133,8 +133,8 @@ def build_parser() -> argparse.ArgumentParser:
     b = sub.add_parser("bench", help="print FE and analytic timings on this machine")
     b.add_argument("--quick", action="store_true", help="fewer mesh levels")
     b.add_argument("--tolerance", type=int, metavar="N", default=None,
-                   help="instead: Monte Carlo throughput with N samples, here, on 1 and on 2 Dask "
-                        "workers (wall, CPU, load)")
+                   help="instead: Monte Carlo throughput with N samples, here, on 1 and on 2 worker "
+                        "processes (wall, CPU, load)")
     b.add_argument("--design", action="store_true",
                    help="instead: the design search of seed 000 (324 stacks), cold and warm FE "
                         "cache (wall, CPU, load), and the workers' memory per stack")
