@@ -410,7 +410,7 @@ def run_transient(pl: Pipeline, cols: dict, progress=None, first_row: int = 0,
             h_pair = c.heat_inputs_W
             if c.fit_conductance_W_m2K is not None:
                 fits_W_m2K = c.fit_conductance_W_m2K
-        h = {key: v + float(extra[k]) * _extra_share(key, h_pair) for key, v in h_pair.items()}
+        h = _with_extra(h_pair, float(extra[k]))
         heat_in[k] = pair_W + float(extra[k])
         loads = StepLoads(float(amb[k]), float(sink[k]), heat_W=h)
         prm = _params(tm, float(scale[k]), fits_W_m2K, balls)
@@ -530,8 +530,7 @@ def equilibrium(pl: Pipeline, cols: dict, row: int = -1, tol_K: float = 1e-6,
     while it < max_iter:
         it += 1
         c = _couple_row(pl, tm, q, setup)
-        h = {key: v + extra * _extra_share(key, c.heat_inputs_W)
-             for key, v in c.heat_inputs_W.items()}
+        h = _with_extra(c.heat_inputs_W, extra)
         prm = _params(tm, scale, c.fit_conductance_W_m2K,
                       (c.contacts[0].G_W_K, c.contacts[1].G_W_K))
         f = rc.load(prm, StepLoads(amb, sink, heat_W=h))
@@ -601,6 +600,11 @@ def part_temperatures(asm: Assembly, time_s, T_environment_C, speed_rpm=None, *,
     keep = [i for i in range(len(PARTS)) if not np.isnan(run.rows.T_parts_C[:, i]).any()]
     return PartTemperatures(t, run.rows.T_parts_C[:, keep], tuple(PARTS[i] for i in keep),
                             run.rows.reduction_error_est)
+
+
+def _with_extra(h: dict, extra_W: float) -> dict:
+    """The heat inputs h (input -> W) with the extra heat extra_W (W) split by `_extra_share`."""
+    return {key: v + extra_W * _extra_share(key, h) for key, v in h.items()}
 
 
 def _extra_share(key: str, h: dict) -> float:
