@@ -18,6 +18,7 @@ from __future__ import annotations
 
 from .base import GeneralisedForm
 from .thermal_lag_per_part import ThermalLagPerPart
+from .thermal_lag_series import ThermalLagSeries
 from .preload_settling_creep import PreloadSettlingCreep
 from .cte_curvature import CteCurvature
 from .radial_gradient_lag import RadialGradientLag
@@ -25,7 +26,8 @@ from .radial_gradient_lag import RadialGradientLag
 __all__ = ["GeneralisedForm", "GENERALISED", "forms_of"]
 
 GENERALISED: dict[str, GeneralisedForm] = {f.name: f for f in (
-    ThermalLagPerPart(), PreloadSettlingCreep(), CteCurvature(), RadialGradientLag())}
+    ThermalLagPerPart(), PreloadSettlingCreep(), CteCurvature(), RadialGradientLag(),
+    ThermalLagSeries())}
 
 
 def forms_of(family: str) -> list[GeneralisedForm]:
