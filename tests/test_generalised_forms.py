@@ -26,6 +26,7 @@ ON = {
     "preload_settling.creep": {"loss_N": 12.0, "threshold_K": 30.0, "creep_N_per_h": 4.0},
     "cte_nonlinearity.curvature": {"dalpha_per_K": 5e-9, "d2alpha_per_K3": 1e-10},
     "radial_gradient.lag": {"dT_K": 3.0, "dT_per_krpm_K": 1.5, "tau_gradient_s": 600.0},
+    "thermal_lag.series": {"tau_s": 600.0, "tau_shaft_s": 240.0},
 }
 
 
@@ -102,6 +103,64 @@ def test_per_part_lag_ramp_closed_form():
                       ("shaft", 2400.0), ("inner_ring", 2400.0), ("ball", 2400.0)):
         exact = 20.0 + s * t - s * tau * (1.0 - np.exp(-t / tau))
         np.testing.assert_allclose(out.T_C[part], exact, rtol=0, atol=1e-9)   # K, round-off
+
+
+def _series_ramp(t, t1, t2):
+    """Response of 1/((1 + p t1)(1 + p t2)) to a unit ramp from equilibrium: the integral of the
+    step response 1 - (t1 e^{-t/t1} - t2 e^{-t/t2}) / (t1 - t2) (Ogata, Modern Control
+    Engineering, ch. 5), t - (t1 + t2) + (t1^2 e^{-t/t1} - t2^2 e^{-t/t2}) / (t1 - t2); for
+    t1 = t2 = tau the double pole's t - 2 tau + (2 tau + t) e^{-t/tau}."""
+    t = np.maximum(t, 0.0)
+    if t1 == t2:
+        return t - 2 * t1 + (2 * t1 + t) * np.exp(-t / t1)
+    return t - (t1 + t2) + (t1 ** 2 * np.exp(-t / t1) - t2 ** 2 * np.exp(-t / t2)) / (t1 - t2)
+
+
+@pytest.mark.parametrize("taus", [(600.0, 240.0), (240.0, 600.0), (900.0, 900.0),
+                                  (900.0, 900.0 * (1 + 1e-9)), (900.0, 1e-3)])
+def test_series_lag_ramp_closed_form(taus):
+    """Ambient ramp u = u0 + s t from equilibrium, sampled at irregular instants: the housing
+    side is the first-order ramp response, the shaft side the ramp response of two lags in series
+    (`_series_ramp`); also at equal and nearly equal constants (the double pole) and a shaft
+    constant far below the sample interval (the shaft side then is the housing side)."""
+    t1, t2 = taus
+    rng = np.random.default_rng(4)
+    t = np.concatenate([[0.0], np.cumsum(rng.uniform(5.0, 90.0, 199))])
+    n, s = t.size, 2.0 / 60.0
+    inp = baseline_inputs({"time_s": t, "T_ambient_C": 20.0 + s * t}, n, T_REF, 100.0, 0.0)
+    out = GENERALISED["thermal_lag.series"].apply(inp, {"tau_s": t1, "tau_shaft_s": t2}, T_REF)
+    housing = 20.0 + s * t - s * t1 * (1.0 - np.exp(-t / t1))
+    # the near-double pole against the double pole's closed form (the distinct-pole one cancels
+    # there): they differ by at most s |t2 - t1| (a delay changes the ramp response by at most
+    # the rate times its change); else round-off, 1e-9 K
+    near = 0.0 < abs(t2 - t1) < 1e-6 * t1
+    shaft = 20.0 + s * _series_ramp(t, t1, t1 if near else t2)
+    atol = 1e-9 + (s * abs(t2 - t1) if near else 0.0)
+    for part, exact in (("housing", housing), ("outer_ring", housing), ("spacer", housing),
+                        ("shaft", shaft), ("inner_ring", shaft), ("ball", shaft)):
+        np.testing.assert_allclose(out.T_C[part], exact, rtol=0, atol=atol, err_msg=part)
+
+
+def test_series_lag_ramped_step_closed_form():
+    """Ambient 20 -> 80 C ramped over one 60 s interval, then held: the shaft side is
+    (dT / h) [R(t - t0) - R(t - t0 - h)] with R the series ramp response (superposition of two
+    ramps), and it starts with zero slope where the housing side starts with the ramp's
+    first-order response (two lags in series, not in parallel)."""
+    h, t1, t2, dT = 60.0, 600.0, 240.0, 60.0
+    t = np.arange(400) * h
+    i0 = 20
+    t0 = t[i0]
+    u = 20.0 + dT * np.clip((t - t0) / h, 0.0, 1.0)
+    inp = baseline_inputs({"time_s": t, "T_ambient_C": u}, t.size, T_REF, 100.0, 0.0)
+    out = GENERALISED["thermal_lag.series"].apply(inp, {"tau_s": t1, "tau_shaft_s": t2}, T_REF)
+    shaft = 20.0 + dT / h * (_series_ramp(t - t0, t1, t2) - _series_ramp(t - t0 - h, t1, t2))
+    np.testing.assert_allclose(out.T_C["shaft"], shaft, rtol=0, atol=1e-9)     # K, round-off
+    # one interval after the step the housing side has risen dT h / (2 t1) and the shaft side
+    # dT h^2 / (6 t1 t2) to leading order: a ratio h / (3 t2) = 0.083 (two parallel lags would
+    # give t1 / t2 = 2.5)
+    rise_shaft = out.T_C["shaft"][i0 + 1] - 20.0
+    rise_housing = out.T_C["housing"][i0 + 1] - 20.0
+    assert rise_shaft < 0.1 * rise_housing
 
 
 def test_settling_creep_hours_counted_by_hand():
