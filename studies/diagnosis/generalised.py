@@ -2,7 +2,13 @@
 
 When the verdict is `unexplained` because the listed form of a family leaves structure behind (or
 does not pass), the generalised forms of the most promising families
-(`studies.model.effects.generalised`) are fitted as NESTED models of their listed form:
+(`studies.model.effects.generalised`) are fitted as NESTED models of their listed form. The
+families are the significant listed candidates that have a form applicable to the conditions;
+when there are more than MAX_FAMILIES of them, they are ranked by the BIC of their forms' best
+starting point (step 1's scores, one model call a start), not by their listed form's BIC: a
+listed form that approximates its own cause poorly (one lag for a shaft that lags behind the
+housing: the listed lag came fourth) ranks low exactly when its form is needed. Every form
+looked at counts in the Bonferroni adjustment of step 2.
 
 1. the fit starts at the listed fit (the form's reducing value, `from_listed`, gives the listed
    form's predictions exactly) and from a few values of the extra parameters, nuisance refitted,
