@@ -187,17 +187,19 @@ def generalise(pb: Problem, cands: Mapping[str, Candidate], fits: dict[str, Fit]
         return Generalisation(d, [], None)
     tried, m = _screened(pb, cands, fits, _families(cands, fits, d))
     entries, ok = [], []
-    for fam, got in tried:
-        for form, scored in got:
-            try:
-                entry, f_ext, ho_ext, gof = fit_form(pb, form, fits[fam], ho[fam], cands[fam],
-                                                b, m, rng, scored)
-            except ModelFailure as exc:
-                entries.append(FormEntry(fam, form.form, form.name, "model_failed", str(exc)))
-                continue
-            entries.append(entry)
-            if entry.status == "explains":
-                ok.append((f_ext.chi2, entry, f_ext, ho_ext, gof, form))
+    forms = [(fam, form, scored) for fam, got in tried for form, scored in got]
+    for (fam, form, _), f_ext in zip(forms, _local_fits(pb, forms, cands, fits, b)):
+        try:
+            if isinstance(f_ext, ModelFailure):
+                raise f_ext
+            entry, f_ext, ho_ext, gof = fit_form(pb, form, fits[fam], ho[fam], cands[fam], b,
+                                            m, rng, f_ext=f_ext)
+        except ModelFailure as exc:
+            entries.append(FormEntry(fam, form.form, form.name, "model_failed", str(exc)))
+            continue
+        entries.append(entry)
+        if entry.status == "explains":
+            ok.append((f_ext.chi2, entry, f_ext, ho_ext, gof, form))
     ok.sort(key=lambda t: t[:1])
     for i, (_, entry, f_ext, ho_ext, gof, form) in enumerate(ok):   # the rules of a claim
         df = {"n_free": cands[entry.effect].df["free"] + entry.df_vs_listed["free"],
@@ -249,36 +251,60 @@ def _scored_starts(pb: Problem, form, space, vals_listed: dict, f_listed: Fit) -
     return scored
 
 
-def _best_local_fit(pb: Problem, form, space, scored: list[tuple], f_listed: Fit, cand,
-                    b: Baseline) -> Fit:
-    """Local fits from the listed fit (index 0) and the two most promising other starts
-    (another start only when its score already beats the listed fit: otherwise the data give
-    the extra parameter nothing to do, and a listed effect costs one local fit), and with a
-    profiled parameter the profiled fit over the listed grid; the best."""
-    runs = [t for t in scored if t[1] == 0] + [
-        t for t in scored if t[1] != 0 and t[0] < f_listed.chi2][:N_RUNS - 1]
-    profiled = bool(fitspec.profile(form) and cand.profile_grid)
+def _local_fits(pb: Problem, forms: list[tuple], cands: Mapping[str, Candidate],
+                fits: dict[str, Fit], b: Baseline) -> list:
+    """The best local fit of each (family, form, scored starts or None) of `forms`, or the
+    ModelFailure that stopped it: local fits from the listed fit (index 0) and the two most
+    promising other starts (another start only when its score already beats the listed fit:
+    otherwise the data give the extra parameter nothing to do, and a listed effect costs one
+    local fit), and with a profiled parameter the profiled fit over the listed grid; the best.
+    The local fits of all forms are independent: one map on the workers (the profiled ones
+    first), so one form's long fit runs beside another's, not after it."""
+    plans, items, first = [], [], []
+    for k, (fam, form, scored) in enumerate(forms):
+        cand, f_listed = cands[fam], fits[fam]
+        space = _space(pb, form, cand)
+        try:
+            if scored is None:
+                scored = _scored_starts(pb, form, space, dict(cand.parameters), f_listed)
+        except ModelFailure as exc:
+            plans.append(exc)
+            continue
+        runs = [t for t in scored if t[1] == 0] + [
+            t for t in scored if t[1] != 0 and t[0] < f_listed.chi2][:N_RUNS - 1]
+        profiled = bool(fitspec.profile(form) and cand.profile_grid)
+        plans.append((len(items), len(runs), profiled))
+        items += [(k, space, u) for _, _, u in runs]
+        if profiled:
+            first.append(len(items))
+            items.append((k, space, None))
 
-    def local_fit(u):
+    def local_fit(item):
         """The local fit from start u (None: the profiled fit over the listed grid), or None
         when the model fails."""
+        k, space, u = item
+        fam, form, _ = forms[k]
         try:
             if u is None:
-                return fit_profiled(pb, form, cand.profile_grid, b.fit)
+                return fit_profiled(pb, form, cands[fam].profile_grid, b.fit)
             return pb.fit(space, u)
         except ModelFailure:
             return None
 
-    # the local fits are independent: on the workers (the profiled one first)
-    got = pb.parallel(local_fit, [u for _, _, u in runs] + [None] * profiled,
-                      first=[len(runs)] if profiled else None)
-    # the best of the local fits, then the profiled one only when strictly better
-    f_ext = _lowest(got[:len(runs)])
-    if profiled:
-        f_ext = _lowest([f_ext, got[-1]])
-    if f_ext is None:
-        raise ModelFailure("the fits of the generalised form fail from every start")
-    return f_ext
+    got = pb.parallel(local_fit, items, first=first or None)
+    out = []
+    for plan in plans:
+        if isinstance(plan, ModelFailure):
+            out.append(plan)
+            continue
+        i0, n, profiled = plan
+        # the best of the local fits, then the profiled one only when strictly better
+        f_ext = _lowest(got[i0:i0 + n])
+        if profiled:
+            f_ext = _lowest([f_ext, got[i0 + n]])
+        out.append(f_ext if f_ext is not None else
+                   ModelFailure("the fits of the generalised form fail from every start"))
+    return out
 
 
 def _lowest(fits: list[Fit | None]) -> Fit | None:
@@ -313,16 +339,17 @@ def _form_status(th, m: int, p_adj: float, dbic: float, g_listed: HeldoutGain,
 
 
 def fit_form(pb: Problem, form, f_listed: Fit, ho_listed: np.ndarray, cand, b: Baseline,
-             m: int, rng: np.random.Generator, scored: list[tuple] | None = None
+             m: int, rng: np.random.Generator, f_ext: Fit | None = None
              ) -> tuple[FormEntry, Fit, np.ndarray, GoodnessOfFit]:
     """Nested fit of one generalised form from the listed fit and its tests (module
-    docstring, steps 1-4); `scored`: its starts when already scored (`_screened`). Returns
-    (entry, fit, held-out residuals, goodness of fit)."""
+    docstring, steps 1-4); `f_ext`: its best local fit when already made (`_local_fits`).
+    Returns (entry, fit, held-out residuals, goodness of fit)."""
     vals_listed = dict(cand.parameters)
-    space = _space(pb, form, cand)
-    if scored is None:
-        scored = _scored_starts(pb, form, space, vals_listed, f_listed)
-    f_ext = _best_local_fit(pb, form, space, scored, f_listed, cand, b)
+    if f_ext is None:
+        f_ext = _local_fits(pb, [(form.family, form, None)], {form.family: cand},
+                            {form.family: f_listed}, b)[0]
+        if isinstance(f_ext, ModelFailure):
+            raise f_ext
     eff_vals, nuis_vals = f_ext.space.unpack(f_ext.u)
     params = dict(eff_vals[form.name])
     n_bound = sum(1 for p in form.extra if form.on_bound(p))
