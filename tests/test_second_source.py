@@ -188,6 +188,21 @@ def test_exponential_friction_law_is_explained_with_the_rate_it_was_made_with():
     assert abs(dmu - (-b_true * mu_config)) <= 3 * u_dmu, (dmu, u_dmu)
 
 
+def test_housing_lot_inside_its_scatter_is_named_with_its_cte():
+    """A TC4 housing lot whose CTE is 3 % below the library's (inside the data sheets' spread,
+    the material_lot rung's +-5 %): the diagnosis names `material_lot` and fits the housing's
+    CTE factor within 3 standard uncertainties and 0.005 of the 0.97 the data were made with,
+    the shaft's (a lot of the library value) within the same of 1."""
+    c = ss.make_case("housing_lot", seed=0, mesh_factor=MESH_FACTOR)
+    assert c.change_sigma > ss.VISIBLE_SIGMA
+    res = ss.diagnose_case(c)
+    assert ss.judge_result(c, res) == "right", (res.verdict, ss.named_causes(res))
+    lot = next(x for x in res.candidates if x.effect == "material_lot")
+    for name, truth in (("cte_factor_housing", 0.97), ("cte_factor_shaft", 1.0)):
+        got, u = lot.parameters[name], lot.uncertainty[name]
+        assert abs(got - truth) <= min(3.0 * u, 0.005), (name, got, u)
+
+
 # ============================================================================ sensor
 def test_thermometer_offset_is_not_claimed_as_a_cause():
     """The chamber thermometer reads 0.5 K high (inside IEC 60751 class B): every part runs
