@@ -34,9 +34,8 @@ Source / rationale: thermally activated shear of boundary films, tau = tau_0 exp
 x1.5 from 20 to -100 C in vacuum (Roberts, Tribology International 23 (1990) 95-104), i.e.
 b = ln 1.5 / 120 K = 3.4e-3 /K; temperature dependence of MoS2 friction reviewed in
 Vazirisereshk et al., Lubricants 7 (2019) 57, sec. 5. Bounds: |b_per_K| <= 0.03 /K is an
-activation energy of 0.22 eV at 293 K (b = E / (k_B T^2)), above the Arrhenius barriers reported
-for sputtered MoS2 friction (0.165 eV in humid air, 25-100 C); over -60..80 C (x from -80 to
-+60 K) it lets the slope change by a factor up to exp(2.4) = 11.
+activation energy of 0.22 eV at 293 K (b = E / (k_B T^2)), about 9 x the rate of Roberts' data;
+over -60..80 C (x from -80 to +60 K) it lets the slope change by a factor up to exp(2.4) = 11.
 """
 from __future__ import annotations
 
