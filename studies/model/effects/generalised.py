@@ -22,12 +22,13 @@ from .thermal_lag_series import ThermalLagSeries
 from .preload_settling_creep import PreloadSettlingCreep
 from .cte_curvature import CteCurvature
 from .radial_gradient_lag import RadialGradientLag
+from .friction_temperature_exponential import FrictionTemperatureExponential
 
 __all__ = ["GeneralisedForm", "GENERALISED", "forms_of"]
 
 GENERALISED: dict[str, GeneralisedForm] = {f.name: f for f in (
     ThermalLagPerPart(), PreloadSettlingCreep(), CteCurvature(), RadialGradientLag(),
-    ThermalLagSeries())}
+    ThermalLagSeries(), FrictionTemperatureExponential())}
 
 
 def forms_of(family: str) -> list[GeneralisedForm]:
