@@ -15,9 +15,15 @@ config already uses is not on the ladder. The rungs (names of docs/cli.md, "kind
 | `ring_section_grooved` | `[mesh] ring_section = "grooved"` | `share` (0..1) | FE set-up |
 | `material_lot` | the CTE of the shaft's and the housing's lot | `cte_factor_shaft`, `cte_factor_housing` (1 +- CTE_LOT_SCATTER) | inputs |
 | `unlogged_load` | a constant radial load and moment the conditions do not log | `radial_load_N` (0..C0), `moment_Nmm` (+-C0 x span) | inputs (the pair's 5-DOF solve) |
+| `groove_conformity` | `[bearing] inner_groove_ratio` (rectangle-section files; the free contact angle held) | `inner_groove_ratio` (`GROOVE_RATIO_RANGE` 0.51..0.56, the makers' range, sourced; off: the file's) | pair (the file's FE set-up, the pair of the changed geometry) |
 | `preload_spring` | `[preload] kind = "spring"` | carried by the listed `preload_path_compliance` (the spring is its soft limit) | - |
 | `fits_in_band` | as-built fits anywhere in the `[fits]` tolerance band | carried by the listed `interference_error`, whose bounds are the band (`assembly_bounds`) | - |
 | `sleeve` | a `[sleeve]` the file lacks | not tried: its material and thickness are drawing data, not bounded by a data sheet | - |
+
+A parameter rung (`groove_conformity`) changes a number of the file's assembly that makers rarely
+publish: its candidate fits the number itself within the range the makers use, and its prediction
+is the pipeline of the assembly with that number (no share; at the file's value the file's
+prediction bit for bit).
 
 A switch has no continuous parameter of its own: its candidate fits `share`, the part of the
 way from the config's prediction to the form's (prediction = config + share (form - config),
@@ -41,7 +47,8 @@ Evaluation: every rung goes through the one route, `studies.model.pipeline.Pipel
 "inputs" rung writes `PhysicsInputs` fields (`radial_load_N`, `moment_Nmm`, `cte_factor`) as an
 effect does, on the config's pipeline (a CTE factor is one more thermal strain through the
 existing superposition: no new FE); a "pair" rung runs the pipeline of the changed assembly,
-whose FE set-up equals the config's (loaded from the set-up cache); an "FE set-up" rung runs the
+whose FE set-up equals the config's (loaded from the set-up cache; a parameter rung's pipeline
+takes the config's set-up object itself, one pipeline per parameter value, the last few kept); an "FE set-up" rung runs the
 pipeline of the changed assembly with its own FE set-up (mesh and unit solutions: seconds the
 first time, then from the cache). `FormRoute` holds those pipelines for one diagnosis.
 
