@@ -8,8 +8,8 @@ describes how the data are made; the generalised forms go through the same `appl
   within 3 of their standard uncertainties (and 15 %);
 - preload settling that creeps with time hot (5 N at 50 K + 3 N per hour beyond it) in seed 000's
   -60 <-> 80 C cycles: preload_settling with the creep form, parameters within 3 u;
-- data made with the LISTED forms (thermal_lag 900 s; preload_settling 5 N at 50 K): the listed
-  form, no extension claimed (the nested test must not fire);
+- data made with the LISTED forms (thermal_lag 900 s; preload_settling 5 N at 50 K; a linear
+  friction law, -4e-5 /K): the listed form, no extension claimed (the nested test must not fire);
 - null data: no_discrepancy and no form tried;
 - (slow) a CTE with curvature (3e-10 /K^3, no slope) in seed 000's -60..80 C steps, and a radial
   gradient whose speed part lags 1200 s behind seed 003's speed steps: the listed family with its
@@ -67,11 +67,14 @@ def test_settling_creep_is_preload_settling_extended(pl000):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("which", ["thermal_lag", "preload_settling"])
+@pytest.mark.parametrize("which", ["thermal_lag", "preload_settling", "friction_temperature"])
 def test_listed_form_stays_listed(pl000, pl001, which):
     if which == "thermal_lag":
         pl, cond, sigma, eff = (pl001, oil_speed_steps_001(), SIGMA_001_TORQUE,
                                 {"thermal_lag": {"tau_s": 900.0}})
+    elif which == "friction_temperature":      # the linear law, the slope of 20 % per 100 K
+        pl, cond, sigma, eff = (pl000, cycles(), SIGMA_000,
+                                {"friction_temperature": {"dmu_per_K": -4e-5}})
     else:
         pl, cond, sigma, eff = (pl000, cycles(), SIGMA_000,
                                 {"preload_settling": {"loss_N": 5.0, "threshold_K": 50.0}})

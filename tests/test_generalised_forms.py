@@ -2,7 +2,8 @@
 its reducing value, is the baseline at `off`, keeps physical bounds, and adds the physics its
 docstring states. Expected numbers come from closed forms stated beside them (first-order lag
 response to a ramp and to a ramped step, the integral of a quadratic CTE law by quadrature, the
-hand-counted time beyond a threshold of a stepped temperature programme)."""
+hand-counted time beyond a threshold of a stepped temperature programme, a pure exponential
+friction law and its Taylor series at small rates)."""
 from __future__ import annotations
 
 import math
@@ -26,6 +27,7 @@ ON = {
     "preload_settling.creep": {"loss_N": 12.0, "threshold_K": 30.0, "creep_N_per_h": 4.0},
     "cte_nonlinearity.curvature": {"dalpha_per_K": 5e-9, "d2alpha_per_K3": 1e-10},
     "radial_gradient.lag": {"dT_K": 3.0, "dT_per_krpm_K": 1.5, "tau_gradient_s": 600.0},
+    "friction_temperature.exponential": {"dmu_per_K": -1.8e-4, "b_per_K": 6e-3},
 }
 
 
@@ -209,3 +211,27 @@ def test_gradient_lag_after_a_speed_step_closed_form():
     np.testing.assert_allclose(G[after], exact, rtol=0, atol=1e-9)      # K, round-off
     np.testing.assert_allclose(G[t <= t1], 1.5, rtol=0, atol=1e-12)
     np.testing.assert_array_equal(out.T_C["housing"], inp.T_C["housing"])
+
+
+def test_friction_exponential_is_the_exponential_law():
+    """The member dmu_per_K = -b mu0 is the pure law mu0 exp(-b (T_rings - T_ref)) (numpy's exp,
+    an independent evaluation), through the pipeline's resolution of the coefficient; and at
+    small rates the form follows its Taylor series mu0 + dmu (x - b x^2 / 2 + b^2 x^3 / 6) to
+    the next term's size (dmu b^3 x^4 / 24), continuous into the listed law at b = 0."""
+    from studies.model.effects import resolve_friction_coefficient
+
+    f = GENERALISED["friction_temperature.exponential"]
+    base = cycle_inputs()
+    x = 0.5 * (base.T_C["inner_ring"] + base.T_C["outer_ring"]) - T_REF
+    assert x.min() < -50.0 and x.max() > 40.0              # a wide range of the law
+    mu0, b = 0.03, 6e-3
+    out = f.apply(base, {"dmu_per_K": -b * mu0, "b_per_K": b}, T_REF)
+    # round-off of coefficients of order mu0 (a few eps of exp(0.5) mu0)
+    np.testing.assert_allclose(resolve_friction_coefficient(out, mu0), mu0 * np.exp(-b * x),
+                               rtol=0, atol=8 * np.finfo(float).eps * mu0)
+    dmu = 2e-4
+    for b in (1e-6, -1e-6, 1e-9):
+        d = f.apply(base, {"dmu_per_K": dmu, "b_per_K": b}, T_REF).friction_coefficient
+        series = dmu * (x - b * x ** 2 / 2 + b ** 2 * x ** 3 / 6)
+        tol = dmu * abs(b) ** 3 * np.max(np.abs(x)) ** 4 / 24 + 8 * np.finfo(float).eps * dmu * 80
+        np.testing.assert_allclose(d, series, rtol=0, atol=tol)

@@ -10,7 +10,8 @@ mechanism, against a reference that is not the code under test:
   lagging by different amounts, which the one-constant `thermal_lag` cannot do; the two-node
   network's ramp delays against the closed form (a series of first-order lags: delays add);
 - model form: a spring preload holds its force (the truth's preload is the assembled one at
-  every temperature) where the diagnosed position preload moves by many sigma.
+  every temperature) where the diagnosed position preload moves by many sigma; an exponential
+  friction law is recovered with the rate the data were made with.
 - sensor: a thermometer offset's fitted value against the offset injected.
 Then today's diagnosis (`second_source.diagnose_case`, the CLI's candidates, coarse mesh family
 member `MESH_FACTOR`) must not claim a wrong cause on it (`second_source.judge`); every case over
@@ -159,6 +160,47 @@ def test_spring_preload_truth_holds_its_force_and_is_not_a_wrong_cause(spring_ca
     res = ss.diagnose_case(c)
     assert ss.judge_result(c, res) != "wrong", \
         (res.verdict, res.cause)
+
+
+def test_exponential_friction_law_is_explained_with_the_rate_it_was_made_with():
+    """The rig's friction is mu_cal exp(-b (T_rings - T_ref)) with b = 6e-3 /K (38 sigma against
+    the baseline); the listed `friction_temperature` is linear and leaves structure. The
+    diagnosis must explain it by the friction family through its exponential form, with the
+    rate b and the slope at T_ref the data were made with: b_per_K = 6e-3 /K (the case's law,
+    `second_source._friction_exp`) and dmu_per_K = -b mu_config (the exponential member of the
+    form: mu_config + dmu (1 - exp(-b x)) / b = mu_config exp(-b x) when dmu = -b mu_config; the
+    rig's factor MU_TRUE is the friction scale's) within 3 of their stated standard
+    uncertainties. Over 10 draws b came out 5.72..6.13e-3 with u = 2.7..3.7e-4 (all within
+    1 u); the uncertainty must also be small against b itself (< b / 5), so that the test cannot
+    pass by an uninformative fit."""
+    c = ss.make_case("friction_law_exp", seed=0, mesh_factor=MESH_FACTOR)
+    assert c.change_sigma > ss.VISIBLE_SIGMA
+    res = ss.diagnose_case(c)
+    assert ss.judge_result(c, res) == "right", (res.verdict, ss.named_causes(res))
+    assert res.verdict == "explained" and ss.named_causes(res) == ["friction_temperature"]
+    form = res.extended_form
+    assert form is not None and form.name == "friction_temperature.exponential"
+    b_true = 6e-3                                           # 1/K, the case's law
+    mu_config = c.assembly.lubrication.friction_coefficient
+    b, u_b = form.parameters["b_per_K"], form.parameter_uncertainty["b_per_K"]
+    assert 0 < u_b < b_true / 5 and abs(b - b_true) <= 3 * u_b, (b, u_b)
+    dmu, u_dmu = form.parameters["dmu_per_K"], form.parameter_uncertainty["dmu_per_K"]
+    assert abs(dmu - (-b_true * mu_config)) <= 3 * u_dmu, (dmu, u_dmu)
+
+
+def test_housing_lot_inside_its_scatter_is_named_with_its_cte():
+    """A TC4 housing lot whose CTE is 3 % below the library's (inside the data sheets' spread,
+    the material_lot rung's +-5 %): the diagnosis names `material_lot` and fits the housing's
+    CTE factor within 3 standard uncertainties and 0.005 of the 0.97 the data were made with,
+    the shaft's (a lot of the library value) within the same of 1."""
+    c = ss.make_case("housing_lot", seed=0, mesh_factor=MESH_FACTOR)
+    assert c.change_sigma > ss.VISIBLE_SIGMA
+    res = ss.diagnose_case(c)
+    assert ss.judge_result(c, res) == "right", (res.verdict, ss.named_causes(res))
+    lot = next(x for x in res.candidates if x.effect == "material_lot")
+    for name, truth in (("cte_factor_housing", 0.97), ("cte_factor_shaft", 1.0)):
+        got, u = lot.parameters[name], lot.uncertainty[name]
+        assert abs(got - truth) <= min(3.0 * u, 0.005), (name, got, u)
 
 
 # ============================================================================ sensor

@@ -26,6 +26,12 @@ import numpy as np
 from .base import Effect
 
 
+def ring_temperature(inputs) -> np.ndarray:
+    """T_rings (C) per row: the mean of the inner- and outer-ring temperatures."""
+    return 0.5 * (np.asarray(inputs.T_C["inner_ring"], float)
+                  + np.asarray(inputs.T_C["outer_ring"], float))
+
+
 class FrictionTemperature(Effect):
     name = "friction_temperature"
     parameters = ("dmu_per_K",)
@@ -37,7 +43,5 @@ class FrictionTemperature(Effect):
             "temperature series at a second preload (the friction torque scales with the load)")
 
     def _apply(self, inputs, p, T_ref_C):
-        T_rings = 0.5 * (np.asarray(inputs.T_C["inner_ring"], float)
-                         + np.asarray(inputs.T_C["outer_ring"], float))
-        d = p["dmu_per_K"] * (T_rings - T_ref_C)
+        d = p["dmu_per_K"] * (ring_temperature(inputs) - T_ref_C)
         return inputs.copy(friction_coefficient=np.asarray(inputs.friction_coefficient, float) + d)

@@ -21,11 +21,13 @@ from .thermal_lag_per_part import ThermalLagPerPart
 from .preload_settling_creep import PreloadSettlingCreep
 from .cte_curvature import CteCurvature
 from .radial_gradient_lag import RadialGradientLag
+from .friction_temperature_exponential import FrictionTemperatureExponential
 
 __all__ = ["GeneralisedForm", "GENERALISED", "forms_of"]
 
 GENERALISED: dict[str, GeneralisedForm] = {f.name: f for f in (
-    ThermalLagPerPart(), PreloadSettlingCreep(), CteCurvature(), RadialGradientLag())}
+    ThermalLagPerPart(), PreloadSettlingCreep(), CteCurvature(), RadialGradientLag(),
+    FrictionTemperatureExponential())}
 
 
 def forms_of(family: str) -> list[GeneralisedForm]:
