@@ -15,9 +15,15 @@ config already uses is not on the ladder. The rungs (names of docs/cli.md, "kind
 | `ring_section_grooved` | `[mesh] ring_section = "grooved"` | `share` (0..1) | FE set-up |
 | `material_lot` | the CTE of the shaft's and the housing's lot | `cte_factor_shaft`, `cte_factor_housing` (1 +- CTE_LOT_SCATTER) | inputs |
 | `unlogged_load` | a constant radial load and moment the conditions do not log | `radial_load_N` (0..C0), `moment_Nmm` (+-C0 x span) | inputs (the pair's 5-DOF solve) |
+| `groove_conformity` | `[bearing] inner_groove_ratio` (rectangle-section files; the free contact angle held) | `inner_groove_ratio` (`GROOVE_RATIO_RANGE` 0.51..0.56, the makers' range, sourced; off: the file's) | pair (the file's FE set-up, the pair of the changed geometry) |
 | `preload_spring` | `[preload] kind = "spring"` | carried by the listed `preload_path_compliance` (the spring is its soft limit) | - |
 | `fits_in_band` | as-built fits anywhere in the `[fits]` tolerance band | carried by the listed `interference_error`, whose bounds are the band (`assembly_bounds`) | - |
 | `sleeve` | a `[sleeve]` the file lacks | not tried: its material and thickness are drawing data, not bounded by a data sheet | - |
+
+A parameter rung (`groove_conformity`) changes a number of the file's assembly that makers rarely
+publish: its candidate fits the number itself within the range the makers use, and its prediction
+is the pipeline of the assembly with that number (no share; at the file's value the file's
+prediction bit for bit).
 
 A switch has no continuous parameter of its own: its candidate fits `share`, the part of the
 way from the config's prediction to the form's (prediction = config + share (form - config),
@@ -41,7 +47,8 @@ Evaluation: every rung goes through the one route, `studies.model.pipeline.Pipel
 "inputs" rung writes `PhysicsInputs` fields (`radial_load_N`, `moment_Nmm`, `cte_factor`) as an
 effect does, on the config's pipeline (a CTE factor is one more thermal strain through the
 existing superposition: no new FE); a "pair" rung runs the pipeline of the changed assembly,
-whose FE set-up equals the config's (loaded from the set-up cache); an "FE set-up" rung runs the
+whose FE set-up equals the config's (loaded from the set-up cache; a parameter rung's pipeline
+takes the config's set-up object itself, one pipeline per parameter value, the last few kept); an "FE set-up" rung runs the
 pipeline of the changed assembly with its own FE set-up (mesh and unit solutions: seconds the
 first time, then from the cache). `FormRoute` holds those pipelines for one diagnosis.
 
@@ -91,6 +98,19 @@ LOT_PARTS = ("shaft", "housing")
 
 #: pipeline costs of a rung, cheapest first (the order the CLI screens them in)
 COSTS = ("inputs", "pair", "fe_setup")
+
+#: the raceway groove radius ratios f = r / Dw bearing makers use in angular-contact ball bearings
+#: (-), the `groove_conformity` rung's bounds: 0.51 to 0.56. Sources: Harris & Kotzalas,
+#: Essential Concepts of Bearing Technology (5th ed., ch. 2, raceway conformity; Rolling Bearing
+#: Analysis Vol. 1 ch. 2 in `analytic.catalogue`): 0.515..0.54 in ball bearings; ISO 281:2007 and
+#: ISO 76:2006 take their rating factors (f_c, f_0) for groove radii up to 0.52 Dw (inner) and
+#: 0.53 Dw (outer), the ceiling of a full-rating design, which low-torque designs exceed with
+#: reduced ratings (`analytic.safety`); an angular-contact patent's ranges, inner 0.51..0.54 and
+#: outer 0.54..0.56 (patentalert.com z00050546); Dynaroll's technical note on raceway curvature
+#: (dynaroll.com/raceway-curvature.asp): 0.56 +- 0.03 "for small bearings where low torque is a
+#: primary requirement". The union of the angular-contact statements, 0.51..0.56 (Dynaroll's upper
+#: 0.59, for instrument bearings, left out); a file's own ratio outside it widens it to that value.
+GROOVE_RATIO_RANGE = (0.51, 0.56)
 
 
 # ====================================================================== the candidates
@@ -227,6 +247,64 @@ class ThermometerOffset(Effect):
         return "sensor look-alike: " + self.change
 
 
+class GrooveConformity(Effect):
+    """groove_conformity: the inner raceway's groove radius ratio f_i = r_i / Dw is not the
+    file's (makers rarely publish it: `analytic.catalogue` assumes it).
+
+    Physics: the pair of the assembly with `[bearing] inner_groove_ratio = f_i` (the free contact
+    angle, the published one, held): the ball / inner-raceway curvature sum and difference
+    (Harris & Kotzalas ch. 2: 1/Ry = (2 f - 1) / (f Dw)), hence the Hertz contact's stiffness,
+    ellipse and pressure (ch. 6), the distance of the groove centres A = (f_i + f_o - 1) Dw that
+    sets the contact angle under load (ch. 2), and the friction torque's spin and differential
+    slip on the ellipse. Evaluated through the one route (`Pipeline.run` of that assembly,
+    `FormRoute`): a rectangle-section file's FE set-up does not depend on the ratio (the FE
+    answers are the file's; the groove-centre offsets move with f, `studies.model.stages.grooves`),
+    so a ratio costs the pair's solve, no FE set-up ("pair").
+
+    One parameter, the inner ratio, the outer held at the file's: on the shipped seed 000 with the
+    friction scale calibrated, a change of f_i and one of f_o move torque and preload along
+    directions whose cosine is 0.992 (T x preload grid) and 0.994 (-60..80 C cycles), an f_i
+    change of 0.01 differing from the best f_o change by 2.1 and 4.0 sigma (1 % noise;
+    docs/diagnosis.md "The model-form ladder"): the data cannot tell the two apart, and a second
+    parameter would double the rung's calls. A fitted f_i then says "the conformity", inner or
+    outer (about 0.8 x the f_i change as an f_o change).
+
+    Parameter: inner_groove_ratio (-), bounds `GROOVE_RATIO_RANGE` (widened to hold the file's
+    value), off the file's value."""
+    name = "groove_conformity"
+    parameters = ("inner_groove_ratio",)
+    units = {"inner_groove_ratio": "-"}
+    kind = KIND
+    acts_through = ("preload_assembled_N", "axial_load_N")
+    cost = "pair"
+    change = ("the inner raceway's groove radius ratio f_i = r_i / Dw "
+              f"({GROOVE_RATIO_RANGE[0]:g}..{GROOVE_RATIO_RANGE[1]:g}, the range makers use)")
+    hint = ("measure the inner raceway's groove radius (a profile trace of a sectioned ring, or "
+            "ask the maker for the drawing) or the pair's axial stiffness at two preloads: the "
+            "conformity sets the contacts' load-deflection law and ellipse, so its signature is "
+            "in how torque and preload follow the load")
+
+    def __init__(self, f_file: float):
+        f = float(f_file)
+        self.off = {"inner_groove_ratio": f}
+        self.bounds = {"inner_groove_ratio": (min(GROOVE_RATIO_RANGE[0], f),
+                                              max(GROOVE_RATIO_RANGE[1], f))}
+        self.scale = {"inner_groove_ratio": 0.005}
+
+    def _apply(self, inputs, p, T_ref_C):
+        return inputs.copy()
+
+    def assembly(self, asm: Assembly, params: Mapping[str, float]) -> Assembly:
+        """The assembly with the fitted ratio (validated); the file's own object at `off`."""
+        f = self.validate(params)["inner_groove_ratio"]
+        if f == asm.bearing.inner_groove_ratio:
+            return asm
+        return replace(asm, bearing=replace(asm.bearing, inner_groove_ratio=f))
+
+    def describe(self) -> str:
+        return "model form: " + self.change
+
+
 class NotTried(Effect):
     """A rung that is not a candidate of its own (carried by a listed effect, or not bounded):
     listed among the candidates as not applicable, with the reason (`Rung.why_not`)."""
@@ -297,6 +375,7 @@ def ladder(asm: Assembly) -> list[Rung]:
     span = _bearing_span_mm(asm)
     rungs.append(Rung(UnloggedLoad.name, UnloggedLoad.change, "inputs", UnloggedLoad.acts_through,
                       UnloggedLoad(C0, span)))
+    rungs.append(_groove_rung(asm))
     if op.ball_model == "static":
         rungs.append(_switch(
             "ball_model_quasi_dynamic", '[operating] ball_model = "quasi_dynamic"', "pair",
@@ -341,6 +420,24 @@ def ladder(asm: Assembly) -> list[Rung]:
     return sorted(rungs, key=lambda r: COSTS.index(r.cost))
 
 
+def _groove_rung(asm: Assembly) -> Rung:
+    """The `groove_conformity` rung: tried on rectangle-section files whose assembly holds the
+    ratio at both bounds (`check_assembly`: the groove bottom inside the ring's section)."""
+    e = GrooveConformity(asm.bearing.inner_groove_ratio)
+    acts = GrooveConformity.acts_through
+    if asm.mesh.ring_section == "grooved":
+        return Rung(e.name, e.change, "fe_setup", acts,
+                    why_not="the grooved ring section meshes the groove: every ratio would be an "
+                            "FE set-up of its own")
+    try:
+        for f in e.bounds["inner_groove_ratio"]:
+            check_assembly(e.assembly(asm, {"inner_groove_ratio": f}), f"<{e.name}>")
+    except ConfigError as exc:
+        return Rung(e.name, e.change, "pair", acts,
+                    why_not=f"the assembly cannot hold the range: {exc}")
+    return Rung(e.name, e.change, "pair", acts, e)
+
+
 def _bearing_span_mm(asm: Assembly) -> float:
     """Distance of the ball planes of bearings A and B (mm): the inner rings' mid-planes
     (`studies.model.stack.stack_positions`, as the pipeline's bearing stage takes it)."""
@@ -377,14 +474,22 @@ def is_lookalike(effect) -> bool:
 
 # ====================================================================== evaluation
 class FormRoute:
-    """The model forms of one assembly evaluated through its pipeline: inputs rungs as effects,
-    switch rungs by the pipeline of the changed assembly (built on first use, kept here)."""
+    """The model forms of one assembly evaluated through its pipeline: inputs rungs as effects;
+    a parameter rung (`GrooveConformity`) by the pipeline of the assembly with its parameter;
+    switch rungs by the pipeline of the changed assembly (of the parameter rung's assembly when
+    both are fitted together). Pipelines are built on first use and the last few kept here; a
+    parameter rung's pipeline shares the file's FE set-up (its `SetupSpec` is the file's)."""
+
+    #: pipelines of parameter-rung assemblies kept (a fit moves the parameter every call)
+    KEEP = 6
 
     def __init__(self, pipeline):
         self.pl = pipeline
         self.rungs = {r.name: r for r in ladder(pipeline.asm) if r.candidate is not None}
         self.lookalikes = {e.name: e for e in lookalikes()}
-        self._pipelines: dict = {}
+        self._pipelines: dict = {}     # switch rung name -> its pipeline on the file
+        self._param: dict = {}         # parameter rung assembly -> its pipeline
+        self._switch_on: dict = {}     # (switch rung, parameter rung assembly) -> pipeline
 
     def split(self, effects: Mapping[str, Mapping[str, float]]) -> tuple[dict, dict]:
         """(listed effects, ladder rungs and sensor look-alikes) of an effects dict
@@ -399,27 +504,60 @@ class FormRoute:
         validated)."""
         for name, params in forms.items():
             e = self.lookalikes[name] if name in self.lookalikes else self.rungs[name].candidate
-            if not isinstance(e, FormShare):
+            if e.cost == "inputs":
                 inputs = e.apply(inputs, params, self.pl.asm.T_ref_C)
         return inputs
 
-    def pipeline(self, name: str):
-        """The pipeline of the assembly with rung `name`'s form (same mesh factor)."""
+    def assembly(self, forms: Mapping[str, Mapping[str, float]]) -> Assembly:
+        """The assembly of the parameter rungs among `forms` (the file's when there is none or
+        all are at their off values)."""
+        asm = self.pl.asm
+        for name, params in forms.items():
+            rung = self.rungs.get(name)
+            if rung is not None and isinstance(rung.candidate, GrooveConformity):
+                asm = rung.candidate.assembly(asm, params)
+        return asm
+
+    def _of(self, asm: Assembly):
+        """The pipeline of a parameter rung's assembly (the file's own for the file's assembly),
+        sharing the file's FE set-up; the last `KEEP` kept."""
         from studies.model.pipeline import Pipeline
 
-        hit = self._pipelines.get(name)
-        if hit is None:
-            asm = self.rungs[name].configure(self.pl.asm)
-            hit = self._pipelines[name] = Pipeline(asm, mesh_factor=self.pl.mesh_factor)
-        return hit
+        if asm is self.pl.asm:
+            return self.pl
+
+        def setup_of(spec):
+            if spec != self.pl.spec:        # a rung that moves the FE set-up is a switch
+                raise RuntimeError("a parameter rung changed the FE set-up")
+            return self.pl.setup
+
+        return _kept(self._param, asm, self.KEEP,
+                     lambda: Pipeline(asm, mesh_factor=self.pl.mesh_factor, setup_of=setup_of))
+
+    def pipeline(self, name: str, asm: Assembly | None = None):
+        """The pipeline of the assembly (default the file's) with switch rung `name`'s form
+        (same mesh factor): the file's switches kept for the diagnosis, those on a parameter
+        rung's assembly the last `KEEP`."""
+        from studies.model.pipeline import Pipeline
+
+        base = self.pl.asm if asm is None else asm
+        make = lambda: Pipeline(self.rungs[name].configure(base), mesh_factor=self.pl.mesh_factor)
+        if base is self.pl.asm:
+            hit = self._pipelines.get(name)
+            if hit is None:
+                hit = self._pipelines[name] = make()
+            return hit
+        return _kept(self._switch_on, (name, base), self.KEEP, make)
 
     def columns(self, inputs, forms: Mapping[str, Mapping[str, float]],
                 columns: tuple[str, ...]) -> dict[str, np.ndarray]:
-        """The named columns of the inputs (inputs rungs already applied) through the config's
-        pipeline, each switch rung's share of its form's change added (module docstring)."""
+        """The named columns of the inputs (inputs rungs already applied) through the pipeline
+        of the parameter rungs' assembly (the config's without them), each switch rung's share
+        of its form's change added (module docstring)."""
         from studies.model.columns import to_columns
 
-        base = to_columns(self.pl.run(inputs), flags=False)
+        asm = self.assembly(forms)
+        base = to_columns(self._of(asm).run(inputs), flags=False)
         out = {c: np.asarray(base[c], float) for c in columns}
         for name, params in forms.items():
             rung = self.rungs.get(name)
@@ -428,10 +566,21 @@ class FormRoute:
             share = rung.candidate.validate(params)["share"]
             if share == 0.0:
                 continue
-            form = to_columns(self.pipeline(name).run(inputs), flags=False)
+            form = to_columns(self.pipeline(name, asm).run(inputs), flags=False)
             for c in columns:
                 out[c] = out[c] + share * (np.asarray(form[c], float) - base[c])
         return out
+
+
+def _kept(cache: dict, key, keep: int, make):
+    """cache[key], made on a miss; the least recently used entry leaves beyond `keep`."""
+    hit = cache.pop(key, None)
+    if hit is None:
+        hit = make()
+        while len(cache) >= keep:
+            cache.pop(next(iter(cache)))
+    cache[key] = hit
+    return hit
 
 
 # ====================================================================== cost control

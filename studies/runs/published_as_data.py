@@ -222,6 +222,8 @@ LADDER_BOUND_SOURCE = {
                      "(studies/diagnosis/ladder.py CTE_LOT_SCATTER, with its source)"),
     "unlogged_load": ("the ladder's bounds: a radial load up to one bearing's C0 (ISO 76), a "
                       "moment up to C0 x the bearing span"),
+    "groove_conformity": ("the ladder's groove ratio range (studies/diagnosis/ladder.py "
+                          "GROOVE_RATIO_RANGE, with its sources)"),
 }
 
 

@@ -10,8 +10,8 @@ mechanism (or two), with the label of the true cause kept beside the data:
   discretisation only); quasi-dynamic balls under a static config; grooved ring sections under a
   rectangle config; a steel sleeve, a spring preload, an unlogged moment, a housing material lot
   with another CTE, all of which the config lacks; a friction law of another form (exponential in
-  the ring temperature where the listed effect is linear); a different inner groove curvature (no
-  listed effect or ladder rung has it); an inner fit 2.5 um outside its ISO band;
+  the ring temperature where the listed effect is linear); a different inner groove curvature (the
+  ladder's `groove_conformity` rung); an inner fit 2.5 um outside its ISO band;
 - listed (`"listed"`): a listed cause made on another model than the diagnosed one (the inner fit
   5 um tighter on a finer mesh with direct FE solves);
 - history (`"history"`): part temperatures from the transient conduction FE of the stack
@@ -51,8 +51,8 @@ API (stable; `diag` and `ladder` helpers build on it):
 Truth labels (`Case.truth`): listed effect names (`thermal_lag`, `interference_error`,
 `friction_temperature`), the model-form candidate names of docs/cli.md ("Added for the next
 round": `ball_model_quasi_dynamic`, `ring_section_grooved`, `sleeve`, `preload_spring`,
-`material_lot`, `unlogged_load`, `fits_in_band`), or names of causes nothing in the tool models
-(`groove_curvature`, `sensor_drift`, `sensor_offset`). `Case.right` is what a diagnosis may name
+`material_lot`, `unlogged_load`, `fits_in_band`, `groove_conformity`), or names of causes
+nothing in the tool models (`sensor_drift`, `sensor_offset`). `Case.right` is what a diagnosis may name
 and be right: a cause counts by its family (`thermal_lag.per_part` is `thermal_lag`).
 """
 from __future__ import annotations
@@ -381,9 +381,9 @@ CASES: dict[str, CaseSpec] = {
         "model_form", "cycles", ("friction_temperature",), ("friction_temperature",),
         "friction exponential in the ring temperature (6e-3 /K) where the listed law is linear"),
     "groove_curvature": CaseSpec(
-        "model_form", "steady_grid", ("groove_curvature",), (),
-        "inner groove curvature ratio 0.54 instead of 0.52: a cause no candidate models "
-        "(issue 23)"),
+        "model_form", "steady_grid", ("groove_conformity",), ("groove_conformity",),
+        "inner groove curvature ratio 0.54 instead of the file's 0.52 (issue 23): the ladder's "
+        "groove_conformity rung (inner ratio 0.51..0.56)"),
     "fit_outside_band": CaseSpec(
         "model_form", "steady_grid", ("interference_error",), ("interference_error", "fits_in_band"),
         "a config with ISO tolerance classes; the inner fit 2.5 um tighter than its band allows "
