@@ -34,6 +34,16 @@ from .thermal_lag import ThermalLag, lag_response
 SHAFT_SIDE = ("shaft", "inner_ring", "ball")
 
 
+def two_sided(inputs, T_housing_C: np.ndarray, T_shaft_C: np.ndarray):
+    """`inputs` with every part that follows the ambient (no measured temperature of its own) at
+    `T_shaft_C` on the shaft side (SHAFT_SIDE) and at `T_housing_C` elsewhere, C per row."""
+    T = dict(inputs.T_C)
+    for part in T:
+        if part not in inputs.measured_parts:
+            T[part] = np.array(T_shaft_C if part in SHAFT_SIDE else T_housing_C, float)
+    return inputs.copy(T_C=T)
+
+
 class ThermalLagPerPart(GeneralisedForm):
     family = "thermal_lag"
     form = "per_part"
@@ -53,12 +63,7 @@ class ThermalLagPerPart(GeneralisedForm):
         amb = np.asarray(inputs.T_ambient_C, float)
         lagged = {tau: lag_response(inputs.time_s, amb, tau)
                   for tau in {p["tau_s"], p["tau_shaft_s"]}}
-        T = dict(inputs.T_C)
-        for part in T:
-            if part not in inputs.measured_parts:              # follows the ambient
-                tau = p["tau_shaft_s"] if part in SHAFT_SIDE else p["tau_s"]
-                T[part] = lagged[tau].copy()
-        return inputs.copy(T_C=T)
+        return two_sided(inputs, lagged[p["tau_s"]], lagged[p["tau_shaft_s"]])
 
     def text(self, params):
         return (f"thermal_lag, per-part time constants: housing {params['tau_s']:.0f} s, "

@@ -52,7 +52,7 @@ import numpy as np
 
 from .base import GeneralisedForm
 from .thermal_lag import ThermalLag, lag_response
-from .thermal_lag_per_part import SHAFT_SIDE
+from .thermal_lag_per_part import two_sided
 
 #: |x| = h |1/tau_shaft - 1/tau| above which g is evaluated as a difference of exponentials
 #: (no cancellation there; below, expm1(x)/x avoids it)
@@ -113,12 +113,8 @@ class ThermalLagSeries(GeneralisedForm):
 
     def _apply(self, inputs, p, T_ref_C):
         amb = np.asarray(inputs.T_ambient_C, float)
-        Th, Tr = series_lag_response(inputs.time_s, amb, p["tau_s"], p["tau_shaft_s"])
-        T = dict(inputs.T_C)
-        for part in T:
-            if part not in inputs.measured_parts:              # follows the ambient
-                T[part] = (Tr if part in SHAFT_SIDE else Th).copy()
-        return inputs.copy(T_C=T)
+        return two_sided(inputs, *series_lag_response(inputs.time_s, amb, p["tau_s"],
+                                                      p["tau_shaft_s"]))
 
     def text(self, params):
         return (f"thermal_lag, shaft side through the housing side: housing {params['tau_s']:.0f} "
