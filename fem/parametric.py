@@ -305,7 +305,7 @@ def parametric_setup(spec: SetupSpec, variable: tuple[str, ...],
     fam = _FAMILIES.get(key)
     if fam is None:
         fam = Family(member_spec(spec, reference or {}), variable)
-        if len(_FAMILIES) >= FAMILIES_MAX:
+        while _FAMILIES and len(_FAMILIES) >= FAMILIES_MAX:      # the bound, even if lowered
             _FAMILIES.pop(next(iter(_FAMILIES)))
         _FAMILIES[key] = fam
     return fam.setup(spec)

@@ -117,6 +117,7 @@ def test_inner_contact_pressure_follows_the_closed_form_at_the_rungs_ratio(pl000
     assert np.min(np.abs(p / file_ref - 1)) > 0.04
 
 
+@pytest.mark.slow     # 10-25 s; the rates over 10 draws are the confusion-matrix study's
 def test_groove_curvature_case_is_explained_by_the_rung_with_its_ratio():
     """The second source's `groove_curvature` (seed 000's 64-row T x preload grid made by the
     assembly with f_i = 0.54, torque and preload at 1 % noise, friction 1.25 x the file's;

@@ -116,6 +116,7 @@ def test_network_temperatures_are_the_series_lag_form():
     np.testing.assert_allclose(Tr, T["T_shaft_C"], rtol=0, atol=1e-9)
 
 
+@pytest.mark.slow     # 10-25 s; the rates over 10 draws are the confusion-matrix study's
 def test_network_lag_is_explained_by_thermal_lag_in_series(network_case):
     """A housing side 600 s behind the chamber and a shaft side 240 s behind the housing side
     (138 sigma against the baseline): `explained` by `thermal_lag` in its series form
