@@ -514,8 +514,9 @@ def assert_unlisted_verdict(res):
 
 
 def test_unlisted_groove_on_a_steady_grid_is_unexplained(pl000, pl000_groove):
-    """A cause outside the list on steady points (no time column, so no drift or history can be
-    blamed): the data come from seed 000 with the inner groove ratio 0.54 (the candidates' model
+    """A cause outside the listed effects on steady points (no time column, so no drift or
+    history can be blamed; the model-form ladder, not among these candidates, has a rung that
+    names it: tests/test_groove_conformity.py): the data come from seed 000 with the inner groove ratio 0.54 (the candidates' model
     has the configured ratio), torque and preload measured at the SIGMA_000 levels, friction
     1.25 x the configured one. The change is at least 8 sigma (not invisible); the verdict must
     be `unexplained` with no cause and no ambiguous claim."""
