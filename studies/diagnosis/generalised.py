@@ -122,8 +122,9 @@ def _families(cands: Mapping[str, Candidate], fits: dict[str, Fit], d: Decision)
     candidates better than the baseline (delta BIC < 0, significant), best first."""
     if d.verdict == "explained":        # the listed cause's own forms, nested in it
         return [d.cause] if forms_of(d.cause) else []
+    tied = {d.best, *d.rivals} if d.verdict == "ambiguous" else set(fits)
     return [n for n in sorted(fits, key=lambda n: cands[n].delta_bic)
-            if forms_of(n) and cands[n].delta_bic < 0 and cands[n].lr_significant]
+            if n in tied and forms_of(n) and cands[n].delta_bic < 0 and cands[n].lr_significant]
 
 
 def _bounded(pb: Problem, fam: str, form):
@@ -181,9 +182,11 @@ def _space(pb: Problem, form, cand: Candidate):
 def generalise(pb: Problem, cands: Mapping[str, Candidate], fits: dict[str, Fit], ho: dict,
                b: Baseline, d: Decision, rng: np.random.Generator) -> Generalisation:
     """Try the generalised forms (module docstring; `explained_partly` as `unexplained`: the
-    forms of the two best families)."""
+    forms of the two best families; `ambiguous`: the forms of the tied families, so that a form
+    of one of two look-alikes that explains what neither listed form does alone, and carries
+    the weight over the other, breaks the tie)."""
     if not pb.try_generalised or d.verdict not in ("unexplained", "explained",
-                                                    "explained_partly"):
+                                                    "explained_partly", "ambiguous"):
         return Generalisation(d, [], None)
     tried, m = _screened(pb, cands, fits, _families(cands, fits, d))
     entries, ok = [], []
