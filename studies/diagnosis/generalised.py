@@ -1,7 +1,9 @@
 """Phase 5b of the diagnosis: generalised forms of the listed effects (issue 11).
 
 When the verdict is `unexplained` because the listed form of a family leaves structure behind (or
-does not pass), the generalised forms of the most promising families
+does not pass), or `ambiguous` between look-alikes (then only the tied families: a form of one of
+them may explain what neither listed form does alone; a CTE curvature truth was ambiguous between
+the path compliance and the CTE slope), the generalised forms of the most promising families
 (`studies.model.effects.generalised`) are fitted as NESTED models of their listed form. The
 families are the significant listed candidates that have a form applicable to the conditions;
 when there are more than MAX_FAMILIES of them, they are ranked by the BIC of their forms' best
