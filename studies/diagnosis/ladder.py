@@ -114,7 +114,16 @@ GROOVE_RATIO_RANGE = (0.51, 0.56)
 
 
 # ====================================================================== the candidates
-class FormShare(Effect):
+class ModelForm(Effect):
+    """A candidate of the ladder (kind `KIND`), described by the config change it stands for."""
+    kind = KIND
+    change: str
+
+    def describe(self) -> str:
+        return "model form: " + self.change
+
+
+class FormShare(ModelForm):
     """A switch of the assembly file as a candidate: the one parameter `share` (module
     docstring). The inputs are not changed: `FormRoute` blends the outputs."""
     parameters = ("share",)
@@ -122,7 +131,6 @@ class FormShare(Effect):
     bounds = {"share": (0.0, 1.0)}
     off = {"share": 0.0}
     scale = {"share": 0.1}
-    kind = KIND
 
     def __init__(self, name: str, hint: str, acts_through: tuple[str, ...], cost: str,
                  change: str):
@@ -136,7 +144,7 @@ class FormShare(Effect):
         return f"model form: {self.change} (share of the form's change fitted, 0..1)"
 
 
-class MaterialLot(Effect):
+class MaterialLot(ModelForm):
     """material_lot: the shaft's and the housing's lot have a CTE other than the library's.
 
     Physics: the thermal strain of the part is theta = f alpha (T - T_ref) (the lot's whole CTE
@@ -151,7 +159,6 @@ class MaterialLot(Effect):
     bounds = {p: (1.0 - CTE_LOT_SCATTER, 1.0 + CTE_LOT_SCATTER) for p in parameters}
     off = {p: 1.0 for p in parameters}
     scale = {p: 0.01 for p in parameters}
-    kind = KIND
     acts_through = ("temperature_C",)
     cost = "inputs"
     change = "the shaft's and the housing's material lot: CTE x cte_factor (+-5 %)"
@@ -164,11 +171,8 @@ class MaterialLot(Effect):
             f[part] = f.get(part, 1.0) * p[f"cte_factor_{part}"]
         return inputs.copy(cte_factor=f)
 
-    def describe(self) -> str:
-        return "model form: " + self.change
 
-
-class UnloggedLoad(Effect):
+class UnloggedLoad(ModelForm):
     """unlogged_load: a constant radial load and tilting moment on the shaft that the conditions
     do not log (a belt, a coupling's misalignment, the rig's own weight).
 
@@ -183,7 +187,6 @@ class UnloggedLoad(Effect):
     parameters = ("radial_load_N", "moment_Nmm")
     units = {"radial_load_N": "N", "moment_Nmm": "N mm"}
     off = {"radial_load_N": 0.0, "moment_Nmm": 0.0}
-    kind = KIND
     acts_through = ("preload_assembled_N", "axial_load_N", "radial_load_N")
     cost = "inputs"
     change = "a constant radial load and moment the conditions do not log"
@@ -205,9 +208,6 @@ class UnloggedLoad(Effect):
 
         return inputs.copy(radial_load_N=add(inputs.radial_load_N, p["radial_load_N"]),
                            moment_Nmm=add(inputs.moment_Nmm, p["moment_Nmm"]))
-
-    def describe(self) -> str:
-        return "model form: " + self.change
 
 
 class ThermometerOffset(Effect):
@@ -247,7 +247,7 @@ class ThermometerOffset(Effect):
         return "sensor look-alike: " + self.change
 
 
-class GrooveConformity(Effect):
+class GrooveConformity(ModelForm):
     """groove_conformity: the inner raceway's groove radius ratio f_i = r_i / Dw is not the
     file's (makers rarely publish it: `analytic.catalogue` assumes it).
 
@@ -274,7 +274,6 @@ class GrooveConformity(Effect):
     name = "groove_conformity"
     parameters = ("inner_groove_ratio",)
     units = {"inner_groove_ratio": "-"}
-    kind = KIND
     acts_through = ("preload_assembled_N", "axial_load_N")
     cost = "pair"
     change = ("the inner raceway's groove radius ratio f_i = r_i / Dw "
@@ -301,15 +300,11 @@ class GrooveConformity(Effect):
             return asm
         return replace(asm, bearing=replace(asm.bearing, inner_groove_ratio=f))
 
-    def describe(self) -> str:
-        return "model form: " + self.change
 
-
-class NotTried(Effect):
+class NotTried(ModelForm):
     """A rung that is not a candidate of its own (carried by a listed effect, or not bounded):
     listed among the candidates as not applicable, with the reason (`Rung.why_not`)."""
     parameters = ()
-    kind = KIND
     cost = "inputs"
 
     def __init__(self, rung: "Rung"):
