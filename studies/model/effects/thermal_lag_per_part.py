@@ -44,20 +44,25 @@ def two_sided(inputs, T_housing_C: np.ndarray, T_shaft_C: np.ndarray):
     return inputs.copy(T_C=T)
 
 
-class ThermalLagPerPart(GeneralisedForm):
+class TwoSidedLag(GeneralisedForm):
+    """What the lag forms with a housing-side and a shaft-side time constant share (parameters,
+    units, bounds, needs); each form says how the two sides follow the ambient."""
     family = "thermal_lag"
-    form = "per_part"
-    name = "thermal_lag.per_part"
-    label = "per-part time constants"
     parameters = ("tau_s", "tau_shaft_s")
     extra = ("tau_shaft_s",)
-    reduces = {"tau_shaft_s": "tau_s"}
     units = {"tau_s": "s", "tau_shaft_s": "s"}
     bounds = {"tau_s": (0.0, 1e5), "tau_shaft_s": (0.0, 1e5)}
     off = {"tau_s": 0.0, "tau_shaft_s": 0.0}
     requires = ("time_s", "T_ambient_C")
     scale = {"tau_s": 60.0, "tau_shaft_s": 60.0}
     hint = ThermalLag.hint + "; measure the shaft (inner ring) and housing temperatures apart"
+
+
+class ThermalLagPerPart(TwoSidedLag):
+    form = "per_part"
+    name = "thermal_lag.per_part"
+    label = "per-part time constants"
+    reduces = {"tau_shaft_s": "tau_s"}
 
     def _apply(self, inputs, p, T_ref_C):
         amb = np.asarray(inputs.T_ambient_C, float)

@@ -50,9 +50,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .base import GeneralisedForm
-from .thermal_lag import ThermalLag, lag_response
-from .thermal_lag_per_part import two_sided
+from .thermal_lag import lag_response
+from .thermal_lag_per_part import TwoSidedLag, two_sided
 
 #: |x| = h |1/tau_shaft - 1/tau| above which g is evaluated as a difference of exponentials
 #: (no cancellation there; below, expm1(x)/x avoids it)
@@ -96,20 +95,11 @@ def series_lag_response(t_s: np.ndarray, u: np.ndarray, tau_s: float,
     return Th, Tr
 
 
-class ThermalLagSeries(GeneralisedForm):
-    family = "thermal_lag"
+class ThermalLagSeries(TwoSidedLag):
     form = "series"
     name = "thermal_lag.series"
     label = "shaft side lagging behind the housing side (two lags in series)"
-    parameters = ("tau_s", "tau_shaft_s")
-    extra = ("tau_shaft_s",)
     reduces = {"tau_shaft_s": 0.0}
-    units = {"tau_s": "s", "tau_shaft_s": "s"}
-    bounds = {"tau_s": (0.0, 1e5), "tau_shaft_s": (0.0, 1e5)}
-    off = {"tau_s": 0.0, "tau_shaft_s": 0.0}
-    requires = ("time_s", "T_ambient_C")
-    scale = {"tau_s": 60.0, "tau_shaft_s": 60.0}
-    hint = ThermalLag.hint + "; measure the shaft (inner ring) and housing temperatures apart"
 
     def _apply(self, inputs, p, T_ref_C):
         amb = np.asarray(inputs.T_ambient_C, float)
