@@ -67,6 +67,7 @@ from typing import Callable, Mapping
 import numpy as np
 
 from analytic.safety import static_load_rating_C0_N
+from infra.memo import Memo
 from studies.model.config import Assembly, ConfigError
 from studies.model.config_checks import check_assembly
 from studies.model.effects import Effect
@@ -483,8 +484,8 @@ class FormRoute:
         self.rungs = {r.name: r for r in ladder(pipeline.asm) if r.candidate is not None}
         self.lookalikes = {e.name: e for e in lookalikes()}
         self._pipelines: dict = {}     # switch rung name -> its pipeline on the file
-        self._param: dict = {}         # parameter rung assembly -> its pipeline
-        self._switch_on: dict = {}     # (switch rung, parameter rung assembly) -> pipeline
+        self._param = Memo(self.KEEP)        # parameter rung assembly -> its pipeline
+        self._switch_on = Memo(self.KEEP)    # (switch rung, parameter rung assembly) -> pipeline
 
     def split(self, effects: Mapping[str, Mapping[str, float]]) -> tuple[dict, dict]:
         """(listed effects, ladder rungs and sensor look-alikes) of an effects dict
@@ -526,8 +527,8 @@ class FormRoute:
                 raise RuntimeError("a parameter rung changed the FE set-up")
             return self.pl.setup
 
-        return _kept(self._param, asm, self.KEEP,
-                     lambda: Pipeline(asm, mesh_factor=self.pl.mesh_factor, setup_of=setup_of))
+        return self._param.get_or_make(
+            asm, lambda: Pipeline(asm, mesh_factor=self.pl.mesh_factor, setup_of=setup_of))
 
     def pipeline(self, name: str, asm: Assembly | None = None):
         """The pipeline of the assembly (default the file's) with switch rung `name`'s form
@@ -542,7 +543,7 @@ class FormRoute:
             if hit is None:
                 hit = self._pipelines[name] = make()
             return hit
-        return _kept(self._switch_on, (name, base), self.KEEP, make)
+        return self._switch_on.get_or_make((name, base), make)
 
     def columns(self, inputs, forms: Mapping[str, Mapping[str, float]],
                 columns: tuple[str, ...]) -> dict[str, np.ndarray]:
@@ -565,17 +566,6 @@ class FormRoute:
             for c in columns:
                 out[c] = out[c] + share * (np.asarray(form[c], float) - base[c])
         return out
-
-
-def _kept(cache: dict, key, keep: int, make):
-    """cache[key], made on a miss; the least recently used entry leaves beyond `keep`."""
-    hit = cache.pop(key, None)
-    if hit is None:
-        hit = make()
-        while len(cache) >= keep:
-            cache.pop(next(iter(cache)))
-    cache[key] = hit
-    return hit
 
 
 # ====================================================================== cost control
