@@ -47,10 +47,10 @@ TOL_MM = 1e-7
 #: the condensed arrays grows as its square (measured on seed 000's design family, parametric vs
 #: own set-up: 1e-9 relative at 1e-3, 6e-8 at 1e-4, 7e-4 at 1e-6), which sets the value
 HOLD_RATIO = 1e-3
-#: the modulus (MPa) the weak spring is scaled with, whatever the part is made of (a steel's):
-#: the spring is then the same for every material of a part (a design family's spacers,
-#: `fem.parametric`, keep it in the part they do not vary)
-HOLD_E_MPA = 2.0e5
+#: the modulus (MPa) the weak spring is scaled with, whatever the part is made of (a bearing
+#: steel's, 9Cr18 of the material library): the spring is then the same for every material of a
+#: part (a design family's spacers, `fem.parametric`, keep it in the part they do not vary)
+HOLD_E_MPA = get_material("9Cr18").E_MPa
 
 
 def unzip(points: np.ndarray, tris: np.ndarray, part_of: np.ndarray, section: Section):
