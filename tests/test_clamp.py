@@ -297,18 +297,20 @@ def test_the_shipped_rig_runs_with_its_clamp_force():
     assert out["flag_clamp_open"].tolist() == [0.0, 1.0]
 
 
-@pytest.mark.parametrize("d,P,mu,D_Km", [(100.0, 1.5, 0.12, 103.8), (10.0, 1.25, 0.10, 13.5),
-                                          (10.0, 1.5, 0.0, 13.5), (24.0, 3.0, 0.16, 31.0)])
-def test_tightening_force_is_the_power_screw_torque(d, P, mu, D_Km):
+@pytest.mark.parametrize("d,P,d2,mu,D_Km", [(100.0, 1.5, 99.026, 0.12, 103.8),
+                                             (10.0, 1.25, 9.188, 0.10, 13.5),
+                                             (10.0, 1.5, 9.026, 0.0, 13.5),
+                                             (24.0, 3.0, 22.051, 0.16, 31.0)])
+def test_tightening_force_is_the_power_screw_torque(d, P, d2, mu, D_Km):
     """VDI 2230's tightening torque (step R13, `analytic.clamp.tightening_force_N`) against the
     exact torque of a power screw raising a load (Shigley's Mechanical Engineering Design, 10th
     ed., eq. 8-27: T = F d_m / 2 (l + pi f d_m sec a) / (pi d_m - f l sec a) + F f_c d_c / 2, a =
-    30 deg the ISO flank half-angle, l = P, d_m = d_2): VDI's 0.16 P and 0.58 d_2 are P / (2 pi)
-    and d_2 / (2 cos 30 deg) rounded, so the two agree to 1 %."""
+    30 deg the ISO flank half-angle, l = P, d_m = d_2, the pitch diameters of the ISO 724
+    tables): VDI's 0.16 P and 0.58 d_2 are P / (2 pi) and d_2 / (2 cos 30 deg) rounded, so the
+    two agree to 1 %."""
     from analytic.clamp import tightening_force_N
 
     torque = 20000.0
-    d2 = d - 0.649519 * P
     sec = 1.0 / np.cos(np.radians(30.0))
     per_N = 0.5 * d2 * (P + np.pi * mu * d2 * sec) / (np.pi * d2 - mu * P * sec) + 0.5 * mu * D_Km
     assert tightening_force_N(torque, d, P, mu, mu, D_Km) == pytest.approx(torque / per_N, rel=1e-2)
