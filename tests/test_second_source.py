@@ -248,7 +248,8 @@ def test_housing_lot_inside_its_scatter_is_named_with_its_cte():
 # ============================================================================ sensor
 def test_thermometer_offset_is_not_claimed_as_a_cause():
     """The chamber thermometer reads 0.5 K high (inside IEC 60751 class B): every part runs
-    0.5 K colder than logged. The largest change is below a sigma, but over 240 rows it is a
+    0.5 K colder than logged (the truth on the finer mesh with direct FE solves, not the
+    superposed route the look-alike is evaluated on). The largest change is below a sigma, but over 240 rows it is a
     strong signal that a fit error, a CTE slope or curvature, a material lot or a share of the
     grooved section all imitate (before 2026-11-25 seed 0 was `explained: cte_nonlinearity`
     through its curvature form, other draws `interference_error`). The diagnosis must claim no
