@@ -365,7 +365,7 @@ def test_design_varies_the_clamp_force_on_one_fe_setup(monkeypatch):
     spring, not its force), and each setting's answers equal those of the assembly built with
     that force through its own pipeline (a second route, its own set-up) to 1e-9 of the preload.
     The stiffer clamp keeps the aluminium shaft's stack closed to a higher temperature: at 40 C
-    (above the 1497 N nut's opening, ~33 C) the two preloads differ. A force for a rigid cover
+    (above the 1497 N nut's opening, about +35 C) the two preloads differ. A force for a rigid cover
     or a force <= 0: one line."""
     import fem.parametric as fp
     from studies.model.config import load_assembly
