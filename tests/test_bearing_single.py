@@ -458,3 +458,59 @@ def test_bearing_torque_needs_lubrication_and_an_oil_temperature(tmp_path):
     assert r.returncode == 2
     lines = r.stderr.strip().splitlines()
     assert len(lines) == 1 and "T_oil_C" in lines[0] and not out.exists()
+
+
+# ------------------------------------------------------ thermal speed limits (issue 33 item 4)
+def test_bearing_thermal_speeds_balance_the_heat_written_out(tmp_path):
+    """`bearing` writes the ISO 15312 reference speed and the DIN 732 permissible speed. The
+    permissible speed is where the bearing's own oil torque (written out here: mu F_a dm/2 +
+    1e-7 f0 (nu n)^(2/3) dm^3) times omega equals the heat the file's k_q takes away through
+    pi B (D + d) between 70 C and 20 C; margin_speed_rpm = permissible - the row's speed. With
+    every thermal key given there is no warning."""
+    from math import pi
+
+    keys = ("reference_f0r = 1.7\nreference_f1r = 0.0003\nheat_transfer_W_per_mm2_K = 4e-4\n"
+            "permissible_temperature_C = 70.0\nambient_temperature_C = 20.0\n")
+    b = tmp_path / "b.toml"
+    b.write_text(BEARING_TOML + OIL.replace("speed_rpm = 1000.0\n", "speed_rpm = 1000.0\n" + keys))
+    loads = tmp_path / "loads.csv"
+    loads.write_text("axial_load_N,T_oil_C\n500,40\n1500,100\n")
+    out = tmp_path / "out.csv"
+    r = _cli_here("bearing", b, loads, "-o", out)
+    assert r.returncode == 0 and "warning" not in r.stderr, r.stderr
+    import pandas as pd
+    df = pd.read_csv(out)
+    dm, Q = 38.5, 4e-4 * pi * 15.0 * (52.0 + 25.0) * 50.0
+    for (Fa, nu), n in zip(((500.0, 100.0), (1500.0, 10.0)), df["thermal_permissible_speed_rpm"]):
+        M = 0.002 * Fa * dm / 2 + 1e-7 * 2.0 * (nu * n) ** (2 / 3) * dm ** 3
+        assert M * n * pi / 30e3 == pytest.approx(Q, rel=1e-8)
+    np.testing.assert_allclose(df["margin_speed_rpm"], df["thermal_permissible_speed_rpm"] - 1000.0)
+    # the reference speed: the same balance at the ISO 15312 reference state, the row's nothing
+    nr = df["thermal_reference_speed_rpm"].iloc[0]
+    assert (df["thermal_reference_speed_rpm"] == nr).all()
+    M_r = 1e-7 * 1.7 * (12.0 * nr) ** (2 / 3) * dm ** 3 + 0.0003 * 0.05 * _C0(dm) * dm
+    assert M_r * nr * pi / 30e3 == pytest.approx(16e-3 * pi * 15.0 * 77.0, rel=1e-8)
+
+
+def _C0(dm):
+    """ISO 76 C0 of BEARING_TOML's bearing (f0 = 12.3 at Dw cos(a)/dm below 0.2 is not assumed:
+    taken from analytic.safety, the one route the command also uses for C0)."""
+    from analytic.safety import static_load_rating_C0_N
+    g = _geometry()
+    return float(static_load_rating_C0_N(g.Z, g.Dw_mm, dm, g.alpha0_deg))
+
+
+def test_bearing_thermal_speed_defaults_warn_once(tmp_path):
+    """Without the thermal keys the defaults are used and named in one warning line; without
+    [lubrication] the reference speed is still written and the permissible speed is empty."""
+    b = tmp_path / "b.toml"
+    b.write_text(BEARING_TOML + OIL)
+    loads = tmp_path / "loads.csv"
+    loads.write_text("axial_load_N,T_oil_C\n500,40\n1500,100\n")
+    r = _cli_here("bearing", b, loads, "-o", tmp_path / "out.csv")
+    lines = [x for x in r.stderr.splitlines() if "warning" in x]
+    assert r.returncode == 0 and len(lines) == 1, r.stderr
+    assert "reference_f0r" in lines[0] and "heat_transfer_W_per_mm2_K" in lines[0]
+    df = _cli_table(tmp_path, "axial_load_N\n500\n")
+    assert np.isfinite(df["thermal_reference_speed_rpm"]).all()
+    assert df["thermal_permissible_speed_rpm"].isna().all()

@@ -119,15 +119,18 @@ def cmd_simulate(args) -> None:
 def cmd_bearing(args) -> None:
     from studies.usecases.bearing_single import BearingRunError, run
 
+    warnings: list[str] = []
     try:
         check_output_file(args.out, (args.bearing, args.loads))
         n = run(args.bearing, args.loads, args.out, args.convention,
                 provenance("bearing", {"bearing": args.bearing, "loads": args.loads},
                            {"convention": {"name": args.convention},
                             "raceway_control": {"name": args.control}}),
-                control=args.control)
+                control=args.control, warnings=warnings)
     except (BearingRunError, *_user_errors()) as exc:
         raise UserError(str(exc)) from None
+    for line in warnings:
+        print(f"bearingfem bearing: warning: {line}", file=sys.stderr)
     print(f"wrote {n} rows to {args.out} (convention {args.convention}, {args.control} control)")
 
 

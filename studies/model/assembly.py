@@ -178,6 +178,25 @@ class Lubrication:
                                                 "alpha_h", sign=ZERO_OK, default=0.0)
     load_term: str = choice("coulomb", "palmgren", default="coulomb",
                             doc='oil: "coulomb" (mu F dm/2) or "palmgren" (f1 F dm)')
+    # thermal speed limits (analytic/thermal_speed.py; ISO 15312:2018, DIN 732:2010)
+    reference_f0r: float = number("-", "ISO 15312 oil-bath f0r of the bearing type (thermal "
+                                       "reference speed)", sign=ZERO_OK, default=0.0,
+                                  default_text="0 = 2.0, Palmgren's oil-bath f0 of a ball "
+                                               "bearing (warned); set the maker's value")
+    reference_f1r: float = number("-", "ISO 15312 f1r (thermal reference speed)", sign=ZERO_OK,
+                                  default=0.0, default_text="0 = 0.001 (0.05)^0.33, Palmgren's "
+                                                            "angular-contact f1 at P1r = 0.05 C0")
+    heat_transfer_W_per_mm2_K: float = number(
+        "W/(mm^2 K)", "DIN 732 k_q of the bearing seat surface (thermally permissible speed)",
+        sign=ZERO_OK, default=0.0,
+        default_text="0 = q_r / 50 K of ISO 15312 (3.2e-4 up to 50 000 mm^2; warned)")
+    permissible_temperature_C: float = number("C", "DIN 732: the bearing temperature allowed "
+                                                   "(thermally permissible speed)", sign=SIGNED,
+                                              default=70.0,
+                                              default_text="70, the ISO 15312 reference")
+    ambient_temperature_C: float = number("C", "DIN 732: the temperature the bearing gives its "
+                                               "heat to", sign=SIGNED, default=20.0,
+                                          default_text="20, the ISO 15312 reference")
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -14,12 +14,16 @@ pair's torque model (analytic/torque.py) applied to this one bearing (`bearing_t
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from analytic.bearing.single import SingleBearingState, solve_single
 from analytic.safety import static_load_rating_C0_N
+from analytic.thermal_speed import (ThermalReference, dissipated_heat_W,
+                                    reference_heat_transfer_W_per_mm2_K, thermal_reference_speed,
+                                    thermally_permissible_speed)
 from analytic.torque import (ContactInput, coulomb_load_torque_Nmm, palmgren_f1_angular_contact,
                              palmgren_load_torque_Nmm, palmgren_viscous_torque_Nmm,
                              solid_film_torque_Nmm)
@@ -50,6 +54,12 @@ OUTPUT_COLUMNS = {
                           "(--control; empty without a speed_rpm column)",
     "torque_Nmm": "friction torque of the bearing (the pair's torque model, one bearing; empty "
                   "without [lubrication] in BEARING.toml)",
+    "thermal_reference_speed_rpm": "thermal reference speed, ISO 15312:2018 (the same on every "
+                                   "row; analytic/thermal_speed.py)",
+    "thermal_permissible_speed_rpm": "thermally permissible speed, DIN 732:2010 with the friction "
+                                     "of ISO/TR 14179-2 at the row's load and oil viscosity "
+                                     "(empty without an oil [lubrication])",
+    "margin_speed_rpm": "thermal_permissible_speed_rpm - the row's speed",
 }
 
 
@@ -58,9 +68,11 @@ class BearingRunError(ValueError):
 
 
 def run(bearing_path: Path, loads_path: Path, out: Path, convention: str = "exact",
-        provenance: dict | None = None, control: str = "outer") -> int:
+        provenance: dict | None = None, control: str = "outer",
+        warnings: list[str] | None = None) -> int:
     """Solve every row of `loads_path` for the bearing of `bearing_path`, write `out` atomically
-    (nothing is written when any row fails).  Returns the number of rows."""
+    (nothing is written when any row fails).  Returns the number of rows; warning lines (a
+    default of the thermal speed keys used) are appended to `warnings` when given."""
     cfg = load_bearing(bearing_path)
     cols = read_table(loads_path, allowed=set(LOAD_COLUMNS))
     n = len(cols["_line"])
@@ -83,6 +95,7 @@ def run(bearing_path: Path, loads_path: Path, out: Path, convention: str = "exac
                               f"for these loads ({bad.size} row(s) in all); with radial "
                               "clearance a bearing needs a load that seats its balls")
     b = st.balls
+    speed = get("speed_rpm") if quasi else np.full(n, 0.0 if lub is None else lub.speed_rpm)
     out_cols = {c: cols[c] for c in cols if not c.startswith("_")}
     out_cols.update({
         "radial_displacement_um": 1e3 * st.radial_mm,
@@ -102,9 +115,16 @@ def run(bearing_path: Path, loads_path: Path, out: Path, convention: str = "exac
         "outer_race_control": (st.most_loaded("outer_control").astype(float) if quasi
                                else np.full(n, np.nan)),
         "torque_Nmm": (np.full(n, np.nan) if lub is None else bearing_torque_Nmm(
-            cfg, st, get("speed_rpm") if quasi else np.full(n, lub.speed_rpm), get("T_oil_C"))),
-        "convention": np.full(n, convention),
+            cfg, st, speed, get("T_oil_C"))),
     })
+    ts = thermal_speeds(cfg.spec, cfg.geometry, lub, cfg.oil(), np.abs(b.loads[0]),
+                        get("T_oil_C"), speed)
+    out_cols.update({"thermal_reference_speed_rpm": np.full(n, ts.reference.speed_rpm),
+                     "thermal_permissible_speed_rpm": ts.permissible_speed_rpm,
+                     "margin_speed_rpm": ts.margin_speed_rpm,
+                     "convention": np.full(n, convention)})
+    if warnings is not None and ts.warning:
+        warnings.append(f"{bearing_path}: {ts.warning}")
     try:
         write_table(out, out_cols, provenance)
     except TableError as exc:
@@ -136,11 +156,80 @@ def bearing_torque_Nmm(cfg, st: SingleBearingState, speed_rpm, T_oil_C) -> np.nd
                                   lub.friction_coefficient, lub.hysteresis_loss_factor, c_ring,
                                   c_ball, np.radians(b.contact_angle_outer_deg) if dynamic else None)
         return t.total_Nmm.sum(axis=0)
-    Fa = np.abs(b.loads[0])
-    if lub.load_term == "palmgren":
-        C0 = static_load_rating_C0_N(g.Z, g.Dw_mm, g.dm_mm, g.alpha0_deg)
-        load = palmgren_load_torque_Nmm(palmgren_f1_angular_contact(Fa, C0), Fa, g.dm_mm)
-    else:
-        load = coulomb_load_torque_Nmm(lub.friction_coefficient, Fa, 0.5 * g.dm_mm)
+    load = oil_load_torque_Nmm(g, lub, np.abs(b.loads[0]))
     nu = cfg.oil().nu_mm2_s(np.asarray(T_oil_C, float))
     return load + palmgren_viscous_torque_Nmm(lub.viscous_factor_f0, nu, speed_rpm, g.dm_mm)
+
+
+def oil_load_torque_Nmm(g, lub, Fa_N) -> np.ndarray:
+    """The load term of an oil-lubricated bearing, N*mm: coulomb mu F_a dm/2, or palmgren
+    f1 F_a dm with f1 = 0.001 (F_a/C0)^0.33 (Palmgren 1959; the f1 of ISO/TR 14179-2 for
+    angular-contact ball bearings), C0 of ISO 76 from the geometry g; F_a (N) per row."""
+    Fa = np.asarray(Fa_N, float)
+    if lub.load_term == "palmgren":
+        C0 = static_load_rating_C0_N(g.Z, g.Dw_mm, g.dm_mm, g.alpha0_deg)
+        return palmgren_load_torque_Nmm(palmgren_f1_angular_contact(Fa, C0), Fa, g.dm_mm)
+    return coulomb_load_torque_Nmm(lub.friction_coefficient, Fa, 0.5 * g.dm_mm)
+
+
+#: the default f0r when [lubrication] reference_f0r is 0 or absent: Palmgren's oil-bath f0 of a
+#: single-row ball bearing (Harris & Kotzalas, Rolling Bearing Analysis 5th ed., Vol. 2 ch.
+#: "friction", table of f0; ball bearings range from about 1.3 to 3.3 with the type): the maker's
+#: f0r (ISO 15312 Annex A) should replace it, hence the warning
+DEFAULT_F0R = 2.0
+
+
+@dataclass(frozen=True)
+class ThermalSpeeds:
+    """The thermal speed limits of one bearing (analytic/thermal_speed.py), arrays over rows:
+    reference (ISO 15312, `ThermalReference`), permissible_speed_rpm (DIN 732; NaN without an
+    oil), margin_speed_rpm (permissible - speed), defaults: the keys whose default was used."""
+    reference: ThermalReference
+    permissible_speed_rpm: np.ndarray
+    margin_speed_rpm: np.ndarray
+    defaults: tuple[str, ...]
+
+    @property
+    def warning(self) -> str | None:
+        """One line naming the defaults used, None when every key was given."""
+        if not self.defaults:
+            return None
+        return ("thermal speeds use default(s) " + ", ".join(self.defaults)
+                + " (docs/cli.md \"Thermal speed limits\"; set them in [lubrication])")
+
+
+def thermal_speeds(spec, g, lub, oil, axial_force_N, T_oil_C, speed_rpm) -> ThermalSpeeds:
+    """ISO 15312 thermal reference speed and DIN 732 thermally permissible speed of the bearing
+    `spec` (boundary dimensions; `g` its `BearingGeometry`: C0 of ISO 76) with the [lubrication]
+    `lub` (None: every default) and its oil `oil` (None: no permissible speed). Per row: the
+    axial force the bearing carries (N; its load term by `oil_load_torque_Nmm`, the bearing's
+    own torque model), the oil temperature (C; its viscosity) and the speed (rpm).
+    f0r, f1r, k_q, the permissible and ambient temperatures from `lub` (0 or None: defaults,
+    see `studies.model.assembly.Lubrication`); the heat-emitting surface pi B (D + d) from the
+    boundary dimensions (ISO 15312 defines it so)."""
+    C0 = float(static_load_rating_C0_N(g.Z, g.Dw_mm, g.dm_mm, g.alpha0_deg))
+    defaults = []
+    f0r = getattr(lub, "reference_f0r", 0.0) or 0.0
+    if f0r <= 0:
+        f0r = DEFAULT_F0R
+        defaults.append(f"reference_f0r = {DEFAULT_F0R:g}")
+    f1r = getattr(lub, "reference_f1r", 0.0) or 0.0
+    if f1r <= 0:                     # Palmgren's f1 at the reference load (a formula, no warning)
+        f1r = float(palmgren_f1_angular_contact(0.05 * C0, C0))
+    ref = thermal_reference_speed(spec.bore_mm, spec.outside_diameter_mm, spec.width_mm, C0,
+                                  f0r, f1r)
+    speed = np.asarray(speed_rpm, float)
+    if lub is None or oil is None:
+        nan = np.full(speed.shape, np.nan)
+        return ThermalSpeeds(ref, nan, nan, tuple(defaults))
+    k_q = lub.heat_transfer_W_per_mm2_K
+    if k_q <= 0:
+        k_q = float(reference_heat_transfer_W_per_mm2_K(ref.surface_mm2))
+        defaults.append(f"heat_transfer_W_per_mm2_K = {k_q:.3g}")
+    Q = dissipated_heat_W(k_q, ref.surface_mm2, lub.permissible_temperature_C,
+                          lub.ambient_temperature_C)
+    nu = oil.nu_mm2_s(np.asarray(T_oil_C, float))
+    perm = thermally_permissible_speed(ref.speed_rpm, lub.viscous_factor_f0, nu, g.dm_mm,
+                                       oil_load_torque_Nmm(g, lub, axial_force_N),
+                                       Q * np.ones_like(speed)).speed_rpm
+    return ThermalSpeeds(ref, perm, perm - np.abs(speed), tuple(defaults))
