@@ -194,3 +194,48 @@ def test_the_date_is_now_without_source_date_epoch(monkeypatch):
     got = report_date()
     after = datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     assert got in (before, after)
+
+
+def test_margins_name_the_governing_condition_and_the_thermal_speed():
+    """Issue 36 item 4 / issue 33 item 4: a governing point is named by its condition (the row's
+    temperature and speed, not the row number alone), and each bearing has a thermal speed row
+    whose margin is DIN 732's permissible speed minus the speed at the governing row: there the
+    bearing's own oil torque (mu F_a dm/2 + 1e-7 f0 (nu n)^(2/3) dm^3, written out here) times
+    omega equals k_q pi B (D + d) (70 - 20) with k_q = 16e-3/50 W/(mm^2 K) (the default)."""
+    from math import pi
+
+    from studies.usecases.report_margins import margin_rows
+
+    asm = load_assembly(TEMPLATE)
+    res = {"preload_N": np.array([50.0, 80.0, 120.0]),
+           "max_contact_pressure_MPa": np.array([2000.0, 2100.0, 2200.0]),
+           "fit_pressure_inner_MPa": np.array([3.0, 2.0, 1.0]),
+           "fit_pressure_outer_MPa": np.array([1.0, 1.0, 2.0]),
+           "static_safety": np.array([5.0, 4.0, 3.0]), "torque_Nmm": np.array([1.0, 2.0, 3.0]),
+           "axial_force_A_N": np.array([50.0, 80.0, 120.0]),
+           "axial_force_B_N": np.array([50.0, 80.0, 120.0])}
+    cond = {"T_ambient_C": np.array([-20.0, 20.0, 60.0]),
+            "speed_rpm": np.array([1000.0, 2000.0, 3000.0])}
+    quantities = SimpleNamespace(
+        pair=SimpleNamespace(max_contact_pressure_MPa=res["max_contact_pressure_MPa"],
+                             preload_N=res["preload_N"]),
+        summary=SimpleNamespace(static_safety=res["static_safety"]),
+        fits=SimpleNamespace(inner_MPa=res["fit_pressure_inner_MPa"],
+                             outer_MPa=res["fit_pressure_outer_MPa"]))
+    flags = check_columns(evaluate_checks(quantities, assembly_checks(asm)))
+    rows = {r.item: r for r in margin_rows(asm, res, flags, {}, cond)}
+    assert "row 3: T_ambient_C = 60, speed_rpm = 3000" in rows["static safety s0"].margin_text
+    assert "row 1: T_ambient_C = -20" in rows["preload band"].margin_text
+    r = rows["thermal speed, bearing A"]
+    margin, = _numbers(r.margin_text.split(" (")[0])
+    i = int(re.search(r"row (\d)", r.margin_text).group(1)) - 1
+    b, lub = asm.bearing, asm.lubrication
+    dm = 0.5 * (b.bore_mm + b.outside_diameter_mm)
+    n = margin + cond["speed_rpm"][i]
+    nu = float(asm.oil().nu_mm2_s(cond["T_ambient_C"][i]))
+    M = (lub.friction_coefficient * res["axial_force_A_N"][i] * dm / 2
+         + 1e-7 * lub.viscous_factor_f0 * (nu * n) ** (2 / 3) * dm ** 3)
+    Q = 16e-3 / 50.0 * pi * b.width_mm * (b.outside_diameter_mm + b.bore_mm) * 50.0
+    # the margin text carries 4 significant digits: n to +-0.05 %, the power (~ n^(5/3)) to 0.1 %
+    assert M * n * pi / 30e3 == pytest.approx(Q, rel=1e-3)
+    assert "ISO 15312" in r.value_text and "defaults" in r.source

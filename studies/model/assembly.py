@@ -179,24 +179,22 @@ class Lubrication:
     load_term: str = choice("coulomb", "palmgren", default="coulomb",
                             doc='oil: "coulomb" (mu F dm/2) or "palmgren" (f1 F dm)')
     # thermal speed limits (analytic/thermal_speed.py; ISO 15312:2018, DIN 732:2010)
-    reference_f0r: float = number("-", "ISO 15312 oil-bath f0r of the bearing type (thermal "
-                                       "reference speed)", sign=ZERO_OK, default=0.0,
-                                  default_text="0 = 2.0, Palmgren's oil-bath f0 of a ball "
-                                               "bearing (warned); set the maker's value")
-    reference_f1r: float = number("-", "ISO 15312 f1r (thermal reference speed)", sign=ZERO_OK,
-                                  default=0.0, default_text="0 = 0.001 (0.05)^0.33, Palmgren's "
-                                                            "angular-contact f1 at P1r = 0.05 C0")
+    reference_f0r: float = number("-", "ISO 15312 oil-bath f0r of the bearing type; 0: 2.0, "
+                                       "Palmgren's oil-bath f0 of a ball bearing (warned): set "
+                                       "the maker's", sign=ZERO_OK, default=0.0,
+                                  default_text="0 = 2.0 (warned)")
+    reference_f1r: float = number("-", "ISO 15312 f1r; 0: Palmgren's angular-contact f1 at "
+                                       "P1r = 0.05 C0", sign=ZERO_OK, default=0.0,
+                                  default_text="0 = 0.001 (0.05)^0.33")
     heat_transfer_W_per_mm2_K: float = number(
-        "W/(mm^2 K)", "DIN 732 k_q of the bearing seat surface (thermally permissible speed)",
-        sign=ZERO_OK, default=0.0,
-        default_text="0 = q_r / 50 K of ISO 15312 (3.2e-4 up to 50 000 mm^2; warned)")
+        "W/(mm^2 K)", "DIN 732 k_q of the seat surface pi B (D + d); 0: q_r / 50 K of the "
+                      "ISO 15312 reference (3.2e-4 up to 50 000 mm^2; warned)",
+        sign=ZERO_OK, default=0.0, default_text="0 = q_r / 50 K (warned)")
     permissible_temperature_C: float = number("C", "DIN 732: the bearing temperature allowed "
-                                                   "(thermally permissible speed)", sign=SIGNED,
-                                              default=70.0,
-                                              default_text="70, the ISO 15312 reference")
-    ambient_temperature_C: float = number("C", "DIN 732: the temperature the bearing gives its "
-                                               "heat to", sign=SIGNED, default=20.0,
-                                          default_text="20, the ISO 15312 reference")
+                                                   "(70: the ISO 15312 reference)", sign=SIGNED,
+                                              default=70.0)
+    ambient_temperature_C: float = number("C", "DIN 732: where the bearing's heat goes (20: the "
+                                               "ISO 15312 reference)", sign=SIGNED, default=20.0)
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -104,8 +104,10 @@ def headline_mesh_errors(cond: dict, res: dict, fine_pipeline, order: float) -> 
     return out
 
 
-def margin_rows(asm, res: dict, flags: dict, mesh_error: dict[str, float]) -> list[MarginRow]:
-    """The margin table from the result, flag and margin columns (no check recomputed)."""
+def margin_rows(asm, res: dict, flags: dict, mesh_error: dict[str, float],
+                cond: dict | None = None) -> list[MarginRow]:
+    """The margin table from the result, flag and margin columns (no check recomputed), and the
+    thermal speed limits of each bearing (`thermal_speed_rows`, from `cond`)."""
     from studies.model.checks import assembly_checks
 
     checks = {c.name: c for c in assembly_checks(asm)}
@@ -120,12 +122,12 @@ def margin_rows(asm, res: dict, flags: dict, mesh_error: dict[str, float]) -> li
     lo, hi = hl["preload_min"], hl["preload_max"]
     rows.append(MarginRow(
         "preload band", f"{lo.value:.4g} .. {hi.value:.4g} N", "> 0 N",
-        f"{lo.value:.4g} N above 0 (row {lo.row + 1})", status("flag_preload_lost"),
+        f"{lo.value:.4g} N above 0 ({_at(cond, lo.row)})", status("flag_preload_lost"),
         _worst(mesh_error, "preload_min", "preload_max"), checks["preload_lost"].source))
     c, h = checks["max_contact_pressure_MPa"], hl["contact_pressure_max"]
     rows.append(MarginRow(
         "peak contact pressure", f"{h.value:.4g} MPa", f"<= {c.allowable:g} MPa",
-        f"{float(np.asarray(flags['margin_max_contact_pressure_MPa'])[h.row]):+.3f} (row {h.row + 1})",
+        f"{float(np.asarray(flags['margin_max_contact_pressure_MPa'])[h.row]):+.3f} ({_at(cond, h.row)})",
         status("flag_max_contact_pressure_MPa"), mesh_error.get("contact_pressure_max"), c.source))
     for fit in FITS:
         if f"fit_{fit}_min" not in hl:
@@ -138,7 +140,7 @@ def margin_rows(asm, res: dict, flags: dict, mesh_error: dict[str, float]) -> li
         rows.append(MarginRow(
             f"{fit} fit ({state})", f"{h.value:.4g} .. {float(np.max(p)):.4g} MPa",
             "> 0 MPa" if chk else "clearance fit: may open",
-            f"{h.value:.4g} MPa above 0 (row {h.row + 1})" if chk else "",
+            f"{h.value:.4g} MPa above 0 ({_at(cond, h.row)})" if chk else "",
             status(f"flag_fit_open_{fit}") if chk else "no limit",
             _worst(mesh_error, f"fit_{fit}_min", f"fit_{fit}_max"),
             chk.source if chk else "designed with clearance"))
@@ -147,17 +149,85 @@ def margin_rows(asm, res: dict, flags: dict, mesh_error: dict[str, float]) -> li
         lo, hi = hl["clamp_force_min"], hl["clamp_force_max"]
         rows.append(MarginRow(
             "clamp force", f"{lo.value:.4g} .. {hi.value:.4g} N", "> the axial load (N)",
-            f"{h.value:.4g} N left (row {h.row + 1})", status("flag_clamp_open"),
+            f"{h.value:.4g} N left ({_at(cond, h.row)})", status("flag_clamp_open"),
             _worst(mesh_error, "clamp_force_min", "clamp_force_max"), c.source))
     c, h = checks["static_safety"], hl["static_safety_min"]
     rows.append(MarginRow(
         "static safety s0", f"{h.value:.4g}", f">= {c.allowable:g}",
-        f"{float(np.asarray(flags['margin_static_safety'])[h.row]):+.3f} (row {h.row + 1})",
+        f"{float(np.asarray(flags['margin_static_safety'])[h.row]):+.3f} ({_at(cond, h.row)})",
         status("flag_static_safety"), mesh_error.get("static_safety_min"), c.source))
+    rows += thermal_speed_rows(asm, cond, res)
     lo, hi = hl["torque_min"], hl["torque_max"]
     rows.append(MarginRow(
         "friction torque", f"{lo.value:.4g} .. {hi.value:.4g} N mm", "none given", "",
         "no limit", _worst(mesh_error, "torque_min", "torque_max"), "no torque limit in the assembly"))
+    return rows
+
+
+#: the condition columns that name an operating point, in the order they are quoted
+CONDITION_NAMES = ("time_s", "T_ambient_C", "T_shaft_C", "T_inner_ring_C", "T_outer_ring_C",
+                   "T_housing_C", "speed_rpm", "axial_load_N", "radial_load_N")
+
+
+def _at(cond: dict | None, i: int) -> str:
+    """The operating point of row i (0-based) by its condition, e.g. "row 3: T_ambient_C = 60,
+    T_outer_ring_C = 72" (the columns of CONDITION_NAMES that vary over the rows, else the first
+    given): the governing point as the engineer set it, not only its row number."""
+    cond = cond or {}
+    given = [c for c in CONDITION_NAMES if c in cond and np.size(cond[c]) > i]
+    varying = [c for c in given if np.ptp(np.asarray(cond[c], float)) > 0] or given[:1]
+    parts = [f"{c} = {float(np.asarray(cond[c], float)[i]):.4g}" for c in varying]
+    return f"row {i + 1}" + (": " + ", ".join(parts) if parts else "")
+
+
+def _row_values(cond: dict, n: int, *names, default: float) -> np.ndarray:
+    """The first of the condition columns `names` present, else `default`, as (n,) floats."""
+    for c in names:
+        if c in cond:
+            return np.asarray(cond[c], float) * np.ones(n)
+    return np.full(n, float(default))
+
+
+def thermal_speed_rows(asm, cond: dict | None, res: dict) -> list[MarginRow]:
+    """One margin row per bearing (A, B): the ISO 15312 thermal reference speed and the DIN 732
+    thermally permissible speed (`studies.usecases.bearing_single.thermal_speeds`, the bearing
+    command's route) at each operating point: the bearing's axial force (result
+    `axial_force_<J>_N`), its oil at the outer ring's temperature (T_outer_ring_C, else
+    T_ambient_C: the standards' bearing temperature is the stationary outer ring's) and the speed
+    (speed_rpm, else [lubrication] speed_rpm). margin_speed_rpm = permissible - speed at the
+    governing point (the smallest margin); without an oil only the reference speed."""
+    from analytic.bearing.geometry import BearingGeometry
+    from studies.usecases.bearing_single import thermal_speeds
+
+    cond = cond or {}
+    n = len(np.asarray(res["preload_N"]))
+    lub = asm.lubrication
+    speed = _row_values(cond, n, "speed_rpm", default=lub.speed_rpm)
+    T_oil = _row_values(cond, n, "T_outer_ring_C", "T_ambient_C", default=20.0)
+    g = BearingGeometry.from_spec(asm.bearing, asm.materials)
+    rows = []
+    for J in ("A", "B"):
+        if f"axial_force_{J}_N" not in res:
+            continue
+        ts = thermal_speeds(asm.bearing, g, lub, asm.oil(), res[f"axial_force_{J}_N"], T_oil,
+                            speed)
+        ref = f"reference {ts.reference.speed_rpm:.4g} rpm (ISO 15312)"
+        src = "ISO 15312:2018; DIN 732:2010, friction ISO/TR 14179-2"
+        if ts.defaults:
+            src += "; defaults: " + ", ".join(ts.defaults)
+        margin = ts.margin_speed_rpm
+        if not np.any(np.isfinite(margin)):
+            rows.append(MarginRow(f"thermal speed, bearing {J}", ref, "no oil: no DIN 732 limit",
+                                  "", "no limit", None, src))
+            continue
+        i = int(np.nanargmin(margin))
+        perm = ts.permissible_speed_rpm
+        rows.append(MarginRow(
+            f"thermal speed, bearing {J}",
+            f"{float(np.min(speed)):.4g} .. {float(np.max(speed)):.4g} rpm; {ref}",
+            f"<= {float(np.nanmin(perm)):.4g} .. {float(np.nanmax(perm)):.4g} rpm (DIN 732)",
+            f"{margin[i]:+.4g} rpm ({_at(cond, i)})",
+            "PASS" if margin[i] >= 0 else f"FAIL ({int(np.sum(margin < 0))} of {n})", None, src))
     return rows
 
 
@@ -457,7 +527,7 @@ def front_lines(asm, cond: dict, res: dict, flags: dict, conv: dict, prov: dict,
              f"{asm.operating.T_min_C:g} .. {asm.operating.T_max_C:g} C, `[operating]`")
     path = prov.get("inputs", {}).get("assembly", {}).get("path")
     return ([f"Date: {report_date()}", ""]
-            + margin_lines(margin_rows(asm, res, flags, err), n, where)
+            + margin_lines(margin_rows(asm, res, flags, err, cond), n, where)
             + pedigree_lines(asm, Path(path) if path else None)
             + assumption_lines(asm)
             + credibility_lines(conv, err, ORDER, tolerance=tolerance_lines(asm, res, worst))
