@@ -5,6 +5,7 @@ displacement (mm) and temperature (C); cell data: stresses (MPa) and the part in
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -80,6 +81,46 @@ def ball_outline_rz_mm(r_mm: float, z_mm: float, diameter_mm: float, n: int = 96
     return np.column_stack([r_mm + 0.5 * diameter_mm * np.cos(t), z_mm + 0.5 * diameter_mm * np.sin(t)])
 
 
+#: the percentile of a stress field's element values that sets the top of its colour range
+COLOUR_PERCENTILE = 99.0
+
+
+@dataclass(frozen=True)
+class ColourRange:
+    """Colour range of one field image: lo, hi (the field's unit); clipped: whether hi lies
+    below the field's maximum (the values above it drawn in the top colour); max_value: the
+    field's maximum."""
+    lo: float
+    hi: float
+    clipped: bool
+    max_value: float
+
+
+def colour_range(values: np.ndarray, percentile: float | None = COLOUR_PERCENTILE,
+                 weights: np.ndarray | None = None) -> ColourRange:
+    """Colour range of a field: from its minimum to the `percentile`-th percentile of the values,
+    each weighted by `weights` (the element areas of a stress field: a mesh graded towards a
+    corner puts many small elements there, which must not count for more of the section than
+    they cover). The few elements at a re-entrant corner, where the elastic stress is singular
+    and grows without bound as the mesh is refined (Williams 1952), would otherwise set the whole
+    scale and leave the section one colour. percentile None: the full range."""
+    v = np.asarray(values, float)
+    w = np.ones_like(v) if weights is None else np.asarray(weights, float)
+    keep = np.isfinite(v)
+    v, w = v[keep], w[keep]
+    lo, top = float(v.min()), float(v.max())
+    if percentile is None:
+        hi = top
+    else:
+        order = np.argsort(v)
+        cum = np.cumsum(w[order])
+        k = int(np.searchsorted(cum, percentile / 100.0 * cum[-1]))
+        hi = float(v[order][min(k, v.size - 1)])
+    if hi <= lo:
+        hi = top
+    return ColourRange(lo, hi, hi < top, top)
+
+
 def render_fields(out_dir: Path, stem: str, model: StackModel, u: np.ndarray,
                   cell_data: dict[str, np.ndarray], title: str,
                   T_vertex_C: np.ndarray | None = None, exaggeration: float | None = None,
@@ -110,6 +151,8 @@ def render_fields(out_dir: Path, stem: str, model: StackModel, u: np.ndarray,
                    "displacement (um)", xy + exaggeration * disp))
     for k, v in cell_data.items():
         fields.append((k, "cell", v, k.replace("_MPa", " (MPa)"), xy))
+    p0, p1, p2 = (xy[model.mesh.t[k]] for k in range(3))
+    areas = 0.5 * np.abs(np.cross(p1 - p0, p2 - p0))       # element areas of the section, mm^2
     paths = []
     for name, kind, values, label, pts in fields:
         grid = _grid(model, pts)
@@ -123,7 +166,10 @@ def render_fields(out_dir: Path, stem: str, model: StackModel, u: np.ndarray,
         with deferred_signals():
             p = pv.Plotter(off_screen=True, window_size=(800, 640))
             try:
-                _draw(p, grid, name, label, pts, model, title, exaggeration, balls_rz_d_mm, extent)
+                rng = (colour_range(values, COLOUR_PERCENTILE, areas) if kind == "cell"
+                       else colour_range(values, None))
+                _draw(p, grid, name, label, pts, model, title, exaggeration, balls_rz_d_mm, extent,
+                      rng)
                 p.screenshot(str(path))
             finally:
                 p.close()
@@ -132,13 +178,17 @@ def render_fields(out_dir: Path, stem: str, model: StackModel, u: np.ndarray,
 
 
 def _draw(p, grid, name: str, label: str, pts: np.ndarray, model: StackModel, title: str,
-          exaggeration: float, balls_rz_d_mm, extent: float) -> None:
-    """Put one field of `render_fields` on the plotter `p`: the field, the outline, the balls, the
-    part names, a scale bar (mm; `extent`: the undeformed section's size) and the title."""
+          exaggeration: float, balls_rz_d_mm, extent: float, rng: ColourRange) -> None:
+    """Put one field of `render_fields` on the plotter `p`: the field in the colour range `rng`
+    (a clipped range says so on its bar: "top = 99th percentile, max ..."), the outline, the
+    balls, the part names, a scale bar (mm; `extent`: the undeformed section's size) and the
+    title."""
     import pyvista as pv  # noqa: PLC0415 -- deferred: pyvista/VTK load only for images
 
-    p.add_mesh(grid, scalars=name, cmap="viridis", show_edges=False,
-               scalar_bar_args={"title": label, "vertical": True, "fmt": "%.3g",
+    bar = (label if not rng.clipped else
+           f"{label}\ntop: {COLOUR_PERCENTILE:g}th pct\nmax {rng.max_value:.3g}")
+    p.add_mesh(grid, scalars=name, cmap="viridis", show_edges=False, clim=(rng.lo, rng.hi),
+               scalar_bar_args={"title": bar, "vertical": True, "fmt": "%.3g",
                                 "position_x": 0.78, "position_y": 0.15, "width": 0.06,
                                 "height": 0.7, "title_font_size": 16, "label_font_size": 14})
     outline = _grid(model, pts).extract_feature_edges(boundary_edges=True, feature_edges=False,
@@ -152,9 +202,9 @@ def _draw(p, grid, name: str, label: str, pts: np.ndarray, model: StackModel, ti
     p.add_point_labels(np.column_stack([where, np.full(len(where), 0.01 * extent)]), names,
                        font_size=11, point_size=1, shape_opacity=0.6, always_visible=True,
                        show_points=False)
-    bar = scale_bar_mm(extent)
+    ruler = scale_bar_mm(extent)
     x0, y0 = pts[:, 0].min(), pts[:, 1].min() - 0.06 * extent
-    p.add_ruler([x0, y0, 0.0], [x0 + bar, y0, 0.0], title=f"{bar:g} mm", number_labels=2,
+    p.add_ruler([x0, y0, 0.0], [x0 + ruler, y0, 0.0], title=f"{ruler:g} mm", number_labels=2,
                 show_labels=False, font_size_factor=0.8, label_size_factor=0.8)
     shape = f", deformed shape x{exaggeration:g}" if name == "displacement_um" else ""
     p.add_text(f"{title}: {label}{shape}", font_size=10)

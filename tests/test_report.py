@@ -125,3 +125,47 @@ def test_report_bad_conditions_is_one_line(tmp_path, capsys):
     assert main(["report", str(TEMPLATE), str(bad), "--out", str(tmp_path / "r")]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "is not a number" in err[0] and not (tmp_path / "r").exists()
+
+
+# ------------------------------------------- the case that drives the design (issue 36 item 4)
+def test_design_rows_are_the_governing_points_of_a_gradient_table():
+    """With a part's own temperature column the report draws its fields and speed effects at the
+    rows of the lowest and highest preload and of the highest contact pressure; a uniform sweep
+    keeps the coldest / reference / hottest temperatures (None)."""
+    res = {"preload_N": np.array([300.0, 50.0, 900.0, 400.0]),
+           "max_contact_pressure_MPa": np.array([1000.0, 800.0, 1500.0, 1600.0])}
+    grad = {"T_ambient_C": np.zeros(4), "T_inner_ring_C": np.full(4, 12.0)}
+    assert assembly_report.design_rows(grad, res) == [1, 2, 3]
+    assert assembly_report.design_rows({"T_ambient_C": np.zeros(4)}, res) is None
+
+
+def test_field_images_and_speed_rows_carry_the_gradient(tmp_path):
+    """A gradient row (inner ring and shaft 12 K above the rest): its VTU holds each part at its
+    own temperature (inner rings and shaft at +12 K, housing at the ambient), and the speed
+    section's row at rest is the simulate route's result for that row at speed 0 (the uniform
+    temperature would give another preload: the gradient moves the preload)."""
+    import meshio
+
+    from studies.usecases.report_tools import field_images
+
+    asm = load_assembly(TEMPLATE)
+    pl = Pipeline.shared(asm, mesh_factor=3.0, progress=lambda s: None)
+    row = {"T_ambient_C": np.array([40.0]), "T_inner_ring_C": np.array([52.0]),
+           "T_shaft_C": np.array([52.0])}
+    paths = field_images(tmp_path, pl, row, "grad", "gradient")
+    assert any(p.name == "grad_von_mises_MPa.png" for p in paths)
+    m = meshio.read(tmp_path / "grad.vtu")
+    T = np.asarray(m.point_data["temperature_C"], float)
+    part = pl.model.part_of
+    tri = pl.model.mesh.t
+    inner_only = np.setdiff1d(tri[:, part == "inner_ring_A"], tri[:, part != "inner_ring_A"])
+    housing_only = np.setdiff1d(tri[:, part == "housing"], tri[:, part != "housing"])
+    assert np.all(T[inner_only] == 52.0) and np.all(T[housing_only] == 40.0)
+    lines = assembly_report.speed_lines(asm, pl, row, ["row 7"])
+    table = _md_table("\n".join(lines), "operating point")
+    ref = to_columns(simulate_table(asm, {**row, "speed_rpm": np.zeros(1)}, pipeline=pl))
+    uni = to_columns(simulate_table(asm, {"T_ambient_C": np.array([40.0]),
+                                          "speed_rpm": np.zeros(1)}, pipeline=pl))
+    assert table[0]["operating point"] == "row 7"   # the label given
+    assert float(table[0]["preload at rest (N)"]) == pytest.approx(ref["preload_N"][0], rel=1e-3)
+    assert abs(ref["preload_N"][0] - uni["preload_N"][0]) > 1e-2 * ref["preload_N"][0]

@@ -239,3 +239,86 @@ def test_margins_name_the_governing_condition_and_the_thermal_speed():
     # the margin text carries 4 significant digits: n to +-0.05 %, the power (~ n^(5/3)) to 0.1 %
     assert M * n * pi / 30e3 == pytest.approx(Q, rel=1e-3)
     assert "ISO 15312" in r.value_text and "defaults" in r.source
+
+
+def test_margins_hold_the_land_and_the_preload_upper_limit():
+    """Issue 36 item 4: the Margins table has the contact ellipse's land margin (inner and outer,
+    FAIL where it is negative: the ellipse truncated) and the preload's upper limit, the static
+    load rating C0 of ISO 76 (`analytic.safety`, tested against ISO 76 in tests/test_safety.py),
+    with margin C0 / max preload - 1 at the hottest row here."""
+    from analytic.safety import static_load_rating_C0_N
+    from studies.usecases.report_margins import margin_rows
+
+    asm = load_assembly(TEMPLATE)
+    res = {"preload_N": np.array([50.0, 80.0, 120.0]),
+           "max_contact_pressure_MPa": np.array([2000.0, 2100.0, 2200.0]),
+           "fit_pressure_inner_MPa": np.array([3.0, 2.0, 1.0]),
+           "fit_pressure_outer_MPa": np.array([1.0, 1.0, 2.0]),
+           "static_safety": np.array([5.0, 4.0, 3.0]), "torque_Nmm": np.array([1.0, 2.0, 3.0]),
+           "land_margin_inner_deg": np.array([3.0, 1.0, -0.5]),
+           "land_margin_outer_deg": np.array([4.0, 3.0, 2.5])}
+    cond = {"T_ambient_C": np.array([-20.0, 20.0, 60.0])}
+    quantities = SimpleNamespace(
+        pair=SimpleNamespace(max_contact_pressure_MPa=res["max_contact_pressure_MPa"],
+                             preload_N=res["preload_N"]),
+        summary=SimpleNamespace(static_safety=res["static_safety"]),
+        fits=SimpleNamespace(inner_MPa=res["fit_pressure_inner_MPa"],
+                             outer_MPa=res["fit_pressure_outer_MPa"]))
+    flags = check_columns(evaluate_checks(quantities, assembly_checks(asm)))
+    rows = {r.item.split(" (")[0]: r for r in margin_rows(asm, res, flags, {}, cond)}
+    inner, outer = rows["inner land"], rows["outer land"]
+    assert inner.status == "FAIL (1 of 3)" and "T_ambient_C = 60" in inner.margin_text
+    assert _numbers(inner.margin_text)[0] == -0.5
+    assert outer.status == "PASS" and _numbers(outer.margin_text)[0] == 2.5
+    b = asm.bearing
+    C0 = float(static_load_rating_C0_N(b.ball_count, b.ball_diameter_mm, b.pitch_diameter_mm,
+                                       b.contact_angle_free_deg))
+    up = rows["preload upper limit"]
+    assert up.status == "PASS" and _numbers(up.allowable_text)[-1] == pytest.approx(C0, rel=1e-3)
+    assert _numbers(up.margin_text)[0] == pytest.approx(C0 / 120.0 - 1.0, abs=1e-3)
+
+
+def test_stress_colour_range_is_not_set_by_a_singular_corner():
+    """Issue 36 item 4: a von Mises field of 0..100 MPa with a re-entrant corner's singular value
+    (944 MPa in a few elements, 0.3 % of them) is drawn from its minimum to its 99th percentile
+    (about 99 MPa: the section keeps its colours), the range marked clipped with the true
+    maximum; a field without an outlier keeps (nearly) its full range."""
+    from fem.fields import colour_range
+
+    v = np.linspace(0.0, 100.0, 2000)
+    v[:6] = [944.0, 700.0, 500.0, 400.0, 300.0, 250.0]
+    r = colour_range(v)
+    assert r.clipped and r.max_value == 944.0 and r.lo == pytest.approx(0.0, abs=0.5)
+    assert 95.0 < r.hi <= 100.0
+    full = colour_range(v, None)
+    assert not full.clipped and full.hi == 944.0
+    # a mesh graded into the corner: 300 tiny elements (0.1 % of the area) at 500..944 MPa would
+    # be 13 % of the elements; weighted by area they stay out of the colour range
+    w = np.concatenate([np.full(300, 1e-3 / 300 * 2000 / 0.999), np.ones(2000)])
+    vv = np.concatenate([np.linspace(500.0, 944.0, 300), np.linspace(0.0, 100.0, 2000)])
+    assert colour_range(vv).hi > 500.0                            # by count: the corner wins
+    assert 95.0 < colour_range(vv, weights=w).hi <= 100.0         # by area: the section does
+
+
+def test_wide_tables_split_so_no_header_breaks_inside_a_word():
+    """Issue 36 item 4: the results table of a rig with three fits (15 columns) is wider than
+    the page; the PDF draws it as column groups, each within the text width at the width its
+    longest unbreakable piece needs (a header wraps only after an underscore or a space), the
+    row label repeated, every column once."""
+    from studies.usecases.report_pdf import TEXT_WIDTH_PT, column_groups, column_width_pt
+
+    head = ["ambient temperature (C)", "preload_N", "contact_angle_deg", "torque_Nmm",
+            "max_contact_pressure_MPa", "interference_inner_um", "fit_pressure_inner_MPa",
+            "fit_pressure_inner_lame_MPa", "interference_outer_um", "fit_pressure_outer_MPa",
+            "fit_pressure_outer_lame_MPa", "interference_sleeve_um", "fit_pressure_sleeve_MPa",
+            "fit_pressure_sleeve_lame_MPa", "axial_stiffness_N_per_um"]
+    rows = [head] + [["-45", "1.327e+04", "12.97", "3392", "2840", "-37.6", "0", "0", "96.96",
+                      "4.842", "3.134", "-82.32", "0", "0", "385.2"]]
+    w = [column_width_pt([r[j] for r in rows]) for j in range(len(head))]
+    assert sum(w) > TEXT_WIDTH_PT                       # one table would not fit
+    groups = column_groups(rows)
+    assert len(groups) > 1 and all(g[0] == 0 for g in groups)
+    assert sorted(j for g in groups for j in g[1:]) == list(range(1, len(head)))
+    assert all(sum(w[j] for j in g) <= TEXT_WIDTH_PT for g in groups)
+    # "interference_" (13 characters) needs about 13 x 0.58 x 6.5 pt + insets = 54 pt
+    assert column_width_pt(["interference_inner_um"]) == pytest.approx(13 * 0.58 * 6.5 + 5.0)

@@ -24,6 +24,7 @@ from studies.model.columns import to_columns
 from studies.model.pipeline import SPEED_SEARCH_MAX_RPM, Pipeline, simulate_table, table_inputs
 from studies.model.table import write_table
 from analytic import lame
+from fem.fields import COLOUR_PERCENTILE
 from analytic.bearing.land import land_diameters_mm
 from studies.model.tolerances import fits_of, has_tolerances
 from studies.usecases import fit_naming, report_margins, report_pdf
@@ -71,11 +72,22 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, progress=prin
     x, xlabel = _x_axis(cond, n)
     plots = _plots(out, asm, x, xlabel, res)
     progress("report: field images ...")
-    temps = field_temperatures_C or sorted({asm.operating.T_min_C, asm.T_ref_C, asm.operating.T_max_C})
-    images = {T: field_images(out, pl, T, f"field_{T:+.0f}C", f"{asm.name} at {T:g} C")
-              for T in temps}
+    design = None if field_temperatures_C else design_rows(cond, res)
+    if design is None:
+        temps = field_temperatures_C or sorted({asm.operating.T_min_C, asm.T_ref_C,
+                                                asm.operating.T_max_C})
+        images = {f"{T:g} C": field_images(out, pl, {"T_ambient_C": np.array([T])},
+                                           f"field_{T:+.0f}C", f"{asm.name} at {T:g} C")
+                  for T in temps}
+    else:
+        images = {report_margins.condition_text(cond, i): field_images(
+                      out, pl, {k: v[i:i + 1] for k, v in cond.items()}, f"field_row{i + 1}",
+                      f"{asm.name}, row {i + 1}") for i in design}
     progress("report: speed effects (fit-loosening speeds) ...")
-    speed = speed_lines(asm, pl)
+    speed = speed_lines(asm, pl, None if design is None else
+                        {k: v[design] for k, v in cond.items()},
+                        None if design is None else
+                        [report_margins.condition_text(cond, i) for i in design])
     progress("report: discretisation error of this mesh (three levels) ...")
     conv = mesh_convergence_case(asm, factors=tuple(mesh_factor * f for f in (2.0, 1.0, 0.5)),
                                  used=1)
@@ -93,20 +105,41 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, progress=prin
     return warnings + [v.summary(n, cond) for v in violations]
 
 
-def speed_lines(asm, pl: Pipeline) -> list[str]:
-    """Markdown section "Speed": at the coldest, reference and hottest temperature (nominal fits),
-    the speed at which each inner fit opens (`Pipeline.fit_open_speed_rpm`) and the inner fit
+def design_rows(cond: dict, res: dict) -> list[int] | None:
+    """The operating points that drive the design when the conditions carry more than a uniform
+    temperature (a part's own T_<part>_C column: a gradient): the rows of the lowest and the
+    highest preload and of the highest contact pressure (0-based, sorted, once each). None for a
+    uniform-temperature sweep (the field images stay at the coldest, reference and hottest
+    temperature)."""
+    from studies.model.inputs import PART_COLUMNS
+
+    if not any(c in cond for c in PART_COLUMNS):
+        return None
+    p = np.asarray(res["preload_N"], float)
+    q = np.asarray(res["max_contact_pressure_MPa"], float)
+    return sorted({int(np.argmin(p)), int(np.argmax(p)), int(np.argmax(q))})
+
+
+def speed_lines(asm, pl: Pipeline, rows: dict | None = None,
+                labels: list[str] | None = None) -> list[str]:
+    """Markdown section "Speed": at the coldest, reference and hottest temperature (nominal fits)
+    or, given `rows` (conditions columns of the operating points that drive the design,
+    `design_rows`, each labelled by `labels`), at those points with their part temperatures, the
+    speed at which each inner fit opens (`Pipeline.fit_open_speed_rpm`) and the inner fit
     pressure (FE, and the two-cylinder rotating Lamé value beside it), the preload and the radial
     groove-centre shift of bearing A at rest and at the highest speed (`[operating]
     speed_max_rpm`, else `[lubrication] speed_rpm`)."""
     op = asm.operating
     n_max = op.max_speed_rpm(asm.lubrication.speed_rpm)
-    T = np.array(sorted({op.T_min_C, asm.T_ref_C, op.T_max_C}), float)
-    TT = np.repeat(T, 2)
-    inp = table_inputs(asm, {"T_ambient_C": TT, "speed_rpm": np.tile([0.0, n_max], T.size)})
+    if rows is None:
+        T = np.array(sorted({op.T_min_C, asm.T_ref_C, op.T_max_C}), float)
+        rows, labels = {"T_ambient_C": T}, [f"{t:g}" for t in T]
+    m = len(labels)
+    pairs = {k: np.repeat(np.asarray(v, float), 2) for k, v in rows.items() if k != "speed_rpm"}
+    inp = table_inputs(asm, {**pairs, "speed_rpm": np.tile([0.0, n_max], m)})
     res = pl.run(inp)
     r = to_columns(res, flags=False)
-    n_open = pl.fit_open_speed_rpm(inp.take(np.arange(0, TT.size, 2)))
+    n_open = pl.fit_open_speed_rpm(inp.take(np.arange(0, 2 * m, 2)))
     ms, mr = pl.materials["shaft"], pl.materials["inner_ring_A"]
     n_lame = 60.0 / (2.0 * np.pi) * lame.fit_open_speed_rad_s(
         asm.shaft.bore_diameter_mm / 2, asm.shaft.seat_diameter_mm / 2,
@@ -117,14 +150,15 @@ def speed_lines(asm, pl: Pipeline) -> list[str]:
         return f"> {SPEED_SEARCH_MAX_RPM:.0e}" if np.isinf(v) else f"{v:.0f}"
 
     rows = []
-    for i, Tc in enumerate(T):
+    for i, label in enumerate(labels):
         a, b = 2 * i, 2 * i + 1
-        rows.append([f"{Tc:g}"] + [rpm(v) for v in n_open.speed_rpm[i]] + [rpm(n_lame[i])]
+        rows.append([label] + [rpm(v) for v in n_open.speed_rpm[i]] + [rpm(n_lame[i])]
                     + [f"{r['fit_pressure_inner_MPa'][a]:.4g}", f"{r['fit_pressure_inner_MPa'][b]:.4g}",
                        f"{r['fit_pressure_inner_lame_MPa'][b]:.4g}",
                        f"{r['preload_N'][a]:.4g}", f"{r['preload_N'][b]:.4g}",
                        f"{r['groove_shift_dr_A_um'][b] - r['groove_shift_dr_A_um'][a]:+.3g}"])
-    head = (["T (C)"] + [f"{k.replace('fit_', '')} opens at (rpm)" for k in n_open.names]
+    head = ([("T (C)" if labels and labels[0][0] != "r" else "operating point")]
+            + [f"{k.replace('fit_', '')} opens at (rpm)" for k in n_open.names]
             + ["Lamé opens at (rpm)"]
             + ["inner fit p at rest (MPa)", f"at {n_max:g} rpm (MPa)", "Lamé at speed (MPa)",
                "preload at rest (N)", f"at {n_max:g} rpm (N)", "dr_A change (um)"])
@@ -292,12 +326,18 @@ def _text(asm, prov, cond, r, result, violations, warnings, plots, images, conv,
               f"{np.min(r['land_margin_outer_deg']):.1f} deg (outer); negative would mean the "
               "ellipse is truncated (analytic/bearing/land.py).", ""]
     lines += rig_sections
+    where = ("at the coldest, reference and hottest temperature" if all(
+        h.endswith(" C") for h in images) else "at the operating points that drive the design "
+        "(lowest and highest preload, highest contact pressure), each with its own part "
+        "temperatures and speed as given")
     lines += ["## Field images", "",
-              "Displacement (deformed shape, exaggeration in the title), hoop and von Mises stress "
-              "at the coldest, reference and hottest temperature, nominal fits; the VTU files open "
-              "in ParaView.", ""]
-    for T, paths in images.items():
-        lines += [f"### {T:g} C", "", " ".join(f"![{p.stem}]({p.name})" for p in paths), ""]
+              f"Displacement (deformed shape, exaggeration in the title), hoop and von Mises stress "
+              f"{where}, nominal fits; the VTU files open in ParaView. The stress colour bars end "
+              f"at the {COLOUR_PERCENTILE:g}th percentile of the element values (the bar states the "
+              "maximum): the elastic stress at a re-entrant corner is singular and would otherwise "
+              "set the scale and leave the section one colour.", ""]
+    for head, paths in images.items():
+        lines += [f"### {head}", "", " ".join(f"![{p.stem}]({p.name})" for p in paths), ""]
     from studies.usecases.verify import discretisation_lines
 
     lines += ["## Discretisation error of this mesh", ""] + discretisation_lines(conv)

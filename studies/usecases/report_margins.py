@@ -27,6 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
+from studies.model.inputs import CONDITION_COLUMNS as CONDITION_NAMES
 from studies.usecases.report_tools import md_table
 
 #: the packages whose versions the "Environment" section lists
@@ -129,6 +130,7 @@ def margin_rows(asm, res: dict, flags: dict, mesh_error: dict[str, float],
         "peak contact pressure", f"{h.value:.4g} MPa", f"<= {c.allowable:g} MPa",
         f"{float(np.asarray(flags['margin_max_contact_pressure_MPa'])[h.row]):+.3f} ({_at(cond, h.row)})",
         status("flag_max_contact_pressure_MPa"), mesh_error.get("contact_pressure_max"), c.source))
+    rows += preload_limit_rows(asm, res, cond) + land_rows(asm, res, cond)
     for fit in FITS:
         if f"fit_{fit}_min" not in hl:
             continue
@@ -164,9 +166,49 @@ def margin_rows(asm, res: dict, flags: dict, mesh_error: dict[str, float],
     return rows
 
 
-#: the condition columns that name an operating point, in the order they are quoted
-CONDITION_NAMES = ("time_s", "T_ambient_C", "T_shaft_C", "T_inner_ring_C", "T_outer_ring_C",
-                   "T_housing_C", "speed_rpm", "axial_load_N", "radial_load_N")
+def preload_limit_rows(asm, res: dict, cond: dict | None) -> list[MarginRow]:
+    """The preload's upper limit: the largest preload against the bearing's basic static load
+    rating C0 (ISO 76:2006 eq. 1 from the bearing's geometry, `analytic.safety`; the limit
+    `[preload] assembled_N` is held to), margin C0 / max - 1 at the governing point."""
+    from analytic.safety import static_load_rating_C0_N
+
+    b = asm.bearing
+    C0 = float(static_load_rating_C0_N(b.ball_count, b.ball_diameter_mm, b.pitch_diameter_mm,
+                                       b.contact_angle_free_deg))
+    p = np.asarray(res["preload_N"], float)
+    i = int(np.argmax(p))
+    n_over = int(np.sum(p > C0))
+    return [MarginRow("preload upper limit (C0)", f"max {p[i]:.4g} N", f"<= C0 = {C0:.4g} N",
+                      f"{C0 / p[i] - 1.0:+.3f} ({_at(cond, i)})" if p[i] > 0 else "",
+                      "PASS" if n_over == 0 else f"FAIL ({n_over} of {p.size})", None,
+                      "ISO 76:2006 eq. 1 (C0 from the bearing's geometry)")]
+
+
+def land_rows(asm, res: dict, cond: dict | None) -> list[MarginRow]:
+    """The contact ellipse against the groove edge (land), inner and outer: the smallest angle
+    between the ellipse's edge and the land over the operating points (`land_margin_<side>_deg`,
+    analytic/bearing/land.py); below 0 the ellipse is truncated (FAIL)."""
+    rows = []
+    for side in ("inner", "outer"):
+        col = f"land_margin_{side}_deg"
+        if col not in res:
+            continue
+        m = np.asarray(res[col], float)
+        i = int(np.argmin(m))
+        bad = int(np.sum(m < 0))
+        given = getattr(asm.bearing, f"{side}_land_diameter_mm") > 0
+        rows.append(MarginRow(
+            f"{side} land (contact ellipse edge)", f"{m[i]:.3g} .. {float(np.max(m)):.3g} deg",
+            "> 0 deg (ellipse inside the groove)", f"{m[i]:.3g} deg ({_at(cond, i)})",
+            "PASS" if bad == 0 else f"FAIL ({bad} of {m.size})", None,
+            "analytic/bearing/land.py; land diameter "
+            + ("from [bearing]" if given else "inferred from the ring section")))
+    return rows
+
+
+def condition_text(cond: dict | None, i: int) -> str:
+    """Row i (0-based) named by its condition (`_at`): "row 3: T_ambient_C = 60, ..."."""
+    return _at(cond, i)
 
 
 def _at(cond: dict | None, i: int) -> str:
@@ -224,7 +266,8 @@ def thermal_speed_rows(asm, cond: dict | None, res: dict) -> list[MarginRow]:
         perm = ts.permissible_speed_rpm
         rows.append(MarginRow(
             f"thermal speed, bearing {J}",
-            f"{float(np.min(speed)):.4g} .. {float(np.max(speed)):.4g} rpm; {ref}",
+            (f"{float(np.min(speed)):.4g} .. {float(np.max(speed)):.4g} rpm" if np.ptp(speed) > 0
+             else f"{float(speed[0]):.4g} rpm") + f"; {ref}",
             f"<= {float(np.nanmin(perm)):.4g} .. {float(np.nanmax(perm)):.4g} rpm (DIN 732)",
             f"{margin[i]:+.4g} rpm ({_at(cond, i)})",
             "PASS" if margin[i] >= 0 else f"FAIL ({int(np.sum(margin < 0))} of {n})", None, src))

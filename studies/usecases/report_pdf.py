@@ -60,11 +60,55 @@ def _breakable(cell: str) -> str:
     return cell.replace("_", "_\u200b")
 
 
-def _table(rows: list[list[str]]) -> str:
+#: the page's text width (A4, 210 mm less 2 x 1.4 cm margins), pt
+TEXT_WIDTH_PT = (210.0 - 28.0) / 25.4 * 72.0
+#: a table's type size (PREAMBLE) and the cell inset on each side, pt
+TABLE_FONT_PT, TABLE_INSET_PT = 6.5, 2.5
+#: the widest average advance of a glyph of the bold header type, in em (the default serif's
+#: bold lower case and digits stay below it; an overestimate only splits a table sooner)
+GLYPH_EM = 0.58
+
+
+def _pieces(cell: str) -> list[str]:
+    """The pieces of a cell that cannot wrap: words, split after each underscore (`_breakable`)."""
+    return [p for p in re.split(r"\s+|(?<=_)", cell) if p]
+
+
+def column_width_pt(cells: list[str]) -> float:
+    """The narrowest width (pt) a column needs so that none of its pieces (`_pieces`) is broken
+    or runs into the next column: the longest piece at GLYPH_EM per character, plus the insets."""
+    longest = max((len(p) for c in cells for p in _pieces(c)), default=0)
+    return longest * GLYPH_EM * TABLE_FONT_PT + 2.0 * TABLE_INSET_PT
+
+
+def column_groups(rows: list[list[str]]) -> list[list[int]]:
+    """The columns of a table split into groups that each fit the text width (`column_width_pt`),
+    the first column (the row's label) repeated at the head of each group; one group when the
+    table fits."""
     n = len(rows[0])
-    head = ", ".join(f"[#strong({_str(_breakable(c))})]" for c in rows[0])
-    cells = ", ".join(f"[{inline(_breakable(c))}]" for r in rows[1:] for c in (r + [""] * n)[:n])
-    return f"#table(columns: {n}, table.header({head}), {cells})"
+    w = [column_width_pt([r[j] for r in rows if j < len(r)]) for j in range(n)]
+    groups, cur, width = [], [0], w[0]
+    for j in range(1, n):
+        if width + w[j] > TEXT_WIDTH_PT and len(cur) > 1:
+            groups.append(cur)
+            cur, width = [0], w[0]
+        cur.append(j)
+        width += w[j]
+    groups.append(cur)
+    return groups
+
+
+def _table(rows: list[list[str]]) -> str:
+    """Typst table(s) of the markdown rows: a table wider than the page is split into column
+    groups (`column_groups`), so that no header breaks inside a word or runs into its neighbour."""
+    n = len(rows[0])
+    rows = [(r + [""] * n)[:n] for r in rows]
+    out = []
+    for g in column_groups(rows):
+        head = ", ".join(f"[#strong({_str(_breakable(rows[0][j]))})]" for j in g)
+        cells = ", ".join(f"[{inline(_breakable(r[j]))}]" for r in rows[1:] for j in g)
+        out.append(f"#table(columns: {len(g)}, table.header({head}), {cells})")
+    return "\n#v(4pt)\n".join(out)
 
 
 def _images_only(line: str) -> bool:

@@ -63,21 +63,27 @@ def significant(column, i: int) -> float:
 IMAGE_STRESSES = ("sigma_hoop_MPa", "von_mises_MPa")
 
 
-def field_images(out_dir: Path, pipeline, T_C: float, stem: str, title: str) -> list[Path]:
+def field_images(out_dir: Path, pipeline, conditions: dict, stem: str, title: str) -> list[Path]:
     """VTU (displacement, temperature, every stress component) and PNG images (displacement on
-    the deformed shape, hoop and von Mises stress) of the stack at a uniform temperature with the
-    nominal fits."""
+    the deformed shape, hoop and von Mises stress) of the stack at one operating point, given as
+    conditions columns of length 1 (a uniform temperature {"T_ambient_C": [T]}, or a row with its
+    part temperatures, speed and loads), with the nominal fits. The VTU's temperature: each
+    vertex at its part's temperature (a vertex on a part boundary takes one of its parts')."""
     from fem.fields import render_fields, write_vtu
     from fem.post import element_stresses, theta_per_element
     from studies.model.inputs import baseline_inputs
+    from studies.model.stages.fe import FE_PART_GROUP
 
     a = pipeline.asm
-    inp = baseline_inputs({"T_ambient_C": np.array([T_C])}, 1, a.T_ref_C, a.preload.assembled_N,
-                          a.lubrication.speed_rpm)
+    cond = {k: np.asarray(v, float) for k, v in conditions.items()}
+    inp = baseline_inputs(cond, 1, a.T_ref_C, a.preload.assembled_N, a.lubrication.speed_rpm)
     f = pipeline.field(inp)
     u, model = f.u_mm, pipeline.model
     stresses = element_stresses(model, u, theta_per_element(model, f.theta))
-    T_vertex = np.full(model.mesh.p.shape[1], T_C)
+    T_part = {p: float(np.asarray(inp.T_C[FE_PART_GROUP[p]], float).ravel()[0])
+              for p in model.part_names}
+    T_vertex = np.empty(model.mesh.p.shape[1])
+    T_vertex[model.mesh.t] = np.array([T_part[p] for p in model.part_of])[None, :]
     write_vtu(out_dir / f"{stem}.vtu", model, u, stresses, T_vertex)
     from studies.model.stack import ball_centres_rz_mm
 
