@@ -152,7 +152,8 @@ def render_fields(out_dir: Path, stem: str, model: StackModel, u: np.ndarray,
     for k, v in cell_data.items():
         fields.append((k, "cell", v, k.replace("_MPa", " (MPa)"), xy))
     p0, p1, p2 = (xy[model.mesh.t[k]] for k in range(3))
-    areas = 0.5 * np.abs(np.cross(p1 - p0, p2 - p0))       # element areas of the section, mm^2
+    a, b = p1 - p0, p2 - p0
+    areas = 0.5 * np.abs(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0])   # element areas, mm^2
     paths = []
     for name, kind, values, label, pts in fields:
         grid = _grid(model, pts)
