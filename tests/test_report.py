@@ -41,6 +41,10 @@ def test_report_of_a_users_assembly(tmp_path):
     np.testing.assert_allclose([float(r["preload_N"]) for r in rows], ref["preload_N"], rtol=1e-9)
     assert "flag_max_contact_pressure_MPa" in rows[0]
     _check_numbers(asm, md, {k: np.array([float(r[k]) for r in rows]) for k in rows[0]})
+    # issue 36 item 4: the safety table names each governing point by its condition
+    for r in _md_table(md, "check"):
+        k = int(r["governing point"].split(":")[0].removeprefix("row "))
+        assert r["governing point"] == f"row {k}: T_ambient_C = {cond['T_ambient_C'][k - 1]:g}"
 
 
 def _md_table(md: str, first: str) -> list[dict[str, str]]:

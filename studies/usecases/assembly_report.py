@@ -318,7 +318,7 @@ def _text(asm, prov, cond, r, result, violations, warnings, plots, images, conv,
     for key in ("fits", "fit_pressure", "groove_shifts", "preload", "contact_angle",
                 "contact_pressure", "stiffness", "torque"):
         lines += [f"![{key}]({plots[key].name})", ""]
-    lines += [safety_section(asm, result, title="all operating points")]
+    lines += [safety_section(asm, result, title="all operating points", conditions=cond)]
     d_land = land_diameters_mm(asm.bearing, asm.materials)
     lines += [f"Contact ellipse and groove edge: land diameters {d_land[0]:.3f} / {d_land[1]:.3f} mm "
               f"(inner / outer; {d_land[2]}); smallest angle between the ellipse's edge and the "

@@ -92,11 +92,17 @@ def field_images(out_dir: Path, pipeline, conditions: dict, stem: str, title: st
                          balls_rz_d_mm=balls)
 
 
-def safety_section(asm, result, film_parameter=None, title: str = "over the study's operating points") -> str:
+def safety_section(asm, result, film_parameter=None, title: str = "over the study's operating points",
+                   conditions: dict | None = None) -> str:
     """Markdown table of the checks `simulate` applies (studies/model/checks.py) at the governing
     operating point of each (`result.checks` of a `SimulationResult`), plus the EHL film
-    parameter for oil (analytic/safety.py)."""
+    parameter for oil (analytic/safety.py). With `conditions` (the rows' condition columns) the
+    governing point is named by its condition (`report_margins.condition_text`), else by row."""
     from analytic.safety import film_parameter_flag
+    from studies.usecases.report_margins import condition_text
+
+    def at(i):
+        return f"row {i + 1}" if conditions is None else condition_text(conditions, i)
 
     n = result.n_rows
     rows = []
@@ -107,11 +113,11 @@ def safety_section(asm, result, film_parameter=None, title: str = "over the stud
         rel = "<=" if c.upper else (">" if c.strict else ">=")
         rows.append([c.name, f"{significant(v, i):.4g} {c.unit}".strip(), f"{rel} {c.allowable:g}",
                      "ok" if bad == 0 else f"NO ({bad} of {n})",
-                     "" if o.margin is None else f"{o.margin[i]:+.3f}", f"row {i + 1}", c.source])
+                     "" if o.margin is None else f"{o.margin[i]:+.3f}", at(i), c.source])
     if film_parameter is not None and asm.lubrication.kind == "oil":
         f = film_parameter_flag(film_parameter)
         rows.append([f.name, f"{f.value:.4g}", f">= {f.limit:g}", "ok" if f.ok else "NO", "",
-                     "" if f.worst_index is None else f"row {f.worst_index + 1}",
+                     "" if f.worst_index is None else at(f.worst_index),
                      "GB/T 28878.2 Annex B.1"])
     return "\n".join([f"## Safety checks ({title})", "",
                       md_table(["check", "governing value", "allowable", "ok", "margin",
