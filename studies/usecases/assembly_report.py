@@ -28,7 +28,7 @@ from fem.fields import COLOUR_PERCENTILE
 from analytic.bearing.land import land_diameters_mm
 from studies.model.tolerances import fits_of, has_tolerances
 from studies.usecases import fit_naming, report_margins, report_pdf
-from studies.usecases.report_tools import (field_images, nice_step, line_plot, md_table, safety_section,
+from studies.usecases.report_tools import (condition_text, field_images, nice_step, line_plot, md_table, safety_section,
                                        significant, write_report_files)
 
 N_SWEEP = 25            # about this many points in the default temperature sweep
@@ -80,14 +80,14 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, progress=prin
                                            f"field_{T:+.0f}C", f"{asm.name} at {T:g} C")
                   for T in temps}
     else:
-        images = {report_margins.condition_text(cond, i): field_images(
+        images = {condition_text(cond, i): field_images(
                       out, pl, {k: v[i:i + 1] for k, v in cond.items()}, f"field_row{i + 1}",
                       f"{asm.name}, row {i + 1}") for i in design}
     progress("report: speed effects (fit-loosening speeds) ...")
     speed = speed_lines(asm, pl, None if design is None else
                         {k: v[design] for k, v in cond.items()},
                         None if design is None else
-                        [report_margins.condition_text(cond, i) for i in design])
+                        [condition_text(cond, i) for i in design])
     progress("report: discretisation error of this mesh (three levels) ...")
     conv = mesh_convergence_case(asm, factors=tuple(mesh_factor * f for f in (2.0, 1.0, 0.5)),
                                  used=1)

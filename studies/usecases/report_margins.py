@@ -27,8 +27,9 @@ from pathlib import Path
 
 import numpy as np
 
-from studies.model.inputs import CONDITION_COLUMNS as CONDITION_NAMES
-from studies.usecases.report_tools import md_table
+from studies.usecases.report_tools import condition_text, md_table
+
+_at = condition_text          # the governing point by its condition
 
 #: the packages whose versions the "Environment" section lists
 PACKAGES = ("numpy", "scipy", "scikit-fem", "gmsh", "meshio", "matplotlib", "pyvista", "pandas",
@@ -204,22 +205,6 @@ def land_rows(asm, res: dict, cond: dict | None) -> list[MarginRow]:
             "analytic/bearing/land.py; land diameter "
             + ("from [bearing]" if given else "inferred from the ring section")))
     return rows
-
-
-def condition_text(cond: dict | None, i: int) -> str:
-    """Row i (0-based) named by its condition (`_at`): "row 3: T_ambient_C = 60, ..."."""
-    return _at(cond, i)
-
-
-def _at(cond: dict | None, i: int) -> str:
-    """The operating point of row i (0-based) by its condition, e.g. "row 3: T_ambient_C = 60,
-    T_outer_ring_C = 72" (the columns of CONDITION_NAMES that vary over the rows, else the first
-    given): the governing point as the engineer set it, not only its row number."""
-    cond = cond or {}
-    given = [c for c in CONDITION_NAMES if c in cond and np.size(cond[c]) > i]
-    varying = [c for c in given if np.ptp(np.asarray(cond[c], float)) > 0] or given[:1]
-    parts = [f"{c} = {float(np.asarray(cond[c], float)[i]):.4g}" for c in varying]
-    return f"row {i + 1}" + (": " + ", ".join(parts) if parts else "")
 
 
 def _row_values(cond: dict, n: int, *names, default: float) -> np.ndarray:

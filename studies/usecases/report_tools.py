@@ -92,14 +92,26 @@ def field_images(out_dir: Path, pipeline, conditions: dict, stem: str, title: st
                          balls_rz_d_mm=balls)
 
 
+def condition_text(cond: dict | None, i: int) -> str:
+    """The operating point of row i (0-based) by its condition, e.g. "row 3: T_ambient_C = 60,
+    T_outer_ring_C = 72" (the condition columns, docs/cli.md order, that vary over the rows, else
+    the first given): the governing point as the engineer set it, not only its row number."""
+    from studies.model.inputs import CONDITION_COLUMNS
+
+    cond = cond or {}
+    given = [c for c in CONDITION_COLUMNS if c in cond and np.size(cond[c]) > i]
+    varying = [c for c in given if np.ptp(np.asarray(cond[c], float)) > 0] or given[:1]
+    parts = [f"{c} = {float(np.asarray(cond[c], float)[i]):.4g}" for c in varying]
+    return f"row {i + 1}" + (": " + ", ".join(parts) if parts else "")
+
+
 def safety_section(asm, result, film_parameter=None, title: str = "over the study's operating points",
                    conditions: dict | None = None) -> str:
     """Markdown table of the checks `simulate` applies (studies/model/checks.py) at the governing
     operating point of each (`result.checks` of a `SimulationResult`), plus the EHL film
     parameter for oil (analytic/safety.py). With `conditions` (the rows' condition columns) the
-    governing point is named by its condition (`report_margins.condition_text`), else by row."""
+    governing point is named by its condition (`condition_text`), else by row."""
     from analytic.safety import film_parameter_flag
-    from studies.usecases.report_margins import condition_text
 
     def at(i):
         return f"row {i + 1}" if conditions is None else condition_text(conditions, i)
