@@ -333,9 +333,8 @@ def _text(asm, prov, cond, r, result, violations, warnings, plots, images, conv,
     lines += ["## Field images", "",
               f"Displacement (deformed shape, exaggeration in the title), hoop and von Mises stress "
               f"{where}, nominal fits; the VTU files open in ParaView. The stress colour bars end "
-              f"at the {COLOUR_PERCENTILE:g}th percentile of the element values weighted by their area "
-              "(the bar states the "
-              "maximum): the elastic stress at a re-entrant corner is singular and would otherwise "
+              f"at the {COLOUR_PERCENTILE:g}th percentile of the element values weighted by "
+              "their area (the bar states the maximum): the elastic stress at a re-entrant corner is singular and would otherwise "
               "set the scale and leave the section one colour.", ""]
     for head, paths in images.items():
         lines += [f"### {head}", "", " ".join(f"![{p.stem}]({p.name})" for p in paths), ""]
