@@ -1,4 +1,4 @@
-"""The `bearingfem` command line (contract: shared/spec/cli.md).
+"""The `bearingfem` command line (contract: docs/cli.md).
 
 Bad input exits 2 with one line on stderr naming the file, row or column and the problem; no
 traceback and no partial output (results are written to a temporary folder/file and renamed).
