@@ -206,12 +206,12 @@ def test_condensed_radial_stiffness_is_simulate_force_controlled(seed000_csv):
 
 def test_lost_preload_is_written_beside_the_stiffness_with_one_warning(tmp_path, capsys):
     """Seed 001 at 20 C keeps a preload (7 N), at 50 and 60 C loses it (no external load: every
-    ball unloaded, the k columns 0): preload_N and preload_lost beside the stiffness, one warning
-    line naming the rows; the preload column equals `simulate`'s."""
+    ball unloaded, the k columns 0, the condensed one too): preload_N and preload_lost beside the
+    stiffness, one warning line naming the rows; the preload column equals `simulate`'s."""
     cond = tmp_path / "c.csv"
     cond.write_text("T_ambient_C,speed_rpm\n20,0\n50,0\n60,0\n")
     out = tmp_path / "k.csv"
-    assert main(["stiffness", str(CFG_LOST), str(cond), "-o", str(out)]) == 0
+    assert main(["stiffness", str(CFG_LOST), str(cond), "-o", str(out), "--free-axial"]) == 0
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "warning" in err[0] and "preload is lost in 2 of 3" in err[0] \
         and "3, 4" in err[0], err
@@ -222,6 +222,8 @@ def test_lost_preload_is_written_beside_the_stiffness_with_one_warning(tmp_path,
     np.testing.assert_allclose(df["preload_N"], np.asarray(sim["preload_N"]), rtol=1e-9)
     assert df["preload_N"][0] > 0.0 and (df["preload_N"][1:] == 0.0).all()
     assert (df["k_xx_N_per_mm"][1:] == 0.0).all()
+    assert (df["k_xx_condensed_N_per_mm"][1:] == 0.0).all()   # a loose rotor: 0, not NaN
+    assert df["k_xx_condensed_N_per_mm"][0] > 0.0
 
 
 def test_ross_refuses_rows_that_lost_the_preload(tmp_path, capsys):

@@ -117,19 +117,20 @@ def solve_rows(pipe: Pipeline, inputs: PhysicsInputs,
     return eq, pair_stiffness(pipe.geom, pipe.asm.arrangement, eq.pair, **eq.pair_args)
 
 
-def stiffness_columns(k: PairStiffness, per_bearing: bool = False,
-                      free_axial: bool = False) -> dict[str, np.ndarray]:
-    """The output columns of `k` (STIFFNESS_COLUMNS; with free_axial the pair's force-controlled
-    radial stiffness CONDENSED_COLUMN, `analytic.bearing.stiffness.force_controlled`; with
-    per_bearing the 25 entries of each bearing about its ball plane, suffixes _A and _B)."""
+def stiffness_columns(k: PairStiffness, free_axial: bool = False) -> dict[str, np.ndarray]:
+    """The pair's output columns of `k` (STIFFNESS_COLUMNS; with free_axial also its
+    force-controlled radial stiffness CONDENSED_COLUMN,
+    `analytic.bearing.stiffness.force_controlled`)."""
     out = {name: f * k.pair_N_mm_rad[:, i, j] for name, (i, j, f) in STIFFNESS_COLUMNS.items()}
     if free_axial:
         out[CONDENSED_COLUMN] = force_controlled(k.pair_N_mm_rad, 0)
-    if per_bearing:
-        for b, J in enumerate("AB"):
-            out.update({f"{name}_{J}": f * k.bearing_N_mm_rad[b, :, i, j]
-                        for name, (i, j, f) in STIFFNESS_COLUMNS.items()})
     return out
+
+
+def bearing_columns(k: PairStiffness) -> dict[str, np.ndarray]:
+    """--per-bearing: the 25 entries of each bearing about its ball plane, suffixes _A, _B."""
+    return {f"{name}_{J}": f * k.bearing_N_mm_rad[b, :, i, j]
+            for b, J in enumerate("AB") for name, (i, j, f) in STIFFNESS_COLUMNS.items()}
 
 
 def lost_preload_warning(lost: np.ndarray, lines: np.ndarray, where: str) -> str | None:
@@ -232,13 +233,11 @@ def run(assembly_path: Path, conditions_path: Path, out: Path, per_bearing: bool
             "pair without preload has a stiffness set by the external loads, 0 without them, "
             "not a function of speed; left out, ROSS would interpolate over it); drop those "
             "rows or run without --ross (OUT.csv has preload_N)")
-    all_k = stiffness_columns(k, free_axial=free_axial)
-    cols.update(all_k)
+    cols.update(stiffness_columns(k, free_axial))
     cols.update({PRELOAD_COLUMNS[0]: np.concatenate(preload),
                  PRELOAD_COLUMNS[1]: lost.astype(float)})
     if per_bearing:
-        cols.update({c: v for c, v in stiffness_columns(k, per_bearing=True).items()
-                     if c not in all_k})
+        cols.update(bearing_columns(k))
     warnings = tuple(w for w in (lost_preload_warning(lost, cond["_line"],
                                                       str(conditions_path)),) if w)
     ross = None
