@@ -7,7 +7,7 @@ from scipy import integrate
 from analytic.bearing import BearingGeometry, solve_pair
 from analytic.friction import ehl_rolling, skf2004, solid_film, starved
 from analytic.lubrication import reduced_modulus_MPa
-from analytic.torque import palmgren_viscous_torque_Nmm, power_W
+from analytic.torque import ehl_rolling_pair, palmgren_viscous_torque_Nmm, power_W
 
 G = BearingGeometry.from_catalogue("25TAC62B")
 EPS = np.finfo(float).eps
@@ -138,7 +138,7 @@ def test_ehl_heat_split_sums_to_total_heat():
     """Issue 33 Done-when: the located heat (inner + outer contacts, each F_R u from the contact
     speeds) equals the pair's torque x omega to 1e-9 relative."""
     n = np.array([1500.0, 12000.0])
-    t = ehl_rolling.ehl_rolling_pair(G, PAIR, n, 0.03, 2e-8)
+    t = ehl_rolling_pair(G, PAIR, n, 0.03, 2e-8)
     total = power_W(t.total_Nmm, n)
     assert np.all(np.abs(t.heat_inner_W + t.heat_outer_W - total) <= 1e-9 * total)
     assert np.all(t.heat_inner_W > 0) and np.all(t.heat_outer_W > 0)
@@ -149,7 +149,7 @@ def test_ehl_torque_speed_exponent_is_0_66():
     """At fixed ball loads and viscosity the EHL rolling torque grows as U^0.66 ~ n^0.66 (the
     physics of F_R; no thermal reduction): log-slope between 6 and 48 krpm is 0.66 to 1e-12."""
     n = np.array([6000.0, 48000.0])
-    t = ehl_rolling.ehl_rolling_pair(G, PAIR, n, 0.01, 1.5e-8)
+    t = ehl_rolling_pair(G, PAIR, n, 0.01, 1.5e-8)
     slope = np.log(t.total_Nmm[1] / t.total_Nmm[0]) / np.log(8.0)
     assert slope == pytest.approx(0.66, abs=1e-12)
 

@@ -349,7 +349,7 @@ class TransientRun:
         T_max_C, T_min_C, the route's columns (`columns.to_columns`, flags and margins last),
         heat_bearing_W, reduction_error_est before the flags."""
         r = self.rows
-        cols = to_columns(self.outputs)
+        cols = to_columns(self.outputs, friction_split=True)
         flags = {k: cols.pop(k) for k in list(cols) if k.startswith(("flag_", "margin_"))}
         return {**r.part_columns(), "T_max_C": r.T_max_C, "T_min_C": r.T_min_C, **cols,
                 "heat_bearing_W": r.heat_bearing_W, "reduction_error_est": r.reduction_error_est,
