@@ -38,13 +38,17 @@ import numpy as np
 def ehl_rolling_force_N(Q_N, Rx_mm, k, E_reduced_MPa, eta0_Pa_s, alpha_per_Pa,
                         entrainment_speed_mm_s):
     """Hydrodynamic rolling force F_R = 2.86 E' Rx^2 k^0.348 G^0.022 U^0.66 W^0.47 of one
-    contact, N (module docstring). 0 without load or without rolling."""
+    contact, N (module docstring). 0 without load (an unloaded contact, whose ellipse and k are
+    then undefined) or without rolling."""
     Rx = np.asarray(Rx_mm, float)
     Ep = np.asarray(E_reduced_MPa, float)
+    Q = np.asarray(Q_N, float)
     U = np.asarray(eta0_Pa_s, float) * 1e-6 * np.abs(np.asarray(entrainment_speed_mm_s, float)) / (Ep * Rx)
     G = np.asarray(alpha_per_Pa, float) * 1e6 * Ep
-    W = np.maximum(np.asarray(Q_N, float), 0.0) / (Ep * Rx * Rx)
-    return 2.86 * Ep * Rx * Rx * np.asarray(k, float) ** 0.348 * G ** 0.022 * U ** 0.66 * W ** 0.47
+    W = np.maximum(Q, 0.0) / (Ep * Rx * Rx)
+    with np.errstate(invalid="ignore"):
+        F = 2.86 * Ep * Rx * Rx * np.asarray(k, float) ** 0.348 * G ** 0.022 * U ** 0.66 * W ** 0.47
+    return np.where(Q > 0, F, 0.0)
 
 
 @dataclass(frozen=True)
@@ -76,8 +80,9 @@ def ehl_rolling_bearing(Z: int, dm_mm: float, E_reduced_MPa, inner, outer, roll_
     torques, heats = [], []
     for c, roll in ((inner, roll_inner), (outer, roll_outer)):
         u = omega * half_dm * roll                                   # entrainment speed, mm/s
-        F = ehl_rolling_force_N(c.Q_N, c.Rx_mm, np.asarray(c.a_mm) / np.asarray(c.b_mm),
-                                E_reduced_MPa, eta0_Pa_s, alpha_per_Pa, u)
+        with np.errstate(divide="ignore", invalid="ignore"):      # unloaded: F = 0 below
+            k = np.asarray(c.a_mm, float) / np.asarray(c.b_mm, float)
+        F = ehl_rolling_force_N(c.Q_N, c.Rx_mm, k, E_reduced_MPa, eta0_Pa_s, alpha_per_Pa, u)
         torques.append(Z * F * half_dm * roll)
         heats.append(1e-3 * Z * F * u)
     return tuple(torques), tuple(heats)
