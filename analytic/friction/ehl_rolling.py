@@ -7,7 +7,8 @@ analytical calculations in ball bearings", 8th European Space Mechanisms and Tri
 (1999) and "Ball bearing and tapered roller bearing torque: analytical, numerical and
 experimental results", Tribol. Trans. 45 (2002) 345; as Harris & Kotzalas, Rolling Bearing
 Analysis 5th ed., Vol. 2 (Advanced Concepts), ch. "Friction in rolling element-raceway
-contacts", give it):
+contacts", give it; coefficient and exponents as the issue quotes them, not re-checked against a
+copy of either source here: the tests check the dimensional form and the exponents' physics):
 
     F_R = 2.86 E' R_x^2 k^0.348 G^0.022 U^0.66 W^0.47                       [N]
 
