@@ -74,3 +74,29 @@ def test_split_column_names_are_the_contract():
     t = TorqueComponents("oil", one, one, one, one, rolling_Nmm=one, sliding_Nmm=one,
                          drag_Nmm=one, heat_inner_W=one, heat_outer_W=one, heat_ball_W=one)
     assert list(friction_split_columns(t)) == SPLIT
+
+
+@pytest.mark.parametrize("name, lub, key", [
+    ("seed000", {"viscous_model": "skf2004"}, "viscous_model"),
+    ("seed001", {"shear_strength": "pressure", "tau0_MPa": 20.0}, "shear_strength"),
+    ("seed001", {"oil_quantity_mg": 5.0}, "oil_quantity_mg"),
+    ("seed000", {"tau0_MPa": 20.0}, "tau0_MPa"),
+    ("seed000", {"shear_strength": "pressure"}, "shear_strength"),
+])
+def test_friction_keys_of_the_wrong_kind_are_refused_in_one_line(name, lub, key):
+    """A friction key that the assembly's lubrication would not use: one line naming the file
+    and the key (ConfigError), as for the clamp's keys."""
+    import tomllib
+
+    from studies.model.config import CONFIG_DIR, SHIPPED, ConfigError, assembly_from_dict
+    with open(CONFIG_DIR / SHIPPED[name], "rb") as fh:
+        raw = tomllib.load(fh)
+    shipped = dict(raw["lubrication"])
+    raw["lubrication"].update(lub)
+    with pytest.raises(ConfigError, match=rf"^x\.toml: lubrication\.{key}: ") as e:
+        assembly_from_dict(raw, "x.toml")
+    assert "\n" not in str(e.value)
+    ok = dict(shipped, viscous_model="starved", oil_quantity_mg=5.0) if name == "seed001" \
+        else dict(shipped, shear_strength="pressure", tau0_MPa=20.0)
+    raw["lubrication"] = ok
+    assembly_from_dict(raw, "x.toml")                 # the same keys where they belong: accepted
