@@ -143,9 +143,12 @@ def cmd_stiffness(args) -> None:
             check_output_file(args.ross, (args.assembly, args.conditions, args.out))
         res = run(args.assembly, args.conditions, args.out, args.per_bearing, args.ross,
                   provenance("stiffness", {"assembly": args.assembly,
-                                           "conditions": args.conditions}), progress=progress)
+                                           "conditions": args.conditions}), progress=progress,
+                  free_axial=args.free_axial)
     except (StiffnessRunError, *_user_errors()) as exc:
         raise UserError(str(exc)) from None
+    for w in res.warnings:
+        print(f"bearingfem stiffness: warning: {w}", file=sys.stderr)
     print(f"wrote {res.n_rows} rows to {args.out}")
     if res.ross is not None:
         if res.ross.warning:
