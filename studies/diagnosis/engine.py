@@ -70,6 +70,7 @@ from studies.diagnosis.decision import Separation, decide, separating
 from studies.diagnosis.fitting import fit_all
 from studies.diagnosis.generalised import ChosenForm, generalise
 from studies.diagnosis.heldout import validate
+from studies.diagnosis.interval import column_intervals
 from studies.diagnosis.ladder import is_form
 from studies.diagnosis.openworld import characterise
 from studies.diagnosis.problem import Problem, make_problem
@@ -261,6 +262,9 @@ def assemble(first: Pass, sel: Selection, sep: Separation, cost: Cost) -> Diagno
         thresholds=dict(pb.th), notes=list(pb.notes) + sep.notes, spikes=dict(pb.spikes),
         n_rows=pb.n, cost=cost, open_world=open_world,
         causes=list(sel.causes), left=list(sel.left), at_bound=list(sel.at_bound),
+        worse_columns=list(sel.worse_columns),
+        interval=(column_intervals(sel.problem, sel.fit, sel.heldout_z)
+                  if cause and sel.fit is not None else None),
         goodness=sel.goodness, noise_final=sel.noise,
         baseline_pred=b.fit.pred, extended_pred=sel.pred if sel.pred else ext_fit.pred,
         candidate_preds={n: f.pred for n, f in first.fits.items()})

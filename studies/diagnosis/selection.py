@@ -44,6 +44,7 @@ from studies.diagnosis.calibration import baseline_noise, calibrate
 from studies.diagnosis.candidate import HeldoutGain
 from studies.diagnosis.core import Fit, ModelFailure
 from studies.diagnosis.goodness import AtBound, GoodnessOfFit, Left, at_bound, goodness
+from studies.diagnosis.heldout import WorseColumn, worse_columns
 from studies.diagnosis.ladder import FormShare, is_form
 from studies.diagnosis.problem import Accepted, Noise, Problem
 from studies.diagnosis.stats import auto_blocks
@@ -95,6 +96,12 @@ class Selection:
     pred: dict | None = None
     passes: int = 1
     noise: Noise | None = None          # the last pass's noise model
+    #: candidates stopped by the claim rules (issue 34): a column made worse on held-out blocks
+    worse_columns: list[WorseColumn] = field(default_factory=list)
+    #: the claimed model's problem, fit and held-out residuals (the predictive interval's)
+    problem: Problem | None = None
+    fit: Fit | None = None
+    heldout_z: np.ndarray | None = None
 
 
 def _extended(p) -> tuple[Fit, np.ndarray, object]:
@@ -212,6 +219,35 @@ def scatter_edge(pb: Problem, bound: list[AtBound]) -> list[AtBound]:
     return out
 
 
+def blocked(p) -> tuple[list[AtBound], list[WorseColumn]]:
+    """Why the cause a pass would accept cannot be claimed (issue 34; empty lists: it can): its
+    parameters at a bound or within their standard uncertainty of one (`goodness.at_bound`),
+    and the measured columns its extended model predicts worse on held-out blocks than the
+    pass's baseline beyond the noise (`heldout.worse_columns`, over the blocks that test it)."""
+    fit, ho, _ = _extended(p)
+    name = p.decision.cause
+    keep = np.ones(p.pb.n_blocks, bool)
+    if not p.chosen:
+        for u in p.candidates[name].heldout_untestable or []:
+            keep[u["block"] - 1] = False
+    return at_bound(p.pb, fit), worse_columns(p.pb, name, p.baseline.heldout_z, ho, keep)
+
+
+def not_claimed(name: str, bound: list[AtBound], worse: list[WorseColumn], form: bool) -> str:
+    """The sentence of a cause the claim rules stop (`blocked`)."""
+    why = []
+    if bound:
+        why.append("a parameter at its bound (" + "; ".join(x.text for x in bound)
+                   + "): the data want more than the candidate allows, which is evidence "
+                   "against it, not a partial explanation")
+    if worse:
+        why.append("it makes a measured column worse (" + "; ".join(x.text for x in worse)
+                   + ")")
+    tail = (": a part or a lot the file lacks that acts the same way (a sleeve, a lot outside "
+            "the data sheet) would" if form and bound else "")
+    return f"{name} carries the weight but is not claimed: " + " and ".join(why) + tail
+
+
 def select(first, run_pass: Callable) -> Selection:
     """Forward selection after the first pass `first` (module docstring); `run_pass(problem,
     step, calibrated)` runs phases 1-5b on a problem (phase 1 already done: `calibrated`) and
@@ -222,7 +258,16 @@ def select(first, run_pass: Callable) -> Selection:
     correlated noise)."""
     if first.decision.verdict not in ("explained", "explained_partly"):
         return Selection()
+    bound, worse = blocked(first)
+    if bound or worse:
+        # the claim rules (issue 34): a cause at its bound or making a column worse is not one
+        name = first.decision.cause
+        return Selection(verdict="unexplained", reasons=[not_claimed(
+            name, bound, worse, is_form(first.pb.effect(name)))], at_bound=bound,
+            worse_columns=worse, goodness=first.decision.goodness, noise=first.pb.noise)
     cur, causes, reasons, passes = first, [_cause(first, 1)], [], 1
+    stopped_bound: list[AtBound] = []
+    stopped_worse: list[WorseColumn] = []
     final: GoodnessOfFit = first.decision.goodness
     final_pb, (final_fit, final_ho, _) = first.pb, _extended(first)
     while True:
@@ -260,7 +305,12 @@ def select(first, run_pass: Callable) -> Selection:
             final = goodness(nxt.pb, b.fit, b.heldout_z, _n_params(nxt.pb, b.fit), b.residuals)
             final_pb, final_fit, final_ho = nxt.pb, b.fit, b.heldout_z
             break
-        if d.verdict in ("explained", "explained_partly"):
+        nb, nw = blocked(nxt) if d.verdict in ("explained", "explained_partly") else ([], [])
+        if nb or nw:
+            reasons.append(f"with {', '.join(c.effect for c in causes)} in the model, "
+                           + not_claimed(d.cause, nb, nw, is_form(nxt.pb.effect(d.cause))))
+            stopped_bound, stopped_worse = nb, nw
+        elif d.verdict in ("explained", "explained_partly"):
             causes.append(_cause(nxt, len(causes) + 1))
             reasons.append(f"with {', '.join(c.effect for c in causes[:-1])} in the model "
                            f"(noise re-estimated from its residual), {d.reasons[-1]}")
@@ -278,7 +328,7 @@ def select(first, run_pass: Callable) -> Selection:
             reasons.append(f"with {names} in the model (noise re-estimated from its residual) "
                            "structure is left that no other candidate removes")
         break
-    sel = Selection(passes=passes)
+    sel = Selection(passes=passes, worse_columns=stopped_worse)
     if len(causes) > 1:
         effects, _ = final_fit.space.unpack(final_fit.u)
         fam = {c.effect: (c.form or c.effect) for c in causes}
@@ -287,18 +337,16 @@ def select(first, run_pass: Callable) -> Selection:
         sel = replace(sel, rmse=final_pb.col_rmse(final_fit.z),
                       heldout_rmse=final_pb.col_rmse(final_ho), pred=final_fit.pred)
     bound = at_bound(final_pb, final_fit)
-    edge = scatter_edge(final_pb, bound) if len(causes) == 1 else []
-    if edge:
-        # a model form defined within a stated scatter, fitted at its edge: not this form
-        return replace(sel, verdict="unexplained", reasons=reasons + [
-            f"{causes[0].effect} carries the weight only at the edge of its stated scatter "
-            f"({'; '.join(x.text for x in edge)}): the data want more than the form allows, so "
-            "it is not the explanation; a part or a lot the file lacks that acts the same way "
-            "(a sleeve, a lot outside the data sheet) would"], goodness=final,
-            noise=final_pb.noise, at_bound=bound)
+    if bound:
+        # the model of the accepted causes, refitted together, pushes one to its bound: the
+        # data want more than it allows (issue 34: never claimed)
+        return replace(sel, verdict="unexplained", reasons=reasons + [not_claimed(
+            ", ".join(c.effect for c in causes), bound, [], len(causes) == 1 and is_form(
+                first.pb.effect(causes[0].effect)))], goodness=final, noise=final_pb.noise,
+            at_bound=bound + stopped_bound)
     verdict = "explained"
     if final.leaves_structure:
-        verdict = "explained_partly" if (bound or len(causes) > 1) else "unexplained"
+        verdict = "explained_partly" if len(causes) > 1 else "unexplained"
     if verdict == "explained" and first.decision.verdict == "explained_partly":
         reasons.append("the structure left under the first noise estimate is noise once the "
                        "noise is estimated from the residual of the accepted causes")
@@ -310,8 +358,9 @@ def select(first, run_pass: Callable) -> Selection:
             f"{causes[0].effect} carries the weight but leaves structure ({left}) and none of "
             "its parameters is at a bound: the structure may come from a cause outside the "
             "list, which the best candidate only imitates"], goodness=final,
-            noise=final_pb.noise)
+            noise=final_pb.noise, at_bound=stopped_bound)
     if verdict == "explained_partly" and final.left:
         reasons.append("left: " + left)
     return replace(sel, verdict=verdict, causes=causes, reasons=reasons, left=list(final.left),
-                   at_bound=bound, goodness=final, noise=final_pb.noise)
+                   at_bound=stopped_bound, goodness=final, noise=final_pb.noise,
+                   problem=final_pb, fit=final_fit, heldout_z=final_ho)
