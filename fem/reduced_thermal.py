@@ -44,7 +44,7 @@ and groove-centre shifts then cost small dense products per step.
 A-posteriori estimate (cheap): the same run with the leading half of the modes; the difference of
 the outputs of the two estimates the error of the smaller model, and bounds the full model's
 when the errors fall with the number of modes (the effectivity is measured on a check case in
-`studies/runs/bench_transient.py`).
+`studies/bench/bench_transient.py`).
 Units as in `fem.transient`: W, J, s, C, mm.
 """
 from __future__ import annotations

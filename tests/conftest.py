@@ -6,7 +6,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 os.environ.setdefault("BEARINGFEM_CACHE", os.path.join(os.path.dirname(__file__), "..", ".cache"))
 
 
-# --- requirement traceability (studies/runs/requirements.py) --------------------------------
+# --- requirement traceability (studies/usecases/requirements.py) --------------------------------
 # Every test tagged `@pytest.mark.requirement("R-...")` carries its ids in its report; the main
 # process (not an xdist worker) records the outcome of each such test in the pytest cache
 # (merged with earlier runs: the last outcome of every test), where `bearingfem verify` reads it.
@@ -36,7 +36,7 @@ def pytest_sessionfinish(session):
     import datetime
     import json
 
-    from studies.runs.requirements import RESULTS_RELPATH
+    from studies.usecases.requirements import RESULTS_RELPATH
 
     if hasattr(session.config, "workerinput") or not _REQUIREMENT_OUTCOMES:
         return

@@ -262,7 +262,7 @@ def test_design_search_family_holds_the_clamp_spring():
     from fem.parametric import Family
     from fem.setup import compute_setup, full_fe
     from studies.model.pipeline import Pipeline
-    from studies.runs.design_search import SPACERS, Stack
+    from studies.usecases.design_search import SPACERS, Stack
 
     raw = _raw()
     raw["cover"].update(clamp="force", clamp_force_N=2000.0)
@@ -371,7 +371,7 @@ def test_design_varies_the_clamp_force_on_one_fe_setup(monkeypatch):
     from studies.model.config import load_assembly
     from studies.model.inputs import baseline_inputs
     from studies.model.pipeline import Pipeline
-    from studies.runs import design_search as ds
+    from studies.usecases import design_search as ds
 
     asm = load_assembly(CONFIG_DIR / "rig_thin_section_hub.toml")
     settings = ds.settings_of(asm, {"nut_clamp_force_N": (3000.0,)})

@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 
 from studies.app.cli import main
-from studies.runs import verify
-from studies.runs.verify import TOLERANCE
+from studies.usecases import verify
+from studies.usecases.verify import TOLERANCE
 
 LAME_INPUTS = {"r_inner_mm", "r_fit_mm", "r_outer_mm", "E_inner_MPa", "nu_inner", "E_outer_MPa",
                "nu_outer", "interference_um", "assumption"}
@@ -192,7 +192,7 @@ def test_verify_runs_the_mesh_convergence_of_a_users_assembly(tmp_path, capsys, 
     """`verify --assembly`: the user's own stack gets its observed order and GCI (coarse levels
     here; the command runs the default ones)."""
     from studies.model.config import CONFIG_DIR, load_assembly
-    from studies.runs import verify
+    from studies.usecases import verify
 
     asm = load_assembly(CONFIG_DIR / "template.toml")
     result = verify.run(tmp_path / "v", progress=lambda s: None, mesh_factor=2.0, assembly=asm)
@@ -236,7 +236,7 @@ def test_confusion_matrix_candidates_are_the_cli_candidates():
     candidate on the MoS2 seed 000 (the configured 60 rpm gives the revolutions, no speed column
     needed) and not on the oil-lubricated seed 001; seed 001's settling loss is at most its 7 N."""
     from studies.diagnosis.files import candidate_effects
-    from studies.runs.confusion_matrix import DESIGNS, setup
+    from studies.validation.confusion_matrix import DESIGNS, setup
 
     for name in DESIGNS:
         asm, cond, cands = setup(name)

@@ -118,7 +118,7 @@ def test_real_model_lookalikes_stated_in_the_docs():
     (thermal_lag, and solid_film_runin on seed 000: below 0.5). The study's candidates are the
     CLI's (`files.candidate_effects`)."""
     from studies.diagnosis.operating import lookalike_before_data
-    from studies.runs.confusion_matrix import design, setup
+    from studies.validation.confusion_matrix import design, setup
 
     th = 0.95
     for name, pairs, history in (

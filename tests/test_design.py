@@ -8,7 +8,7 @@ import pytest
 from studies.app.cli import main
 from studies.model.config import CONFIG_DIR, load_shipped
 from studies.model.provenance import provenance
-from studies.runs import design_search as ds
+from studies.usecases import design_search as ds
 from studies.model.columns import to_columns
 
 
@@ -76,8 +76,8 @@ def test_inverse_search_finds_a_planted_trend():
     import numpy as np
 
     from studies.model.pipeline import Pipeline, simulate_table
-    from studies.runs.design_search import candidates
-    from studies.runs.inverse_rig import match_trend
+    from studies.usecases.design_search import candidates
+    from studies.validation.inverse_rig import match_trend
 
     asm = load_shipped("seed000")
     stacks = candidates(asm, length_factors=(1.0,), materials=("TC4", "6061"),

@@ -13,7 +13,7 @@ from fem.solver import FitSolver, Superposition
 from meshes.section import two_cylinder_section
 from studies.model.stack import section_from_assembly
 from studies.model.config import load_shipped
-from studies.runs.verify import lame_cases, short_ring_case
+from studies.usecases.verify import lame_cases, short_ring_case
 
 
 def _two(ri, rf, ro, mi, mo, plane_strain=False, contact="frictionless", factor=1.0):

@@ -20,7 +20,7 @@ from studies.model.checks import assembly_checks
 from studies.model.columns import to_columns
 from studies.model.config import CONFIG_DIR, ConfigError, assembly_from_dict
 from studies.model.pipeline import Pipeline, table_inputs
-from studies.runs.verify import assembly_fit_cases
+from studies.usecases.verify import assembly_fit_cases
 
 
 def _template(**fits):
@@ -147,7 +147,7 @@ def test_sleeve_band_is_sampled_and_its_design_state_is_closed(banded):
 def test_tolerance_counts_a_sleeve_fit_failed_only_when_it_leaves_its_designed_state(banded):
     """`tolerance`'s events: the designed-closed sleeve fails by opening; designed with a
     clearance band (-7.62 .. 0) it fails by closing, not by being open."""
-    from studies.runs.tolerance_report import failures
+    from studies.usecases.tolerance_report import failures
 
     one = np.ones((2, 1))
     r = tol.SampleResults(one, one, one, 0 * one, 100 * one, 15 * one, 1000 * one, one,
@@ -163,7 +163,7 @@ def test_tolerance_counts_a_sleeve_fit_failed_only_when_it_leaves_its_designed_s
 def test_worst_case_takes_the_corners_of_every_band(banded):
     """Inner (none here), outer (none) and sleeve bands: 2^3 corners; the sleeve's extremes at
     T_ref are its band's ends."""
-    from studies.runs.tolerance_report import worst_case
+    from studies.usecases.tolerance_report import worst_case
 
     wc = worst_case(Pipeline.shared(banded), {"T_ambient_C": np.array([banded.T_ref_C])})
     assert wc.interference_sleeve_um.shape == (8, 1)
@@ -200,7 +200,7 @@ def test_report_shows_every_fit_with_its_flag_and_the_naming_picture(tmp_path):
     """The report of the sleeve design (coarse mesh): the margin table has the sleeve's fit
     with its failures (open at 40 C, closed at 20 C), the results table its interference,
     pressure and Lamé neighbour, the fit plots its curves, and the naming picture is there."""
-    from studies.runs import assembly_report
+    from studies.usecases import assembly_report
 
     a = assembly_from_dict(_with_layer(_template(sleeve_interference_um=1.0), "sleeve", 3.0,
                                        "17-4PH"))
@@ -227,7 +227,7 @@ def test_thin_section_hub_rig_runs_and_its_report_shows_every_fit(tmp_path):
     free mismatch of the nominal mean fits, (23.6 - 11.5)e-6 /K x 65 K x 101.6 mm = 80 um > the
     inner fit's 25.4 um."""
     from studies.model.config import load_assembly
-    from studies.runs import assembly_report
+    from studies.usecases import assembly_report
 
     a = load_assembly(CONFIG_DIR / "rig_thin_section_hub.toml")
     assert tol.fits_of(a) == ("inner", "outer", "sleeve")

@@ -26,7 +26,7 @@ from studies.diagnosis.files import ModelPredictor
 from studies.model.columns import to_columns
 from studies.model.config import load_shipped
 from studies.model.pipeline import Pipeline
-from studies.runs import second_source as ss
+from studies.validation import second_source as ss
 
 MESH_FACTOR = 2.0
 COLS = ("torque_Nmm", "preload_N", "contact_angle_deg", "max_contact_pressure_MPa")

@@ -1,18 +1,18 @@
-"""`bearingfem study heatup` (studies/runs/heatup.py): seed 003's ball-screw support heating up
+"""`bearingfem study heatup` (studies/validation/heatup.py): seed 003's ball-screw support heating up
 through simulate's transient route, against the seed's qualitative findings (seed 003 section 3,
 fig. 9, conclusions 1 and 2: the balls run hottest, the inner ring warmer than the outer, the heat
 falls and levels off towards a thermal equilibrium; the difference between the rings and the
 balls below 4 K)."""
 import pytest
 
-from studies.runs import STUDIES, heatup
+from studies.validation import STUDIES, heatup
 
 
 def test_heatup_is_a_registered_study_and_its_short_coarse_run_writes_its_report(tmp_path):
     """The loop on a coarse mesh for 20 minutes at both speeds: tables, plots, report; the balls
     are already the hottest part (they take half of every contact's heat, Burton & Staph) and
     the faster pair is warmer everywhere (more heat: torque x speed)."""
-    assert STUDIES["heatup"] == "studies.runs.heatup"
+    assert STUDIES["heatup"] == "studies.validation.heatup"
     found = heatup.run(tmp_path, progress=lambda s: None, mesh_factor=2.0, duration_s=1200.0,
                        images=False)
     for n in heatup.SPEEDS_RPM:

@@ -14,8 +14,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 
 #: the rows of the README's layout table, top first (a module belongs to its longest prefix)
-LAYERS = ("infra", "analytic", "meshes", "fem", "studies", "studies.model", "bearingfem",
-          "studies.diagnosis", "studies.runs", "studies.app")
+LAYERS = ("infra", "analytic", "meshes", "fem", "studies", "studies.model", "studies.diagnosis",
+          "studies.usecases", "studies.validation", "studies.bench", "studies.app", "bearingfem")
 PACKAGES = ("infra", "analytic", "meshes", "fem", "studies", "bearingfem")
 
 

@@ -1,7 +1,7 @@
 """The model-form ladder (`studies.diagnosis.ladder`, issue 23 item 2): the model's own richer
 forms as candidates, evaluated through the one pipeline route.
 
-Data made ANOTHER way than the diagnosed model: the second source (`studies.runs.second_source`,
+Data made ANOTHER way than the diagnosed model: the second source (`studies.validation.second_source`,
 `make_case`): quasi-dynamic balls simulated under a static config, grooved ring sections under a
 rectangle config, a housing material lot with another CTE (the truth's CTE changed in the
 assembly's material table, a new FE set-up; the rung scales the thermal strain through the
@@ -23,7 +23,7 @@ from studies.diagnosis.files import ModelPredictor
 from studies.diagnosis.result import to_json
 from studies.model.config import load_shipped
 from studies.model.pipeline import Pipeline
-from studies.runs import second_source as ss
+from studies.validation import second_source as ss
 
 MESH_FACTOR = 2.0
 #: the model-form candidate names fixed by the contract (shared spec, "Added for the next round")

@@ -191,7 +191,7 @@ def test_lubricant_viscosity_study(tmp_path):
     the CSV has a sister-oil point below 40 C) the extended model's held-out error is smaller
     than the two-point Walther fit's; for the PFPE pair (Fomblin Z25 as analog of Brayco 815Z)
     it is not, and the report says so."""
-    from studies.runs.lubricant_viscosity import run
+    from studies.validation.lubricant_viscosity import run
 
     run(tmp_path)
     for name in ("predictions.csv", "leave_one_out.csv", "viscosity_temperature.png", "report.md"):

@@ -17,7 +17,7 @@ from studies.model.config import CONFIG_DIR, ConfigError, assembly_from_dict, lo
 from studies.model.mesh_size import (DEFAULT_TARGET, ORDER, characteristic_length_mm,
                                      level_for_target, mesh_sizes)
 from studies.model.stack import section_from_assembly
-from studies.runs.verify import mesh_convergence_case
+from studies.usecases.verify import mesh_convergence_case
 
 PAIR_305 = Path(__file__).parent / "data" / "pair_305_6061.toml"
 SEED000 = CONFIG_DIR / "seed000_71807C_TC4.toml"

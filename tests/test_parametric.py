@@ -15,7 +15,7 @@ from fem.parametric import Family, FamilyError, family_key, member_spec
 from fem.setup import compute_setup, full_fe
 from studies.model.config import load_shipped
 from studies.model.pipeline import Pipeline
-from studies.runs.design_search import SPACERS, Stack, evaluate_stack, parametric_setup_of
+from studies.usecases.design_search import SPACERS, Stack, evaluate_stack, parametric_setup_of
 
 MESH_FACTOR = 4.0       # the coarse mesh the design tests use
 RTOL = 1e-9

@@ -1,4 +1,4 @@
-"""The published measurements of seeds 001 and 000 as data (studies/runs/published_as_data.py):
+"""The published measurements of seeds 001 and 000 as data (studies/validation/published_as_data.py):
 one-parameter candidates fitted on one published number, the other held out and compared with
 the published value. References: the published numbers themselves, Palmgren's viscous torque in
 closed form with the oil's Walther law, and the timing of the cycle design."""
@@ -10,7 +10,7 @@ import pytest
 from analytic.lubrication import get_lubricant, lubricant_library
 from studies.model.config import load_shipped
 from studies.model.effects import get_effect
-from studies.runs import published_as_data as pad
+from studies.validation import published_as_data as pad
 
 #: a coarser FE mesh than the shipped one (the ratios depend on the mesh through the groove-centre
 #: shifts only, far below the 5.9 % tolerance); the study report runs the shipped mesh

@@ -11,7 +11,7 @@ import pytest
 from studies.app.cli import main
 from studies.model.config import CONFIG_DIR, load_assembly
 from studies.model.pipeline import Pipeline, simulate_table
-from studies.runs import assembly_report
+from studies.usecases import assembly_report
 from studies.model.columns import to_columns
 
 TEMPLATE = CONFIG_DIR / "template.toml"

@@ -135,7 +135,7 @@ def test_tolerance_worst_case_brackets_the_mid_band_result(reports):
 def test_a_violated_check_is_a_fail_with_its_count():
     """A contact pressure above the allowable in 2 of 3 rows: FAIL (2 of 3), and the margin is
     allowable / actual - 1 at the worst row."""
-    from studies.runs.report_margins import margin_rows
+    from studies.usecases.report_margins import margin_rows
 
     asm = load_assembly(TEMPLATE)
     res = {"preload_N": np.array([50.0, 80.0, 120.0]),
@@ -187,7 +187,7 @@ def test_the_date_is_now_without_source_date_epoch(monkeypatch):
     changes between runs)."""
     from datetime import datetime, timezone
 
-    from studies.runs.report_margins import report_date
+    from studies.usecases.report_margins import report_date
 
     monkeypatch.delenv("SOURCE_DATE_EPOCH", raising=False)
     before = datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC")

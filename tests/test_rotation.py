@@ -12,7 +12,7 @@ from fem.setup import SetupSpec
 from meshes.section import two_cylinder_section
 from studies.model.config import load_shipped
 from studies.model.pipeline import Pipeline, table_inputs
-from studies.runs.verify import TOLERANCE, rotating_cases
+from studies.usecases.verify import TOLERANCE, rotating_cases
 from studies.model.columns import to_columns
 
 
@@ -221,7 +221,7 @@ def test_report_shows_the_balls_at_speed(pl001):
     """The report's "The balls at speed" table (seed 001, 9000 rpm): at rest the assembled
     preload; at speed the quasi-dynamic row has the outer contact angle below the inner one and
     a centrifugal force m omega_c^2 dm/2 > 0, the quasi-static row equal angles and none."""
-    from studies.runs.assembly_report import ball_speed_lines
+    from studies.usecases.assembly_report import ball_speed_lines
 
     asm = pl001.asm
     lines = ball_speed_lines(asm, pl001, 9000.0)

@@ -1,4 +1,4 @@
-"""The second source of measured data (studies/runs/second_source.py, issue 23 item 1): data made
+"""The second source of measured data (studies/validation/second_source.py, issue 23 item 1): data made
 another way than the model the diagnosis fits, one case per kind in the default suite.
 
 Each test first checks that the data really differ from the diagnosed model by the stated
@@ -26,7 +26,7 @@ import math
 import numpy as np
 import pytest
 
-from studies.runs import second_source as ss
+from studies.validation import second_source as ss
 
 MESH_FACTOR = 2.0           # the diagnosed model and its truth on the coarse mesh family member
 

@@ -1,4 +1,4 @@
-"""Every second-source case (studies/runs/second_source.py) through today's diagnosis, slow
+"""Every second-source case (studies/validation/second_source.py) through today's diagnosis, slow
 (`make test-slow`; 18 diagnoses on the coarse mesh family member, about 10-30 s each on 2 idle
 cores): no wrong cause claimed (`second_source.judge` != "wrong", issue 23 "Done when": 0 wrong
 causes on the second-source data), two causes both named.
@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import pytest
 
-from studies.runs import second_source as ss
+from studies.validation import second_source as ss
 
 pytestmark = pytest.mark.slow
 

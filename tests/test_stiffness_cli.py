@@ -101,7 +101,7 @@ def test_chunks_give_the_same_numbers(tmp_path, monkeypatch):
     chunk to round-off, 1e-12 of the row's sqrt(k_ii k_jj) (sums over the balls are ordered by
     the array shapes: the entries that are 0 by symmetry, k_xy ~ 1e-11 N/mm, differ in their
     noise)."""
-    import studies.runs.stiffness as stiffness
+    import studies.usecases.stiffness as stiffness
 
     cond = write(tmp_path, "T_ambient_C,speed_rpm,radial_load_N\n20,0,0\n30,1000,100\n"
                            "40,2000,0\n50,3000,200\n60,4000,50\n")
@@ -125,7 +125,7 @@ def test_the_route_equilibrium_is_the_one_differentiated():
     bearing's ball-load sum; moments over the span).  A wrong shift or temperature would leave
     a residual of the order of the preload."""
     from studies.model.pipeline import Pipeline, table_inputs
-    from studies.runs.stiffness import stiffness_at
+    from studies.usecases.stiffness import stiffness_at
 
     asm = load_assembly(CFG)
     rows = {"T_ambient_C": np.array([-40.0, 20.0, 80.0]),

@@ -11,7 +11,7 @@ import pytest
 from studies.model.pipeline import simulate_table
 from studies.model.config import load_shipped
 from studies.model.pipeline import Pipeline
-from studies.runs import study_module
+from studies.validation import study_module
 from studies.model.columns import to_columns
 
 MESH_FACTOR = 4.0

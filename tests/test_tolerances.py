@@ -266,7 +266,7 @@ def clearance_run(tmp_path_factory):
     """seed 000 (TC4 housing, 9Cr18 rings) with the outer fit designed with clearance: nominal 0,
     ring OD -7.62..0 um (the band of issue 24), inner fit +5 um untoleranced; `tolerance` at
     -60, 20 and 80 C, 2000 samples."""
-    from studies.runs import tolerance_report as tr
+    from studies.usecases import tolerance_report as tr
 
     d = tmp_path_factory.mktemp("clear")
     asm = load_assembly(_with_fits(d, [f"outer_ring_od_deviation_um = [{OUTER_BAND_UM[0]}, "

@@ -193,7 +193,7 @@ def test_simulate_file_in_transient_mode_writes_the_transient_columns(pl, tmp_pa
 
 
 def test_bench_transient_flag_runs_the_transient_bench(monkeypatch):
-    import studies.runs.bench_transient as bt
+    import studies.bench.bench_transient as bt
     from studies.app.cli import main
 
     calls = []
@@ -206,7 +206,7 @@ def test_the_transient_bench_runs_its_route_and_the_reduction_agrees_with_the_fu
     """`bench --transient` on a few steps: its reduced heat-up against its full-FE one (the
     issue 26 bound, 1e-3 of the preload) and the a-posteriori estimate above the error (it broke
     unnoticed when the pipeline became stages: the flag test above replaces the bench)."""
-    import studies.runs.bench_transient as bt
+    import studies.bench.bench_transient as bt
 
     r = bt.run(n_steps=12, update_every=6)
     assert r.compared_steps > 0 and r.preload_err < 1e-3

@@ -1,4 +1,4 @@
-"""`bearingfem study tvac` (studies/runs/tvac.py): seed 000's stack in a thermal-vacuum cycle
+"""`bearingfem study tvac` (studies/validation/tvac.py): seed 000's stack in a thermal-vacuum cycle
 through simulate's transient route, against independent statements: the maximum principle of
 heat conduction (with next to no heat of its own the stack stays between the shroud's extremes)
 and the given-temperature route (the preload of the computed part temperatures, given as
@@ -6,7 +6,7 @@ uniform part temperatures, differs from the transient's only by the spread insid
 import pandas as pd
 
 import bearingfem
-from studies.runs import STUDIES, tvac
+from studies.validation import STUDIES, tvac
 
 
 def test_tvac_cycle_on_a_coarse_mesh(tmp_path):
@@ -15,7 +15,7 @@ def test_tvac_cycle_on_a_coarse_mesh(tmp_path):
     rise (heat / radiating conductance, < 0.5 K here: a few mW against ~0.02 W/K); the last
     row's preload equals the given route's at the computed part temperatures within
     |dP/dT| x (T_max - T_min) (the non-uniformity the part means do not carry)."""
-    assert STUDIES["tvac"] == "studies.runs.tvac"
+    assert STUDIES["tvac"] == "studies.validation.tvac"
     s = tvac.run(tmp_path, progress=lambda m: None, mesh_factor=2.0, time_scale=0.1,
                  images=False, dt_s=20.0)
     for name in ("tvac.csv", "tvac.png", "report.md"):

@@ -1,12 +1,12 @@
 """`bearingfem verify`: the manufactured-solution table and the requirement traceability
-(studies/runs/verify.py, studies/runs/requirements.py, the marker plugin in tests/conftest.py)."""
+(studies/usecases/verify.py, studies/usecases/requirements.py, the marker plugin in tests/conftest.py)."""
 import json
 from pathlib import Path
 
 import pytest
 
-from studies.runs import verify
-from studies.runs.requirements import (REQUIREMENTS, RESULTS_RELPATH, repository_root,
+from studies.usecases import verify
+from studies.usecases.requirements import (REQUIREMENTS, RESULTS_RELPATH, repository_root,
                                        tagged_tests, trace)
 
 TESTS = Path(__file__).resolve().parent
@@ -16,7 +16,7 @@ def test_every_tag_is_registered_and_every_requirement_has_a_test():
     tagged = tagged_tests(TESTS)
     unknown = sorted(set(tagged) - set(REQUIREMENTS))
     untested = sorted(set(REQUIREMENTS) - set(tagged))
-    assert not unknown, f"tags missing from studies/runs/requirements.py: {unknown}"
+    assert not unknown, f"tags missing from studies/usecases/requirements.py: {unknown}"
     assert not untested, f"requirements without a tagged test: {untested}"
     assert repository_root() == TESTS.parent
 
@@ -70,7 +70,7 @@ def test_verification_json_and_report_carry_mms_and_traceability(tmp_path):
 def test_richardson_recovers_the_order_and_limit_of_a_known_sequence():
     # f(h) = f0 + C h^p on h = 4, 2, 1 (ratio 2): the observed order is p and the extrapolation f0
     # exactly (Roache 1998); GCI_fine = 1.25 |f2 - f3| / |f3| / (2^p - 1)
-    from studies.runs.verify import richardson
+    from studies.usecases.verify import richardson
 
     f0, C, p = 3.0, 0.2, 2.0
     f = [f0 + C * h ** p for h in (4.0, 2.0, 1.0)]

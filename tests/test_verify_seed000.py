@@ -13,8 +13,8 @@ import pytest
 from analytic.axial_stack import elastic_mismatch_mm, paper_mismatch_mm
 from studies.model.config import load_shipped
 from studies.model.pipeline import Pipeline
-from studies.runs import seed000
-from studies.runs.seed000 import PUBLISHED, axial_stack_of
+from studies.validation import seed000
+from studies.validation.seed000 import PUBLISHED, axial_stack_of
 
 
 @pytest.fixture(scope="module")

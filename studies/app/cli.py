@@ -17,7 +17,7 @@ from pathlib import Path  # noqa: E402
 from infra.version import __version__  # noqa: E402
 from studies.app import commands  # noqa: E402
 from studies.app.output import UserError  # noqa: E402
-from studies.runs import STUDIES  # noqa: E402
+from studies.validation import STUDIES  # noqa: E402
 
 
 class Terminated(BaseException):

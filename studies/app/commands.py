@@ -15,7 +15,7 @@ from pathlib import Path
 
 from studies.app.output import UserError, atomic_dir, progress, progress_bar
 from studies.model.provenance import provenance
-from studies.runs import STUDIES, study_module
+from studies.validation import STUDIES, study_module
 
 
 def _load(assembly_path: Path):
@@ -34,7 +34,7 @@ def _user_errors():
     from studies.model.pipeline import ModelError
     from studies.model.table import TableError
     from studies.model.parallel import SchedulerError
-    from studies.runs.tolerance_report import ToleranceError
+    from studies.usecases.tolerance_report import ToleranceError
 
     return (ConfigError, TableError, EffectError, MeshError, SolveError, ModelError,
             DiagnosisError, ModelFailure, ToleranceError, SchedulerError)
@@ -117,7 +117,7 @@ def cmd_simulate(args) -> None:
 
 
 def cmd_bearing(args) -> None:
-    from studies.runs.bearing_single import BearingRunError, run
+    from studies.usecases.bearing_single import BearingRunError, run
 
     try:
         check_output_file(args.out, (args.bearing, args.loads))
@@ -132,7 +132,7 @@ def cmd_bearing(args) -> None:
 
 
 def cmd_stiffness(args) -> None:
-    from studies.runs.stiffness import StiffnessRunError, run
+    from studies.usecases.stiffness import StiffnessRunError, run
 
     try:
         check_output_file(args.out, (args.assembly, args.conditions))
@@ -164,7 +164,7 @@ def _assembly_and_conditions(args):
 
 
 def cmd_report(args) -> None:
-    from studies.runs import assembly_report
+    from studies.usecases import assembly_report
 
     try:
         asm, cond, inputs = _assembly_and_conditions(args)
@@ -182,7 +182,7 @@ def cmd_report(args) -> None:
 
 
 def cmd_tolerance(args) -> None:
-    from studies.runs import tolerance_report
+    from studies.usecases import tolerance_report
 
     if args.samples < 2:
         raise UserError(f"--samples {args.samples}: need at least 2")
@@ -216,7 +216,7 @@ def _pair(text: str, flag: str) -> tuple[float, float]:
 def _vary(items: list[str]) -> dict[str, tuple]:
     """`--vary KEY=V1,V2,...` (repeatable) -> {key: values}, each value parsed as the key's type
     (`design_search.SETTING_KEYS`); one-line UserError naming the flag otherwise."""
-    from studies.runs.design_search import SETTING_KEYS
+    from studies.usecases.design_search import SETTING_KEYS
 
     out: dict[str, tuple] = {}
     for item in items:
@@ -236,7 +236,7 @@ def _vary(items: list[str]) -> dict[str, tuple]:
 
 
 def cmd_design(args) -> None:
-    from studies.runs import design_search
+    from studies.usecases import design_search
 
     T_min, T_max = _pair(args.range, "--range")
     if args.band is not None and args.band_N is not None:
@@ -297,7 +297,7 @@ def cmd_diagnose(args) -> None:
 
 
 def cmd_verify(args) -> None:
-    from studies.runs import verify
+    from studies.usecases import verify
 
     try:
         asm = _load(args.assembly) if args.assembly is not None else None
@@ -316,17 +316,17 @@ def cmd_verify(args) -> None:
 
 def cmd_bench(args) -> None:
     if args.transient:
-        from studies.runs.bench_transient import main as bench_transient
+        from studies.bench.bench_transient import main as bench_transient
 
         bench_transient([])
         return
     if args.diagnose:
-        from studies.runs import bench_diagnose
+        from studies.bench import bench_diagnose
 
         bench_diagnose.main([])
         return
     if args.simulate:
-        from studies.runs import bench_simulate
+        from studies.bench import bench_simulate
 
         missing = [a for a in args.assembly if not a.is_file()]
         if missing:
@@ -338,17 +338,17 @@ def cmd_bench(args) -> None:
     if args.workers is not None and args.tolerance is None and not args.design:
         raise UserError("--workers: only with --tolerance or --design")
     if args.tolerance is not None:
-        from studies.runs import bench_tolerance
+        from studies.bench import bench_tolerance
 
         if args.tolerance < 1:
             raise UserError(f"--tolerance {args.tolerance}: need at least 1 sample")
         bench_tolerance.main(args.tolerance, args.workers)
         return
     if args.design:
-        from studies.runs import bench_design
+        from studies.bench import bench_design
 
         bench_design.main(2 if args.workers is None else args.workers)
         return
-    from studies.runs import bench
+    from studies.bench import bench
 
     bench.main(quick=args.quick)

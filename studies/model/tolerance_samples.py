@@ -22,7 +22,7 @@ def sample_order(d_inner_um: np.ndarray, d_outer_um: np.ndarray) -> np.ndarray:
     serpentine: the last sample of a band is near the first of the next). `run_samples` puts all
     samples in this order before it cuts blocks, so a block covers a narrow range of fits: CPU
     per block of 1e4 samples of the bench case 0.20 s, vs 0.74 s in drawn order and 0.43 s
-    with 0.1 um outer bands swept upwards only (measured, studies/runs/bench_tolerance.py)."""
+    with 0.1 um outer bands swept upwards only (measured, studies/bench/bench_tolerance.py)."""
     band = np.floor(np.asarray(d_outer_um, float))
     return np.lexsort((np.where(band % 2 == 0, d_inner_um, -np.asarray(d_inner_um, float)), band))
 

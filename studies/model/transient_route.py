@@ -569,7 +569,7 @@ def part_temperatures(asm: Assembly, time_s, T_environment_C, speed_rpm=None, *,
                       progress=None) -> PartTemperatures:
     """Part temperatures over time from the transient conduction FE for an assembly and a time
     series: the second source of lagged temperatures for the diagnosis (a helper such as
-    `studies/runs/second_source.py` calls it in place of the first-order `thermal_lag` effect).
+    `studies/validation/second_source.py` calls it in place of the first-order `thermal_lag` effect).
 
     asm: the assembly; its `[thermal]` section gives the films, emissivity, sink and gas (mode
     "given" is taken as "transient" here: the films must be set for the environment to reach

@@ -1,7 +1,7 @@
 """Benchmark of `bearingfem diagnose` (issue 5 and 11 performance goal: a 500-row dataset with
 every candidate effect diagnosed in under 10 s on 2 cores). Prints, never asserts.
 
-Run: `bearingfem bench --diagnose` or `.venv/bin/python -m studies.runs.bench_diagnose` (add
+Run: `bearingfem bench --diagnose` or `.venv/bin/python -m studies.bench.bench_diagnose` (add
 `--mesh-factor 2` for the coarser mesh of the tests, `--rows 240 500` for several sizes,
 `--workers 1` for one process). Per dataset it also prints the model calls and the wall seconds of
 each phase with the seconds spent in model calls (summed over the worker processes).
@@ -161,7 +161,7 @@ def main(argv=None) -> None:
     from studies.diagnosis.ladder import candidates as ladder_candidates
     from studies.diagnosis.result import to_json
     from studies.model.parallel import available_workers
-    from studies.runs.bench_clock import Clock
+    from studies.bench.bench_clock import Clock
     from studies.model.pipeline import Pipeline
     from studies.model.table import write_table
 

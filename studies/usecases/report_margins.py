@@ -4,8 +4,8 @@ that reproduces it (shared/spec/cli.md, "report").
 
 Everything here is read from what the run already computed: the result columns, the flag and
 margin columns of studies/model/checks.py (`evaluate_checks`), the discretisation error of the
-assembly's mesh (`studies.runs.verify.mesh_convergence_case`), the traceability record of the
-tests (`studies.runs.requirements`). Nothing is recomputed but the headline numbers on the next
+assembly's mesh (`studies.usecases.verify.mesh_convergence_case`), the traceability record of the
+tests (`studies.usecases.requirements`). Nothing is recomputed but the headline numbers on the next
 finer mesh of the same family, for their discretisation error.
 
 Mesh error of a headline number (Richardson extrapolation, Roache 1998 ch. 5): with the value
@@ -27,7 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
-from studies.runs.report_tools import md_table
+from studies.usecases.report_tools import md_table
 
 #: the packages whose versions the "Environment" section lists
 PACKAGES = ("numpy", "scipy", "scikit-fem", "gmsh", "meshio", "matplotlib", "pyvista", "pandas",
@@ -351,7 +351,7 @@ TOLERANCE_QUANTITIES = ("preload_N", "max_contact_pressure_MPa", "fit_pressure_i
 
 def tolerance_lines(asm, res: dict, worst=None) -> list[str]:
     """The uncertainty from the fit tolerances: the worst case of the interference bands (four
-    corners, `studies.runs.tolerance_report.worst_case`) beside the mid-band result."""
+    corners, `studies.usecases.tolerance_report.worst_case`) beside the mid-band result."""
     if worst is None:
         return ["Uncertainty from the fit tolerances: no tolerance classes or limit deviations "
                 "in `[fits]`; the fits are as given.", ""]
@@ -375,7 +375,7 @@ def credibility_lines(conv: dict, mesh_error: dict[str, float], order: float,
     """Markdown section "Credibility": code verification (the requirement traceability of
     `verify`, last results of their tests), this mesh's error, the validation cases and
     their agreement, input pedigree, the tolerance uncertainty."""
-    from studies.runs.requirements import read_results, repository_root, trace
+    from studies.usecases.requirements import read_results, repository_root, trace
 
     traces = trace() if traces is None else traces
     results = read_results(repository_root()) if test_results is None else test_results
@@ -390,7 +390,7 @@ def credibility_lines(conv: dict, mesh_error: dict[str, float], order: float,
     return ["## Credibility", "",
             "### Code verification", "",
             "Requirements and the last results of the tests that prove them in this checkout "
-            "(studies/runs/requirements.py; `bearingfem verify` writes the same table with the "
+            "(studies/usecases/requirements.py; `bearingfem verify` writes the same table with the "
             "manufactured-solution orders and the Lamé cases into verification.json).", "",
             md_table(["requirement", "statement", "last result"], req_rows), "",
             "### This mesh's error", "",
@@ -447,7 +447,7 @@ def front_lines(asm, cond: dict, res: dict, flags: dict, conv: dict, prov: dict,
     tolerance corners), `fine_pipeline`: its mesh at half the sizes (the headline errors)."""
     from studies.model.mesh_size import ORDER
     from studies.model.tolerances import has_tolerances
-    from studies.runs.tolerance_report import worst_case
+    from studies.usecases.tolerance_report import worst_case
 
     worst = worst_case(pipeline, cond) if has_tolerances(asm) else None
 

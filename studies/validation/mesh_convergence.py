@@ -15,9 +15,9 @@ from studies.model.config import load_shipped
 from studies.model.inputs import baseline_inputs
 from studies.model.columns import to_columns
 from studies.model.pipeline import Pipeline
-from studies.runs.report_tools import md_table
+from studies.usecases.report_tools import md_table
 from studies.model.table import write_table
-from studies.runs.verify import convergence_case, plot_convergence
+from studies.usecases.verify import convergence_case, plot_convergence
 
 FACTORS = (4.0, 2.0, 1.0, 0.5, 0.25)
 T_STATES_C = (-60.0, 80.0)

@@ -34,8 +34,9 @@ from studies.model.result import SimulationResult
 from studies.model.config import CONFIG_DIR, SHIPPED
 from studies.model.provenance import provenance
 from studies.model.table import write_table
-from studies.runs import assembly_report, published_as_data
-from studies.runs.report_tools import line_plot, md_table
+from studies.usecases import assembly_report
+from studies.validation import published_as_data
+from studies.usecases.report_tools import line_plot, md_table
 
 #: the published measurement (the paper named in the configuration's `source`)
 PUBLISHED = {"rate_inner_um_per_C": -0.05, "rate_outer_um_per_C": 0.07, "outer_closes_C": 41.0,
@@ -298,8 +299,8 @@ INVERSE_TOLERANCE_N = 10.0
 def published_trend_search(asm, out: Path, mesh_factor: float) -> list[str]:
     """The inverse question as a test: which stack within plausible bounds gives the published
     preload change (about -40 / +40 N at -60 / 80 C around 100 N)? Markdown lines."""
-    from studies.runs.design_search import candidates
-    from studies.runs.inverse_rig import match_trend
+    from studies.usecases.design_search import candidates
+    from studies.validation.inverse_rig import match_trend
 
     stacks = candidates(asm, length_factors=INVERSE_LENGTH_FACTORS, materials=INVERSE_MATERIALS,
                         ring_deltas_mm=INVERSE_RING_DELTAS_MM)

@@ -26,8 +26,9 @@ from analytic.safety import film_parameter_flag
 from studies.model.config import CONFIG_DIR, SHIPPED
 from studies.model.provenance import provenance
 from studies.model.table import write_table
-from studies.runs import assembly_report, published_as_data
-from studies.runs.report_tools import line_plot, md_table
+from studies.usecases import assembly_report
+from studies.validation import published_as_data
+from studies.usecases.report_tools import line_plot, md_table
 
 #: the published measurement
 PUBLISHED_RATIO_COLD = (1.333, 1.50)     # torque(-20 C) / torque(20 C): +33.3..50 %

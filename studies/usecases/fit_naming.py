@@ -9,7 +9,7 @@ working); this picture, in docs/ and in every report of an assembly with a layer
 which. Each fit is named after the part *inside* it: `outer_*` the outer rings in whatever they sit
 in, `sleeve_*` the sleeve in whatever it sits in, `cartridge_*` the cartridge in the housing.
 
-    python -m studies.runs.fit_naming [ASSEMBLY.toml] -o docs/fit_naming.png
+    python -m studies.usecases.fit_naming [ASSEMBLY.toml] -o docs/fit_naming.png
 
 draws an assembly (default: `example_assembly`, the template with a sleeve and a cartridge).
 """

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from studies.model.parallel import map_blocks
-from studies.runs.design_search import SCREEN_MESH_FACTOR, Stack, evaluate_stack
+from studies.usecases.design_search import SCREEN_MESH_FACTOR, Stack, evaluate_stack
 
 
 @dataclass(frozen=True)

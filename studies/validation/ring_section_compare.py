@@ -9,13 +9,13 @@ once with `"grooved"`; nothing else changes. Conditions: uniform temperature at 
 T_min_C, 20 C, the assembly temperature T_ref_C and T_max_C, at the assembly's default speed (`[lubrication] speed_rpm`, what
 `simulate` takes without a speed column) and, when `[operating] speed_max_rpm` is higher, again
 at that speed. The discretisation error of each mesh is measured the way `report` and
-`verify --assembly` measure it (`studies.runs.verify.mesh_convergence_case`: levels x2, x1, x0.5,
+`verify --assembly` measure it (`studies.usecases.verify.mesh_convergence_case`: levels x2, x1, x0.5,
 Richardson value, at T_min_C and T_max_C with the default speed), so a difference can be read
 against it. Besides simulate's outputs, the preload change from T_ref_C (same speed) and, as a
 diagnostic, the grooved results read with a free-radius circle fit (`radius_free`; the model
 holds the groove radius at its thermal growth, docs/ring_sections.md explains why).
 
-Run: `bearingfem study ring_sections --out DIR` or `python -m studies.runs.ring_section_compare
+Run: `bearingfem study ring_sections --out DIR` or `python -m studies.validation.ring_section_compare
 --out DIR`. Writes `ring_sections.csv` (one row per assembly, condition and quantity: rectangle,
 grooved, absolute and relative difference), `mesh_error.csv` (per assembly and section) and
 `report.md` / `report.html` (the tables).
@@ -29,9 +29,8 @@ from pathlib import Path
 
 import numpy as np
 
-import bearingfem
 from studies.model.columns import to_columns
-from studies.model.config import CONFIG_DIR
+from studies.model.config import CONFIG_DIR, load_assembly
 from studies.model.pipeline import simulate_table
 from studies.model.table import write_table
 
@@ -75,7 +74,7 @@ def quantities(out: dict) -> list[str]:
 
 def mesh_error(asm) -> dict:
     """The achieved discretisation error of the assembly's mesh (report / verify --assembly)."""
-    from studies.runs.verify import mesh_convergence_case
+    from studies.usecases.verify import mesh_convergence_case
 
     case = mesh_convergence_case(asm)
     worst = max(case["errors"], key=case["errors"].get)
@@ -212,13 +211,13 @@ def markdown(rows: list[dict], errs: dict[str, dict]) -> list[str]:
 def main(out_dir: Path, progress=print, assemblies=None, errors: bool = True) -> list[dict]:
     """Run the comparison for `assemblies` (short names of ASSEMBLIES; default all) into
     out_dir: ring_sections.csv, mesh_error.csv, report.md, report.html. Returns the rows."""
-    from studies.runs.report_tools import write_report_files
+    from studies.usecases.report_tools import write_report_files
 
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     rows, errs = [], {}
     for name in assemblies or ASSEMBLIES:
-        asm = bearingfem.load_assembly(CONFIG_DIR / ASSEMBLIES[name])
+        asm = load_assembly(CONFIG_DIR / ASSEMBLIES[name])
         r, e = compare(name, asm, progress, errors=errors)
         rows += r
         if e:

@@ -23,7 +23,7 @@ from studies.model.checks import assembly_checks
 from studies.model.parallel import Blocks
 from studies.model.pipeline import Pipeline
 from studies.model.table import write_table
-from studies.runs.report_tools import line_plot, md_table, nice_step, write_report_files
+from studies.usecases.report_tools import line_plot, md_table, nice_step, write_report_files
 
 N_CONDITIONS = 8          # about this many temperatures in the default conditions
 SOBOL_BASE_SAMPLES = 512  # Sobol' design: 512 x (surfaces + 2) samples (studies/model/sobol.py)

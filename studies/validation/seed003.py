@@ -29,8 +29,8 @@ from studies.model.pipeline import FEOptions, Pipeline
 from studies.model.config import CONFIG_DIR, SHIPPED
 from studies.model.provenance import provenance
 from studies.model.table import write_table
-from studies.runs import assembly_report
-from studies.runs.report_tools import line_plot, md_table, safety_section
+from studies.usecases import assembly_report
+from studies.usecases.report_tools import line_plot, md_table, safety_section
 
 SPEEDS_RPM = (1000.0, 1500.0)
 H_HOUSING_W_M2K = 15.0       # assumption: natural convection + radiation on the housing

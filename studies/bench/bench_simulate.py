@@ -121,7 +121,7 @@ def _accuracy(paths) -> None:
     Richardson value of its x1, x0.5, x0.25 meshes (verify.mesh_convergence_case, the tests'
     reference from finer meshes only)."""
     from studies.model.config import load_assembly
-    from studies.runs.verify import mesh_convergence_case
+    from studies.usecases.verify import mesh_convergence_case
 
     print("== chosen mesh: target and achieved error (vs Richardson of x1, x0.5, x0.25) ==")
     print(f"{'assembly':32s} {'target':>8s} {'achieved':>9s}")

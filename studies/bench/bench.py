@@ -91,7 +91,7 @@ def main(quick: bool = False) -> None:
     asm = load_shipped("seed000")
     print("== FE per mesh level (seed 000 stack, -60 C, direct solve with exact contact) ==")
     rows = fe_levels(asm, (4.0, 2.0, 1.0) if quick else (4.0, 2.0, 1.0, 0.5, 0.25))
-    from studies.runs.verify import richardson
+    from studies.usecases.verify import richardson
 
     ext = richardson([r[2] for r in rows]).extrapolated
     conv = [r for r in rows if abs(r[2] - ext) / abs(ext) < 1e-3]
@@ -104,7 +104,7 @@ def main(quick: bool = False) -> None:
     print("== full pipeline sweeps (default mesh) ==")
     pipeline_sweep(asm)
     try:
-        from studies.runs import bench_analytic
+        from studies.bench import bench_analytic
     except ImportError:
         return
     print("== analytic pair model ==")

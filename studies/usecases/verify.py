@@ -32,7 +32,7 @@ Beside the cases (`verification.json` keys "mms" and "requirements"):
   frictionless fit (a hollow and a solid shaft) and for steady conduction; per operator and
   norm the expected order of the P2 elements, the observed one (least squares over the three
   finest of MMS_LEVELS) and pass when they differ by at most MMS_ORDER_TOL (`MMSCase`).
-- requirements: the traceability table (`studies.runs.requirements.trace`): every requirement,
+- requirements: the traceability table (`studies.usecases.requirements.trace`): every requirement,
   the tests tagged with it, the outcome of their last pytest run in this checkout.
 """
 from __future__ import annotations
@@ -51,8 +51,8 @@ from fem.post import element_stresses, fit_mean_pressures, theta_per_element
 from fem.loosening import fit_open_omega2
 from fem.solver import FitSolver, Superposition
 from meshes.section import two_cylinder_section
-from studies.runs.report_tools import md_table
-from studies.runs.requirements import trace
+from studies.usecases.report_tools import md_table
+from studies.usecases.requirements import trace
 
 TOLERANCE = 0.005          # issue 2: every Lamé case within 0.5 % on the default mesh
 REL_FLOOR_MPa = 1e-9
@@ -614,7 +614,7 @@ def write_verification(out_dir: Path, cases: list[VerifyCase], plot_path: Path |
                        mms: list[MMSCase] = (), requirements=(), convergence: list[dict] = ()) -> None:
     """verification.json and verification.md (the tables a reviewer reads): the closed-form
     cases, then the mesh-convergence ones (`convergence_case` dicts) under "cases";
-    `requirements`: `studies.runs.requirements.RequirementTrace` rows. The one writer of both."""
+    `requirements`: `studies.usecases.requirements.RequirementTrace` rows. The one writer of both."""
     (out_dir / "verification.json").write_text(json.dumps(
         {"cases": [c.to_json() for c in cases] + list(convergence),
          "mms": [m.to_json() for m in mms],

@@ -26,8 +26,8 @@ from studies.model.table import write_table
 from analytic import lame
 from analytic.bearing.land import land_diameters_mm
 from studies.model.tolerances import fits_of, has_tolerances
-from studies.runs import fit_naming, report_margins, report_pdf
-from studies.runs.report_tools import (field_images, nice_step, line_plot, md_table, safety_section,
+from studies.usecases import fit_naming, report_margins, report_pdf
+from studies.usecases.report_tools import (field_images, nice_step, line_plot, md_table, safety_section,
                                        significant, write_report_files)
 
 N_SWEEP = 25            # about this many points in the default temperature sweep
@@ -53,10 +53,10 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, progress=prin
     rig_sections: markdown lines a study of a particular rig adds (its own questions, the
     published measurement beside the model), placed after the safety table.
     field_temperatures_C: where to draw field images (default: coldest, reference, hottest).
-    pdf: also report.pdf (studies/runs/report_pdf.py); command: the command line that made it
+    pdf: also report.pdf (studies/usecases/report_pdf.py); command: the command line that made it
     (the "Reproduce" section). The front sections (margins, pedigree, assumptions, credibility,
-    environment, command): studies/runs/report_margins.py."""
-    from studies.runs.verify import mesh_convergence_case
+    environment, command): studies/usecases/report_margins.py."""
+    from studies.usecases.verify import mesh_convergence_case
 
     cond = dict(conditions) if conditions is not None else default_conditions(asm)
     cond = {k: np.asarray(v, float) for k, v in cond.items() if not k.startswith("_")}
@@ -298,7 +298,7 @@ def _text(asm, prov, cond, r, result, violations, warnings, plots, images, conv,
               "in ParaView.", ""]
     for T, paths in images.items():
         lines += [f"### {T:g} C", "", " ".join(f"![{p.stem}]({p.name})" for p in paths), ""]
-    from studies.runs.verify import discretisation_lines
+    from studies.usecases.verify import discretisation_lines
 
     lines += ["## Discretisation error of this mesh", ""] + discretisation_lines(conv)
     return lines

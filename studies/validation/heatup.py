@@ -36,7 +36,7 @@ from studies.model.pipeline import Pipeline
 from studies.model.table import write_table
 from studies.model.transient_route import (TRANSIENT_COLUMNS, coupling_at, equilibrium,
                                            run_transient, thermal_model)
-from studies.runs.report_tools import line_plot, md_table
+from studies.usecases.report_tools import line_plot, md_table
 
 #: seed 003's statements (Li & Zhao, China Mechanical Engineering 34(7), 2023; our translation):
 #: section 3 on its fig. 9 (1500 r/min, 1500 N axial, 50 N radial, 25 C ambient): "the balls'

@@ -18,7 +18,7 @@ Heat and conductances are held per run (the coupling loop temperature -> fits ->
 torque -> heat is wired into `simulate` separately); the bench's fits and preload are the
 outputs of each step's temperature field.
 
-    python -m studies.runs.bench_transient [--steps N] [--stride K]
+    python -m studies.bench.bench_transient [--steps N] [--stride K]
 """
 from __future__ import annotations
 
@@ -36,7 +36,7 @@ from studies.model.config import CONFIG_DIR, SHIPPED, load_assembly
 from studies.model.inputs import baseline_inputs
 from studies.model.pipeline import RINGS, FEOptions, FEState, Pipeline
 from studies.model.transient_route import ball_contacts
-from studies.runs.bench_clock import Clock
+from studies.bench.bench_clock import Clock
 
 SPEED_RPM = 1500.0
 MU_TRACTION = 0.03          # as the seed 003 study (sliding and spin traction, EHL)

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from studies.runs.bench_clock import Clock
+from studies.bench.bench_clock import Clock
 
 TOLERANCES = {"inner_shaft_class": "k5", "inner_ring_bore_class": "P4",
               "outer_housing_class": "J6", "outer_ring_od_class": "P4"}

@@ -18,7 +18,7 @@ import os
 import tempfile
 from pathlib import Path
 
-from studies.runs.bench_clock import Clock
+from studies.bench.bench_clock import Clock
 
 #: stacks the memory line runs, and after how many the first reading is taken
 MEMORY_STACKS = 1000
@@ -52,7 +52,7 @@ def memory_per_stack(asm, workers: int | None, n_stacks: int = MEMORY_STACKS,
     import numpy as np
 
     from studies.model.parallel import Blocks
-    from studies.runs import design_search as ds
+    from studies.usecases import design_search as ds
 
     stacks = ds.candidates(asm, clamps=True)
     settings = (ds.Setting.given(asm),)
@@ -74,7 +74,7 @@ def memory_per_stack(asm, workers: int | None, n_stacks: int = MEMORY_STACKS,
 def main(workers: int | None = 2) -> None:
     from infra.version import __version__
     from studies.model.config import load_shipped
-    from studies.runs import design_search
+    from studies.usecases import design_search
 
     asm = load_shipped("seed000")
     w = None if not workers else workers

@@ -429,7 +429,7 @@ def _value_text(f: HeldOutFit) -> str:
 
 def fits_table(r: PublishedAsData, fmt: str = "{:.3g}") -> str:
     """Markdown table of the candidates of one comparison."""
-    from studies.runs.report_tools import md_table
+    from studies.usecases.report_tools import md_table
     rows = [["as configured", "-", fmt.format(r.configured[0]), fmt.format(r.configured[1]), "-"]]
     for f in r.fits:
         rows.append([f.candidate, _value_text(f), fmt.format(f.fitted)

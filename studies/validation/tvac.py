@@ -30,8 +30,8 @@ from studies.model.config import Thermal, load_shipped
 from studies.model.pipeline import Pipeline
 from studies.model.table import write_table
 from studies.model.transient_route import run_transient, thermal_model
-from studies.runs.heatup import field_images
-from studies.runs.report_tools import md_table
+from studies.validation.heatup import field_images
+from studies.usecases.report_tools import md_table
 
 #: shroud (sink) temperature of the cycle: (time h, C), linear in between
 CYCLE_H_C = ((0.0, 20.0), (2.0, 60.0), (6.0, 60.0), (9.0, -40.0), (13.0, -40.0), (15.0, 20.0))

@@ -22,7 +22,7 @@ design), every listed effect the design can identify (before-data screening), an
 torque-sensor drift, each at the magnitudes `operating.MAGNITUDES` (RMS visible change in noise
 sigmas) with REPS trials. Method and rates: `studies.diagnosis.operating`.
 
-Second source (issue 23 item 1; `studies.runs.second_source`): beside the same-model matrix, the
+Second source (issue 23 item 1; `studies.validation.second_source`): beside the same-model matrix, the
 same diagnosis on data made another way than the model it fits (finer mesh and direct FE, model
 forms the config lacks, transient-FE and network temperatures, two causes, strongly correlated
 noise, spikes, sensor drift and offsets), each trial judged against the case's truth label
@@ -30,7 +30,7 @@ noise, spikes, sensor drift and offsets), each trial judged against the case's t
 
 Size. The default run is small enough for a loaded 2-core machine (`SMALL`: 1 trial per listed
 cell, 6 nulls per design, the `cycles` and `speed_steps` designs, 2 trials per second-source case);
-`python -m studies.runs.confusion_matrix --out DIR --full` runs the full rates (`FULL`).
+`python -m studies.validation.confusion_matrix --out DIR --full` runs the full rates (`FULL`).
 
 Writes `confusion_matrix.json` (every trial, the rates, the look-alike matrices),
 `confusion_matrix.csv` (one row per trial), `second_source.json` / `second_source.csv` (every
@@ -119,7 +119,7 @@ class SecondTrial:
 def second_trial(name: str, seed: int, mesh_factor: float, progress=print) -> SecondTrial:
     """One noise draw of a second-source case, diagnosed as `diagnose` does
     (`second_source.diagnose_case`) and judged against its truth."""
-    from studies.runs import second_source as ss
+    from studies.validation import second_source as ss
 
     c = ss.make_case(name, seed, mesh_factor)
     t0 = time.perf_counter()
@@ -138,7 +138,7 @@ def run_second_source(cases=None, trials: int = 2, mesh_factor: float = 1.0,
     (seeds 0..trials-1), on up to `workers` processes (`parallel_map`; results in case and seed
     order whatever the workers)."""
     from studies.model.parallel import parallel_map
-    from studies.runs import second_source as ss
+    from studies.validation import second_source as ss
 
     items = [(name, seed) for name in (cases or list(ss.CASES)) for seed in range(trials)]
     return parallel_map(lambda it: second_trial(*it, mesh_factor, progress), items, workers)
@@ -171,7 +171,7 @@ def second_source_rates(trials: list[SecondTrial]) -> list[str]:
     from studies.diagnosis.ladder import ladder
     from studies.model.config import load_shipped
     from studies.model.effects import EFFECTS
-    from studies.runs.second_source import CASES, DESIGNS as SS_DESIGNS
+    from studies.validation.second_source import CASES, DESIGNS as SS_DESIGNS
 
     def claimable(design: str) -> set[str]:
         """Names a diagnosis of the design can claim: listed effects and tried rungs."""
@@ -204,7 +204,7 @@ def second_source_rates(trials: list[SecondTrial]) -> list[str]:
 
 def second_source_markdown(trials: list[SecondTrial]) -> list[str]:
     """The second-source confusion matrices (one per design) and the outcome totals."""
-    from studies.runs.second_source import OUTCOMES
+    from studies.validation.second_source import OUTCOMES
 
     L = []
     tot = Counter(t.outcome for t in trials)
@@ -241,7 +241,7 @@ def run(out_dir: Path, progress=print, designs=None, reps: int | None = None,
     same-model matrix (with the second-source trials under `second_source`). Sizes default to
     SMALL (FULL with `full`); `parts`: "same" (the same-model matrix), "second" (the second
     source) or both; `cases`: the second-source cases (default all)."""
-    from studies.runs.report_tools import write_report_files
+    from studies.usecases.report_tools import write_report_files
 
     size = dict(FULL if full else SMALL)
     for k, v in (("designs", designs), ("reps", reps), ("n_null", n_null),
@@ -317,9 +317,9 @@ def _run_same(out_dir: Path, progress, size: dict, L: list[str]) -> dict:
 
 
 def main(argv=None) -> int:
-    """`python -m studies.runs.confusion_matrix --out DIR [--full] [--part same|second]
+    """`python -m studies.validation.confusion_matrix --out DIR [--full] [--part same|second]
     [--mesh-factor F] [--trials N] [--cases A,B,...] [--workers N]`."""
-    ap = argparse.ArgumentParser(prog="python -m studies.runs.confusion_matrix",
+    ap = argparse.ArgumentParser(prog="python -m studies.validation.confusion_matrix",
                                  description="confusion matrices of the diagnosis (module "
                                              "docstring): same model and second source")
     ap.add_argument("--out", required=True, type=Path)

@@ -60,8 +60,8 @@ from studies.model.inputs import baseline_inputs
 from studies.model.memory import release_freed_memory
 from studies.model.parallel import Blocks, map_blocks
 from studies.model.pipeline import FEOptions, Pipeline
-from studies.runs.report_tools import nice_step
-from studies.runs.report_tools import line_plot, md_table, write_report_files
+from studies.usecases.report_tools import nice_step
+from studies.usecases.report_tools import line_plot, md_table, write_report_files
 
 LENGTH_FACTORS = (0.5, 1.0, 1.5, 2.0)
 PRELOAD_FACTORS = (0.5, 0.75, 1.0, 1.25, 1.5)

@@ -1,0 +1,1 @@
+"""Benchmarks (`bearingfem bench`): timings and memory on this machine, printed, never asserted."""
