@@ -125,6 +125,8 @@ class DiagnosisResult:
     baseline_pred: dict[str, np.ndarray] = field(default_factory=dict, repr=False)
     extended_pred: dict[str, np.ndarray] = field(default_factory=dict, repr=False)
     candidate_preds: dict[str, dict[str, np.ndarray]] = field(default_factory=dict, repr=False)
+    #: held-out block of each row (0-based; diagnosis.csv)
+    row_blocks: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def not_identifiable(self) -> dict[str, str]:
