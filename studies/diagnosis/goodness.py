@@ -41,6 +41,7 @@ from scipy import stats
 from studies.diagnosis.core import Fit, Residuals
 from studies.diagnosis.interval import parameter_covariance
 from studies.diagnosis.ladder import FormShare
+from studies.diagnosis.sleeve_rung import SleeveForm
 from studies.diagnosis.openworld import characterise_column, named_features
 from studies.diagnosis.problem import Problem
 from studies.model.effects.generalised import GENERALISED
@@ -188,10 +189,12 @@ def at_bound(pb: Problem, fit: Fit) -> list[AtBound]:
 
 
 def _is_form_itself(pb: Problem, name: str, p: str, bound: float) -> bool:
-    """A switch rung's `share` at its upper bound 1: the form exactly (`ladder.FormShare`)."""
+    """A switch rung's `share` at its upper bound 1: the form exactly (`ladder.FormShare`,
+    `sleeve_rung.SleeveForm`)."""
     e = next((e for e in pb.candidates if e.name == name), None) or next(
         (a.effect for a in pb.base if a.effect.name == name), None)
-    return isinstance(e, FormShare) and p == "share" and bound == e.bounds["share"][1]
+    return (isinstance(e, (FormShare, SleeveForm)) and p == "share"
+            and bound == e.bounds["share"][1])
 
 
 def _off(pb: Problem, name: str, p: str) -> float | None:

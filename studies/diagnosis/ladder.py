@@ -71,6 +71,7 @@ from infra.memo import Memo
 from studies.model.config import Assembly, ConfigError
 from studies.model.config_checks import check_assembly
 from studies.model.effects import Effect
+from studies.diagnosis.sleeve_rung import SleeveForm, sleeve_candidate
 
 #: the kind of a ladder candidate in diagnosis.json (docs/cli.md); listed effects are "effect"
 KIND = "model_form"
@@ -407,12 +408,9 @@ def ladder(asm: Assembly) -> list[Rung]:
                       why_not="the listed interference_error is bounded to the tolerance band "
                               "when [fits] gives tolerances (studies.model.effects."
                               "assembly_bounds), else to +-20 um"))
-    if asm.sleeve is None:
-        rungs.append(Rung("sleeve", "a [sleeve] between the outer rings and the housing",
-                          "fe_setup", ("temperature_C",),
-                          why_not="a sleeve's material and thickness are drawing data, not "
-                                  "bounded by a data sheet: give them in [sleeve] and diagnose "
-                                  "again"))
+    if asm.sleeve is None:      # issue 34: studies/diagnosis/sleeve_rung.py
+        rungs.append(Rung("sleeve", SleeveForm.change, "fe_setup", SleeveForm.acts_through,
+                          **sleeve_candidate(asm)))
     return sorted(rungs, key=lambda r: COSTS.index(r.cost))
 
 
@@ -486,6 +484,8 @@ class FormRoute:
         self._pipelines: dict = {}     # switch rung name -> its pipeline on the file
         self._param = Memo(self.KEEP)        # parameter rung assembly -> its pipeline
         self._switch_on = Memo(self.KEEP)    # (switch rung, parameter rung assembly) -> pipeline
+        sleeve = self.rungs.get(SleeveForm.name)
+        self._sleeves = Memo(max(self.KEEP, len(sleeve.candidate.variants) if sleeve else 0))
 
     def split(self, effects: Mapping[str, Mapping[str, float]]) -> tuple[dict, dict]:
         """(listed effects, ladder rungs and sensor look-alikes) of an effects dict
@@ -545,6 +545,19 @@ class FormRoute:
             return hit
         return self._switch_on.get_or_make((name, base), make)
 
+    def form_pipeline(self, name: str, asm: Assembly, params: Mapping[str, float]):
+        """The pipeline of switch rung `name`'s form on `asm` (`pipeline`); the sleeve rung's
+        of its parameters' variant (`sleeve_rung.SleeveForm`, one FE set-up per variant: all
+        kept for the diagnosis, the profile revisits them)."""
+        from studies.model.pipeline import Pipeline
+
+        cand = self.rungs[name].candidate
+        if not isinstance(cand, SleeveForm):
+            return self.pipeline(name, asm)
+        return self._sleeves.get_or_make(
+            (cand.variant(params), asm),
+            lambda: Pipeline(cand.assembly(asm, params), mesh_factor=self.pl.mesh_factor))
+
     def columns(self, inputs, forms: Mapping[str, Mapping[str, float]],
                 columns: tuple[str, ...]) -> dict[str, np.ndarray]:
         """The named columns of the inputs (inputs rungs already applied) through the pipeline
@@ -557,12 +570,12 @@ class FormRoute:
         out = {c: np.asarray(base[c], float) for c in columns}
         for name, params in forms.items():
             rung = self.rungs.get(name)
-            if rung is None or not isinstance(rung.candidate, FormShare):
+            if rung is None or not isinstance(rung.candidate, (FormShare, SleeveForm)):
                 continue
             share = rung.candidate.validate(params)["share"]
             if share == 0.0:
                 continue
-            form = to_columns(self.pipeline(name, asm).run(inputs), flags=False)
+            form = to_columns(self.form_pipeline(name, asm, params).run(inputs), flags=False)
             for c in columns:
                 out[c] = out[c] + share * (np.asarray(form[c], float) - base[c])
         return out

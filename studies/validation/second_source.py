@@ -313,14 +313,11 @@ def _lot(asm, part_attr: str, factor: float):
 
 def _sleeve(asm, thickness_mm: float = 2.0, material: str = "9Cr18"):
     """The assembly with a steel sleeve of `thickness_mm` between the outer rings and the
-    housing (the housing bore opened by 2 x the thickness; the sleeve's fit in the housing 0)."""
-    from studies.model.config import Layer
+    housing (`sleeve_rung.sleeve_assembly`: the housing bore opened by 2 x the thickness; the
+    sleeve's fit in the housing 0)."""
+    from studies.diagnosis.sleeve_rung import sleeve_assembly
 
-    b = asm.bearing
-    layer = Layer(material=material, radial_thickness_mm=thickness_mm,
-                  length_mm=2.0 * b.width_mm + asm.outer_spacer.length_mm)
-    h = replace(asm.housing, bore_diameter_mm=b.outside_diameter_mm + 2.0 * thickness_mm)
-    return replace(asm, sleeve=layer, housing=h)
+    return sleeve_assembly(asm, material, thickness_mm)
 
 
 def _aluminium_housing(asm, material: str = "6061"):
