@@ -145,3 +145,29 @@ def test_claimed_interval_covers_fresh_draws_of_the_truth():
         assert 0.85 <= inside / total <= 0.95, (seed, inside / total)
         doc = to_json(r)["interval"]
         assert doc["level"] == 0.9 and 0.8 <= doc["coverage_calibration"] <= 1.0, doc
+
+
+# ------------------------------------------------------------------ the sleeve rung
+def test_sleeve_rung_tries_only_the_sleeves_the_housing_can_hold():
+    """Seed 000's housing (bore 47 mm, outside 60 mm) holds every listed sleeve (3 mm leaves a
+    3.5 mm wall); with its outside diameter cut to 52 mm a 3 mm sleeve would open the bore to
+    53 mm, past the outside, so only the 1.5 mm variants are tried (bore 50 mm); a file that
+    has a sleeve gets no sleeve rung. At share 1 the rung's assembly is the file's with the
+    sleeve: the housing bore the bearing OD + 2 x the thickness."""
+    from dataclasses import replace
+    from studies.diagnosis.ladder import ladder
+    from studies.diagnosis.sleeve_rung import (SLEEVE_MATERIALS, SLEEVE_THICKNESS_MM,
+                                               sleeve_assembly, sleeve_candidate)
+    from studies.model.config import load_shipped
+
+    asm = load_shipped("seed000")
+    full = sleeve_candidate(asm)["candidate"]
+    assert len(full.variants) == len(SLEEVE_MATERIALS) * len(SLEEVE_THICKNESS_MM)
+    thin = replace(asm, housing=replace(asm.housing, outer_diameter_mm=52.0))
+    kept = sleeve_candidate(thin)["candidate"].variants
+    assert {t for _, t in kept} == {1.5} and {m for m, _ in kept} == set(SLEEVE_MATERIALS)
+    m, t = full.variant({"share": 1.0, "variant": 3.0})
+    a = full.assembly(asm, {"share": 1.0, "variant": 3.0})
+    assert a.sleeve.material == m and a.sleeve.radial_thickness_mm == t
+    assert a.housing.bore_diameter_mm == asm.bearing.outside_diameter_mm + 2 * t
+    assert "sleeve" not in {r.name for r in ladder(sleeve_assembly(asm, "GCr15", 2.0))}
