@@ -24,12 +24,20 @@ causes, or when the first cause was
 NOISE_RTOL of the one the pass used (nothing was hiding under an inflated noise: no further
 pass is run). The final verdict is `explained` when the model of the accepted causes leaves no
 structure under the last noise estimate (`goodness.goodness`), else `explained_partly` with what
-is left, but only when that structure can be laid at the causes' door: a parameter at a bound
-(the data want more of the cause than its bounds allow) or several causes accepted; a single
-cause that leaves structure with its parameters inside their bounds may be a look-alike of a cause
-outside the list and the verdict is `unexplained` (with it as the best partial candidate), as on
-an unlisted groove curvature on steady points. A single cause that is a model form fitted at the
-edge of its stated scatter (`scatter_edge`) is not the explanation either: `unexplained`. Each
+is left, but only when several causes were accepted; a single cause that leaves structure may be
+a look-alike of a cause outside the list and the verdict is `unexplained` (with it as the best
+partial candidate), as on an unlisted groove curvature on steady points.
+
+Claim rules (issue 34, `blocked`): a cause with a fitted parameter at its bound or within its
+standard uncertainty of one (`goodness.at_bound`: the data want more than the candidate allows,
+which is evidence against it, not a partial explanation: issue 34's sleeve in an aluminium housing
+was `explained_partly: interference_error` at its +-20 um), or one whose model predicts a measured
+column worse on held-out blocks than the model before it beyond the noise
+(`heldout.worse_columns`), is never claimed: the first such cause makes the verdict `unexplained`
+(`at_bound` / `worse_columns` say why), a later one is not accepted (the causes before it stay),
+and a final joint model that pushes an accepted cause to its bound claims nothing. A model form
+fitted at the edge of its stated scatter (`scatter_edge`: a material lot at +-5 %) is one case of
+the rule. Each
 accepted cause is listed in order with its own held-out gain: the held-out RMSE of the model with it against the model before it, per
 column, under the noise of its pass.
 """
