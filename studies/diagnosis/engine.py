@@ -63,7 +63,7 @@ from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
-from studies.diagnosis.calibration import calibrate
+from studies.diagnosis.calibration import baseline_noise, calibrate
 from studies.diagnosis.candidate import Candidate
 from studies.diagnosis.core import Baseline, Decision, Fit, Screening
 from studies.diagnosis.decision import Separation, decide, separating
@@ -213,15 +213,16 @@ def column_evidence(pb: Problem, base: ModelRmse, ext: ModelRmse, z_base: np.nda
 
 def _interval(first: Pass, sel: Selection, cause: str | None, ext_fit: Fit, ext_ho: np.ndarray):
     """The predictive intervals of the claimed model (`interval.column_intervals`) and the fit
-    they are about: the selection's final model of the accepted causes under its noise model
-    (re-estimated from what the causes leave: a first noise estimate inflated by the cause,
-    AR(1) rho 0.99, would give intervals many times too wide), else the first pass's extended
-    fit; (None, None) without a claimed cause (issue 34)."""
+    they are about: the selection's final model of the accepted causes, else the first pass's
+    extended fit, under the noise re-estimated from that fit's own residual
+    (`calibration.baseline_noise`: a first noise estimate inflated by the cause, AR(1) rho 0.99,
+    would give intervals many times too wide); (None, None) without a claimed cause (issue
+    34)."""
     if not cause or sel.verdict not in ("explained", "explained_partly"):
         return None, None
-    if sel.fit is not None:
-        return column_intervals(sel.problem, sel.fit, sel.heldout_z), sel.fit
-    return column_intervals(first.pb, ext_fit, ext_ho), ext_fit
+    pb, fit, ho = ((sel.problem, sel.fit, sel.heldout_z) if sel.fit is not None
+                   else (first.pb, ext_fit, ext_ho))
+    return column_intervals(pb, fit, ho, noise=baseline_noise(pb, fit.pred)), fit
 
 
 def assemble(first: Pass, sel: Selection, sep: Separation, cost: Cost) -> DiagnosisResult:

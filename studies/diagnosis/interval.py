@@ -37,7 +37,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import stats
 
-from studies.diagnosis.stats import ar1_unwhiten
+from studies.diagnosis.stats import ar1_unwhiten, ar1_whiten
 
 #: the level of the diagnosis's predictive intervals (docs/cli.md: `interval.level`)
 LEVEL = 0.9
@@ -158,33 +158,46 @@ class Intervals:
                             for c, ci in self.columns.items()}}
 
 
-def column_intervals(pb, fit, heldout_z: np.ndarray, level: float = LEVEL) -> Intervals:
+def column_intervals(pb, fit, heldout_z: np.ndarray, level: float = LEVEL,
+                     noise=None) -> Intervals:
     """The predictive interval of every measured column of diagnosis problem `pb`
     (`studies.diagnosis.problem.Problem`) for its fit `fit` (`core.Fit`: standardised residual
     z, its Jacobian J = dz/du in the fit's scaled coordinates u, predictions), with the fit's
-    held-out standardised residuals `heldout_z` for the held-out coverage.
+    held-out standardised residuals `heldout_z` (under pb's noise model) for the held-out
+    coverage; `noise`: the noise model of the interval (`problem.Noise`, default pb's; e.g. the
+    one re-estimated from the fit's own residual, `calibration.baseline_noise`).
 
     z = W (measured - prediction) / sigma_w, W the AR(1) whitening (`stats.ar1_whiten`), so
-    d prediction / du = -sigma_w W^-1 J (`stats.ar1_unwhiten` column by column) and the
-    parameters' covariance in u is `parameter_covariance(J, chi2)`; noise: the column's
-    marginal level; discrepancy: `discrepancy_sd` of the fit's residual with dof = entries less
-    the column's share of the parameters (as `goodness.goodness`)."""
-    cov, _ = parameter_covariance(fit.J, fit.chi2)
+    d prediction / du = -sigma_w W^-1 J (`stats.ar1_unwhiten` column by column); under the
+    interval's noise model the standardised residual and its Jacobian are W' r / sigma_w' and
+    -W' (d prediction / du) / sigma_w', whose `parameter_covariance` is the parameters'; noise:
+    the column's marginal level; discrepancy: `discrepancy_sd` of the fit's residual with dof =
+    entries less the column's share of the parameters (as `goodness.goodness`)."""
+    nz = pb.noise if noise is None else noise
     q = quantile(level)
-    cols, inside_cal, inside_ho, total = {}, 0, 0, 0
     k = int(fit.u.size)
+    per, Js, zs = [], [], []
     for j, c in enumerate(pb.columns):
         sel = pb.entry_col == j
         m = np.asarray(pb.valid[c], bool)
-        n = int(sel.sum())
-        rho, sw, sg = float(pb.noise.rho[c]), float(pb.noise.sigma_w[c]), float(pb.noise.sigma[c])
-        G = -sw * ar1_unwhiten(fit.J[sel], pb.chain(c), rho)
+        seg = pb.chain(c)
+        G = -float(pb.noise.sigma_w[c]) * ar1_unwhiten(fit.J[sel], seg, float(pb.noise.rho[c]))
         pred = np.asarray(fit.pred[c], float)[m]
         r = np.asarray(pb.measured[c], float)[m] - pred
-        dof = max(n - k * n / pb.N, 1.0)
-        d_sd = discrepancy_sd(r, sg, dof)
+        rho, sw = float(nz.rho[c]), float(nz.sigma_w[c])
+        Js.append(-ar1_whiten(G, seg, rho) / sw)
+        zs.append(ar1_whiten(r, seg, rho) / sw)
+        per.append((c, sel, m, seg, G, pred, r))
+    J, z = np.vstack(Js), np.concatenate(zs)
+    cov, _ = parameter_covariance(J, float(z @ z))
+    cols, inside_cal, inside_ho, total = {}, 0, 0, 0
+    for c, sel, m, seg, G, pred, r in per:
+        n = int(sel.sum())
+        sg = float(nz.sigma[c])
+        d_sd = discrepancy_sd(r, sg, max(n - k * n / pb.N, 1.0))
         pi = predictive_interval(pred, G, cov, sg, d_sd, level)
-        r_ho = ar1_unwhiten(np.asarray(heldout_z, float)[sel] * sw, pb.chain(c), rho)
+        r_ho = ar1_unwhiten(np.asarray(heldout_z, float)[sel] * float(pb.noise.sigma_w[c]), seg,
+                            float(pb.noise.rho[c]))
         in_cal = int(np.sum(np.abs(r) <= q * pi.sd))
         in_ho = int(np.sum(np.abs(r_ho) <= q * pi.sd))
         lo = np.full(m.size, np.nan)

@@ -174,6 +174,18 @@ class MaterialLot(ModelForm):
         return inputs.copy(cte_factor=f)
 
 
+class AlloyOffSheet(MaterialLot):
+    """alloy_off_sheet: the shaft's and the housing's CTE off the library's by up to
+    ALLOY_OFF_SHEET (+-20 %): a wrong alloy or temper rather than a lot. Never a candidate: the
+    look-alike a sleeve claim must beat (`studies.diagnosis.selection.sleeve_lookalike`: a
+    sleeve the drawing lacks makes the outer rings' seat follow the temperature as a housing of
+    another CTE would). Physics and parameters: `MaterialLot`'s, wider bounds."""
+    name = "alloy_off_sheet"
+    bounds = {p: (1.0 - 4.0 * CTE_LOT_SCATTER, 1.0 + 4.0 * CTE_LOT_SCATTER)
+              for p in MaterialLot.parameters}
+    change = "the shaft's and the housing's CTE off the library's (+-20 %: another alloy)"
+
+
 class UnloggedLoad(ModelForm):
     """unlogged_load: a constant radial load and tilting moment on the shaft that the conditions
     do not log (a belt, a coupling's misalignment, the rig's own weight).
@@ -480,7 +492,8 @@ class FormRoute:
     def __init__(self, pipeline):
         self.pl = pipeline
         self.rungs = {r.name: r for r in ladder(pipeline.asm) if r.candidate is not None}
-        self.lookalikes = {e.name: e for e in lookalikes()}
+        # the sensor look-alikes, and the alloy look-alike a sleeve claim must beat
+        self.lookalikes = {e.name: e for e in lookalikes() + [AlloyOffSheet()]}
         self._pipelines: dict = {}     # switch rung name -> its pipeline on the file
         self._param = Memo(self.KEEP)        # parameter rung assembly -> its pipeline
         self._switch_on = Memo(self.KEEP)    # (switch rung, parameter rung assembly) -> pipeline

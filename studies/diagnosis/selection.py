@@ -53,7 +53,8 @@ from studies.diagnosis.candidate import HeldoutGain
 from studies.diagnosis.core import Fit, ModelFailure
 from studies.diagnosis.goodness import AtBound, GoodnessOfFit, Left, at_bound, goodness
 from studies.diagnosis.heldout import WorseColumn, worse_columns
-from studies.diagnosis.ladder import FormShare, is_form
+from studies.diagnosis.ladder import AlloyOffSheet, FormShare, MaterialLot, is_form
+from studies.diagnosis.sleeve_rung import SleeveForm
 from studies.diagnosis.problem import Accepted, Noise, Problem
 from studies.diagnosis.stats import auto_blocks
 from studies.model.effects.generalised import forms_of
@@ -241,6 +242,43 @@ def blocked(p) -> tuple[list[AtBound], list[WorseColumn]]:
     return at_bound(p.pb, fit), worse_columns(p.pb, name, p.baseline.heldout_z, ho, keep)
 
 
+def sleeve_lookalike(p) -> str | None:
+    """Why the sleeve rung (`sleeve_rung.SleeveForm`) a pass would accept cannot be claimed over
+    a housing alloy off its data sheet (`ladder.AlloyOffSheet`, CTE factors +-20 %), or None: a
+    sleeve the drawing lacks makes the outer rings' seat follow the temperature as a housing of
+    another CTE would (a 1.5 mm 17-4PH sleeve in seed 000's TC4 housing as a housing CTE 6 %
+    high), so the sleeve is claimed only when that look-alike, fitted in its place with the
+    nuisance, is worse by more than `clear_chi2` (as a rival a candidate clearly beats)."""
+    name = p.decision.cause
+    if not isinstance(p.pb.effect(name), SleeveForm):
+        return None
+    fit_s = _extended(p)[0]
+    alloy = AlloyOffSheet()
+    pb = p.pb
+    space = pb.space([alloy])
+    nu = fit_s.u[fit_s.space.k + len(fit_s.space.base_params):]
+    starts = [np.concatenate([np.zeros(space.k), nu])]
+    lot = p.fits.get(MaterialLot.name)
+    if lot is not None and lot.space.k == space.k:
+        starts.append(np.concatenate([lot.u[:space.k], nu]))
+    best = None
+    for u0 in starts:
+        try:
+            f = pb.fit(space, u0)
+        except ModelFailure:
+            continue
+        best = f if best is None or f.chi2 < best.chi2 else best
+    if best is None or best.chi2 > fit_s.chi2 + pb.th["clear_chi2"]:
+        return None
+    vals = space.unpack(best.u)[0][alloy.name]
+    form = p.pb.effect(name).text(p.candidates[name].parameters)
+    return (f"{name} ({form}) is not claimed: a housing alloy off its data sheet (CTE x "
+            f"{vals['cte_factor_housing']:.3f}, shaft x {vals['cte_factor_shaft']:.3f}) fits "
+            f"about as well (chi-square {best.chi2 - fit_s.chi2:+.1f}, a clear win needs more "
+            f"than {pb.th['clear_chi2']:g}): check the drawing for a sleeve or measure the "
+            "housing's CTE (dilatometer, ASTM E228)")
+
+
 def not_claimed(name: str, bound: list[AtBound], worse: list[WorseColumn], form: bool) -> str:
     """The sentence of a cause the claim rules stop (`blocked`)."""
     why = []
@@ -273,6 +311,10 @@ def select(first, run_pass: Callable) -> Selection:
         return Selection(verdict="unexplained", reasons=[not_claimed(
             name, bound, worse, is_form(first.pb.effect(name)))], at_bound=bound,
             worse_columns=worse, goodness=first.decision.goodness, noise=first.pb.noise)
+    alike = sleeve_lookalike(first)
+    if alike:
+        return Selection(verdict="unexplained", reasons=[alike],
+                         goodness=first.decision.goodness, noise=first.pb.noise)
     cur, causes, reasons, passes = first, [_cause(first, 1)], [], 1
     stopped_bound: list[AtBound] = []
     stopped_worse: list[WorseColumn] = []
@@ -282,7 +324,11 @@ def select(first, run_pass: Callable) -> Selection:
         fit = _extended(cur)[0]
         nxt_pb = _next_problem(cur)
         if (len(causes) >= MAX_CAUSES or not nxt_pb.candidates or at_bound(cur.pb, fit)
-                or cur.chosen is not None):
+                or cur.chosen is not None
+                or isinstance(cur.pb.effect(cur.decision.cause), SleeveForm)):
+            # a sleeve (issue 34): its variants are a short list of materials and two
+            # thicknesses; what it leaves is its own mismatch, which a material lot imitated as
+            # a second cause (a 2 mm 9Cr18 sleeve as a 1.5 mm 17-4PH one plus a housing lot)
             # a generalised form chosen for the cause: its listed form left structure, and what
             # the form leaves is its own mismatch, which other candidates imitate (a transient
             # FE's part-by-part lags took a 0.6 um fit error as a second cause)
