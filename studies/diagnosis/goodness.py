@@ -188,11 +188,23 @@ def at_bound(pb: Problem, fit: Fit) -> list[AtBound]:
     return out
 
 
+#: bounds of listed effects that are a rung of the model-form ladder, not a limit the data push
+#: against: the preload path's compliance at its soft bound, 5e4 um/kN, is the `preload_spring`
+#: rung (`ladder.ladder`: a spring preload is carried by preload_path_compliance, "as soft as a
+#: wave spring"); (effect, parameter) -> which bound
+FORM_LIMITS = {("preload_path_compliance", "extra_compliance_um_per_kN"): 1}
+
+
 def _is_form_itself(pb: Problem, name: str, p: str, bound: float) -> bool:
     """A switch rung's `share` at its upper bound 1: the form exactly (`ladder.FormShare`,
-    `sleeve_rung.SleeveForm`)."""
+    `sleeve_rung.SleeveForm`); a listed effect's bound that is a ladder form (`FORM_LIMITS`)."""
     e = next((e for e in pb.candidates if e.name == name), None) or next(
         (a.effect for a in pb.base if a.effect.name == name), None)
+    if e is None:
+        return False
+    side = FORM_LIMITS.get((getattr(e, "family", None) or e.name, p))
+    if side is not None and p in e.bounds and bound == e.bounds[p][side]:
+        return True
     return (isinstance(e, (FormShare, SleeveForm)) and p == "share"
             and bound == e.bounds["share"][1])
 
