@@ -11,7 +11,10 @@ mechanism (or two), with the label of the true cause kept beside the data:
   rectangle config; a steel sleeve, a spring preload, an unlogged moment, a housing material lot
   with another CTE, all of which the config lacks; a friction law of another form (exponential in
   the ring temperature where the listed effect is linear); a different inner groove curvature (the
-  ladder's `groove_conformity` rung); an inner fit 2.5 um outside its ISO band;
+  ladder's `groove_conformity` rung); an inner fit 2.5 um outside its ISO band (on the finer mesh
+  with direct solves: right when nothing is claimed and `at_bound` names the fit error, issue
+  34, `CaseSpec.lead`); issue 34's hidden case, a 3 mm 17-4PH sleeve in a 6061 housing the file
+  has without a sleeve (finer mesh, direct solves);
 - listed (`"listed"`): a listed cause made on another model than the diagnosed one (the inner fit
   5 um tighter on a finer mesh with direct FE solves);
 - history (`"history"`): part temperatures from the transient conduction FE of the stack
@@ -42,6 +45,7 @@ API (stable; `diag` and `ladder` helpers build on it):
     diagnose_case(case, workers=1) -> DiagnosisResult    today's engine as `diagnose` runs it
     judge(case, verdict, causes, rivals=()) -> str       one of OUTCOMES
     judge_result(case, result) -> str                    judge of a DiagnosisResult
+    interval_coverage(case, result) -> (inside, entries) the claimed interval on a repeat draw
     named_causes(result) -> list[str]                    the causes a result names
     Case: name, kind, design, seed, truth, right, assembly, conditions, measured, noise_free,
           sigma, noise, change_sigma, text; Case.columns, Case.table(), Case.visible
