@@ -7,8 +7,9 @@ Every case passes since 2026-11-25 (measured on seed 0 of each case, mesh factor
 - `steel_sleeve` was `explained: interference_error` (a 2 mm steel sleeve changes the outer fit
   with temperature, no constant offset does); with the model-form ladder it is `unexplained`:
   the `material_lot` rung fits better than the offset but, at its bound, leaves structure, so
-  nothing is claimed; the `sleeve` rung itself is not tried, its material and thickness not
-  being bounded by a data sheet;
+  nothing is claimed; since issue 34 the `sleeve` rung is tried (GCr15 / 17-4PH / Invar36 / TC4,
+  1.5 or 3 mm) but a TC4 housing with a CTE 6 % high fits the 2 mm 9Cr18 sleeve as well, so it is
+  still not claimed (`selection.sleeve_lookalike`); the 3 mm 17-4PH sleeve in aluminium is named;
 - `grooved_sections` was `explained: cte_nonlinearity`; with the model-form ladder
   `ring_section_grooved` explains it (tests/test_ladder.py);
 - `chamber_offset` (a 0.5 K thermometer offset, largest change 0.8 sigma) was
