@@ -34,6 +34,9 @@ Sources (numbers transcribed, typical handbook values at room temperature):
               cp 896.
   [17-4PH]    AK Steel 17-4PH H1025 data: E 196 GPa, nu 0.272, CTE 10.8e-6/K (21-93 C),
               rho 7800, k 18.3, cp 460.
+  [Invar36]   Carpenter Technology, Invar 36 technical data sheet (annealed): E 141 GPa
+              (20.5e6 psi), nu 0.259, CTE 1.3e-6/K (0.72e-6/F, -18..93 C), rho 8050 (0.291
+              lb/in^3), k 10.15 W/mK, cp 515 J/kgK.
 """
 from __future__ import annotations
 
@@ -108,8 +111,11 @@ MATERIALS: dict[str, Material] = {
     "17-4PH": Material("17-4PH", E_MPa=196e3, nu=0.272, alpha_per_K=10.8e-6,
                        density_kg_m3=7800.0, conductivity_W_mK=18.3, specific_heat_J_kgK=460.0,
                        source="17-4PH"),
+    "Invar36": Material("Invar36", E_MPa=141e3, nu=0.259, alpha_per_K=1.3e-6,
+                        density_kg_m3=8050.0, conductivity_W_mK=10.15, specific_heat_J_kgK=515.0,
+                        source="Invar36"),
 }
-ALIASES = {"Ti-6Al-4V": "TC4", "2024": "2A12", "AISI52100": "52100", "95Cr18": "G95Cr18"}
+ALIASES = {"Invar": "Invar36", "Ti-6Al-4V": "TC4", "2024": "2A12", "AISI52100": "52100", "95Cr18": "G95Cr18"}
 
 
 def get_material(name: str, user: tuple[Material, ...] = ()) -> Material:

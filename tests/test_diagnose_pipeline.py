@@ -610,6 +610,21 @@ def test_cli_diagnose_end_to_end(tmp_path, capsys):
     assert pngs and all(p.stat().st_size > 1000 for p in pngs)
     text = report.read_text()
     assert all(f"({p.name})" in text for p in pngs if p.name.startswith(("fit_", "residuals_")))
+    # issue 34: the 90 % predictive interval in diagnosis.csv on every row, in the JSON and the
+    # report; a fresh noise draw of the simulated truth (another run of the rig) falls inside
+    # it in 84-96 % of the 400 entries (binomial spread 1.5 % about 90 %)
+    assert res["interval"]["level"] == 0.9 and "## Predictive interval" in text
+    assert 0.8 <= res["interval"]["coverage_calibration"] <= 1.0
+    table = read_table(out / "diagnosis.csv")
+    assert np.array_equal(table["row"], np.arange(1, sim["time_s"].size + 1))
+    rng = np.random.default_rng(4)
+    inside = 0
+    for c in cols:
+        lo, mid, hi = (table[f"predicted_{x}{c}"] for x in ("lo_", "", "hi_"))
+        assert np.all(lo < mid) and np.all(mid < hi)
+        again = sim[c] + rng.normal(0.0, SIGMA_000[c], sim[c].size)
+        inside += int(np.sum((again >= lo) & (again <= hi)))
+    assert 0.84 <= inside / (2 * sim["time_s"].size) <= 0.96, inside
 
 
 def _bad_inputs(tmp):

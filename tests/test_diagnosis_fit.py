@@ -1,6 +1,6 @@
 """Issue 23 items 3-6 on the toy bearing of `test_diagnosis_engine.py` (closed-form stand-in with
 the real effects): the noise model under strong serial correlation, goodness of fit in the
-decision (`explained_partly`, `left`, `at_bound`), more than one cause (forward selection), gain
+decision (`explained_partly`, `left`; a parameter at its bound: `test_diagnosis_claims.py`), more than one cause (forward selection), gain
 and evidence per measured column. Each check is against what was injected (the generator's AR
 coefficient, an effect set outside the bounds the diagnosis is given, two causes, a column
 whose noise hides everything), never against numbers the engine produced.
@@ -65,28 +65,6 @@ def test_strongly_correlated_null_claims_no_cause(phi):
         assert r.verdict not in ("explained", "explained_partly", "ambiguous"), \
             (phi, k, r.verdict, r.cause, r.reasons)
         assert all(r.noise.rho[c] > 0.5 for c in r.columns), r.noise.rho
-
-
-def test_fit_outside_its_band_is_explained_partly_at_the_bound():
-    """An inner fit error of 3 um where the diagnosis allows [-1, 1] um (a tolerance band): the
-    fit error carries the weight but cannot reach the truth, so the inner error sits at its upper
-    bound (listed in `at_bound` with the tolerance-band sentence) and the 2 um left over (4 N of
-    preload in the toy, 8 noise sigmas) is structure in the preload column: `explained_partly`
-    with `left` naming preload_N."""
-    model = ToyBearing()
-    cond = cycles(n=300)
-    meas = make_data(model, cond, {"interference_error": {"inner_um": 3.0, "outer_um": 0.0}}, 4)
-    cands = [EFFECTS["interference_error"].with_bounds(inner_um=(-1.0, 1.0), outer_um=(-1.0, 1.0)),
-             EFFECTS["thermal_lag"], EFFECTS["friction_temperature"]]
-    predict, predict_at = model.predictor(cond)
-    from studies.diagnosis.engine import diagnose_full
-    from test_diagnosis_engine import NUISANCE, T_REF
-    r = diagnose_full(predict, meas, cond, cands, NUISANCE, predict_at=predict_at, T_ref_C=T_REF)
-    assert r.verdict == "explained_partly", (r.verdict, r.cause, r.reasons)
-    assert r.cause == "interference_error"
-    hit = [b for b in r.at_bound if b.parameter == "inner_um"]
-    assert hit and hit[0].bound == 1.0 and "tolerance band" in hit[0].text, r.at_bound
-    assert "preload_N" in [x.column for x in r.left], r.left
 
 
 def test_two_causes_are_both_accepted_with_their_own_gain():

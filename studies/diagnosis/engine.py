@@ -63,13 +63,14 @@ from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
-from studies.diagnosis.calibration import calibrate
+from studies.diagnosis.calibration import baseline_noise, calibrate
 from studies.diagnosis.candidate import Candidate
 from studies.diagnosis.core import Baseline, Decision, Fit, Screening
 from studies.diagnosis.decision import Separation, decide, separating
 from studies.diagnosis.fitting import fit_all
 from studies.diagnosis.generalised import ChosenForm, generalise
 from studies.diagnosis.heldout import validate
+from studies.diagnosis.interval import column_intervals
 from studies.diagnosis.ladder import is_form
 from studies.diagnosis.openworld import characterise
 from studies.diagnosis.problem import Problem, make_problem
@@ -210,6 +211,20 @@ def column_evidence(pb: Problem, base: ModelRmse, ext: ModelRmse, z_base: np.nda
     return out
 
 
+def _interval(first: Pass, sel: Selection, cause: str | None, ext_fit: Fit, ext_ho: np.ndarray):
+    """The predictive intervals of the claimed model (`interval.column_intervals`) and the fit
+    they are about: the selection's final model of the accepted causes, else the first pass's
+    extended fit, under the noise re-estimated from that fit's own residual
+    (`calibration.baseline_noise`: a first noise estimate inflated by the cause, AR(1) rho 0.99,
+    would give intervals many times too wide); (None, None) without a claimed cause (issue
+    34)."""
+    if not cause or sel.verdict not in ("explained", "explained_partly"):
+        return None, None
+    pb, fit, ho = ((sel.problem, sel.fit, sel.heldout_z) if sel.fit is not None
+                   else (first.pb, ext_fit, ext_ho))
+    return column_intervals(pb, fit, ho, noise=baseline_noise(pb, fit.pred)), fit
+
+
 def assemble(first: Pass, sel: Selection, sep: Separation, cost: Cost) -> DiagnosisResult:
     """The typed result of the phases and the forward selection."""
     pb, b, s, d = first.pb, first.baseline, first.screening, first.decision
@@ -241,6 +256,7 @@ def assemble(first: Pass, sel: Selection, sep: Separation, cost: Cost) -> Diagno
                                                     for e in pb.candidates if is_form(e)})
                   if verdict == "unexplained" else None)
     chosen = first.chosen if cause else None
+    interval, iv_fit = _interval(first, sel, cause, ext_fit, ext_ho)
     return DiagnosisResult(
         verdict=verdict, cause=cause, parameters=params, parameter_uncertainty=unc,
         indistinguishable=list(d.rivals) if cause else [], separating_test=sep.text, baseline=base, extended=ext,
@@ -261,8 +277,13 @@ def assemble(first: Pass, sel: Selection, sep: Separation, cost: Cost) -> Diagno
         thresholds=dict(pb.th), notes=list(pb.notes) + sep.notes, spikes=dict(pb.spikes),
         n_rows=pb.n, cost=cost, open_world=open_world,
         causes=list(sel.causes), left=list(sel.left), at_bound=list(sel.at_bound),
+        worse_columns=list(sel.worse_columns),
+        interval=interval,
+        row_blocks=np.asarray(pb.blocks, int).copy(),
         goodness=sel.goodness, noise_final=sel.noise,
-        baseline_pred=b.fit.pred, extended_pred=sel.pred if sel.pred else ext_fit.pred,
+        baseline_pred=b.fit.pred,
+        extended_pred=(iv_fit.pred if iv_fit is not None else sel.pred if sel.pred
+                       else ext_fit.pred),
         candidate_preds={n: f.pred for n, f in first.fits.items()})
 
 

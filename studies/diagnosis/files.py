@@ -25,7 +25,7 @@ from studies.model.inputs import CONDITION_COLUMNS, baseline_inputs
 from studies.model.parallel import available_workers
 from studies.model.pipeline import Pipeline
 from studies.model.checks import CHECK_COLUMNS
-from studies.model.table import TableError, read_table
+from studies.model.table import TableError, read_table, write_table
 
 #: output columns `diagnose` can compare (what `simulate` writes and a rig can measure)
 COMPARABLE = ("torque_Nmm", "preload_N", "contact_angle_deg", "interference_inner_um",
@@ -127,8 +127,31 @@ def diagnose_files(assembly_path: Path, measured_path: Path, out_dir: Path, prog
     result = diagnose_full(predict, measured, conditions, candidates, NUISANCE,
                            T_ref_C=asm.T_ref_C, predict_at=predict.at, workers=workers)
     doc = write_diagnosis_json(result, out_dir / "diagnosis.json")
+    write_table(out_dir / "diagnosis.csv", diagnosis_columns(result, measured))
     write_report(result, conditions, measured, out_dir, workers=workers)
     return doc
+
+
+def diagnosis_columns(result: DiagnosisResult, measured) -> dict[str, np.ndarray]:
+    """The columns of diagnosis.csv, one row per measured row (docs/cli.md): `row` (1-based, as
+    in the file), `heldout_block` (1-based), then per compared column the measured value
+    `<column>`, the calibrated baseline `baseline_<column>`, the extended model
+    `predicted_<column>` (the baseline's when nothing is claimed) and, for `explained` /
+    `explained_partly`, its predictive interval `predicted_lo_<column>` /
+    `predicted_hi_<column>` (`studies.diagnosis.interval`, level `interval.level` in
+    diagnosis.json; empty where the column is not measured)."""
+    n = result.n_rows
+    out = {"row": np.arange(1, n + 1, dtype=float)}
+    if result.row_blocks is not None:
+        out["heldout_block"] = np.asarray(result.row_blocks, float) + 1.0
+    for c in result.columns:
+        out[c] = np.asarray(measured[c], float)
+        out[f"baseline_{c}"] = np.asarray(result.baseline_pred[c], float)
+        out[f"predicted_{c}"] = np.asarray(result.extended_pred[c], float)
+        if result.interval is not None:
+            out[f"predicted_lo_{c}"] = result.interval.columns[c].lo
+            out[f"predicted_hi_{c}"] = result.interval.columns[c].hi
+    return out
 
 
 def write_diagnosis_json(result: DiagnosisResult, path: Path) -> dict:

@@ -32,6 +32,7 @@ from studies.model.effects.generalised import (PreloadSettlingCreep, RadialGradi
 from studies.model.effects.preload_settling import excursion
 from studies.model.effects.solid_film_runin import revolutions
 from studies.diagnosis.ladder import UnloggedLoad, unlogged_load_starts
+from studies.diagnosis.sleeve_rung import SleeveForm, sleeve_grid
 
 Conditions = Mapping[str, np.ndarray]
 
@@ -275,6 +276,7 @@ SPECS: dict[type, FitSpec] = {
     InterferenceError: FitSpec(starts=interference_starts),
     PreloadPathCompliance: FitSpec(starts=compliance_starts),
     UnloggedLoad: FitSpec(starts=unlogged_load_starts),          # the model-form ladder
+    SleeveForm: FitSpec(profile=("variant",), grid=sleeve_grid),  # issue 34
 }
 
 

@@ -12,6 +12,7 @@ import numpy as np
 from studies.diagnosis import fitspec
 from studies.diagnosis.candidate import Candidate
 from studies.diagnosis.core import Baseline, Fit, Linearisation, ModelFailure, Screening
+from studies.diagnosis.interval import parameter_covariance
 from studies.diagnosis.problem import Problem
 from studies.diagnosis.stats import blsq, chibar_pvalue
 
@@ -242,25 +243,13 @@ def profile_summary(f: Fit, e, profile_grid: dict) -> dict:
 
 def uncertainty(pb: Problem, f: Fit, e) -> dict:
     """Standard uncertainty of the fitted effect parameters (linearised, scaled by the
-    reduced chi-square when above 1); None when not separately identifiable."""
-    J = f.J
-    dof = max(pb.N - J.shape[1], 1)
-    s2 = max(1.0, f.chi2 / dof)
+    reduced chi-square when above 1: `interval.parameter_covariance`); None when not
+    separately identifiable."""
+    cov, ok = parameter_covariance(f.J, f.chi2)
     out = {}
-    U, s, Vt = np.linalg.svd(J, full_matrices=False)
-    tiny = s < 1e-8 * (s[0] if s.size else 1.0)
-    with np.errstate(divide="ignore"):
-        inv = np.where(tiny, np.inf, 1.0 / np.where(tiny, 1.0, s) ** 2)
     for i, (en, p) in enumerate(f.space.eff_params):
-        v = Vt[:, i]
-        if np.any(tiny & (np.abs(v) > 1e-6)):
-            out[p] = None
-        else:
-            out[p] = float(math.sqrt(s2 * np.sum(v ** 2 * np.where(tiny, 0.0, inv)))
-                           * f.space.scale[i])
+        out[p] = float(math.sqrt(cov[i, i]) * f.space.scale[i]) if ok[i] else None
     if f.interval is not None:
         for p in fitspec.profile(e):
             out[p] = {"interval": f.interval}
     return out
-
-

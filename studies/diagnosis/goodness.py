@@ -39,6 +39,9 @@ import numpy as np
 from scipy import stats
 
 from studies.diagnosis.core import Fit, Residuals
+from studies.diagnosis.interval import parameter_covariance
+from studies.diagnosis.ladder import FormShare
+from studies.diagnosis.sleeve_rung import SleeveForm
 from studies.diagnosis.openworld import characterise_column, named_features
 from studies.diagnosis.problem import Problem
 from studies.model.effects.generalised import GENERALISED
@@ -78,12 +81,14 @@ class Left:
 
 @dataclass(frozen=True)
 class AtBound:
-    """A fitted parameter at a bound that is not its off value."""
+    """A fitted parameter at a bound that is not its off value (or within its standard
+    uncertainty of it: `uncertainty`, None when not stated)."""
     effect: str
     parameter: str
     value: float
     bound: float
     text: str
+    uncertainty: float | None = None
 
 
 @dataclass(frozen=True)
@@ -155,22 +160,53 @@ def _left(pb: Problem, fit: Fit, cols: dict[str, ColumnFit], m_fit: int, m_res: 
 
 def at_bound(pb: Problem, fit: Fit) -> list[AtBound]:
     """The fitted effect parameters of `fit` (its candidate's and the accepted causes') at a
-    bound that is not their off value (module docstring); bounds as the fit's space has them
-    (a tolerance band, a generalised form's bounds narrowed to its listed effect's)."""
+    bound that is not their off value (module docstring): within their standard uncertainty of
+    it (`interval.parameter_covariance`, the stated uncertainty of the result; issue 34: a value
+    that the data cannot tell from the bound is as good as on it) or within AT_BOUND_RTOL of
+    the parameter's range; bounds as the fit's space has them (a tolerance band, a generalised
+    form's bounds narrowed to its listed effect's). A switch's `share` at 1 is the form itself
+    (`ladder.FormShare`), not a bound the data push against."""
     sp = fit.space
     k = len(sp.eff_params) + len(sp.base_params)
     vals = sp.origin[:k] + sp.scale[:k] * np.clip(fit.u[:k], sp.lo[:k], sp.hi[:k])
     lo = sp.origin[:k] + sp.scale[:k] * sp.lo[:k]
     hi = sp.origin[:k] + sp.scale[:k] * sp.hi[:k]
+    cov, ok = parameter_covariance(fit.J, fit.chi2)
     out = []
     for i, (name, p) in enumerate(sp.eff_params + sp.base_params):
         off = _off(pb, name, p)
+        sd = float(math.sqrt(cov[i, i]) * sp.scale[i]) if ok[i] else None
         tol = AT_BOUND_RTOL * max(float(hi[i] - lo[i]), 1e-300)
+        near = max(tol, sd or 0.0)
         for bound in (float(lo[i]), float(hi[i])):
-            if abs(float(vals[i]) - bound) <= tol and (off is None or abs(bound - off) > tol):
+            if _is_form_itself(pb, name, p, bound):
+                continue
+            if abs(float(vals[i]) - bound) <= near and (off is None or abs(bound - off) > tol):
                 out.append(AtBound(name, p, float(vals[i]), bound,
-                                   _bound_text(name, p, float(lo[i]), float(hi[i]), bound)))
+                                   _bound_text(name, p, float(lo[i]), float(hi[i]), bound,
+                                               float(vals[i]), sd), sd))
     return out
+
+
+#: bounds of listed effects that are a rung of the model-form ladder, not a limit the data push
+#: against: the preload path's compliance at its soft bound, 5e4 um/kN, is the `preload_spring`
+#: rung (`ladder.ladder`: a spring preload is carried by preload_path_compliance, "as soft as a
+#: wave spring"); (effect, parameter) -> which bound
+FORM_LIMITS = {("preload_path_compliance", "extra_compliance_um_per_kN"): 1}
+
+
+def _is_form_itself(pb: Problem, name: str, p: str, bound: float) -> bool:
+    """A switch rung's `share` at its upper bound 1: the form exactly (`ladder.FormShare`,
+    `sleeve_rung.SleeveForm`); a listed effect's bound that is a ladder form (`FORM_LIMITS`)."""
+    e = next((e for e in pb.candidates if e.name == name), None) or next(
+        (a.effect for a in pb.base if a.effect.name == name), None)
+    if e is None:
+        return False
+    side = FORM_LIMITS.get((getattr(e, "family", None) or e.name, p))
+    if side is not None and p in e.bounds and bound == e.bounds[p][side]:
+        return True
+    return (isinstance(e, (FormShare, SleeveForm)) and p == "share"
+            and bound == e.bounds["share"][1])
 
 
 def _off(pb: Problem, name: str, p: str) -> float | None:
@@ -181,12 +217,15 @@ def _off(pb: Problem, name: str, p: str) -> float | None:
     return None if e is None else float(e.off[p])
 
 
-def _bound_text(effect: str, p: str, lo: float, hi: float, bound: float) -> str:
+def _bound_text(effect: str, p: str, lo: float, hi: float, bound: float,
+                value: float | None = None, sd: float | None = None) -> str:
     side = "more" if bound == hi else "less"
+    at = ("" if value is None else
+          f" (fitted {value:.4g}" + (f" +- {sd:.2g}" if sd is not None else "") + ")")
     if effect.startswith("interference_error"):
-        return (f"{effect}.{p} = {bound:.4g} at the edge of the tolerance band [{lo:.4g}, "
+        return (f"{effect}.{p} = {bound:.4g}{at} at the edge of the tolerance band [{lo:.4g}, "
                 f"{hi:.4g}]: the fit wants {side} than the tolerance band allows: as-built error "
                 "outside the band?")
-    return (f"{effect}.{p} = {bound:.4g} at its bound [{lo:.4g}, {hi:.4g}]: the fit wants "
+    return (f"{effect}.{p} = {bound:.4g}{at} at its bound [{lo:.4g}, {hi:.4g}]: the fit wants "
             f"{side} than the bound allows: a larger effect than the physics or data sheet "
             "allow, or another cause?")

@@ -71,6 +71,7 @@ from infra.memo import Memo
 from studies.model.config import Assembly, ConfigError
 from studies.model.config_checks import check_assembly
 from studies.model.effects import Effect
+from studies.diagnosis.sleeve_rung import SleeveForm, sleeve_candidate
 
 #: the kind of a ladder candidate in diagnosis.json (docs/cli.md); listed effects are "effect"
 KIND = "model_form"
@@ -171,6 +172,18 @@ class MaterialLot(ModelForm):
         for part in LOT_PARTS:
             f[part] = f.get(part, 1.0) * p[f"cte_factor_{part}"]
         return inputs.copy(cte_factor=f)
+
+
+class AlloyOffSheet(MaterialLot):
+    """alloy_off_sheet: the shaft's and the housing's CTE off the library's by up to
+    ALLOY_OFF_SHEET (+-20 %): a wrong alloy or temper rather than a lot. Never a candidate: the
+    look-alike a sleeve claim must beat (`studies.diagnosis.selection.sleeve_lookalike`: a
+    sleeve the drawing lacks makes the outer rings' seat follow the temperature as a housing of
+    another CTE would). Physics and parameters: `MaterialLot`'s, wider bounds."""
+    name = "alloy_off_sheet"
+    bounds = {p: (1.0 - 4.0 * CTE_LOT_SCATTER, 1.0 + 4.0 * CTE_LOT_SCATTER)
+              for p in MaterialLot.parameters}
+    change = "the shaft's and the housing's CTE off the library's (+-20 %: another alloy)"
 
 
 class UnloggedLoad(ModelForm):
@@ -407,12 +420,9 @@ def ladder(asm: Assembly) -> list[Rung]:
                       why_not="the listed interference_error is bounded to the tolerance band "
                               "when [fits] gives tolerances (studies.model.effects."
                               "assembly_bounds), else to +-20 um"))
-    if asm.sleeve is None:
-        rungs.append(Rung("sleeve", "a [sleeve] between the outer rings and the housing",
-                          "fe_setup", ("temperature_C",),
-                          why_not="a sleeve's material and thickness are drawing data, not "
-                                  "bounded by a data sheet: give them in [sleeve] and diagnose "
-                                  "again"))
+    if asm.sleeve is None:      # issue 34: studies/diagnosis/sleeve_rung.py
+        rungs.append(Rung("sleeve", SleeveForm.change, "fe_setup", SleeveForm.acts_through,
+                          **sleeve_candidate(asm)))
     return sorted(rungs, key=lambda r: COSTS.index(r.cost))
 
 
@@ -482,10 +492,13 @@ class FormRoute:
     def __init__(self, pipeline):
         self.pl = pipeline
         self.rungs = {r.name: r for r in ladder(pipeline.asm) if r.candidate is not None}
-        self.lookalikes = {e.name: e for e in lookalikes()}
+        # the sensor look-alikes, and the alloy look-alike a sleeve claim must beat
+        self.lookalikes = {e.name: e for e in lookalikes() + [AlloyOffSheet()]}
         self._pipelines: dict = {}     # switch rung name -> its pipeline on the file
         self._param = Memo(self.KEEP)        # parameter rung assembly -> its pipeline
         self._switch_on = Memo(self.KEEP)    # (switch rung, parameter rung assembly) -> pipeline
+        sleeve = self.rungs.get(SleeveForm.name)
+        self._sleeves = Memo(max(self.KEEP, len(sleeve.candidate.variants) if sleeve else 0))
 
     def split(self, effects: Mapping[str, Mapping[str, float]]) -> tuple[dict, dict]:
         """(listed effects, ladder rungs and sensor look-alikes) of an effects dict
@@ -545,6 +558,19 @@ class FormRoute:
             return hit
         return self._switch_on.get_or_make((name, base), make)
 
+    def form_pipeline(self, name: str, asm: Assembly, params: Mapping[str, float]):
+        """The pipeline of switch rung `name`'s form on `asm` (`pipeline`); the sleeve rung's
+        of its parameters' variant (`sleeve_rung.SleeveForm`, one FE set-up per variant: all
+        kept for the diagnosis, the profile revisits them)."""
+        from studies.model.pipeline import Pipeline
+
+        cand = self.rungs[name].candidate
+        if not isinstance(cand, SleeveForm):
+            return self.pipeline(name, asm)
+        return self._sleeves.get_or_make(
+            (cand.variant(params), asm),
+            lambda: Pipeline(cand.assembly(asm, params), mesh_factor=self.pl.mesh_factor))
+
     def columns(self, inputs, forms: Mapping[str, Mapping[str, float]],
                 columns: tuple[str, ...]) -> dict[str, np.ndarray]:
         """The named columns of the inputs (inputs rungs already applied) through the pipeline
@@ -557,12 +583,12 @@ class FormRoute:
         out = {c: np.asarray(base[c], float) for c in columns}
         for name, params in forms.items():
             rung = self.rungs.get(name)
-            if rung is None or not isinstance(rung.candidate, FormShare):
+            if rung is None or not isinstance(rung.candidate, (FormShare, SleeveForm)):
                 continue
             share = rung.candidate.validate(params)["share"]
             if share == 0.0:
                 continue
-            form = to_columns(self.pipeline(name, asm).run(inputs), flags=False)
+            form = to_columns(self.form_pipeline(name, asm, params).run(inputs), flags=False)
             for c in columns:
                 out[c] = out[c] + share * (np.asarray(form[c], float) - base[c])
         return out

@@ -6,7 +6,7 @@
   baseline gets wrong (residual statistics per column), the candidate table, identifiability and
   look-alikes, the comparison of rivals, the separating test, method and thresholds;
 - `fit_<column>.png`: measured vs baseline vs extended model against time (or row) and against every
-  varying condition;
+  varying condition, with the claimed model's predictive interval as a band on the time axis;
 - `residuals_<column>.png`: residuals of the baseline and of the extended model, same axes, with
   the noise band (+-2 sigma);
 - `candidates.png`: delta BIC and held-out RMSE ratio per candidate.
@@ -81,7 +81,8 @@ def _x(conditions, key, n):
     return np.arange(n) if key == "row" else np.asarray(conditions[key], float)
 
 
-def _plot_fits(col, conditions, measured, base, ext, cause, out: Path, n):
+def _plot_fits(col, conditions, measured, base, ext, cause, out: Path, n, band=None):
+    """band: (lo, hi) of the extended model's predictive interval (None: no claim)."""
     xs, varying = _axes_keys(conditions)
     keys = [xs] + varying
     fig = Figure(figsize=(5.0 * len(keys), 4.0), layout="constrained")
@@ -94,6 +95,9 @@ def _plot_fits(col, conditions, measured, base, ext, cause, out: Path, n):
             ax.plot(x, base, "-", lw=1.3, color="tab:red", label="baseline (calibrated)")
             if cause:
                 ax.plot(x, ext, "-", lw=1.3, color="tab:blue", label=ext_label)
+            if band is not None:
+                ax.fill_between(x, band[0], band[1], color="tab:blue", alpha=0.2, lw=0,
+                                label=_band_label(band))
         else:
             ax.plot(x, measured, ".", ms=3, color="0.55", label="measured")
             ax.plot(x, base, "x", ms=3, color="tab:red", label="baseline (calibrated)")
@@ -107,7 +111,14 @@ def _plot_fits(col, conditions, measured, base, ext, cause, out: Path, n):
     _save(fig, out)
 
 
-def _plot_residuals(col, conditions, measured, base, ext, cause, sigma, out: Path, n):
+def _band_label(band) -> str:
+    return f"{100 * band[2]:g} % predictive interval"
+
+
+def _plot_residuals(col, conditions, measured, base, ext, cause, sigma, out: Path, n,
+                    band=None):
+    """band: (lo, hi, level) of the extended model's predictive interval (None: no claim),
+    drawn about the extended model (hi - ext, lo - ext) on the time (or row) axis."""
     xs, varying = _axes_keys(conditions)
     keys = [xs] + varying
     fig = Figure(figsize=(5.0 * len(keys), 4.0), layout="constrained")
@@ -123,6 +134,9 @@ def _plot_residuals(col, conditions, measured, base, ext, cause, sigma, out: Pat
                     label=f"after {cause}")
         if sigma:
             ax.axhspan(-2 * sigma, 2 * sigma, color="0.85", zorder=0, label="±2 noise sigma")
+        if band is not None and key == xs:
+            ax.fill_between(x, band[0] - ext, band[1] - ext, color="tab:blue", alpha=0.15,
+                            lw=0, label=_band_label(band))
         ax.axhline(0, color="k", lw=0.6)
         ax.set_xlabel(key)
         ax.set_ylabel(f"measured - model, {col}")
@@ -170,10 +184,12 @@ def _draw_plots(result: DiagnosisResult, conditions, measured, out: Path, worker
         b = np.asarray(result.baseline_pred[c], float)
         e = np.asarray(result.extended_pred[c], float)
         safe = c.replace("/", "_")
+        iv = result.interval.columns.get(c) if result.interval is not None else None
+        band = None if iv is None else (iv.lo, iv.hi, result.interval.level)
         plots.append(partial(_plot_fits, c, conditions, m, b, e, result.cause,
-                             out / f"fit_{safe}.png", n))
+                             out / f"fit_{safe}.png", n, band))
         plots.append(partial(_plot_residuals, c, conditions, m, b, e, result.cause,
-                             result.noise.sigma.get(c), out / f"residuals_{safe}.png", n))
+                             result.noise.sigma.get(c), out / f"residuals_{safe}.png", n, band))
         figs.append((c, f"fit_{safe}.png", f"residuals_{safe}.png"))
     plots.append(partial(_plot_candidates, result, out / "candidates.png"))
     return figs, parallel_map(lambda plot: plot(), plots, workers)[-1]
@@ -273,9 +289,41 @@ def _causes_section(r: DiagnosisResult) -> list[str]:
         L += [f"- {x.text}" for x in r.left]
         L.append("")
     if r.at_bound:
-        L.append("## Parameters at a bound\n")
+        L.append("## Parameters at a bound (not claimed)\n")
         L += [f"- {x.text}" for x in r.at_bound]
         L.append("")
+    if r.worse_columns:
+        L += ["## Columns made worse (not claimed)\n",
+              "A candidate that predicts a measured column worse on held-out blocks than the "
+              "model before it, beyond the noise, is not claimed (issue 34).\n",
+              "| candidate | column | held-out RMSE ratio | worse by (noise units) | bootstrap "
+              "interval of the gain |", "| --- | --- | --- | --- | --- |"]
+        L += [f"| `{w.effect}` | `{w.column}` | {_fmt(w.gain)} | "
+              f"{_fmt(-w.difference.rmse_gain, 3)} | [{_fmt(w.difference.ci[0], 3)}, "
+              f"{_fmt(w.difference.ci[1], 3)}] |" for w in r.worse_columns]
+        L.append("")
+    return L
+
+
+def _interval_section(r: DiagnosisResult) -> list[str]:
+    """The claimed model's predictive interval (`studies.diagnosis.interval`)."""
+    iv = r.interval
+    if iv is None:
+        return []
+    L = ["## Predictive interval\n",
+         f"{100 * iv.level:g} % predictive interval of every measured column on every row "
+         "(diagnosis.csv `predicted_lo_<column>`, `predicted_hi_<column>`; the band in the "
+         "plots): the parameters' covariance through the fit's Jacobian (delta method), the "
+         "noise (its AR(1) model's marginal level) and a discrepancy term, the excess of the "
+         "calibration residuals' variance over the noise (Kennedy & O'Hagan 2001 in spirit). "
+         f"Inside: {100 * iv.coverage_calibration:.1f} % of the calibration rows, "
+         f"{100 * iv.coverage_heldout:.1f} % of the held-out predictions.\n",
+         "| column | noise sigma | discrepancy sigma | calibration rows inside | held-out rows "
+         "inside |", "| --- | --- | --- | --- | --- |"]
+    L += [f"| `{c}` | {_fmt(ci.noise_sd)} | {_fmt(ci.discrepancy_sd)} | "
+          f"{100 * ci.coverage_calibration:.1f} % | {100 * ci.coverage_heldout:.1f} % |"
+          for c, ci in iv.columns.items()]
+    L.append("")
     return L
 
 
@@ -437,7 +485,7 @@ def write_report(result: DiagnosisResult, conditions: Mapping[str, np.ndarray],
     out.mkdir(parents=True, exist_ok=True)
     figs, has_cand_plot = _draw_plots(result, conditions, measured, out, workers)
     L = (_headline(result) + _cause_section(result) + _causes_section(result)
-         + _gain_section(result)
+         + _gain_section(result) + _interval_section(result)
          + _baseline_section(result, figs)
          + report_lines(result.open_world)          # unexplained: what it depends on
          + _candidates_section(result, has_cand_plot) + _lookalike_section(result)

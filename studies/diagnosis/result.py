@@ -14,6 +14,8 @@ from studies.diagnosis.candidate import Candidate
 from studies.diagnosis.core import JointFit, Residuals, jsonable
 from studies.diagnosis.generalised import FormEntry
 from studies.diagnosis.goodness import AtBound, GoodnessOfFit, Left
+from studies.diagnosis.heldout import WorseColumn
+from studies.diagnosis.interval import Intervals
 from studies.diagnosis.openworld import OpenWorld
 from studies.diagnosis.problem import Noise
 from studies.diagnosis.selection import AcceptedCause
@@ -113,12 +115,18 @@ class DiagnosisResult:
     causes: list[AcceptedCause] = field(default_factory=list)
     left: list[Left] = field(default_factory=list)
     at_bound: list[AtBound] = field(default_factory=list)
+    #: candidates the claim rules stopped because they make a column worse (issue 34)
+    worse_columns: list[WorseColumn] = field(default_factory=list)
+    #: the claimed model's predictive intervals (None unless explained / explained_partly)
+    interval: Intervals | None = None
     goodness: GoodnessOfFit | None = None
     noise_final: Noise | None = None    # the noise model of the selection's last pass
     # the predictions (column arrays) behind the report's plots; not part of the file
     baseline_pred: dict[str, np.ndarray] = field(default_factory=dict, repr=False)
     extended_pred: dict[str, np.ndarray] = field(default_factory=dict, repr=False)
     candidate_preds: dict[str, dict[str, np.ndarray]] = field(default_factory=dict, repr=False)
+    #: held-out block of each row (0-based; diagnosis.csv)
+    row_blocks: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def not_identifiable(self) -> dict[str, str]:
@@ -146,6 +154,11 @@ def to_json(r: DiagnosisResult) -> dict:
         "candidates": [c.to_json() for c in r.candidates],
         "left": r.left,
         "at_bound": r.at_bound,
+        "worse_columns": [{"effect": w.effect, "column": w.column, "gain": w.gain,
+                           "difference_sigma": -w.difference.rmse_gain,
+                           "interval_sigma": [-w.difference.ci[1], -w.difference.ci[0]],
+                           "text": w.text} for w in r.worse_columns],
+        "interval": None if r.interval is None else r.interval.to_json(),
         "causes": r.causes,
         # ---- extras
         "evidence": r.evidence,
