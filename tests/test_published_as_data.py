@@ -137,3 +137,44 @@ def test_seed001_ladder_rungs_are_its_model_forms(s001):
     form = replace(asm, operating=replace(asm.operating, ball_model="quasi_dynamic"))
     M = pad.seed001_torques(form, mesh_factor=MESH).torque_Nmm
     np.testing.assert_allclose([qd.fitted, qd.predicted], [M[0] / M[1], M[2] / M[1]], rtol=1e-12)
+
+
+@pytest.fixture(scope="module")
+def friction_scans():
+    return pad.seed001_friction_models(MESH)
+
+
+def test_seed001_friction_models_fitted_on_the_cold_ratio_miss_the_hot_one(friction_scans):
+    """Issue 33 Done-when, the negative branch: the starved film (oil quantity) and the SKF
+    model (replenishment constant K_rs), each fitted on the cold ratio, predict the held-out hot
+    ratio outside the tolerance of the published 0.75 (5.9 %: the relative half-width of the
+    published cold band). Not only at the fits: of every grid value inside the bounds whose
+    cold ratio lies inside the published band, none comes within the tolerance. Reason (the
+    starved law): starvation weakens the viscous term most where the film is thickest, i.e.
+    cold; a supply that flattens the cold rise to +41 % flattens the hot fall too (0.94), the
+    other root is nearly flooded hot (0.35)."""
+    tol = pad.SEED001_REL_TOL * pad.SEED001_HOT
+    for s in friction_scans:
+        assert s.fits, s.candidate
+        for f in s.fits:
+            assert f.fit_in_band and abs(f.fitted - np.sqrt(np.prod(pad.SEED001_COLD_BAND))) < 1e-6
+            assert not f.predicted_ok, (s.candidate, f.value, f.predicted)
+        assert s.closest_hot_in_band > tol, s.candidate
+
+
+def test_seed001_friction_models_reduce_to_the_configured_law(friction_scans):
+    """Limits against independent closed forms: the starved film with an infinite supply is
+    Palmgren's flooded torque (the configured model, to round-off); with a vanishing supply the
+    viscous part is M0 h_oil / h_ff, so its hot/cold ratio to 20 C is (nu_T/nu_20)^(2/3) /
+    (eta_T/eta_20)^0.67 (Hamrock-Dowson's U exponent, constant density: 1 to within 1.5 %)."""
+    c = pad.seed001_contact(MESH)
+    asm = load_shipped("seed001")
+    out = pad.seed001_torques(asm, mesh_factor=MESH)
+    np.testing.assert_allclose(pad.starved_torque_Nmm(c, 1e12), out.torque_Nmm, rtol=1e-9)
+    tiny = pad.starved_torque_Nmm(c, 1e-9) - c.load_Nmm
+    lub = get_lubricant(asm.lubrication.lubricant)
+    T = np.array(pad.SEED001_T_C)
+    nu = lub.nu_mm2_s(T)
+    expect = (nu / nu[1]) ** (2.0 / 3.0) / (nu / nu[1]) ** 0.67
+    np.testing.assert_allclose(tiny / tiny[1], expect, rtol=1e-6)
+    assert np.all(np.abs(expect - 1.0) < 0.015)
