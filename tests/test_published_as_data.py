@@ -178,3 +178,28 @@ def test_seed001_friction_models_reduce_to_the_configured_law(friction_scans):
     expect = (nu / nu[1]) ** (2.0 / 3.0) / (nu / nu[1]) ** 0.67
     np.testing.assert_allclose(tiny / tiny[1], expect, rtol=1e-6)
     assert np.all(np.abs(expect - 1.0) < 0.015)
+
+
+def test_seed001_hot_interval_is_the_delta_method_on_a_linear_model():
+    """The held-out interval route against its closed form: for ratios linear in the parameter,
+    cold = a + b p and hot = c + d p, fitted on the cold ratio with sd s_c, the hot ratio's
+    predictive sd is sqrt((d / b)^2 s_c^2 + s_h^2) exactly (Seber & Wild ch. 5.1), the 90 %
+    interval +-1.645 sd (standard normal quantile 0.95 = 1.6448536)."""
+    a, b, c, d = 0.9, 0.02, 1.1, -0.015
+    target = np.sqrt(np.prod(pad.SEED001_COLD_BAND))
+    p = (target - a) / b
+    lo, hi = pad.seed001_hot_interval(lambda x: (a + b * x, c + d * x), p)
+    s_c = pad.SEED001_REL_SD * target
+    s_h = pad.SEED001_REL_SD * pad.SEED001_HOT
+    half = 1.6448536269514722 * np.sqrt((d / b) ** 2 * s_c ** 2 + s_h ** 2)
+    np.testing.assert_allclose([lo, hi], [c + d * p - half, c + d * p + half], rtol=1e-9)
+
+
+def test_seed001_friction_model_intervals_exclude_the_published_hot_ratio(friction_scans):
+    """With the fit's parameter uncertainty and the published scatter (90 %), no friction-model
+    fit's interval of the held-out hot ratio reaches the published 0.75."""
+    for s in friction_scans:
+        assert len(s.intervals) == len(s.fits)
+        for f, (lo, hi) in zip(s.fits, s.intervals):
+            assert lo < f.predicted < hi
+            assert not lo <= pad.SEED001_HOT <= hi, (s.candidate, f.value, lo, hi)

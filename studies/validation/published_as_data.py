@@ -37,6 +37,8 @@ from analytic.lubrication import (ball_raceway_radii_mm, entrainment_speed_mm_s,
                                   hamrock_dowson_film, lubricant_library, reduced_modulus_MPa)
 from analytic.materials import get_material
 from studies.diagnosis.designs import cycles as cycle_design
+from studies.diagnosis.interval import (LEVEL, parameter_covariance, predictive_interval,
+                                        quantile)
 from studies.diagnosis.ladder import CTE_LOT_SCATTER, FormRoute, FormShare, ladder
 from studies.model.config import Assembly, load_shipped
 from studies.model.effects import get_effect
@@ -383,6 +385,9 @@ class FrictionScan:
     cold: np.ndarray
     hot: np.ndarray
     fits: tuple[HeldOutFit, ...]
+    #: the 90 % predictive interval (lo, hi) of the held-out hot ratio at each fit
+    #: (`seed001_hot_interval`)
+    intervals: tuple[tuple[float, float], ...] = ()
 
     @property
     def closest_hot_in_band(self) -> float:
@@ -475,7 +480,7 @@ def _scan(name, parameter, unit, bounds, bound_source, plausible, plausible_sour
         return float(M[0] / M[1]), float(M[2] / M[1])
     r = np.array([ratios(v) for v in grid])
     miss = r[:, 0] - target
-    fits = []
+    fits, intervals = [], []
     for i in np.flatnonzero(miss[:-1] * miss[1:] <= 0):
         v = float(brentq(lambda x: ratios(x)[0] - target, grid[i], grid[i + 1], rtol=1e-10,
                             xtol=1e-12 * grid[i + 1]))
@@ -483,8 +488,34 @@ def _scan(name, parameter, unit, bounds, bound_source, plausible, plausible_sour
         fits.append(HeldOutFit(name, parameter, bounds, bound_source, v, True, q,
                                bool(SEED001_COLD_BAND[0] <= q <= SEED001_COLD_BAND[1]), h,
                                bool(abs(h - SEED001_HOT) <= tol)))
+        intervals.append(seed001_hot_interval(ratios, v))
     return FrictionScan(name, parameter, unit, bounds, bound_source, plausible, plausible_source,
-                        grid, r[:, 0], r[:, 1], tuple(fits))
+                        grid, r[:, 0], r[:, 1], tuple(fits), tuple(intervals))
+
+
+#: the published scatter of a ratio, as a standard deviation relative to the ratio: the cold band
+#: read as a 90 % range of the rig's scatter about its centre (half-width / 1.645; the paper
+#: states no other scatter: the assumption of `SEED001_REL_TOL`, carried to the hot ratio too)
+SEED001_REL_SD = SEED001_REL_TOL / quantile(LEVEL)
+
+
+def seed001_hot_interval(ratios: Callable[[float], tuple[float, float]], value: float,
+                         rel_step: float = 1e-4) -> tuple[float, float]:
+    """The 90 % predictive interval of the hot ratio of a model whose one parameter was fitted on
+    the cold ratio, through the diagnosis's interval route (`studies.diagnosis.interval`): the
+    parameter's variance from the fit (one number fitted: J = (d cold / d p) / sd_cold, chi^2 =
+    0, `parameter_covariance`) carried to the hot ratio by its derivative (delta method), plus
+    the published scatter of the hot ratio (`SEED001_REL_SD` x 0.75); no model-discrepancy term
+    (one fitted number leaves no residual to estimate it from). Derivatives by central
+    differences of relative step `rel_step` in the parameter."""
+    h = rel_step * abs(value)
+    (c_hi, t_hi), (c_lo, t_lo) = ratios(value + h), ratios(value - h)
+    dc, dt = (c_hi - c_lo) / (2 * h), (t_hi - t_lo) / (2 * h)
+    target = float(np.sqrt(np.prod(SEED001_COLD_BAND)))
+    cov, _ = parameter_covariance(np.array([[dc / (SEED001_REL_SD * target)]]), 0.0)
+    pi = predictive_interval(np.array([ratios(value)[1]]), np.array([[dt]]), cov,
+                             SEED001_REL_SD * SEED001_HOT, 0.0, LEVEL)
+    return float(pi.lo[0]), float(pi.hi[0])
 
 
 def seed001_friction_models(mesh_factor: float = 1.0, n_grid: int = 241) -> tuple[FrictionScan, ...]:
@@ -527,11 +558,11 @@ def friction_models_lines(scans: tuple[FrictionScan, ...]) -> list[str]:
         if not s.fits:
             rows.append([s.candidate, f"{s.parameter}: no value in [{s.bounds[0]:.3g}, "
                          f"{s.bounds[1]:.3g}] reaches the band's centre", "-", "-", "-", "-"])
-        for f in s.fits:
+        for f, (lo, hi) in zip(s.fits, s.intervals):
             err = (f.predicted - SEED001_HOT) / SEED001_HOT
             rows.append([s.candidate, f"{s.parameter} = {f.value:.3g} {s.unit} in "
                          f"[{s.bounds[0]:.3g}, {s.bounds[1]:.3g}]", f"{f.fitted:.3f}",
-                         f"{f.predicted:.3f}", f"{err:+.1%}",
+                         f"{f.predicted:.3f} [{lo:.3f}, {hi:.3f}]", f"{err:+.1%}",
                          "yes" if s.is_plausible(f.value) else
                          f"no: outside {s.plausible[0]:.3g}..{s.plausible[1]:.3g} ({s.plausible_source})"])
     lines = ["#### The friction models of issue 33 (analytic/friction), fitted on the cold ratio", "",
@@ -539,9 +570,14 @@ def friction_models_lines(scans: tuple[FrictionScan, ...]) -> list[str]:
              "ratio meets the band's centre is a fit, its hot ratio the held-out prediction "
              f"(tolerance +-{SEED001_REL_TOL:.1%} of 0.75). The models act on the configured "
              "model's contact loads and oil viscosity (the starved film on the inner contact of "
-             "the assembled preload at 20 C, the viscosity at each temperature).", "",
+             "the assembled preload at 20 C, the viscosity at each temperature). The 90 % "
+             "interval: the parameter's uncertainty from the cold ratio's published scatter "
+             f"(the band read as a 90 % range: sd {SEED001_REL_SD:.1%} of the ratio) plus the same "
+             "scatter on the hot ratio, through the diagnosis's interval route "
+             "(studies/diagnosis/interval.py).", "",
              md_table(["model", "fitted parameter (bounds)", "torque -20 C / 20 C",
-                       "torque 60 C / 20 C: predicted (published 0.75)", "held-out error",
+                       "torque 60 C / 20 C: predicted [90 % interval] (published 0.75)",
+                       "held-out error",
                        "physically plausible"], rows), "", "Bounds and their sources:", "",
              *(f"- {s.candidate}: {s.bound_source}" for s in scans), ""]
     for s in scans:
