@@ -18,6 +18,7 @@ nu2^2)/E2). The force opposes rolling; the power it dissipates is F_R u, at the 
 inlet. With the kinematics of `analytic.torque.ball_kinematics` (outer ring fixed, inner ring
 at omega) u_j = omega (dm/2) roll_j, so the inner-ring torque that balances it is
 F_R (dm/2) roll_j per contact, Z balls per bearing.
+The pair's sum over both bearings on a `bearing.PairState`: `analytic.torque.ehl_rolling_pair`.
 
 Speed law (what the model predicts, not fitted): at fixed ball loads and viscosity F_R ~ U^0.66
 ~ n^0.66, so the torque grows as n^0.66 before the oil's heating lowers eta0 (the thermal
@@ -32,7 +33,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from analytic.lubrication import reduced_modulus_MPa
 
 
 def ehl_rolling_force_N(Q_N, Rx_mm, k, E_reduced_MPa, eta0_Pa_s, alpha_per_Pa,
@@ -63,31 +63,21 @@ class EHLRollingTorque:
         return self.inner_Nmm + self.outer_Nmm
 
 
-def ehl_rolling_pair(g, pair, speed_rpm, eta0_Pa_s, alpha_per_Pa) -> EHLRollingTorque:
-    """EHL rolling resistance of each contact of a pair (`bearing.PairState`; quasi-dynamic
-    balls: each contact at its own load and angle), every ball of a bearing at the
-    representative ball's state (a radial load's ball-to-ball variation is not resolved here).
-    g: `bearing.BearingGeometry`; speed_rpm: inner-ring speed (outer fixed); eta0_Pa_s: the
-    oil's dynamic viscosity at the contact inlet; alpha_per_Pa: its pressure-viscosity
-    coefficient. Torques N mm, heats W."""
-    from analytic.torque import ball_kinematics, contact_angles_rad, contact_inputs
-    n = np.abs(np.asarray(speed_rpm, float))
-    omega = n * 2.0 * np.pi / 60.0
-    Ep = reduced_modulus_MPa(g.ring.E_MPa, g.ring.nu, g.ball.E_MPa, g.ball.nu)
-    half_dm = 0.5 * g.dm_mm
-    t_in = t_out = q_in = q_out = 0.0
-    per = []
-    for j in (0, 1):
-        cin, cout = contact_inputs(pair, j)
-        a_i, a_o = contact_angles_rad(pair, j)
-        kin = ball_kinematics(g.dm_mm, g.Dw_mm, a_i, a_o)
-        parts = []
-        for c, roll in ((cin, kin.roll_inner), (cout, kin.roll_outer)):
-            u = omega * half_dm * roll                       # entrainment speed, mm/s
-            F = ehl_rolling_force_N(c.Q_N, c.Rx_mm, np.asarray(c.a_mm) / np.asarray(c.b_mm), Ep,
-                                    eta0_Pa_s, alpha_per_Pa, u)
-            parts.append((g.Z * F * half_dm * roll, 1e-3 * g.Z * F * u))
-        (ti, qi), (to, qo) = parts
-        t_in, t_out, q_in, q_out = t_in + ti, t_out + to, q_in + qi, q_out + qo
-        per.append(ti + to)
-    return EHLRollingTorque(t_in, t_out, q_in, q_out, tuple(per))
+def ehl_rolling_bearing(Z: int, dm_mm: float, E_reduced_MPa, inner, outer, roll_inner,
+                        roll_outer, speed_rpm, eta0_Pa_s, alpha_per_Pa):
+    """EHL rolling resistance of one bearing's contacts: inner, outer the contacts' Hertz states
+    (`analytic.torque.ContactInput`: Q N, a, b, Rx mm), roll_inner, roll_outer the contact
+    speeds over the races per unit (omega dm/2) (`analytic.torque.ball_kinematics`), speed_rpm
+    the inner-ring speed (outer fixed). Returns (inner-ring torque of the inner contacts, of the
+    outer contacts) N mm and (heat at the inner contacts, at the outer contacts) W, the heat
+    computed as Z F_R u with u = omega (dm/2) roll the entrainment speed (mm/s)."""
+    omega = np.abs(np.asarray(speed_rpm, float)) * 2.0 * np.pi / 60.0
+    half_dm = 0.5 * dm_mm
+    torques, heats = [], []
+    for c, roll in ((inner, roll_inner), (outer, roll_outer)):
+        u = omega * half_dm * roll                                   # entrainment speed, mm/s
+        F = ehl_rolling_force_N(c.Q_N, c.Rx_mm, np.asarray(c.a_mm) / np.asarray(c.b_mm),
+                                E_reduced_MPa, eta0_Pa_s, alpha_per_Pa, u)
+        torques.append(Z * F * half_dm * roll)
+        heats.append(1e-3 * Z * F * u)
+    return tuple(torques), tuple(heats)
