@@ -31,8 +31,7 @@ from typing import Callable
 import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
-from analytic.friction.skf2004 import K_RS_GREASE, K_RS_OIL, MU_EHL, skf2004_torque
-from analytic.friction.starved import R_RANGE, starved_viscous_torque_Nmm, supply_layer_um
+from analytic.friction.starved import R_RANGE, supply_layer_um
 from analytic.lubrication import (ball_raceway_radii_mm, entrainment_speed_mm_s, get_lubricant,
                                   hamrock_dowson_film, lubricant_library, reduced_modulus_MPa)
 from analytic.materials import get_material
@@ -42,7 +41,7 @@ from studies.diagnosis.interval import (LEVEL, parameter_covariance, predictive_
 from studies.diagnosis.ladder import CTE_LOT_SCATTER, FormRoute, FormShare, ladder
 from studies.model.config import Assembly, load_shipped
 from studies.model.effects import get_effect
-from studies.model.pipeline import Pipeline, simulate_table, table_inputs
+from studies.model.pipeline import ModelError, Pipeline, simulate_table, table_inputs
 from studies.model.result import SimulationResult
 
 #: seed 001, the paper's conclusion 2: +33.3..50.0 % at -20 C, -25 % at 60 C (against 20 C)
@@ -359,21 +358,18 @@ def self_heating_unbounded(parts: str, mesh_factor: float = 1.0,
 #: the starved film's supply ratio r = h_oil / h_ff where its law is fitted (Chevalier et al.
 #: 1998, `analytic.friction.starved.R_RANGE`): the oil quantity's bounds follow from it at 20 C
 STARVED_R_RANGE = R_RANGE
-#: SKF's replenishment constant K_rs (1/(mm^2/s rpm mm) as the catalogue writes it): 0 (no
-#: starvation) up to 10x the catalogue's grease / oil-air value, the search range
-SKF_KRS_BOUNDS = (0.0, 10.0 * K_RS_GREASE)
-#: K_rs values called physically plausible for a bearing on a few mg of oil: from the
-#: catalogue's oil-jet / oil-bath value (a bath is the best supplied case) up to the search
-#: bound; a bearing fed by an oil-impregnated cage starves at least as much as an oil jet
-SKF_KRS_PLAUSIBLE = (K_RS_OIL, SKF_KRS_BOUNDS[1])
+#: the friction models of issue 33 without a parameter of their own (`[lubrication]
+#: viscous_model`): both published ratios are predictions
+FRICTION_FORMS = ("skf2004", "ehl_rolling")
 
 
 @dataclass(frozen=True)
 class FrictionScan:
-    """A friction model of issue 33 (`analytic.friction`) with its one parameter scanned over its
-    bounds on seed 001: the cold and hot ratios at every grid value, every value where the cold
-    ratio meets the band's centre (each a fit, its hot ratio the held-out prediction), and the
-    closest any value whose cold ratio lies inside the band comes to the published hot ratio."""
+    """A friction model of issue 33 with its one parameter scanned over its bounds on seed 001
+    (through the pipeline: the assembly's `[lubrication]` key): the cold and hot ratios at every
+    grid value, every value where the cold ratio meets the band's centre (each a fit, its hot
+    ratio the held-out prediction, with its 90 % predictive interval), and the closest any value
+    whose cold ratio lies inside the band comes to the published hot ratio."""
     candidate: str
     parameter: str
     unit: str
@@ -402,71 +398,41 @@ class FrictionScan:
 
 
 @dataclass(frozen=True)
-class Seed001Contact:
-    """What the friction models take from the configured model at the three chamber temperatures
-    (one `simulate_table` run): the load and Palmgren viscous torque of the pair (N mm), each
-    bearing's axial force (N), the oil's kinematic (mm^2/s) and dynamic (Pa s) viscosity, and
-    the inner contact of the assembled preload at 20 C (load N, semi-axis across rolling mm,
-    contact angle deg)."""
-    load_Nmm: np.ndarray
-    viscous_Nmm: np.ndarray
-    axial_force_N: np.ndarray
-    nu_mm2_s: np.ndarray
-    eta_Pa_s: np.ndarray
-    Q20_N: float
-    a20_mm: float
-    angle20_deg: float
+class FrictionForm:
+    """A friction model of issue 33 without a parameter on seed 001: both ratios predicted
+    (NaN with `no_answer` the model's reason when it has none)."""
+    viscous_model: str
+    cold: float
+    hot: float
+    no_answer: str = ""
 
 
-def seed001_contact(mesh_factor: float = 1.0) -> Seed001Contact:
+def seed001_with(asm: Assembly, **lubrication) -> Assembly:
+    """The assembly with `[lubrication]` keys changed (viscous_model, oil_quantity_mg, ...)."""
+    return replace(asm, lubrication=replace(asm.lubrication, **lubrication))
+
+
+def starved_bounds_mg(mesh_factor: float = 1.0) -> tuple[float, float]:
+    """The oil quantity (mg, one bearing) whose supply ratio r = h_oil / h_ff at the inner contact
+    at 20 C spans the starved law's source range `STARVED_R_RANGE`: h_oil from the quantity
+    (`analytic.friction.starved.supply_layer_um`, linear in it), h_ff Hamrock-Dowson's central
+    film (`analytic.lubrication.hamrock_dowson_film`) at that contact's load, radii and
+    entrainment speed, the oil's viscosity at 20 C."""
     asm = load_shipped("seed001")
     o = seed001_torques(asm, mesh_factor=mesh_factor)
-    lub = get_lubricant(asm.lubrication.lubricant)
-    T = np.array(SEED001_T_C)
-    return Seed001Contact(np.asarray(o.torque.load_Nmm, float),
-                          np.asarray(o.torque.viscous_Nmm, float),
-                          np.asarray(o.pair.axial_force_N, float), lub.nu_mm2_s(T),
-                          lub.eta_Pa_s(T), float(o.pair.ball_load_N[0, 1]),
-                          float(o.pair.inner.a_mm[0, 1]), float(o.pair.contact_angle_deg[0, 1]))
-
-
-def starved_film_h_ff_um(c: Seed001Contact) -> np.ndarray:
-    """Flooded central film (um) of the inner contact at the three temperatures: Hamrock-Dowson
-    (`analytic.lubrication.hamrock_dowson_film`) at the 20 C contact of the assembled preload,
-    the oil's viscosity at each temperature (approximation, stated in the report: the starved law
-    weakens the viscous term's viscosity dependence; the contact is held at the assembled one
-    because the configured model loses the preload at 60 C, where the published rig still runs)."""
-    asm = load_shipped("seed001")
     b, lub = asm.bearing, get_lubricant(asm.lubrication.lubricant)
     ring, ball = get_material(b.ring_material), get_material(b.ball_material)
-    Rx, Ry = ball_raceway_radii_mm(b.ball_diameter_mm, b.pitch_diameter_mm, c.angle20_deg,
+    angle = float(o.pair.contact_angle_deg[0, 1])
+    Rx, Ry = ball_raceway_radii_mm(b.ball_diameter_mm, b.pitch_diameter_mm, angle,
                                    b.inner_groove_ratio, "inner")
     u = entrainment_speed_mm_s(asm.lubrication.speed_rpm, b.ball_diameter_mm,
-                               b.pitch_diameter_mm, c.angle20_deg)
+                               b.pitch_diameter_mm, angle)
     Ep = reduced_modulus_MPa(ring.E_MPa, ring.nu, ball.E_MPa, ball.nu)
-    return hamrock_dowson_film(Rx, Ry, Ep, c.eta_Pa_s, lub.alpha_per_Pa, u, c.Q20_N).h_central_um
-
-
-def starved_torque_Nmm(c: Seed001Contact, oil_quantity_mg: float) -> np.ndarray:
-    """Pair torque (N mm) with the viscous term starved (`analytic.friction.starved`): the load
-    term as configured plus Palmgren's viscous term times h/h_ff of the supply layer that
-    `oil_quantity_mg` (on the tracks of one bearing) spreads over the 20 C contact width."""
-    asm = load_shipped("seed001")
-    lub = get_lubricant(asm.lubrication.lubricant)
-    h_oil = supply_layer_um(oil_quantity_mg, lub.density_kg_m3, asm.bearing.pitch_diameter_mm,
-                            c.a20_mm)
-    return c.load_Nmm + starved_viscous_torque_Nmm(c.viscous_Nmm, h_oil, starved_film_h_ff_um(c))
-
-
-def skf_torque_Nmm(c: Seed001Contact, K_rs: float) -> np.ndarray:
-    """Pair torque (N mm) by the SKF four-component model (`analytic.friction.skf2004`, 72 B
-    constants, synthetic-oil mu_EHL, no bath drag) on each bearing's axial force of the
-    configured model, with replenishment constant K_rs."""
-    asm = load_shipped("seed001")
-    b = asm.bearing
-    return sum(skf2004_torque(b.bore_mm, b.outside_diameter_mm, 0.0, c.axial_force_N[j],
-                              asm.lubrication.speed_rpm, c.nu_mm2_s, K_rs=K_rs,
-                              mu_ehl=MU_EHL["synthetic"]).total_Nmm for j in (0, 1))
+    h_ff = float(hamrock_dowson_film(Rx, Ry, Ep, lub.eta_Pa_s(20.0), lub.alpha_per_Pa, u,
+                                     float(o.pair.ball_load_N[0, 1])).h_central_um)
+    per_mg = float(supply_layer_um(1.0, lub.density_kg_m3, b.pitch_diameter_mm,
+                                   float(o.pair.inner.a_mm[0, 1])))
+    return tuple(r * h_ff / per_mg for r in STARVED_R_RANGE)
 
 
 def _scan(name, parameter, unit, bounds, bound_source, plausible, plausible_source, torque,
@@ -483,7 +449,7 @@ def _scan(name, parameter, unit, bounds, bound_source, plausible, plausible_sour
     fits, intervals = [], []
     for i in np.flatnonzero(miss[:-1] * miss[1:] <= 0):
         v = float(brentq(lambda x: ratios(x)[0] - target, grid[i], grid[i + 1], rtol=1e-10,
-                            xtol=1e-12 * grid[i + 1]))
+                         xtol=1e-12 * grid[i + 1]))
         q, h = ratios(v)
         fits.append(HeldOutFit(name, parameter, bounds, bound_source, v, True, q,
                                bool(SEED001_COLD_BAND[0] <= q <= SEED001_COLD_BAND[1]), h,
@@ -518,40 +484,42 @@ def seed001_hot_interval(ratios: Callable[[float], tuple[float, float]], value: 
     return float(pi.lo[0]), float(pi.hi[0])
 
 
-def seed001_friction_models(mesh_factor: float = 1.0, n_grid: int = 241) -> tuple[FrictionScan, ...]:
-    """The friction models of issue 33 that have one parameter on seed 001, each scanned over its
-    bounds (log grid) and fitted on the cold ratio wherever it meets the band's centre."""
-    c = seed001_contact(mesh_factor)
+def seed001_friction_models(mesh_factor: float = 1.0, n_grid: int = 61
+                            ) -> tuple[tuple[FrictionScan, ...], tuple[FrictionForm, ...]]:
+    """The friction models of issue 33 on seed 001, all through the pipeline (`[lubrication]
+    viscous_model`): the starved film's oil quantity scanned over its bounds (log grid) and
+    fitted on the cold ratio wherever it meets the band's centre; the models without a
+    parameter with both ratios predicted."""
     asm = load_shipped("seed001")
-    lub = get_lubricant(asm.lubrication.lubricant)
-    h_ff20 = float(starved_film_h_ff_um(c)[1])
-    # oil quantity (mg, one bearing) that gives supply ratio r at 20 C: h_oil is linear in it
-    per_mg = float(supply_layer_um(1.0, lub.density_kg_m3, asm.bearing.pitch_diameter_mm, c.a20_mm))
-    m_lo, m_hi = (r * h_ff20 / per_mg for r in STARVED_R_RANGE)
+    m_lo, m_hi = starved_bounds_mg(mesh_factor)
     starved = _scan(
         "friction model: starved film", "oil_quantity_mg", "mg", (m_lo, m_hi),
-        f"the supply ratio h_oil/h_ff at 20 C in {STARVED_R_RANGE[0]:g}..{STARVED_R_RANGE[1]:g}, "
-        "the range of the starved-film law's source (Chevalier et al. 1998, "
-        "analytic/friction/starved.py); h_oil from the oil on the tracks of the 20 C contact",
-        (m_lo, m_hi), "inside the law's fitted range (the paper states no oil quantity: any "
-        "on-track quantity within it is possible)",
-        lambda m: starved_torque_Nmm(c, m), np.geomspace(m_lo, m_hi, n_grid))
-    lo, hi = SKF_KRS_BOUNDS
-    skf = _scan(
-        "friction model: SKF 2004 (replenishment K_rs)", "K_rs", "-", (lo, hi),
-        f"0 (no starvation) to 10x the catalogue's grease / oil-air value {K_RS_GREASE:g} (SKF "
-        "frictional-moment model, analytic/friction/skf2004.py)", SKF_KRS_PLAUSIBLE,
-        f"at least the catalogue's oil-jet / oil-bath value {K_RS_OIL:g}: a bearing fed by an "
-        "oil-impregnated cage is not better supplied than an oil jet",
-        lambda k: skf_torque_Nmm(c, k),
-        np.concatenate([[0.0], np.geomspace(1e-4 * hi, hi, n_grid - 1)]))
-    return starved, skf
+        f"the supply ratio h_oil/h_ff of the inner contact at 20 C in {STARVED_R_RANGE[0]:g}.."
+        f"{STARVED_R_RANGE[1]:g}, the range of the starved-film law's source (Chevalier et al. "
+        "1998, analytic/friction/starved.py)", (m_lo, m_hi),
+        "inside the law's fitted range (the paper states no oil quantity: any on-track quantity "
+        "within it is possible)",
+        lambda m: seed001_torque_Nmm(seed001_with(asm, viscous_model="starved",
+                                                  oil_quantity_mg=float(m)),
+                                     mesh_factor=mesh_factor),
+        np.geomspace(m_lo, m_hi, n_grid))
+    forms = []
+    for vm in FRICTION_FORMS:
+        try:
+            M = seed001_torque_Nmm(seed001_with(asm, viscous_model=vm), mesh_factor=mesh_factor)
+            forms.append(FrictionForm(vm, float(M[0] / M[1]), float(M[2] / M[1])))
+        except ModelError as exc:
+            forms.append(FrictionForm(vm, float("nan"), float("nan"), str(exc)))
+    return (starved,), tuple(forms)
 
 
-def friction_models_lines(scans: tuple[FrictionScan, ...]) -> list[str]:
+def friction_models_lines(models: tuple[tuple[FrictionScan, ...], tuple[FrictionForm, ...]]
+                          ) -> list[str]:
     """Markdown lines: each friction model's fits on the cold ratio and their held-out hot
-    ratio, the parameter's bound source and whether the fitted value is physically plausible."""
+    ratio, the parameter's bound source and whether the fitted value is physically plausible;
+    the models without a parameter with both ratios predicted."""
     from studies.usecases.report_tools import md_table
+    scans, forms = models
     tol = SEED001_REL_TOL * SEED001_HOT
     rows = []
     for s in scans:
@@ -564,21 +532,28 @@ def friction_models_lines(scans: tuple[FrictionScan, ...]) -> list[str]:
                          f"[{s.bounds[0]:.3g}, {s.bounds[1]:.3g}]", f"{f.fitted:.3f}",
                          f"{f.predicted:.3f} [{lo:.3f}, {hi:.3f}]", f"{err:+.1%}",
                          "yes" if s.is_plausible(f.value) else
-                         f"no: outside {s.plausible[0]:.3g}..{s.plausible[1]:.3g} ({s.plausible_source})"])
+                         f"no: outside {s.plausible[0]:.3g}..{s.plausible[1]:.3g} "
+                         f"({s.plausible_source})"])
+    for f in forms:
+        name = f'friction model: viscous_model = "{f.viscous_model}"'
+        if f.no_answer:
+            rows.append([name, "(no parameter)", "no answer", "no answer", "-", f.no_answer])
+            continue
+        rows.append([name, "(no parameter)", f"{f.cold:.3f} (predicted)", f"{f.hot:.3f}",
+                     f"{(f.hot - SEED001_HOT) / SEED001_HOT:+.1%}", "yes (catalogue constants)"])
     lines = ["#### The friction models of issue 33 (analytic/friction), fitted on the cold ratio", "",
-             "Each model's one parameter is scanned over its bounds; every value where the cold "
-             "ratio meets the band's centre is a fit, its hot ratio the held-out prediction "
-             f"(tolerance +-{SEED001_REL_TOL:.1%} of 0.75). The models act on the configured "
-             "model's contact loads and oil viscosity (the starved film on the inner contact of "
-             "the assembled preload at 20 C, the viscosity at each temperature). The 90 % "
-             "interval: the parameter's uncertainty from the cold ratio's published scatter "
-             f"(the band read as a 90 % range: sd {SEED001_REL_SD:.1%} of the ratio) plus the same "
-             "scatter on the hot ratio, through the diagnosis's interval route "
-             "(studies/diagnosis/interval.py).", "",
+             "Each model through the pipeline (`[lubrication] viscous_model`, at each "
+             "temperature's contact loads and oil viscosity). A model with a parameter has it "
+             "scanned over its bounds; every value where the cold ratio meets the band's centre "
+             "is a fit, its hot ratio the held-out prediction (tolerance "
+             f"+-{SEED001_REL_TOL:.1%} of 0.75). The 90 % interval: the parameter's uncertainty "
+             "from the cold ratio's published scatter (the band read as a 90 % range: sd "
+             f"{SEED001_REL_SD:.1%} of the ratio) plus the same scatter on the hot ratio, through "
+             "the diagnosis's interval route (studies/diagnosis/interval.py).", "",
              md_table(["model", "fitted parameter (bounds)", "torque -20 C / 20 C",
                        "torque 60 C / 20 C: predicted [90 % interval] (published 0.75)",
-                       "held-out error",
-                       "physically plausible"], rows), "", "Bounds and their sources:", "",
+                       "held-out error", "physically plausible"], rows), "",
+             "Bounds and their sources:", "",
              *(f"- {s.candidate}: {s.bound_source}" for s in scans), ""]
     for s in scans:
         lines.append(f"- {s.candidate}: of every {s.parameter} whose cold ratio lies inside the "
