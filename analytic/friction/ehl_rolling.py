@@ -44,7 +44,9 @@ def ehl_rolling_force_N(Q_N, Rx_mm, k, E_reduced_MPa, eta0_Pa_s, alpha_per_Pa,
     U = np.asarray(eta0_Pa_s, float) * 1e-6 * np.abs(np.asarray(entrainment_speed_mm_s, float)) / (Ep * Rx)
     G = np.asarray(alpha_per_Pa, float) * 1e6 * Ep
     W = np.maximum(np.asarray(Q_N, float), 0.0) / (Ep * Rx * Rx)
-    return 2.86 * Ep * Rx * Rx * np.asarray(k, float) ** 0.348 * G ** 0.022 * U ** 0.66 * W ** 0.47
+    with np.errstate(invalid="ignore"):     # an unloaded contact's k = a / b is 0 / 0
+        F = 2.86 * Ep * Rx * Rx * np.asarray(k, float) ** 0.348 * G ** 0.022 * U ** 0.66 * W ** 0.47
+    return np.where(W > 0, F, 0.0)
 
 
 @dataclass(frozen=True)

@@ -19,6 +19,7 @@ config already uses is not on the ladder. The rungs (names of docs/cli.md, "kind
 | `preload_spring` | `[preload] kind = "spring"` | carried by the listed `preload_path_compliance` (the spring is its soft limit) | - |
 | `fits_in_band` | as-built fits anywhere in the `[fits]` tolerance band | carried by the listed `interference_error`, whose bounds are the band (`assembly_bounds`) | - |
 | `sleeve` | a `[sleeve]` the file lacks | not tried: its material and thickness are drawing data, not bounded by a data sheet | - |
+| `torque_model_skf`, `rolling_ehl`, `starved_film`, `solid_film_pressure` | the friction laws of `analytic.friction` the file does not use (`studies.diagnosis.friction_rungs`: forms, and the speed / temperature / load variation each needs) | `share` (0..1) | pair |
 
 A parameter rung (`groove_conformity`) changes a number of the file's assembly that makers rarely
 publish: its candidate fits the number itself within the range the makers use, and its prediction
@@ -423,6 +424,8 @@ def ladder(asm: Assembly) -> list[Rung]:
     if asm.sleeve is None:      # issue 34: studies/diagnosis/sleeve_rung.py
         rungs.append(Rung("sleeve", SleeveForm.change, "fe_setup", SleeveForm.acts_through,
                           **sleeve_candidate(asm)))
+    from studies.diagnosis import friction_rungs      # issue 33 (imports this module)
+    rungs += friction_rungs.rungs(asm)
     return sorted(rungs, key=lambda r: COSTS.index(r.cost))
 
 
