@@ -246,3 +246,21 @@ def test_seed001_friction_model_intervals_exclude_the_published_hot_ratio(fricti
         for f, (lo, hi) in zip(s.fits, s.intervals):
             assert lo < f.predicted < hi
             assert not lo <= pad.SEED001_HOT <= hi, (s.candidate, f.value, lo, hi)
+
+
+def test_seed000_no_solid_film_law_turns_the_published_rise():
+    """Seed 000's published trend (torque rising at every 10 K step over 0..80 C at 100 N) against
+    the solid-film laws: the constant coefficient, Singer et al.'s pressure-dependent shear
+    strength and its two limits. Closed-form reason: the film's friction force over a Hertz
+    contact, tau0 pi a b + alpha Q, increases with the ball load Q for tau0, alpha >= 0, so every
+    law's torque changes with the sign of the preload's change at every step (here the preload
+    falls to 40 C and rises after it); none rises monotonically. Independent check of the
+    pressure route: with tau0 = 0 the law is Coulomb's mu = alpha, so alpha = 0.02 gives the
+    configured constant coefficient 0.02 exactly (1e-9)."""
+    laws = pad.seed000_trend(MESH)
+    assert load_shipped("seed000").lubrication.friction_coefficient == 0.02
+    np.testing.assert_allclose(laws[3].torque_Nmm, laws[0].torque_Nmm, rtol=1e-9)
+    for t in laws:
+        assert t.follows_preload, t.law
+        assert not t.rises_monotonically, t.law
+    assert np.argmin(laws[0].preload_N) not in (0, len(pad.SEED000_TREND_T_C) - 1)
