@@ -15,7 +15,8 @@ is what differs from the file's law) tells nothing on data at one speed, where i
 constant factor the file's own friction coefficient already carries; a viscosity-law rung needs
 the oil's temperature to vary; a load-law rung the contact load (the preload moves with the
 temperature in a position-preloaded pair, or the assembled preload column varies). Where the
-conditions lack that variation the rung is skipped with the reason (`FrictionSwitch.applicable`).
+conditions lack that variation the rung is skipped with the reason (`applicability`, called by
+`ladder.FrictionSwitch.applicable`; `ladder.ladder` registers the rungs of `forms`).
 
 The starved form needs the bearing's oil quantity, which no data sheet bounds (it is what was
 put into the bearing, `[lubrication] oil_quantity_mg`): a file without one (0 = flooded) does not
@@ -34,7 +35,6 @@ from typing import Mapping
 
 import numpy as np
 
-from studies.diagnosis.ladder import FormShare, Rung, _switch
 from studies.model.config import Assembly
 
 #: Singer et al. (1990), sputtered MoS2: tau0 20-25 MPa, alpha of order 0.001 (module docstring)
@@ -123,28 +123,3 @@ def forms(asm: Assembly) -> list[tuple[str, str, tuple[str, ...], str, object, s
 
 def _lub(asm: Assembly, **keys) -> Assembly:
     return replace(asm, lubrication=replace(asm.lubrication, **keys))
-
-
-
-class FrictionSwitch(FormShare):
-    """A friction rung's switch: `ladder.FormShare`, applicable only where the conditions vary
-    what its law changes (`applicability`)."""
-
-    def applicable(self, conditions):
-        why = super().applicable(conditions)
-        return why if why is not None else applicability(self.name, conditions)
-
-
-def rungs(asm: Assembly) -> list[Rung]:
-    """The friction rungs of `forms` as `ladder.Rung`s (cost "pair": the changed assembly's
-    pipeline on the file's FE set-up), each a `FrictionSwitch`, or not tried with its reason."""
-    out = []
-    for name, change, acts, hint, configure, why_not in forms(asm):
-        if configure is None:
-            out.append(Rung(name, change, "pair", acts, why_not=why_not))
-            continue
-        r = _switch(name, change, "pair", acts, hint, configure, asm)
-        if r.candidate is not None:
-            r = replace(r, candidate=FrictionSwitch(name, hint, acts, "pair", change))
-        out.append(r)
-    return out
