@@ -577,9 +577,8 @@ def _starvation_ratio(g, pair, j, n_rpm, fr):
             h_ff = hamrock_dowson_film(c.Rx_mm, c.Rx_mm, Ep, fr.eta_Pa_s, fr.alpha_per_Pa, u,
                                        c.Q_N, k=np.asarray(c.a_mm) / np.asarray(c.b_mm)).h_central_um
             h_oil = supply_layer_um(fr.oil_quantity_mg, fr.density_kg_m3, g.dm_mm, c.a_mm)
-            # an unloaded contact (Q = 0: a position preload lost) has no Hertz width to starve:
-            # its viscous drag stays Palmgren's (ratio 1) instead of inf / inf
-            loaded = (np.asarray(c.Q_N, float) > 0) & np.isfinite(h_ff) & (h_ff > 0)
+            # an unloaded contact (no ellipse) or a bearing at rest: no film to starve
+            loaded = (np.asarray(c.Q_N) > 0) & (h_ff > 0) & np.isfinite(h_ff)
             ratios.append(np.where(loaded, starvation_ratio(h_oil, h_ff), 1.0))
     return 0.5 * (ratios[0] + ratios[1])
 

@@ -7,7 +7,8 @@ analytical calculations in ball bearings", 8th European Space Mechanisms and Tri
 (1999) and "Ball bearing and tapered roller bearing torque: analytical, numerical and
 experimental results", Tribol. Trans. 45 (2002) 345; as Harris & Kotzalas, Rolling Bearing
 Analysis 5th ed., Vol. 2 (Advanced Concepts), ch. "Friction in rolling element-raceway
-contacts", give it):
+contacts", give it; coefficient and exponents as the issue quotes them, not re-checked against a
+copy of either source here: the tests check the dimensional form and the exponents' physics):
 
     F_R = 2.86 E' R_x^2 k^0.348 G^0.022 U^0.66 W^0.47                       [N]
 
@@ -38,15 +39,17 @@ import numpy as np
 def ehl_rolling_force_N(Q_N, Rx_mm, k, E_reduced_MPa, eta0_Pa_s, alpha_per_Pa,
                         entrainment_speed_mm_s):
     """Hydrodynamic rolling force F_R = 2.86 E' Rx^2 k^0.348 G^0.022 U^0.66 W^0.47 of one
-    contact, N (module docstring). 0 without load or without rolling."""
+    contact, N (module docstring). 0 without load (an unloaded contact, whose ellipse and k are
+    then undefined) or without rolling."""
     Rx = np.asarray(Rx_mm, float)
     Ep = np.asarray(E_reduced_MPa, float)
+    Q = np.asarray(Q_N, float)
     U = np.asarray(eta0_Pa_s, float) * 1e-6 * np.abs(np.asarray(entrainment_speed_mm_s, float)) / (Ep * Rx)
     G = np.asarray(alpha_per_Pa, float) * 1e6 * Ep
-    W = np.maximum(np.asarray(Q_N, float), 0.0) / (Ep * Rx * Rx)
-    with np.errstate(invalid="ignore"):     # an unloaded contact's k = a / b is 0 / 0
+    W = np.maximum(Q, 0.0) / (Ep * Rx * Rx)
+    with np.errstate(invalid="ignore"):
         F = 2.86 * Ep * Rx * Rx * np.asarray(k, float) ** 0.348 * G ** 0.022 * U ** 0.66 * W ** 0.47
-    return np.where(W > 0, F, 0.0)
+    return np.where(Q > 0, F, 0.0)
 
 
 @dataclass(frozen=True)
@@ -78,8 +81,9 @@ def ehl_rolling_bearing(Z: int, dm_mm: float, E_reduced_MPa, inner, outer, roll_
     torques, heats = [], []
     for c, roll in ((inner, roll_inner), (outer, roll_outer)):
         u = omega * half_dm * roll                                   # entrainment speed, mm/s
-        F = ehl_rolling_force_N(c.Q_N, c.Rx_mm, np.asarray(c.a_mm) / np.asarray(c.b_mm),
-                                E_reduced_MPa, eta0_Pa_s, alpha_per_Pa, u)
+        with np.errstate(divide="ignore", invalid="ignore"):      # unloaded: F = 0 below
+            k = np.asarray(c.a_mm, float) / np.asarray(c.b_mm, float)
+        F = ehl_rolling_force_N(c.Q_N, c.Rx_mm, k, E_reduced_MPa, eta0_Pa_s, alpha_per_Pa, u)
         torques.append(Z * F * half_dm * roll)
         heats.append(1e-3 * Z * F * u)
     return tuple(torques), tuple(heats)

@@ -18,14 +18,17 @@ Angular-contact ball bearings (catalogue table "geometric and load dependent var
     G_sl = S1 dm^0.26 ((F_r + F_g)^(4/3) + S2 F_a^(4/3)),    F_g = S3 dm^4 n^2
 
 n rpm, nu mm^2/s (the oil at the operating temperature), dm = (d + D)/2, d, D mm, forces N,
-torques N mm. Constants as the catalogue tabulates them (stated at each constant below). The
-formulas and exponents were checked against the catalogue's own table as found with the search
-tool (SKF "Rolling bearings", Friction, table 2a: G_rr = R1 dm^1.97 [F_r + F_g + R2 F_a]^0.54,
-F_g = R3 dm^4 n^2, G_sl = S1 dm^0.26 [(F_r + F_g)^(4/3) + S2 F_a^(4/3)], F_g = S3 dm^4 n^2) and
-against an independent open implementation of phi_ish and phi_rs (K_z = 4.4 for angular-contact
-ball bearings, K_rs = 3e-8 oil jet / oil bath, 6e-8 grease / oil-air). The series constants
-R1..S3 for 72 B / 73 B are as printed in the catalogue's geometry-constant table; no copy of that
-table could be retrieved in this session to re-check the digits (stated in the report).
+torques N mm. Constants as the catalogue tabulates them (stated at each constant below).
+Checked against the catalogue's own pages (SKF "Rolling bearings", section Friction, "The SKF
+model for calculating the frictional moment", as published on yumpu.com, document 55668573,
+pp. 105-106): table 2a (G_rr = R1 dm^1.97 [F_r + F_g + R2 F_a]^0.54, F_g = R3 dm^4 n^2,
+G_sl = S1 dm^0.26 [(F_r + F_g)^(4/3) + S2 F_a^(4/3)], F_g = S3 dm^4 n^2 for angular-contact ball
+bearings), the sliding coefficient (phi_bl = 1/e^(2.6e-8 (n nu)^1.4 dm), mu_bl "generally
+~0.15", mu_EHL 0.05 mineral, 0.04 synthetic oils, 0.1 transmission fluids); phi_ish and phi_rs
+with K_z = 4.4 (angular-contact ball bearings) and K_rs = 3e-8 (oil jet, low-level oil bath),
+6e-8 (grease, oil-air) as an independent open implementation of the same SKF document takes
+them. The series constants R1..S3 of table 2b for 72 B / 73 B are the catalogue's as recalled;
+no copy of table 2b was retrievable here to re-check their digits.
 
 Limits (what the catalogue states): steady running, full-film to mixed lubrication of a
 mineral or synthetic oil, loads not below the minimum load, speeds below the limiting speed;

@@ -5,9 +5,11 @@
 (Bowden & Tabor, The Friction and Lubrication of Solids, Part II (1964); Briscoe & Tabor,
 "Shear properties of thin polymeric films", J. Adhesion 9 (1978) 145; for sputtered MoS2:
 Singer, Bolster, Wegand, Fayeulle & Stupp, "Hertzian stress contribution to low friction
-behavior of thin MoS2 coatings", Appl. Phys. Lett. 57 (1990) 995, who fit tau0 of order
-20-25 MPa and alpha of order 0.001 from Hertzian tests at 0.3-1 GPa; the friction coefficient
-then falls with the contact pressure as mu = tau0 / p_mean + alpha.)
+behavior of thin MoS2 coatings", Appl. Phys. Lett. 57 (1990) 995, who fit the law to Hertzian
+tests at 0.3-1 GPa: tau0 of order 20-25 MPa and alpha of order 0.001 as secondary literature
+quotes them; the paper itself was not retrievable here, so no default is taken from it: the
+assembly or a diagnosis gives tau0_MPa and alpha_shear). The friction coefficient then falls
+with the contact pressure as mu = tau0 / p_mean + alpha.
 
 Over a Hertz ellipse (semi-axes a, b; load Q; p(x, y) = (3Q / (2 pi a b)) sqrt(1 - x^2/a^2 -
 y^2/b^2)) the friction force is the integral of tau over the contact area:

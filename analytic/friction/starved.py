@@ -13,7 +13,9 @@ EHD contacts", J. Tribol. 126 (2004) 105):
 
 with h_oil the supply layer thickness (volume of oil per unit track area, their h_oil,inf) and
 gamma = 2.62 for circular contacts (Chevalier et al. 1998, fitted over their measured and
-computed starved films; Damiens et al. give gamma of the same order for elliptical contacts).
+computed starved films; Damiens et al. give gamma of the same order for elliptical contacts;
+the value as recalled, not re-checked against the paper here: the flooded and fully starved
+limits below do not depend on it).
 The hydrodynamic rolling loss scales as the film (both ~ (eta u)^0.67), so the viscous torque
 is taken as Palmgren's times the same ratio:
 
