@@ -29,7 +29,8 @@ MESH_FACTOR = 2.0
 #: the model-form candidate names fixed by the contract (shared spec, "Added for the next round")
 CONTRACT_NAMES = {"ball_model_quasi_dynamic", "ring_section_grooved", "sleeve", "preload_spring",
                   "material_lot", "fits_in_band", "unlogged_load", "raceway_control",
-                  "groove_conformity"}
+                  "groove_conformity", "torque_model_skf", "rolling_ehl", "starved_film",
+                  "solid_film_pressure"}
 
 
 def _diagnose(case):

@@ -50,11 +50,37 @@ def test_seed001_viscous_term_follows_palmgren_and_no_oil_side_change_reaches_th
         assert _palmgren_ratio(oil, -20.0, 20.0) > pad.SEED001_COLD_BAND[1], name
     lower = Mv[0] / out.torque_Nmm[1]
     assert s001.configured[0] >= lower * (1 - 1e-12)
-    assert not s001.any_fits
-    for f in s001.fits:                      # every candidate stays above the band's top
+    for f in s001.fits:    # every candidate that keeps Palmgren's term stays above the band
+        if pad.replaces_viscous_law(f.candidate):
+            continue
         assert f.fitted > pad.SEED001_COLD_BAND[1], f.candidate
         if f.parameter:                      # and a fit that misses sits on a bound or a plateau
             assert not f.reaches
+
+
+def test_seed001_no_ladder_rung_fitted_on_the_cold_ratio_predicts_the_hot_one(s001):
+    """Issue 33 Done-when (the negative branch) over the whole ladder, friction rungs included:
+    no candidate fitted into the cold band predicts the held-out hot ratio within the tolerance
+    of 0.75 (5.9 %). The one that reaches the band is the SKF rung: its share of the way from
+    Palmgren to the SKF model (cold ratio 0.13 alone: the SKF starvation factor phi_rs cuts the
+    rolling term where the oil is thick) is a Moebius function of the share, so the fit is the
+    only one; at it the hot ratio is 0.81 (+8 %), outside the tolerance. Independent check of
+    that value: the blend of the two assemblies' torques through `simulate_table` at the fitted
+    share, to 1e-9."""
+    from dataclasses import replace
+
+    assert not any(f.fit_in_band and f.predicted_ok for f in s001.fits)
+    in_band = [f for f in s001.fits if f.fit_in_band]
+    assert [f.candidate for f in in_band] == ["ladder: torque_model_skf"]
+    f = in_band[0]
+    assert 0.0 < f.value < 1.0 and f.reaches
+    assert abs(f.predicted - pad.SEED001_HOT) > pad.SEED001_REL_TOL * pad.SEED001_HOT
+    asm = load_shipped("seed001")
+    skf = replace(asm, lubrication=replace(asm.lubrication, viscous_model="skf2004"))
+    P = pad.seed001_torques(asm, mesh_factor=MESH).torque_Nmm
+    S = pad.seed001_torques(skf, mesh_factor=MESH).torque_Nmm
+    M = P + f.value * (S - P)
+    np.testing.assert_allclose([f.fitted, f.predicted], [M[0] / M[1], M[2] / M[1]], rtol=1e-9)
 
 
 def test_seed001_self_heating_fitted_on_the_cold_ratio_predicts_the_hot_one():
@@ -137,3 +163,104 @@ def test_seed001_ladder_rungs_are_its_model_forms(s001):
     form = replace(asm, operating=replace(asm.operating, ball_model="quasi_dynamic"))
     M = pad.seed001_torques(form, mesh_factor=MESH).torque_Nmm
     np.testing.assert_allclose([qd.fitted, qd.predicted], [M[0] / M[1], M[2] / M[1]], rtol=1e-12)
+
+
+@pytest.fixture(scope="module")
+def friction_models():
+    return pad.seed001_friction_models(MESH)
+
+
+def test_seed001_friction_models_fitted_on_the_cold_ratio_miss_the_hot_one(friction_models):
+    """Issue 33 Done-when, the negative branch: the starved film (its oil quantity fitted on the
+    cold ratio, through the pipeline's `viscous_model = "starved"`) predicts the held-out hot
+    ratio outside the tolerance of the published 0.75 (5.9 %: the relative half-width of the
+    published cold band) at every fit; not only at the fits: of every grid value inside the
+    bounds whose cold ratio lies inside the published band, none comes within the tolerance.
+    Reason: the configured position preload is lost at 60 C (0 N), where an unloaded contact
+    has nothing to starve and the viscous term is Palmgren's flooded one, while at -20 C the
+    preload is 13x the 20 C one; the quantity that flattens the cold rise to +41 % therefore
+    leaves the hot point either far above (flooded 60 C against a starved 20 C) or at
+    Palmgren's ratio. The SKF model (catalogue constants, no parameter) predicts a cold ratio
+    outside the band: no fit, so nothing held out to test."""
+    scans, forms = friction_models
+    tol = pad.SEED001_REL_TOL * pad.SEED001_HOT
+    target = np.sqrt(np.prod(pad.SEED001_COLD_BAND))
+    for s in scans:
+        assert s.fits, s.candidate
+        for f in s.fits:
+            assert f.fit_in_band and abs(f.fitted - target) < 1e-6 * target
+            assert not f.predicted_ok, (s.candidate, f.value, f.predicted)
+        assert s.closest_hot_in_band > tol, s.candidate
+    skf = next(f for f in forms if f.viscous_model == "skf2004")
+    assert not pad.SEED001_COLD_BAND[0] <= skf.cold <= pad.SEED001_COLD_BAND[1]
+
+
+def test_seed001_starved_film_limits(friction_models):
+    """Limits of the starved film through the pipeline against Palmgren's closed form: with an
+    oil quantity 1e6 x the upper bound the torque is the configured (flooded Palmgren) one to
+    1e-9; at 60 C, where the configured preload is lost (0 N, no Hertz contact), the torque is
+    Palmgren's viscous term f0 (nu n)^(2/3) dm^3 1e-7 per bearing, for any oil quantity."""
+    from analytic.torque import palmgren_viscous_torque_Nmm
+
+    (s,), _ = friction_models
+    asm = load_shipped("seed001")
+    flooded = pad.seed001_torque_Nmm(pad.seed001_with(asm, viscous_model="starved",
+                                                      oil_quantity_mg=1e6 * s.bounds[1]),
+                                     mesh_factor=MESH)
+    np.testing.assert_allclose(flooded, pad.seed001_torque_Nmm(asm, mesh_factor=MESH), rtol=1e-9)
+    out = pad.seed001_torques(asm, mesh_factor=MESH)
+    assert out.preload_N[2] == 0.0
+    lub, b = asm.lubrication, asm.bearing
+    nu60 = get_lubricant(lub.lubricant).nu_mm2_s(60.0)
+    palm = 2.0 * 1e-7 * lub.viscous_factor_f0 * (nu60 * lub.speed_rpm) ** (2.0 / 3.0) \
+        * b.pitch_diameter_mm ** 3
+    np.testing.assert_allclose(palmgren_viscous_torque_Nmm(lub.viscous_factor_f0, nu60,
+                                                           lub.speed_rpm, b.pitch_diameter_mm),
+                               palm / 2.0, rtol=1e-12)
+    for m in (s.bounds[0], s.fits[0].value, s.bounds[1]):
+        M = pad.seed001_torque_Nmm(pad.seed001_with(asm, viscous_model="starved",
+                                                    oil_quantity_mg=m), mesh_factor=MESH)
+        np.testing.assert_allclose(M[2], palm, rtol=1e-9)
+
+
+def test_seed001_hot_interval_is_the_delta_method_on_a_linear_model():
+    """The held-out interval route against its closed form: for ratios linear in the parameter,
+    cold = a + b p and hot = c + d p, fitted on the cold ratio with sd s_c, the hot ratio's
+    predictive sd is sqrt((d / b)^2 s_c^2 + s_h^2) exactly (Seber & Wild ch. 5.1), the 90 %
+    interval +-1.645 sd (standard normal quantile 0.95 = 1.6448536)."""
+    a, b, c, d = 0.9, 0.02, 1.1, -0.015
+    target = np.sqrt(np.prod(pad.SEED001_COLD_BAND))
+    p = (target - a) / b
+    lo, hi = pad.seed001_hot_interval(lambda x: (a + b * x, c + d * x), p)
+    s_c = pad.SEED001_REL_SD * target
+    s_h = pad.SEED001_REL_SD * pad.SEED001_HOT
+    half = 1.6448536269514722 * np.sqrt((d / b) ** 2 * s_c ** 2 + s_h ** 2)
+    np.testing.assert_allclose([lo, hi], [c + d * p - half, c + d * p + half], rtol=1e-9)
+
+
+def test_seed001_friction_model_intervals_exclude_the_published_hot_ratio(friction_models):
+    """With the fit's parameter uncertainty and the published scatter (90 %), no friction-model
+    fit's interval of the held-out hot ratio reaches the published 0.75."""
+    for s in friction_models[0]:
+        assert len(s.intervals) == len(s.fits)
+        for f, (lo, hi) in zip(s.fits, s.intervals):
+            assert lo < f.predicted < hi
+            assert not lo <= pad.SEED001_HOT <= hi, (s.candidate, f.value, lo, hi)
+
+
+def test_seed000_no_solid_film_law_turns_the_published_rise():
+    """Seed 000's published trend (torque rising at every 10 K step over 0..80 C at 100 N) against
+    the solid-film laws: the constant coefficient, Singer et al.'s pressure-dependent shear
+    strength and its two limits. Closed-form reason: the film's friction force over a Hertz
+    contact, tau0 pi a b + alpha Q, increases with the ball load Q for tau0, alpha >= 0, so every
+    law's torque changes with the sign of the preload's change at every step (here the preload
+    falls to 40 C and rises after it); none rises monotonically. Independent check of the
+    pressure route: with tau0 = 0 the law is Coulomb's mu = alpha, so alpha = 0.02 gives the
+    configured constant coefficient 0.02 exactly (1e-9)."""
+    laws = pad.seed000_trend(MESH)
+    assert load_shipped("seed000").lubrication.friction_coefficient == 0.02
+    np.testing.assert_allclose(laws[3].torque_Nmm, laws[0].torque_Nmm, rtol=1e-9)
+    for t in laws:
+        assert t.follows_preload, t.law
+        assert not t.rises_monotonically, t.law
+    assert np.argmin(laws[0].preload_N) not in (0, len(pad.SEED000_TREND_T_C) - 1)

@@ -153,6 +153,9 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--transient", action="store_true",
                    help="instead: seed 003's 30-minute heat-up (900 steps of 2 s): reduction, "
                         "reduced and full-FE transient times, preload error reduced vs full")
+    b.add_argument("--friction", action="store_true",
+                   help="instead: the speed exponent of the friction torque of an oil-jet "
+                        "angular-contact bearing at high speed, per friction model, with its data")
     b.add_argument("--assembly", type=Path, action="append", default=[],
                    help="with --simulate: one more assembly to time (may repeat)")
     return p

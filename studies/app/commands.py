@@ -321,6 +321,11 @@ def cmd_verify(args) -> None:
 
 
 def cmd_bench(args) -> None:
+    if args.friction:
+        from studies.bench import bench_friction
+
+        bench_friction.main()
+        return
     if args.transient:
         from studies.bench.bench_transient import main as bench_transient
 

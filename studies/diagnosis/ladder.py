@@ -19,6 +19,7 @@ config already uses is not on the ladder. The rungs (names of docs/cli.md, "kind
 | `preload_spring` | `[preload] kind = "spring"` | carried by the listed `preload_path_compliance` (the spring is its soft limit) | - |
 | `fits_in_band` | as-built fits anywhere in the `[fits]` tolerance band | carried by the listed `interference_error`, whose bounds are the band (`assembly_bounds`) | - |
 | `sleeve` | a `[sleeve]` the file lacks | not tried: its material and thickness are drawing data, not bounded by a data sheet | - |
+| `torque_model_skf`, `rolling_ehl`, `starved_film`, `solid_film_pressure` | the friction laws of `analytic.friction` the file does not use (`studies.diagnosis.friction_rungs`: forms, and the speed / temperature / load variation each needs) | `share` (0..1) | pair |
 
 A parameter rung (`groove_conformity`) changes a number of the file's assembly that makers rarely
 publish: its candidate fits the number itself within the range the makers use, and its prediction
@@ -71,6 +72,7 @@ from infra.memo import Memo
 from studies.model.config import Assembly, ConfigError
 from studies.model.config_checks import check_assembly
 from studies.model.effects import Effect
+from studies.diagnosis import friction_rungs
 from studies.diagnosis.sleeve_rung import SleeveForm, sleeve_candidate
 
 #: the kind of a ladder candidate in diagnosis.json (docs/cli.md); listed effects are "effect"
@@ -315,6 +317,15 @@ class GrooveConformity(ModelForm):
         return replace(asm, bearing=replace(asm.bearing, inner_groove_ratio=f))
 
 
+class FrictionSwitch(FormShare):
+    """A friction rung's switch (issue 33, `friction_rungs`): applicable only where the
+    conditions vary what its law changes (`friction_rungs.applicability`)."""
+
+    def applicable(self, conditions):
+        why = super().applicable(conditions)
+        return why if why is not None else friction_rungs.applicability(self.name, conditions)
+
+
 class NotTried(ModelForm):
     """A rung that is not a candidate of its own (carried by a listed effect, or not bounded):
     listed among the candidates as not applicable, with the reason (`Rung.why_not`)."""
@@ -423,6 +434,12 @@ def ladder(asm: Assembly) -> list[Rung]:
     if asm.sleeve is None:      # issue 34: studies/diagnosis/sleeve_rung.py
         rungs.append(Rung("sleeve", SleeveForm.change, "fe_setup", SleeveForm.acts_through,
                           **sleeve_candidate(asm)))
+    for name, change, acts, hint, configure, why_not in friction_rungs.forms(asm):   # issue 33
+        r = (Rung(name, change, "pair", acts, why_not=why_not) if configure is None
+             else _switch(name, change, "pair", acts, hint, configure, asm))
+        if r.candidate is not None:
+            r = replace(r, candidate=FrictionSwitch(name, hint, acts, "pair", change))
+        rungs.append(r)
     return sorted(rungs, key=lambda r: COSTS.index(r.cost))
 
 

@@ -31,12 +31,17 @@ from typing import Callable
 import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
-from analytic.lubrication import lubricant_library
+from analytic.friction.starved import R_RANGE, supply_layer_um
+from analytic.lubrication import (ball_raceway_radii_mm, entrainment_speed_mm_s, get_lubricant,
+                                  hamrock_dowson_film, lubricant_library, reduced_modulus_MPa)
+from analytic.materials import get_material
 from studies.diagnosis.designs import cycles as cycle_design
+from studies.diagnosis.interval import (LEVEL, parameter_covariance, predictive_interval,
+                                        quantile)
 from studies.diagnosis.ladder import CTE_LOT_SCATTER, FormRoute, FormShare, ladder
 from studies.model.config import Assembly, load_shipped
 from studies.model.effects import get_effect
-from studies.model.pipeline import Pipeline, simulate_table, table_inputs
+from studies.model.pipeline import ModelError, Pipeline, simulate_table, table_inputs
 from studies.model.result import SimulationResult
 
 #: seed 001, the paper's conclusion 2: +33.3..50.0 % at -20 C, -25 % at 60 C (against 20 C)
@@ -247,6 +252,14 @@ def ladder_candidates(asm: Assembly) -> list[Candidate]:
     return out
 
 
+def replaces_viscous_law(candidate: str) -> bool:
+    """Whether a seed 001 candidate replaces Palmgren's viscous law (a friction rung of the
+    ladder, `studies.diagnosis.friction_rungs`, or a friction model of issue 33)."""
+    from studies.diagnosis.friction_rungs import NEEDS
+    return candidate.startswith("friction model") or any(
+        candidate == f"ladder: {n}" or candidate.startswith(f"ladder: {n} (") for n in NEEDS)
+
+
 def ladder_not_tried(asm: Assembly) -> list[str]:
     """The ladder's rungs that are not candidates of their own, with the ladder's reason."""
     return [f"{r.name} ({r.change}): " + (f"carried by {r.covered_by}: " if r.covered_by else "")
@@ -349,6 +362,219 @@ def self_heating_unbounded(parts: str, mesh_factor: float = 1.0,
                                 float(o.preload_N[1]))
 
 
+# ------------------------------------------------------------ seed 001: friction models (issue 33)
+#: the starved film's supply ratio r = h_oil / h_ff where its law is fitted (Chevalier et al.
+#: 1998, `analytic.friction.starved.R_RANGE`): the oil quantity's bounds follow from it at 20 C
+STARVED_R_RANGE = R_RANGE
+#: the friction models of issue 33 without a parameter of their own (`[lubrication]
+#: viscous_model`): both published ratios are predictions
+FRICTION_FORMS = ("skf2004", "ehl_rolling")
+
+
+@dataclass(frozen=True)
+class FrictionScan:
+    """A friction model of issue 33 with its one parameter scanned over its bounds on seed 001
+    (through the pipeline: the assembly's `[lubrication]` key): the cold and hot ratios at every
+    grid value, every value where the cold ratio meets the band's centre (each a fit, its hot
+    ratio the held-out prediction, with its 90 % predictive interval), and the closest any value
+    whose cold ratio lies inside the band comes to the published hot ratio."""
+    candidate: str
+    parameter: str
+    unit: str
+    bounds: tuple[float, float]
+    bound_source: str
+    plausible: tuple[float, float]
+    plausible_source: str
+    grid: np.ndarray
+    cold: np.ndarray
+    hot: np.ndarray
+    fits: tuple[HeldOutFit, ...]
+    #: the 90 % predictive interval (lo, hi) of the held-out hot ratio at each fit
+    #: (`seed001_hot_interval`)
+    intervals: tuple[tuple[float, float], ...] = ()
+
+    @property
+    def closest_hot_in_band(self) -> float:
+        """min |hot - 0.75| over the grid values whose cold ratio is inside the published band
+        (inf when none is)."""
+        lo, hi = SEED001_COLD_BAND
+        m = (self.cold >= lo) & (self.cold <= hi)
+        return float(np.min(np.abs(self.hot[m] - SEED001_HOT))) if m.any() else float("inf")
+
+    def is_plausible(self, value: float) -> bool:
+        return bool(self.plausible[0] <= value <= self.plausible[1])
+
+
+@dataclass(frozen=True)
+class FrictionForm:
+    """A friction model of issue 33 without a parameter on seed 001: both ratios predicted
+    (NaN with `no_answer` the model's reason when it has none)."""
+    viscous_model: str
+    cold: float
+    hot: float
+    no_answer: str = ""
+
+
+def seed001_with(asm: Assembly, **lubrication) -> Assembly:
+    """The assembly with `[lubrication]` keys changed (viscous_model, oil_quantity_mg, ...)."""
+    return replace(asm, lubrication=replace(asm.lubrication, **lubrication))
+
+
+def starved_bounds_mg(mesh_factor: float = 1.0) -> tuple[float, float]:
+    """The oil quantity (mg, one bearing) whose supply ratio r = h_oil / h_ff at the inner contact
+    at 20 C spans the starved law's source range `STARVED_R_RANGE`: h_oil from the quantity
+    (`analytic.friction.starved.supply_layer_um`, linear in it), h_ff Hamrock-Dowson's central
+    film (`analytic.lubrication.hamrock_dowson_film`) at that contact's load, radii and
+    entrainment speed, the oil's viscosity at 20 C."""
+    asm = load_shipped("seed001")
+    o = seed001_torques(asm, mesh_factor=mesh_factor)
+    b, lub = asm.bearing, get_lubricant(asm.lubrication.lubricant)
+    ring, ball = get_material(b.ring_material), get_material(b.ball_material)
+    angle = float(o.pair.contact_angle_deg[0, 1])
+    Rx, Ry = ball_raceway_radii_mm(b.ball_diameter_mm, b.pitch_diameter_mm, angle,
+                                   b.inner_groove_ratio, "inner")
+    u = entrainment_speed_mm_s(asm.lubrication.speed_rpm, b.ball_diameter_mm,
+                               b.pitch_diameter_mm, angle)
+    Ep = reduced_modulus_MPa(ring.E_MPa, ring.nu, ball.E_MPa, ball.nu)
+    h_ff = float(hamrock_dowson_film(Rx, Ry, Ep, lub.eta_Pa_s(20.0), lub.alpha_per_Pa, u,
+                                     float(o.pair.ball_load_N[0, 1])).h_central_um)
+    per_mg = float(supply_layer_um(1.0, lub.density_kg_m3, b.pitch_diameter_mm,
+                                   float(o.pair.inner.a_mm[0, 1])))
+    return tuple(r * h_ff / per_mg for r in STARVED_R_RANGE)
+
+
+def _scan(name, parameter, unit, bounds, bound_source, plausible, plausible_source, torque,
+          grid) -> FrictionScan:
+    """Ratios over the grid; every crossing of the band's centre refined by brentq."""
+    target = float(np.sqrt(np.prod(SEED001_COLD_BAND)))
+    tol = SEED001_REL_TOL * SEED001_HOT
+
+    def ratios(v):
+        M = torque(v)
+        return float(M[0] / M[1]), float(M[2] / M[1])
+    r = np.array([ratios(v) for v in grid])
+    miss = r[:, 0] - target
+    fits, intervals = [], []
+    for i in np.flatnonzero(miss[:-1] * miss[1:] <= 0):
+        v = float(brentq(lambda x: ratios(x)[0] - target, grid[i], grid[i + 1], rtol=1e-10,
+                         xtol=1e-12 * grid[i + 1]))
+        q, h = ratios(v)
+        fits.append(HeldOutFit(name, parameter, bounds, bound_source, v, True, q,
+                               bool(SEED001_COLD_BAND[0] <= q <= SEED001_COLD_BAND[1]), h,
+                               bool(abs(h - SEED001_HOT) <= tol)))
+        intervals.append(seed001_hot_interval(ratios, v))
+    return FrictionScan(name, parameter, unit, bounds, bound_source, plausible, plausible_source,
+                        grid, r[:, 0], r[:, 1], tuple(fits), tuple(intervals))
+
+
+#: the published scatter of a ratio, as a standard deviation relative to the ratio: the cold band
+#: read as a 90 % range of the rig's scatter about its centre (half-width / 1.645; the paper
+#: states no other scatter: the assumption of `SEED001_REL_TOL`, carried to the hot ratio too)
+SEED001_REL_SD = SEED001_REL_TOL / quantile(LEVEL)
+
+
+def seed001_hot_interval(ratios: Callable[[float], tuple[float, float]], value: float,
+                         rel_step: float = 1e-4) -> tuple[float, float]:
+    """The 90 % predictive interval of the hot ratio of a model whose one parameter was fitted on
+    the cold ratio, through the diagnosis's interval route (`studies.diagnosis.interval`): the
+    parameter's variance from the fit (one number fitted: J = (d cold / d p) / sd_cold, chi^2 =
+    0, `parameter_covariance`) carried to the hot ratio by its derivative (delta method), plus
+    the published scatter of the hot ratio (`SEED001_REL_SD` x 0.75); no model-discrepancy term
+    (one fitted number leaves no residual to estimate it from). Derivatives by central
+    differences of relative step `rel_step` in the parameter."""
+    h = rel_step * abs(value)
+    (c_hi, t_hi), (c_lo, t_lo) = ratios(value + h), ratios(value - h)
+    dc, dt = (c_hi - c_lo) / (2 * h), (t_hi - t_lo) / (2 * h)
+    target = float(np.sqrt(np.prod(SEED001_COLD_BAND)))
+    cov, _ = parameter_covariance(np.array([[dc / (SEED001_REL_SD * target)]]), 0.0)
+    pi = predictive_interval(np.array([ratios(value)[1]]), np.array([[dt]]), cov,
+                             SEED001_REL_SD * SEED001_HOT, 0.0, LEVEL)
+    return float(pi.lo[0]), float(pi.hi[0])
+
+
+def seed001_friction_models(mesh_factor: float = 1.0, n_grid: int = 61
+                            ) -> tuple[tuple[FrictionScan, ...], tuple[FrictionForm, ...]]:
+    """The friction models of issue 33 on seed 001, all through the pipeline (`[lubrication]
+    viscous_model`): the starved film's oil quantity scanned over its bounds (log grid) and
+    fitted on the cold ratio wherever it meets the band's centre; the models without a
+    parameter with both ratios predicted."""
+    asm = load_shipped("seed001")
+    m_lo, m_hi = starved_bounds_mg(mesh_factor)
+    starved = _scan(
+        "friction model: starved film", "oil_quantity_mg", "mg", (m_lo, m_hi),
+        f"the supply ratio h_oil/h_ff of the inner contact at 20 C in {STARVED_R_RANGE[0]:g}.."
+        f"{STARVED_R_RANGE[1]:g}, the range of the starved-film law's source (Chevalier et al. "
+        "1998, analytic/friction/starved.py)", (m_lo, m_hi),
+        "inside the law's fitted range (the paper states no oil quantity: any on-track quantity "
+        "within it is possible)",
+        lambda m: seed001_torque_Nmm(seed001_with(asm, viscous_model="starved",
+                                                  oil_quantity_mg=float(m)),
+                                     mesh_factor=mesh_factor),
+        np.geomspace(m_lo, m_hi, n_grid))
+    forms = []
+    for vm in FRICTION_FORMS:
+        try:
+            M = seed001_torque_Nmm(seed001_with(asm, viscous_model=vm), mesh_factor=mesh_factor)
+            forms.append(FrictionForm(vm, float(M[0] / M[1]), float(M[2] / M[1])))
+        except ModelError as exc:
+            forms.append(FrictionForm(vm, float("nan"), float("nan"), str(exc)))
+    return (starved,), tuple(forms)
+
+
+def friction_models_lines(models: tuple[tuple[FrictionScan, ...], tuple[FrictionForm, ...]]
+                          ) -> list[str]:
+    """Markdown lines: each friction model's fits on the cold ratio and their held-out hot
+    ratio, the parameter's bound source and whether the fitted value is physically plausible;
+    the models without a parameter with both ratios predicted."""
+    from studies.usecases.report_tools import md_table
+    scans, forms = models
+    tol = SEED001_REL_TOL * SEED001_HOT
+    rows = []
+    for s in scans:
+        if not s.fits:
+            rows.append([s.candidate, f"{s.parameter}: no value in [{s.bounds[0]:.3g}, "
+                         f"{s.bounds[1]:.3g}] reaches the band's centre", "-", "-", "-", "-"])
+        for f, (lo, hi) in zip(s.fits, s.intervals):
+            err = (f.predicted - SEED001_HOT) / SEED001_HOT
+            rows.append([s.candidate, f"{s.parameter} = {f.value:.3g} {s.unit} in "
+                         f"[{s.bounds[0]:.3g}, {s.bounds[1]:.3g}]", f"{f.fitted:.3f}",
+                         f"{f.predicted:.3f} [{lo:.3f}, {hi:.3f}]", f"{err:+.1%}",
+                         "yes" if s.is_plausible(f.value) else
+                         f"no: outside {s.plausible[0]:.3g}..{s.plausible[1]:.3g} "
+                         f"({s.plausible_source})"])
+    for f in forms:
+        name = f'friction model: viscous_model = "{f.viscous_model}"'
+        if f.no_answer:
+            rows.append([name, "(no parameter)", "no answer", "no answer", "-", f.no_answer])
+            continue
+        rows.append([name, "(no parameter)", f"{f.cold:.3f} (predicted)", f"{f.hot:.3f}",
+                     f"{(f.hot - SEED001_HOT) / SEED001_HOT:+.1%}", "yes (its source's constants)"])
+    lines = ["#### The friction models of issue 33 (analytic/friction), fitted on the cold ratio", "",
+             "Each model through the pipeline (`[lubrication] viscous_model`, at each "
+             "temperature's contact loads and oil viscosity). A model with a parameter has it "
+             "scanned over its bounds; every value where the cold ratio meets the band's centre "
+             "is a fit, its hot ratio the held-out prediction (tolerance "
+             f"+-{SEED001_REL_TOL:.1%} of 0.75). The 90 % interval: the parameter's uncertainty "
+             "from the cold ratio's published scatter (the band read as a 90 % range: sd "
+             f"{SEED001_REL_SD:.1%} of the ratio) plus the same scatter on the hot ratio, through "
+             "the diagnosis's interval route (studies/diagnosis/interval.py).", "",
+             md_table(["model", "fitted parameter (bounds)", "torque -20 C / 20 C",
+                       "torque 60 C / 20 C: predicted [90 % interval] (published 0.75)",
+                       "held-out error", "physically plausible"], rows), "",
+             "Bounds and their sources:", "",
+             *(f"- {s.candidate}: {s.bound_source}" for s in scans), "",
+             "At 60 C the configured position preload is lost (0 N): an unloaded contact has no "
+             "EHL rolling resistance and nothing to starve, so there the starved film is "
+             "Palmgren's flooded term and the EHL model gives no viscous torque at all; the hot "
+             "ratio of these models is that of a rig without preload.", ""]
+    for s in scans:
+        lines.append(f"- {s.candidate}: of every {s.parameter} whose cold ratio lies inside the "
+                     f"published band, the closest hot ratio is {s.closest_hot_in_band:.3f} "
+                     f"from 0.75 (tolerance {tol:.3f}).")
+    lines.append("")
+    return lines
+
+
 # --------------------------------------------------------------------------------- seed 000
 def seed000_design() -> dict[str, np.ndarray]:
     """Five seed 000 cycles (`designs.cycles`), 10 min samples."""
@@ -418,6 +644,77 @@ def seed000(fit_on: str = "max", mesh_factor: float = 1.0) -> PublishedAsData:
                            names[1 - i_fit], pub[1 - i_fit], SEED000_TOL_NMM, configured, fits)
 
 
+# ------------------------------------------------------------ seed 000: the torque trend (issue 33)
+#: seed 000 (Fig. 10c): at the assembled 100 N the torque rises with the test temperature from
+#: 0 to 80 C in 10 K steps, faster when hot (the figure's numbers are lost in our copy: its shape
+#: is the datum)
+SEED000_TREND_T_C = tuple(float(t) for t in range(0, 81, 10))
+#: the solid-film laws tried (`[lubrication]` keys): the configured constant coefficient, the
+#: pressure-dependent shear strength at Singer et al.'s (1990) constants (the ladder's
+#: solid_film_pressure form) and its two limits (area term only; pressure term only = Coulomb)
+SEED000_FILM_LAWS = (
+    ("constant coefficient (as configured)", {}),
+    ("tau = tau0 + alpha p, Singer et al. 1990 (tau0 22.5 MPa, alpha 0.001)",
+     dict(shear_strength="pressure", tau0_MPa=22.5, alpha_shear=0.001)),
+    ("tau = tau0 (alpha 0, tau0 22.5 MPa)", dict(shear_strength="pressure", tau0_MPa=22.5,
+                                                 alpha_shear=0.0)),
+    ("tau = alpha p (tau0 0, alpha 0.02: Coulomb)", dict(shear_strength="pressure", tau0_MPa=0.0,
+                                                         alpha_shear=0.02)))
+
+
+@dataclass(frozen=True)
+class TrendLaw:
+    """One solid-film law over seed 000's published temperature steps: torque (N mm) and preload
+    (N) per step."""
+    law: str
+    torque_Nmm: np.ndarray
+    preload_N: np.ndarray
+
+    @property
+    def rises_monotonically(self) -> bool:
+        return bool(np.all(np.diff(self.torque_Nmm) > 0))
+
+    @property
+    def follows_preload(self) -> bool:
+        """Every step's torque change has the sign of its preload change."""
+        return bool(np.all(np.sign(np.diff(self.torque_Nmm)) == np.sign(np.diff(self.preload_N))))
+
+
+def seed000_trend(mesh_factor: float = 1.0) -> tuple[TrendLaw, ...]:
+    """Each solid-film law of `SEED000_FILM_LAWS` at seed 000's published temperature steps
+    (uniform temperature, the assembled preload), through `simulate_table`."""
+    asm = load_shipped("seed000")
+    cols = {"T_ambient_C": np.array(SEED000_TREND_T_C)}
+    out = []
+    for law, keys in SEED000_FILM_LAWS:
+        a = seed001_with(asm, **keys) if keys else asm
+        o = simulate_table(a, cols, None, pipeline=Pipeline.shared(a, mesh_factor=mesh_factor))
+        out.append(TrendLaw(law, np.asarray(o.torque_Nmm, float), np.asarray(o.preload_N, float)))
+    return tuple(out)
+
+
+def seed000_trend_lines(mesh_factor: float = 1.0) -> list[str]:
+    """Markdown lines: the published monotonic rise against each solid-film law."""
+    from studies.usecases.report_tools import md_table
+    laws = seed000_trend(mesh_factor)
+    rows = [[t.law, " ".join(f"{x:.2f}" for x in t.torque_Nmm),
+             "yes" if t.rises_monotonically else "no",
+             "yes" if t.follows_preload else "no"] for t in laws]
+    pre = " ".join(f"{x:.0f}" for x in laws[0].preload_N)
+    return ["### The published torque trend with temperature against the solid-film laws", "",
+            "At 100 N the published torque rises with the temperature at every 10 K step from 0 "
+            "to 80 C (the paper's Fig. 10c; its numbers are lost in our copy, its shape is the "
+            f"datum). The configured preload over those steps: {pre} N.", "",
+            md_table(["law ([lubrication])", "torque at 0, 10, ..., 80 C (N mm)",
+                      "rises at every step", "changes with the preload's sign"], rows), "",
+            "Why no solid-film law turns the trend: the film's friction force over a Hertz "
+            "contact, tau0 pi a b + alpha Q (analytic/friction/solid_film.py), grows with the "
+            "ball load Q whatever tau0, alpha >= 0, so the torque keeps the sign of the "
+            "preload's change; the pressure-dependent law changes how much the torque moves, "
+            "not where it falls. The published rise needs a preload that rises over 0..80 C "
+            "(the seed 000 report's preload question), not another friction law.", ""]
+
+
 # --------------------------------------------------------------------------------- report
 def _value_text(f: HeldOutFit) -> str:
     if not f.parameter:
@@ -473,11 +770,20 @@ def seed001_section(mesh_factor: float = 1.0) -> list[str]:
              fits_table(r), "", "Bounds and their sources:", "", *bound_sources(r), "",
              "Rungs of the ladder that are not candidates of their own (the ladder's reason):",
              "", *(f"- {t}" for t in ladder_not_tried(asm)), ""]
-    if r.any_fits:
-        b = r.best
+    lines += friction_models_lines(seed001_friction_models(mesh_factor))
+    good = [f for f in r.fits if f.fit_in_band and f.predicted_ok]
+    if good:
+        b = good[0]
         lines += [f"Best: {b.candidate} ({_value_text(b)}) predicts {b.predicted:.3f} for the "
                   f"hot ratio against the published 0.75.", ""]
         return lines
+    for f in (f for f in r.fits if f.fit_in_band):
+        lines += [f"**Fitted into the band, the hot ratio missed:** {f.candidate} "
+                  f"({_value_text(f)}) predicts {f.predicted:.3f} against the published 0.75 "
+                  f"({(f.predicted - SEED001_HOT) / SEED001_HOT:+.1%}; tolerance "
+                  f"+-{SEED001_REL_TOL:.1%}). A share of the way from Palmgren's law to the SKF "
+                  "model is a blend of two laws, not a law: even at the tolerance it would say "
+                  "that neither law alone is the rig's.", ""]
     reach = (f"with the bound lifted, the rings and balls would have to run {hb.dT_K:.0f} K above "
              f"the rest of the stack; that predicts x{hb.ratio_hot:.2f} for the hot point "
              f"({'within' if abs(hb.ratio_hot - SEED001_HOT) <= r.held_out_tol else 'outside'} the "
@@ -490,8 +796,8 @@ def seed001_section(mesh_factor: float = 1.0) -> list[str]:
              "oil's law extrapolated far beyond its data)" if not np.isfinite(hs.dT_K)
              else f"the whole stack would need {hs.dT_K:.0f} K")
     lines += [
-        "**No single candidate brings the cold ratio into the published band within its "
-        f"bounds.** Why: as configured {visc_share:.1%} of the torque at 20 C is Palmgren's "
+        "**No single candidate that keeps Palmgren's viscous term brings the cold ratio into "
+        f"the published band within its bounds.** Why: as configured {visc_share:.1%} of the torque at 20 C is Palmgren's "
         "viscous term, which follows (nu(-20 C) / nu(20 C))^(2/3): the load-side candidates "
         "(friction slope, preload-path compliance, which carries the spring preload, the "
         "ladder's quasi-dynamic balls, grooved ring sections and material lot, a starved film, "
@@ -517,7 +823,7 @@ def seed000_section(mesh_factor: float = 1.0) -> list[str]:
     on_max, on_min = seed000("max", mesh_factor), seed000("min", mesh_factor)
     soft = next(f for f in on_max.fits if f.candidate.startswith("preload path softened"))
     ok = [f for r in (on_max, on_min) for f in r.fits if f.fit_in_band and f.predicted_ok]
-    lines = ["### The published cycle-to-cycle change as data", "",
+    lines = [*seed000_trend_lines(mesh_factor), "### The published cycle-to-cycle change as data", "",
              f"Five -60 <-> 80 C cycles ({SEED000_CYCLE_MIN:g} min each); each candidate's one "
              "parameter is fitted on one published change (the last cycle minus the first) and "
              "predicts the other (tolerance +-0.05 N mm: half the last printed digit).", "",
