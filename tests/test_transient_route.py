@@ -190,6 +190,9 @@ def test_simulate_file_in_transient_mode_writes_the_transient_columns(pl, tmp_pa
     for c in ("preload_N", "T_ball_C", "heat_bearing_W"):
         assert np.allclose(got[c], ref[c], rtol=1e-9, atol=0), c     # written with 10 digits
     assert np.all(got["heat_bearing_W"][1:] > 2.0)
+    # issue 35: the conditions' heat_W is written as given (the route's torque power, also
+    # named heat_W, overwrote it: 46.99 W where the file said 2)
+    assert np.array_equal(got["heat_W"], [0.0, 2.0, 2.0])
 
 
 def test_bench_transient_flag_runs_the_transient_bench(monkeypatch):
