@@ -101,7 +101,8 @@ def test_band_in_newtons_and_fractions():
 
     asm = load_shipped("seed000")
     P = np.array([[60.0, 100.0, 140.0]])
-    r = ds.StackAnswers(P, np.full_like(P, 1000.0), np.full_like(P, 10.0), np.full_like(P, 10.0),
+    r = ds.StackAnswers(P, np.full_like(P, 1000.0),
+                        {"inner": np.full_like(P, 10.0), "outer": np.full_like(P, 10.0)},
                         np.full_like(P, 1.0), 0)
     P0 = np.array([100.0])
     inside = [ds._metrics(asm, r, P0, b)[0].in_band for b in

@@ -140,6 +140,12 @@ _FIT_PRESSURE = {"inner": _fit_pressure_inner_MPa, "outer": _fit_pressure_outer_
                  "sleeve": _fit_pressure_sleeve_MPa, "cartridge": _fit_pressure_cartridge_MPa}
 
 
+def fit_pressure_MPa(result, fit: str) -> np.ndarray:
+    """(n,) pressure (MPa) of one fit (inner, outer, sleeve, cartridge) as the fit_open check
+    reads it (`design` counts every fit by it)."""
+    return _FIT_PRESSURE[fit](result)
+
+
 def _margin_clamp_N(result) -> np.ndarray:
     return result.clamp.margin_N
 

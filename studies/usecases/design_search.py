@@ -55,11 +55,12 @@ import numpy as np
 from analytic.materials import MATERIALS, get_material
 from fem.parametric import parametric_setup
 from fem.setup import cached_setup, full_fe
-from studies.model.checks import assembly_checks
+from studies.model.checks import assembly_checks, fit_pressure_MPa
 from studies.model.inputs import baseline_inputs
 from studies.model.memory import release_freed_memory
 from studies.model.parallel import Blocks, map_blocks
 from studies.model.pipeline import FEOptions, Pipeline
+from studies.model.tolerances import designed_closed, fits_of
 from studies.usecases.report_tools import nice_step
 from studies.usecases.report_tools import line_plot, md_table, write_report_files
 
@@ -315,12 +316,13 @@ def settings_of(asm, vary: dict[str, tuple] | None = None) -> list[Setting]:
 @dataclass(frozen=True)
 class StackAnswers:
     """One candidate's answers at every assembled preload and temperature, arrays
-    (n_preloads, n_T): preload (N), largest contact pressure (MPa), inner and outer fit pressure
-    (MPa), friction torque (N mm); dofs: the FE model's displacement DOFs."""
+    (n_preloads, n_T): preload (N), largest contact pressure (MPa), friction torque (N mm);
+    fit_pressure_MPa: every fit of the assembly (inner, outer, its sleeve / cartridge,
+    `tolerances.fits_of`) -> its pressure (MPa) as `simulate`'s fit_open check reads it
+    (`checks.fit_pressure_MPa`); dofs: the FE model's displacement DOFs."""
     preload_N: np.ndarray
     max_contact_pressure_MPa: np.ndarray
-    fit_pressure_inner_MPa: np.ndarray
-    fit_pressure_outer_MPa: np.ndarray
+    fit_pressure_MPa: dict
     torque_Nmm: np.ndarray
     dofs: int
 
@@ -381,8 +383,7 @@ def _evaluate(asm, stack, settings, T_C, preloads_N, mesh_factor, parametric):
         res = pl.run(inp)
         out.append(StackAnswers(res.preload_N.reshape(nP, nT),
                                 res.max_contact_pressure_MPa.reshape(nP, nT),
-                                res.fits.inner_MPa.reshape(nP, nT),
-                                res.fits.outer_MPa.reshape(nP, nT),
+                                {f: fit_pressure_MPa(res, f).reshape(nP, nT) for f in fits_of(a_s)},
                                 res.torque_Nmm.reshape(nP, nT), int(pl.ndofs)))
     return tuple(out)
 
@@ -418,7 +419,9 @@ class Metrics:
     """What the search ranks a candidate at one assembled preload by (over the temperatures).
 
     preload_range_N: max - min preload; preload_variation: that / the assembled preload;
-    fits_closed: every fit assembled with interference stays closed; contact_pressure_margin:
+    fits_closed: every fit of the assembly designed with interference (`tolerances.
+    designed_closed`: inner, outer, sleeve, cartridge) stays closed, as `simulate`'s fit_open
+    checks read it; open_fits: the fits that open somewhere in the range; contact_pressure_margin:
     limit / largest contact pressure - 1; feasible: fits closed, preload kept, contact pressure
     within the limit; in_band: feasible and the preload inside the band at every temperature."""
     preload_assembled_N: float
@@ -432,24 +435,26 @@ class Metrics:
     torque_max_Nmm: float
     feasible: bool
     in_band: bool
+    open_fits: tuple[str, ...] = ()
 
 
 def _metrics(asm, r: StackAnswers, preloads_N, band: Band) -> list[Metrics]:
     limit = next(c.allowable for c in assembly_checks(asm) if c.name == "max_contact_pressure_MPa")
-    fi, fo = asm.mean_fits_um()
+    designed = designed_closed(asm)
     out = []
     for k, P0 in enumerate(preloads_N):
         P = r.preload_N[k]
         lo, hi = band.limits_N(float(P0))
-        closed = ((fi <= 0 or r.fit_pressure_inner_MPa[k].min() > 0)
-                  and (fo <= 0 or r.fit_pressure_outer_MPa[k].min() > 0))
+        opened = tuple(f for f, p in r.fit_pressure_MPa.items()
+                       if designed[f] and not p[k].min() > 0)     # the check: open at p <= 0
+        closed = not opened
         p_max = float(r.max_contact_pressure_MPa[k].max())
         feasible = bool(closed and P.min() > 0 and p_max <= limit)
         out.append(Metrics(float(P0), float(np.ptp(P)), float(np.ptp(P) / P0), float(P.min()),
                            float(P.max()), bool(closed), p_max,
                            float(limit / p_max - 1) if p_max > 0 else float("inf"),
                            float(r.torque_Nmm[k].max()), feasible,
-                           bool(feasible and P.min() >= lo and P.max() <= hi)))
+                           bool(feasible and P.min() >= lo and P.max() <= hi), opened))
     return out
 
 
@@ -521,18 +526,36 @@ class PreloadSplit:
 
 
 @dataclass(frozen=True)
+class ConstraintCount:
+    """How many of the screened designs fail one feasibility constraint: name (the check of
+    `simulate` it is: fit_open_<fit>, preload_lost, max_contact_pressure_MPa), failed, of."""
+    name: str
+    failed: int
+    of: int
+
+
+@dataclass(frozen=True)
 class Why:
     """The preload change split at the cold and the hot end (`PreloadSplit`), for the assembly
-    as given and for the best design, at the best design's assembled preload."""
-    given: tuple[PreloadSplit, PreloadSplit]
-    best: tuple[PreloadSplit, PreloadSplit]
+    as given and for the best design, at the best design's assembled preload (no feasible
+    design: the assembly as given at its own preload, best empty); constraints: each
+    feasibility constraint's count of failing screened designs (`ConstraintCount`)."""
+    given: tuple[PreloadSplit, ...]
+    best: tuple[PreloadSplit, ...]
+    constraints: tuple[ConstraintCount, ...] = ()
+
+    @property
+    def failed_everywhere(self) -> tuple[str, ...]:
+        """The constraints every screened design fails (what makes a search infeasible)."""
+        return tuple(c.name for c in self.constraints if c.of and c.failed == c.of)
 
 
 @dataclass(frozen=True)
 class DesignResult:
     """What `run` found. designs: confirmed on the assembly's mesh, ranked; screened: every
-    design on the screening mesh, ranked; pareto: the screened Pareto set; why: None when no
-    design is feasible. `to_json` is design.json (the file edge)."""
+    design on the screening mesh, ranked; pareto: the screened Pareto set (empty when no design
+    is feasible: `why.failed_everywhere` then says which constraint failed in every design).
+    `to_json` is design.json (the file edge)."""
     range_C: tuple[float, float]
     temperatures_C: tuple[float, ...]
     band: Band
@@ -557,8 +580,10 @@ class DesignResult:
                 "screened": [d.row() for d in self.screened],
                 "pareto": [d.row() for d in self.pareto],
                 "why": None if w is None else {
-                    label: [{**asdict(e), "residual_N": e.residual_N} for e in getattr(w, label)]
-                    for label in ("given", "best")},
+                    **{label: [{**asdict(e), "residual_N": e.residual_N}
+                               for e in getattr(w, label)] for label in ("given", "best")},
+                    "constraints": [asdict(c) for c in w.constraints],
+                    "failed_everywhere": list(w.failed_everywhere)},
                 "provenance": self.provenance}
 
 
@@ -615,7 +640,7 @@ def run(asm, T_min_C: float, T_max_C: float, out: Path, provenance: dict,
     given = next(d for d in confirmed if d.is_given
                  and d.metrics.preload_assembled_N == asm.preload.assembled_N)
     top = next((d for d in confirmed if d.metrics.feasible), None)
-    why = _why(asm, top, T) if top is not None else None
+    why = _why(asm, top, T, designs)
     result = DesignResult((T_min_C, T_max_C), tuple(float(t) for t in T), band, len(stacks),
                           len(settings), len(designs), given, confirmed,
                           sorted(designs, key=rank_key), pareto(designs), why, provenance)
@@ -652,12 +677,29 @@ def preload_split(asm, T_ends_C, preload_N: float, setting: Setting | None = Non
                  for k in range(1, Ts.size))
 
 
-def _why(asm, best: Design, T) -> Why:
+def constraint_counts(asm, designs: list[Design]) -> tuple[ConstraintCount, ...]:
+    """Per feasibility constraint (`Metrics.feasible`: each fit of `asm` designed closed, the
+    preload, the contact pressure), how many of `designs` fail it."""
+    fails = {f"fit_open_{f}": 0 for f, closed in designed_closed(asm).items() if closed}
+    fails.update(preload_lost=0, max_contact_pressure_MPa=0)
+    for d in designs:
+        m = d.metrics
+        for f in m.open_fits:
+            fails[f"fit_open_{f}"] = fails.get(f"fit_open_{f}", 0) + 1
+        fails["preload_lost"] += not m.preload_min_N > 0
+        fails["max_contact_pressure_MPa"] += m.contact_pressure_margin < 0
+    return tuple(ConstraintCount(k, int(v), len(designs)) for k, v in fails.items())
+
+
+def _why(asm, best: Design | None, T, designs: list[Design]) -> Why:
     """`preload_split` at both ends of the range for the assembly as given and the best design,
-    at the best design's assembled preload (the assembly's mesh)."""
-    P = best.metrics.preload_assembled_N
+    at the best design's assembled preload (the assembly's mesh); with no feasible design the
+    assembly as given at its own preload. The constraint counts over `designs`."""
+    P = best.metrics.preload_assembled_N if best is not None else asm.preload.assembled_N
     return Why(preload_split(asm, (T[0], T[-1]), P),
-               preload_split(best.stack.assembly(asm), (T[0], T[-1]), P, best.setting))
+               () if best is None else
+               preload_split(best.stack.assembly(asm), (T[0], T[-1]), P, best.setting),
+               constraint_counts(asm, designs))
 
 
 def _label(d: Design, given: Setting) -> str:
@@ -710,10 +752,11 @@ def _report(asm, out, res: DesignResult, T, P0, fine, best):
              "contact-pressure margin at once.", "",
              md_table(["design", "range / assembled", "max torque (N mm)", "contact-pressure margin"],
                       [[_label(d, g0), d.metrics.preload_variation, d.metrics.torque_max_Nmm,
-                        d.metrics.contact_pressure_margin] for d in res.pareto[:15]]), "",
+                        d.metrics.contact_pressure_margin] for d in res.pareto[:15]])
+             if res.pareto else _infeasible_text(res.why), "",
              "![pareto](pareto.png)", ""]
     w = res.why
-    if w is not None:
+    if w is not None and w.best:
         lines += ["## Why the best design works", "",
                   "The preload change from the reference temperature to each end of the range, "
                   "split into parts that add up to it: the bearing's own thermal geometry (every "
@@ -730,6 +773,15 @@ def _report(asm, out, res: DesignResult, T, P0, fine, best):
                             for lab in ("given", "best") for e in getattr(w, lab)]), "",
                   _explain(w, res.designs[0]), ""]
     write_report_files(out, lines, f"Athermal stack search: {asm.name}")
+
+
+def _infeasible_text(w: Why) -> str:
+    """The empty Pareto set in words: the constraints every design failed, the others' counts."""
+    every = w.failed_everywhere
+    counts = ", ".join(f"{c.name} {c.failed} of {c.of}" for c in w.constraints)
+    return ("No feasible design: " + (f"{' and '.join(every)} failed in every design"
+                                      if every else "no design met every constraint at once")
+            + f" (designs failing each constraint: {counts}).")
 
 
 def _explain(w: Why, best: Design) -> str:
