@@ -6,10 +6,12 @@ from dataclasses import replace
 import pytest
 
 from studies.app.cli import main
-from studies.model.config import CONFIG_DIR, load_shipped
+from studies.model.config import CONFIG_DIR, load_assembly, load_shipped
 from studies.model.provenance import provenance
 from studies.usecases import design_search as ds
 from studies.model.columns import to_columns
+
+THIN = CONFIG_DIR / "rig_thin_section_hub.toml"
 
 
 @pytest.fixture(scope="module")
@@ -271,3 +273,51 @@ def test_search_with_settings_keeps_the_given_numbers(tmp_path):
     const = [d for d in varied.screened if d.setting.preload_kind == "spring"
              and d.setting.spring_rate_N_per_mm == 0.0]
     assert all(d.metrics.preload_range_N <= 1e-9 * d.metrics.preload_assembled_N for d in const)
+
+
+# ------------------------------------------------------------------ every fit counts (issue 36)
+def test_a_sleeve_fit_that_opens_makes_the_design_infeasible():
+    """Issue 36 item 1: design said "fits closed: yes" while `simulate` flagged the sleeve fit
+    open (the metrics read the inner and outer fits only). A made-up stack on the thin-section
+    rig (its sleeve fit designed with interference, `tolerances.designed_closed`) whose inner and
+    outer fits stay at 10 MPa and whose sleeve fit pressure falls to 0 at the hot end: not
+    closed, not feasible, the sleeve named."""
+    import numpy as np
+
+    from studies.model.tolerances import designed_closed
+
+    asm = load_assembly(THIN)
+    assert designed_closed(asm)["sleeve"]
+    P = np.array([[100.0, 100.0, 100.0]])
+    ten = np.full_like(P, 10.0)
+    r = ds.StackAnswers(P, np.full_like(P, 1000.0), {"inner": ten, "outer": ten,
+                                                     "sleeve": np.array([[3.0, 1.0, 0.0]])},
+                        np.full_like(P, 1.0), 0)
+    m = ds._metrics(asm, r, np.array([100.0]), ds.Band(0.5, 1.5))[0]
+    assert not m.fits_closed and not m.feasible and m.open_fits == ("sleeve",)
+
+
+def test_an_infeasible_search_says_which_constraint_failed_everywhere(tmp_path):
+    """The thin-section rig over its own range -45..70 C: `simulate` flags the sleeve fit open
+    at the cold end (its check, a second route). Every design of the search must count it: no
+    feasible design, an empty Pareto set, and `why` not null but naming fit_open_sleeve among
+    the constraints every design failed; design.json and the report say it."""
+    import numpy as np
+
+    from studies.model.pipeline import Pipeline
+    from studies.model.inputs import baseline_inputs
+
+    asm = load_assembly(THIN)
+    pl = Pipeline(asm, mesh_factor=4.0)
+    res = pl.run(baseline_inputs({"T_ambient_C": np.array([-45.0])}, 1, asm.T_ref_C,
+                                 asm.preload.assembled_N, asm.lubrication.speed_rpm))
+    assert any(v.check.name == "fit_open_sleeve" for v in res.checks.violations())
+    out = ds.run(asm, -45.0, 70.0, tmp_path, provenance("design", {}), progress=lambda s: None,
+                 materials=["6061"], length_factors=(1.0,), screen_mesh_factor=4.0,
+                 confirm_mesh_factor=4.0)
+    assert not out.pareto and not any(d.metrics.feasible for d in out.screened)
+    assert out.why is not None and "fit_open_sleeve" in out.why.failed_everywhere
+    assert all("sleeve" in d.metrics.open_fits for d in out.screened)
+    doc = json.loads((tmp_path / "design.json").read_text())
+    assert "fit_open_sleeve" in doc["why"]["failed_everywhere"]
+    assert "No feasible design" in (tmp_path / "report.md").read_text()
