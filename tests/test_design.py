@@ -321,3 +321,42 @@ def test_an_infeasible_search_says_which_constraint_failed_everywhere(tmp_path):
     doc = json.loads((tmp_path / "design.json").read_text())
     assert "fit_open_sleeve" in doc["why"]["failed_everywhere"]
     assert "No feasible design" in (tmp_path / "report.md").read_text()
+
+
+def test_the_liner_is_a_design_variable_through_the_one_route():
+    """Issue 36 item 1: `--vary sleeve_material=..., sleeve_radial_thickness_mm=...,
+    sleeve_shaft_class=...`. A liner of 17-4PH, 4.5 mm instead of the 6061 hub's 6 mm: the bore
+    it sits in moves by twice the change (the [sleeve] relation, bearing OD + 2 t), and the
+    search's numbers for that setting (the stack's family route, `fem.parametric`) are those of
+    the pipeline on the same assembly written out by hand (its own FE set-up), to 1e-9 of the
+    preload and of the sleeve fit pressure. Without a [sleeve] the keys are refused."""
+    import numpy as np
+
+    from studies.model.inputs import baseline_inputs
+    from studies.model.pipeline import Pipeline
+    from studies.model.checks import fit_pressure_MPa
+
+    asm = load_assembly(THIN)
+    settings = ds.settings_of(asm, {"sleeve_material": ("17-4PH",),
+                                    "sleeve_radial_thickness_mm": (4.5,)})
+    s = next(x for x in settings if x.sleeve_material == "17-4PH"
+             and x.sleeve_radial_thickness_mm == 4.5)
+    a = s.assembly(asm)
+    assert a.housing.bore_diameter_mm == pytest.approx(asm.bearing.outside_diameter_mm + 2 * 4.5,
+                                                       abs=1e-9)
+    assert "sleeve 17-4PH" in s.label(ds.Setting.given(asm))
+    T = np.array([-45.0, 20.0, 70.0])
+    P0 = np.array([asm.preload.assembled_N])
+    stack = ds.candidates(asm, materials=["17-4PH"], length_factors=(1.0,))[0]
+    got = ds.evaluate_settings(asm, stack, (s,), T, P0, 4.0, parametric=True)[0]
+    by_hand = replace(asm, sleeve=replace(asm.sleeve, material="17-4PH", radial_thickness_mm=4.5),
+                      housing=replace(asm.housing, bore_diameter_mm=asm.bearing.outside_diameter_mm + 9.0))
+    res = Pipeline(by_hand, mesh_factor=4.0).run(baseline_inputs(
+        {"T_ambient_C": T}, T.size, asm.T_ref_C, float(P0[0]), asm.lubrication.speed_rpm))
+    assert np.allclose(got.preload_N[0], res.preload_N, rtol=1e-9, atol=1e-9 * np.abs(res.preload_N).max())
+    p = fit_pressure_MPa(res, "sleeve")
+    assert np.allclose(got.fit_pressure_MPa["sleeve"][0], p, rtol=1e-9, atol=1e-9 * np.abs(p).max())
+    plain = ds.evaluate_settings(asm, stack, (ds.Setting.given(asm),), T, P0, 4.0, parametric=True)[0]
+    assert np.abs(plain.fit_pressure_MPa["sleeve"][0] - p).max() > 0.1 * np.abs(p).max()  # it acts
+    with pytest.raises(ds.DesignError, match="no \\[sleeve\\]"):
+        ds.settings_of(load_shipped("seed000"), {"sleeve_material": ("6061",)})

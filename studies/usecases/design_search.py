@@ -56,6 +56,7 @@ from analytic.materials import MATERIALS, get_material
 from fem.parametric import parametric_setup
 from fem.setup import cached_setup, full_fe
 from studies.model.checks import assembly_checks, fit_pressure_MPa
+from studies.model.config_checks import check_assembly
 from studies.model.inputs import baseline_inputs
 from studies.model.memory import release_freed_memory
 from studies.model.parallel import Blocks, map_blocks
@@ -173,7 +174,11 @@ class Band:
 SETTING_KEYS = {"preload_kind": str, "spring_rate_N_per_mm": float,
                 "contact_angle_free_deg": float, "inner_shaft_class": str,
                 "outer_housing_class": str, "nut_clamp_force_N": float,
-                "cover_clamp_force_N": float}
+                "cover_clamp_force_N": float, "sleeve_material": str,
+                "sleeve_radial_thickness_mm": float, "sleeve_shaft_class": str}
+#: the setting keys of the liner ([sleeve]): they change the stack's FE (a new set-up, its own
+#: family in `fem.parametric`), the athermal lever of a stack whose rings sit in a liner
+LINER_KEYS = ("sleeve_material", "sleeve_radial_thickness_mm", "sleeve_shaft_class")
 
 
 @dataclass(frozen=True)
@@ -194,7 +199,12 @@ class Setting:
     of each band (`Assembly.mean_fits_um`). nut_clamp_force_N, cover_clamp_force_N: the force
     (N) a clamp with a force (clamp = "force") is tightened to (0 for a rigid or compliant
     clamp): the FE set-up holds the clamp's spring, not its force, so the stack's FE serves every
-    force (`studies.model.stages.fe.FEStage.tighten` finds the overlap per force)."""
+    force (`studies.model.stages.fe.FEStage.tighten` finds the overlap per force).
+    sleeve_material, sleeve_radial_thickness_mm (mm), sleeve_shaft_class: the liner ([sleeve]:
+    its material from the library or the file, its thickness, the ISO 286 class of its OD; ""
+    or 0 without a sleeve). A thickness change moves the bore it sits in (the housing's, or the
+    cartridge's with it) by twice the change, as `[sleeve]` requires; these change the FE
+    (LINER_KEYS)."""
     preload_kind: str
     spring_rate_N_per_mm: float
     contact_angle_free_deg: float
@@ -202,14 +212,19 @@ class Setting:
     outer_housing_class: str
     nut_clamp_force_N: float = 0.0
     cover_clamp_force_N: float = 0.0
+    sleeve_material: str = ""
+    sleeve_radial_thickness_mm: float = 0.0
+    sleeve_shaft_class: str = ""
 
     @classmethod
     def given(cls, asm) -> "Setting":
         """The assembly's own values."""
-        f = asm.fits
+        f, sl = asm.fits, asm.sleeve
         return cls(asm.preload.kind, 0.0, float(asm.bearing.contact_angle_free_deg),
                    f.inner_shaft_class, f.outer_housing_class,
-                   float(asm.nut.clamp_force_N), float(asm.cover.clamp_force_N))
+                   float(asm.nut.clamp_force_N), float(asm.cover.clamp_force_N),
+                   sl.material if sl else "", float(sl.radial_thickness_mm) if sl else 0.0,
+                   f.sleeve_shaft_class)
 
     @property
     def extra_compliance_mm_per_N(self) -> float:
@@ -235,7 +250,22 @@ class Setting:
                   for name, v in (("nut", self.nut_clamp_force_N),
                                   ("cover", self.cover_clamp_force_N))
                   if v != getattr(asm, name).clamp_force_N}
-        return replace(asm, fits=f, bearing=b, preload=p, **clamps)
+        liner = {}
+        sl = asm.sleeve
+        if sl is not None:
+            if self.sleeve_shaft_class != f.sleeve_shaft_class:
+                f = replace(f, sleeve_shaft_class=self.sleeve_shaft_class,
+                            sleeve_shaft_deviation_um=())
+            new = replace(sl, material=self.sleeve_material or sl.material,
+                          radial_thickness_mm=self.sleeve_radial_thickness_mm
+                          or sl.radial_thickness_mm)
+            if new != sl:
+                liner["sleeve"] = new
+                grow = 2.0 * (new.radial_thickness_mm - sl.radial_thickness_mm)
+                if grow:              # the bore the liner sits in follows it (and what is outside)
+                    liner["housing"] = replace(asm.housing, bore_diameter_mm=
+                                               asm.housing.bore_diameter_mm + grow)
+        return replace(asm, fits=f, bearing=b, preload=p, **clamps, **liner)
 
     def label(self, given: "Setting") -> str:
         """What differs from `given`, in words ("" when nothing does)."""
@@ -255,6 +285,12 @@ class Setting:
             v = getattr(self, f"{name}_clamp_force_N")
             if v != getattr(given, f"{name}_clamp_force_N"):
                 parts.append(f"{name} {v:g} N")
+        if self.sleeve_material != given.sleeve_material:
+            parts.append(f"sleeve {self.sleeve_material}")
+        if self.sleeve_radial_thickness_mm != given.sleeve_radial_thickness_mm:
+            parts.append(f"sleeve {self.sleeve_radial_thickness_mm:g} mm")
+        if self.sleeve_shaft_class != given.sleeve_shaft_class:
+            parts.append(f"sleeve OD {self.sleeve_shaft_class or 'no class'}")
         return ", ".join(parts)
 
 
@@ -293,6 +329,17 @@ def settings_of(asm, vary: dict[str, tuple] | None = None) -> list[Setting]:
                                   f"{getattr(asm, name).clamp!r}; a force needs clamp = \"force\"")
             if not v > 0:
                 raise DesignError(f"--vary {name}_clamp_force_N={v:g}: must be > 0")
+    for key in LINER_KEYS:
+        if key in vary and asm.sleeve is None:
+            raise DesignError(f"--vary {key}: the assembly has no [sleeve]")
+    for v in vary.get("sleeve_material", ()):
+        try:
+            get_material(v, asm.materials)
+        except KeyError as exc:
+            raise DesignError(f"--vary sleeve_material={v}: {exc.args[0]}") from None
+    for v in vary.get("sleeve_radial_thickness_mm", ()):
+        if not v > 0:
+            raise DesignError(f"--vary sleeve_radial_thickness_mm={v:g}: must be > 0")
     if "spring_rate_N_per_mm" in vary and "spring" not in vary.get("preload_kind",
                                                                    (g.preload_kind,)):
         raise DesignError("--vary spring_rate_N_per_mm: a rate needs a spring preload (the "
@@ -307,7 +354,10 @@ def settings_of(asm, vary: dict[str, tuple] | None = None) -> list[Setting]:
             out.append(s)
     for s in out:
         try:
-            deviation_limits_um(s.assembly(asm))
+            a = s.assembly(asm)
+            deviation_limits_um(a)
+            if a.sleeve != asm.sleeve:          # a liner's geometry against the stack's
+                check_assembly(a, "--vary")
         except ValueError as exc:
             raise DesignError(f"--vary: {exc.args[0]}") from None
     return out
