@@ -376,6 +376,14 @@ class StackAnswers:
     torque_Nmm: np.ndarray
     dofs: int
 
+    @property
+    def fit_pressure_inner_MPa(self) -> np.ndarray:
+        return self.fit_pressure_MPa["inner"]
+
+    @property
+    def fit_pressure_outer_MPa(self) -> np.ndarray:
+        return self.fit_pressure_MPa["outer"]
+
 
 class _TaskSetups:
     """The FE set-ups of one task's pipelines (a `setup_of` for `Pipeline`): a spec seen before
