@@ -811,7 +811,7 @@ def _report(asm, out, res: DesignResult, T, P0, fine, best):
              md_table(["design", "range / assembled", "max torque (N mm)", "contact-pressure margin"],
                       [[_label(d, g0), d.metrics.preload_variation, d.metrics.torque_max_Nmm,
                         d.metrics.contact_pressure_margin] for d in res.pareto[:15]])
-             if res.pareto else _infeasible_text(res.why), "",
+             if res.pareto else infeasible_text(res.why), "",
              "![pareto](pareto.png)", ""]
     w = res.why
     if w is not None and w.best:
@@ -833,7 +833,7 @@ def _report(asm, out, res: DesignResult, T, P0, fine, best):
     write_report_files(out, lines, f"Athermal stack search: {asm.name}")
 
 
-def _infeasible_text(w: Why) -> str:
+def infeasible_text(w: Why) -> str:
     """The empty Pareto set in words: the constraints every design failed, the others' counts."""
     every = w.failed_everywhere
     counts = ", ".join(f"{c.name} {c.failed} of {c.of}" for c in w.constraints)
