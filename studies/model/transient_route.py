@@ -20,7 +20,10 @@ coordinates. Every row is then evaluated through the pipeline's one route for gi
 (`Pipeline.run` with `FEOptions(states=...)`) with the computed part temperatures (volume means of the FE parts by
 `stages.fe.FE_PART_GROUP`, the ball nodes for the balls).
 
-The initial state is uniform at the first row's environment temperature. The ball-raceway
+The initial state is uniform at the first row's environment temperature. A stack with no films
+and no radiation is adiabatic outside: it runs (the reduction takes its own moments,
+`fem.reduced_thermal.krylov_basis`), the heat is stored, and a warning line says so
+(`checks.plausibility_warnings`). The ball-raceway
 conductances and the partition of each contact's heat between ball and ring
 (`analytic.heat.rolling_contact_conductance`: moving-source constriction on both sides at the
 rolling speed, the EHL film's conduction in series for an oil, Blok's partition) are refreshed
