@@ -33,6 +33,12 @@ import numpy as np
 
 K0 = 273.15
 T_PIVOT_C = 40.0
+#: an oil temperature this far (K) outside the Walther fit's range makes the range warning say
+#: what the rows then mean (`WaltherLaw.extrapolation_warning`): the reference data's own case,
+#: a 40/100 C fit of Pennzane SHF X-2000 at -40 C, is +57 % off (BESSETTE1997, tests/
+#: test_lubricant_table.py); 20 K is our threshold (assumption: the D341 chart is drawn between
+#: measured points, ASTM D341 sec. 1, and 20 K is about a third of a typical fit's span)
+EXTRAPOLATION_FAR_K = 20.0
 DATA_CSV = Path(__file__).parent / "data" / "space_oil_viscosity.csv"
 
 
@@ -81,10 +87,16 @@ class WaltherLaw:
         out = (T < lo - 0.01) | (T > hi + 0.01)
         if not out.any():
             return None
+        beyond_K = float(max(lo - T.min(), T.max() - hi))
+        far = (f"; up to {beyond_K:.0f} K beyond it (viscosity up to {nu[out].max():.4g} mm2/s): "
+               "the viscosity, viscous torque and film of those rows are the law's guess, not "
+               "data (a 40/100 C fit of Pennzane X-2000 is +57 % off at -40 C, BESSETTE1997)"
+               if beyond_K > EXTRAPOLATION_FAR_K else "")
         return (f"lubricant {name}: oil temperature {T[out].min():.1f}..{T[out].max():.1f} C in "
                 f"{int(out.sum())} "
                 f"of {T.size} rows is outside the Walther fit's range {lo:g}..{hi:g} C: the "
-                "viscosity there is extrapolated (give viscosity points that span the range)")
+                "viscosity there is extrapolated (give viscosity points that span the range)"
+                + far)
 
     def with_slope_factor(self, slope_factor: float, T_pivot_C: float = T_PIVOT_C) -> "WaltherLaw":
         """Same nu at T_pivot_C, slope B scaled by slope_factor (> 0)."""

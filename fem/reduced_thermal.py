@@ -65,6 +65,13 @@ from fem.transient import (PER_M2_TO_PER_MM2, SCHEMES, StepLoads, ThermalParamet
                            radiation_remainder_W_mm2)
 
 
+#: the shift (1/s) that stands for s = 0 when the stack is adiabatic outside (`krylov_basis`):
+#: a time scale of ~12 days, far beyond any run, so its moment is the steady heat-up shape
+#: to 1e-6 relative; small enough, not so small that removing its 1/s uniform part loses the shape
+#: to round-off (1e6 of the 1e16 digits)
+FLOATING_SHIFT_PER_S = 1e-6
+
+
 @dataclass(frozen=True)
 class ReducedBasis:
     """V (n_total, m): M-orthonormal modes, the uniform field first, then ordered by POD energy;
@@ -78,17 +85,27 @@ def krylov_basis(tc: TransientConduction, training: Sequence[ThermalParameters],
                  tol: float = 1e-12) -> ReducedBasis:
     """The reduced basis of `tc` (module docstring): moments at every training coefficient set
     and shift for the ambient drive and the named heat inputs (face groups, ball nodes), plus the
-    uniform field; POD in the M inner product, eigenvalues below tol x the largest dropped."""
+    uniform field; POD in the M inner product, eigenvalues below tol x the largest dropped.
+    A stack adiabatic outside (no film, no radiation: no ambient drive) takes its s = 0 moments
+    at FLOATING_SHIFT_PER_S (its steady state does not exist; without this its basis was the
+    uniform field alone and the bearing's heat spread instantly over the whole stack)."""
     if tc.fixed_groups:
         raise ValueError("the reduced model has no fixed-temperature groups: use films")
     P, M = tc.P, tc.M
     cols = []
     for prm in training:
         A = tc.operator(prm)
-        amb = StepLoads(1.0, 1.0)
-        B = [tc.load(prm, amb)] + [tc.a[name] for name in inputs]
-        B = np.column_stack(B)
+        drive = tc.load(prm, StepLoads(1.0, 1.0))
+        # a stack with no film and no radiation (adiabatic outside) has no ambient drive and a
+        # singular A (the uniform field is its null space: heat is stored, never steady):
+        # the drive is left out and s = 0 is replaced by FLOATING_SHIFT_PER_S, whose moment
+        # beyond the uniform field is the shape of the steady heat-up (the uniform part, of
+        # order 1/s, is removed below)
+        floating = not np.any(drive)
+        B = np.column_stack(([] if floating else [drive]) + [tc.a[name] for name in inputs])
         for s in shifts_per_s:
+            if floating and s == 0.0:
+                s = FLOATING_SHIFT_PER_S
             lu = splu((P.T @ (s * M + A) @ P).tocsc())
             cols.append(P @ lu.solve(np.asfortranarray(P.T @ B)))
     # the uniform field is the first mode, exactly (initial states and T_ref lie in the space)
@@ -96,7 +113,8 @@ def krylov_basis(tc: TransientConduction, training: Sequence[ThermalParameters],
     u0 /= np.sqrt(u0 @ (M @ u0))
     X = np.column_stack(cols)
     X = X - np.outer(u0, u0 @ (M @ X))
-    X = X / np.sqrt(np.einsum("ij,ij->j", X, M @ X))[None, :]
+    norm = np.sqrt(np.einsum("ij,ij->j", X, M @ X))
+    X = X[:, norm > 0] / norm[norm > 0][None, :]     # a moment that is all uniform adds nothing
     G = X.T @ (M @ X)
     w, U = np.linalg.eigh(0.5 * (G + G.T))
     order = np.argsort(w)[::-1]

@@ -6,10 +6,12 @@ from dataclasses import replace
 import pytest
 
 from studies.app.cli import main
-from studies.model.config import CONFIG_DIR, load_shipped
+from studies.model.config import CONFIG_DIR, load_assembly, load_shipped
 from studies.model.provenance import provenance
 from studies.usecases import design_search as ds
 from studies.model.columns import to_columns
+
+THIN = CONFIG_DIR / "rig_thin_section_hub.toml"
 
 
 @pytest.fixture(scope="module")
@@ -101,7 +103,8 @@ def test_band_in_newtons_and_fractions():
 
     asm = load_shipped("seed000")
     P = np.array([[60.0, 100.0, 140.0]])
-    r = ds.StackAnswers(P, np.full_like(P, 1000.0), np.full_like(P, 10.0), np.full_like(P, 10.0),
+    r = ds.StackAnswers(P, np.full_like(P, 1000.0),
+                        {"inner": np.full_like(P, 10.0), "outer": np.full_like(P, 10.0)},
                         np.full_like(P, 1.0), 0)
     P0 = np.array([100.0])
     inside = [ds._metrics(asm, r, P0, b)[0].in_band for b in
@@ -270,3 +273,90 @@ def test_search_with_settings_keeps_the_given_numbers(tmp_path):
     const = [d for d in varied.screened if d.setting.preload_kind == "spring"
              and d.setting.spring_rate_N_per_mm == 0.0]
     assert all(d.metrics.preload_range_N <= 1e-9 * d.metrics.preload_assembled_N for d in const)
+
+
+# ------------------------------------------------------------------ every fit counts (issue 36)
+def test_a_sleeve_fit_that_opens_makes_the_design_infeasible():
+    """Issue 36 item 1: design said "fits closed: yes" while `simulate` flagged the sleeve fit
+    open (the metrics read the inner and outer fits only). A made-up stack on the thin-section
+    rig (its sleeve fit designed with interference, `tolerances.designed_closed`) whose inner and
+    outer fits stay at 10 MPa and whose sleeve fit pressure falls to 0 at the hot end: not
+    closed, not feasible, the sleeve named."""
+    import numpy as np
+
+    from studies.model.tolerances import designed_closed
+
+    asm = load_assembly(THIN)
+    assert designed_closed(asm)["sleeve"]
+    P = np.array([[100.0, 100.0, 100.0]])
+    ten = np.full_like(P, 10.0)
+    r = ds.StackAnswers(P, np.full_like(P, 1000.0), {"inner": ten, "outer": ten,
+                                                     "sleeve": np.array([[3.0, 1.0, 0.0]])},
+                        np.full_like(P, 1.0), 0)
+    m = ds._metrics(asm, r, np.array([100.0]), ds.Band(0.5, 1.5))[0]
+    assert not m.fits_closed and not m.feasible and m.open_fits == ("sleeve",)
+
+
+def test_an_infeasible_search_says_which_constraint_failed_everywhere(tmp_path):
+    """The thin-section rig over its own range -45..70 C: `simulate` flags the sleeve fit open
+    at the cold end (its check, a second route). Every design of the search must count it: no
+    feasible design, an empty Pareto set, and `why` not null but naming fit_open_sleeve among
+    the constraints every design failed; design.json and the report say it."""
+    import numpy as np
+
+    from studies.model.pipeline import Pipeline
+    from studies.model.inputs import baseline_inputs
+
+    asm = load_assembly(THIN)
+    pl = Pipeline(asm, mesh_factor=4.0)
+    res = pl.run(baseline_inputs({"T_ambient_C": np.array([-45.0])}, 1, asm.T_ref_C,
+                                 asm.preload.assembled_N, asm.lubrication.speed_rpm))
+    assert any(v.check.name == "fit_open_sleeve" for v in res.checks.violations())
+    out = ds.run(asm, -45.0, 70.0, tmp_path, provenance("design", {}), progress=lambda s: None,
+                 materials=["6061"], length_factors=(1.0,), screen_mesh_factor=4.0,
+                 confirm_mesh_factor=4.0)
+    assert not out.pareto and not any(d.metrics.feasible for d in out.screened)
+    assert out.why is not None and "fit_open_sleeve" in out.why.failed_everywhere
+    assert all("sleeve" in d.metrics.open_fits for d in out.screened)
+    doc = json.loads((tmp_path / "design.json").read_text())
+    assert "fit_open_sleeve" in doc["why"]["failed_everywhere"]
+    assert "No feasible design" in (tmp_path / "report.md").read_text()
+
+
+def test_the_liner_is_a_design_variable_through_the_one_route():
+    """Issue 36 item 1: `--vary sleeve_material=..., sleeve_radial_thickness_mm=...,
+    sleeve_shaft_class=...`. A liner of 17-4PH, 4.5 mm instead of the 6061 hub's 6 mm: the bore
+    it sits in moves by twice the change (the [sleeve] relation, bearing OD + 2 t), and the
+    search's numbers for that setting (the stack's family route, `fem.parametric`) are those of
+    the pipeline on the same assembly written out by hand (its own FE set-up), to 1e-9 of the
+    preload and of the sleeve fit pressure. Without a [sleeve] the keys are refused."""
+    import numpy as np
+
+    from studies.model.inputs import baseline_inputs
+    from studies.model.pipeline import Pipeline
+    from studies.model.checks import fit_pressure_MPa
+
+    asm = load_assembly(THIN)
+    settings = ds.settings_of(asm, {"sleeve_material": ("17-4PH",),
+                                    "sleeve_radial_thickness_mm": (4.5,)})
+    s = next(x for x in settings if x.sleeve_material == "17-4PH"
+             and x.sleeve_radial_thickness_mm == 4.5)
+    a = s.assembly(asm)
+    assert a.housing.bore_diameter_mm == pytest.approx(asm.bearing.outside_diameter_mm + 2 * 4.5,
+                                                       abs=1e-9)
+    assert "sleeve 17-4PH" in s.label(ds.Setting.given(asm))
+    T = np.array([-45.0, 20.0, 70.0])
+    P0 = np.array([asm.preload.assembled_N])
+    stack = ds.candidates(asm, materials=["17-4PH"], length_factors=(1.0,))[0]
+    got = ds.evaluate_settings(asm, stack, (s,), T, P0, 4.0, parametric=True)[0]
+    by_hand = replace(asm, sleeve=replace(asm.sleeve, material="17-4PH", radial_thickness_mm=4.5),
+                      housing=replace(asm.housing, bore_diameter_mm=asm.bearing.outside_diameter_mm + 9.0))
+    res = Pipeline(by_hand, mesh_factor=4.0).run(baseline_inputs(
+        {"T_ambient_C": T}, T.size, asm.T_ref_C, float(P0[0]), asm.lubrication.speed_rpm))
+    assert np.allclose(got.preload_N[0], res.preload_N, rtol=1e-9, atol=1e-9 * np.abs(res.preload_N).max())
+    p = fit_pressure_MPa(res, "sleeve")
+    assert np.allclose(got.fit_pressure_MPa["sleeve"][0], p, rtol=1e-9, atol=1e-9 * np.abs(p).max())
+    plain = ds.evaluate_settings(asm, stack, (ds.Setting.given(asm),), T, P0, 4.0, parametric=True)[0]
+    assert np.abs(plain.fit_pressure_MPa["sleeve"][0] - p).max() > 0.1 * np.abs(p).max()  # it acts
+    with pytest.raises(ds.DesignError, match="no \\[sleeve\\]"):
+        ds.settings_of(load_shipped("seed000"), {"sleeve_material": ("6061",)})

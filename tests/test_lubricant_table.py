@@ -164,3 +164,18 @@ def test_lubricant_name_alias_is_the_lubrication_key(tmp_path):
     p.write_text(text + '\n[lubricant]\nname = "Fomblin Z25"\n')
     with pytest.raises(ConfigError, match="give it once"):
         load_assembly(p)
+
+
+def test_a_viscosity_far_outside_its_fit_says_what_the_rows_then_mean(tmp_path):
+    """Issue 35: an oil temperature 80 K below a 40..100 C fit (-40 C) gets, in the same one
+    line, how far beyond (40 - (-40) = 80 K, the fit's own range) and that the rows' viscosity,
+    viscous torque and film are the law's guess; 10 K below (30 C) only the range warning."""
+    cfg = _with_oil(tmp_path, "X2000own", _table("X2000own", [[40.0, 107.0], [100.0, 14.3]]))
+    asm = load_assembly(cfg)
+    law = asm.oil().walther()
+    far = [w for w in plausibility_warnings(asm, None, {"viscosity_mm2_s": law.nu_mm2_s([-40.0, 60.0])})
+           if "Walther" in w]
+    assert len(far) == 1 and "up to 80 K beyond it" in far[0] and "guess, not data" in far[0]
+    near = [w for w in plausibility_warnings(asm, None, {"viscosity_mm2_s": law.nu_mm2_s([30.0, 60.0])})
+            if "Walther" in w]
+    assert len(near) == 1 and "beyond it" not in near[0]

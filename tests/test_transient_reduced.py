@@ -160,3 +160,31 @@ def test_bearing_heat_with_a_partition_per_raceway_is_deposited_without_loss():
     assert q["ball_A"] == pytest.approx((0.6 * 3.5 + 0.3 * 2.5) * 0.5, rel=1e-14)
     with pytest.raises(ValueError):
         bearing_heat_inputs_W(h, ring_share=(0.4, 1.2))
+
+
+def test_a_stack_with_no_films_keeps_its_field_and_stores_every_watt(setup):
+    """No film and no radiation (adiabatic outside, issue 35's space pair without
+    [thermal.films]): the ambient drive is zero and the steady state does not exist. The reduced
+    model must still follow the full FE's field (raceway and ball heat; before, its basis was
+    the uniform field alone: every part at one temperature, 3.5 K off here) to 1e-3 of the full
+    FE's spread, and store every joule: the heat-capacity-weighted mean rise equals the closed
+    form of a lumped adiabatic body, sum(Q) t / sum(C) (energy balance: heat in = stored), to
+    1e-9 of the rise."""
+    pl, tc, _, scale = setup
+    adiabatic = replace(scale(1.0, 1.0), film_W_m2K={})
+    rc = ReducedConduction(tc, krylov_basis(tc, [replace(adiabatic, fit_conductance_W_m2K=tuple(
+        c * np.array(adiabatic.fit_conductance_W_m2K))) for c in (0.3, 3.0)], INPUTS))
+    prm = replace(adiabatic, fit_conductance_W_m2K=tuple(1.7 * np.array(adiabatic.fit_conductance_W_m2K)))
+    full, red = Stepper(tc, prm, 4.0, -40.0), ReducedStepper(rc, prm, 4.0, -40.0)
+    ld = StepLoads(20.0, heat_W={"raceway_inner_ring_A": 2.0, "ball_A": 3.0, "raceway_outer_ring_B": 1.0})
+    err = 0.0
+    for _ in range(150):
+        T = full.step(ld)
+        Tr = rc.field(red.step(ld))
+        err = max(err, np.abs(Tr - T).max())
+    C = tc.M @ np.ones(tc.n_total)            # J/K per DOF (ball nodes included)
+    rise = 6.0 * 150 * 4.0 / C.sum()          # K: 6 W for 600 s into a lumped adiabatic body
+    assert C @ (Tr + 40.0) / C.sum() == pytest.approx(rise, rel=1e-9)
+    assert C @ (T + 40.0) / C.sum() == pytest.approx(rise, rel=1e-9)
+    assert T.max() - T.min() > 1.0            # the heat is not spread instantly: a field
+    assert err < 1e-3 * (T.max() - T.min())

@@ -190,6 +190,9 @@ def test_simulate_file_in_transient_mode_writes_the_transient_columns(pl, tmp_pa
     for c in ("preload_N", "T_ball_C", "heat_bearing_W"):
         assert np.allclose(got[c], ref[c], rtol=1e-9, atol=0), c     # written with 10 digits
     assert np.all(got["heat_bearing_W"][1:] > 2.0)
+    # issue 35: the conditions' heat_W is written as given (the route's torque power, also
+    # named heat_W, overwrote it: 46.99 W where the file said 2)
+    assert np.array_equal(got["heat_W"], [0.0, 2.0, 2.0])
 
 
 def test_bench_transient_flag_runs_the_transient_bench(monkeypatch):
@@ -283,3 +286,36 @@ def test_part_temperatures_for_the_second_source_are_simulates_columns(pl):
     assert np.allclose(pt.T_C[0], 20.0, atol=1e-9)
     assert np.all(pt.T_C >= 20.0 - 1e-9) and np.all(pt.T_C[1:] < 40.0)
     assert np.all(np.diff(pt.T_C, axis=0) >= -1e-9)      # heating only
+
+
+def test_a_stack_with_no_films_heats_as_a_field_and_stores_every_watt(pl):
+    """Issue 35: `[thermal] mode = "transient"` without `[thermal.films]` (adiabatic outside).
+    Before, every part had one temperature in every row (the reduced basis was the uniform field
+    alone: T_max_C == T_min_C to all digits) although the heat enters at the raceways. Now: the
+    raceways' parts run warmer than the housing, and every watt is stored (no film: heat in =
+    capacity x the scheme's dT/dt, step by step, to 1e-9 of the heat: a lumped adiabatic body's
+    balance); a warning line says the stack is adiabatic."""
+    from fem.transient import SCHEMES
+    from studies.model.checks import plausibility_warnings
+    from studies.model.pipeline import Pipeline
+    from studies.model.transient_route import run_transient, thermal_model
+
+    asm = replace(pl.asm, thermal=Thermal(mode="transient"))
+    assert any("adiabatic" in w for w in plausibility_warnings(asm))
+    bare = Pipeline(asm, mesh_factor=MESH_FACTOR)
+    t = np.array([0.0, 300.0, 600.0])
+    cols = {"time_s": t, "T_ambient_C": np.array([-40.0, -30.0, -20.0]),
+            "speed_rpm": np.full(3, 1500.0), "heat_W": np.full(3, 2.0)}
+    r = run_transient(bare, cols)
+    rows = r.columns()
+    assert np.all(rows["T_max_C"][1:] - rows["T_min_C"][1:] > 0.1)
+    assert np.all(rows["T_inner_ring_C"][1:] > rows["T_housing_C"][1:])
+    tc = thermal_model(bare).tc
+    E = (r.q @ thermal_model(bare).rc.V.T) @ (tc.M @ np.ones(tc.n_total))      # J
+    dt = r.grid_s[1] - r.grid_s[0]
+    worst = 0.0
+    for k in range(1, r.grid_s.size):
+        c0, c1, c2 = SCHEMES["backward_euler" if k == 1 else "bdf2"]
+        stored = (c0 * E[k] - c1 * E[k - 1] - (c2 * E[k - 2] if k > 1 else 0.0)) / dt
+        worst = max(worst, abs(r.heat_W[k] - stored) / r.heat_W[k])
+    assert worst < 1e-9, worst

@@ -276,6 +276,8 @@ def cmd_design(args) -> None:
     g, b = res.given.metrics, res.designs[0].metrics
     print(f"design: {res.n_designs} designs; as given {100 * g.preload_variation:.0f} % preload "
           f"variation, best {100 * b.preload_variation:.0f} %; report in {args.out}/report.md")
+    if not res.pareto:                   # nothing feasible: say which constraint failed
+        print(f"design: {design_search.infeasible_text(res.why)}")
 
 
 def cmd_study(args) -> None:

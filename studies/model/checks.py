@@ -25,6 +25,7 @@ from typing import Callable
 import numpy as np
 
 from analytic.safety import GBT_LAUNCH_SAFETY, ISO76_CONTACT_PRESSURE_MPa
+from studies.model.inputs import PARTS
 from studies.model.tolerances import designed_closed
 
 
@@ -139,6 +140,12 @@ _FIT_PRESSURE = {"inner": _fit_pressure_inner_MPa, "outer": _fit_pressure_outer_
                  "sleeve": _fit_pressure_sleeve_MPa, "cartridge": _fit_pressure_cartridge_MPa}
 
 
+def fit_pressure_MPa(result, fit: str) -> np.ndarray:
+    """(n,) pressure (MPa) of one fit (inner, outer, sleeve, cartridge) as the fit_open check
+    reads it (`design` counts every fit by it)."""
+    return _FIT_PRESSURE[fit](result)
+
+
 def _margin_clamp_N(result) -> np.ndarray:
     return result.clamp.margin_N
 
@@ -227,6 +234,36 @@ def _soft_clamp_warnings(asm) -> list[str]:
     return msgs
 
 
+#: a condition temperature (C) above this is no bearing's operating point: a unit typed wrong
+#: (assumption: above the highest temperature a standard bearing-steel ring is dimensionally
+#: stabilised for, S0 = 150 C, DIN 623-1, and far above every seed's range)
+FAHRENHEIT_HOT_C = 150.0
+#: how far (K) outside [operating] T_min_C..T_max_C a condition column must reach, and how
+#: near it its values read as Fahrenheit must fall, for the Fahrenheit warning
+FAHRENHEIT_FAR_K = 20.0
+
+
+def _fahrenheit_warnings(asm, conditions: dict) -> list[str]:
+    """One line for the first T_*_C condition column that looks like Fahrenheit: it reaches
+    FAHRENHEIT_FAR_K above [operating] T_max_C and, read as Fahrenheit ((v - 32) / 1.8, NIST
+    SP 811 B.8), lies inside the operating range widened by FAHRENHEIT_FAR_K; or any value above
+    FAHRENHEIT_HOT_C."""
+    op = asm.operating
+    for c, v in conditions.items():
+        v = np.asarray(v, float)
+        v = v[np.isfinite(v)]
+        if not (c.startswith("T_") and c.endswith("_C")) or not v.size:
+            continue
+        hi, as_C = float(v.max()), (v - 32.0) / 1.8
+        looks_F = (hi > op.T_max_C + FAHRENHEIT_FAR_K and as_C.min() >= op.T_min_C - FAHRENHEIT_FAR_K
+                   and as_C.max() <= op.T_max_C + FAHRENHEIT_FAR_K)
+        if looks_F or hi > FAHRENHEIT_HOT_C:
+            return [f"conditions column {c}: {v.min():g}..{hi:g} C reaches {hi - op.T_max_C:.0f} K "
+                    f"above [operating] T_max_C = {op.T_max_C:g} C; read as Fahrenheit it is "
+                    f"{as_C.min():.1f}..{as_C.max():.1f} C: Fahrenheit typed as Celsius?"]
+    return []
+
+
 def plausibility_warnings(asm, conditions: dict | None = None, out: dict | None = None) -> list[str]:
     """Legal but implausible inputs and results, one line each (the run goes on):
     units typed wrong (kelvin for Celsius, radians for degrees, mm for um), a viscous torque
@@ -251,6 +288,18 @@ def plausibility_warnings(asm, conditions: dict | None = None, out: dict | None 
             msgs.append(f"conditions column {c}: every value above 200 C (min {np.min(v):g}): "
                         "kelvin typed as Celsius?")
             break
+    else:
+        msgs += _fahrenheit_warnings(asm, conditions or {})
+    if conditions is not None and asm.thermal.mode == "given" and "T_ambient_C" not in conditions:
+        bare = [p for p in PARTS if f"T_{p}_C" not in conditions]
+        if bare:
+            msgs.append(f"conditions: no column T_ambient_C: {', '.join(bare)} at the default, "
+                        f"assembly.T_ref_C = {asm.T_ref_C:g} C, in every row")
+    th = asm.thermal
+    if th.mode == "transient" and not th.films and th.emissivity == 0:
+        msgs.append("thermal: no [thermal.films] and emissivity 0: the stack is adiabatic outside; "
+                    "T_ambient_C sets only its starting temperature and every watt of the "
+                    "bearing's heat stays in it (the temperatures rise without bound)")
     if out is not None and "torque_viscous_Nmm" in out and "torque_load_Nmm" in out:
         visc = np.asarray(out["torque_viscous_Nmm"], float)
         load = np.asarray(out["torque_load_Nmm"], float)

@@ -23,6 +23,7 @@ from pathlib import Path
 from analytic.bearing.geometry import BearingGeometry, BearingSpec
 from analytic.lubrication import Lubricant, get_lubricant, lubricant_from_table
 from analytic.materials import Material, get_material, material_from_table
+from infra.names import did_you_mean
 from studies.model.assembly import (Assembly, Clamp, Fits, Housing, Layer, Limits, Lubrication,
                                     Mesh, Operating, Preload, Shaft, Spacer, Thermal)
 from studies.model.config_checks import check_assembly, check_bearing
@@ -178,7 +179,8 @@ def assembly_from_dict(raw: dict, path: str = "<config>") -> Assembly:
     top = _header(path, raw.get("assembly"))
     for name in raw:
         if name not in ("assembly", "materials", "lubricants") and name not in SECTIONS:
-            raise ConfigError(f"{path}: [{name}]: unknown section")
+            raise ConfigError(f"{path}: [{name}]: unknown section"
+                              + did_you_mean(name, ["assembly", "materials", "lubricants", *SECTIONS]))
     parts = {name: _section(path, raw, name) for name in SECTIONS
              if name not in LAYERS or name in raw}
     asm = Assembly(**top, materials=parse_materials(raw, path),
@@ -212,12 +214,12 @@ def _header(path: str, top) -> dict:
     """The [assembly] table: name, arrangement, T_ref_C, source (ASSEMBLY_KEYS)."""
     if not isinstance(top, dict):
         raise ConfigError(f"{path}: [assembly]: missing section")
+    for key in top:          # unknown first: a typo explains the missing key it leaves
+        if key not in ASSEMBLY_KEYS:
+            raise ConfigError(f"{path}: assembly.{key}: unknown key{unit_hint(key, list(ASSEMBLY_KEYS))}")
     for key, spec in ASSEMBLY_KEYS.items():
         if spec.required and key not in top:
             raise ConfigError(f"{path}: assembly.{key}: missing key")
-    for key in top:
-        if key not in ASSEMBLY_KEYS:
-            raise ConfigError(f"{path}: assembly.{key}: unknown key{unit_hint(key, ['T_ref_C'])}")
     arrangements = ASSEMBLY_KEYS["arrangement"].choices
     if top["arrangement"] not in arrangements:
         raise ConfigError(f"{path}: assembly.arrangement: '{top['arrangement']}' is not "

@@ -356,12 +356,14 @@ def parse_table(path: str, name: str, table, keys: dict[str, Key]) -> dict[str, 
 
 def unit_hint(key: str, names) -> str:
     """` (wrong unit name? expected 'x_mm')` when `key` differs from a known name only in its
-    last `_` part (the unit), else ""."""
+    last `_` part (the unit), else the nearest known name (`infra.names.did_you_mean`), else ""."""
+    from infra.names import did_you_mean
+
     stem = key.rsplit("_", 1)[0]
     for f in names:
         if f.rsplit("_", 1)[0] == stem:
             return f" (wrong unit name? expected '{f}')"
-    return ""
+    return did_you_mean(key, names)
 
 
 # --------------------------------------------------------------------------- documentation

@@ -21,6 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from infra.files import AtomicFile, write_atomic
+from infra.names import did_you_mean
 from studies.model.inputs import CONDITION_COLUMNS
 
 
@@ -101,7 +102,8 @@ def _header(path: Path, lineno: int, fields: list[str], allowed: set[str] | None
         if not col:
             raise TableError(f"{path}: line {lineno}: empty column name in the header")
         if allowed is not None and col not in allowed:
-            raise TableError(f"{path}: column '{col}': unknown column")
+            raise TableError(f"{path}: column '{col}': unknown column"
+                             f"{did_you_mean(col, sorted(allowed))}")
     dup = {c for c in header if header.count(c) > 1}
     if dup:
         raise TableError(f"{path}: column '{sorted(dup)[0]}': appears twice")
@@ -163,7 +165,8 @@ def check_columns(where, cols: dict[str, np.ndarray], allowed: set[str] | None =
     names = [c for c in cols if not c.startswith("_")]
     for c in names:
         if allowed is not None and c not in allowed:
-            raise TableError(f"{where}: column '{c}': unknown column")
+            raise TableError(f"{where}: column '{c}': unknown column"
+                             f"{did_you_mean(c, sorted(allowed))}")
     sizes = {np.size(cols[c]) for c in names}
     if len(sizes) > 1:
         raise TableError(f"{where}: columns have different lengths {sorted(sizes)}")

@@ -20,7 +20,10 @@ coordinates. Every row is then evaluated through the pipeline's one route for gi
 (`Pipeline.run` with `FEOptions(states=...)`) with the computed part temperatures (volume means of the FE parts by
 `stages.fe.FE_PART_GROUP`, the ball nodes for the balls).
 
-The initial state is uniform at the first row's environment temperature. The ball-raceway
+The initial state is uniform at the first row's environment temperature. A stack with no films
+and no radiation is adiabatic outside: it runs (the reduction takes its own moments,
+`fem.reduced_thermal.krylov_basis`), the heat is stored, and a warning line says so
+(`checks.plausibility_warnings`). The ball-raceway
 conductances and the partition of each contact's heat between ball and ring
 (`analytic.heat.rolling_contact_conductance`: moving-source constriction on both sides at the
 rolling speed, the EHL film's conduction in series for an oil, Blok's partition) are refreshed
@@ -222,8 +225,9 @@ def thermal_model(pl: Pipeline, progress=None) -> ThermalModel:
 
 
 #: format of the cached reduced basis (raise when the file layout or the basis changes; 2: one
-#: energy per mode, the files of 1 held one per moment)
-BASIS_FORMAT = 2
+#: energy per mode, the files of 1 held one per moment; 3: a stack with no films has its own
+#: moments, the files of 2 held the uniform field alone for it)
+BASIS_FORMAT = 3
 
 
 class BasisCacheError(RuntimeError):
@@ -346,10 +350,14 @@ class TransientRun:
 
     def columns(self) -> dict[str, np.ndarray]:
         """The output columns of `simulate` in transient mode: the computed part temperatures,
-        T_max_C, T_min_C, the route's columns (`columns.to_columns`, flags and margins last),
-        heat_bearing_W, reduction_error_est before the flags."""
+        T_max_C, T_min_C, the route's columns (`columns.to_columns`, flags and margins last;
+        not its heat_W, the name of the conditions' extra heat), heat_bearing_W,
+        reduction_error_est before the flags."""
         r = self.rows
         cols = to_columns(self.outputs, friction_split=True)
+        # the route's heat_W (the torque's dissipated power) would overwrite the conditions'
+        # column of the same name (the extra heat); the heat into the stack is heat_bearing_W
+        cols.pop("heat_W", None)
         flags = {k: cols.pop(k) for k in list(cols) if k.startswith(("flag_", "margin_"))}
         return {**r.part_columns(), "T_max_C": r.T_max_C, "T_min_C": r.T_min_C, **cols,
                 "heat_bearing_W": r.heat_bearing_W, "reduction_error_est": r.reduction_error_est,
@@ -428,6 +436,8 @@ def run_transient(pl: Pipeline, cols: dict, progress=None, first_row: int = 0,
     P, Ph = _preload_N(out), _preload_N(out_h)
     with np.errstate(divide="ignore", invalid="ignore"):
         est = np.where(np.abs(P) > 0, np.abs(P - Ph) / np.abs(P), 0.0)
+    if tm.half.m == tm.rc.m:          # one mode: nothing to compare with, no estimate (not 0)
+        est = np.full(est.shape, np.nan)
     field = q_rows @ tm.rc.V.T              # (n, n_total) nodal temperatures and ball nodes
     rows = RowTemperatures(T, field.max(axis=1), field.min(axis=1), heat_W + env.heat_W, est)
     return TransientRun(out, rows, grid, Q, heat_in)

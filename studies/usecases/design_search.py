@@ -55,11 +55,13 @@ import numpy as np
 from analytic.materials import MATERIALS, get_material
 from fem.parametric import parametric_setup
 from fem.setup import cached_setup, full_fe
-from studies.model.checks import assembly_checks
+from studies.model.checks import assembly_checks, fit_pressure_MPa
+from studies.model.config_checks import check_assembly
 from studies.model.inputs import baseline_inputs
 from studies.model.memory import release_freed_memory
 from studies.model.parallel import Blocks, map_blocks
 from studies.model.pipeline import FEOptions, Pipeline
+from studies.model.tolerances import designed_closed, fits_of
 from studies.usecases.report_tools import nice_step
 from studies.usecases.report_tools import line_plot, md_table, write_report_files
 
@@ -172,7 +174,11 @@ class Band:
 SETTING_KEYS = {"preload_kind": str, "spring_rate_N_per_mm": float,
                 "contact_angle_free_deg": float, "inner_shaft_class": str,
                 "outer_housing_class": str, "nut_clamp_force_N": float,
-                "cover_clamp_force_N": float}
+                "cover_clamp_force_N": float, "sleeve_material": str,
+                "sleeve_radial_thickness_mm": float, "sleeve_shaft_class": str}
+#: the setting keys of the liner ([sleeve]): they change the stack's FE (a new set-up, its own
+#: family in `fem.parametric`), the athermal lever of a stack whose rings sit in a liner
+LINER_KEYS = ("sleeve_material", "sleeve_radial_thickness_mm", "sleeve_shaft_class")
 
 
 @dataclass(frozen=True)
@@ -193,7 +199,12 @@ class Setting:
     of each band (`Assembly.mean_fits_um`). nut_clamp_force_N, cover_clamp_force_N: the force
     (N) a clamp with a force (clamp = "force") is tightened to (0 for a rigid or compliant
     clamp): the FE set-up holds the clamp's spring, not its force, so the stack's FE serves every
-    force (`studies.model.stages.fe.FEStage.tighten` finds the overlap per force)."""
+    force (`studies.model.stages.fe.FEStage.tighten` finds the overlap per force).
+    sleeve_material, sleeve_radial_thickness_mm (mm), sleeve_shaft_class: the liner ([sleeve]:
+    its material from the library or the file, its thickness, the ISO 286 class of its OD; ""
+    or 0 without a sleeve). A thickness change moves the bore it sits in (the housing's, or the
+    cartridge's with it) by twice the change, as `[sleeve]` requires; these change the FE
+    (LINER_KEYS)."""
     preload_kind: str
     spring_rate_N_per_mm: float
     contact_angle_free_deg: float
@@ -201,14 +212,19 @@ class Setting:
     outer_housing_class: str
     nut_clamp_force_N: float = 0.0
     cover_clamp_force_N: float = 0.0
+    sleeve_material: str = ""
+    sleeve_radial_thickness_mm: float = 0.0
+    sleeve_shaft_class: str = ""
 
     @classmethod
     def given(cls, asm) -> "Setting":
         """The assembly's own values."""
-        f = asm.fits
+        f, sl = asm.fits, asm.sleeve
         return cls(asm.preload.kind, 0.0, float(asm.bearing.contact_angle_free_deg),
                    f.inner_shaft_class, f.outer_housing_class,
-                   float(asm.nut.clamp_force_N), float(asm.cover.clamp_force_N))
+                   float(asm.nut.clamp_force_N), float(asm.cover.clamp_force_N),
+                   sl.material if sl else "", float(sl.radial_thickness_mm) if sl else 0.0,
+                   f.sleeve_shaft_class)
 
     @property
     def extra_compliance_mm_per_N(self) -> float:
@@ -234,7 +250,22 @@ class Setting:
                   for name, v in (("nut", self.nut_clamp_force_N),
                                   ("cover", self.cover_clamp_force_N))
                   if v != getattr(asm, name).clamp_force_N}
-        return replace(asm, fits=f, bearing=b, preload=p, **clamps)
+        liner = {}
+        sl = asm.sleeve
+        if sl is not None:
+            if self.sleeve_shaft_class != f.sleeve_shaft_class:
+                f = replace(f, sleeve_shaft_class=self.sleeve_shaft_class,
+                            sleeve_shaft_deviation_um=())
+            new = replace(sl, material=self.sleeve_material or sl.material,
+                          radial_thickness_mm=self.sleeve_radial_thickness_mm
+                          or sl.radial_thickness_mm)
+            if new != sl:
+                liner["sleeve"] = new
+                grow = 2.0 * (new.radial_thickness_mm - sl.radial_thickness_mm)
+                if grow:              # the bore the liner sits in follows it (and what is outside)
+                    liner["housing"] = replace(asm.housing, bore_diameter_mm=
+                                               asm.housing.bore_diameter_mm + grow)
+        return replace(asm, fits=f, bearing=b, preload=p, **clamps, **liner)
 
     def label(self, given: "Setting") -> str:
         """What differs from `given`, in words ("" when nothing does)."""
@@ -254,6 +285,12 @@ class Setting:
             v = getattr(self, f"{name}_clamp_force_N")
             if v != getattr(given, f"{name}_clamp_force_N"):
                 parts.append(f"{name} {v:g} N")
+        if self.sleeve_material != given.sleeve_material:
+            parts.append(f"sleeve {self.sleeve_material}")
+        if self.sleeve_radial_thickness_mm != given.sleeve_radial_thickness_mm:
+            parts.append(f"sleeve {self.sleeve_radial_thickness_mm:g} mm")
+        if self.sleeve_shaft_class != given.sleeve_shaft_class:
+            parts.append(f"sleeve OD {self.sleeve_shaft_class or 'no class'}")
         return ", ".join(parts)
 
 
@@ -292,6 +329,17 @@ def settings_of(asm, vary: dict[str, tuple] | None = None) -> list[Setting]:
                                   f"{getattr(asm, name).clamp!r}; a force needs clamp = \"force\"")
             if not v > 0:
                 raise DesignError(f"--vary {name}_clamp_force_N={v:g}: must be > 0")
+    for key in LINER_KEYS:
+        if key in vary and asm.sleeve is None:
+            raise DesignError(f"--vary {key}: the assembly has no [sleeve]")
+    for v in vary.get("sleeve_material", ()):
+        try:
+            get_material(v, asm.materials)
+        except KeyError as exc:
+            raise DesignError(f"--vary sleeve_material={v}: {exc.args[0]}") from None
+    for v in vary.get("sleeve_radial_thickness_mm", ()):
+        if not v > 0:
+            raise DesignError(f"--vary sleeve_radial_thickness_mm={v:g}: must be > 0")
     if "spring_rate_N_per_mm" in vary and "spring" not in vary.get("preload_kind",
                                                                    (g.preload_kind,)):
         raise DesignError("--vary spring_rate_N_per_mm: a rate needs a spring preload (the "
@@ -306,7 +354,10 @@ def settings_of(asm, vary: dict[str, tuple] | None = None) -> list[Setting]:
             out.append(s)
     for s in out:
         try:
-            deviation_limits_um(s.assembly(asm))
+            a = s.assembly(asm)
+            deviation_limits_um(a)
+            if a.sleeve != asm.sleeve:          # a liner's geometry against the stack's
+                check_assembly(a, "--vary")
         except ValueError as exc:
             raise DesignError(f"--vary: {exc.args[0]}") from None
     return out
@@ -315,14 +366,23 @@ def settings_of(asm, vary: dict[str, tuple] | None = None) -> list[Setting]:
 @dataclass(frozen=True)
 class StackAnswers:
     """One candidate's answers at every assembled preload and temperature, arrays
-    (n_preloads, n_T): preload (N), largest contact pressure (MPa), inner and outer fit pressure
-    (MPa), friction torque (N mm); dofs: the FE model's displacement DOFs."""
+    (n_preloads, n_T): preload (N), largest contact pressure (MPa), friction torque (N mm);
+    fit_pressure_MPa: every fit of the assembly (inner, outer, its sleeve / cartridge,
+    `tolerances.fits_of`) -> its pressure (MPa) as `simulate`'s fit_open check reads it
+    (`checks.fit_pressure_MPa`); dofs: the FE model's displacement DOFs."""
     preload_N: np.ndarray
     max_contact_pressure_MPa: np.ndarray
-    fit_pressure_inner_MPa: np.ndarray
-    fit_pressure_outer_MPa: np.ndarray
+    fit_pressure_MPa: dict
     torque_Nmm: np.ndarray
     dofs: int
+
+    @property
+    def fit_pressure_inner_MPa(self) -> np.ndarray:
+        return self.fit_pressure_MPa["inner"]
+
+    @property
+    def fit_pressure_outer_MPa(self) -> np.ndarray:
+        return self.fit_pressure_MPa["outer"]
 
 
 class _TaskSetups:
@@ -381,8 +441,7 @@ def _evaluate(asm, stack, settings, T_C, preloads_N, mesh_factor, parametric):
         res = pl.run(inp)
         out.append(StackAnswers(res.preload_N.reshape(nP, nT),
                                 res.max_contact_pressure_MPa.reshape(nP, nT),
-                                res.fits.inner_MPa.reshape(nP, nT),
-                                res.fits.outer_MPa.reshape(nP, nT),
+                                {f: fit_pressure_MPa(res, f).reshape(nP, nT) for f in fits_of(a_s)},
                                 res.torque_Nmm.reshape(nP, nT), int(pl.ndofs)))
     return tuple(out)
 
@@ -418,7 +477,9 @@ class Metrics:
     """What the search ranks a candidate at one assembled preload by (over the temperatures).
 
     preload_range_N: max - min preload; preload_variation: that / the assembled preload;
-    fits_closed: every fit assembled with interference stays closed; contact_pressure_margin:
+    fits_closed: every fit of the assembly designed with interference (`tolerances.
+    designed_closed`: inner, outer, sleeve, cartridge) stays closed, as `simulate`'s fit_open
+    checks read it; open_fits: the fits that open somewhere in the range; contact_pressure_margin:
     limit / largest contact pressure - 1; feasible: fits closed, preload kept, contact pressure
     within the limit; in_band: feasible and the preload inside the band at every temperature."""
     preload_assembled_N: float
@@ -432,24 +493,26 @@ class Metrics:
     torque_max_Nmm: float
     feasible: bool
     in_band: bool
+    open_fits: tuple[str, ...] = ()
 
 
 def _metrics(asm, r: StackAnswers, preloads_N, band: Band) -> list[Metrics]:
     limit = next(c.allowable for c in assembly_checks(asm) if c.name == "max_contact_pressure_MPa")
-    fi, fo = asm.mean_fits_um()
+    designed = designed_closed(asm)
     out = []
     for k, P0 in enumerate(preloads_N):
         P = r.preload_N[k]
         lo, hi = band.limits_N(float(P0))
-        closed = ((fi <= 0 or r.fit_pressure_inner_MPa[k].min() > 0)
-                  and (fo <= 0 or r.fit_pressure_outer_MPa[k].min() > 0))
+        opened = tuple(f for f, p in r.fit_pressure_MPa.items()
+                       if designed[f] and not p[k].min() > 0)     # the check: open at p <= 0
+        closed = not opened
         p_max = float(r.max_contact_pressure_MPa[k].max())
         feasible = bool(closed and P.min() > 0 and p_max <= limit)
         out.append(Metrics(float(P0), float(np.ptp(P)), float(np.ptp(P) / P0), float(P.min()),
                            float(P.max()), bool(closed), p_max,
                            float(limit / p_max - 1) if p_max > 0 else float("inf"),
                            float(r.torque_Nmm[k].max()), feasible,
-                           bool(feasible and P.min() >= lo and P.max() <= hi)))
+                           bool(feasible and P.min() >= lo and P.max() <= hi), opened))
     return out
 
 
@@ -521,18 +584,36 @@ class PreloadSplit:
 
 
 @dataclass(frozen=True)
+class ConstraintCount:
+    """How many of the screened designs fail one feasibility constraint: name (the check of
+    `simulate` it is: fit_open_<fit>, preload_lost, max_contact_pressure_MPa), failed, of."""
+    name: str
+    failed: int
+    of: int
+
+
+@dataclass(frozen=True)
 class Why:
     """The preload change split at the cold and the hot end (`PreloadSplit`), for the assembly
-    as given and for the best design, at the best design's assembled preload."""
-    given: tuple[PreloadSplit, PreloadSplit]
-    best: tuple[PreloadSplit, PreloadSplit]
+    as given and for the best design, at the best design's assembled preload (no feasible
+    design: the assembly as given at its own preload, best empty); constraints: each
+    feasibility constraint's count of failing screened designs (`ConstraintCount`)."""
+    given: tuple[PreloadSplit, ...]
+    best: tuple[PreloadSplit, ...]
+    constraints: tuple[ConstraintCount, ...] = ()
+
+    @property
+    def failed_everywhere(self) -> tuple[str, ...]:
+        """The constraints every screened design fails (what makes a search infeasible)."""
+        return tuple(c.name for c in self.constraints if c.of and c.failed == c.of)
 
 
 @dataclass(frozen=True)
 class DesignResult:
     """What `run` found. designs: confirmed on the assembly's mesh, ranked; screened: every
-    design on the screening mesh, ranked; pareto: the screened Pareto set; why: None when no
-    design is feasible. `to_json` is design.json (the file edge)."""
+    design on the screening mesh, ranked; pareto: the screened Pareto set (empty when no design
+    is feasible: `why.failed_everywhere` then says which constraint failed in every design).
+    `to_json` is design.json (the file edge)."""
     range_C: tuple[float, float]
     temperatures_C: tuple[float, ...]
     band: Band
@@ -557,8 +638,10 @@ class DesignResult:
                 "screened": [d.row() for d in self.screened],
                 "pareto": [d.row() for d in self.pareto],
                 "why": None if w is None else {
-                    label: [{**asdict(e), "residual_N": e.residual_N} for e in getattr(w, label)]
-                    for label in ("given", "best")},
+                    **{label: [{**asdict(e), "residual_N": e.residual_N}
+                               for e in getattr(w, label)] for label in ("given", "best")},
+                    "constraints": [asdict(c) for c in w.constraints],
+                    "failed_everywhere": list(w.failed_everywhere)},
                 "provenance": self.provenance}
 
 
@@ -615,7 +698,7 @@ def run(asm, T_min_C: float, T_max_C: float, out: Path, provenance: dict,
     given = next(d for d in confirmed if d.is_given
                  and d.metrics.preload_assembled_N == asm.preload.assembled_N)
     top = next((d for d in confirmed if d.metrics.feasible), None)
-    why = _why(asm, top, T) if top is not None else None
+    why = _why(asm, top, T, designs)
     result = DesignResult((T_min_C, T_max_C), tuple(float(t) for t in T), band, len(stacks),
                           len(settings), len(designs), given, confirmed,
                           sorted(designs, key=rank_key), pareto(designs), why, provenance)
@@ -652,12 +735,29 @@ def preload_split(asm, T_ends_C, preload_N: float, setting: Setting | None = Non
                  for k in range(1, Ts.size))
 
 
-def _why(asm, best: Design, T) -> Why:
+def constraint_counts(asm, designs: list[Design]) -> tuple[ConstraintCount, ...]:
+    """Per feasibility constraint (`Metrics.feasible`: each fit of `asm` designed closed, the
+    preload, the contact pressure), how many of `designs` fail it."""
+    fails = {f"fit_open_{f}": 0 for f, closed in designed_closed(asm).items() if closed}
+    fails.update(preload_lost=0, max_contact_pressure_MPa=0)
+    for d in designs:
+        m = d.metrics
+        for f in m.open_fits:
+            fails[f"fit_open_{f}"] = fails.get(f"fit_open_{f}", 0) + 1
+        fails["preload_lost"] += not m.preload_min_N > 0
+        fails["max_contact_pressure_MPa"] += m.contact_pressure_margin < 0
+    return tuple(ConstraintCount(k, int(v), len(designs)) for k, v in fails.items())
+
+
+def _why(asm, best: Design | None, T, designs: list[Design]) -> Why:
     """`preload_split` at both ends of the range for the assembly as given and the best design,
-    at the best design's assembled preload (the assembly's mesh)."""
-    P = best.metrics.preload_assembled_N
+    at the best design's assembled preload (the assembly's mesh); with no feasible design the
+    assembly as given at its own preload. The constraint counts over `designs`."""
+    P = best.metrics.preload_assembled_N if best is not None else asm.preload.assembled_N
     return Why(preload_split(asm, (T[0], T[-1]), P),
-               preload_split(best.stack.assembly(asm), (T[0], T[-1]), P, best.setting))
+               () if best is None else
+               preload_split(best.stack.assembly(asm), (T[0], T[-1]), P, best.setting),
+               constraint_counts(asm, designs))
 
 
 def _label(d: Design, given: Setting) -> str:
@@ -710,10 +810,11 @@ def _report(asm, out, res: DesignResult, T, P0, fine, best):
              "contact-pressure margin at once.", "",
              md_table(["design", "range / assembled", "max torque (N mm)", "contact-pressure margin"],
                       [[_label(d, g0), d.metrics.preload_variation, d.metrics.torque_max_Nmm,
-                        d.metrics.contact_pressure_margin] for d in res.pareto[:15]]), "",
+                        d.metrics.contact_pressure_margin] for d in res.pareto[:15]])
+             if res.pareto else infeasible_text(res.why), "",
              "![pareto](pareto.png)", ""]
     w = res.why
-    if w is not None:
+    if w is not None and w.best:
         lines += ["## Why the best design works", "",
                   "The preload change from the reference temperature to each end of the range, "
                   "split into parts that add up to it: the bearing's own thermal geometry (every "
@@ -730,6 +831,15 @@ def _report(asm, out, res: DesignResult, T, P0, fine, best):
                             for lab in ("given", "best") for e in getattr(w, lab)]), "",
                   _explain(w, res.designs[0]), ""]
     write_report_files(out, lines, f"Athermal stack search: {asm.name}")
+
+
+def infeasible_text(w: Why) -> str:
+    """The empty Pareto set in words: the constraints every design failed, the others' counts."""
+    every = w.failed_everywhere
+    counts = ", ".join(f"{c.name} {c.failed} of {c.of}" for c in w.constraints)
+    return ("No feasible design: " + (f"{' and '.join(every)} failed in every design"
+                                      if every else "no design met every constraint at once")
+            + f" (designs failing each constraint: {counts}).")
 
 
 def _explain(w: Why, best: Design) -> str:
