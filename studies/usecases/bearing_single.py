@@ -14,6 +14,7 @@ pair's torque model (analytic/torque.py) applied to this one bearing (`bearing_t
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -57,13 +58,49 @@ class BearingRunError(ValueError):
     """Bad input or a row without equilibrium: one line, exit 2."""
 
 
+@dataclass(frozen=True)
+class BearingRun:
+    """What `bearing` computed: the single bearing's typed state and the output table (the load
+    columns, then OUTPUT_COLUMNS, then `convention`)."""
+    state: SingleBearingState
+    columns: dict
+
+    @property
+    def n_rows(self) -> int:
+        return len(self.columns["convention"])
+
+    def to_frame(self):
+        """OUT.csv's columns as a `pandas.DataFrame` (units in the names)."""
+        import pandas as pd
+
+        return pd.DataFrame(self.columns)
+
+
 def run(bearing_path: Path, loads_path: Path, out: Path, convention: str = "exact",
         provenance: dict | None = None, control: str = "outer") -> int:
     """Solve every row of `loads_path` for the bearing of `bearing_path`, write `out` atomically
     (nothing is written when any row fails).  Returns the number of rows."""
-    cfg = load_bearing(bearing_path)
-    cols = read_table(loads_path, allowed=set(LOAD_COLUMNS))
-    n = len(cols["_line"])
+    res = solve(load_bearing(bearing_path), read_table(loads_path, allowed=set(LOAD_COLUMNS)),
+                str(loads_path), convention, control)
+    write(res, out, provenance)
+    return res.n_rows
+
+
+def write(res: BearingRun, out: Path, provenance: dict | None = None) -> None:
+    """OUT.csv and its provenance sidecar, atomically (a write error: one BearingRunError line)."""
+    try:
+        write_table(out, res.columns, provenance)
+    except TableError as exc:
+        raise BearingRunError(str(exc)) from None
+
+
+def solve(cfg, cols: dict, where: str = "loads", convention: str = "exact",
+          control: str = "outer") -> BearingRun:
+    """Every row of the loads table `cols` (checked columns of LOAD_COLUMNS: from `read_table`,
+    or the API's in-memory table; `where` names it in errors) for the bearing `cfg`
+    (`load_bearing`)."""
+    n = len(next(v for c, v in cols.items() if not c.startswith("_")))
+    loads_path = where
     get = lambda c: np.asarray(cols.get(c, np.zeros(n)), float)  # noqa: E731
     quasi = "speed_rpm" in cols
     st = solve_single(cfg.geometry, axial_load_N=get("axial_load_N"),
@@ -79,7 +116,8 @@ def run(bearing_path: Path, loads_path: Path, out: Path, convention: str = "exac
                               "viscosity")
     bad = np.flatnonzero(~st.converged)
     if bad.size:
-        raise BearingRunError(f"{loads_path}: line {cols['_line'][bad[0]]}: no equilibrium found "
+        row = (f"line {cols['_line'][bad[0]]}" if "_line" in cols else f"row {bad[0] + 1}")
+        raise BearingRunError(f"{loads_path}: {row}: no equilibrium found "
                               f"for these loads ({bad.size} row(s) in all); with radial "
                               "clearance a bearing needs a load that seats its balls")
     b = st.balls
@@ -105,11 +143,7 @@ def run(bearing_path: Path, loads_path: Path, out: Path, convention: str = "exac
             cfg, st, get("speed_rpm") if quasi else np.full(n, lub.speed_rpm), get("T_oil_C"))),
         "convention": np.full(n, convention),
     })
-    try:
-        write_table(out, out_cols, provenance)
-    except TableError as exc:
-        raise BearingRunError(str(exc)) from None
-    return n
+    return BearingRun(st, out_cols)
 
 
 def bearing_torque_Nmm(cfg, st: SingleBearingState, speed_rpm, T_oil_C) -> np.ndarray:

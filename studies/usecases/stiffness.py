@@ -107,6 +107,12 @@ class RossTable:
     def range_text(self) -> str:
         return f"{self.speeds_rpm.min():g}..{self.speeds_rpm.max():g} rpm"
 
+    def to_frame(self):
+        """The table as a `pandas.DataFrame` (`ross.BearingElement.from_table` reads its names)."""
+        import pandas as pd
+
+        return pd.DataFrame(self.columns)
+
 
 def ross_table(k: PairStiffness, speed_rpm: np.ndarray, where: str = "conditions") -> RossTable:
     """One row per speed, sorted (a ROSS table is a function of speed): rows with equal speeds
@@ -129,22 +135,34 @@ def ross_table(k: PairStiffness, speed_rpm: np.ndarray, where: str = "conditions
 
 @dataclass(frozen=True)
 class StiffnessRun:
+    """What `stiffness` computed: the output table (condition columns, then the stiffness
+    columns) and the ROSS table when asked for."""
     n_rows: int
     ross: RossTable | None
+    columns: dict | None = None
+
+    def to_frame(self):
+        """OUT.csv's columns as a `pandas.DataFrame` (units in the names)."""
+        import pandas as pd
+
+        return pd.DataFrame(self.columns)
 
 
-def run(assembly_path: Path, conditions_path: Path, out: Path, per_bearing: bool = False,
-        ross_out: Path | None = None, provenance: dict | None = None,
-        progress=None) -> StiffnessRun:
-    """The command: read, solve every row, then write OUT.csv (and the ROSS table) atomically;
-    nothing is written when any row fails."""
-    from studies.model.config import load_assembly
+def _line(rows: dict, i: int) -> str:
+    """Row i of a chunk as the user knows it: the file's line, or the table's 1-based row."""
+    return f"line {rows['_line'][i]}" if "_line" in rows else f"row {int(rows['_row'][i]) + 1}"
 
-    asm = load_assembly(assembly_path)
-    cond = read_conditions(conditions_path)
-    n = len(cond["_line"])
+
+def compute(asm, cond: dict, where: str = "conditions", per_bearing: bool = False,
+            ross: bool = False, progress=None) -> StiffnessRun:
+    """Solve every row of the conditions `cond` (checked columns: `read_conditions`, or the API's
+    in-memory table; `where` names it in errors) and build the output columns (and the ROSS
+    table with `ross`)."""
+    n = len(next(v for c, v in cond.items() if not c.startswith("_")))
     pipe = Pipeline.shared(asm, progress=progress)
     cols = {c: v for c, v in cond.items() if not c.startswith("_")}
+    if "_line" not in cond:
+        cond = dict(cond, _row=np.arange(n))
     parts, speeds = [], []
     for i0 in range(0, n, CHUNK_ROWS):          # bounded working memory (every ball, every row)
         rows = {c: v[i0:i0 + CHUNK_ROWS] for c, v in cond.items()}
@@ -152,23 +170,28 @@ def run(assembly_path: Path, conditions_path: Path, out: Path, per_bearing: bool
         k = stiffness_at(pipe, inputs, i0)
         bad = np.flatnonzero(~k.converged)
         if bad.size:
-            raise ModelError(f"{conditions_path}: line {rows['_line'][bad[0]]}: the balls' state "
+            raise ModelError(f"{where}: {_line(rows, bad[0])}: the balls' state "
                              f"at the equilibrium did not converge")
         parts.append(k)
-        speeds.append(np.broadcast_to(inputs.speed_rpm, (len(rows["_line"]),)))
+        speeds.append(np.broadcast_to(inputs.speed_rpm, (min(n - i0, CHUNK_ROWS),)))
         if progress and n > CHUNK_ROWS:
             progress(f"stiffness: {min(n, i0 + CHUNK_ROWS)} of {n} rows")
     k = PairStiffness(*(np.concatenate([getattr(p, f) for p in parts], axis=ax) for f, ax in
                         (("pair_N_mm_rad", 0), ("bearing_N_mm_rad", 1), ("loads_N_mm", 1),
                          ("converged", 0))))
     cols.update(stiffness_columns(k, per_bearing))
-    ross = None
-    if ross_out is not None:
-        ross = ross_table(k, np.concatenate(speeds), str(conditions_path))
+    table = ross_table(k, np.concatenate(speeds), where) if ross else None
+    return StiffnessRun(n, table, cols)
+
+
+def write(res: StiffnessRun, out: Path, ross_out: Path | None = None,
+          provenance: dict | None = None) -> None:
+    """OUT.csv (and the ROSS table) atomically, each with its provenance sidecar."""
     try:
         with TableWriter(out, provenance) as w:
-            w.write(cols)
-            if ross is not None:
+            w.write(res.columns)
+            if ross_out is not None and res.ross is not None:
+                ross = res.ross
                 side = dict(provenance or {}, ross={
                     "speeds_rpm": ross.speeds_rpm.tolist(),
                     "interpolated_range_rpm": [float(ross.speeds_rpm.min()),
@@ -180,4 +203,17 @@ def run(assembly_path: Path, conditions_path: Path, out: Path, per_bearing: bool
                     wr.write(ross.columns)
     except TableError as exc:
         raise StiffnessRunError(str(exc)) from None
-    return StiffnessRun(n, ross)
+
+
+def run(assembly_path: Path, conditions_path: Path, out: Path, per_bearing: bool = False,
+        ross_out: Path | None = None, provenance: dict | None = None,
+        progress=None) -> StiffnessRun:
+    """The command: read, solve every row, then write OUT.csv (and the ROSS table) atomically;
+    nothing is written when any row fails."""
+    from studies.model.config import load_assembly
+
+    asm = load_assembly(assembly_path)
+    cond = read_conditions(conditions_path)
+    res = compute(asm, cond, str(conditions_path), per_bearing, ross_out is not None, progress)
+    write(res, out, ross_out, provenance)
+    return res
