@@ -64,9 +64,20 @@ def _provenance(command: str, **inputs) -> dict:
     from studies.model.provenance import provenance
 
     prov = provenance(command, {k: Path(v) for k, v in inputs.items() if _is_path(v)})
-    prov["inputs"].update({k: {"path": "(in-memory table)"} for k, v in inputs.items()
+    prov["inputs"].update({k: {"path": "(in-memory table)", "sha256": _table_sha256(v)}
+                           for k, v in inputs.items()
                            if v is not None and not _is_path(v) and k != "assembly"})
     return prov
+
+
+def _table_sha256(cols) -> str:
+    """SHA-256 of an in-memory table: its column names and float64 values in order."""
+    import hashlib
+
+    h = hashlib.sha256()
+    for k, v in dict(cols).items():
+        h.update(str(k).encode() + b"\0" + np.ascontiguousarray(np.asarray(v, float)).tobytes())
+    return h.hexdigest()
 
 
 @contextmanager
