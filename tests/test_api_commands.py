@@ -148,7 +148,7 @@ def test_verify_twin(tmp_path, asm_path, monkeypatch):
     # the manufactured solutions on the coarse levels of tests/test_verify.py (their orders are
     # asserted in tests/test_mms.py; here only the twin's equality)
     monkeypatch.setattr(verify, "mms_cases", functools.partial(verify.mms_cases, (4, 8, 16)))
-    monkeypatch.setattr(verify, "transient_mms_cases", lambda: [], raising=False)
+    monkeypatch.setattr(verify, "transient_mms_cases", lambda: [])
     assert main(["verify", "--out", str(tmp_path / "v"), "--assembly", str(asm_path)]) == 0
     res = bearingfem.verify(assembly=asm_path)
     cli = json.loads((tmp_path / "v" / "verification.json").read_text())

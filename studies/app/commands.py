@@ -280,9 +280,11 @@ def cmd_verify(args) -> None:
         raise UserError(str(exc)) from None
     bad = [c.name for c in result.cases if c.kind in ("lame_fit", "lame_multilayer", "lame_displacement",
                                                            "free_thermal")
-           and c.rel_error > verify.TOLERANCE] + [m.name for m in result.mms if not m.passed]
+           and c.rel_error > verify.TOLERANCE] + [m.name for m in (*result.mms, *result.mms_transient)
+                                                   if not m.passed]
     print(f"verification: {len(result.cases) + len(result.convergence)} cases and "
-          f"{len(result.mms)} manufactured-solution orders written to {args.out}/verification.md"
+          f"{len(result.mms) + len(result.mms_transient)} manufactured-solution orders written to "
+          f"{args.out}/verification.md"
           + (f"; OUTSIDE tolerance: {', '.join(bad)}" if bad
              else "; all Lamé cases within 0.5 %, all orders as expected"))
 
