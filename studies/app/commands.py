@@ -7,13 +7,12 @@ None of these deferred imports hides a cycle (tests/test_imports.py counts them 
 """
 from __future__ import annotations
 
-import os
-import stat
 import sys
 from pathlib import Path
 
 
 from studies.app.output import UserError, atomic_dir, progress, progress_bar
+from studies.usecases.output_folder import check_output_file
 from studies.model.provenance import provenance
 from studies.validation import STUDIES, study_module
 
@@ -43,42 +42,6 @@ def _user_errors():
     return (ConfigError, TableError, EffectError, MeshError, SolveError, ModelError,
             DiagnosisError, ModelFailure, ToleranceError, SchedulerError, OutputError,
             DesignError, StiffnessRunError, BearingRunError)
-
-
-def check_output_file(path: Path, inputs: tuple[Path, ...] = ()) -> None:
-    """Refuse, before any work is done, an output path (or its provenance sidecar) that would
-    lose or alter something the user has: one of the inputs, a symlink, an existing non-regular
-    file (FIFO, device, folder), or a place that cannot be written."""
-    from studies.model.table import sidecar_path
-
-    _check_one_output(Path(path), inputs)
-    _check_one_output(sidecar_path(path), inputs)
-
-
-def _check_one_output(path: Path, inputs: tuple[Path, ...]) -> None:
-    if path.is_symlink():
-        raise UserError(f"{path}: is a symbolic link; -o writes a regular file and does not "
-                        "replace links (give the target's path)")
-    if path.exists():
-        if path.is_dir():
-            raise UserError(f"{path}: is a folder; -o needs a file name")
-        if not stat.S_ISREG(path.stat().st_mode):
-            raise UserError(f"{path}: exists and is not a regular file (FIFO, device or socket); "
-                            "choose another output name")
-        for given in inputs:
-            try:
-                same = Path(given).exists() and os.path.samefile(path, given)
-            except OSError:
-                same = False
-            if same:
-                raise UserError(f"{path}: is the input file {given}; choose another output name "
-                                "(nothing was changed)")
-    parent = path.resolve().parent
-    probe = parent
-    while not probe.exists():
-        probe = probe.parent
-    if not probe.is_dir() or not os.access(probe, os.W_OK):
-        raise UserError(f"{path}: cannot write there ({probe} is not a writable folder)")
 
 
 def cmd_simulate(args) -> None:
@@ -125,7 +88,6 @@ def cmd_bearing(args) -> None:
     from studies.usecases import api
 
     try:
-        check_output_file(args.out, (args.bearing, args.loads))
         res = api.bearing(args.bearing, args.loads, args.out, args.convention, args.control)
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
@@ -137,9 +99,6 @@ def cmd_stiffness(args) -> None:
     from studies.usecases import api
 
     try:
-        check_output_file(args.out, (args.assembly, args.conditions))
-        if args.ross is not None:
-            check_output_file(args.ross, (args.assembly, args.conditions, args.out))
         res = api.stiffness(args.assembly, args.conditions, args.out, args.per_bearing, args.ross,
                             progress=progress)
     except _user_errors() as exc:

@@ -24,7 +24,8 @@ from typing import Mapping
 
 import numpy as np
 
-from studies.usecases.output_folder import output_folder
+from studies.usecases.output_folder import check_output_file, output_folder
+
 
 def _quiet(*_args) -> None:
     """The default progress: nothing (the command line passes its own)."""
@@ -203,6 +204,11 @@ def stiffness(assembly, conditions, out=None, per_bearing: bool = False, ross=No
     from studies.model.inputs import CONDITION_COLUMNS
     from studies.usecases import stiffness as st
 
+    inputs = tuple(Path(p) for p in (assembly, conditions) if _is_path(p))
+    if out is not None:                         # before any work: nothing the user has is lost
+        check_output_file(Path(out), inputs)
+    if _is_path(ross):
+        check_output_file(Path(ross), inputs + ((Path(out),) if out is not None else ()))
     asm, path = _assembly(assembly)
     cond = table(conditions, set(CONDITION_COLUMNS), "conditions")
     where = str(conditions) if _is_path(conditions) else "conditions"
@@ -251,6 +257,8 @@ def bearing(bearing_file, loads, out=None, convention: str = "exact", control: s
     from studies.model.provenance import provenance
     from studies.usecases import bearing_single as bs
 
+    if out is not None:                         # before any work: nothing the user has is lost
+        check_output_file(Path(out), tuple(Path(p) for p in (bearing_file, loads) if _is_path(p)))
     cfg = load_bearing(Path(bearing_file)) if _is_path(bearing_file) else bearing_file
     cols = table(loads, set(bs.LOAD_COLUMNS), "loads")
     res = bs.solve(cfg, cols, str(loads) if _is_path(loads) else "loads", convention, control)

@@ -1,6 +1,7 @@
-"""The output folder of a command (`report`, `tolerance`, `design`, `diagnose`, `verify`, `study`),
-from the command line and from Python alike: written into a temporary folder beside it and moved
-into place only when the work succeeds (`infra.files.atomic_folder`, which also sweeps the
+"""The outputs of a command, from the command line and from Python alike: the checks of an output
+file (`check_output_file`: -o of `simulate`, `stiffness`, `bearing`) and the output folder
+(`report`, `tolerance`, `design`, `diagnose`, `verify`, `study`), written into a temporary folder
+beside it and moved into place only when the work succeeds (`infra.files.atomic_folder`, which also sweeps the
 temporaries of killed runs).
 
 An existing folder is replaced only if it is empty or holds exactly what bearingfem wrote there
@@ -8,6 +9,8 @@ An existing folder is replaced only if it is empty or holds exactly what bearing
 added since) is refused with their names, so nothing the user keeps there is lost."""
 from __future__ import annotations
 
+import os
+import stat
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -58,3 +61,39 @@ def _foreign_files(out: Path) -> list[str]:
     return sorted(str(p.relative_to(out)) for p in out.rglob("*")
                   if (p.is_file() or p.is_symlink()) and p != marker
                   and str(p.relative_to(out)) not in listed)
+
+
+def check_output_file(path: Path, inputs: tuple[Path, ...] = ()) -> None:
+    """Refuse, before any work is done, an output path (or its provenance sidecar) that would
+    lose or alter something the user has: one of the inputs, a symlink, an existing non-regular
+    file (FIFO, device, folder), or a place that cannot be written."""
+    from studies.model.table import sidecar_path
+
+    _check_one_output(Path(path), inputs)
+    _check_one_output(sidecar_path(path), inputs)
+
+
+def _check_one_output(path: Path, inputs: tuple[Path, ...]) -> None:
+    if path.is_symlink():
+        raise OutputError(f"{path}: is a symbolic link; -o writes a regular file and does not "
+                        "replace links (give the target's path)")
+    if path.exists():
+        if path.is_dir():
+            raise OutputError(f"{path}: is a folder; -o needs a file name")
+        if not stat.S_ISREG(path.stat().st_mode):
+            raise OutputError(f"{path}: exists and is not a regular file (FIFO, device or socket); "
+                            "choose another output name")
+        for given in inputs:
+            try:
+                same = Path(given).exists() and os.path.samefile(path, given)
+            except OSError:
+                same = False
+            if same:
+                raise OutputError(f"{path}: is the input file {given}; choose another output name "
+                                "(nothing was changed)")
+    parent = path.resolve().parent
+    probe = parent
+    while not probe.exists():
+        probe = probe.parent
+    if not probe.is_dir() or not os.access(probe, os.W_OK):
+        raise OutputError(f"{path}: cannot write there ({probe} is not a writable folder)")
