@@ -200,7 +200,7 @@ def atomic_folder(out: Path):
     """Yield a new temporary folder beside `out` (mode 0777 less the umask); when the block ends
     without an exception it replaces `out` (an existing `out` is moved aside to a temporary name
     first and removed after), else it is removed and `out` stays as it was. Deciding whether `out`
-    may be replaced is the caller's job (`studies.app.output.atomic_dir`)."""
+    may be replaced is the caller's job (`studies.usecases.output_folder.output_folder`)."""
     out = Path(out)
     sweep_stale(out.parent, f".{out.name}.")
     out.parent.mkdir(parents=True, exist_ok=True)
