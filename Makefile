@@ -6,10 +6,12 @@ OUT ?= out
 
 .PHONY: demo test test-slow verify bench setup clean
 
-$(BIN)/bearingfem: pyproject.toml
+# the extras: test (pytest, xdist, pypdf) and ross (the ROSS round trip of `stiffness --ross`,
+# tests/test_stiffness_ross.py, which `make test` then requires: BEARINGFEM_REQUIRE_ROSS)
+$(BIN)/bearingfem: pyproject.toml Makefile
 	$(PY) -m venv $(VENV)
 	$(BIN)/pip install --quiet --upgrade pip
-	$(BIN)/pip install --quiet -e '.[test]'
+	$(BIN)/pip install --quiet -e '.[test,ross]'
 	touch $@
 
 setup: $(BIN)/bearingfem
@@ -27,7 +29,7 @@ verify: setup
 PYTEST_PAR := -n auto --maxprocesses 4 --dist loadscope
 
 test: setup
-	$(BIN)/python -m pytest -q $(PYTEST_PAR)
+	BEARINGFEM_REQUIRE_ROSS=1 $(BIN)/python -m pytest -q $(PYTEST_PAR)
 
 test-slow: setup
 	$(BIN)/python -m pytest -q -m slow $(PYTEST_PAR)

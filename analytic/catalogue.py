@@ -16,7 +16,8 @@ Every number carries its provenance:
             Rolling Bearing Analysis 5th ed., Vol. 1 ch. 2: 0.515-0.54 typical for ball bearings).
 
 Changing one of these changes every preload/stiffness/torque number downstream: the study reports
-should say that these are assumptions (DESIGN.md section 4, last item).
+say that these are assumptions (the `[assume]` tags of the shipped assembly files; docs/cli.md
+"report", the numbered assumptions).
 """
 from __future__ import annotations
 

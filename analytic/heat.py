@@ -48,10 +48,11 @@ class PairHeat:
     inner_W: np.ndarray          # everything generated at the inner contacts (half the viscous part)
     outer_W: np.ndarray          # everything generated at the outer contacts (half the viscous part)
     hysteresis_W: np.ndarray | float = 0.0   # elastic hysteresis (solid-film model)
+    drag_W: np.ndarray | float = 0.0         # made in the oil around the balls (SKF drag), at the balls
 
     @property
     def total_W(self) -> np.ndarray:
-        return self.sliding_W + self.spin_W + self.viscous_W + self.hysteresis_W
+        return self.sliding_W + self.spin_W + self.viscous_W + self.hysteresis_W + self.drag_W
 
 
 def pair_heat_W(g, pair, speed_rpm, mu_traction: float, viscous_torque_Nmm) -> PairHeat:
@@ -96,6 +97,22 @@ def solid_film_pair_heat_W(torque, speed_rpm) -> PairHeat:
                     inner_W=power_W(torque.inner_contacts_Nmm, n),
                     outer_W=power_W(torque.outer_contacts_Nmm, n),
                     hysteresis_W=power_W(torque.hysteresis_Nmm, n))
+
+
+def located_pair_heat_W(torque, speed_rpm) -> PairHeat:
+    """Heat of an oil-lubricated pair (W) from its torque's own split by location (`analytic.
+    torque.pair_torque` with a friction model of issue 33: `heat_inner_W`, `heat_outer_W`,
+    `heat_ball_W`): the sliding part is the torque's sliding term, the viscous part its rolling
+    term, the drag the heat at the balls; inner_W + outer_W + drag_W = total_W = the torque's
+    heat. Unlike `pair_heat_W` (Palmgren: sliding and spin from a traction coefficient beside the
+    torque model) the heat is the torque's own dissipation."""
+    if torque.heat_inner_W is None:
+        raise ValueError("located_pair_heat_W needs a torque computed with a speed")
+    n = np.asarray(speed_rpm, float)
+    return PairHeat(sliding_W=power_W(torque.sliding_Nmm, n),
+                    spin_W=np.zeros_like(power_W(torque.sliding_Nmm, n)),
+                    viscous_W=power_W(torque.rolling_Nmm, n), inner_W=torque.heat_inner_W,
+                    outer_W=torque.heat_outer_W, drag_W=torque.heat_ball_W)
 
 
 # ------------------------------------------------------------------ rolling contact conductance

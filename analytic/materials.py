@@ -5,7 +5,7 @@ CTE is alpha(T) = alpha_per_K + dalpha_per_K2 * (T - 20 C)), density_kg_m3, cond
 specific_heat_J_kgK.
 
 The thermal strain from T_ref to T is the integral of the instantaneous CTE (exact for the linear
-law, so superposition on theta = integral alpha dT stays exact, see DESIGN.md section 2):
+law, so the FE's superposition on theta = integral alpha dT stays exact, fem/solver.py):
 
     theta(T_ref, T) = alpha_20 (T - T_ref) + dalpha/2 [(T - 20)^2 - (T_ref - 20)^2]
 

@@ -72,4 +72,4 @@ def simulate(assembly, conditions: Mapping, effects: Mapping | None = None):
         return pd.DataFrame(run_transient(Pipeline.shared(assembly), cols).columns())
     check_columns("conditions", cols, allowed=set(CONDITION_COLUMNS))
     result = simulate_table(assembly, cols, dict(effects or {}), pipeline=Pipeline.shared(assembly))
-    return pd.DataFrame(to_columns(result))
+    return pd.DataFrame(to_columns(result, friction_split=True))

@@ -6,7 +6,8 @@ extrapolated stresses: the mean pressure of a fit of radius R and length L is
 
     p_mean = sum_i lambda_i / (2 pi R L)      (lambda_i: whole-ring nodal contact forces, N)
 
-which converges much faster than an interface stress average (DESIGN.md section 7).
+which converges much faster than an interface stress average (the reactions are the weak form's
+own nodal forces; `bearingfem verify` holds this pressure against Lame, docs/cli.md "verify").
 """
 from __future__ import annotations
 

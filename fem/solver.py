@@ -24,7 +24,8 @@ square of the rotor speed omega^2 (centrifugal body force rho omega^2 r on the s
 sum delta_k U_k. The "load columns" below are the n_parts thermal strains, then omega^2. `Superposition` keeps those
 unit solutions per status, evaluates any number of states by small dense products, checks each
 state's status (lambda >= 0 on closed pairs, gap >= 0 on open ones), and solves new statuses only
-when a state leaves the known ones (DESIGN.md section 2, "linearity is a resource").
+when a state leaves the known ones (for a fixed contact status the problem is linear in these loads,
+so the superposition is exact).
 """
 from __future__ import annotations
 

@@ -652,20 +652,25 @@ def bearing_heat_inputs_W(heat, row: int = 0, ring_share=0.5, share_A: float = 0
     within a revolution). The pair's heat is split between the bearings by share_A (default
     equal: a back-to-back or face-to-face pair under pure preload loads both alike; the torque
     model sums the two). Updated every step from the current contact state by the caller
-    (`analytic.heat.pair_heat_W`). Keys: raceway_<inner|outer>_ring_<j>, ball_<j>."""
+    (`analytic.heat.pair_heat_W`). Heat made at the balls themselves (`PairHeat.drag_W`, the SKF
+    drag; 0 otherwise) goes to the ball nodes, or without them half to each raceway.
+    Keys: raceway_<inner|outer>_ring_<j>, ball_<j>."""
     s_in, s_out = (ring_share, ring_share) if np.ndim(ring_share) == 0 else ring_share
     if not (0.0 <= s_in <= 1.0 and 0.0 <= s_out <= 1.0 and 0.0 <= share_A <= 1.0):
         raise ValueError(f"ring_share and share_A must lie in [0, 1], got {ring_share}, {share_A}")
     q_in = float(np.atleast_1d(heat.inner_W)[row])
     q_out = float(np.atleast_1d(heat.outer_W)[row])
+    drag = getattr(heat, "drag_W", 0.0)
+    q_ball = float(np.atleast_1d(drag)[row]) if np.ndim(drag) else float(drag)
     share = {"A": share_A, "B": 1.0 - share_A}
     out: dict[str, float] = {}
     for j in bearings:
         s = share[j] if len(bearings) == 2 else 1.0
-        ball = ((1.0 - s_in) * q_in + (1.0 - s_out) * q_out) * s
+        ball = ((1.0 - s_in) * q_in + (1.0 - s_out) * q_out) * s + q_ball * s
         r_in, r_out = (s_in, s_out) if ball_nodes else (1.0, 1.0)
-        out[f"raceway_inner_ring_{j}"] = r_in * q_in * s
-        out[f"raceway_outer_ring_{j}"] = r_out * q_out * s
+        d_ring = 0.0 if ball_nodes else 0.5 * q_ball * s
+        out[f"raceway_inner_ring_{j}"] = r_in * q_in * s + d_ring
+        out[f"raceway_outer_ring_{j}"] = r_out * q_out * s + d_ring
         if ball_nodes:
             out[f"ball_{j}"] = ball
     return out

@@ -1,5 +1,5 @@
 """Every command's Python twin (`bearingfem.diagnose`, `tolerance`, `design`, `stiffness`,
-`report`, `verify`, `bearing`; shared/spec/cli.md "Added for turn 4"): the same numbers as the
+`report`, `verify`, `bearing`; docs/cli.md "Python API"): the same numbers as the
 command on the same inputs, the inputs given in memory (a dict of arrays or a DataFrame) where the
 command reads a CSV, `.to_frame()` equal to the CSV the command writes, and bad input raising a
 ValueError subclass whose message is the one line the command prints (exit 2).

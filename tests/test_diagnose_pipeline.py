@@ -52,7 +52,7 @@ SIGMA_001_TORQUE = {"torque_Nmm": 1.0}
 SIGMA_003 = {"torque_Nmm": 2.0, "preload_N": 5.0}
 MIN_CHANGE_SIGMA = 8.0  # issue 5 brief: hidden effects "at a magnitude a rig would see"
 
-#: effect -> parameter names, exactly as in shared/spec/cli.md (table "Effects")
+#: effect -> parameter names, exactly as in docs/cli.md (table "Effects")
 SPEC_PARAMETERS = {
     "interference_error": {"inner_um", "outer_um"},
     "radial_gradient": {"dT_K", "dT_per_krpm_K"},
@@ -65,7 +65,7 @@ SPEC_PARAMETERS = {
     "solid_film_runin": {"dmu", "runin_krev"},
     "preload_path_compliance": {"extra_compliance_um_per_kN"},
 }
-#: top-level keys of diagnosis.json, shared/spec/cli.md ("diagnose output"), in that order
+#: top-level keys of diagnosis.json, docs/cli.md ("`diagnose` output"), in that order
 SPEC_KEYS = ["verdict", "cause", "parameters", "indistinguishable", "separating_test", "baseline",
              "extended", "gain", "candidates"]
 VERDICTS = {"no_discrepancy", "explained", "ambiguous", "unexplained"}
@@ -233,7 +233,7 @@ def candidate(res, name):
 
 def onset_row(T, T_ref, threshold):
     """First row whose temperature deviates from the reference by more than `threshold`
-    (the preload_settling definition in shared/spec/cli.md: "after the first thermal excursion
+    (the preload_settling definition in docs/cli.md "Effects": "after the first thermal excursion
     beyond +-threshold_K")."""
     return int(np.argmax(np.abs(np.asarray(T) - T_ref) > threshold))
 

@@ -17,7 +17,7 @@ from studies.model.effects.thermal_lag import lag_response
 from studies.model.inputs import PARTS, PhysicsInputs, baseline_inputs
 
 T_REF = 20.0
-SPEC_PARAMETERS = {  # spec/cli.md, exactly
+SPEC_PARAMETERS = {  # docs/cli.md "Effects", exactly
     "interference_error": ("inner_um", "outer_um"),
     "radial_gradient": ("dT_K", "dT_per_krpm_K"),
     "thermal_lag": ("tau_s",),

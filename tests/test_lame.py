@@ -193,7 +193,7 @@ def test_seed000_fit_change_rates():
 @pytest.mark.requirement("R-SEED000-FITS")
 def test_outer_fit_of_seed000_closes_on_heating():
     """-1.5 um clearance closes where 1.5 um = 1.5e-6/K * 47 mm * (T - 20 C), i.e. near 41 C
-    (DESIGN.md section 6; TC4's CTE slope moves it by about 2 K): open at 20 and 35 C, closed at
+    (TC4's CTE slope moves it by about 2 K): open at 20 and 35 C, closed at
     45 and 80 C."""
     T = np.array([20.0, 35.0, 45.0, 80.0])
     d = interference_at_temperature_um(-1.5, 47.0, STEEL, TI, T, 20.0)

@@ -6,7 +6,9 @@ Requirements proved here, each against something independent of the analytic tan
   and DF) to 1e-6 of sqrt(K_ii K_jj);
 - R2 the loads the balls carry at the reconstructed equilibrium are the applied loads;
 - R3 Harris's axial-load equation differentiated (contact-angle change included) for a single
-  bearing under axial preload, and the equal-ball-load radial and tilting stiffness, to 1e-4;
+  bearing under axial preload, and the equal-ball-load radial and tilting stiffness, to 1e-4,
+  with K_n from the textbook Hertz formulas written out in this file (`harris_contact_constant`,
+  nothing of the code's contact model);
   springs in series / in parallel for the pair's axial stiffness;
 - R4 the pair solvers' own stiffness outputs (axial.py's dF/dx, combined.py's condensed radial
   and tilting stiffness): a second implementation, one plane, other unknowns;
@@ -16,9 +18,9 @@ Requirements proved here, each against something independent of the analytic tan
 import numpy as np
 import pytest
 from scipy.optimize import brentq
+from scipy.special import ellipe, ellipk
 
-from analytic.bearing import BearingGeometry, solve_pair, thermal_geometry
-from analytic.bearing.contact import contact_stiffness
+from analytic.bearing import BearingGeometry, solve_pair
 from analytic.bearing.stiffness import (bearing_tangents, condense, generalised_loads,
                                         pair_balls, pair_stiffness)
 
@@ -112,19 +114,63 @@ def test_R2_balls_at_the_reconstructed_equilibrium_carry_the_applied_loads(ball_
 P_N = 200.0
 
 
+def harris_contact_constant(alpha, f, race):
+    """K of one ball-raceway contact, Q = K delta^1.5 (N/mm^1.5), written out here from the
+    textbook (Harris & Kotzalas, Rolling Bearing Analysis 5th ed., Vol. 1): the curvature sum
+    and difference of a ball on its groove at contact angle alpha (ch. 2; gamma = Dw cos a / dm,
+    upper signs inner raceway)
+        Sum rho = (1/Dw) (4 - 1/f +- 2 gamma / (1 -+ gamma)),
+        F(rho) = (1/f +- 2 gamma / (1 -+ gamma)) / (4 - 1/f +- 2 gamma / (1 -+ gamma)),
+    the ellipticity kappa from F(rho) = [(kappa^2 + 1) E - 2 K] / [(kappa^2 - 1) E] with the
+    complete elliptic integrals K, E of the parameter m = 1 - 1/kappa^2 (scipy.special), and
+    the Hertz deflection (ch. 6)
+        delta* = (2 K / pi) (pi / (2 kappa^2 E))^(1/3),
+        delta = delta* (3 Q eta / (2 Sum rho))^(2/3) Sum rho / 2,
+        eta = (1 - nu_I^2) / E_I + (1 - nu_II^2) / E_II,
+    so K = (2 Sum rho / (3 eta)) (2 / (delta* Sum rho))^1.5 (for steel, Harris's
+    2.15e5 Sum rho^-0.5 delta*^-1.5).  The ring and ball moduli are the catalogue's materials."""
+    sg = 1.0 if race == "inner" else -1.0
+    gam = G.Dw_mm * np.cos(alpha) / G.dm_mm
+    c = sg * 2.0 * gam / (1.0 - sg * gam)
+    sum_rho = (4.0 - 1.0 / f + c) / G.Dw_mm
+    F_rho = (1.0 / f + c) / (4.0 - 1.0 / f + c)
+
+    def ell(kappa):
+        m = 1.0 - 1.0 / kappa ** 2
+        return ellipk(m), ellipe(m)
+
+    def g(kappa):
+        K, E = ell(kappa)
+        return ((kappa ** 2 + 1.0) * E - 2.0 * K) / ((kappa ** 2 - 1.0) * E) - F_rho
+    kappa = brentq(g, 1.0 + 1e-6, 100.0, xtol=1e-14, rtol=1e-15)
+    K, E = ell(kappa)
+    d_star = 2.0 * K / np.pi * (np.pi / (2.0 * kappa ** 2 * E)) ** (1.0 / 3.0)
+    eta = sum((1.0 - m.nu ** 2) / m.E_MPa for m in (G.ring, G.ball))
+    return 2.0 * sum_rho / (3.0 * eta) * (2.0 / (d_star * sum_rho)) ** 1.5
+
+
+def harris_Kn(alpha):
+    """The two contacts of a ball in series, K_n = [K_i^(-2/3) + K_o^(-2/3)]^(-3/2) (Harris &
+    Kotzalas Vol. 1 ch. 7), from `harris_contact_constant`."""
+    return (harris_contact_constant(alpha, G.f_i, "inner") ** (-2.0 / 3.0)
+            + harris_contact_constant(alpha, G.f_o, "outer") ** (-2.0 / 3.0)) ** -1.5
+
+
 def harris_axial_preload(P):
     """Harris & Kotzalas Vol. 1 ch. 7 (thrust-loaded bearing): Fa = Z K_n A0^1.5 sin a
-    (cos a0 / cos a - 1)^1.5, solved for a by brentq (scipy); K_n(a) the Hertz series stiffness
-    at a (`contact.contact_stiffness`, free geometry).  Returns (alpha, K_n, dlnK_n/dalpha)."""
-    tg = thermal_geometry(G)
+    (cos a0 / cos a - 1)^1.5, solved for a by brentq (scipy); K_n(a) of `harris_Kn` (the free
+    geometry at the reference temperature; nothing of the code's contact model).  Returns
+    (alpha, K_n, dlnK_n/dalpha), the last by a central difference of ln K_n (step 1e-6 rad:
+    truncation ~1e-12 relative)."""
     a0 = np.radians(G.alpha0_deg)
 
     def Fa(a):
-        return G.Z * contact_stiffness(G, tg, a).Kn * G.A0_mm ** 1.5 * np.sin(a) * (
+        return G.Z * harris_Kn(a) * G.A0_mm ** 1.5 * np.sin(a) * (
             np.cos(a0) / np.cos(a) - 1.0) ** 1.5 - P
     a = brentq(Fa, a0 + 1e-9, np.radians(60.0), xtol=1e-15, rtol=1e-15)
-    cs = contact_stiffness(G, tg, a)
-    return a, float(cs.Kn), float(cs.dlnKn_dalpha)
+    h = 1e-6
+    dlnK = (np.log(harris_Kn(a + h)) - np.log(harris_Kn(a - h))) / (2.0 * h)
+    return a, float(harris_Kn(a)), float(dlnK)
 
 
 def axial_stiffness_closed_form(P):

@@ -7,14 +7,21 @@ import numpy as np
 import pandas as pd
 import pytest
 
-import bearingfem
 from studies.app.cli import main
 from studies.model.config import CONFIG_DIR, load_assembly
+from studies.model.pipeline import Pipeline, table_inputs
 
 CFG = CONFIG_DIR / "seed000_71807C_TC4.toml"
-#: the names of shared/spec/cli.md "stiffness", typed here from the spec
+#: the names of docs/cli.md "Bearing stiffness", typed here: the first eight as they were, then
+#: the other 17 entries of the 5 x 5, row by row, k_<load>_<motion>_<unit>
 SPEC = ["k_xx_N_per_mm", "k_yy_N_per_mm", "k_zz_N_per_mm", "k_xy_N_per_mm", "k_yx_N_per_mm",
-        "k_tx_Nmm_per_mrad", "k_ty_Nmm_per_mrad", "k_x_ty_N_per_mrad"]
+        "k_tx_Nmm_per_mrad", "k_ty_Nmm_per_mrad", "k_x_ty_N_per_mrad",
+        "k_x_z_N_per_mm", "k_x_tx_N_per_mrad",
+        "k_y_z_N_per_mm", "k_y_tx_N_per_mrad", "k_y_ty_N_per_mrad",
+        "k_z_x_N_per_mm", "k_z_y_N_per_mm", "k_z_tx_N_per_mrad", "k_z_ty_N_per_mrad",
+        "k_tx_x_Nmm_per_mm", "k_tx_y_Nmm_per_mm", "k_tx_z_Nmm_per_mm", "k_tx_ty_Nmm_per_mrad",
+        "k_ty_x_Nmm_per_mm", "k_ty_y_Nmm_per_mm", "k_ty_z_Nmm_per_mm", "k_ty_tx_Nmm_per_mrad"]
+PRELOAD = ["preload_N", "preload_lost"]
 ROSS = ["frequency", "kxx", "kyy", "kxy", "kyx", "cxx", "cyy", "cxy", "cyx"]
 
 
@@ -26,10 +33,14 @@ def write(tmp_path, text, name="c.csv"):
 
 def test_columns_equal_simulate_and_ross_table(tmp_path, capsys):
     """Five rows at 0..12000 rpm and 20..60 C (quasi-dynamic balls as seed 000 says).
-    Columns: the condition columns, then the spec's eight names (with --per-bearing the same
-    suffixed _A, _B).  k_zz equals `simulate`'s axial_stiffness_N_per_um (the axial solvers'
-    own dF/dx, same rows) to 1e-9; pair = A + B for k_xx, k_zz (translations: the same about
-    any point; the CSV's 10 significant digits).  ROSS table: SI units (rad/s from rpm, N/m
+    Columns: the condition columns, then the 25 names, the preload (with --per-bearing the 25
+    suffixed _A, _B).  k_zz equals a central difference of the rotor's axial position at the
+    model's equilibrium (`Pipeline.run`, the axial load stepped by +-1 N about 0: no radial load,
+    so x and the tilt are unloaded by symmetry and the held-DOF k_zz is the force-controlled one)
+    to 1e-6 (truncation (1 N / 100 N preload)^2 times the curvature of the Hertz law, ~1e-5 of
+    the step's own term: measured 2.5e-7);
+    pair = A + B for k_xx, k_zz (translations: the same about any point; the CSV's 10
+    significant digits).  ROSS table: SI units (rad/s from rpm, N/m
     from N/mm), one row per speed sorted, no damping, the speed range in its sidecar and on
     stdout, no warning with 5 speeds."""
     T = [60.0, 20.0, 40.0, 40.0, 20.0]
@@ -42,11 +53,13 @@ def test_columns_equal_simulate_and_ross_table(tmp_path, capsys):
     cap = capsys.readouterr()
     assert cap.err == "" and "0..12000 rpm" in cap.out
     df = pd.read_csv(out)
-    assert list(df.columns) == ["T_ambient_C", "speed_rpm"] + SPEC + [
+    assert list(df.columns) == ["T_ambient_C", "speed_rpm"] + SPEC + PRELOAD + [
         f"{c}_{J}" for J in "AB" for c in SPEC]
-    sim = bearingfem.simulate(load_assembly(CFG), {"T_ambient_C": T, "speed_rpm": rpm})
-    np.testing.assert_allclose(df["k_zz_N_per_mm"], 1e3 * sim["axial_stiffness_N_per_um"],
-                               rtol=1e-9)
+    asm = load_assembly(CFG)
+    x = [Pipeline.shared(asm).run(table_inputs(asm, {
+        "T_ambient_C": np.array(T), "speed_rpm": np.array(rpm),
+        "axial_load_N": np.full(5, dF)})).pair.x_mm for dF in (1.0, -1.0)]
+    np.testing.assert_allclose(df["k_zz_N_per_mm"], np.abs(2.0 / (x[0] - x[1])), rtol=1e-6)
     for c in ("k_xx_N_per_mm", "k_zz_N_per_mm"):
         np.testing.assert_allclose(df[c], df[c + "_A"] + df[c + "_B"], rtol=1e-9)  # 10 digits
     r = pd.read_csv(ross)
@@ -66,7 +79,7 @@ def test_fewer_than_five_speeds_warns_once(tmp_path, capsys):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "warning" in err[0] and "2 speed(s)" in err[0] \
         and "0..5000 rpm" in err[0], err
-    assert list(pd.read_csv(out).columns) == ["T_ambient_C", "speed_rpm"] + SPEC
+    assert list(pd.read_csv(out).columns) == ["T_ambient_C", "speed_rpm"] + SPEC + PRELOAD
 
 
 @pytest.mark.parametrize("content,extra,fragment", [

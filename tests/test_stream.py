@@ -62,7 +62,7 @@ def test_streamed_table_and_summaries_are_the_whole_tables(tmp_path, pipes, name
     # the whole table at once, through the functions simulate used before it streamed
     whole = read_table(cond)
     result = simulate_table(asm, whole, effects, pipeline=pl)
-    res = to_columns(result)                    # with the flag and margin columns
+    res = to_columns(result, friction_split=True)   # simulate's columns, flags and margins too
     violations = result.checks.violations()
     cols = {**{k: v for k, v in whole.items() if k != "_line"}, **res}
     header, table = parsed(tmp_path / "o5.csv")

@@ -2,7 +2,7 @@
 
 Units: mm, N, MPa, C; angles in degrees at the interface, radians inside.
 
-Model (DESIGN.md section 2: "balls are analytic, structures are FE").  A bearing's state is fixed by
+Model (balls are analytic, structures are FE: README.md, first paragraph).  A bearing's state is fixed by
 the positions of its inner and outer groove curvature centres (Harris & Kotzalas, Rolling Bearing
 Analysis 5th ed., Vol. 1 ch. 2 and 7; Jones 1960).  Free and unloaded, the centres are
 A0 = (f_i + f_o - 1) Dw apart along the free contact angle alpha0.  With the FE shifts of the inner

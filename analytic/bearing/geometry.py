@@ -71,7 +71,7 @@ class ThermalGeometry:
 def thermal_geometry(g: BearingGeometry, T_inner_ring_C=None, T_outer_ring_C=None,
                      T_ball_C=None, T_ref_C=20.0) -> ThermalGeometry:
     """Grown geometry: groove radii r = f Dw (1 + theta_ring), ball Dw (1 + theta_ball),
-    A_T = r_i + r_o - Dw_ball (DESIGN.md section 2; seed 001 eq. 1 is the radial projection of the
+    A_T = r_i + r_o - Dw_ball (Harris & Kotzalas Vol. 1 ch. 2 with each part grown; seed 001 eq. 1 is the radial projection of the
     same statement), pitch diameter dm (1 + (theta_ir + theta_or)/2) (used only in the Hertz
     curvature, where it is a second-order effect).  theta = Material.thermal_strain (-)."""
     Tr = T_ref_C

@@ -314,6 +314,22 @@ def condense(K6: np.ndarray, inv_c) -> np.ndarray:
     return Kqq - corr
 
 
+def force_controlled(K: np.ndarray, dof: int = 0) -> np.ndarray:
+    """(...,): the stiffness of DOF `dof` when the loads on every other DOF are held (they move
+    freely): 1 / (K^-1)_dd, computed as the static condensation K_dd - K_dr K_rr^+ K_rd of the
+    other DOFs r (Guyan, AIAA J. 3 (1965) 380; the pseudo-inverse drops a DOF that holds nothing,
+    e.g. every entry 0 when the preload is lost and no ball is loaded: 0).  K (..., n, n) in
+    consistent units; the result in the units of K_dd.  For the pair: the radial stiffness
+    dF_x/dx with the axial load and the moment held, which is what stepping the radial load of
+    `simulate` and reading its radial displacement measures (axial position and tilt free)."""
+    K = np.asarray(K, float)
+    rest = [i for i in range(K.shape[-1]) if i != dof]
+    K_dr = K[..., dof, rest][..., None, :]
+    K_rd = K[..., rest, dof][..., :, None]
+    K_rr = K[..., rest, :][..., :, rest]
+    return K[..., dof, dof] - (K_dr @ np.linalg.pinv(K_rr) @ K_rd)[..., 0, 0]
+
+
 def pair_stiffness(g: BearingGeometry, arrangement: str, state: PairState,
                    **pair_args) -> PairStiffness:
     """Tangent stiffness of the pair (about its centre) and of each bearing (about its ball

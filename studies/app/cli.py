@@ -1,4 +1,4 @@
-"""The `bearingfem` command line (contract: shared/spec/cli.md).
+"""The `bearingfem` command line (contract: docs/cli.md).
 
 Bad input exits 2 with one line on stderr naming the file, row or column and the problem; no
 traceback and no partial output (results are written to a temporary folder/file and renamed).
@@ -91,6 +91,9 @@ def build_parser() -> argparse.ArgumentParser:
                     help="also each bearing's matrix about its own ball plane (suffix _A, _B)")
     sf.add_argument("--ross", type=Path, default=None, metavar="OUT.csv",
                     help="also the coefficients against speed in the table layout ROSS reads")
+    sf.add_argument("--free-axial", action="store_true",
+                    help="also the force-controlled radial stiffness k_xx_condensed_N_per_mm "
+                         "(axial load and moment held: axial position and tilt free)")
 
     t = sub.add_parser("tolerance", help="worst case and Monte Carlo of the fit tolerances")
     t.add_argument("assembly", type=Path)

@@ -100,9 +100,11 @@ def cmd_stiffness(args) -> None:
 
     try:
         res = api.stiffness(args.assembly, args.conditions, args.out, args.per_bearing, args.ross,
-                            progress=progress)
+                            progress=progress, free_axial=args.free_axial)
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
+    for w in res.warnings:
+        print(f"bearingfem stiffness: warning: {w}", file=sys.stderr)
     print(f"wrote {res.n_rows} rows to {args.out}")
     if res.ross is not None:
         if res.ross.warning:

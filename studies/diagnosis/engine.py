@@ -6,14 +6,14 @@ model on the measured conditions with the given effects switched on (`{name: {pa
 the nuisance calibration (`{name: value}`, e.g. a friction scale `mu_scale`), the measured outputs,
 the conditions table, the candidate effect objects (`studies.model.effects`), the nuisance bounds and the
 held-out block labels. It returns a typed `DiagnosisResult` (`studies.diagnosis.result`; its
-JSON form has the keys of `spec/cli.md`: `verdict`, `cause`, `parameters`, `indistinguishable`,
+JSON form has the keys of docs/cli.md "`diagnose` output": `verdict`, `cause`, `parameters`, `indistinguishable`,
 `separating_test`, `baseline`, `extended`, `gain`, `candidates`, plus diagnostics).
 
 Each phase below is a plain function (one module each) of the immutable `Problem`
 (`studies.diagnosis.problem`) and the typed results of the phases before it; `run` calls them
 in order and `assemble` builds the result.
 
-Method (DESIGN.md section 5):
+Method (docs/diagnosis.md):
 
 1. Calibrate the baseline (nuisance only, bounded least squares). Estimate the noise level of each
    output column from the data itself: second differences of the baseline residuals within

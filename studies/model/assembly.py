@@ -178,6 +178,23 @@ class Lubrication:
                                                 "alpha_h", sign=ZERO_OK, default=0.0)
     load_term: str = choice("coulomb", "palmgren", default="coulomb",
                             doc='oil: "coulomb" (mu F dm/2) or "palmgren" (f1 F dm)')
+    viscous_model: str = choice(
+        "palmgren", "skf2004", "ehl_rolling", "starved", default="palmgren",
+        doc='oil: "palmgren" (f0 (nu n)^(2/3) dm^3), "skf2004" (SKF four-component model: '
+            'rolling, sliding, drag; replaces the load term too), "ehl_rolling" (EHL rolling '
+            'resistance per contact on the ball loads), "starved" (Palmgren weakened by the '
+            'oil quantity); analytic/friction/')
+    oil_quantity_mg: float = number("mg", 'oil: the oil in one bearing (viscous_model = '
+                                          '"starved")', sign=ZERO_OK, default=0.0,
+                                    default_text="0 = flooded (Palmgren)")
+    shear_strength: str = choice("constant", "pressure", default="constant",
+                                 doc='solid film: "constant" (friction_coefficient) or '
+                                     '"pressure" (tau = tau0 + alpha p over the Hertz ellipse)')
+    tau0_MPa: float = number("MPa", 'solid film: interfacial shear strength at zero pressure '
+                                    '(shear_strength = "pressure")', sign=ZERO_OK, default=0.0)
+    alpha_shear: float = number("-", 'solid film: pressure coefficient of the shear strength '
+                                     '(shear_strength = "pressure")', sign=ZERO_OK, default=0.0,
+                                bounds=Range(hi=1.0, error="must not exceed 1"))
 
 
 @dataclass(frozen=True, kw_only=True)

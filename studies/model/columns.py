@@ -16,11 +16,17 @@ from studies.model.result import SimulationResult
 AB = "AB"
 
 
-def to_columns(result: SimulationResult, flags: bool = True) -> dict[str, np.ndarray]:
+def to_columns(result: SimulationResult, flags: bool = True,
+               friction_split: bool = False) -> dict[str, np.ndarray]:
     """{column name: (n,) array} of a result: headline outputs, torque components, fit
     pressures, Lamé neighbours, groove shifts, per-bearing forces and angles, ball and load
-    columns, land margins, checks' values; with `flags`, then each check's `flag_<name>`
-    (1 = violated) and `margin_<name>` columns (docs/cli.md, "simulate: limits")."""
+    columns, land margins, checks' values; with `friction_split`, the torque by kind and the
+    heat by location (`friction_split_columns`, after every other model column: the columns
+    before them keep their order); with `flags`, then each check's `flag_<name>`
+    (1 = violated) and `margin_<name>` columns (docs/cli.md, "simulate: limits").
+    `simulate` writes the split (its stream, its transient mode and the Python API ask for it);
+    the studies' and the report's tables are written without it, so the shipped seed CSVs stay
+    byte-identical to the files before issue 33."""
     fe, pair, t, s = result.fe, result.pair, result.torque, result.summary
     out = {"torque_Nmm": t.torque_Nmm, "preload_N": pair.preload_N,
            "contact_angle_deg": s.contact_angle_deg,
@@ -53,6 +59,8 @@ def to_columns(result: SimulationResult, flags: bool = True) -> dict[str, np.nda
     out["static_safety"] = s.static_safety
     out["friction_coefficient"] = result.friction_coefficient
     out.update(_clamp_columns(result))
+    if friction_split:
+        out.update(friction_split_columns(result.torque))
     if flags:
         out.update(check_columns(result.checks))
     return out
@@ -106,6 +114,20 @@ def _torque_columns(t) -> dict[str, np.ndarray]:
     if t.model == "oil":
         out["viscosity_mm2_s"] = t.viscosity_mm2_s
     return out
+
+
+def friction_split_columns(t) -> dict[str, np.ndarray]:
+    """Whatever the friction model (docs/cli.md, issue 33): the torque by kind,
+    `torque_rolling_Nmm`, `torque_sliding_Nmm`, `torque_drag_Nmm` (summing to `torque_Nmm`),
+    and, with a speed, the heat by where it is made, `heat_inner_W`, `heat_outer_W`,
+    `heat_ball_W` (summing to `heat_W`; `analytic.torque.TorqueComponents`)."""
+    out = {"torque_rolling_Nmm": t.rolling_Nmm, "torque_sliding_Nmm": t.sliding_Nmm,
+           "torque_drag_Nmm": t.drag_Nmm}
+    if t.heat_W is not None:
+        out.update(heat_inner_W=t.heat_inner_W, heat_outer_W=t.heat_outer_W,
+                   heat_ball_W=t.heat_ball_W)
+    n = np.shape(t.torque_Nmm)
+    return {k: np.broadcast_to(np.asarray(v, float), n) for k, v in out.items()}
 
 
 def _lame_columns(result: SimulationResult) -> dict[str, np.ndarray]:

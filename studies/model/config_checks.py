@@ -24,6 +24,7 @@ def check_assembly(a: Assembly, path: str) -> None:
     _check_geometry(a, path)
     _check_tolerances(a, path)
     _check_clamps(a, path)
+    _check_friction(a, path)
     if a.lubrication.kind == "oil":      # an oil needs its data: a Walther law (>= 2 points)
         try:
             a.oil().walther()
@@ -60,6 +61,29 @@ def _check_clamps(a: Assembly, path: str) -> None:
             key = "clamp_force_N" if c.clamp_force_N > 0 else "clamp_stiffness_N_per_um"
             raise ConfigError(f'{path}: {name}.{key}: only used with clamp = "force", '
                               f'got clamp = "{c.clamp}"')
+
+
+def _check_friction(a: Assembly, path: str) -> None:
+    """The friction model's keys (analytic/friction/) belong to one kind of lubrication each:
+    viscous_model and oil_quantity_mg to an oil, shear_strength and its tau0_MPa, alpha_shear to
+    a solid film; oil_quantity_mg only with viscous_model = "starved", tau0_MPa and alpha_shear
+    only with shear_strength = "pressure", which needs one of them > 0."""
+    lub = a.lubrication
+    def bad(key: str, msg: str):
+        raise ConfigError(f"{path}: lubrication.{key}: {msg}")
+    if lub.kind == "solid_film" and lub.viscous_model != "palmgren":
+        bad("viscous_model", f'"{lub.viscous_model}" is an oil model, got kind = "solid_film"')
+    if lub.kind == "oil" and lub.shear_strength != "constant":
+        bad("shear_strength", f'"{lub.shear_strength}" is a solid-film law, got kind = "oil"')
+    if lub.oil_quantity_mg > 0 and lub.viscous_model != "starved":
+        bad("oil_quantity_mg", f'only used with viscous_model = "starved", got '
+                               f'"{lub.viscous_model}"')
+    for key in ("tau0_MPa", "alpha_shear"):
+        if getattr(lub, key) > 0 and lub.shear_strength != "pressure":
+            bad(key, f'only used with shear_strength = "pressure", got "{lub.shear_strength}"')
+    if lub.shear_strength == "pressure" and not (lub.tau0_MPa > 0 or lub.alpha_shear > 0):
+        bad("shear_strength", '"pressure" needs tau0_MPa or alpha_shear > 0 (tau = tau0 + '
+                              "alpha p)")
 
 
 def _check_units(a: Assembly, path: str) -> None:

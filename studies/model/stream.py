@@ -129,7 +129,7 @@ def simulate_file(asm, conditions: Path, out: Path, effects: dict | None = None,
             if n + m > total:
                 raise TableError(f"{conditions}: changed while it was read")
             cols = {k: v for k, v in cond.items() if not k.startswith("_")}
-            out_cols = to_columns(res)
+            out_cols = to_columns(res, friction_split=True)
             cols.update(out_cols)
             tally.add(res.checks, n)
             w.write(cols)

@@ -45,8 +45,8 @@ import numpy as np
 
 from analytic import lubrication as lub
 from analytic import thermal_network as tn
-from analytic.heat import (ContactConductance, pair_heat_W, rolling_contact_conductance,
-                           solid_film_pair_heat_W)
+from analytic.heat import (ContactConductance, located_pair_heat_W, pair_heat_W,
+                           rolling_contact_conductance, solid_film_pair_heat_W)
 from fem.reduced_thermal import (ModalStructure, ReducedConduction, ReducedStepper, krylov_basis,
                                  modal_structure)
 from fem.solver import single_thread_blas
@@ -349,7 +349,7 @@ class TransientRun:
         T_max_C, T_min_C, the route's columns (`columns.to_columns`, flags and margins last),
         heat_bearing_W, reduction_error_est before the flags."""
         r = self.rows
-        cols = to_columns(self.outputs)
+        cols = to_columns(self.outputs, friction_split=True)
         flags = {k: cols.pop(k) for k in list(cols) if k.startswith(("flag_", "margin_"))}
         return {**r.part_columns(), "T_max_C": r.T_max_C, "T_min_C": r.T_min_C, **cols,
                 "heat_bearing_W": r.heat_bearing_W, "reduction_error_est": r.reduction_error_est,
@@ -692,11 +692,15 @@ def _evaluate_rows(pl: Pipeline, tm: ThermalModel, rc: ReducedConduction, ms: Mo
 
 def _route(pl: Pipeline, inputs: PhysicsInputs, fe: FEState, ref: FEState, first_row: int = 0):
     """The one route from given FE states (rows, assembly states): (its outputs, the pair's heat
-    split `analytic.heat.PairHeat` at MU_TRACTION)."""
+    split `analytic.heat.PairHeat`: Palmgren's viscous heat with sliding and spin at
+    MU_TRACTION; a solid film's own dissipation; with any other `viscous_model` the torque's own
+    heat where it is made, `analytic.heat.located_pair_heat_W`)."""
     res = pl.run(inputs, first_row=first_row, remember=False,
                  fe_options=FEOptions(states=(fe, ref)))
     if res.torque.model == "solid_film":       # the film's own dissipation (its friction coefficient)
         heat = solid_film_pair_heat_W(res.torque, inputs.speed_rpm)
+    elif res.torque.viscous_model != "palmgren":   # issue 33's models: the torque's located heat
+        heat = located_pair_heat_W(res.torque, inputs.speed_rpm)
     else:
         heat = pair_heat_W(pl.geom, res.pair, inputs.speed_rpm, MU_TRACTION,
                            res.torque.viscous_Nmm)

@@ -195,12 +195,14 @@ def design(assembly, range_C: tuple[float, float], out=None, band: tuple[float, 
 
 
 def stiffness(assembly, conditions, out=None, per_bearing: bool = False, ross=None,
-              progress=_quiet):
+              free_axial: bool = False, progress=_quiet):
     """`bearingfem stiffness ASSEMBLY.toml CONDITIONS.csv -o OUT.csv [--per-bearing]
-    [--ross ROSS.csv]`: the pair's 5 x 5 tangent stiffness at its equilibrium per row.  out and
-    ross: file paths to write (None: not written); `ross=True` builds the ROSS table without
-    writing it.  Returns `stiffness.StiffnessRun` (`.to_frame()` OUT.csv; `.ross.to_frame()` the
-    ROSS table, `ross.BearingElement.from_table` reads its names)."""
+    [--ross ROSS.csv] [--free-axial]`: the pair's 5 x 5 tangent stiffness at its equilibrium per
+    row (25 columns), with free_axial also the force-controlled radial stiffness.  out and ross:
+    file paths to write (None: not written); `ross=True` builds the ROSS table without writing
+    it.  Returns `stiffness.StiffnessRun` (`.to_frame()` OUT.csv; `.ross.to_frame()` the
+    ROSS table, `ross.BearingElement.from_table` reads its names; `.warnings` the lines the
+    command prints, e.g. rows that lost the preload)."""
     from studies.model.inputs import CONDITION_COLUMNS
     from studies.usecases import stiffness as st
 
@@ -213,7 +215,7 @@ def stiffness(assembly, conditions, out=None, per_bearing: bool = False, ross=No
     cond = table(conditions, set(CONDITION_COLUMNS), "conditions")
     where = str(conditions) if _is_path(conditions) else "conditions"
     res = st.compute(asm, cond, where, per_bearing, ross is not None and ross is not False,
-                     progress)
+                     progress, free_axial)
     if out is not None:
         ross_out = ross if _is_path(ross) else None
         st.write(res, Path(out), None if ross_out is None else Path(ross_out),

@@ -1,7 +1,7 @@
 """`bearingfem bearing BEARING.toml LOADS.csv -o OUT.csv [--convention exact|iso16281]
 [--control outer|inner|jones]`: one
 bearing, rigid rings, inner ring with 5 DOF under the rows of LOADS.csv
-(`analytic.bearing.single.solve_single`; shared/spec/cli.md section "bearing").
+(`analytic.bearing.single.solve_single`; docs/cli.md "Single bearing").
 
 Columns in (any subset): radial_load_N (along x), radial_load_y_N, axial_load_N, moment_x_Nmm,
 moment_y_Nmm, speed_rpm, T_oil_C (the oil's temperature, for its viscosity: required with an oil

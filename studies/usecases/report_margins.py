@@ -1,6 +1,6 @@
 """The front of the engineer's report (`bearingfem report`): the margin table, the inputs with
 their pedigree, the numbered assumptions, the credibility table, the environment and the command
-that reproduces it (shared/spec/cli.md, "report").
+that reproduces it (docs/cli.md, "report").
 
 Everything here is read from what the run already computed: the result columns, the flag and
 margin columns of studies/model/checks.py (`evaluate_checks`), the discretisation error of the

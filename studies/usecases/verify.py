@@ -1,6 +1,6 @@
 """`bearingfem verify`: the FE held against closed forms, and its mesh convergence.
 
-Cases (`VerifyCase`, written per shared/spec/cli.md by `VerifyCase.to_json`; `rel_error` =
+Cases (`VerifyCase`, written per docs/cli.md "verify" by `VerifyCase.to_json`; `rel_error` =
 |FE - closed form| / closed form):
 - lame_fit: two-cylinder fits, FE mean fit pressure (from contact reactions) vs Lamé
   (analytic/lame.py). Equal lengths with free ends and a frictionless fit make the plane-stress
@@ -71,7 +71,7 @@ MMS_ORDER_TOL = 0.2
 class VerifyCase:
     """One closed-form comparison: name, kind ("lame_fit", "lame_multilayer", "lame_displacement", "lame_bounds",
     "free_thermal", "rotating_fit", "rotating_displacement", "rotating_free", "fit_open_speed"),
-    the inputs that recompute the closed form (names and units of shared/spec/cli.md), the FE and
+    the inputs that recompute the closed form (names and units of docs/cli.md "verify"), the FE and
     closed-form values by name, the relative error, and what a kind adds (`extra`: e.g.
     within_bounds and note of lame_bounds)."""
     name: str

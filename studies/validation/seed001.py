@@ -4,7 +4,7 @@ The report is the assembly report of this rig (`bearingfem report` over -20..60 
 questions. The published measurement (the paper named in the configuration's `source`): friction
 torque +33..50 % higher at -20 C and 25 % lower at 60 C than at 20 C. The model (position preload 7 N, M = M1 + M2 with mu = 0.0029 and Palmgren's f0 = 1.7)
 is run as configured, split into its load (preload) and viscous parts, with the EHL film
-parameter and regime; then the two explanations of DESIGN.md section 6 are measured instead of
+parameter and regime; then two explanations are measured instead of
 assumed: (a) the preload-path compliance the FE gives, and the compliance that the published
 ratios would need; (b) the viscous factor the ratios would need. Both are reported as inferences.
 Then the published ratios are treated as data (`published_as_data`): each single-parameter
@@ -170,8 +170,8 @@ def run(out: Path, progress=print, mesh_factor: float = 1.0) -> None:
                   "viscous part 20 C", "lambda -20 / 60 C", "regime -20 / 60 C"], speed_rows), "",
         f"Preload: {b['preload_N'][0]:.1f} N at -20 C, {b['preload_N'][i20]:.1f} N at 20 C, "
         f"{b['preload_N'][-1]:.1f} N at 60 C. The Si3N4 balls (CTE 3.2e-6/K) shrink less than the "
-        "steel rings when cold, so a rigid position preload multiplies when cold and is lost when hot "
-        f"(DESIGN.md section 6). Palmgren's viscous term with f0 = {a.lubrication.viscous_factor_f0:g} (oil bath) "
+        "steel rings when cold, so a rigid position preload multiplies when cold and is lost when hot. "
+        f"Palmgren's viscous term with f0 = {a.lubrication.viscous_factor_f0:g} (oil bath) "
         "is 100x the load term and follows the viscosity of the MAC oil (x25 from 20 to -20 C), so the "
         "configured model changes far more than was measured.", "",
         f"EHL film parameter over -20..60 C and the five speeds (Hamrock-Dowson minimum film, "

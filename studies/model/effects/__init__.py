@@ -8,7 +8,7 @@ the names), their physical bounds and the source or rationale. Every effect has 
 
 Public interface of an effect `e` (see `Effect`):
 
-- `e.name`, `e.parameters` (ordered names, units in the names, exactly as in `spec/cli.md`),
+- `e.name`, `e.parameters` (ordered names, units in the names, exactly as in docs/cli.md "Effects"),
   `e.bounds[p] = (lo, hi)` (physical; values outside raise a one-line `EffectError`),
   `e.off[p]` (baseline values; also the default of a parameter left out), `e.requires`
   (condition fields the effect needs, e.g. `time_s`),

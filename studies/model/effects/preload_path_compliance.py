@@ -25,7 +25,7 @@ Convention: written into `PhysicsInputs.extra_compliance_mm_per_N` (added to any
 Source / rationale: seed 001 (hybrid flywheel pair, 7 N position preload): the measured torque
 changes only +33..50 % at -20 C and -25 % at 60 C, while a rigid (or FE-stiff) preload path
 multiplies the preload when cold and unloads the pair when hot; the ratios imply compliance in
-the preload path that a solid FE model does not hold (DESIGN.md section 6; `bearingfem study
+the preload path that a solid FE model does not hold (`bearingfem study
 seed001`). Compliances of bolted and clamped joints in series: VDI 2230 Part 1 (2015), sec. 5.1.
 5e4 um/kN (0.05 mm/N) is as soft as a wave-spring preload and bounds any clamped path.
 """

@@ -6,13 +6,18 @@ viscosity of the configured lubricant (ASTM D341 fit of its datasheet points, sl
 viscosity_temperature effect) at the mean of the ring and ball temperatures, Palmgren's f0 (the
 assembly's or a run's), the load term as configured; with load_term "palmgren", f1 = 0.001
 (P0/C0)^0.33 (Palmgren 1959) with C0 from ISO 76 and P0 the axial force of the more loaded
-bearing (a pure axial preload). Units N, mm, rpm, mm^2/s, C.
+bearing (a pure axial preload). The friction model's options (`[lubrication] viscous_model`,
+`oil_quantity_mg`, `shear_strength`, `tau0_MPa`, `alpha_shear`; analytic/friction/) with the
+oil's dynamic viscosity (its density) and pressure-viscosity coefficient and the bearing's bore
+and outside diameter. Units N, mm, rpm, mm^2/s, C.
 """
 from __future__ import annotations
 
 import numpy as np
 
 from analytic.bearing import BearingGeometry, PairState
+from analytic.friction.options import FrictionOptions
+from analytic.lubrication import dynamic_viscosity_Pa_s
 from analytic.safety import static_load_rating_C0_N
 from analytic.torque import TorqueComponents, palmgren_f1_angular_contact, pair_torque
 from studies.model.inputs import PhysicsInputs
@@ -28,8 +33,11 @@ def pair_friction_torque(asm, geom: BearingGeometry, lubricant, pair: PairState,
     lub = asm.lubrication
     speed = np.asarray(inputs.speed_rpm, float)
     if lub.kind == "solid_film":
+        film = FrictionOptions(shear_strength=lub.shear_strength, tau0_MPa=lub.tau0_MPa,
+                               alpha_shear=lub.alpha_shear)
         return pair_torque(geom, pair, model="solid_film", mu=mu,
-                           hysteresis_loss=lub.hysteresis_loss_factor, speed_rpm=speed)
+                           hysteresis_loss=lub.hysteresis_loss_factor, speed_rpm=speed,
+                           friction=film)
     T_oil = (np.asarray(inputs.T_C["inner_ring"], float) + inputs.T_C["outer_ring"]
              + inputs.T_C["ball"]) / 3.0
     nu = lubricant.nu_mm2_s(T_oil, slope_factor=inputs.viscosity_slope_factor)
@@ -38,6 +46,12 @@ def pair_friction_torque(asm, geom: BearingGeometry, lubricant, pair: PairState,
         C0 = static_load_rating_C0_N(geom.Z, geom.Dw_mm, geom.dm_mm, geom.alpha0_deg)
         P0 = pair.axial_force_N.max(axis=0)
         f1 = palmgren_f1_angular_contact(P0, C0)
+    oil = FrictionOptions(viscous_model=lub.viscous_model, oil_quantity_mg=lub.oil_quantity_mg,
+                          eta_Pa_s=dynamic_viscosity_Pa_s(nu, lubricant.density_kg_m3),
+                          alpha_per_Pa=lubricant.alpha_per_Pa,
+                          density_kg_m3=lubricant.density_kg_m3,
+                          bore_mm=asm.bearing.bore_mm,
+                          outside_diameter_mm=asm.bearing.outside_diameter_mm)
     return pair_torque(geom, pair, model="oil", mu=mu, speed_rpm=speed,
                        f0=lub.viscous_factor_f0 if viscous_factor_f0 is None else viscous_factor_f0,
-                       nu_mm2_s=nu, load_term=lub.load_term, f1=f1)
+                       nu_mm2_s=nu, load_term=lub.load_term, f1=f1, friction=oil)

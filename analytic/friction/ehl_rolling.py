@@ -1,0 +1,89 @@
+"""Hydrodynamic (EHL) rolling resistance of the ball-raceway contacts, per contact, on the ball
+loads of the pair's equilibrium (quasi-static or quasi-dynamic balls), so the viscous heat has a
+location: the inner contacts, the outer contacts.
+
+Rolling force of an isothermal, fully flooded EHL point contact (Houpert, "Numerical and
+analytical calculations in ball bearings", 8th European Space Mechanisms and Tribology Symp.
+(1999) and "Ball bearing and tapered roller bearing torque: analytical, numerical and
+experimental results", Tribol. Trans. 45 (2002) 345; as Harris & Kotzalas, Rolling Bearing
+Analysis 5th ed., Vol. 2 (Advanced Concepts), ch. "Friction in rolling element-raceway
+contacts", give it; coefficient and exponents as the issue quotes them, not re-checked against a
+copy of either source here: the tests check the dimensional form and the exponents' physics):
+
+    F_R = 2.86 E' R_x^2 k^0.348 G^0.022 U^0.66 W^0.47                       [N]
+
+U = eta0 u / (E' R_x), G = alpha E', W = Q / (E' R_x^2) (Hamrock-Dowson groups, as
+`analytic.lubrication.hamrock_dowson_film`), k = a / b the ellipticity of the Hertz contact,
+u the mean entrainment (rolling) speed of the contact, E' = 2 / ((1 - nu1^2)/E1 + (1 -
+nu2^2)/E2). The force opposes rolling; the power it dissipates is F_R u, at the contact's
+inlet. With the kinematics of `analytic.torque.ball_kinematics` (outer ring fixed, inner ring
+at omega) u_j = omega (dm/2) roll_j, so the inner-ring torque that balances it is
+F_R (dm/2) roll_j per contact, Z balls per bearing.
+The pair's sum over both bearings on a `bearing.PairState`: `analytic.torque.ehl_rolling_pair`.
+
+Speed law (what the model predicts, not fitted): at fixed ball loads and viscosity F_R ~ U^0.66
+~ n^0.66, so the torque grows as n^0.66 before the oil's heating lowers eta0 (the thermal
+reduction, not modelled here) and before the balls' centrifugal load changes W.
+Limits: isothermal, fully flooded (use `starved` for a finite oil quantity), Newtonian inlet;
+k, U, W in the ranges of Hamrock-Dowson's fits (1 <= k <= 8). Units: E' MPa (N/mm^2), R_x mm,
+eta0 Pa s (1e-6 N s/mm^2), alpha 1/Pa (1e6 1/MPa), u mm/s, Q N, F_R N, powers W.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+
+
+def ehl_rolling_force_N(Q_N, Rx_mm, k, E_reduced_MPa, eta0_Pa_s, alpha_per_Pa,
+                        entrainment_speed_mm_s):
+    """Hydrodynamic rolling force F_R = 2.86 E' Rx^2 k^0.348 G^0.022 U^0.66 W^0.47 of one
+    contact, N (module docstring). 0 without load (an unloaded contact, whose ellipse and k are
+    then undefined) or without rolling."""
+    Rx = np.asarray(Rx_mm, float)
+    Ep = np.asarray(E_reduced_MPa, float)
+    Q = np.asarray(Q_N, float)
+    U = np.asarray(eta0_Pa_s, float) * 1e-6 * np.abs(np.asarray(entrainment_speed_mm_s, float)) / (Ep * Rx)
+    G = np.asarray(alpha_per_Pa, float) * 1e6 * Ep
+    W = np.maximum(Q, 0.0) / (Ep * Rx * Rx)
+    with np.errstate(invalid="ignore"):
+        F = 2.86 * Ep * Rx * Rx * np.asarray(k, float) ** 0.348 * G ** 0.022 * U ** 0.66 * W ** 0.47
+    return np.where(Q > 0, F, 0.0)
+
+
+@dataclass(frozen=True)
+class EHLRollingTorque:
+    """EHL rolling resistance of a pair (both bearings), arrays over operating points:
+    the inner-ring torque of the inner and of the outer contacts (N mm) and the heat made at
+    each (W, the power F_R u of each contact, computed from the contact speeds)."""
+    inner_Nmm: np.ndarray
+    outer_Nmm: np.ndarray
+    heat_inner_W: np.ndarray
+    heat_outer_W: np.ndarray
+    per_bearing_Nmm: tuple[np.ndarray, np.ndarray]
+
+    @property
+    def total_Nmm(self) -> np.ndarray:
+        return self.inner_Nmm + self.outer_Nmm
+
+
+def ehl_rolling_bearing(Z: int, dm_mm: float, E_reduced_MPa, inner, outer, roll_inner,
+                        roll_outer, speed_rpm, eta0_Pa_s, alpha_per_Pa):
+    """EHL rolling resistance of one bearing's contacts: inner, outer the contacts' Hertz states
+    (`analytic.torque.ContactInput`: Q N, a, b, Rx mm), roll_inner, roll_outer the contact
+    speeds over the races per unit (omega dm/2) (`analytic.torque.ball_kinematics`), speed_rpm
+    the inner-ring speed (outer fixed). Returns (inner-ring torque of the inner contacts, of the
+    outer contacts) N mm and (heat at the inner contacts, at the outer contacts) W, the heat
+    computed as Z F_R u with u = omega (dm/2) roll the entrainment speed (mm/s)."""
+    omega = np.abs(np.asarray(speed_rpm, float)) * 2.0 * np.pi / 60.0
+    half_dm = 0.5 * dm_mm
+    torques, heats = [], []
+    for c, roll in ((inner, roll_inner), (outer, roll_outer)):
+        u = omega * half_dm * roll                                   # entrainment speed, mm/s
+        with np.errstate(divide="ignore", invalid="ignore"):      # unloaded: F = 0 below
+            k = np.asarray(c.a_mm, float) / np.asarray(c.b_mm, float)
+        F = ehl_rolling_force_N(c.Q_N, c.Rx_mm, k, E_reduced_MPa, eta0_Pa_s, alpha_per_Pa, u)
+        torques.append(Z * F * half_dm * roll)
+        heats.append(1e-3 * Z * F * u)
+    return tuple(torques), tuple(heats)
