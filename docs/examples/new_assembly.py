@@ -104,7 +104,8 @@ def main(argv=None) -> None:
               f"to {out / 'ross_bearing.csv'} (ross.BearingElement(n=..., **columns) reads it)")
     else:
         bearing = ross.BearingElement(n=0, **{c: table[c].to_numpy() for c in table})
-        print(f"ROSS BearingElement at node 0: kxx {bearing.kxx.interpolated(0.0):.4g} N/m at rest")
+        kxx_rest = float(np.atleast_1d(bearing.kxx_interpolated(table["frequency"].iloc[0]))[0])
+        print(f"ROSS BearingElement at node 0: kxx {kxx_rest:.4g} N/m at rest")
     fig, ax = plt.subplots(figsize=(5, 3.5))
     ax.plot(speeds, k.to_frame()["k_xx_N_per_mm"], "o-", label="k_xx")
     ax.plot(speeds, k.to_frame()["k_zz_N_per_mm"], "s-", label="k_zz")
