@@ -19,6 +19,8 @@ which look-alikes it cannot tell apart in this design.
 from __future__ import annotations
 
 import argparse
+import contextlib
+import io
 from pathlib import Path
 
 import matplotlib
@@ -98,7 +100,8 @@ def main(argv=None) -> None:
                              out=out / "stiffness.csv", ross=out / "ross_bearing.csv")
     table = k.ross.to_frame()                         # SI: frequency rad/s, k N/m, c N s/m
     try:
-        import ross
+        with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+            import ross                               # (prints CoolProp/REFPROP notices)
     except ImportError:
         print(f"ROSS is not installed (pip install 'bearingfem[ross]'): wrote its bearing table "
               f"to {out / 'ross_bearing.csv'} (ross.BearingElement(n=..., **columns) reads it)")
