@@ -10,6 +10,11 @@
 (`studies.model.result.SimulationResult`: FE state, `PairState`, torque components, checks) is
 `studies.model.pipeline.simulate_table`. The FE set-up of an assembly is kept for the next call with
 an equal assembly (`Pipeline.shared`). BLAS runs single-threaded inside the FE superposition by itself.
+
+Every other command has its function too, the same call the command line makes
+(`studies.usecases.api`): `diagnose`, `tolerance`, `design`, `stiffness`, `report`, `verify`,
+`bearing`. Each takes what its command takes (paths, or tables in memory: a dict of arrays or a
+DataFrame) and returns a typed result, with `.to_frame()` where the command writes a CSV.
 """
 from __future__ import annotations
 
@@ -19,8 +24,11 @@ from typing import Mapping
 import numpy as np
 
 from infra.version import __version__
+from studies.usecases.api import bearing, design, diagnose, report, stiffness, tolerance, verify
 
-__all__ = ["__version__", "load_assembly", "simulate"]
+__all__ = ["__version__", "load_assembly", "simulate", "diagnose", "tolerance", "design",
+           "stiffness", "report", "verify", "bearing"]
+
 
 def load_assembly(path: str | Path):
     """Read and check an assembly TOML file (`studies.model.config.Assembly`); a problem raises

@@ -3,8 +3,8 @@ onto it only when complete; and the one sweeper of the temporaries that killed r
 
 Every temporary is hidden and named `.<target name>.<pid>.<host><random>[<suffix>]` (`temporary_path`):
 the PID of the process writing it, 8 hex digits of this machine's name and 8 random ones. The
-sweeper (`sweep_stale`) removes a temporary whose process is gone (checked only for temporaries of
-this machine: a shared folder may hold another machine's live ones) and any temporary older than
+sweeper (`sweep_stale`) removes a temporary whose process is gone or a zombie (killed and not yet
+reaped by its parent; checked only for temporaries of this machine: a shared folder may hold another machine's live ones) and any temporary older than
 STALE_AGE_S (PIDs are reused). A run interrupted by an exception or a signal that unwinds (Ctrl-C,
 SIGTERM in the command line) removes its own temporaries; one killed outright (SIGKILL, power
 loss) leaves them to the next run's sweep.
@@ -71,13 +71,28 @@ def glob_escape(text: str) -> str:
 
 
 def _pid_alive(pid: int) -> bool:
+    """The process runs: it exists and is not a zombie (a process killed outright stays in the
+    process table, state Z, until its parent reaps it: a launcher still running, a notebook that
+    started it; it will never write again, so its temporaries are stale)."""
     try:
         os.kill(pid, 0)
     except ProcessLookupError:
         return False
     except PermissionError:       # another user's process
         return True
-    return True
+    return not _zombie(pid)
+
+
+def _zombie(pid: int) -> bool:
+    """Linux: /proc/<pid>/stat's state field (after the command name in parentheses, which may
+    hold spaces) is Z (zombie) or X (dead) (proc(5)). Elsewhere, or unreadable: False."""
+    try:
+        with open(f"/proc/{pid}/stat", "rb") as fh:
+            stat = fh.read()
+    except OSError:
+        return False
+    fields = stat[stat.rfind(b")") + 1:].split()
+    return bool(fields) and fields[0] in (b"Z", b"X")
 
 
 def _remove(p: Path) -> None:
@@ -185,7 +200,7 @@ def atomic_folder(out: Path):
     """Yield a new temporary folder beside `out` (mode 0777 less the umask); when the block ends
     without an exception it replaces `out` (an existing `out` is moved aside to a temporary name
     first and removed after), else it is removed and `out` stays as it was. Deciding whether `out`
-    may be replaced is the caller's job (`studies.app.output.atomic_dir`)."""
+    may be replaced is the caller's job (`studies.usecases.output_folder.output_folder`)."""
     out = Path(out)
     sweep_stale(out.parent, f".{out.name}.")
     out.parent.mkdir(parents=True, exist_ok=True)

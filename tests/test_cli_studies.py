@@ -94,8 +94,12 @@ def coarse_mms(monkeypatch):
     """`verify.run` with its manufactured-solution table on the coarse levels of test_verify.py
     (h = 1.25 .. 0.31 mm): nothing here reads that table (its keys: test_verify.py, its orders:
     test_mms.py, at the command's levels in the slow test_mms.py::test_orders_on_finer_levels),
-    and at the command's levels it was 14 of the 16 CPU s of each verify run below."""
+    and at the command's levels it was 14 of the 16 CPU s of each verify run below. The same for
+    the transient manufactured solution (two mesh levels, three steps; its orders:
+    test_transient_mms.py, its keys: test_verify.py)."""
     monkeypatch.setattr(verify, "mms_cases", functools.partial(verify.mms_cases, (4, 8, 16)))
+    monkeypatch.setattr(verify, "transient_mms_cases",
+                        functools.partial(verify.transient_mms_cases, (1.0, 0.5), (0.4, 0.2, 0.1)))
 
 
 @pytest.mark.requirement("R-FE-LAME")

@@ -215,7 +215,7 @@ def test_report_shows_every_fit_with_its_flag_and_the_naming_picture(tmp_path):
     for col in ("interference_sleeve_um", "fit_pressure_sleeve_MPa", "fit_pressure_sleeve_lame_MPa"):
         assert col in head, col
     assert "## Fits and their names" in md and (tmp_path / "fit_naming.png").stat().st_size > 1000
-    assert any("fit_open_sleeve" in w for w in warnings)
+    assert any("fit_open_sleeve" in w for w in warnings.warnings)
 
 
 @pytest.mark.slow
@@ -240,8 +240,8 @@ def test_thin_section_hub_rig_runs_and_its_report_shows_every_fit(tmp_path):
         row = next(line for line in md.splitlines() if line.startswith(f"| {fit} fit"))
         assert "a fit assembled with interference" in row, row
         assert f"fit_pressure_{fit}_MPa" in md
-    assert any("fit_open_inner" in w for w in warnings)
-    assert any("fit_open_sleeve" in w for w in warnings)
+    assert any("fit_open_inner" in w for w in warnings.warnings)
+    assert any("fit_open_sleeve" in w for w in warnings.warnings)
 
 
 def test_diagnosis_bounds_of_an_assembly_with_a_sleeve_band_stay_the_inner_and_outer_ones(banded):

@@ -533,3 +533,26 @@ def test_temporaries_of_a_run_killed_outright_are_removed_by_the_next(tmp_path, 
     (tmp_path / "cond.csv").write_text("T_ambient_C\n20\n")
     assert run_cli(argv, capsys)[0] == 0
     assert not any(p.exists() for p in left)
+
+
+def test_a_study_killed_outright_and_not_yet_reaped_leaves_nothing_after_the_next_run(tmp_path,
+                                                                                      capsys):
+    """Issue 35: a study killed with SIGKILL whose parent has not reaped it yet (a launcher or a
+    notebook still running: the process stays a zombie, and `kill(pid, 0)` still finds it) left
+    its hidden output folder `.sout.<pid>.<host><random>` behind the next run of the same study.
+    A zombie never writes again: the next run removes the folder, and leaves nothing hidden."""
+    argv = ["study", "lubricant_viscosity", "--out", str(tmp_path / "sout")]
+    proc = _start(argv, tmp_path / "cache")
+    try:
+        left = _wait_for(proc, tmp_path, ".sout.*")
+        proc.kill()
+        t0 = time.monotonic()            # not reaped: wait until the kernel marks it a zombie
+        while Path(f"/proc/{proc.pid}/stat").read_text().rsplit(")", 1)[1].split()[0] != "Z":
+            assert time.monotonic() - t0 < 30
+            time.sleep(0.01)
+        assert all(p.exists() for p in left)
+        assert run_cli(argv, capsys)[0] == 0
+        assert sorted(p.name for p in tmp_path.iterdir() if p.name != "cache") == ["sout"]
+    finally:
+        proc.kill()
+        proc.communicate(timeout=60)

@@ -19,7 +19,7 @@ Every case passes since 2026-11-25 (measured on seed 0 of each case, mesh factor
   must beat the sensor look-alike `thermometer_offset` (`ladder.lookalikes`): `unexplained`;
 - `fit_error_and_lag` was `explained: thermal_lag` only (`partial`) before item 5 (more than one
   cause, `studies/diagnosis/selection.py`).
-The per-design rates over several draws are the confusion-matrix study's (docs/diagnosis.md).
+The per-design rates over several draws are the confusion-matrix study's (docs/diagnosis_rates.md).
 """
 from __future__ import annotations
 

@@ -83,3 +83,27 @@ def test_richardson_recovers_the_order_and_limit_of_a_known_sequence():
     osc = richardson([1.0, 1.2, 1.1])
     assert not osc.monotone and osc.extrapolated == 1.1
     assert osc.gci_fine == pytest.approx(3.0 * 0.2 / 1.1, rel=1e-12)
+
+
+def test_verify_lists_the_transient_mms_orders(tmp_path):
+    """`verify` lists the transient conduction's manufactured solution (issue 35): the space order
+    of P2 (3 in L2) and the time orders of backward Euler (1) and BDF2 (2), in verification.json
+    ("mms_transient") and verification.md. Here on two mesh levels and three steps (the command
+    runs the levels of tests/test_transient_mms.py, which asserts the orders there); the time
+    orders still pass within the command's tolerance on these steps; the space order of two
+    levels is pre-asymptotic (2.4 of 3 with factors 1 and 0.5; 2.94 over the command's three):
+    here only above the L2 order 2 that linear elements would give."""
+    cases = verify.transient_mms_cases((1.0, 0.5), (0.4, 0.2, 0.1))
+    verify.write_verification(tmp_path, [], None, mms_transient=cases)
+    data = json.loads((tmp_path / "verification.json").read_text())["mms_transient"]
+    assert [(m["name"], m["variable"], m["expected_order"]) for m in data] == [
+        ("transient_conduction_space_L2", "space", 3.0),
+        ("transient_conduction_time_backward_euler", "time", 1.0),
+        ("transient_conduction_time_bdf2", "time", 2.0)]
+    for m in data[1:]:
+        assert m["pass"] is True, m
+        assert abs(m["observed_order"] - m["expected_order"]) <= m["tolerance"] == 0.15
+    assert data[0]["tolerance"] == 0.3 and 2.0 < data[0]["observed_order"] < 3.3
+    md = (tmp_path / "verification.md").read_text()
+    assert "## Manufactured solution of the transient conduction" in md
+    assert md.count("PASS (within") + md.count("FAIL (within") == 3

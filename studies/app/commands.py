@@ -7,13 +7,12 @@ None of these deferred imports hides a cycle (tests/test_imports.py counts them 
 """
 from __future__ import annotations
 
-import os
-import stat
 import sys
 from pathlib import Path
 
 
 from studies.app.output import UserError, atomic_dir, progress, progress_bar
+from studies.usecases.output_folder import check_output_file
 from studies.model.provenance import provenance
 from studies.validation import STUDIES, study_module
 
@@ -34,46 +33,15 @@ def _user_errors():
     from studies.model.pipeline import ModelError
     from studies.model.table import TableError
     from studies.model.parallel import SchedulerError
+    from studies.usecases.bearing_single import BearingRunError
+    from studies.usecases.design_search import DesignError
+    from studies.usecases.output_folder import OutputError
+    from studies.usecases.stiffness import StiffnessRunError
     from studies.usecases.tolerance_report import ToleranceError
 
     return (ConfigError, TableError, EffectError, MeshError, SolveError, ModelError,
-            DiagnosisError, ModelFailure, ToleranceError, SchedulerError)
-
-
-def check_output_file(path: Path, inputs: tuple[Path, ...] = ()) -> None:
-    """Refuse, before any work is done, an output path (or its provenance sidecar) that would
-    lose or alter something the user has: one of the inputs, a symlink, an existing non-regular
-    file (FIFO, device, folder), or a place that cannot be written."""
-    from studies.model.table import sidecar_path
-
-    _check_one_output(Path(path), inputs)
-    _check_one_output(sidecar_path(path), inputs)
-
-
-def _check_one_output(path: Path, inputs: tuple[Path, ...]) -> None:
-    if path.is_symlink():
-        raise UserError(f"{path}: is a symbolic link; -o writes a regular file and does not "
-                        "replace links (give the target's path)")
-    if path.exists():
-        if path.is_dir():
-            raise UserError(f"{path}: is a folder; -o needs a file name")
-        if not stat.S_ISREG(path.stat().st_mode):
-            raise UserError(f"{path}: exists and is not a regular file (FIFO, device or socket); "
-                            "choose another output name")
-        for given in inputs:
-            try:
-                same = Path(given).exists() and os.path.samefile(path, given)
-            except OSError:
-                same = False
-            if same:
-                raise UserError(f"{path}: is the input file {given}; choose another output name "
-                                "(nothing was changed)")
-    parent = path.resolve().parent
-    probe = parent
-    while not probe.exists():
-        probe = probe.parent
-    if not probe.is_dir() or not os.access(probe, os.W_OK):
-        raise UserError(f"{path}: cannot write there ({probe} is not a writable folder)")
+            DiagnosisError, ModelFailure, ToleranceError, SchedulerError, OutputError,
+            DesignError, StiffnessRunError, BearingRunError)
 
 
 def cmd_simulate(args) -> None:
@@ -117,35 +85,25 @@ def cmd_simulate(args) -> None:
 
 
 def cmd_bearing(args) -> None:
-    from studies.usecases.bearing_single import BearingRunError, run
+    from studies.usecases import api
 
-    warnings: list[str] = []
     try:
-        check_output_file(args.out, (args.bearing, args.loads))
-        n = run(args.bearing, args.loads, args.out, args.convention,
-                provenance("bearing", {"bearing": args.bearing, "loads": args.loads},
-                           {"convention": {"name": args.convention},
-                            "raceway_control": {"name": args.control}}),
-                control=args.control, warnings=warnings)
-    except (BearingRunError, *_user_errors()) as exc:
+        res = api.bearing(args.bearing, args.loads, args.out, args.convention, args.control)
+    except _user_errors() as exc:
         raise UserError(str(exc)) from None
-    for line in warnings:
+    for line in res.warnings:
         print(f"bearingfem bearing: warning: {line}", file=sys.stderr)
-    print(f"wrote {n} rows to {args.out} (convention {args.convention}, {args.control} control)")
+    print(f"wrote {res.n_rows} rows to {args.out} (convention {args.convention}, "
+          f"{args.control} control)")
 
 
 def cmd_stiffness(args) -> None:
-    from studies.usecases.stiffness import StiffnessRunError, run
+    from studies.usecases import api
 
     try:
-        check_output_file(args.out, (args.assembly, args.conditions))
-        if args.ross is not None:
-            check_output_file(args.ross, (args.assembly, args.conditions, args.out))
-        res = run(args.assembly, args.conditions, args.out, args.per_bearing, args.ross,
-                  provenance("stiffness", {"assembly": args.assembly,
-                                           "conditions": args.conditions}), progress=progress,
-                  free_axial=args.free_axial)
-    except (StiffnessRunError, *_user_errors()) as exc:
+        res = api.stiffness(args.assembly, args.conditions, args.out, args.per_bearing, args.ross,
+                            progress=progress, free_axial=args.free_axial)
+    except _user_errors() as exc:
         raise UserError(str(exc)) from None
     for w in res.warnings:
         print(f"bearingfem stiffness: warning: {w}", file=sys.stderr)
@@ -157,50 +115,33 @@ def cmd_stiffness(args) -> None:
               f"{res.ross.range_text}; ROSS extrapolates outside) to {args.ross}")
 
 
-def _assembly_and_conditions(args):
-    """The assembly, the optional conditions table and the input files for the provenance."""
-    from studies.model.table import read_conditions
-
-    asm = _load(args.assembly)
-    cond = read_conditions(args.conditions) if args.conditions is not None else None
-    inputs = {"assembly": args.assembly}
-    if args.conditions is not None:
-        inputs["conditions"] = args.conditions
-    return asm, cond, inputs
-
-
 def cmd_report(args) -> None:
-    from studies.usecases import assembly_report
+    from studies.usecases import api
 
+    command = ["bearingfem", "report", str(args.assembly)] + \
+        ([str(args.conditions)] if args.conditions is not None else []) + \
+        ["--out", str(args.out)] + (["--pdf"] if args.pdf else [])
     try:
-        asm, cond, inputs = _assembly_and_conditions(args)
-        with atomic_dir(args.out) as tmp:
-            command = ["bearingfem", "report", str(args.assembly)] + \
-                ([str(args.conditions)] if args.conditions is not None else []) + \
-                ["--out", str(args.out)] + (["--pdf"] if args.pdf else [])
-            notes = assembly_report.run(asm, cond, tmp, provenance("report", inputs),
-                                        progress=progress, pdf=args.pdf, command=command)
+        res = api.report(args.assembly, args.conditions, args.out, pdf=args.pdf,
+                         progress=progress, command=command)
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
-    for line in notes:
+    for line in res.warnings:
         print(f"bearingfem report: warning: {line}", file=sys.stderr)
     print(f"report: {args.out}/report.md, report.html" + (" and report.pdf" if args.pdf else ""))
 
 
 def cmd_tolerance(args) -> None:
-    from studies.usecases import tolerance_report
+    from studies.usecases import api
 
     if args.samples < 2:
         raise UserError(f"--samples {args.samples}: need at least 2")
     if args.workers is not None and args.workers < 1:
         raise UserError(f"--workers {args.workers}: need at least 1")
     try:
-        asm, cond, inputs = _assembly_and_conditions(args)
-        with atomic_dir(args.out) as tmp:
-            res = tolerance_report.run(asm, cond, tmp, provenance("tolerance", inputs),
-                                       samples=args.samples, seed=args.seed, progress=progress,
-                                       workers=args.workers, scheduler=args.scheduler,
-                                       bar=progress_bar("Monte Carlo"))
+        res = api.tolerance(args.assembly, args.conditions, samples=args.samples, seed=args.seed,
+                            out=args.out, workers=args.workers, scheduler=args.scheduler,
+                            progress=progress, bar=progress_bar("Monte Carlo"))
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
     fits = ", ".join(f"{f} {p:.3g}" for f, p in res.fit_leaves_design.items())
@@ -242,35 +183,27 @@ def _vary(items: list[str]) -> dict[str, tuple]:
 
 
 def cmd_design(args) -> None:
-    from studies.usecases import design_search
+    from studies.usecases import api
 
     T_min, T_max = _pair(args.range, "--range")
     if args.band is not None and args.band_N is not None:
         raise UserError("--band and --band-N: give one (fractions of the assembled preload, or N)")
+    band_N = None
     if args.band_N is not None:
-        lo, hi = _pair(args.band_N, "--band-N")
-        if lo < 0:
+        band_N = _pair(args.band_N, "--band-N")
+        if band_N[0] < 0:
             raise UserError(f"--band-N {args.band_N}: LOW must be at least 0 N")
-        band = design_search.Band(lo, hi, absolute=True)
-    else:
-        band = design_search.Band(*_pair(args.band or "0.8:1.2", "--band"))
+    band = _pair(args.band or "0.8:1.2", "--band")
     vary = _vary(args.vary)
     if not (-150.0 <= T_min and T_max <= 300.0):
         raise UserError(f"--range {args.range}: outside -150..300 C (range of the material data)")
     if args.workers is not None and args.workers < 1:
         raise UserError(f"--workers {args.workers}: need at least 1")
     try:
-        asm = _load(args.assembly)
-        try:
-            design_search.settings_of(asm, vary)    # bad values: one line before any work
-        except design_search.DesignError as exc:
-            raise UserError(str(exc)) from None
-        with atomic_dir(args.out) as tmp:
-            res = design_search.run(asm, T_min, T_max, tmp,
-                                    provenance("design", {"assembly": args.assembly}), band=band,
-                                    clamps=args.clamps, progress=progress, workers=args.workers,
-                                    scheduler=args.scheduler, bar=progress_bar("stacks", "stack"),
-                                    vary=vary)
+        res = api.design(args.assembly, (T_min, T_max), args.out, band=band, band_N=band_N,
+                         clamps=args.clamps, vary=vary, workers=args.workers,
+                         scheduler=args.scheduler, progress=progress,
+                         bar=progress_bar("stacks", "stack"))
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
     g, b = res.given.metrics, res.designs[0].metrics
@@ -293,31 +226,30 @@ def cmd_study(args) -> None:
 
 
 def cmd_diagnose(args) -> None:
-    from studies.diagnosis.files import diagnose_files
+    from studies.usecases import api
 
     try:
-        with atomic_dir(args.out) as tmp:
-            result = diagnose_files(args.assembly, args.measured, tmp, progress=progress)
+        result = api.diagnose(args.assembly, args.measured, args.out, progress=progress)
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
-    print(f"diagnosis: {result['verdict']}" + (f" ({result['cause']})" if result.get("cause") else "")
+    print(f"diagnosis: {result.verdict}" + (f" ({result.cause})" if result.cause else "")
           + f"; report in {args.out}/report.md", file=sys.stdout)
 
 
 def cmd_verify(args) -> None:
-    from studies.usecases import verify
+    from studies.usecases import api, verify
 
     try:
-        asm = _load(args.assembly) if args.assembly is not None else None
-        with atomic_dir(args.out) as tmp:
-            result = verify.run(tmp, progress=progress, assembly=asm)
+        result = api.verify(args.out, args.assembly, progress=progress)
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
     bad = [c.name for c in result.cases if c.kind in ("lame_fit", "lame_multilayer", "lame_displacement",
                                                            "free_thermal")
-           and c.rel_error > verify.TOLERANCE] + [m.name for m in result.mms if not m.passed]
+           and c.rel_error > verify.TOLERANCE] + [m.name for m in (*result.mms, *result.mms_transient)
+                                                   if not m.passed]
     print(f"verification: {len(result.cases) + len(result.convergence)} cases and "
-          f"{len(result.mms)} manufactured-solution orders written to {args.out}/verification.md"
+          f"{len(result.mms) + len(result.mms_transient)} manufactured-solution orders written to "
+          f"{args.out}/verification.md"
           + (f"; OUTSIDE tolerance: {', '.join(bad)}" if bad
              else "; all Lamé cases within 0.5 %, all orders as expected"))
 

@@ -10,7 +10,7 @@ import sys
 from contextlib import contextmanager
 from pathlib import Path
 
-from infra.files import atomic_folder
+from studies.usecases.output_folder import OutputError, output_folder
 
 
 class UserError(Exception):
@@ -48,48 +48,12 @@ def progress_bar(desc: str, unit: str = "block"):
     return update
 
 
-MARKER = ".bearingfem-output"
-
-
 @contextmanager
 def atomic_dir(out: Path):
-    """Yield a temporary folder beside `out`; move it to `out` only when the block succeeds
-    (`infra.files.atomic_folder`, which also sweeps the temporaries of killed runs).
-
-    An existing `out` is replaced only if it is empty or holds exactly what bearingfem wrote there
-    (the marker file lists it); a folder with anything else in it (the user's own files, or files
-    added since) is refused with their names, so nothing the user keeps there is lost. On failure
-    or interruption the previous content stays untouched and the temporary folder is removed."""
-    out = Path(out).resolve()
-    if out.exists():
-        if not out.is_dir() or out.is_symlink():
-            raise UserError(f"{out}: exists and is not a folder")
-        foreign = _foreign_files(out)
-        if foreign:
-            more = f" and {len(foreign) - 3} more" if len(foreign) > 3 else ""
-            raise UserError(f"{out}: holds files bearingfem did not write ({', '.join(foreign[:3])}"
-                            f"{more}); choose a new or empty folder (nothing was changed)")
-    started = False
+    """`studies.usecases.output_folder.output_folder` (the one output-folder guard, shared with
+    the Python API), its refusals raised as UserError (one line, exit 2)."""
     try:
-        with atomic_folder(out) as tmp:
-            started = True
+        with output_folder(out) as tmp:
             yield tmp
-            written = sorted(str(p.relative_to(tmp)) for p in tmp.rglob("*") if p.is_file())
-            (tmp / MARKER).write_text("written by bearingfem; the next run replaces these files:\n"
-                                      + "".join(f"{w}\n" for w in written))
-    except OSError as exc:
-        if not started:
-            raise UserError(f"{out}: cannot create the output folder ({exc.strerror})") from None
-        raise UserError(f"{out}: cannot write the results ({exc.strerror or exc}); nothing was "
-                        "changed") from None
-
-
-def _foreign_files(out: Path) -> list[str]:
-    """Files under `out` that the marker does not list (all of them when there is no marker)."""
-    marker = out / MARKER
-    listed = set()
-    if marker.is_file():
-        listed = {line.strip() for line in marker.read_text().splitlines()[1:] if line.strip()}
-    return sorted(str(p.relative_to(out)) for p in out.rglob("*")
-                  if (p.is_file() or p.is_symlink()) and p != marker
-                  and str(p.relative_to(out)) not in listed)
+    except OutputError as exc:
+        raise UserError(str(exc)) from None

@@ -90,16 +90,26 @@ class ModelPredictor:
 def read_measured(path: Path, known_outputs: set[str] | None = None) -> tuple[dict, dict]:
     """Conditions and measured outputs from one CSV; one-line errors. Columns the model writes but
     `diagnose` does not compare (e.g. a `simulate` file's extra outputs) are allowed and ignored."""
-    allowed = set(CONDITION_COLUMNS) | set(COMPARABLE) | set(known_outputs or ())
-    cols = read_table(path, allowed=allowed)
+    return split_measured(read_table(path, allowed=measured_columns(known_outputs)), path)
+
+
+def measured_columns(known_outputs: set[str] | None = None) -> set[str]:
+    """The columns a measured table may hold: conditions, comparable outputs, `known_outputs`."""
+    return set(CONDITION_COLUMNS) | set(COMPARABLE) | set(known_outputs or ())
+
+
+def split_measured(cols: dict, where) -> tuple[dict, dict]:
+    """A checked measured table (`read_table`, or an in-memory table through `check_columns`;
+    `where` names it in errors) -> (conditions, measured outputs)."""
     measured = {c: cols[c] for c in COMPARABLE if c in cols}
     if not measured:
-        raise TableError(f"{path}: no output column to compare (need one of {', '.join(COMPARABLE)})")
+        raise TableError(f"{where}: no output column to compare (need one of {', '.join(COMPARABLE)})")
     conditions = {c: cols[c] for c in CONDITION_COLUMNS if c in cols}
     if not conditions:
-        raise TableError(f"{path}: no condition column (need e.g. T_ambient_C or time_s)")
-    if len(cols["_line"]) < 8:
-        raise TableError(f"{path}: {len(cols['_line'])} rows: too few to diagnose (need at least 8)")
+        raise TableError(f"{where}: no condition column (need e.g. T_ambient_C or time_s)")
+    n = len(next(iter(measured.values())))
+    if n < 8:
+        raise TableError(f"{where}: {n} rows: too few to diagnose (need at least 8)")
     return conditions, measured
 
 
@@ -112,13 +122,20 @@ def candidate_effects(asm) -> list:
 
 def diagnose_files(assembly_path: Path, measured_path: Path, out_dir: Path, progress=print,
                    pipeline: Pipeline | None = None, workers: int | None = None) -> dict:
-    """`bearingfem diagnose`: diagnosis.json and the report in `out_dir`. workers: processes
-    for the candidates' work (`diagnose_full`) and the report's plots (default every CPU this
-    process may use); the result does not depend on it."""
+    """`bearingfem diagnose`: diagnosis.json and the report in `out_dir`; returns the JSON."""
     asm = load_assembly(assembly_path)
-    read_measured(measured_path, OUTPUT_NAMES)           # fail fast, before the FE is built
+    conditions, measured = read_measured(measured_path, OUTPUT_NAMES)   # before the FE is built
+    return diagnose_tables(asm, conditions, measured, out_dir, progress, pipeline, workers)[1]
+
+
+def diagnose_tables(asm, conditions: dict, measured: dict, out_dir: Path, progress=print,
+                    pipeline: Pipeline | None = None,
+                    workers: int | None = None) -> tuple[DiagnosisResult, dict]:
+    """The diagnosis of checked tables (`split_measured`): diagnosis.json and the report in
+    `out_dir`; returns the typed result and the JSON written. workers: processes for the
+    candidates' work (`diagnose_full`) and the report's plots (default every CPU this process
+    may use); the result does not depend on it."""
     pl = pipeline or Pipeline.shared(asm, progress=progress)
-    conditions, measured = read_measured(measured_path, OUTPUT_NAMES)
     predict = ModelPredictor(pl, conditions, measured.keys())
     candidates = candidate_effects(asm) + ladder_candidates(asm)    # the model-form ladder last
     progress(f"diagnosing {len(next(iter(measured.values())))} rows, columns "
@@ -129,7 +146,7 @@ def diagnose_files(assembly_path: Path, measured_path: Path, out_dir: Path, prog
     doc = write_diagnosis_json(result, out_dir / "diagnosis.json")
     write_table(out_dir / "diagnosis.csv", diagnosis_columns(result, measured))
     write_report(result, conditions, measured, out_dir, workers=workers)
-    return doc
+    return result, doc
 
 
 def diagnosis_columns(result: DiagnosisResult, measured) -> dict[str, np.ndarray]:

@@ -15,6 +15,7 @@ error achieved). Written as `report.md` and a self-contained
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -45,11 +46,26 @@ def default_conditions(asm) -> dict[str, np.ndarray]:
     return {"T_ambient_C": T}
 
 
+@dataclass(frozen=True)
+class ReportRun:
+    """What `report` wrote besides the files: the warning lines (also in the report) and
+    results.csv's columns (the conditions, then the output columns of `simulate`)."""
+    warnings: list
+    columns: dict
+
+    def to_frame(self):
+        """results.csv's columns as a `pandas.DataFrame` (units in the names)."""
+        import pandas as pd
+
+        return pd.DataFrame(self.columns)
+
+
 def run(asm, conditions: dict | None, out: Path, provenance: dict, progress=print,
         mesh_factor: float = 1.0, rig_sections: list[str] | None = None,
         field_temperatures_C: tuple[float, ...] | None = None, pdf: bool = False,
         command: list[str] | None = None) -> list[str]:
-    """Write the report into `out`; returns the warning lines (also in the report).
+    """Write the report into `out`; returns the warning lines (also in the report) and the
+    results table (`ReportRun`).
 
     rig_sections: markdown lines a study of a particular rig adds (its own questions, the
     published measurement beside the model), placed after the safety table.
@@ -102,7 +118,7 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, progress=prin
     write_report_files(out, lines, asm.name)
     if pdf:
         report_pdf.write_pdf(out, lines, f"Assembly report: {asm.name}")
-    return warnings + [v.summary(n, cond) for v in violations]
+    return ReportRun(warnings + [v.summary(n, cond) for v in violations], {**cond, **res})
 
 
 def design_rows(cond: dict, res: dict) -> list[int] | None:

@@ -67,15 +67,54 @@ class BearingRunError(ValueError):
     """Bad input or a row without equilibrium: one line, exit 2."""
 
 
+@dataclass(frozen=True)
+class BearingRun:
+    """What `bearing` computed: the single bearing's typed state and the output table (the load
+    columns, then OUTPUT_COLUMNS, then `convention`)."""
+    state: SingleBearingState
+    columns: dict
+    warnings: tuple[str, ...] = ()
+
+    @property
+    def n_rows(self) -> int:
+        return len(self.columns["convention"])
+
+    def to_frame(self):
+        """OUT.csv's columns as a `pandas.DataFrame` (units in the names)."""
+        import pandas as pd
+
+        return pd.DataFrame(self.columns)
+
+
 def run(bearing_path: Path, loads_path: Path, out: Path, convention: str = "exact",
         provenance: dict | None = None, control: str = "outer",
         warnings: list[str] | None = None) -> int:
     """Solve every row of `loads_path` for the bearing of `bearing_path`, write `out` atomically
     (nothing is written when any row fails).  Returns the number of rows; warning lines (a
     default of the thermal speed keys used) are appended to `warnings` when given."""
-    cfg = load_bearing(bearing_path)
-    cols = read_table(loads_path, allowed=set(LOAD_COLUMNS))
-    n = len(cols["_line"])
+    res = solve(load_bearing(bearing_path), read_table(loads_path, allowed=set(LOAD_COLUMNS)),
+                str(loads_path), convention, control, str(bearing_path))
+    write(res, out, provenance)
+    if warnings is not None:
+        warnings.extend(res.warnings)
+    return res.n_rows
+
+
+def write(res: BearingRun, out: Path, provenance: dict | None = None) -> None:
+    """OUT.csv and its provenance sidecar, atomically (a write error: one BearingRunError line)."""
+    try:
+        write_table(out, res.columns, provenance)
+    except TableError as exc:
+        raise BearingRunError(str(exc)) from None
+
+
+def solve(cfg, cols: dict, where: str = "loads", convention: str = "exact",
+          control: str = "outer", bearing_name: str = "bearing") -> BearingRun:
+    """Every row of the loads table `cols` (checked columns of LOAD_COLUMNS: from `read_table`,
+    or the API's in-memory table; `where` names it in errors) for the bearing `cfg`
+    (`load_bearing`; `bearing_name` names it in warning lines)."""
+    n = len(next(v for c, v in cols.items() if not c.startswith("_")))
+    loads_path = where
     get = lambda c: np.asarray(cols.get(c, np.zeros(n)), float)  # noqa: E731
     quasi = "speed_rpm" in cols
     st = solve_single(cfg.geometry, axial_load_N=get("axial_load_N"),
@@ -91,7 +130,8 @@ def run(bearing_path: Path, loads_path: Path, out: Path, convention: str = "exac
                               "viscosity")
     bad = np.flatnonzero(~st.converged)
     if bad.size:
-        raise BearingRunError(f"{loads_path}: line {cols['_line'][bad[0]]}: no equilibrium found "
+        row = (f"line {cols['_line'][bad[0]]}" if "_line" in cols else f"row {bad[0] + 1}")
+        raise BearingRunError(f"{loads_path}: {row}: no equilibrium found "
                               f"for these loads ({bad.size} row(s) in all); with radial "
                               "clearance a bearing needs a load that seats its balls")
     b = st.balls
@@ -123,13 +163,7 @@ def run(bearing_path: Path, loads_path: Path, out: Path, convention: str = "exac
                      "thermal_permissible_speed_rpm": ts.permissible_speed_rpm,
                      "margin_speed_rpm": ts.margin_speed_rpm,
                      "convention": np.full(n, convention)})
-    if warnings is not None and ts.warning:
-        warnings.append(f"{bearing_path}: {ts.warning}")
-    try:
-        write_table(out, out_cols, provenance)
-    except TableError as exc:
-        raise BearingRunError(str(exc)) from None
-    return n
+    return BearingRun(st, out_cols, (f"{bearing_name}: {ts.warning}",) if ts.warning else ())
 
 
 def bearing_torque_Nmm(cfg, st: SingleBearingState, speed_rpm, T_oil_C) -> np.ndarray:

@@ -627,6 +627,13 @@ class DesignResult:
     why: Why | None
     provenance: dict
 
+    def to_frame(self):
+        """The confirmed designs, ranked, as a `pandas.DataFrame` (the rows of design.json's
+        "designs")."""
+        import pandas as pd
+
+        return pd.DataFrame([d.row() for d in self.designs])
+
     def to_json(self) -> dict:
         w = self.why
         return {"range_C": list(self.range_C), "temperatures_C": list(self.temperatures_C),

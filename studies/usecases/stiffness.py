@@ -163,6 +163,12 @@ class RossTable:
     def range_text(self) -> str:
         return f"{self.speeds_rpm.min():g}..{self.speeds_rpm.max():g} rpm"
 
+    def to_frame(self):
+        """The table as a `pandas.DataFrame` (`ross.BearingElement.from_table` reads its names)."""
+        import pandas as pd
+
+        return pd.DataFrame(self.columns)
+
 
 def ross_table(k: PairStiffness, speed_rpm: np.ndarray, where: str = "conditions") -> RossTable:
     """One row per speed, sorted (a ROSS table is a function of speed): rows with equal speeds
@@ -185,24 +191,31 @@ def ross_table(k: PairStiffness, speed_rpm: np.ndarray, where: str = "conditions
 
 @dataclass(frozen=True)
 class StiffnessRun:
+    """What `stiffness` computed: the output table (condition columns, then the stiffness
+    columns), the ROSS table when asked for, and the warning lines."""
     n_rows: int
     ross: RossTable | None
     warnings: tuple[str, ...] = ()
+    columns: dict | None = None
+
+    def to_frame(self):
+        """OUT.csv's columns as a `pandas.DataFrame` (units in the names)."""
+        import pandas as pd
+
+        return pd.DataFrame(self.columns)
 
 
-def run(assembly_path: Path, conditions_path: Path, out: Path, per_bearing: bool = False,
-        ross_out: Path | None = None, provenance: dict | None = None,
-        progress=None, free_axial: bool = False) -> StiffnessRun:
-    """The command: read, solve every row, then write OUT.csv (and the ROSS table) atomically;
-    nothing is written when any row fails, nor when --ross is asked for and a row has lost its
-    preload (StiffnessRunError naming the row: docs/cli.md "Bearing stiffness" argues why).
-    Rows that lost the preload without --ross: written, with preload_N beside the stiffness and
-    one warning line (`StiffnessRun.warnings`)."""
-    from studies.model.config import load_assembly
-
-    asm = load_assembly(assembly_path)
-    cond = read_conditions(conditions_path)
-    n = len(cond["_line"])
+def compute(asm, cond: dict, where: str = "conditions", per_bearing: bool = False,
+            ross: bool = False, progress=None, free_axial: bool = False) -> StiffnessRun:
+    """Solve every row of the conditions `cond` (checked columns: `read_conditions`, or the API's
+    in-memory table, whose rows are numbered 1.. where a file's are named by their line; `where`
+    names it in errors) and build the output columns (and the ROSS table with `ross`): a row
+    that did not converge, or with `ross` a row that lost its preload, is one StiffnessRunError
+    or ModelError line naming it (docs/cli.md "Bearing stiffness" argues why); rows that lost
+    the preload without `ross`: kept, with preload_N beside the stiffness and one warning line."""
+    n = len(next(v for c, v in cond.items() if not c.startswith("_")))
+    lines = cond["_line"] if "_line" in cond else np.arange(1, n + 1)
+    label = "line" if "_line" in cond else "row"
     pipe = Pipeline.shared(asm, progress=progress)
     cols = {c: v for c, v in cond.items() if not c.startswith("_")}
     parts, speeds, preload, lost = [], [], [], []
@@ -212,10 +225,10 @@ def run(assembly_path: Path, conditions_path: Path, out: Path, per_bearing: bool
         eq, k = solve_rows(pipe, inputs, i0)
         bad = np.flatnonzero(~k.converged)
         if bad.size:
-            raise ModelError(f"{conditions_path}: line {rows['_line'][bad[0]]}: the balls' state "
+            raise ModelError(f"{where}: {label} {lines[i0 + bad[0]]}: the balls' state "
                              f"at the equilibrium did not converge")
         parts.append(k)
-        speeds.append(np.broadcast_to(inputs.speed_rpm, (len(rows["_line"]),)))
+        speeds.append(np.broadcast_to(inputs.speed_rpm, (min(n - i0, CHUNK_ROWS),)))
         preload.append(eq.pair.preload_N)
         lost.append(eq.pair.preload_lost)
         if progress and n > CHUNK_ROWS:
@@ -225,10 +238,10 @@ def run(assembly_path: Path, conditions_path: Path, out: Path, per_bearing: bool
                          ("converged", 0))))
     lost = np.concatenate(lost)
     speed = np.concatenate(speeds)
-    if ross_out is not None and lost.any():
+    if ross and lost.any():
         i = int(np.flatnonzero(lost)[0])
         raise StiffnessRunError(
-            f"{conditions_path}: line {cond['_line'][i]} (speed_rpm {speed[i]:g}): the pair's "
+            f"{where}: {label} {lines[i]} (speed_rpm {speed[i]:g}): the pair's "
             f"preload is lost ({int(lost.sum())} of {n} rows): --ross exports no such speed (a "
             "pair without preload has a stiffness set by the external loads, 0 without them, "
             "not a function of speed; left out, ROSS would interpolate over it); drop those "
@@ -238,15 +251,19 @@ def run(assembly_path: Path, conditions_path: Path, out: Path, per_bearing: bool
                  PRELOAD_COLUMNS[1]: lost.astype(float)})
     if per_bearing:
         cols.update(bearing_columns(k))
-    warnings = tuple(w for w in (lost_preload_warning(lost, cond["_line"],
-                                                      str(conditions_path)),) if w)
-    ross = None
-    if ross_out is not None:
-        ross = ross_table(k, speed, str(conditions_path))
+    warnings = tuple(w for w in (lost_preload_warning(lost, lines, where),) if w)
+    table = ross_table(k, speed, where) if ross else None
+    return StiffnessRun(n, table, warnings, cols)
+
+
+def write(res: StiffnessRun, out: Path, ross_out: Path | None = None,
+          provenance: dict | None = None) -> None:
+    """OUT.csv (and the ROSS table) atomically, each with its provenance sidecar."""
     try:
         with TableWriter(out, provenance) as w:
-            w.write(cols)
-            if ross is not None:
+            w.write(res.columns)
+            if ross_out is not None and res.ross is not None:
+                ross = res.ross
                 side = dict(provenance or {}, ross={
                     "speeds_rpm": ross.speeds_rpm.tolist(),
                     "interpolated_range_rpm": [float(ross.speeds_rpm.min()),
@@ -259,4 +276,18 @@ def run(assembly_path: Path, conditions_path: Path, out: Path, per_bearing: bool
                     wr.write(ross.columns)
     except TableError as exc:
         raise StiffnessRunError(str(exc)) from None
-    return StiffnessRun(n, ross, warnings)
+
+
+def run(assembly_path: Path, conditions_path: Path, out: Path, per_bearing: bool = False,
+        ross_out: Path | None = None, provenance: dict | None = None,
+        progress=None, free_axial: bool = False) -> StiffnessRun:
+    """The command: read, solve every row (`compute`), then write OUT.csv (and the ROSS table)
+    atomically (`write`); nothing is written when any row fails."""
+    from studies.model.config import load_assembly
+
+    asm = load_assembly(assembly_path)
+    cond = read_conditions(conditions_path)
+    res = compute(asm, cond, str(conditions_path), per_bearing, ross_out is not None, progress,
+                  free_axial)
+    write(res, out, ross_out, provenance)
+    return res

@@ -10,7 +10,7 @@ plots and `report.md` / `report.html`.
 from __future__ import annotations
 
 import json
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -107,6 +107,14 @@ class ToleranceSummary:
     samples: int
     fit_leaves_design: dict[str, float]
     preload_lost: float
+    json: dict = field(default_factory=dict, compare=False, repr=False)   # tolerance.json
+    columns: dict = field(default_factory=dict, compare=False, repr=False)  # samples.csv
+
+    def to_frame(self):
+        """samples.csv's columns (one row per sample and condition) as a `pandas.DataFrame`."""
+        import pandas as pd
+
+        return pd.DataFrame(self.columns)
 
 
 def run(asm, conditions: dict | None, out: Path, provenance: dict, samples: int, seed: int,
@@ -190,7 +198,7 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, samples: int,
     _report(asm, out, cond, result, mc, fail, lin)
     return ToleranceSummary(int(samples), {f: float(probs[f"fit_open_{f}"])
                                            for f in tol.designed_closed(asm)},
-                            float(probs["preload_lost"]))
+                            float(probs["preload_lost"]), result, cols)
 
 
 def _x(cond):

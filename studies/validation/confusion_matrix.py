@@ -152,7 +152,7 @@ def run_second_source(cases=None, trials: int = 2, mesh_factor: float = 1.0,
     return parallel_map(lambda it: second_trial(*it, mesh_factor, progress), items, workers)
 
 
-#: stated levels (docs/diagnosis.md): a cause claimed on a null (alpha_lr), any discrepancy
+#: stated levels (docs/diagnosis_rates.md): a cause claimed on a null (alpha_lr), any discrepancy
 #: reported on a null (alpha_structure + alpha_lr, `operating.stated_false_alarm_level`)
 CLAIM_LEVEL = DEFAULT_THRESHOLDS["alpha_lr"]
 ALARM_LEVEL = stated_false_alarm_level()
