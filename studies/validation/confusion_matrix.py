@@ -169,13 +169,12 @@ def second_source_rates(trials: list[SecondTrial]) -> list[str]:
     claims = sum(t.verdict in CLAIMS for t in nulls)
     alarms = sum(t.verdict != "no_discrepancy" for t in nulls)
     from studies.diagnosis.ladder import ladder
-    from studies.model.config import load_shipped
     from studies.model.effects import EFFECTS
-    from studies.validation.second_source import CASES, DESIGNS as SS_DESIGNS
+    from studies.validation.second_source import CASES, design_assembly
 
     def claimable(design: str) -> set[str]:
         """Names a diagnosis of the design can claim: listed effects and tried rungs."""
-        rungs = ladder(load_shipped(SS_DESIGNS[design][0]))
+        rungs = ladder(design_assembly(design))
         return set(EFFECTS) | {r.name for r in rungs if r.candidate is not None}
 
     listed = [t for t in trials if t.truth != "none" and t.change_sigma >= LISTED_HIT_SIGMA

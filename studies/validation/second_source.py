@@ -98,8 +98,23 @@ def steady_grid() -> dict[str, np.ndarray]:
     return {"T_ambient_C": np.repeat(T.ravel(), 2), "preload_assembled_N": np.repeat(P.ravel(), 2)}
 
 
+def thin_cycles(n: int = 240, dt: float = 120.0) -> dict[str, np.ndarray]:
+    """The thin-section rig's range (issue 36: -45..+60 C): from 20 C to +60, -45, +60, back to
+    20 C at 2 K/min with one-hour dwells, sampled every `dt` s (240 x 120 s = 8 h)."""
+    t = np.arange(n) * dt
+    leg = [(60.0, 20), (60.0, 60), (-45.0, 52), (-45.0, 60), (60.0, 52), (60.0, 60),
+           (20.0, 20), (20.0, 30)]                          # (set point C, minutes)
+    kt, kT = [0.0], [20.0]
+    while kt[-1] < t[-1]:
+        for T, minutes in leg:
+            kt.append(kt[-1] + 60.0 * minutes)
+            kT.append(T)
+    return {"time_s": t, "T_ambient_C": np.interp(t, kt, kT)}
+
+
 #: design -> (shipped assembly, conditions the diagnosis is given)
 DESIGNS: dict[str, tuple[str, Callable[[], dict]]] = {
+    "thin_cycles": ("rig_thin_section_hub.toml", thin_cycles),  # issue 36's rig
     "cycles": ("seed000", cycles),             # -60 <-> 80 C, 240 rows x 120 s
     "steady_grid": ("seed000", steady_grid),   # T x preload, 64 rows, no time
     "speed_steps": ("seed001", speed_steps),   # 0..60 C steps at 6000/3000/9000 rpm, 240 x 120 s
@@ -192,6 +207,25 @@ def network_temperatures(time_s: np.ndarray, T_ambient_C: np.ndarray, tau_outer_
     To, Tr = y[:, 0], y[:, 1]
     return {"T_housing_C": To, "T_outer_ring_C": To, "T_spacer_C": 0.5 * (To + Tr),
             "T_shaft_C": Tr, "T_inner_ring_C": Tr, "T_ball_C": 0.5 * (To + Tr)}
+
+
+def shaft_side_lag(time_s: np.ndarray, T_ambient_C: np.ndarray,
+                   tau_shaft_s: float) -> dict[str, np.ndarray]:
+    """Part temperatures with the housing side (housing, sleeve, outer rings, spacers) at the
+    chamber and the shaft side (shaft, inner rings, balls) a first-order lag tau_shaft_s behind
+    it (issue 36), made another way than `thermal_lag.lag_response` (the exact solution for an
+    ambient piecewise linear): the backward-Euler recursion on a 1 s grid (Incropera ch. 5.3
+    lumped body), sampled at the rows. The spacers follow the housing side (the inner spacer
+    lies on the shaft side in the stack, but one `T_spacer_C` column serves both)."""
+    t = np.asarray(time_s, float)
+    u = np.asarray(T_ambient_C, float)
+    fine = np.arange(t[0], t[-1] + 0.5, 1.0)
+    uf = np.interp(fine, t, u)
+    a = 1.0 / (1.0 + 1.0 / float(tau_shaft_s))       # backward Euler, h = 1 s
+    y = signal.lfilter([1.0 - a], [1.0, -a], uf, zi=[a * uf[0]])[0]
+    Ts = np.interp(t, fine, y)
+    return {"T_housing_C": u.copy(), "T_outer_ring_C": u.copy(), "T_spacer_C": u.copy(),
+            "T_shaft_C": Ts, "T_inner_ring_C": Ts, "T_ball_C": Ts}
 
 
 def transient_asm(asm):
@@ -431,6 +465,11 @@ CASES: dict[str, CaseSpec] = {
         "two causes made another way: 10 um/kN more compliance in the preload path and a "
         "solid-film run-in of the friction coefficient by -0.006 over 10 krev, on a finer mesh "
         "(0.7 x) with direct FE solves"),
+    "shaft_lag_numpy": CaseSpec(
+        "history", "thin_cycles", ("thermal_lag",), ("thermal_lag",),
+        "issue 36: the shaft, inner rings and balls lag 900 s behind the hub, which follows "
+        "the chamber; the lag made in numpy (a first-order filter, `shaft_side_lag`), the "
+        "temperatures fed to the finer mesh (0.7 x) with direct FE solves"),
     "ar1_090_null": CaseSpec(
         "noise", "cycles", (), (), "nothing hidden; AR(1) noise phi 0.9 at 120 s (issue 23)"),
     "ar1_095_null": CaseSpec(
@@ -476,13 +515,20 @@ def _run(asm, mesh_factor, conditions, effects=None, friction=None, direct=False
     return {c: np.asarray(out[c], float) for c in COLUMNS}
 
 
+def design_assembly(design: str):
+    """The assembly a design is diagnosed with: a shipped one by its key (`SHIPPED`), else a
+    file of studies/configs by its name."""
+    from studies.model.config import CONFIG_DIR, SHIPPED, load_assembly, load_shipped
+
+    key = DESIGNS[design][0]
+    return load_shipped(key) if key in SHIPPED else load_assembly(CONFIG_DIR / key)
+
+
 def _truth(name: str, mesh_factor: float):
     """(diagnosed assembly, conditions given, noise-free truth, Noise without sigma) of a case."""
-    from studies.model.config import load_shipped
-
     spec = CASES[name]
-    key, make = DESIGNS[spec.design]
-    asm = load_shipped(key)
+    _, make = DESIGNS[spec.design]
+    asm = design_assembly(spec.design)
     cond = make()
     mf = mesh_factor
     noise: dict = {}
@@ -523,6 +569,10 @@ def _truth(name: str, mesh_factor: float):
     elif name == "fit_error_and_lag":
         truth = _run(asm, mf, cond, {"interference_error": {"inner_um": 4.0, "outer_um": 0.0},
                                      "thermal_lag": {"tau_s": 1500.0}})
+    elif name == "shaft_lag_numpy":
+        truth = _run(asm, 0.7 * mf, {**cond, **shaft_side_lag(cond["time_s"],
+                                                              cond["T_ambient_C"], 900.0)},
+                     direct=True)
     elif name in PAIRS:
         # every pair and each of its causes alone, the same way (finer mesh, direct solves)
         parts = PAIRS[name]
