@@ -32,7 +32,13 @@ pytestmark = pytest.mark.slow
 MESH_FACTOR = 2.0
 
 
-@pytest.mark.parametrize("name", list(ss.CASES))
+#: cases left out here: `shaft_lag_numpy`'s truth (the thin-section rig on the finer mesh with
+#: direct solves) takes about 11 GB (measured 2026-11-29; its outcome, right, is in
+#: docs/diagnosis.md "A lag the listed form fits at off")
+HEAVY = ("shaft_lag_numpy",)
+
+
+@pytest.mark.parametrize("name", [n for n in ss.CASES if n not in HEAVY])
 def test_no_wrong_cause_on_second_source_data(name):
     """Seed 0 of the case: the diagnosis names a right cause, says it cannot (unexplained), or
     finds nothing (on a null or an invisible truth); never a wrong cause."""

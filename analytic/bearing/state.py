@@ -131,6 +131,11 @@ def concatenate_states(states: list[PairState]) -> PairState:
     return _combine(lambda *a: np.concatenate(a, axis=-1), *states)
 
 
+def take_rows(state: PairState, rows: np.ndarray) -> PairState:
+    """The state whose point i is point rows[i] of `state` (every array, along the last axis)."""
+    return _combine(lambda a: np.asarray(a)[..., rows], state)
+
+
 def with_rows(state: PairState, rows: np.ndarray, sub: PairState) -> PairState:
     """A copy of `state` whose points `rows` are replaced by the points of `sub` (both with the
     same optional parts set)."""

@@ -15,10 +15,14 @@ engine's work depends on how many candidates pass, and two generalised forms (pe
 300 s / 360 s, settling creeping 3 N/h), where the engine also fits the generalised forms of the
 family (`studies.diagnosis.generalised`); the column `form` gives the extended form reported;
 two model forms of the ladder (grooved ring sections, a housing lot 3 % above the library's CTE),
-made through the ladder's own route (`ladder.FormRoute`). The candidates are the CLI's
+made through the ladder's own route (`ladder.FormRoute`); an unlogged load (issue 34: a belt
+pulley's 30 N pull with its 3000 N mm moment on seed 001's flywheel pair, `flywheel_steps`: the
+speed steps with the assembled preload stepped 7 / 15 / 30 N, 1 % noise), which puts the pair's
+5-DOF solve in every call of the `unlogged_load` rung. The candidates are the CLI's
 (`files.candidate_effects` and the ladder's `ladder.candidates`, after them), and so are the worker processes
 (`--workers`, default every CPU the process may use, `studies.model.parallel.parallel_map`).
-Times: the FE set-up (mesh from the cache, unit solutions) once; per dataset the engine alone
+Last, one line per dataset kind, `<kind>: <rows> rows, wall <s> s` (docs/cli.md), the whole
+`diagnose`'s wall seconds, slowest last, with the load average after it. Times: the FE set-up (mesh from the cache, unit solutions) once; per dataset the engine alone
 (`diagnose_full`, what the goal is about) and the whole `diagnose_files` (reading the CSV, the
 engine, JSON and the report with its plots), with the set-up pipeline passed in; wall seconds
 and CPU seconds (this process and its workers: on a loaded machine the CPU seconds move less).
@@ -44,28 +48,62 @@ import time  # noqa: E402
 from contextlib import contextmanager  # noqa: E402
 from dataclasses import dataclass, field  # noqa: E402
 from pathlib import Path  # noqa: E402
+from typing import Callable  # noqa: E402
 
 import numpy as np  # noqa: E402
 
-from studies.diagnosis.designs import cycles  # noqa: E402
+from studies.diagnosis.designs import cycles, speed_steps  # noqa: E402
 
 N_ROWS = 500
 SIGMA = {"torque_Nmm": 0.02, "preload_N": 0.5}
 MU_TRUE = 1.25
-DATASETS = {"no effect": {}, "thermal_lag tau_s=300": {"thermal_lag": {"tau_s": 300.0}},
-            "preload_settling loss_N=5 threshold_K=50":
-                {"preload_settling": {"loss_N": 5.0, "threshold_K": 50.0}},
-            "solid_film_runin dmu=-0.004 runin_krev=10":
-                {"solid_film_runin": {"dmu": -0.004, "runin_krev": 10.0}},
-            # generalised forms (issue 11): the engine then also fits the family's forms
-            "thermal_lag.per_part tau_s=300 tau_shaft_s=360":
-                {"thermal_lag.per_part": {"tau_s": 300.0, "tau_shaft_s": 360.0}},
-            "preload_settling.creep 5 N, 50 K, 3 N/h":
-                {"preload_settling.creep": {"loss_N": 5.0, "threshold_K": 50.0,
-                                            "creep_N_per_h": 3.0}},
-            # model forms of the ladder (issue 23): the FE set-up rung and an inputs rung
-            "ring_section_grooved (model form)": {"ring_section_grooved": {"share": 1.0}},
-            "material_lot housing CTE x 1.03": {"material_lot": {"cte_factor_housing": 1.03}}}
+
+
+def flywheel_steps(n: int) -> dict[str, np.ndarray]:
+    """Seed 001's flywheel pair on a spindle rig: `designs.speed_steps` (chamber 0..60 C in
+    20 K steps at 6000, 3000, 9000 rpm) over the same 8 h whatever `n`, the assembled preload
+    stepped through 7, 15, 30 N row by row (an unlogged load changes the torque most at low
+    preload: a rig that wants to see it varies the preload)."""
+    out = speed_steps(n, 120.0 * 240 / n)
+    out["preload_assembled_N"] = np.array([7.0, 15.0, 30.0])[np.arange(n) % 3]
+    return out
+
+
+@dataclass(frozen=True)
+class Kind:
+    """One dataset kind of the benchmark: label, shipped assembly, design (rows -> conditions),
+    hidden effects ({name: parameters}), hidden condition columns (constant values the
+    conditions given to the diagnosis do not log), measured noise (column -> sigma)."""
+    label: str
+    assembly: str = "seed000"
+    design: Callable[[int], dict] = lambda n: cycles(n, 60.0)
+    effects: dict = field(default_factory=dict)
+    hidden: dict = field(default_factory=dict)
+    sigma: dict = field(default_factory=lambda: dict(SIGMA))
+
+
+DATASETS = [
+    Kind("no effect"),
+    Kind("thermal_lag tau_s=300", effects={"thermal_lag": {"tau_s": 300.0}}),
+    Kind("preload_settling loss_N=5 threshold_K=50",
+         effects={"preload_settling": {"loss_N": 5.0, "threshold_K": 50.0}}),
+    Kind("solid_film_runin dmu=-0.004 runin_krev=10",
+         effects={"solid_film_runin": {"dmu": -0.004, "runin_krev": 10.0}}),
+    # generalised forms (issue 11): the engine then also fits the family's forms
+    Kind("thermal_lag.per_part tau_s=300 tau_shaft_s=360",
+         effects={"thermal_lag.per_part": {"tau_s": 300.0, "tau_shaft_s": 360.0}}),
+    Kind("preload_settling.creep 5 N, 50 K, 3 N/h",
+         effects={"preload_settling.creep": {"loss_N": 5.0, "threshold_K": 50.0,
+                                             "creep_N_per_h": 3.0}}),
+    # model forms of the ladder (issue 23): the FE set-up rung and an inputs rung
+    Kind("ring_section_grooved (model form)", effects={"ring_section_grooved": {"share": 1.0}}),
+    Kind("material_lot housing CTE x 1.03", effects={"material_lot": {"cte_factor_housing": 1.03}}),
+    # the unlogged_load rung (issue 34): a belt pulley's pull of 30 N, 100 mm beyond the
+    # pair's mid-point, on seed 001's flywheel pair (the pair's 5-DOF solve in every call);
+    # 1 % noise as the second source states it (the flywheel's torque is ~0.1 N mm)
+    Kind("unlogged_load 30 N, 3000 N mm (flywheel)", assembly="seed001", design=flywheel_steps,
+         hidden={"radial_load_N": 30.0, "moment_Nmm": 3000.0}, sigma={}),
+]
 
 
 @dataclass
@@ -157,6 +195,7 @@ def main(argv=None) -> None:
     from studies.model.config import CONFIG_DIR, SHIPPED, load_shipped
     from studies.diagnosis.files import (NUISANCE, ModelPredictor, candidate_effects,
                                          diagnose_files)
+    from studies.validation.second_source import NOISE_SHARE
     from studies.diagnosis.engine import diagnose_full
     from studies.diagnosis.ladder import candidates as ladder_candidates
     from studies.diagnosis.result import to_json
@@ -177,27 +216,43 @@ def main(argv=None) -> None:
     args = ap.parse_args(argv)
     workers = available_workers() if args.workers is None else args.workers
 
-    asm = load_shipped("seed000")
-    t0 = time.perf_counter()
-    pl = Pipeline(asm, mesh_factor=args.mesh_factor)
-    t_setup = time.perf_counter() - t0
-    cands = candidate_effects(asm) + ladder_candidates(asm)      # as the CLI: the ladder last
-    print(f"FE set-up (once per run of the CLI): {t_setup:.2f} s")
+    setups: dict = {}
+
+    def setup(key):
+        """(assembly, pipeline, the CLI's candidates) of a shipped assembly, built once."""
+        if key not in setups:
+            asm = load_shipped(key)
+            t0 = time.perf_counter()
+            pl = Pipeline(asm, mesh_factor=args.mesh_factor)
+            print(f"FE set-up of {key} (once per run of the CLI): {time.perf_counter() - t0:.2f} s"
+                  f" ({pl.ndofs} DOF)")
+            # as the CLI: the listed effects, then the ladder
+            setups[key] = (asm, pl, candidate_effects(asm) + ladder_candidates(asm))
+        return setups[key]
+
     for n_rows in args.rows:
-        cond = cycles(n_rows, 60.0)
-        print(f"diagnose benchmark: seed000, {n_rows} rows (cycles -60..80 C), columns "
-              f"{', '.join(SIGMA)}, {len(cands)} candidates, mesh factor {args.mesh_factor:g} "
-              f"({pl.ndofs} DOF), OPENBLAS_NUM_THREADS={os.environ.get('OPENBLAS_NUM_THREADS')}, "
-              f"{os.cpu_count()} CPUs, {workers} worker process(es), load {os.getloadavg()[0]:.1f}")
+        print(f"diagnose benchmark: {n_rows} rows, mesh factor {args.mesh_factor:g}, "
+              f"OPENBLAS_NUM_THREADS={os.environ.get('OPENBLAS_NUM_THREADS')}, "
+              f"{os.cpu_count()} CPUs, {workers} worker process(es), load "
+              f"{os.getloadavg()[0]:.1f}")
         print(f"{'dataset':<42} {'verdict':<15} {'cause':<18} {'engine s':>8} {'CPU s':>6} "
               f"{'calls':>6} {'model s':>8} {'CLI s':>6} {'CPU s':>6}  form")
         rng = np.random.default_rng(0)
-        for label, effects in DATASETS.items():
-            truth = ModelPredictor(pl, cond, tuple(SIGMA))(effects, {"mu_scale": MU_TRUE})
-            meas = {c: truth[c] + rng.normal(0.0, s, truth[c].size) for c, s in SIGMA.items()}
+        walls = []
+        for kind in DATASETS:
+            label = kind.label
+            asm, pl, cands = setup(kind.assembly)
+            cond = kind.design(n_rows)
+            hidden = {k: np.full(n_rows, v) for k, v in kind.hidden.items()}
+            cols = tuple(kind.sigma or SIGMA)
+            truth = ModelPredictor(pl, {**cond, **hidden}, cols)(kind.effects,
+                                                                  {"mu_scale": MU_TRUE})
+            sigma = kind.sigma or {c: NOISE_SHARE * float(np.mean(np.abs(truth[c])))
+                                   for c in cols}
+            meas = {c: truth[c] + rng.normal(0.0, s, truth[c].size) for c, s in sigma.items()}
             if args.datasets and not any(d in label for d in args.datasets):
                 continue                      # the noise draws stay those of the full list
-            pred = ModelPredictor(pl, cond, tuple(SIGMA))
+            pred = ModelPredictor(pl, cond, cols)
             with Clock() as engine:
                 out = diagnose_full(pred, meas, cond, cands, NUISANCE, T_ref_C=asm.T_ref_C,
                                     predict_at=pred.at, workers=workers)
@@ -206,8 +261,9 @@ def main(argv=None) -> None:
                 csv = Path(tmp) / "measured.csv"
                 write_table(csv, {**cond, **meas})
                 with Clock() as cli:
-                    diagnose_files(CONFIG_DIR / SHIPPED["seed000"], csv, Path(tmp),
+                    diagnose_files(CONFIG_DIR / SHIPPED[kind.assembly], csv, Path(tmp),
                                    progress=lambda s: None, pipeline=pl, workers=workers)
+            walls.append((cli.wall_s, label, cli.load_after))
             form = (r.get("extended_form") or {}).get("name", "-")
             print(f"{label:<42} {r['verdict']:<15} {str(r['cause']):<18} {engine.wall_s:8.2f} "
                   f"{engine.cpu_s:6.2f} {r['n_predict_calls']:6d} {r['seconds']['predict']:8.2f} "
@@ -219,13 +275,17 @@ def main(argv=None) -> None:
                 for k, v in r["seconds_by_phase"].items() if v["total"] >= 0.005)
                 + f"; total {r['seconds']['total']:.2f} s ({r['seconds']['predict']:.2f} s)")
             if args.profile:
-                pred = ModelPredictor(pl, cond, tuple(SIGMA))
+                pred = ModelPredictor(pl, cond, cols)
                 with profiled(pl) as prof:
                     t0 = time.process_time()
                     diagnose_full(timed(pred, prof.model), meas, cond, cands, NUISANCE,
                                   T_ref_C=asm.T_ref_C, predict_at=pred.at, workers=1)
                     prof.engine_s = time.process_time() - t0
                 print("\n".join(prof.lines(workers)))
+        # docs/cli.md ("Added for turn 4"): one line per kind, the whole `diagnose` (CLI) wall,
+        # slowest last; the load after each run beside it
+        for wall, label, load in sorted(walls):
+            print(f"{label}: {n_rows} rows, wall {wall:.2f} s (load {load:.1f})")
 
 
 if __name__ == "__main__":

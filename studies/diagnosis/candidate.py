@@ -15,7 +15,7 @@ import numpy as np
 #: keys every candidate entry carries, set or not (docs/cli.md), then status and reason
 ALWAYS = ("effect", "kind", "parameters", "delta_bic", "heldout_rmse", "status", "reason")
 #: working state of the phases, not part of the result file
-WORKING = ("sensitivity", "profile_fixed", "profile_grid")
+WORKING = ("sensitivity", "profile_fixed", "profile_grid", "fit_cpu_s")
 
 
 @dataclass(frozen=True)
@@ -60,6 +60,7 @@ class Candidate:
     sensitivity: np.ndarray | None = field(default=None, repr=False)
     profile_fixed: dict | None = None
     profile_grid: dict | None = None
+    fit_cpu_s: float | None = None          # CPU seconds of its fit (schedules the refits)
 
     def with_status(self, status: str, reason: str) -> "Candidate":
         """A copy with this status and reason."""

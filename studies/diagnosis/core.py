@@ -238,6 +238,9 @@ class Screening:
     candidates: dict[str, Candidate]
     identifiable: list[str]
     lookalike: dict[str, dict[str, float]]
+    #: CPU seconds per model call of each screened candidate's sensitivities (the cost the fits
+    #: are scheduled by, `fitting.fit_all`; not part of the result)
+    call_seconds: dict[str, float] = dataclasses.field(default_factory=dict)
 
 
 @dataclass(frozen=True)

@@ -77,7 +77,7 @@ from studies.diagnosis.problem import Problem, make_problem
 from studies.diagnosis.result import (BestPartial, ColumnEvidence, Cost, DiagnosisResult,
                                       ModelRmse, NuisanceFit, to_json)
 from studies.diagnosis.screening import screen
-from studies.diagnosis.selection import Selection, select
+from studies.diagnosis.selection import Selection, select, select_past_drift
 
 
 @dataclass
@@ -151,7 +151,12 @@ def run(pb: Problem, seed: int = 0, t0: float | None = None) -> DiagnosisResult:
     sep = (separating(first.pb, d.best, d.rivals, first.fits, first.baseline.fit)
            if d.verdict == "ambiguous" else Separation(None, [], []))
     clock.phase("separating")
-    sel = select(first, lambda q, k, cal: one_pass(q, rng, clock, f"_cause{k}", cal))
+    nxt = lambda q, k, cal: one_pass(q, rng, clock, f"_cause{k}", cal)  # noqa: E731
+    sel = select(first, nxt)
+    past = select_past_drift(first, nxt) if sel.verdict is None else None
+    if past is not None:            # two causes, the second taken for a drift at first
+        first, sel = past
+        sep = Separation(None, [], [])
     return assemble(first, sel, sep, clock.cost())
 
 

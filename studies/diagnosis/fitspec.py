@@ -97,7 +97,16 @@ def lag_per_part_steps(effect, conditions) -> dict[str, float]:
 
 def lag_per_part_extra_starts(form, listed, conditions) -> list[dict]:
     """A grid of both time constants about the listed one (factors 0.35..2.8): the two lags
-    trade against each other and against the friction calibration (local minima)."""
+    trade against each other and against the friction calibration (local minima). A listed
+    lag below the shortest lag start (`lag_starts`: at its off value, 0, when one side does not
+    lag at all and the listed single lag cannot choose, issue 36) gives no scale to start
+    about: then one side at 0 and the other over the lag starts, and the series form's grid
+    of both (`lag_series_extra_starts`)."""
+    taus = [d["tau_s"] for d in lag_starts(form, conditions, 0.0)]
+    if taus and float(listed["tau_s"]) < taus[0]:
+        return ([{"tau_s": 0.0, "tau_shaft_s": t} for t in taus]
+                + [{"tau_s": t, "tau_shaft_s": 0.0} for t in taus]
+                + lag_series_extra_starts(form, listed, conditions))
     tau = max(float(listed["tau_s"]), 1.0)
     f = (0.35, 0.5, 0.7, 1.0, 1.4, 2.0, 2.8)
     return [{"tau_s": tau * a, "tau_shaft_s": tau * b} for a in f for b in f if a != b]

@@ -13,7 +13,7 @@ from studies.diagnosis import fitspec
 from studies.diagnosis.candidate import Candidate
 from studies.diagnosis.core import Baseline, Fit, Linearisation, ModelFailure, Screening
 from studies.diagnosis.interval import parameter_covariance
-from studies.diagnosis.problem import Problem
+from studies.diagnosis.problem import Problem, cpu_timed, longest_first
 from studies.diagnosis.stats import blsq, chibar_pvalue
 
 
@@ -40,11 +40,12 @@ def fit_all(pb: Problem, s: Screening, b: Baseline
             return None, None, str(exc), pb.model.calls - calls0
         return f, profile, None, pb.model.calls - calls0
 
-    # the candidates' fits are independent: on the engine's workers (profiled first: longest)
+    # the candidates' fits are independent: on the engine's workers, the longest first
     names = list(s.identifiable)
-    done = pb.parallel(fit_one, names,
-                         first=[i for i, n in enumerate(names) if fitspec.profile(pb.effect(n))])
-    for name, (f, profile, failed, calls) in zip(names, done):
+    done = pb.parallel(cpu_timed(fit_one), names,
+                       first=longest_first([fit_cost(pb, pb.effect(n), cands[n], s) for n in names]))
+    seconds = {n: t for n, (_, t) in zip(names, done)}
+    for name, ((f, profile, failed, calls), _) in zip(names, done):
         e = pb.effect(name)
         info = cands[name]
         if failed is not None:
@@ -65,7 +66,8 @@ def fit_all(pb: Problem, s: Screening, b: Baseline
             delta_bic=-lr + k_eff * lnN, k=k_eff,
             parameters={p: eff_vals[name][p] for p in e.parameters},
             held_at_off={p: e.off[p] for p in held} if held else None,
-            nuisance=nuis_vals, uncertainty=uncertainty(pb, f, e), rmse=pb.col_rmse(f.z))
+            nuisance=nuis_vals, uncertainty=uncertainty(pb, f, e), rmse=pb.col_rmse(f.z),
+            fit_cpu_s=seconds[name])
     # Holm over the identifiable candidates
     order = sorted(fits, key=lambda n: cands[n].p_lr)
     m = len(order)
@@ -75,6 +77,27 @@ def fit_all(pb: Problem, s: Screening, b: Baseline
         still = ok
         cands[name] = replace(cands[name], lr_significant=bool(ok))
     return fits, cands
+
+#: model calls of a local fit per fitted coordinate, the estimate `fit_cost` takes (about 10
+#: iterations of a finite-difference Jacobian)
+CALLS_PER_COORDINATE = 10
+
+
+def fit_cost(pb: Problem, e, info: Candidate, s: Screening) -> float | None:
+    """Estimated CPU seconds of a candidate's fit (the order the fits are handed to the
+    workers; None when its screening was not timed): its seconds per model call in the
+    screening times the calls its fit makes: a start's score each (`fitspec.starts`), a
+    profiled grid's linearisations (rank + 1 calls a value, a long grid searched in about
+    COARSE + 4 values), and CALLS_PER_COORDINATE per coordinate of up to three local fits."""
+    t = s.call_seconds.get(info.effect)
+    if t is None:
+        return None
+    k = (info.rank or 1) + len(pb.nuisance.names)
+    grid = [len(v) for v in (info.profile_grid or {}).values()]
+    n_grid = sum(min(g, COARSE + 4) for g in grid) * ((info.rank or 1) + 1)
+    n_starts = 1 + len(fitspec.starts(e, pb.conditions, pb.T_ref_C))
+    return t * (n_starts + n_grid + 3 * CALLS_PER_COORDINATE * k)
+
 
 def _start_points(pb: Problem, e, info, base: Fit, space) -> list[np.ndarray]:
     """Starting points of a candidate's fit (scaled coordinates): the Gauss-Newton step from off

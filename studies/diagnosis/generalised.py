@@ -119,14 +119,39 @@ class Generalisation:
     chosen: ChosenForm | None
 
 
-def _families(cands: Mapping[str, Candidate], fits: dict[str, Fit], d: Decision) -> list[str]:
+def _families(cands: Mapping[str, Candidate], fits: dict[str, Fit], d: Decision,
+              effects: Mapping[str, object] | None = None, structure: bool = False
+              ) -> list[str]:
     """Listed families whose forms may be tried: the cause's own (explained), else the fitted
-    candidates better than the baseline (delta BIC < 0, significant), best first."""
+    candidates better than the baseline (delta BIC < 0, significant), best first; then, while
+    the baseline leaves structure (`structure`) and no cause explains it, the families whose
+    listed form fits at its off value (`at_off`; `effects`: name -> effect object): a listed
+    form that cannot move from off may miss its own family's form (issue 36: the shaft side
+    900 s behind the hub, the listed single lag fitted at tau = 0, so its per-part form was
+    never proposed)."""
     if d.verdict == "explained":        # the listed cause's own forms, nested in it
         return [d.cause] if forms_of(d.cause) else []
     tied = {d.best, *d.rivals} if d.verdict == "ambiguous" else set(fits)
-    return [n for n in sorted(fits, key=lambda n: cands[n].delta_bic)
-            if n in tied and forms_of(n) and cands[n].delta_bic < 0 and cands[n].lr_significant]
+    better = [n for n in sorted(fits, key=lambda n: cands[n].delta_bic)
+              if n in tied and forms_of(n) and cands[n].delta_bic < 0
+              and cands[n].lr_significant]
+    if not structure or effects is None or d.verdict not in ("unexplained", "explained_partly"):
+        return better
+    return better + [n for n in fits if n not in better and forms_of(n)
+                     and at_off(effects[n], cands[n])]
+
+
+def at_off(effect, cand: Candidate) -> bool:
+    """True when the fitted listed candidate sits at its off value: every parameter within
+    its standard uncertainty of off, or within 1e-3 of its scale when the uncertainty is not
+    known (e.g. a lag fitted at exactly tau = 0)."""
+    for p, v in (cand.parameters or {}).items():
+        u = (cand.uncertainty or {}).get(p)
+        tol = max(u if isinstance(u, float) and math.isfinite(u) else 0.0,
+                  1e-3 * float(effect.scale.get(p, 1.0)))
+        if abs(float(v) - float(effect.off[p])) > tol:
+            return False
+    return bool(cand.parameters)
 
 
 def _bounded(pb: Problem, fam: str, form):
@@ -190,7 +215,8 @@ def generalise(pb: Problem, cands: Mapping[str, Candidate], fits: dict[str, Fit]
     if not pb.try_generalised or d.verdict not in ("unexplained", "explained",
                                                     "explained_partly", "ambiguous"):
         return Generalisation(d, [], None)
-    tried, m = _screened(pb, cands, fits, _families(cands, fits, d))
+    tried, m = _screened(pb, cands, fits, _families(
+        cands, fits, d, {n: pb.effect(n) for n in fits}, bool(b.structure)))
     entries, ok = [], []
     forms = [(fam, form, scored) for fam, got in tried for form, scored in got]
     for (fam, form, _), f_ext in zip(forms, _local_fits(pb, forms, cands, fits, b)):

@@ -24,7 +24,7 @@ import numpy as np
 from studies.diagnosis import fitspec
 from studies.diagnosis.candidate import Candidate, HeldoutGain
 from studies.diagnosis.core import Baseline, Fit, Linearisation, ModelFailure, Screening
-from studies.diagnosis.problem import Problem
+from studies.diagnosis.problem import Problem, longest_first
 from studies.diagnosis.stats import blsq
 
 #: relative size below which two predictions (or sensitivities) count as equal: round-off of a
@@ -84,8 +84,8 @@ def validate(pb: Problem, cands: Mapping[str, Candidate], fits: dict[str, Fit], 
     # the candidates' refits are independent: on the engine's workers; the bootstraps below
     # draw from the engine's random numbers in the candidates' order
     names = list(names_id)
-    done = pb.parallel(refit, names,
-                         first=[i for i, n in enumerate(names) if fitspec.profile(pb.effect(n))])
+    done = pb.parallel(refit, names,            # the longest fits first: their refits too
+                       first=longest_first([cands[n].fit_cpu_s for n in names]))
     passing = []
     for name, (z_ho, chosen, untestable, failed) in zip(names, done):
         e = pb.effect(name)

@@ -11,6 +11,7 @@ estimated from the baseline residuals and any sensor spikes left out. No phase c
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Callable, Mapping, Sequence
@@ -291,6 +292,7 @@ class Problem:
         the same results as serially."""
         return parallel_map(task, items, self.workers, first=first, state=self.model)
 
+
     # ------------------------------------------------------------------ residual description
     def describe(self, pred: Mapping[str, np.ndarray], n_params: int) -> Residuals:
         """Residual statistics per column (`describe_column`) and the smallest p value,
@@ -516,3 +518,23 @@ def _block_labels(blocks, n: int, n_auto: int) -> np.ndarray:
     if int(labels.max()) + 1 < 2:
         raise DiagnosisError("need at least two held-out blocks")
     return labels
+
+
+def longest_first(costs: Sequence[float | None]) -> list[int]:
+    """Indices of the items by their estimated cost, largest first (unknown costs last, in
+    their order): the order `Problem.parallel` starts them in. Handing the longest tasks out
+    first is the LPT rule (Graham 1969, Bounds on multiprocessing timing anomalies, SIAM J.
+    Appl. Math. 17: at most 4/3 of the best schedule); the results do not depend on it."""
+    known = [i for i, c in enumerate(costs) if c is not None]
+    return (sorted(known, key=lambda i: -float(costs[i]))
+            + [i for i, c in enumerate(costs) if c is None])
+
+
+def cpu_timed(task: Callable) -> Callable:
+    """`task` returning (its result, the CPU seconds of the process it ran in) (a task on a
+    forked worker: that worker's seconds)."""
+    def run(item):
+        t0 = time.process_time()
+        out = task(item)
+        return out, time.process_time() - t0
+    return run

@@ -11,7 +11,7 @@ import numpy as np
 from studies.diagnosis import fitspec, ladder
 from studies.diagnosis.candidate import Candidate
 from studies.diagnosis.core import Baseline, ModelFailure, Screening
-from studies.diagnosis.problem import Problem
+from studies.diagnosis.problem import Problem, cpu_timed
 from studies.diagnosis.stats import max_cosine, orth
 
 
@@ -25,16 +25,23 @@ def screen(pb: Problem, b: Baseline) -> Screening:
     # (`Problem.parallel`, the results those of a serial run), those that call the model only;
     # a profiled one (up to three grid points) first
     todo = [e for e in pb.candidates if _needs_model(pb, e, gate)]
-    done = dict(zip((e.name for e in todo), pb.parallel(
-        lambda e: _screen_one(pb, e, b, gate), todo,
-        first=[i for i, e in enumerate(todo) if fitspec.profile(e)])))
+
+    def one(e):
+        """(candidate, basis), CPU seconds per model call of its sensitivities."""
+        calls0 = pb.model.calls
+        (out, seconds) = cpu_timed(lambda x: _screen_one(pb, x, b, gate))(e)
+        return out, seconds / max(pb.model.calls - calls0, 1)
+
+    got = pb.parallel(one, todo, first=[i for i, e in enumerate(todo) if fitspec.profile(e)])
+    done = {e.name: r for e, (r, _) in zip(todo, got)}
+    call_seconds = {e.name: t for e, (_, t) in zip(todo, got)}
     for e in pb.candidates:
         cands[e.name], Q = done[e.name] if e.name in done else _screen_one(pb, e, b, gate)
         if Q is not None:
             proj[e.name] = Q
     names_id = list(proj)
     look = {a: {c: max_cosine(proj[a], proj[c]) for c in names_id} for a in names_id}
-    return Screening(cands, names_id, look)
+    return Screening(cands, names_id, look, call_seconds)
 
 
 def _screen_one(pb: Problem, e, b: Baseline, gate=None) -> tuple[Candidate, np.ndarray | None]:

@@ -40,6 +40,15 @@ fitted at the edge of its stated scatter (`scatter_edge`: a material lot at +-5 
 the rule. Each
 accepted cause is listed in order with its own held-out gain: the held-out RMSE of the model with it against the model before it, per
 column, under the noise of its pass.
+
+A first cause refused for the sensor drift (`select_past_drift`, issue 34): a second cause that
+changes in time (a solid-film run-in at constant speed, a preload settling on the first
+excursion) is what a zero drift of the sensors linear in time imitates, so the first pass's best
+candidate, though it adds to the drift, is refused because the drift adds to it. Then the best is
+taken as a provisional first cause and the selection runs as above; the causes are claimed only
+when a further cause is accepted and the model of all of them clearly beats the drift itself
+(the same joint test as for one cause), else the first pass's `unexplained` stands (a true
+sensor drift: the causes do not add to it).
 """
 from __future__ import annotations
 
@@ -382,7 +391,7 @@ def select(first, run_pass: Callable) -> Selection:
             reasons.append(f"with {names} in the model (noise re-estimated from its residual) "
                            "structure is left that no other candidate removes")
         break
-    sel = Selection(passes=passes, worse_columns=stopped_worse)
+    sel = Selection(passes=passes, worse_columns=stopped_worse, problem=final_pb, fit=final_fit)
     if len(causes) > 1:
         effects, _ = final_fit.space.unpack(final_fit.u)
         fam = {c.effect: (c.form or c.effect) for c in causes}
@@ -418,3 +427,62 @@ def select(first, run_pass: Callable) -> Selection:
     return replace(sel, verdict=verdict, causes=causes, reasons=reasons, left=list(final.left),
                    at_bound=stopped_bound, goodness=final, noise=final_pb.noise,
                    problem=final_pb, fit=final_fit, heldout_z=final_ho)
+
+
+
+def refused_for_drift(first) -> bool:
+    """Was the first pass `unexplained` only because its best candidate did not clearly beat
+    the unlisted sensor drift, with the drift adding to it (p of adding the drift below
+    alpha_joint) while it adds to the drift (p below alpha_joint), and no rival? That is what a
+    second cause that changes in time (a run-in at constant speed, a settling on the first
+    excursion) does to the first: the drift takes up the second cause."""
+    from studies.diagnosis.decision import SENSOR_DRIFT
+
+    d = first.decision
+    j = d.joint_fits.get(SENSOR_DRIFT)
+    a = first.pb.th["alpha_joint"]
+    return (d.verdict == "unexplained" and d.best is not None and not d.rivals
+            and j is not None and not j.best_carries_weight and j.p is not None
+            and j.p < a and j.p_add_other_to_best is not None
+            and j.p_add_other_to_best < a and first.candidates[d.best].fitted
+            and d.best in first.passing)
+
+
+def select_past_drift(first, run_pass: Callable):
+    """Two causes where the first pass refused its best candidate for the sensor drift
+    (`refused_for_drift`, issue 34): the best is taken as a provisional first cause and the
+    forward selection (`select`) runs; a claim is made only when it accepts a further cause and
+    the model of the accepted causes clearly beats the drift itself (`decision.
+    versus_sensor_drift` on that model, under its last noise estimate: adding the causes to the
+    drift significant at alpha_joint, adding the drift to them not). Returns (the first pass
+    with the provisional decision, the selection) or None (the first pass's verdict stands)."""
+    from types import SimpleNamespace
+
+    from studies.diagnosis.decision import SENSOR_DRIFT, versus_sensor_drift
+
+    if not refused_for_drift(first):
+        return None
+    d = first.decision
+    prov = replace(first, decision=replace(d, verdict="explained_partly", cause=d.best))
+    sel = select(prov, run_pass)
+    if len(sel.causes) < 2 or sel.fit is None:
+        return None
+    q = replace(sel.problem, base=())
+    sp = q.space([])
+    try:
+        base = q.fit(sp, np.zeros(sp.lo.size))
+    except ModelFailure:
+        return None
+    k = int(sel.fit.u.size - len(q.nuisance.names))
+    drift = versus_sensor_drift(q, sel.fit, {"n_free": k, "n_bound": 0},
+                                SimpleNamespace(fit=base))
+    if drift is None or not drift.best_carries_weight:
+        return None
+    names = " and ".join(c.effect for c in sel.causes)
+    reasons = [f"{d.best} alone did not clearly beat a zero drift of the sensors linear in "
+               f"time, but with a further cause in the model the drift is not needed: "
+               f"{names} together clearly beat the drift (adding them to it: p = "
+               f"{drift.p:.2g}; adding it to them: p = {drift.p_add_other_to_best:.2g})"]
+    prov = replace(prov, decision=replace(prov.decision, joint_fits={
+        **d.joint_fits, SENSOR_DRIFT + " (against the accepted causes)": drift}))
+    return prov, replace(sel, reasons=list(sel.reasons) + reasons)

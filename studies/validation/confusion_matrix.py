@@ -177,13 +177,12 @@ def second_source_rates(trials: list[SecondTrial]) -> list[str]:
     claims = sum(t.verdict in CLAIMS for t in nulls)
     alarms = sum(t.verdict != "no_discrepancy" for t in nulls)
     from studies.diagnosis.ladder import ladder
-    from studies.model.config import load_shipped
     from studies.model.effects import EFFECTS
-    from studies.validation.second_source import CASES, DESIGNS as SS_DESIGNS
+    from studies.validation.second_source import CASES, design_assembly
 
     def claimable(design: str) -> set[str]:
         """Names a diagnosis of the design can claim: listed effects and tried rungs."""
-        rungs = ladder(load_shipped(SS_DESIGNS[design][0]))
+        rungs = ladder(design_assembly(design))
         return set(EFFECTS) | {r.name for r in rungs if r.candidate is not None}
 
     listed = [t for t in trials if t.truth != "none" and t.change_sigma >= LISTED_HIT_SIGMA
@@ -226,6 +225,35 @@ def second_source_rates(trials: list[SecondTrial]) -> list[str]:
         + " (goal 85-95 %)"]
 
 
+#: issue 34's goal for two causes at once, each 5 sigma or more: both named in this share of
+#: the trials or more, a wrong cause in none
+TWO_CAUSE_GOAL = 0.8
+
+
+def two_cause_rates(trials: list[SecondTrial]) -> list[str]:
+    """The two-cause cases made another way (`second_source.PAIRS`): per case and over all,
+    how often both causes are named (`right`), one (`partial`), a wrong one (`wrong`), or
+    none (any other outcome); empty without such trials."""
+    from studies.validation.second_source import PAIRS
+
+    ts = [t for t in trials if t.case in PAIRS]
+    if not ts:
+        return []
+
+    def line(label, sub):
+        n = len(sub)
+        c = Counter(t.outcome for t in sub)
+        none = n - c["right"] - c["partial"] - c["wrong"]
+        return (f"{label} ({n} trials): both named {c['right']} ({100 * c['right'] / n:.0f} %), "
+                f"one {c['partial']}, a wrong one {c['wrong']}, none {none}")
+
+    out = [line(f"two causes at once made another way, each 5 sigma or more (goal: both "
+                f">= {100 * TWO_CAUSE_GOAL:.0f} %, wrong 0)", ts)]
+    out += ["  " + line(f"`{name}`", [t for t in ts if t.case == name])
+            for name in dict.fromkeys(t.case for t in ts)]
+    return out
+
+
 def second_source_markdown(trials: list[SecondTrial]) -> list[str]:
     """The second-source confusion matrices (one per design) and the outcome totals."""
     from studies.validation.second_source import OUTCOMES
@@ -234,7 +262,7 @@ def second_source_markdown(trials: list[SecondTrial]) -> list[str]:
     tot = Counter(t.outcome for t in trials)
     L.append("Outcomes over all second-source trials: " + ", ".join(
         f"{o} {tot.get(o, 0)}" for o in OUTCOMES) + f" (of {len(trials)}).\n")
-    L += [f"- {line}" for line in second_source_rates(trials)] + [""]
+    L += [f"- {line}" for line in second_source_rates(trials) + two_cause_rates(trials)] + [""]
     for dn in dict.fromkeys(t.design for t in trials):
         ts = [t for t in trials if t.design == dn]
         cols = sorted({(f"explained: {t.cause}" if t.verdict == "explained" else t.verdict)

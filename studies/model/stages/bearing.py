@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from analytic.bearing import BearingGeometry, PairState, solve_pair
+from analytic.bearing.state import take_rows
 from analytic.bearing.land import land_diameters_mm, land_margin_deg
 from analytic.safety import static_safety_from_contact_pressure
 from studies.model.inputs import PhysicsInputs
@@ -77,8 +78,18 @@ class BearingStage:
                     + inputs.extra_compliance_mm_per_N)
 
     def solve(self, arguments: dict) -> PairState:
-        """The pair equilibrium (`analytic.bearing.solve_pair`) for `arguments`."""
-        return solve_pair(self.geom, self.asm.arrangement, **arguments)
+        """The pair equilibrium (`analytic.bearing.solve_pair`) for `arguments`, each distinct
+        row solved once (`distinct_rows`: a test programme repeats its steady points, a dwell
+        repeats its row; the flywheel bench's speed and preload steps hold 130 distinct pair
+        states in 500 rows), the same numbers bit for bit as solving every row."""
+        n = _n_rows(arguments)
+        rows = distinct_rows(arguments, n) if n > 2 else None     # (2,): bearings A, B
+        if rows is None:
+            return solve_pair(self.geom, self.asm.arrangement, **arguments)
+        first, inverse = rows
+        sub = {k: (np.asarray(v)[..., first] if _per_row(v, n) else v)
+               for k, v in arguments.items()}
+        return take_rows(solve_pair(self.geom, self.asm.arrangement, **sub), inverse)
 
     def summary(self, pair: PairState) -> PairSummary:
         """The `PairSummary` of a pair state."""
@@ -102,3 +113,46 @@ def weighted_contact_angle_deg(pair: PairState) -> np.ndarray:
 
 def _zeros_if_none(v):
     return 0.0 if v is None else v
+
+
+#: share of distinct rows above which the pair is solved on every row (the bookkeeping then
+#: costs more than the rows it saves)
+DISTINCT_SHARE_MAX = 0.8
+
+
+def _per_row(v, n: int) -> bool:
+    """True for an argument of `solve_pair` given per row ((n,) or (2, n)), not a scalar or a
+    setting."""
+    return isinstance(v, np.ndarray) and v.ndim >= 1 and v.shape[-1] == n and v.dtype.kind == "f"
+
+
+def _n_rows(arguments: dict) -> int:
+    """The number of rows of `solve_pair` arguments (1 when every argument is a scalar)."""
+    return max((np.shape(v)[-1] for v in arguments.values()
+                if isinstance(v, np.ndarray) and v.ndim >= 1), default=1)
+
+
+def distinct_rows(arguments: dict, n: int) -> tuple[np.ndarray, np.ndarray] | None:
+    """(first row of each distinct row, in row order; the distinct row of every row) of the
+    per-row arguments of `solve_pair`, rows compared by their bit patterns (-0.0 and 0.0, and
+    NaNs of other payloads, stay apart); None when more than DISTINCT_SHARE_MAX of the rows are
+    distinct.
+
+    Why the numbers do not change: every operation of the pair solvers is elementwise over the
+    rows except the stopping rules of their iterations (`analytic.bearing.roots`: iterate until
+    every row has converged; the outer loops: until the contact stiffness of every row matches),
+    which take the largest over the rows. A repeated row runs the same iterations as its first
+    occurrence, so leaving it out changes neither largest nor any row's iterates
+    (tests/test_pipeline_rows.py holds the states equal bit for bit)."""
+    cols = [np.asarray(v, float).reshape(-1, n) for v in arguments.values() if _per_row(v, n)]
+    if not cols:
+        return None
+    keys = np.ascontiguousarray(np.vstack(cols).T).view(np.uint64)
+    _, first, inverse = np.unique(keys, axis=0, return_index=True, return_inverse=True)
+    if first.size > DISTINCT_SHARE_MAX * n:
+        return None
+    order = np.argsort(first, kind="stable")           # the distinct rows in row order
+    rank = np.empty_like(order)
+    rank[order] = np.arange(order.size)
+    return first[order], rank[np.asarray(inverse).ravel()]
+
