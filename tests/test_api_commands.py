@@ -152,7 +152,7 @@ def test_verify_twin(tmp_path, asm_path, monkeypatch):
     assert main(["verify", "--out", str(tmp_path / "v"), "--assembly", str(asm_path)]) == 0
     res = bearingfem.verify(assembly=asm_path)
     cli = json.loads((tmp_path / "v" / "verification.json").read_text())
-    assert json.loads(json.dumps([c.to_json() for c in res.cases] + list(res.convergence),
+    assert json.loads(json.dumps([c.to_json() for c in res.cases] + [c.to_json() for c in res.convergence],
                                  default=float)) == cli["cases"]
     assert [m.observed_order for m in res.mms] == [m["observed_order"] for m in cli["mms"]]
 

@@ -200,35 +200,36 @@ def test_verify_runs_the_mesh_convergence_of_a_users_assembly(tmp_path, capsys, 
 
     asm = load_assembly(CONFIG_DIR / "template.toml")
     result = verify.run(tmp_path / "v", progress=lambda s: None, mesh_factor=2.0, assembly=asm)
-    mine = [c for c in result.convergence if asm.name in c["name"]]
+    mine = [c for c in result.convergence if asm.name in c.name]
     assert len(mine) == 1
-    q = mine[0]["quantities"]
-    assert q and all(np.isfinite(r["gci_fine"]) for r in q.values())
+    q = {name: r.richardson for name, r in mine[0].quantities.items()}
+    assess = mine[0].assessment
+    assert q and all(np.isfinite(r.gci_fine) for r in q.values())
     md = (tmp_path / "v" / "verification.md").read_text()
     assert asm.name in md and "**Achieved: " in md and "target error of 0.1 %" in md
-    assert mine[0]["target_error"] == 1e-3 and np.isfinite(mine[0]["error_max"])
+    assert assess.target_error == 1e-3 and np.isfinite(assess.error_max)
     # Roache (1998) from the three finest levels, r = 2: observed order p = ln(e32 / e21) / ln 2
     # kept within 1..4, Richardson value f3 + e21 / (2^p - 1), GCI = 1.25 |e21| / |f3| / (2^p - 1);
     # the error of the mesh used: its fit pressure against the Richardson value
-    levels, used = mine[0]["levels"], mine[0]["levels"][mine[0]["used_level"]]
+    levels, used = [lv.values for lv in mine[0].levels], mine[0].used.values
     checked = 0
     for name, r in q.items():
         f1, f2, f3 = (lv[name] for lv in levels[-3:])
-        if not r["monotone"] or (f2 - f1) * (f3 - f2) <= 0:
+        if not r.monotone or (f2 - f1) * (f3 - f2) <= 0:
             continue
         p = math.log((f2 - f1) / (f3 - f2)) / math.log(2.0)
         pu = min(max(p, 1.0), 4.0)
         rich = f3 + (f3 - f2) / (2 ** pu - 1)
-        assert r["observed_order"] == pytest.approx(p, rel=1e-9), name
-        assert r["extrapolated"] == pytest.approx(rich, rel=1e-12), name
-        assert r["gci_fine"] == pytest.approx(1.25 * abs(f3 - f2) / abs(f3) / (2 ** pu - 1), rel=1e-9)
+        assert r.observed_order == pytest.approx(p, rel=1e-9), name
+        assert r.extrapolated == pytest.approx(rich, rel=1e-12), name
+        assert r.gci_fine == pytest.approx(1.25 * abs(f3 - f2) / abs(f3) / (2 ** pu - 1), rel=1e-9)
         if name.startswith("fit_pressure"):
             err = abs(used[name] - rich) / abs(rich)
-            assert mine[0]["errors"][name] == pytest.approx(err, rel=1e-9), name
+            assert assess.errors[name] == pytest.approx(err, rel=1e-9), name
             checked += 1
     assert checked >= 2
-    worst = max(mine[0]["errors"].values())
-    assert mine[0]["error_max"] == worst and f"**Achieved: {100 * worst:.2g} % " in md
+    worst = max(assess.errors.values())
+    assert assess.error_max == worst and f"**Achieved: {100 * worst:.2g} % " in md
     assert main(["verify", "--out", str(tmp_path / "w"), "--assembly", str(tmp_path / "none.toml")]) == 2
     assert "file not found" in capsys.readouterr().err and not (tmp_path / "w").exists()
 

@@ -135,12 +135,13 @@ def test_mesh_is_graded_to_the_corner_size_at_the_corners():
 def _check_chosen_mesh(asm, target):
     case = mesh_convergence_case(with_mesh(asm, target_error=target), factors=(1.0, 0.5, 0.25),
                                  used=0)
-    assert case["target_error"] == target
-    names = set(case["errors"])
+    a = case.assessment
+    assert a.target_error == target
+    names = set(a.errors)
     assert any(n.startswith("fit_pressure_inner") for n in names)
     assert {f"groove_shift_{J}_um at {T:g} C" for J in "AB"
             for T in (asm.operating.T_min_C, asm.operating.T_max_C)} <= names
-    assert case["error_max"] <= target and case["within_target"]
+    assert a.error_max <= target and a.within_target
     return case
 
 
@@ -152,7 +153,7 @@ def test_coarse_target_is_met_on_a_small_and_a_large_assembly(name):
     case = _check_chosen_mesh(load_assembly(ASSEMBLIES[name]), 1e-2)
     # a sane order: the fit pressures converge at 1.2..3 in the level factor (P2, singular
     # corners graded as the square of the factor; measured 1.5..2.8 on all five assemblies)
-    orders = [r["observed_order"] for q, r in case["quantities"].items()
+    orders = [r.richardson.observed_order for q, r in case.quantities.items()
               if q.startswith("fit_pressure")]
     assert orders and all(1.2 < o < 3.0 for o in orders), orders
 
@@ -164,7 +165,7 @@ def test_default_target_is_met_on_every_assembly(name):
     """0.1 % (the default) on every shipped assembly and the 305-size pair in aluminium."""
     asm = load_assembly(ASSEMBLIES[name])
     case = _check_chosen_mesh(asm, DEFAULT_TARGET)
-    assert case["levels"][0]["dofs"] < 25_000        # the 305-size pair had 64.5k DOF before
+    assert case.levels[0].dofs < 25_000        # the 305-size pair had 64.5k DOF before
 
 
 @pytest.mark.slow

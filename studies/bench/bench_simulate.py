@@ -127,6 +127,6 @@ def _accuracy(paths) -> None:
     print(f"{'assembly':32s} {'target':>8s} {'achieved':>9s}")
     for path in paths:
         c = mesh_convergence_case(load_assembly(path), factors=(1.0, 0.5, 0.25), used=0)
-        target = c.get("target_error")
+        target = c.assessment.target_error
         print(f"{path.stem:32s} {'given' if target is None else f'{target:.1e}':>8s} "
-              f"{c['error_max']:9.2e}")
+              f"{c.assessment.error_max:9.2e}")

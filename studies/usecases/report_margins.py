@@ -21,6 +21,7 @@ import platform
 import re
 import shlex
 from dataclasses import dataclass, fields
+from typing import TYPE_CHECKING
 from datetime import datetime, timezone
 from importlib import metadata
 from pathlib import Path
@@ -28,6 +29,9 @@ from pathlib import Path
 import numpy as np
 
 from studies.usecases.report_tools import condition_text, md_table
+
+if TYPE_CHECKING:
+    from studies.usecases.verify import ConvergenceCase
 
 _at = condition_text          # the governing point by its condition
 
@@ -468,7 +472,7 @@ def tolerance_lines(asm, res: dict, worst=None) -> list[str]:
                      rows), ""]
 
 
-def credibility_lines(conv: dict, mesh_error: dict[str, float], order: float,
+def credibility_lines(conv: ConvergenceCase, mesh_error: dict[str, float], order: float,
                       traces=None, test_results=None, tolerance: list[str] = ()) -> list[str]:
     """Markdown section "Credibility": code verification (the requirement traceability of
     `verify`, last results of their tests), this mesh's error, the validation cases and
@@ -483,7 +487,7 @@ def credibility_lines(conv: dict, mesh_error: dict[str, float], order: float,
         res = "not asserted by a test" if test is None else \
             " ".join(results.get(test, ("not run here", ""))).strip()
         val_rows.append([case, pub, how, res])
-    target = conv.get("target_error")
+    target = conv.assessment.target_error
     err_rows = [[name, _err_text(e)] for name, e in mesh_error.items()]
     return ["## Credibility", "",
             "### Code verification", "",
@@ -493,9 +497,9 @@ def credibility_lines(conv: dict, mesh_error: dict[str, float], order: float,
             md_table(["requirement", "statement", "last result"], req_rows), "",
             "### This mesh's error", "",
             f"Largest error of the FE quantities that feed the bearing model (fit pressures, "
-            f"groove-centre shifts) against their Richardson values: {100 * conv['error_max']:.2g} %"
+            f"groove-centre shifts) against their Richardson values: {100 * conv.assessment.error_max:.2g} %"
             + ("" if target is None else f" (target {100 * target:g} %: "
-               f"{'met' if conv['within_target'] else 'NOT met'})")
+               f"{'met' if conv.assessment.within_target else 'NOT met'})")
             + ". Headline numbers: relative error from the mesh used and the mesh of half its "
               f"sizes, |f1 - fh| 2^p / (2^p - 1) / |f1| with p = {order:g} (Roache 1998):", "",
             md_table(["headline number", "mesh error"], err_rows), "",
@@ -538,7 +542,7 @@ def reproduce_lines(command: list[str] | None) -> list[str]:
             "SOURCE_DATE_EPOCH set, its date):", "", f"`{cmd}`", ""]
 
 
-def front_lines(asm, cond: dict, res: dict, flags: dict, conv: dict, prov: dict,
+def front_lines(asm, cond: dict, res: dict, flags: dict, conv: ConvergenceCase, prov: dict,
                 command: list[str] | None, pipeline, fine_pipeline) -> list[str]:
     """The report's front sections in order: date, Margins, Inputs and their sources,
     Assumptions, Credibility, Environment, Reproduce. `pipeline`: the one of the results (the

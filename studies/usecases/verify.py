@@ -25,7 +25,7 @@ Cases (`VerifyCase`, written per docs/cli.md "verify" by `VerifyCase.to_json`; `
   speed at which the fit opens, `fem.loosening` on the FE vs `lame.fit_open_speed_rad_s`).
 - mesh_convergence: the quantities that feed the bearing model on the seed 000 stack over four
   mesh levels; observed order and grid convergence index (Roache 1998, GCI with Fs = 1.25)
-  (these cases stay dicts: `convergence_case`; the assembly report and the benchmarks read them).
+  (`ConvergenceCase` of `convergence_case`; the assembly report and the benchmarks read them).
 
 Beside the cases (`verification.json` keys "mms" and "requirements"):
 - mms: manufactured solutions (`fem.mms`) for the thermo-elastic operator with a two-material
@@ -43,7 +43,7 @@ from __future__ import annotations
 
 import json
 import math
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -95,8 +95,8 @@ class VerifyCase:
 
 @dataclass(frozen=True)
 class VerifyRun:
-    """Everything `run` wrote: the closed-form cases, the mesh-convergence cases (dicts of
-    `convergence_case`), the manufactured-solution studies and the traceability rows."""
+    """Everything `run` wrote: the closed-form cases, the mesh-convergence cases
+    (`ConvergenceCase`), the manufactured-solution studies and the traceability rows."""
     cases: list
     convergence: list
     mms: list
@@ -406,66 +406,145 @@ def richardson(f: list[float], ratio: float = 2.0) -> Richardson:
     return Richardson(nan, nan, f3, 3.0 * max(abs(e21), abs(e32)) / scale, False)
 
 
-#: what a convergence level records besides its quantities
-LEVEL_KEYS = ("factor", "size_mm", "fit_size_mm", "corner_size_mm", "dofs")
+@dataclass(frozen=True)
+class ConvergenceLevel:
+    """One mesh level of a convergence study: its level factor, element sizes (mm; the corner
+    size only for an assembly's graded mesh), DOFs and the FE quantities by name."""
+    factor: float
+    size_mm: float
+    fit_size_mm: float
+    dofs: int
+    values: dict
+    corner_size_mm: float | None = None
+
+    def to_json(self) -> dict:
+        head = {"factor": self.factor, "size_mm": self.size_mm, "fit_size_mm": self.fit_size_mm}
+        if self.corner_size_mm is not None:
+            head.update(corner_size_mm=self.corner_size_mm)
+        return {**head, "dofs": self.dofs, **self.values}
 
 
-def convergence_case(name: str, inputs: dict, levels: list[dict], exact: dict | None = None) -> dict:
+@dataclass(frozen=True)
+class QuantityConvergence:
+    """One quantity over the levels: its Richardson extrapolation, and with a closed form the
+    exact value, each level's relative error against it and the order between levels."""
+    richardson: Richardson
+    exact: float | None = None
+    rel_error_vs_exact: tuple = ()
+    order_vs_exact: tuple = ()
+
+    def to_json(self) -> dict:
+        out = asdict(self.richardson)
+        if self.exact is not None:
+            out.update(exact=self.exact, rel_error_vs_exact=list(self.rel_error_vs_exact),
+                       order_vs_exact=list(self.order_vs_exact))
+        return out
+
+
+@dataclass(frozen=True)
+class MeshAssessment:
+    """An assembly's mesh assessed (mesh_convergence_case): the level used, its errors against
+    the Richardson values, the largest, the target the sizes were chosen for (None: all given),
+    and the temperatures (C) and open fits of the study."""
+    used_level: int
+    errors: dict
+    error_max: float
+    target_error: float | None
+    temperatures_C: tuple
+    open_fits: tuple
+
+    @property
+    def within_target(self) -> bool | None:
+        return None if self.target_error is None else bool(self.error_max <= self.target_error)
+
+
+@dataclass(frozen=True)
+class ConvergenceCase:
+    """A mesh-convergence study (`convergence_case`): the levels, the convergence of every
+    quantity, the first quantity's finest value against its exact or Richardson value, and for an
+    assembly's own mesh its assessment. `to_json` is the "mesh_convergence" case of docs/cli.md."""
+    name: str
+    inputs: dict
+    levels: tuple
+    quantities: dict
+    fe: dict
+    closed_form: dict
+    rel_error: float
+    assessment: MeshAssessment | None = None
+
+    @property
+    def used(self) -> ConvergenceLevel:
+        """The level assessed (an assembly's case)."""
+        return self.levels[self.assessment.used_level]
+
+    def to_json(self) -> dict:
+        out = {"name": self.name, "kind": "mesh_convergence", "inputs": self.inputs,
+               "levels": [lv.to_json() for lv in self.levels],
+               "quantities": {q: r.to_json() for q, r in self.quantities.items()},
+               "fe": self.fe, "closed_form": self.closed_form, "rel_error": self.rel_error}
+        a = self.assessment
+        if a is not None:
+            out.update(used_level=a.used_level, errors=a.errors, error_max=a.error_max,
+                       target_error=a.target_error, within_target=a.within_target)
+        return out
+
+
+def convergence_case(name: str, inputs: dict, levels: list[ConvergenceLevel],
+                     exact: dict | None = None) -> ConvergenceCase:
     """Observed order and GCI of every quantity over the levels (refinement ratio 2)."""
-    qs = [k for k in levels[0] if k not in LEVEL_KEYS]
-    out = {"name": name, "kind": "mesh_convergence", "inputs": dict(inputs, refinement_ratio=2.0),
-           "levels": levels, "quantities": {}}
+    qs = list(levels[0].values)
+    quantities = {}
     for q in qs:
-        r = asdict(richardson([lv[q] for lv in levels]))     # the JSON edge
+        r = richardson([lv.values[q] for lv in levels])
         if exact and q in exact:
-            err = [abs(lv[q] - exact[q]) / abs(exact[q]) for lv in levels]
-            r["exact"] = exact[q]
-            r["rel_error_vs_exact"] = err
-            r["order_vs_exact"] = [math.log(err[i] / err[i + 1]) / math.log(2.0)
-                                   if err[i + 1] > 0 and err[i] > 0 else float("nan")
-                                   for i in range(len(err) - 1)]
-        out["quantities"][q] = r
+            err = [abs(lv.values[q] - exact[q]) / abs(exact[q]) for lv in levels]
+            order = [math.log(err[i] / err[i + 1]) / math.log(2.0)
+                     if err[i + 1] > 0 and err[i] > 0 else float("nan")
+                     for i in range(len(err) - 1)]
+            quantities[q] = QuantityConvergence(r, exact[q], tuple(err), tuple(order))
+        else:
+            quantities[q] = QuantityConvergence(r)
     q0 = qs[0]
-    ref = exact[q0] if exact and q0 in exact else out["quantities"][q0]["extrapolated"]
-    out["fe"] = {q0: levels[-1][q0]}
-    out["closed_form"] = {q0: ref}     # exact value, or the Richardson extrapolation
-    out["rel_error"] = abs(levels[-1][q0] - ref) / abs(ref)
-    return out
+    ref = exact[q0] if exact and q0 in exact else quantities[q0].richardson.extrapolated
+    finest = levels[-1].values[q0]
+    # closed form: the exact value, or the Richardson extrapolation
+    return ConvergenceCase(name, dict(inputs, refinement_ratio=2.0), tuple(levels), quantities,
+                           {q0: finest}, {q0: ref}, abs(finest - ref) / abs(ref))
 
 
-def lame_convergence_case(factors=(4.0, 2.0, 1.0, 0.5), progress=None) -> dict:
+def lame_convergence_case(factors=(4.0, 2.0, 1.0, 0.5), progress=None) -> ConvergenceCase:
     """Smooth reference: hollow TC4 shaft / 9Cr18 ring (plane stress exact), errors vs Lamé."""
     ri, rf, ro, d_um = 12.5, 17.5, 18.9, 5.0
     mi, mo = get_material("TC4"), get_material("9Cr18")
     common = dict(r_inner_mm=ri, r_fit_mm=rf, r_outer_mm=ro, E_inner_MPa=mi.E_MPa, nu_inner=mi.nu,
                   E_outer_MPa=mo.E_MPa, nu_outer=mo.nu, interference_um=d_um)
-    exact = {"fit_pressure_MPa": float(lame.fit_pressure_MPa(**common)),
-             "ring_u_r_um": 1e3 * float(lame.fit_displacement_mm(ro, "outer", **common))}
+    exact = dict(fit_pressure_MPa=float(lame.fit_pressure_MPa(**common)),
+                 ring_u_r_um=1e3 * float(lame.fit_displacement_mm(ro, "outer", **common)))
     base = two_cylinder_section(ri, rf, ro, "TC4", "9Cr18", 10.0, size_mm=1.0, fit_size_mm=0.5)
     levels = []
     for fac in factors:
         sec = base.scaled(fac)
         model, sol, _, p = _solve_two_cylinder(sec, 20.0, 20.0, d_um)
         u = float((model.probe_matrix(np.array([[ro], [5.0]])) @ sol.u)[0])
-        levels.append({"factor": fac, "size_mm": sec.size_mm, "fit_size_mm": sec.fit_size_mm,
-                       "dofs": int(model.ndofs), "fit_pressure_MPa": p, "ring_u_r_um": 1e3 * u})
+        levels.append(ConvergenceLevel(fac, sec.size_mm, sec.fit_size_mm, int(model.ndofs),
+                                       dict(fit_pressure_MPa=p, ring_u_r_um=1e3 * u)))
         if progress:
             progress(f"  Lamé level {len(levels)}/{len(factors)}: {model.ndofs} DOF")
     return convergence_case("mesh_convergence_lame_TC4_9Cr18", dict(common, assumption="plane_stress"),
-                        levels, exact)
+                            levels, exact)
 
 
 def mesh_convergence_case(assembly, factors=(2.0, 1.0, 0.5), used: int = 1,
-                          temperatures_C=None, progress=None) -> dict:
+                          temperatures_C=None, progress=None) -> ConvergenceCase:
     """The discretisation error of an assembly's mesh: the FE quantities that feed the bearing
     model on the levels `factors` of its mesh family (`Section.scaled`, coarse to fine; the
     Richardson value from the three finest), at the coldest and hottest temperature of
     `[operating]` (or `temperatures_C`) with the mean fits, through the pipeline.
 
     Quantities: the mean pressure of every fit closed on all levels (MPa) and the groove-centre
-    shifts dr, dz of both bearings (um). `errors`: those of level `used` (the mesh assessed)
-    against the Richardson values (studies/model/mesh_size.py): a fit pressure relative to its
-    value, a bearing's groove shift as the length of the (dr, dz) error over the length of
+    shifts dr, dz of both bearings (um). Its `assessment.errors`: those of level `used` (the mesh
+    assessed) against the Richardson values (studies/model/mesh_size.py): a fit pressure relative
+    to its value, a bearing's groove shift as the length of the (dr, dz) error over the length of
     (dr, dz). `error_max` is the largest, `target_error` the one the sizes were chosen for (None:
     all sizes given). The default levels x2, x1, x0.5 assess the assembly's own mesh at a third
     of the cost of x1, x0.5, x0.25 (which the tests use: a reference from finer meshes only)."""
@@ -479,51 +558,49 @@ def mesh_convergence_case(assembly, factors=(2.0, 1.0, 0.5), used: int = 1,
     levels = []
     for fac in factors:
         pl = Pipeline.shared(assembly, mesh_factor=fac)
-        inp = baseline_inputs({"T_ambient_C": T}, T.size, assembly.T_ref_C,
+        inp = baseline_inputs(dict(T_ambient_C=T), T.size, assembly.T_ref_C,
                               assembly.preload.assembled_N, assembly.lubrication.speed_rpm)
         fe = pl.fe(inp)
         sec = pl.section
-        lv = {"factor": fac, "size_mm": sec.size_mm, "fit_size_mm": sec.fit_size_mm,
-              "corner_size_mm": sec.corner_size_mm, "dofs": int(pl.ndofs)}
+        values = {}
         for i, Tc in enumerate(temps):
             for k, fit in enumerate(sec.fits):
-                lv[f"{fit.name.replace('fit_', 'fit_pressure_')}_MPa at {Tc:g} C"] = \
+                values[f"{fit.name.replace('fit_', 'fit_pressure_')}_MPa at {Tc:g} C"] = \
                     float(fe.fit_pressure_MPa[i, k])
             for j, J in enumerate("AB"):
-                lv[f"groove_shift_dr_{J}_um at {Tc:g} C"] = 1e3 * float(fe.dr_mm[j, i])
-                lv[f"groove_shift_dz_{J}_um at {Tc:g} C"] = 1e3 * float(fe.dz_mm[j, i])
-        levels.append(lv)
+                values[f"groove_shift_dr_{J}_um at {Tc:g} C"] = 1e3 * float(fe.dr_mm[j, i])
+                values[f"groove_shift_dz_{J}_um at {Tc:g} C"] = 1e3 * float(fe.dz_mm[j, i])
+        levels.append(ConvergenceLevel(fac, sec.size_mm, sec.fit_size_mm, int(pl.ndofs), values,
+                                       sec.corner_size_mm))
         if progress:
             progress(f"  {assembly.name} level {len(levels)}/{len(factors)}: {pl.ndofs} DOF")
-    open_fits = [q for q in levels[0] if q.startswith("fit_pressure")
-                 and any(lv[q] <= 0 for lv in levels)]
+    open_fits = [q for q in levels[0].values if q.startswith("fit_pressure")
+                 and any(lv.values[q] <= 0 for lv in levels)]
     for lv in levels:                 # an open fit has no pressure to converge
         for q in open_fits:
-            del lv[q]
+            del lv.values[q]
     case = convergence_case(f"mesh_convergence_{assembly.name}",
-                            {"assembly": assembly.name, "temperatures_C": list(temps),
-                             "open_fits": open_fits}, levels)
-    case["used_level"] = used
-    case["errors"] = _level_errors(case, used)
-    case["error_max"] = max(case["errors"].values())
-    case["target_error"] = mesh_sizes(assembly).target_error
-    case["within_target"] = (None if case["target_error"] is None
-                             else bool(case["error_max"] <= case["target_error"]))
-    return case
+                            dict(assembly=assembly.name, temperatures_C=list(temps),
+                                 open_fits=open_fits), levels)
+    errors = _level_errors(case, used)
+    return replace(case, assessment=MeshAssessment(used, errors, max(errors.values()),
+                                                   mesh_sizes(assembly).target_error, temps,
+                                                   tuple(open_fits)))
 
 
-def _level_errors(case: dict, level: int, per_quantity: bool = False) -> dict[str, float]:
+def _level_errors(case: ConvergenceCase, level: int, per_quantity: bool = False) -> dict[str, float]:
     """Relative errors of one level against the Richardson values (see mesh_convergence_case):
     per fit pressure and per bearing's groove-shift vector, or (`per_quantity`) per quantity,
     a groove-shift component relative to the length of its bearing's shift."""
-    q, lv = case["quantities"], case["levels"][level]
+    q, lv = case.quantities, case.levels[level].values
     out = {}
     for name, r in q.items():
         if name.startswith("fit_pressure"):
-            out[name] = abs(lv[name] - r["extrapolated"]) / abs(r["extrapolated"])
+            ext = r.richardson.extrapolated
+            out[name] = abs(lv[name] - ext) / abs(ext)
         elif name.startswith("groove_shift_dr_"):
             dz = name.replace("_dr_", "_dz_")
-            ref = (r["extrapolated"], q[dz]["extrapolated"])
+            ref = (r.richardson.extrapolated, q[dz].richardson.extrapolated)
             err = (lv[name] - ref[0], lv[dz] - ref[1])
             length = math.hypot(*ref)
             if per_quantity:
@@ -533,34 +610,36 @@ def _level_errors(case: dict, level: int, per_quantity: bool = False) -> dict[st
     return out
 
 
-def discretisation_lines(case: dict) -> list[str]:
+def discretisation_lines(case: ConvergenceCase) -> list[str]:
     """Markdown of an assembly's mesh_convergence_case: the sizes and where they come from, the
     target and the error achieved, and the table per quantity (report and verify)."""
-    used = case["levels"][case["used_level"]]
-    target = case["target_error"]
-    worst = max(case["errors"], key=case["errors"].get)
-    factors = ", ".join(f"x{lv['factor'] / used['factor']:g}" for lv in case["levels"])
+    a = case.assessment
+    used = case.used
+    target = a.target_error
+    worst = max(a.errors, key=a.errors.get)
+    factors = ", ".join(f"x{lv.factor / used.factor:g}" for lv in case.levels)
     source = (f"chosen for a target error of {100 * target:g} % (`[mesh] target_error`; "
               "studies/model/mesh_size.py)" if target is not None else "all given in `[mesh]`")
     verdict = ("no target (explicit sizes)" if target is None else
-               f"{'within' if case['within_target'] else 'NOT within'} the {100 * target:g} % target")
-    rows = _level_errors(case, case["used_level"], per_quantity=True)
-    return [f"Element sizes of the mesh used: {used['size_mm']:.4g} mm in the bulk, "
-            f"{used['fit_size_mm']:.4g} mm along fits and raceways, {used['corner_size_mm']:.4g} mm "
-            f"where fits and clamped faces end ({used['dofs']} DOF), {source}.", "",
-            f"The same FE at {' and '.join(f'{t:g} C' for t in case['inputs']['temperatures_C'])} "
+               f"{'within' if a.within_target else 'NOT within'} the {100 * target:g} % target")
+    rows = _level_errors(case, a.used_level, per_quantity=True)
+    return [f"Element sizes of the mesh used: {used.size_mm:.4g} mm in the bulk, "
+            f"{used.fit_size_mm:.4g} mm along fits and raceways, {used.corner_size_mm:.4g} mm "
+            f"where fits and clamped faces end ({used.dofs} DOF), {source}.", "",
+            f"The same FE at {' and '.join(f'{t:g} C' for t in a.temperatures_C)} "
             f"(mean fits) on the meshes {factors} of it; observed order and grid convergence index "
             "of the finest (Roache 1998, Fs = 1.25; the extrapolation uses the order kept within "
             f"{ORDER_BOUNDS[0]:g}..{ORDER_BOUNDS[1]:g}). Error of a fit pressure: relative to its "
             "Richardson value; of a groove-centre shift: relative to the length of its bearing's "
             "shift (dr, dz).", "",
-            f"**Achieved: {100 * case['error_max']:.2g} % ({worst}), {verdict}.**"
-            + (f" Open fits (no pressure to converge): {', '.join(case['inputs']['open_fits'])}."
-               if case["inputs"]["open_fits"] else ""), "",
+            f"**Achieved: {100 * a.error_max:.2g} % ({worst}), {verdict}.**"
+            + (f" Open fits (no pressure to converge): {', '.join(a.open_fits)}."
+               if a.open_fits else ""), "",
             md_table(["quantity", "observed order", "Richardson value", "GCI (finest)",
                       "error of the mesh used"],
-                     [[q, v["observed_order"], v["extrapolated"], f"{v['gci_fine']:.2e}",
-                       f"{rows[q]:.2e}"] for q, v in case["quantities"].items()]), ""]
+                     [[q, v.richardson.observed_order, v.richardson.extrapolated,
+                       f"{v.richardson.gci_fine:.2e}", f"{rows[q]:.2e}"]
+                      for q, v in case.quantities.items()]), ""]
 
 
 def lame_cases(mesh_factor: float = 1.0) -> list[VerifyCase]:
@@ -667,13 +746,13 @@ def assembly_fit_cases(asm, mesh_factor: float = 1.0) -> list[VerifyCase]:
 
 
 def write_verification(out_dir: Path, cases: list[VerifyCase], plot_path: Path | None,
-                       mms: list[MMSCase] = (), requirements=(), convergence: list[dict] = (),
+                       mms: list[MMSCase] = (), requirements=(), convergence: list[ConvergenceCase] = (),
                        mms_transient: list[TransientMMSCase] = ()) -> None:
     """verification.json and verification.md (the tables a reviewer reads): the closed-form
-    cases, then the mesh-convergence ones (`convergence_case` dicts) under "cases";
+    cases, then the mesh-convergence ones (`ConvergenceCase`) under "cases";
     `requirements`: `studies.usecases.requirements.RequirementTrace` rows. The one writer of both."""
     (out_dir / "verification.json").write_text(json.dumps(
-        {"cases": [c.to_json() for c in cases] + list(convergence),
+        {"cases": [c.to_json() for c in cases] + [c.to_json() for c in convergence],
          "mms": [m.to_json() for m in mms],
          "mms_transient": [m.to_json() for m in mms_transient],
          "requirements": [r.to_json() for r in requirements]}, indent=2, default=float))
@@ -687,22 +766,23 @@ def write_verification(out_dir: Path, cases: list[VerifyCase], plot_path: Path |
         lines.append(f"| {c.name} | {c.kind} | {fe} | {cf} | {c.rel_error:.2e} | "
                      f"{'yes' if c.passed else 'NO'} |")
     for c in convergence:
-        qs = list(c["quantities"])
-        lines += ["", f"## Mesh convergence: {c['name']}", "",
+        qs = list(c.quantities)
+        lines += ["", f"## Mesh convergence: {c.name}", "",
                   "| level | size (mm) | fit size (mm) | DOF | " + " | ".join(qs) + " |",
                   "|---" * (4 + len(qs)) + "|"]
-        for i, lv in enumerate(c["levels"]):
-            lines.append(f"| {i + 1} | {lv['size_mm']:.3g} | {lv['fit_size_mm']:.3g} | {lv['dofs']} | "
-                         + " | ".join(f"{lv[q]:.10g}" for q in qs) + " |")
-        if "errors" in c:              # an assembly's own mesh: target and error achieved
+        for i, lv in enumerate(c.levels):
+            lines.append(f"| {i + 1} | {lv.size_mm:.3g} | {lv.fit_size_mm:.3g} | {lv.dofs} | "
+                         + " | ".join(f"{lv.values[q]:.10g}" for q in qs) + " |")
+        if c.assessment is not None:   # an assembly's own mesh: target and error achieved
             lines += [""] + discretisation_lines(c)
             continue
         lines += ["", "| quantity | observed order | Richardson extrapolation | GCI (fine) | "
                   "order vs exact |", "|---|---|---|---|---|"]
-        for q, r in c["quantities"].items():
-            ex = ", ".join(f"{o:.2f}" for o in r.get("order_vs_exact", [])) or "-"
-            lines.append(f"| {q} | {r['observed_order']:.2f} | {r['extrapolated']:.10g} | "
-                         f"{r['gci_fine']:.2e} | {ex} |")
+        for q, r in c.quantities.items():
+            ex = ", ".join(f"{o:.2f}" for o in r.order_vs_exact) or "-"
+            rr = r.richardson
+            lines.append(f"| {q} | {rr.observed_order:.2f} | {rr.extrapolated:.10g} | "
+                         f"{rr.gci_fine:.2e} | {ex} |")
     lines += ["", "P2 elements converge at order 2 in the energy norm and up to order 4 for "
               "reaction-based quantities on smooth problems (the Lamé case). In the assembled stack "
               "the ends of each fit and of each clamped face are stress singularities: uniform "
@@ -772,7 +852,7 @@ def requirement_lines(requirements) -> list[str]:
             md_table(["requirement", "statement", "tests", "last result"], rows)]
 
 
-def plot_convergence(path: Path, cases: list[dict]) -> Path:
+def plot_convergence(path: Path, cases: list[ConvergenceCase]) -> Path:
     """Relative error (vs exact, or vs the Richardson value) against element size, log-log."""
     import matplotlib
     matplotlib.use("Agg")
@@ -780,27 +860,28 @@ def plot_convergence(path: Path, cases: list[dict]) -> Path:
 
     fig, axes = plt.subplots(1, len(cases), figsize=(5.5 * len(cases), 4.5), squeeze=False)
     for ax, case in zip(axes[0], cases):
-        h = np.array([lv["fit_size_mm"] for lv in case["levels"]])
-        if "errors" in case:          # an assembly's mesh: its errors as the target counts them
+        h = np.array([lv.fit_size_mm for lv in case.levels])
+        if case.assessment is not None:   # an assembly's mesh: its errors as the target counts them
             _plot_assembly_errors(ax, case, h)
             continue
-        for q, r in case["quantities"].items():
-            vals = np.array([lv[q] for lv in case["levels"]])
-            if "exact" in r:
-                err, lab = np.abs(vals - r["exact"]) / abs(r["exact"]), "vs exact"
+        for q, r in case.quantities.items():
+            vals = np.array([lv.values[q] for lv in case.levels])
+            if r.exact is not None:
+                err, lab, h_q = np.abs(vals - r.exact) / abs(r.exact), "vs exact", h
             else:
-                err, lab = np.abs(vals - r["extrapolated"]) / abs(r["extrapolated"]), "vs Richardson"
+                ext = r.richardson.extrapolated
+                err, lab = np.abs(vals - ext) / abs(ext), "vs Richardson"
                 err, h_q = err[:-1], h[:-1]
-            h_q = h if "exact" in r else h[:-1]
             ok = err > 0
             if ok.any():
-                ax.loglog(h_q[ok], err[ok], "o-", label=f"{q} {lab} (p = {r['observed_order']:.2f})")
+                ax.loglog(h_q[ok], err[ok], "o-",
+                          label=f"{q} {lab} (p = {r.richardson.observed_order:.2f})")
         for order, style in ((2, "k--"), (4, "k:")):
             y0 = ax.get_ylim()[1] if ax.lines else 1.0
             ax.loglog(h, y0 * (h / h[0]) ** order, style, lw=0.8, label=f"slope {order}")
         ax.set_xlabel("element size at the fits (mm)")
         ax.set_ylabel("relative error")
-        ax.set_title(case["name"], fontsize=9)
+        ax.set_title(case.name, fontsize=9)
         ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
@@ -808,10 +889,10 @@ def plot_convergence(path: Path, cases: list[dict]) -> Path:
     return path
 
 
-def _plot_assembly_errors(ax, case: dict, h: np.ndarray) -> None:
+def _plot_assembly_errors(ax, case: ConvergenceCase, h: np.ndarray) -> None:
     """Per fit pressure and groove-shift vector the error of each level but the finest against
     the Richardson value (the measure of mesh_convergence_case), the target as a line."""
-    n = len(case["levels"]) - 1
+    n = len(case.levels) - 1
     errs = [_level_errors(case, i) for i in range(n)]
     for name in errs[0]:
         e = np.array([x[name] for x in errs])
@@ -819,14 +900,13 @@ def _plot_assembly_errors(ax, case: dict, h: np.ndarray) -> None:
         if ok.any():
             ax.loglog(h[:n][ok], e[ok], "o-", lw=1, ms=3,
                       label=name.replace("fit_pressure_", "p ").replace("groove_shift_", "shift "))
-    if case["target_error"] is not None:
-        ax.axhline(case["target_error"], color="r", ls="-.", lw=1,
-                   label=f"target {100 * case['target_error']:g} %")
-    used = case["levels"][case["used_level"]]["fit_size_mm"]
-    ax.axvline(used, color="0.5", lw=0.8, label="mesh used")
+    target = case.assessment.target_error
+    if target is not None:
+        ax.axhline(target, color="r", ls="-.", lw=1, label=f"target {100 * target:g} %")
+    ax.axvline(case.used.fit_size_mm, color="0.5", lw=0.8, label="mesh used")
     ax.set_xlabel("element size at the fits (mm)")
     ax.set_ylabel("error vs Richardson")
-    ax.set_title(case["name"], fontsize=9)
+    ax.set_title(case.name, fontsize=9)
     ax.legend(fontsize=6, ncol=2)
 
 

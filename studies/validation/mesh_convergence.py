@@ -17,10 +17,14 @@ from studies.model.columns import to_columns
 from studies.model.pipeline import Pipeline
 from studies.usecases.report_tools import md_table
 from studies.model.table import write_table
-from studies.usecases.verify import convergence_case, plot_convergence
+from studies.usecases.verify import ConvergenceLevel, convergence_case, plot_convergence
 
 FACTORS = (4.0, 2.0, 1.0, 0.5, 0.25)
 T_STATES_C = (-60.0, 80.0)
+#: the quantities per level (columns of `to_columns`), the outer fit dropped where it is open
+QUANTITIES = ("fit_pressure_inner_A_MPa", "fit_pressure_outer_A_MPa", "groove_shift_dr_A_um",
+              "groove_shift_dz_A_um", "preload_N")
+OUTER_FIT = QUANTITIES[1]
 
 
 def run(out: Path, progress=print) -> None:
@@ -34,36 +38,35 @@ def run(out: Path, progress=print) -> None:
                               asm.lubrication.speed_rpm)
         res = to_columns(pl.run(inp, direct=True), flags=False)     # the levels' table by name
         for i, Tc in enumerate(T_STATES_C):
-            levels[Tc].append({"factor": fac, "size_mm": pl.section.size_mm,
-                               "fit_size_mm": pl.section.fit_size_mm, "dofs": int(pl.ndofs),
-                               "fit_pressure_inner_A_MPa": float(res["fit_pressure_inner_A_MPa"][i]),
-                               "fit_pressure_outer_A_MPa": float(res["fit_pressure_outer_A_MPa"][i]),
-                               "groove_shift_dr_A_um": float(res["groove_shift_dr_A_um"][i]),
-                               "groove_shift_dz_A_um": float(res["groove_shift_dz_A_um"][i]),
-                               "preload_N": float(res["preload_N"][i])})
+            levels[Tc].append(ConvergenceLevel(
+                fac, pl.section.size_mm, pl.section.fit_size_mm, int(pl.ndofs),
+                {q: float(res[q][i]) for q in QUANTITIES}))
     cases = []
     for Tc in T_STATES_C:
         rows = levels[Tc]
-        if all(r["fit_pressure_outer_A_MPa"] == 0 for r in rows):
+        if all(r.values[OUTER_FIT] == 0 for r in rows):
             for r in rows:
-                del r["fit_pressure_outer_A_MPa"]        # open fit: nothing to converge
-        c = convergence_case(f"seed000 at {Tc:g} C", {"assembly": asm.name, "T_C": Tc}, rows)
+                del r.values[OUTER_FIT]        # open fit: nothing to converge
+        c = convergence_case(f"seed000 at {Tc:g} C", dict(assembly=asm.name, T_C=Tc), rows)
         cases.append(c)
-        write_table(out / f"levels_{Tc:+.0f}C.csv", {k: np.array([r[k] for r in rows])
-                                                   for k in rows[0]})
+        table = [r.to_json() for r in rows]
+        write_table(out / f"levels_{Tc:+.0f}C.csv", {k: np.array([r[k] for r in table])
+                                                   for k in table[0]})
     plot_convergence(out / "mesh_convergence.png", cases)
     lines = ["# Study mesh_convergence: seed 000 stack", "",
              "Direct FE solves with exact contact on five meshes (sizes halved each level); the "
              "preload uses the pair model on each level's groove-centre shifts. Observed order p and "
              "GCI from the three finest levels (Roache 1998, Fs = 1.25).", ""]
     for c in cases:
-        qs = list(c["quantities"])
-        lines += [f"## {c['name']}", "", md_table(["DOF", "fit size (mm)"] + qs,
-                  [[lv["dofs"], lv["fit_size_mm"]] + [lv[q] for q in qs] for lv in c["levels"]], digits=8), "",
+        qs = list(c.quantities)
+        x1 = c.levels[FACTORS.index(1.0)].values
+        lines += [f"## {c.name}", "", md_table(["DOF", "fit size (mm)"] + qs,
+                  [[lv.dofs, lv.fit_size_mm] + [lv.values[q] for q in qs] for lv in c.levels], digits=8), "",
                   md_table(["quantity", "observed order", "Richardson value", "GCI fine", "default mesh (x1) rel. error"],
-                           [[q, r["observed_order"], r["extrapolated"], f"{r['gci_fine']:.2e}",
-                             f"{abs(c['levels'][FACTORS.index(1.0)][q] - r['extrapolated']) / abs(r['extrapolated']):.2e}"]
-                            for q, r in c["quantities"].items()]), ""]
+                           [[q, r.richardson.observed_order, r.richardson.extrapolated,
+                             f"{r.richardson.gci_fine:.2e}",
+                             f"{abs(x1[q] - r.richardson.extrapolated) / abs(r.richardson.extrapolated):.2e}"]
+                            for q, r in c.quantities.items()]), ""]
     lines += ["The ends of each fit and the clamped ring corners are stress singularities, so the "
               "orders are lower than the 2-4 of P2 on smooth problems (see `bearingfem verify` for "
               "the smooth Lamé case); the default mesh (x1) is within the tabulated error of the "

@@ -77,10 +77,10 @@ def mesh_error(asm) -> dict:
     from studies.usecases.verify import mesh_convergence_case
 
     case = mesh_convergence_case(asm)
-    worst = max(case["errors"], key=case["errors"].get)
-    return {"error_max": float(case["error_max"]), "worst": worst,
-            "target_error": case["target_error"], "within_target": case["within_target"],
-            "dofs": int(case["levels"][case["used_level"]]["dofs"])}
+    a = case.assessment
+    return {"error_max": float(a.error_max), "worst": max(a.errors, key=a.errors.get),
+            "target_error": a.target_error, "within_target": a.within_target,
+            "dofs": int(case.used.dofs)}
 
 
 def _free_centres_mm(pl, inputs) -> tuple[np.ndarray, np.ndarray]:
