@@ -109,7 +109,7 @@ def test_thrust_limit_gyroscopic_moment_and_friction():
         assert k.cage[0] == pytest.approx(0.5, rel=1e-12)
         assert k.omega_r[0] == pytest.approx(0.5 * g.dm_mm / g.Dw_mm, rel=1e-12)
         fz, ex, _, _ = bd.frozen_forces(g, tg, a, a, np.array([speed]), control)
-        assert ex["M_g"][0] == pytest.approx(Mg, rel=1e-12)
+        assert ex.M_g[0] == pytest.approx(Mg, rel=1e-12)
         assert abs(fz.b[0, 0]) <= 1e-12 * Mg / g.Dw_mm
         assert fz.b[1, 0] == pytest.approx(Fc + sense * 2.0 * Mg / g.Dw_mm, rel=1e-12)
         # the inner ring's share: the inner raceway's friction only (inner control)

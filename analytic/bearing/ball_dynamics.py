@@ -85,6 +85,7 @@ a ring-level solver (`single.py`, `dynamic.py`, `combined.py`) needs.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
@@ -122,14 +123,14 @@ def jones_outer_control(g: BearingGeometry, cs_inner: ContactStiffness,
     return m_o >= np.asarray(Q_inner_N) * e_i.a_mm * e_i.E_ell
 
 
-def jones_choice(g: BearingGeometry, tg: ThermalGeometry, balls: dict, alpha_i_rad,
+def jones_choice(g: BearingGeometry, tg: ThermalGeometry, balls: BallParts, alpha_i_rad,
                  alpha_o_rad) -> np.ndarray:
     """`jones_outer_control` at a solved ball state: `balls` the per-ball quantities of
     `frozen_equilibrium` (flat arrays Q_i, Q_o), angles in rad (any shape, flattened), exact
     Hertz stiffness at each angle of the grown geometry tg (flat)."""
     ai, ao = np.ravel(alpha_i_rad), np.ravel(alpha_o_rad)
     return jones_outer_control(g, contact_stiffness(g, tg, ai), contact_stiffness(g, tg, ao),
-                               balls["Q_i"], balls["Q_o"], ai, ao)
+                               balls.Q_i, balls.Q_o, ai, ao)
 
 
 def control_shares(control, outer_controls=None):
@@ -205,6 +206,35 @@ class BallDynamics:
     converged: np.ndarray
 
 
+class BallParts(NamedTuple):
+    """Both contacts of every ball at its centre u (`_ball_potential`; flat arrays over the
+    balls, M entries; module docstring): the unit normals n_o = u / d_o and n_i = (P - u) / d_i
+    (2, M), the contact loads Q (N), Hertz approaches delta (mm), normal stiffnesses
+    kn = dQ/d(delta) (N/mm) and tangential ones kt = Q / d (N/mm)."""
+    n_o: np.ndarray
+    n_i: np.ndarray
+    Q_o: np.ndarray
+    Q_i: np.ndarray
+    dl_o: np.ndarray
+    dl_i: np.ndarray
+    kn_o: np.ndarray
+    kn_i: np.ndarray
+    kt_o: np.ndarray
+    kt_i: np.ndarray
+
+
+class BallExtras(NamedTuple):
+    """The speed terms of `frozen_forces` per ball (module docstring): centrifugal force F_c (N),
+    gyroscopic moment M_g (N mm), the inner contact's spin-to-roll ratio, cage speed (rpm) and
+    the raceway friction forces f_i, f_o along t_i, t_o (N)."""
+    F_c: np.ndarray
+    M_g: np.ndarray
+    spin_to_roll: np.ndarray
+    cage_rpm: np.ndarray
+    f_i: np.ndarray
+    f_o: np.ndarray
+
+
 @dataclass
 class _Frozen:
     """What the outer loop freezes for one pass (flat arrays over balls, M entries)."""
@@ -242,8 +272,7 @@ def _ball_potential(P, u, fz: _Frozen):
     bu = (fz.b * u).sum(axis=0)
     T_o, T_i = _tangent(n_o, kn_o, Q_o, d_o), _tangent(n_i, kn_i, Q_i, d_i)
     grad = Q_o * n_o - Q_i * n_i - fz.b
-    parts = dict(n_o=n_o, n_i=n_i, Q_o=Q_o, Q_i=Q_i, dl_o=dl_o, dl_i=dl_i, kn_o=kn_o,
-                 kn_i=kn_i, kt_o=Q_o / d_o, kt_i=Q_i / d_i)
+    parts = BallParts(n_o, n_i, Q_o, Q_i, dl_o, dl_i, kn_o, kn_i, Q_o / d_o, Q_i / d_i)
     return V_o + V_i - bu, V_o + V_i + np.abs(bu), grad, T_o + T_i, parts
 
 
@@ -260,7 +289,7 @@ def _newton_ball(P, u0, fz: _Frozen, cap: float, max_iter: int = 100) -> Root:
     conv = np.zeros(M, bool)
     Pi, Pabs, g, H, p = _ball_potential(P, u, fz)
     for _ in range(max_iter):
-        scale = np.maximum.reduce([p["Q_i"], p["Q_o"], np.hypot(fz.b[0], fz.b[1])])
+        scale = np.maximum.reduce([p.Q_i, p.Q_o, np.hypot(fz.b[0], fz.b[1])])
         conv |= np.hypot(g[0], g[1]) <= 1e-12 * scale
         done |= conv
         if done.all():
@@ -283,15 +312,15 @@ def _newton_ball(P, u0, fz: _Frozen, cap: float, max_iter: int = 100) -> Root:
             ok = pending & ((Pt <= Pi + 1e-13 * (Pabs + Pat)) | (flat & (t == 1.0)))
             u[:, ok], Pi[ok], Pabs[ok], g[:, ok], H[..., ok] = (trial[:, ok], Pt[ok], Pat[ok],
                                                                gt[:, ok], Ht[..., ok])
-            for k in p:
-                p[k][..., ok] = pt[k][..., ok]
+            for mine, trial_k in zip(p, pt):
+                mine[..., ok] = trial_k[..., ok]
             pending &= ~ok
             if not pending.any():
                 break
             t = np.where(pending, 0.5 * t, t)
         conv |= ~done & (t == 1.0) & (size <= 1e-15 * (1.0 + np.hypot(u[0], u[1])))
         done |= conv | pending
-    scale = np.maximum.reduce([p["Q_i"], p["Q_o"], np.hypot(fz.b[0], fz.b[1])])
+    scale = np.maximum.reduce([p.Q_i, p.Q_o, np.hypot(fz.b[0], fz.b[1])])
     # a ball whose potential no step lowers any more is at its minimum to rounding: converged
     # when its residual is also within 1e-10 of its loads (the difference of two contact forces
     # of a heavily loaded ball carries their rounding)
@@ -332,9 +361,9 @@ def frozen_equilibrium(P, u0, fz: _Frozen, Dw_mm: float):
     ball, its raceway's friction included) and Hessian T_i (T_i + T_o)^-1 T_o."""
     root = _newton_ball(P, u0, fz, cap=0.05 * Dw_mm)
     Pi, Pabs, _, _, p = _ball_potential(P, root.x, fz)
-    Kt = series_tangent(p["n_i"], p["kn_i"], p["kt_i"], p["n_o"], p["kn_o"], p["kt_o"])
+    Kt = series_tangent(p.n_i, p.kn_i, p.kt_i, p.n_o, p.kn_o, p.kt_o)
     work = (fz.f_ring * P).sum(axis=0)
-    return root, Pi + work, Pabs + np.abs(work), p["Q_i"] * p["n_i"] + fz.f_ring, Kt, p
+    return root, Pi + work, Pabs + np.abs(work), p.Q_i * p.n_i + fz.f_ring, Kt, p
 
 
 def frozen_forces(g: BearingGeometry, tg: ThermalGeometry, alpha_i, alpha_o, speed_rpm,
@@ -343,7 +372,7 @@ def frozen_forces(g: BearingGeometry, tg: ThermalGeometry, alpha_i, alpha_o, spe
     the kinematics at the angles under each ball's control (outer where lam_o > 0), F_c, M_g, the
     frozen force vector b on the ball and the inner raceway's friction f_i t_i (module docstring).
     control: "outer", "inner" or the shares (lam_i, lam_o) per ball (`control_shares`).
-    Returns (_Frozen, extras dict, cs_inner, cs_outer)."""
+    Returns (_Frozen, BallExtras, cs_inner, cs_outer)."""
     lam_i, lam_o = CONTROL[control] if isinstance(control, str) else control
     ai = np.asarray(alpha_i, float)
     ao = np.asarray(alpha_o, float)
@@ -362,8 +391,8 @@ def frozen_forces(g: BearingGeometry, tg: ThermalGeometry, alpha_i, alpha_o, spe
     f_ring = np.stack(np.broadcast_arrays(f_i * np.cos(ai), -f_i * np.sin(ai)))
     b = np.stack([f_ring[0] + f_o * np.cos(ao), F_c + f_ring[1] - f_o * np.sin(ao)])
     om_R = np.hypot(kin.omega_r, kin.omega_z)
-    extras = dict(F_c=F_c, M_g=M_g, spin_to_roll=kin.spin_inner / np.where(om_R > 0, om_R, 1.0),
-                  cage_rpm=kin.cage * np.asarray(speed_rpm, float), f_i=f_i, f_o=f_o)
+    extras = BallExtras(F_c, M_g, kin.spin_inner / np.where(om_R > 0, om_R, 1.0),
+                        kin.cage * np.asarray(speed_rpm, float), f_i, f_o)
     fz = _Frozen(cs_i.K_i, cs_o.K_o, tg.f_i * Dw - 0.5 * Dw, tg.f_o * Dw - 0.5 * Dw, b, f_ring)
     return fz, extras, cs_i, cs_o
 
@@ -414,11 +443,11 @@ def solve_balls(g: BearingGeometry, X_mm, Y_mm, speed_rpm=0.0, *, control: str =
             u = static_split(P, fz)
         root, _, _, F_in, Kt, p = frozen_equilibrium(P, u, fz, float(np.max(tg.Dw_mm)))
         u = root.x
-        new_o = np.arctan2(p["n_o"][0], p["n_o"][1])
-        new_i = np.arctan2(p["n_i"][0], p["n_i"][1])
+        new_o = np.arctan2(p.n_o[0], p.n_o[1])
+        new_i = np.arctan2(p.n_i[0], p.n_i[1])
         # angles of contacts that carry load (an open contact's direction is no state of it)
-        change = np.maximum(np.where(p["Q_o"] > 0, np.abs(new_o - a_o), 0.0),
-                            np.where(p["Q_i"] > 0, np.abs(new_i - a_i), 0.0))
+        change = np.maximum(np.where(p.Q_o > 0, np.abs(new_o - a_o), 0.0),
+                            np.where(p.Q_i > 0, np.abs(new_i - a_i), 0.0))
         a_i, a_o = new_i, new_o
         ok_outer = change <= tol
         if control == "jones" and n_pass < JONES_FREE_PASSES:
@@ -434,14 +463,14 @@ def solve_balls(g: BearingGeometry, X_mm, Y_mm, speed_rpm=0.0, *, control: str =
     outer_ctl = outer_ctl if control == "jones" else np.full(outer_ctl.shape, control == "outer")
     return BallDynamics(
         contact_angle_inner_deg=r(np.degrees(a_i)), contact_angle_outer_deg=r(np.degrees(a_o)),
-        load_inner_N=r(p["Q_i"]), load_outer_N=r(p["Q_o"]), approach_inner_mm=r(p["dl_i"]),
-        approach_outer_mm=r(p["dl_o"]), centrifugal_force_N=r(np.broadcast_to(ex["F_c"], a_i.shape)),
-        gyroscopic_moment_Nmm=r(np.broadcast_to(ex["M_g"], a_i.shape)),
-        spin_to_roll=r(np.broadcast_to(ex["spin_to_roll"], a_i.shape)),
-        cage_speed_rpm=r(np.broadcast_to(ex["cage_rpm"], a_i.shape)),
+        load_inner_N=r(p.Q_i), load_outer_N=r(p.Q_o), approach_inner_mm=r(p.dl_i),
+        approach_outer_mm=r(p.dl_o), centrifugal_force_N=r(np.broadcast_to(ex.F_c, a_i.shape)),
+        gyroscopic_moment_Nmm=r(np.broadcast_to(ex.M_g, a_i.shape)),
+        spin_to_roll=r(np.broadcast_to(ex.spin_to_roll, a_i.shape)),
+        cage_speed_rpm=r(np.broadcast_to(ex.cage_rpm, a_i.shape)),
         ball_centre_mm=root2.x.reshape((2,) + shape),
         inner_force_N=F_in.reshape((2,) + shape), tangent_N_per_mm=Kt.reshape((2, 2) + shape),
-        friction_inner_N=r(np.broadcast_to(ex["f_i"], a_i.shape)),
-        friction_outer_N=r(np.broadcast_to(ex["f_o"], a_i.shape)),
+        friction_inner_N=r(np.broadcast_to(ex.f_i, a_i.shape)),
+        friction_outer_N=r(np.broadcast_to(ex.f_o, a_i.shape)),
         cs_inner=cs_i, cs_outer=cs_o, outer_control=r(outer_ctl),
         converged=r(ok_outer & root.converged & root2.converged))

@@ -289,9 +289,9 @@ def _combined_group(g: BearingGeometry, mode: str, s, dr, dz, tg: ThermalGeometr
                            ball_outer_control=dyn.outer_control())
         dynamic = DynamicContacts(
             contact_angle_inner_deg=np.degrees(top(alpha)), contact_angle_outer_deg=np.degrees(top(a_o)),
-            load_inner_N=top(Q), load_outer_N=top(Q_o), centrifugal_force_N=top(ex["F_c"]),
-            gyroscopic_moment_Nmm=top(ex["M_g"]), spin_to_roll=top(ex["spin_to_roll"]),
-            cage_speed_rpm=top(ex["cage_rpm"]),
+            load_inner_N=top(Q), load_outer_N=top(Q_o), centrifugal_force_N=top(ex.F_c),
+            gyroscopic_moment_Nmm=top(ex.M_g), spin_to_roll=top(ex.spin_to_roll),
+            cage_speed_rpm=top(ex.cage_rpm),
             outer_control=top(dyn.outer_control()))
     radial = RadialLoadState(
         rho_mm=rho, radial_force_N=st.Fr_N, max_ball_load_N=Q.max(axis=1),

@@ -204,7 +204,7 @@ class DynamicBallSet:
         shares = bd.control_shares(self.control, self.outer_ctl)
         self.fz, ex, self.cs_i, self.cs_o = bd.frozen_forces(self.g, self.tg, a_i.ravel(),
                                                              a_o.ravel(), self.speed, shares)
-        self.f_i = np.broadcast_to(ex["f_i"], self.speed.shape).reshape(self.shape)
+        self.f_i = np.broadcast_to(ex.f_i, self.speed.shape).reshape(self.shape)
 
     def state(self, X, Y, cpsi, gx=None, gy=None, theta_rad=None):
         """`contact.BallSetState` of the balls at groove-centre distances X, Y (2, Z, N); with a
@@ -220,7 +220,7 @@ class DynamicBallSet:
         self.u_prev, self.ball_ok, self.p = root.x, root.converged, p
         r = lambda v: np.asarray(v).reshape(self.shape)  # noqa: E731
         tangent = tuple(r(Kt[i, j]) for i, j in ((0, 0), (0, 1), (1, 0), (1, 1)))
-        st = project_balls(r(p["Q_i"]), r(p["dl_i"] + p["dl_o"]), self.angles()[0],
+        st = project_balls(r(p.Q_i), r(p.dl_i + p.dl_o), self.angles()[0],
                            r(F_in[0]), r(F_in[1]), r(W), r(W_abs), tangent, cpsi, gx, gy)
         if gx is None or self.tilt_sign is None:
             return st
@@ -238,12 +238,12 @@ class DynamicBallSet:
     def angles(self):
         """(inner, outer) contact angles of the last state, rad, (2, Z, N)."""
         p = self.p
-        return (np.arctan2(p["n_i"][0], p["n_i"][1]).reshape(self.shape),
-                np.arctan2(p["n_o"][0], p["n_o"][1]).reshape(self.shape))
+        return (np.arctan2(p.n_i[0], p.n_i[1]).reshape(self.shape),
+                np.arctan2(p.n_o[0], p.n_o[1]).reshape(self.shape))
 
     def loads(self):
         """(inner, outer) contact loads of the last state, N, (2, Z, N)."""
-        return self.p["Q_i"].reshape(self.shape), self.p["Q_o"].reshape(self.shape)
+        return self.p.Q_i.reshape(self.shape), self.p.Q_o.reshape(self.shape)
 
     def outer_control(self) -> np.ndarray:
         """True where the outer raceway controls the ball (the hypothesis in force), (2, Z, N)."""
@@ -265,14 +265,14 @@ class DynamicBallSet:
         return (contact_ellipses(self.g, _shaped(self.cs_i, self.shape), Qi, 0),
                 contact_ellipses(self.g, _shaped(self.cs_o, self.shape), Qo, 1))
 
-    def extras(self) -> dict:
-        """Centrifugal force, gyroscopic moment, spin-to-roll ratio and cage speed per ball at the
-        frozen state, (2, Z, N)."""
+    def extras(self) -> bd.BallExtras:
+        """Centrifugal force, gyroscopic moment, spin-to-roll ratio, cage speed and raceway
+        friction forces per ball at the frozen state, (2, Z, N)."""
         fz_i, fz_o = self.angles()
         _, ex, _, _ = bd.frozen_forces(self.g, self.tg, fz_i.ravel(), fz_o.ravel(), self.speed,
                                        bd.control_shares(self.control, self.outer_ctl))
-        return {k: np.broadcast_to(ex[k], self.speed.shape).reshape(self.shape)
-                for k in ("F_c", "M_g", "spin_to_roll", "cage_rpm")}
+        return bd.BallExtras(*(np.broadcast_to(v, self.speed.shape).reshape(self.shape)
+                               for v in ex))
 
 
 def _shaped(cs, shape):

@@ -166,7 +166,7 @@ class _Problem:
             shares = bd.control_shares(self.control, self.outer_ctl)
             self.fz, ex, _, _ = bd.frozen_forces(g, tg, a_i.ravel(), a_o.ravel(), spd.ravel(),
                                                  shares, self.alpha_K)
-            f_i = np.broadcast_to(ex["f_i"], a_i.size).reshape(a_i.shape)
+            f_i = np.broadcast_to(ex.f_i, a_i.size).reshape(a_i.shape)
             self.couple = np.zeros((5, a_i.shape[1]))
             self.couple[3:] = bd.friction_couple_Nmm(g, tg, f_i) / self.R_m
 
@@ -204,8 +204,8 @@ class _Problem:
         self.ball_ok = root.converged
         self.last = p
         self.W_abs = W_abs.reshape(X.shape)
-        a_o = np.arctan2(p["n_o"][0], p["n_o"][1]).reshape(X.shape)
-        a_i = np.arctan2(p["n_i"][0], p["n_i"][1]).reshape(X.shape)
+        a_o = np.arctan2(p.n_o[0], p.n_o[1]).reshape(X.shape)
+        a_i = np.arctan2(p.n_i[0], p.n_i[1]).reshape(X.shape)
         return (W.reshape(X.shape), grad.reshape((2,) + X.shape), Kt.reshape((2, 2) + X.shape),
                 a_i, a_o)
 
