@@ -70,7 +70,7 @@ def test_clearance_fit_stays_open_with_zero_force_and_the_right_gap():
 
 def test_short_ring_pressure_between_plane_stress_and_plane_strain():
     c = short_ring_case(mesh_factor=1.5)
-    assert dict(c.extra)["within_bounds"], c
+    assert c.bounds.within_bounds, c
 
 
 def test_rigid_body_fix_adds_no_force():

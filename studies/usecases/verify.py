@@ -44,6 +44,7 @@ from __future__ import annotations
 import json
 import math
 from dataclasses import asdict, dataclass, replace
+from typing import NamedTuple
 from pathlib import Path
 
 import numpy as np
@@ -67,30 +68,37 @@ MMS_LEVELS = (8, 16, 32, 64)
 MMS_ORDER_TOL = 0.2
 
 
+class BoundsCheck(NamedTuple):
+    """What a lame_bounds case adds: whether the FE lies between the two 2-D idealisations, and
+    why it need not."""
+    within_bounds: bool
+    note: str
+
+
 @dataclass(frozen=True)
 class VerifyCase:
     """One closed-form comparison: name, kind ("lame_fit", "lame_multilayer", "lame_displacement", "lame_bounds",
     "free_thermal", "rotating_fit", "rotating_displacement", "rotating_free", "fit_open_speed"),
     the inputs that recompute the closed form (names and units of docs/cli.md "verify"), the FE and
-    closed-form values by name, the relative error, and what a kind adds (`extra`: e.g.
-    within_bounds and note of lame_bounds)."""
+    closed-form values by name, the relative error, and what lame_bounds adds (`bounds`)."""
     name: str
     kind: str
     inputs: dict
     fe: dict
     closed_form: dict
     rel_error: float
-    extra: tuple = ()
+    bounds: BoundsCheck | None = None
 
     @property
     def passed(self) -> bool:
         """Within TOLERANCE, or (lame_bounds) between the two 2-D idealisations."""
-        return bool(dict(self.extra)["within_bounds"]) if self.kind == "lame_bounds" \
+        return bool(self.bounds.within_bounds) if self.kind == "lame_bounds" \
             else self.rel_error <= TOLERANCE
 
     def to_json(self) -> dict:
         return {"name": self.name, "kind": self.kind, "inputs": self.inputs, "fe": self.fe,
-                "closed_form": self.closed_form, "rel_error": self.rel_error, **dict(self.extra)}
+                "closed_form": self.closed_form, "rel_error": self.rel_error,
+                **(self.bounds._asdict() if self.bounds is not None else {})}
 
 
 @dataclass(frozen=True)
@@ -345,9 +353,9 @@ def short_ring_case(mesh_factor: float = 1.0) -> VerifyCase:
         {"fit_pressure_MPa": p_fe},
         {"fit_pressure_plane_stress_MPa": ps, "fit_pressure_plane_strain_MPa": pe},
         0.0 if lo <= p_fe <= hi else min(abs(p_fe - lo), abs(p_fe - hi)) / lo,
-        (("within_bounds", bool(lo <= p_fe <= hi)),
-         ("note", "a short ring sits on a shaft stiffened by its unloaded length on both sides, "
-                  "so the FE pressure need not lie between the two 2-D idealisations")))
+        BoundsCheck(bool(lo <= p_fe <= hi),
+                    "a short ring sits on a shaft stiffened by its unloaded length on both sides, "
+                    "so the FE pressure need not lie between the two 2-D idealisations"))
 
 
 def free_thermal_case(material: str = "9Cr18", dT_K: float = 100.0,
@@ -534,6 +542,12 @@ def lame_convergence_case(factors=(4.0, 2.0, 1.0, 0.5), progress=None) -> Conver
                             levels, exact)
 
 
+def at_temperature(quantity: str, T_C: float) -> str:
+    """The name of an assembly convergence quantity at one temperature (C), e.g.
+    "groove_shift_dr_A_um at -40 C"."""
+    return f"{quantity} at {T_C:g} C"
+
+
 def mesh_convergence_case(assembly, factors=(2.0, 1.0, 0.5), used: int = 1,
                           temperatures_C=None, progress=None) -> ConvergenceCase:
     """The discretisation error of an assembly's mesh: the FE quantities that feed the bearing
@@ -565,11 +579,11 @@ def mesh_convergence_case(assembly, factors=(2.0, 1.0, 0.5), used: int = 1,
         values = {}
         for i, Tc in enumerate(temps):
             for k, fit in enumerate(sec.fits):
-                values[f"{fit.name.replace('fit_', 'fit_pressure_')}_MPa at {Tc:g} C"] = \
-                    float(fe.fit_pressure_MPa[i, k])
+                name = fit.name.replace("fit_", "fit_pressure_") + "_MPa"
+                values[at_temperature(name, Tc)] = float(fe.fit_pressure_MPa[i, k])
             for j, J in enumerate("AB"):
-                values[f"groove_shift_dr_{J}_um at {Tc:g} C"] = 1e3 * float(fe.dr_mm[j, i])
-                values[f"groove_shift_dz_{J}_um at {Tc:g} C"] = 1e3 * float(fe.dz_mm[j, i])
+                values[at_temperature(f"groove_shift_dr_{J}_um", Tc)] = 1e3 * float(fe.dr_mm[j, i])
+                values[at_temperature(f"groove_shift_dz_{J}_um", Tc)] = 1e3 * float(fe.dz_mm[j, i])
         levels.append(ConvergenceLevel(fac, sec.size_mm, sec.fit_size_mm, int(pl.ndofs), values,
                                        sec.corner_size_mm))
         if progress:
@@ -792,11 +806,10 @@ def write_verification(out_dir: Path, cases: list[VerifyCase], plot_path: Path |
     if plot_path is not None:
         lines += ["", f"![mesh convergence]({plot_path.name})"]
     for c in (c for c in cases if c.kind == "lame_bounds"):
-        ex = dict(c.extra)
         lines += ["", f"Short ring: FE {c.fe['fit_pressure_MPa']:.4g} MPa, plane stress "
                   f"{c.closed_form['fit_pressure_plane_stress_MPa']:.4g}, plane strain "
                   f"{c.closed_form['fit_pressure_plane_strain_MPa']:.4g}: "
-                  f"{'between the bounds' if ex['within_bounds'] else 'outside the bounds'}. {ex['note']}."]
+                  f"{'between the bounds' if c.bounds.within_bounds else 'outside the bounds'}. {c.bounds.note}."]
     lines += mms_lines(mms) + transient_mms_lines(mms_transient) + requirement_lines(requirements)
     (out_dir / "verification.md").write_text("\n".join(lines) + "\n")
 
