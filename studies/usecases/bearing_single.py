@@ -27,8 +27,7 @@ from analytic.thermal_speed import (ThermalReference, dissipated_heat_W,
 from analytic.torque import (ContactInput, coulomb_load_torque_Nmm, palmgren_f1_angular_contact,
                              palmgren_load_torque_Nmm, palmgren_viscous_torque_Nmm,
                              solid_film_torque_Nmm)
-from studies.model.config import load_bearing
-from studies.model.table import TableError, read_table, write_table
+from studies.model.table import TableError, write_table
 
 LOAD_COLUMNS = ("radial_load_N", "radial_load_y_N", "axial_load_N", "moment_x_Nmm",
                 "moment_y_Nmm", "speed_rpm", "T_oil_C")
@@ -84,20 +83,6 @@ class BearingRun:
         import pandas as pd
 
         return pd.DataFrame(self.columns)
-
-
-def run(bearing_path: Path, loads_path: Path, out: Path, convention: str = "exact",
-        provenance: dict | None = None, control: str = "outer",
-        warnings: list[str] | None = None) -> int:
-    """Solve every row of `loads_path` for the bearing of `bearing_path`, write `out` atomically
-    (nothing is written when any row fails).  Returns the number of rows; warning lines (a
-    default of the thermal speed keys used) are appended to `warnings` when given."""
-    res = solve(load_bearing(bearing_path), read_table(loads_path, allowed=set(LOAD_COLUMNS)),
-                str(loads_path), convention, control, str(bearing_path))
-    write(res, out, provenance)
-    if warnings is not None:
-        warnings.extend(res.warnings)
-    return res.n_rows
 
 
 def write(res: BearingRun, out: Path, provenance: dict | None = None) -> None:
