@@ -7,6 +7,7 @@ import sys
 from pathlib import Path
 
 import pandas as pd
+import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "docs" / "examples" / "new_assembly.py"
@@ -22,6 +23,7 @@ def test_the_example_uses_only_the_facade():
     assert "bearingfem" in roots and not roots & PROJECT_PACKAGES, roots
 
 
+@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
 def test_the_new_assembly_example_runs(tmp_path):
     done = subprocess.run([sys.executable, str(EXAMPLE), "--out", str(tmp_path), "--quick"],
                           capture_output=True, text=True, timeout=600, cwd=tmp_path)

@@ -41,8 +41,8 @@ def test_skf_rolling_term_exponents():
     t2 = skf2004.skf2004_torque(25.0, 62.0, 0.0, 1500.0, 1000.0, 80.0)
     r = (t2.rolling_Nmm / (t2.phi_ish * t2.phi_rs)) / (t1.rolling_Nmm / (t1.phi_ish * t1.phi_rs))
     assert r == pytest.approx(4.0 ** 0.6, rel=1e-12)
-    g1 = skf2004.rolling_variable(skf2004.SKF_72B, 43.5, 0.0, 1000.0)
-    g2 = skf2004.rolling_variable(skf2004.SKF_72B, 43.5, 0.0, 8000.0)
+    g1 = skf2004.rolling_variable(skf2004.SKF_SINGLE_ROW, 43.5, 0.0, 1000.0)
+    g2 = skf2004.rolling_variable(skf2004.SKF_SINGLE_ROW, 43.5, 0.0, 8000.0)
     assert g2 / g1 == pytest.approx(8.0 ** 0.54, rel=1e-12)
 
 

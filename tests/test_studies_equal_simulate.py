@@ -1,7 +1,8 @@
 """Every study reaches the model through the pipeline: its tables equal `simulate` on the same
 rows (the command-line route: conditions table -> baseline inputs -> pipeline), and it writes its
-report, plots and field images. Studies run on a coarser mesh here (mesh_factor 4) to keep the
-default suite short; `make test-slow` runs them at the shipped mesh (test_cli_studies.py)."""
+report, plots and field images. Studies run on a coarser mesh here (mesh_factor 4); the three
+studies take about 40 s, so the module is in `make test-slow` (which CI runs after `make test`),
+as are the runs at the shipped mesh (test_cli_studies.py)."""
 import csv
 import functools
 
@@ -13,6 +14,8 @@ from studies.model.config import load_shipped
 from studies.model.pipeline import Pipeline
 from studies.validation import study_module
 from studies.model.columns import to_columns
+
+pytestmark = pytest.mark.slow
 
 MESH_FACTOR = 4.0
 #: relative to the value compared: both routes do the same arithmetic, and the study's CSV keeps 10

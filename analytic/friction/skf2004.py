@@ -27,8 +27,14 @@ bearings), the sliding coefficient (phi_bl = 1/e^(2.6e-8 (n nu)^1.4 dm), mu_bl "
 ~0.15", mu_EHL 0.05 mineral, 0.04 synthetic oils, 0.1 transmission fluids); phi_ish and phi_rs
 with K_z = 4.4 (angular-contact ball bearings) and K_rs = 3e-8 (oil jet, low-level oil bath),
 6e-8 (grease, oil-air) as an independent open implementation of the same SKF document takes
-them. The series constants R1..S3 of table 2b for 72 B / 73 B are the catalogue's as recalled;
-no copy of table 2b was retrievable here to re-check their digits.
+them. The constants R1..S3 are table 2b's row "angular contact ball bearings, single row" of the
+General Catalogue 6000 (2005) as recalled (5.03e-7, 1.97, 1.90e-12, 1.30e-2, 0.68, 1.91e-12; an
+open implementation, dozersim, uses the same six numbers for every angular-contact bearing).
+No copy of table 2b was retrievable here to re-check their digits (searched 2026-11-29). The
+later catalogue (10000 / 17000) tabulates them per series; an open transcription of it
+(GitHub JRaposo-m/SKF-Bearing-Selection-Tool) gives for 72 B 4.33e-7, 2.02, 2.44e-12,
+1.82e-2, 0.71, 2.44e-12: under a pure axial load 13 % lower in G_rr (R1 R2^0.54) and 46 %
+higher in G_sl (S1 S2) than the single-row set. Neither set is a test's expected value.
 
 Limits (what the catalogue states): steady running, full-film to mixed lubrication of a
 mineral or synthetic oil, loads not below the minimum load, speeds below the limiting speed;
@@ -72,10 +78,12 @@ class SkfConstants:
     S3: float
 
 
-#: single-row angular-contact ball bearings, 72 B and 73 B series (the two the catalogue
-#: tabulates; the project's thin-section 718 / 719 / 70 bearings are closest to 72 B)
-SKF_72B = SkfConstants("72 B", R1=5.03e-7, R2=1.97, R3=1.90e-12, S1=1.30e-2, S2=0.68, S3=1.91e-12)
-SKF_73B = SkfConstants("73 B", R1=6.34e-7, R2=1.41, R3=7.83e-13, S1=7.56e-3, S2=1.21, S3=7.83e-13)
+#: single-row angular-contact ball bearings (GC 6000, table 2b, one row for every series; the
+#: six numbers recalled, module docstring). Before 2026-11-29 this was labelled "72 B" and a
+#: second set (6.34e-7, 1.41, ...) "73 B": that set is, as recalled, the double-row row of the
+#: same table, so it was removed (it was used nowhere).
+SKF_SINGLE_ROW = SkfConstants("single row", R1=5.03e-7, R2=1.97, R3=1.90e-12, S1=1.30e-2,
+                              S2=0.68, S3=1.91e-12)
 
 
 def inlet_shear_factor(n_rpm, dm_mm, nu_mm2_s):
@@ -149,7 +157,7 @@ class SkfTorque:
 
 
 def skf2004_torque(d_mm: float, D_mm: float, Fr_N, Fa_N, n_rpm, nu_mm2_s,
-                   constants: SkfConstants = SKF_72B, K_rs: float = K_RS_OIL,
+                   constants: SkfConstants = SKF_SINGLE_ROW, K_rs: float = K_RS_OIL,
                    K_z: float = K_Z_ANGULAR_CONTACT, mu_bl: float = MU_BL,
                    mu_ehl: float = MU_EHL["mineral"], V_M=0.0) -> SkfTorque:
     """Frictional moment of one angular-contact ball bearing by the SKF model (module

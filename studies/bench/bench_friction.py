@@ -2,8 +2,8 @@
 lubricated angular-contact ball bearing at high speed, from each friction model's physics (issue
 33), printed with the data it comes from. Nothing is fitted to a measured exponent.
 
-The case (stated, not a measurement): a 72 B series bearing of 35 mm bore (7207 B: d = 35 mm,
-D = 72 mm, ISO 15 boundary dimensions; dm = 53.5 mm), a pure axial load of 667 N, oil-jet
+The case (stated, not a measurement): a single-row angular-contact bearing of 35 mm bore
+(7207 B: d = 35 mm, D = 72 mm, ISO 15 boundary dimensions; dm = 53.5 mm), a pure axial load of 667 N, oil-jet
 lubrication (SKF's K_rs for an oil jet, no bath drag), the oil's kinematic viscosity held at
 5, 10 and 30 mm^2/s (a turbine ester near 100, 70 and 40 C: assumptions), shaft speeds 12 000
 to 72 000 rpm (DN 0.42 to 2.5 million). The exponent printed is the local slope
@@ -37,7 +37,7 @@ from __future__ import annotations
 import numpy as np
 
 from analytic.friction.ehl_rolling import ehl_rolling_force_N
-from analytic.friction.skf2004 import K_RS_OIL, MU_EHL, SKF_72B, skf2004_torque
+from analytic.friction.skf2004 import K_RS_OIL, MU_EHL, SKF_SINGLE_ROW, skf2004_torque
 from analytic.torque import palmgren_viscous_torque_Nmm
 
 BORE_MM, OUTSIDE_MM, AXIAL_N = 35.0, 72.0, 667.0
@@ -63,7 +63,7 @@ def exponents(nu_mm2_s: float) -> dict[str, float]:
     """The fitted speed exponent of each model at one viscosity (24..72 krpm)."""
     n = SPEEDS_RPM
     dm = 0.5 * (BORE_MM + OUTSIDE_MM)
-    skf = skf2004_torque(BORE_MM, OUTSIDE_MM, 0.0, AXIAL_N, n, nu_mm2_s, SKF_72B, K_rs=K_RS_OIL,
+    skf = skf2004_torque(BORE_MM, OUTSIDE_MM, 0.0, AXIAL_N, n, nu_mm2_s, SKF_SINGLE_ROW, K_rs=K_RS_OIL,
                          mu_ehl=MU_EHL["synthetic"])
     palm = palmgren_viscous_torque_Nmm(F0, nu_mm2_s, n, dm)
     # one contact at fixed load and viscosity (any values: a power law in the speed)
@@ -78,11 +78,11 @@ def main() -> None:
     n = SPEEDS_RPM
     dm = 0.5 * (BORE_MM + OUTSIDE_MM)
     print(f"speed exponent of the friction torque, oil-jet angular-contact bearing: d {BORE_MM:g} "
-          f"x D {OUTSIDE_MM:g} mm (72 B series, dm {dm:g} mm), axial {AXIAL_N:g} N, K_rs "
+          f"x D {OUTSIDE_MM:g} mm (single-row constants, dm {dm:g} mm), axial {AXIAL_N:g} N, K_rs "
           f"{K_RS_OIL:g} (oil jet), speeds {', '.join(f'{x / 1e3:g}' for x in n)} krpm")
     print("measured: none digitised in the project (the issue's private check quotes n^0.44)")
     for nu in VISCOSITIES_MM2_S:
-        skf = skf2004_torque(BORE_MM, OUTSIDE_MM, 0.0, AXIAL_N, n, nu, SKF_72B, K_rs=K_RS_OIL,
+        skf = skf2004_torque(BORE_MM, OUTSIDE_MM, 0.0, AXIAL_N, n, nu, SKF_SINGLE_ROW, K_rs=K_RS_OIL,
                              mu_ehl=MU_EHL["synthetic"])
         print(f"nu = {nu:g} mm^2/s: SKF total {np.round(skf.total_Nmm, 1).tolist()} N mm "
               f"(rolling share {np.round(skf.rolling_Nmm / skf.total_Nmm, 2).tolist()}, phi_ish "
