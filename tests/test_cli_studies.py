@@ -102,7 +102,7 @@ def coarse_mms(monkeypatch):
                         functools.partial(verify.transient_mms_cases, (1.0, 0.5), (0.4, 0.2, 0.1)))
 
 
-@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 @pytest.mark.requirement("R-FE-LAME")
 def test_verify_cases_contract_and_tolerance(tmp_path, coarse_mms):
     """The verification cases with the assembly's mesh-convergence levels twice as coarse (the
@@ -193,7 +193,7 @@ def test_unknown_study_exits_2(tmp_path, capsys):
     assert not (tmp_path / "x").exists()
 
 
-@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 def test_verify_runs_the_mesh_convergence_of_a_users_assembly(tmp_path, capsys, coarse_mms):
     """`verify --assembly`: the user's own stack gets its observed order and GCI (coarse levels
     here; the command runs the default ones)."""

@@ -35,7 +35,7 @@ def _check_params(ext, truth, rel):
         assert got == pytest.approx(v, rel=rel), (p, got, v)
 
 
-@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 def test_per_part_lag_is_thermal_lag_extended(pl001):
     cond = oil_speed_steps_001()
     truth = {"tau_s": 900.0, "tau_shaft_s": 2400.0}
@@ -54,7 +54,7 @@ def test_per_part_lag_is_thermal_lag_extended(pl001):
     assert set(res["parameters"]) == {"tau_s"}       # the listed cause's own parameter names
 
 
-@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 def test_settling_creep_is_preload_settling_extended(pl000):
     cond = cycles()
     truth = {"loss_N": 5.0, "creep_N_per_h": 3.0}

@@ -317,7 +317,7 @@ def test_hidden_effect_is_named(pipelines, name, params, seed_name, design, sigm
         assert candidate(res, "viscosity_temperature")["status"] == "not_identifiable"
 
 
-@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 def test_interference_error_in_preload_sweep_local_minimum(pl000):
     """A tighter inner fit (-2.4 um) and a nearly nominal outer fit in a preload sweep, rig friction
     0.85 x the config. Regression test: the slow hit-rate test found the fit stuck at the start
@@ -515,7 +515,7 @@ def assert_unlisted_verdict(res):
     assert any(("T_" in f or "preload" in f or "temperature" in f) for f in lead), ow
 
 
-@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 def test_unlisted_groove_on_a_steady_grid_is_unexplained(pl000, pl000_groove):
     """A cause outside the listed effects on steady points (no time column, so no drift or
     history can be blamed; the model-form ladder, not among these candidates, has a rung that
@@ -552,7 +552,7 @@ def _write_csv(path, cols):
     write_table(path, cols)
 
 
-@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 def test_cli_diagnose_end_to_end(tmp_path, capsys):
     """simulate --effect (CLI) -> noise -> diagnose (CLI): exit 0, the spec's JSON, a report."""
     from studies.app.cli import main
@@ -769,7 +769,7 @@ def _ar1_noise(rng, n, sigma, phi):
     return e
 
 
-@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 def test_correlated_noise_alone_is_no_discrepancy(pl000):
     """AR(1) noise (phi 0.8, 2 % of the torque) on a -60 <-> 80 C cycle with nothing hidden: the
     engine finds the serial correlation, whitens it and says no_discrepancy (it said 'unexplained:
@@ -794,7 +794,7 @@ def test_hidden_effect_is_found_through_correlated_noise(pl000):
     assert res["verdict"] == "explained" and res["cause"] == "thermal_lag", summary(res)
 
 
-@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 def test_noise_level_of_a_steady_grid_comes_from_the_design(pl000):
     """Temperature x preload grid (no time, no replicates) with a model error (inner fit 3.5 um
     smaller): estimated along each condition of the design, the torque noise level is within
@@ -812,7 +812,7 @@ def test_noise_level_of_a_steady_grid_comes_from_the_design(pl000):
     assert res["verdict"] != "explained" or res["cause"] == "interference_error", summary(res)
 
 
-@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 def test_a_fit_error_near_opening_is_found_by_the_global_search(pl000):
     """The fit that nearly opens: seed 000's inner fit 4 um smaller than built (5 -> 1 um), a
     T x preload grid without time, 1.5 % noise. The residual of the fit error is piecewise smooth

@@ -49,7 +49,7 @@ def test_parallel_map_order_counts_and_errors(workers):
         parallel_map(task, [4.0, 3.0], workers, state=model)
 
 
-@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 @needs_fork
 def test_diagnosis_on_two_workers_equals_one_process():
     """A settling that creeps (profiled threshold: profiled fits and held-out refits, and the

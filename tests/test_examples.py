@@ -23,7 +23,7 @@ def test_the_example_uses_only_the_facade():
     assert "bearingfem" in roots and not roots & PROJECT_PACKAGES, roots
 
 
-@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 def test_the_new_assembly_example_runs(tmp_path):
     done = subprocess.run([sys.executable, str(EXAMPLE), "--out", str(tmp_path), "--quick"],
                           capture_output=True, text=True, timeout=600, cwd=tmp_path)

@@ -196,7 +196,7 @@ def test_verify_assembly_runs_lame_on_the_users_own_material_and_sleeve_fit():
     assert ref.pressures_MPa[1] > 0
 
 
-@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 def test_report_shows_every_fit_with_its_flag_and_the_naming_picture(tmp_path):
     """The report of the sleeve design (coarse mesh): the margin table has the sleeve's fit
     with its failures (open at 40 C, closed at 20 C), the results table its interference,

@@ -8,7 +8,7 @@ import pytest
 from studies.validation import STUDIES, heatup
 
 
-@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 def test_heatup_is_a_registered_study_and_its_short_coarse_run_writes_its_report(tmp_path):
     """The loop on a coarse mesh for 20 minutes at both speeds: tables, plots, report; the balls
     are already the hottest part (they take half of every contact's heat, Burton & Staph) and

@@ -62,7 +62,7 @@ def onset_row(T, T_ref, threshold):
     return int(np.argmax(np.abs(np.asarray(T) - T_ref) > threshold))
 
 
-@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 def test_one_off_settling_in_three_cycles_is_explained(pl000, tmp_path):
     cond = three_cycles()
     eff = {"preload_settling": {"loss_N": LOSS_N, "threshold_K": THRESHOLD_K}}
@@ -95,7 +95,7 @@ def test_one_off_settling_in_three_cycles_is_explained(pl000, tmp_path):
     assert f"block {unt[0]['block']} (rows {unt[0]['rows'][0]}..{unt[0]['rows'][1]})" in report
 
 
-@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 def test_no_effect_in_three_cycles_is_no_discrepancy(pl000):
     """The same design, nothing hidden (the candidates exactly as the CLI builds them)."""
     cond = three_cycles()

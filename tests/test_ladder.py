@@ -153,7 +153,7 @@ def test_thermometer_offset_is_the_model_at_the_true_temperature(pl000):
 
 
 # ============================================================================ second source
-@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 def test_quasi_dynamic_truth_is_explained_by_the_ball_model_rung():
     """Seed 001 (hybrid pair, oil, 3000..9000 rpm steps), quasi-dynamic balls in the truth, the
     config static: the ball_model rung explains it, with a share near 1 (the form itself)."""

@@ -152,7 +152,7 @@ def _noisy(pl, cond, eff, sigma, seed, mu_scale=1.25):
     return {c: truth[c] + rng.normal(0.0, s, truth[c].size) for c, s in sigma.items()}
 
 
-@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 def test_hidden_runin_is_recovered(pl000):
     """Seed 000 at its configured 60 rpm, three -60 <-> 80 C cycles (246 rows, 73.8 krev), a
     run-in of the MoS2 film by -0.004 with a 10 krev constant, torque noise 0.02 N mm: explained

@@ -17,7 +17,7 @@ from studies.model.columns import to_columns
 TEMPLATE = CONFIG_DIR / "template.toml"
 
 
-@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 def test_report_of_a_users_assembly(tmp_path):
     asm = load_assembly(TEMPLATE)
     cond = {"T_ambient_C": np.array([-40.0, 20.0, 80.0])}

@@ -60,7 +60,7 @@ def reports(tmp_path_factory):
     return asm_path, runs
 
 
-@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 def test_margin_table_is_the_csv_and_the_checks(reports):
     asm_path, runs = reports
     asm = load_assembly(asm_path)
@@ -113,7 +113,7 @@ def test_margin_table_is_the_csv_and_the_checks(reports):
         assert m[item]["mesh error"].endswith("%"), item
 
 
-@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 def test_tolerance_worst_case_brackets_the_mid_band_result(reports):
     """The assembly has ISO classes (k5 shaft, J6 housing): the report gives the worst case of
     the interference bands, and the mid-band preload and fit pressures of results.csv lie within
@@ -162,7 +162,7 @@ def test_a_violated_check_is_a_fail_with_its_count():
     assert rows["preload band"].status == "PASS"
 
 
-@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 def test_pdf_first_page_holds_the_margin_table(reports):
     from pypdf import PdfReader
 
@@ -175,7 +175,7 @@ def test_pdf_first_page_holds_the_margin_table(reports):
         assert section in text, section
 
 
-@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 def test_the_command_reproduces_the_report(reports):
     """Same date (SOURCE_DATE_EPOCH): report.md, report.html and report.pdf byte-identical."""
     _, runs = reports

@@ -51,7 +51,7 @@ def ar1_case():
     return ss.make_case("ar1_090_null", seed=0, mesh_factor=MESH_FACTOR)
 
 
-@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 def test_ar1_null_case_carries_its_noise_and_no_cause_is_claimed(ar1_case):
     """The case's noise (measured - noise-free, 240 rows) has r1 within 4 standard errors and the
     small-sample bias of 0.9 in every column; nothing is hidden, so the diagnosis must claim no
@@ -169,7 +169,7 @@ def test_transient_fe_temperatures_are_a_lumped_lag_per_part(transient_case):
     assert np.max(np.abs(T["T_shaft_C"] - T["T_housing_C"])) > 0.5
 
 
-@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 def test_transient_fe_lag_is_not_a_wrong_cause(transient_case):
     """Lagged temperatures made by the conduction FE (57 sigma against the baseline on the
     coarse mesh): the diagnosis names the lag family or says it cannot (never another cause)."""
@@ -186,7 +186,7 @@ def spring_case():
     return ss.make_case("spring_preload", seed=0, mesh_factor=MESH_FACTOR)
 
 
-@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 def test_spring_preload_truth_holds_its_force_and_is_not_a_wrong_cause(spring_case):
     """A spring preload (force-controlled) keeps the assembled 100 N at every temperature of the
     cycle (the closed form: the spring's force, its stiffness negligible), to 1e-9; the diagnosed
@@ -207,7 +207,7 @@ def test_spring_preload_truth_holds_its_force_and_is_not_a_wrong_cause(spring_ca
         (res.verdict, res.cause)
 
 
-@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 def test_exponential_friction_law_is_explained_with_the_rate_it_was_made_with():
     """The rig's friction is mu_cal exp(-b (T_rings - T_ref)) with b = 6e-3 /K (38 sigma against
     the baseline); the listed `friction_temperature` is linear and leaves structure. The
@@ -234,7 +234,7 @@ def test_exponential_friction_law_is_explained_with_the_rate_it_was_made_with():
     assert abs(dmu - (-b_true * mu_config)) <= 3 * u_dmu, (dmu, u_dmu)
 
 
-@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 def test_housing_lot_inside_its_scatter_is_named_with_its_cte():
     """A TC4 housing lot whose CTE is 3 % below the library's (inside the data sheets' spread,
     the material_lot rung's +-5 %): the diagnosis names `material_lot` and fits the housing's
@@ -251,7 +251,7 @@ def test_housing_lot_inside_its_scatter_is_named_with_its_cte():
 
 
 # ============================================================================ sensor
-@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 def test_thermometer_offset_is_not_claimed_as_a_cause():
     """The chamber thermometer reads 0.5 K high (inside IEC 60751 class B): every part runs
     0.5 K colder than logged (the truth on the finer mesh with direct FE solves, not the

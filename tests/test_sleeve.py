@@ -119,7 +119,7 @@ def test_bad_sleeve_is_one_line(change, message):
     assert message in str(e.value) and "\n" not in str(e.value)
 
 
-@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 def test_sleeve_and_cartridge_together_mesh_and_report_their_fits():
     raw = _with_sleeve(_template(), 2.0, "17-4PH")
     raw["cartridge"] = {**raw["sleeve"], "material": "TC4", "radial_thickness_mm": 3.0}

@@ -199,7 +199,7 @@ def test_table_writer_in_chunks_writes_write_tables_bytes(tmp_path):
     assert not (tmp_path / "new").exists()
 
 
-@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 def test_memory_beyond_a_chunk_does_not_grow_with_the_rows(tmp_path, pipes):
     """Peak traced memory of a streamed run of 1400 rows against one of 200 rows, chunks of
     20 (a warm-up run first). The fixed part (about 560 kB) varies by +-15 kB with what ran before

@@ -1,7 +1,7 @@
 """Every study reaches the model through the pipeline: its tables equal `simulate` on the same
 rows (the command-line route: conditions table -> baseline inputs -> pipeline), and it writes its
 report, plots and field images. Studies run on a coarser mesh here (mesh_factor 4); the three
-studies take about 40 s, so the module is in `make test-slow` (which CI runs after `make test`),
+studies take about 40 s, so the module is in `make test-slow`,
 as are the runs at the shipped mesh (test_cli_studies.py)."""
 import csv
 import functools

@@ -186,7 +186,7 @@ def test_mid_band_fits_give_the_assembled_preload(fits_only):
     assert r.preload_N[1, 0] > asm.preload.assembled_N     # a tighter inner fit adds preload
 
 
-@pytest.mark.slow        # over 4 s: runs in `make test-slow` (CI runs both suites)
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 def test_tolerance_command_writes_the_documented_json_and_repeats_for_a_seed(tmp_path, capsys):
     asm = _with_fits(tmp_path, ['inner_shaft_class = "k5"', 'inner_ring_bore_class = "P4"',
                                 'outer_housing_class = "J6"', 'outer_ring_od_class = "P4"'])
