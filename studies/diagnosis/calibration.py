@@ -170,7 +170,8 @@ def history_explains(r: np.ndarray, A: np.ndarray, H: np.ndarray, rho: float) ->
     """Does the history basis H explain the residuals r beyond the regression A under AR(1)
     errors of coefficient rho (the one estimated without H)? The generalised least-squares F
     test of the added columns on the Prais-Winsten whitened rows (`stats.ar1_whiten`; Greene,
-    Econometric Analysis, ch. 9.3 and 20.9): F = ((SSE_A - SSE_AH) / q) / (SSE_AH / (n - p)),
+    Econometric Analysis, 7th ed., ch. 5: the F test of added regressors; ch. 20: feasible GLS
+    with AR(1) disturbances): F = ((SSE_A - SSE_AH) / q) / (SSE_AH / (n - p)),
     q and p the ranks added and in all, significant at the level of AR1_LR (chi-square with one
     degree of freedom: P = 2.7e-3). Judged under the correlated noise it would replace, the test
     keeps real AR(1) noise: no switch in 96 columns of AR(1) 0.9-0.95 noise on 240-row cycles
@@ -207,11 +208,18 @@ def history_in_residuals(pb: Problem, pred: dict) -> bool:
             continue
         m = pb.valid[c]
         r = (pb.measured[c] - pred[c])[m]
-        A = np.column_stack([np.ones(r.size), pb.features[m]])
+        A = ar1_regressors(pb, m, False)
         rho, lr, _ = ar1_regression_reml(r, A)
         if lr > AR1_LR and rho > 0.0 and history_explains(r, A, H[m], rho):
             return True
     return False
+
+
+def ar1_regressors(pb: Problem, m: np.ndarray, history: bool) -> np.ndarray:
+    """The AR(1) test's regression on the rows m: a constant and the conditions' smoother
+    (`Problem.features`), with the history basis (`history_basis`) when `history`."""
+    return np.column_stack([np.ones(int(m.sum())), pb.features[m]]
+                           + ([history_basis(pb)[m]] if history else []))
 
 
 def noise_ar1(pb: Problem, c: str, pred: np.ndarray, floor: float, history: bool = False
@@ -239,9 +247,7 @@ def noise_ar1(pb: Problem, c: str, pred: np.ndarray, floor: float, history: bool
     m = pb.valid[c]
     r = (pb.measured[c] - pred)[m]
     whole = np.zeros(r.size, int)
-    A = np.column_stack([np.ones(r.size), pb.features[m]]
-                        + ([history_basis(pb)[m]] if history else []))
-    rho, lr, rho_hi = ar1_regression_reml(r, A)
+    rho, lr, rho_hi = ar1_regression_reml(r, ar1_regressors(pb, m, history))
     if lr <= AR1_LR or rho <= 0.0:
         return None
     u = ar1_whiten(r, whole, rho)
