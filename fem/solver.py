@@ -280,7 +280,11 @@ class Superposition:
         self.condensed, self._solver_of = c, solver_of
         self.n_parts, self.n_fits = c.n_parts, c.n_fits
         self._chol = Memo(max_items=None)     # Cholesky factor per closed set (infra.memo)
-        self.block = 128         # states tried per active set (sweeps and samples alike: measured)
+        #: states tried per active set: at most `block`, one eighth of the states for fewer
+        #: than 1024 (sorted states, `state_order`; measured 2026-11-29: 500 states of seed
+        #: 000's cycles 29 ms in blocks of 128, 17 ms in blocks of 62; blocks of 1e4 tolerance
+        #: samples faster in blocks of 128 than of 64)
+        self.block = 128
         self.pfit, self.B, self.A = c.fit_of_pair, c.B, c.A
         self.n_loads = c.n_parts + 1          # load columns: thermal strain per part, omega^2
         self.PU = c.probe_units if c.probe_units.shape[0] else None
@@ -364,13 +368,18 @@ class Superposition:
                                     None if self.PU is None else C @ self.PU.T)
         G0 = self.B @ theta.T - delta[:, self.pfit].T          # (n_pairs, n_states)
         n = G0.shape[1]
+        # states are tried in blocks in the order of their overlap count, then their summed
+        # free gap (`state_order`): states alike in both mostly share an active set, so a block
+        # solved with one set accepts most of its states
+        order = state_order(G0)
+        G0 = G0[:, order]
+        block = min(self.block, max(32, n // 8))
         lam, gap = np.zeros_like(G0), np.zeros_like(G0)
         which = np.full(n, -1)
         sets: list[np.ndarray] = []
         closed = None
         while (which < 0).any():
-            # states are tried in order in blocks: a sweep's neighbours share active sets
-            todo = np.flatnonzero(which < 0)[:self.block]
+            todo = np.flatnonzero(which < 0)[:block]
             j = todo[0]
             start = closed if closed is not None else G0[:, j] < 0
             _, _, closed = self._lcp(G0[:, j], start.copy())
@@ -384,6 +393,9 @@ class Superposition:
             which[todo[ok]] = len(sets)
             sets.append(closed.copy())
         gap[np.abs(gap) < 1e-15] = 0.0
+        back = np.empty_like(order)
+        back[order] = np.arange(n)
+        lam, gap, which = lam[:, back], gap[:, back], which[back]
         probe = (None if self.PU is None
                  else (self.PU[:, :self.n_loads] @ theta.T + self.PU[:, self.n_loads:] @ lam).T)
         return SuperposedStates(lam.T, gap.T, which, sets, probe)
@@ -405,6 +417,18 @@ class Superposition:
         np.add.at(f, self.pm, -lam)
         T, lu = s.factorize(np.zeros(s.n_pairs, bool))
         return T @ _lu_solve(lu, T.T @ f)
+
+
+def state_order(G0: np.ndarray) -> np.ndarray:
+    """The order in which `Superposition.evaluate` tries its states (columns of the free gaps
+    G0, (n_pairs, n_states), mm): by the number of pairs that overlap without contact forces
+    (G0 < 0: the first guess of the closed set), then by the summed free gap; stable. A
+    programme's rows come as a cycle or a random sample, where neighbours in row order often
+    differ in their active set (seed 000's 500-row cycles: 31 active-set passes in row order, 19
+    in this order, the superposition 46 -> 21 ms). Each state's contact forces are those of its
+    own active set whatever the order (the same set to 5e-14 of the largest force: the
+    back-substitution of another group of columns rounds differently)."""
+    return np.lexsort((G0.sum(axis=0), (G0 < 0).sum(axis=0)))
 
 
 @dataclass(frozen=True)

@@ -115,6 +115,30 @@ def test_superposition_equals_direct_across_fit_opening_and_closing():
     assert np.abs(u_field - d.u).max() <= 1e-8 * np.abs(d.u).max()
 
 
+def test_superposition_of_a_shuffled_cycle_matches_direct_solves_in_any_order():
+    """The superposition tries its states sorted (`fem.solver.state_order`), not in row order:
+    a shuffled -60..160 C programme (fits opening and closing, several active sets) gives each
+    state the direct FE solve's contact forces (a second route) to 1e-8, and the same forces in
+    any order of the rows to 1e-12 of the largest (only the rounding of the back-substitution
+    may differ)."""
+    asm = load_shipped("seed000")
+    sec = section_from_assembly(asm).scaled(2.0)
+    model = build_model(sec)
+    solver = FitSolver(model)
+    sup = Superposition(solver)
+    T = np.random.default_rng(3).permutation(np.tile(np.linspace(-60.0, 160.0, 12), 3))
+    theta = np.array([[model.materials[p].thermal_strain(t, 20.0) for p in model.part_names]
+                      for t in T])
+    delta = np.tile([0.0025, 0.0025, -0.00075, -0.00075], (T.size, 1))
+    res = sup.evaluate(theta, delta)
+    assert len(res.closed_sets) >= 2
+    for i in range(0, T.size, 5):
+        d = solver.solve(model.unit_loads @ theta[i], delta[i])
+        assert np.abs(res.force_N[i] - d.force_N).max() <= 1e-8 * max(np.abs(d.force_N).max(), 1.0)
+    rev = sup.evaluate(theta[::-1], delta[::-1])
+    assert np.abs(rev.force_N[::-1] - res.force_N).max() <= 1e-12 * np.abs(res.force_N).max()
+
+
 def test_fit_rates_follow_the_cte_difference():
     """Seed 000: the free interference changes by (alpha_TC4 - alpha_9Cr18) d per kelvin; the FE
     fit pressure changes with the Lamé compliance of that interference (two-cylinder model)."""
