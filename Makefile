@@ -28,11 +28,16 @@ verify: setup
 # only build the modules' pipelines twice)
 PYTEST_PAR := -n auto --maxprocesses 4 --dist loadscope
 
+# bytecode caches on even where the environment turns them off (PYTHONDONTWRITEBYTECODE): the
+# assertion rewriting and compiling of the project's modules is then done once, not on every run
+# by every worker (collection 17 -> 9 s on this machine, 2026-11-29)
+PYTEST_ENV := PYTHONDONTWRITEBYTECODE=
+
 test: setup
-	BEARINGFEM_REQUIRE_ROSS=1 $(BIN)/python -m pytest -q $(PYTEST_PAR)
+	$(PYTEST_ENV) BEARINGFEM_REQUIRE_ROSS=1 $(BIN)/python -m pytest -q $(PYTEST_PAR)
 
 test-slow: setup
-	$(BIN)/python -m pytest -q -m slow $(PYTEST_PAR)
+	$(PYTEST_ENV) $(BIN)/python -m pytest -q -m slow $(PYTEST_PAR)
 
 bench: setup
 	$(BIN)/bearingfem bench

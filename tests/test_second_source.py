@@ -142,6 +142,7 @@ def transient_case():
     return ss.make_case("transient_fe_lag", seed=0, mesh_factor=MESH_FACTOR)
 
 
+@pytest.mark.slow        # over 4 s: runs in `make test-slow`
 def test_transient_fe_temperatures_are_a_lumped_lag_per_part(transient_case):
     """The transient conduction FE's part temperatures on the -60 <-> 80 C cycle against the
     lumped-capacitance lag tau = C / (h A) of the whole stack (C = the stack's heat capacity,
