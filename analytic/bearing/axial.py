@@ -87,14 +87,6 @@ def bearing_axial_force(g: BearingGeometry, approach_mm, dr_mm=0.0, tg: ThermalG
     return axial_state(X, Y, tg.A_T_mm, cs.Kn, g.Z), cs
 
 
-#: the rotor's axial force balance is solved to this share of its terms' size (the preload plus
-#: the external axial load per point, N): far below any measured force (1e-10 of a preload of
-#: 7..300 N is 1e-9..3e-8 N) and above the residual's rounding (the nested solve of the
-#: preload-path compliance leaves about 1e-13 of it); a point whose pair just unloads (dF/dx -> 0)
-#: otherwise creeps to the root linearly (about 20 evaluations of every point instead of 10)
-FTOL_REL = 1e-10
-
-
 # ---------------------------------------------------------------------------------------------
 @dataclass
 class _LinearKn:
@@ -173,9 +165,8 @@ def solve_pair_axial(g: BearingGeometry, arrangement: str, N: int, *, dr_mm, dz_
             keff = st.k_N_per_mm / (1.0 + c * st.k_N_per_mm)
             return (s * st.F_N).sum(axis=0) - Fext, keff.sum(axis=0)
 
-        ftol = FTOL_REL * (np.abs(P) + np.abs(Fext))
         for _ in range(max_outer):
-            root = newton_increasing(residual, x, step0=scale, ftol=ftol)
+            root = newton_increasing(residual, x, step0=scale)
             x = root.x
             eff = _effective_X(X0 + s * (dz + x) + e, Y, A_T, cs, Z, c, alpha_lin)
             X = eff.x
@@ -186,9 +177,8 @@ def solve_pair_axial(g: BearingGeometry, arrangement: str, N: int, *, dr_mm, dz_
             if done:
                 break
         ok = ok & root.converged & eff.converged.all(axis=0) & cs.converged.all(axis=0) & done
-        # converged: x solves the equilibrium (to FTOL_REL of the preload and load, or to its
-        # step) with a K_n model that matches the exact K_n at the final angle to tol, so the
-        # state below (exact K_n) balances the load as closely
+        # converged: x solves the equilibrium with a K_n model that matches the exact K_n at the
+        # final angle to tol, so the state below (exact K_n) balances the load to tol
         e_out = e
     else:
         FA = s[0, 0] * Fext + P

@@ -14,23 +14,15 @@ class Root:
     converged: np.ndarray
 
 
-def newton_increasing(fun, x0, lo=None, hi=None, step0=1e-3, xtol=1e-15, max_iter=200,
-                      ftol=0.0) -> Root:
+def newton_increasing(fun, x0, lo=None, hi=None, step0=1e-3, xtol=1e-15, max_iter=200) -> Root:
     """Vectorised root of an increasing function: fun(x) -> (r, dr/dx).  Newton's method inside a
     bracket kept from the residual signs; bisection when Newton leaves it; doubling steps away
     from a flat (dr = 0) side while one bracket end is still open.  A point has converged when
-    its step is below xtol (1 + |x|), or when its residual is within ftol of zero (scalar or per
-    point, in the residual's unit; default 0: only an exactly zero residual): it stops there.
-
-    ftol is for residuals whose terms have a known size (forces of a known preload): a root
-    where dr/dx vanishes (a contact just unloading, F ~ delta^1.5) converges only linearly in
-    x, and its last iterations move x by less than what the residual can resolve; the caller
-    states ftol relative to its terms."""
+    its step is below xtol (1 + |x|) (a point whose residual is exactly zero stops there)."""
     x = np.array(x0, dtype=float, copy=True)
     lo = np.full_like(x, -np.inf) if lo is None else np.array(np.broadcast_to(lo, x.shape), float)
     hi = np.full_like(x, np.inf) if hi is None else np.array(np.broadcast_to(hi, x.shape), float)
     step = np.array(np.broadcast_to(step0, x.shape), float)
-    ftol = np.broadcast_to(np.asarray(ftol, float), x.shape)
     done = np.zeros(x.shape, bool)
     for _ in range(max_iter):
         r, dr = fun(x)
@@ -50,7 +42,7 @@ def newton_increasing(fun, x0, lo=None, hi=None, step0=1e-3, xtol=1e-15, max_ite
         new = np.where(ok, cand, np.where(both, 0.5 * (lo + hi),
                                           np.where(r < 0.0, x + step, x - step)))
         step = np.where(ok | both, step, 2.0 * step)
-        new = np.where(np.abs(r) <= ftol, x, new)
+        new = np.where(r == 0.0, x, new)
         done = np.abs(new - x) <= xtol * (1.0 + np.abs(x))
         x = new
         if np.all(done):
