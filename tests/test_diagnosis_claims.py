@@ -96,6 +96,30 @@ def test_fit_beyond_its_band_is_not_claimed_and_listed_at_bound():
     assert r.interval is None and not r.causes
 
 
+def test_generalised_form_at_its_bound_is_not_claimed_and_names_no_cause():
+    """A friction coefficient whose slope in temperature grows exponentially at the rate the
+    Arrhenius-type form allows at most (`friction_temperature.exponential`, b_per_K = 0.03 /K,
+    its bound; slope -1e-5 /K at T_ref). The listed linear law leaves the curvature, so the
+    pass chooses the exponential form, whose rate then fits at its bound (truth there: at it or
+    within its uncertainty of it). Issue 34: not claimed, so the result names no cause and
+    reports none of the form's values (before: the engine looked up the effect of the refused
+    cause, None, and stopped with StopIteration: the slow confusion matrix's friction run at
+    0.25 sigma)."""
+    model = ToyBearing()
+    cond = cycles(n=300)
+    meas = make_data(model, cond, {"friction_temperature.exponential":
+                                   {"dmu_per_K": -1e-5, "b_per_K": 0.03}}, 1)
+    r = run_full(model, cond, meas, candidates=["friction_temperature", "thermal_lag"])
+    assert r.verdict == "unexplained" and r.cause is None, (r.verdict, r.cause, r.reasons)
+    assert r.parameters == {} and r.parameter_uncertainty == {} and r.extended_form is None
+    hit = [b for b in r.at_bound if b.parameter == "b_per_K"]
+    assert hit and hit[0].effect == "friction_temperature.exponential" and hit[0].bound == 0.03
+    assert r.interval is None and not r.causes
+    from studies.diagnosis.result import to_json
+    doc = to_json(r)
+    assert doc["cause"] is None and doc["parameters"] == {}
+
+
 def test_candidate_that_makes_a_column_worse_is_not_claimed():
     """Steady points (no time order), a friction coefficient falling with temperature (a torque
     change only: the preload data carry nothing), and only candidates that move the preload

@@ -162,7 +162,11 @@ def run(pb: Problem, seed: int = 0, t0: float | None = None) -> DiagnosisResult:
 
 def _cause_values(p: Pass, cause: str | None) -> tuple[dict, dict, dict | None]:
     """The cause's parameters, their uncertainties and the nuisance refitted with it (None: no
-    cause), from the generalised form when one explains the data."""
+    cause), from the generalised form when one explains the data. A pass may have chosen a
+    form whose cause the claim rules then refused (`selection.blocked`: the form at a bound):
+    no cause is named, so none of its values are reported."""
+    if not cause:
+        return {}, {}, None
     chosen, pb = p.chosen, p.pb
     if chosen:
         entry = chosen.entry
@@ -170,10 +174,8 @@ def _cause_values(p: Pass, cause: str | None) -> tuple[dict, dict, dict | None]:
         return ({q: v for q, v in entry.parameters.items() if q in own},
                 {q: v for q, v in entry.parameter_uncertainty.items() if q in own},
                 entry.nuisance)
-    if cause:
-        c = p.candidates[cause]
-        return dict(c.parameters), dict(c.uncertainty), c.nuisance
-    return {}, {}, None
+    c = p.candidates[cause]
+    return dict(c.parameters), dict(c.uncertainty), c.nuisance
 
 
 def _extended(p: Pass, cause: str | None) -> tuple[Fit, np.ndarray]:
