@@ -528,8 +528,18 @@ def test_unlisted_groove_on_a_steady_grid_is_unexplained(pl000, pl000_groove):
     assert_unlisted_verdict(res)
 
 
+#: a known wrong claim, open (issue 34): with torque alone, since the forward selection (f70c5f0)
+#: the pair preload_path_compliance + radial_gradient imitates the unlisted groove in draws 1 and
+#: 4 of 6 (docs/diagnosis_rates.md, "An unlisted cause on steady points"); strict, so the day a
+#: rule stops it this mark fails and must go
+KNOWN_PAIR_IMITATION = pytest.mark.xfail(strict=True, reason="two listed causes imitate the "
+                                         "unlisted groove in 2 of 6 draws (issue 34, open)")
+
+
 @pytest.mark.slow          # 12 diagnoses of 64 rows (about 45 s)
-@pytest.mark.parametrize("sigma", [SIGMA_000, SIGMA_000_TORQUE], ids=["torque+preload", "torque"])
+@pytest.mark.parametrize("sigma", [SIGMA_000, pytest.param(SIGMA_000_TORQUE,
+                                                           marks=KNOWN_PAIR_IMITATION)],
+                         ids=["torque+preload", "torque"])
 def test_unlisted_groove_on_a_steady_grid_rate(pl000, pl000_groove, sigma):
     """The same unlisted groove over six noise draws, with torque and preload or torque alone
     (change 21.9 and 12.4 sigma): never a claimed cause, always `unexplained` (measured 6/6 each,
