@@ -13,17 +13,19 @@ Sources (numbers transcribed, typical handbook values at room temperature):
   [ASM-440C]  ASM Handbook Vol. 1 / AK Steel 440C product data: E 200 GPa, nu 0.28, CTE
               10.2e-6/K (0-100 C), k 24.2 W/mK, cp 460 J/kgK, rho 7650 kg/m^3.
   [CN-9Cr18]  China Aeronautical Materials Handbook, 9Cr18 (95Cr18): E 200 GPa, nu 0.3,
-              CTE 10.5e-6/K (20-100 C), rho 7700, k 24, cp 460.  Seed 000 quotes a CTE
-              difference of about 1.5e-6/K between 9Cr18 and TC4 (fit rates -0.05/+0.07 um/C).
+              CTE 10.5e-6/K (20-100 C), rho 7700, k 24, cp 460.  Ning et al. (the 71807C
+              pair in TC4, studies/configs/seed000_71807C_TC4.toml) quote a CTE difference of
+              about 1.5e-6/K between 9Cr18 and TC4 (fit rates -0.05/+0.07 um/C).
   [ASM-52100] ASM Handbook Vol. 1, AISI 52100 (GCr15): E 210 GPa, nu 0.30, CTE 11.9e-6/K
               (20-100 C), rho 7810, k 46.6, cp 475.
   [M50]       Harris & Kotzalas, Rolling Bearing Analysis 5th ed. Vol. 1 Table 5.x (M50):
               E 203 GPa, nu 0.28, CTE 11.3e-6/K; rho 7830, k 25.8, cp 460 (Latrobe data sheet).
   [MIL-TC4]   MIL-HDBK-5J / ASM Ti-6Al-4V annealed: E 113.8 GPa, nu 0.342, rho 4430,
               k 6.7 W/mK, cp 526; CTE 8.6e-6/K (20-100 C) in ASM, 9.0e-6/K in the Chinese
-              handbook for TC4 (20-100 C); we take 9.0e-6 so that 9Cr18-TC4 = 1.5e-6 as in seed 000.
+              handbook for TC4 (20-100 C); we take 9.0e-6 so that 9Cr18-TC4 = 1.5e-6 as in
+              Ning et al.
               The instantaneous CTE rises with temperature (NIST cryogenic data suggest about
-              8e-9 /K^2 over -60..100 C); the baseline keeps it constant, as seed 000 does (its
+              8e-9 /K^2 over -60..100 C); the baseline keeps it constant, as Ning et al. do (their
               fit rates assume a constant CTE difference), and the `cte_nonlinearity` effect
               switches the slope on.
   [Si3N4]     Harris & Kotzalas Vol. 1 (hybrid bearings), Cerbec NBD200 data: E 310 GPa,

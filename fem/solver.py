@@ -40,6 +40,7 @@ from scipy.sparse.linalg import splu
 from threadpoolctl import ThreadpoolController
 
 from infra.memo import Memo
+from meshes.build import CONDENSE_BLOCK
 
 if TYPE_CHECKING:                    # the model is only handed through here
     from fem.model import StackModel
@@ -532,13 +533,25 @@ def condense(solver: FitSolver, probe: sp.csr_matrix | None = None) -> Condensed
         return Condensed(True, n_parts, n_fits, s.fit_of_pair.copy(), none, none,
                          np.ascontiguousarray(PU), np.ascontiguousarray(s.pair_values(U, F, D)[0]))
     T, lu = s.factorize(np.zeros(npair, bool))
-    E = np.zeros((m.ndofs, npair))
-    E[s.slave, np.arange(npair)] = 1.0
-    E[s.master, np.arange(npair)] -= 1.0
-    F = np.hstack([_unit_loads(m), E])
-    U = T @ _lu_solve(lu, T.T @ F)
-    rel = U[s.slave] - U[s.master]
+    loads = _unit_loads(m)
+    n_cols = n_loads + npair
+    rel = np.empty((npair, n_cols))
+    PU = np.empty((0 if probe is None else probe.shape[0], n_cols))
+    # the load columns, then a unit pair force per pair (+1 on its slave, -1 on its master DOF),
+    # solved CONDENSE_BLOCK columns at a time: only the pair rows and the probes of each block's
+    # displacements are kept, so memory is DOFs x CONDENSE_BLOCK, not DOFs x pairs
+    for c0 in range(0, n_cols, CONDENSE_BLOCK):
+        cols = np.arange(c0, min(c0 + CONDENSE_BLOCK, n_cols))
+        F = np.zeros((m.ndofs, cols.size))
+        is_load = cols < n_loads
+        F[:, is_load] = loads[:, cols[is_load]]
+        at, pair = np.flatnonzero(~is_load), cols[~is_load] - n_loads
+        F[s.slave[pair], at] = 1.0
+        F[s.master[pair], at] -= 1.0
+        U = T @ _lu_solve(lu, T.T @ F)
+        rel[:, cols] = U[s.slave] - U[s.master]
+        if probe is not None:
+            PU[:, cols] = probe @ U
     A = rel[:, n_loads:] + np.diag(s.compliance)     # a pair's series spring: c_p on its diagonal
-    PU = np.zeros((0, n_loads + npair)) if probe is None else probe @ U
     return Condensed(False, n_parts, n_fits, s.fit_of_pair.copy(), np.ascontiguousarray(rel[:, :n_loads]),
                      0.5 * (A + A.T), np.ascontiguousarray(PU), none)

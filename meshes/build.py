@@ -28,6 +28,10 @@ class MeshError(RuntimeError):
 #: largest mesh built without asking (triangles; P2: about 4 DOF per triangle, ~4 kB of memory per
 #: triangle through assembly and factorisation): BEARINGFEM_MAX_ELEMENTS overrides it
 MAX_ELEMENTS = 400_000
+#: right-hand sides per solve when `fem.solver.condense` condenses the fits (set here, where the
+#: size guard budgets its memory): DOFs x 32 float64 per array, 4 kB per triangle in all, whatever
+#: the number of contact pairs (before, DOFs x pairs: 3-6 GB for a 0.25-scaled grooved mesh)
+CONDENSE_BLOCK = 32
 #: growth of the element size away from a corner point: size = corner size + CORNER_GRADE x
 #: distance (0.5: as accurate per DOF as 0.3 and 0.8 on the seed 000 and 305-size stacks, and the
 #: smoothest convergence of the three; studies/model/mesh_size.py)
@@ -51,12 +55,14 @@ def estimate_elements(section: Section) -> int:
 
 
 def estimate_memory_GB(section: Section, n_triangles: int) -> float:
-    """Memory of the FE set-up, GB: ~4 kB per triangle (assembly, factorisation) plus the dense
-    condensation of the fits (`fem.solver.condense`: three float64 arrays of DOFs x contact pairs;
-    P2: about 4 DOF per triangle, a pair per half fit size along each fit). The second term grows
-    as the product of the two and dominates for thin sections (a 0.1 mm ring: 1362 pairs)."""
+    """Memory of the FE set-up, GB: ~4 kB per triangle (assembly, factorisation) plus the
+    condensation of the fits (`fem.solver.condense`): four float64 arrays of DOFs x
+    CONDENSE_BLOCK right-hand sides while a block is solved (P2: about 4 DOF per triangle), and
+    three of contact pairs x pairs kept (a pair per half fit size along each fit; the flexibility
+    and the pair rows of the solutions). The second term dominates for thin sections (a 0.1 mm
+    ring: 1362 pairs)."""
     pairs = sum((f.z1_mm - f.z0_mm) / (0.5 * section.fit_size_mm) + 1 for f in section.fits)
-    return 4e-6 * n_triangles + 3 * 8e-9 * (4 * n_triangles) * pairs
+    return 4e-6 * n_triangles + 8e-9 * (4 * (4 * n_triangles) * CONDENSE_BLOCK + 3 * pairs ** 2)
 
 
 def check_size(section: Section) -> int:

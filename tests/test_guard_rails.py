@@ -220,24 +220,26 @@ def test_a_mesh_too_fine_is_refused_before_meshing(tmp_path, capsys, cond):
 
 
 def test_the_condensation_estimate_matches_a_real_set_up():
-    # the estimate's dense condensation (DOFs x pairs, three float64 arrays) against the assembled
-    # model's, given the mesh's real triangle count (estimate_elements is its own estimate): P2
-    # has about 4 DOF per triangle (2 nodes per triangle in a large mesh), a pair per half fit size
+    # the estimate's condensation (four float64 arrays of DOFs x CONDENSE_BLOCK while a block is
+    # solved, three of pairs x pairs kept) against the assembled model's DOFs and pairs, given the
+    # mesh's real triangle count (estimate_elements is its own estimate): P2 has about 4 DOF per
+    # triangle (2 nodes per triangle in a large mesh), a pair per half fit size
     from fem.model import build_model
     from fem.solver import FitSolver
-    from meshes.build import estimate_memory_GB
+    from meshes.build import CONDENSE_BLOCK, estimate_memory_GB
 
     sec = two_cylinder_section(0.0, 10.0, 15.0, "9Cr18", "9Cr18", 8.0, size_mm=1.0, fit_size_mm=0.25)
     model = build_model(sec)
     n = section_mesh(sec).triangles.shape[1]
-    real = 3 * 8e-9 * model.ndofs * FitSolver(model).n_pairs
+    pairs = FitSolver(model).n_pairs
+    real = 8e-9 * (4 * model.ndofs * CONDENSE_BLOCK + 3 * pairs ** 2)
     est = estimate_memory_GB(sec, n) - 4e-6 * n
     assert est == pytest.approx(real, rel=0.1)   # boundary nodes: 4 DOF/triangle is ~6 % low here
 
 
 def test_a_section_whose_fits_would_condense_beyond_memory_is_refused(monkeypatch):
     # few triangles (a coarse bulk) but a long fit at a fine fit size: the triangle count passes,
-    # the dense condensation (DOFs x pairs) does not
+    # the condensation's pairs x pairs arrays (3200 pairs: 0.25 GB) do not
     monkeypatch.setenv("BEARINGFEM_MAX_ELEMENTS", "20000")
     sec = two_cylinder_section(0.0, 10.0, 15.0, "9Cr18", "9Cr18", 400.0, size_mm=2.0,
                                fit_size_mm=0.25)

@@ -150,7 +150,7 @@ def test_missing_and_bad_config_exit_2(tmp_path, capsys):
     assert main(["simulate", str(tmp_path / "none.toml"), str(cond), "-o", str(tmp_path / "o.csv")]) == 2
     assert "file not found" in capsys.readouterr().err
     bad = tmp_path / "bad.toml"
-    bad.write_text(open(CFG).read().replace('material = "TC4"                   # [seed]\nseat',
+    bad.write_text(open(CFG).read().replace('material = "TC4"                   # [paper]\nseat',
                                             'material = "Unobtainium"\nseat'))
     assert main(["simulate", str(bad), str(cond), "-o", str(tmp_path / "o.csv")]) == 2
     assert "shaft.material: unknown material 'Unobtainium'" in capsys.readouterr().err

@@ -529,9 +529,11 @@ class Design:
     mesh: str
 
     def row(self) -> dict:
-        """The design as design.json writes it (the file edge)."""
+        """The design as design.json writes it (the file edge): JSON types, so the API's
+        `to_json` equals the file read back (open_fits a list, not the metrics' tuple)."""
         return {"stack": self.stack_index, **asdict(self.stack), "setting": self.setting_index,
-                **asdict(self.setting), **asdict(self.metrics), "is_given": self.is_given,
+                **asdict(self.setting), **asdict(self.metrics),
+                "open_fits": list(self.metrics.open_fits), "is_given": self.is_given,
                 "mesh": self.mesh}
 
 

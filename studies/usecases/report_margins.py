@@ -428,19 +428,19 @@ def assumption_lines(asm) -> list[str]:
 #: the model compared with published measurements: (case, published, what is compared and how
 #: closely, the test that asserts it (None: printed by the study only))
 VALIDATION = (
-    ("seed 000: fit-change rates", "-0.05 / +0.07 um/C (inner / outer)",
+    ("study seed000: fit-change rates", "-0.05 / +0.07 um/C (inner / outer)",
      "within 0.005 um/C", "tests/test_verify_seed000.py::"
      "test_fit_rates_and_closing_temperature_are_the_published_ones"),
-    ("seed 000: outer clearance closing temperature", "about 41 C", "within 0.5 K",
+    ("study seed000: outer clearance closing temperature", "about 41 C", "within 0.5 K",
      "tests/test_verify_seed000.py::test_fit_rates_and_closing_temperature_are_the_published_ones"),
-    ("seed 000: preload trend (the paper's simplified axial model, its eqs. 14-20; "
+    ("study seed000: preload trend (the paper's simplified axial model, its eqs. 14-20; "
      "analytic/axial_stack.py)", "-40 .. +40 N over -60 .. 80 C (its Fig. 9b)",
      "sign and monotonic rise, within 50 % of the size; this model's axial part between the "
      "limits of that stack (the radial effects it leaves out reverse the cold end)",
      "tests/test_verify_seed000.py::test_the_papers_axial_model_gives_the_published_trend"),
-    ("seed 001: torque ratios against 20 C", "+33 .. 50 % at -20 C, -25 % at 60 C",
+    ("study seed001: torque ratios against 20 C", "+33 .. 50 % at -20 C, -25 % at 60 C",
      "printed beside the published ones by `bearingfem study seed001`", None),
-    ("seed 003: ball-screw support heat at 1000 / 1500 rpm", "heat-up measured on the rig",
+    ("study seed003: ball-screw support heat at 1000 / 1500 rpm", "heat-up measured on the rig",
      "printed by `bearingfem study seed003`; the heat balance is asserted, not the measurement",
      None),
 )
@@ -504,8 +504,8 @@ def credibility_lines(conv: ConvergenceCase, mesh_error: dict[str, float], order
               f"sizes, |f1 - fh| 2^p / (2^p - 1) / |f1| with p = {order:g} (Roache 1998):", "",
             md_table(["headline number", "mesh error"], err_rows), "",
             "### Validation", "",
-            "The published measurements the model has been compared with (the seed studies) "
-            "and their agreement:", "",
+            "The published measurements the model has been compared with (the published rigs of "
+            "`bearingfem study`) and their agreement:", "",
             md_table(["case", "published", "agreement", "test result"], val_rows), "",
             "### Input pedigree and uncertainty", "",
             "Sources of every material and catalogue value and of each assembly key: "

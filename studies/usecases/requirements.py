@@ -38,10 +38,11 @@ REQUIREMENTS: dict[str, str] = {
                 "(hysteresis, differential sliding, spin).",
     "R-DIAG-RATES": "The diagnosis keeps its false-claim rate on null data and its hit rate per "
                     "effect (statistical, slow).",
-    "R-SEED000-FITS": "Seed 000's fit-change rates (-0.05 / +0.07 um/C) and outer-fit closing "
-                      "temperature (about 41 C) are reproduced.",
-    "R-SEED000-PRELOAD": "Seed 000's simplified axial stack model (its eqs. 14-20) gives the "
-                         "published preload trend, and bearingfem's axial-only part agrees with it.",
+    "R-SEED000-FITS": "The published fit-change rates of study seed000 (-0.05 / +0.07 um/C) and "
+                      "outer-fit closing temperature (about 41 C) are reproduced.",
+    "R-SEED000-PRELOAD": "The simplified axial stack model of study seed000's paper (its eqs. "
+                         "14-20) gives the published preload trend, and bearingfem's axial-only "
+                         "part agrees with it.",
 }
 
 #: where the conftest plugin records the outcomes (pytest's cache, under the repository)

@@ -712,7 +712,7 @@ def seed000_trend_lines(mesh_factor: float = 1.0) -> list[str]:
             "ball load Q whatever tau0, alpha >= 0, so the torque keeps the sign of the "
             "preload's change; the pressure-dependent law changes how much the torque moves, "
             "not where it falls. The published rise needs a preload that rises over 0..80 C "
-            "(the seed 000 report's preload question), not another friction law.", ""]
+            "(the preload question of study seed000's report), not another friction law.", ""]
 
 
 # --------------------------------------------------------------------------------- report
