@@ -100,3 +100,14 @@ def test_friction_keys_of_the_wrong_kind_are_refused_in_one_line(name, lub, key)
         else dict(shipped, shear_strength="pressure", tau0_MPa=20.0)
     raw["lubrication"] = ok
     assembly_from_dict(raw, "x.toml")                 # the same keys where they belong: accepted
+
+
+def test_diagnose_accepts_every_column_simulate_writes(seed001):
+    """A `simulate` CSV fed back to `diagnose` as measured data: every column it writes with the
+    split is a comparable output, an accepted one or a check flag (before: the six split columns
+    were refused as unknown, exit 2 on the model's own output)."""
+    from studies.diagnosis.files import COMPARABLE, OUTPUT_NAMES
+
+    unknown = [k for k in _columns(seed001) if k not in OUTPUT_NAMES and k not in COMPARABLE
+               and k not in COND]
+    assert unknown == []

@@ -116,16 +116,20 @@ def _torque_columns(t) -> dict[str, np.ndarray]:
     return out
 
 
+#: the friction split's column names (`friction_split_columns`): the torque by kind, then the
+#: heat by where it is made
+FRICTION_SPLIT_TORQUE = ("torque_rolling_Nmm", "torque_sliding_Nmm", "torque_drag_Nmm")
+FRICTION_SPLIT_HEAT = ("heat_inner_W", "heat_outer_W", "heat_ball_W")
+
+
 def friction_split_columns(t) -> dict[str, np.ndarray]:
     """Whatever the friction model (docs/cli.md, issue 33): the torque by kind,
     `torque_rolling_Nmm`, `torque_sliding_Nmm`, `torque_drag_Nmm` (summing to `torque_Nmm`),
     and, with a speed, the heat by where it is made, `heat_inner_W`, `heat_outer_W`,
     `heat_ball_W` (summing to `heat_W`; `analytic.torque.TorqueComponents`)."""
-    out = {"torque_rolling_Nmm": t.rolling_Nmm, "torque_sliding_Nmm": t.sliding_Nmm,
-           "torque_drag_Nmm": t.drag_Nmm}
+    out = dict(zip(FRICTION_SPLIT_TORQUE, (t.rolling_Nmm, t.sliding_Nmm, t.drag_Nmm)))
     if t.heat_W is not None:
-        out.update(heat_inner_W=t.heat_inner_W, heat_outer_W=t.heat_outer_W,
-                   heat_ball_W=t.heat_ball_W)
+        out.update(zip(FRICTION_SPLIT_HEAT, (t.heat_inner_W, t.heat_outer_W, t.heat_ball_W)))
     n = np.shape(t.torque_Nmm)
     return {k: np.broadcast_to(np.asarray(v, float), n) for k, v in out.items()}
 
