@@ -57,6 +57,7 @@ from typing import Callable
 
 import numpy as np
 
+from studies.diagnosis.blockscale import BlockScale, block_scale
 from studies.diagnosis.calibration import baseline_noise, calibrate
 from studies.diagnosis.candidate import HeldoutGain
 from studies.diagnosis.core import Fit, ModelFailure
@@ -251,6 +252,22 @@ def blocked(p) -> tuple[list[AtBound], list[WorseColumn]]:
     return at_bound(p.pb, fit), worse_columns(p.pb, name, p.baseline.heldout_z, ho, keep)
 
 
+def compensates(p) -> BlockScale | None:
+    """The block-by-block amount of the further cause a pass would accept
+    (`blockscale.block_scale`: its held-out change against the model before it, over the blocks
+    that test it) when the blocks want it in different amounts (Cochran's Q, p below
+    alpha_joint), else None: such a cause compensates the misfit of the causes before it and is
+    not claimed (module docstring)."""
+    _, ho, _ = _extended(p)
+    name = p.decision.cause
+    keep = np.ones(p.pb.n_blocks, bool)
+    if not p.chosen:
+        for u in p.candidates[name].heldout_untestable or []:
+            keep[u["block"] - 1] = False
+    bs = block_scale(p.pb, name, p.baseline.heldout_z, ho, keep)
+    return bs if bs is not None and bs.p < p.pb.th["alpha_joint"] else None
+
+
 def sleeve_lookalike(p) -> str | None:
     """Why the sleeve rung (`sleeve_rung.SleeveForm`) a pass would accept cannot be claimed over
     a housing alloy off its data sheet (`ladder.AlloyOffSheet`, CTE factors +-20 %), or None: a
@@ -369,10 +386,15 @@ def select(first, run_pass: Callable) -> Selection:
             final_pb, final_fit, final_ho = nxt.pb, b.fit, b.heldout_z
             break
         nb, nw = blocked(nxt) if d.verdict in ("explained", "explained_partly") else ([], [])
+        comp = (compensates(nxt) if d.verdict in ("explained", "explained_partly")
+                and not (nb or nw) else None)
         if nb or nw:
             reasons.append(f"with {', '.join(c.effect for c in causes)} in the model, "
                            + not_claimed(d.cause, nb, nw, is_form(nxt.pb.effect(d.cause))))
             stopped_bound, stopped_worse = nb, nw
+        elif comp is not None:
+            reasons.append(f"with {', '.join(c.effect for c in causes)} in the model, "
+                           f"{d.cause} is not claimed as a further cause: {comp.text}")
         elif d.verdict in ("explained", "explained_partly"):
             causes.append(_cause(nxt, len(causes) + 1))
             reasons.append(f"with {', '.join(c.effect for c in causes[:-1])} in the model "
