@@ -41,6 +41,17 @@ the rule. Each
 accepted cause is listed in order with its own held-out gain: the held-out RMSE of the model with it against the model before it, per
 column, under the noise of its pass.
 
+A further cause must fit every held-out block in the same amount (`compensates`,
+`blockscale.block_scale`, issue 34): per block, the least-squares scale of its held-out change
+against the model before it, and Cochran's Q of those scales (chi-square on blocks - 1 degrees
+of freedom when the cause is there; p below alpha_joint: not claimed, the causes before it
+stay). Two listed causes can compose one outside the list, the second correcting the first's
+form error: an inner groove curvature ratio of 0.54 on seed 000's steady grid, torque alone, was
+`explained` as a path compliance plus a radial gradient whose change the cold blocks wanted 2.1
+times and the hot ones 0.3 times (Q 117-273 on 7 degrees of freedom), while in the true pairs
+(the lag and settling reference; lot + settling and compliance + run-in made another way) every
+block wants 0.96-1.04 of it (Q at most about 10 on 9; docs/diagnosis.md).
+
 A first cause refused for the sensor drift (`select_past_drift`, issue 34): a second cause that
 changes in time (a solid-film run-in at constant speed, a preload settling on the first
 excursion) is what a zero drift of the sensors linear in time imitates, so the first pass's best
