@@ -170,7 +170,7 @@ def _screened(pb: Problem, cands: Mapping[str, Candidate], fits: dict[str, Fit],
 
     The families are the first MAX_FAMILIES of `families` that have a form applicable to the
     conditions. With more such families than that, every form's starts are scored
-    (`_scored_starts`, one model call a start) and the families are ranked by their forms' best
+    (`_scored_starts_of`, one model call a start) and the families are ranked by their forms' best
     start (BIC = chi-square + number of parameters x ln N) instead of by the listed form's BIC:
     a listed form that approximates its own cause poorly (one lag for a shaft that lags behind
     the housing) ranks low exactly when its form is needed (issue 23: a two-node network's
@@ -180,19 +180,19 @@ def _screened(pb: Problem, cands: Mapping[str, Candidate], fits: dict[str, Fit],
     fams = [(fam, forms) for fam, forms in fams if forms]
     rank = len(fams) > MAX_FAMILIES
 
-    def scored(fam, form):
-        try:
-            return _scored_starts(pb, form, _space(pb, form, cands[fam]),
-                                  dict(cands[fam].parameters), fits[fam])
-        except ModelFailure:
-            return None
+    # with ranking, every form's starts are scored, all in one map (`_scored_starts_of`)
+    every = [(fam, f) for fam, forms in fams for f in forms] if rank else []
+    scores = _scored_starts_of(pb, [(f, _space(pb, f, cands[fam]), dict(cands[fam].parameters),
+                                     fits[fam]) for fam, f in every])
+    scores = {id(f): (None if isinstance(sc, ModelFailure) else sc)
+              for (_, f), sc in zip(every, scores)}
 
     def bic(form, sc):
         return math.inf if sc is None else sc[0][0] + len(form.parameters) * math.log(pb.N)
 
     groups = []
     for i, (fam, forms) in enumerate(fams):
-        got = [(f, scored(fam, f) if rank else None) for f in forms]
+        got = [(f, scores[id(f)] if rank else None) for f in forms]
         groups.append((min(bic(*x) for x in got) if rank else 0.0, i, fam, got))
     if rank:
         groups.sort(key=lambda t: t[:2])
@@ -255,20 +255,12 @@ def generalise(pb: Problem, cands: Mapping[str, Candidate], fits: dict[str, Fit]
     return Generalisation(new, entries, ChosenForm(f_ext, ho_ext, entry, form))
 
 
-def _scored_starts(pb: Problem, form, space, vals_listed: dict, f_listed: Fit) -> list[tuple]:
-    """(chi-square with the nuisance refitted linearly, index, start) of the form's starts:
-    the listed fit's reducing value first, then the fit specification's extra starts; one model
-    call each, on the workers; best first."""
-    got = _scored_starts_of(pb, [(form, space, vals_listed, f_listed)])[0]
-    if isinstance(got, ModelFailure):
-        raise got
-    return got
-
-
 def _scored_starts_of(pb: Problem, plans: list[tuple]) -> list:
-    """`_scored_starts` of several forms ((form, space, listed values, listed fit) each) in one
-    map on the workers: per form its scored starts, best first, or the ModelFailure of a model
-    failing at every start."""
+    """The scored starts of several forms ((form, space, listed values, listed fit) each), all
+    in one map on the workers: per form its (chi-square with the nuisance refitted linearly,
+    index, start) of each start, best first (the listed fit's reducing value first, then the fit
+    specification's extra starts; one model call each), or the ModelFailure of a model failing
+    at every start."""
     items = []
     for j, (form, space, vals_listed, f_listed) in enumerate(plans):
         start_vals = [form.from_listed(vals_listed)]
