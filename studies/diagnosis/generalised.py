@@ -223,7 +223,7 @@ def generalise(pb: Problem, cands: Mapping[str, Candidate], fits: dict[str, Fit]
     # the forms' held-out folds in one map (no random numbers: the bootstraps below draw in
     # the forms' order)
     fitted = [f for f in f_exts if not isinstance(f, ModelFailure)]
-    hos = dict(zip(map(id, fitted), heldout_linear_of(pb, fitted)))
+    hos = dict(zip(map(id, fitted), heldout_linear_of(pb, fitted) if fitted else []))
     for (fam, form, _), f_ext in zip(forms, f_exts):
         try:
             if isinstance(f_ext, ModelFailure):
@@ -313,7 +313,7 @@ def _local_fits(pb: Problem, forms: list[tuple], cands: Mapping[str, Candidate],
     todo = [k for k, (_, _, scored) in enumerate(forms) if scored is None]
     fresh = dict(zip(todo, _scored_starts_of(pb, [
         (forms[k][1], spaces[k], dict(cands[forms[k][0]].parameters), fits[forms[k][0]])
-        for k in todo])))
+        for k in todo]))) if todo else {}
     for k, (fam, form, scored) in enumerate(forms):
         cand, f_listed = cands[fam], fits[fam]
         space = spaces[k]
