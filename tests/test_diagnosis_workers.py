@@ -71,3 +71,52 @@ def test_diagnosis_on_two_workers_equals_one_process():
         out[workers] = json.dumps(_without(to_json(res)), sort_keys=True)
     assert json.loads(out[1])["verdict"] == "explained"
     assert out[2] == out[1]
+
+
+@needs_fork
+def test_global_search_on_workers_scores_as_its_fit_task():
+    """`fitting.searched_starts` (a global search's starts scored on two workers before the
+    fits) against the route it replaced, `fitting._score_starts` in one process: the same ranked
+    (chi-square, index, start) list to the last bit, and as many model calls (the starts the
+    grid and the lines share scored once, as the one task's cache did). Toy model: the torque of
+    an inner fit that opens in the heat (its interference 4 um + inner_um - 0.1 um/K above
+    20 C), so the scores are piecewise smooth over the band as on the real pipeline."""
+    from studies.diagnosis.calibration import calibrate
+    from studies.diagnosis.fitting import _score_starts, _start_points, searched_starts
+    from studies.diagnosis.problem import make_problem
+    from studies.diagnosis.screening import screen
+    from studies.model.effects import EFFECTS
+
+    cond = cycles(n=120)
+    T = cond["T_ambient_C"]
+
+    def toy(effects, nuisance):
+        p = effects.get("interference_error", {"inner_um": 0.0, "outer_um": 0.0})
+        d = np.maximum(4.0 + p["inner_um"] - 0.1 * (T - 20.0), 0.0)
+        return {"torque_Nmm": nuisance["mu_scale"] * (1.0 + 0.05 * d
+                                                      + 1e-4 * p["outer_um"] * T)}
+
+    truth = toy({"interference_error": {"inner_um": -3.0, "outer_um": 0.0}}, {"mu_scale": 1.2})
+    meas = {"torque_Nmm": truth["torque_Nmm"]
+            + np.random.default_rng(5).normal(0.0, 0.002, T.size)}
+    got = {}
+    for workers in (2, 1):
+        pb, b = calibrate(make_problem(toy, meas, cond, [EFFECTS["interference_error"]],
+                                       NUISANCE, workers=workers))
+        s = screen(pb, b)
+        assert s.identifiable == ["interference_error"]
+        calls0 = pb.model.calls
+        if workers == 2:
+            res = searched_starts(pb, s, b, ["interference_error"])["interference_error"]
+            got[2] = (res.scored, res.calls, pb.model.calls - calls0)
+        else:
+            e = pb.effect("interference_error")
+            space = pb.space([e])
+            starts = _start_points(pb, e, s.candidates["interference_error"], b.fit, space)
+            got[1] = (_score_starts(pb, space, starts, b.fit.J), pb.model.calls - calls0,
+                      len(starts))
+    (scored2, calls2, counted2), (scored1, calls1, n_starts) = got[2], got[1]
+    assert calls2 == counted2 == calls1 < n_starts          # repeated starts: one call each
+    assert len(scored2) == len(scored1) == n_starts
+    for (sse2, i2, u2), (sse1, i1, u1) in zip(scored2, scored1):
+        assert sse2 == sse1 and i2 == i1 and np.array_equal(u2, u1)

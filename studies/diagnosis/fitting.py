@@ -5,7 +5,7 @@ the baseline with the chi-bar-square null, Holm over the candidates, BIC (module
 from __future__ import annotations
 
 import math
-from dataclasses import replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -35,16 +35,23 @@ def fit_all(pb: Problem, s: Screening, b: Baseline
                 f = fit_profiled(pb, e, info.profile_grid, base)
                 profile = profile_summary(f, e, info.profile_grid)
             else:
-                f, profile = fit_candidate(pb, e, info, base), None
+                pre = searched.get(name)
+                calls0 -= 0 if pre is None else pre.calls   # the search's calls count here
+                f = fit_candidate(pb, e, info, base, None if pre is None else pre.scored)
+                profile = None
         except ModelFailure as exc:
             return None, None, str(exc), pb.model.calls - calls0
         return f, profile, None, pb.model.calls - calls0
 
-    # the candidates' fits are independent: on the engine's workers, the longest first
+    # the candidates' fits are independent: on the engine's workers, the longest first; a
+    # global search's starting points scored on the workers before (`searched_starts`)
     names = list(s.identifiable)
+    searched = searched_starts(pb, s, b, names)
     done = pb.parallel(cpu_timed(fit_one), names,
-                       first=longest_first([fit_cost(pb, pb.effect(n), cands[n], s) for n in names]))
-    seconds = {n: t for n, (_, t) in zip(names, done)}
+                       first=longest_first([fit_cost(pb, pb.effect(n), cands[n], s,
+                                                     n in searched) for n in names]))
+    seconds = {n: t + (searched[n].cpu_s if n in searched else 0.0)
+               for n, (_, t) in zip(names, done)}
     for name, ((f, profile, failed, calls), _) in zip(names, done):
         e = pb.effect(name)
         info = cands[name]
@@ -83,19 +90,21 @@ def fit_all(pb: Problem, s: Screening, b: Baseline
 CALLS_PER_COORDINATE = 10
 
 
-def fit_cost(pb: Problem, e, info: Candidate, s: Screening) -> float | None:
+def fit_cost(pb: Problem, e, info: Candidate, s: Screening, scored: bool = False
+             ) -> float | None:
     """Estimated CPU seconds of a candidate's fit (the order the fits are handed to the
     workers; None when its screening was not timed): its seconds per model call in the
-    screening times the calls its fit makes: a start's score each (`fitspec.starts`), a
-    profiled grid's linearisations (rank + 1 calls a value, a long grid searched in about
-    COARSE + 4 values), and CALLS_PER_COORDINATE per coordinate of up to three local fits."""
+    screening times the calls its fit makes: a start's score each (`fitspec.starts`; none when
+    they were `scored` before the fits), a profiled grid's linearisations (rank + 1 calls a
+    value, a long grid searched in about COARSE + 4 values), and CALLS_PER_COORDINATE per
+    coordinate of up to three local fits."""
     t = s.call_seconds.get(info.effect)
     if t is None:
         return None
     k = (info.rank or 1) + len(pb.nuisance.names)
     grid = [len(v) for v in (info.profile_grid or {}).values()]
     n_grid = sum(min(g, COARSE + 4) for g in grid) * ((info.rank or 1) + 1)
-    n_starts = 1 + len(fitspec.starts(e, pb.conditions, pb.T_ref_C))
+    n_starts = 0 if scored else 1 + len(fitspec.starts(e, pb.conditions, pb.T_ref_C))
     return t * (n_starts + n_grid + 3 * CALLS_PER_COORDINATE * k)
 
 
@@ -114,36 +123,114 @@ def _start_points(pb: Problem, e, info, base: Fit, space) -> list[np.ndarray]:
     return starts
 
 
-def _score_starts(pb: Problem, space, starts: list[np.ndarray], Jn: np.ndarray) -> list[tuple]:
-    """(chi-square with the nuisance corrected linearly, index, start) of every start the model
-    evaluates, best first."""
+def _start_score(pb: Problem, space, uu: np.ndarray, Jn: np.ndarray
+                 ) -> tuple[float, np.ndarray] | None:
+    """(chi-square with the nuisance corrected linearly, the corrected start) of one start
+    (clipped to the bounds; one model call), None when the model fails there."""
     k, nq = space.k, len(pb.nuisance.names)
-    scored = []
-    for uu in starts:
-        uu = space.clip(uu)
-        try:
-            z, _ = pb.eval(space, uu)
-        except ModelFailure:
-            continue
-        if nq:
-            dn, *_ = np.linalg.lstsq(Jn, -z, rcond=None)
-            uu = space.clip(np.concatenate([uu[:k], uu[k:] + dn]))
-            zc = z + Jn @ dn
-        else:
-            zc = z
-        scored.append((float(zc @ zc), len(scored), uu))
+    uu = space.clip(uu)
+    try:
+        z, _ = pb.eval(space, uu)
+    except ModelFailure:
+        return None
+    if nq:
+        dn, *_ = np.linalg.lstsq(Jn, -z, rcond=None)
+        uu = space.clip(np.concatenate([uu[:k], uu[k:] + dn]))
+        zc = z + Jn @ dn
+    else:
+        zc = z
+    return float(zc @ zc), uu
+
+
+def _ranked(scores: list[tuple[float, np.ndarray] | None]) -> list[tuple]:
+    """(chi-square, index, start) of the starts the model evaluated (`_start_score`), indexed
+    in their order among those, best first; ModelFailure when it evaluated none."""
+    scored = [(sse, i, uu) for i, (sse, uu) in enumerate(t for t in scores if t is not None)]
     if not scored:
         raise ModelFailure("the model fails at every starting point")
     scored.sort(key=lambda t: t[:2])
     return scored
 
 
-def fit_candidate(pb: Problem, e, info, base: Fit) -> Fit:
+def _score_starts(pb: Problem, space, starts: list[np.ndarray], Jn: np.ndarray) -> list[tuple]:
+    """(chi-square with the nuisance corrected linearly, index, start) of every start the model
+    evaluates, best first."""
+    return _ranked([_start_score(pb, space, uu, Jn) for uu in starts])
+
+
+#: a candidate with at least this many starting points (a global search: `interference_error`'s
+#: ~100 over its band, `fitspec.interference_starts`) has them scored on the workers before the
+#: fits (`searched_starts`), SCORE_CHUNK starts a task: alone in one fit task its search was the
+#: longest task of the fits (4-6 CPU s of 8-12 on seed 000's cycles, 2026-11-29)
+GLOBAL_SEARCH_STARTS = 20
+SCORE_CHUNK = 8
+
+
+def searched_starts(pb: Problem, s: Screening, b: Baseline, names: list[str]
+                    ) -> dict[str, "Searched"]:
+    """The scored starts (`_score_starts`, best first; or the ModelFailure of a model that
+    fails at every start) of the candidates among `names` whose fit is a global search (at
+    least GLOBAL_SEARCH_STARTS starting points, no profiled parameter), scored in one map on
+    the engine's workers: the same scores, in the same order, as in their fit task."""
+    plans = {}
+    for n in names:
+        e = pb.effect(n)
+        if fitspec.profile(e) or 1 + len(fitspec.starts(e, pb.conditions,
+                                                        pb.T_ref_C)) < GLOBAL_SEARCH_STARTS:
+            continue
+        space = pb.space([e])
+        # a start repeated (the grid's points on the lines) is scored once, as the model's
+        # cache does in one task
+        starts = [space.clip(u) for u in _start_points(pb, e, s.candidates[n], b.fit, space)]
+        keys = [u.tobytes() for u in starts]
+        distinct = list(dict.fromkeys(keys))
+        plans[n] = (space, [starts[keys.index(k)] for k in distinct],
+                    [distinct.index(k) for k in keys])
+    items = [(n, i0) for n, (_, starts, _) in plans.items()
+             for i0 in range(0, len(starts), SCORE_CHUNK)]
+
+    def score(item):
+        n, i0 = item
+        space, starts, _ = plans[n]
+        calls0 = pb.model.calls
+        got = [_start_score(pb, space, uu, b.fit.J) for uu in starts[i0:i0 + SCORE_CHUNK]]
+        return got, pb.model.calls - calls0
+
+    got: dict[str, list] = {n: [] for n in plans}
+    cost = {n: [0, 0.0] for n in plans}
+    for (n, _), ((chunk, calls), t) in zip(items, pb.parallel(cpu_timed(score), items)):
+        got[n] += chunk
+        cost[n][0] += calls
+        cost[n][1] += t
+    out: dict[str, Searched] = {}
+    for n, distinct_scores in got.items():
+        scores = [distinct_scores[i] for i in plans[n][2]]
+        try:
+            out[n] = Searched(_ranked(scores), *cost[n])
+        except ModelFailure as exc:
+            out[n] = Searched(exc, *cost[n])
+    return out
+
+
+@dataclass(frozen=True)
+class Searched:
+    """A global search's scored starts (best first) or the ModelFailure of a model failing at
+    every start, and the model calls and CPU seconds it took (counted with its fit's)."""
+    scored: list[tuple] | ModelFailure
+    calls: int
+    cpu_s: float
+
+
+def fit_candidate(pb: Problem, e, info, base: Fit,
+                  scored: list[tuple] | ModelFailure | None = None) -> Fit:
     """A candidate without a profiled parameter: bounded least squares from the two most
-    promising starts (`_score_starts`) and from the Gauss-Newton step; never worse than the
-    baseline."""
+    promising starts (`_score_starts`; `scored`: already scored, `searched_starts`) and from
+    the Gauss-Newton step; never worse than the baseline."""
     space = pb.space([e])
-    scored = _score_starts(pb, space, _start_points(pb, e, info, base, space), base.J)
+    if isinstance(scored, ModelFailure):
+        raise scored
+    if scored is None:
+        scored = _score_starts(pb, space, _start_points(pb, e, info, base, space), base.J)
     # local optimisation from the two most promising starts (fits that open or close, lags
     # and thresholds make the problem non-convex)
     # the Gauss-Newton step from "off" (index 0) is always refined too: a grid start can sit

@@ -51,7 +51,7 @@ from studies.diagnosis.core import Baseline, Decision, Fit, ModelFailure, Residu
 from studies.diagnosis.decision import form_carries_weight
 from studies.diagnosis.goodness import GoodnessOfFit, goodness
 from studies.diagnosis.fitting import fit_profiled, uncertainty
-from studies.diagnosis.heldout import bootstrap_gain, heldout_linear
+from studies.diagnosis.heldout import bootstrap_gain, heldout_linear, heldout_linear_of
 from studies.diagnosis.problem import Problem
 from studies.diagnosis.stats import chibar_pvalue
 from studies.model.effects.generalised import forms_of
@@ -170,7 +170,7 @@ def _screened(pb: Problem, cands: Mapping[str, Candidate], fits: dict[str, Fit],
 
     The families are the first MAX_FAMILIES of `families` that have a form applicable to the
     conditions. With more such families than that, every form's starts are scored
-    (`_scored_starts`, one model call a start) and the families are ranked by their forms' best
+    (`_scored_starts_of`, one model call a start) and the families are ranked by their forms' best
     start (BIC = chi-square + number of parameters x ln N) instead of by the listed form's BIC:
     a listed form that approximates its own cause poorly (one lag for a shaft that lags behind
     the housing) ranks low exactly when its form is needed (issue 23: a two-node network's
@@ -180,19 +180,19 @@ def _screened(pb: Problem, cands: Mapping[str, Candidate], fits: dict[str, Fit],
     fams = [(fam, forms) for fam, forms in fams if forms]
     rank = len(fams) > MAX_FAMILIES
 
-    def scored(fam, form):
-        try:
-            return _scored_starts(pb, form, _space(pb, form, cands[fam]),
-                                  dict(cands[fam].parameters), fits[fam])
-        except ModelFailure:
-            return None
+    # with ranking, every form's starts are scored, all in one map (`_scored_starts_of`)
+    every = [(fam, f) for fam, forms in fams for f in forms] if rank else []
+    scores = _scored_starts_of(pb, [(f, _space(pb, f, cands[fam]), dict(cands[fam].parameters),
+                                     fits[fam]) for fam, f in every])
+    scores = {id(f): (None if isinstance(sc, ModelFailure) else sc)
+              for (_, f), sc in zip(every, scores)}
 
     def bic(form, sc):
         return math.inf if sc is None else sc[0][0] + len(form.parameters) * math.log(pb.N)
 
     groups = []
     for i, (fam, forms) in enumerate(fams):
-        got = [(f, scored(fam, f) if rank else None) for f in forms]
+        got = [(f, scores[id(f)] if rank else None) for f in forms]
         groups.append((min(bic(*x) for x in got) if rank else 0.0, i, fam, got))
     if rank:
         groups.sort(key=lambda t: t[:2])
@@ -219,12 +219,17 @@ def generalise(pb: Problem, cands: Mapping[str, Candidate], fits: dict[str, Fit]
         cands, fits, d, {n: pb.effect(n) for n in fits}, bool(b.structure)))
     entries, ok = [], []
     forms = [(fam, form, scored) for fam, got in tried for form, scored in got]
-    for (fam, form, _), f_ext in zip(forms, _local_fits(pb, forms, cands, fits, b)):
+    f_exts = _local_fits(pb, forms, cands, fits, b)
+    # the forms' held-out folds in one map (no random numbers: the bootstraps below draw in
+    # the forms' order)
+    fitted = [f for f in f_exts if not isinstance(f, ModelFailure)]
+    hos = dict(zip(map(id, fitted), heldout_linear_of(pb, fitted) if fitted else []))
+    for (fam, form, _), f_ext in zip(forms, f_exts):
         try:
             if isinstance(f_ext, ModelFailure):
                 raise f_ext
             entry, f_ext, ho_ext, gof = fit_form(pb, form, fits[fam], ho[fam], cands[fam], b,
-                                            m, rng, f_ext=f_ext)
+                                                 m, rng, f_ext=f_ext, ho_ext=hos[id(f_ext)])
         except ModelFailure as exc:
             entries.append(FormEntry(fam, form.form, form.name, "model_failed", str(exc)))
             continue
@@ -250,19 +255,25 @@ def generalise(pb: Problem, cands: Mapping[str, Candidate], fits: dict[str, Fit]
     return Generalisation(new, entries, ChosenForm(f_ext, ho_ext, entry, form))
 
 
-def _scored_starts(pb: Problem, form, space, vals_listed: dict, f_listed: Fit) -> list[tuple]:
-    """(chi-square with the nuisance refitted linearly, index, start) of the form's starts:
-    the listed fit's reducing value first, then the fit specification's extra starts; one model
-    call each, on the workers; best first."""
-    k, nq = space.k, len(pb.nuisance.names)
-    u_nuis = f_listed.u[f_listed.space.k:]
-    start_vals = [form.from_listed(vals_listed)]
-    start_vals += [{**start_vals[0], **x}
-                   for x in fitspec.extra_starts(form, vals_listed, pb.conditions)]
-    Jn = f_listed.J[:, f_listed.space.k:]       # d z / d u_nuisance at the listed fit
+def _scored_starts_of(pb: Problem, plans: list[tuple]) -> list:
+    """The scored starts of several forms ((form, space, listed values, listed fit) each), all
+    in one map on the workers: per form its (chi-square with the nuisance refitted linearly,
+    index, start) of each start, best first (the listed fit's reducing value first, then the fit
+    specification's extra starts; one model call each), or the ModelFailure of a model failing
+    at every start."""
+    items = []
+    for j, (form, space, vals_listed, f_listed) in enumerate(plans):
+        start_vals = [form.from_listed(vals_listed)]
+        start_vals += [{**start_vals[0], **x}
+                       for x in fitspec.extra_starts(form, vals_listed, pb.conditions)]
+        items += [(j, i, v) for i, v in enumerate(start_vals)]
 
-    def score(iv):
-        i, v = iv
+    def score(item):
+        j, i, v = item
+        _, space, _, f_listed = plans[j]
+        k, nq = space.k, len(pb.nuisance.names)
+        u_nuis = f_listed.u[f_listed.space.k:]
+        Jn = f_listed.J[:, f_listed.space.k:]       # d z / d u_nuisance at the listed fit
         x = np.array([v[p] for (_, p) in space.eff_params], float)
         u = space.clip(np.concatenate([(x - space.origin[:k]) / space.scale[:k], u_nuis]))
         try:
@@ -275,11 +286,16 @@ def _scored_starts(pb: Problem, form, space, vals_listed: dict, f_listed: Fit) -
             z = z + Jn @ dn
         return float(z @ z), i, u
 
-    scored = [t for t in pb.parallel(score, list(enumerate(start_vals))) if t is not None]
-    if not scored:
-        raise ModelFailure("the model fails at every start of the generalised form")
-    scored.sort(key=lambda t: t[:2])
-    return scored
+    got = pb.parallel(score, items)
+    out = []
+    for j in range(len(plans)):
+        scored = [t for (jj, _, _), t in zip(items, got) if jj == j and t is not None]
+        if not scored:
+            out.append(ModelFailure("the model fails at every start of the generalised form"))
+            continue
+        scored.sort(key=lambda t: t[:2])
+        out.append(scored)
+    return out
 
 
 def _local_fits(pb: Problem, forms: list[tuple], cands: Mapping[str, Candidate],
@@ -292,14 +308,18 @@ def _local_fits(pb: Problem, forms: list[tuple], cands: Mapping[str, Candidate],
     The local fits of all forms are independent: one map on the workers (the profiled ones
     first), so one form's long fit runs beside another's, not after it."""
     plans, items, first = [], [], []
+    spaces = [_space(pb, form, cands[fam]) for fam, form, _ in forms]
+    # the starts of the forms not scored yet: in one map (`_scored_starts_of`)
+    todo = [k for k, (_, _, scored) in enumerate(forms) if scored is None]
+    fresh = dict(zip(todo, _scored_starts_of(pb, [
+        (forms[k][1], spaces[k], dict(cands[forms[k][0]].parameters), fits[forms[k][0]])
+        for k in todo]))) if todo else {}
     for k, (fam, form, scored) in enumerate(forms):
         cand, f_listed = cands[fam], fits[fam]
-        space = _space(pb, form, cand)
-        try:
-            if scored is None:
-                scored = _scored_starts(pb, form, space, dict(cand.parameters), f_listed)
-        except ModelFailure as exc:
-            plans.append(exc)
+        space = spaces[k]
+        scored = fresh.get(k, scored)
+        if isinstance(scored, ModelFailure):
+            plans.append(scored)
             continue
         runs = [t for t in scored if t[1] == 0] + [
             t for t in scored if t[1] != 0 and t[0] < f_listed.chi2][:N_RUNS - 1]
@@ -370,10 +390,12 @@ def _form_status(th, m: int, p_adj: float, dbic: float, g_listed: HeldoutGain,
 
 
 def fit_form(pb: Problem, form, f_listed: Fit, ho_listed: np.ndarray, cand, b: Baseline,
-             m: int, rng: np.random.Generator, f_ext: Fit | None = None
+             m: int, rng: np.random.Generator, f_ext: Fit | None = None,
+             ho_ext: np.ndarray | None = None
              ) -> tuple[FormEntry, Fit, np.ndarray, GoodnessOfFit]:
     """Nested fit of one generalised form from the listed fit and its tests (module
-    docstring, steps 1-4); `f_ext`: its best local fit when already made (`_local_fits`).
+    docstring, steps 1-4); `f_ext`: its best local fit when already made (`_local_fits`),
+    `ho_ext`: that fit's held-out residuals when already computed (`heldout_linear`).
     Returns (entry, fit, held-out residuals, goodness of fit)."""
     vals_listed = dict(cand.parameters)
     if f_ext is None:
@@ -388,7 +410,8 @@ def fit_form(pb: Problem, form, f_listed: Fit, ho_listed: np.ndarray, cand, b: B
     lr = max(f_listed.chi2 - f_ext.chi2, 0.0)
     p_adj = min(1.0, chibar_pvalue(lr, n_free, n_bound) * m)
     dbic = -lr + len(form.extra) * math.log(pb.N)
-    ho_ext = heldout_linear(pb, f_ext)
+    if ho_ext is None:
+        ho_ext = heldout_linear(pb, f_ext)
     g_listed = bootstrap_gain(pb, rng, ho_listed, ho_ext)
     g_base = bootstrap_gain(pb, rng, b.heldout_z, ho_ext)
     n_par = len(pb.nuisance.names) + (cand.k or 0) + len(form.extra)

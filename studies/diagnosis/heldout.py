@@ -146,11 +146,16 @@ def heldout_linear(pb: Problem, fit: Fit) -> np.ndarray:
     """Held-out standardised residual per stacked entry: per fold, one bounded Gauss-Newton
     step from `fit` on the training entries (halved once if it does not lower the training
     chi-square), then a real model call."""
-    z_ho = np.empty(pb.N)
-    sp = fit.space
+    return heldout_linear_of(pb, [fit])[0]
 
-    def fold(b):
+
+def heldout_linear_of(pb: Problem, fits: list[Fit]) -> list[np.ndarray]:
+    """`heldout_linear` of several fits, their folds in one map on the engine's workers."""
+
+    def fold(item):
         """The held-out block's residuals (its model call from the training-rows step)."""
+        fit, b = fits[item[0]], item[1]
+        sp = fit.space
         te = pb.entry_block == b
         tr = ~te
         J, z = fit.J[tr], fit.z[tr]
@@ -174,9 +179,11 @@ def heldout_linear(pb: Problem, fit: Fit) -> np.ndarray:
 
     # the folds are independent: on the engine's workers (inside a worker: one by one)
     blocks = [b for b in range(pb.n_blocks) if (pb.entry_block == b).any()]
-    for b, z_te in zip(blocks, pb.parallel(fold, blocks)):
-        z_ho[pb.entry_block == b] = z_te
-    return z_ho
+    items = [(j, b) for j in range(len(fits)) for b in blocks]
+    out = [np.empty(pb.N) for _ in fits]
+    for (j, b), z_te in zip(items, pb.parallel(fold, items)):
+        out[j][pb.entry_block == b] = z_te
+    return out
 
 
 def heldout_profile(pb: Problem, fit: Fit, e, base_ho: np.ndarray

@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field
-from functools import cached_property
+from functools import cached_property, wraps
 from typing import Callable, Mapping, Sequence
 
 import numpy as np
@@ -532,7 +532,9 @@ def longest_first(costs: Sequence[float | None]) -> list[int]:
 
 def cpu_timed(task: Callable) -> Callable:
     """`task` returning (its result, the CPU seconds of the process it ran in) (a task on a
-    forked worker: that worker's seconds)."""
+    forked worker: that worker's seconds); named as `task` (the maps of `bench --diagnose
+    --profile`)."""
+    @wraps(task)
     def run(item):
         t0 = time.process_time()
         out = task(item)
