@@ -183,6 +183,7 @@ def compare(pb: Problem, best, fits, cands, names_id, effect=None, fit=None, df=
     df: another effect object, its fit and {"n_free", "n_bound"} in the place of `best`'s (a
     generalised form of `best`)."""
     th = pb.th
+    alpha = th["alpha_joint"]
     rivals, joint = [], {}
     eb = pb.effect(best) if effect is None else effect
     fb = fits[best] if fit is None else fit
@@ -222,7 +223,7 @@ def compare(pb: Problem, best, fits, cands, names_id, effect=None, fit=None, df=
         lr_b_given_o = max(fo.chi2 - chi_j, 0.0)
         p_o = chibar_pvalue(lr_o_given_b, **_df(cands[o]))
         p_b = chibar_pvalue(lr_b_given_o, **df_b)
-        beaten = p_b < th["alpha_joint"] and p_o >= th["alpha_joint"]
+        beaten = p_b < alpha and p_o >= alpha
         joint[o] = JointFit(bool(beaten), fb.chi2, fo.chi2, chi_j, p_o, p_b)
         if not beaten:
             rivals.append(o)

@@ -256,12 +256,18 @@ def blocked(p) -> tuple[list[AtBound], list[WorseColumn]]:
     and the measured columns its extended model predicts worse on held-out blocks than the
     pass's baseline beyond the noise (`heldout.worse_columns`, over the blocks that test it)."""
     fit, ho, _ = _extended(p)
-    name = p.decision.cause
+    return (at_bound(p.pb, fit),
+            worse_columns(p.pb, p.decision.cause, p.baseline.heldout_z, ho, _testing_blocks(p)))
+
+
+def _testing_blocks(p) -> np.ndarray:
+    """The held-out blocks that test the cause a pass would accept (True), i.e. all but those
+    its held-out refit could not test (`heldout_untestable`: a one-off trigger in the block)."""
     keep = np.ones(p.pb.n_blocks, bool)
     if not p.chosen:
-        for u in p.candidates[name].heldout_untestable or []:
+        for u in p.candidates[p.decision.cause].heldout_untestable or []:
             keep[u["block"] - 1] = False
-    return at_bound(p.pb, fit), worse_columns(p.pb, name, p.baseline.heldout_z, ho, keep)
+    return keep
 
 
 def compensates(p) -> BlockScale | None:
@@ -275,12 +281,7 @@ def compensates(p) -> BlockScale | None:
     slop (a 4 um fit error with a 1500 s lag, both listed and present, 48 standard errors: Q
     22.5 on 9 degrees of freedom, p 0.0075; the unlisted groove's pair: Q 117 and 273 on 7)."""
     _, ho, _ = _extended(p)
-    name = p.decision.cause
-    keep = np.ones(p.pb.n_blocks, bool)
-    if not p.chosen:
-        for u in p.candidates[name].heldout_untestable or []:
-            keep[u["block"] - 1] = False
-    bs = block_scale(p.pb, name, p.baseline.heldout_z, ho, keep)
+    bs = block_scale(p.pb, p.decision.cause, p.baseline.heldout_z, ho, _testing_blocks(p))
     th = p.pb.th
     clear = bs is not None and bs.p < th["alpha_joint"] and bs.q > bs.dof + th["clear_chi2"]
     return bs if clear else None
