@@ -529,29 +529,25 @@ class ActiveSet:
         forces. A_CC lambda_C = -G0_C by back-substitution on the factor (LAPACK potrs), then
         gap = G0 + A lambda on the open pairs, 0 on the closed ones; gaps under 1e-15 mm are 0.
         States are taken SOLVE_BLOCK at a time (small arrays: this runs for every state)."""
-        C, O = self.rows[:self.n_closed], self.rows[self.n_closed:]
-        every = O.size == 0                     # every pair closed: no column gathers
-        A_CO = A[C][:, O] if self.factor is not None and not every else None
+        C = self.rows[:self.n_closed]
+        every = self.n_closed == G.shape[1]     # every pair closed: no column gathers
+        A_C = A[C] if self.factor is not None and not every else None
         for at in range(0, idx.size, SOLVE_BLOCK):
             rows = idx[at:at + SOLVE_BLOCK]
             g = G[rows]
-            if self.factor is None:
-                g[(g < 1e-15) & (g > -1e-15)] = 0.0
-                G[rows] = g
-                continue
-            # (g or g[:, C]).T is Fortran-ordered: potrs takes it without a copy
-            x = -_potrs(self.factor, (g if every else g[:, C]).T).T       # (k, n_closed)
-            if every:
-                lam[rows] = x
-                G[rows] = 0.0
-                continue
-            L = np.zeros_like(g)
-            L[:, C] = x
-            lam[rows] = L
-            gO = g[:, O] + x @ A_CO
-            gO[(gO < 1e-15) & (gO > -1e-15)] = 0.0
-            g[:] = 0.0
-            g[:, O] = gO
+            if self.factor is not None:
+                # (g or g[:, C]).T is Fortran-ordered: potrs takes it without a copy
+                x = -_potrs(self.factor, (g if every else g[:, C]).T).T       # (k, n_closed)
+                if every:
+                    lam[rows] = x
+                    G[rows] = 0.0
+                    continue
+                L = np.zeros_like(g)
+                L[:, C] = x
+                lam[rows] = L
+                g += x @ A_C
+                g[:, C] = 0.0
+            g[(g < 1e-15) & (g > -1e-15)] = 0.0
             G[rows] = g
 
 
