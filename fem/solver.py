@@ -492,13 +492,15 @@ class ActiveSet:
         """The set `closed` of flexibility A (n_pairs, n_pairs, mm/N) and state columns H
         (n_pairs, n_cols, mm): one Cholesky factorisation and n_cols back-substitutions."""
         C, O = np.flatnonzero(closed), np.flatnonzero(~closed)
-        factor, R = None, H[O]
+        factor, R = None, np.empty((H.shape[1], closed.size))
+        R[:, C.size:] = H[O].T
         if C.size:
-            factor = cho_factor(A[np.ix_(C, C)], check_finite=False)
+            A_C = A[C]                                  # rows, then columns: faster than ix_
+            factor = cho_factor(A_C[:, C], check_finite=False)
             M = _potrs(factor, np.asfortranarray(H[C]))
-            R = np.vstack([-M, H[O] - A[np.ix_(O, C)] @ M])
-        return cls(closed.copy(), np.concatenate([C, O]), C.size, factor,
-                   np.ascontiguousarray(R.T))
+            R[:, :C.size] = -M.T
+            R[:, C.size:] -= M.T @ A_C[:, O]            # A symmetric: (A_OC M)^T = M^T A_CO
+        return cls(closed.copy(), np.concatenate([C, O]), C.size, factor, R)
 
     def satisfied(self, V: np.ndarray, tol_gap_mm: np.ndarray) -> np.ndarray:
         """Which states this set solves, V (k, n_pairs) their forces and gaps under it (the
