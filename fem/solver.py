@@ -404,7 +404,8 @@ class Superposition:
         if n:
             # states alike in their overlap count and summed free gap mostly share an active set
             order = state_order(G0.T)
-            scale_g = np.maximum(np.maximum(G0.max(axis=1), -G0.min(axis=1)), 1e-12)
+            largest = np.maximum(G0.max(axis=1, initial=0.0), -G0.min(axis=1, initial=0.0))
+            scale_g = np.maximum(largest, 1e-12)            # each state's largest free gap, mm
             sets, members = self._search(np.hstack([theta, delta])[order], scale_g[order],
                                          G0[order[0]] < 0)
             for k, (s, at) in enumerate(zip(sets, members)):
