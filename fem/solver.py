@@ -35,7 +35,7 @@ from typing import TYPE_CHECKING, Callable
 
 import numpy as np
 import scipy.sparse as sp
-from scipy.linalg import get_lapack_funcs
+from scipy.linalg import cho_factor, get_lapack_funcs
 from scipy.sparse.linalg import splu
 from threadpoolctl import ThreadpoolController
 
@@ -252,9 +252,12 @@ class Superposition:
         gap = B L - delta_pair + A lambda,   A_ij = W_j[s_i] - W_j[m_i]  (flexibility, SPD)
 
     and the contact conditions lambda >= 0, gap >= 0, lambda . gap = 0 form a small linear
-    complementarity problem solved exactly by an active set on A (dense, a few hundred pairs),
-    with the Cholesky factor of A_CC cached per active set. The per-state cost is independent of
-    the mesh size; a new active set costs one small dense factorisation, never a new FE solve.
+    complementarity problem solved exactly by an active set on A (dense, a few hundred pairs).
+    Each active set met is kept (`ActiveSet`: the Cholesky factor of A_CC and the set's
+    response to the state columns); `evaluate` finds every state's set by those responses
+    (`_search`) and solves the states of each set together. The per-state cost is independent
+    of the mesh size; a new active set costs one small dense factorisation, never a new FE
+    solve.
     Bonded fits: every radial and axial pair is always closed (tension allowed).
     Source: the reduction is the classical Schur complement of the contact interface (Wriggers,
     Computational Contact Mechanics, 2nd ed., section 6.2; Johnson, Contact Mechanics, ch. 5
@@ -275,19 +278,24 @@ class Superposition:
         return sup
 
     def _set(self, c: "Condensed", solver_of: Callable[[], FitSolver]) -> None:
-        from scipy.linalg import cho_factor
-
-        self._cho_factor = cho_factor
         self.condensed, self._solver_of = c, solver_of
         self.n_parts, self.n_fits = c.n_parts, c.n_fits
-        self._chol = Memo(max_items=None)     # Cholesky factor per closed set (infra.memo)
-        #: states tried per active set: at most `block`, one eighth of the states for fewer
-        #: than 1024 (sorted states, `state_order`; measured 2026-11-29: 500 states of seed
-        #: 000's cycles 29 ms in blocks of 128, 17 ms in blocks of 62; blocks of 1e4 tolerance
-        #: samples faster in blocks of 128 than of 64)
-        self.block = 128
+        self._chol = Memo(max_items=None)     # `ActiveSet` per closed set (infra.memo)
         self.pfit, self.B, self.A = c.fit_of_pair, c.B, c.A
         self.n_loads = c.n_parts + 1          # load columns: thermal strain per part, omega^2
+        #: the free gap of every pair per state column (thermal strains, omega^2, then the
+        #: fits' interferences): G0 = H c = B L - delta_pair, mm per unit column
+        self.H = (np.hstack([c.B, -(c.fit_of_pair[:, None] == np.arange(c.n_fits)).astype(float)])
+                  if not c.bonded else np.zeros((0, 0)))
+        #: (fit, slice) per run of consecutive pairs of one fit (a fit's pairs are one run)
+        cut = np.flatnonzero(np.diff(c.fit_of_pair)) + 1
+        self._fit_runs = [(int(c.fit_of_pair[a]), slice(a, b)) for a, b in
+                          zip(np.r_[0, cut], np.r_[cut, c.fit_of_pair.size]) if b > a]
+        #: states a set is tried on at first (`_search`; doubled while a set takes every state
+        #: tried). Measured 2026-11-29 on seed 000's per-part lag states (500 a call, about 17
+        #: sets in a chain, each one pair more open than the last): 32, 64, 128, 256 and all
+        #: states within the timing noise (8.7-9.7 ms a call, then at load 1.5)
+        self.window = 64
         self.PU = c.probe_units if c.probe_units.shape[0] else None
         self._bonded_units = None
 
@@ -315,41 +323,57 @@ class Superposition:
     def n_pairs(self) -> int:
         return self.pfit.size
 
-    def _factor(self, closed: np.ndarray):
+    def _active_set(self, closed: np.ndarray) -> "ActiveSet":
+        """The `ActiveSet` of a closed set, made on first use and kept (`_chol`): the numbers
+        are the same whether made now or kept, so the cache never changes a result."""
         key = np.packbits(closed).tobytes()
-        return self._chol.get_or_make(key, lambda: self._cho_factor(self.A[np.ix_(closed, closed)],
-                                                                    check_finite=False))
-
-    def _solve_set(self, closed: np.ndarray, g0: np.ndarray):
-        """lambda on the closed set for states g0 (n_pairs, k): A_CC lambda_C = -g0_C. The
-        back-substitution is LAPACK's potrs, the routine `scipy.linalg.cho_solve` calls, called
-        directly: the same numbers without cho_solve's per-call checks (about 100 calls per
-        `evaluate`; measured 2026-11-25: 10 % of the superposition's time)."""
-        lam = np.zeros_like(g0)
-        if closed.any():
-            c, lower = self._factor(closed)
-            x, info = _POTRS(c, g0[closed], lower=lower)
-            if info != 0:
-                raise SolveError(f"illegal value in argument {-info} of LAPACK potrs")
-            lam[closed] = -x
-        return lam, g0 + self.A @ lam
-
-    def _lcp(self, g0: np.ndarray, closed: np.ndarray, max_iter: int = 100):
-        """Primal-dual active set for one state; returns (lambda, gap, closed)."""
-        scale_g = 1e-10 * max(np.abs(g0).max(), 1e-12)
-        for _ in range(max_iter):
-            lam, gap = (x[:, 0] for x in self._solve_set(closed, g0[:, None]))
-            scale_f = 1e-10 * max(np.abs(lam).max(), 1e-12)
-            open_bad = ~closed & (gap < -scale_g)
-            closed_bad = closed & (lam < -scale_f)
-            if not open_bad.any() and not closed_bad.any():
-                return lam, gap, closed
-            closed = (closed | open_bad) & ~closed_bad
-        raise SolveError(f"contact active set did not settle in {max_iter} iterations")
+        return self._chol.get_or_make(key, lambda: ActiveSet.of(self.A, self.H, closed))
 
     def clear_cache(self) -> None:
-        """Forget the Cholesky factors of the condensed contact problems (benchmarks)."""
+        """Forget the active sets met so far (their Cholesky factors and responses; benchmarks)."""
         self._chol.clear()
+
+    def _search(self, C: np.ndarray, scale_g: np.ndarray, closed: np.ndarray
+                ) -> tuple[list, list]:
+        """Every state's active set: (the `ActiveSet`s, the states of each, as positions in C).
+        C (n, n_cols): the states' columns (`H`) in the order they are tried (`state_order`);
+        scale_g (n,): each state's largest free gap (mm); closed: the first set tried.
+
+        A set is tried on the next `window` states not yet placed, by its `response` (one small
+        product per state); the states it satisfies (`ActiveSet.satisfied`) take it. The next
+        set is one primal-dual step (`ActiveSet.step`) of the first state left, from its own
+        forces and gaps under the set just tried, so that state's sets are those of its own
+        active-set iteration from the set before: it ends in a set it satisfies, and sorted
+        states, being alike, mostly share it."""
+        todo = np.arange(C.shape[0])
+        found: dict[bytes, int] = {}
+        sets: list[ActiveSet] = []
+        members: list[list] = []
+        steps, window = 0, self.window
+        while todo.size:
+            s = self._active_set(closed)
+            tried = todo[:window]
+            V = C[tried] @ s.response
+            ok = s.satisfied(V, 1e-8 * scale_g[tried])
+            if ok.any():
+                k = found.setdefault(closed.tobytes(), len(sets))
+                if k == len(sets):
+                    sets.append(s)
+                    members.append([])
+                members[k].append(tried[ok])
+                todo = np.concatenate([tried[~ok], todo[tried.size:]])
+                steps = 0
+                if not todo.size:
+                    break
+                # a set that took every state tried is tried on twice as many next
+                window = 2 * window if ok.all() else self.window
+            steps += 1
+            if steps > MAX_ACTIVE_SET_STEPS:
+                raise SolveError(f"contact active set did not settle in {MAX_ACTIVE_SET_STEPS} "
+                                 "iterations")
+            first = np.argmin(ok)                      # the first state left
+            closed = s.step(V[first], 1e-10 * scale_g[tried[first]])
+        return sets, [np.sort(np.concatenate(m)) for m in members]
 
     @single_thread_blas
     def evaluate(self, theta: np.ndarray, delta_mm: np.ndarray,
@@ -357,7 +381,7 @@ class Superposition:
         """theta: (n_states, n_parts), delta_mm: (n_states, n_fits), omega2_rad2_s2: (n_states,)
         the square of the rotor speed (rad^2/s^2; None = at rest). Returns per state the
         contact force (N, + compression) and gap (mm) per pair, probe values, and the index of
-        the active set used (states sharing an active set are solved together): a
+        the active set of each state (states sharing an active set are solved together): a
         `SuperposedStates`."""
         theta, delta = np.atleast_2d(theta), np.atleast_2d(delta_mm)
         theta = load_columns(theta, omega2_rad2_s2)
@@ -367,39 +391,30 @@ class Superposition:
             return SuperposedStates(C @ self.condensed.bonded_force.T, np.zeros((C.shape[0], n)),
                                     np.zeros(C.shape[0], int), [np.ones(n, bool)],
                                     None if self.PU is None else C @ self.PU.T)
-        G0 = self.B @ theta.T - delta[:, self.pfit].T          # (n_pairs, n_states)
-        n = G0.shape[1]
-        # states are tried in blocks in the order of their overlap count, then their summed
-        # free gap (`state_order`): states alike in both mostly share an active set, so a block
-        # solved with one set accepts most of its states
-        order = state_order(G0)
-        G0 = G0[:, order]
-        block = min(self.block, max(32, n // 8))
-        lam, gap = np.zeros_like(G0), np.zeros_like(G0)
-        which = np.full(n, -1)
-        sets: list[np.ndarray] = []
-        closed = None
-        while (which < 0).any():
-            todo = np.flatnonzero(which < 0)[:block]
-            j = todo[0]
-            start = closed if closed is not None else G0[:, j] < 0
-            _, _, closed = self._lcp(G0[:, j], start.copy())
-            G0t = G0[:, todo]
-            L, Gp = self._solve_set(closed, G0t)
-            sf = 1e-8 * np.maximum(np.abs(L).max(axis=0), 1e-12)
-            sg = 1e-8 * np.maximum(np.abs(G0t).max(axis=0), 1e-12)
-            ok = ~((L[closed] < -sf).any(axis=0) | (Gp[~closed] < -sg).any(axis=0))
-            ok[0] = True
-            lam[:, todo[ok]], gap[:, todo[ok]] = L[:, ok], Gp[:, ok]
-            which[todo[ok]] = len(sets)
-            sets.append(closed.copy())
-        gap[np.abs(gap) < 1e-15] = 0.0
-        back = np.empty_like(order)
-        back[order] = np.arange(n)
-        lam, gap, which = lam[:, back], gap[:, back], which[back]
+        # the free gaps G0 (n_states, n_pairs), mm; each fit's pairs are a run of columns, so
+        # the interferences are subtracted in place (arrays of n_states x n_pairs are made
+        # only for the results: this is called for hundreds of states at a time)
+        G0 = theta @ self.B.T
+        for k, run in self._fit_runs:
+            G0[:, run] -= delta[:, k:k + 1]
+        n = G0.shape[0]
+        lam, gap = np.zeros_like(G0), G0
+        which = np.empty(n, int)
+        sets: list[ActiveSet] = []
+        if n:
+            # states alike in their overlap count and summed free gap mostly share an active set
+            order = state_order(G0.T)
+            largest = np.maximum(G0.max(axis=1, initial=0.0), -G0.min(axis=1, initial=0.0))
+            scale_g = np.maximum(largest, 1e-12)            # each state's largest free gap, mm
+            sets, members = self._search(np.hstack([theta, delta])[order], scale_g[order],
+                                         G0[order[0]] < 0)
+            for k, (s, at) in enumerate(zip(sets, members)):
+                idx = order[at]
+                which[idx] = k
+                s.solve(G0, idx, self.A, lam)
         probe = (None if self.PU is None
-                 else (self.PU[:, :self.n_loads] @ theta.T + self.PU[:, self.n_loads:] @ lam).T)
-        return SuperposedStates(lam.T, gap.T, which, sets, probe)
+                 else theta @ self.PU[:, :self.n_loads].T + lam @ self.PU[:, self.n_loads:].T)
+        return SuperposedStates(lam, gap, which, [s.closed.copy() for s in sets], probe)
 
     def field(self, theta: np.ndarray, delta_mm: np.ndarray, omega2_rad2_s2: float = 0.0
               ) -> np.ndarray:
@@ -430,6 +445,113 @@ def state_order(G0: np.ndarray) -> np.ndarray:
     own active set whatever the order (the same set to 5e-14 of the largest force: the
     back-substitution of another group of columns rounds differently)."""
     return np.lexsort((G0.sum(axis=0), (G0 < 0).sum(axis=0)))
+
+
+#: states solved together by `ActiveSet.solve` (arrays of SOLVE_BLOCK x n_pairs: measured
+#: 2026-11-29, 274 states of 212 closed pairs 2.1 ms in blocks of 64, 3.0 ms at once, 3.2 ms in
+#: blocks of 16: large temporaries cost page faults on this machine)
+SOLVE_BLOCK = 64
+
+#: primal-dual steps of one state, with no state satisfied on the way, before
+#: `Superposition.evaluate` gives up (a one-state active set settles in a few)
+MAX_ACTIVE_SET_STEPS = 100
+
+
+def _potrs(factor, b: np.ndarray) -> np.ndarray:
+    """x = A^-1 b from A's Cholesky factor (`scipy.linalg.cho_factor`'s (c, lower)) by LAPACK's
+    potrs, the routine `scipy.linalg.cho_solve` calls, called directly: the same numbers without
+    cho_solve's per-call checks. b (n, k) should be Fortran-ordered (no copy)."""
+    x, info = _POTRS(factor[0], b, lower=factor[1])
+    if info != 0:
+        raise SolveError(f"illegal value in argument {-info} of LAPACK potrs")
+    return x
+
+
+@dataclass(frozen=True)
+class ActiveSet:
+    """One contact status of the condensed contact problem (`Superposition`): its closed pairs C
+    and open pairs O, the Cholesky factor of A_CC and its response to the state columns.
+
+    For a fixed status the problem is linear (Wriggers, Computational Contact Mechanics, 2nd ed.,
+    section 6.2): with the free gaps G0 = H c of a state c (`Superposition.H`, mm),
+
+        A_CC lambda_C = -G0_C,    gap_O = G0_O + A_OC lambda_C
+
+    so per state column, lambda_C = -A_CC^-1 H_C (N) and gap_O = H_O - A_OC A_CC^-1 H_C (mm):
+    `response` (n_cols, n_pairs), columns in `rows` order (the closed pairs, then the open ones),
+    gives both for any state by one product with its n_cols numbers. `satisfied` and `step` use
+    it to find each state's set; `solve` gives the forces and gaps from the state's own free
+    gaps (a back-substitution per state, as a direct solve of the set would)."""
+    closed: np.ndarray          # bool (n_pairs,)
+    rows: np.ndarray            # the closed pairs, then the open pairs (indices, ascending each)
+    n_closed: int
+    factor: tuple | None        # (c, lower) of A_CC (scipy.linalg.cho_factor); None: none closed
+    response: np.ndarray        # (n_cols, n_pairs): N on the closed pairs, mm on the open ones
+
+    @classmethod
+    def of(cls, A: np.ndarray, H: np.ndarray, closed: np.ndarray) -> "ActiveSet":
+        """The set `closed` of flexibility A (n_pairs, n_pairs, mm/N) and state columns H
+        (n_pairs, n_cols, mm): one Cholesky factorisation and n_cols back-substitutions."""
+        C, O = np.flatnonzero(closed), np.flatnonzero(~closed)
+        factor, R = None, np.empty((H.shape[1], closed.size))
+        R[:, C.size:] = H[O].T
+        if C.size:
+            A_C = A[C]                                  # rows, then columns: faster than ix_
+            factor = cho_factor(A_C[:, C], check_finite=False)
+            M = _potrs(factor, np.asfortranarray(H[C]))
+            R[:, :C.size] = -M.T
+            R[:, C.size:] -= M.T @ A_C[:, O]            # A symmetric: (A_OC M)^T = M^T A_CO
+        return cls(closed.copy(), np.concatenate([C, O]), C.size, factor, R)
+
+    def satisfied(self, V: np.ndarray, tol_gap_mm: np.ndarray) -> np.ndarray:
+        """Which states this set solves, V (k, n_pairs) their forces and gaps under it (the
+        state columns times `response`): no closed pair in tension beyond 1e-8 of the state's
+        largest force, no open pair overlapping beyond tol_gap_mm (k,)."""
+        nc = self.n_closed
+        ok = np.ones(V.shape[0], bool)
+        if nc:
+            lo, hi = np.minimum.reduce(V[:, :nc], axis=1), np.maximum.reduce(V[:, :nc], axis=1)
+            ok &= lo >= -1e-8 * np.maximum(np.maximum(hi, -lo), 1e-12)
+        if nc < V.shape[1]:
+            ok &= np.minimum.reduce(V[:, nc:], axis=1) >= -tol_gap_mm
+        return ok
+
+    def step(self, v: np.ndarray, tol_gap_mm: float) -> np.ndarray:
+        """The next closed set of a state not solved by this one, v (n_pairs,) its forces and
+        gaps under it: one primal-dual active-set step (Hueber & Wohlmuth 2005): an open pair
+        overlapping beyond tol_gap_mm closes, a closed pair in tension beyond 1e-10 of the
+        state's largest force opens."""
+        x = np.empty(v.size)
+        x[self.rows] = v
+        tol_f = 1e-10 * max(np.abs(v[:self.n_closed]).max(initial=0.0), 1e-12)
+        return np.where(self.closed, x >= -tol_f, x < -tol_gap_mm)
+
+    def solve(self, G: np.ndarray, idx: np.ndarray, A: np.ndarray, lam: np.ndarray) -> None:
+        """The forces (N) and gaps (mm) of states `idx` under this set, in place: G (n, n_pairs)
+        holds their free gaps and is overwritten by their gaps, lam (n, n_pairs) receives their
+        forces. A_CC lambda_C = -G0_C by back-substitution on the factor (LAPACK potrs), then
+        gap = G0 + A lambda on the open pairs, 0 on the closed ones; gaps under 1e-15 mm are 0.
+        States are taken SOLVE_BLOCK at a time (small arrays: this runs for every state)."""
+        C = self.rows[:self.n_closed]
+        every = self.n_closed == G.shape[1]     # every pair closed: no column gathers
+        A_C = A[C] if self.factor is not None and not every else None
+        for at in range(0, idx.size, SOLVE_BLOCK):
+            rows = idx[at:at + SOLVE_BLOCK]
+            g = G[rows]
+            if self.factor is not None:
+                # (g or g[:, C]).T is Fortran-ordered: potrs takes it without a copy
+                x = -_potrs(self.factor, (g if every else g[:, C]).T).T       # (k, n_closed)
+                if every:
+                    lam[rows] = x
+                    G[rows] = 0.0
+                    continue
+                L = np.zeros_like(g)
+                L[:, C] = x
+                lam[rows] = L
+                g += x @ A_C
+                g[:, C] = 0.0
+            g[(g < 1e-15) & (g > -1e-15)] = 0.0
+            G[rows] = g
 
 
 @dataclass(frozen=True)

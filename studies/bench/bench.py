@@ -65,7 +65,7 @@ def sweep(asm):
         sup.clear_cache()
         res, t = _t(sup.evaluate, theta, np.tile(delta, (n, 1)))
         print(f"{n:5d}-point sweep -60..80 C: {t:.4f} s ({1e3 * t / n:.3f} ms/point, "
-              f"{len(res['closed_sets'])} distinct contact active sets)")
+              f"{len(res.closed_sets)} distinct contact active sets)")
 
 
 def pipeline_sweep(asm):
