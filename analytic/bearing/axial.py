@@ -10,7 +10,7 @@ import numpy as np
 from analytic.bearing.contact import ContactStiffness, axial_state, contact_stiffness
 from analytic.bearing.geometry import (SIGNS, BearingGeometry, ThermalGeometry, pair_array,
                                        pair_thermal_geometry, thermal_geometry)
-from analytic.bearing.roots import Root, newton_increasing
+from analytic.bearing.roots import newton_increasing, safeguarded_step
 from analytic.bearing.state import PairState, contact_ellipses, pair_state
 
 
@@ -120,17 +120,66 @@ def reference_state(g: BearingGeometry, s, P, c, dr_ref, dz_ref, tol):
 
 
 
-def _effective_X(Xnom, Y, A_T, cs, Z, c, alpha_lin) -> Root:
-    """Solve X + c F(X) = X_nom (compliance c in series with the bearing; F increasing in X)."""
-    if np.all(c == 0.0):
-        return Root(Xnom, np.ones(np.shape(Xnom), bool))
-    F0 = axial_state(Xnom, Y, A_T, cs.Kn, Z, cs.dlnKn_dalpha, alpha_lin).F_N
+@dataclass(frozen=True)
+class PairRoot:
+    """Rotor position x (N,) and the bearings' centre-distance components X (2, N) of a position-
+    preloaded pair (`position_root`), with the convergence flag per point."""
+    x_mm: np.ndarray
+    X_mm: np.ndarray
+    converged: np.ndarray
 
-    def fun(X):
-        st = axial_state(X, Y, A_T, cs.Kn, Z, cs.dlnKn_dalpha, alpha_lin)
-        return X + c * st.F_N - Xnom, 1.0 + c * st.k_N_per_mm
-    return newton_increasing(fun, Xnom, lo=Xnom - c * F0, hi=Xnom)
 
+def position_root(force, X0, s, dz, e, Fext, c, x0, X_start, step0, xtol: float = 1e-15,
+                  max_iter: int = 200) -> PairRoot:
+    """Equilibrium of a position-preloaded pair (module docstring of `analytic.bearing`):
+
+        X_j + c F_j(X_j) = X0 + s_j (dz_j + x) + e       (j = A, B: preload path in series)
+        sum_j s_j F_j(X_j) = F_ext
+
+    three unknowns per point, x (mm) and X_j (mm); force(X) -> (F, dF/dX), each (2, N), F
+    increasing in X; X0 (mm) the free axial component, s (2, 1) the arrangement signs, dz (2, N),
+    e, Fext, c (N,) (c >= 0, mm/N).  Newton's method on all three unknowns at once, the
+    compliance equations eliminated from the linear step (Schur complement):
+
+        x_j = s_j (X_j + c F_j - X0 - e) - dz_j     (the rotor position X_j is consistent with)
+        w_j = 1 / (1 + c k_j),  k_eff = sum_j w_j k_j
+        x_new = (sum_j w_j k_j x_j - R) / k_eff,    R = sum_j s_j F_j - F_ext
+        X_j,new = X_j + s_j w_j (x_new - x_j)
+
+    Safeguarded on x as `roots.newton_increasing` is (`roots.safeguarded_step`): s_j F_j is an
+    increasing function of the rotor position through the exact compliance solve, and X_j is the
+    exact solve at x_j, so R <= 0 puts the root above min_j x_j and R >= 0 below max_j x_j (a
+    bracket without an inner solve).  A point has converged when the step of every unknown is
+    below xtol (1 + |value|) (the criterion of the nested solve it replaces, x outside, X inside);
+    a point whose bearings carry nothing (R = 0, k_eff = 0) stays at its x.  Returns a
+    `PairRoot`."""
+    x = np.array(x0, dtype=float, copy=True)
+    X = np.array(X_start, dtype=float, copy=True)
+    lo, hi = np.full_like(x, -np.inf), np.full_like(x, np.inf)
+    step = np.array(np.broadcast_to(step0, x.shape), float)
+    done = np.zeros(x.shape, bool)
+    Xc = X0 + e
+    for _ in range(max_iter):
+        F, k = force(X)
+        xj = s * (X + c * F - Xc) - dz
+        w = 1.0 / (1.0 + c * k)
+        kw = k * w
+        keff = kw[0] + kw[1]
+        R = s[0] * F[0] + s[1] * F[1] - Fext
+        lo = np.where(R <= 0.0, np.maximum(lo, np.minimum(xj[0], xj[1])), lo)
+        hi = np.where(R >= 0.0, np.minimum(hi, np.maximum(xj[0], xj[1])), hi)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            cand = (kw[0] * xj[0] + kw[1] * xj[1] - R) / keff
+        new, step = safeguarded_step(x, cand, R, keff, lo, hi, step, xtol)
+        new = np.where((R == 0.0) & (keff == 0.0), x, new)
+        dX = s * w * (new - xj)
+        tol_X = xtol * (1.0 + np.abs(X))
+        done = ((np.abs(new - x) <= xtol * (1.0 + np.abs(x)))
+                & (np.abs(dX[0]) <= tol_X[0]) & (np.abs(dX[1]) <= tol_X[1]))
+        x, X = new, X + dX
+        if np.all(done):
+            break
+    return PairRoot(x, X, done & np.isfinite(x) & np.isfinite(X).all(axis=0))
 
 
 def solve_pair_axial(g: BearingGeometry, arrangement: str, N: int, *, dr_mm, dz_mm,
@@ -155,28 +204,25 @@ def solve_pair_axial(g: BearingGeometry, arrangement: str, N: int, *, dr_mm, dz_
         e, x, alpha_lin, cs, ok = reference_state(g, s, P, c, pair_array(dr_ref_mm, N),
                                                    pair_array(dz_ref_mm, N), tol)
         # operating state: K_n linearised about alpha_lin (first pass: the reference state's),
-        # refreshed at the operating geometry until the linear model is exact to tol
+        # refreshed at the operating geometry until the linear model is exact to tol; start:
+        # x and the compliance deflection c P of the reference state
         scale = 1e-3 * g.Dw_mm
-
-        def residual(xx):
-            Xn = X0 + s * (dz + xx) + e
-            Xe = _effective_X(Xn, Y, A_T, cs, Z, c, alpha_lin).x
-            st = axial_state(Xe, Y, A_T, cs.Kn, Z, cs.dlnKn_dalpha, alpha_lin)
-            keff = st.k_N_per_mm / (1.0 + c * st.k_N_per_mm)
-            return (s * st.F_N).sum(axis=0) - Fext, keff.sum(axis=0)
-
+        X = X0 + s * (dz + x) + e - c * P
         for _ in range(max_outer):
-            root = newton_increasing(residual, x, step0=scale)
-            x = root.x
-            eff = _effective_X(X0 + s * (dz + x) + e, Y, A_T, cs, Z, c, alpha_lin)
-            X = eff.x
+            lin, at = cs, alpha_lin
+
+            def force(XX):
+                st = axial_state(XX, Y, A_T, lin.Kn, Z, lin.dlnKn_dalpha, at)
+                return st.F_N, st.k_N_per_mm
+            root = position_root(force, X0, s, dz, e, Fext, c, x, X, scale)
+            x, X = root.x_mm, root.X_mm
             alpha = np.arctan2(X, Y)
             cs_new = contact_stiffness(g, tg, alpha)
             done = _kn_converged(cs_new, cs, alpha, alpha_lin, tol)
             cs, alpha_lin = cs_new, alpha
             if done:
                 break
-        ok = ok & root.converged & eff.converged.all(axis=0) & cs.converged.all(axis=0) & done
+        ok = ok & root.converged & cs.converged.all(axis=0) & done
         # converged: x solves the equilibrium with a K_n model that matches the exact K_n at the
         # final angle to tol, so the state below (exact K_n) balances the load to tol
         e_out = e

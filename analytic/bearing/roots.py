@@ -14,6 +14,26 @@ class Root:
     converged: np.ndarray
 
 
+def safeguarded_step(x, cand, r, dr, lo, hi, step, xtol):
+    """The next iterate of a safeguarded Newton iteration on an increasing residual r (slope dr)
+    at x, with the Newton candidate `cand` and the bracket [lo, hi] of the root (updated by the
+    caller from the residual signs): `cand` where dr > 0 and it lies inside the bracket; else the
+    bracket's mid-point when both ends are known; else a step of `step` towards the root (the
+    step doubles each time, away from a flat side).  Returns (next iterate, next step)."""
+    # a Newton step onto the far end of the bracket returns to a point already evaluated
+    # (its residual has the other sign): from there Newton may step straight back, a
+    # two-cycle that never shrinks the bracket (a residual that jumps by more than
+    # dr * xtol, e.g. one evaluated through a nested root solve). Bisect instead, unless
+    # the step is already within the tolerance.
+    back = ((cand == lo) & (x != lo)) | ((cand == hi) & (x != hi))
+    back &= np.abs(cand - x) > xtol * (1.0 + np.abs(x))
+    ok = (dr > 0.0) & np.isfinite(cand) & (cand >= lo) & (cand <= hi) & ~back
+    both = np.isfinite(lo) & np.isfinite(hi)
+    new = np.where(ok, cand, np.where(both, 0.5 * (lo + hi),
+                                      np.where(r < 0.0, x + step, x - step)))
+    return new, np.where(ok | both, step, 2.0 * step)
+
+
 def newton_increasing(fun, x0, lo=None, hi=None, step0=1e-3, xtol=1e-15, max_iter=200) -> Root:
     """Vectorised root of an increasing function: fun(x) -> (r, dr/dx).  Newton's method inside a
     bracket kept from the residual signs; bisection when Newton leaves it; doubling steps away
@@ -30,18 +50,7 @@ def newton_increasing(fun, x0, lo=None, hi=None, step0=1e-3, xtol=1e-15, max_ite
         hi = np.where(r >= 0.0, np.minimum(hi, x), hi)
         with np.errstate(divide="ignore", invalid="ignore"):
             cand = x - r / dr
-        # a Newton step onto the far end of the bracket returns to a point already evaluated
-        # (its residual has the other sign): from there Newton may step straight back, a
-        # two-cycle that never shrinks the bracket (a residual that jumps by more than
-        # dr * xtol, e.g. one evaluated through a nested root solve). Bisect instead, unless
-        # the step is already within the tolerance.
-        back = ((cand == lo) & (x != lo)) | ((cand == hi) & (x != hi))
-        back &= np.abs(cand - x) > xtol * (1.0 + np.abs(x))
-        ok = (dr > 0.0) & np.isfinite(cand) & (cand >= lo) & (cand <= hi) & ~back
-        both = np.isfinite(lo) & np.isfinite(hi)
-        new = np.where(ok, cand, np.where(both, 0.5 * (lo + hi),
-                                          np.where(r < 0.0, x + step, x - step)))
-        step = np.where(ok | both, step, 2.0 * step)
+        new, step = safeguarded_step(x, cand, r, dr, lo, hi, step, xtol)
         new = np.where(r == 0.0, x, new)
         done = np.abs(new - x) <= xtol * (1.0 + np.abs(x))
         x = new
