@@ -129,8 +129,8 @@ class PairRoot:
     converged: np.ndarray
 
 
-def position_root(force, X0, s, dz, e, Fext, c, x0, X_start, step0, xtol: float = 1e-15,
-                  max_iter: int = 200) -> PairRoot:
+def position_root(force, X0, s, dz, e, Fext, c, x0, X_start, step0, X_onset=None,
+                  xtol: float = 1e-15, max_iter: int = 200) -> PairRoot:
     """Equilibrium of a position-preloaded pair (module docstring of `analytic.bearing`):
 
         X_j + c F_j(X_j) = X0 + s_j (dz_j + x) + e       (j = A, B: preload path in series)
@@ -151,33 +151,59 @@ def position_root(force, X0, s, dz, e, Fext, c, x0, X_start, step0, xtol: float 
     exact solve at x_j, so R <= 0 puts the root above min_j x_j and R >= 0 below max_j x_j (a
     bracket without an inner solve).  A point has converged when the step of every unknown is
     below xtol (1 + |value|) (the criterion of the nested solve it replaces, x outside, X inside);
-    a point whose bearings carry nothing (R = 0, k_eff = 0) stays at its x.  Returns a
-    `PairRoot`."""
+    a point whose bearings carry nothing (R = 0, k_eff = 0) stays at its x.
+
+    X_onset (2, N), optional: X at each bearing's first contact (F = 0 for |X| <= X_onset).  With
+    F_ext = 0 a pair whose preload is lost has a whole interval of roots (both bearings free);
+    Newton reaches its end only linearly while one bearing still carries the residual alone
+    (F ~ delta^1.5: each step leaves a third of delta).  Where that bearing's first contact is a
+    root (the other bearing free there too) and Newton's step falls short of it, the iterate
+    goes there directly: x at X_j = X_onset_j, the other bearing at its nominal X (the limit the
+    Newton steps converge to).  Returns a `PairRoot`."""
+    sA, sB = float(s[0, 0]), float(s[1, 0])
     x = np.array(x0, dtype=float, copy=True)
     X = np.array(X_start, dtype=float, copy=True)
     lo, hi = np.full_like(x, -np.inf), np.full_like(x, np.inf)
     step = np.array(np.broadcast_to(step0, x.shape), float)
     done = np.zeros(x.shape, bool)
     Xc = X0 + e
+    flat = None
+    if X_onset is not None and np.any(Fext == 0.0):
+        # rotor position at each bearing's first contact (F_j = 0 there, so X_j = X_nom,j) and
+        # whether the other bearing is free there too (then it is a root)
+        x_on = s * (X_onset - Xc) - dz
+        X_other = Xc + s[::-1] * (dz[::-1] + x_on)
+        flat = (Fext == 0.0) & (X_onset > 0.0) & (np.abs(X_other) < X_onset[::-1])
     for _ in range(max_iter):
         F, k = force(X)
         xj = s * (X + c * F - Xc) - dz
         w = 1.0 / (1.0 + c * k)
         kw = k * w
         keff = kw[0] + kw[1]
-        R = s[0] * F[0] + s[1] * F[1] - Fext
+        R = sA * F[0] + sB * F[1] - Fext
         lo = np.where(R <= 0.0, np.maximum(lo, np.minimum(xj[0], xj[1])), lo)
         hi = np.where(R >= 0.0, np.minimum(hi, np.maximum(xj[0], xj[1])), hi)
         with np.errstate(divide="ignore", invalid="ignore"):
             cand = (kw[0] * xj[0] + kw[1] * xj[1] - R) / keff
+        jump = None
+        if flat is not None:
+            # bearing j alone loaded (on its own flank) and Newton's step short of its first contact
+            alone = flat & (F > 0.0) & (kw[::-1] == 0.0) & ((cand - xj) * (x_on - cand) > 0.0)
+            if alone.any():
+                jump = alone
+                cand = np.where(alone[0], x_on[0], np.where(alone[1], x_on[1], cand))
         new, step = safeguarded_step(x, cand, R, keff, lo, hi, step, xtol)
         new = np.where((R == 0.0) & (keff == 0.0), x, new)
-        dX = s * w * (new - xj)
+        X_new = X + s * w * (new - xj)
+        if jump is not None:
+            jump &= new == x_on
+            X_new = np.where(jump, X_onset, np.where(jump[::-1], Xc + s * (dz + new), X_new))
         tol_X = xtol * (1.0 + np.abs(X))
+        dX = np.abs(X_new - X)
         done = ((np.abs(new - x) <= xtol * (1.0 + np.abs(x)))
-                & (np.abs(dX[0]) <= tol_X[0]) & (np.abs(dX[1]) <= tol_X[1]))
-        x, X = new, X + dX
-        if np.all(done):
+                & (dX[0] <= tol_X[0]) & (dX[1] <= tol_X[1]))
+        x, X = new, X_new
+        if done.all():
             break
     return PairRoot(x, X, done & np.isfinite(x) & np.isfinite(X).all(axis=0))
 
@@ -208,13 +234,14 @@ def solve_pair_axial(g: BearingGeometry, arrangement: str, N: int, *, dr_mm, dz_
         # x and the compliance deflection c P of the reference state
         scale = 1e-3 * g.Dw_mm
         X = X0 + s * (dz + x) + e - c * P
+        X_onset = _onset_X(Y, A_T)
         for _ in range(max_outer):
             lin, at = cs, alpha_lin
 
             def force(XX):
                 st = axial_state(XX, Y, A_T, lin.Kn, Z, lin.dlnKn_dalpha, at)
                 return st.F_N, st.k_N_per_mm
-            root = position_root(force, X0, s, dz, e, Fext, c, x, X, scale)
+            root = position_root(force, X0, s, dz, e, Fext, c, x, X, scale, X_onset)
             x, X = root.x_mm, root.X_mm
             alpha = np.arctan2(X, Y)
             cs_new = contact_stiffness(g, tg, alpha)

@@ -20,6 +20,9 @@ def safeguarded_step(x, cand, r, dr, lo, hi, step, xtol):
     caller from the residual signs): `cand` where dr > 0 and it lies inside the bracket; else the
     bracket's mid-point when both ends are known; else a step of `step` towards the root (the
     step doubles each time, away from a flat side).  Returns (next iterate, next step)."""
+    inside = (dr > 0.0) & (cand > lo) & (cand < hi)      # (NaN compares False)
+    if inside.all():                  # the usual case: every Newton step inside its bracket
+        return cand, step
     # a Newton step onto the far end of the bracket returns to a point already evaluated
     # (its residual has the other sign): from there Newton may step straight back, a
     # two-cycle that never shrinks the bracket (a residual that jumps by more than
