@@ -68,7 +68,8 @@ def newton_minimise(fun, u0, cap, max_iter: int = 200) -> Root:
     so that flat directions without contact still give a step), capped to `cap` mm per component,
     with Armijo backtracking on Pi (decreases below the rounding level of Pi, 1e-13 of the sum of
     the magnitudes of its terms, are accepted).  A point is converged when a full Newton step is
-    accepted that is below 1e-15 (1 + max|u|) mm, or when no step decreases Pi any more (at the
+    below 1e-15 (1 + max|u|) mm (taken without evaluating it: it changes Pi far below the rounding
+    level at which it would be accepted), or when no step decreases Pi any more (at the
     rounding level of Pi: the minimum to machine precision); `converged` is False for points still
     moving after max_iter iterations."""
     u = np.array(u0, float, copy=True)
@@ -84,6 +85,15 @@ def newton_minimise(fun, u0, cap, max_iter: int = 200) -> Root:
         full = step <= cap
         d = d * np.where(full, 1.0, cap / np.where(full, 1.0, step))
         d[:, done] = 0.0
+        # a full step below the tolerance is taken without evaluating it: it changes Pi by
+        # g.d + d.H.d/2, orders below Pi's rounding level, so the test below would accept it
+        tiny = ~done & full & (step <= 1e-15 * (1.0 + np.abs(u).max(axis=0)))
+        if tiny.any():
+            u[:, tiny] += d[:, tiny]
+            d[:, tiny] = 0.0
+            done |= tiny
+            if done.all():
+                break
         slope = (g * d).sum(axis=0)
         t = np.ones(N)
         pending = ~done
