@@ -28,12 +28,13 @@ def _onset_X(Y, A_T):
     return np.sqrt(np.maximum(A_T * A_T - Y * Y, 0.0))
 
 
-def _solve_X_for_force(F_N, Y, A_T, cs: "ContactStiffness", Z, alpha_lin):
-    """X with Z K_n(alpha) delta^1.5 sin(alpha) = F, K_n linearised about alpha_lin."""
+def _solve_X_for_force(F_N, Y, A_T, cs: "ContactStiffness", Z, alpha_lin, x0=None):
+    """X with Z K_n(alpha) delta^1.5 sin(alpha) = F, K_n linearised about alpha_lin; from x0
+    (default: the first-order estimate delta = (F / (Z K_n sin(alpha)))^(2/3))."""
     Xc = _onset_X(Y, A_T)
     sa = np.sin(np.maximum(alpha_lin, 0.05))
     d_est = (np.maximum(F_N, 0.0) / (Z * cs.Kn * sa)) ** (2.0 / 3.0)
-    x0 = Xc + d_est / sa
+    x0 = Xc + d_est / sa if x0 is None else x0
 
     def fun(X):
         st = axial_state(X, Y, A_T, cs.Kn, Z, cs.dlnKn_dalpha, alpha_lin)
@@ -62,8 +63,10 @@ def approach_for_force(g: BearingGeometry, F_N, dr_mm=0.0, tg: ThermalGeometry |
     A_T = np.broadcast_to(tg.A_T_mm, shape)
     alpha_lin = np.full(shape, a0) if alpha_start is None else np.broadcast_to(alpha_start, shape)
     cs = contact_stiffness(g, tg, alpha_lin)
+    X = None
     for _ in range(max_outer):
-        root = _solve_X_for_force(F, Y, A_T, cs, g.Z, alpha_lin)
+        # from the second pass on, from the last pass's X (K_n's model moved by its last change)
+        root = _solve_X_for_force(F, Y, A_T, cs, g.Z, alpha_lin, X)
         X = root.x
         alpha = np.arctan2(X, Y)
         cs_new = contact_stiffness(g, tg, alpha)
