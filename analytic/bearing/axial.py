@@ -45,7 +45,7 @@ def _solve_X_for_force(F_N, Y, A_T, cs: "ContactStiffness", Z, alpha_lin, x0=Non
 def _kn_converged(cs_new: "ContactStiffness", cs_old: "ContactStiffness", alpha, alpha_lin, tol):
     """Exact K_n at the new angle against its linear model about the old one."""
     lin = cs_old.Kn * np.exp(cs_old.dlnKn_dalpha * (alpha - alpha_lin))
-    return bool(np.all(np.abs(cs_new.Kn / lin - 1.0) <= tol))
+    return bool((np.abs(cs_new.Kn / lin - 1.0) <= tol).all())
 
 
 def approach_for_force(g: BearingGeometry, F_N, dr_mm=0.0, tg: ThermalGeometry | None = None,
@@ -167,27 +167,34 @@ def position_root(force, X0, s, dz, e, Fext, c, x0, X_start, step0, X_onset=None
     x = np.array(x0, dtype=float, copy=True)
     X = np.array(X_start, dtype=float, copy=True)
     lo, hi = np.full_like(x, -np.inf), np.full_like(x, np.inf)
-    step = np.array(np.broadcast_to(step0, x.shape), float)
+    step = np.full(x.shape, step0, float)
     done = np.zeros(x.shape, bool)
     Xc = X0 + e
     flat = None
-    if X_onset is not None and np.any(Fext == 0.0):
+    if X_onset is not None and (Fext == 0.0).any():
         # rotor position at each bearing's first contact (F_j = 0 there, so X_j = X_nom,j) and
         # whether the other bearing is free there too (then it is a root)
         x_on = s * (X_onset - Xc) - dz
         X_other = Xc + s[::-1] * (dz[::-1] + x_on)
         flat = (Fext == 0.0) & (X_onset > 0.0) & (np.abs(X_other) < X_onset[::-1])
+        if not flat.any():
+            flat = None
     for _ in range(max_iter):
         F, k = force(X)
         xj = s * (X + c * F - Xc) - dz
         w = 1.0 / (1.0 + c * k)
         kw = k * w
-        keff = kw[0] + kw[1]
+        (xA, xB), (kA, kB) = xj, kw
+        keff = kA + kB
         R = sA * F[0] + sB * F[1] - Fext
-        lo = np.where(R <= 0.0, np.maximum(lo, np.minimum(xj[0], xj[1])), lo)
-        hi = np.where(R >= 0.0, np.minimum(hi, np.maximum(xj[0], xj[1])), hi)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            cand = (kw[0] * xj[0] + kw[1] * xj[1] - R) / keff
+        lo = np.where(R <= 0.0, np.maximum(lo, np.minimum(xA, xB)), lo)
+        hi = np.where(R >= 0.0, np.minimum(hi, np.maximum(xA, xB)), hi)
+        free = not keff.all()
+        if free:
+            with np.errstate(divide="ignore", invalid="ignore"):
+                cand = (kA * xA + kB * xB - R) / keff
+        else:
+            cand = (kA * xA + kB * xB - R) / keff
         jump = None
         if flat is not None:
             # bearing j alone loaded (on its own flank) and Newton's step short of its first contact
@@ -196,15 +203,14 @@ def position_root(force, X0, s, dz, e, Fext, c, x0, X_start, step0, X_onset=None
                 jump = alone
                 cand = np.where(alone[0], x_on[0], np.where(alone[1], x_on[1], cand))
         new, step = safeguarded_step(x, cand, R, keff, lo, hi, step, xtol)
-        new = np.where((R == 0.0) & (keff == 0.0), x, new)
+        if free:
+            new = np.where((R == 0.0) & (keff == 0.0), x, new)
         X_new = X + s * w * (new - xj)
         if jump is not None:
             jump &= new == x_on
             X_new = np.where(jump, X_onset, np.where(jump[::-1], Xc + s * (dz + new), X_new))
-        tol_X = xtol * (1.0 + np.abs(X))
-        dX = np.abs(X_new - X)
         done = ((np.abs(new - x) <= xtol * (1.0 + np.abs(x)))
-                & (dX[0] <= tol_X[0]) & (dX[1] <= tol_X[1]))
+                & (np.abs(X_new - X) <= xtol * (1.0 + np.abs(X))).all(axis=0))
         x, X = new, X_new
         if done.all():
             break

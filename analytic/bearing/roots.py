@@ -57,7 +57,7 @@ def newton_increasing(fun, x0, lo=None, hi=None, step0=1e-3, xtol=1e-15, max_ite
         new = np.where(r == 0.0, x, new)
         done = np.abs(new - x) <= xtol * (1.0 + np.abs(x))
         x = new
-        if np.all(done):
+        if done.all():
             break
     return Root(x, done & np.isfinite(x))
 
