@@ -42,10 +42,14 @@ def _solve_X_for_force(F_N, Y, A_T, cs: "ContactStiffness", Z, alpha_lin, x0=Non
     return newton_increasing(fun, x0, lo=Xc, step0=np.maximum(d_est, 1e-6))
 
 
+def _kn_ratio(cs_new: "ContactStiffness", cs_old: "ContactStiffness", alpha, alpha_lin):
+    """Exact K_n at the new angle over its linear model about the old one."""
+    return cs_new.Kn / (cs_old.Kn * np.exp(cs_old.dlnKn_dalpha * (alpha - alpha_lin)))
+
+
 def _kn_converged(cs_new: "ContactStiffness", cs_old: "ContactStiffness", alpha, alpha_lin, tol):
-    """Exact K_n at the new angle against its linear model about the old one."""
-    lin = cs_old.Kn * np.exp(cs_old.dlnKn_dalpha * (alpha - alpha_lin))
-    return bool((np.abs(cs_new.Kn / lin - 1.0) <= tol).all())
+    """Exact K_n at the new angle against its linear model about the old one, to tol."""
+    return bool((np.abs(_kn_ratio(cs_new, cs_old, alpha, alpha_lin) - 1.0) <= tol).all())
 
 
 def approach_for_force(g: BearingGeometry, F_N, dr_mm=0.0, tg: ThermalGeometry | None = None,
@@ -126,10 +130,13 @@ def reference_state(g: BearingGeometry, s, P, c, dr_ref, dz_ref, tol):
 @dataclass(frozen=True)
 class PairRoot:
     """Rotor position x (N,) and the bearings' centre-distance components X (2, N) of a position-
-    preloaded pair (`position_root`), with the convergence flag per point."""
+    preloaded pair (`position_root`), with the convergence flag per point, and the forces and
+    their derivatives (2, N) at the last evaluation (within the last step of X)."""
     x_mm: np.ndarray
     X_mm: np.ndarray
     converged: np.ndarray
+    F_N: np.ndarray
+    k_N_per_mm: np.ndarray
 
 
 def position_root(force, X0, s, dz, e, Fext, c, x0, X_start, step0, X_onset=None,
@@ -214,7 +221,7 @@ def position_root(force, X0, s, dz, e, Fext, c, x0, X_start, step0, X_onset=None
         x, X = new, X_new
         if done.all():
             break
-    return PairRoot(x, X, done & np.isfinite(x) & np.isfinite(X).all(axis=0))
+    return PairRoot(x, X, done & np.isfinite(x) & np.isfinite(X).all(axis=0), F, k)
 
 
 def solve_pair_axial(g: BearingGeometry, arrangement: str, N: int, *, dr_mm, dz_mm,
@@ -254,10 +261,15 @@ def solve_pair_axial(g: BearingGeometry, arrangement: str, N: int, *, dr_mm, dz_
             x, X = root.x_mm, root.X_mm
             alpha = np.arctan2(X, Y)
             cs_new = contact_stiffness(g, tg, alpha)
-            done = _kn_converged(cs_new, cs, alpha, alpha_lin, tol)
+            ratio = _kn_ratio(cs_new, cs, alpha, alpha_lin)
+            done = bool((np.abs(ratio - 1.0) <= tol).all())
             cs, alpha_lin = cs_new, alpha
             if done:
                 break
+            # the next pass from X moved by one Newton step of its series equation under the
+            # refreshed model, which scales the force at X by `ratio`: X + c ratio F(X) = X_nom
+            F, k = ratio * root.F_N, ratio * root.k_N_per_mm
+            X = X - c * (F - root.F_N) / (1.0 + c * k)
         ok = ok & root.converged & cs.converged.all(axis=0) & done
         # converged: x solves the equilibrium with a K_n model that matches the exact K_n at the
         # final angle to tol, so the state below (exact K_n) balances the load to tol
