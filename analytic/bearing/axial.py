@@ -30,11 +30,19 @@ def _onset_X(Y, A_T):
 
 def _solve_X_for_force(F_N, Y, A_T, cs: "ContactStiffness", Z, alpha_lin, x0=None):
     """X with Z K_n(alpha) delta^1.5 sin(alpha) = F, K_n linearised about alpha_lin; from x0
-    (default: the first-order estimate delta = (F / (Z K_n sin(alpha)))^(2/3))."""
+    (default: delta = (F / (Z K_n sin(alpha)))^(2/3) at alpha_lin, then once more at the angle
+    of that delta, X = sqrt((A_T + delta)^2 - Y^2))."""
     Xc = _onset_X(Y, A_T)
     sa = np.sin(np.maximum(alpha_lin, 0.05))
-    d_est = (np.maximum(F_N, 0.0) / (Z * cs.Kn * sa)) ** (2.0 / 3.0)
-    x0 = Xc + d_est / sa if x0 is None else x0
+    Fp = np.maximum(F_N, 0.0)
+    d_est = (Fp / (Z * cs.Kn * sa)) ** (2.0 / 3.0)
+    if x0 is None:
+        D = A_T + d_est
+        X1 = np.sqrt(np.maximum(D * D - Y * Y, 0.0))
+        a1 = np.arctan2(X1, Y)
+        Kn1 = cs.Kn * np.exp(cs.dlnKn_dalpha * (a1 - alpha_lin))
+        d1 = (Fp / (Z * Kn1 * np.maximum(np.sin(a1), 0.05))) ** (2.0 / 3.0)
+        x0 = np.sqrt(np.maximum((A_T + d1) ** 2 - Y * Y, 0.0))
 
     def fun(X):
         st = axial_state(X, Y, A_T, cs.Kn, Z, cs.dlnKn_dalpha, alpha_lin)
