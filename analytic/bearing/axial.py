@@ -149,15 +149,18 @@ class PairRoot:
 
 def position_root(force, X0, s, dz, e, Fext, c, x0, X_start, step0, X_onset=None,
                   xtol: float = 1e-15, max_iter: int = 200) -> PairRoot:
-    """Equilibrium of a position-preloaded pair (module docstring of `analytic.bearing`):
+    """Equilibrium of a position-preloaded pair (pair conventions of the module docstring of
+    `analytic.bearing`; Harris & Kotzalas Vol. 1 ch. 7 per bearing):
 
         X_j + c F_j(X_j) = X0 + s_j (dz_j + x) + e       (j = A, B: preload path in series)
         sum_j s_j F_j(X_j) = F_ext
 
-    three unknowns per point, x (mm) and X_j (mm); force(X) -> (F, dF/dX), each (2, N), F
-    increasing in X; X0 (mm) the free axial component, s (2, 1) the arrangement signs, dz (2, N),
-    e, Fext, c (N,) (c >= 0, mm/N).  Newton's method on all three unknowns at once, the
-    compliance equations eliminated from the linear step (Schur complement):
+    three unknowns per point, x (mm) and X_j (mm); force(X) -> (F (N), dF/dX (N/mm)), each
+    (2, N), F increasing in X; X0 (mm) the free axial component, s (2, 1) the arrangement signs,
+    dz (2, N) (mm), e (mm), Fext (N), c (mm/N, >= 0), each (N,); x0 (N,) and X_start (2, N) the
+    start, step0 (mm) the first step away from a flat side.  Newton's method on all three
+    unknowns at once (Dennis & Schnabel 1983 ch. 5), the series equations eliminated from the
+    linear step (its Schur complement):
 
         x_j = s_j (X_j + c F_j - X0 - e) - dz_j     (the rotor position X_j is consistent with)
         w_j = 1 / (1 + c k_j),  k_eff = sum_j w_j k_j
@@ -168,8 +171,9 @@ def position_root(force, X0, s, dz, e, Fext, c, x0, X_start, step0, X_onset=None
     increasing function of the rotor position through the exact compliance solve, and X_j is the
     exact solve at x_j, so R <= 0 puts the root above min_j x_j and R >= 0 below max_j x_j (a
     bracket without an inner solve).  A point has converged when the step of every unknown is
-    below xtol (1 + |value|) (the criterion of the nested solve it replaces, x outside, X inside);
-    a point whose bearings carry nothing (R = 0, k_eff = 0) stays at its x.
+    below xtol (1 + |value|) mm (the criterion of the Newton iteration in x around one in X per
+    bearing that this replaced); a point whose bearings carry nothing (R = 0, k_eff = 0) stays at
+    its x.
 
     X_onset (2, N), optional: X at each bearing's first contact (F = 0 for |X| <= X_onset).  With
     F_ext = 0 a pair whose preload is lost has a whole interval of roots (both bearings free);
