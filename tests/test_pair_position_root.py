@@ -12,6 +12,7 @@ over a spread of states: compliance 0, the FE preload path's (~6e-7 mm/N), 2e-5 
 (c k >> 1), external loads across the lift-off of one bearing (rows that just unload), rows
 whose preload is lost (both bearings free: an interval of roots), hot and cold rings."""
 import numpy as np
+import pytest
 
 from analytic.bearing import SIGNS, BearingGeometry, solve_pair, thermal_geometry
 from bearing_reference import kn_direct
@@ -68,6 +69,7 @@ def _rows(c):
                 T_outer_ring_C=np.array(T_out), T_ball_C=np.array(T_in), dr_mm=dr, dz_mm=dz)
 
 
+@pytest.mark.requirement("R-PAIR-EQUILIBRIUM")
 def test_equilibrium_and_compliance_hold_against_an_independent_force():
     """Every row converges, and its state satisfies the balance to 1e-12 of (P + |F_ext| + the
     bearings' forces) and each bearing's series equation to 1e-12 of the sum of the magnitudes
@@ -99,6 +101,7 @@ def test_equilibrium_and_compliance_hold_against_an_independent_force():
     assert checked["just_unloaded"] >= 4 and checked["lost"] >= 4 and checked["compliance_0"] > 0
 
 
+@pytest.mark.requirement("R-PAIR-EQUILIBRIUM")
 def test_lost_preload_ends_on_a_first_contact():
     """A pair whose preload is lost under no external load has a whole interval of rotor
     positions in equilibrium (both bearings free). From a reference position where one bearing
