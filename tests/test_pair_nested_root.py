@@ -1,7 +1,7 @@
 """Defect: `bearingfem study seed001` stopped at "row 165: the bearing equilibrium did not
 converge". The pair's axial solver with a compliant preload path (position preload, 60 C,
 compliance 0.015..0.032 mm/N) evaluates its residual in the rotor position x through a nested root
-solve (then `axial._effective_X`; now one joint iteration, `axial.position_root`), so the residual jumps by ~4.5e-12 N between neighbouring x (2e-14 mm
+solve (`axial._effective_X`), so the residual jumps by ~4.5e-12 N between neighbouring x (2e-14 mm
 apart); `roots.newton_increasing` then stepped from one end of its bracket exactly onto the other
 and back, 200 times, without bisecting. The bracket is now bisected when Newton returns to its far
 end. The references below are independent of the Newton iteration: scipy's brentq on the same
