@@ -38,12 +38,13 @@ temperatures T_ref, no external load) F_A = F_B = preload_assembled_N, then kept
 optional compliance of the preload path (mm/N).  Spring preload: a constant force P on bearing B's
 outer ring, F_B = P, F_A = s_A axial_load + P; if that is negative the preload is lost (F_A = 0).
 
-Solution.  Eliminating the load-dependent K_n by an outer fixed-point loop (K_n varies by parts per
-thousand per degree of contact angle, the loop contracts by about that factor per pass), the inner
-problem is a monotone scalar equation in x, solved by Newton's method inside a bracket that is
-kept from the signs of the residual (bisection when Newton leaves it, doubling steps when both
-bearings are unloaded).  Everything is vectorised over operating points, the two bearings on a
-leading axis of length 2.
+Solution.  Eliminating the load-dependent K_n by an outer loop (K_n linearised in the contact
+angle about the last pass's angles, refreshed until the linear model is exact to tol: two passes
+as a rule), the inner problem is monotone in x: with a compliant preload path, one Newton
+iteration on x and both bearings' X at once (`axial.position_root`, the series equations
+eliminated from the step), kept inside a bracket on x from the signs of the balance (bisection
+when Newton leaves it, doubling steps when both bearings are unloaded).  Everything is
+vectorised over operating points, the two bearings on a leading axis of length 2.
 
 Combined axial and radial load (`combined.solve_pair_combined`, chosen by `solve_pair` when a
 radial load or a moment is given): the quasi-static load distribution around the ball set (Harris

@@ -10,7 +10,7 @@ import numpy as np
 from analytic.bearing.contact import ContactStiffness, axial_state, contact_stiffness
 from analytic.bearing.geometry import (SIGNS, BearingGeometry, ThermalGeometry, pair_array,
                                        pair_thermal_geometry, thermal_geometry)
-from analytic.bearing.roots import Root, newton_increasing
+from analytic.bearing.roots import newton_increasing, safeguarded_step
 from analytic.bearing.state import PairState, contact_ellipses, pair_state
 
 
@@ -28,12 +28,21 @@ def _onset_X(Y, A_T):
     return np.sqrt(np.maximum(A_T * A_T - Y * Y, 0.0))
 
 
-def _solve_X_for_force(F_N, Y, A_T, cs: "ContactStiffness", Z, alpha_lin):
-    """X with Z K_n(alpha) delta^1.5 sin(alpha) = F, K_n linearised about alpha_lin."""
+def _solve_X_for_force(F_N, Y, A_T, cs: "ContactStiffness", Z, alpha_lin, x0=None):
+    """X with Z K_n(alpha) delta^1.5 sin(alpha) = F, K_n linearised about alpha_lin; from x0
+    (default: delta = (F / (Z K_n sin(alpha)))^(2/3) at alpha_lin, then once more at the angle
+    of that delta, X = sqrt((A_T + delta)^2 - Y^2))."""
     Xc = _onset_X(Y, A_T)
     sa = np.sin(np.maximum(alpha_lin, 0.05))
-    d_est = (np.maximum(F_N, 0.0) / (Z * cs.Kn * sa)) ** (2.0 / 3.0)
-    x0 = Xc + d_est / sa
+    Fp = np.maximum(F_N, 0.0)
+    d_est = (Fp / (Z * cs.Kn * sa)) ** (2.0 / 3.0)
+    if x0 is None:
+        D = A_T + d_est
+        X1 = np.sqrt(np.maximum(D * D - Y * Y, 0.0))
+        a1 = np.arctan2(X1, Y)
+        Kn1 = cs.Kn * np.exp(cs.dlnKn_dalpha * (a1 - alpha_lin))
+        d1 = (Fp / (Z * Kn1 * np.maximum(np.sin(a1), 0.05))) ** (2.0 / 3.0)
+        x0 = np.sqrt(np.maximum((A_T + d1) ** 2 - Y * Y, 0.0))
 
     def fun(X):
         st = axial_state(X, Y, A_T, cs.Kn, Z, cs.dlnKn_dalpha, alpha_lin)
@@ -41,10 +50,14 @@ def _solve_X_for_force(F_N, Y, A_T, cs: "ContactStiffness", Z, alpha_lin):
     return newton_increasing(fun, x0, lo=Xc, step0=np.maximum(d_est, 1e-6))
 
 
+def _kn_ratio(cs_new: "ContactStiffness", cs_old: "ContactStiffness", alpha, alpha_lin):
+    """Exact K_n at the new angle over its linear model about the old one."""
+    return cs_new.Kn / (cs_old.Kn * np.exp(cs_old.dlnKn_dalpha * (alpha - alpha_lin)))
+
+
 def _kn_converged(cs_new: "ContactStiffness", cs_old: "ContactStiffness", alpha, alpha_lin, tol):
-    """Exact K_n at the new angle against its linear model about the old one."""
-    lin = cs_old.Kn * np.exp(cs_old.dlnKn_dalpha * (alpha - alpha_lin))
-    return bool(np.all(np.abs(cs_new.Kn / lin - 1.0) <= tol))
+    """Exact K_n at the new angle against its linear model about the old one, to tol."""
+    return bool((np.abs(_kn_ratio(cs_new, cs_old, alpha, alpha_lin) - 1.0) <= tol).all())
 
 
 def approach_for_force(g: BearingGeometry, F_N, dr_mm=0.0, tg: ThermalGeometry | None = None,
@@ -62,8 +75,10 @@ def approach_for_force(g: BearingGeometry, F_N, dr_mm=0.0, tg: ThermalGeometry |
     A_T = np.broadcast_to(tg.A_T_mm, shape)
     alpha_lin = np.full(shape, a0) if alpha_start is None else np.broadcast_to(alpha_start, shape)
     cs = contact_stiffness(g, tg, alpha_lin)
+    X = None
     for _ in range(max_outer):
-        root = _solve_X_for_force(F, Y, A_T, cs, g.Z, alpha_lin)
+        # from the second pass on, from the last pass's X (K_n's model moved by its last change)
+        root = _solve_X_for_force(F, Y, A_T, cs, g.Z, alpha_lin, X)
         X = root.x
         alpha = np.arctan2(X, Y)
         cs_new = contact_stiffness(g, tg, alpha)
@@ -120,17 +135,105 @@ def reference_state(g: BearingGeometry, s, P, c, dr_ref, dz_ref, tol):
 
 
 
-def _effective_X(Xnom, Y, A_T, cs, Z, c, alpha_lin) -> Root:
-    """Solve X + c F(X) = X_nom (compliance c in series with the bearing; F increasing in X)."""
-    if np.all(c == 0.0):
-        return Root(Xnom, np.ones(np.shape(Xnom), bool))
-    F0 = axial_state(Xnom, Y, A_T, cs.Kn, Z, cs.dlnKn_dalpha, alpha_lin).F_N
+@dataclass(frozen=True)
+class PairRoot:
+    """Rotor position x (N,) and the bearings' centre-distance components X (2, N) of a position-
+    preloaded pair (`position_root`), with the convergence flag per point, and the forces and
+    their derivatives (2, N) at the last evaluation (within the last step of X)."""
+    x_mm: np.ndarray
+    X_mm: np.ndarray
+    converged: np.ndarray
+    F_N: np.ndarray
+    k_N_per_mm: np.ndarray
 
-    def fun(X):
-        st = axial_state(X, Y, A_T, cs.Kn, Z, cs.dlnKn_dalpha, alpha_lin)
-        return X + c * st.F_N - Xnom, 1.0 + c * st.k_N_per_mm
-    return newton_increasing(fun, Xnom, lo=Xnom - c * F0, hi=Xnom)
 
+def position_root(force, X0, s, dz, e, Fext, c, x0, X_start, step0, X_onset=None,
+                  xtol: float = 1e-15, max_iter: int = 200) -> PairRoot:
+    """Equilibrium of a position-preloaded pair (pair conventions of the module docstring of
+    `analytic.bearing`; Harris & Kotzalas Vol. 1 ch. 7 per bearing):
+
+        X_j + c F_j(X_j) = X0 + s_j (dz_j + x) + e       (j = A, B: preload path in series)
+        sum_j s_j F_j(X_j) = F_ext
+
+    three unknowns per point, x (mm) and X_j (mm); force(X) -> (F (N), dF/dX (N/mm)), each
+    (2, N), F increasing in X; X0 (mm) the free axial component, s (2, 1) the arrangement signs,
+    dz (2, N) (mm), e (mm), Fext (N), c (mm/N, >= 0), each (N,); x0 (N,) and X_start (2, N) the
+    start, step0 (mm) the first step away from a flat side.  Newton's method on all three
+    unknowns at once (Dennis & Schnabel 1983 ch. 5), the series equations eliminated from the
+    linear step (its Schur complement):
+
+        x_j = s_j (X_j + c F_j - X0 - e) - dz_j     (the rotor position X_j is consistent with)
+        w_j = 1 / (1 + c k_j),  k_eff = sum_j w_j k_j
+        x_new = (sum_j w_j k_j x_j - R) / k_eff,    R = sum_j s_j F_j - F_ext
+        X_j,new = X_j + s_j w_j (x_new - x_j)
+
+    Safeguarded on x as `roots.newton_increasing` is (`roots.safeguarded_step`): s_j F_j is an
+    increasing function of the rotor position through the exact compliance solve, and X_j is the
+    exact solve at x_j, so R <= 0 puts the root above min_j x_j and R >= 0 below max_j x_j (a
+    bracket without an inner solve).  A point has converged when the step of every unknown is
+    below xtol (1 + |value|) mm (the criterion of the Newton iteration in x around one in X per
+    bearing that this replaced); a point whose bearings carry nothing (R = 0, k_eff = 0) stays at
+    its x.
+
+    X_onset (2, N), optional: X at each bearing's first contact (F = 0 for |X| <= X_onset).  With
+    F_ext = 0 a pair whose preload is lost has a whole interval of roots (both bearings free);
+    Newton reaches its end only linearly while one bearing still carries the residual alone
+    (F ~ delta^1.5: each step leaves a third of delta).  Where that bearing's first contact is a
+    root (the other bearing free there too) and Newton's step falls short of it, the iterate
+    goes there directly: x at X_j = X_onset_j, the other bearing at its nominal X (the limit the
+    Newton steps converge to).  Returns a `PairRoot`."""
+    sA, sB = float(s[0, 0]), float(s[1, 0])
+    x = np.array(x0, dtype=float, copy=True)
+    X = np.array(X_start, dtype=float, copy=True)
+    lo, hi = np.full_like(x, -np.inf), np.full_like(x, np.inf)
+    step = np.full(x.shape, step0, float)
+    done = np.zeros(x.shape, bool)
+    Xc = X0 + e
+    flat = None
+    if X_onset is not None and (Fext == 0.0).any():
+        # rotor position at each bearing's first contact (F_j = 0 there, so X_j = X_nom,j) and
+        # whether the other bearing is free there too (then it is a root)
+        x_on = s * (X_onset - Xc) - dz
+        X_other = Xc + s[::-1] * (dz[::-1] + x_on)
+        flat = (Fext == 0.0) & (X_onset > 0.0) & (np.abs(X_other) < X_onset[::-1])
+        if not flat.any():
+            flat = None
+    for _ in range(max_iter):
+        F, k = force(X)
+        xj = s * (X + c * F - Xc) - dz
+        w = 1.0 / (1.0 + c * k)
+        kw = k * w
+        (xA, xB), (kA, kB) = xj, kw
+        keff = kA + kB
+        R = sA * F[0] + sB * F[1] - Fext
+        lo = np.where(R <= 0.0, np.maximum(lo, np.minimum(xA, xB)), lo)
+        hi = np.where(R >= 0.0, np.minimum(hi, np.maximum(xA, xB)), hi)
+        free = not keff.all()
+        if free:
+            with np.errstate(divide="ignore", invalid="ignore"):
+                cand = (kA * xA + kB * xB - R) / keff
+        else:
+            cand = (kA * xA + kB * xB - R) / keff
+        jump = None
+        if flat is not None:
+            # bearing j alone loaded (on its own flank) and Newton's step short of its first contact
+            alone = flat & (F > 0.0) & (kw[::-1] == 0.0) & ((cand - xj) * (x_on - cand) > 0.0)
+            if alone.any():
+                jump = alone
+                cand = np.where(alone[0], x_on[0], np.where(alone[1], x_on[1], cand))
+        new, step = safeguarded_step(x, cand, R, keff, lo, hi, step, xtol)
+        if free:
+            new = np.where((R == 0.0) & (keff == 0.0), x, new)
+        X_new = X + s * w * (new - xj)
+        if jump is not None:
+            jump &= new == x_on
+            X_new = np.where(jump, X_onset, np.where(jump[::-1], Xc + s * (dz + new), X_new))
+        done = ((np.abs(new - x) <= xtol * (1.0 + np.abs(x)))
+                & (np.abs(X_new - X) <= xtol * (1.0 + np.abs(X))).all(axis=0))
+        x, X = new, X_new
+        if done.all():
+            break
+    return PairRoot(x, X, done & np.isfinite(x) & np.isfinite(X).all(axis=0), F, k)
 
 
 def solve_pair_axial(g: BearingGeometry, arrangement: str, N: int, *, dr_mm, dz_mm,
@@ -155,28 +258,31 @@ def solve_pair_axial(g: BearingGeometry, arrangement: str, N: int, *, dr_mm, dz_
         e, x, alpha_lin, cs, ok = reference_state(g, s, P, c, pair_array(dr_ref_mm, N),
                                                    pair_array(dz_ref_mm, N), tol)
         # operating state: K_n linearised about alpha_lin (first pass: the reference state's),
-        # refreshed at the operating geometry until the linear model is exact to tol
+        # refreshed at the operating geometry until the linear model is exact to tol; start:
+        # x and the compliance deflection c P of the reference state
         scale = 1e-3 * g.Dw_mm
-
-        def residual(xx):
-            Xn = X0 + s * (dz + xx) + e
-            Xe = _effective_X(Xn, Y, A_T, cs, Z, c, alpha_lin).x
-            st = axial_state(Xe, Y, A_T, cs.Kn, Z, cs.dlnKn_dalpha, alpha_lin)
-            keff = st.k_N_per_mm / (1.0 + c * st.k_N_per_mm)
-            return (s * st.F_N).sum(axis=0) - Fext, keff.sum(axis=0)
-
+        X = X0 + s * (dz + x) + e - c * P
+        X_onset = _onset_X(Y, A_T)
         for _ in range(max_outer):
-            root = newton_increasing(residual, x, step0=scale)
-            x = root.x
-            eff = _effective_X(X0 + s * (dz + x) + e, Y, A_T, cs, Z, c, alpha_lin)
-            X = eff.x
+            lin, at = cs, alpha_lin
+
+            def force(XX):
+                st = axial_state(XX, Y, A_T, lin.Kn, Z, lin.dlnKn_dalpha, at)
+                return st.F_N, st.k_N_per_mm
+            root = position_root(force, X0, s, dz, e, Fext, c, x, X, scale, X_onset)
+            x, X = root.x_mm, root.X_mm
             alpha = np.arctan2(X, Y)
             cs_new = contact_stiffness(g, tg, alpha)
-            done = _kn_converged(cs_new, cs, alpha, alpha_lin, tol)
+            ratio = _kn_ratio(cs_new, cs, alpha, alpha_lin)
+            done = bool((np.abs(ratio - 1.0) <= tol).all())
             cs, alpha_lin = cs_new, alpha
             if done:
                 break
-        ok = ok & root.converged & eff.converged.all(axis=0) & cs.converged.all(axis=0) & done
+            # the next pass from X moved by one Newton step of its series equation under the
+            # refreshed model, which scales the force at X by `ratio`: X + c ratio F(X) = X_nom
+            F, k = ratio * root.F_N, ratio * root.k_N_per_mm
+            X = X - c * (F - root.F_N) / (1.0 + c * k)
+        ok = ok & root.converged & cs.converged.all(axis=0) & done
         # converged: x solves the equilibrium with a K_n model that matches the exact K_n at the
         # final angle to tol, so the state below (exact K_n) balances the load to tol
         e_out = e

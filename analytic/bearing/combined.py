@@ -216,8 +216,8 @@ def _combined_group(g: BearingGeometry, mode: str, s, dr, dz, tg: ThermalGeometr
         inner, outer = dyn.contacts()
         ok = ok & dyn.ball_ok.reshape(shape).all(axis=(0, 1))
     else:
-        # without radial motion and tilt every ball of a bearing has the same angle: K_n once
-        cs = contact_stiffness(g, tg3, prob.alpha(u) if solve else prob.alpha(u)[:, :1, :])
+        # at u0 (no radial motion, no tilt) every ball of a bearing has the same angle: K_n once
+        cs = contact_stiffness(g, tg3, prob.alpha(u)[:, :1, :])
         ok = np.ones(u.shape[1], bool)
         if solve:
             cap = 0.1 * g.A0_mm

@@ -37,8 +37,10 @@ def contact_stiffness(g: BearingGeometry, tg: ThermalGeometry, alpha_rad) -> Con
     alpha = np.asarray(alpha_rad, float)
     Dw, dm = tg.Dw_mm, tg.dm_mm
     gamma = Dw * np.cos(alpha) / dm
-    Rx = np.stack(np.broadcast_arrays(0.5 * Dw * (1.0 - gamma), 0.5 * Dw * (1.0 + gamma)))
-    f = np.stack(np.broadcast_arrays(tg.f_i * np.ones_like(gamma), tg.f_o * np.ones_like(gamma)))
+    g_m, g_p = 1.0 - gamma, 1.0 + gamma
+    Rx, f = np.empty((2,) + gamma.shape), np.empty((2,) + gamma.shape)   # [inner, outer]
+    Rx[0], Rx[1] = 0.5 * Dw * g_m, 0.5 * Dw * g_p
+    f[0], f[1] = tg.f_i, tg.f_o
     Ry = f * Dw / (2.0 * f - 1.0)
     rho = Ry / Rx
     shape = rho.shape
@@ -51,7 +53,9 @@ def contact_stiffness(g: BearingGeometry, tg: ThermalGeometry, alpha_rad) -> Con
     # d ln Kc / d ln Rx: ln Kc = u + ln E/2 + ln R/2 - 3/2 ln K + const, du = -dlnRx / (dg/du)
     dlnK_dlnRx = -(1.0 - 0.5 * A * m1 / E - 1.5 * B * m1 / K) / dgdu + 0.5 * R / Rx
     tan_a = np.tan(alpha)
-    dlnRx_da = np.stack([gamma * tan_a / (1.0 - gamma), -gamma * tan_a / (1.0 + gamma)])
+    gt = gamma * tan_a
+    dlnRx_da = np.empty_like(Rx)
+    dlnRx_da[0], dlnRx_da[1] = gt / g_m, -gt / g_p
     dlnK_da = dlnK_dlnRx * dlnRx_da
     w = Kc ** (-2.0 / 3.0)
     Kn = (w[0] + w[1]) ** -1.5

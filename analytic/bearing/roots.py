@@ -14,6 +14,29 @@ class Root:
     converged: np.ndarray
 
 
+def safeguarded_step(x, cand, r, dr, lo, hi, step, xtol):
+    """The next iterate of a safeguarded Newton iteration on an increasing residual r (slope dr)
+    at x, with the Newton candidate `cand` and the bracket [lo, hi] of the root (updated by the
+    caller from the residual signs): `cand` where dr > 0 and it lies inside the bracket; else the
+    bracket's mid-point when both ends are known; else a step of `step` towards the root (the
+    step doubles each time, away from a flat side).  Returns (next iterate, next step)."""
+    inside = (dr > 0.0) & (cand > lo) & (cand < hi)      # (NaN compares False)
+    if inside.all():                  # the usual case: every Newton step inside its bracket
+        return cand, step
+    # a Newton step onto the far end of the bracket returns to a point already evaluated
+    # (its residual has the other sign): from there Newton may step straight back, a
+    # two-cycle that never shrinks the bracket (a residual that jumps by more than
+    # dr * xtol, e.g. one evaluated through a nested root solve). Bisect instead, unless
+    # the step is already within the tolerance.
+    back = ((cand == lo) & (x != lo)) | ((cand == hi) & (x != hi))
+    back &= np.abs(cand - x) > xtol * (1.0 + np.abs(x))
+    ok = (dr > 0.0) & np.isfinite(cand) & (cand >= lo) & (cand <= hi) & ~back
+    both = np.isfinite(lo) & np.isfinite(hi)
+    new = np.where(ok, cand, np.where(both, 0.5 * (lo + hi),
+                                      np.where(r < 0.0, x + step, x - step)))
+    return new, np.where(ok | both, step, 2.0 * step)
+
+
 def newton_increasing(fun, x0, lo=None, hi=None, step0=1e-3, xtol=1e-15, max_iter=200) -> Root:
     """Vectorised root of an increasing function: fun(x) -> (r, dr/dx).  Newton's method inside a
     bracket kept from the residual signs; bisection when Newton leaves it; doubling steps away
@@ -30,22 +53,11 @@ def newton_increasing(fun, x0, lo=None, hi=None, step0=1e-3, xtol=1e-15, max_ite
         hi = np.where(r >= 0.0, np.minimum(hi, x), hi)
         with np.errstate(divide="ignore", invalid="ignore"):
             cand = x - r / dr
-        # a Newton step onto the far end of the bracket returns to a point already evaluated
-        # (its residual has the other sign): from there Newton may step straight back, a
-        # two-cycle that never shrinks the bracket (a residual that jumps by more than
-        # dr * xtol, e.g. one evaluated through a nested root solve). Bisect instead, unless
-        # the step is already within the tolerance.
-        back = ((cand == lo) & (x != lo)) | ((cand == hi) & (x != hi))
-        back &= np.abs(cand - x) > xtol * (1.0 + np.abs(x))
-        ok = (dr > 0.0) & np.isfinite(cand) & (cand >= lo) & (cand <= hi) & ~back
-        both = np.isfinite(lo) & np.isfinite(hi)
-        new = np.where(ok, cand, np.where(both, 0.5 * (lo + hi),
-                                          np.where(r < 0.0, x + step, x - step)))
-        step = np.where(ok | both, step, 2.0 * step)
+        new, step = safeguarded_step(x, cand, r, dr, lo, hi, step, xtol)
         new = np.where(r == 0.0, x, new)
         done = np.abs(new - x) <= xtol * (1.0 + np.abs(x))
         x = new
-        if np.all(done):
+        if done.all():
             break
     return Root(x, done & np.isfinite(x))
 
@@ -56,7 +68,8 @@ def newton_minimise(fun, u0, cap, max_iter: int = 200) -> Root:
     so that flat directions without contact still give a step), capped to `cap` mm per component,
     with Armijo backtracking on Pi (decreases below the rounding level of Pi, 1e-13 of the sum of
     the magnitudes of its terms, are accepted).  A point is converged when a full Newton step is
-    accepted that is below 1e-15 (1 + max|u|) mm, or when no step decreases Pi any more (at the
+    below 1e-15 (1 + max|u|) mm (taken without evaluating it: it changes Pi far below the rounding
+    level at which it would be accepted), or when no step decreases Pi any more (at the
     rounding level of Pi: the minimum to machine precision); `converged` is False for points still
     moving after max_iter iterations."""
     u = np.array(u0, float, copy=True)
@@ -72,6 +85,15 @@ def newton_minimise(fun, u0, cap, max_iter: int = 200) -> Root:
         full = step <= cap
         d = d * np.where(full, 1.0, cap / np.where(full, 1.0, step))
         d[:, done] = 0.0
+        # a full step below the tolerance is taken without evaluating it: it changes Pi by
+        # g.d + d.H.d/2, orders below Pi's rounding level, so the test below would accept it
+        tiny = ~done & full & (step <= 1e-15 * (1.0 + np.abs(u).max(axis=0)))
+        if tiny.any():
+            u[:, tiny] += d[:, tiny]
+            d[:, tiny] = 0.0
+            done |= tiny
+            if done.all():
+                break
         slope = (g * d).sum(axis=0)
         t = np.ones(N)
         pending = ~done
