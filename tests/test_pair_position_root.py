@@ -8,7 +8,7 @@ Harris & Kotzalas Vol. 1 ch. 7, F = Z K_n delta^1.5 sin(alpha)), then
     sum_j s_j F_j = F_ext                          (force balance on the rotor)
     a_j + c F_j = s_j (dz_j + x) + e               (approach and preload path in series)
 
-over a spread of states: compliance 0, the FE preload path's (~6e-7 mm/N), 2e-5 and 0.05 mm/N
+over a spread of states: compliance 0, the FE preload path's (~6e-7 mm/N), 2e-5, 0.05 and 500 mm/N
 (c k >> 1), external loads across the lift-off of one bearing (rows that just unload), rows
 whose preload is lost (both bearings free: an interval of roots), hot and cold rings."""
 import numpy as np
@@ -20,8 +20,9 @@ from bearing_reference import kn_direct
 G = BearingGeometry.from_catalogue("71807C")
 A0, ALPHA0 = G.A0_mm, np.radians(G.alpha0_deg)
 P_N = 100.0
-#: preload-path compliances (mm/N): none, the FE's order, a soft path, a spring-like path
-COMPLIANCES = (0.0, 6.0e-7, 2.0e-5, 0.05)
+#: preload-path compliances (mm/N): none, the FE's order, a soft path, a spring-like path, the
+#: design search's softest spring (1e-3 N/mm: 500 mm/N per bearing, c F ~ 5e4 mm)
+COMPLIANCES = (0.0, 6.0e-7, 2.0e-5, 0.05, 500.0)
 
 
 def _force_direct(approach_mm, dr_mm, tg):

@@ -172,7 +172,9 @@ def position_root(force, X0, s, dz, e, Fext, c, x0, X_start, step0, X_onset=None
     exact solve at x_j, so R <= 0 puts the root above min_j x_j and R >= 0 below max_j x_j (a
     bracket without an inner solve).  A point has converged when the step of every unknown is
     below xtol (1 + |value|) mm (the criterion of the Newton iteration in x around one in X per
-    bearing that this replaced); a point whose bearings carry nothing (R = 0, k_eff = 0) stays at
+    bearing that this replaced), x's below xtol max(1 + |x|, c |F_j|) (x is the difference of
+    terms of size c F_j: a soft spring's 5e4 mm at c = 500 mm/N) and X_j's, beyond its own, by
+    w_j times that excess (x's rounding reaches X_j through its step); a point whose bearings carry nothing (R = 0, k_eff = 0) stays at
     its x.
 
     X_onset (2, N), optional: X at each bearing's first contact (F = 0 for |X| <= X_onset).  With
@@ -228,8 +230,13 @@ def position_root(force, X0, s, dz, e, Fext, c, x0, X_start, step0, X_onset=None
         if jump is not None:
             jump &= new == x_on
             X_new = np.where(jump, X_onset, np.where(jump[::-1], Xc + s * (dz + new), X_new))
-        done = ((np.abs(new - x) <= xtol * (1.0 + np.abs(x)))
-                & (np.abs(X_new - X) <= xtol * (1.0 + np.abs(X))).all(axis=0))
+        # x is resolved only to the rounding of x_j's terms: c F_j (mm) reaches 5e4 mm on a
+        # spring of 1e-3 N/mm (c = 500 mm/N at 100 N), against |x| ~ 1e-3 mm; that rounding
+        # reaches X_j through its step, weighted w_j (a free bearing's X follows x one to one)
+        x_scale = np.maximum(1.0 + np.abs(x), (c * np.abs(F)).max(axis=0))
+        x_round = xtol * (x_scale - (1.0 + np.abs(x)))
+        done = ((np.abs(new - x) <= xtol * x_scale)
+                & (np.abs(X_new - X) <= xtol * (1.0 + np.abs(X)) + w * x_round).all(axis=0))
         x, X = new, X_new
         if done.all():
             break
