@@ -221,7 +221,7 @@ def _combined_group(g: BearingGeometry, mode: str, s, dr, dz, tg: ThermalGeometr
         ok = np.ones(u.shape[1], bool)
         if solve:
             cap = 0.1 * g.A0_mm
-
+            u, cs = _full_newton_start(prob, g, tg3, cs, u, cap)
             for _ in range(max_outer):
                 Kn = cs.Kn
                 root = newton_minimise(lambda uu: prob.assemble(uu, prob.state(uu, Kn)), u, cap)
@@ -311,6 +311,38 @@ def _combined_group(g: BearingGeometry, mode: str, s, dr, dz, tg: ThermalGeometr
                       offset_mm=e_out, approach_mm=a,
                       converged=ok & np.isfinite(st.F_N).all(axis=0),
                       radial=radial, dynamic=dynamic)
+
+
+#: full Newton step (mm, relative to 1 + max|u|) below which the next one is at rounding level
+FULL_NEWTON_STOP = 1e-9
+
+
+def _full_newton_start(prob: CombinedProblem, g: BearingGeometry, tg3: ThermalGeometry,
+                       cs, u, cap, max_iter: int = 6):
+    """A start for the K_n refresh loop of `_combined_group` close to the equilibrium with K_n
+    exact at every ball's angle: the potential with K_n frozen at u's angles minimised to a loose
+    tolerance (`roots.newton_minimise`, full steps below 1e-8 (1 + max|u|) mm: the frozen K_n
+    is off by far more), then Newton's method on the full equations, K_n exact at the current
+    angles and the tangent with dK_n/dalpha (`CombinedProblem.state`; Dennis & Schnabel 1983
+    ch. 5: quadratic convergence, so a step below FULL_NEWTON_STOP leaves the next one at rounding
+    level).  A point whose full step is not finite or exceeds `cap` stays where it is (the refresh
+    loop takes it from there, as before).  Returns (u, `ContactStiffness` at u's angles)."""
+    u = newton_minimise(lambda uu: prob.assemble(uu, prob.state(uu, cs.Kn)), u, cap,
+                        xtol=1e-8).x
+    n = u.shape[0]
+    eye = np.eye(n)
+    for _ in range(max_iter):
+        cs = contact_stiffness(g, tg3, prob.alpha(u))
+        _, _, gr, J = prob.assemble(u, prob.state(u, cs.Kn, cs.dlnKn_dalpha))
+        A = np.moveaxis(J, -1, 0)
+        lam = 1e-12 * np.abs(np.diagonal(A, axis1=1, axis2=2)).max(axis=1) + 1e-6
+        d = -np.linalg.solve(A + lam[:, None, None] * eye, np.moveaxis(gr, -1, 0)[..., None])[..., 0].T
+        step = np.abs(d).max(axis=0)
+        take = np.isfinite(step) & (step <= cap)
+        u = u + np.where(take, d, 0.0)
+        if np.all(~take | (step <= FULL_NEWTON_STOP * (1.0 + np.abs(u).max(axis=0)))):
+            break
+    return u, contact_stiffness(g, tg3, prob.alpha(u))
 
 
 def _solve_dynamic(prob: CombinedProblem, dyn: "DynamicBallSet", u, cap, max_outer, control):
