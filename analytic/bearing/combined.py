@@ -326,13 +326,16 @@ def _full_newton_start(prob: CombinedProblem, g: BearingGeometry, tg3: ThermalGe
     angles and the tangent with dK_n/dalpha (`CombinedProblem.state`; Dennis & Schnabel 1983
     ch. 5: quadratic convergence, so a step below FULL_NEWTON_STOP leaves the next one at rounding
     level).  A point whose full step is not finite or exceeds `cap` stays where it is (the refresh
-    loop takes it from there, as before).  Returns (u, `ContactStiffness` at u's angles)."""
+    loop takes it from there, as before).  Returns (u, `ContactStiffness` at u's angles: after a
+    last step below FULL_NEWTON_STOP its K_n from the first-order model about the angles before
+    that step; the refresh loop then checks K_n exactly, as for every pass)."""
     u = newton_minimise(lambda uu: prob.assemble(uu, prob.state(uu, cs.Kn)), u, cap,
                         xtol=1e-8).x
     n = u.shape[0]
     eye = np.eye(n)
     for _ in range(max_iter):
-        cs = contact_stiffness(g, tg3, prob.alpha(u))
+        alpha = prob.alpha(u)
+        cs = contact_stiffness(g, tg3, alpha)
         _, _, gr, J = prob.assemble(u, prob.state(u, cs.Kn, cs.dlnKn_dalpha))
         A = np.moveaxis(J, -1, 0)
         lam = 1e-12 * np.abs(np.diagonal(A, axis1=1, axis2=2)).max(axis=1) + 1e-6
@@ -341,7 +344,10 @@ def _full_newton_start(prob: CombinedProblem, g: BearingGeometry, tg3: ThermalGe
         take = np.isfinite(step) & (step <= cap)
         u = u + np.where(take, d, 0.0)
         if np.all(~take | (step <= FULL_NEWTON_STOP * (1.0 + np.abs(u).max(axis=0)))):
-            break
+            # the last step was below FULL_NEWTON_STOP: K_n at the new angles from its linear
+            # model (the error, second order in the angle change, is below rounding level)
+            dalpha = prob.alpha(u) - alpha
+            return u, replace(cs, Kn=cs.Kn * np.exp(cs.dlnKn_dalpha * dalpha))
     return u, contact_stiffness(g, tg3, prob.alpha(u))
 
 
