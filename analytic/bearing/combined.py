@@ -241,10 +241,24 @@ def _combined_group(g: BearingGeometry, mode: str, s, dr, dz, tg: ThermalGeometr
 
     def condensed(i):
         """d(load)/d(u_i) with the other unknowns free: J_ii - J_ir J_rr^+ J_ri (= 1/(J^-1)_ii;
-        the pseudo-inverse gives 0 along a displacement no loaded ball resists)."""
+        the pseudo-inverse gives 0 along a displacement no loaded ball resists).  J_rr^+ J_ri by
+        a linear solve where J_rr is well conditioned (1-norm condition number below 1e10, from
+        its inverse; Golub & Van Loan ch. 2.6 and 3.5: the two then agree to that number times
+        the rounding unit) and by the SVD pseudo-inverse elsewhere."""
         r = [m for m in range(prob.n) if m != i]
-        Jrr = Jm[:, r][:, :, r]
-        return Jm[:, i, i] - np.einsum("nr,nrs,ns->n", Jm[:, i, r], np.linalg.pinv(Jrr), Jm[:, r, i])
+        Jrr, Jri = Jm[:, r][:, :, r], Jm[:, r, i]
+        eye = np.eye(len(r))
+        with np.errstate(all="ignore"):
+            try:
+                inv = np.linalg.inv(Jrr)
+            except np.linalg.LinAlgError:               # an exactly singular block somewhere
+                inv = np.full_like(Jrr, np.nan)
+            cond = np.abs(Jrr).sum(axis=1).max(axis=1) * np.abs(inv).sum(axis=1).max(axis=1)
+        bad = ~(cond <= 1e10)                           # (NaN: not finite)
+        y = np.linalg.solve(np.where(bad[:, None, None], eye, Jrr), Jri[..., None])[..., 0]
+        if bad.any():
+            y[bad] = np.einsum("nrs,ns->nr", np.linalg.pinv(Jrr[bad]), Jri[bad])
+        return Jm[:, i, i] - np.einsum("nr,nr->n", Jm[:, i, r], y)
     k_ax, k_rad = condensed(prob.i_ax), condensed(prob.i_rad)
     if prob.tilt:
         theta = prob.theta(u)
