@@ -335,7 +335,7 @@ def _full_newton_start(prob: CombinedProblem, g: BearingGeometry, tg3: ThermalGe
                        cs, u, cap, max_iter: int = 6):
     """A start for the K_n refresh loop of `_combined_group` close to the equilibrium with K_n
     exact at every ball's angle: the potential with K_n frozen at u's angles minimised to a loose
-    tolerance (`roots.newton_minimise`, full steps below 1e-8 (1 + max|u|) mm: the frozen K_n
+    tolerance (`roots.newton_minimise`, full steps below 1e-6 (1 + max|u|) mm: the frozen K_n
     is off by far more), then Newton's method on the full equations, K_n exact at the current
     angles and the tangent with dK_n/dalpha (`CombinedProblem.state`; Dennis & Schnabel 1983
     ch. 5: quadratic convergence, so a step below FULL_NEWTON_STOP leaves the next one at rounding
@@ -344,7 +344,7 @@ def _full_newton_start(prob: CombinedProblem, g: BearingGeometry, tg3: ThermalGe
     last step below FULL_NEWTON_STOP its K_n from the first-order model about the angles before
     that step; the refresh loop then checks K_n exactly, as for every pass)."""
     u = newton_minimise(lambda uu: prob.assemble(uu, prob.state(uu, cs.Kn)), u, cap,
-                        xtol=1e-8).x
+                        xtol=1e-6).x
     n = u.shape[0]
     eye = np.eye(n)
     for _ in range(max_iter):
