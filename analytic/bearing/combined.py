@@ -105,9 +105,10 @@ class CombinedProblem:
         """Every ball's (X, Y, cos psi, gx, gy) (`contact.ball_positions`)."""
         return ball_positions(*self._maps(u))
 
-    def state(self, u, Kn, dlnKn_dalpha=None) -> BallSetState:
+    def state(self, u, Kn, dlnKn_dalpha=None, angles: bool = True) -> BallSetState:
+        """The balls at u (`contact.ball_set_state`; angles=False: without their angles)."""
         m = self._maps(u)
-        return ball_set_state(*m[:3], self.A_T, Kn, m[3], dlnKn_dalpha, *m[4:])
+        return ball_set_state(*m[:3], self.A_T, Kn, m[3], dlnKn_dalpha, *m[4:], angles=angles)
 
     def alpha(self, u):
         """Angle of every ball's groove-centre line, atan2(X, Y), (2, Z, N)."""
@@ -224,7 +225,7 @@ def _combined_group(g: BearingGeometry, mode: str, s, dr, dz, tg: ThermalGeometr
             u, cs = _full_newton_start(prob, g, tg3, cs, u, cap)
             for _ in range(max_outer):
                 Kn = cs.Kn
-                root = newton_minimise(lambda uu: prob.assemble(uu, prob.state(uu, Kn)), u, cap)
+                root = newton_minimise(lambda uu: prob.assemble(uu, prob.state(uu, Kn, angles=False)), u, cap)
                 u = root.x
                 cs_new = contact_stiffness(g, tg3, prob.alpha(u))
                 done = bool(np.all(np.abs(cs_new.Kn / cs.Kn - 1.0) <= tol))
@@ -343,14 +344,14 @@ def _full_newton_start(prob: CombinedProblem, g: BearingGeometry, tg3: ThermalGe
     loop takes it from there, as before).  Returns (u, `ContactStiffness` at u's angles: after a
     last step below FULL_NEWTON_STOP its K_n from the first-order model about the angles before
     that step; the refresh loop then checks K_n exactly, as for every pass)."""
-    u = newton_minimise(lambda uu: prob.assemble(uu, prob.state(uu, cs.Kn)), u, cap,
+    u = newton_minimise(lambda uu: prob.assemble(uu, prob.state(uu, cs.Kn, angles=False)), u, cap,
                         xtol=1e-6).x
     n = u.shape[0]
     eye = np.eye(n)
     for _ in range(max_iter):
         alpha = prob.alpha(u)
         cs = contact_stiffness(g, tg3, alpha)
-        _, _, gr, J = prob.assemble(u, prob.state(u, cs.Kn, cs.dlnKn_dalpha))
+        _, _, gr, J = prob.assemble(u, prob.state(u, cs.Kn, cs.dlnKn_dalpha, angles=False))
         A = np.moveaxis(J, -1, 0)
         lam = 1e-12 * np.abs(np.diagonal(A, axis1=1, axis2=2)).max(axis=1) + 1e-6
         d = -np.linalg.solve(A + lam[:, None, None] * eye, np.moveaxis(gr, -1, 0)[..., None])[..., 0].T
