@@ -435,7 +435,10 @@ def solve_pair_combined(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.
     convex potential (`CombinedProblem`), minimised by Newton's method with a capped step and
     Armijo backtracking (`roots.newton_minimise`); an outer loop refreshes K_n at the new contact
     angles until it changes by less than tol.  Start: the axial-only solution
-    (`axial.solve_pair_axial`, which also gives the position-preload offset e), rho = 0.
+    (`axial.solve_pair_axial`, which also gives the position-preload offset e), rho = 0, taken
+    close to the solution first (`_full_newton_start`: the frozen-K_n minimisation to a loose
+    tolerance, then Newton on the full equations with K_n exact and dK_n/dalpha in the tangent),
+    so that the refresh loop usually ends after one pass.
 
     Tilt and moment (bearing_span_mm given: the distance between the two bearings' ball planes,
     B minus A, mm): the rotor is a rigid body free to tilt by theta about the axis normal to the
