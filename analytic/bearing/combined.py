@@ -105,9 +105,10 @@ class CombinedProblem:
         """Every ball's (X, Y, cos psi, gx, gy) (`contact.ball_positions`)."""
         return ball_positions(*self._maps(u))
 
-    def state(self, u, Kn, dlnKn_dalpha=None) -> BallSetState:
+    def state(self, u, Kn, dlnKn_dalpha=None, angles: bool = True) -> BallSetState:
+        """The balls at u (`contact.ball_set_state`; angles=False: without their angles)."""
         m = self._maps(u)
-        return ball_set_state(*m[:3], self.A_T, Kn, m[3], dlnKn_dalpha, *m[4:])
+        return ball_set_state(*m[:3], self.A_T, Kn, m[3], dlnKn_dalpha, *m[4:], angles=angles)
 
     def alpha(self, u):
         """Angle of every ball's groove-centre line, atan2(X, Y), (2, Z, N)."""
@@ -221,10 +222,10 @@ def _combined_group(g: BearingGeometry, mode: str, s, dr, dz, tg: ThermalGeometr
         ok = np.ones(u.shape[1], bool)
         if solve:
             cap = 0.1 * g.A0_mm
-
+            u, cs = _full_newton_start(prob, g, tg3, cs, u, cap)
             for _ in range(max_outer):
                 Kn = cs.Kn
-                root = newton_minimise(lambda uu: prob.assemble(uu, prob.state(uu, Kn)), u, cap)
+                root = newton_minimise(lambda uu: prob.assemble(uu, prob.state(uu, Kn, angles=False)), u, cap)
                 u = root.x
                 cs_new = contact_stiffness(g, tg3, prob.alpha(u))
                 done = bool(np.all(np.abs(cs_new.Kn / cs.Kn - 1.0) <= tol))
@@ -241,10 +242,24 @@ def _combined_group(g: BearingGeometry, mode: str, s, dr, dz, tg: ThermalGeometr
 
     def condensed(i):
         """d(load)/d(u_i) with the other unknowns free: J_ii - J_ir J_rr^+ J_ri (= 1/(J^-1)_ii;
-        the pseudo-inverse gives 0 along a displacement no loaded ball resists)."""
+        the pseudo-inverse gives 0 along a displacement no loaded ball resists).  J_rr^+ J_ri by
+        a linear solve where J_rr is well conditioned (1-norm condition number below 1e10, from
+        its inverse; Golub & Van Loan ch. 2.6 and 3.5: the two then agree to that number times
+        the rounding unit) and by the SVD pseudo-inverse elsewhere."""
         r = [m for m in range(prob.n) if m != i]
-        Jrr = Jm[:, r][:, :, r]
-        return Jm[:, i, i] - np.einsum("nr,nrs,ns->n", Jm[:, i, r], np.linalg.pinv(Jrr), Jm[:, r, i])
+        Jrr, Jri = Jm[:, r][:, :, r], Jm[:, r, i]
+        eye = np.eye(len(r))
+        with np.errstate(all="ignore"):
+            try:
+                inv = np.linalg.inv(Jrr)
+            except np.linalg.LinAlgError:               # an exactly singular block somewhere
+                inv = np.full_like(Jrr, np.nan)
+            cond = np.abs(Jrr).sum(axis=1).max(axis=1) * np.abs(inv).sum(axis=1).max(axis=1)
+        bad = ~(cond <= 1e10)                           # (NaN: not finite)
+        y = np.linalg.solve(np.where(bad[:, None, None], eye, Jrr), Jri[..., None])[..., 0]
+        if bad.any():
+            y[bad] = np.einsum("nrs,ns->nr", np.linalg.pinv(Jrr[bad]), Jri[bad])
+        return Jm[:, i, i] - np.einsum("nr,nr->n", Jm[:, i, r], y)
     k_ax, k_rad = condensed(prob.i_ax), condensed(prob.i_rad)
     if prob.tilt:
         theta = prob.theta(u)
@@ -311,6 +326,44 @@ def _combined_group(g: BearingGeometry, mode: str, s, dr, dz, tg: ThermalGeometr
                       offset_mm=e_out, approach_mm=a,
                       converged=ok & np.isfinite(st.F_N).all(axis=0),
                       radial=radial, dynamic=dynamic)
+
+
+#: full Newton step (mm, relative to 1 + max|u|) below which the next one is at rounding level
+FULL_NEWTON_STOP = 1e-9
+
+
+def _full_newton_start(prob: CombinedProblem, g: BearingGeometry, tg3: ThermalGeometry,
+                       cs, u, cap, max_iter: int = 6):
+    """A start for the K_n refresh loop of `_combined_group` close to the equilibrium with K_n
+    exact at every ball's angle: the potential with K_n frozen at u's angles minimised to a loose
+    tolerance (`roots.newton_minimise`, full steps below 1e-6 (1 + max|u|) mm: the frozen K_n
+    is off by far more), then Newton's method on the full equations, K_n exact at the current
+    angles and the tangent with dK_n/dalpha (`CombinedProblem.state`; Dennis & Schnabel 1983
+    ch. 5: quadratic convergence, so a step below FULL_NEWTON_STOP leaves the next one at rounding
+    level).  A point whose full step is not finite or exceeds `cap` stays where it is (the refresh
+    loop takes it from there, as before).  Returns (u, `ContactStiffness` at u's angles: after a
+    last step below FULL_NEWTON_STOP its K_n from the first-order model about the angles before
+    that step; the refresh loop then checks K_n exactly, as for every pass)."""
+    u = newton_minimise(lambda uu: prob.assemble(uu, prob.state(uu, cs.Kn, angles=False)), u, cap,
+                        xtol=1e-6).x
+    n = u.shape[0]
+    eye = np.eye(n)
+    for _ in range(max_iter):
+        alpha = prob.alpha(u)
+        cs = contact_stiffness(g, tg3, alpha)
+        _, _, gr, J = prob.assemble(u, prob.state(u, cs.Kn, cs.dlnKn_dalpha, angles=False))
+        A = np.moveaxis(J, -1, 0)
+        lam = 1e-12 * np.abs(np.diagonal(A, axis1=1, axis2=2)).max(axis=1) + 1e-6
+        d = -np.linalg.solve(A + lam[:, None, None] * eye, np.moveaxis(gr, -1, 0)[..., None])[..., 0].T
+        step = np.abs(d).max(axis=0)
+        take = np.isfinite(step) & (step <= cap)
+        u = u + np.where(take, d, 0.0)
+        if np.all(~take | (step <= FULL_NEWTON_STOP * (1.0 + np.abs(u).max(axis=0)))):
+            # the last step was below FULL_NEWTON_STOP: K_n at the new angles from its linear
+            # model (the error, second order in the angle change, is below rounding level)
+            dalpha = prob.alpha(u) - alpha
+            return u, replace(cs, Kn=cs.Kn * np.exp(cs.dlnKn_dalpha * dalpha))
+    return u, contact_stiffness(g, tg3, prob.alpha(u))
 
 
 def _solve_dynamic(prob: CombinedProblem, dyn: "DynamicBallSet", u, cap, max_outer, control):
@@ -382,7 +435,10 @@ def solve_pair_combined(g: BearingGeometry, arrangement: str = "DB", *, dr_mm=0.
     convex potential (`CombinedProblem`), minimised by Newton's method with a capped step and
     Armijo backtracking (`roots.newton_minimise`); an outer loop refreshes K_n at the new contact
     angles until it changes by less than tol.  Start: the axial-only solution
-    (`axial.solve_pair_axial`, which also gives the position-preload offset e), rho = 0.
+    (`axial.solve_pair_axial`, which also gives the position-preload offset e), rho = 0, taken
+    close to the solution first (`_full_newton_start`: the frozen-K_n minimisation to a loose
+    tolerance, then Newton on the full equations with K_n exact and dK_n/dalpha in the tangent),
+    so that the refresh loop usually ends after one pass.
 
     Tilt and moment (bearing_span_mm given: the distance between the two bearings' ball planes,
     B minus A, mm): the rotor is a rigid body free to tilt by theta about the axis normal to the

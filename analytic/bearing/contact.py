@@ -133,7 +133,7 @@ class BallSetState:
 
 
 def ball_set_state(X_mm, Y_mm, rho_mm, A_T_mm, Kn, cos_psi, dlnKn_dalpha=None, theta_rad=None,
-                   gx_mm=None, gy_mm=None) -> BallSetState:
+                   gx_mm=None, gy_mm=None, angles: bool = True) -> BallSetState:
     """Loads of every ball of both bearings under a rotor radial displacement rho and, optionally,
     a rotor tilt theta (Harris & Kotzalas Vol. 1 ch. 7, Jones 1960, rigid rings, no centrifugal or
     gyroscopic terms):
@@ -156,7 +156,8 @@ def ball_set_state(X_mm, Y_mm, rho_mm, A_T_mm, Kn, cos_psi, dlnKn_dalpha=None, t
     contact-angle dependence of K_n; K_n itself is used as given); the k_* are its projections
     G^T T G on the generalised coordinates (G = d(X, Y)/d(a, rho, theta)).  A ball with X < 0
     touches the other flank of the groove at the negative angle (full groove: the contact model
-    of `axial_state` too)."""
+    of `axial_state` too).  angles=False leaves alpha_rad None (a solver's inner iterations,
+    which need forces and tangents only)."""
     X, Y, cpsi, gx, gy = ball_positions(X_mm, Y_mm, rho_mm, cos_psi, theta_rad, gx_mm, gy_mm)
     A_T = np.asarray(A_T_mm, float)[:, None, :]
     D = np.hypot(X, Y)
@@ -174,7 +175,7 @@ def ball_set_state(X_mm, Y_mm, rho_mm, A_T_mm, Kn, cos_psi, dlnKn_dalpha=None, t
         w = kt * dlnKn_dalpha
         MXX, MXY, MYX, MYY = (MXX + w * nX * nY, MXY - w * nX * nX, MYX + w * nY * nY,
                               MYY - w * nX * nY)
-    return project_balls(Q, delta, np.arctan2(X, Y), Q * nX, Q * nY, 0.4 * Q * delta, Q * D,
+    return project_balls(Q, delta, np.arctan2(X, Y) if angles else None, Q * nX, Q * nY, 0.4 * Q * delta, Q * D,
                          (MXX, MXY, MYX, MYY), cpsi, gx, gy)
 
 

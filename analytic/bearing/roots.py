@@ -62,13 +62,13 @@ def newton_increasing(fun, x0, lo=None, hi=None, step0=1e-3, xtol=1e-15, max_ite
     return Root(x, done & np.isfinite(x))
 
 
-def newton_minimise(fun, u0, cap, max_iter: int = 200) -> Root:
+def newton_minimise(fun, u0, cap, max_iter: int = 200, xtol: float = 1e-15) -> Root:
     """Vectorised minimisation of convex functions fun(u) -> (Pi, |terms|, grad, Hessian), u of
     shape (n, N): Newton steps on the Hessian (plus 1e-12 of its largest diagonal and 1e-6 N/mm,
     so that flat directions without contact still give a step), capped to `cap` mm per component,
     with Armijo backtracking on Pi (decreases below the rounding level of Pi, 1e-13 of the sum of
     the magnitudes of its terms, are accepted).  A point is converged when a full Newton step is
-    below 1e-15 (1 + max|u|) mm (taken without evaluating it: it changes Pi far below the rounding
+    below xtol (1 + max|u|) mm (default 1e-15) (taken without evaluating it: it changes Pi far below the rounding
     level at which it would be accepted), or when no step decreases Pi any more (at the
     rounding level of Pi: the minimum to machine precision); `converged` is False for points still
     moving after max_iter iterations."""
@@ -87,7 +87,7 @@ def newton_minimise(fun, u0, cap, max_iter: int = 200) -> Root:
         d[:, done] = 0.0
         # a full step below the tolerance is taken without evaluating it: it changes Pi by
         # g.d + d.H.d/2, orders below Pi's rounding level, so the test below would accept it
-        tiny = ~done & full & (step <= 1e-15 * (1.0 + np.abs(u).max(axis=0)))
+        tiny = ~done & full & (step <= xtol * (1.0 + np.abs(u).max(axis=0)))
         if tiny.any():
             u[:, tiny] += d[:, tiny]
             d[:, tiny] = 0.0
@@ -101,12 +101,15 @@ def newton_minimise(fun, u0, cap, max_iter: int = 200) -> Root:
             trial = u + t * d
             Pt, Pat, gt, Ht = fun(trial)
             ok = pending & (Pt <= Pi + 1e-4 * t * slope + 1e-13 * (Pabs + Pat))
-            u[:, ok], Pi[ok], Pabs[ok], g[:, ok], H[..., ok] = trial[:, ok], Pt[ok], Pat[ok], gt[:, ok], Ht[..., ok]
+            if (ok | done).all():      # (a done point's trial is u itself: d = 0 there)
+                u, Pi, Pabs, g, H = trial, Pt, Pat, gt, Ht
+            else:
+                u[:, ok], Pi[ok], Pabs[ok], g[:, ok], H[..., ok] = trial[:, ok], Pt[ok], Pat[ok], gt[:, ok], Ht[..., ok]
             pending &= ~ok
             if not pending.any():
                 break
             t = np.where(pending, 0.5 * t, t)
-        small = full & (t == 1.0) & (step <= 1e-15 * (1.0 + np.abs(u).max(axis=0)))
+        small = full & (t == 1.0) & (step <= xtol * (1.0 + np.abs(u).max(axis=0)))
         done |= small | pending
         if done.all():
             break
