@@ -15,6 +15,7 @@ Where an FE result feeds the bearing model, the closed-form value is carried bes
 from __future__ import annotations
 
 from dataclasses import replace
+from functools import partial
 
 import numpy as np
 
@@ -243,7 +244,8 @@ class Pipeline:
             torque = pair_friction_torque(self.asm, self.geom, self.lubricant, pair, inputs, mu,
                                           viscous_factor_f0)
         fits = FitPressures.of(self.setup.fit_names, fe)
-        result = SimulationResult(fe, fe_ref, fits, lame_neighbours(self.fe_stage, fe, inputs),
+        result = SimulationResult(fe, fe_ref, fits, tuple(n for n, _ in self.asm.layers()),
+                                  partial(lame_neighbours, self.fe_stage, fe, inputs),
                                   pair, self.bearing.summary(pair), torque, mu, None,
                                   self.fe_stage.clamp_state(fe, inputs.axial_load_N))
         check_answers(_checked_outputs(result), pair.converged, first_row)
