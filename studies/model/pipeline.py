@@ -268,8 +268,8 @@ class Pipeline:
         pair = self._pair_memo.get(key)
         if pair is None:
             pair = self.bearing.solve(args)
-            if remember:
-                self._pair_memo.put(key, pair, inputs.n_rows)
+            if remember:        # read-only from here on (studies.model.memo), as a hit would be
+                pair = self._pair_memo.put(key, pair, inputs.n_rows)
         return pair
 
 
