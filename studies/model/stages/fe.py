@@ -266,15 +266,19 @@ class FEStage:
     def thetas(self, inputs: PhysicsInputs) -> np.ndarray:
         """(n, n_parts) thermal strain per FE part; the cte_nonlinearity effect changes the CTE
         slope of the shaft (and nut) and housing (and cover); `inputs.cte_factor` scales a part's
-        strain (a material lot's CTE)."""
-        cols = []
+        strain (a material lot's CTE). Parts of one temperature group and one material (the
+        two inner rings, the spacers, ...) share their strain: computed once per such pair."""
+        cols, strains = [], {}
         for part in self.part_names:
             group = FE_PART_GROUP[part]
             mat = self.materials[part]
             if group in inputs.dalpha_per_K2:          # shaft (and nut), housing (and cover)
                 mat = mat.with_dalpha(inputs.dalpha_per_K2[group],
                                       inputs.d2alpha_per_K3.get(group, 0.0))
-            theta = mat.thermal_strain(np.asarray(inputs.T_C[group], float), self.asm.T_ref_C)
+            theta = strains.get((group, mat))
+            if theta is None:
+                theta = strains[group, mat] = mat.thermal_strain(
+                    np.asarray(inputs.T_C[group], float), self.asm.T_ref_C)
             if part in inputs.cte_factor:               # a material lot (diagnosis ladder)
                 theta = inputs.cte_factor[part] * theta
             cols.append(theta)
