@@ -107,8 +107,9 @@ class Pipeline:
         self.section = section_from_assembly(asm).scaled(mesh_factor)
         z = stack_positions(asm)        # the ball planes: inner ring mid-planes of A and B
         self.bearing = BearingStage(asm, 0.5 * (sum(z["inner_ring_B"]) - sum(z["inner_ring_A"])))
+        mean_fits_um = asm.mean_fits_um()       # of the frozen assembly: once
         self.fe_stage = FEStage(asm, self.section, self.bearing.geom, ROTOR_PARTS,
-                                lambda inputs: resolve_interference_um(inputs, *asm.mean_fits_um()),
+                                lambda inputs: resolve_interference_um(inputs, *mean_fits_um),
                                 progress, superpose, cache, setup_of)
         self.bearing.compliance_mm_per_N = self.fe_stage.compliance_mm_per_N
         self.lubricant = asm.oil()
