@@ -160,9 +160,13 @@ class FELoads:
     layers_um: np.ndarray | None = None
 
     def key(self, direct: bool) -> bytes:
-        """The exact inputs of the solve (cache key)."""
-        return hashlib.sha1(self.theta.tobytes() + self.delta_mm.tobytes() + self.omega2.tobytes()
-                            + bytes([direct])).digest()
+        """The exact inputs of the solve (cache key): SHA-1 of their bytes in turn (fed without
+        joining them first)."""
+        h = hashlib.sha1()
+        for a in (self.theta, self.delta_mm, self.omega2):
+            h.update(np.ascontiguousarray(a))
+        h.update(bytes([direct]))
+        return h.digest()
 
 
 @dataclass(frozen=True)
