@@ -269,3 +269,16 @@ def test_lame_neighbours_are_computed_on_first_read_by_their_one_route(pl000):
     for f in dataclasses.fields(direct):
         assert np.array_equal(getattr(lazy.lame, f.name), getattr(direct, f.name))
     assert calls == [1]                                     # kept after the first read
+
+
+def test_a_pickled_result_carries_its_lame_neighbours(pl000):
+    """Requirement: a result sent back by a worker process (pickled) carries the Lamé neighbours
+    as values, the same as the route computes (not the FE stage that computes them)."""
+    import pickle
+
+    inp = _inp(pl000.asm, [-40.0, 80.0], speed_rpm=[0.0, 12000.0])
+    res = pl000.run(inp)
+    back = pickle.loads(pickle.dumps(res))
+    for f in dataclasses.fields(res.lame):
+        assert np.array_equal(getattr(back.lame, f.name), getattr(res.lame, f.name))
+    assert back.lame_of.func.__name__ == "_given"

@@ -26,7 +26,7 @@ reads these typed fields.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from functools import cached_property
+from functools import cached_property, partial
 from typing import Callable
 
 import numpy as np
@@ -87,6 +87,11 @@ class SimulationResult:
         read (`lame_of`) and kept."""
         return self.lame_of()
 
+    def __getstate__(self) -> dict:
+        """Pickled (a result sent back by a worker process): the Lamé neighbours computed and
+        carried as values, not the FE stage that computes them."""
+        return {**self.__dict__, "lame_of": partial(_given, self.lame)}
+
     @property
     def n_rows(self) -> int:
         return int(np.asarray(self.pair.preload_N).shape[0])
@@ -111,3 +116,8 @@ class SimulationResult:
     def max_contact_pressure_MPa(self) -> np.ndarray:
         """Largest Hertz contact pressure of the pair, MPa (`pair.max_contact_pressure_MPa`)."""
         return self.pair.max_contact_pressure_MPa
+
+
+def _given(value):
+    """`value` itself (a pickled result's `lame_of`)."""
+    return value
