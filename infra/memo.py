@@ -5,8 +5,11 @@ Rules, the same for every cache that uses it: at most `max_items` entries and at
 in all (sizes as given to `put`, e.g. table rows); the entry used least recently goes first; a
 single value larger than `max_size` is not kept. With `copy=True` a value is deep-copied on the way
 in and out, so a caller that modifies what it got cannot change the cache (a result never depends
-on whether it came from the cache); `copy=False` hands back the object itself (for values nobody
-modifies: FE states, factorisations, pipelines). A lock makes `get`/`put`/`get_or_make` safe from
+on whether it came from the cache); with `read_only=True` a value of arrays in frozen dataclasses
+is kept as its `read_only` version and handed back, to the caller who put it too, without a copy
+(a write into one of its arrays raises, numpy's "assignment destination is read-only"); plain
+memos hand back the object itself (for values nobody modifies: FE states, factorisations,
+pipelines). A lock makes `get`/`put`/`get_or_make` safe from
 threads (the workers of a Dask cluster, `--scheduler`, run threads); `get_or_make` may build a missing value twice when two threads
 ask at once, never a wrong one.
 
@@ -17,6 +20,7 @@ as `Memo`s; `fem.setup.shared_setup`-style process caches likewise.
 from __future__ import annotations
 
 import copy as _copy
+import dataclasses
 import hashlib
 import threading
 from collections import OrderedDict
@@ -43,14 +47,34 @@ def inputs_key(values: dict) -> bytes:
     return h.digest()
 
 
+def read_only(value):
+    """`value` with each numpy array in it replaced by a read-only view of it (the data are not
+    copied; the arrays themselves, which others may hold, stay writeable), through frozen
+    dataclasses (rebuilt with `dataclasses.replace`) and tuples; anything else as it is."""
+    if isinstance(value, np.ndarray):
+        view = value.view()
+        view.flags.writeable = False
+        return view
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        return dataclasses.replace(value, **{f.name: read_only(getattr(value, f.name))
+                                             for f in dataclasses.fields(value) if f.init})
+    if type(value) is tuple:
+        return tuple(read_only(v) for v in value)
+    return value
+
+
 class Memo:
     """Up to `max_items` values (None: no limit) of total size up to `max_size` (None: no limit),
-    least recently used dropped first; deep copies in and out with `copy`. `hits`: values handed
-    back from the cache."""
+    least recently used dropped first; deep copies in and out with `copy`, values kept as their
+    `read_only` version with `read_only` (module docstring). `hits`: values handed back from the
+    cache."""
 
     def __init__(self, max_items: int | None = 16, max_size: float | None = None,
-                 copy: bool = False):
+                 copy: bool = False, read_only: bool = False):
+        if copy and read_only:
+            raise ValueError("Memo: copy or read_only, not both")
         self.max_items, self.max_size, self.copy = max_items, max_size, bool(copy)
+        self.read_only = bool(read_only)
         self._items: OrderedDict[Hashable, tuple[object, float]] = OrderedDict()
         self._size = 0.0
         self._lock = threading.Lock()
@@ -72,21 +96,25 @@ class Memo:
             self.hits += 1
         return _copy.deepcopy(hit[0]) if self.copy else hit[0]
 
-    def put(self, key: Hashable, value, size: float = 1.0) -> None:
+    def put(self, key: Hashable, value, size: float = 1.0):
         """Keep `value` (of `size`) for `key`, dropping the least recently used beyond the limits;
-        a value larger than `max_size` on its own is not kept."""
+        a value larger than `max_size` on its own is not kept. Returns what a `get` of the key
+        hands back (`value`, or its `read_only` version with `read_only`: give the caller this)."""
+        if self.read_only:
+            value = read_only(value)
         if self.max_size is not None and size > self.max_size:
-            return
-        value = _copy.deepcopy(value) if self.copy else value
+            return value
+        kept = _copy.deepcopy(value) if self.copy else value
         with self._lock:
             old = self._items.pop(key, None)
             if old is not None:
                 self._size -= old[1]
-            self._items[key] = (value, float(size))
+            self._items[key] = (kept, float(size))
             self._size += float(size)
             while self._items and ((self.max_items is not None and len(self._items) > self.max_items)
                                    or (self.max_size is not None and self._size > self.max_size)):
                 self._size -= self._items.popitem(last=False)[1][1]
+        return value
 
     def get_or_make(self, key: Hashable, make: Callable[[], V], size: float = 1.0) -> V:
         """The value for `key`, made by `make()` and kept when missing."""
@@ -94,8 +122,7 @@ class Memo:
         hit = self.get(key, missing)
         if hit is not missing:
             return hit
-        value = make()
-        self.put(key, value, size)
+        value = self.put(key, make(), size)
         return _copy.deepcopy(value) if self.copy else value
 
     def clear(self) -> None:

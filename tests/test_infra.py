@@ -4,6 +4,7 @@ cache helper. Expected values come from POSIX (a new file's mode is 0666 less th
 import os
 import threading
 import time
+from dataclasses import dataclass
 
 import numpy as np
 import pytest
@@ -102,6 +103,37 @@ def test_memo_copies_when_asked_and_makes_once():
     plain = Memo()
     make = lambda: calls.append(1) or object()  # noqa: E731
     assert plain.get_or_make("y", make) is plain.get_or_make("y", make) and len(calls) == 1
+
+
+def test_read_only_memo_hands_back_what_nobody_can_modify_without_copying():
+    """A read-only memo (the pair equilibria's): what `put` returns and every `get` hands back is
+    one object whose arrays, in nested frozen dataclasses and tuples, are read-only views of the
+    values put (equal, no copy); a write into them raises; the caller's own arrays stay
+    writeable."""
+    @dataclass(frozen=True)
+    class Inner:
+        a: np.ndarray
+
+    @dataclass(frozen=True)
+    class Outer:
+        x: np.ndarray
+        inner: Inner
+        pair: tuple
+        name: str = "s"
+
+    value = Outer(np.arange(3.0), Inner(np.ones(2)), (np.zeros(2), None))
+    m = Memo(read_only=True)
+    kept = m.put("k", value)
+    assert m.get("k") is kept and m.get_or_make("k", lambda: 1 / 0) is kept
+    arrays = (kept.x, kept.inner.a, kept.pair[0])
+    for got, mine in zip(arrays, (value.x, value.inner.a, value.pair[0])):
+        assert np.shares_memory(got, mine) and np.array_equal(got, mine)
+        with pytest.raises(ValueError, match="read-only"):
+            got[0] = 5.0
+        mine[0] = mine[0]                      # the caller's arrays stay writeable
+    assert kept.pair[1] is None and kept.name == "s"
+    with pytest.raises(ValueError):
+        Memo(copy=True, read_only=True)
 
 
 def test_memo_under_threads_keeps_its_limits():

@@ -242,3 +242,43 @@ def test_fe_options_split_the_preload_change_into_its_causes_to_first_order(pl00
         d = [r.preload_N[0] - P0 for r in (full, radial, axial, neither)]
         rel.append(abs((d[0] - d[1] - d[2] + d[3]) / d[0]))
     assert rel[0] < 0.01 and 8.0 < rel[0] / rel[1] < 12.0, rel
+
+
+def test_lame_neighbours_are_computed_on_first_read_by_their_one_route(pl000):
+    """Requirement (issue 34, speed): a run computes the Lamé neighbours only when they are
+    read, and then the same values as `stages.lame.lame_neighbours` on the run's FE state;
+    `to_columns(only=...)` gives the full table's columns bit for bit without computing them
+    unless one of theirs is asked for."""
+    from studies.model.columns import lame_column_names
+    from studies.model.stages.lame import lame_neighbours
+
+    inp = _inp(pl000.asm, [-40.0, 20.0, 80.0], speed_rpm=[0.0, 6000.0, 12000.0])
+    res = pl000.run(inp)
+    calls = []
+    lame_of = res.lame_of
+    lazy = dataclasses.replace(res, lame_of=lambda: calls.append(1) or lame_of())
+    full = to_columns(res)
+    wanted = ("preload_N", "torque_Nmm", "interference_inner_um", "axial_stiffness_N_per_um")
+    some = to_columns(lazy, flags=False, only=wanted)
+    assert calls == [] and tuple(some) == wanted
+    assert all(np.array_equal(some[c], full[c]) for c in wanted)
+    names = lame_column_names(res.layer_names)
+    both = to_columns(lazy, only=names)
+    assert calls == [1] and all(np.array_equal(both[c], full[c], equal_nan=True) for c in names)
+    direct = lame_neighbours(pl000.fe_stage, res.fe, inp)
+    for f in dataclasses.fields(direct):
+        assert np.array_equal(getattr(lazy.lame, f.name), getattr(direct, f.name))
+    assert calls == [1]                                     # kept after the first read
+
+
+def test_a_pickled_result_carries_its_lame_neighbours(pl000):
+    """Requirement: a result sent back by a worker process (pickled) carries the Lamé neighbours
+    as values, the same as the route computes (not the FE stage that computes them)."""
+    import pickle
+
+    inp = _inp(pl000.asm, [-40.0, 80.0], speed_rpm=[0.0, 12000.0])
+    res = pl000.run(inp)
+    back = pickle.loads(pickle.dumps(res))
+    for f in dataclasses.fields(res.lame):
+        assert np.array_equal(getattr(back.lame, f.name), getattr(res.lame, f.name))
+    assert back.lame_of.func.__name__ == "_given"

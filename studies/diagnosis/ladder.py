@@ -596,7 +596,7 @@ class FormRoute:
         from studies.model.columns import to_columns
 
         asm = self.assembly(forms)
-        base = to_columns(self._of(asm).run(inputs), flags=False)
+        base = to_columns(self._of(asm).run(inputs), flags=False, only=columns)
         out = {c: np.asarray(base[c], float) for c in columns}
         for name, params in forms.items():
             rung = self.rungs.get(name)
@@ -605,7 +605,8 @@ class FormRoute:
             share = rung.candidate.validate(params)["share"]
             if share == 0.0:
                 continue
-            form = to_columns(self.form_pipeline(name, asm, params).run(inputs), flags=False)
+            form = to_columns(self.form_pipeline(name, asm, params).run(inputs), flags=False,
+                              only=columns)
             for c in columns:
                 out[c] = out[c] + share * (np.asarray(form[c], float) - base[c])
         return out

@@ -92,9 +92,8 @@ def ar1_whiten(r: np.ndarray, seg: np.ndarray, rho: float) -> np.ndarray:
         return r.copy()
     start = _segment_starts(seg)
     u = np.empty_like(r)
+    u[1:] = r[1:] - rho * r[:-1]            # every row after the first; segment starts next
     u[start] = r[start] * math.sqrt(1.0 - rho * rho)
-    prev = np.roll(r, 1, axis=0)
-    u[~start] = r[~start] - rho * prev[~start]
     return u
 
 

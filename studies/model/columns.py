@@ -16,8 +16,8 @@ from studies.model.result import SimulationResult
 AB = "AB"
 
 
-def to_columns(result: SimulationResult, flags: bool = True,
-               friction_split: bool = False) -> dict[str, np.ndarray]:
+def to_columns(result: SimulationResult, flags: bool = True, friction_split: bool = False,
+               only: tuple[str, ...] | None = None) -> dict[str, np.ndarray]:
     """{column name: (n,) array} of a result: headline outputs, torque components, fit
     pressures, Lamé neighbours, groove shifts, per-bearing forces and angles, ball and load
     columns, land margins, checks' values; with `friction_split`, the torque by kind and the
@@ -26,7 +26,9 @@ def to_columns(result: SimulationResult, flags: bool = True,
     (1 = violated) and `margin_<name>` columns (docs/cli.md, "simulate: limits").
     `simulate` writes the split (its stream, its transient mode and the Python API ask for it);
     the studies' and the report's tables are written without it, so the shipped seed CSVs stay
-    byte-identical to the files before issue 33."""
+    byte-identical to the files before issue 33. `only`: just these columns, in this order
+    (KeyError for a name not written); the Lamé neighbours (`result.lame`) are computed only
+    when one of their columns (`lame_column_names`) is among them (a diagnosis compares none)."""
     fe, pair, t, s = result.fe, result.pair, result.torque, result.summary
     out = {"torque_Nmm": t.torque_Nmm, "preload_N": pair.preload_N,
            "contact_angle_deg": s.contact_angle_deg,
@@ -40,7 +42,8 @@ def to_columns(result: SimulationResult, flags: bool = True,
     for k, name in enumerate(result.fits.names):
         if name.startswith("fit_"):              # (a clamped face's pressure: `_clamp_columns`)
             out[f"{name.replace('fit_', 'fit_pressure_')}_MPa"] = result.fits.per_fit_MPa[:, k]
-    out.update(_lame_columns(result))
+    if only is None or not set(only).isdisjoint(lame_column_names(result.layer_names)):
+        out.update(_lame_columns(result))
     for j, J in enumerate(AB):
         out[f"groove_shift_dr_{J}_um"] = 1e3 * fe.dr_mm[j]
         out[f"groove_shift_dz_{J}_um"] = 1e3 * fe.dz_mm[j]
@@ -63,7 +66,7 @@ def to_columns(result: SimulationResult, flags: bool = True,
         out.update(friction_split_columns(result.torque))
     if flags:
         out.update(check_columns(result.checks))
-    return out
+    return out if only is None else {c: out[c] for c in only}
 
 
 def check_columns(checks: Checks) -> dict[str, np.ndarray]:
@@ -81,7 +84,7 @@ def check_columns(checks: Checks) -> dict[str, np.ndarray]:
 def _layer_interference_columns(result: SimulationResult) -> dict[str, np.ndarray]:
     """`interference_<layer>_um` of each sleeve / cartridge (free diametral overlap of its fit at
     the row's temperatures; NaN for a conduction-field state), none without layers."""
-    fe, names = result.fe, result.lame.layer_names
+    fe, names = result.fe, result.layer_names
     li = fe.layer_interference_um
     n = fe.interference_um.shape[0]
     return {f"interference_{name}_um": np.full(n, np.nan) if li is None else li[:, k]
@@ -134,18 +137,24 @@ def friction_split_columns(t) -> dict[str, np.ndarray]:
     return {k: np.broadcast_to(np.asarray(v, float), n) for k, v in out.items()}
 
 
+def lame_column_names(layer_names: tuple[str, ...]) -> tuple[str, ...]:
+    """The names of the Lamé neighbours' columns (`_lame_columns`), in their order, for an
+    assembly with these sleeve / cartridge layers."""
+    return ("fit_pressure_inner_lame_MPa", "fit_pressure_inner_lame_plane_strain_MPa",
+            "fit_pressure_outer_lame_MPa", "fit_pressure_outer_lame_plane_strain_MPa",
+            *(f"fit_pressure_{name}_lame_MPa" for name in layer_names),
+            "raceway_u_r_inner_A_um", "raceway_u_r_inner_A_lame_um")
+
+
 def _lame_columns(result: SimulationResult) -> dict[str, np.ndarray]:
-    """The Lamé neighbours, and the FE's inner raceway displacement beside its Lamé value."""
+    """The Lamé neighbours, and the FE's inner raceway displacement beside its Lamé value
+    (named by `lame_column_names`)."""
     lm = result.lame
-    out = {"fit_pressure_inner_lame_MPa": lm.fit_pressure_inner_MPa,
-           "fit_pressure_inner_lame_plane_strain_MPa": lm.fit_pressure_inner_plane_strain_MPa,
-           "fit_pressure_outer_lame_MPa": lm.fit_pressure_outer_MPa,
-           "fit_pressure_outer_lame_plane_strain_MPa": lm.fit_pressure_outer_plane_strain_MPa}
-    for k, name in enumerate(lm.layer_names):
-        out[f"fit_pressure_{name}_lame_MPa"] = lm.layer_pressure_MPa[:, k]
-    out["raceway_u_r_inner_A_um"] = 1e3 * result.fe.raceway_u_mm[:, 0]
-    out["raceway_u_r_inner_A_lame_um"] = 1e3 * lm.raceway_u_r_inner_A_mm
-    return out
+    values = (lm.fit_pressure_inner_MPa, lm.fit_pressure_inner_plane_strain_MPa,
+              lm.fit_pressure_outer_MPa, lm.fit_pressure_outer_plane_strain_MPa,
+              *(lm.layer_pressure_MPa[:, k] for k in range(len(lm.layer_names))),
+              1e3 * result.fe.raceway_u_mm[:, 0], 1e3 * lm.raceway_u_r_inner_A_mm)
+    return dict(zip(lame_column_names(result.layer_names), values, strict=True))
 
 
 def _ball_columns(pair) -> dict[str, np.ndarray]:

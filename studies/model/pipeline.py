@@ -15,6 +15,7 @@ Where an FE result feeds the bearing model, the closed-form value is carried bes
 from __future__ import annotations
 
 from dataclasses import replace
+from functools import partial
 
 import numpy as np
 
@@ -106,8 +107,9 @@ class Pipeline:
         self.section = section_from_assembly(asm).scaled(mesh_factor)
         z = stack_positions(asm)        # the ball planes: inner ring mid-planes of A and B
         self.bearing = BearingStage(asm, 0.5 * (sum(z["inner_ring_B"]) - sum(z["inner_ring_A"])))
+        mean_fits_um = asm.mean_fits_um()       # of the frozen assembly: once
         self.fe_stage = FEStage(asm, self.section, self.bearing.geom, ROTOR_PARTS,
-                                lambda inputs: resolve_interference_um(inputs, *asm.mean_fits_um()),
+                                lambda inputs: resolve_interference_um(inputs, *mean_fits_um),
                                 progress, superpose, cache, setup_of)
         self.bearing.compliance_mm_per_N = self.fe_stage.compliance_mm_per_N
         self.lubricant = asm.oil()
@@ -243,7 +245,8 @@ class Pipeline:
             torque = pair_friction_torque(self.asm, self.geom, self.lubricant, pair, inputs, mu,
                                           viscous_factor_f0)
         fits = FitPressures.of(self.setup.fit_names, fe)
-        result = SimulationResult(fe, fe_ref, fits, lame_neighbours(self.fe_stage, fe, inputs),
+        result = SimulationResult(fe, fe_ref, fits, tuple(n for n, _ in self.asm.layers()),
+                                  partial(lame_neighbours, self.fe_stage, fe, inputs),
                                   pair, self.bearing.summary(pair), torque, mu, None,
                                   self.fe_stage.clamp_state(fe, inputs.axial_load_N))
         check_answers(_checked_outputs(result), pair.converged, first_row)
@@ -266,8 +269,8 @@ class Pipeline:
         pair = self._pair_memo.get(key)
         if pair is None:
             pair = self.bearing.solve(args)
-            if remember:
-                self._pair_memo.put(key, pair, inputs.n_rows)
+            if remember:        # read-only from here on (studies.model.memo), as a hit would be
+                pair = self._pair_memo.put(key, pair, inputs.n_rows)
         return pair
 
 

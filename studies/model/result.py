@@ -3,7 +3,9 @@
     result.fe / result.fe_ref   FE stage (`stages.fe.FEState`): the rows' FE answer and their
                                 assembly states' (fit pressures, groove-centre shifts)
     result.fits                 the fit pressures by fit (`FitPressures`)
-    result.lame                 the closed-form neighbours of the FE values (`LameNeighbours`)
+    result.lame                 the closed-form neighbours of the FE values (`LameNeighbours`),
+                                computed when first read (`lame_of`; a diagnosis reads none)
+    result.layer_names          the sleeve / cartridge layers (`Assembly.layers`, may be empty)
     result.pair                 bearing stage (`analytic.bearing.PairState`): preload, per-bearing
                                 forces and contact angles, Hertz ellipses, stiffness, the radial
                                 and quasi-dynamic states when present
@@ -23,7 +25,9 @@ reads these typed fields.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from functools import cached_property, partial
+from typing import Callable
 
 import numpy as np
 
@@ -62,17 +66,31 @@ class FitPressures:
 
 @dataclass(frozen=True)
 class SimulationResult:
-    """Everything one run of the model computes for n rows (see the module docstring)."""
+    """Everything one run of the model computes for n rows (see the module docstring).
+    lame_of: computes the Lamé neighbours (`stages.lame.lame_neighbours` of this run), called
+    once, when `lame` is first read."""
     fe: FEState
     fe_ref: FEState
     fits: FitPressures
-    lame: LameNeighbours
+    layer_names: tuple[str, ...]
+    lame_of: Callable[[], LameNeighbours] = field(repr=False, compare=False)
     pair: PairState
     summary: PairSummary
     torque: TorqueComponents
     friction_coefficient: np.ndarray
     checks: Checks
     clamp: ClampState | None = None
+
+    @cached_property
+    def lame(self) -> LameNeighbours:
+        """The closed-form neighbours of the FE values (`LameNeighbours`), computed on first
+        read (`lame_of`) and kept."""
+        return self.lame_of()
+
+    def __getstate__(self) -> dict:
+        """Pickled (a result sent back by a worker process): the Lamé neighbours computed and
+        carried as values, not the FE stage that computes them."""
+        return {**self.__dict__, "lame_of": partial(_given, self.lame)}
 
     @property
     def n_rows(self) -> int:
@@ -98,3 +116,8 @@ class SimulationResult:
     def max_contact_pressure_MPa(self) -> np.ndarray:
         """Largest Hertz contact pressure of the pair, MPa (`pair.max_contact_pressure_MPa`)."""
         return self.pair.max_contact_pressure_MPa
+
+
+def _given(value):
+    """`value` itself (a pickled result's `lame_of`)."""
+    return value

@@ -50,11 +50,14 @@ def lag_response(t_s: np.ndarray, u: np.ndarray, tau_s: float) -> np.ndarray:
     ts = tau_s * s
     c1 = u[1:] - ts                 # particular solution at the end of each interval
     c2 = ts - u[:-1]                # T_k - u_k + tau s_k = T_k + c2
-    yk = u[0]
-    y[0] = yk
-    for k in range(h.size):         # linear recursion with varying coefficients
-        yk = c1[k] + a[k] * (yk + c2[k])
-        y[k + 1] = yk
+    # linear recursion with varying coefficients, on Python floats (the same IEEE double
+    # operations as on numpy's scalars, without their per-element overhead)
+    yk = float(u[0])
+    out = [yk]
+    for c1k, ak, c2k in zip(c1.tolist(), a.tolist(), c2.tolist()):
+        yk = c1k + ak * (yk + c2k)
+        out.append(yk)
+    y[:] = out
     return y
 
 

@@ -85,13 +85,16 @@ def series_lag_response(t_s: np.ndarray, u: np.ndarray, tau_s: float,
     g = np.where(small, g_small, g_direct)
     ts = (tau_s + tau_shaft_s) * s
     Tr = np.empty_like(u)
-    y = u[0]
-    Tr[0] = y
+    # the recursion on Python floats (the same IEEE double operations as on numpy's scalars)
+    uu, ss, tss, ee, gg, hh = (v.tolist() for v in (u, s, ts, e_r, g, Th))
+    y = uu[0]
+    out = [y]
     for k in range(h.size):
-        dh = Th[k] - u[k] + tau_s * s[k]
-        dr = y - u[k] + ts[k]
-        y = u[k + 1] - ts[k] + dr * e_r[k] + dh * g[k]
-        Tr[k + 1] = y
+        dh = hh[k] - uu[k] + tau_s * ss[k]
+        dr = y - uu[k] + tss[k]
+        y = uu[k + 1] - tss[k] + dr * ee[k] + dh * gg[k]
+        out.append(y)
+    Tr[:] = out
     return Th, Tr
 
 

@@ -160,9 +160,13 @@ class FELoads:
     layers_um: np.ndarray | None = None
 
     def key(self, direct: bool) -> bytes:
-        """The exact inputs of the solve (cache key)."""
-        return hashlib.sha1(self.theta.tobytes() + self.delta_mm.tobytes() + self.omega2.tobytes()
-                            + bytes([direct])).digest()
+        """The exact inputs of the solve (cache key): SHA-1 of their bytes in turn (fed without
+        joining them first)."""
+        h = hashlib.sha1()
+        for a in (self.theta, self.delta_mm, self.omega2):
+            h.update(np.ascontiguousarray(a))
+        h.update(bytes([direct]))
+        return h.digest()
 
 
 @dataclass(frozen=True)
@@ -266,15 +270,19 @@ class FEStage:
     def thetas(self, inputs: PhysicsInputs) -> np.ndarray:
         """(n, n_parts) thermal strain per FE part; the cte_nonlinearity effect changes the CTE
         slope of the shaft (and nut) and housing (and cover); `inputs.cte_factor` scales a part's
-        strain (a material lot's CTE)."""
-        cols = []
+        strain (a material lot's CTE). Parts of one temperature group and one material (the
+        two inner rings, the spacers, ...) share their strain: computed once per such pair."""
+        cols, strains = [], {}
         for part in self.part_names:
             group = FE_PART_GROUP[part]
             mat = self.materials[part]
             if group in inputs.dalpha_per_K2:          # shaft (and nut), housing (and cover)
                 mat = mat.with_dalpha(inputs.dalpha_per_K2[group],
                                       inputs.d2alpha_per_K3.get(group, 0.0))
-            theta = mat.thermal_strain(np.asarray(inputs.T_C[group], float), self.asm.T_ref_C)
+            theta = strains.get((group, mat))
+            if theta is None:
+                theta = strains[group, mat] = mat.thermal_strain(
+                    np.asarray(inputs.T_C[group], float), self.asm.T_ref_C)
             if part in inputs.cte_factor:               # a material lot (diagnosis ladder)
                 theta = inputs.cte_factor[part] * theta
             cols.append(theta)
