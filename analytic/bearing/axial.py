@@ -12,6 +12,7 @@ from analytic.bearing.geometry import (SIGNS, BearingGeometry, ThermalGeometry, 
                                        pair_thermal_geometry, thermal_geometry)
 from analytic.bearing.roots import newton_increasing, safeguarded_step
 from analytic.bearing.state import PairState, contact_ellipses, pair_state
+from infra.memo import Memo
 
 
 @dataclass(frozen=True)
@@ -110,6 +111,14 @@ class _LinearKn:
     dlnKn_dalpha: np.ndarray
 
 
+#: the reference states' approaches (`approach_for_force` at T_ref) by their exact inputs: a
+#: diagnosis solves the pair hundreds of times with the same assembled preload and reference
+#: shifts, and this one-point solve (Python overhead) was a third of seed 000's pair solve
+#: (measured 2026-11-29: 1.2 of 3.8 CPU s in the bench's per-part lag kind); a pure function of
+#: its key, so a kept value is the value made anew (`infra.memo`, read-only)
+_REFERENCE_APPROACHES = Memo(max_items=32, read_only=True)
+
+
 def reference_state(g: BearingGeometry, s, P, c, dr_ref, dz_ref, tol):
     """Position-preload offset e and rotor position x at the reference state (free geometry at
     T_ref, shifts dr_ref/dz_ref, no external load, F_A = F_B = P):
@@ -123,8 +132,10 @@ def reference_state(g: BearingGeometry, s, P, c, dr_ref, dz_ref, tol):
     else:
         uniq, inv = np.unique(keys, axis=0, return_inverse=True)
         inv = inv.ravel()
-    tg_ref = thermal_geometry(g)
-    ap = approach_for_force(g, uniq[:, 0][None, :], uniq[:, 1:].T, tg_ref, tol)
+    ap = _REFERENCE_APPROACHES.get_or_make(
+        (g, uniq.shape, uniq.tobytes(), float(tol)),
+        lambda: approach_for_force(g, uniq[:, 0][None, :], uniq[:, 1:].T, thermal_geometry(g),
+                                   tol))
     a_u, alpha_u, cs_u = ap.a_mm, ap.alpha_rad, ap.cs
     a_ref = a_u[:, inv]
     a_nom = a_ref + c * P
