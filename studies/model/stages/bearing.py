@@ -148,6 +148,12 @@ def distinct_rows(arguments: dict, n: int) -> tuple[np.ndarray, np.ndarray] | No
     if not cols:
         return None
     keys = np.ascontiguousarray(np.vstack(cols).T).view(np.uint64)
+    # a row hash first (a wrapping sum of the bit patterns times odd constants): rows with
+    # distinct hashes are distinct, so more distinct hashes than DISTINCT_SHARE_MAX of the rows
+    # decide without the exact comparison (np.unique over rows: 1 ms of 500, every pair solve)
+    mix = np.random.default_rng(0).integers(1, 2**63, size=keys.shape[1], dtype=np.uint64) | 1
+    if np.unique((keys * mix).sum(axis=1, dtype=np.uint64)).size > DISTINCT_SHARE_MAX * n:
+        return None
     _, first, inverse = np.unique(keys, axis=0, return_index=True, return_inverse=True)
     if first.size > DISTINCT_SHARE_MAX * n:
         return None
