@@ -1,10 +1,11 @@
 """Defect: `bearingfem study seed001` stopped at "row 165: the bearing equilibrium did not
 converge". The pair's axial solver with a compliant preload path (position preload, 60 C,
 compliance 0.015..0.032 mm/N) evaluates its residual in the rotor position x through a nested root
-solve (`axial._effective_X`), so the residual jumps by ~4.5e-12 N between neighbouring x (2e-14 mm
-apart); `roots.newton_increasing` then stepped from one end of its bracket exactly onto the other
-and back, 200 times, without bisecting. The bracket is now bisected when Newton returns to its far
-end. The references below are independent of the Newton iteration: scipy's brentq on the same
+solve (then `axial._effective_X`; `dynamic._effective_X` still does), so the residual jumps by
+~4.5e-12 N between neighbouring x (2e-14 mm apart); `roots.newton_increasing` then stepped from
+one end of its bracket exactly onto the other and back, 200 times, without bisecting. The bracket
+is now bisected when Newton returns to its far end (`roots.safeguarded_step`, which the axial
+solver's single Newton iteration, `axial.position_root`, uses too). The references below are independent of the Newton iteration: scipy's brentq on the same
 equation, and the pair's force balance written in the preload instead of the rotor position."""
 from __future__ import annotations
 
