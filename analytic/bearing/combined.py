@@ -14,7 +14,7 @@ from analytic.bearing.contact import (BallSetState, ball_azimuths_rad, ball_posi
                                       ball_set_state, contact_stiffness)
 from analytic.bearing.geometry import (SIGNS, BearingGeometry, ThermalGeometry, n_points,
                                        pair_array, pair_thermal_geometry)
-from analytic.bearing.roots import newton_minimise
+from analytic.bearing.roots import newton_direction, newton_minimise
 from analytic.bearing.state import (ContactEllipses, PairState, RadialLoadState, contact_ellipses,
                                     pair_state, with_rows)
 
@@ -346,15 +346,11 @@ def _full_newton_start(prob: CombinedProblem, g: BearingGeometry, tg3: ThermalGe
     that step; the refresh loop then checks K_n exactly, as for every pass)."""
     u = newton_minimise(lambda uu: prob.assemble(uu, prob.state(uu, cs.Kn, angles=False)), u, cap,
                         xtol=1e-6).x
-    n = u.shape[0]
-    eye = np.eye(n)
     for _ in range(max_iter):
         alpha = prob.alpha(u)
         cs = contact_stiffness(g, tg3, alpha)
         _, _, gr, J = prob.assemble(u, prob.state(u, cs.Kn, cs.dlnKn_dalpha, angles=False))
-        A = np.moveaxis(J, -1, 0)
-        lam = 1e-12 * np.abs(np.diagonal(A, axis1=1, axis2=2)).max(axis=1) + 1e-6
-        d = -np.linalg.solve(A + lam[:, None, None] * eye, np.moveaxis(gr, -1, 0)[..., None])[..., 0].T
+        d = newton_direction(gr, J)
         step = np.abs(d).max(axis=0)
         take = np.isfinite(step) & (step <= cap)
         u = u + np.where(take, d, 0.0)

@@ -62,6 +62,17 @@ def newton_increasing(fun, x0, lo=None, hi=None, step0=1e-3, xtol=1e-15, max_ite
     return Root(x, done & np.isfinite(x))
 
 
+def newton_direction(g: np.ndarray, H: np.ndarray) -> np.ndarray:
+    """Newton's direction d = -(H + lam I)^-1 g of N points at once, g (n, N) the gradients and
+    H (n, n, N) the Hessians (or Jacobians), lam = 1e-12 of each Hessian's largest diagonal plus
+    1e-6 N/mm, so that a flat direction without contact still gives a step (Nocedal & Wright,
+    Numerical Optimization, 2nd ed., ch. 3.4: a shifted Hessian). Returns d (n, N), mm."""
+    A = np.moveaxis(H, -1, 0)
+    lam = 1e-12 * np.abs(np.diagonal(A, axis1=1, axis2=2)).max(axis=1) + 1e-6
+    eye = np.eye(A.shape[1])
+    return -np.linalg.solve(A + lam[:, None, None] * eye, np.moveaxis(g, -1, 0)[..., None])[..., 0].T
+
+
 def newton_minimise(fun, u0, cap, max_iter: int = 200, xtol: float = 1e-15) -> Root:
     """Vectorised minimisation of convex functions fun(u) -> (Pi, |terms|, grad, Hessian), u of
     shape (n, N): Newton steps on the Hessian (plus 1e-12 of its largest diagonal and 1e-6 N/mm,
@@ -73,14 +84,11 @@ def newton_minimise(fun, u0, cap, max_iter: int = 200, xtol: float = 1e-15) -> R
     rounding level of Pi: the minimum to machine precision); `converged` is False for points still
     moving after max_iter iterations."""
     u = np.array(u0, float, copy=True)
-    n, N = u.shape
+    N = u.shape[1]
     Pi, Pabs, g, H = fun(u)
     done = np.zeros(N, bool)
-    eye = np.eye(n)
     for _ in range(max_iter):
-        A = np.moveaxis(H, -1, 0)
-        lam = 1e-12 * np.abs(np.diagonal(A, axis1=1, axis2=2)).max(axis=1) + 1e-6
-        d = -np.linalg.solve(A + lam[:, None, None] * eye, np.moveaxis(g, -1, 0)[..., None])[..., 0].T
+        d = newton_direction(g, H)
         step = np.abs(d).max(axis=0)
         full = step <= cap
         d = d * np.where(full, 1.0, cap / np.where(full, 1.0, step))

@@ -55,7 +55,7 @@ from analytic.bearing.axial import approach_for_force
 from analytic.bearing.contact import axial_state, ball_azimuths_rad, contact_stiffness
 from analytic.bearing.geometry import BearingGeometry, thermal_geometry
 from analytic.bearing.land import groove_centre_radius_mm
-from analytic.bearing.roots import Root
+from analytic.bearing.roots import Root, newton_direction
 from analytic.bearing.state import ContactEllipses, contact_ellipses
 from analytic.torque import ball_kinematics
 
@@ -232,19 +232,16 @@ def _minimise(prob, q0, cap: float, max_iter: int = 60) -> Root:
     residual rather than on the potential: with the ball equilibria solved inside it, the
     potential carries their rounding.)"""
     q = np.array(q0, float, copy=True)
-    n, N = q.shape
+    N = q.shape[1]
     Pi, Pabs, g, H = prob(q)
     done = np.zeros(N, bool)
     conv = np.zeros(N, bool)
-    eye = np.eye(n)
     for _ in range(max_iter):
         conv |= np.abs(g).max(axis=0) <= 1e-13 * prob.scale
         done |= conv
         if done.all():
             break
-        A = np.moveaxis(H, -1, 0)
-        lam = 1e-12 * np.abs(np.diagonal(A, axis1=1, axis2=2)).max(axis=1) + 1e-6
-        d = -np.linalg.solve(A + lam[:, None, None] * eye, g.T[..., None])[..., 0].T
+        d = newton_direction(g, H)
         size = np.abs(d).max(axis=0)
         d *= np.where(size > cap, cap / np.where(size > 0, size, 1.0), 1.0)
         d[:, done] = 0.0
