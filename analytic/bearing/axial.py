@@ -222,10 +222,7 @@ def position_root(force, X0, s, dz, e, Fext, c, x0, X_start, step0, X_onset=None
         lo = np.where(R <= 0.0, np.maximum(lo, np.minimum(xA, xB)), lo)
         hi = np.where(R >= 0.0, np.minimum(hi, np.maximum(xA, xB)), hi)
         free = not keff.all()
-        if free:
-            with np.errstate(divide="ignore", invalid="ignore"):
-                cand = (kA * xA + kB * xB - R) / keff
-        else:
+        with np.errstate(divide="ignore", invalid="ignore"):      # keff = 0: both bearings free
             cand = (kA * xA + kB * xB - R) / keff
         jump = None
         if flat is not None:
