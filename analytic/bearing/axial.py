@@ -116,7 +116,7 @@ class _LinearKn:
 #: shifts, and this one-point solve (Python overhead) was a third of seed 000's pair solve
 #: (measured 2026-11-29: 1.2 of 3.8 CPU s in the bench's per-part lag kind); a pure function of
 #: its key, so a kept value is the value made anew (`infra.memo`, read-only)
-_REFERENCE_APPROACHES = Memo(max_items=32, read_only=True)
+_REFERENCE_APPROACHES = Memo(max_items=32, read_only=True)   # 32: a diagnosis meets a few preloads
 
 
 def reference_state(g: BearingGeometry, s, P, c, dr_ref, dz_ref, tol):
