@@ -59,7 +59,7 @@ def test_seed001_viscous_term_follows_palmgren_and_no_oil_side_change_reaches_th
 
 
 def test_seed001_no_ladder_rung_fitted_on_the_cold_ratio_predicts_the_hot_one(s001):
-    """Issue 33 Done-when (the negative branch) over the whole ladder, friction rungs included:
+    """The negative branch over the whole ladder, friction rungs included:
     no candidate fitted into the cold band predicts the held-out hot ratio within the tolerance
     of 0.75 (5.9 %). The one that reaches the band is the SKF rung: its share of the way from
     Palmgren to the SKF model (cold ratio 0.13 alone: the SKF starvation factor phi_rs cuts the
@@ -171,7 +171,7 @@ def friction_models():
 
 
 def test_seed001_friction_models_fitted_on_the_cold_ratio_miss_the_hot_one(friction_models):
-    """Issue 33 Done-when, the negative branch: the starved film (its oil quantity fitted on the
+    """The negative branch: the starved film (its oil quantity fitted on the
     cold ratio, through the pipeline's `viscous_model = "starved"`) predicts the held-out hot
     ratio outside the tolerance of the published 0.75 (5.9 %: the relative half-width of the
     published cold band) at every fit; not only at the fits: of every grid value inside the

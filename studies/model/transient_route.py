@@ -709,7 +709,7 @@ def _route(pl: Pipeline, inputs: PhysicsInputs, fe: FEState, ref: FEState, first
                  fe_options=FEOptions(states=(fe, ref)))
     if res.torque.model == "solid_film":       # the film's own dissipation (its friction coefficient)
         heat = solid_film_pair_heat_W(res.torque, inputs.speed_rpm)
-    elif res.torque.viscous_model != "palmgren":   # issue 33's models: the torque's located heat
+    elif res.torque.viscous_model != "palmgren":   # the other laws: the located heat
         heat = located_pair_heat_W(res.torque, inputs.speed_rpm)
     else:
         heat = pair_heat_W(pl.geom, res.pair, inputs.speed_rpm, MU_TRACTION,
