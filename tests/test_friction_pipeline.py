@@ -69,7 +69,7 @@ def test_solid_film_pressure_law_through_the_config():
 
 def test_split_column_names_are_the_contract():
     """friction_split_columns names exactly the six columns of the spec, in its order."""
-    from analytic.torque import TorqueComponents
+    from analytic.friction.pair import TorqueComponents
     one = np.ones(2)
     t = TorqueComponents("oil", one, one, one, one, rolling_Nmm=one, sliding_Nmm=one,
                          drag_Nmm=one, heat_inner_W=one, heat_outer_W=one, heat_ball_W=one)

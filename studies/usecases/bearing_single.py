@@ -24,9 +24,9 @@ from analytic.safety import static_load_rating_C0_N
 from analytic.thermal_speed import (ThermalReference, dissipated_heat_W,
                                     reference_heat_transfer_W_per_mm2_K, thermal_reference_speed,
                                     thermally_permissible_speed)
-from analytic.torque import (ContactInput, coulomb_load_torque_Nmm, palmgren_f1_angular_contact,
-                             palmgren_load_torque_Nmm, palmgren_viscous_torque_Nmm,
-                             solid_film_torque_Nmm)
+from analytic.friction.palmgren import (coulomb_load_torque_Nmm, palmgren_f1_angular_contact,
+                                        palmgren_load_torque_Nmm, palmgren_viscous_torque_Nmm)
+from analytic.torque import ContactInput, solid_film_torque_Nmm
 from studies.model.table import TableError, write_table
 
 LOAD_COLUMNS = ("radial_load_N", "radial_load_y_N", "axial_load_N", "moment_x_Nmm",
@@ -153,7 +153,7 @@ def solve(cfg, cols: dict, where: str = "loads", convention: str = "exact",
 
 def bearing_torque_Nmm(cfg, st: SingleBearingState, speed_rpm, T_oil_C) -> np.ndarray:
     """Friction torque (N*mm) of one bearing in the state `st`, by the pair's torque model
-    (`analytic.torque.pair_torque`, one bearing) with the file's [lubrication]:
+    (`analytic.friction.pair.pair_torque`, one bearing) with the file's [lubrication]:
     solid film: `solid_film_torque_Nmm` summed over every ball's own contacts (Z = 1 per ball:
       load, Hertz ellipse, inner and outer contact angle), mu = friction_coefficient, alpha_h =
       hysteresis_loss_factor; independent of the speed (a torque from a power per unit speed);

@@ -1,4 +1,4 @@
-"""Torque stage: the friction torque of the pair (`analytic.torque.pair_torque` ->
+"""Torque stage: the friction torque of the pair (`analytic.friction.pair.pair_torque` ->
 `TorqueComponents`) with the assembly's lubrication.
 
 Solid film: the film friction coefficient of the row and the hysteresis loss factor. Oil: the
@@ -19,7 +19,8 @@ from analytic.bearing import BearingGeometry, PairState
 from analytic.friction.options import FrictionOptions
 from analytic.lubrication import dynamic_viscosity_Pa_s
 from analytic.safety import static_load_rating_C0_N
-from analytic.torque import TorqueComponents, palmgren_f1_angular_contact, pair_torque
+from analytic.friction.pair import TorqueComponents, pair_torque
+from analytic.friction.palmgren import palmgren_f1_angular_contact
 from studies.model.inputs import PhysicsInputs
 
 
