@@ -6,9 +6,10 @@ from scipy import integrate
 
 from analytic.bearing import BearingGeometry, solve_pair
 from analytic.friction import ehl_rolling, skf2004, solid_film, starved
-from analytic.lubrication import reduced_modulus_MPa
+from analytic.friction.options import FrictionOptions
 from analytic.friction.pair import ehl_rolling_pair
 from analytic.friction.palmgren import palmgren_viscous_torque_Nmm
+from analytic.lubrication import reduced_modulus_MPa
 from analytic.torque import power_W
 
 G = BearingGeometry.from_catalogue("25TAC62B")
@@ -59,10 +60,84 @@ def test_skf_low_speed_slope_is_0_6():
 
 
 def test_skf_drag_zero_without_bath_and_at_rest():
-    """M_drag = 0 with V_M = 0 (no oil bath); every component 0 at n = 0 (a running torque)."""
+    """M_drag = 0 without an oil bath (oil level 0); every component 0 at n = 0 (a running
+    torque)."""
     t = skf2004.skf2004_torque(25.0, 62.0, 0.0, 1500.0, np.array([0.0, 3000.0]), 50.0)
     assert np.all(t.drag_Nmm == 0.0)
     assert t.total_Nmm[0] == 0.0 and t.total_Nmm[1] > 0.0
+
+
+def test_skf_drag_at_the_half_bath_closed_form_and_its_limits():
+    """The oil-bath drag (catalogue 17000 form) written out at H = 0.6 dm, where t = pi, f_t = 1
+    and R_s = 0.36 dm^2 pi f_A: M = 1.093e-7 n^2 dm^3 (n dm^2 / nu)^-1.379 R_s (to 1e-12
+    relative); it rises with the level from 0 at H = 0 (as H^0.81 for a shallow bath, its
+    series) and is flat above 1.2 dm (the catalogue's cap); at a fixed level it goes as n^0.621 and nu^1.379 (its exponents)."""
+    d, D, n, nu = 25.0, 62.0, 3000.0, 20.0
+    dm = 0.5 * (d + D)
+    f_A = 0.05 * 4.4 * (D + d) / (D - d)
+    R_s = 0.36 * dm ** 2 * np.pi * f_A
+    expect = 1.093e-7 * n ** 2 * dm ** 3 * (n * dm ** 2 / nu) ** -1.379 * R_s
+    got = skf2004.drag_torque_Nmm(0.6 * dm, d, D, n, nu)
+    assert float(got) == pytest.approx(expect, rel=1e-12)
+    levels = np.array([0.0, 1e-3, 0.1, 0.3, 0.6, 1.0, 1.2]) * dm
+    m = skf2004.drag_torque_Nmm(levels, d, D, n, nu)
+    assert m[0] == 0.0 and np.all(np.diff(m) > 0)
+    # a shallow bath: t ~ 2 sqrt(2 H / (0.6 dm)), t - sin t ~ t^3/6, f_t ~ t/2, so M ~ t^(3 -
+    # 1.379) ~ H^0.8105: it vanishes continuously as the level goes to 0
+    low = skf2004.drag_torque_Nmm(np.array([1e-6, 1e-5]) * dm, d, D, n, nu)
+    assert np.log(low[1] / low[0]) / np.log(10.0) == pytest.approx(0.5 * (3 - 1.379), rel=1e-4)
+    assert float(skf2004.drag_torque_Nmm(2.0 * dm, d, D, n, nu)) == float(m[-1])
+    h = 0.3 * dm
+    s_n = np.log(skf2004.drag_torque_Nmm(h, d, D, 2 * n, nu) / skf2004.drag_torque_Nmm(h, d, D, n, nu))
+    s_nu = np.log(skf2004.drag_torque_Nmm(h, d, D, n, 2 * nu) / skf2004.drag_torque_Nmm(h, d, D, n, nu))
+    assert s_n / np.log(2) == pytest.approx(2 - 1.379, abs=1e-12)
+    assert s_nu / np.log(2) == pytest.approx(1.379, abs=1e-12)
+    t = skf2004.skf2004_torque(d, D, 0.0, 1500.0, n, nu, oil_level_mm=h)
+    assert float(t.drag_Nmm) == pytest.approx(float(skf2004.drag_torque_Nmm(h, d, D, n, nu)))
+
+
+def test_skf_constants_by_lubrication_method_and_oil_family():
+    """K_rs 3e-8 for an oil bath or jet, 6e-8 for oil-air, grease and minimal oil (catalogue's
+    two values); mu_EHL 0.05 mineral, 0.04 synthetic. The replenishment factor of grease is the
+    oil's squared (the exponent doubles with K_rs) and lowers the rolling term; the full-film
+    sliding coefficient of a synthetic oil is 0.04 at speed (phi_bl -> 0)."""
+    assert skf2004.constants_for("oil_jet") == {"K_rs": 3e-8, "mu_ehl": 0.05}
+    assert skf2004.constants_for("grease", "synthetic") == {"K_rs": 6e-8, "mu_ehl": 0.04}
+    for m in ("oil_air", "minimal_oil"):
+        assert skf2004.constants_for(m)["K_rs"] == 6e-8
+    oil = skf2004.skf2004_torque(25.0, 62.0, 0.0, 1500.0, 6000.0, 50.0, **skf2004.constants_for("oil_bath"))
+    grease = skf2004.skf2004_torque(25.0, 62.0, 0.0, 1500.0, 6000.0, 50.0, **skf2004.constants_for("grease"))
+    assert float(grease.phi_rs) == pytest.approx(float(oil.phi_rs) ** 2, rel=1e-12)
+    assert grease.rolling_Nmm < oil.rolling_Nmm
+    syn = skf2004.skf2004_torque(25.0, 62.0, 0.0, 1500.0, 2e4, 68.0, **skf2004.constants_for("oil_jet", "synthetic"))
+    assert float(syn.mu_sl) == pytest.approx(0.04, abs=1e-9)
+    with pytest.raises(ValueError, match="lubrication_method"):
+        skf2004.constants_for("splash")
+
+
+def test_skf_without_a_bearing_is_one_line_not_a_zero_division():
+    """skf2004 without bore and outside diameter (the API's FrictionOptions default 0): a
+    ValueError naming them, not a bare ZeroDivisionError."""
+    with pytest.raises(ValueError, match="bore_mm and outside_diameter_mm"):
+        FrictionOptions(viscous_model="skf2004")
+    with pytest.raises(ValueError, match="bore and outside diameter"):
+        skf2004.skf2004_torque(0.0, 0.0, 0.0, 100.0, 1000.0, 20.0)
+
+
+@pytest.mark.parametrize("options, match", [
+    (dict(viscous_model="ehl_rolling", eta_Pa_s=0.0, alpha_per_Pa=1e-8), "eta_Pa_s > 0"),
+    (dict(viscous_model="ehl_rolling", eta_Pa_s=0.05, alpha_per_Pa=0.0), "alpha_per_Pa > 0"),
+    (dict(shear_strength="pressure", tau0_MPa=-5.0), "tau0_MPa >= 0"),
+    (dict(lubrication_method="splash"), "lubrication_method"),
+    (dict(oil_family="vegetable"), "oil family"),
+])
+def test_friction_options_refuse_nonsense_in_one_line(options, match):
+    """A zero viscosity or pressure-viscosity coefficient for ehl_rolling (it gave a zero
+    viscous torque), a negative tau0 (a negative torque), an unknown method or oil family: one
+    ValueError line."""
+    with pytest.raises(ValueError, match=match) as e:
+        FrictionOptions(**options)
+    assert "\n" not in str(e.value)
 
 
 # ----------------------------------------------------------------------------- solid film
@@ -166,7 +241,6 @@ def test_ehl_uses_reduced_modulus_of_ring_and_ball():
 
 
 # ----------------------------------------------------------------------------- the pair's torque
-from analytic.friction.options import FrictionOptions            # noqa: E402
 from analytic.heat import located_pair_heat_W                     # noqa: E402
 from analytic.friction.pair import TorqueComponents, pair_torque  # noqa: E402
 from fem.transient import bearing_heat_inputs_W                  # noqa: E402

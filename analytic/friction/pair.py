@@ -16,7 +16,7 @@ from analytic.friction.ehl_rolling import EHLRollingTorque, ehl_rolling_bearing
 from analytic.friction.options import FrictionOptions
 from analytic.friction.palmgren import (coulomb_load_torque_Nmm, palmgren_load_torque_Nmm,
                                         palmgren_viscous_torque_Nmm)
-from analytic.friction.skf2004 import skf2004_torque
+from analytic.friction.skf2004 import constants_for, skf2004_torque
 from analytic.friction.solid_film import pressure_dependent_mu
 from analytic.friction.starved import starvation_ratio, supply_layer_um
 from analytic.lubrication import hamrock_dowson_film, reduced_modulus_MPa
@@ -287,7 +287,8 @@ def _oil_bearing(g, c: BearingContacts, mu, speed_rpm, f0, nu_mm2_s, f1, load_te
     model = fr.viscous_model
     if model == "skf2004":
         t = skf2004_torque(fr.bore_mm, fr.outside_diameter_mm, c.radial_force_N,
-                           c.axial_force_N, n, nu_mm2_s)
+                           c.axial_force_N, n, nu_mm2_s, oil_level_mm=fr.oil_level_mm,
+                           **constants_for(fr.lubrication_method, fr.oil_family))
         return BearingFriction(t.total_Nmm, t.sliding_Nmm, t.rolling_Nmm, t.drag_Nmm)
     visc = palmgren_viscous_torque_Nmm(f0, nu_mm2_s, n, g.dm_mm)
     q_in = q_out = None
