@@ -381,3 +381,57 @@ def test_located_heat_reaches_the_transient_inputs_whole():
         assert sum(q.values()) == pytest.approx(8.0, rel=1e-12)
     q = bearing_heat_inputs_W(drag, row=2, ring_share=1.0)
     assert q["ball_A"] + q["ball_B"] == pytest.approx(1.0, rel=1e-12)
+
+
+def test_ehl_rolling_keeps_the_centrifugal_loss_where_the_preload_is_lost():
+    """A bearing whose contacts carry no load (preload lost) at speed: its balls ride on the
+    outer raceway under F_c = m omega_c^2 dm / 2 and still roll through oil. The torque, written
+    out: Z F_R (dm/2) roll_o with F_R = 2.86 E' Rx^2 k^0.348 G^0.022 U^0.66 W^0.47 at Q = F_c,
+    Rx = Dw (1 + gamma)/2, k = 1.03 (Ry/Rx)^0.64, Ry = f_o Dw/(2 f_o - 1), omega_c =
+    omega (1 - gamma)/2, u = omega (dm/2) roll_o, roll_o = (1 - gamma)(1 + gamma)/2 (gamma =
+    Dw cos a / dm, equal angles; to 1e-12 relative). The inner contact (open) has none; at rest
+    nothing; where the contacts are loaded the floor changes no bit (the loaded law's limit)."""
+    from analytic.friction.pair import BearingContacts, bearing_friction
+    from analytic.torque import ContactInput
+    n = np.array([0.0, 6000.0, 12000.0])
+    nu = np.array([25.0, 25.0, 25.0])
+    eta, alpha = nu * 1e-6 * 860.0, 2e-8
+    zero = np.zeros(3)
+    a = np.radians(np.full(3, G.alpha0_deg))
+    open_ = ContactInput(zero, zero, zero, zero, zero)
+    c = BearingContacts(open_, open_, a, None, zero)
+    fr = FrictionOptions(viscous_model="ehl_rolling", eta_Pa_s=eta, alpha_per_Pa=alpha)
+    t = bearing_friction(G, c, model="oil", mu=0.0, speed_rpm=n, f0=1.7, nu_mm2_s=nu, friction=fr)
+    Dw, dm, f_o = G.Dw_mm, G.dm_mm, G.f_o
+    gam = Dw * np.cos(a) / dm
+    omega = n * np.pi / 30.0
+    omega_c = omega * (1 - gam) / 2
+    Fc = G.ball.density_N_s2_mm4 * np.pi * Dw ** 3 / 6 * omega_c ** 2 * dm / 2
+    Rx, Ry = Dw * (1 + gam) / 2, f_o * Dw / (2 * f_o - 1)
+    k = 1.03 * (Ry / Rx) ** 0.64
+    roll_o = (1 - gam) / 2 * (1 + gam)           # omega_c/omega (1 + cos a / (dm/Dw))
+    u = omega * dm / 2 * roll_o
+    Ep = reduced_modulus_MPa(G.ring.E_MPa, G.ring.nu, G.ball.E_MPa, G.ball.nu)
+    U, Gp, W = eta * 1e-6 * u / (Ep * Rx), alpha * 1e6 * Ep, Fc / (Ep * Rx ** 2)
+    F = 2.86 * Ep * Rx ** 2 * k ** 0.348 * Gp ** 0.022 * U ** 0.66 * W ** 0.47
+    expect = G.Z * F * dm / 2 * roll_o
+    assert t.total_Nmm[0] == 0.0 and np.all(t.total_Nmm[1:] > 0)
+    np.testing.assert_allclose(t.total_Nmm[1:], expect[1:], rtol=1e-12)
+    assert np.all(t.heat_inner_W == 0)
+    # loaded contacts: the floor is not used (the same bits as the loaded law without it)
+    from analytic.friction.pair import contact_inputs
+    ci, co = contact_inputs(QD, 0)
+    kin = ball_kinematics_for(QD)
+    args = (G.Z, G.dm_mm, Ep, ci, co, kin.roll_inner, kin.roll_outer, N3, FLUID["eta_Pa_s"], 2e-8)
+    floor = ehl_rolling.CentrifugalFloor(np.full(3, 1e3), np.full(3, 1.0), np.full(3, 2.0))
+    with_floor, without = ehl_rolling.ehl_rolling_bearing(*args, floor), ehl_rolling.ehl_rolling_bearing(*args)
+    assert np.all(QD.outer.a_mm[0] > 0)
+    for x, y in zip(with_floor[0] + with_floor[1], without[0] + without[1]):
+        assert np.array_equal(x, y)
+
+
+def ball_kinematics_for(pair):
+    """Bearing A's kinematics of a pair state (both contact angles)."""
+    from analytic.friction.pair import contact_angles_rad
+    from analytic.torque import ball_kinematics
+    return ball_kinematics(G.dm_mm, G.Dw_mm, *contact_angles_rad(pair, 0))
