@@ -50,8 +50,8 @@ def test_csv_has_exactly_the_contract_columns(tmp_path):
         table = list(csv.reader(fh))
     assert tuple(table[0]) == ("assumption", "alternative", "margin", "value",
                                "value_alternative", "change", "flips")
-    assert table[1] == ["[cover] clamp = rigid (default)", "compliant", "preload_min_N", "100.0",
-                        "0.0", "-1.0", "true"]
+    assert table[1] == ["[cover] clamp = rigid (default)", "compliant", "preload_min_N", "100",
+                        "0", "-1", "true"]
 
 
 def test_the_choices_at_their_defaults_are_the_assumptions():

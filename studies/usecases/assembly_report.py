@@ -121,7 +121,7 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, progress=prin
     sens = sensitivity_run.run(asm, cond, report_margins.margin_rows(asm, res, res, {}, cond),
                                Path(path) if path else None, mesh_factor, sensitivity, progress)
     if sensitivity:
-        sensitivity_run.write_csv(out / "sensitivity.csv", sens)
+        sensitivity_run.write_csv(out / "sensitivity.csv", sens, provenance)
     k = next(i for i, line in enumerate(front) if line == "## Inputs and their sources")
     front = front[:k] + sensitivity_run.section_lines(sens) + front[k:]
     naming = fit_naming.report_lines(asm, out)      # which layer is which (with a layer only)

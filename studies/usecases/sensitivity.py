@@ -25,10 +25,7 @@ error than either.
 """
 from __future__ import annotations
 
-import csv
 import math
-import os
-import tempfile
 from dataclasses import dataclass, fields, replace
 from pathlib import Path
 from typing import Callable
@@ -263,21 +260,21 @@ def section_lines(s: Sensitivity) -> list[str]:
     return lines
 
 
-def write_csv(path: Path, s: Sensitivity) -> None:
-    """sensitivity.csv (columns CSV_COLUMNS; flips as true/false), written atomically."""
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".sensitivity", suffix=".csv")
-    try:
-        with os.fdopen(fd, "w", newline="") as fh:
-            w = csv.writer(fh)
-            w.writerow(CSV_COLUMNS)
-            for r in s.rows:
-                w.writerow([r.assumption, r.alternative, r.margin, repr(r.value),
-                            repr(r.value_alternative), "" if math.isnan(r.change) else repr(r.change),
-                            "true" if r.flips else "false"])
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+def write_csv(path: Path, s: Sensitivity, provenance: dict | None = None) -> None:
+    """sensitivity.csv (columns CSV_COLUMNS; `flips` true/false, `change` nan when the value is
+    0) through the project's one CSV writer (`studies.model.table.write_table`, atomic, with the
+    provenance sidecar)."""
+    from studies.model.table import write_table
+
+    r = s.rows
+    write_table(path, {
+        "assumption": np.array([x.assumption for x in r], str),
+        "alternative": np.array([x.alternative for x in r], str),
+        "margin": np.array([x.margin for x in r], str),
+        "value": np.array([x.value for x in r], float),
+        "value_alternative": np.array([x.value_alternative for x in r], float),
+        "change": np.array([x.change for x in r], float),
+        "flips": np.array(["true" if x.flips else "false" for x in r], str)}, provenance)
 
 
 def frame(s: Sensitivity):
