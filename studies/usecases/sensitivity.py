@@ -202,6 +202,7 @@ def run(asm: Assembly, cond: dict, base_rows: list[MarginRow], assembly_path: Pa
         ) -> Sensitivity:
     """Every assumption of `asm` against the report's margin table `base_rows` (the report's
     mesh, `mesh_factor`); the numbers against their own base on NUMBER_MESH_FACTOR times it."""
+    from meshes.build import MeshError
     from studies.model.pipeline import Pipeline
 
     alts, skipped = alternatives(asm, assembly_path, long)
@@ -214,7 +215,7 @@ def run(asm: Assembly, cond: dict, base_rows: list[MarginRow], assembly_path: Pa
             if alt.number and coarse_base is None:
                 coarse_base = margins_of(asm, cond, Pipeline(asm, mesh_factor=factor))
             theirs = margins_of(alt.asm, cond, Pipeline(alt.asm, mesh_factor=factor))
-        except ValueError as exc:           # the package's errors: no answer for this one
+        except (ValueError, MeshError) as exc:   # the package's errors: no answer for this one
             skipped.append(f"{alt.assumption} -> {alt.alternative}: no answer ({exc})")
             continue
         rows += compare(alt.assumption, alt.alternative, coarse_base if alt.number else base_rows,
