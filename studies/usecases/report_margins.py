@@ -240,9 +240,8 @@ def thermal_speed_rows(asm, cond: dict | None, res: dict) -> list[MarginRow]:
     """One margin row per bearing (A, B): the ISO 15312 thermal reference speed and the DIN 732
     thermally permissible speed (`studies.usecases.bearing_single.thermal_speeds`, the bearing
     command's route) at each operating point: the bearing's axial force (result
-    `axial_force_<J>_N`), its oil at the outer ring's temperature (T_outer_ring_C, else
-    T_ambient_C: the standards' bearing temperature is the stationary outer ring's) and the speed
-    (speed_rpm, else [lubrication] speed_rpm). margin_speed_rpm = permissible - speed at the
+    `axial_force_<J>_N`) and the speed (speed_rpm, else [lubrication] speed_rpm); the oil at the
+    permissible temperature (DIN 732's heat balance). margin_speed_rpm = permissible - speed at the
     governing point (the smallest margin); without an oil only the reference speed."""
     from analytic.bearing.geometry import BearingGeometry
     from studies.usecases.bearing_single import thermal_speeds
@@ -251,14 +250,12 @@ def thermal_speed_rows(asm, cond: dict | None, res: dict) -> list[MarginRow]:
     n = len(np.asarray(res["preload_N"]))
     lub = asm.lubrication
     speed = _row_values(cond, n, "speed_rpm", default=lub.speed_rpm)
-    T_oil = _row_values(cond, n, "T_outer_ring_C", "T_ambient_C", default=20.0)
     g = BearingGeometry.from_spec(asm.bearing, asm.materials)
     rows = []
     for J in ("A", "B"):
         if f"axial_force_{J}_N" not in res:
             continue
-        ts = thermal_speeds(asm.bearing, g, lub, asm.oil(), res[f"axial_force_{J}_N"], T_oil,
-                            speed)
+        ts = thermal_speeds(asm.bearing, g, lub, asm.oil(), res[f"axial_force_{J}_N"], speed)
         ref = f"reference {ts.reference.speed_rpm:.4g} rpm (ISO 15312)"
         src = "ISO 15312:2018; DIN 732:2010, friction ISO/TR 14179-2"
         if ts.defaults:
