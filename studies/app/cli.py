@@ -71,6 +71,9 @@ def build_parser() -> argparse.ArgumentParser:
                    help="conditions table (default: the assembly's operating temperature range)")
     r.add_argument("--out", type=Path, required=True)
     r.add_argument("--pdf", action="store_true", help="also report.pdf (typst, no LaTeX)")
+    r.add_argument("--sensitivity", action="store_true",
+                   help="also the ring section and the [assume]-tagged numbers in "
+                        "\"Assumptions that decide the answer\", and sensitivity.csv")
 
     bb = sub.add_parser("bearing", help="one bearing under radial, axial and moment loads")
     bb.add_argument("bearing", type=Path, help="TOML file with a [bearing] table")

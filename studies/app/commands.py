@@ -103,14 +103,16 @@ def cmd_report(args) -> None:
 
     command = ["bearingfem", "report", str(args.assembly)] + \
         ([str(args.conditions)] if args.conditions is not None else []) + \
-        ["--out", str(args.out)] + (["--pdf"] if args.pdf else [])
+        ["--out", str(args.out)] + (["--pdf"] if args.pdf else []) + \
+        (["--sensitivity"] if args.sensitivity else [])
     try:
         res = api.report(args.assembly, args.conditions, args.out, pdf=args.pdf,
-                         progress=progress, command=command)
+                         progress=progress, command=command, sensitivity=args.sensitivity)
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
     _warn("report", res)
-    print(f"report: {args.out}/report.md, report.html" + (" and report.pdf" if args.pdf else ""))
+    print(f"report: {args.out}/report.md, report.html" + (" and report.pdf" if args.pdf else "")
+          + (", sensitivity.csv" if args.sensitivity else ""))
 
 
 def cmd_tolerance(args) -> None:

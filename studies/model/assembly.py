@@ -188,6 +188,16 @@ class Lubrication:
     oil_quantity_mg: float = number("mg", 'oil: the oil in one bearing (viscous_model = '
                                           '"starved")', sign=ZERO_OK, default=0.0,
                                     default_text="0 = flooded (Palmgren)")
+    lubrication_method: str = choice(
+        "", "oil_bath", "oil_jet", "oil_air", "grease", "minimal_oil", default="",
+        default_text='"" = not stated (skf2004: the oil-jet / oil-bath K_rs)',
+        doc='oil: how the oil reaches the bearing; skf2004: its replenishment constant K_rs '
+            '(3e-8 oil bath and jet, 6e-8 oil-air, grease and minimal oil)')
+    oil_level_mm: float = number("mm", 'oil: an oil bath\'s level above the lowest point of the '
+                                       'outer raceway (skf2004: its drag term)', sign=ZERO_OK,
+                                 default=0.0, default_text="0 = no bath",
+                                 note='only with lubrication_method = "oil_bath" and viscous_model '
+                                      '= "skf2004"')
     shear_strength: str = choice("constant", "pressure", default="constant",
                                  doc='solid film: "constant" (friction_coefficient) or '
                                      '"pressure" (tau = tau0 + alpha p over the Hertz ellipse)')

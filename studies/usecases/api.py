@@ -326,9 +326,10 @@ def stiffness(assembly, conditions, out=None, per_bearing: bool = False, ross=No
 
 
 def report(assembly, conditions=None, out=None, pdf: bool = False, progress=_quiet,
-           command: list[str] | None = None):
-    """`bearingfem report ASSEMBLY.toml [CONDITIONS.csv] --out DIR [--pdf]`: report.md and
-    report.html (and report.pdf), margins first.  Returns `assembly_report.ReportRun` (the
+           command: list[str] | None = None, sensitivity: bool = False):
+    """`bearingfem report ASSEMBLY.toml [CONDITIONS.csv] --out DIR [--pdf] [--sensitivity]`:
+    report.md and report.html (and report.pdf), margins first (with `sensitivity`: also
+    sensitivity.csv).  Returns `assembly_report.ReportRun` (the
     warnings; `.to_frame()` results.csv)."""
     from studies.model.inputs import CONDITION_COLUMNS
     from studies.usecases import assembly_report
@@ -338,7 +339,7 @@ def report(assembly, conditions=None, out=None, pdf: bool = False, progress=_qui
     prov = _provenance("report", asm, assembly, conditions=conditions)
     with _folder(out) as tmp:
         return assembly_report.run(asm, cond, tmp, prov, progress=progress, pdf=pdf,
-                                   command=command)
+                                   command=command, sensitivity=sensitivity)
 
 
 def verify(out=None, assembly=None, progress=_quiet):
