@@ -128,6 +128,7 @@ def cmd_tolerance(args) -> None:
                             progress=progress, bar=progress_bar("Monte Carlo"))
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
+    _warn("tolerance", res)
     fits = ", ".join(f"{f} {p:.3g}" for f, p in res.fit_leaves_design.items())
     print(f"tolerance: {res.samples} samples; P(fit leaves its designed state) {fits}, "
           f"P(preload lost) {res.preload_lost:.3g}; report in {args.out}/report.md")
@@ -190,6 +191,7 @@ def cmd_design(args) -> None:
                          bar=progress_bar("stacks", "stack"))
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
+    _warn("design", res)
     g, b = res.given.metrics, res.designs[0].metrics
     print(f"design: {res.n_designs} designs; as given {100 * g.preload_variation:.0f} % preload "
           f"variation, best {100 * b.preload_variation:.0f} %; report in {args.out}/report.md")
@@ -218,6 +220,7 @@ def cmd_diagnose(args) -> None:
         result = api.diagnose(args.assembly, args.measured, args.out, progress=progress)
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
+    _warn("diagnose", result)
     print(f"diagnosis: {result.verdict}" + (f" ({result.cause})" if result.cause else "")
           + f"; report in {args.out}/report.md", file=sys.stdout)
 

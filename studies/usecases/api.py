@@ -18,7 +18,7 @@ from __future__ import annotations
 import os
 import tempfile
 from contextlib import contextmanager
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Mapping
 
@@ -96,6 +96,15 @@ def _folder(out):
         return
     with tempfile.TemporaryDirectory(prefix="bearingfem-") as tmp:
         yield Path(tmp)
+
+
+def _input_warnings(asm, conditions: dict | None) -> tuple[str, ...]:
+    """The plausibility warnings of an assembly and a conditions table (None: none given) before
+    any model output (`checks.plausibility_warnings`): what `tolerance`, `design` and
+    `diagnose` print, as `simulate` and `report` do with their outputs' checks added."""
+    from studies.model.checks import plausibility_warnings
+
+    return tuple(plausibility_warnings(asm, conditions))
 
 
 def _check_workers(workers) -> None:
@@ -213,17 +222,20 @@ def diagnose(assembly, measured, out=None, progress=_quiet):
     asm = _assembly(assembly)
     cols = table(measured, measured_columns(OUTPUT_NAMES), "measured")
     conditions, meas = split_measured(cols, measured if _is_path(measured) else "measured")
+    warnings = _input_warnings(asm, conditions)
     with _folder(out) as tmp:
         result, doc = diagnose_tables(asm, conditions, meas, tmp, progress=progress)
-    return Diagnosis(result, doc)
+    return Diagnosis(result, doc, warnings)
 
 
 @dataclass(frozen=True)
 class Diagnosis:
     """A diagnosis: the typed `DiagnosisResult` (`result`) and diagnosis.json as written
-    (`json`); `verdict` and `cause` as the command prints them."""
+    (`json`); `verdict` and `cause` as the command prints them; `warnings` the plausibility
+    warnings of the inputs."""
     result: object
     json: dict = field(repr=False)
+    warnings: tuple[str, ...] = ()
 
     @property
     def verdict(self) -> str:
@@ -252,10 +264,12 @@ def tolerance(assembly, conditions=None, samples: int = defaults.TOLERANCE_SAMPL
     asm = _assembly(assembly)
     cond = None if conditions is None else table(conditions, set(CONDITION_COLUMNS), "conditions")
     prov = _provenance("tolerance", asm, assembly, conditions=conditions)
+    warnings = _input_warnings(asm, cond)
     with _folder(out) as tmp:
-        return tolerance_report.run(asm, cond, tmp, prov, samples=samples, seed=seed,
-                                    progress=progress, workers=workers, scheduler=scheduler,
-                                    bar=bar)
+        res = tolerance_report.run(asm, cond, tmp, prov, samples=samples, seed=seed,
+                                   progress=progress, workers=workers, scheduler=scheduler,
+                                   bar=bar)
+    return replace(res, warnings=warnings)
 
 
 def design(assembly, range_C: tuple[float, float], out=None,
@@ -290,10 +304,12 @@ def design(assembly, range_C: tuple[float, float], out=None,
     asm = _assembly(assembly)
     vary = {k: tuple(v) for k, v in (vary or {}).items()}
     ds.settings_of(asm, vary)                   # bad values: one line before any work
+    warnings = _input_warnings(asm, None)
     with _folder(out) as tmp:
-        return ds.run(asm, T_min, T_max, tmp, _provenance("design", asm, assembly),
-                      band=the_band, clamps=clamps, progress=progress, workers=workers,
-                      scheduler=scheduler, bar=bar, vary=vary)
+        res = ds.run(asm, T_min, T_max, tmp, _provenance("design", asm, assembly),
+                     band=the_band, clamps=clamps, progress=progress, workers=workers,
+                     scheduler=scheduler, bar=bar, vary=vary)
+    return replace(res, warnings=warnings)
 
 
 def stiffness(assembly, conditions, out=None, per_bearing: bool = False, ross=None,
