@@ -5,7 +5,9 @@ The conditions file is read a chunk of rows at a time (`studies.model.table.iter
 then `simulate_file` evaluates each chunk through the one route (`pipeline.table_inputs` ->
 `Pipeline.run` -> `columns.to_columns`) and streams its rows into the temporary output file
 (`table.TableWriter`),
-renamed onto the output only at the end. An effect may depend on earlier rows (a thermal lag, a
+renamed onto the output only at the end; `simulate_columns` hands the same chunks of a table in
+memory to the same evaluation (`simulate_chunks`) and keeps the columns it would write (the
+Python API's `simulate`). An effect may depend on earlier rows (a thermal lag, a
 settling after the first excursion): with effects switched on, the inputs of the whole table are
 formed first (the condition columns and `PhysicsInputs`, about 0.1 kB per row) and evaluated
 chunk by chunk.

@@ -1,17 +1,21 @@
-"""Every command as a Python function: what the command line runs (studies/app/commands.py parses
-the flags, calls these and prints) and what `import bearingfem` offers (the facade re-exports
-them). One route: the command and its function are the same call, so their numbers are equal.
+"""Every command but `study` and `bench` as a use case: what the command line runs
+(studies/app/commands.py parses the flags, calls these and prints) and what `import bearingfem`
+offers (the facade wraps them and emits their warnings). One route: the command and its function
+are the same call with the same defaults (`studies.usecases.defaults`), so their checks, warnings
+and numbers are equal.
 
 Each function takes what its command takes: the assembly (an `Assembly` from `load_assembly`, or
-the path of its TOML file), tables as a CSV path or in memory (column name -> values: a dict of
-lists or arrays, or a pandas DataFrame; the same columns and checks as the file), and for the
-commands that write a folder an optional `out` (None: the files go to a temporary folder that is
-removed afterwards; the typed result holds the numbers). Results are typed (frozen dataclasses);
+the path of its TOML file), tables as a CSV path (str or Path) or in memory (column name ->
+values: a dict of lists or arrays, or a pandas DataFrame; the same columns and checks as the
+file), and for the commands that write a folder an optional `out` (None: the files go to a
+temporary folder that is removed afterwards; the typed result holds the numbers). Results are
+typed (frozen dataclasses) and carry the lines the command prints as warnings (`warning_lines`);
 `.to_frame()` gives the table the command writes as CSV, units in the column names (docs/cli.md).
 
 Bad input raises a ValueError subclass (ConfigError, TableError, EffectError, ModelError,
-ToleranceError, DesignError, StiffnessRunError, BearingRunError, OutputError, ...) whose message
-is the one line the command prints before exiting with code 2; nothing is written then.
+ToleranceError, DesignError, StiffnessRunError, BearingRunError, OutputError, and
+`infra.errors.BearingfemError` for the solver's failures, ...) whose message is the one line the
+command prints before exiting with code 2; nothing is written then.
 """
 from __future__ import annotations
 
