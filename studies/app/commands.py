@@ -1,4 +1,6 @@
-"""Implementations of `bearingfem simulate`, `study` and `diagnose` (argument parsing: cli.py).
+"""The commands' implementations (argument parsing: cli.py): each but `study` and `bench` turns
+its flags into a call of its use case (`studies.usecases.api`, the call the Python API makes) and
+prints the result, its warning lines (`api.warning_lines`) on stderr.
 
 Each command imports the model it needs inside its function, on purpose: the command line starts
 (and `--help`, `--version` and usage errors answer) without loading numpy, scipy, scikit-fem,
@@ -8,18 +10,10 @@ None of these deferred imports hides a cycle (tests/test_imports.py counts them 
 from __future__ import annotations
 
 import sys
-from pathlib import Path
-
 
 from studies.app.output import UserError, atomic_dir, progress, progress_bar
 from studies.usecases import defaults
 from studies.validation import STUDIES, study_module
-
-
-def _load(assembly_path: Path):
-    from studies.model.config import load_assembly
-
-    return load_assembly(assembly_path)
 
 
 def _user_errors():
@@ -47,6 +41,8 @@ def cmd_simulate(args) -> None:
     from studies.model.effects import parse_effect_arg
     from studies.usecases import api
 
+    if args.workers is not None and args.workers < 1:
+        raise UserError(f"--workers {args.workers}: need at least 1")
     effects = {}
     try:
         for text in args.effect:
