@@ -51,7 +51,7 @@ PRELOAD_LOSS_N = 12.0
 #: the settling's time constant (s) after the first hot excursion
 SETTLING_TAU_S = 3600.0
 #: shells per part of the conduction network (`conduction_network.stack_network`): within
-#: 0.02 K of the converged field (tests/test_conduction_network.py)
+#: 1e-3 K of the converged field (tests/test_conduction_network.py)
 SHELLS = 4
 
 
