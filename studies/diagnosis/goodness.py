@@ -26,9 +26,10 @@ described per column: which test, the RMS misfit beyond the noise in noise units
 (sqrt(max(chi2_reduced - 1, 0))), and the named condition the residual depends on most (the
 open-world forward selection, `openworld.characterise_column`) with its range in noise units.
 
-A fitted parameter at a bound that is not its "off" value is listed in `at_bound` with a
-sentence: the data want more than the bound allows (an as-built fit outside its tolerance band,
-a larger effect than the physics bound, or another cause).
+A fitted parameter the data want at or beyond a bound that is not its "off" value (the value on
+the bound, or the estimate with the bounds released beyond it: `at_bound`) is listed in
+`at_bound` with a sentence: the data want more than the bound allows (an as-built fit outside
+its tolerance band, a larger effect than the physics bound, or another cause).
 """
 from __future__ import annotations
 
@@ -82,8 +83,9 @@ class Left:
 
 @dataclass(frozen=True)
 class AtBound:
-    """A fitted parameter at a bound that is not its off value (or within its standard
-    uncertainty of it: `uncertainty`, None when not stated)."""
+    """A fitted parameter the data want at or beyond a bound that is not its off value
+    (`at_bound`): its value, the bound (the parameter's own number), one sentence, and its
+    standard uncertainty (None when not stated)."""
     effect: str
     parameter: str
     value: float

@@ -28,18 +28,22 @@ is left, but only when several causes were accepted; a single cause that leaves 
 a look-alike of a cause outside the list and the verdict is `unexplained` (with it as the best
 partial candidate), as on an unlisted groove curvature on steady points.
 
-Claim rules (issue 34, `blocked`): a cause with a fitted parameter at its bound or within its
-standard uncertainty of one (`goodness.at_bound`: the data want more than the candidate allows,
-which is evidence against it, not a partial explanation: issue 34's sleeve in an aluminium housing
-was `explained_partly: interference_error` at its +-20 um), or one whose model predicts a measured
+Claim rules (`select` reads them as a table, one small function each, in order; their reasons:
+docs/diagnosis.md, "The claim rules"). Before any fit: below the detection threshold in every
+compared column (`detection.detection`: the change the calibrated baseline leaves against the
+smallest change the data could show) the verdict is `no_discrepancy`, whatever fits. A cause the
+data want at or beyond a bound (`goodness.at_bound`: the value on the bound, or the estimate
+with the bounds released beyond it; the data wanting more than the candidate allows is evidence
+against it, not a partial explanation: issue 34's sleeve in an aluminium housing was
+`explained_partly: interference_error` at its +-20 um), or one whose model predicts a measured
 column worse on held-out blocks than the model before it beyond the noise
-(`heldout.worse_columns`), is never claimed: the first such cause makes the verdict `unexplained`
-(`at_bound` / `worse_columns` say why), a later one is not accepted (the causes before it stay),
-and a final joint model that pushes an accepted cause to its bound claims nothing. A model form
-fitted at the edge of its stated scatter (`scatter_edge`: a material lot at +-5 %) is one case of
-the rule. Each
-accepted cause is listed in order with its own held-out gain: the held-out RMSE of the model with it against the model before it, per
-column, under the noise of its pass.
+(`heldout.worse_columns`: Holm over the columns, a minimum size), is never claimed: the first
+such cause makes the verdict `unexplained` (`at_bound` / `worse_columns` say why), a later one
+is not accepted (the causes before it stay), and a final joint model that pushes an accepted
+cause to its bound claims nothing. A model form fitted at the edge of its stated scatter
+(`scatter_edge`: a material lot at +-5 %) is one case of the rule. Each accepted cause is listed
+in order with its own held-out gain: the held-out RMSE of the model with it against the model
+before it, per column, under the noise of its pass.
 
 A further cause must fit every held-out block in the same amount (`compensates`,
 `blockscale.block_scale`, issue 34): per block, the least-squares scale of its held-out change
@@ -256,7 +260,7 @@ def scatter_edge(pb: Problem, bound: list[AtBound]) -> list[AtBound]:
 
 def blocked(p) -> tuple[list[AtBound], list[WorseColumn]]:
     """Why the cause a pass would accept cannot be claimed (issue 34; empty lists: it can): its
-    parameters at a bound or within their standard uncertainty of one (`goodness.at_bound`),
+    parameters the data want at or beyond a bound (`goodness.at_bound`),
     and the measured columns its extended model predicts worse on held-out blocks than the
     pass's baseline beyond the noise (`heldout.worse_columns`, over the blocks that test it)."""
     fit, ho, _ = _extended(p)
