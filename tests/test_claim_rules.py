@@ -30,9 +30,9 @@ CLAIMS = ("explained", "explained_partly")
 @pytest.mark.parametrize("nu", [120.0, None])
 def test_detection_threshold_is_found_four_times_in_five(nu):
     """The threshold (240 entries, alpha 0.005, the noise level estimated on 120 degrees of
-    freedom or given) is the RMS change the chi-square test finds with probability 0.8: counted
+    freedom or given) is the RMS change the chi-square test finds with DETECTION_POWER: counted
     over 6000 draws of a change of that RMS plus unit Gaussian noise, the noise level's estimate
-    an independent chi-square(nu) / nu (binomial standard error of the share 0.005; tolerance 4
+    an independent chi-square(nu) / nu (binomial standard error of the share 0.003; tolerance 4
     of them)."""
     from studies.diagnosis.detection import DETECTION_POWER, threshold_sigma
 
@@ -49,7 +49,7 @@ def test_detection_threshold_is_found_four_times_in_five(nu):
         found = stat / (rng.chisquare(nu, draws) / nu) > stats.f.isf(alpha, n, nu)
     se = np.sqrt(DETECTION_POWER * (1 - DETECTION_POWER) / draws)
     assert abs(found.mean() - DETECTION_POWER) < 4 * se, (delta, found.mean())
-    assert 0.3 < delta < 1.0
+    assert 0.3 < delta < 1.2
 
 
 def _toy_case(amount_um: float, rms_sigma: float, seed: int, n: int = 120):
@@ -78,7 +78,7 @@ def _toy_case(amount_um: float, rms_sigma: float, seed: int, n: int = 120):
 @pytest.mark.parametrize("seed", [0, 1, 2])
 def test_a_change_below_the_detection_threshold_is_not_claimed(seed):
     """An inner fit error whose change after the friction scale is 0.75 sigma RMS (120 rows over
-    8 h; the threshold there about 1 sigma): `no_discrepancy` and no cause, whatever fits (before:
+    8 h; the threshold there 1.24 sigma): `no_discrepancy` and no cause, whatever fits (before:
     `explained: interference_error`, the likelihood ratio on 240 entries finds it easily); the
     detection block states both numbers per column."""
     from test_diagnosis_engine import run_full
