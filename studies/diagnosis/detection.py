@@ -1,4 +1,4 @@
-"""A claim needs a detectable change (issue 42; DESIGN.md section 8): before any candidate is
+"""A claim needs a detectable change (DESIGN.md section 8): before any candidate is
 fitted, per compared column, the smallest change the data could show and the change the
 configured model leaves, both in noise units.
 
@@ -21,7 +21,7 @@ configured model leaves, both in noise units.
 Below the threshold in every column the answer is `no_discrepancy` whatever fits
 (`selection.below_detection`): a change smaller than the one the test finds in 19 draws of 20
 is one the data cannot tell from a noise level a little higher than estimated, and a candidate
-that fits it fits noise and the model's form slop (issue 42: a free contact angle 3 deg off,
+that fits it fits noise and the model's form slop (a free contact angle 3 deg off,
 0.75 sigma RMS after the friction scale, was claimed as an interference error). The power sets
 how far above the noise's own level the threshold lies: on 240 entries with the noise estimated
 the test's critical value is 0.72 sigma RMS, the threshold 0.97 (0.85 at Cohen's conventional

@@ -1,4 +1,4 @@
-"""Goodness of fit of an explanation (issue 23): does the extended model leave structure, where,
+"""Goodness of fit of an explanation: does the extended model leave structure, where,
 and does a fitted parameter sit at its bound?
 
 An explanation that carries weight (it beats the baseline and every rival) can still leave
@@ -167,7 +167,7 @@ def at_bound(pb: Problem, fit: Fit) -> list[AtBound]:
     bound (within AT_BOUND_RTOL of the parameter's range), or the estimate with the bounds
     released (`released_estimate`: one Gauss-Newton step from the fit over the directions the
     data determine) at or beyond it. A value inside its bounds at a converged fit is where the
-    data put it, however wide its interval (issue 42: within one standard uncertainty of a
+    data put it, however wide its interval (within one standard uncertainty of a
     bound refused a weakly identified true cause, 10 +- 8 on [-20, 20], in about 40 % of
     draws); the step only catches a fit stopped short of the bound it is pushing against. A
     parameter whose interval at the stated level (`interval.LEVEL`) holds its off value is not

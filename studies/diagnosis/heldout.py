@@ -365,8 +365,8 @@ class WorseColumn:
 def worse_columns(pb: Problem, effect: str, z_base_ho: np.ndarray, z_cand_ho: np.ndarray,
                   keep=None) -> list[WorseColumn]:
     """The measured columns whose held-out residual the candidate `effect` makes worse than the
-    model before it beyond the noise (issue 34), corrected for the number of columns and with a
-    minimum size (issue 42). Per compared column and held-out block (over the blocks `keep`
+    model before it beyond the noise, corrected for the number of columns and with a
+    minimum size. Per compared column and held-out block (over the blocks `keep`
     that test the candidate), the held-out RMSE before minus with the candidate (noise units);
     over the blocks, taken as independent as the block bootstrap takes them (Kunsch 1989, Ann.
     Statist. 17), the one-sided paired t test of "not worse" (Student 1908, Biometrika 6; its

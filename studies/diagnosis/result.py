@@ -115,14 +115,14 @@ class DiagnosisResult:
     causes: list[AcceptedCause] = field(default_factory=list)
     left: list[Left] = field(default_factory=list)
     at_bound: list[AtBound] = field(default_factory=list)
-    #: candidates the claim rules stopped because they make a column worse (issue 34)
+    #: candidates the claim rules stopped because they make a column worse
     worse_columns: list[WorseColumn] = field(default_factory=list)
     #: the claimed model's predictive intervals (None unless explained / explained_partly)
     interval: Intervals | None = None
     goodness: GoodnessOfFit | None = None
     noise_final: Noise | None = None    # the noise model of the selection's last pass
     #: per compared column, the smallest change the data could show and the change the
-    #: configured model leaves (`studies.diagnosis.detection`, noise units; issue 42)
+    #: configured model leaves (`studies.diagnosis.detection`, noise units)
     detection: dict = field(default_factory=dict)
     # the predictions (column arrays) behind the report's plots; not part of the file
     baseline_pred: dict[str, np.ndarray] = field(default_factory=dict, repr=False)
