@@ -236,8 +236,9 @@ def assemble(first: Pass, sel: Selection, sep: Separation, cost: Cost) -> Diagno
     """The typed result of the phases and the forward selection."""
     pb, b, s, d = first.pb, first.baseline, first.screening, first.decision
     verdict = sel.verdict or d.verdict
-    # a first cause the selection turned down (it leaves structure it cannot own): no cause
-    cause = d.cause if verdict != "unexplained" else None
+    # a first cause the selection turned down (it leaves structure it cannot own, or the change
+    # is below what the data could show): no cause
+    cause = d.cause if verdict not in ("unexplained", "no_discrepancy") else None
     ext_fit, ext_ho = _extended(first, cause)
     params, unc, nuis_ext = _cause_values(first, cause)
     base = ModelRmse(pb.col_rmse(b.fit.z), pb.col_rmse(b.heldout_z))
@@ -287,7 +288,7 @@ def assemble(first: Pass, sel: Selection, sep: Separation, cost: Cost) -> Diagno
         worse_columns=list(sel.worse_columns),
         interval=interval,
         row_blocks=np.asarray(pb.blocks, int).copy(),
-        goodness=sel.goodness, noise_final=sel.noise,
+        goodness=sel.goodness, noise_final=sel.noise, detection=dict(sel.detection),
         baseline_pred=b.fit.pred,
         extended_pred=(iv_fit.pred if iv_fit is not None else sel.pred if sel.pred
                        else ext_fit.pred),

@@ -121,6 +121,9 @@ class DiagnosisResult:
     interval: Intervals | None = None
     goodness: GoodnessOfFit | None = None
     noise_final: Noise | None = None    # the noise model of the selection's last pass
+    #: per compared column, the smallest change the data could show and the change the
+    #: configured model leaves (`studies.diagnosis.detection`, noise units)
+    detection: dict = field(default_factory=dict)
     # the predictions (column arrays) behind the report's plots; not part of the file
     baseline_pred: dict[str, np.ndarray] = field(default_factory=dict, repr=False)
     extended_pred: dict[str, np.ndarray] = field(default_factory=dict, repr=False)
@@ -160,6 +163,7 @@ def to_json(r: DiagnosisResult) -> dict:
                            "text": w.text} for w in r.worse_columns],
         "interval": None if r.interval is None else r.interval.to_json(),
         "causes": r.causes,
+        "detection": {c: d.to_json() for c, d in r.detection.items()},
         # ---- extras
         "evidence": r.evidence,
         "goodness_of_fit": r.goodness,
