@@ -58,7 +58,6 @@ def calibrate(pb: Problem) -> tuple[Problem, Baseline]:
     if longer is not pb:
         pb = replace(longer, noise=baseline_noise(longer, base.pred))
     base = pb.fit(bspace, base.u)
-    pb = replace(pb, notes=pb.notes + stated_noise_notes(pb.noise))
     base_nuis = bspace.unpack(base.u)[1]
     desc_base = pb.describe(base.pred, len(pb.nuisance.names))
     structure = desc_base.p_min_adjusted < pb.th["alpha_structure"]

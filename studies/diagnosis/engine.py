@@ -63,7 +63,7 @@ from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
-from studies.diagnosis.calibration import baseline_noise, calibrate
+from studies.diagnosis.calibration import baseline_noise, calibrate, stated_noise_notes
 from studies.diagnosis.candidate import Candidate
 from studies.diagnosis.core import Baseline, Decision, Fit, Screening
 from studies.diagnosis.decision import Separation, decide, separating
@@ -282,7 +282,8 @@ def assemble(first: Pass, sel: Selection, sep: Separation, cost: Cost) -> Diagno
         heldout_blocks=pb.n_blocks,
         heldout_untestable=(list(first.candidates[cause].heldout_untestable or [])
                             if cause else []),
-        thresholds=dict(pb.th), notes=list(pb.notes) + sep.notes, spikes=dict(pb.spikes),
+        thresholds=dict(pb.th),
+        notes=list(pb.notes) + sep.notes + list(stated_noise_notes(sel.noise or pb.noise)), spikes=dict(pb.spikes),
         n_rows=pb.n, cost=cost, open_world=open_world,
         causes=list(sel.causes), left=list(sel.left), at_bound=list(sel.at_bound),
         worse_columns=list(sel.worse_columns),

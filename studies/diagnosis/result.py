@@ -172,7 +172,7 @@ def to_json(r: DiagnosisResult) -> dict:
         "generalised_forms": [f.to_json() for f in r.generalised_forms],
         "reasons": list(r.reasons),
         "columns": list(r.columns),
-        "noise_model": noise_model_json(r.noise, r.columns),
+        "noise_model": noise_model_json(r.noise_final or r.noise, r.columns),
         "noise_sigma": dict(r.noise.sigma),
         "noise_sigma_source": {c: r.noise.describe(c) for c in r.columns},
         "nuisance": {"names": list(r.nuisance.names),
@@ -204,7 +204,9 @@ def to_json(r: DiagnosisResult) -> dict:
 
 
 def noise_model_json(noise, columns) -> dict:
-    """diagnosis.json `noise_model` (docs/cli.md): per compared column its source ("stated":
+    """diagnosis.json `noise_model` (docs/cli.md) of the final noise model (the one
+    re-estimated from the residual of the accepted causes, else the baseline's): per compared
+    column its source ("stated":
     `--noise`, "column": `sigma_<column>`, "estimated": from the data alone), the statement
     (`rel`: share of the reading, 0.015 for 1.5 %; `abs`: column unit; null for a column
     source), whether the data's level agrees with it (`consistent`, null when estimated), the
