@@ -197,3 +197,41 @@ def test_lag_with_percent_of_reading_noise_is_explained_with_its_tau():
     assert nm["source"] == "stated" and nm["rel"] == 0.015 and nm["consistent"] is True, nm
     plain = bearingfem.diagnose(FLYWHEEL, meas)
     assert plain.verdict != "explained", plain.json["reasons"]
+
+
+# ------------------------------------------------------------------ item 5: the configured model's interval
+def test_configured_interval_covers_ninety_percent_of_a_repeat_run():
+    """Issue 42 item 5: the configured model's 90 % interval with the discrepancy the data show
+    (`interval.configured_intervals`) about a model that misses a smooth curve of 4 noise
+    sigma in the conditions (the truth 2 x + 4 sigma sin(T / 25 K): no nuisance value fits it)
+    holds 90 % of the entries of fresh repeat runs of the same rows (the truth with new noise;
+    100 repeats of the same fit, 120 entries each: binomial standard deviation of the mean 0.3 %,
+    the fit's own draw moves it more: 85-95 %), with 1.5 % of reading noise stated; and it is
+    not centred on the configured model (the discrepancy is in it)."""
+    from studies.diagnosis.interval import configured_intervals
+
+    rng = np.random.default_rng(5)
+    n = 120
+    T = np.linspace(-40.0, 80.0, n)
+    x = 1000.0 * np.exp(T / 40.0)                      # the configured model's reading, 2 decades
+    s = 0.015 * 2.0 * x
+    level = float(np.sqrt(np.mean(s ** 2)))
+    truth = 2.0 * x + 4.0 * level * np.sin(T / 25.0) * s / level
+    cond = {"T_ambient_C": T}
+
+    def predict(effects, nuisance):
+        return {"torque_Nmm": nuisance["mu_scale"] * x}
+    stated = {"torque_Nmm": StatedNoise("stated", rel=0.015)}
+    cover = []
+    for _ in range(4):                                  # four fits, each with 25 repeat runs
+        y = truth + s * rng.standard_normal(n)
+        pb, base = calibrate(make_problem(predict, {"torque_Nmm": y}, cond, [], NUISANCE,
+                                          noise_model=stated))
+        iv = configured_intervals(pb, base.fit)
+        lo, hi = iv.columns["torque_Nmm"].lo, iv.columns["torque_Nmm"].hi
+        mid = 0.5 * (lo + hi)
+        assert np.max(np.abs(mid - base.fit.pred["torque_Nmm"]) / s) > 2.0
+        for _ in range(25):
+            again = truth + s * rng.standard_normal(n)
+            cover.append(np.mean((again >= lo) & (again <= hi)))
+    assert 0.85 <= float(np.mean(cover)) <= 0.95, np.mean(cover)

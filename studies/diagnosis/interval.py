@@ -127,7 +127,8 @@ def predictive_interval(prediction, jacobian, param_cov, noise_sd, discrepancy_s
 @dataclass(frozen=True)
 class ColumnInterval:
     """One measured column's interval on every row (NaN where the column is not measured), its
-    discrepancy and noise levels (column unit), and the share of the calibration rows inside it
+    discrepancy and noise levels (column unit; with a stated noise at a row of RMS stated
+    uncertainty, both scaling with the stated per-row shape), and the share of the calibration rows inside it
     (the fit's own rows) and of the held-out rows inside it (the held-out prediction's residual
     within the half-width)."""
     column: str
@@ -216,15 +217,21 @@ def _assemble(pb, nz, per, cov: np.ndarray, k: int, level: float, model: str = "
     cols, inside_cal, inside_ho, total = {}, 0, 0, 0
     for c, m, G, pred, r, r_ho in per:
         n = int(m.sum())
-        sg = nz.row_sigma(c, m.size)[m] if c in nz.shape else float(nz.sigma[c])
-        d_sd = discrepancy_sd(r, sg, max(n - k * n / pb.N, 1.0))
+        dof = max(n - k * n / pb.N, 1.0)
+        if c in nz.shape:       # a stated noise: the discrepancy scales with it, as the noise
+            sh = np.asarray(nz.shape[c], float)[m]
+            d_level = discrepancy_sd(r / sh, float(nz.sigma[c]), dof)
+            sg, d_sd = float(nz.sigma[c]) * sh, d_level * sh
+        else:
+            sg = float(nz.sigma[c])
+            d_sd = d_level = discrepancy_sd(r, sg, dof)
         pi = predictive_interval(pred, G, cov, sg, d_sd, level)
         in_cal = int(np.sum(np.abs(r) <= q * pi.sd))
         in_ho = int(np.sum(np.abs(r_ho) <= q * pi.sd))
         lo = np.full(m.size, np.nan)
         hi = np.full(m.size, np.nan)
         lo[m], hi[m] = pi.lo, pi.hi
-        cols[c] = ColumnInterval(c, lo, hi, d_sd, float(nz.sigma[c]), in_cal / max(n, 1),
+        cols[c] = ColumnInterval(c, lo, hi, d_level, float(nz.sigma[c]), in_cal / max(n, 1),
                                  in_ho / max(n, 1))
         inside_cal, inside_ho, total = inside_cal + in_cal, inside_ho + in_ho, total + n
     return Intervals(float(level), inside_cal / max(total, 1), inside_ho / max(total, 1), cols,
