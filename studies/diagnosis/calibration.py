@@ -46,8 +46,9 @@ def calibrate(pb: Problem) -> tuple[Problem, Baseline]:
     residuals), its residual description and held-out residuals."""
     bspace = pb.space([])
     base = pb.fit(bspace, np.zeros(bspace.lo.size))
-    if pb.noise.stated:     # a stated noise's readings: the calibrated model, not the noisy data
-        pb = replace(pb, noise=with_stated_shape(pb.noise, pb.measured, pb.valid, base.pred))
+    if pb.noise.stated:     # a stated noise's readings: not the noisy data (`stated_readings`)
+        pb = replace(pb, noise=with_stated_shape(pb.noise, pb.measured, pb.valid,
+                                                 stated_readings(pb, base.pred)))
         base = pb.fit(bspace, base.u)
     spiked = drop_spikes(pb, base.pred)
     if spiked is not pb:
@@ -63,6 +64,21 @@ def calibrate(pb: Problem) -> tuple[Problem, Baseline]:
     structure = desc_base.p_min_adjusted < pb.th["alpha_structure"]
     return pb, Baseline(base, base_nuis, desc_base, bool(structure), heldout_linear(pb, base),
                         orth(base.J))
+
+
+def stated_readings(pb: Problem, pred: dict) -> dict[str, np.ndarray]:
+    """The readings a stated noise is evaluated at (`noisemodel` module docstring): the
+    calibrated baseline's prediction plus the smooth part of its residual
+    (`Problem.smooth_residual`), every row (the prediction where a column is not compared).
+    Neither the noisy reading itself (its weights would correlate with the noise) nor the
+    baseline alone (a model missing a lag by a factor 5 in torque at the cold end would put the
+    weights there by that factor)."""
+    out = {}
+    for c in pb.noise.stated:
+        y = np.asarray(pred[c], float).copy()
+        y[pb.valid[c]] += pb.smooth_residual(c, pred[c])[0]
+        out[c] = y
+    return out
 
 
 def stated_noise_notes(noise: Noise) -> tuple[str, ...]:

@@ -255,18 +255,16 @@ def configured_intervals(pb, fit, level: float = LEVEL) -> Intervals:
     With no structure the smoother is near zero and the interval is the noise's with the
     nuisance's and smoother's uncertainty."""
     kn = int(fit.u.size)
-    X = np.column_stack([np.ones(pb.n), pb.features])
-    p = X.shape[1]
-    blocks, Js, zs, rows = [], [], [], []
+    p = 1 + pb.features.shape[1]
+    blocks, Js, zs = [], [], []
     offset = kn
     for j, c in enumerate(pb.columns):
         sel = pb.entry_col == j
         m = np.asarray(pb.valid[c], bool)
-        Xc = X[m]
+        Xc = pb.smoother(c)
         r0 = np.asarray(pb.measured[c], float)[m] - np.asarray(fit.pred[c], float)[m]
         A = pb.standardise(c, Xc)
-        coef, *_ = np.linalg.lstsq(A, pb.standardise(c, r0), rcond=None)
-        delta = Xc @ coef
+        delta = pb.smooth_residual(c, fit.pred[c])[0]
         Gn = pb.prediction_jacobian(c, fit.J[sel])
         Jc = np.zeros((int(m.sum()), kn + p * len(pb.columns)))
         Jc[:, :kn] = fit.J[sel]

@@ -280,6 +280,21 @@ class Problem:
         sh = np.asarray(s, float)[self.valid[c]]
         return r * (sh if r.ndim == 1 else sh[:, None])
 
+    def smoother(self, c: str) -> np.ndarray:
+        """The conditions' smoother on column c's compared rows, in the column's unit: a
+        constant and `features` (compared rows x (1 + features))."""
+        return np.column_stack([np.ones(self.n), self.features])[self.valid[c]]
+
+    def smooth_residual(self, c: str, pred_c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Column c's residual measured - pred_c on its compared rows as the conditions' smoother
+        shows it (`smoother`, fitted by generalised least squares under this noise model,
+        `standardise`): (the smooth part, column unit; the coefficients)."""
+        m = self.valid[c]
+        X = self.smoother(c)
+        r = self.measured[c][m] - np.asarray(pred_c, float)[m]
+        coef, *_ = np.linalg.lstsq(self.standardise(c, X), self.standardise(c, r), rcond=None)
+        return X @ coef, coef
+
     def zvec(self, pred: Mapping[str, np.ndarray]) -> np.ndarray:
         """Standardised residuals, stacked (`standardise` per column: stated weights, AR(1)
         whitening, innovation level; plain r / sigma for white noise without a statement)."""
