@@ -172,7 +172,7 @@ def test_lag_with_percent_of_reading_noise_is_explained_with_its_tau():
     time, chamber and speed only, the torque carries 1.5 % of reading noise. Stated as
     `--noise torque_Nmm=1.5%`, the lag is explained with its tau's interval holding 1500 s and
     the statement found consistent; without the statement the same data are not explained
-    (issue 42: `unexplained`, tau 1507 s on the issue's data)."""
+    (there: `unexplained`, as on data the issue names, with a fitted tau of 1507 s)."""
     import bearingfem
     from studies.model.inputs import PART_COLUMNS
 

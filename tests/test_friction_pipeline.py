@@ -1,4 +1,4 @@
-"""`[lubrication] viscous_model` and `shear_strength` through the pipeline (issue 33): the default
+"""`[lubrication] viscous_model` and `shear_strength` through the pipeline: the default
 keeps every existing column bit for bit, every model's torque and heat split adds up, and the
 split columns come after the model columns with the names of docs/cli.md."""
 from dataclasses import replace
@@ -69,7 +69,7 @@ def test_solid_film_pressure_law_through_the_config():
 
 def test_split_column_names_are_the_contract():
     """friction_split_columns names exactly the six columns of the spec, in its order."""
-    from analytic.torque import TorqueComponents
+    from analytic.friction.pair import TorqueComponents
     one = np.ones(2)
     t = TorqueComponents("oil", one, one, one, one, rolling_Nmm=one, sliding_Nmm=one,
                          drag_Nmm=one, heat_inner_W=one, heat_outer_W=one, heat_ball_W=one)
@@ -111,3 +111,157 @@ def test_diagnose_accepts_every_column_simulate_writes(seed001):
     unknown = [k for k in _columns(seed001) if k not in OUTPUT_NAMES and k not in COMPARABLE
                and k not in COND]
     assert unknown == []
+
+
+# ------------------------------------------- one friction route for `simulate` and `bearing`
+def _section_text(text: str, name: str) -> str:
+    """The text of TOML table [name] of `text` (header to the next header)."""
+    import re
+    m = re.search(rf"^\[{re.escape(name)}\][^\n]*\n(.*?)(?=^\[|\Z)", text, re.S | re.M)
+    return f"[{name}]\n{m.group(1)}"
+
+
+def _seed001_bearing_file(tmp_path, **lub):
+    """seed001's [bearing] and [lubrication] as a `bearing` file, with `lub` set in it."""
+    from studies.model.config import CONFIG_DIR, SHIPPED
+    text = (CONFIG_DIR / SHIPPED["seed001"]).read_text()
+    lubrication = _section_text(text, "lubrication") + "".join(
+        f'{k} = {v!r}\n'.replace("'", '"') for k, v in lub.items())
+    b = tmp_path / "b.toml"
+    b.write_text(_section_text(text, "bearing") + lubrication)
+    return b
+
+
+@pytest.mark.parametrize("model", ["palmgren", "skf2004"])
+def test_bearing_gives_simulates_torque_for_the_same_bearing_load_and_law(seed001, tmp_path,
+                                                                          model):
+    """`bearing` on seed001's bearing under the axial force bearing A carries in `simulate`, at
+    the row's speed and oil temperature (the rows are isothermal: the oil at T_ambient), gives
+    simulate's torque of bearing A to 1e-9 relative, for a law that depends on the bearing's
+    loads, speed and viscosity only (palmgren, skf2004: their torque does not depend on the
+    contact angle, which the pair's fits change); and skf2004 differs from Palmgren (before
+    this, `bearing` gave Palmgren's torque whatever viscous_model said)."""
+    import pandas as pd
+
+    from studies.app.cli import main
+    a = replace(seed001, lubrication=replace(seed001.lubrication, viscous_model=model))
+    res = Pipeline.shared(a, mesh_factor=MESH_FACTOR).run(table_inputs(a, COND))
+    nu = a.oil().nu_mm2_s(COND["T_ambient_C"])
+    assert np.allclose(res.torque.viscosity_mm2_s, nu, rtol=1e-12)   # isothermal rows
+    Fa = res.pair.axial_force_N[0]
+    loads = tmp_path / "loads.csv"
+    pd.DataFrame({"axial_load_N": Fa, "speed_rpm": COND["speed_rpm"],
+                  "T_oil_C": COND["T_ambient_C"]}).to_csv(loads, index=False)
+    out = tmp_path / f"{model}.csv"
+    assert main(["bearing", str(_seed001_bearing_file(tmp_path, viscous_model=model)), str(loads),
+                 "-o", str(out)]) == 0
+    got = pd.read_csv(out)["torque_Nmm"].to_numpy()
+    np.testing.assert_allclose(got, res.torque.torque_A_Nmm, rtol=1e-9)
+    if model == "skf2004":
+        palm = replace(seed001, lubrication=replace(seed001.lubrication, viscous_model="palmgren"))
+        p = Pipeline.shared(palm, mesh_factor=MESH_FACTOR).run(table_inputs(palm, COND))
+        assert np.all(np.abs(got / p.torque.torque_A_Nmm - 1.0) > 0.05)
+
+
+@pytest.mark.parametrize("model", ["palmgren", "skf2004", "ehl_rolling", "starved"])
+def test_every_ball_summed_is_z_times_the_representative_ball(model):
+    """`bearing` sums the law over every ball's own contacts (`single_bearing_contacts`), the
+    pair route takes Z times a representative ball (`pair_bearing_contacts`): on the same
+    bearing state under a pure axial load (every ball alike) the two give the same torque for
+    every law, to 1e-12 relative (the same state, the same law, two ways of counting balls)."""
+    from analytic.bearing.single import solve_single
+    from analytic.friction.options import FrictionOptions
+    from analytic.friction.pair import BearingContacts, bearing_friction, single_bearing_contacts
+    from analytic.lubrication import dynamic_viscosity_Pa_s
+    from analytic.torque import ContactInput
+
+    asm = load_shipped("seed001")
+    from analytic.bearing import BearingGeometry
+    g = BearingGeometry.from_spec(asm.bearing, asm.materials)
+    speed = np.array([3500.0, 9000.0])
+    st = solve_single(g, axial_load_N=np.array([50.0, 200.0]), speed_rpm=speed,
+                      ball_model="quasi_dynamic")
+    every = single_bearing_contacts(st)
+    first = lambda k: ContactInput(*(np.asarray(getattr(k, f))[0] for f in  # noqa: E731
+                                     ("Q_N", "a_mm", "b_mm", "E_ell", "Rx_mm")))
+    one = BearingContacts(first(every.inner), first(every.outer), every.alpha_inner_rad[0],
+                          every.alpha_outer_rad[0], every.axial_force_N, every.radial_force_N)
+    oil = asm.oil()
+    nu = oil.nu_mm2_s(np.array([20.0, 40.0]))
+    fr = FrictionOptions(viscous_model=model, oil_quantity_mg=5.0 if model == "starved" else 0.0,
+                         eta_Pa_s=dynamic_viscosity_Pa_s(nu, oil.density_kg_m3),
+                         alpha_per_Pa=oil.alpha_per_Pa, density_kg_m3=oil.density_kg_m3,
+                         bore_mm=asm.bearing.bore_mm,
+                         outside_diameter_mm=asm.bearing.outside_diameter_mm)
+    args = dict(model="oil", mu=0.0029, speed_rpm=speed, f0=1.7, nu_mm2_s=nu, friction=fr)
+    a, b = bearing_friction(g, every, **args), bearing_friction(g, one, **args)
+    np.testing.assert_allclose(a.total_Nmm, b.total_Nmm, rtol=1e-12)
+    assert np.all(a.total_Nmm > 0)
+
+
+# ------------------------------------------------ the drag term and the lubrication method
+def test_drag_column_carries_the_bath_and_is_zero_without_one(seed001):
+    """skf2004 on seed001 with lubrication_method = "oil_bath" and an oil level: torque_drag_Nmm
+    and heat_ball_W positive, the drag the SKF form of each bearing's own speed and viscosity
+    (both bearings: twice `drag_torque_Nmm`, to 1e-12 relative), the rolling + sliding parts
+    unchanged by the bath; without a level (oil jet) both columns are 0."""
+    from analytic.friction.skf2004 import drag_torque_Nmm
+    level = 5.0
+    bath = _columns(seed001, viscous_model="skf2004", lubrication_method="oil_bath",
+                    oil_level_mm=level)
+    jet = _columns(seed001, viscous_model="skf2004", lubrication_method="oil_jet")
+    b = seed001.bearing
+    expect = 2.0 * drag_torque_Nmm(level, b.bore_mm, b.outside_diameter_mm, COND["speed_rpm"],
+                                   bath["viscosity_mm2_s"])
+    np.testing.assert_allclose(bath["torque_drag_Nmm"], expect, rtol=1e-12)
+    assert np.all(bath["torque_drag_Nmm"] > 0) and np.all(bath["heat_ball_W"] > 0)
+    assert np.all(jet["torque_drag_Nmm"] == 0) and np.all(jet["heat_ball_W"] == 0)
+    np.testing.assert_allclose(bath["torque_rolling_Nmm"] + bath["torque_sliding_Nmm"],
+                               jet["torque_rolling_Nmm"] + jet["torque_sliding_Nmm"], rtol=1e-12)
+
+
+@pytest.mark.parametrize("lub, key, words", [
+    ({"oil_level_mm": 5.0, "viscous_model": "skf2004"}, "oil_level_mm", "oil_bath"),
+    ({"oil_level_mm": 5.0, "lubrication_method": "oil_bath"}, "oil_level_mm", "skf2004"),
+    ({"lubrication_method": "splash"}, "lubrication_method", "not one of"),
+])
+def test_lubrication_method_keys_without_effect_are_refused(lub, key, words):
+    """An oil level without a bath or with a law that has no drag term, an unknown method: one
+    line naming file and key."""
+    import tomllib
+
+    from studies.model.config import CONFIG_DIR, SHIPPED, ConfigError, assembly_from_dict
+    with open(CONFIG_DIR / SHIPPED["seed001"], "rb") as fh:
+        raw = tomllib.load(fh)
+    raw["lubrication"].update(lub)
+    with pytest.raises(ConfigError, match=rf"^x\.toml: lubrication\.{key}: .*{words}") as e:
+        assembly_from_dict(raw, "x.toml")
+    assert "\n" not in str(e.value)
+
+
+def test_tau0_typed_in_pa_and_a_film_with_an_oil_method_are_refused():
+    """tau0 = 1.7e7 (Pa typed for MPa: 1.7e7 N mm of torque before) and a lubrication method on a
+    solid film: one line each."""
+    import tomllib
+
+    from studies.model.config import CONFIG_DIR, SHIPPED, ConfigError, assembly_from_dict
+    with open(CONFIG_DIR / SHIPPED["seed000"], "rb") as fh:
+        raw = tomllib.load(fh)
+    for lub, key, words in (({"shear_strength": "pressure", "tau0_MPa": 1.7e7}, "tau0_MPa", "in Pa"),
+                            ({"lubrication_method": "oil_jet"}, "lubrication_method", "solid_film")):
+        r = {**raw, "lubrication": {**raw["lubrication"], **lub}}
+        with pytest.raises(ConfigError, match=rf"^x\.toml: lubrication\.{key}: .*{words}"):
+            assembly_from_dict(r, "x.toml")
+
+
+def test_lubricant_family_sets_skfs_full_film_coefficient():
+    """A [lubricants.NAME] family: "synthetic" gives mu_EHL 0.04, "mineral" (the default) 0.05;
+    the library's PFPE and MAC oils are synthetic; another word is one line."""
+    from analytic.lubrication import get_lubricant, lubricant_from_table
+    base = {"kinematic_viscosity_cSt": [[40.0, 100.0], [100.0, 10.0]], "density_kg_m3": 860.0,
+            "pressure_viscosity_per_GPa": 20.0}
+    assert lubricant_from_table("A", base).oil_family == "mineral"
+    assert lubricant_from_table("A", {**base, "family": "synthetic"}).oil_family == "synthetic"
+    assert get_lubricant("Nye 2001a").oil_family == "synthetic"
+    with pytest.raises(ValueError, match="lubricants.A.family"):
+        lubricant_from_table("A", {**base, "family": "vegetable"})

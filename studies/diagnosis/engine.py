@@ -225,7 +225,7 @@ def _interval(first: Pass, sel: Selection, cause: str | None, ext_fit: Fit, ext_
     (`calibration.baseline_noise`: a first noise estimate inflated by the cause, AR(1) rho 0.99,
     would give intervals many times too wide). Without a claimed cause: the configured model's
     interval with the discrepancy the data show (`interval.configured_intervals` of the
-    calibrated baseline) and no fit (issue 42)."""
+    calibrated baseline) and no fit."""
     if not cause or sel.verdict not in ("explained", "explained_partly"):
         return configured_intervals(first.pb, first.baseline.fit), None
     pb, fit, ho = ((sel.problem, sel.fit, sel.heldout_z) if sel.fit is not None
