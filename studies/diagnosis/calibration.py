@@ -166,6 +166,8 @@ def baseline_noise(pb: Problem, pred: dict) -> Noise:
         floor = ROUND_OFF * max(np.nanmax(np.abs(pb.measured[c])), 1e-300)
         sigma[c] = sigma_w[c] = max(s, floor)
         rho[c] = 0.0
+        if c in pb.noise.stated and white_statement_holds(pb, c, sigma[c]):
+            continue
         ar1 = noise_ar1(pb, c, pred[c], floor, history)
         if ar1 is not None:
             rho[c], sigma_w[c], sigma[c], rho_hi[c] = ar1
@@ -173,6 +175,17 @@ def baseline_noise(pb: Problem, pred: dict) -> Noise:
               for c in pb.noise.stated}
     return replace(pb.noise, sigma=sigma, sigma_w=sigma_w, rho=rho, source=source,
                    rho_hi=rho_hi, consistency=checks)
+
+
+def white_statement_holds(pb: Problem, c: str, s_white: float) -> bool:
+    """Does the data's white-noise level `s_white` of stated column c (second differences of
+    the residual divided by the stated shape: blind to a smooth model error) agree with the
+    stated level (`noisemodel.consistency`)? Then the statement's white noise stands and no
+    AR(1) model is fitted: what the AR(1) test would see in the baseline residual beyond it is a
+    model error, not the sensor (a drifting sensor of stated marginal level shows a
+    second-difference level well below it, sqrt((1 - rho)(3 - rho) / 3) of it, 0.26 at rho
+    0.9: it fails this check and gets its AR(1) model)."""
+    return consistency(s_white / pb.noise.stated_sigma[c], int(pb.valid[c].sum())).consistent
 
 
 def history_basis(pb: Problem) -> np.ndarray:
