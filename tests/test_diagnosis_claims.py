@@ -93,7 +93,7 @@ def test_fit_beyond_its_band_is_not_claimed_and_listed_at_bound():
     assert hit and hit[0].bound == 1.0 and "tolerance band" in hit[0].text, r.at_bound
     assert hit[0].uncertainty is not None and hit[0].uncertainty > 0
     assert r.best_partial is not None and r.best_partial.effect == "interference_error"
-    assert r.interval is None and not r.causes
+    assert r.interval is not None and r.interval.model == "configured" and not r.causes
 
 
 def test_generalised_form_at_its_bound_is_not_claimed_and_names_no_cause():
@@ -114,7 +114,7 @@ def test_generalised_form_at_its_bound_is_not_claimed_and_names_no_cause():
     assert r.parameters == {} and r.parameter_uncertainty == {} and r.extended_form is None
     hit = [b for b in r.at_bound if b.parameter == "b_per_K"]
     assert hit and hit[0].effect == "friction_temperature.exponential" and hit[0].bound == 0.03
-    assert r.interval is None and not r.causes
+    assert r.interval is not None and r.interval.model == "configured" and not r.causes
     from studies.diagnosis.result import to_json
     doc = to_json(r)
     assert doc["cause"] is None and doc["parameters"] == {}

@@ -147,7 +147,7 @@ def _left(pb: Problem, fit: Fit, cols: dict[str, ColumnFit], m_fit: int, m_res: 
         if p >= a:
             continue
         m = pb.valid[c]
-        r = (pb.measured[c] - fit.pred[c])[m]
+        r = pb.scaled_residual(c, fit.pred[c])[m]
         ch = characterise_column(c, r, {k: v[m] for k, v in feats.items()}, pb.blocks[m],
                                  float(pb.noise.sigma_w[c]), float(pb.noise.rho[c]))
         size = math.sqrt(max(cf.chi2_reduced - 1.0, 0.0))

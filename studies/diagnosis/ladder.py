@@ -644,7 +644,7 @@ def indication(pb, b) -> Indication:
 
     if not b.structure:
         return Indication(False)
-    ow = characterise({c: pb.measured[c] - b.fit.pred[c] for c in pb.columns}, pb.valid,
+    ow = characterise({c: pb.scaled_residual(c, b.fit.pred[c]) for c in pb.columns}, pb.valid,
                       pb.conditions, pb.blocks, pb.noise.sigma_w, pb.noise.rho)
     feats: set[str] = set()
     for col in ow.columns:
