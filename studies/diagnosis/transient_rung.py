@@ -92,6 +92,8 @@ from studies.model.effects import Effect
 from studies.model.inputs import PARTS
 
 NAME = "thermal_transient_fe"
+#: assembly -> the pipeline the last diagnosis of it bound the rung to (`ThermalTransientFE.bind`)
+_BOUND: Memo = Memo(4)
 #: the mount's face group (module docstring)
 MOUNT_FACE = "housing_outer"
 #: film resistance bounds (m^2 K / W): natural convection's lowest film, 2 W/(m^2 K)
@@ -139,6 +141,7 @@ class RungModel:
     groups: np.ndarray
     vacuum: bool
     capacity_J_K: float
+    fit_matters: bool = True
 
     @property
     def m(self) -> int:
@@ -183,14 +186,31 @@ def _build(pl) -> RungModel:
         a_heat = sum(tr.extra_share(k, dict.fromkeys(keys, 0.0)) * rc.a[k] for k in keys)
         face = MOUNT_FACE if MOUNT_FACE in rc.F else None
         zero = np.zeros((rc.m, rc.m))
-        return RungModel(
+        out = RungModel(
             M=rc.M, K0=K0, F_ext=sum(rc.F[g] for g in ext), b_ext=sum(rc.b[g] for g in ext),
             C_fit=_fit_part(rc, c.fit_W_m2K), F_face=rc.F[face] if face else zero,
             b_face=rc.b[face] if face else np.zeros(rc.m),
             area_face_mm2=float(tc.b[face].sum()) if face else 0.0, a_heat=a_heat,
             groups=tr.group_rows(tc) @ rc.V, vacuum=pl.asm.thermal.gas == "vacuum",
             capacity_J_K=float(tc.M.sum()))
+        return replace(out, fit_matters=_fit_matters(out))
     return make()
+
+
+#: the fits' conductance factor is fitted when its range (FIT_FACTOR) moves one of the stack's
+#: FIT_MATTERS_MODES slowest time constants by more than this share (at a film of 20 W/(m^2 K),
+#: no mount); else it is held at 1 (`held_fixed`): the fits then conduct so much more than the
+#: films and ball contacts in series with them that no data can see their conductance
+FIT_MATTERS_REL = 0.01
+FIT_MATTERS_MODES = 4
+
+
+def _fit_matters(rm: RungModel) -> bool:
+    lam = []
+    for f in FIT_FACTOR:
+        A = rm.K0 + f * rm.C_fit + (20.0 * PER_M2_TO_PER_MM2) * rm.F_ext
+        lam.append(sla.eigh(0.5 * (A + A.T), rm.M, eigvals_only=True)[:FIT_MATTERS_MODES])
+    return bool(np.max(np.abs(lam[1] - lam[0]) / lam[1]) > FIT_MATTERS_REL)
 
 
 def _fit_part(rc: ReducedConduction, h_fit_W_m2K) -> np.ndarray:
@@ -305,17 +325,26 @@ class ThermalTransientFE(Effect):
         self._heat = Memo(4)
 
     def bind(self, pipeline) -> "ThermalTransientFE":
-        """The rung evaluated on `pipeline` (the diagnosis's, `ladder.FormRoute`)."""
+        """The rung evaluated on `pipeline` (the diagnosis's, `ladder.FormRoute`); the rung of
+        the same assembly unbound (the engine's candidate object) then evaluates there too."""
         out = ThermalTransientFE.__new__(ThermalTransientFE)
         out.__dict__.update(self.__dict__)
         out.pipeline, out._heat = pipeline, Memo(4)
+        _BOUND.put(self.asm, pipeline)
         return out
 
-    def _pl(self):
-        if self.pipeline is None:
+    def evaluated_on(self):
+        """The pipeline the rung evaluates on: its own, the last one bound for its assembly,
+        else the assembly's shared one (`Pipeline.shared`)."""
+        if self.pipeline is not None:
+            return self.pipeline
+        hit = _BOUND.get(self.asm)
+        if hit is None:
             from studies.model.pipeline import Pipeline
-            self.pipeline = Pipeline.shared(self.asm)
-        return self.pipeline
+            hit = Pipeline.shared(self.asm)
+        return hit
+
+    _pl = evaluated_on
 
     def _apply(self, inputs, p, T_ref_C):
         if p["film_resistance_m2K_W"] == 0.0:       # the configured model: the form's limit
@@ -385,8 +414,13 @@ def speed_varies(conditions) -> bool:
 
 
 def held_fixed(effect, conditions) -> tuple[str, ...]:
-    """`fitspec.held_fixed` of the rung: the heat scale at off when the speed is constant."""
-    return () if speed_varies(conditions) else ("heat_scale",)
+    """`fitspec.held_fixed` of the rung: the heat scale at off when the speed is constant; the
+    fits' conductance factor at 1 where it cannot move the stack's time constants
+    (`RungModel.fit_matters`)."""
+    held = () if speed_varies(conditions) else ("heat_scale",)
+    if not rung_model(effect.evaluated_on()).fit_matters:
+        held += ("fit_conductance_factor",)
+    return held
 
 
 def starts(effect, conditions, T_ref_C) -> list[dict]:
