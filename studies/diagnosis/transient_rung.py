@@ -50,9 +50,10 @@ Parameters (bounds and sources):
 
 - film_resistance_m2K_W = 1 / h (m^2 K / W), off 0: the configured model (h infinite: every
   part at the ambient, no heat rise; the limit of the form, returned exactly); up to
-  FILM_RESISTANCE_MAX_AIR = 1 / 2 (natural convection in air 2..25 W/(m^2 K), forced 25..250
+  FILM_RESISTANCE_MAX_AIR = 1 / 1 (natural convection in air 2..25 W/(m^2 K), forced 25..250
   in gases, Incropera & DeWitt, Fundamentals of Heat and Mass Transfer, 6th ed., Table 1.1;
-  forced air past a rotating shaft to ~500) or in vacuum 1 / (EMISSIVITY_MIN 4 sigma T^3)
+  forced air past a rotating shaft to ~500; 1 W/(m^2 K): small temperature differences, or
+  radiation alone in the cold, `FILM_RESISTANCE_MAX_AIR`) or in vacuum 1 / (EMISSIVITY_MIN 4 sigma T^3)
   (radiation alone: emissivity from 0.03, polished aluminium / gold, to 0.95, black anodise,
   Incropera Table A.11; the mean ambient as T).
 - G_face_W_K (W/K), off 0 (no mount): the mount's conductance to the housing's outer face,
@@ -96,9 +97,12 @@ NAME = "thermal_transient_fe"
 _BOUND: Memo = Memo(4)
 #: the mount's face group (module docstring)
 MOUNT_FACE = "housing_outer"
-#: film resistance bounds (m^2 K / W): natural convection's lowest film, 2 W/(m^2 K)
-#: (Incropera Table 1.1)
-FILM_RESISTANCE_MAX_AIR = 1.0 / 2.0
+#: film resistance bound in air (m^2 K / W): a film of 1 W/(m^2 K), below natural convection's
+#: 2 W/(m^2 K) of Incropera Table 1.1 (given for differences of tens of K; laminar natural
+#: convection goes as dT^0.25, Incropera ch. 9.6, so a difference of a few K halves it) and
+#: below radiation alone at -60 C (eps 0.8: 4 eps sigma T^3 = 1.8 W/(m^2 K)): a file that
+#: says nothing of its gas may be run in vacuum
+FILM_RESISTANCE_MAX_AIR = 1.0 / 1.0
 #: the lowest emissivity of a technical surface in vacuum (polished aluminium, gold plate:
 #: 0.03..0.05, Incropera Table A.11)
 EMISSIVITY_MIN = 0.03
@@ -142,6 +146,9 @@ class RungModel:
     vacuum: bool
     capacity_J_K: float
     fit_matters: bool = True
+    rc: ReducedConduction | None = None
+    nominal: ThermalParameters | None = None
+    exterior: tuple = ()
 
     @property
     def m(self) -> int:
@@ -192,7 +199,7 @@ def _build(pl) -> RungModel:
             b_face=rc.b[face] if face else np.zeros(rc.m),
             area_face_mm2=float(tc.b[face].sum()) if face else 0.0, a_heat=a_heat,
             groups=tr.group_rows(tc) @ rc.V, vacuum=pl.asm.thermal.gas == "vacuum",
-            capacity_J_K=float(tc.M.sum()))
+            capacity_J_K=float(tc.M.sum()), rc=rc, nominal=nominal, exterior=tuple(ext))
         return replace(out, fit_matters=_fit_matters(out))
     return make()
 

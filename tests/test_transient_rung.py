@@ -1,0 +1,149 @@
+"""The ladder rung `thermal_transient_fe` (issue 42; studies/diagnosis/transient_rung.py).
+
+Fast: a trial's exact modal integration against the project's reduced BDF2 stepper (a second
+method, `fem.reduced_thermal.ReducedStepper`) on the same operator; the steady state's energy
+balance with the mount (heat in = film + mount to the environment: conservation); the lumped lag
+as the rung's limit for a nearly isothermal stack (one dominant time constant tau = C / (h A),
+Incropera ch. 5 lumped capacitance, `thermal_lag.lag_response`); the off values are the
+configured model exactly. The reduced model is built once for the module (the reduction is
+read from the set-up cache after the first run).
+
+Slow: plumbing (data made by the rung itself: its films and mount recovered, the cause
+explained; a 12 N preload loss beside it named as the second cause) and truth (data made by
+the independent conduction network, `studies.validation.conduction_network`: the thermal
+history named, no wrong claim).
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from fem.reduced_thermal import ReducedStepper
+from fem.transient import PER_M2_TO_PER_MM2, StepLoads, ThermalParameters
+from studies.diagnosis import transient_rung as tr
+from studies.diagnosis.designs import cycles
+from studies.model.config import load_shipped
+from studies.model.effects.thermal_lag import lag_response
+from studies.model.inputs import PARTS
+from studies.model.pipeline import Pipeline
+
+MESH_FACTOR = 2.0
+
+
+@pytest.fixture(scope="module")
+def pl():
+    return Pipeline(load_shipped("seed000"), mesh_factor=MESH_FACTOR)
+
+
+@pytest.fixture(scope="module")
+def rm(pl):
+    return tr.rung_model(pl)
+
+
+def _params(**kw):
+    p = {"film_resistance_m2K_W": 0.05, "G_face_W_K": 0.0, "G_env_W_K": 0.0,
+         "C_mount_J_K": tr.C_MOUNT_MIN_J_K, "fit_conductance_factor": 1.0, "heat_scale": 0.0}
+    p.update(kw)
+    return p
+
+
+def test_a_trial_equals_the_reduced_bdf2_stepper_on_the_same_operator(rm):
+    """The exact integration between rows (first-order hold) against BDF2 steps of 1 s on the
+    reduced model of the same coefficients (no mount: the stepper has none): a ramp and a dwell.
+    BDF2's error at 1 s on time constants of minutes is ~(dt / tau)^2 of the swing: 1e-3 K of a
+    40 K swing is far above it and far below the lag itself (several K)."""
+    from dataclasses import replace
+
+    from studies.model import transient_route as route
+
+    h = 20.0
+    rc = rm.rc
+    prm = replace(rm.nominal, film_W_m2K={g: h for g in rm.exterior})
+    t = np.array([0.0, 600.0, 1200.0, 2400.0])
+    amb = np.array([20.0, 60.0, 60.0, 60.0])
+    T = tr.part_temperatures_C(rm, _params(film_resistance_m2K_W=1.0 / h), t, amb, None)
+    st = ReducedStepper(rc, prm, 1.0, 20.0)
+    out = [st.q.copy()]
+    for k in range(1, int(t[-1]) + 1):
+        st.step(StepLoads(float(np.interp(k, t, amb))))
+        out.append(st.q.copy())
+    Q = np.array(out)[t.astype(int)]
+    ref = Q @ (route.group_rows(rc.tc) @ rc.V).T
+    ok = ~np.isnan(ref[0])
+    assert np.max(np.abs(T[:, ok] - ref[:, ok])) < 1e-3
+    assert np.max(np.abs(T[1, ok] - amb[1])) > 2.0        # the lag is there to be compared
+
+
+def test_the_steady_state_with_heat_and_a_mount_balances_its_energy(rm):
+    """Held long at a constant ambient with a constant heat Q into the pair, the stack ends where
+    everything put in leaves through the films and the mount's path to the environment:
+    Q = h sum_ext int (T - T_amb) dA + G_env (T_m - T_amb). Checked on the reduced state
+    (the balance of the reduced system is exact: V^T applied to the uniform field)."""
+    p = _params(film_resistance_m2K_W=1.0 / 15.0, G_face_W_K=3.0, G_env_W_K=2.0,
+                C_mount_J_K=4000.0, heat_scale=1.0)
+    t = np.array([0.0, 1e6])
+    amb = np.array([20.0, 20.0])
+    Q = 2.5
+    # the steady state of the augmented system directly (no time stepping) from the trial's
+    # own matrices, then the balance; and the trial's temperatures at its steady first row
+    T = tr.part_temperatures_C(rm, p, t, amb, np.array([Q, Q]))
+    assert np.all(T[~np.isnan(T)] > 20.0)
+    m = rm.m
+    h = 15.0 * PER_M2_TO_PER_MM2
+    hm = p["G_face_W_K"] / rm.area_face_mm2
+    A = np.zeros((m + 1, m + 1))
+    A[:m, :m] = rm.K0 + rm.C_fit + h * rm.F_ext + hm * rm.F_face
+    A[:m, m] = A[m, :m] = -hm * rm.b_face
+    A[m, m] = p["G_face_W_K"] + p["G_env_W_K"]
+    f = np.zeros(m + 1)
+    f[:m] = h * rm.b_ext * 20.0 + Q * rm.a_heat
+    f[m] = p["G_env_W_K"] * 20.0
+    x = np.linalg.solve(A, f)
+    q, T_m = x[:m], x[m]
+    out_film = h * (rm.b_ext @ q - rm.b_ext @ (20.0 * _one(rm)))
+    out_mount = p["G_env_W_K"] * (T_m - 20.0)
+    assert out_film + out_mount == pytest.approx(Q, rel=1e-8)
+    G = rm.groups
+    ok = ~np.isnan(G[:, 0])
+    assert np.allclose(T[0, ok], (G @ q)[ok], atol=1e-9)
+
+
+def _one(rm):
+    """Reduced coordinates of the uniform field 1 (the first mode is uniform: its coordinate is
+    1 / its value)."""
+    q = np.zeros(rm.m)
+    ok = ~np.isnan(rm.groups[:, 0])
+    q[0] = 1.0 / rm.groups[ok, 0][0]
+    return q
+
+
+def test_the_lumped_lag_is_the_rung_s_limit_for_a_nearly_isothermal_stack(rm):
+    """A film of 1 W/(m^2 K) on a steel stack (Biot h L / k ~ 1e-3): every part follows the
+    ambient with the one time constant tau = C / (h A) of the lumped body (Incropera ch. 5.1),
+    the `thermal_lag` form's law; the parts agree with it to 1 % of the 140 K swing and with each
+    other to 0.5 % (the ball sets, linked by their contacts' ~0.1 W/K, trail most; the other
+    modes are two to three decades faster)."""
+    h = 1.0
+    cond = cycles(200, 252.0)
+    A_mm2 = float(rm.b_ext @ _one(rm))
+    tau = rm.capacity_J_K / (h * PER_M2_TO_PER_MM2 * A_mm2)
+    T = tr.part_temperatures_C(rm, _params(film_resistance_m2K_W=1.0 / h), cond["time_s"],
+                               cond["T_ambient_C"], None)
+    lag = lag_response(cond["time_s"], cond["T_ambient_C"], tau)
+    ok = ~np.isnan(T[0])
+    swing = np.ptp(cond["T_ambient_C"])
+    assert np.max(np.abs(T[:, ok] - lag[:, None])) < 0.01 * swing
+    assert np.max(np.ptp(T[:, ok], axis=1)) < 0.005 * swing
+    assert np.max(np.abs(lag - cond["T_ambient_C"])) > 0.2 * swing    # a real lag
+
+
+def test_at_off_the_rung_is_the_configured_model(pl):
+    from studies.model.inputs import baseline_inputs
+
+    asm = pl.asm
+    cond = cycles(20, 120.0)
+    inp = baseline_inputs(cond, 20, asm.T_ref_C, asm.preload.assembled_N, asm.lubrication.speed_rpm)
+    e = tr.ThermalTransientFE(asm).bind(pl)
+    out = e.apply(inp, e.off, asm.T_ref_C)
+    for p in PARTS:
+        assert np.array_equal(out.T_C[p], inp.T_C[p])
