@@ -156,15 +156,72 @@ class RungModel:
 
 
 def rung_model(pl) -> RungModel:
-    """The `RungModel` of a pipeline's stack: built once per pipeline and kept on it (the
-    reduction from the disk cache after the first time)."""
+    """The `RungModel` of a pipeline's stack: kept on the pipeline; from the set-up cache when a
+    diagnosis of the same assembly built it before (`cached_rung_model`), else `build`."""
     hit = getattr(pl, "_rung_model", None)
     if hit is None:
-        hit = pl._rung_model = _build(pl)
+        hit = pl._rung_model = cached_rung_model(pl)
     return hit
 
 
-def _build(pl) -> RungModel:
+#: format of the cached rung model (raise when its arrays or `TRAINING` change)
+RUNG_FORMAT = 1
+#: the arrays of a cached `RungModel` (its scalars are stored as 0-d arrays)
+_ARRAYS = ("M", "K0", "F_ext", "b_ext", "C_fit", "F_face", "b_face", "a_heat", "groups")
+_SCALARS = ("area_face_mm2", "vacuum", "capacity_J_K", "fit_matters")
+
+
+class RungCacheError(RuntimeError):
+    """A cached rung model that is not sound for its key (one line)."""
+
+
+def cached_rung_model(pl) -> RungModel:
+    """`build`'s arrays, cached beside the FE set-ups (`meshes.cache`: hash-named .npz, atomic
+    write, checked on read, rebuilt with a warning), keyed by the FE set-up's key, the whole
+    assembly (the contact state: preload, speed, lubricant, [thermal]), the mesh factor,
+    TRAINING and RUNG_FORMAT. A diagnosis then needs neither the full FE model nor the
+    conduction's assembly (seconds) once a diagnosis of the assembly has run."""
+    import hashlib
+    import json
+
+    from meshes.cache import cache_dir, cached_file
+
+    key = hashlib.sha256(json.dumps({"format": RUNG_FORMAT, "setup": pl.setup.key,
+                                     "asm": repr(pl.asm), "mesh_factor": pl.mesh_factor,
+                                     "training": repr(TRAINING)}).encode()).hexdigest()[:24]
+    path = cache_dir("setups", "transient rung model") / f"rung_{key}.npz"
+
+    def make(tmp):
+        rm = build(pl)
+        with open(tmp, "wb") as fh:
+            np.savez(fh, key=np.array(key), exterior=np.array(rm.exterior),
+                     **{k: getattr(rm, k) for k in _ARRAYS + _SCALARS})
+
+    def read(p):
+        try:
+            with np.load(p, allow_pickle=False) as z:
+                a = {k: z[k] for k in z.files}
+        except Exception as exc:       # a damaged or foreign file
+            raise RungCacheError(f"unreadable: {type(exc).__name__}") from None
+        if set(a) != {"key", "exterior", *_ARRAYS, *_SCALARS} or str(a["key"]) != key:
+            raise RungCacheError("not the rung model of this assembly")
+        m = a["M"].shape[0]
+        if (a["M"].shape != (m, m) or a["groups"].shape != (len(PARTS), m)
+                or not all(np.all(np.isfinite(a[k])) for k in _ARRAYS if k != "groups")):
+            raise RungCacheError("its arrays are not sound")
+        return RungModel(**{k: a[k] for k in _ARRAYS}, area_face_mm2=float(a["area_face_mm2"]),
+                         vacuum=bool(a["vacuum"]), capacity_J_K=float(a["capacity_J_K"]),
+                         fit_matters=bool(a["fit_matters"]),
+                         exterior=tuple(str(x) for x in a["exterior"]))
+
+    return cached_file(path, make, read, what="transient rung model", writer="bearingfem",
+                       error=RungCacheError)
+
+
+def build(pl) -> RungModel:
+    """The `RungModel` of `pl`'s stack (module docstring): the conduction FE, its contact
+    coefficients at the assembled state (`transient_route.contacts`), the reduction
+    (`transient_route.cached_basis`) and the sums the trials take."""
     from dataclasses import replace
 
     from fem.solver import single_thread_blas
