@@ -68,10 +68,18 @@ Parameters (bounds and sources):
 - fit_conductance_factor (-), 1/3..3, off 1: the fits' contact conductance about Yovanovich's
   correlation (the spread of measured conductances about the correlations for ground metal
   joints, a factor of about 2..3: Madhusudana 2014 ch. 3; an assumption stated as such).
-- heat_scale (-), 0..3, off 0: the bearing's friction heat in the stack x heat_scale (the
-  friction laws' own spread about measured torques; `analytic.friction`); fitted only where
-  the speed varies (held at off otherwise, `fitspec.held_fixed`: at constant speed the heat's
-  steady rise is a constant the mount and the films trade against each other).
+- heat_scale (-), 0..3, off 1: the bearing's friction heat in the stack x heat_scale (the
+  friction laws' own spread about measured torques; `analytic.friction`); 1 is the torque
+  model's own heat, and at film resistance 0 the heat raises nothing, so off is still the
+  configured model. Fitted only where the speed varies (held at 1 otherwise,
+  `fitspec.held_fixed`: at constant speed the heat's steady rise is a constant the mount and
+  the films trade against each other, and the model's own heat is the best statement of it).
+
+Environment from the assembly's `[thermal]`: `gas = "vacuum"` makes the films radiation (their
+bound above) and takes the gas out of the fits and spacer bores (`transient_route.contacts`);
+an `emissivity` in air is part of the fitted film; a finite `sink_C` in vacuum is what the
+films (radiation) see, the mount's environment staying `T_ambient_C` (a thermal-vacuum
+chamber's shroud and its controlled base plate).
 
 A parameter whose effect vanishes at the off values of the others (the mount's capacity and
 G_env at G_face = 0) is found from the fit specification's starts (`starts`).
@@ -300,10 +308,13 @@ def _phi(x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 
 def part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb_C: np.ndarray,
-                        heat_W: np.ndarray | None) -> np.ndarray:
+                        heat_W: np.ndarray | None, T_film_C: np.ndarray | None = None
+                        ) -> np.ndarray:
     """(n, len(PARTS)) part group mean temperatures (C) of one trial at parameters p (module
     docstring), the ambient T_amb_C and the pair's heat heat_W (W; None: none) per row at
-    times t_s (s, strictly increasing). NaN columns: groups the stack lacks."""
+    times t_s (s, strictly increasing); T_film_C: what the films see when it is not the ambient
+    (a radiation sink), the mount's environment staying the ambient. NaN columns: groups the
+    stack lacks."""
     m = rm.m
     h_W_m2K = 1.0 / p["film_resistance_m2K_W"]
     G_face, G_env, C_m = p["G_face_W_K"], p["G_env_W_K"], p["C_mount_J_K"]
@@ -318,11 +329,15 @@ def part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb_C: np.nda
     M[m, m] = C_m
     lam, Phi = sla.eigh(0.5 * (A + A.T), 0.5 * (M + M.T), check_finite=False)
     lam = np.maximum(lam, 0.0)
-    e_amb = np.zeros(m + 1)
-    e_amb[:m] = (h_W_m2K * PER_M2_TO_PER_MM2) * rm.b_ext
-    e_amb[m] = G_env
-    g_amb = Phi.T @ e_amb
-    g = np.outer(np.asarray(T_amb_C, float), g_amb)                  # (n, m + 1)
+    e_film, e_env = np.zeros(m + 1), np.zeros(m + 1)
+    e_film[:m] = (h_W_m2K * PER_M2_TO_PER_MM2) * rm.b_ext
+    e_env[m] = G_env
+    amb = np.asarray(T_amb_C, float)
+    if T_film_C is None:
+        g = np.outer(amb, Phi.T @ (e_film + e_env))                   # (n, m + 1)
+    else:
+        g = (np.outer(np.broadcast_to(np.asarray(T_film_C, float), amb.shape), Phi.T @ e_film)
+             + np.outer(amb, Phi.T @ e_env))
     s = p["heat_scale"]
     if heat_W is not None and s > 0.0:
         e_heat = np.zeros(m + 1)
@@ -371,6 +386,10 @@ class ThermalTransientFE(Effect):
         self.asm, self.pipeline = asm, pipeline
         vacuum = asm.thermal.gas == "vacuum"
         self.vacuum = vacuum
+        # in vacuum the films are radiation: to the file's sink when it states one (the mount's
+        # environment, the chamber's controlled plate, stays T_ambient_C)
+        self.sink_C = (float(asm.thermal.sink_C) if vacuum and math.isfinite(asm.thermal.sink_C)
+                       else None)
         area_face = _face_area_mm2(asm)
         r_max = (1.0 / (EMISSIVITY_MIN * radiation_h_W_mm2K(asm.T_ref_C) / PER_M2_TO_PER_MM2)
                  if vacuum else FILM_RESISTANCE_MAX_AIR)
@@ -382,7 +401,7 @@ class ThermalTransientFE(Effect):
                        "fit_conductance_factor": FIT_FACTOR, "heat_scale": (0.0, HEAT_SCALE_MAX)}
         self.off = {"film_resistance_m2K_W": 0.0, "G_face_W_K": 0.0, "G_env_W_K": 0.0,
                     "C_mount_J_K": C_MOUNT_MIN_J_K, "fit_conductance_factor": 1.0,
-                    "heat_scale": 0.0}
+                    "heat_scale": 1.0}
         self.scale = {"film_resistance_m2K_W": (0.2 if vacuum else 0.01),
                       "G_face_W_K": 0.05 * G_face_max, "G_env_W_K": 1.0,
                       "C_mount_J_K": 2000.0, "fit_conductance_factor": 0.2, "heat_scale": 0.1}
@@ -415,7 +434,8 @@ class ThermalTransientFE(Effect):
             return inputs.copy()
         pl = self._pl()
         heat = self.row_heat_W(inputs) if p["heat_scale"] > 0.0 else None
-        T = part_temperatures_C(rung_model(pl), p, inputs.time_s, inputs.T_ambient_C, heat)
+        T = part_temperatures_C(rung_model(pl), p, inputs.time_s, inputs.T_ambient_C, heat,
+                                self.sink_C)
         Tc = dict(inputs.T_C)
         for i, part in enumerate(PARTS):
             if part in inputs.measured_parts:
@@ -478,7 +498,7 @@ def speed_varies(conditions) -> bool:
 
 
 def held_fixed(effect, conditions) -> tuple[str, ...]:
-    """`fitspec.held_fixed` of the rung: the heat scale at off when the speed is constant; the
+    """`fitspec.held_fixed` of the rung: the heat scale at 1 when the speed is constant; the
     fits' conductance factor at 1 where it cannot move the stack's time constants
     (`RungModel.fit_matters`)."""
     held = () if speed_varies(conditions) else ("heat_scale",)
