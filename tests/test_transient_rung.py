@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 
 from fem.reduced_thermal import ReducedStepper
-from fem.transient import PER_M2_TO_PER_MM2, StepLoads, ThermalParameters
+from fem.transient import PER_M2_TO_PER_MM2, StepLoads
 from studies.diagnosis import transient_rung as tr
 from studies.diagnosis.designs import cycles
 from studies.model.config import load_shipped
@@ -41,7 +41,7 @@ def rm(pl):
 
 
 def _params(**kw):
-    p = {"film_resistance_m2K_W": 0.05, "G_face_W_K": 0.0, "G_env_W_K": 0.0,
+    p = {"film_resistance_m2K_W": 0.05, "bore_film_ratio": 1.0, "G_face_W_K": 0.0, "G_env_W_K": 0.0,
          "C_mount_J_K": tr.C_MOUNT_MIN_J_K, "fit_conductance_factor": 1.0, "heat_scale": 1.0}
     p.update(kw)
     return p
@@ -58,7 +58,7 @@ def test_a_trial_equals_the_reduced_bdf2_stepper_on_the_same_operator(rm):
 
     h = 20.0
     rc = rm.rc
-    prm = replace(rm.nominal, film_W_m2K={g: h for g in rm.exterior})
+    prm = replace(rm.nominal, film_W_m2K={g: h for g in rm.exterior + ("shaft_bore",)})
     t = np.array([0.0, 600.0, 1200.0, 2400.0])
     amb = np.array([20.0, 60.0, 60.0, 60.0])
     T = tr.part_temperatures_C(rm, _params(film_resistance_m2K_W=1.0 / h), t, amb, None)
@@ -92,15 +92,16 @@ def test_the_steady_state_with_heat_and_a_mount_balances_its_energy(rm):
     h = 15.0 * PER_M2_TO_PER_MM2
     hm = p["G_face_W_K"] / rm.area_face_mm2
     A = np.zeros((m + 1, m + 1))
-    A[:m, :m] = rm.K0 + rm.C_fit + h * rm.F_ext + hm * rm.F_face
+    A[:m, :m] = rm.K0 + rm.C_fit + h * (rm.F_ext + rm.F_bore) + hm * rm.F_face
     A[:m, m] = A[m, :m] = -hm * rm.b_face
     A[m, m] = p["G_face_W_K"] + p["G_env_W_K"]
     f = np.zeros(m + 1)
-    f[:m] = h * rm.b_ext * 20.0 + Q * rm.a_heat
+    f[:m] = h * (rm.b_ext + rm.b_bore) * 20.0 + Q * rm.a_heat
     f[m] = p["G_env_W_K"] * 20.0
     x = np.linalg.solve(A, f)
     q, T_m = x[:m], x[m]
-    out_film = h * (rm.b_ext @ q - rm.b_ext @ (20.0 * _one(rm)))
+    b = rm.b_ext + rm.b_bore
+    out_film = h * (b @ q - b @ (20.0 * _one(rm)))
     out_mount = p["G_env_W_K"] * (T_m - 20.0)
     assert out_film + out_mount == pytest.approx(Q, rel=1e-8)
     G = rm.groups
@@ -125,7 +126,7 @@ def test_the_lumped_lag_is_the_rung_s_limit_for_a_nearly_isothermal_stack(rm):
     modes are two to three decades faster)."""
     h = 1.0
     cond = cycles(200, 252.0)
-    A_mm2 = float(rm.b_ext @ _one(rm))
+    A_mm2 = float((rm.b_ext + rm.b_bore) @ _one(rm))
     tau = rm.capacity_J_K / (h * PER_M2_TO_PER_MM2 * A_mm2)
     T = tr.part_temperatures_C(rm, _params(film_resistance_m2K_W=1.0 / h), cond["time_s"],
                                cond["T_ambient_C"], None)
@@ -206,3 +207,35 @@ def test_a_preload_loss_beside_the_rung_s_history_is_named_as_the_second_cause(p
     from studies.validation.second_source import named_causes
     names = {c.split(".")[0] for c in named_causes(res)}
     assert {"thermal_transient_fe", "preload_settling"} <= names, (res.verdict, names)
+
+
+@pytest.mark.slow
+def test_on_a_history_made_by_the_independent_conduction_network_the_history_is_named():
+    """Truth made another way (issue 42): seed 000 bolted to an aluminium plate in forced air,
+    its part temperatures from the independent radial finite-volume network
+    (`studies.validation.conduction_network`, not `fem/transient.py`), run through plain
+    `simulate`'s route, 1 % noise; given only time_s and T_ambient_C. The diagnosis names the
+    thermal history (the rung, or a lag of the thermal family) and claims nothing else."""
+    from studies.diagnosis.engine import diagnose_full
+    from studies.diagnosis.files import NUISANCE, ModelPredictor, candidate_effects
+    from studies.diagnosis.ladder import candidates
+    from studies.validation import second_source as ss
+    from studies.validation.conduction_network import ENVIRONMENTS, conduction_temperatures
+
+    asm = load_shipped("seed000")
+    cond = {k: np.asarray(v, float) for k, v in cycles(240, 120.0).items()}
+    hist = conduction_temperatures(asm, cond["time_s"], cond["T_ambient_C"],
+                                   ENVIRONMENTS["mount_forced_air"], 0.0, 4)
+    truth = ss._run(asm, MESH_FACTOR, {**cond, **hist.columns})
+    cols = ("torque_Nmm", "preload_N")
+    sigma = ss.stated_sigma({c: truth[c] for c in cols})
+    rng = np.random.default_rng(7)
+    meas = {c: truth[c] + rng.normal(0.0, sigma[c], truth[c].size) for c in cols}
+    pl = Pipeline.shared(asm, mesh_factor=MESH_FACTOR)
+    pred = ModelPredictor(pl, cond, cols)
+    res = diagnose_full(pred, meas, cond, candidate_effects(asm) + candidates(asm), NUISANCE,
+                        T_ref_C=asm.T_ref_C, predict_at=pred.at, workers=2)
+    thermal = {"thermal_lag", "radial_gradient", "thermal_transient_fe"}
+    named = {ss.family(c) for c in ss.named_causes(res)}
+    assert res.verdict in ("explained", "explained_partly", "ambiguous"), res.reasons
+    assert named and named <= thermal, (res.verdict, named)

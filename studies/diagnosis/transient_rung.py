@@ -10,8 +10,9 @@ cached_basis`), plus one lumped state for the mount (bracket, base plate, machin
     M q' + A(p) q = b_env(p) T_amb(t) + a_heat s Q(t) + hm b_face T_m
     C_mount T_m' = G_face (T_face - T_m) + G_env (T_amb - T_m)
 
-q the reduced coordinates of the field, A(p) = K + h sum_g F_g (every exterior face group
-but the raceways, film h = 1 / film_resistance: convection and, with an emissivity, the
+q the reduced coordinates of the field, A(p) = K + h sum_g F_g (the face groups to the
+surroundings, `face_kind`: housing, cover, shaft ends, nut; the shaft's bore at
+h x bore_film_ratio; the faces inside the housing none; film h = 1 / film_resistance: convection and, with an emissivity, the
 radiation linearised about the mean ambient, Incropera ch. 1.2.3 eq. 1.9; in vacuum the
 radiation alone) + f sum_k h_k C_k (the fits' contact conductances h_k from their assembled
 pressure, Yovanovich's plastic correlation, `fem.transient.contact_conductance_W_m2K`,
@@ -56,6 +57,9 @@ Parameters (bounds and sources):
   radiation alone in the cold, `FILM_RESISTANCE_MAX_AIR`) or in vacuum 1 / (EMISSIVITY_MIN 4 sigma T^3)
   (radiation alone: emissivity from 0.03, polished aluminium / gold, to 0.95, black anodise,
   Incropera Table A.11; the mean ambient as T).
+- bore_film_ratio (-), 0..1, off 1: the film in the shaft's bore / the outside one (a cavity
+  open at its ends sees still air or none: 0 a closed bore, 1 the outside film; natural
+  convection in a tube 1..5 W/(m^2 K) against 2..500 outside, Incropera Table 1.1).
 - G_face_W_K (W/K), off 0 (no mount): the mount's conductance to the housing's outer face,
   up to JOINT_CONDUCTANCE_MAX_W_M2K x A_face (bolted and clamped metal joints 100..10^4
   W/(m^2 K) in air, Madhusudana, Thermal Contact Conductance, 2nd ed. 2014, ch. 1 and 8;
@@ -136,7 +140,8 @@ class RungModel:
     """The reduced conduction of one assembly's stack, term by term, for the rung's trials.
 
     M, K0 (m, m): capacity (J/K) and the conduction with the spacer bores' and ball links'
-    terms (W/K); F_ext, b_ext: the exterior faces' film matrix and drive (mm^2); C_fit: the
+    terms (W/K); F_ext, b_ext: the outside faces' film matrix and drive (mm^2), F_bore, b_bore
+    the shaft bore's (`face_kind`); C_fit: the
     fits' term at their assembled conductances (W/K); F_face, b_face, area_face_mm2: the mount
     face's; a_heat (m,): the load of 1 W of the pair's heat; groups (len(PARTS), m): the part
     group means per coordinate (NaN rows: a group the stack lacks); h_rad_W_m2K: the file's
@@ -145,6 +150,8 @@ class RungModel:
     K0: np.ndarray
     F_ext: np.ndarray
     b_ext: np.ndarray
+    F_bore: np.ndarray
+    b_bore: np.ndarray
     C_fit: np.ndarray
     F_face: np.ndarray
     b_face: np.ndarray
@@ -172,10 +179,12 @@ def rung_model(pl) -> RungModel:
     return hit
 
 
-#: format of the cached rung model (raise when its arrays or `TRAINING` change)
-RUNG_FORMAT = 1
+#: format of the cached rung model (raise when its arrays or `TRAINING` change; 2: the faces
+#: by kind, `face_kind`)
+RUNG_FORMAT = 2
 #: the arrays of a cached `RungModel` (its scalars are stored as 0-d arrays)
-_ARRAYS = ("M", "K0", "F_ext", "b_ext", "C_fit", "F_face", "b_face", "a_heat", "groups")
+_ARRAYS = ("M", "K0", "F_ext", "b_ext", "F_bore", "b_bore", "C_fit", "F_face", "b_face",
+           "a_heat", "groups")
 _SCALARS = ("area_face_mm2", "vacuum", "capacity_J_K", "fit_matters")
 
 
@@ -239,14 +248,16 @@ def build(pl) -> RungModel:
     def make():
         tc = tr.stack_conduction(pl)
         c = tr.contacts(pl, tc)
-        ext = [g for g in tc.groups if not g.startswith("raceway_")]
+        ext = [g for g in tc.groups if face_kind(g) == "outside"]
+        bore = [g for g in tc.groups if face_kind(g) == "bore"]
+        filmed = [g for g in tc.groups if not g.startswith("raceway_")]
         nominal = ThermalParameters(fit_conductance_W_m2K=tuple(c.fit_W_m2K),
                                     ball_inner_W_K=c.ball_W_K[0], ball_outer_W_K=c.ball_W_K[1],
                                     bore_conductance_W_m2K=c.bore_W_m2K,
                                     T_rad_lin_C=pl.asm.T_ref_C)
         training = []
         for h, f, h_face in TRAINING:
-            films = {g: h for g in ext}
+            films = {g: h for g in filmed}
             if MOUNT_FACE in films:
                 films[MOUNT_FACE] = h + h_face
             training.append(replace(nominal, film_W_m2K=films,
@@ -260,6 +271,8 @@ def build(pl) -> RungModel:
         zero = np.zeros((rc.m, rc.m))
         out = RungModel(
             M=rc.M, K0=K0, F_ext=sum(rc.F[g] for g in ext), b_ext=sum(rc.b[g] for g in ext),
+            F_bore=sum((rc.F[g] for g in bore), zero), b_bore=sum((rc.b[g] for g in bore),
+                                                                  np.zeros(rc.m)),
             C_fit=_fit_part(rc, c.fit_W_m2K), F_face=rc.F[face] if face else zero,
             b_face=rc.b[face] if face else np.zeros(rc.m),
             area_face_mm2=float(tc.b[face].sum()) if face else 0.0, a_heat=a_heat,
@@ -280,9 +293,26 @@ FIT_MATTERS_MODES = 4
 def _fit_matters(rm: RungModel) -> bool:
     lam = []
     for f in FIT_FACTOR:
-        A = rm.K0 + f * rm.C_fit + (20.0 * PER_M2_TO_PER_MM2) * rm.F_ext
+        A = rm.K0 + f * rm.C_fit + (20.0 * PER_M2_TO_PER_MM2) * (rm.F_ext + rm.F_bore)
         lam.append(sla.eigh(0.5 * (A + A.T), rm.M, eigvals_only=True)[:FIT_MATTERS_MODES])
     return bool(np.max(np.abs(lam[1] - lam[0]) / lam[1]) > FIT_MATTERS_REL)
+
+
+#: face groups inside the housing: the rings' and spacers' free faces face the bearing's annulus
+#: and the gap between the spacers, not the surroundings (their gas layers are left out, a few
+#: mW/K); the raceways take the bearing's heat
+INSIDE = ("raceway_", "free_inner_ring", "free_outer_ring", "free_inner_spacer",
+          "free_outer_spacer")
+
+
+def face_kind(group: str) -> str:
+    """The kind of a face group (`fem.transient.face_groups`): "inside" (INSIDE: no film),
+    "bore" (the shaft's bore, a cavity open at its ends: its own film, a share of the outside
+    one), "outside" (to the surroundings: the housing, the cover, the shaft's ends and free
+    faces, the nut)."""
+    if group.startswith(INSIDE):
+        return "inside"
+    return "bore" if group == "shaft_bore" else "outside"
 
 
 def _fit_part(rc: ReducedConduction, h_fit_W_m2K) -> np.ndarray:
@@ -317,11 +347,13 @@ def part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb_C: np.nda
     stack lacks."""
     m = rm.m
     h_W_m2K = 1.0 / p["film_resistance_m2K_W"]
+    h_bore = h_W_m2K * p["bore_film_ratio"]
     G_face, G_env, C_m = p["G_face_W_K"], p["G_env_W_K"], p["C_mount_J_K"]
     hm = G_face / rm.area_face_mm2 if rm.area_face_mm2 > 0 else 0.0
     A = np.zeros((m + 1, m + 1))
     A[:m, :m] = (rm.K0 + p["fit_conductance_factor"] * rm.C_fit
-                 + (h_W_m2K * PER_M2_TO_PER_MM2) * rm.F_ext + hm * rm.F_face)
+                 + (h_W_m2K * PER_M2_TO_PER_MM2) * rm.F_ext
+                 + (h_bore * PER_M2_TO_PER_MM2) * rm.F_bore + hm * rm.F_face)
     A[:m, m] = A[m, :m] = -hm * rm.b_face
     A[m, m] = G_face + G_env
     M = np.zeros((m + 1, m + 1))
@@ -330,7 +362,7 @@ def part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb_C: np.nda
     lam, Phi = sla.eigh(0.5 * (A + A.T), 0.5 * (M + M.T), check_finite=False)
     lam = np.maximum(lam, 0.0)
     e_film, e_env = np.zeros(m + 1), np.zeros(m + 1)
-    e_film[:m] = (h_W_m2K * PER_M2_TO_PER_MM2) * rm.b_ext
+    e_film[:m] = PER_M2_TO_PER_MM2 * (h_W_m2K * rm.b_ext + h_bore * rm.b_bore)
     e_env[m] = G_env
     amb = np.asarray(T_amb_C, float)
     if T_film_C is None:
@@ -369,9 +401,10 @@ class ThermalTransientFE(Effect):
     every part without a measured temperature of its own."""
     name = NAME
     kind = "model_form"            # `ladder.KIND`
-    parameters = ("film_resistance_m2K_W", "G_face_W_K", "G_env_W_K", "C_mount_J_K",
-                  "fit_conductance_factor", "heat_scale")
-    units = {"film_resistance_m2K_W": "m2 K/W", "G_face_W_K": "W/K", "G_env_W_K": "W/K",
+    parameters = ("film_resistance_m2K_W", "bore_film_ratio", "G_face_W_K", "G_env_W_K",
+                  "C_mount_J_K", "fit_conductance_factor", "heat_scale")
+    units = {"film_resistance_m2K_W": "m2 K/W", "bore_film_ratio": "-", "G_face_W_K": "W/K",
+             "G_env_W_K": "W/K",
              "C_mount_J_K": "J/K", "fit_conductance_factor": "-", "heat_scale": "-"}
     requires = ("time_s", "T_ambient_C")
     cost = "inputs"
@@ -395,14 +428,16 @@ class ThermalTransientFE(Effect):
                  if vacuum else FILM_RESISTANCE_MAX_AIR)
         G_face_max = JOINT_CONDUCTANCE_MAX_W_M2K * area_face * PER_M2_TO_PER_MM2
         G_env_max = MOUNT_AREA_MAX_M2 * MOUNT_FILM_MAX_W_M2K
-        self.bounds = {"film_resistance_m2K_W": (0.0, r_max), "G_face_W_K": (0.0, G_face_max),
+        self.bounds = {"film_resistance_m2K_W": (0.0, r_max), "bore_film_ratio": (0.0, 1.0),
+                       "G_face_W_K": (0.0, G_face_max),
                        "G_env_W_K": (0.0, G_env_max),
                        "C_mount_J_K": (C_MOUNT_MIN_J_K, C_MOUNT_MAX_J_K),
                        "fit_conductance_factor": FIT_FACTOR, "heat_scale": (0.0, HEAT_SCALE_MAX)}
-        self.off = {"film_resistance_m2K_W": 0.0, "G_face_W_K": 0.0, "G_env_W_K": 0.0,
+        self.off = {"film_resistance_m2K_W": 0.0, "bore_film_ratio": 1.0, "G_face_W_K": 0.0,
+                    "G_env_W_K": 0.0,
                     "C_mount_J_K": C_MOUNT_MIN_J_K, "fit_conductance_factor": 1.0,
                     "heat_scale": 1.0}
-        self.scale = {"film_resistance_m2K_W": (0.2 if vacuum else 0.01),
+        self.scale = {"film_resistance_m2K_W": (0.2 if vacuum else 0.01), "bore_film_ratio": 0.1,
                       "G_face_W_K": 0.05 * G_face_max, "G_env_W_K": 1.0,
                       "C_mount_J_K": 2000.0, "fit_conductance_factor": 0.2, "heat_scale": 0.1}
         self._heat = Memo(4)
@@ -466,18 +501,6 @@ class ThermalTransientFE(Effect):
     def describe(self) -> str:
         return "model form: " + self.change
 
-    def derived(self, p: dict) -> dict[str, float]:
-        """Derived values of fitted parameters for reports: the film h (W/(m^2 K)) or in vacuum
-        the emissivity, the stack's slowest time constant (s)."""
-        r = p["film_resistance_m2K_W"]
-        out = {}
-        if r > 0:
-            h = 1.0 / r
-            out["emissivity" if self.vacuum else "film_W_m2K"] = (
-                h * PER_M2_TO_PER_MM2 / radiation_h_W_mm2K(self.asm.T_ref_C) if self.vacuum
-                else h)
-        return out
-
 
 def _face_area_mm2(asm) -> float:
     """Area (mm^2) of the housing's outer face, 2 pi r L (`meshes.section.boundary_lines`)."""
@@ -500,10 +523,13 @@ def speed_varies(conditions) -> bool:
 def held_fixed(effect, conditions) -> tuple[str, ...]:
     """`fitspec.held_fixed` of the rung: the heat scale at 1 when the speed is constant; the
     fits' conductance factor at 1 where it cannot move the stack's time constants
-    (`RungModel.fit_matters`)."""
+    (`RungModel.fit_matters`); the bore's film ratio where the shaft has no bore."""
     held = () if speed_varies(conditions) else ("heat_scale",)
-    if not rung_model(effect.evaluated_on()).fit_matters:
+    rm = rung_model(effect.evaluated_on())
+    if not rm.fit_matters:
         held += ("fit_conductance_factor",)
+    if not np.any(rm.b_bore):
+        held += ("bore_film_ratio",)
     return held
 
 
