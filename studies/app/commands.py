@@ -210,10 +210,13 @@ def cmd_study(args) -> None:
 
 
 def cmd_diagnose(args) -> None:
+    from studies.diagnosis.noisemodel import parse_noise_arg
     from studies.usecases import api
 
     try:
-        result = api.diagnose(args.assembly, args.measured, args.out, progress=progress)
+        noise = dict(parse_noise_arg(a) for a in args.noise)
+        result = api.diagnose(args.assembly, args.measured, args.out, progress=progress,
+                              noise=noise)
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
     _warn("diagnose", result)
