@@ -1,4 +1,4 @@
-"""Issue 42 item 4: claim rules that hold at any signal, one test (or more) per rule.
+"""Claim rules that hold at any signal, one test (or more) per rule.
 
 - the detection threshold (`studies.diagnosis.detection`) against a Monte Carlo of the test it
   is the minimum detectable effect of (an independent route: noise drawn, the F test counted);

@@ -1,8 +1,8 @@
-"""Issue 42 item 4 on the real model with data made another way (`studies/validation/
+"""The claim rules on the real model with data made another way (`studies/validation/
 second_source.py`'s machinery): a change below the detection threshold is not claimed; a listed
 cause well above it still is.
 
-The hidden case of issue 42: an unlisted free contact angle 3 deg off, its change after the
+The hidden case: an unlisted free contact angle 3 deg off, its change after the
 friction scale 0.75 sigma RMS, was claimed as `interference_error`. Here the truth is the
 shipped seed 000 assembly with its free contact angle 3 deg larger, run through the plain
 pipeline (`second_source._run`: `Pipeline.run`, no effect code, the rig's friction 1.2 x the
@@ -58,7 +58,7 @@ def _contact_angle_case(rms_sigma: float, seed: int):
 @pytest.mark.parametrize("seed", [0, 1])
 def test_an_unlisted_contact_angle_at_075_sigma_is_not_claimed(seed):
     """0.75 sigma RMS after the friction scale (below the cycles design's threshold, 0.97 sigma
-    on 240 rows; passed in about 6 % of draws): no cause is claimed (issue 42's hidden case was
+    on 240 rows; passed in about 6 % of draws): no cause is claimed (the hidden case was
     `explained: interference_error`; seed 1 was `explained: material_lot` at the power 0.8)."""
     from studies.validation import second_source as ss
 

@@ -225,7 +225,7 @@ def test_an_unidentified_parameter_at_its_off_value_is_not_at_a_bound():
     with an uncertainty of 1e4 um on a [-20, 20] um range reaches both bounds, but the data
     cannot tell it from off, so it is not listed (before: listed at 20 um,
     which refused the unlogged moment's right cause on a second-source draw, its radial load
-    fitted 0.03 +- 1.1e4 N on 0..6013 N). Issue 42: the inner error at 19.8 +- 0.5 um where the
+    fitted 0.03 +- 1.1e4 N on 0..6013 N). The inner error at 19.8 +- 0.5 um where the
     fit converged (the data put it there) is not listed either; stopped at 19.8 um while the
     data push it to 20.3 um (one Gauss-Newton step with the bounds released) it is, and so is
     an unidentified value on the bound itself."""

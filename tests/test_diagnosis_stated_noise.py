@@ -1,4 +1,4 @@
-"""Issue 42 item 3: a sensor's stated noise (`diagnose --noise COLUMN=REL%[+ABS]`, per-row
+"""A sensor's stated noise (`diagnose --noise COLUMN=REL%[+ABS]`, per-row
 `sigma_<column>`) is the likelihood's weights, its level checked against the data.
 
 Checked against what does not come from the code under test: the closed-form weighted
@@ -201,7 +201,7 @@ def test_lag_with_percent_of_reading_noise_is_explained_with_its_tau():
 
 # ------------------------------------------------------------------ item 5: the configured model's interval
 def test_configured_interval_covers_ninety_percent_of_a_repeat_run():
-    """Issue 42 item 5: the configured model's 90 % interval with the discrepancy the data show
+    """The configured model's 90 % interval with the discrepancy the data show
     (`interval.configured_intervals`) about a model that misses a smooth curve of 4 noise
     sigma in the conditions (the truth 2 x + 4 sigma sin(T / 25 K): no nuisance value fits it)
     holds 90 % of the entries of fresh repeat runs of the same rows (the truth with new noise;

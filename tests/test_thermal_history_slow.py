@@ -1,4 +1,4 @@
-"""Issue 42's "Done when" on thermal histories made another way (studies/validation/
+"""The "Done when" on thermal histories made another way (studies/validation/
 thermal_history.py: part temperatures from the independent conduction network of the stack,
 run through plain simulate, realistic noise, only time_s / T_ambient_C / speed_rpm given), slow
 (`make test-slow`; 20 diagnoses of 30-90 s each on 2 idle cores):

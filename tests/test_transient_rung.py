@@ -1,4 +1,4 @@
-"""The ladder rung `thermal_transient_fe` (issue 42; studies/diagnosis/transient_rung.py).
+"""The ladder rung `thermal_transient_fe` (studies/diagnosis/transient_rung.py).
 
 Fast: a trial's exact modal integration against the project's reduced BDF2 stepper (a second
 method, `fem.reduced_thermal.ReducedStepper`) on the same operator; the steady state's energy
@@ -201,7 +201,7 @@ def test_plumbing_the_rung_explains_its_own_history_and_recovers_film_and_mount(
 @pytest.mark.slow
 def test_a_preload_loss_beside_the_rung_s_history_is_named_as_the_second_cause(pl):
     """A 12 N preload loss beyond a 50 K excursion (24 sigma of the preload's 0.5 N) on top of
-    the rung's history: the forward selection names both (issue 42, item 2)."""
+    the rung's history: the forward selection names both."""
     res, _, _ = _diagnose_own(pl, {"thermal_transient_fe": TRUTH,
                                    "preload_settling": {"loss_N": 12.0, "threshold_K": 50.0}})
     from studies.validation.second_source import named_causes
@@ -211,7 +211,7 @@ def test_a_preload_loss_beside_the_rung_s_history_is_named_as_the_second_cause(p
 
 @pytest.mark.slow
 def test_on_a_history_made_by_the_independent_conduction_network_the_history_is_named():
-    """Truth made another way (issue 42): seed 000 bolted to an aluminium plate in forced air,
+    """Truth made another way: seed 000 bolted to an aluminium plate in forced air,
     its part temperatures from the independent radial finite-volume network
     (`studies.validation.conduction_network`, not `fem/transient.py`), run through plain
     `simulate`'s route, 1 % noise; given only time_s and T_ambient_C. The diagnosis names the

@@ -110,7 +110,7 @@ DATASETS = [
     # 1 % noise as the second source states it (the flywheel's torque is ~0.1 N mm)
     Kind("unlogged_load 30 N, 3000 N mm (flywheel)", assembly="seed001", design=flywheel_steps,
          hidden={"radial_load_N": 30.0, "moment_Nmm": 3000.0}, sigma={}),
-    # the thermal_transient_fe rung (issue 42): a 14 h history whatever the rows, the stack in
+    # the thermal_transient_fe rung: a 14 h history whatever the rows, the stack in
     # a 20 W/(m^2 K) film bolted to a 5 kJ/K mount
     Kind("thermal_transient_fe (mount, 14 h)", design=lambda n: cycles(n, HISTORY_S / n),
          effects={"thermal_transient_fe": TRANSIENT_TRUTH}),

@@ -1,4 +1,4 @@
-"""A claim needs a detectable change (DESIGN.md section 8): before any candidate is
+"""A claim needs a detectable change: before any candidate is
 fitted, per compared column, the smallest change the data could show and the change the
 configured model leaves, both in noise units.
 

@@ -1,6 +1,6 @@
 """The ladder rung `thermal_transient_fe`: the part temperatures of every row from the stack's
 own reduced transient conduction FE, with the mount it is bolted to, fitted to the data
-(issue 42, item 1; docs/diagnosis.md "The transient conduction rung").
+(docs/diagnosis.md "The transient conduction rung").
 
 Physics. The conduction FE of the assembly under diagnosis (`fem.transient.TransientConduction`,
 its geometry and materials, one ball node per bearing), reduced once per assembly
@@ -40,7 +40,7 @@ route writes as T_<part>_C) and go into the rows' inputs as every temperature do
 pipeline's one route (`studies.model.pipeline.Pipeline`) takes them, parts with a measured
 temperature of their own left as measured.
 
-Fast trial (issue 42, item 6): within a trial the contact conductances are held (the fits' at
+Fast trial: within a trial the contact conductances are held (the fits' at
 their assembled pressure times the factor, the balls' at the assembled state), so the
 conduction is linear and a trial costs one (m + 1)^2 eigen-decomposition and the exact
 recursion over the rows, no time stepping between them (`bearingfem bench --diagnose`,

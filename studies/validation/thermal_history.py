@@ -1,4 +1,4 @@
-"""Thermal histories made another way (issue 42): part temperatures from the independent
+"""Thermal histories made another way: part temperatures from the independent
 conduction network of the stack (`studies.validation.conduction_network`, not the tool's
 transient FE), run through plain `simulate` (the one route, `second_source._run`: the
 pipeline of the diagnosed assembly, the rig's friction MU_TRUE x the configured one), with
@@ -226,7 +226,7 @@ def run_trial(name: str, seed: int, workers: int = 1) -> Trial:
                  tuple(ss.named_causes(res)), tuple(res.indistinguishable), case.change_sigma, dt)
 
 
-#: outcomes that name the cause (issue 42's "named": explained, explained partly, ambiguous
+#: outcomes that name the cause ("named": explained, explained partly, ambiguous
 #: with the thermal family)
 NAMED = ("right", "named", "partial")
 
