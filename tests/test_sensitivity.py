@@ -100,3 +100,23 @@ def test_clamp_sensitivity_is_a_direct_simulate_with_the_clamp_switched():
         assert getattr(by["preload_min_N"], side) == pytest.approx(float(p.min()), rel=1e-12)
         assert getattr(by["preload_max_N"], side) == pytest.approx(float(p.max()), rel=1e-12)
     assert by["preload_min_N"].change < -0.1
+
+
+@pytest.mark.slow       # two FE set-ups of the template: 5-15 s
+def test_a_flip_is_the_simulated_flags_trading_places():
+    """Bonded fits in the template's aluminium housing lose the preload when hot: the report's
+    route flags the preload band as a flip, and `bearingfem.simulate` of both assemblies (the
+    `flag_preload_lost` column, a second route) shows PASS turning into FAIL."""
+    import bearingfem
+
+    asm = load_assembly(TEMPLATE)
+    alt_asm = replace(asm, fits=replace(asm.fits, contact="bonded"))
+    cond = {"T_ambient_C": np.array([-40.0, 20.0, 80.0])}
+    rows = S.compare("fits", "bonded", S.margins_of(asm, cond, Pipeline.shared(asm)),
+                     S.margins_of(alt_asm, cond, Pipeline.shared(alt_asm)))
+    by = {r.margin: r for r in rows}
+    lost = [bearingfem.simulate(a, cond)["flag_preload_lost"].to_numpy() for a in (asm, alt_asm)]
+    assert not lost[0].any() and lost[1].any()
+    assert by["preload_min_N"].flips and by["preload_min_N"].status == "PASS"
+    assert by["preload_min_N"].status_alternative.startswith("FAIL")
+    assert [r.margin for r in S.order(rows)][0] == "preload_min_N"
