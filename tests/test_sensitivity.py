@@ -41,6 +41,15 @@ def test_compare_flags_a_flip_and_orders_flips_first():
     assert "from FAIL (3 of 25) to PASS" in warn[1]
 
 
+def test_a_margin_at_round_off_has_no_relative_change():
+    """A clamp face's margin of -6e-9 N is 0: to 0 no change, to 5 N "from 0" (NaN)."""
+    base = [_row("margin_clamp_min_N", -6.181e-09, "FAIL (1 of 9)")]
+    same = S.compare("a", "b", base, [_row("margin_clamp_min_N", 0.0, "FAIL (1 of 9)")])
+    up = S.compare("a", "b", base, [_row("margin_clamp_min_N", 5.0, "PASS")])
+    assert same[0].change == 0.0 and not same[0].flips
+    assert np.isnan(up[0].change) and up[0].flips
+
+
 def test_csv_has_exactly_the_contract_columns(tmp_path):
     rows = S.order(S.compare("[cover] clamp = rigid (default)", "compliant",
                              [_row("preload_min_N", 100.0, "PASS")],
@@ -69,15 +78,19 @@ def test_the_choices_at_their_defaults_are_the_assumptions():
 
 
 def test_assume_tagged_numbers_are_varied(tmp_path):
-    """A number whose comment carries [assume] gets +10 %; an untagged one does not."""
+    """A number whose comment carries [assume] gets +10 %, a diameter +1 %; an untagged one
+    is not varied."""
     text = TEMPLATE.read_text().replace(
-        "assembled_N = 100.0                # N,", "assembled_N = 100.0                # [assume] N,")
+        "assembled_N = 100.0                # N,", "assembled_N = 100.0                # [assume] N,"
+    ).replace("outer_diameter_mm = 60.0           # mm,", "outer_diameter_mm = 60.0           # [assume] mm,")
     p = tmp_path / "a.toml"
     p.write_text(text)
     alts, _ = S.alternatives(load_assembly(p), p, long=True)
     nums = [a for a in alts if a.number]
-    assert [a.assumption for a in nums] == ["[preload] assembled_N = 100 [assume]"]
-    assert nums[0].asm.preload.assembled_N == pytest.approx(110.0, rel=1e-12)
+    assert [a.assumption for a in nums] == ["[housing] outer_diameter_mm = 60 [assume]",
+                                            "[preload] assembled_N = 100 [assume]"]
+    assert nums[0].asm.housing.outer_diameter_mm == pytest.approx(60.6, rel=1e-12)
+    assert nums[1].asm.preload.assembled_N == pytest.approx(110.0, rel=1e-12)
 
 
 @pytest.mark.slow       # two FE set-ups of the template: 10-35 s

@@ -9,7 +9,7 @@ law and (with `--sensitivity`) the ring section; and each number whose comment c
 `simulate_table`) and the margin table of the report (`report_margins.margin_rows`, one route)
 is formed from that run; every governing number of the table is compared with the report's.
 
-    change = (value_alternative - value) / |value|          (relative, -; NaN when value = 0)
+    change = (value_alternative - value) / |value|     (relative, -; NaN when value is 0, ZERO)
 
 `flips`: the margin's PASS and FAIL trade places. Rows are ordered by flips first, then |change|.
 
@@ -17,8 +17,8 @@ Alternatives: a clamp "rigid" <-> "compliant" (the two limits of a clamp with a 
 "The clamp with a force"); fits "frictionless" <-> "bonded"; preload path "fe" <-> "rigid"; balls
 "static" <-> "quasi_dynamic"; oil viscous law "palmgren" <-> "skf2004" (a solid film has no
 second law without its shear-strength constants: not varied); ring section "rectangle" <->
-"grooved"; a number: NUMBER_STEP up (10 %; a number whose alternative the configuration refuses
-is listed as not varied, with the reason). The numbers are compared on the mesh of twice the
+"grooved"; a number: NUMBER_STEP up (10 %; a diameter DIAMETER_STEP, 1 %; a number whose
+alternative the configuration refuses is listed as not varied, with the reason). The numbers are compared on the mesh of twice the
 report's sizes (`NUMBER_MESH_FACTOR`), the value and its alternative alike: a change of geometry
 needs its own FE set-up, and the difference of two runs on one mesh carries less discretisation
 error than either.
@@ -39,8 +39,15 @@ from studies.usecases.report_tools import md_table
 #: the columns of sensitivity.csv, in order (docs/cli.md "report")
 CSV_COLUMNS = ("assumption", "alternative", "margin", "value", "value_alternative", "change",
                "flips")
-#: the relative step of an `[assume]`-tagged number
+#: the relative step of an `[assume]`-tagged number, and of a diameter (a key with "diameter"
+#: in its name): a section's radial build-up is a few per cent of its diameters, so 10 % of a
+#: diameter moves a part past its neighbours (seed000's inner ring section 37.8 -> 41.6 mm
+#: past its groove bottom), 1 % is the size of an effective-section assumption
 NUMBER_STEP = 0.10
+DIAMETER_STEP = 0.01
+#: a governing value this close to 0 (in its own unit: N, MPa, deg, rpm, -) is 0: a margin at
+#: round-off (a clamp face's force of -6e-9 N) has no relative change
+ZERO = 1e-6
 #: the numbers' runs are on the mesh of this many times the report's sizes
 NUMBER_MESH_FACTOR = 2.0
 #: the tag that marks an assumption in an assembly file's comment
@@ -152,11 +159,12 @@ def alternatives(asm: Assembly, assembly_path: Path | None, long: bool
         value = getattr(sec, key, None)
         if isinstance(value, bool) or not isinstance(value, (int, float)) or value == 0:
             continue            # a text, a list, or a zero (no relative step)
-        new = type(value)(round(value * (1 + NUMBER_STEP))) if isinstance(value, int) \
-            else value * (1 + NUMBER_STEP)
+        step = DIAMETER_STEP if "diameter" in key else NUMBER_STEP
+        new = type(value)(round(value * (1 + step))) if isinstance(value, int) \
+            else value * (1 + step)
         if new == value:
             continue
-        add(f"[{section}] {key} = {value:g} [assume]", f"{new:g} (+{100 * NUMBER_STEP:g} %)",
+        add(f"[{section}] {key} = {value:g} [assume]", f"{new:.6g} (+{100 * step:g} %)",
             replace(asm, **{section: replace(sec, **{key: new})}), number=True)
     return out, skipped
 
@@ -184,7 +192,8 @@ def compare(assumption: str, alternative: str, base: list[MarginRow], alt: list[
         v, w = float(b.value), float(a.value)
         if not (math.isfinite(v) and math.isfinite(w)):
             continue
-        change = (w - v) / abs(v) if v != 0 else (0.0 if w == 0 else float("nan"))
+        change = ((w - v) / abs(v) if abs(v) > ZERO
+                  else 0.0 if abs(w) <= ZERO else float("nan"))
         flips = b.passes is not None and a.passes is not None and b.passes != a.passes
         out.append(SensitivityRow(assumption, alternative, b.key, v, w, change, flips, b.item,
                                   b.status, a.status))
@@ -232,8 +241,8 @@ def section_lines(s: Sensitivity) -> list[str]:
     assumption and alternative the governing number it moves most, largest first."""
     lines = ["## Assumptions that decide the answer", "",
              "Each modelling choice left at its default or tagged `[assume]` in the assembly file"
-             + (" and each `[assume]`-tagged number (+10 %, on the mesh of twice the sizes)"
-                if s.long else "")
+             + (" and each `[assume]`-tagged number (+10 %, a diameter +1 %, on the mesh of "
+                "twice the sizes)" if s.long else "")
              + ", run again with its alternative over the same operating points; the margin "
                "table of each run beside the one above (change: relative to the report's value)."
              + ("" if s.long else " `bearingfem report --sensitivity` adds the ring section and "
