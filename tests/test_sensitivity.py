@@ -80,9 +80,9 @@ def test_the_choices_at_their_defaults_are_the_assumptions():
 def test_assume_tagged_numbers_are_varied(tmp_path):
     """A number whose comment carries [assume] gets +10 %, a diameter +1 %; an untagged one
     is not varied."""
-    text = TEMPLATE.read_text().replace(
-        "assembled_N = 100.0                # N,", "assembled_N = 100.0                # [assume] N,"
-    ).replace("outer_diameter_mm = 60.0           # mm,", "outer_diameter_mm = 60.0           # [assume] mm,")
+    text = TEMPLATE.read_text()
+    for line in ("assembled_N = 100.0                # ", "outer_diameter_mm = 60.0           # "):
+        text = text.replace(line, line + "[assume] ")
     p = tmp_path / "a.toml"
     p.write_text(text)
     alts, _ = S.alternatives(load_assembly(p), p, long=True)
@@ -133,3 +133,16 @@ def test_a_flip_is_the_simulated_flags_trading_places():
     assert by["preload_min_N"].flips and by["preload_min_N"].status == "PASS"
     assert by["preload_min_N"].status_alternative.startswith("FAIL")
     assert [r.margin for r in S.order(rows)][0] == "preload_min_N"
+
+
+def test_a_materials_table_and_the_reference_temperature_are_numbers_too():
+    """The cartridge rig tags its superduplex's CTE and T_ref_C [assume]: the CTE gets +10 % in
+    the assembly's material (every part of that material), T_ref_C +5 K (no relative step in C)."""
+    path = CONFIG_DIR / "rig_cartridge_sleeve.toml"
+    asm = load_assembly(path)
+    alts = {a.assumption: a for a in S.alternatives(asm, path, long=True)[0]}
+    cte = alts["[materials.SAF2507] cte_per_K = 1.3e-05 [assume]"]
+    mat = next(m for m in cte.asm.materials if m.name == "SAF2507")
+    assert mat.alpha_per_K == pytest.approx(1.43e-5, rel=1e-12)
+    assert cte.asm.material("cartridge").alpha_per_K == mat.alpha_per_K
+    assert alts["[assembly] T_ref_C = 20 [assume]"].asm.T_ref_C == 25.0
