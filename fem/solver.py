@@ -39,6 +39,7 @@ from scipy.linalg import cho_factor, get_lapack_funcs
 from scipy.sparse.linalg import splu
 from threadpoolctl import ThreadpoolController
 
+from infra.errors import BearingfemError
 from infra.memo import Memo
 from meshes.build import CONDENSE_BLOCK
 
@@ -61,10 +62,10 @@ def single_thread_blas(fn):
     return wrapper
 
 
-class SolveError(ValueError):
-    """Singular system or an active set that does not settle; one-line message. A ValueError:
-    the inputs (a part not held, a fit the solver cannot settle) are what to change, and the
-    command line reports it as the user's (exit 2). `state`: the index of the state it failed
+class SolveError(BearingfemError):
+    """Singular system or an active set that does not settle; one-line message (the package's
+    own error, a ValueError: the inputs (a part not held, a fit the solver cannot settle) are
+    what to change, and the command exits 2 with it). `state`: the index of the state it failed
     on among those solved together (None: not one state's), for the caller to name its row
     (`studies.model.stages.fe.FEStage.solve_failure`)."""
 

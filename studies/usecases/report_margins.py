@@ -28,6 +28,7 @@ from pathlib import Path
 
 import numpy as np
 
+from studies.model.provenance import comments_in, origin_of
 from studies.usecases.report_tools import condition_text, md_table
 
 if TYPE_CHECKING:
@@ -319,21 +320,11 @@ def margin_lines(rows: list[MarginRow], n_points: int, where: str) -> list[str]:
 # ------------------------------------------------------------------------------- pedigree
 def config_comments(path: Path) -> dict[tuple[str, str], str]:
     """(table, key) -> the comment on that key's line in the assembly file (its own pedigree:
-    the template asks for the source of every number in its comment)."""
-    out, table = {}, ""
+    the template asks for the source of every number in its comment; `provenance.comments_in`)."""
     try:
-        text = Path(path).read_text(encoding="utf-8-sig")
+        return comments_in(Path(path).read_text(encoding="utf-8-sig"))
     except OSError:
-        return out
-    for line in text.splitlines():
-        m = re.match(r"\s*\[([^\]]+)\]", line)
-        if m:
-            table = m.group(1).strip()
-            continue
-        m = re.match(r"\s*([A-Za-z0-9_]+)\s*=[^#]*#\s*(.*)$", line)
-        if m and m.group(2).strip():
-            out[(table, m.group(1))] = m.group(2).strip()
-    return out
+        return {}
 
 
 def material_references() -> dict[str, str]:
@@ -368,7 +359,9 @@ def pedigree_lines(asm, assembly_path: Path | None) -> list[str]:
     mat_rows = [[name, ", ".join(parts), f"{m.E_MPa:.6g}", f"{m.nu:g}", f"{m.alpha_per_K * 1e6:.4g}",
                  f"[{m.source}] {refs.get(m.source, '')}".strip()]
                 for name, (m, parts) in mats.items()]
-    comments = config_comments(assembly_path) if assembly_path else {}
+    origin = origin_of(asm)         # the text it was loaded from, else the file named
+    comments = (comments_in(origin.text) if origin is not None else
+                config_comments(assembly_path) if assembly_path else {})
     cat = CATALOGUE.get(asm.bearing.designation)
     key_rows = []
     for name in ("shaft", "housing", "nut", "cover", "inner_spacer", "outer_spacer", "bearing",
