@@ -2,7 +2,7 @@
 the answer"; `--sensitivity` adds the `[assume]`-tagged numbers and writes `sensitivity.csv`).
 
 An assumption is a modelling choice left at its default or tagged `[assume]` in the assembly
-file's comment on that key (`report_margins.config_comments`): the clamp kind of the nut and of
+file's comment on that key (`report_margins.assembly_comments`): the clamp kind of the nut and of
 the cover, the fit contact model, the preload path's compliance, the ball model, the friction
 law and (with `--sensitivity`) the ring section; and each number whose comment carries
 `[assume]`. Each is run again with its alternative through the pipeline (the same conditions,
@@ -34,7 +34,7 @@ from typing import Callable
 import numpy as np
 
 from studies.model.config import Assembly
-from studies.usecases.report_margins import MarginRow, config_comments, margin_rows
+from studies.usecases.report_margins import MarginRow, assembly_comments, margin_rows
 from studies.usecases.report_tools import md_table
 
 #: the columns of sensitivity.csv, in order (docs/cli.md "report")
@@ -123,12 +123,13 @@ def _tagged(comments: dict, section: str, key: str) -> bool:
 def alternatives(asm: Assembly, assembly_path: Path | None, long: bool
                  ) -> tuple[list[Alternative], list[str]]:
     """The assumptions of `asm` and their alternatives (module docstring), and the ones not
-    varied with the reason. `assembly_path`: the file whose comments carry the `[assume]` tags
-    (None: no tags; every choice at its default is still an assumption)."""
+    varied with the reason. The `[assume]` tags are the comments of the file `asm` was loaded
+    from, else of `assembly_path` (`report_margins.assembly_comments`; none: every choice at
+    its default is still an assumption)."""
     from studies.model.config import ConfigError
     from studies.model.config_checks import check_assembly
 
-    comments = config_comments(assembly_path) if assembly_path else {}
+    comments = assembly_comments(asm, assembly_path)
     out, skipped = [], []
 
     def add(name: str, alt_text: str, alt: Assembly, number: bool = False):
