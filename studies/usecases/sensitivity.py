@@ -41,7 +41,7 @@ from studies.usecases.report_tools import md_table
 CSV_COLUMNS = ("assumption", "alternative", "margin", "value", "value_alternative", "change",
                "flips")
 #: the relative step of an `[assume]`-tagged number, and of a diameter (a key with "diameter"
-#: in its name): a section's radial build-up is a few per cent of its diameters, so 10 % of a
+#: in its name, or the bearing's bore_mm): a section's radial build-up is a few per cent of its diameters, so 10 % of a
 #: diameter moves a part past its neighbours (seed000's inner ring section 37.8 -> 41.6 mm
 #: past its groove bottom), 1 % is the size of an effective-section assumption
 NUMBER_STEP = 0.10
@@ -161,7 +161,7 @@ def alternatives(asm: Assembly, assembly_path: Path | None, long: bool
         if found is None:
             continue            # untagged, a text, a list, or a zero (no relative step)
         value, with_value = found
-        step = DIAMETER_STEP if "diameter" in key else NUMBER_STEP
+        step = DIAMETER_STEP if "diameter" in key or key == "bore_mm" else NUMBER_STEP
         if key.endswith("_C"):              # a temperature: no relative step in Celsius
             new, how = value + TEMPERATURE_STEP_K, f"+{TEMPERATURE_STEP_K:g} K"
         else:
