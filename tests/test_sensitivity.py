@@ -41,6 +41,15 @@ def test_compare_flags_a_flip_and_orders_flips_first():
     assert "from FAIL (3 of 25) to PASS" in warn[1]
 
 
+def test_a_margin_at_round_off_has_no_relative_change():
+    """A clamp face's margin of -6e-9 N is 0: to 0 no change, to 5 N "from 0" (NaN)."""
+    base = [_row("margin_clamp_min_N", -6.181e-09, "FAIL (1 of 9)")]
+    same = S.compare("a", "b", base, [_row("margin_clamp_min_N", 0.0, "FAIL (1 of 9)")])
+    up = S.compare("a", "b", base, [_row("margin_clamp_min_N", 5.0, "PASS")])
+    assert same[0].change == 0.0 and not same[0].flips
+    assert np.isnan(up[0].change) and up[0].flips
+
+
 def test_csv_has_exactly_the_contract_columns(tmp_path):
     rows = S.order(S.compare("[cover] clamp = rigid (default)", "compliant",
                              [_row("preload_min_N", 100.0, "PASS")],
@@ -69,15 +78,19 @@ def test_the_choices_at_their_defaults_are_the_assumptions():
 
 
 def test_assume_tagged_numbers_are_varied(tmp_path):
-    """A number whose comment carries [assume] gets +10 %; an untagged one does not."""
-    text = TEMPLATE.read_text().replace(
-        "assembled_N = 100.0                # N,", "assembled_N = 100.0                # [assume] N,")
+    """A number whose comment carries [assume] gets +10 %, a diameter +1 %; an untagged one
+    is not varied."""
+    text = TEMPLATE.read_text()
+    for line in ("assembled_N = 100.0                # ", "outer_diameter_mm = 60.0           # "):
+        text = text.replace(line, line + "[assume] ")
     p = tmp_path / "a.toml"
     p.write_text(text)
     alts, _ = S.alternatives(load_assembly(p), p, long=True)
     nums = [a for a in alts if a.number]
-    assert [a.assumption for a in nums] == ["[preload] assembled_N = 100 [assume]"]
-    assert nums[0].asm.preload.assembled_N == pytest.approx(110.0, rel=1e-12)
+    assert [a.assumption for a in nums] == ["[housing] outer_diameter_mm = 60 [assume]",
+                                            "[preload] assembled_N = 100 [assume]"]
+    assert nums[0].asm.housing.outer_diameter_mm == pytest.approx(60.6, rel=1e-12)
+    assert nums[1].asm.preload.assembled_N == pytest.approx(110.0, rel=1e-12)
 
 
 @pytest.mark.slow       # two FE set-ups of the template: 10-35 s
@@ -100,3 +113,36 @@ def test_clamp_sensitivity_is_a_direct_simulate_with_the_clamp_switched():
         assert getattr(by["preload_min_N"], side) == pytest.approx(float(p.min()), rel=1e-12)
         assert getattr(by["preload_max_N"], side) == pytest.approx(float(p.max()), rel=1e-12)
     assert by["preload_min_N"].change < -0.1
+
+
+@pytest.mark.slow       # two FE set-ups of the template: 5-15 s
+def test_a_flip_is_the_simulated_flags_trading_places():
+    """Bonded fits in the template's aluminium housing lose the preload when hot: the report's
+    route flags the preload band as a flip, and `bearingfem.simulate` of both assemblies (the
+    `flag_preload_lost` column, a second route) shows PASS turning into FAIL."""
+    import bearingfem
+
+    asm = load_assembly(TEMPLATE)
+    alt_asm = replace(asm, fits=replace(asm.fits, contact="bonded"))
+    cond = {"T_ambient_C": np.array([-40.0, 20.0, 80.0])}
+    rows = S.compare("fits", "bonded", S.margins_of(asm, cond, Pipeline.shared(asm)),
+                     S.margins_of(alt_asm, cond, Pipeline.shared(alt_asm)))
+    by = {r.margin: r for r in rows}
+    lost = [bearingfem.simulate(a, cond)["flag_preload_lost"].to_numpy() for a in (asm, alt_asm)]
+    assert not lost[0].any() and lost[1].any()
+    assert by["preload_min_N"].flips and by["preload_min_N"].status == "PASS"
+    assert by["preload_min_N"].status_alternative.startswith("FAIL")
+    assert [r.margin for r in S.order(rows)][0] == "preload_min_N"
+
+
+def test_a_materials_table_and_the_reference_temperature_are_numbers_too():
+    """The cartridge rig tags its superduplex's CTE and T_ref_C [assume]: the CTE gets +10 % in
+    the assembly's material (every part of that material), T_ref_C +5 K (no relative step in C)."""
+    path = CONFIG_DIR / "rig_cartridge_sleeve.toml"
+    asm = load_assembly(path)
+    alts = {a.assumption: a for a in S.alternatives(asm, path, long=True)[0]}
+    cte = alts["[materials.SAF2507] cte_per_K = 1.3e-05 [assume]"]
+    mat = next(m for m in cte.asm.materials if m.name == "SAF2507")
+    assert mat.alpha_per_K == pytest.approx(1.43e-5, rel=1e-12)
+    assert cte.asm.material("cartridge").alpha_per_K == mat.alpha_per_K
+    assert alts["[assembly] T_ref_C = 20 [assume]"].asm.T_ref_C == 25.0

@@ -327,6 +327,14 @@ def config_comments(path: Path) -> dict[tuple[str, str], str]:
         return {}
 
 
+def assembly_comments(asm, assembly_path: Path | None) -> dict[tuple[str, str], str]:
+    """The comments of the file `asm` was loaded from (its text as read then), else of the file
+    named (`config_comments`), else none."""
+    origin = origin_of(asm)
+    return (comments_in(origin.text) if origin is not None else
+            config_comments(assembly_path) if assembly_path else {})
+
+
 def material_references() -> dict[str, str]:
     """Material source key -> its full reference, from analytic/materials.py's source list."""
     from analytic import materials
@@ -359,9 +367,7 @@ def pedigree_lines(asm, assembly_path: Path | None) -> list[str]:
     mat_rows = [[name, ", ".join(parts), f"{m.E_MPa:.6g}", f"{m.nu:g}", f"{m.alpha_per_K * 1e6:.4g}",
                  f"[{m.source}] {refs.get(m.source, '')}".strip()]
                 for name, (m, parts) in mats.items()]
-    origin = origin_of(asm)         # the text it was loaded from, else the file named
-    comments = (comments_in(origin.text) if origin is not None else
-                config_comments(assembly_path) if assembly_path else {})
+    comments = assembly_comments(asm, assembly_path)
     cat = CATALOGUE.get(asm.bearing.designation)
     key_rows = []
     for name in ("shaft", "housing", "nut", "cover", "inner_spacer", "outer_spacer", "bearing",

@@ -2,14 +2,14 @@
 the answer"; `--sensitivity` adds the `[assume]`-tagged numbers and writes `sensitivity.csv`).
 
 An assumption is a modelling choice left at its default or tagged `[assume]` in the assembly
-file's comment on that key (`report_margins.config_comments`): the clamp kind of the nut and of
+file's comment on that key (`report_margins.assembly_comments`): the clamp kind of the nut and of
 the cover, the fit contact model, the preload path's compliance, the ball model, the friction
 law and (with `--sensitivity`) the ring section; and each number whose comment carries
 `[assume]`. Each is run again with its alternative through the pipeline (the same conditions,
 `simulate_table`) and the margin table of the report (`report_margins.margin_rows`, one route)
 is formed from that run; every governing number of the table is compared with the report's.
 
-    change = (value_alternative - value) / |value|          (relative, -; NaN when value = 0)
+    change = (value_alternative - value) / |value|     (relative, -; NaN when value is 0, ZERO)
 
 `flips`: the margin's PASS and FAIL trade places. Rows are ordered by flips first, then |change|.
 
@@ -17,11 +17,12 @@ Alternatives: a clamp "rigid" <-> "compliant" (the two limits of a clamp with a 
 "The clamp with a force"); fits "frictionless" <-> "bonded"; preload path "fe" <-> "rigid"; balls
 "static" <-> "quasi_dynamic"; oil viscous law "palmgren" <-> "skf2004" (a solid film has no
 second law without its shear-strength constants: not varied); ring section "rectangle" <->
-"grooved"; a number: NUMBER_STEP up (10 %; a number whose alternative the configuration refuses
-is listed as not varied, with the reason). The numbers are compared on the mesh of twice the
-report's sizes (`NUMBER_MESH_FACTOR`), the value and its alternative alike: a change of geometry
-needs its own FE set-up, and the difference of two runs on one mesh carries less discretisation
-error than either.
+"grooved"; a number: NUMBER_STEP up (10 %; a diameter DIAMETER_STEP, 1 %; a temperature
+TEMPERATURE_STEP_K, 5 K; the `[assembly]` table's and a `[materials.NAME]` table's numbers too;
+a number whose alternative the configuration refuses is listed as not varied, with the reason).
+The numbers are compared on the mesh of twice the report's sizes (`NUMBER_MESH_FACTOR`), the
+value and its alternative alike: a change of geometry needs its own FE set-up, and the
+difference of two runs on one mesh carries less discretisation error than either.
 """
 from __future__ import annotations
 
@@ -33,14 +34,23 @@ from typing import Callable
 import numpy as np
 
 from studies.model.config import Assembly
-from studies.usecases.report_margins import MarginRow, config_comments, margin_rows
+from studies.usecases.report_margins import MarginRow, assembly_comments, margin_rows
 from studies.usecases.report_tools import md_table
 
 #: the columns of sensitivity.csv, in order (docs/cli.md "report")
 CSV_COLUMNS = ("assumption", "alternative", "margin", "value", "value_alternative", "change",
                "flips")
-#: the relative step of an `[assume]`-tagged number
+#: the relative step of an `[assume]`-tagged number, and of a diameter (a key with "diameter"
+#: in its name, or the bearing's bore_mm): a section's radial build-up is a few per cent of its diameters, so 10 % of a
+#: diameter moves a part past its neighbours (seed000's inner ring section 37.8 -> 41.6 mm
+#: past its groove bottom), 1 % is the size of an effective-section assumption
 NUMBER_STEP = 0.10
+DIAMETER_STEP = 0.01
+#: the step of an `[assume]`-tagged temperature (a key in C: T_ref_C), K
+TEMPERATURE_STEP_K = 5.0
+#: a governing value this close to 0 (in its own unit: N, MPa, deg, rpm, -) is 0: a margin at
+#: round-off (a clamp face's force of -6e-9 N) has no relative change
+ZERO = 1e-6
 #: the numbers' runs are on the mesh of this many times the report's sizes
 NUMBER_MESH_FACTOR = 2.0
 #: the tag that marks an assumption in an assembly file's comment
@@ -113,12 +123,13 @@ def _tagged(comments: dict, section: str, key: str) -> bool:
 def alternatives(asm: Assembly, assembly_path: Path | None, long: bool
                  ) -> tuple[list[Alternative], list[str]]:
     """The assumptions of `asm` and their alternatives (module docstring), and the ones not
-    varied with the reason. `assembly_path`: the file whose comments carry the `[assume]` tags
-    (None: no tags; every choice at its default is still an assumption)."""
+    varied with the reason. The `[assume]` tags are the comments of the file `asm` was loaded
+    from, else of `assembly_path` (`report_margins.assembly_comments`; none: every choice at
+    its default is still an assumption)."""
     from studies.model.config import ConfigError
     from studies.model.config_checks import check_assembly
 
-    comments = config_comments(assembly_path) if assembly_path else {}
+    comments = assembly_comments(asm, assembly_path)
     out, skipped = [], []
 
     def add(name: str, alt_text: str, alt: Assembly, number: bool = False):
@@ -146,19 +157,56 @@ def alternatives(asm: Assembly, assembly_path: Path | None, long: bool
     if not long:
         return out, skipped
     for (section, key), comment in comments.items():
-        if TAG not in comment or not hasattr(asm, section):
-            continue
-        sec = getattr(asm, section)
-        value = getattr(sec, key, None)
-        if isinstance(value, bool) or not isinstance(value, (int, float)) or value == 0:
-            continue            # a text, a list, or a zero (no relative step)
-        new = type(value)(round(value * (1 + NUMBER_STEP))) if isinstance(value, int) \
-            else value * (1 + NUMBER_STEP)
+        found = _number(asm, section, key) if TAG in comment else None
+        if found is None:
+            continue            # untagged, a text, a list, or a zero (no relative step)
+        value, with_value = found
+        step = DIAMETER_STEP if "diameter" in key or key == "bore_mm" else NUMBER_STEP
+        if key.endswith("_C"):              # a temperature: no relative step in Celsius
+            new, how = value + TEMPERATURE_STEP_K, f"+{TEMPERATURE_STEP_K:g} K"
+        else:
+            new = (type(value)(round(value * (1 + step))) if isinstance(value, int)
+                   else value * (1 + step))
+            how = f"+{100 * step:g} %"
         if new == value:
             continue
-        add(f"[{section}] {key} = {value:g} [assume]", f"{new:g} (+{100 * NUMBER_STEP:g} %)",
-            replace(asm, **{section: replace(sec, **{key: new})}), number=True)
+        add(f"[{section}] {key} = {value:g} [assume]", f"{new:.6g} ({how})", with_value(new),
+            number=True)
     return out, skipped
+
+
+def _number(asm: Assembly, section: str, key: str):
+    """(value, value -> the assembly with it) of a numeric key of the file: a section's, the
+    `[assembly]` table's (T_ref_C) or a `[materials.NAME]` table's (`analytic.materials`
+    TABLE_KEYS: E_MPa, nu, cte_per_K, ...); None for a text, a list, a zero or another table."""
+    from analytic.materials import TABLE_KEYS
+
+    if section.startswith("materials."):
+        name, field = section.removeprefix("materials."), TABLE_KEYS.get(key)
+        mat = next((m for m in asm.materials if m.name == name), None)
+        if mat is None or field is None or key == "source":
+            return None
+        value = getattr(mat, field)
+
+        def with_value(v):
+            return replace(asm, materials=tuple(replace(m, **{field: v}) if m.name == name else m
+                                                for m in asm.materials))
+    elif section == "assembly":
+        value = getattr(asm, key, None)
+
+        def with_value(v):
+            return replace(asm, **{key: v})
+    elif hasattr(asm, section):
+        sec = getattr(asm, section)
+        value = getattr(sec, key, None)
+
+        def with_value(v):
+            return replace(asm, **{section: replace(sec, **{key: v})})
+    else:
+        return None
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or value == 0:
+        return None
+    return value, with_value
 
 
 def margins_of(asm: Assembly, cond: dict, pipeline) -> list[MarginRow]:
@@ -184,7 +232,8 @@ def compare(assumption: str, alternative: str, base: list[MarginRow], alt: list[
         v, w = float(b.value), float(a.value)
         if not (math.isfinite(v) and math.isfinite(w)):
             continue
-        change = (w - v) / abs(v) if v != 0 else (0.0 if w == 0 else float("nan"))
+        change = ((w - v) / abs(v) if abs(v) > ZERO
+                  else 0.0 if abs(w) <= ZERO else float("nan"))
         flips = b.passes is not None and a.passes is not None and b.passes != a.passes
         out.append(SensitivityRow(assumption, alternative, b.key, v, w, change, flips, b.item,
                                   b.status, a.status))
@@ -232,8 +281,8 @@ def section_lines(s: Sensitivity) -> list[str]:
     assumption and alternative the governing number it moves most, largest first."""
     lines = ["## Assumptions that decide the answer", "",
              "Each modelling choice left at its default or tagged `[assume]` in the assembly file"
-             + (" and each `[assume]`-tagged number (+10 %, on the mesh of twice the sizes)"
-                if s.long else "")
+             + (" and each `[assume]`-tagged number (+10 %, a diameter +1 %, a temperature "
+                "+5 K, on the mesh of twice the sizes)" if s.long else "")
              + ", run again with its alternative over the same operating points; the margin "
                "table of each run beside the one above (change: relative to the report's value)."
              + ("" if s.long else " `bearingfem report --sensitivity` adds the ring section and "
@@ -251,7 +300,8 @@ def section_lines(s: Sensitivity) -> list[str]:
     if table:
         lines += [md_table(["assumption", "alternative", "moves most", "value",
                             "with the alternative", "change", "PASS/FAIL flips"],
-                           [[r.assumption, r.alternative, f"{r.item} (`{r.margin}`)", f"{r.value:.4g}",
+                           [[r.assumption, r.alternative, f"{r.item} (`{r.margin}`)",
+                             f"{r.value:.4g}",
                              f"{r.value_alternative:.4g}", _pct(r.change),
                              "yes" if r.flips else ""] for r in table]), ""]
     else:
