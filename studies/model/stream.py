@@ -25,6 +25,7 @@ from typing import Callable, Iterator
 
 import numpy as np
 
+from analytic.friction.ranges import merge as merge_ranges
 from studies.model.checks import Check, Checks, Violation, assembly_checks, plausibility_warnings
 from studies.model.columns import to_columns
 from studies.model.inputs import CONDITION_COLUMNS
@@ -107,6 +108,7 @@ def simulate_file(asm, conditions: Path, out: Path, effects: dict | None = None,
     total = check_conditions(conditions, chunk_rows) if n_rows is None else n_rows
     tally = CheckTally(assembly_checks(asm))
     kept: dict[str, np.ndarray] = {}
+    ranges: tuple = ()                 # the friction law's rows outside its source's range
     n = 0
     with TableWriter(out, provenance) as w, Blocks(workers, scheduler) as where:
         if where.here:
@@ -132,6 +134,7 @@ def simulate_file(asm, conditions: Path, out: Path, effects: dict | None = None,
             out_cols = to_columns(res, friction_split=True)
             cols.update(out_cols)
             tally.add(res.checks, n)
+            ranges = merge_ranges(ranges, res.torque.range_notes)
             w.write(cols)
             keep = [c for c in cols if c.startswith("T_") and c.endswith("_C")]
             for k in keep + [c for c in WARNING_OUTPUTS if c in out_cols]:
@@ -143,7 +146,8 @@ def simulate_file(asm, conditions: Path, out: Path, effects: dict | None = None,
             raise TableError(f"{conditions}: changed while it was read")
     temps = {k: v for k, v in kept.items() if k not in WARNING_OUTPUTS}
     outputs = {k: v for k, v in kept.items() if k in WARNING_OUTPUTS}
-    return SimulateRun(n, tally.violations(), plausibility_warnings(asm, temps, outputs), temps)
+    return SimulateRun(n, tally.violations(), plausibility_warnings(asm, temps, outputs)
+                       + [r.message(n) for r in ranges], temps)
 
 
 def run_block(asm, mesh_factor: float, inputs, direct: bool, first_row: int) -> SimulationResult:
