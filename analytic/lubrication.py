@@ -58,7 +58,7 @@ class WaltherLaw:
     """log10(log10(nu + 0.7)) = A - B log10(T_K) (ASTM D341); nu in mm^2/s, T in K.
 
     fit_range_C: the temperature span of the points it was fitted to; outside it the law is an
-    extrapolation (see studies/lubricant_viscosity.py for how far that can be trusted).
+    extrapolation (see studies/validation/lubricant_viscosity.py for how far that can be trusted).
     """
     A: float
     B: float

@@ -368,7 +368,7 @@ def test_cli_bearing_bad_input(tmp_path, edit, loads_text, expect):
     assert not out.exists() and not Path(f"{out}.json").exists()
 
 
-# ------------------------------------------------------------ torque of one bearing (issue 24)
+# ------------------------------------------------------------ torque of one bearing
 OIL = """
 [lubrication]
 kind = "oil"
@@ -460,7 +460,7 @@ def test_bearing_torque_needs_lubrication_and_an_oil_temperature(tmp_path):
     assert len(lines) == 1 and "T_oil_C" in lines[0] and not out.exists()
 
 
-# ------------------------------------------------------ thermal speed limits (issue 33 item 4)
+# ------------------------------------------------------ thermal speed limits
 def test_bearing_thermal_speeds_balance_the_heat_written_out(tmp_path):
     """`bearing` writes the ISO 15312 reference speed and the DIN 732 permissible speed. The
     permissible speed is where DIN 732's friction (written out here: f1 F_a dm with f1 = 0.001

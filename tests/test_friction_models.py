@@ -1,5 +1,5 @@
 """analytic/friction/: each friction model against its source's closed form, its limits, and
-the law it reduces to (issue 33, item 1). Requirement names in each docstring."""
+the law it reduces to. Requirement names in each docstring."""
 import numpy as np
 import pytest
 from scipy import integrate
@@ -212,7 +212,7 @@ PAIR = solve_pair(G, "DB", preload_assembled_N=np.array([1500.0, 1500.0]))
 
 
 def test_ehl_heat_split_sums_to_total_heat():
-    """Issue 33 Done-when: the located heat (inner + outer contacts, each F_R u from the contact
+    """The located heat (inner + outer contacts, each F_R u from the contact
     speeds) equals the pair's torque x omega to 1e-9 relative."""
     n = np.array([1500.0, 12000.0])
     t = ehl_rolling_pair(G, PAIR, n, 0.03, 2e-8)
@@ -302,7 +302,7 @@ def test_skf_pair_is_the_sum_of_its_bearings():
     dict(viscous_model="ehl_rolling"), dict(viscous_model="starved", oil_quantity_mg=5.0)])
 def test_oil_split_sums_to_torque_and_heat(options):
     """Every oil model: rolling + sliding + drag = torque and heat_inner + heat_outer + heat_ball
-    = heat_W (= torque x omega) to 1e-9 relative (issue 33: the heat split loses nothing), on
+    = heat_W (= torque x omega) to 1e-9 relative (the heat split loses nothing), on
     quasi-dynamic balls (each contact at its own load, angle and speed)."""
     t = pair_torque(G, QD, **OIL, friction=FrictionOptions(**options, **FLUID))
     assert np.all(np.abs(t.rolling_Nmm + t.sliding_Nmm + t.drag_Nmm - t.torque_Nmm)

@@ -1,4 +1,4 @@
-"""`[lubrication] viscous_model` and `shear_strength` through the pipeline (issue 33): the default
+"""`[lubrication] viscous_model` and `shear_strength` through the pipeline: the default
 keeps every existing column bit for bit, every model's torque and heat split adds up, and the
 split columns come after the model columns with the names of docs/cli.md."""
 from dataclasses import replace

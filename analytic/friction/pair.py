@@ -73,7 +73,7 @@ class TorqueComponents:
     Oil: load_Nmm (the load term, both bearings; with viscous_model "skf2004" SKF's sliding
     term), viscous_Nmm (the viscous term of `viscous_model`, both bearings), viscosity_mm2_s
     (the kinematic viscosity the viscous term used, mm^2/s).
-    Every model (issue 33): rolling_Nmm, sliding_Nmm, drag_Nmm (their sum is torque_Nmm: oil,
+    Every model: rolling_Nmm, sliding_Nmm, drag_Nmm (their sum is torque_Nmm: oil,
     the viscous term, the load term and the drag; solid film, the hysteresis, the differential
     slip + spin, 0) and with a speed the heat by where it is made, heat_inner_W (the inner
     contacts), heat_outer_W (the outer contacts), heat_ball_W (in the oil around the balls: the
@@ -213,7 +213,7 @@ def pair_torque(g, pair, *, model: str = "solid_film", mu=0.02, hysteresis_loss=
       viscous terms (both bearings), the viscosity used and the per-bearing totals.
     With speed_rpm given, also heat_W (total dissipated power) and its split by location.
     g: `bearing.BearingGeometry`; friction: `analytic.friction.options.FrictionOptions`
-    (default: Palmgren, constant shear strength: the results of the law before issue 33).
+    (default: Palmgren, constant shear strength).
     """
     fr = FrictionOptions() if friction is None else friction
     args = dict(model=model, mu=mu, hysteresis_loss=hysteresis_loss, speed_rpm=speed_rpm, f0=f0,

@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 from analytic.bearing.geometry import BearingSpec
 from analytic.lubrication import Lubricant, get_lubricant
 from analytic.materials import Material, get_material
+from studies.model.provenance import Origin
 from studies.model.config_schema import (LAYERS, MATERIAL_T_RANGE_C, MESH_TARGET_RANGE, SIGNED,
                                          ZERO_OK, Range, choice, choice_or_number, limits,
                                          material, number, table as _field_table, text)
@@ -332,6 +333,9 @@ class Assembly:
     cartridge: Layer | None = None
     materials: tuple[Material, ...] = ()   # the config's own [materials.NAME] tables
     lubricants: tuple[Lubricant, ...] = ()  # the config's own [lubricants.NAME] tables
+    #: the file it was read from (`studies.model.provenance.Origin`; None when built in memory);
+    #: not part of its value: equal stacks are equal whatever file they came from
+    origin: Origin | None = field(default=None, compare=False, repr=False)
 
     def oil(self) -> Lubricant | None:
         """The oil of `[lubrication] lubricant` (the file's own table first, then the library);

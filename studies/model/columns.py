@@ -26,7 +26,7 @@ def to_columns(result: SimulationResult, flags: bool = True, friction_split: boo
     (1 = violated) and `margin_<name>` columns (docs/cli.md, "simulate: limits").
     `simulate` writes the split (its stream, its transient mode and the Python API ask for it);
     the studies' and the report's tables are written without it, so the shipped seed CSVs stay
-    byte-identical to the files before issue 33. `only`: just these columns, in this order
+    byte-identical to the Palmgren files. `only`: just these columns, in this order
     (KeyError for a name not written); the Lamé neighbours (`result.lame`) are computed only
     when one of their columns (`lame_column_names`) is among them (a diagnosis compares none)."""
     fe, pair, t, s = result.fe, result.pair, result.torque, result.summary
@@ -126,7 +126,7 @@ FRICTION_SPLIT_HEAT = ("heat_inner_W", "heat_outer_W", "heat_ball_W")
 
 
 def friction_split_columns(t) -> dict[str, np.ndarray]:
-    """Whatever the friction model (docs/cli.md, issue 33): the torque by kind,
+    """Whatever the friction model (docs/cli.md): the torque by kind,
     `torque_rolling_Nmm`, `torque_sliding_Nmm`, `torque_drag_Nmm` (summing to `torque_Nmm`),
     and, with a speed, the heat by where it is made, `heat_inner_W`, `heat_outer_W`,
     `heat_ball_W` (summing to `heat_W`; `analytic.friction.pair.TorqueComponents`)."""

@@ -108,7 +108,7 @@ def check_friction(lub, path: str) -> None:
 
 
 def _check_units(a: Assembly, path: str) -> None:
-    """The whole assembly typed in inches (issue 24): ball, ring width and outside diameter all
+    """The whole assembly typed in inches: ball, ring width and outside diameter all
     below `INCH_SUSPECT_MM` -> one line naming inches, before any other geometry check (which
     would otherwise name a consequence: a fit beyond 2 per mille, a preload above C0)."""
     b = a.bearing
