@@ -315,3 +315,15 @@ def test_bearing_warns_when_ehl_rolling_leaves_its_ellipticity_range(tmp_path):
                   tmp_path / "o.csv")
     lines = [w for w in res.warnings if "friction law" in w]
     assert len(lines) == 1 and "ehl_rolling" in lines[0] and "ellipticity" in lines[0], res.warnings
+
+
+def test_a_bearing_files_friction_keys_are_checked_as_an_assemblys(tmp_path):
+    """`bearing` refuses a friction key without effect as `simulate` does (one line naming the
+    file and key): an oil quantity without the starved law, an oil level without a bath."""
+    from studies.model.config import ConfigError, load_bearing
+    for lub, key in (({"oil_quantity_mg": 5.0}, "oil_quantity_mg"),
+                     ({"viscous_model": "skf2004", "oil_level_mm": 4.0}, "oil_level_mm")):
+        path = _seed001_bearing_file(tmp_path, **lub)
+        with pytest.raises(ConfigError, match=rf"lubrication\.{key}: ") as e:
+            load_bearing(path)
+        assert str(path) in str(e.value) and "\n" not in str(e.value)

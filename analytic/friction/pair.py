@@ -335,7 +335,8 @@ def _oil_pair(g, pair, args) -> tuple[list, dict, tuple]:
     the contacts in W or None), and the notes of the rows outside the law's range. A term
     without a location of its own is shared equally by the inner and outer contacts."""
     a, b = (bearing_friction(g, pair_bearing_contacts(pair, j), **args) for j in (0, 1))
-    load, viscous, drag = a.load_Nmm + b.load_Nmm, a.viscous_Nmm + b.viscous_Nmm, a.drag_Nmm + b.drag_Nmm
+    load, viscous = a.load_Nmm + b.load_Nmm, a.viscous_Nmm + b.viscous_Nmm
+    drag = a.drag_Nmm + b.drag_Nmm
     if a.heat_inner_W is not None:              # ehl_rolling: its heat located at each contact
         located = (0.5 * load, 0.5 * load, (a.heat_inner_W + b.heat_inner_W,
                                             a.heat_outer_W + b.heat_outer_W))
