@@ -59,6 +59,10 @@ def build_parser() -> argparse.ArgumentParser:
     d.add_argument("assembly", type=Path)
     d.add_argument("measured", type=Path)
     d.add_argument("--out", type=Path, required=True)
+    d.add_argument("--noise", action="append", default=[], metavar="COLUMN=REL%[+ABS]",
+                   help="a sensor's standard uncertainty, e.g. torque_Nmm=1.5%%+0.2 (1.5 %% of "
+                        "reading plus 0.2 N mm) or preload_N=0.5 (may repeat); the rows' weights, "
+                        "the level still checked against the data")
 
     v = sub.add_parser("verify", help="FE against closed forms, mesh convergence")
     v.add_argument("--out", type=Path, required=True)

@@ -212,10 +212,13 @@ def cmd_study(args) -> None:
 
 
 def cmd_diagnose(args) -> None:
+    from studies.diagnosis.noisemodel import parse_noise_arg
     from studies.usecases import api
 
     try:
-        result = api.diagnose(args.assembly, args.measured, args.out, progress=progress)
+        noise = dict(parse_noise_arg(a) for a in args.noise)
+        result = api.diagnose(args.assembly, args.measured, args.out, progress=progress,
+                              noise=noise)
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
     print(f"diagnosis: {result.verdict}" + (f" ({result.cause})" if result.cause else "")

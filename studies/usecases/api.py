@@ -202,19 +202,26 @@ class Simulation:
         return pd.DataFrame(self.columns) if self.columns is not None else pd.read_csv(self.out)
 
 
-def diagnose(assembly, measured, out=None, progress=_quiet):
-    """`bearingfem diagnose ASSEMBLY.toml MEASURED.csv --out DIR`: which named effect explains
-    what the baseline model gets wrong on `measured` (condition columns and measured output
-    columns, docs/cli.md "diagnose"; at least 8 rows).  Writes diagnosis.json and the report
-    into `out`.  Returns `studies.diagnosis.result.DiagnosisResult` (`verdict`, `cause`,
-    parameters, held-out gain; `.json` is diagnosis.json as written)."""
-    from studies.diagnosis.files import OUTPUT_NAMES, diagnose_tables, measured_columns, split_measured
+def diagnose(assembly, measured, out=None, progress=_quiet, noise: Mapping | None = None):
+    """`bearingfem diagnose ASSEMBLY.toml MEASURED.csv --out DIR [--noise COLUMN=REL%[+ABS]]`:
+    which named effect explains what the baseline model gets wrong on `measured` (condition
+    columns, measured output columns and optional per-row `sigma_<column>`, docs/cli.md
+    "diagnose"; at least 8 rows).  noise: a sensor's stated standard uncertainty per column,
+    {"torque_Nmm": "1.5%+0.2"} (1.5 % of reading plus 0.2 N mm; a number or "0.5": absolute).
+    Writes diagnosis.json and the report into `out`.  Returns `Diagnosis` (`verdict`, `cause`,
+    `.result` the typed `studies.diagnosis.result.DiagnosisResult`, `.json` diagnosis.json as
+    written)."""
+    from studies.diagnosis.files import (OUTPUT_NAMES, diagnose_tables, measured_columns,
+                                         measured_noise, split_measured)
 
     asm = _assembly(assembly)
     cols = table(measured, measured_columns(OUTPUT_NAMES), "measured")
-    conditions, meas = split_measured(cols, measured if _is_path(measured) else "measured")
+    where = measured if _is_path(measured) else "measured"
+    conditions, meas = split_measured(cols, where)
+    stated = measured_noise(cols, meas, noise, where)       # bad input: before any FE work
     with _folder(out) as tmp:
-        result, doc = diagnose_tables(asm, conditions, meas, tmp, progress=progress)
+        result, doc = diagnose_tables(asm, conditions, meas, tmp, progress=progress,
+                                      noise_model=stated)
     return Diagnosis(result, doc)
 
 
