@@ -814,7 +814,8 @@ def simulate_transient_columns(asm: Assembly, cols: dict, where: str = "conditio
     given = {k: v for k, v in temps.items() if k in cols}     # the warnings read the inputs
     warn_cols = {k: outputs[k] for k in WARNING_OUTPUTS if k in outputs}
     n = len(cols["time_s"])
-    return SimulateRun(n, tally.violations(), plausibility_warnings(asm, given, warn_cols),
+    ranges = [r.message(n) for r in run.outputs.torque.range_notes]    # the friction law's
+    return SimulateRun(n, tally.violations(), plausibility_warnings(asm, given, warn_cols) + ranges,
                        temps), res
 
 
