@@ -82,15 +82,14 @@ def interval_factors(log_residuals, level: float = LEVEL) -> tuple[float, float]
 def regime_of(kind: str, lubrication_method: str = "", viscous_model: str = "palmgren",
               oil_quantity_mg: float = 0.0) -> str:
     """The regime of an assembly's `[lubrication]`: a solid film; else the stated
-    lubrication_method; else minimal oil where a law or an oil quantity says so, otherwise an
-    oil bath or jet (the flooded inlet Palmgren's f0 assumes)."""
+    lubrication_method; else minimal oil (an oil bath or jet is stated by its method: the
+    project's cases and every published oil point it holds are space bearings run on a few mg;
+    viscous_model and oil_quantity_mg are accepted for the record, they do not change this)."""
     if kind == "solid_film":
         return "solid_film"
     if lubrication_method:
         return _METHOD_REGIME[lubrication_method]
-    if viscous_model in ("starved", "minimal_oil") or oil_quantity_mg > 0:
-        return "minimal_oil"
-    return "oil_bath_jet"
+    return "minimal_oil"
 
 
 @lru_cache(maxsize=4)

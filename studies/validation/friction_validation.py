@@ -47,8 +47,8 @@ OZ_IN_PER_LBF_IN_NMM_PER_N = 7.0615518 / 4.4482216   # 1 ozf in = 7.0616 N mm; 1
 #: angular-contact bearing (Harris & Kotzalas Vol. 2 ch. 2); the starting and slow-running points
 #: do not depend on it (viscous term < 1 % there), the LQF trends divide it out
 F0_EXTERNAL = 2.0
-#: a trend row's ratio must exceed 1 by more than round-off to count as a rise
-TREND_TOL = 1e-9
+#: a trend row's ratio must exceed 1 by more than 1e-4 (0.01 %) to count as a rise: less is flat
+TREND_TOL = 1e-4
 
 
 @dataclass(frozen=True)
