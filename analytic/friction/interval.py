@@ -92,6 +92,16 @@ def regime_of(kind: str, lubrication_method: str = "", viscous_model: str = "pal
     return "minimal_oil"
 
 
+def lubrication_interval(lubrication) -> ModelFormInterval:
+    """The interval of an assembly's `[lubrication]` (any object with `kind`, `viscous_model`
+    and, where given, `lubrication_method`): its regime (`regime_of`) and law (the viscous model
+    of an oil, "solid_film" for a film)."""
+    kind = lubrication.kind
+    law = "solid_film" if kind == "solid_film" else lubrication.viscous_model
+    return model_form_interval(regime_of(kind, getattr(lubrication, "lubrication_method", "")
+                                         or ""), law)
+
+
 @lru_cache(maxsize=4)
 def _residuals(path: str) -> tuple[tuple[str, str, str, float], ...]:
     with open(path, newline="") as fh:

@@ -166,9 +166,24 @@ def margin_rows(asm, res: dict, flags: dict, mesh_error: dict[str, float],
     rows += thermal_speed_rows(asm, cond, res)
     lo, hi = hl["torque_min"], hl["torque_max"]
     rows.append(MarginRow(
-        "friction torque", f"{lo.value:.4g} .. {hi.value:.4g} N mm", "none given", "",
+        "friction torque", f"{lo.value:.4g} .. {hi.value:.4g} N mm", "none given",
+        _torque_interval_text(asm, lo.value, hi.value),
         "no limit", _worst(mesh_error, "torque_min", "torque_max"), "no torque limit in the assembly"))
     return rows
+
+
+def _torque_interval_text(asm, lo_Nmm: float, hi_Nmm: float) -> str:
+    """The friction law's model-form interval on the torque range (`analytic.friction.interval`,
+    from study friction_validation's published points), or why none is stated."""
+    from analytic.friction.interval import lubrication_interval
+    i = lubrication_interval(asm.lubrication)
+    if not i.stated:
+        return (f"no model-form interval ({i.regime}, {i.law}: {i.n_residuals} published "
+                "residuals; study friction_validation)")
+    a, b = i.apply(lo_Nmm)[0], i.apply(hi_Nmm)[1]
+    return (f"model-form interval {a:.4g} .. {b:.4g} N mm ({i.level:.0%} nominal, {i.regime}, "
+            f"{i.law}: {i.n_residuals} residuals of {len(i.sources)} sources; study "
+            "friction_validation)")
 
 
 def preload_limit_rows(asm, res: dict, cond: dict | None) -> list[MarginRow]:
