@@ -16,7 +16,8 @@ from functools import lru_cache
 import numpy as np
 
 from analytic.materials import Material
-from analytic.torque import contact_angles_rad, contact_inputs, power_W, sliding_spin_torque_Nmm
+from analytic.friction.pair import contact_angles_rad, contact_inputs
+from analytic.torque import power_W, sliding_spin_torque_Nmm
 
 #: thermal conductivity of a mineral / synthetic hydrocarbon oil at ambient pressure, W/(m K)
 #: (Incropera & DeWitt, Fundamentals of Heat and Mass Transfer, 6th ed., Table A.5: unused engine
@@ -101,7 +102,7 @@ def solid_film_pair_heat_W(torque, speed_rpm) -> PairHeat:
 
 def located_pair_heat_W(torque, speed_rpm) -> PairHeat:
     """Heat of an oil-lubricated pair (W) from its torque's own split by location (`analytic.
-    torque.pair_torque` with a friction model of issue 33: `heat_inner_W`, `heat_outer_W`,
+    friction.pair.pair_torque` with a friction model of issue 33: `heat_inner_W`, `heat_outer_W`,
     `heat_ball_W`): the sliding part is the torque's sliding term, the viscous part its rolling
     term, the drag the heat at the balls; inner_W + outer_W + drag_W = total_W = the torque's
     heat. Unlike `pair_heat_W` (Palmgren: sliding and spin from a traction coefficient beside the

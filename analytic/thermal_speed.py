@@ -47,7 +47,8 @@ from math import pi
 import numpy as np
 from scipy.optimize import brentq
 
-from analytic.torque import palmgren_load_torque_Nmm, palmgren_viscous_torque_Nmm, power_W
+from analytic.friction.palmgren import palmgren_load_torque_Nmm, palmgren_viscous_torque_Nmm
+from analytic.torque import power_W
 
 #: ISO 15312:2018 reference conditions (radial bearings)
 REFERENCE_BEARING_TEMPERATURE_C = 70.0
@@ -112,7 +113,7 @@ def reference_heat_transfer_W_per_mm2_K(surface_mm2):
 
 def heat_balance_speed_rpm(f0, nu_mm2_s, dm_mm: float, load_torque_Nmm, heat_W):
     """The speed n (rpm) at which Palmgren's friction power (pi n / 30e3)(M0(n) + M1) equals the
-    heat given off, Q (module docstring; M0 by `analytic.torque.palmgren_viscous_torque_Nmm`).
+    heat given off, Q (module docstring; M0 by `analytic.friction.palmgren.palmgren_viscous_torque_Nmm`).
     Arrays broadcast; Q <= 0 gives 0 rpm, a friction too small to reach Q below MAX_SPEED_RPM
     gives inf (no thermal limit).  f0 (-), nu (mm^2/s), dm (mm), M1 (N*mm), Q (W)."""
     f0, nu, m1, q = np.broadcast_arrays(*(np.asarray(x, float) for x in

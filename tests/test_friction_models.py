@@ -7,7 +7,9 @@ from scipy import integrate
 from analytic.bearing import BearingGeometry, solve_pair
 from analytic.friction import ehl_rolling, skf2004, solid_film, starved
 from analytic.lubrication import reduced_modulus_MPa
-from analytic.torque import ehl_rolling_pair, palmgren_viscous_torque_Nmm, power_W
+from analytic.friction.pair import ehl_rolling_pair
+from analytic.friction.palmgren import palmgren_viscous_torque_Nmm
+from analytic.torque import power_W
 
 G = BearingGeometry.from_catalogue("25TAC62B")
 EPS = np.finfo(float).eps
@@ -166,7 +168,7 @@ def test_ehl_uses_reduced_modulus_of_ring_and_ball():
 # ----------------------------------------------------------------------------- the pair's torque
 from analytic.friction.options import FrictionOptions            # noqa: E402
 from analytic.heat import located_pair_heat_W                     # noqa: E402
-from analytic.torque import TorqueComponents, pair_torque        # noqa: E402
+from analytic.friction.pair import TorqueComponents, pair_torque  # noqa: E402
 from fem.transient import bearing_heat_inputs_W                  # noqa: E402
 
 N3 = np.array([1500.0, 6000.0, 12000.0])

@@ -70,7 +70,7 @@ def test_solid_film_pressure_law_through_the_config():
 
 def test_split_column_names_are_the_contract():
     """friction_split_columns names exactly the six columns of the spec, in its order."""
-    from analytic.torque import TorqueComponents
+    from analytic.friction.pair import TorqueComponents
     one = np.ones(2)
     t = TorqueComponents("oil", one, one, one, one, rolling_Nmm=one, sliding_Nmm=one,
                          drag_Nmm=one, heat_inner_W=one, heat_outer_W=one, heat_ball_W=one)
@@ -112,3 +112,89 @@ def test_diagnose_accepts_every_column_simulate_writes(seed001):
     unknown = [k for k in _columns(seed001) if k not in OUTPUT_NAMES and k not in COMPARABLE
                and k not in COND]
     assert unknown == []
+
+
+# ------------------------------------------- one friction route for `simulate` and `bearing`
+def _section_text(text: str, name: str) -> str:
+    """The text of TOML table [name] of `text` (header to the next header)."""
+    import re
+    m = re.search(rf"^\[{re.escape(name)}\][^\n]*\n(.*?)(?=^\[|\Z)", text, re.S | re.M)
+    return f"[{name}]\n{m.group(1)}"
+
+
+def _seed001_bearing_file(tmp_path, **lub):
+    """seed001's [bearing] and [lubrication] as a `bearing` file, with `lub` set in it."""
+    from studies.model.config import CONFIG_DIR, SHIPPED
+    text = (CONFIG_DIR / SHIPPED["seed001"]).read_text()
+    lubrication = _section_text(text, "lubrication") + "".join(
+        f'{k} = {v!r}\n'.replace("'", '"') for k, v in lub.items())
+    b = tmp_path / "b.toml"
+    b.write_text(_section_text(text, "bearing") + lubrication)
+    return b
+
+
+@pytest.mark.parametrize("model", ["palmgren", "skf2004"])
+def test_bearing_gives_simulates_torque_for_the_same_bearing_load_and_law(seed001, tmp_path,
+                                                                          model):
+    """`bearing` on seed001's bearing under the axial force bearing A carries in `simulate`, at
+    the row's speed and oil temperature (the rows are isothermal: the oil at T_ambient), gives
+    simulate's torque of bearing A to 1e-9 relative, for a law that depends on the bearing's
+    loads, speed and viscosity only (palmgren, skf2004: their torque does not depend on the
+    contact angle, which the pair's fits change); and skf2004 differs from Palmgren (before
+    this, `bearing` gave Palmgren's torque whatever viscous_model said)."""
+    import pandas as pd
+
+    from studies.app.cli import main
+    a = replace(seed001, lubrication=replace(seed001.lubrication, viscous_model=model))
+    res = Pipeline.shared(a, mesh_factor=MESH_FACTOR).run(table_inputs(a, COND))
+    nu = a.oil().nu_mm2_s(COND["T_ambient_C"])
+    assert np.allclose(res.torque.viscosity_mm2_s, nu, rtol=1e-12)   # isothermal rows
+    Fa = res.pair.axial_force_N[0]
+    loads = tmp_path / "loads.csv"
+    pd.DataFrame({"axial_load_N": Fa, "speed_rpm": COND["speed_rpm"],
+                  "T_oil_C": COND["T_ambient_C"]}).to_csv(loads, index=False)
+    out = tmp_path / f"{model}.csv"
+    assert main(["bearing", str(_seed001_bearing_file(tmp_path, viscous_model=model)), str(loads),
+                 "-o", str(out)]) == 0
+    got = pd.read_csv(out)["torque_Nmm"].to_numpy()
+    np.testing.assert_allclose(got, res.torque.torque_A_Nmm, rtol=1e-9)
+    if model == "skf2004":
+        palm = replace(seed001, lubrication=replace(seed001.lubrication, viscous_model="palmgren"))
+        p = Pipeline.shared(palm, mesh_factor=MESH_FACTOR).run(table_inputs(palm, COND))
+        assert np.all(np.abs(got / p.torque.torque_A_Nmm - 1.0) > 0.05)
+
+
+@pytest.mark.parametrize("model", ["palmgren", "skf2004", "ehl_rolling", "starved"])
+def test_every_ball_summed_is_z_times_the_representative_ball(model):
+    """`bearing` sums the law over every ball's own contacts (`single_bearing_contacts`), the
+    pair route takes Z times a representative ball (`pair_bearing_contacts`): on the same
+    bearing state under a pure axial load (every ball alike) the two give the same torque for
+    every law, to 1e-12 relative (the same state, the same law, two ways of counting balls)."""
+    from analytic.bearing.single import solve_single
+    from analytic.friction.options import FrictionOptions
+    from analytic.friction.pair import BearingContacts, bearing_friction, single_bearing_contacts
+    from analytic.lubrication import dynamic_viscosity_Pa_s
+    from analytic.torque import ContactInput
+
+    asm = load_shipped("seed001")
+    from analytic.bearing import BearingGeometry
+    g = BearingGeometry.from_spec(asm.bearing, asm.materials)
+    speed = np.array([3500.0, 9000.0])
+    st = solve_single(g, axial_load_N=np.array([50.0, 200.0]), speed_rpm=speed,
+                      ball_model="quasi_dynamic")
+    every = single_bearing_contacts(st)
+    first = lambda k: ContactInput(*(np.asarray(getattr(k, f))[0] for f in  # noqa: E731
+                                     ("Q_N", "a_mm", "b_mm", "E_ell", "Rx_mm")))
+    one = BearingContacts(first(every.inner), first(every.outer), every.alpha_inner_rad[0],
+                          every.alpha_outer_rad[0], every.axial_force_N, every.radial_force_N)
+    oil = asm.oil()
+    nu = oil.nu_mm2_s(np.array([20.0, 40.0]))
+    fr = FrictionOptions(viscous_model=model, oil_quantity_mg=5.0 if model == "starved" else 0.0,
+                         eta_Pa_s=dynamic_viscosity_Pa_s(nu, oil.density_kg_m3),
+                         alpha_per_Pa=oil.alpha_per_Pa, density_kg_m3=oil.density_kg_m3,
+                         bore_mm=asm.bearing.bore_mm,
+                         outside_diameter_mm=asm.bearing.outside_diameter_mm)
+    args = dict(model="oil", mu=0.0029, speed_rpm=speed, f0=1.7, nu_mm2_s=nu, friction=fr)
+    a, b = bearing_friction(g, every, **args), bearing_friction(g, one, **args)
+    np.testing.assert_allclose(a.total_Nmm, b.total_Nmm, rtol=1e-12)
+    assert np.all(a.total_Nmm > 0)

@@ -96,7 +96,7 @@ def test_rolling_contact_resistance_falls_with_speed_and_the_film_adds_in_series
 def test_solid_film_heat_is_the_torque_times_the_speed():
     """A solid-film pair's heat is its friction torque times |omega| (omega = 2 pi n / 60), the
     contact split adding up to it (nothing lost, nothing viscous)."""
-    from analytic.torque import pair_torque
+    from analytic.friction.pair import pair_torque
     t = pair_torque(G, PAIR, model="solid_film", mu=0.02, hysteresis_loss=0.01, speed_rpm=N_RPM)
     from analytic.heat import solid_film_pair_heat_W
     h = solid_film_pair_heat_W(t, N_RPM)

@@ -200,7 +200,7 @@ def test_seed001_starved_film_limits(friction_models):
     oil quantity 1e6 x the upper bound the torque is the configured (flooded Palmgren) one to
     1e-9; at 60 C, where the configured preload is lost (0 N, no Hertz contact), the torque is
     Palmgren's viscous term f0 (nu n)^(2/3) dm^3 1e-7 per bearing, for any oil quantity."""
-    from analytic.torque import palmgren_viscous_torque_Nmm
+    from analytic.friction.palmgren import palmgren_viscous_torque_Nmm
 
     (s,), _ = friction_models
     asm = load_shipped("seed001")

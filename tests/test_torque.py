@@ -8,6 +8,8 @@ import pytest
 from scipy.integrate import quad
 
 from analytic import hertz, torque
+from analytic.friction import pair as friction_pair
+from analytic.friction import palmgren
 from analytic.bearing import BearingGeometry, solve_pair
 
 G = BearingGeometry.from_catalogue("71807C")
@@ -154,9 +156,9 @@ def test_contact_surface_radius_limits():
 
 def test_viscous_two_thirds_power_and_dm_cubed():
     """Palmgren: M0 ~ (nu n)^(2/3) dm^3 above nu n = 2000 (8x nu n -> 4x torque)."""
-    M = torque.palmgren_viscous_torque_Nmm(1.7, np.array([10.0, 80.0]), 3000.0, 31.0)
+    M = palmgren.palmgren_viscous_torque_Nmm(1.7, np.array([10.0, 80.0]), 3000.0, 31.0)
     assert M[1] / M[0] == pytest.approx(4.0, rel=1e-13)
-    M2 = torque.palmgren_viscous_torque_Nmm(1.7, 10.0, 3000.0, 62.0)
+    M2 = palmgren.palmgren_viscous_torque_Nmm(1.7, 10.0, 3000.0, 62.0)
     assert M2 / M[0] == pytest.approx(8.0, rel=1e-13)
     assert M[0] == pytest.approx(1e-7 * 1.7 * 30000.0 ** (2 / 3) * 31.0 ** 3, rel=1e-13)
 
@@ -164,9 +166,9 @@ def test_viscous_two_thirds_power_and_dm_cubed():
 def test_viscous_low_speed_branch():
     """Below nu n = 2000 the torque is the constant 160e-7 f0 dm^3; the branches nearly meet:
     160 / 2000^(2/3) = 1.0079."""
-    low = torque.palmgren_viscous_torque_Nmm(1.0, np.array([0.0, 1.0, 19.99]), 100.0, 40.0)
+    low = palmgren.palmgren_viscous_torque_Nmm(1.0, np.array([0.0, 1.0, 19.99]), 100.0, 40.0)
     assert np.allclose(low, 160e-7 * 40.0 ** 3, rtol=1e-15)
-    hi = torque.palmgren_viscous_torque_Nmm(1.0, 20.0, 100.0, 40.0)
+    hi = palmgren.palmgren_viscous_torque_Nmm(1.0, 20.0, 100.0, 40.0)
     assert low[-1] / hi == pytest.approx(160.0 / 2000.0 ** (2 / 3), rel=1e-12)
     assert abs(low[-1] / hi - 1) < 0.01
 
@@ -175,10 +177,10 @@ def test_gbt_form_is_load_plus_viscous():
     """GB/T 28878.2 B.4 with Palmgren's coefficient: f1 F dm + c f0 (nu n)^(2/3) dm^3 equals the sum
     of the two Palmgren terms above nu n = 2000 and is linear in F."""
     args = dict(dm_mm=31.0, f0=1.7, nu_mm2_s=20.0, n_rpm=6000.0)
-    M1 = torque.gbt28878_torque_mNm(0.001, 10.0, **args)
-    M2 = torque.gbt28878_torque_mNm(0.001, 20.0, **args)
-    Mv = torque.palmgren_viscous_torque_Nmm(1.7, 20.0, 6000.0, 31.0)
-    assert M1 == pytest.approx(torque.palmgren_load_torque_Nmm(0.001, 10.0, 31.0) + Mv, rel=1e-14)
+    M1 = palmgren.gbt28878_torque_mNm(0.001, 10.0, **args)
+    M2 = palmgren.gbt28878_torque_mNm(0.001, 20.0, **args)
+    Mv = palmgren.palmgren_viscous_torque_Nmm(1.7, 20.0, 6000.0, 31.0)
+    assert M1 == pytest.approx(palmgren.palmgren_load_torque_Nmm(0.001, 10.0, 31.0) + Mv, rel=1e-14)
     assert M2 - M1 == pytest.approx(0.001 * 10.0 * 31.0, rel=1e-12)
 
 
@@ -192,7 +194,7 @@ def test_power_from_torque_matches_seed003_constant():
 
 def test_pair_torque_of_symmetric_pair_is_twice_one_bearing():
     pair = solve_pair(G, "DB", preload_assembled_N=np.array([50.0, 200.0]))
-    t = torque.pair_torque(G, pair, mu=0.02, hysteresis_loss=0.01, speed_rpm=60.0)
+    t = friction_pair.pair_torque(G, pair, mu=0.02, hysteresis_loss=0.01, speed_rpm=60.0)
     assert np.allclose(t.torque_A_Nmm, t.torque_B_Nmm, rtol=1e-12)
     one = [_solid(pair.ball_load_N[0][i], pair.contact_angle_deg[0][i]).total_Nmm for i in range(2)]
     assert np.allclose(t.torque_Nmm, 2 * np.array(one, float).ravel(), rtol=1e-9)
@@ -207,9 +209,9 @@ def test_oil_pair_torque_terms():
     bearing (independent of the load)."""
     hyb = BearingGeometry.from_catalogue("flywheel")
     pair = solve_pair(hyb, "DF", preload_assembled_N=np.array([7.0, 14.0]))
-    t = torque.pair_torque(hyb, pair, model="oil", mu=0.0029, f0=1.7, nu_mm2_s=30.0, speed_rpm=6000.0)
+    t = friction_pair.pair_torque(hyb, pair, model="oil", mu=0.0029, f0=1.7, nu_mm2_s=30.0, speed_rpm=6000.0)
     assert np.allclose(t.load_Nmm, 2 * 0.0029 * np.array([7.0, 14.0]) * hyb.dm_mm / 2, rtol=1e-12)
-    M0 = torque.palmgren_viscous_torque_Nmm(1.7, 30.0, 6000.0, hyb.dm_mm)
+    M0 = palmgren.palmgren_viscous_torque_Nmm(1.7, 30.0, 6000.0, hyb.dm_mm)
     assert np.allclose(t.viscous_Nmm, 2 * M0, rtol=1e-14)
     assert np.allclose(t.torque_Nmm, t.load_Nmm + t.viscous_Nmm, rtol=1e-14)
 

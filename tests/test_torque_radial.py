@@ -1,5 +1,5 @@
 """Friction torque of a pair whose balls carry unequal loads (radial load, moment): the sum over
-every ball's own contacts (`torque.pair_torque` with `PairState.radial`).
+every ball's own contacts (`friction.pair.pair_torque` with `PairState.radial`).
 
 Checked against: the axial-only route in the limit of a vanishing radial load (every ball alike,
 Z times one ball), and a second route to every ball's contact: the Hertz point contact solved from
@@ -10,7 +10,8 @@ import numpy as np
 
 from analytic import hertz
 from analytic.bearing import BearingGeometry, solve_pair
-from analytic.torque import ball_kinematics, hysteresis_rolling_force_N, pair_torque
+from analytic.friction.pair import pair_torque
+from analytic.torque import ball_kinematics, hysteresis_rolling_force_N
 
 G = BearingGeometry.from_catalogue("71807C")
 SPAN = 14.0

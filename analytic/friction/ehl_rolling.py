@@ -19,7 +19,7 @@ nu2^2)/E2). The force opposes rolling; the power it dissipates is F_R u, at the 
 inlet. With the kinematics of `analytic.torque.ball_kinematics` (outer ring fixed, inner ring
 at omega) u_j = omega (dm/2) roll_j, so the inner-ring torque that balances it is
 F_R (dm/2) roll_j per contact, Z balls per bearing.
-The pair's sum over both bearings on a `bearing.PairState`: `analytic.torque.ehl_rolling_pair`.
+The pair's sum over both bearings on a `bearing.PairState`: `analytic.friction.pair.ehl_rolling_pair`.
 
 Speed law (what the model predicts, not fitted): at fixed ball loads and viscosity F_R ~ U^0.66
 ~ n^0.66, so the torque grows as n^0.66 before the oil's heating lowers eta0 (the thermal

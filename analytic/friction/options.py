@@ -1,6 +1,6 @@
 """The friction model's options (`[lubrication]` keys viscous_model, oil_quantity_mg,
 shear_strength, tau0_MPa, alpha_shear) with the lubricant and bearing data the models need, as
-one typed value handed to `analytic.torque.pair_torque`. The default is today's law: Palmgren's
+one typed value handed to `analytic.friction.pair.pair_torque`. The default is today's law: Palmgren's
 viscous term and a constant film friction coefficient."""
 from __future__ import annotations
 

@@ -163,7 +163,7 @@ def skf2004_torque(d_mm: float, D_mm: float, Fr_N, Fa_N, n_rpm, nu_mm2_s,
     """Frictional moment of one angular-contact ball bearing by the SKF model (module
     docstring), N mm: d bore and D outside diameter mm, F_r radial and F_a axial load N, n rpm,
     nu mm^2/s. No seals; drag only with a bath (V_M > 0). A bearing at rest has no running
-    torque (every component 0 at n = 0, like `analytic.torque.palmgren_viscous_torque_Nmm`)."""
+    torque (every component 0 at n = 0, like `analytic.friction.palmgren.palmgren_viscous_torque_Nmm`)."""
     dm = 0.5 * (d_mm + D_mm)
     n = np.abs(np.asarray(n_rpm, float))
     nu = np.asarray(nu_mm2_s, float)

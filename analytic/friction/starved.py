@@ -68,6 +68,6 @@ def starvation_ratio(h_oil_um, h_ff_um, gamma=GAMMA_CIRCULAR):
 
 
 def starved_viscous_torque_Nmm(palmgren_Nmm, h_oil_um, h_ff_um, gamma=GAMMA_CIRCULAR):
-    """Viscous torque of a starved bearing, N mm: Palmgren's (`analytic.torque.
+    """Viscous torque of a starved bearing, N mm: Palmgren's (`analytic.friction.palmgren.
     palmgren_viscous_torque_Nmm`) times `starvation_ratio` (module docstring)."""
     return np.asarray(palmgren_Nmm, float) * starvation_ratio(h_oil_um, h_ff_um, gamma)

@@ -2,7 +2,7 @@
 
 `main()` builds N operating points of the seed 000 bearing pair (random groove-centre shifts, part
 temperatures -60..80 C, external axial loads, preloads), solves them with `bearing.solve_pair`
-and `torque.pair_torque`, and prints evaluations per second, single-threaded and split over
+and `friction.pair.pair_torque`, and prints evaluations per second, single-threaded and split over
 worker threads (numpy and scipy.special release the GIL inside their loops).  Not a test: timings
 depend on the machine and its load.
 """
@@ -16,7 +16,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 from analytic.bearing import BearingGeometry, solve_pair
-from analytic.torque import pair_torque
+from analytic.friction.pair import pair_torque
 
 
 def make_inputs(n: int, seed: int = 0) -> dict:
@@ -28,7 +28,7 @@ def make_inputs(n: int, seed: int = 0) -> dict:
 
 
 def evaluate(g: BearingGeometry, inputs: dict):
-    """Pair state and torque components of the pair (`bearing.solve_pair`, `torque.pair_torque`)."""
+    """Pair state and torque components of the pair (`bearing.solve_pair`, `friction.pair.pair_torque`)."""
     pair = solve_pair(g, "DB", **inputs)
     return pair, pair_torque(g, pair, model="solid_film", mu=0.02, hysteresis_loss=0.01,
                              speed_rpm=60.0)

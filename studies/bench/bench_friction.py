@@ -10,7 +10,7 @@ to 72 000 rpm (DN 0.42 to 2.5 million). The exponent printed is the local slope
 d ln M / d ln n between neighbouring speeds and the least-squares slope of ln M on ln n over
 24 000..72 000 rpm.
 
-Models: Palmgren's viscous term M0 = 1e-7 f0 (nu n)^(2/3) dm^3 (`analytic.torque`; exponent 2/3
+Models: Palmgren's viscous term M0 = 1e-7 f0 (nu n)^(2/3) dm^3 (`analytic.friction.palmgren`; exponent 2/3
 at a fixed viscosity by its form); the SKF four-component model (`analytic.friction.skf2004`:
 rolling term with inlet shear heating and replenishment reductions, sliding term, with the
 catalogue's centrifugal load terms F_g = R3 dm^4 n^2 and S3 dm^4 n^2); the EHL rolling
@@ -38,7 +38,7 @@ import numpy as np
 
 from analytic.friction.ehl_rolling import ehl_rolling_force_N
 from analytic.friction.skf2004 import K_RS_OIL, MU_EHL, SKF_SINGLE_ROW, skf2004_torque
-from analytic.torque import palmgren_viscous_torque_Nmm
+from analytic.friction.palmgren import palmgren_viscous_torque_Nmm
 
 BORE_MM, OUTSIDE_MM, AXIAL_N = 35.0, 72.0, 667.0
 SPEEDS_RPM = np.array([12e3, 24e3, 36e3, 48e3, 60e3, 72e3])

@@ -130,7 +130,7 @@ def friction_split_columns(t) -> dict[str, np.ndarray]:
     """Whatever the friction model (docs/cli.md, issue 33): the torque by kind,
     `torque_rolling_Nmm`, `torque_sliding_Nmm`, `torque_drag_Nmm` (summing to `torque_Nmm`),
     and, with a speed, the heat by where it is made, `heat_inner_W`, `heat_outer_W`,
-    `heat_ball_W` (summing to `heat_W`; `analytic.torque.TorqueComponents`)."""
+    `heat_ball_W` (summing to `heat_W`; `analytic.friction.pair.TorqueComponents`)."""
     out = dict(zip(FRICTION_SPLIT_TORQUE, (t.rolling_Nmm, t.sliding_Nmm, t.drag_Nmm)))
     if t.heat_W is not None:
         out.update(zip(FRICTION_SPLIT_HEAT, (t.heat_inner_W, t.heat_outer_W, t.heat_ball_W)))

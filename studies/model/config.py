@@ -26,7 +26,7 @@ from analytic.materials import Material, get_material, material_from_table
 from infra.names import did_you_mean
 from studies.model.assembly import (Assembly, Clamp, Fits, Housing, Layer, Limits, Lubrication,
                                     Mesh, Operating, Preload, Shaft, Spacer, Thermal)
-from studies.model.config_checks import check_assembly, check_bearing
+from studies.model.config_checks import check_assembly, check_bearing, check_friction
 from studies.model.config_schema import (ASSEMBLY_KEYS, LAYERS, TOLERANCE_SURFACES, ConfigError,
                                          keys_of, parse_table, unit_hint)
 
@@ -139,6 +139,8 @@ def load_bearing(path: str | Path) -> SingleBearingConfig:
         spec = replace(spec, contact_angle_free_deg=alpha0)
     check_bearing(spec, materials, path)
     lubrication = _section(path, raw, "lubrication") if "lubrication" in raw else None
+    if lubrication is not None:
+        check_friction(lubrication, path)
     cfg = SingleBearingConfig(spec, materials, None if clearance is None else float(clearance),
                               lubrication, parse_lubricants(raw, path))
     if lubrication is not None and lubrication.kind == "oil":   # an oil needs a Walther law

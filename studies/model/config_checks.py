@@ -24,7 +24,7 @@ def check_assembly(a: Assembly, path: str) -> None:
     _check_geometry(a, path)
     _check_tolerances(a, path)
     _check_clamps(a, path)
-    _check_friction(a, path)
+    check_friction(a.lubrication, path)
     if a.lubrication.kind == "oil":      # an oil needs its data: a Walther law (>= 2 points)
         try:
             a.oil().walther()
@@ -63,12 +63,12 @@ def _check_clamps(a: Assembly, path: str) -> None:
                               f'got clamp = "{c.clamp}"')
 
 
-def _check_friction(a: Assembly, path: str) -> None:
+def check_friction(lub, path: str) -> None:
     """The friction model's keys (analytic/friction/) belong to one kind of lubrication each:
     viscous_model and oil_quantity_mg to an oil, shear_strength and its tau0_MPa, alpha_shear to
     a solid film; oil_quantity_mg only with viscous_model = "starved", tau0_MPa and alpha_shear
-    only with shear_strength = "pressure", which needs one of them > 0."""
-    lub = a.lubrication
+    only with shear_strength = "pressure", which needs one of them > 0. lub: an assembly's or a
+    bearing file's `Lubrication`."""
     def bad(key: str, msg: str):
         raise ConfigError(f"{path}: lubrication.{key}: {msg}")
     if lub.kind == "solid_film" and lub.viscous_model != "palmgren":

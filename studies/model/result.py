@@ -11,7 +11,7 @@
                                 and quasi-dynamic states when present
     result.summary              read off the pair (`PairSummary`): pair contact angle, land
                                 margins, static safety
-    result.torque               torque stage (`analytic.torque.TorqueComponents`)
+    result.torque               torque stage (`analytic.friction.pair.TorqueComponents`)
     result.friction_coefficient the friction coefficient the torque used, per row
     result.checks               the assembly's checks per row (`studies.model.checks.Checks`)
     result.clamp                the preloaded clamps (`stages.fe.ClampState`; None unless a
@@ -32,7 +32,7 @@ from typing import Callable
 import numpy as np
 
 from analytic.bearing import PairState
-from analytic.torque import TorqueComponents
+from analytic.friction.pair import TorqueComponents
 from studies.model.checks import Checks
 from studies.model.stages.bearing import PairSummary
 from studies.model.stages.fe import ClampState, FEState

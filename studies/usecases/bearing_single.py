@@ -10,7 +10,7 @@ moment_y_Nmm, speed_rpm, T_oil_C (the oil's temperature, for its viscosity: requ
 identical to the quasi-static one at speed 0), otherwise the quasi-static one.  Columns out: the input columns, then OUTPUT_COLUMNS,
 then `convention`.  Units in every name; displacements of the inner ring against the outer.
 With a [lubrication] section in BEARING.toml, `torque_Nmm` is the bearing's friction torque by the
-pair's torque model (analytic/torque.py) applied to this one bearing (`bearing_torque_Nmm`).
+friction route `simulate` takes (analytic/friction/) on this bearing's balls (`bearing_torque_Nmm`).
 """
 from __future__ import annotations
 
@@ -24,9 +24,10 @@ from analytic.safety import static_load_rating_C0_N
 from analytic.thermal_speed import (ThermalReference, dissipated_heat_W,
                                     reference_heat_transfer_W_per_mm2_K, thermal_reference_speed,
                                     thermally_permissible_speed)
-from analytic.torque import (ContactInput, coulomb_load_torque_Nmm, palmgren_f1_angular_contact,
-                             palmgren_load_torque_Nmm, palmgren_viscous_torque_Nmm,
-                             solid_film_torque_Nmm)
+from analytic.friction.pair import bearing_friction, single_bearing_contacts
+from analytic.friction.palmgren import (coulomb_load_torque_Nmm, palmgren_f1_angular_contact,
+                                        palmgren_load_torque_Nmm)
+from studies.model.stages.torque import friction_options
 from studies.model.table import TableError, write_table
 
 LOAD_COLUMNS = ("radial_load_N", "radial_load_y_N", "axial_load_N", "moment_x_Nmm",
@@ -152,32 +153,33 @@ def solve(cfg, cols: dict, where: str = "loads", convention: str = "exact",
 
 
 def bearing_torque_Nmm(cfg, st: SingleBearingState, speed_rpm, T_oil_C) -> np.ndarray:
-    """Friction torque (N*mm) of one bearing in the state `st`, by the pair's torque model
-    (`analytic.torque.pair_torque`, one bearing) with the file's [lubrication]:
-    solid film: `solid_film_torque_Nmm` summed over every ball's own contacts (Z = 1 per ball:
-      load, Hertz ellipse, inner and outer contact angle), mu = friction_coefficient, alpha_h =
-      hysteresis_loss_factor; independent of the speed (a torque from a power per unit speed);
-    oil: the load term (coulomb mu F_a dm/2, or palmgren f1 F_a dm with f1 = 0.001 (F_a/C0)^0.33,
-      C0 of ISO 76) with F_a = |sum_k Q_k sin a_k| the axial force the balls carry (the applied
-      axial load at equilibrium), plus Palmgren's viscous term 1e-7 f0 (nu n)^(2/3) dm^3 at the
-      oil's viscosity at T_oil_C (its Walther law) and the inner ring's speed_rpm.
+    """Friction torque (N*mm) of one bearing in the state `st`, by the friction route of
+    `simulate` (`analytic.friction.pair.bearing_friction` on every ball's own contacts,
+    `single_bearing_contacts`; the law's options from the file's [lubrication] by
+    `studies.model.stages.torque.friction_options`, as `simulate` builds them):
+    solid film: mu = friction_coefficient (or the pressure-dependent shear strength),
+      alpha_h = hysteresis_loss_factor; independent of the speed;
+    oil: the viscous_model's terms (palmgren, skf2004, ehl_rolling, starved) at the oil's
+      viscosity at T_oil_C (its Walther law) and the inner ring's speed_rpm, with the load term
+      (coulomb mu F_a dm/2, or palmgren f1 F_a dm with f1 = 0.001 (F_a/C0)^0.33, C0 of ISO 76;
+      F_a = |sum_k Q_k sin a_k| the axial force the balls carry).
     speed_rpm and T_oil_C: (N,) per row."""
-    lub, g, b = cfg.lubrication, cfg.geometry, st.balls
+    lub, g = cfg.lubrication, cfg.geometry
+    contacts = single_bearing_contacts(st)
     if lub.kind == "solid_film":
-        c_ring = (1.0 - g.ring.nu ** 2) / g.ring.E_MPa
-        c_ball = (1.0 - g.ball.nu ** 2) / g.ball.E_MPa
-        e_i, e_o = b.ellipse_inner, b.ellipse_outer
-        inner = ContactInput(b.load_inner_N, e_i.a_mm, e_i.b_mm, e_i.E_ell, e_i.Rx_mm)
-        outer = ContactInput(b.load_outer_N, e_o.a_mm, e_o.b_mm, e_o.E_ell, e_o.Rx_mm)
-        dynamic = st.ball_model == "quasi_dynamic"
-        t = solid_film_torque_Nmm(1, g.Dw_mm, g.dm_mm, g.f_i, g.f_o,
-                                  np.radians(b.contact_angle_inner_deg), inner, outer,
-                                  lub.friction_coefficient, lub.hysteresis_loss_factor, c_ring,
-                                  c_ball, np.radians(b.contact_angle_outer_deg) if dynamic else None)
-        return t.total_Nmm.sum(axis=0)
-    load = oil_load_torque_Nmm(g, lub, np.abs(b.loads[0]))
-    nu = cfg.oil().nu_mm2_s(np.asarray(T_oil_C, float))
-    return load + palmgren_viscous_torque_Nmm(lub.viscous_factor_f0, nu, speed_rpm, g.dm_mm)
+        return bearing_friction(g, contacts, model="solid_film", mu=lub.friction_coefficient,
+                                hysteresis_loss=lub.hysteresis_loss_factor,
+                                friction=friction_options(lub, None, cfg.spec, None)).total_Nmm
+    oil = cfg.oil()
+    nu = oil.nu_mm2_s(np.asarray(T_oil_C, float))
+    f1 = None
+    if lub.load_term == "palmgren":
+        C0 = static_load_rating_C0_N(g.Z, g.Dw_mm, g.dm_mm, g.alpha0_deg)
+        f1 = palmgren_f1_angular_contact(contacts.axial_force_N, C0)
+    return bearing_friction(g, contacts, model="oil", mu=lub.friction_coefficient,
+                            speed_rpm=np.asarray(speed_rpm, float), f0=lub.viscous_factor_f0,
+                            nu_mm2_s=nu, f1=f1, load_term=lub.load_term,
+                            friction=friction_options(lub, oil, cfg.spec, nu)).total_Nmm
 
 
 def oil_load_torque_Nmm(g, lub, Fa_N) -> np.ndarray:

@@ -7,7 +7,7 @@
 2. `lame`     the closed-form (Lamé) neighbours of the FE fit values (`LameNeighbours`);
 3. `bearing`  the pair equilibrium from the shifts (`analytic.bearing.PairState`) and what is
               read off it (`PairSummary`: pair contact angle, land margins, static safety);
-4. `torque`   friction torque of the pair (`analytic.torque.TorqueComponents`);
+4. `torque`   friction torque of the pair (`analytic.friction.pair.TorqueComponents`);
 then the checks (`studies.model.checks.Checks`). Each stage is a function or a small class from
 typed inputs to a typed output; `studies.model.result.SimulationResult` holds them all and
 `studies.model.columns.to_columns` is the one place they become named columns.

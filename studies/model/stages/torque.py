@@ -1,4 +1,4 @@
-"""Torque stage: the friction torque of the pair (`analytic.torque.pair_torque` ->
+"""Torque stage: the friction torque of the pair (`analytic.friction.pair.pair_torque` ->
 `TorqueComponents`) with the assembly's lubrication.
 
 Solid film: the film friction coefficient of the row and the hysteresis loss factor. Oil: the
@@ -19,7 +19,8 @@ from analytic.bearing import BearingGeometry, PairState
 from analytic.friction.options import FrictionOptions
 from analytic.lubrication import dynamic_viscosity_Pa_s
 from analytic.safety import static_load_rating_C0_N
-from analytic.torque import TorqueComponents, palmgren_f1_angular_contact, pair_torque
+from analytic.friction.pair import TorqueComponents, pair_torque
+from analytic.friction.palmgren import palmgren_f1_angular_contact
 from studies.model.inputs import PhysicsInputs
 
 
@@ -33,11 +34,9 @@ def pair_friction_torque(asm, geom: BearingGeometry, lubricant, pair: PairState,
     lub = asm.lubrication
     speed = np.asarray(inputs.speed_rpm, float)
     if lub.kind == "solid_film":
-        film = FrictionOptions(shear_strength=lub.shear_strength, tau0_MPa=lub.tau0_MPa,
-                               alpha_shear=lub.alpha_shear)
         return pair_torque(geom, pair, model="solid_film", mu=mu,
                            hysteresis_loss=lub.hysteresis_loss_factor, speed_rpm=speed,
-                           friction=film)
+                           friction=friction_options(lub, None, asm.bearing, None))
     T_oil = (np.asarray(inputs.T_C["inner_ring"], float) + inputs.T_C["outer_ring"]
              + inputs.T_C["ball"]) / 3.0
     nu = lubricant.nu_mm2_s(T_oil, slope_factor=inputs.viscosity_slope_factor)
@@ -46,12 +45,23 @@ def pair_friction_torque(asm, geom: BearingGeometry, lubricant, pair: PairState,
         C0 = static_load_rating_C0_N(geom.Z, geom.Dw_mm, geom.dm_mm, geom.alpha0_deg)
         P0 = pair.axial_force_N.max(axis=0)
         f1 = palmgren_f1_angular_contact(P0, C0)
-    oil = FrictionOptions(viscous_model=lub.viscous_model, oil_quantity_mg=lub.oil_quantity_mg,
-                          eta_Pa_s=dynamic_viscosity_Pa_s(nu, lubricant.density_kg_m3),
-                          alpha_per_Pa=lubricant.alpha_per_Pa,
-                          density_kg_m3=lubricant.density_kg_m3,
-                          bore_mm=asm.bearing.bore_mm,
-                          outside_diameter_mm=asm.bearing.outside_diameter_mm)
     return pair_torque(geom, pair, model="oil", mu=mu, speed_rpm=speed,
                        f0=lub.viscous_factor_f0 if viscous_factor_f0 is None else viscous_factor_f0,
-                       nu_mm2_s=nu, load_term=lub.load_term, f1=f1, friction=oil)
+                       nu_mm2_s=nu, load_term=lub.load_term, f1=f1,
+                       friction=friction_options(lub, lubricant, asm.bearing, nu))
+
+
+def friction_options(lub, lubricant, spec, nu_mm2_s) -> FrictionOptions:
+    """The friction law's options (`analytic.friction.options.FrictionOptions`) of a
+    `[lubrication]` section `lub` with its oil `lubricant` (None for a solid film) at the
+    kinematic viscosity nu_mm2_s (per row): the oil's dynamic viscosity (its density), its
+    pressure-viscosity coefficient and density, the bearing `spec`'s bore and outside
+    diameter. The one place `simulate` and `bearing` turn the file's keys into the law."""
+    if lub.kind == "solid_film":
+        return FrictionOptions(shear_strength=lub.shear_strength, tau0_MPa=lub.tau0_MPa,
+                               alpha_shear=lub.alpha_shear)
+    return FrictionOptions(viscous_model=lub.viscous_model, oil_quantity_mg=lub.oil_quantity_mg,
+                           eta_Pa_s=dynamic_viscosity_Pa_s(nu_mm2_s, lubricant.density_kg_m3),
+                           alpha_per_Pa=lubricant.alpha_per_Pa,
+                           density_kg_m3=lubricant.density_kg_m3, bore_mm=spec.bore_mm,
+                           outside_diameter_mm=spec.outside_diameter_mm)

@@ -1,0 +1,150 @@
+"""The independent conduction network of the stack (studies/validation/conduction_network.py)
+against closed forms: a lumped body's exponential response, the steady state of a series of
+resistances, energy conservation, and the spatial convergence rate in the shell count."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from studies.model.config import load_shipped
+from studies.validation.conduction_network import (
+    ENVIRONMENTS, AIR_K_W_MK, AIR_PR, Network, Surface, annulus_shells, conduction_temperatures,
+    film_W_m2K, series, stack_network)
+
+
+@pytest.fixture(scope="module")
+def seed000():
+    return load_shipped("seed000")
+
+
+def test_lumped_body_follows_the_exponential():
+    """One node of capacity C with a film h A to an ambient stepped by 10 K at t = 0:
+    T = 10 (1 - exp(-t h A / C)) (Incropera & DeWitt eq. 5.6); BDF within 1e-5 of the step."""
+    C, hA = 500.0, 0.4                                      # J/K, W/K: tau = 1250 s
+    net = Network(np.array([C]), np.zeros((1, 1)), [Surface(0, 1.0, hA)])
+    t = np.linspace(0.0, 6000.0, 61)
+    amb = np.full(t.size, 10.0)
+    T, _ = net.integrate(t, amb, T0_C=0.0, rtol=1e-9, atol_K=1e-10)
+    exact = 10.0 * (1.0 - np.exp(-t * hA / C))
+    assert np.max(np.abs(T[:, 0] - exact)) < 1e-5 * 10.0
+
+
+def test_series_steady_state_is_the_sum_of_resistances():
+    """Two annuli (steel in titanium) in contact, a film outside, heat Q into the innermost shell:
+    in steady state T_0 - T_amb = Q (ln(r1/rc0)/(2 pi k1 L) + 1/(hc 2 pi r1 L) + ln(r2/r1)/(2 pi k2 L)
+    + 1/(h 2 pi r2 L)) (Incropera eq. 3.33 and 3.36: resistances in series), to 1e-9 relative."""
+    L, r0, r1, r2 = 0.03, 0.01, 0.02, 0.03
+    k1, k2, hc, h, Q = 24.0, 6.7, 5000.0, 20.0, 3.0
+    a = annulus_shells(r0, r1, L, k1, 3.5e6, 5)
+    b = annulus_shells(r1, r2, L, k2, 2.3e6, 7)
+    n = 12
+    net = Network(np.concatenate([a[1], b[1]]), np.zeros((n, n)))
+    for k, g in enumerate(a[2]):
+        net.link(k, k + 1, g)
+    for k, g in enumerate(b[2]):
+        net.link(5 + k, 6 + k, g)
+    net.link(4, 5, series(a[4], hc * 2 * math.pi * r1 * L, b[3]))
+    net.surfaces = [Surface(11, 1.0, series(b[4], h * 2 * math.pi * r2 * L))]
+    share = np.zeros(n)
+    share[0] = 1.0
+    net.heat_share = share
+    # steady state directly: L T + loss = Q share
+    A = net.laplacian_W_K()
+    A[11, 11] += net.surfaces[0].film
+    T = np.linalg.solve(A, share * Q)                       # ambient 0 C
+    rc0 = a[0][0]
+    R = (math.log(r1 / rc0) / (2 * math.pi * k1 * L) + 1 / (hc * 2 * math.pi * r1 * L)
+         + math.log(r2 / r1) / (2 * math.pi * k2 * L) + 1 / (h * 2 * math.pi * r2 * L))
+    assert T[0] == pytest.approx(Q * R, rel=1e-9)
+    # and the integrator reaches it (tau about C R: 40 time constants)
+    t = np.linspace(0.0, 40 * net.capacity_J_K.sum() * R, 41)
+    Tt, _ = net.integrate(t, np.zeros(t.size), Q, rtol=1e-9, atol_K=1e-10)
+    assert Tt[-1, 0] == pytest.approx(Q * R, rel=1e-6)
+
+
+def test_energy_is_conserved_on_the_stack(seed000):
+    """Seed 000 bolted to its plate in forced air, 2 W of bearing heat over a -60..80 C cycle:
+    energy put in = stored + lost to the environment, to 1e-6 of the largest of the three (a
+    linear multistep method keeps a linear invariant to rounding, so this checks the network's
+    assembly: symmetric links, heat shares summing to one, losses booked as removed)."""
+    t = np.arange(0.0, 4 * 3600.0 + 1, 120.0)
+    amb = 20.0 + 60.0 * np.sin(2 * np.pi * t / 14400.0)
+    h = conduction_temperatures(seed000, t, amb, "mount_forced_air", heat_W=2.0, rtol=1e-6)
+    scale = max(np.abs(h.energy_in_J).max(), np.abs(h.energy_lost_J).max(),
+                np.abs(h.energy_stored_J).max())
+    assert np.max(np.abs(h.energy_balance_J())) < 1e-6 * scale
+    assert h.energy_in_J[-1] == pytest.approx(2.0 * t[-1], rel=1e-9)
+
+
+def test_vacuum_steady_state_radiates_the_heat(seed000):
+    """In vacuum with no mount the bearing heat leaves by radiation only: at the steady state
+    the housing's outer faces radiate Q, eps sigma A (T^4 - T_amb^4) = Q (Incropera eq. 1.7)."""
+    sn = stack_network(seed000, ENVIRONMENTS["vacuum"], 3)
+    t = np.linspace(0.0, 4e5, 81)                           # 20 x the housing's time constant
+    T, _ = sn.network.integrate(t, np.zeros(t.size), 1.0, rtol=1e-7)
+    lost = sn.network.losses_W(T[-1], 0.0).sum()
+    assert lost == pytest.approx(1.0, rel=1e-4)
+
+
+def _annulus_in_contact_mean_C(shells: int) -> float:
+    """Volume mean (C) after 1 h of a TC4 annulus 12.5..17.5 mm (a shaft) with a still-air film in
+    its bore and on its ends, in contact (5000 W/(m^2 K)) with a 30 J/K body at its outer face,
+    the ambient ramped 1 K/min to 40 C then held."""
+    L, r0, r1 = 0.04, 0.0125, 0.0175
+    rc, cap, between, g_in, g_out = annulus_shells(r0, r1, L, 6.7, 4430.0 * 526.0, shells)
+    net = Network(np.concatenate([cap, [30.0]]), np.zeros((shells + 1, shells + 1)))
+    for k, g in enumerate(between):
+        net.link(k, k + 1, g)
+    net.link(shells - 1, shells, series(g_out, 5000.0 * 2 * math.pi * r1 * L))
+    edges = np.linspace(r0, r1, shells + 1)
+    net.surfaces = [Surface(0, 2 * math.pi * r0 * L,
+                            lambda dT: film_W_m2K("cylinder_natural", 2 * r0, 0.0, dT), 0.0, g_in)]
+    net.surfaces += [Surface(k, 2 * math.pi * (edges[k + 1] ** 2 - edges[k] ** 2), 20.0, 0.5)
+                     for k in range(shells)]
+    t = np.arange(0.0, 3601.0, 120.0)
+    T, _ = net.integrate(t, np.minimum(t / 60.0, 40.0), rtol=1e-11, atol_K=1e-12)
+    return float(T[-1, :shells] @ cap / cap.sum())
+
+
+def test_shells_converge_at_second_order():
+    """The annulus's mean temperature (`_annulus_in_contact_mean_C`) with 4, 8, 16 shells:
+    the observed order log2(|e8 - e4| / |e16 - e8|) of the cell-centred finite volumes (exact
+    log conductances, films at the face through the half shell, radiation) is 2 within 0.1."""
+    T = [_annulus_in_contact_mean_C(n) for n in (4, 8, 16)]
+    p = math.log2(abs(T[1] - T[0]) / abs(T[2] - T[1]))
+    assert abs(p - 2.0) < 0.1, (T, p)
+
+
+def test_stack_converges_in_the_shell_count(seed000):
+    """The whole stack (forced air, a ramp then a hold): the part means with 2, 4, 8 shells
+    converge, the observed order at least 0.9 (measured 1.0: the stack's links between parts of
+    unequal shells are first order), and 4 shells (the cases' default) within 0.02 K of the
+    Richardson extrapolation at that order, against differences between parts of some K."""
+    t = np.arange(0.0, 3600.0 + 1, 120.0)
+    amb = np.minimum(t / 60.0, 40.0)
+    runs = [conduction_temperatures(seed000, t, amb, "forced_air", shells=n, rtol=1e-9).columns
+            for n in (2, 4, 8)]
+    for col in ("T_shaft_C", "T_ball_C", "T_spacer_C"):
+        T = [r[col][-1] for r in runs]
+        p = math.log2(abs(T[1] - T[0]) / abs(T[2] - T[1]))
+        assert p > 0.9, (col, T, p)
+        extrapolated = T[2] + (T[2] - T[1]) / (2.0 ** p - 1.0)
+        assert abs(T[1] - extrapolated) < 0.02, (col, T)
+
+
+def test_films_against_handbook_numbers():
+    """Churchill-Bernstein at Re = 7550 (a 60 mm cylinder in air at 2 m/s) gives Nu about 46
+    (Incropera Fig. 7.9's range at that Re: 40..50); natural convection about a 60 mm
+    cylinder at 10 K gives 4..6 W/(m^2 K) (Incropera Example 9.3's order for a pipe), growing
+    as dT^(1/4) in the laminar range."""
+    h = film_W_m2K("cylinder_forced", 0.06, 2.0)
+    assert 40.0 < h * 0.06 / AIR_K_W_MK < 50.0
+    h10 = film_W_m2K("cylinder_natural", 0.06, 0.0, 10.0)
+    h40 = film_W_m2K("cylinder_natural", 0.06, 0.0, 40.0)
+    assert 3.5 < h10 < 6.0
+    assert h40 / h10 == pytest.approx(4 ** 0.25, rel=0.1)
+    with pytest.raises(ValueError, match="air_speed_m_s"):
+        film_W_m2K("plate_forced", 0.1, 0.0)
+    assert AIR_PR == pytest.approx(0.707)
