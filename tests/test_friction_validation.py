@@ -44,7 +44,7 @@ def test_minimal_oil_limits_are_palmgren_flooded_and_the_supply_layer_starved(lq
     np.testing.assert_allclose(f.h_in_um, h_in, rtol=1e-12)
     a = float(pair.contact_angle_deg[0, 0])
     Rx, Ry = ball_raceway_radii_mm(g.Dw_mm, g.dm_mm, a, g.f_i, "inner")
-    from analytic.torque import ball_kinematics
+    from analytic.torque import ball_kinematics   # contact kinematics stay in analytic.torque
     kin = ball_kinematics(g.dm_mm, g.Dw_mm, np.radians(a))
     u = 6000 * 2 * np.pi / 60 * 0.5 * g.dm_mm * kin.roll_inner
     Ep = reduced_modulus_MPa(g.ring.E_MPa, g.ring.nu, g.ball.E_MPa, g.ball.nu)
@@ -173,6 +173,13 @@ def test_seed001_minimal_oil_fitted_on_the_cold_ratio_predicts_the_hot_one(seed0
     assert lo <= pad.SEED001_HOT <= hi
     m2, _, hot2, _ = seed001_fits[1]
     assert m2 > m and abs(hot2 - pad.SEED001_HOT) > pad.SEED001_REL_TOL * pad.SEED001_HOT
+    # the same law through the pipeline (`[lubrication] viscous_model = "minimal_oil"`,
+    # simulate's route) at the fitted quantity gives the same two ratios (1e-9)
+    from studies.model.config import load_shipped
+    asm = pad.seed001_with(load_shipped("seed001"), viscous_model="minimal_oil",
+                           oil_quantity_mg=m)
+    M = pad.seed001_torque_Nmm(asm, mesh_factor=2.0)
+    np.testing.assert_allclose([M[0] / M[1], M[2] / M[1]], [cold, hot], rtol=1e-9)
 
 
 def test_simulate_interval_columns_are_the_shipped_residuals_interval():

@@ -8,20 +8,22 @@ from dataclasses import dataclass
 
 import numpy as np
 
-VISCOUS_MODELS = ("palmgren", "skf2004", "ehl_rolling", "starved")
+VISCOUS_MODELS = ("palmgren", "skf2004", "ehl_rolling", "starved", "minimal_oil")
 SHEAR_STRENGTHS = ("constant", "pressure")
 
 
 @dataclass(frozen=True)
 class FrictionOptions:
     """viscous_model: one of VISCOUS_MODELS (oil). oil_quantity_mg: oil in one bearing, mg
-    ("starved"; 0 = flooded). eta_Pa_s: the oil's dynamic viscosity at the rows' temperature,
-    Pa s, and alpha_per_Pa its pressure-viscosity coefficient, 1/Pa ("ehl_rolling", "starved").
-    density_kg_m3: the oil's density ("starved"). bore_mm, outside_diameter_mm: d and D of the
+    ("starved", "minimal_oil"; 0 = flooded). oil_supply_share: the inlet share of the oil's
+    layer ("minimal_oil", `analytic.friction.minimal_oil`; default 1). eta_Pa_s: the oil's dynamic viscosity at the rows' temperature,
+    Pa s, and alpha_per_Pa its pressure-viscosity coefficient, 1/Pa ("ehl_rolling", "starved",
+    "minimal_oil"). density_kg_m3: the oil's density ("starved", "minimal_oil"). bore_mm, outside_diameter_mm: d and D of the
     bearing ("skf2004"). shear_strength: one of SHEAR_STRENGTHS (solid film), tau0_MPa and
     alpha_shear its law tau = tau0 + alpha p ("pressure")."""
     viscous_model: str = "palmgren"
     oil_quantity_mg: float = 0.0
+    oil_supply_share: float = 1.0
     eta_Pa_s: np.ndarray | float = 0.0
     alpha_per_Pa: float = 0.0
     density_kg_m3: float = 0.0

@@ -18,6 +18,7 @@ from analytic.friction.palmgren import (coulomb_load_torque_Nmm, palmgren_load_t
                                         palmgren_viscous_torque_Nmm)
 from analytic.friction.skf2004 import skf2004_torque
 from analytic.friction.solid_film import pressure_dependent_mu
+from analytic.friction.minimal_oil import minimal_oil_bearing_ratio
 from analytic.friction.starved import starvation_ratio, supply_layer_um
 from analytic.lubrication import hamrock_dowson_film, reduced_modulus_MPa
 from analytic.torque import (RPM_TO_RAD_S, ContactInput, ContactTorques, ball_kinematics,
@@ -293,6 +294,8 @@ def _oil_bearing(g, c: BearingContacts, mu, speed_rpm, f0, nu_mm2_s, f1, load_te
     q_in = q_out = None
     if model == "starved" and fr.oil_quantity_mg > 0:
         visc = visc * _starvation_ratio(g, c, n, fr)
+    elif model == "minimal_oil" and fr.oil_quantity_mg > 0:
+        visc = visc * minimal_oil_bearing_ratio(g, c, n, fr)
     elif model == "ehl_rolling":
         ti, to, qi, qo = _ehl_bearing(g, c, n, fr.eta_Pa_s, fr.alpha_per_Pa)
         visc = ti + to

@@ -54,6 +54,11 @@ OUTPUT_COLUMNS = {
                           "(--control; empty without a speed_rpm column)",
     "torque_Nmm": "friction torque of the bearing (the pair's torque model, one bearing; empty "
                   "without [lubrication] in BEARING.toml)",
+    "torque_lo_Nmm": "lower bound of the friction law's model-form interval on torque_Nmm "
+                     "(90 % nominal, study friction_validation; empty where none is stated)",
+    "torque_hi_Nmm": "its upper bound",
+    "heat_lo_W": "the same interval on the bearing's friction heat torque_Nmm x omega",
+    "heat_hi_W": "its upper bound",
     "thermal_reference_speed_rpm": "thermal reference speed, ISO 15312:2018 (the same on every "
                                    "row; analytic/thermal_speed.py)",
     "thermal_permissible_speed_rpm": "thermally permissible speed, DIN 732:2010 with the friction "
@@ -143,6 +148,7 @@ def solve(cfg, cols: dict, where: str = "loads", convention: str = "exact",
         "torque_Nmm": (np.full(n, np.nan) if lub is None else bearing_torque_Nmm(
             cfg, st, speed, get("T_oil_C"))),
     })
+    out_cols.update(_interval_columns(lub, out_cols["torque_Nmm"], speed))
     ts = thermal_speeds(cfg.spec, cfg.geometry, lub, cfg.oil(), np.abs(b.loads[0]),
                         get("T_oil_C"), speed)
     out_cols.update({"thermal_reference_speed_rpm": np.full(n, ts.reference.speed_rpm),
@@ -150,6 +156,22 @@ def solve(cfg, cols: dict, where: str = "loads", convention: str = "exact",
                      "margin_speed_rpm": ts.margin_speed_rpm,
                      "convention": np.full(n, convention)})
     return BearingRun(st, out_cols, (f"{bearing_name}: {ts.warning}",) if ts.warning else ())
+
+
+def _interval_columns(lub, torque_Nmm, speed_rpm) -> dict:
+    """torque_lo/hi_Nmm and heat_lo/hi_W: the friction law's model-form interval
+    (`analytic.friction.interval.lubrication_interval`, the factors `simulate` applies) on the
+    torque and on its heat M omega (`analytic.torque.power_W`); NaN without a [lubrication] or
+    where no interval is stated."""
+    from analytic.friction.interval import lubrication_interval
+    from analytic.torque import power_W
+    M = np.asarray(torque_Nmm, float)
+    lo = hi = np.full(M.shape, np.nan)
+    if lub is not None:
+        lo, hi = lubrication_interval(lub).apply(M)
+    n = np.broadcast_to(np.asarray(speed_rpm, float), M.shape)
+    return {"torque_lo_Nmm": lo, "torque_hi_Nmm": hi,
+            "heat_lo_W": power_W(lo, n), "heat_hi_W": power_W(hi, n)}
 
 
 def bearing_torque_Nmm(cfg, st: SingleBearingState, speed_rpm, T_oil_C) -> np.ndarray:

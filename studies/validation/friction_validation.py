@@ -12,8 +12,7 @@ reference data). Rows:
   JPL2022, OCI2018, LQF2018  small bearings and pairs under an axial load, built from the
            sources' printed geometry (the rest [assume]d below) and solved with the analytic
            pair (`analytic.bearing.solve_pair`, spring preload = the axial load on each bearing)
-           and each law through `analytic.friction` (`pair_torque`; minimal oil through
-           `analytic.friction.minimal_oil`).
+           and each law through `analytic.friction.pair.pair_torque` (the route simulate takes).
 Laws: palmgren (f1 load term, Palmgren 1959), skf2004, ehl_rolling (+ f1 load term), starved
 (+ f1; the source's charge), minimal_oil (+ f1; the source's charge, or fitted where the source
 gives none). Trend rows are judged by their sign. Interval: `analytic.friction.interval`
@@ -36,8 +35,8 @@ from analytic.friction.options import FrictionOptions
 from analytic.lubrication import dynamic_viscosity_Pa_s, get_lubricant
 from analytic.materials import get_material
 from analytic.safety import static_load_rating_C0_N
-from analytic.torque import (pair_torque, palmgren_f1_angular_contact,
-                             palmgren_viscous_torque_Nmm)
+from analytic.friction.pair import pair_torque
+from analytic.friction.palmgren import palmgren_f1_angular_contact, palmgren_viscous_torque_Nmm
 
 DATA = Path(__file__).resolve().parent / "data" / "friction_points.csv"
 LAWS = ("palmgren", "skf2004", "ehl_rolling", "starved", "minimal_oil")
@@ -108,20 +107,14 @@ def case_torque_Nmm(case: Case, law: str, axial_N, speed_rpm, T_C, oil_quantity_
     nu = lub.nu_mm2_s(T)
     eta = dynamic_viscosity_Pa_s(nu, lub.density_kg_m3)
     m = case.oil_quantity_mg if oil_quantity_mg is None else oil_quantity_mg
-    model = "palmgren" if law == "minimal_oil" else law
-    fr = FrictionOptions(viscous_model=model, oil_quantity_mg=m, eta_Pa_s=eta,
+    fr = FrictionOptions(viscous_model=law, oil_quantity_mg=m, eta_Pa_s=eta,
                          alpha_per_Pa=lub.alpha_per_Pa, density_kg_m3=lub.density_kg_m3,
                          bore_mm=case.bore_mm, outside_diameter_mm=case.outside_diameter_mm)
     f1 = palmgren_f1_angular_contact(pair.axial_force_N.max(axis=0),
                                      static_load_rating_C0_N(g.Z, g.Dw_mm, g.dm_mm, g.alpha0_deg))
     t = pair_torque(g, pair, model="oil", speed_rpm=n, f0=F0_EXTERNAL, nu_mm2_s=nu,
                     load_term="palmgren", f1=f1, friction=fr)
-    total, visc = np.asarray(t.torque_A_Nmm, float), 0.5 * np.asarray(t.viscous_Nmm, float)
-    if law == "minimal_oil" and m > 0:
-        s = minimal_oil_pair_ratios(g, pair, n, eta, lub.alpha_per_Pa, lub.density_kg_m3, m)[0]
-        M0 = palmgren_viscous_torque_Nmm(F0_EXTERNAL, nu, n, g.dm_mm)
-        total, visc = total - M0 + M0 * s.ratio, M0 * s.ratio
-    return total, visc
+    return np.asarray(t.torque_A_Nmm, float), 0.5 * np.asarray(t.viscous_Nmm, float)
 
 
 # ------------------------------------------------------------------------- the matrix's rows
