@@ -225,3 +225,56 @@ def test_shipped_residuals_are_the_study_s():
     assert set(got) == set(shipped)
     for k, v in shipped.items():
         assert abs(got[k] - v) < 1e-3, k
+
+
+def test_minimal_oil_every_ball_summed_is_z_times_the_representative_ball():
+    """`bearing` takes the law over every ball's own contacts, simulate's pair route a
+    representative ball: on the same state under a pure axial load (every ball alike) the
+    minimal-oil torque is the same both ways (1e-12 relative), and below Palmgren's with 5 mg
+    (the factor < 1) while the same law with an unlimited charge is Palmgren's exactly."""
+    from analytic.bearing import BearingGeometry
+    from analytic.bearing.single import solve_single
+    from analytic.friction.options import FrictionOptions
+    from analytic.friction.pair import BearingContacts, bearing_friction, single_bearing_contacts
+    from analytic.torque import ContactInput
+    from studies.model.config import load_shipped
+
+    asm = load_shipped("seed001")
+    g = BearingGeometry.from_spec(asm.bearing, asm.materials)
+    speed = np.array([3500.0, 9000.0])
+    st = solve_single(g, axial_load_N=np.array([50.0, 200.0]), speed_rpm=speed,
+                      ball_model="quasi_dynamic")
+    every = single_bearing_contacts(st)
+    first = lambda k: ContactInput(*(np.asarray(getattr(k, f))[0] for f in  # noqa: E731
+                                     ("Q_N", "a_mm", "b_mm", "E_ell", "Rx_mm")))
+    one = BearingContacts(first(every.inner), first(every.outer), every.alpha_inner_rad[0],
+                          every.alpha_outer_rad[0], every.axial_force_N, every.radial_force_N)
+    oil = asm.oil()
+    nu = oil.nu_mm2_s(np.array([20.0, 40.0]))
+    out = {}
+    for law, m in (("minimal_oil", 5.0), ("minimal_oil", np.inf), ("palmgren", 0.0)):
+        fr = FrictionOptions(viscous_model=law, oil_quantity_mg=m,
+                             eta_Pa_s=dynamic_viscosity_Pa_s(nu, oil.density_kg_m3),
+                             alpha_per_Pa=oil.alpha_per_Pa, density_kg_m3=oil.density_kg_m3)
+        args = dict(model="oil", mu=0.0029, speed_rpm=speed, f0=1.7, nu_mm2_s=nu, friction=fr)
+        a, b = bearing_friction(g, every, **args), bearing_friction(g, one, **args)
+        np.testing.assert_allclose(a.total_Nmm, b.total_Nmm, rtol=1e-12)
+        out[(law, m)] = a.total_Nmm
+    np.testing.assert_allclose(out[("minimal_oil", np.inf)], out[("palmgren", 0.0)], rtol=1e-12)
+    assert np.all(out[("minimal_oil", 5.0)] < out[("palmgren", 0.0)])
+
+
+def test_minimal_oil_needs_a_charge_and_its_key_is_refused_elsewhere(tmp_path):
+    """Config: viscous_model = "minimal_oil" without oil_quantity_mg is refused in one line
+    naming the key; with it, accepted; oil_quantity_mg with palmgren still refused."""
+    import tomllib
+    from studies.model.config import CONFIG_DIR, SHIPPED, ConfigError, assembly_from_dict
+    raw = tomllib.loads((CONFIG_DIR / SHIPPED["seed001"]).read_text())
+    raw["lubrication"]["viscous_model"] = "minimal_oil"
+    with pytest.raises(ConfigError, match=r"^x\.toml: lubrication\.viscous_model: .*oil_quantity_mg"):
+        assembly_from_dict(raw, "x.toml")
+    raw["lubrication"]["oil_quantity_mg"] = 20.0
+    assert assembly_from_dict(raw, "x.toml").lubrication.viscous_model == "minimal_oil"
+    raw["lubrication"]["viscous_model"] = "palmgren"
+    with pytest.raises(ConfigError, match=r"^x\.toml: lubrication\.oil_quantity_mg: "):
+        assembly_from_dict(raw, "x.toml")
