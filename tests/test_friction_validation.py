@@ -278,3 +278,15 @@ def test_minimal_oil_needs_a_charge_and_its_key_is_refused_elsewhere(tmp_path):
     raw["lubrication"]["viscous_model"] = "palmgren"
     with pytest.raises(ConfigError, match=r"^x\.toml: lubrication\.oil_quantity_mg: "):
         assembly_from_dict(raw, "x.toml")
+
+
+def test_interval_factors_meet_the_diagnosis_predictive_interval():
+    """Where the two interval routes meet they agree: the friction interval of n log residuals
+    is the diagnosis's predictive interval (`studies.diagnosis.interval.predictive_interval`)
+    of their mean as a one-parameter fit (Jacobian 1, parameter variance sd^2 / n) with the
+    residuals' spread as its discrepancy, exponentiated (1e-12)."""
+    from studies.diagnosis.interval import predictive_interval
+    e = np.array([0.4, -0.1, 0.25, -0.6, 0.05])
+    sd = np.std(e, ddof=1)
+    p = predictive_interval([e.mean()], [[1.0]], [[sd ** 2 / e.size]], 0.0, sd, iv.LEVEL)
+    np.testing.assert_allclose(iv.interval_factors(e), np.exp([p.lo[0], p.hi[0]]), rtol=1e-12)
