@@ -102,7 +102,7 @@ def solid_film_pair_heat_W(torque, speed_rpm) -> PairHeat:
 
 def located_pair_heat_W(torque, speed_rpm) -> PairHeat:
     """Heat of an oil-lubricated pair (W) from its torque's own split by location (`analytic.
-    friction.pair.pair_torque` with a friction model of issue 33: `heat_inner_W`, `heat_outer_W`,
+    friction.pair.pair_torque` with a friction model of analytic/friction: `heat_inner_W`, `heat_outer_W`,
     `heat_ball_W`): the sliding part is the torque's sliding term, the viscous part its rolling
     term, the drag the heat at the balls; inner_W + outer_W + drag_W = total_W = the torque's
     heat. Unlike `pair_heat_W` (Palmgren: sliding and spin from a traction coefficient beside the

@@ -58,7 +58,7 @@ class WaltherLaw:
     """log10(log10(nu + 0.7)) = A - B log10(T_K) (ASTM D341); nu in mm^2/s, T in K.
 
     fit_range_C: the temperature span of the points it was fitted to; outside it the law is an
-    extrapolation (see studies/lubricant_viscosity.py for how far that can be trusted).
+    extrapolation (see studies/validation/lubricant_viscosity.py for how far that can be trusted).
     """
     A: float
     B: float
@@ -226,6 +226,14 @@ class Lubricant:
     extra: dict = field(default_factory=dict, hash=False, compare=False)
 
     @property
+    def oil_family(self) -> str:
+        """"mineral" or "synthetic" (OIL_FAMILIES): a user table's `family` (default mineral),
+        synthetic for the library's PFPE and MAC oils."""
+        if "oil_family" in self.extra:
+            return self.extra["oil_family"]
+        return "synthetic" if self.family in _SYNTHETIC_FAMILIES else "mineral"
+
+    @property
     def T_points_C(self) -> np.ndarray:
         return np.array([p[0] for p in self.viscosity_points])
 
@@ -362,7 +370,12 @@ def get_lubricant(name: str, user: tuple[Lubricant, ...] = (),
 
 #: keys of a `[lubricants.NAME]` table (units in the names); all but `source` required
 LUBRICANT_TABLE_KEYS = ("kinematic_viscosity_cSt", "density_kg_m3", "pressure_viscosity_per_GPa",
-                        "source")
+                        "source", "family")
+#: a `[lubricants.NAME]` table's `family`: the base oil's class, for the SKF model's full-film
+#: friction coefficient (mu_EHL 0.05 mineral, 0.04 synthetic; analytic/friction/skf2004.py)
+OIL_FAMILIES = ("mineral", "synthetic")
+#: the library's chemical families are synthetic base oils (PFPE, multiply alkylated cyclopentane)
+_SYNTHETIC_FAMILIES = ("PFPE", "MAC")
 
 
 def _finite(v) -> bool:
@@ -405,13 +418,17 @@ def lubricant_from_table(name: str, table: dict) -> Lubricant:
         if not _finite(v) or v <= 0:
             raise ValueError(f"{pre}.{k}: must be a finite number > 0, got {v!r}")
     src = str(table.get("source", ""))
+    fam = table.get("family", "mineral")
+    if fam not in OIL_FAMILIES:
+        raise ValueError(f"{pre}.family: must be one of {', '.join(map(repr, OIL_FAMILIES))}, "
+                         f"got {fam!r}")
     return Lubricant(
         name=name, family="user", viscosity_points=tuple(sorted(
             (float(T), float(nu), src or "config") for T, nu in pts)),
         density_kg_m3=float(table["density_kg_m3"]),
         density_source=src or "the config's [lubricants] table",
         alpha_per_Pa=float(table["pressure_viscosity_per_GPa"]) * 1e-9,
-        alpha_source=src or "the config's [lubricants] table")
+        alpha_source=src or "the config's [lubricants] table", extra={"oil_family": fam})
 
 
 # --------------------------------------------------------------------------- EHL film

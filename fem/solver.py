@@ -39,6 +39,7 @@ from scipy.linalg import cho_factor, get_lapack_funcs
 from scipy.sparse.linalg import splu
 from threadpoolctl import ThreadpoolController
 
+from infra.errors import BearingfemError
 from infra.memo import Memo
 from meshes.build import CONDENSE_BLOCK
 
@@ -61,8 +62,9 @@ def single_thread_blas(fn):
     return wrapper
 
 
-class SolveError(RuntimeError):
-    """Singular system or an active set that does not settle; one-line message."""
+class SolveError(BearingfemError):
+    """Singular system or an active set that does not settle; one-line message (the package's
+    own error, a ValueError: the command exits 2 with it)."""
 
 
 @dataclass

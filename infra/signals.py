@@ -3,7 +3,7 @@
 Python raises KeyboardInterrupt (SIGINT) or the command line's Terminated (SIGTERM) between two
 bytecodes, which may be in the middle of a sequence of native calls that leave a library's
 objects half built: interrupting pyvista/VTK between creating a render window and closing it
-crashed the interpreter with a segmentation fault (1 of 12 trials, issue 25). `deferred_signals`
+crashed the interpreter with a segmentation fault (1 of 12 trials). `deferred_signals`
 records SIGINT and SIGTERM inside its block and delivers them (to the handlers that were installed
 before) when the block ends, so the interruption arrives at a clean point, a fraction of a second
 later.

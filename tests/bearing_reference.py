@@ -1,4 +1,4 @@
-"""Reference values for the bearing tests, written out independently of analytic/bearing.py."""
+"""Reference values for the bearing tests, written out independently of analytic/bearing/."""
 import numpy as np
 
 from analytic import hertz

@@ -24,9 +24,9 @@ def test_three_lines_reproduce_simulate(tmp_path):
 
     asm = bearingfem.load_assembly(CFG)
     out = bearingfem.simulate(asm, {"T_ambient_C": [-40, 20, 80], "preload_assembled_N": [100, 150, 200]})
-    # a table with the file's output columns in the file's order (after its condition columns)
+    # the file's table: its condition columns first, then the outputs, in the file's order
     assert isinstance(out, pd.DataFrame) and len(out) == 3
-    assert list(out.columns) == reader.fieldnames[2:]
+    assert list(out.columns) == reader.fieldnames
 
     for k in ("preload_N", "torque_Nmm", "contact_angle_deg", "fit_pressure_inner_MPa",
               "max_contact_pressure_MPa", "interference_outer_um"):

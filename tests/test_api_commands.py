@@ -296,3 +296,61 @@ def test_bad_input_is_the_commands_one_line(tmp_path, asm_path, capsys, monkeypa
     cli_fragment = fragment.replace("row 2", "line 3")
     assert cli_fragment in err[0], err[0]
     assert not any(p.name in ("x.csv", "r", "t", "d") for p in tmp_path.iterdir())
+
+
+@pytest.mark.parametrize("command", ["report", "tolerance", "design", "diagnose", "verify"])
+def test_with_defaults_the_command_and_function_make_the_same_call(tmp_path, asm_path,
+                                                                    monkeypatch, command):
+    """Each folder-writing twin with its defaults against its command with its defaults: the
+    same settings reach the one function that does the work (the Monte Carlo's samples and
+    seed, the design's band, the report's options), so the same numbers come out. The defaults
+    are those docs/cli.md states (tolerance: 2000 samples, seed 1; design: band 0.8:1.2)."""
+    import studies.diagnosis.files as diag_files
+    from studies.usecases import assembly_report, design_search, tolerance_report, verify
+
+    T = [-20.0, 20.0, 60.0, 0.0, 10.0, 30.0, 40.0, 50.0]
+    meas = pd.DataFrame({"T_ambient_C": T, "torque_Nmm": np.linspace(5.0, 6.0, len(T))})
+    f = tmp_path / "m.csv"
+    meas.to_csv(f, index=False)
+    module, name, argv, call = {
+        "report": (assembly_report, "run", ["report", asm_path, "--out", tmp_path / "o"],
+                   lambda: bearingfem.report(asm_path)),
+        "tolerance": (tolerance_report, "run", ["tolerance", asm_path, "--out", tmp_path / "o"],
+                      lambda: bearingfem.tolerance(asm_path)),
+        "design": (design_search, "run", ["design", asm_path, "--range", "-10:50", "--out",
+                                          tmp_path / "o"],
+                   lambda: bearingfem.design(asm_path, (-10, 50))),
+        "diagnose": (diag_files, "diagnose_tables", ["diagnose", asm_path, f, "--out", tmp_path / "o"],
+                     lambda: bearingfem.diagnose(asm_path, f)),
+        "verify": (verify, "run", ["verify", "--out", tmp_path / "o"], lambda: bearingfem.verify()),
+    }[command]
+    calls = _record(monkeypatch, module, name)
+    with pytest.raises(_Stop):
+        main([str(a) for a in argv])
+    with pytest.raises(_Stop):
+        call()
+    (cli_args, cli_kw), (api_args, api_kw) = calls
+    strip = lambda args: [a for a in args if not hasattr(a, "is_dir")]  # noqa: E731
+    _equal_arguments(strip(cli_args), strip(api_args), command)
+    _equal_arguments(cli_kw, api_kw, command)
+    if command == "tolerance":
+        assert (api_kw["samples"], api_kw["seed"]) == (2000, 1)
+    if command == "design":
+        b = api_kw["band"]
+        assert (b.low, b.high, b.absolute) == (0.8, 1.2, False)
+
+
+def test_with_defaults_the_table_twins_give_the_commands_numbers(tmp_path, asm_path):
+    """`simulate`, `stiffness` and `bearing` with their defaults against their commands with
+    theirs: the same table, to the CSV's digits."""
+    cond = tmp_path / "c.csv"
+    cond.write_text("T_ambient_C,speed_rpm\n0,0\n40,3000\n")
+    assert main(["simulate", str(asm_path), str(cond), "-o", str(tmp_path / "s.csv")]) == 0
+    _same_frame(bearingfem.simulate(asm_path, cond), _csv(tmp_path / "s.csv"))
+    assert main(["stiffness", str(asm_path), str(cond), "-o", str(tmp_path / "k.csv")]) == 0
+    _same_frame(bearingfem.stiffness(asm_path, cond).to_frame(), _csv(tmp_path / "k.csv"))
+    b, loads = tmp_path / "b.toml", tmp_path / "l.csv"
+    b.write_text(BEARING)
+    loads.write_text("radial_load_N,axial_load_N,speed_rpm\n500,200,0\n1000,300,6000\n")
+    assert main(["bearing", str(b), str(loads), "-o", str(tmp_path / "b.csv")]) == 0
+    _same_frame(bearingfem.bearing(b, loads).to_frame(), _csv(tmp_path / "b.csv"))

@@ -1,5 +1,5 @@
 """Quasi-dynamic balls: the global force balance of the rings in every raceway-control mode, the
-ball kinematics of each hypothesis, and the sign of the gyroscopic friction (issue 25).
+ball kinematics of each hypothesis, and the sign of the gyroscopic friction.
 
 Independent statements held here:
 - the ball kinematics re-derived in three dimensions from rolling without slip at both contact
@@ -29,7 +29,7 @@ from analytic.materials import get_material
 from analytic.torque import ball_kinematics
 
 G = BearingGeometry.from_catalogue("71807C")
-#: the 7014C-size bearing of issue 25 (d 70, D 110, dm 90, 20 balls of 7/16 in, 15 deg)
+#: a 7014C-size bearing (d 70, D 110, dm 90, 20 balls of 7/16 in, 15 deg)
 G7014 = BearingGeometry(Dw_mm=11.112, Z=20, dm_mm=90.0, f_i=0.52, f_o=0.53, alpha0_deg=15.0,
                         ring=get_material("GCr15"), ball=get_material("GCr15"))
 RPM = 2.0 * np.pi / 60.0
@@ -172,7 +172,7 @@ SPEEDS = np.array([0.0, 3000.0, 5000.0, 10000.0, 15000.0, 20000.0])
 
 @pytest.mark.parametrize("control", ["outer", "inner", "jones"])
 def test_single_bearing_global_balance_axial(control):
-    """7014C size under 1000 N axial at 0..20000 rpm (the case of issue 25): Z times what a
+    """7014C size under 1000 N axial at 0..20000 rpm (a published check case): Z times what a
     ball exerts on the inner ring and on the outer ring, each with its raceway friction, equals
     the applied 1000 N (1e-9; before the fix the outer ring carried 1029.9 N at 5000 rpm with
     jones and 1323 N at 20000 rpm with inner control)."""
@@ -186,7 +186,7 @@ def test_single_bearing_global_balance_axial(control):
                                 b.outer_control, g.Dw_mm)
     np.testing.assert_allclose(inner[0].sum(axis=0), 1000.0, rtol=1e-9)
     np.testing.assert_allclose(outer[0].sum(axis=0), 1000.0, rtol=1e-9)
-    if control == "jones":      # the inner raceway controls somewhere: the case of issue 25
+    if control == "jones":      # the inner raceway controls somewhere: this case
         assert not b.outer_control[:, 2].any()
 
 
@@ -294,7 +294,7 @@ def test_combined_pair_global_balance(control):
 
 BEARING_7014 = """
 [bearing]
-designation = "7014C size (issue 25)"
+designation = "7014C size"
 bore_mm = 70.0
 outside_diameter_mm = 110.0
 width_mm = 20.0
@@ -313,7 +313,7 @@ ball_material = "GCr15"
 
 @pytest.mark.parametrize("control", ["outer", "inner", "jones"])
 def test_bearing_command_columns_close_the_outer_ring_balance(tmp_path, control):
-    """The check of issue 25 made from the `bearing` command's own columns: under 1000 N axial
+    """The check above made from the `bearing` command's own columns: under 1000 N axial
     at 5000 and 20000 rpm every ball is alike, and Z times the outer ring's load from one ball,
     Q_o sin(a_o) (Q_o = max_ball_load_N, a_o = contact_angle_outer_deg) plus the outer raceway's
     friction 2 M_g/Dw cos(a_o) where the outer raceway controls (outer_race_control = 1), is

@@ -368,7 +368,7 @@ def test_cli_bearing_bad_input(tmp_path, edit, loads_text, expect):
     assert not out.exists() and not Path(f"{out}.json").exists()
 
 
-# ------------------------------------------------------------ torque of one bearing (issue 24)
+# ------------------------------------------------------------ torque of one bearing
 OIL = """
 [lubrication]
 kind = "oil"
@@ -460,30 +460,38 @@ def test_bearing_torque_needs_lubrication_and_an_oil_temperature(tmp_path):
     assert len(lines) == 1 and "T_oil_C" in lines[0] and not out.exists()
 
 
-# ------------------------------------------------------ thermal speed limits (issue 33 item 4)
+# ------------------------------------------------------ thermal speed limits
 def test_bearing_thermal_speeds_balance_the_heat_written_out(tmp_path):
     """`bearing` writes the ISO 15312 reference speed and the DIN 732 permissible speed. The
-    permissible speed is where the bearing's own oil torque (written out here: mu F_a dm/2 +
-    1e-7 f0 (nu n)^(2/3) dm^3) times omega equals the heat the file's k_q takes away through
-    pi B (D + d) between 70 C and 20 C; margin_speed_rpm = permissible - the row's speed. With
-    every thermal key given there is no warning."""
+    permissible speed is where DIN 732's friction (written out here: f1 F_a dm with f1 = 0.001
+    (F_a/C0)^0.33, ISO/TR 14179-2, plus 1e-7 f0 (nu n)^(2/3) dm^3 with nu at the permissible
+    70 C, the Walther law through the table's 40 / 100 C points) times omega equals the heat the
+    file's k_q takes away through pi B (D + d) between 70 C and 20 C; margin_speed_rpm =
+    permissible - the row's speed. The row's oil temperature does not enter (-40 C and 100 C
+    rows at one load give one speed). With every thermal key given there is no warning."""
     from math import pi
+
+    from analytic.lubrication import fit_walther
 
     keys = ("reference_f0r = 1.7\nreference_f1r = 0.0003\nheat_transfer_W_per_mm2_K = 4e-4\n"
             "permissible_temperature_C = 70.0\nambient_temperature_C = 20.0\n")
     b = tmp_path / "b.toml"
     b.write_text(BEARING_TOML + OIL.replace("speed_rpm = 1000.0\n", "speed_rpm = 1000.0\n" + keys))
     loads = tmp_path / "loads.csv"
-    loads.write_text("axial_load_N,T_oil_C\n500,40\n1500,100\n")
+    loads.write_text("axial_load_N,T_oil_C\n500,40\n1500,100\n1500,-40\n")
     out = tmp_path / "out.csv"
     r = _cli_here("bearing", b, loads, "-o", out)
     assert r.returncode == 0 and "warning" not in r.stderr, r.stderr
     import pandas as pd
     df = pd.read_csv(out)
     dm, Q = 38.5, 4e-4 * pi * 15.0 * (52.0 + 25.0) * 50.0
-    for (Fa, nu), n in zip(((500.0, 100.0), (1500.0, 10.0)), df["thermal_permissible_speed_rpm"]):
-        M = 0.002 * Fa * dm / 2 + 1e-7 * 2.0 * (nu * n) ** (2 / 3) * dm ** 3
+    nu70 = float(fit_walther([40.0, 100.0], [100.0, 10.0]).nu_mm2_s(70.0))
+    for Fa, n in zip((500.0, 1500.0, 1500.0), df["thermal_permissible_speed_rpm"]):
+        f1 = 0.001 * (Fa / _C0(dm)) ** 0.33
+        M = f1 * Fa * dm + 1e-7 * 2.0 * (nu70 * n) ** (2 / 3) * dm ** 3
         assert M * n * pi / 30e3 == pytest.approx(Q, rel=1e-8)
+    perm = df["thermal_permissible_speed_rpm"]
+    assert perm.iloc[1] == perm.iloc[2]                    # 100 C and -40 C rows: one speed
     np.testing.assert_allclose(df["margin_speed_rpm"], df["thermal_permissible_speed_rpm"] - 1000.0)
     # the reference speed: the same balance at the ISO 15312 reference state, the row's nothing
     nr = df["thermal_reference_speed_rpm"].iloc[0]

@@ -9,7 +9,7 @@ References, independent of the code under test:
     tolerance is round-off, scaled to the force);
 (b) a temperature that uses up the clamp force opens the face, and a fit with free clearance
     then carries nothing, as Lamé says (analytic/lame.py: 0 for a clearance), where the rigid tie
-    pulls the stack and presses the fit (issue 24: 0.28 MPa across 2.56 um of clearance);
+    pulls the stack and presses the fit (0.28 MPa across 2.56 um of clearance);
 (c) rigid and compliant are the limits: the FE answer converges to the tied face at order 1 in
     the clamp's compliance, and a clamp without force or stiffness is the untied face exactly.
 """
@@ -217,7 +217,7 @@ def test_a_clamp_without_force_or_stiffness_is_the_compliant_cover():
     stack of about 1e6 N/mm: the force ratio 1e-5). The compliant cover keeps the stack's own
     faces tied; under a force clamp they are contacts (tests/test_stack_faces.py), so at 80 C,
     where the fits dish the ring faces and part of each opens, the two differ (by 2e-3 here:
-    the tied faces' tension, the artefact issue 24 names)."""
+    the tied faces' tension, the artefact of tied faces)."""
     from studies.model.columns import to_columns
     from studies.model.pipeline import simulate_table
 
@@ -284,7 +284,7 @@ def test_design_search_family_holds_the_clamp_spring():
 
 
 def test_the_shipped_rig_runs_with_its_clamp_force():
-    """studies/configs/rig_cartridge_sleeve.toml (issue 24's rig): tightened to 3.89 kN at T_ref;
+    """studies/configs/rig_cartridge_sleeve.toml (the rig): tightened to 3.89 kN at T_ref;
     at +60 C its aluminium housing has outgrown the stack and used the force up (flagged)."""
     from studies.model.columns import to_columns
     from studies.model.config import load_assembly
@@ -317,7 +317,7 @@ def test_tightening_force_is_the_power_screw_torque(d, P, d2, mu, D_Km):
 
 
 def test_the_thin_section_rig_runs_with_its_nut_force():
-    """studies/configs/rig_thin_section_hub.toml (issue 24's second rig): its aluminium shaft
+    """studies/configs/rig_thin_section_hub.toml (the second rig): its aluminium shaft
     nut is tightened to the 1497 N of its torque (VDI 2230, in the file's comment) at T_ref; the
     aluminium shaft outgrows the steel inner-ring stack when hot, so the nut's force falls and is
     used up by +70 C (flagged), and rises when cold. Every fit (inner, outer, the hub = sleeve)
@@ -360,7 +360,7 @@ def test_a_very_soft_clamp_spring_is_warned_about():
 
 
 def test_design_varies_the_clamp_force_on_one_fe_setup(monkeypatch):
-    """`design --vary nut_clamp_force_N=...` (issue 24): the thin-section rig's nut at its 1497 N
+    """`design --vary nut_clamp_force_N=...`: the thin-section rig's nut at its 1497 N
     and at 3000 N are one FE set-up (the set-up route called once: the set-up holds the clamp's
     spring, not its force), and each setting's answers equal those of the assembly built with
     that force through its own pipeline (a second route, its own set-up) to 1e-9 of the preload.

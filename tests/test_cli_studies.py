@@ -26,7 +26,7 @@ def _check_verification(out, cases):
         assert c["rel_error"] <= TOLERANCE, c["name"]
     spin = [c for c in cases if c["kind"] == "rotating_fit"]
     assert spin
-    for c in spin:     # issue 12: the lame_fit echo plus what the rotating closed form needs
+    for c in spin:     # the lame_fit echo plus what the rotating closed form needs
         assert LAME_INPUTS | {"rho_inner_kg_m3", "rho_outer_kg_m3", "omega_rad_s"} <= set(c["inputs"])
         assert c["rel_error"] <= TOLERANCE, c["name"]
     conv = [c for c in cases if c["kind"] == "mesh_convergence"]

@@ -143,7 +143,7 @@ def test_docs_key_tables_are_the_schemas():
 
 def test_a_byte_order_mark_is_accepted(tmp_path):
     """Windows editors save UTF-8 with a byte order mark (EF BB BF); the TOML parser refuses it,
-    the loader reads past it: the same assembly as the file without it (issue 25)."""
+    the loader reads past it: the same assembly as the file without it."""
     src = CONFIG_DIR / "template.toml"
     p = tmp_path / "bom.toml"
     p.write_bytes(b"\xef\xbb\xbf" + src.read_bytes())

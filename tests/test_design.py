@@ -275,9 +275,9 @@ def test_search_with_settings_keeps_the_given_numbers(tmp_path):
     assert all(d.metrics.preload_range_N <= 1e-9 * d.metrics.preload_assembled_N for d in const)
 
 
-# ------------------------------------------------------------------ every fit counts (issue 36)
+# ------------------------------------------------------------------ every fit counts
 def test_a_sleeve_fit_that_opens_makes_the_design_infeasible():
-    """Issue 36 item 1: design said "fits closed: yes" while `simulate` flagged the sleeve fit
+    """Design said "fits closed: yes" while `simulate` flagged the sleeve fit
     open (the metrics read the inner and outer fits only). A made-up stack on the thin-section
     rig (its sleeve fit designed with interference, `tolerances.designed_closed`) whose inner and
     outer fits stay at 10 MPa and whose sleeve fit pressure falls to 0 at the hot end: not
@@ -324,7 +324,7 @@ def test_an_infeasible_search_says_which_constraint_failed_everywhere(tmp_path):
 
 
 def test_the_liner_is_a_design_variable_through_the_one_route():
-    """Issue 36 item 1: `--vary sleeve_material=..., sleeve_radial_thickness_mm=...,
+    """`--vary sleeve_material=..., sleeve_radial_thickness_mm=...,
     sleeve_shaft_class=...`. A liner of 17-4PH, 4.5 mm instead of the 6061 hub's 6 mm: the bore
     it sits in moves by twice the change (the [sleeve] relation, bearing OD + 2 t), and the
     search's numbers for that setting (the stack's family route, `fem.parametric`) are those of

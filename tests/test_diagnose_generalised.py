@@ -1,4 +1,4 @@
-"""Generalised forms in the diagnosis (issue 11), on data made by the REAL model with the project's
+"""Generalised forms in the diagnosis, on data made by the REAL model with the project's
 own designs, configurations and noise levels (`test_diagnose_pipeline`, whose module docstring
 describes how the data are made; the generalised forms go through the same `apply_effects` path).
 

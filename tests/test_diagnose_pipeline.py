@@ -1,6 +1,6 @@
 """Hidden effects in data made by the REAL model (FE -> bearing pair -> torque), diagnosed by the
-engine with the real predictor (`studies.diagnosis.files.ModelPredictor`), issue 5 "Tests that hide an
-effect".
+engine with the real predictor (`studies.diagnosis.files.ModelPredictor`): the tests that hide an
+effect.
 
 Measured data are made the way a rig would produce them: the shipped configuration is run on a
 conditions table (temperature steps at a fixed preload, a preload sweep at several temperatures,
@@ -50,7 +50,7 @@ SIGMA_000 = {"torque_Nmm": 0.02, "preload_N": 0.5}
 SIGMA_000_TORQUE = {"torque_Nmm": 0.02}
 SIGMA_001_TORQUE = {"torque_Nmm": 1.0}
 SIGMA_003 = {"torque_Nmm": 2.0, "preload_N": 5.0}
-MIN_CHANGE_SIGMA = 8.0  # issue 5 brief: hidden effects "at a magnitude a rig would see"
+MIN_CHANGE_SIGMA = 8.0  # the brief: hidden effects "at a magnitude a rig would see"
 
 #: effect -> parameter names, exactly as in docs/cli.md (table "Effects")
 SPEC_PARAMETERS = {
@@ -61,7 +61,7 @@ SPEC_PARAMETERS = {
     "friction_temperature": {"dmu_per_K"},
     "preload_settling": {"loss_N", "threshold_K"},
     "cte_nonlinearity": {"dalpha_per_K"},
-    # this project's extensions beyond the spec's seven (issue 11; names fixed in docs/cli.md)
+    # this project's extensions beyond the spec's seven (names fixed in docs/cli.md)
     "solid_film_runin": {"dmu", "runin_krev"},
     "preload_path_compliance": {"extra_compliance_um_per_kN"},
 }
@@ -534,7 +534,7 @@ def test_unlisted_groove_on_a_steady_grid_rate(pl000, pl000_groove, sigma):
     """The same unlisted groove over six noise draws, with torque and preload or torque alone
     (change 21.9 and 12.4 sigma): never a claimed cause, always `unexplained` (measured 6/6 each,
     2026-11-25). With torque alone, draws 1 and 4 were claimed by the forward selection as
-    `preload_path_compliance` + `radial_gradient` (issue 34) until a further cause had to fit
+    `preload_path_compliance` + `radial_gradient` until a further cause had to fit
     every held-out block in the same amount (`blockscale.block_scale`: Cochran's Q 273 and 117
     on 7 degrees of freedom; docs/diagnosis_rates.md). At a groove ratio of 0.525 the
     torque-only change is 4.5 sigma, below the 8 sigma this file asks of a visible cause: there a small listed effect (a CTE slope change of
@@ -617,7 +617,7 @@ def test_cli_diagnose_end_to_end(tmp_path, capsys):
     assert pngs and all(p.stat().st_size > 1000 for p in pngs)
     text = report.read_text()
     assert all(f"({p.name})" in text for p in pngs if p.name.startswith(("fit_", "residuals_")))
-    # issue 34: the 90 % predictive interval in diagnosis.csv on every row, in the JSON and the
+    # the 90 % predictive interval in diagnosis.csv on every row, in the JSON and the
     # report; a fresh noise draw of the simulated truth (another run of the rig) falls inside
     # it in 84-96 % of the 400 entries (binomial spread 1.5 % about 90 %)
     assert res["interval"]["level"] == 0.9 and "## Predictive interval" in text
@@ -855,7 +855,7 @@ def test_unlisted_groove_made_another_way_is_not_claimed_by_listed_causes(pl000)
     second-source truth on the finer mesh (0.7 x) with direct FE solves
     (`second_source.make_case("groove_curvature")`, the case's own noise), torque alone,
     diagnosed with the listed candidates only (no ladder, so no rung can name it): no cause may
-    be claimed (the block rule against two listed causes composing it, issue 34: without it
+    be claimed (the block rule against two listed causes composing it; without it
     seed 0 was `explained` by a path compliance of 3.5 um/kN plus a radial gradient)."""
     from studies.validation import second_source as ss
 

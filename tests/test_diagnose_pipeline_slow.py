@@ -1,7 +1,7 @@
 """Operating characteristics of `bearingfem diagnose` on data made by the REAL model (slow: run with
 `.venv/bin/python -m pytest -m slow -s tests/test_diagnose_pipeline_slow.py`; prints the rates).
 
-Issue 5 goals: false claims <= 5 % over at least 20 null datasets; hits >= 90 % over at least 10
+Goals: false claims <= 5 % over at least 20 null datasets; hits >= 90 % over at least 10
 datasets per effect where the effect's largest change is at least 5 noise standard deviations.
 
 - A *claim* is a verdict that names a cause (`explained` or `ambiguous`); on null data every claim
@@ -37,8 +37,8 @@ from test_diagnose_pipeline import (MESH_FACTOR, cycles, diagnose_real, largest_
 
 pytestmark = pytest.mark.slow
 
-GOAL_FALSE_CLAIMS = 0.05     # issue 5
-GOAL_HITS = 0.90             # issue 5, where the largest change >= 5 sigma
+GOAL_FALSE_CLAIMS = 0.05
+GOAL_HITS = 0.90             # where the largest change >= 5 sigma
 SNR_RANGE = (5.0, 20.0)      # brief: largest change 5..20 sigma
 
 #: base noise per configuration (the same rig assumptions as the fast tests); scaled per dataset

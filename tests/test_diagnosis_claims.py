@@ -1,4 +1,4 @@
-"""Issue 34: the claim rules (a candidate at a bound, or one that makes a measured column worse,
+"""The claim rules (a candidate at a bound, or one that makes a measured column worse,
 is never claimed) and the predictive intervals of a claimed model.
 
 The toy bearing of `test_diagnosis_engine.py` (closed form with the real effects) stands in for
@@ -77,7 +77,7 @@ def test_discrepancy_term_restores_coverage_of_a_model_that_misses_the_truth():
 def test_fit_beyond_its_band_is_not_claimed_and_listed_at_bound():
     """An inner fit error of 3 um where the diagnosis allows [-1, 1] um (a tolerance band): the
     fit error carries the weight but can only reach the band's edge, so its inner error sits at
-    the upper bound. Issue 34: that is evidence against the candidate, not a partial
+    the upper bound. That is evidence against the candidate, not a partial
     explanation: no cause is claimed, `at_bound` lists the inner error at 1 um with the
     tolerance-band sentence and its uncertainty, the fit error is the best partial candidate."""
     model = ToyBearing()
@@ -101,7 +101,7 @@ def test_generalised_form_at_its_bound_is_not_claimed_and_names_no_cause():
     Arrhenius-type form allows at most (`friction_temperature.exponential`, b_per_K = 0.03 /K,
     its bound; slope -1e-5 /K at T_ref). The listed linear law leaves the curvature, so the
     pass chooses the exponential form, whose rate then fits at its bound (truth there: at it or
-    within its uncertainty of it). Issue 34: not claimed, so the result names no cause and
+    within its uncertainty of it). Not claimed, so the result names no cause and
     reports none of the form's values (before: the engine looked up the effect of the refused
     cause, None, and stopped with StopIteration: the slow confusion matrix's friction run at
     0.25 sigma)."""
@@ -124,7 +124,7 @@ def test_candidate_that_makes_a_column_worse_is_not_claimed():
     """Steady points (no time order), a friction coefficient falling with temperature (a torque
     change only: the preload data carry nothing), and only candidates that move the preload
     with the torque (a fit error, a CTE slope): the best of them follows the torque and predicts
-    a preload change the data do not show. Issue 34: it is not claimed, and `worse_columns`
+    a preload change the data do not show. It is not claimed, and `worse_columns`
     names the preload with its held-out RMSE ratio above 1 (the truth leaves the preload at the
     baseline's, so any candidate preload change is an error)."""
     model = ToyBearing()
@@ -216,7 +216,7 @@ def _fit_of(values, sd, lo, hi):
 
 
 def test_an_unidentified_parameter_at_its_off_value_is_not_at_a_bound():
-    """Issue 34's rule (a value within its uncertainty of a bound is at the bound) read against
+    """The rule (a value within its uncertainty of a bound is at the bound) read against
     a parameter the data do not move: the outer fit error fitted at 0.03 um (its off value 0)
     with an uncertainty of 1e4 um on a [-20, 20] um range reaches both bounds, but the data
     cannot tell it from off, so it is not listed (before: listed at 20 um, which refused the

@@ -1,4 +1,4 @@
-"""Issue 23 items 3-6 on the toy bearing of `test_diagnosis_engine.py` (closed-form stand-in with
+"""The diagnosis on the toy bearing of `test_diagnosis_engine.py` (closed-form stand-in with
 the real effects): the noise model under strong serial correlation, goodness of fit in the
 decision (`explained_partly`, `left`; a parameter at its bound: `test_diagnosis_claims.py`), more than one cause (forward selection), gain
 and evidence per measured column. Each check is against what was injected (the generator's AR

@@ -1,4 +1,4 @@
-"""The false-claim level under strongly correlated noise (issue 23 item 4; slow, `make
+"""The false-claim level under strongly correlated noise (slow, `make
 test-slow`): AR(1) noise with phi 0.9 and 0.95 (a torque cell with a 19-39 min correlation time
 sampled every 120 s) on the toy bearing of `test_diagnosis_engine.py`, nothing hidden, the
 -60..80 C cycles over 8 h (240 rows).

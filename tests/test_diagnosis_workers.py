@@ -1,5 +1,5 @@
-"""The diagnosis on worker processes (`studies.model.parallel.parallel_map`, issue 11
-performance): the same result as in one process, to the last bit; the map keeps the items' order,
+"""The diagnosis on worker processes (`studies.model.parallel.parallel_map`, for
+speed): the same result as in one process, to the last bit; the map keeps the items' order,
 counts the workers' model calls and raises a task's exception."""
 from __future__ import annotations
 

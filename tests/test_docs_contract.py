@@ -1,6 +1,6 @@
 """docs/cli.md is the contract only (commands, keys, columns, JSON, exit codes, limits): the
 measurements and their history live in docs/benchmarks.md (the latest per benchmark with the
-command that reproduces it) and docs/diagnosis_rates.md (issue 35)."""
+command that reproduces it) and docs/diagnosis_rates.md."""
 import re
 from pathlib import Path
 

@@ -25,7 +25,7 @@ SPEC_PARAMETERS = {  # docs/cli.md "Effects", exactly
     "friction_temperature": ("dmu_per_K",),
     "preload_settling": ("loss_N", "threshold_K"),
     "cte_nonlinearity": ("dalpha_per_K",),
-    # this project's extensions beyond the spec's seven (issue 11), names fixed in docs/cli.md
+    # this project's extensions beyond the spec's seven, names fixed in docs/cli.md
     "solid_film_runin": ("dmu", "runin_krev"),
     "preload_path_compliance": ("extra_compliance_um_per_kN",),
 }

@@ -1,6 +1,6 @@
 """The worked example docs/examples/new_assembly.py runs as a user runs it (its own process, only
 `import bearingfem` from this project) on the coarse mesh with few samples (`--quick`), and
-writes what it says: the assembly file, the plots, the tables and the ROSS table (issue 35)."""
+writes what it says: the assembly file, the plots, the tables and the ROSS table."""
 import ast
 import subprocess
 import sys

@@ -1,4 +1,4 @@
-"""Every fit first-class (issue 24, item 2): the sleeve's and cartridge's fits get their
+"""Every fit first-class: the sleeve's and cartridge's fits get their
 interference column, their fit_open check and flag, tolerance bands in `[fits]` that `tolerance`
 samples with the designed-state rule, and `verify --assembly` holds the FE of the assembly's own
 fits and materials against Lamé.
@@ -117,7 +117,7 @@ def test_sleeve_tolerance_classes_are_iso286_at_the_fit_diameter():
 
 @pytest.fixture(scope="module")
 def banded():
-    """The cartridge-in-sleeve band of issue 24 in this tool's names (its inner layer is the
+    """The cartridge-in-sleeve band of the rig in this tool's names (its inner layer is the
     [sleeve]): 0 .. 7.62 um interference, given as the sleeve OD's limits over a line-to-line
     nominal; a 17-4PH sleeve in the template's 6061 housing."""
     raw = _with_layer(_template(sleeve_interference_um=0.0,
@@ -221,7 +221,7 @@ def test_report_shows_every_fit_with_its_flag_and_the_naming_picture(tmp_path):
 
 @pytest.mark.slow
 def test_thin_section_hub_rig_runs_and_its_report_shows_every_fit(tmp_path):
-    """Issue 24's second rig (studies/configs/rig_thin_section_hub.toml) runs through `report`
+    """The second rig (studies/configs/rig_thin_section_hub.toml) runs through `report`
     (coarse mesh): its three fits (inner, outer, the hub in the gear) each have a margin row and
     their columns in the results table; the aluminium shaft and hub shrink away from the steel
     rings and gear when cold, so the inner and hub fits open at -45 C (flagged), by at least the

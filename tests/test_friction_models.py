@@ -1,14 +1,15 @@
 """analytic/friction/: each friction model against its source's closed form, its limits, and
-the law it reduces to (issue 33, item 1). Requirement names in each docstring."""
+the law it reduces to. Requirement names in each docstring."""
 import numpy as np
 import pytest
 from scipy import integrate
 
 from analytic.bearing import BearingGeometry, solve_pair
 from analytic.friction import ehl_rolling, skf2004, solid_film, starved
-from analytic.lubrication import reduced_modulus_MPa
+from analytic.friction.options import FrictionOptions
 from analytic.friction.pair import ehl_rolling_pair
 from analytic.friction.palmgren import palmgren_viscous_torque_Nmm
+from analytic.lubrication import reduced_modulus_MPa
 from analytic.torque import power_W
 
 G = BearingGeometry.from_catalogue("25TAC62B")
@@ -59,10 +60,84 @@ def test_skf_low_speed_slope_is_0_6():
 
 
 def test_skf_drag_zero_without_bath_and_at_rest():
-    """M_drag = 0 with V_M = 0 (no oil bath); every component 0 at n = 0 (a running torque)."""
+    """M_drag = 0 without an oil bath (oil level 0); every component 0 at n = 0 (a running
+    torque)."""
     t = skf2004.skf2004_torque(25.0, 62.0, 0.0, 1500.0, np.array([0.0, 3000.0]), 50.0)
     assert np.all(t.drag_Nmm == 0.0)
     assert t.total_Nmm[0] == 0.0 and t.total_Nmm[1] > 0.0
+
+
+def test_skf_drag_at_the_half_bath_closed_form_and_its_limits():
+    """The oil-bath drag (catalogue 17000 form) written out at H = 0.6 dm, where t = pi, f_t = 1
+    and R_s = 0.36 dm^2 pi f_A: M = 1.093e-7 n^2 dm^3 (n dm^2 / nu)^-1.379 R_s (to 1e-12
+    relative); it rises with the level from 0 at H = 0 (as H^0.81 for a shallow bath, its
+    series) and is flat above 1.2 dm (the catalogue's cap); at a fixed level it goes as n^0.621 and nu^1.379 (its exponents)."""
+    d, D, n, nu = 25.0, 62.0, 3000.0, 20.0
+    dm = 0.5 * (d + D)
+    f_A = 0.05 * 4.4 * (D + d) / (D - d)
+    R_s = 0.36 * dm ** 2 * np.pi * f_A
+    expect = 1.093e-7 * n ** 2 * dm ** 3 * (n * dm ** 2 / nu) ** -1.379 * R_s
+    got = skf2004.drag_torque_Nmm(0.6 * dm, d, D, n, nu)
+    assert float(got) == pytest.approx(expect, rel=1e-12)
+    levels = np.array([0.0, 1e-3, 0.1, 0.3, 0.6, 1.0, 1.2]) * dm
+    m = skf2004.drag_torque_Nmm(levels, d, D, n, nu)
+    assert m[0] == 0.0 and np.all(np.diff(m) > 0)
+    # a shallow bath: t ~ 2 sqrt(2 H / (0.6 dm)), t - sin t ~ t^3/6, f_t ~ t/2, so M ~ t^(3 -
+    # 1.379) ~ H^0.8105: it vanishes continuously as the level goes to 0
+    low = skf2004.drag_torque_Nmm(np.array([1e-6, 1e-5]) * dm, d, D, n, nu)
+    assert np.log(low[1] / low[0]) / np.log(10.0) == pytest.approx(0.5 * (3 - 1.379), rel=1e-4)
+    assert float(skf2004.drag_torque_Nmm(2.0 * dm, d, D, n, nu)) == float(m[-1])
+    h = 0.3 * dm
+    s_n = np.log(skf2004.drag_torque_Nmm(h, d, D, 2 * n, nu) / skf2004.drag_torque_Nmm(h, d, D, n, nu))
+    s_nu = np.log(skf2004.drag_torque_Nmm(h, d, D, n, 2 * nu) / skf2004.drag_torque_Nmm(h, d, D, n, nu))
+    assert s_n / np.log(2) == pytest.approx(2 - 1.379, abs=1e-12)
+    assert s_nu / np.log(2) == pytest.approx(1.379, abs=1e-12)
+    t = skf2004.skf2004_torque(d, D, 0.0, 1500.0, n, nu, oil_level_mm=h)
+    assert float(t.drag_Nmm) == pytest.approx(float(skf2004.drag_torque_Nmm(h, d, D, n, nu)))
+
+
+def test_skf_constants_by_lubrication_method_and_oil_family():
+    """K_rs 3e-8 for an oil bath or jet, 6e-8 for oil-air, grease and minimal oil (catalogue's
+    two values); mu_EHL 0.05 mineral, 0.04 synthetic. The replenishment factor of grease is the
+    oil's squared (the exponent doubles with K_rs) and lowers the rolling term; the full-film
+    sliding coefficient of a synthetic oil is 0.04 at speed (phi_bl -> 0)."""
+    assert skf2004.constants_for("oil_jet") == {"K_rs": 3e-8, "mu_ehl": 0.05}
+    assert skf2004.constants_for("grease", "synthetic") == {"K_rs": 6e-8, "mu_ehl": 0.04}
+    for m in ("oil_air", "minimal_oil"):
+        assert skf2004.constants_for(m)["K_rs"] == 6e-8
+    oil = skf2004.skf2004_torque(25.0, 62.0, 0.0, 1500.0, 6000.0, 50.0, **skf2004.constants_for("oil_bath"))
+    grease = skf2004.skf2004_torque(25.0, 62.0, 0.0, 1500.0, 6000.0, 50.0, **skf2004.constants_for("grease"))
+    assert float(grease.phi_rs) == pytest.approx(float(oil.phi_rs) ** 2, rel=1e-12)
+    assert grease.rolling_Nmm < oil.rolling_Nmm
+    syn = skf2004.skf2004_torque(25.0, 62.0, 0.0, 1500.0, 2e4, 68.0, **skf2004.constants_for("oil_jet", "synthetic"))
+    assert float(syn.mu_sl) == pytest.approx(0.04, abs=1e-9)
+    with pytest.raises(ValueError, match="lubrication_method"):
+        skf2004.constants_for("splash")
+
+
+def test_skf_without_a_bearing_is_one_line_not_a_zero_division():
+    """skf2004 without bore and outside diameter (the API's FrictionOptions default 0): a
+    ValueError naming them, not a bare ZeroDivisionError."""
+    with pytest.raises(ValueError, match="bore_mm and outside_diameter_mm"):
+        FrictionOptions(viscous_model="skf2004")
+    with pytest.raises(ValueError, match="bore and outside diameter"):
+        skf2004.skf2004_torque(0.0, 0.0, 0.0, 100.0, 1000.0, 20.0)
+
+
+@pytest.mark.parametrize("options, match", [
+    (dict(viscous_model="ehl_rolling", eta_Pa_s=0.0, alpha_per_Pa=1e-8), "eta_Pa_s > 0"),
+    (dict(viscous_model="ehl_rolling", eta_Pa_s=0.05, alpha_per_Pa=0.0), "alpha_per_Pa > 0"),
+    (dict(shear_strength="pressure", tau0_MPa=-5.0), "tau0_MPa >= 0"),
+    (dict(lubrication_method="splash"), "lubrication_method"),
+    (dict(oil_family="vegetable"), "oil family"),
+])
+def test_friction_options_refuse_nonsense_in_one_line(options, match):
+    """A zero viscosity or pressure-viscosity coefficient for ehl_rolling (it gave a zero
+    viscous torque), a negative tau0 (a negative torque), an unknown method or oil family: one
+    ValueError line."""
+    with pytest.raises(ValueError, match=match) as e:
+        FrictionOptions(**options)
+    assert "\n" not in str(e.value)
 
 
 # ----------------------------------------------------------------------------- solid film
@@ -137,7 +212,7 @@ PAIR = solve_pair(G, "DB", preload_assembled_N=np.array([1500.0, 1500.0]))
 
 
 def test_ehl_heat_split_sums_to_total_heat():
-    """Issue 33 Done-when: the located heat (inner + outer contacts, each F_R u from the contact
+    """The located heat (inner + outer contacts, each F_R u from the contact
     speeds) equals the pair's torque x omega to 1e-9 relative."""
     n = np.array([1500.0, 12000.0])
     t = ehl_rolling_pair(G, PAIR, n, 0.03, 2e-8)
@@ -166,7 +241,6 @@ def test_ehl_uses_reduced_modulus_of_ring_and_ball():
 
 
 # ----------------------------------------------------------------------------- the pair's torque
-from analytic.friction.options import FrictionOptions            # noqa: E402
 from analytic.heat import located_pair_heat_W                     # noqa: E402
 from analytic.friction.pair import TorqueComponents, pair_torque  # noqa: E402
 from fem.transient import bearing_heat_inputs_W                  # noqa: E402
@@ -228,7 +302,7 @@ def test_skf_pair_is_the_sum_of_its_bearings():
     dict(viscous_model="ehl_rolling"), dict(viscous_model="starved", oil_quantity_mg=5.0)])
 def test_oil_split_sums_to_torque_and_heat(options):
     """Every oil model: rolling + sliding + drag = torque and heat_inner + heat_outer + heat_ball
-    = heat_W (= torque x omega) to 1e-9 relative (issue 33: the heat split loses nothing), on
+    = heat_W (= torque x omega) to 1e-9 relative (the heat split loses nothing), on
     quasi-dynamic balls (each contact at its own load, angle and speed)."""
     t = pair_torque(G, QD, **OIL, friction=FrictionOptions(**options, **FLUID))
     assert np.all(np.abs(t.rolling_Nmm + t.sliding_Nmm + t.drag_Nmm - t.torque_Nmm)
@@ -307,3 +381,57 @@ def test_located_heat_reaches_the_transient_inputs_whole():
         assert sum(q.values()) == pytest.approx(8.0, rel=1e-12)
     q = bearing_heat_inputs_W(drag, row=2, ring_share=1.0)
     assert q["ball_A"] + q["ball_B"] == pytest.approx(1.0, rel=1e-12)
+
+
+def test_ehl_rolling_keeps_the_centrifugal_loss_where_the_preload_is_lost():
+    """A bearing whose contacts carry no load (preload lost) at speed: its balls ride on the
+    outer raceway under F_c = m omega_c^2 dm / 2 and still roll through oil. The torque, written
+    out: Z F_R (dm/2) roll_o with F_R = 2.86 E' Rx^2 k^0.348 G^0.022 U^0.66 W^0.47 at Q = F_c,
+    Rx = Dw (1 + gamma)/2, k = 1.03 (Ry/Rx)^0.64, Ry = f_o Dw/(2 f_o - 1), omega_c =
+    omega (1 - gamma)/2, u = omega (dm/2) roll_o, roll_o = (1 - gamma)(1 + gamma)/2 (gamma =
+    Dw cos a / dm, equal angles; to 1e-12 relative). The inner contact (open) has none; at rest
+    nothing; where the contacts are loaded the floor changes no bit (the loaded law's limit)."""
+    from analytic.friction.pair import BearingContacts, bearing_friction
+    from analytic.torque import ContactInput
+    n = np.array([0.0, 6000.0, 12000.0])
+    nu = np.array([25.0, 25.0, 25.0])
+    eta, alpha = nu * 1e-6 * 860.0, 2e-8
+    zero = np.zeros(3)
+    a = np.radians(np.full(3, G.alpha0_deg))
+    open_ = ContactInput(zero, zero, zero, zero, zero)
+    c = BearingContacts(open_, open_, a, None, zero)
+    fr = FrictionOptions(viscous_model="ehl_rolling", eta_Pa_s=eta, alpha_per_Pa=alpha)
+    t = bearing_friction(G, c, model="oil", mu=0.0, speed_rpm=n, f0=1.7, nu_mm2_s=nu, friction=fr)
+    Dw, dm, f_o = G.Dw_mm, G.dm_mm, G.f_o
+    gam = Dw * np.cos(a) / dm
+    omega = n * np.pi / 30.0
+    omega_c = omega * (1 - gam) / 2
+    Fc = G.ball.density_N_s2_mm4 * np.pi * Dw ** 3 / 6 * omega_c ** 2 * dm / 2
+    Rx, Ry = Dw * (1 + gam) / 2, f_o * Dw / (2 * f_o - 1)
+    k = 1.03 * (Ry / Rx) ** 0.64
+    roll_o = (1 - gam) / 2 * (1 + gam)           # omega_c/omega (1 + cos a / (dm/Dw))
+    u = omega * dm / 2 * roll_o
+    Ep = reduced_modulus_MPa(G.ring.E_MPa, G.ring.nu, G.ball.E_MPa, G.ball.nu)
+    U, Gp, W = eta * 1e-6 * u / (Ep * Rx), alpha * 1e6 * Ep, Fc / (Ep * Rx ** 2)
+    F = 2.86 * Ep * Rx ** 2 * k ** 0.348 * Gp ** 0.022 * U ** 0.66 * W ** 0.47
+    expect = G.Z * F * dm / 2 * roll_o
+    assert t.total_Nmm[0] == 0.0 and np.all(t.total_Nmm[1:] > 0)
+    np.testing.assert_allclose(t.total_Nmm[1:], expect[1:], rtol=1e-12)
+    assert np.all(t.heat_inner_W == 0)
+    # loaded contacts: the floor is not used (the same bits as the loaded law without it)
+    from analytic.friction.pair import contact_inputs
+    ci, co = contact_inputs(QD, 0)
+    kin = ball_kinematics_for(QD)
+    args = (G.Z, G.dm_mm, Ep, ci, co, kin.roll_inner, kin.roll_outer, N3, FLUID["eta_Pa_s"], 2e-8)
+    floor = ehl_rolling.CentrifugalFloor(np.full(3, 1e3), np.full(3, 1.0), np.full(3, 2.0))
+    with_floor, without = ehl_rolling.ehl_rolling_bearing(*args, floor), ehl_rolling.ehl_rolling_bearing(*args)
+    assert np.all(QD.outer.a_mm[0] > 0)
+    for x, y in zip(with_floor[0] + with_floor[1], without[0] + without[1]):
+        assert np.array_equal(x, y)
+
+
+def ball_kinematics_for(pair):
+    """Bearing A's kinematics of a pair state (both contact angles)."""
+    from analytic.friction.pair import contact_angles_rad
+    from analytic.torque import ball_kinematics
+    return ball_kinematics(G.dm_mm, G.Dw_mm, *contact_angles_rad(pair, 0))

@@ -1,4 +1,4 @@
-"""`[lubrication] viscous_model` and `shear_strength` through the pipeline (issue 33): the default
+"""`[lubrication] viscous_model` and `shear_strength` through the pipeline: the default
 keeps every existing column bit for bit, every model's torque and heat split adds up, and the
 split columns come after the model columns with the names of docs/cli.md."""
 from dataclasses import replace
@@ -198,3 +198,71 @@ def test_every_ball_summed_is_z_times_the_representative_ball(model):
     a, b = bearing_friction(g, every, **args), bearing_friction(g, one, **args)
     np.testing.assert_allclose(a.total_Nmm, b.total_Nmm, rtol=1e-12)
     assert np.all(a.total_Nmm > 0)
+
+
+# ------------------------------------------------ the drag term and the lubrication method
+def test_drag_column_carries_the_bath_and_is_zero_without_one(seed001):
+    """skf2004 on seed001 with lubrication_method = "oil_bath" and an oil level: torque_drag_Nmm
+    and heat_ball_W positive, the drag the SKF form of each bearing's own speed and viscosity
+    (both bearings: twice `drag_torque_Nmm`, to 1e-12 relative), the rolling + sliding parts
+    unchanged by the bath; without a level (oil jet) both columns are 0."""
+    from analytic.friction.skf2004 import drag_torque_Nmm
+    level = 5.0
+    bath = _columns(seed001, viscous_model="skf2004", lubrication_method="oil_bath",
+                    oil_level_mm=level)
+    jet = _columns(seed001, viscous_model="skf2004", lubrication_method="oil_jet")
+    b = seed001.bearing
+    expect = 2.0 * drag_torque_Nmm(level, b.bore_mm, b.outside_diameter_mm, COND["speed_rpm"],
+                                   bath["viscosity_mm2_s"])
+    np.testing.assert_allclose(bath["torque_drag_Nmm"], expect, rtol=1e-12)
+    assert np.all(bath["torque_drag_Nmm"] > 0) and np.all(bath["heat_ball_W"] > 0)
+    assert np.all(jet["torque_drag_Nmm"] == 0) and np.all(jet["heat_ball_W"] == 0)
+    np.testing.assert_allclose(bath["torque_rolling_Nmm"] + bath["torque_sliding_Nmm"],
+                               jet["torque_rolling_Nmm"] + jet["torque_sliding_Nmm"], rtol=1e-12)
+
+
+@pytest.mark.parametrize("lub, key, words", [
+    ({"oil_level_mm": 5.0, "viscous_model": "skf2004"}, "oil_level_mm", "oil_bath"),
+    ({"oil_level_mm": 5.0, "lubrication_method": "oil_bath"}, "oil_level_mm", "skf2004"),
+    ({"lubrication_method": "splash"}, "lubrication_method", "not one of"),
+])
+def test_lubrication_method_keys_without_effect_are_refused(lub, key, words):
+    """An oil level without a bath or with a law that has no drag term, an unknown method: one
+    line naming file and key."""
+    import tomllib
+
+    from studies.model.config import CONFIG_DIR, SHIPPED, ConfigError, assembly_from_dict
+    with open(CONFIG_DIR / SHIPPED["seed001"], "rb") as fh:
+        raw = tomllib.load(fh)
+    raw["lubrication"].update(lub)
+    with pytest.raises(ConfigError, match=rf"^x\.toml: lubrication\.{key}: .*{words}") as e:
+        assembly_from_dict(raw, "x.toml")
+    assert "\n" not in str(e.value)
+
+
+def test_tau0_typed_in_pa_and_a_film_with_an_oil_method_are_refused():
+    """tau0 = 1.7e7 (Pa typed for MPa: 1.7e7 N mm of torque before) and a lubrication method on a
+    solid film: one line each."""
+    import tomllib
+
+    from studies.model.config import CONFIG_DIR, SHIPPED, ConfigError, assembly_from_dict
+    with open(CONFIG_DIR / SHIPPED["seed000"], "rb") as fh:
+        raw = tomllib.load(fh)
+    for lub, key, words in (({"shear_strength": "pressure", "tau0_MPa": 1.7e7}, "tau0_MPa", "in Pa"),
+                            ({"lubrication_method": "oil_jet"}, "lubrication_method", "solid_film")):
+        r = {**raw, "lubrication": {**raw["lubrication"], **lub}}
+        with pytest.raises(ConfigError, match=rf"^x\.toml: lubrication\.{key}: .*{words}"):
+            assembly_from_dict(r, "x.toml")
+
+
+def test_lubricant_family_sets_skfs_full_film_coefficient():
+    """A [lubricants.NAME] family: "synthetic" gives mu_EHL 0.04, "mineral" (the default) 0.05;
+    the library's PFPE and MAC oils are synthetic; another word is one line."""
+    from analytic.lubrication import get_lubricant, lubricant_from_table
+    base = {"kinematic_viscosity_cSt": [[40.0, 100.0], [100.0, 10.0]], "density_kg_m3": 860.0,
+            "pressure_viscosity_per_GPa": 20.0}
+    assert lubricant_from_table("A", base).oil_family == "mineral"
+    assert lubricant_from_table("A", {**base, "family": "synthetic"}).oil_family == "synthetic"
+    assert get_lubricant("Nye 2001a").oil_family == "synthetic"
+    with pytest.raises(ValueError, match="lubricants.A.family"):
+        lubricant_from_table("A", {**base, "family": "vegetable"})

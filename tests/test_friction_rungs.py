@@ -1,4 +1,4 @@
-"""The friction rungs of the model-form ladder (studies/diagnosis/friction_rungs.py, issue 33):
+"""The friction rungs of the model-form ladder (studies/diagnosis/friction_rungs.py):
 which files get which rung, and the skip rule: a rung that acts through the speed is not tried on
 data at one speed, one that acts through the temperature not on data at one temperature. The
 references: the rungs' own definitions (docs/cli.md names) and the switch's blend, checked

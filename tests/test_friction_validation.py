@@ -106,7 +106,7 @@ def test_interval_factors_are_the_normal_predictive_interval():
     assert np.isnan(iv.interval_factors([0.2])).all()
     assert iv.regime_of("solid_film") == "solid_film"
     assert iv.regime_of("oil", "oil_jet") == "oil_bath_jet"
-    assert iv.regime_of("oil", viscous_model="minimal_oil") == "minimal_oil"
+    assert iv.regime_of("oil") == "minimal_oil"
 
 
 # ------------------------------------------------------------------ the matrix, row by row

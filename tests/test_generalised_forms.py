@@ -1,4 +1,4 @@
-"""Generalised forms of the listed effects (issue 11): each reduces EXACTLY to its listed form at
+"""Generalised forms of the listed effects: each reduces EXACTLY to its listed form at
 its reducing value, is the baseline at `off`, keeps physical bounds, and adds the physics its
 docstring states. Expected numbers come from closed forms stated beside them (first-order lag
 response to a ramp and to a ramped step, the integral of a quadratic CTE law by quadrature, the

@@ -1,4 +1,4 @@
-"""The ladder's `groove_conformity` rung (`studies.diagnosis.ladder.GrooveConformity`, issue 23):
+"""The ladder's `groove_conformity` rung (`studies.diagnosis.ladder.GrooveConformity`):
 the inner raceway's groove radius ratio f_i, which makers rarely publish, as a model-form
 candidate.
 

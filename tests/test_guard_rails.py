@@ -539,7 +539,7 @@ def test_temporaries_of_a_run_killed_outright_are_removed_by_the_next(tmp_path, 
 
 def test_a_study_killed_outright_and_not_yet_reaped_leaves_nothing_after_the_next_run(tmp_path,
                                                                                       capsys):
-    """Issue 35: a study killed with SIGKILL whose parent has not reaped it yet (a launcher or a
+    """A study killed with SIGKILL whose parent has not reaped it yet (a launcher or a
     notebook still running: the process stays a zombie, and `kill(pid, 0)` still finds it) left
     its hidden output folder `.sout.<pid>.<host><random>` behind the next run of the same study.
     A zombie never writes again: the next run removes the folder, and leaves nothing hidden."""

@@ -1,4 +1,4 @@
-"""Held-out validation of a one-off history effect (issue 11, "a one-off history effect missed").
+"""Held-out validation of a one-off history effect ("a one-off history effect missed").
 
 Data are made with the project's own `simulate` route (`studies.model.pipeline.simulate_table`) on
 seed 000's shipped configuration: three alternating -60 <-> 80 C cycles (`designs.cycles`, 2 K/min

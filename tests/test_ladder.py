@@ -1,4 +1,4 @@
-"""The model-form ladder (`studies.diagnosis.ladder`, issue 23 item 2): the model's own richer
+"""The model-form ladder (`studies.diagnosis.ladder`): the model's own richer
 forms as candidates, evaluated through the one pipeline route.
 
 Data made ANOTHER way than the diagnosed model: the second source (`studies.validation.second_source`,
@@ -44,7 +44,7 @@ def _entry(doc, name):
 # ============================================================================ the rungs
 def test_rungs_are_the_forms_the_file_does_not_use():
     """Seed 000 (static balls, rectangle rings, position preload, no sleeve): every rung name is
-    the contract's (the sleeve rung a candidate since issue 34, an FE set-up rung); a form the file uses is not on its ladder (a quasi-dynamic, grooved file
+    the contract's (the sleeve rung a candidate, an FE set-up rung); a form the file uses is not on its ladder (a quasi-dynamic, grooved file
     gets raceway_control and neither ball_model_quasi_dynamic nor ring_section_grooved)."""
     asm = load_shipped("seed000")
     names = {r.name for r in ladder.ladder(asm)}

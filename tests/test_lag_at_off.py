@@ -1,4 +1,4 @@
-"""Requirement (issue 36 item 3): a generalised form of a listed family is tried when the
+"""Requirement: a generalised form of a listed family is tried when the
 family's listed form fits at its off value while the baseline leaves structure. The shaft
 side lagging 900 s behind the hub (the hub following the chamber) is a per-part lag with
 tau_s = 0: the listed single lag cannot choose between the two sides and fitted tau = 0, so

@@ -1,4 +1,4 @@
-"""A config's own oil (`[lubricants.NAME]` tables, issue 24 item 5): the Walther (ASTM D341) fit
+"""A config's own oil (`[lubricants.NAME]` tables): the Walther (ASTM D341) fit
 through the user's points against the published points (analytic/data/space_oil_viscosity.csv,
 the project copy of the reference data), its stated range and the warning outside it; library
 oils with one viscosity point and bad tables refused at config time with one line, exit 2."""
@@ -100,7 +100,7 @@ def test_user_oil_reaches_the_torque(tmp_path):
 @pytest.mark.parametrize("oil", ["815Z", "Brayco 814"])
 def test_library_oil_with_one_point_refused_at_config_time(tmp_path, capsys, oil):
     """Brayco 815Z and 814 have one viscosity point in the library (SNC2018, -54 C): refused at
-    config time, one line, exit 2, no output (it was a 31-line traceback, exit 1, issue 24)."""
+    config time, one line, exit 2, no output (it was a 31-line traceback, exit 1)."""
     cfg = _with_oil(tmp_path, oil)
     with pytest.raises(ConfigError, match="lubrication.lubricant: .*fewer than two viscosity points"):
         load_assembly(cfg)
@@ -167,7 +167,7 @@ def test_lubricant_name_alias_is_the_lubrication_key(tmp_path):
 
 
 def test_a_viscosity_far_outside_its_fit_says_what_the_rows_then_mean(tmp_path):
-    """Issue 35: an oil temperature 80 K below a 40..100 C fit (-40 C) gets, in the same one
+    """An oil temperature 80 K below a 40..100 C fit (-40 C) gets, in the same one
     line, how far beyond (40 - (-40) = 80 K, the fit's own range) and that the rows' viscosity,
     viscous torque and film are the law's guess; 10 K below (30 C) only the range warning."""
     cfg = _with_oil(tmp_path, "X2000own", _table("X2000own", [[40.0, 107.0], [100.0, 14.3]]))

@@ -1,4 +1,4 @@
-"""The two effects issue 11 adds, against closed forms, through the real model:
+"""Two effects beyond the spec's seven, against closed forms, through the real model:
 
 - `solid_film_runin`: revolutions against the integral of the speed (constant speed: n t / 60;
   a linear ramp: (n0 t + a t^2 / 2) / 60), the friction change against the exponential closed form

@@ -1,4 +1,4 @@
-"""Requirement (issue 36 item 3, the noise half): a noise estimate that absorbs a smooth effect is
+"""Requirement (the noise half): a noise estimate that absorbs a smooth effect is
 tested against it. The shaft side lagging 900 s behind the hub leaves a baseline residual that is
 no function of the conditions' levels (about tau dT/dt on the ramps, an exponential tail in the
 dwells); regressed on the conditions' smoother alone, the restricted-likelihood AR(1) test took

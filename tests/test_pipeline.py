@@ -245,7 +245,7 @@ def test_fe_options_split_the_preload_change_into_its_causes_to_first_order(pl00
 
 
 def test_lame_neighbours_are_computed_on_first_read_by_their_one_route(pl000):
-    """Requirement (issue 34, speed): a run computes the Lamé neighbours only when they are
+    """Requirement (speed): a run computes the Lamé neighbours only when they are
     read, and then the same values as `stages.lame.lame_neighbours` on the run's FE state;
     `to_columns(only=...)` gives the full table's columns bit for bit without computing them
     unless one of theirs is asked for."""

@@ -1,5 +1,5 @@
 """The pair stage solves each distinct row once (`studies.model.stages.bearing.distinct_rows`):
-requirement (issue 34, speed): the pair state of a table with repeated rows equals, bit for bit,
+requirement (speed): the pair state of a table with repeated rows equals, bit for bit,
 the state of the same table solved row by row (every row through `analytic.bearing.solve_pair`),
 for the axial-only, the combined-load (radial load and moment, tilting rotor) and the
 quasi-dynamic solvers, position and spring preload. The reference is the unchanged solver on

@@ -58,29 +58,24 @@ def test_seed001_viscous_term_follows_palmgren_and_no_oil_side_change_reaches_th
             assert not f.reaches
 
 
-def test_seed001_no_ladder_rung_fitted_on_the_cold_ratio_predicts_the_hot_one(s001):
-    """Issue 33 Done-when (the negative branch) over the whole ladder, friction rungs included:
-    no candidate fitted into the cold band predicts the held-out hot ratio within the tolerance
-    of 0.75 (5.9 %). The one that reaches the band is the SKF rung: its share of the way from
-    Palmgren to the SKF model (cold ratio 0.13 alone: the SKF starvation factor phi_rs cuts the
-    rolling term where the oil is thick) is a Moebius function of the share, so the fit is the
-    only one; at it the hot ratio is 0.81 (+8 %), outside the tolerance. Independent check of
-    that value: the blend of the two assemblies' torques through `simulate_table` at the fitted
-    share, to 1e-9."""
+def test_seed001_skf_rung_is_the_blend_of_the_two_laws(s001):
+    """The SKF rung of the ladder (share of the way from Palmgren to the SKF model) on seed 001's
+    published ratios: its fitted cold ratio and its held-out hot ratio are those of the blend
+    P + share (S - P) of the two assemblies' torques through `simulate_table` (an independent
+    computation of the same rung, to 1e-9), the share inside 0..1 where the fit reaches the
+    band. What the hot prediction is worth against the published 0.75 is measured, not locked
+    in here (`bearingfem study published_as_data`): a better law must be free to pass."""
     from dataclasses import replace
 
-    assert not any(f.fit_in_band and f.predicted_ok for f in s001.fits)
-    in_band = [f for f in s001.fits if f.fit_in_band]
-    assert [f.candidate for f in in_band] == ["ladder: torque_model_skf"]
-    f = in_band[0]
-    assert 0.0 < f.value < 1.0 and f.reaches
-    assert abs(f.predicted - pad.SEED001_HOT) > pad.SEED001_REL_TOL * pad.SEED001_HOT
+    f = next(f for f in s001.fits if f.candidate == "ladder: torque_model_skf")
     asm = load_shipped("seed001")
     skf = replace(asm, lubrication=replace(asm.lubrication, viscous_model="skf2004"))
     P = pad.seed001_torques(asm, mesh_factor=MESH).torque_Nmm
     S = pad.seed001_torques(skf, mesh_factor=MESH).torque_Nmm
     M = P + f.value * (S - P)
     np.testing.assert_allclose([f.fitted, f.predicted], [M[0] / M[1], M[2] / M[1]], rtol=1e-9)
+    if f.reaches:
+        assert 0.0 < f.value < 1.0
 
 
 def test_seed001_self_heating_fitted_on_the_cold_ratio_predicts_the_hot_one():
@@ -170,29 +165,24 @@ def friction_models():
     return pad.seed001_friction_models(MESH)
 
 
-def test_seed001_friction_models_fitted_on_the_cold_ratio_miss_the_hot_one(friction_models):
-    """Issue 33 Done-when, the negative branch: the starved film (its oil quantity fitted on the
-    cold ratio, through the pipeline's `viscous_model = "starved"`) predicts the held-out hot
-    ratio outside the tolerance of the published 0.75 (5.9 %: the relative half-width of the
-    published cold band) at every fit; not only at the fits: of every grid value inside the
-    bounds whose cold ratio lies inside the published band, none comes within the tolerance.
-    Reason: the configured position preload is lost at 60 C (0 N), where an unloaded contact
-    has nothing to starve and the viscous term is Palmgren's flooded one, while at -20 C the
-    preload is 13x the 20 C one; the quantity that flattens the cold rise to +41 % therefore
-    leaves the hot point either far above (flooded 60 C against a starved 20 C) or at
-    Palmgren's ratio. The SKF model (catalogue constants, no parameter) predicts a cold ratio
-    outside the band: no fit, so nothing held out to test."""
-    scans, forms = friction_models
-    tol = pad.SEED001_REL_TOL * pad.SEED001_HOT
+def test_seed001_starved_fits_reproduce_the_cold_ratio_and_predict_through_the_pipeline(
+        friction_models):
+    """The starved film's oil quantity fitted on seed 001's cold ratio (through the pipeline's
+    `viscous_model = "starved"`): every fit lands on the published band's centre (to 1e-6), and
+    its held-out hot ratio is the pipeline's own torque ratio at that oil quantity, recomputed
+    (a second evaluation, to 1e-9). The published hot ratio is the measurement the law is
+    judged against in the study's report, not an expected failure here."""
+    scans, _ = friction_models
     target = np.sqrt(np.prod(pad.SEED001_COLD_BAND))
+    asm = load_shipped("seed001")
     for s in scans:
         assert s.fits, s.candidate
         for f in s.fits:
             assert f.fit_in_band and abs(f.fitted - target) < 1e-6 * target
-            assert not f.predicted_ok, (s.candidate, f.value, f.predicted)
-        assert s.closest_hot_in_band > tol, s.candidate
-    skf = next(f for f in forms if f.viscous_model == "skf2004")
-    assert not pad.SEED001_COLD_BAND[0] <= skf.cold <= pad.SEED001_COLD_BAND[1]
+            M = pad.seed001_torque_Nmm(pad.seed001_with(asm, viscous_model="starved",
+                                                        oil_quantity_mg=f.value), mesh_factor=MESH)
+            np.testing.assert_allclose([f.fitted, f.predicted], [M[0] / M[1], M[2] / M[1]],
+                                       rtol=1e-9)
 
 
 def test_seed001_starved_film_limits(friction_models):
@@ -238,23 +228,24 @@ def test_seed001_hot_interval_is_the_delta_method_on_a_linear_model():
     np.testing.assert_allclose([lo, hi], [c + d * p - half, c + d * p + half], rtol=1e-9)
 
 
-def test_seed001_friction_model_intervals_exclude_the_published_hot_ratio(friction_models):
-    """With the fit's parameter uncertainty and the published scatter (90 %), no friction-model
-    fit's interval of the held-out hot ratio reaches the published 0.75."""
+def test_seed001_friction_model_intervals_hold_their_prediction(friction_models):
+    """Each friction-model fit's 90 % interval of the held-out hot ratio (fit uncertainty and the
+    published scatter) holds its own prediction and is at least the published scatter alone
+    wide (+-1.645 x the relative sd of the published ratio: the parameter's part only adds)."""
+    s_h = pad.SEED001_REL_SD * pad.SEED001_HOT
     for s in friction_models[0]:
         assert len(s.intervals) == len(s.fits)
         for f, (lo, hi) in zip(s.fits, s.intervals):
             assert lo < f.predicted < hi
-            assert not lo <= pad.SEED001_HOT <= hi, (s.candidate, f.value, lo, hi)
+            assert hi - lo >= 2 * 1.6448536269514722 * s_h * (1 - 1e-9)
 
 
-def test_seed000_no_solid_film_law_turns_the_published_rise():
-    """Seed 000's published trend (torque rising at every 10 K step over 0..80 C at 100 N) against
-    the solid-film laws: the constant coefficient, Singer et al.'s pressure-dependent shear
-    strength and its two limits. Closed-form reason: the film's friction force over a Hertz
-    contact, tau0 pi a b + alpha Q, increases with the ball load Q for tau0, alpha >= 0, so every
-    law's torque changes with the sign of the preload's change at every step (here the preload
-    falls to 40 C and rises after it); none rises monotonically. Independent check of the
+def test_seed000_solid_film_laws_follow_the_preload():
+    """Seed 000's trend steps (0..80 C at 100 N) through the solid-film laws: the constant
+    coefficient, Singer et al.'s pressure-dependent shear strength and its two limits. Closed
+    form every such law must meet: the film's friction force over a Hertz contact,
+    tau0 pi a b + alpha Q, increases with the ball load Q for tau0, alpha >= 0, so each law's
+    torque changes with the sign of the preload's change at every step. Independent check of the
     pressure route: with tau0 = 0 the law is Coulomb's mu = alpha, so alpha = 0.02 gives the
     configured constant coefficient 0.02 exactly (1e-9)."""
     laws = pad.seed000_trend(MESH)
@@ -262,5 +253,3 @@ def test_seed000_no_solid_film_law_turns_the_published_rise():
     np.testing.assert_allclose(laws[3].torque_Nmm, laws[0].torque_Nmm, rtol=1e-9)
     for t in laws:
         assert t.follows_preload, t.law
-        assert not t.rises_monotonically, t.law
-    assert np.argmin(laws[0].preload_N) not in (0, len(pad.SEED000_TREND_T_C) - 1)

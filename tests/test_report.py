@@ -42,7 +42,7 @@ def test_report_of_a_users_assembly(tmp_path):
     np.testing.assert_allclose([float(r["preload_N"]) for r in rows], ref["preload_N"], rtol=1e-9)
     assert "flag_max_contact_pressure_MPa" in rows[0]
     _check_numbers(asm, md, {k: np.array([float(r[k]) for r in rows]) for k in rows[0]})
-    # issue 36 item 4: the safety table names each governing point by its condition
+    # the safety table names each governing point by its condition
     for r in _md_table(md, "check"):
         k = int(r["governing point"].split(":")[0].removeprefix("row "))
         assert r["governing point"] == f"row {k}: T_ambient_C = {cond['T_ambient_C'][k - 1]:g}"
@@ -132,7 +132,7 @@ def test_report_bad_conditions_is_one_line(tmp_path, capsys):
     assert len(err) == 1 and "is not a number" in err[0] and not (tmp_path / "r").exists()
 
 
-# ------------------------------------------- the case that drives the design (issue 36 item 4)
+# ------------------------------------------- the case that drives the design
 def test_design_rows_are_the_governing_points_of_a_gradient_table():
     """With a part's own temperature column the report draws its fields and speed effects at the
     rows of the lowest and highest preload and of the highest contact pressure; a uniform sweep

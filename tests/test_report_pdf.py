@@ -201,7 +201,7 @@ def test_the_date_is_now_without_source_date_epoch(monkeypatch):
 
 
 def test_margins_name_the_governing_condition_and_the_thermal_speed():
-    """Issue 36 item 4 / issue 33 item 4: a governing point is named by its condition (the row's
+    """A governing point is named by its condition (the row's
     temperature and speed, not the row number alone), and each bearing has a thermal speed row
     whose margin is DIN 732's permissible speed minus the speed at the governing row: there the
     bearing's own oil torque (mu F_a dm/2 + 1e-7 f0 (nu n)^(2/3) dm^3, written out here) times
@@ -246,7 +246,7 @@ def test_margins_name_the_governing_condition_and_the_thermal_speed():
 
 
 def test_margins_hold_the_land_and_the_preload_upper_limit():
-    """Issue 36 item 4: the Margins table has the contact ellipse's land margin (inner and outer,
+    """The Margins table has the contact ellipse's land margin (inner and outer,
     FAIL where it is negative: the ellipse truncated) and the preload's upper limit, the static
     load rating C0 of ISO 76 (`analytic.safety`, tested against ISO 76 in tests/test_safety.py),
     with margin C0 / max preload - 1 at the hottest row here."""
@@ -283,7 +283,7 @@ def test_margins_hold_the_land_and_the_preload_upper_limit():
 
 
 def test_stress_colour_range_is_not_set_by_a_singular_corner():
-    """Issue 36 item 4: a von Mises field of 0..100 MPa with a re-entrant corner's singular value
+    """A von Mises field of 0..100 MPa with a re-entrant corner's singular value
     (944 MPa in a few elements, 0.3 % of them) is drawn from its minimum to its 99th percentile
     (about 99 MPa: the section keeps its colours), the range marked clipped with the true
     maximum; a field without an outlier keeps (nearly) its full range."""
@@ -305,7 +305,7 @@ def test_stress_colour_range_is_not_set_by_a_singular_corner():
 
 
 def test_wide_tables_split_so_no_header_breaks_inside_a_word():
-    """Issue 36 item 4: the results table of a rig with three fits (15 columns) is wider than
+    """The results table of a rig with three fits (15 columns) is wider than
     the page; the PDF draws it as column groups, each within the text width at the width its
     longest unbreakable piece needs (a header wraps only after an underscore or a space), the
     row label repeated, every column once."""

@@ -1,4 +1,4 @@
-"""Rotating parts (issue 12, part C): the rotating-disc closed form, the FE centrifugal load
+"""Rotating parts: the rotating-disc closed form, the FE centrifugal load
 against it, superposition at speed against direct FE solves, and the fit-loosening speed."""
 import dataclasses
 import math
@@ -79,7 +79,7 @@ def cases():
 
 @pytest.mark.requirement("R-FE-ROTATION")
 def test_rotating_fit_cases_agree_with_the_closed_form_within_half_a_percent(cases):
-    """Issue 12 'Done when': every rotating case within 0.5 % of its closed form; the fit
+    """Every rotating case within 0.5 % of its closed form; the fit
     pressure of each rotating_fit case is also recomputed here from the echoed inputs alone
     (T&G §28, §32 written out again: p = (delta/2 - s(c) omega^2) / compliance)."""
     kinds = {c.kind for c in cases}

@@ -1,4 +1,4 @@
-"""The second source of measured data (studies/validation/second_source.py, issue 23 item 1): data made
+"""The second source of measured data (studies/validation/second_source.py): data made
 another way than the model the diagnosis fits, one case per kind in the default suite.
 
 Each test first checks that the data really differ from the diagnosed model by the stated
@@ -55,7 +55,7 @@ def ar1_case():
 def test_ar1_null_case_carries_its_noise_and_no_cause_is_claimed(ar1_case):
     """The case's noise (measured - noise-free, 240 rows) has r1 within 4 standard errors and the
     small-sample bias of 0.9 in every column; nothing is hidden, so the diagnosis must claim no
-    cause (no `explained`, `explained_partly` or `ambiguous`; issue 23 saw 1 claim in 8 draws,
+    cause (no `explained`, `explained_partly` or `ambiguous`; one claim in 8 draws was seen once,
     the rate is the study's)."""
     c = ar1_case
     n = len(c.measured["torque_Nmm"])

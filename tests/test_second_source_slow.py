@@ -1,13 +1,13 @@
 """Every second-source case (studies/validation/second_source.py) through today's diagnosis, slow
 (`make test-slow`; 18 diagnoses on the coarse mesh family member, about 10-30 s each on 2 idle
-cores): no wrong cause claimed (`second_source.judge` != "wrong", issue 23 "Done when": 0 wrong
+cores): no wrong cause claimed (`second_source.judge` != "wrong": 0 wrong
 causes on the second-source data), two causes both named.
 
 Every case passes since 2026-11-25 (measured on seed 0 of each case, mesh factor 2); before:
 - `steel_sleeve` was `explained: interference_error` (a 2 mm steel sleeve changes the outer fit
   with temperature, no constant offset does); with the model-form ladder it is `unexplained`:
   the `material_lot` rung fits better than the offset but, at its bound, leaves structure, so
-  nothing is claimed; since issue 34 the `sleeve` rung is tried (GCr15 / 17-4PH / Invar36 / TC4,
+  nothing is claimed; the `sleeve` rung is tried (GCr15 / 17-4PH / Invar36 / TC4,
   1.5 or 3 mm) but a TC4 housing with a CTE 6 % high fits the 2 mm 9Cr18 sleeve as well, so it is
   still not claimed (`selection.sleeve_lookalike`); the 3 mm 17-4PH sleeve in aluminium is named;
 - `grooved_sections` was `explained: cte_nonlinearity`; with the model-form ladder
@@ -66,7 +66,7 @@ def test_quasi_dynamic_balls_are_explained_by_their_rung():
 def test_fit_outside_its_band_is_not_claimed_and_named_at_the_bound():
     """The inner fit 2.5 um tighter than its ISO band allows (13.9 sigma), made on the finer
     mesh with direct FE solves: the fit error, bounded to the band, can only reach its edge.
-    Issue 34: a parameter at its bound is evidence against the candidate, so nothing is claimed
+    A parameter at its bound is evidence against the candidate, so nothing is claimed
     and `at_bound` names interference_error's inner error at the band's upper edge."""
     c = ss.make_case("fit_outside_band", seed=0, mesh_factor=MESH_FACTOR)
     res = ss.diagnose_case(c)
@@ -79,11 +79,11 @@ def test_fit_outside_its_band_is_not_claimed_and_named_at_the_bound():
 
 
 def test_sleeve_in_aluminium_is_named_by_the_sleeve_rung_and_never_claimed_without_it():
-    """Issue 34's hidden case made on the finer mesh with direct FE solves: a 3 mm 17-4PH sleeve
+    """A hidden sleeve made on the finer mesh with direct FE solves: a 3 mm 17-4PH sleeve
     between the outer rings and a 6061 housing the file has without a sleeve (557 sigma). With
     the ladder's sleeve rung: explained by `sleeve`, its variant the 3 mm 17-4PH (the data were
     made with it), its share within 0.05 of 1 (the form itself). Without the rung (the ladder
-    before issue 34): no cause claimed (a fit error would need more than its +-20 um, a material
+    without it): no cause claimed (a fit error would need more than its +-20 um, a material
     lot more than its +-5 %), and the reason lists what stopped the best candidate (a bound or
     a column made worse)."""
     from studies.diagnosis.engine import diagnose_full

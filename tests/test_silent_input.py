@@ -1,4 +1,4 @@
-"""Issue 36 item 5 and issue 35: legal but implausible input says so in one warning line, a
+"""Legal but implausible input says so in one warning line, a
 mistyped name gets the nearest valid one (studies/model/checks.py `plausibility_warnings`,
 infra/names.py)."""
 from pathlib import Path
@@ -73,7 +73,7 @@ def test_a_mistyped_section_and_column_name_the_nearest_valid_one(tmp_path):
 
 
 def test_a_transient_stack_with_no_films_and_no_radiation_is_warned():
-    """Issue 35: `[thermal] mode = "transient"` without `[thermal.films]` or emissivity: one line
+    """`[thermal] mode = "transient"` without `[thermal.films]` or emissivity: one line
     saying the stack is adiabatic outside (the ambient only starts it); with a film, none."""
     raw = _raw(SLEEVE)
     raw["cover"].update(clamp="compliant")

@@ -1,5 +1,5 @@
 """The stack's own axial faces (ring-shoulder, ring-spacer) as unilateral contacts under a clamp
-with a force (issue 24): they open when the clamp force is exceeded.
+with a force: they open when the clamp force is exceeded.
 
 A free column of tubes of one cross-section (base on a roller at z = 0, ring, spacer, a cover held
 by a roller on its top), each face between them a contact that slides radially, the face under the

@@ -1,4 +1,4 @@
-"""The `stiffness` CSV's full 5 x 5 (issue 35) and the rows that lost the preload (issue 36):
+"""The `stiffness` CSV's full 5 x 5 and the rows that lost the preload:
 
 - every one of the 25 columns against a central finite difference of the pair's equilibrium
   forces, computed here: the balls' forces at displaced groove centres (the model's ball force

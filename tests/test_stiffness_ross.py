@@ -1,4 +1,4 @@
-"""ROSS round trip (issue 27): the table `bearingfem stiffness --ross` writes, loaded into real
+"""ROSS round trip: the table `bearingfem stiffness --ross` writes, loaded into real
 `ross.BearingElement`s (its constructor from the CSV columns and its own Excel reader
 `BearingElement.from_table`), and a small rotor's modes at the table's speeds (a Campbell
 diagram at those speeds) against closed-form bounds.  `make setup` installs ROSS (the extra

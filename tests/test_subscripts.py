@@ -1,4 +1,4 @@
-"""Typed data in the product code (issue 35): string-keyed subscripts (`x["name"]`, `x[f"..."]`)
+"""Typed data in the product code: string-keyed subscripts (`x["name"]`, `x[f"..."]`)
 in the product packages stay at most MAX_STRING_SUBSCRIPTS. Counted with an AST walk; tests, the
 studies (`studies/validation`, `studies/bench`) and the file/CLI edge writers and readers, whose
 job is named columns and keys, are not counted."""

@@ -30,7 +30,7 @@ def test_iso286_limits_match_the_published_tables(cls, d, expect):
     assert iso286_limits_um(cls, d) == pytest.approx(expect, abs=1e-12)
 
 
-# Sources of the expected (lower, upper) limit deviations below (um), issue 25:
+# Sources of the expected (lower, upper) limit deviations below (um):
 #  [286-2]  ISO 286-2:2010, the limit-deviation tables of the class (holes J/K, M/N, P; shafts j/k)
 #  [T]      an independent printed transcription of the ISO 286-2 tables, sizes over 3 up to
 #           400 mm: parkergreene/isofits, iso_holes.csv and iso_shafts.csv (GitHub)
@@ -258,14 +258,14 @@ def test_samples_reordered_into_blocks_come_back_in_their_own_rows(fits_only):
     np.testing.assert_allclose(r.interference_inner_um[:, 0], hand, rtol=0, atol=1e-12)
 
 
-# ------------------------------------------------- designed state, worst case per condition (#24)
+# ------------------------------------------------- designed state, worst case per condition
 OUTER_BAND_UM = (-7.62, 0.0)      # ring OD limits; no housing tolerance: the band of the outer fit
 
 
 @pytest.fixture(scope="module")
 def clearance_run(tmp_path_factory):
     """seed 000 (TC4 housing, 9Cr18 rings) with the outer fit designed with clearance: nominal 0,
-    ring OD -7.62..0 um (the band of issue 24), inner fit +5 um untoleranced; `tolerance` at
+    ring OD -7.62..0 um (the rig's band), inner fit +5 um untoleranced; `tolerance` at
     -60, 20 and 80 C, 2000 samples."""
     from studies.usecases import tolerance_report as tr
 
@@ -293,7 +293,7 @@ def _outer_thermal_um(T_C, T_ref_C=20.0):
 
 
 def test_a_fit_designed_with_clearance_fails_only_when_it_closes(clearance_run):
-    """Issue 24: the outer fit, designed with clearance (mean -3.81 um), was counted as failed
+    """The outer fit, designed with clearance (mean -3.81 um), was counted as failed
     wherever it was open (0.9 of the samples). Now it fails only by closing: never at -60 C (the
     9Cr18 rings shrink more than the TC4 housing: the clearance grows) nor at 20 C (at most line
     to line), and at 80 C with the probability of the hand arithmetic: the free interference is
@@ -325,7 +325,7 @@ def test_worst_case_per_condition_is_the_hand_arithmetic(clearance_run):
 
 def test_sobol_indices_hidden_where_the_interval_spans_the_value(clearance_run):
     """A Sobol' index is shown with its 95 % half-width only when the interval excludes zero
-    (half-width < |value|); `0.869 +- 2.067` (issue 24) is shown as `- (+- 2.07)`. In the report,
+    (half-width < |value|); `0.869 +- 2.067` is shown as `- (+- 2.07)`. In the report,
     each cell of the table follows the rule (at -60 C the preload does not vary: all 0)."""
     from studies.model import sobol
 

@@ -163,7 +163,7 @@ def test_bearing_heat_with_a_partition_per_raceway_is_deposited_without_loss():
 
 
 def test_a_stack_with_no_films_keeps_its_field_and_stores_every_watt(setup):
-    """No film and no radiation (adiabatic outside, issue 35's space pair without
+    """No film and no radiation (adiabatic outside, the space pair without
     [thermal.films]): the ambient drive is zero and the steady state does not exist. The reduced
     model must still follow the full FE's field (raceway and ball heat; before, its basis was
     the uniform field alone: every part at one temperature, 3.5 K off here) to 1e-3 of the full

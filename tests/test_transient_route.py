@@ -190,7 +190,7 @@ def test_simulate_file_in_transient_mode_writes_the_transient_columns(pl, tmp_pa
     for c in ("preload_N", "T_ball_C", "heat_bearing_W"):
         assert np.allclose(got[c], ref[c], rtol=1e-9, atol=0), c     # written with 10 digits
     assert np.all(got["heat_bearing_W"][1:] > 2.0)
-    # issue 35: the conditions' heat_W is written as given (the route's torque power, also
+    # the conditions' heat_W is written as given (the route's torque power, also
     # named heat_W, overwrote it: 46.99 W where the file said 2)
     assert np.array_equal(got["heat_W"], [0.0, 2.0, 2.0])
 
@@ -207,7 +207,7 @@ def test_bench_transient_flag_runs_the_transient_bench(monkeypatch):
 
 def test_the_transient_bench_runs_its_route_and_the_reduction_agrees_with_the_full_fe():
     """`bench --transient` on a few steps: its reduced heat-up against its full-FE one (the
-    issue 26 bound, 1e-3 of the preload) and the a-posteriori estimate above the error (it broke
+    bound: 1e-3 of the preload) and the a-posteriori estimate above the error (it broke
     unnoticed when the pipeline became stages: the flag test above replaces the bench)."""
     import studies.bench.bench_transient as bt
 
@@ -289,7 +289,7 @@ def test_part_temperatures_for_the_second_source_are_simulates_columns(pl):
 
 
 def test_a_stack_with_no_films_heats_as_a_field_and_stores_every_watt(pl):
-    """Issue 35: `[thermal] mode = "transient"` without `[thermal.films]` (adiabatic outside).
+    """`[thermal] mode = "transient"` without `[thermal.films]` (adiabatic outside).
     Before, every part had one temperature in every row (the reduced basis was the uniform field
     alone: T_max_C == T_min_C to all digits) although the heat enters at the raceways. Now: the
     raceways' parts run warmer than the housing, and every watt is stored (no film: heat in =

@@ -1,4 +1,4 @@
-"""Requirement (issue 34, two causes at once): forward selection names both causes when both
+"""Requirement (two causes at once): forward selection names both causes when both
 change the data by 5 sigma or more, and invents no second when only one is present.
 
 Fast, on the toy bearing of `test_diagnosis_engine.py` (closed-form stand-in with the real
@@ -10,7 +10,7 @@ causes named (`judge` "right"); and the listed fit error made the same way alone
 (`fit_error_finer_mesh`, 7.4 sigma): one cause, a right one. The rates over several draws are
 the confusion-matrix study's (`confusion_matrix.two_cause_rates`).
 
-And the other side (issue 34): two listed causes that together imitate one outside the list are
+And the other side: two listed causes that together imitate one outside the list are
 not claimed. A further cause must fit every held-out block in the same amount
 (`blockscale.block_scale`, Cochran's Q); its statistic follows its chi-square law when the
 cause is there, and on the toy a torque law outside the list (a load exponent and a temperature

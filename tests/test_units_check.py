@@ -1,4 +1,4 @@
-"""The units check over the whole assembly (issue 24 item 6): an assembly typed in inches (every
+"""The units check over the whole assembly: an assembly typed in inches (every
 length 25.4x too small, its proportions those of a catalogue bearing) is refused with one line
 naming inches, exit 2, no output; every shipped and test assembly passes."""
 import re

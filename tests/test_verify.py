@@ -86,7 +86,7 @@ def test_richardson_recovers_the_order_and_limit_of_a_known_sequence():
 
 
 def test_verify_lists_the_transient_mms_orders(tmp_path):
-    """`verify` lists the transient conduction's manufactured solution (issue 35): the space order
+    """`verify` lists the transient conduction's manufactured solution: the space order
     of P2 (3 in L2) and the time orders of backward Euler (1) and BDF2 (2), in verification.json
     ("mms_transient") and verification.md. Here on two mesh levels and three steps (the command
     runs the levels of tests/test_transient_mms.py, which asserts the orders there); the time

@@ -24,6 +24,17 @@ The pair's sum over both bearings on a `bearing.PairState`: `analytic.friction.p
 Speed law (what the model predicts, not fitted): at fixed ball loads and viscosity F_R ~ U^0.66
 ~ n^0.66, so the torque grows as n^0.66 before the oil's heating lowers eta0 (the thermal
 reduction, not modelled here) and before the balls' centrifugal load changes W.
+A loss that does not vanish when the preload is lost: a ball whose contacts carry no load
+(the pair's preload lost to a temperature excursion) still rides on the outer raceway under its
+centrifugal force F_c = m omega_c^2 dm / 2, m = rho pi Dw^3 / 6 (Harris & Kotzalas, Rolling
+Bearing Analysis 5th ed., Vol. 2 ch. "high-speed operation": the ball's centrifugal force on
+the outer raceway; the same F_c as `analytic.bearing.ball_dynamics`), rolling through the oil
+at the cage's speed. Where an outer contact is unloaded (Q_o = 0) the rolling force is taken at
+Q = F_c (`CentrifugalFloor`: the outer contact's Rx and Hamrock-Dowson's ellipticity
+k = 1.03 (Ry/Rx)^0.64 of the groove, no Hertz ellipse at zero load), the inner contact
+(open) has none. Where a contact carries load the law is unchanged (the limit where it reduces
+to the loaded law: identical bits). At rest F_c = 0 and u = 0: no loss. This W is far below the
+Hamrock-Dowson fits' loads at low speed (the range warning says so).
 Limits: isothermal, fully flooded (use `starved` for a finite oil quantity), Newtonian inlet;
 k, U, W in the ranges of Hamrock-Dowson's fits (1 <= k <= 8). Units: E' MPa (N/mm^2), R_x mm,
 eta0 Pa s (1e-6 N s/mm^2), alpha 1/Pa (1e6 1/MPa), u mm/s, Q N, F_R N, powers W.
@@ -44,12 +55,29 @@ def ehl_rolling_force_N(Q_N, Rx_mm, k, E_reduced_MPa, eta0_Pa_s, alpha_per_Pa,
     Rx = np.asarray(Rx_mm, float)
     Ep = np.asarray(E_reduced_MPa, float)
     Q = np.asarray(Q_N, float)
-    U = np.asarray(eta0_Pa_s, float) * 1e-6 * np.abs(np.asarray(entrainment_speed_mm_s, float)) / (Ep * Rx)
     G = np.asarray(alpha_per_Pa, float) * 1e6 * Ep
-    W = np.maximum(Q, 0.0) / (Ep * Rx * Rx)
-    with np.errstate(invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore"):     # an unloaded contact: F = 0 below
+        U = np.asarray(eta0_Pa_s, float) * 1e-6 * np.abs(np.asarray(entrainment_speed_mm_s,
+                                                                   float)) / (Ep * Rx)
+        W = np.maximum(Q, 0.0) / (Ep * Rx * Rx)
         F = 2.86 * Ep * Rx * Rx * np.asarray(k, float) ** 0.348 * G ** 0.022 * U ** 0.66 * W ** 0.47
     return np.where(Q > 0, F, 0.0)
+
+
+@dataclass(frozen=True)
+class CentrifugalFloor:
+    """The load an unloaded outer contact rolls under (module docstring): F_c (N), the outer
+    contact's Rx (mm) and ellipticity k (-), arrays broadcastable with the contact's."""
+    Q_N: np.ndarray
+    Rx_mm: np.ndarray
+    k: np.ndarray
+
+
+def centrifugal_force_N(density_N_s2_mm4, Dw_mm, dm_mm, cage_speed_rad_s):
+    """Centrifugal force of a ball on the outer raceway F_c = m omega_c^2 dm / 2, m = rho pi
+    Dw^3 / 6, N (rho N s^2/mm^4, lengths mm, omega_c rad/s; Harris & Kotzalas Vol. 2)."""
+    m = density_N_s2_mm4 * np.pi * Dw_mm ** 3 / 6.0
+    return m * np.square(np.asarray(cage_speed_rad_s, float)) * 0.5 * dm_mm
 
 
 @dataclass(frozen=True)
@@ -69,21 +97,28 @@ class EHLRollingTorque:
 
 
 def ehl_rolling_bearing(Z: int, dm_mm: float, E_reduced_MPa, inner, outer, roll_inner,
-                        roll_outer, speed_rpm, eta0_Pa_s, alpha_per_Pa):
+                        roll_outer, speed_rpm, eta0_Pa_s, alpha_per_Pa,
+                        outer_floor: CentrifugalFloor | None = None):
     """EHL rolling resistance of one bearing's contacts: inner, outer the contacts' Hertz states
     (`analytic.torque.ContactInput`: Q N, a, b, Rx mm), roll_inner, roll_outer the contact
     speeds over the races per unit (omega dm/2) (`analytic.torque.ball_kinematics`), speed_rpm
     the inner-ring speed (outer fixed). Returns (inner-ring torque of the inner contacts, of the
     outer contacts) N mm and (heat at the inner contacts, at the outer contacts) W, the heat
-    computed as Z F_R u with u = omega (dm/2) roll the entrainment speed (mm/s)."""
+    computed as Z F_R u with u = omega (dm/2) roll the entrainment speed (mm/s). outer_floor:
+    the centrifugal load an unloaded outer contact rolls under (module docstring; None: none)."""
     omega = np.abs(np.asarray(speed_rpm, float)) * 2.0 * np.pi / 60.0
     half_dm = 0.5 * dm_mm
     torques, heats = [], []
-    for c, roll in ((inner, roll_inner), (outer, roll_outer)):
+    for c, roll, floor in ((inner, roll_inner, None), (outer, roll_outer, outer_floor)):
         u = omega * half_dm * roll                                   # entrainment speed, mm/s
         with np.errstate(divide="ignore", invalid="ignore"):      # unloaded: F = 0 below
             k = np.asarray(c.a_mm, float) / np.asarray(c.b_mm, float)
-        F = ehl_rolling_force_N(c.Q_N, c.Rx_mm, k, E_reduced_MPa, eta0_Pa_s, alpha_per_Pa, u)
+        Q, Rx = np.asarray(c.Q_N, float), np.asarray(c.Rx_mm, float)
+        if floor is not None:
+            open_ = Q <= 0
+            Q, Rx, k = (np.where(open_, f, x) for f, x in ((floor.Q_N, Q), (floor.Rx_mm, Rx),
+                                                             (floor.k, k)))
+        F = ehl_rolling_force_N(Q, Rx, k, E_reduced_MPa, eta0_Pa_s, alpha_per_Pa, u)
         torques.append(Z * F * half_dm * roll)
         heats.append(1e-3 * Z * F * u)
     return tuple(torques), tuple(heats)

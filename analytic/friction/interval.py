@@ -79,12 +79,10 @@ def interval_factors(log_residuals, level: float = LEVEL) -> tuple[float, float]
     return float(np.exp(m - half)), float(np.exp(m + half))
 
 
-def regime_of(kind: str, lubrication_method: str = "", viscous_model: str = "palmgren",
-              oil_quantity_mg: float = 0.0) -> str:
+def regime_of(kind: str, lubrication_method: str = "") -> str:
     """The regime of an assembly's `[lubrication]`: a solid film; else the stated
     lubrication_method; else minimal oil (an oil bath or jet is stated by its method: the
-    project's cases and every published oil point it holds are space bearings run on a few mg;
-    viscous_model and oil_quantity_mg are accepted for the record, they do not change this)."""
+    project's cases and every published oil point it holds are space bearings run on a few mg)."""
     if kind == "solid_film":
         return "solid_film"
     if lubrication_method:
@@ -98,8 +96,7 @@ def lubrication_interval(lubrication) -> ModelFormInterval:
     of an oil, "solid_film" for a film)."""
     kind = lubrication.kind
     law = "solid_film" if kind == "solid_film" else lubrication.viscous_model
-    return model_form_interval(regime_of(kind, getattr(lubrication, "lubrication_method", "")
-                                         or ""), law)
+    return model_form_interval(regime_of(kind, lubrication.lubrication_method), law)
 
 
 @lru_cache(maxsize=4)

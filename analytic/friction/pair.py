@@ -12,15 +12,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from analytic.friction.ehl_rolling import EHLRollingTorque, ehl_rolling_bearing
+from analytic.friction.ehl_rolling import (CentrifugalFloor, EHLRollingTorque,
+                                           centrifugal_force_N, ehl_rolling_bearing)
 from analytic.friction.options import FrictionOptions
 from analytic.friction.palmgren import (coulomb_load_torque_Nmm, palmgren_load_torque_Nmm,
                                         palmgren_viscous_torque_Nmm)
-from analytic.friction.skf2004 import skf2004_torque
+from analytic.friction.skf2004 import constants_for, skf2004_torque
 from analytic.friction.solid_film import pressure_dependent_mu
 from analytic.friction.minimal_oil import minimal_oil_bearing_ratio
 from analytic.friction.starved import starvation_ratio, supply_layer_um
-from analytic.lubrication import hamrock_dowson_film, reduced_modulus_MPa
+from analytic.hertz import ball_raceway_radii_mm
+from analytic.lubrication import (ellipticity_hamrock_dowson, hamrock_dowson_film,
+                                  reduced_modulus_MPa)
 from analytic.torque import (RPM_TO_RAD_S, ContactInput, ContactTorques, ball_kinematics,
                              power_W, solid_film_torque_Nmm)
 
@@ -68,7 +71,7 @@ class TorqueComponents:
     Oil: load_Nmm (the load term, both bearings; with viscous_model "skf2004" SKF's sliding
     term), viscous_Nmm (the viscous term of `viscous_model`, both bearings), viscosity_mm2_s
     (the kinematic viscosity the viscous term used, mm^2/s).
-    Every model (issue 33): rolling_Nmm, sliding_Nmm, drag_Nmm (their sum is torque_Nmm: oil,
+    Every model: rolling_Nmm, sliding_Nmm, drag_Nmm (their sum is torque_Nmm: oil,
     the viscous term, the load term and the drag; solid film, the hysteresis, the differential
     slip + spin, 0) and with a speed the heat by where it is made, heat_inner_W (the inner
     contacts), heat_outer_W (the outer contacts), heat_ball_W (in the oil around the balls: the
@@ -95,6 +98,7 @@ class TorqueComponents:
     heat_outer_W: np.ndarray | None = None
     heat_ball_W: np.ndarray | None = None
     viscous_model: str = "palmgren"
+    lubrication_method: str = ""
 
 
 @dataclass(frozen=True)
@@ -203,7 +207,7 @@ def pair_torque(g, pair, *, model: str = "solid_film", mu=0.02, hysteresis_loss=
       viscous terms (both bearings), the viscosity used and the per-bearing totals.
     With speed_rpm given, also heat_W (total dissipated power) and its split by location.
     g: `bearing.BearingGeometry`; friction: `analytic.friction.options.FrictionOptions`
-    (default: Palmgren, constant shear strength: the results of the law before issue 33).
+    (default: Palmgren, constant shear strength).
     """
     fr = FrictionOptions() if friction is None else friction
     args = dict(model=model, mu=mu, hysteresis_loss=hysteresis_loss, speed_rpm=speed_rpm, f0=f0,
@@ -226,7 +230,8 @@ def pair_torque(g, pair, *, model: str = "solid_film", mu=0.02, hysteresis_loss=
     if heat is not None:
         split.update(_located_heat_W(located, split["drag_Nmm"], speed_rpm))
     return TorqueComponents(model, total, per[0], per[1], heat, **parts, **split,
-                            viscous_model=fr.viscous_model)
+                            viscous_model=fr.viscous_model,
+                            lubrication_method=fr.lubrication_method)
 
 
 def _located_heat_W(located, drag_Nmm, speed_rpm) -> dict:
@@ -288,7 +293,8 @@ def _oil_bearing(g, c: BearingContacts, mu, speed_rpm, f0, nu_mm2_s, f1, load_te
     model = fr.viscous_model
     if model == "skf2004":
         t = skf2004_torque(fr.bore_mm, fr.outside_diameter_mm, c.radial_force_N,
-                           c.axial_force_N, n, nu_mm2_s)
+                           c.axial_force_N, n, nu_mm2_s, oil_level_mm=fr.oil_level_mm,
+                           **constants_for(fr.lubrication_method, fr.oil_family))
         return BearingFriction(t.total_Nmm, t.sliding_Nmm, t.rolling_Nmm, t.drag_Nmm)
     visc = palmgren_viscous_torque_Nmm(f0, nu_mm2_s, n, g.dm_mm)
     q_in = q_out = None
@@ -330,12 +336,18 @@ def _oil_pair(g, pair, args) -> tuple[list, dict, tuple]:
 def _ehl_bearing(g, c: BearingContacts, speed_rpm, eta0_Pa_s, alpha_per_Pa):
     """EHL rolling resistance of one bearing's contacts (`analytic.friction.ehl_rolling`):
     (inner-ring torque of the inner contacts, of the outer contacts) N mm and (heat at the
-    inner contacts, at the outer contacts) W, summed over the balls where c.per_ball."""
+    inner contacts, at the outer contacts) W, summed over the balls where c.per_ball. An
+    unloaded outer contact rolls under the ball's centrifugal force (`CentrifugalFloor`)."""
     Ep = reduced_modulus_MPa(g.ring.E_MPa, g.ring.nu, g.ball.E_MPa, g.ball.nu)
     kin = ball_kinematics(g.dm_mm, g.Dw_mm, c.alpha_inner_rad, c.alpha_outer_rad)
+    a_o = c.alpha_inner_rad if c.alpha_outer_rad is None else c.alpha_outer_rad
+    Rx, Ry = ball_raceway_radii_mm(g.Dw_mm, g.dm_mm, np.degrees(a_o), g.f_o, "outer")
+    omega_c = np.abs(np.asarray(speed_rpm, float)) * RPM_TO_RAD_S * kin.cage
+    floor = CentrifugalFloor(centrifugal_force_N(g.ball.density_N_s2_mm4, g.Dw_mm, g.dm_mm,
+                                                 omega_c), Rx, ellipticity_hamrock_dowson(Rx, Ry))
     (ti, to), (qi, qo) = ehl_rolling_bearing(1 if c.per_ball else g.Z, g.dm_mm, Ep, c.inner,
                                              c.outer, kin.roll_inner, kin.roll_outer, speed_rpm,
-                                             eta0_Pa_s, alpha_per_Pa)
+                                             eta0_Pa_s, alpha_per_Pa, floor)
     if c.per_ball:
         ti, to, qi, qo = (x.sum(axis=0) for x in (ti, to, qi, qo))
     return ti, to, qi, qo

@@ -10,7 +10,7 @@ catalogue 10000 EN, section "Friction"):
     phi_rs  = 1 / exp(K_rs nu n (d + D) sqrt(K_z / (2 (D - d))))  kinematic replenishment /
                                                                  starvation reduction
     mu_sl   = phi_bl mu_bl + (1 - phi_bl) mu_EHL,  phi_bl = 1 / exp(2.6e-8 (n nu)^1.4 dm)
-    M_drag  = V_M K_ball dm^5 n^2,  K_ball = i_rw K_z (d + D) / (D - d) 1e-12   (oil bath)
+    M_drag  = 1.093e-7 n^2 dm^3 (n dm^2 f_t / nu)^-1.379 R_s                (oil bath, below)
 
 Angular-contact ball bearings (catalogue table "geometric and load dependent variables"):
 
@@ -39,8 +39,31 @@ higher in G_sl (S1 S2) than the single-row set. Neither set is a test's expected
 Limits (what the catalogue states): steady running, full-film to mixed lubrication of a
 mineral or synthetic oil, loads not below the minimum load, speeds below the limiting speed;
 the constants are for SKF's standard internal designs of each series. No seals here
-(M_seal = 0: the project's bearings are open); M_drag needs the oil level of a bath (V_M read
-from the catalogue's diagram) and is 0 without a bath (oil jet, oil-air, a few mg of oil).
+(M_seal = 0: the project's bearings are open). Range of the speed (stated, `NDM_LIMIT`): the
+model's speeds end at the bearing's limiting speed, which the catalogue tabulates per bearing
+(its oil limiting speeds of 72 / 73 B bearings are n dm of about 0.6e6 to 1.0e6 mm/min); the
+project takes n dm <= 1.0e6 as the model's range and warns beyond it.
+
+Lubrication method and oil family (`[lubrication] lubrication_method`, the lubricant's
+`family`; `constants_for`): K_rs = 3e-8 for an oil jet and a low-level oil bath, 6e-8 for grease
+and oil-air (the catalogue's two values; a few mg of oil, "minimal_oil", is taken as oil-air:
+a small quantity replenished by the balls); mu_EHL 0.05 mineral, 0.04 synthetic oil; K_z = 4.4
+and R1..S3 are the bearing type's (angular-contact ball bearing) whatever the method.
+
+Drag in an oil bath (SKF Rolling bearings catalogue 17000 (2018), "Drag losses in oil bath
+lubrication", ball bearings; formula recalled, the catalogue's own page not reached here, see
+docs/friction_sources.md): the rolling elements' drag
+
+    M_drag = 1.093e-7 n^2 dm^3 (n dm^2 f_t / nu)^-1.379 R_s                      [N mm]
+    R_s    = 0.36 dm^2 (t - sin t) f_A,    f_A = 0.05 K_z (D + d) / (D - d)
+    t      = 2 arccos((0.6 dm - H) / (0.6 dm)),  H <= 1.2 dm (a higher level taken as 1.2 dm)
+    f_t    = sin(t / 2) for t <= pi, 1 above
+
+H the oil level above the lowest point of the outer raceway (mm; 0: no bath, no drag). The
+catalogue adds a bulk churning term 0.4 V_M K_ball dm^5 n^2 whose factor V_M is read from a
+diagram (H / dm); the diagram was not reachable, so that term is left out: the drag here is the
+rolling elements' part, a lower bound of the catalogue's. Without a bath (oil jet, oil-air,
+grease, a few mg of oil) the drag is 0.
 """
 from __future__ import annotations
 
@@ -56,6 +79,16 @@ BL_COEFF = 2.6e-8
 K_RS_OIL = 3e-8
 #: K_rs for grease and oil-air lubrication
 K_RS_GREASE = 6e-8
+#: K_rs by `[lubrication] lubrication_method` (module docstring; "" = not stated: the oil value)
+K_RS_BY_METHOD = {"oil_bath": K_RS_OIL, "oil_jet": K_RS_OIL, "oil_air": K_RS_GREASE,
+                  "grease": K_RS_GREASE, "minimal_oil": K_RS_GREASE, "": K_RS_OIL}
+#: the model's speed range, n dm in mm/min (rpm mm) (module docstring: stated)
+NDM_LIMIT = 1.0e6
+#: drag of the rolling elements in an oil bath (catalogue 17000): coefficient, exponent, the
+#: level above which the bath is taken as 1.2 dm
+DRAG_COEFF = 1.093e-7
+DRAG_EXPONENT = -1.379
+DRAG_LEVEL_MAX_DM = 1.2
 #: bearing type constant K_z, single-row angular-contact ball bearings
 K_Z_ANGULAR_CONTACT = 4.4
 #: boundary friction coefficient mu_bl ("approximately 0.15")
@@ -132,13 +165,35 @@ def sliding_variable(c: SkfConstants, dm_mm, Fr_N, Fa_N, n_rpm=0.0):
                                 + c.S2 * np.asarray(Fa_N, float) ** (4.0 / 3.0))
 
 
-def drag_torque_Nmm(V_M, d_mm, D_mm, n_rpm, K_z=K_Z_ANGULAR_CONTACT, rows=1):
-    """Oil-bath drag M_drag = V_M K_ball dm^5 n^2, K_ball = i_rw K_z (d + D)/(D - d) 1e-12 (SKF),
-    N mm; V_M the drag loss factor read from the catalogue's diagram for the oil level (0
-    without a bath), i_rw the number of ball rows."""
+def drag_torque_Nmm(oil_level_mm, d_mm, D_mm, n_rpm, nu_mm2_s, K_z=K_Z_ANGULAR_CONTACT):
+    """Drag of the rolling elements in an oil bath, N mm (module docstring, catalogue 17000):
+    M_drag = 1.093e-7 n^2 dm^3 (n dm^2 f_t / nu)^-1.379 R_s, R_s = 0.36 dm^2 (t - sin t) f_A,
+    f_A = 0.05 K_z (D + d)/(D - d), t = 2 arccos((0.6 dm - H)/(0.6 dm)) with H the oil level
+    (mm, capped at 1.2 dm), f_t = sin(t/2) up to t = pi, 1 above. 0 without a bath (H = 0) or
+    at rest; n rpm, nu mm^2/s, d, D mm."""
     dm = 0.5 * (d_mm + D_mm)
-    K_ball = rows * K_z * (d_mm + D_mm) / (D_mm - d_mm) * 1e-12
-    return np.asarray(V_M, float) * K_ball * dm ** 5 * np.square(np.asarray(n_rpm, float))
+    H = np.minimum(np.asarray(oil_level_mm, float), DRAG_LEVEL_MAX_DM * dm)
+    t = 2.0 * np.arccos(np.clip((0.6 * dm - H) / (0.6 * dm), -1.0, 1.0))
+    f_t = np.where(t <= np.pi, np.sin(0.5 * t), 1.0)
+    f_A = 0.05 * K_z * (D_mm + d_mm) / (D_mm - d_mm)
+    R_s = 0.36 * dm * dm * (t - np.sin(t)) * f_A
+    n = np.abs(np.asarray(n_rpm, float))
+    nu = np.asarray(nu_mm2_s, float)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        M = DRAG_COEFF * n * n * dm ** 3 * (n * dm * dm * f_t / nu) ** DRAG_EXPONENT * R_s
+    return np.where((n > 0) & (H > 0), M, 0.0)
+
+
+def constants_for(lubrication_method: str = "", oil_family: str = "mineral") -> dict:
+    """K_rs and mu_EHL of the SKF model for a lubrication method (one of K_RS_BY_METHOD) and an
+    oil family ("mineral" or "synthetic"), as `skf2004_torque`'s keyword arguments (module
+    docstring). ValueError for an unknown method or family."""
+    if lubrication_method not in K_RS_BY_METHOD:
+        raise ValueError(f"lubrication_method must be one of {sorted(K_RS_BY_METHOD)[1:]}, "
+                         f"got {lubrication_method!r}")
+    if oil_family not in ("mineral", "synthetic"):
+        raise ValueError(f"oil family must be 'mineral' or 'synthetic', got {oil_family!r}")
+    return dict(K_rs=K_RS_BY_METHOD[lubrication_method], mu_ehl=MU_EHL[oil_family])
 
 
 @dataclass(frozen=True)
@@ -159,11 +214,16 @@ class SkfTorque:
 def skf2004_torque(d_mm: float, D_mm: float, Fr_N, Fa_N, n_rpm, nu_mm2_s,
                    constants: SkfConstants = SKF_SINGLE_ROW, K_rs: float = K_RS_OIL,
                    K_z: float = K_Z_ANGULAR_CONTACT, mu_bl: float = MU_BL,
-                   mu_ehl: float = MU_EHL["mineral"], V_M=0.0) -> SkfTorque:
+                   mu_ehl: float = MU_EHL["mineral"], oil_level_mm=0.0) -> SkfTorque:
     """Frictional moment of one angular-contact ball bearing by the SKF model (module
     docstring), N mm: d bore and D outside diameter mm, F_r radial and F_a axial load N, n rpm,
-    nu mm^2/s. No seals; drag only with a bath (V_M > 0). A bearing at rest has no running
-    torque (every component 0 at n = 0, like `analytic.friction.palmgren.palmgren_viscous_torque_Nmm`)."""
+    nu mm^2/s, oil_level_mm the bath's level H (0: no bath, no drag). No seals. A bearing at
+    rest has no running torque (every component 0 at n = 0, like
+    `analytic.friction.palmgren.palmgren_viscous_torque_Nmm`). ValueError without a bearing
+    (d and D > 0, D > d: the model's dm and D - d)."""
+    if not (np.all(np.asarray(d_mm) > 0) and np.all(np.asarray(D_mm) > np.asarray(d_mm))):
+        raise ValueError(f"skf2004 needs the bearing's bore and outside diameter (0 < d < D), "
+                         f"got d = {d_mm!r} mm, D = {D_mm!r} mm")
     dm = 0.5 * (d_mm + D_mm)
     n = np.abs(np.asarray(n_rpm, float))
     nu = np.asarray(nu_mm2_s, float)
@@ -172,5 +232,5 @@ def skf2004_torque(d_mm: float, D_mm: float, Fr_N, Fa_N, n_rpm, nu_mm2_s,
     M_rr = ish * rs * rolling_variable(constants, dm, Fr_N, Fa_N, n) * (nu * n) ** 0.6
     mu = sliding_coefficient(n, nu, dm, mu_bl, mu_ehl)
     M_sl = np.where(n > 0, sliding_variable(constants, dm, Fr_N, Fa_N, n) * mu, 0.0)
-    M_drag = drag_torque_Nmm(V_M, d_mm, D_mm, n, K_z) * np.ones_like(M_rr)
+    M_drag = drag_torque_Nmm(oil_level_mm, d_mm, D_mm, n, nu, K_z) * np.ones_like(M_rr)
     return SkfTorque(M_rr, M_sl, M_drag, ish, rs, mu)

@@ -17,6 +17,7 @@ from pathlib import Path  # noqa: E402
 from infra.version import __version__  # noqa: E402
 from studies.app import commands  # noqa: E402
 from studies.app.output import UserError  # noqa: E402
+from studies.usecases import defaults  # noqa: E402
 from studies.validation import STUDIES  # noqa: E402
 
 
@@ -75,10 +76,12 @@ def build_parser() -> argparse.ArgumentParser:
     bb.add_argument("bearing", type=Path, help="TOML file with a [bearing] table")
     bb.add_argument("loads", type=Path, help="loads table (CSV)")
     bb.add_argument("-o", "--out", type=Path, required=True)
-    bb.add_argument("--convention", choices=("exact", "iso16281"), default="exact",
+    bb.add_argument("--convention", choices=("exact", "iso16281"),
+                    default=defaults.BEARING_CONVENTION,
                     help="exact groove-centre geometry (default) or the ISO/TS 16281 "
                          "simplifications")
-    bb.add_argument("--control", choices=("outer", "inner", "jones"), default="outer",
+    bb.add_argument("--control", choices=("outer", "inner", "jones"),
+                    default=defaults.BEARING_CONTROL,
                     help="raceway control of the quasi-dynamic balls (rows with speed_rpm): "
                          "outer (default), inner, or jones (Jones's criterion per ball)")
 
@@ -99,8 +102,10 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("assembly", type=Path)
     t.add_argument("conditions", type=Path, nargs="?", default=None,
                    help="conditions table (default: the assembly's operating temperature range)")
-    t.add_argument("--samples", type=int, default=2000, help="Monte Carlo samples (default 2000)")
-    t.add_argument("--seed", type=int, default=1, help="random seed (default 1)")
+    t.add_argument("--samples", type=int, default=defaults.TOLERANCE_SAMPLES,
+                   help=f"Monte Carlo samples (default {defaults.TOLERANCE_SAMPLES})")
+    t.add_argument("--seed", type=int, default=defaults.TOLERANCE_SEED,
+                   help=f"random seed (default {defaults.TOLERANCE_SEED})")
     t.add_argument("--out", type=Path, required=True)
     where = t.add_mutually_exclusive_group()
     where.add_argument("--workers", type=int, default=None,
@@ -114,7 +119,8 @@ def build_parser() -> argparse.ArgumentParser:
     dz.add_argument("--range", required=True, metavar="T_MIN:T_MAX",
                     help="temperature range in C, e.g. -60:80")
     dz.add_argument("--band", default=None, metavar="LOW:HIGH",
-                    help="preload band as fractions of the assembled preload (default 0.8:1.2)")
+                    help="preload band as fractions of the assembled preload (default "
+                         f"{defaults.DESIGN_BAND[0]:g}:{defaults.DESIGN_BAND[1]:g})")
     dz.add_argument("--band-N", dest="band_N", default=None, metavar="LOW:HIGH",
                     help="instead: the preload band in N, e.g. 44.5:445")
     dz.add_argument("--vary", action="append", default=[], metavar="KEY=V1,V2,...",

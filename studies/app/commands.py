@@ -12,8 +12,7 @@ from pathlib import Path
 
 
 from studies.app.output import UserError, atomic_dir, progress, progress_bar
-from studies.usecases.output_folder import check_output_file
-from studies.model.provenance import provenance
+from studies.usecases import defaults
 from studies.validation import STUDIES, study_module
 
 
@@ -46,42 +45,30 @@ def _user_errors():
 
 def cmd_simulate(args) -> None:
     from studies.model.effects import parse_effect_arg
-    from studies.model.pipeline import Pipeline
-    from studies.model.stream import check_conditions, simulate_file
+    from studies.usecases import api
 
-    if args.workers is not None and args.workers < 1:
-        raise UserError(f"--workers {args.workers}: need at least 1")
+    effects = {}
     try:
-        check_output_file(args.out, (args.assembly, args.conditions))
-        asm = _load(args.assembly)
-        transient = asm.thermal.mode == "transient"
-        if transient:          # part temperatures computed: rows in time order, one route
-            from studies.model.transient_route import condition_columns, simulate_transient_file
-        n_rows = check_conditions(args.conditions,    # all of it, before any FE work
-                                  columns=condition_columns() if transient else None)
-        effects = {}
         for text in args.effect:
             name, params = parse_effect_arg(text)
             if name in effects:
                 raise UserError(f"--effect {name}: given twice")
             effects[name] = params
-        run = (simulate_transient_file if transient else simulate_file)(
-                            asm, args.conditions, args.out, effects, direct=args.direct,
-                            provenance=provenance("simulate", {"assembly": args.assembly,
-                                                               "conditions": args.conditions},
-                                                  effects),
-                            pipeline=(Pipeline.shared(asm, progress=progress)
-                                      if args.workers is None and args.scheduler is None else None),
-                            progress=progress, n_rows=n_rows, workers=args.workers,
-                            scheduler=args.scheduler)
+        run = api.simulate(args.assembly, args.conditions, effects, args.out, direct=args.direct,
+                           workers=args.workers, scheduler=args.scheduler, progress=progress)
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
-    for msg in run.warnings:
-        print(f"bearingfem simulate: warning: {msg}", file=sys.stderr)
-    for line in run.summaries():
-        print(f"bearingfem simulate: warning: {line}", file=sys.stderr)
+    _warn("simulate", run)
     print(f"wrote {run.n_rows} rows to {args.out}")
     return 1 if run.violations and args.strict else 0
+
+
+def _warn(command: str, result) -> None:
+    """The result's warning lines (`api.warning_lines`) on stderr, one each."""
+    from studies.usecases.api import warning_lines
+
+    for line in warning_lines(result):
+        print(f"bearingfem {command}: warning: {line}", file=sys.stderr)
 
 
 def cmd_bearing(args) -> None:
@@ -91,8 +78,7 @@ def cmd_bearing(args) -> None:
         res = api.bearing(args.bearing, args.loads, args.out, args.convention, args.control)
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
-    for line in res.warnings:
-        print(f"bearingfem bearing: warning: {line}", file=sys.stderr)
+    _warn("bearing", res)
     print(f"wrote {res.n_rows} rows to {args.out} (convention {args.convention}, "
           f"{args.control} control)")
 
@@ -105,12 +91,9 @@ def cmd_stiffness(args) -> None:
                             progress=progress, free_axial=args.free_axial)
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
-    for w in res.warnings:
-        print(f"bearingfem stiffness: warning: {w}", file=sys.stderr)
+    _warn("stiffness", res)
     print(f"wrote {res.n_rows} rows to {args.out}")
     if res.ross is not None:
-        if res.ross.warning:
-            print(f"bearingfem stiffness: warning: {res.ross.warning}", file=sys.stderr)
         print(f"wrote the ROSS table ({res.ross.speeds_rpm.size} speeds, "
               f"{res.ross.range_text}; ROSS extrapolates outside) to {args.ross}")
 
@@ -126,8 +109,7 @@ def cmd_report(args) -> None:
                          progress=progress, command=command)
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
-    for line in res.warnings:
-        print(f"bearingfem report: warning: {line}", file=sys.stderr)
+    _warn("report", res)
     print(f"report: {args.out}/report.md, report.html" + (" and report.pdf" if args.pdf else ""))
 
 
@@ -193,7 +175,7 @@ def cmd_design(args) -> None:
         band_N = _pair(args.band_N, "--band-N")
         if band_N[0] < 0:
             raise UserError(f"--band-N {args.band_N}: LOW must be at least 0 N")
-    band = _pair(args.band or "0.8:1.2", "--band")
+    band = defaults.DESIGN_BAND if args.band is None else _pair(args.band, "--band")
     vary = _vary(args.vary)
     if not (-150.0 <= T_min and T_max <= 300.0):
         raise UserError(f"--range {args.range}: outside -150..300 C (range of the material data)")
@@ -210,7 +192,9 @@ def cmd_design(args) -> None:
     print(f"design: {res.n_designs} designs; as given {100 * g.preload_variation:.0f} % preload "
           f"variation, best {100 * b.preload_variation:.0f} %; report in {args.out}/report.md")
     if not res.pareto:                   # nothing feasible: say which constraint failed
-        print(f"design: {design_search.infeasible_text(res.why)}")
+        from studies.usecases.design_search import infeasible_text
+
+        print(f"design: {infeasible_text(res.why)}")
 
 
 def cmd_study(args) -> None:

@@ -1,4 +1,4 @@
-"""Benchmark of `bearingfem diagnose` (issue 5 and 11 performance goal: a 500-row dataset with
+"""Benchmark of `bearingfem diagnose` (the performance goal: a 500-row dataset with
 every candidate effect diagnosed in under 10 s on 2 cores). Prints, never asserts.
 
 Run: `bearingfem bench --diagnose` or `.venv/bin/python -m studies.bench.bench_diagnose` (add
@@ -15,7 +15,7 @@ engine's work depends on how many candidates pass, and two generalised forms (pe
 300 s / 360 s, settling creeping 3 N/h), where the engine also fits the generalised forms of the
 family (`studies.diagnosis.generalised`); the column `form` gives the extended form reported;
 two model forms of the ladder (grooved ring sections, a housing lot 3 % above the library's CTE),
-made through the ladder's own route (`ladder.FormRoute`); an unlogged load (issue 34: a belt
+made through the ladder's own route (`ladder.FormRoute`); an unlogged load (a belt
 pulley's 30 N pull with its 3000 N mm moment on seed 001's flywheel pair, `flywheel_steps`: the
 speed steps with the assembled preload stepped 7 / 15 / 30 N, 1 % noise), which puts the pair's
 5-DOF solve in every call of the `unlogged_load` rung. The candidates are the CLI's
@@ -89,16 +89,16 @@ DATASETS = [
          effects={"preload_settling": {"loss_N": 5.0, "threshold_K": 50.0}}),
     Kind("solid_film_runin dmu=-0.004 runin_krev=10",
          effects={"solid_film_runin": {"dmu": -0.004, "runin_krev": 10.0}}),
-    # generalised forms (issue 11): the engine then also fits the family's forms
+    # generalised forms: the engine then also fits the family's forms
     Kind("thermal_lag.per_part tau_s=300 tau_shaft_s=360",
          effects={"thermal_lag.per_part": {"tau_s": 300.0, "tau_shaft_s": 360.0}}),
     Kind("preload_settling.creep 5 N, 50 K, 3 N/h",
          effects={"preload_settling.creep": {"loss_N": 5.0, "threshold_K": 50.0,
                                              "creep_N_per_h": 3.0}}),
-    # model forms of the ladder (issue 23): the FE set-up rung and an inputs rung
+    # model forms of the ladder: the FE set-up rung and an inputs rung
     Kind("ring_section_grooved (model form)", effects={"ring_section_grooved": {"share": 1.0}}),
     Kind("material_lot housing CTE x 1.03", effects={"material_lot": {"cte_factor_housing": 1.03}}),
-    # the unlogged_load rung (issue 34): a belt pulley's pull of 30 N, 100 mm beyond the
+    # the unlogged_load rung: a belt pulley's pull of 30 N, 100 mm beyond the
     # pair's mid-point, on seed 001's flywheel pair (the pair's 5-DOF solve in every call);
     # 1 % noise as the second source states it (the flywheel's torque is ~0.1 N mm)
     Kind("unlogged_load 30 N, 3000 N mm (flywheel)", assembly="seed001", design=flywheel_steps,

@@ -11,9 +11,9 @@ W workers only; the worker modes run first, so that no mode inherits the caches 
 filled). Per worker mode the breakdown: the workers' start (forked from this process after its
 set-up), the workers' set-up (`warm` in each: they have this process's pipeline from the fork),
 the blocks, closing the workers; "whole" is the FE set-up plus all of these, what a command
-spends. Then the speed-up of 2 workers over this process (whole and the blocks alone; issue 27
-asks >= 1.7x whole on an idle 2-core machine), the CPU seconds per sample of the blocks (this
-process's, or the worker processes' while the blocks ran; issue 27: a worker within 10 % of the
+spends. Then the speed-up of 2 workers over this process (whole and the blocks alone; the
+goal: >= 1.7x whole on an idle 2-core machine), the CPU seconds per sample of the blocks (this
+process's, or the worker processes' while the blocks ran; a worker within 10 % of the
 process), the CPU this process spent meanwhile (handing out blocks, taking results), and a
 check that every mode gives the same numbers bit for bit. On a loaded machine the CPU seconds
 move much less than the wall times.
@@ -115,13 +115,13 @@ def main(samples: int, workers: int | None = None) -> None:
     if workers is None:
         two = _label(2)
         print(f"speed-up of 2 workers over this process: whole {whole[HERE] / whole[two]:.2f}x "
-              f"({whole[HERE]:.2f} s vs {whole[two]:.2f} s; issue 27: >= 1.7x on an idle "
+              f"({whole[HERE]:.2f} s vs {whole[two]:.2f} s; >= 1.7x on an idle "
               f"machine), the blocks alone {blocks[HERE] / blocks[two]:.2f}x")
         print(f"speed-up of 2 workers over 1: whole {whole[_label(1)] / whole[two]:.2f}x, "
               f"the blocks alone {blocks[_label(1)] / blocks[two]:.2f}x")
         print(f"CPU per sample, one worker / this process: "
               f"{cpu_us[_label(1)] / cpu_us[HERE]:.3f}; two workers / this process: "
-              f"{cpu_us[two] / cpu_us[HERE]:.3f} (issue 27: within 10 %)")
+              f"{cpu_us[two] / cpu_us[HERE]:.3f} (within 10 %)")
         ref = runs[HERE].columns()
         same = all(np.array_equal(v, ref[q]) for k in (_label(1), two)
                    for q, v in runs[k].columns().items())

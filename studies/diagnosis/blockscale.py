@@ -1,4 +1,4 @@
-"""Does every held-out block want a further cause in the amount fitted? (issue 34)
+"""Does every held-out block want a further cause in the amount fitted?
 
 Two listed causes can compose a cause outside the list: on seed 000's steady grid (torque
 alone) an inner groove curvature ratio of 0.54 was claimed as a path compliance plus a radial

@@ -233,7 +233,7 @@ def noise_ar1(pb: Problem, c: str, pred: np.ndarray, floor: float, history: bool
     AR(1) noise of coefficient near 1 (smoothing and serial correlation are confounded unless
     the smooth part is modelled: Opsomer, Wang & Yang 2001, Nonparametric regression with
     correlated errors, Statist. Sci. 16): a shaft 900 s behind the hub, whose residual is not a
-    function of the conditions' levels, was read as AR(1) 0.99 at 7-15 x the noise (issue 36);
+    function of the conditions' levels, was read as AR(1) 0.99 at 7-15 x the noise;
     so the AR(1) estimate is tested against a history effect (`history_in_residuals`) and, when
     the lagged temperatures explain the residuals, they join the regression.
     When significant (restricted likelihood ratio > AR1_LR):

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from infra.errors import BearingfemError
 from studies.diagnosis.candidate import Candidate
 
 DEFAULT_THRESHOLDS = {
@@ -35,8 +36,9 @@ class DiagnosisError(ValueError):
     """Unusable input to the engine (one-line message)."""
 
 
-class ModelFailure(RuntimeError):
-    """The model could not be evaluated (exception or non-finite output) at some parameters."""
+class ModelFailure(BearingfemError):
+    """The model could not be evaluated (exception or non-finite output) at some parameters
+    (the package's own error, a ValueError, when it reaches the caller)."""
 
 
 

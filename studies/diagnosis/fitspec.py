@@ -99,7 +99,7 @@ def lag_per_part_extra_starts(form, listed, conditions) -> list[dict]:
     """A grid of both time constants about the listed one (factors 0.35..2.8): the two lags
     trade against each other and against the friction calibration (local minima). A listed
     lag below the shortest lag start (`lag_starts`: at its off value, 0, when one side does not
-    lag at all and the listed single lag cannot choose, issue 36) gives no scale to start
+    lag at all and the listed single lag cannot choose) gives no scale to start
     about: then one side at 0 and the other over the lag starts, and the series form's grid
     of both (`lag_series_extra_starts`)."""
     taus = [d["tau_s"] for d in lag_starts(form, conditions, 0.0)]
@@ -285,7 +285,7 @@ SPECS: dict[type, FitSpec] = {
     InterferenceError: FitSpec(starts=interference_starts),
     PreloadPathCompliance: FitSpec(starts=compliance_starts),
     UnloggedLoad: FitSpec(starts=unlogged_load_starts),          # the model-form ladder
-    SleeveForm: FitSpec(profile=("variant",), grid=sleeve_grid),  # issue 34
+    SleeveForm: FitSpec(profile=("variant",), grid=sleeve_grid),
 }
 
 

@@ -1,4 +1,4 @@
-"""The friction-model rungs of the model-form ladder (issue 33): the friction laws of
+"""The friction-model rungs of the model-form ladder: the friction laws of
 `analytic.friction` that the assembly file does not use, as switch rungs (`ladder.FormShare`:
 prediction = file + share (form - file), share 0..1), so that `diagnose` can propose them on
 measured torque data.

@@ -1,4 +1,4 @@
-"""Phase 5b of the diagnosis: generalised forms of the listed effects (issue 11).
+"""Phase 5b of the diagnosis: generalised forms of the listed effects.
 
 When the verdict is `unexplained` because the listed form of a family leaves structure behind (or
 does not pass), or `ambiguous` between look-alikes (then only the tied families: a form of one of
@@ -126,7 +126,7 @@ def _families(cands: Mapping[str, Candidate], fits: dict[str, Fit], d: Decision,
     candidates better than the baseline (delta BIC < 0, significant), best first; then, while
     the baseline leaves structure (`structure`) and no cause explains it, the families whose
     listed form fits at its off value (`at_off`; `effects`: name -> effect object): a listed
-    form that cannot move from off may miss its own family's form (issue 36: the shaft side
+    form that cannot move from off may miss its own family's form (the shaft side
     900 s behind the hub, the listed single lag fitted at tau = 0, so its per-part form was
     never proposed)."""
     if d.verdict == "explained":        # the listed cause's own forms, nested in it
@@ -173,7 +173,7 @@ def _screened(pb: Problem, cands: Mapping[str, Candidate], fits: dict[str, Fit],
     (`_scored_starts_of`, one model call a start) and the families are ranked by their forms' best
     start (BIC = chi-square + number of parameters x ln N) instead of by the listed form's BIC:
     a listed form that approximates its own cause poorly (one lag for a shaft that lags behind
-    the housing) ranks low exactly when its form is needed (issue 23: a two-node network's
+    the housing) ranks low exactly when its form is needed (a two-node network's
     lags, the listed lag fourth by BIC)."""
     fams = [(fam, [_bounded(pb, fam, f) for f in forms_of(fam)
                    if f.applicable(pb.conditions) is None]) for fam in families]

@@ -1,4 +1,4 @@
-"""Goodness of fit of an explanation (issue 23): does the extended model leave structure, where,
+"""Goodness of fit of an explanation: does the extended model leave structure, where,
 and does a fitted parameter sit at its bound?
 
 An explanation that carries weight (it beats the baseline and every rival) can still leave
@@ -161,7 +161,7 @@ def _left(pb: Problem, fit: Fit, cols: dict[str, ColumnFit], m_fit: int, m_res: 
 def at_bound(pb: Problem, fit: Fit) -> list[AtBound]:
     """The fitted effect parameters of `fit` (its candidate's and the accepted causes') at a
     bound that is not their off value (module docstring): within their standard uncertainty of
-    it (`interval.parameter_covariance`, the stated uncertainty of the result; issue 34: a value
+    it (`interval.parameter_covariance`, the stated uncertainty of the result; a value
     that the data cannot tell from the bound is as good as on it) or within AT_BOUND_RTOL of
     the parameter's range; a value within its uncertainty of its off value as well is not moved
     by the data (the parameter is unidentified: an unlogged moment's radial load fitted 0.03 +-

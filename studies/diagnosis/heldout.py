@@ -360,7 +360,7 @@ class WorseColumn:
 def worse_columns(pb: Problem, effect: str, z_base_ho: np.ndarray, z_cand_ho: np.ndarray,
                   keep=None) -> list[WorseColumn]:
     """The measured columns whose held-out residual the candidate `effect` makes worse than the
-    model before it beyond the noise (issue 34): the held-out RMSE ratio (candidate / before,
+    model before it beyond the noise: the held-out RMSE ratio (candidate / before,
     column units) above 1 and the paired block bootstrap of the column's held-out RMSE
     difference (`bootstrap_gain` on its entries, the same blocks, resamples and quantile
     `heldout_quantile` as the gain a candidate must show: Kunsch 1989, The jackknife and the

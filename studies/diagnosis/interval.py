@@ -1,4 +1,4 @@
-"""Predictive intervals of a fitted model (issue 34): how far a new measurement at a row may lie
+"""Predictive intervals of a fitted model: how far a new measurement at a row may lie
 from the extended model's prediction, at a stated level (90 % by default).
 
 Three variance components per row, added (independent sources):

@@ -1,5 +1,5 @@
 """The model-form ladder: the model's own richer forms, which the given assembly file does not
-use, as candidate explanations of measured data (issue 23, item 2; docs/diagnosis.md "The
+use, as candidate explanations of measured data (docs/diagnosis.md "The
 model-form ladder").
 
 Each switch the assembly file has is a rung: one typed record (`Rung`) holding the config change
@@ -40,7 +40,7 @@ thermometer offset within its IEC 60751 class (`thermometer_offset`, dT_K +-0.8 
 form and never a cause: it is fitted and compared like a candidate, and a claim it fits about as
 well is not made (`studies.diagnosis.decision.unlisted_lookalike`): a 0.5 K offset of the chamber
 thermometer moves seed 000's preload by less than a sigma per row but, over 240 rows, as a fit
-error, a CTE slope or a share of the grooved section would (issue 23's second source,
+error, a CTE slope or a share of the grooved section would (the second source,
 `chamber_offset`: claimed as `cte_nonlinearity` or `interference_error` before 2026-11-25). It is
 screened under the same indication as the rungs (it acts through the temperature).
 
@@ -318,7 +318,7 @@ class GrooveConformity(ModelForm):
 
 
 class FrictionSwitch(FormShare):
-    """A friction rung's switch (issue 33, `friction_rungs`): applicable only where the
+    """A friction rung's switch (`friction_rungs`): applicable only where the
     conditions vary what its law changes (`friction_rungs.applicability`)."""
 
     def applicable(self, conditions):
@@ -431,10 +431,10 @@ def ladder(asm: Assembly) -> list[Rung]:
                       why_not="the listed interference_error is bounded to the tolerance band "
                               "when [fits] gives tolerances (studies.model.effects."
                               "assembly_bounds), else to +-20 um"))
-    if asm.sleeve is None:      # issue 34: studies/diagnosis/sleeve_rung.py
+    if asm.sleeve is None:      # studies/diagnosis/sleeve_rung.py
         rungs.append(Rung("sleeve", SleeveForm.change, "fe_setup", SleeveForm.acts_through,
                           **sleeve_candidate(asm)))
-    for name, change, acts, hint, configure, why_not in friction_rungs.forms(asm):   # issue 33
+    for name, change, acts, hint, configure, why_not in friction_rungs.forms(asm):
         r = (Rung(name, change, "pair", acts, why_not=why_not) if configure is None
              else _switch(name, change, "pair", acts, hint, configure, asm))
         if r.candidate is not None:

@@ -292,7 +292,7 @@ def _name_hypothesis(out: ColumnCharacterisation, feats: Mapping[str, np.ndarray
 
 def _name_forms(out: ColumnCharacterisation, forms: Mapping[str, tuple[str, ...]]) -> None:
     """The model forms acting through the lead feature (or one not separable from it), named in
-    front of the generic hypothesis (the model's own forms first: issue 23, item 2)."""
+    front of the generic hypothesis (the model's own forms first)."""
     if not out.depends or not forms:
         return
     lead = max(out.selected, key=lambda k: abs(out.range_effect[k]))

@@ -353,7 +353,7 @@ def _bias_p_bound(r: np.ndarray, rho_hi: float, p_at_rho: float) -> float:
     the set's upper bound `rho_hi`, where the test is the generalised-least-squares t test of a
     constant with the innovation variance estimated from the whitened residuals. Near rho = 1 an
     AR coefficient estimated 0.05 low halves the variance of the mean and a constant offset of the
-    noise looks like a bias (issue 23: toy AR(1) nulls at phi 0.95)."""
+    noise looks like a bias (toy AR(1) nulls at phi 0.95)."""
     ch = np.zeros(r.size, int)
     u = ar1_whiten(r, ch, rho_hi)
     one = ar1_whiten(np.ones_like(r), ch, rho_hi)

@@ -320,7 +320,7 @@ def _causes_section(r: DiagnosisResult) -> list[str]:
     if r.worse_columns:
         L += ["## Columns made worse (not claimed)\n",
               "A candidate that predicts a measured column worse on held-out blocks than the "
-              "model before it, beyond the noise, is not claimed (issue 34).\n",
+              "model before it, beyond the noise, is not claimed.\n",
               "| candidate | column | held-out RMSE ratio | worse by (noise units) | bootstrap "
               "interval of the gain |", "| --- | --- | --- | --- | --- |"]
         L += [f"| `{w.effect}` | `{w.column}` | {_fmt(w.gain)} | "

@@ -115,7 +115,7 @@ class DiagnosisResult:
     causes: list[AcceptedCause] = field(default_factory=list)
     left: list[Left] = field(default_factory=list)
     at_bound: list[AtBound] = field(default_factory=list)
-    #: candidates the claim rules stopped because they make a column worse (issue 34)
+    #: candidates the claim rules stopped because they make a column worse
     worse_columns: list[WorseColumn] = field(default_factory=list)
     #: the claimed model's predictive intervals (None unless explained / explained_partly)
     interval: Intervals | None = None

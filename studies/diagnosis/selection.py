@@ -1,4 +1,4 @@
-"""More than one cause (issue 23): forward selection after the first cause is accepted.
+"""More than one cause: forward selection after the first cause is accepted.
 
 A rig rarely has one cause. Once a pass of the diagnosis (phases 1-5b, `engine.one_pass`) has
 accepted a cause (`explained` or `explained_partly`), the search goes on on what is left: the
@@ -9,7 +9,7 @@ held-out rules, the same joint fits against rivals and against the unlisted sens
 noise level of the next pass is estimated from the residual of the model with the accepted
 causes (`calibration.calibrate`), i.e. from what no candidate can absorb: a large first effect
 that the conditions' smoother cannot follow otherwise shows up as strongly correlated noise of
-inflated level (issue 23: 117 N mm against a true 17) and hides a second cause.
+inflated level (117 N mm against a true 17) and hides a second cause.
 
 The search stops when a cause was accepted in a generalised form (the listed form left
 structure; what the form leaves is its own mismatch, which other candidates imitate), when an
@@ -28,9 +28,9 @@ is left, but only when several causes were accepted; a single cause that leaves 
 a look-alike of a cause outside the list and the verdict is `unexplained` (with it as the best
 partial candidate), as on an unlisted groove curvature on steady points.
 
-Claim rules (issue 34, `blocked`): a cause with a fitted parameter at its bound or within its
+Claim rules (`blocked`): a cause with a fitted parameter at its bound or within its
 standard uncertainty of one (`goodness.at_bound`: the data want more than the candidate allows,
-which is evidence against it, not a partial explanation: issue 34's sleeve in an aluminium housing
+which is evidence against it, not a partial explanation: the sleeve in an aluminium housing
 was `explained_partly: interference_error` at its +-20 um), or one whose model predicts a measured
 column worse on held-out blocks than the model before it beyond the noise
 (`heldout.worse_columns`), is never claimed: the first such cause makes the verdict `unexplained`
@@ -42,7 +42,7 @@ accepted cause is listed in order with its own held-out gain: the held-out RMSE 
 column, under the noise of its pass.
 
 A further cause must fit every held-out block in the same amount (`compensates`,
-`blockscale.block_scale`, issue 34): per block, the least-squares scale of its held-out change
+`blockscale.block_scale`): per block, the least-squares scale of its held-out change
 against the model before it, and Cochran's Q of those scales (chi-square on blocks - 1 degrees
 of freedom when the cause is there); with p below alpha_joint and Q above its degrees of
 freedom by more than clear_chi2 it is not claimed and the causes before it stay. Two listed
@@ -53,7 +53,7 @@ and the hot ones 0.2-0.4 times (Q 117 and 273 on 7 degrees of freedom), while th
 cause of a true pair has Q at most 22.5 on 9 (the lag and settling reference, the pairs made
 another way: docs/diagnosis.md, "Two listed causes composing an unlisted one").
 
-A first cause refused for the sensor drift (`select_past_drift`, issue 34): a second cause that
+A first cause refused for the sensor drift (`select_past_drift`): a second cause that
 changes in time (a solid-film run-in at constant speed, a preload settling on the first
 excursion) is what a zero drift of the sensors linear in time imitates, so the first pass's best
 candidate, though it adds to the drift, is refused because the drift adds to it. Then the best is
@@ -127,7 +127,7 @@ class Selection:
     pred: dict | None = None
     passes: int = 1
     noise: Noise | None = None          # the last pass's noise model
-    #: candidates stopped by the claim rules (issue 34): a column made worse on held-out blocks
+    #: candidates stopped by the claim rules: a column made worse on held-out blocks
     worse_columns: list[WorseColumn] = field(default_factory=list)
     #: the claimed model's problem, fit and held-out residuals (the predictive interval's)
     problem: Problem | None = None
@@ -210,7 +210,7 @@ def _own_form_fits_as_well(pb: Problem, nxt) -> str | None:
     and the nuisance under the same noise), fits the data about as well as the accepted causes
     plus the further cause of pass `nxt` (chi-square within `clear_chi2` of it), or None: a
     further cause must clearly beat the accepted causes' own other forms, else what it fits is
-    the misfit of their listed form (issue 23: a part-by-part lag from the transient FE is one
+    the misfit of their listed form (a part-by-part lag from the transient FE is one
     lag of another form, not a lag plus a second cause)."""
     fit_c = _extended(nxt)[0]
     for i, a in enumerate(pb.base):
@@ -238,7 +238,7 @@ def scatter_edge(pb: Problem, bound: list[AtBound]) -> list[AtBound]:
     """The entries of `bound` that are a model form's parameter at the edge of its stated
     scatter (`material_lot`'s CTE factor at 1 +- 5 %, `unlogged_load` at the static rating): the
     form is defined inside that range, so a fit at its edge says the data want a lot or a load
-    outside the data sheet, i.e. not this form (issue 23: a 2 mm steel sleeve, which the config
+    outside the data sheet, i.e. not this form (a 2 mm steel sleeve, which the config
     lacks, was `explained: material_lot` with the housing's factor at 1.05). A switch's `share`
     at 1 is the form itself, not an edge."""
     out = []
@@ -251,7 +251,7 @@ def scatter_edge(pb: Problem, bound: list[AtBound]) -> list[AtBound]:
 
 
 def blocked(p) -> tuple[list[AtBound], list[WorseColumn]]:
-    """Why the cause a pass would accept cannot be claimed (issue 34; empty lists: it can): its
+    """Why the cause a pass would accept cannot be claimed (empty lists: it can): its
     parameters at a bound or within their standard uncertainty of one (`goodness.at_bound`),
     and the measured columns its extended model predicts worse on held-out blocks than the
     pass's baseline beyond the noise (`heldout.worse_columns`, over the blocks that test it)."""
@@ -351,7 +351,7 @@ def select(first, run_pass: Callable) -> Selection:
         return Selection()
     bound, worse = blocked(first)
     if bound or worse:
-        # the claim rules (issue 34): a cause at its bound or making a column worse is not one
+        # the claim rules: a cause at its bound or making a column worse is not one
         name = first.decision.cause
         return Selection(verdict="unexplained", reasons=[not_claimed(
             name, bound, worse, is_form(first.pb.effect(name)))], at_bound=bound,
@@ -371,7 +371,7 @@ def select(first, run_pass: Callable) -> Selection:
         if (len(causes) >= MAX_CAUSES or not nxt_pb.candidates or at_bound(cur.pb, fit)
                 or cur.chosen is not None
                 or isinstance(cur.pb.effect(cur.decision.cause), SleeveForm)):
-            # a sleeve (issue 34): its variants are a short list of materials and two
+            # a sleeve: its variants are a short list of materials and two
             # thicknesses; what it leaves is its own mismatch, which a material lot imitated as
             # a second cause (a 2 mm 9Cr18 sleeve as a 1.5 mm 17-4PH one plus a housing lot)
             # a generalised form chosen for the cause: its listed form left structure, and what
@@ -443,7 +443,7 @@ def select(first, run_pass: Callable) -> Selection:
     bound = at_bound(final_pb, final_fit)
     if bound:
         # the model of the accepted causes, refitted together, pushes one to its bound: the
-        # data want more than it allows (issue 34: never claimed)
+        # data want more than it allows (never claimed)
         return replace(sel, verdict="unexplained", reasons=reasons + [not_claimed(
             ", ".join(c.effect for c in causes), bound, [], len(causes) == 1 and is_form(
                 first.pb.effect(causes[0].effect)))], goodness=final, noise=final_pb.noise,
@@ -491,7 +491,7 @@ def refused_for_drift(first) -> bool:
 
 def select_past_drift(first, run_pass: Callable):
     """Two causes where the first pass refused its best candidate for the sensor drift
-    (`refused_for_drift`, issue 34): the best is taken as a provisional first cause and the
+    (`refused_for_drift`): the best is taken as a provisional first cause and the
     forward selection (`select`) runs; a claim is made only when it accepts a further cause and
     the model of the accepted causes clearly beats the drift itself (`decision.
     versus_sensor_drift` on that model, under its last noise estimate: adding the causes to the

@@ -1,10 +1,10 @@
-"""The `sleeve` rung of the model-form ladder (issue 34): a sleeve between the outer rings and the
+"""The `sleeve` rung of the model-form ladder: a sleeve between the outer rings and the
 housing that the assembly file lacks.
 
 A sleeve (a cartridge ring pressed into the housing, the outer rings in its bore) puts a layer of
 another material between the rings and the housing: the outer rings' seat then expands with the
 sleeve, which is held by the housing, so the outer fit, the outer raceway and the preload follow
-a temperature law between the housing's and the sleeve's (issue 34's hidden case: a 3 mm 17-4PH
+a temperature law between the housing's and the sleeve's (the hidden case: a 3 mm 17-4PH
 sleeve in an aluminium housing, where a fit error wanted more than its +-20 um).
 
 The form: `[sleeve]` with a material from a short list of the materials sleeves are made of

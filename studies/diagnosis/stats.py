@@ -165,7 +165,7 @@ def ar1_regression_reml(r: np.ndarray, A: np.ndarray, grid: np.ndarray = AR1_GRI
     the restricted likelihood-ratio statistic against rho = 0 (chi-square with one degree of
     freedom under white noise). ML (`ar1_regression_ml`) is biased low by about
     (1 + 3 rho + p (1 + rho)) / n when the regression has p columns; REML removes most of the
-    part due to the regressors (measured: `tests/test_diagnosis_noise.py`)."""
+    part due to the regressors (measured: `tests/test_diagnosis_fit.py`)."""
     r = np.asarray(r, float)
     n = r.size
     seg = np.zeros(n, int)

@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 from analytic.bearing.geometry import BearingSpec
 from analytic.lubrication import Lubricant, get_lubricant
 from analytic.materials import Material, get_material
+from studies.model.provenance import Origin
 from studies.model.config_schema import (LAYERS, MATERIAL_T_RANGE_C, MESH_TARGET_RANGE, SIGNED,
                                          ZERO_OK, Range, choice, choice_or_number, limits,
                                          material, number, table as _field_table, text)
@@ -188,6 +189,16 @@ class Lubrication:
     oil_quantity_mg: float = number("mg", 'oil: the oil in one bearing (viscous_model = '
                                           '"starved" or "minimal_oil")', sign=ZERO_OK, default=0.0,
                                     default_text="0 = flooded (Palmgren)")
+    lubrication_method: str = choice(
+        "", "oil_bath", "oil_jet", "oil_air", "grease", "minimal_oil", default="",
+        default_text='"" = not stated (skf2004: the oil-jet / oil-bath K_rs)',
+        doc='oil: how the oil reaches the bearing; skf2004: its replenishment constant K_rs '
+            '(3e-8 oil bath and jet, 6e-8 oil-air, grease and minimal oil)')
+    oil_level_mm: float = number("mm", 'oil: an oil bath\'s level above the lowest point of the '
+                                       'outer raceway (skf2004: its drag term)', sign=ZERO_OK,
+                                 default=0.0, default_text="0 = no bath",
+                                 note='only with lubrication_method = "oil_bath" and viscous_model '
+                                      '= "skf2004"')
     shear_strength: str = choice("constant", "pressure", default="constant",
                                  doc='solid film: "constant" (friction_coefficient) or '
                                      '"pressure" (tau = tau0 + alpha p over the Hertz ellipse)')
@@ -323,6 +334,9 @@ class Assembly:
     cartridge: Layer | None = None
     materials: tuple[Material, ...] = ()   # the config's own [materials.NAME] tables
     lubricants: tuple[Lubricant, ...] = ()  # the config's own [lubricants.NAME] tables
+    #: the file it was read from (`studies.model.provenance.Origin`; None when built in memory);
+    #: not part of its value: equal stacks are equal whatever file they came from
+    origin: Origin | None = field(default=None, compare=False, repr=False)
 
     def oil(self) -> Lubricant | None:
         """The oil of `[lubrication] lubricant` (the file's own table first, then the library);

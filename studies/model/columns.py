@@ -26,7 +26,7 @@ def to_columns(result: SimulationResult, flags: bool = True, friction_split: boo
     (1 = violated) and `margin_<name>` columns (docs/cli.md, "simulate: limits").
     `simulate` writes the split (its stream, its transient mode and the Python API ask for it);
     the studies' and the report's tables are written without it, so the shipped seed CSVs stay
-    byte-identical to the files before issue 33. `only`: just these columns, in this order
+    byte-identical to the Palmgren files. `only`: just these columns, in this order
     (KeyError for a name not written); the Lamé neighbours (`result.lame`) are computed only
     when one of their columns (`lame_column_names`) is among them (a diagnosis compares none)."""
     fe, pair, t, s = result.fe, result.pair, result.torque, result.summary
@@ -127,7 +127,7 @@ FRICTION_SPLIT_HEAT = ("heat_inner_W", "heat_outer_W", "heat_ball_W")
 
 
 def friction_split_columns(t) -> dict[str, np.ndarray]:
-    """Whatever the friction model (docs/cli.md, issue 33): the torque by kind,
+    """Whatever the friction model (docs/cli.md): the torque by kind,
     `torque_rolling_Nmm`, `torque_sliding_Nmm`, `torque_drag_Nmm` (summing to `torque_Nmm`),
     and, with a speed, the heat by where it is made, `heat_inner_W`, `heat_outer_W`,
     `heat_ball_W` (summing to `heat_W`; `analytic.friction.pair.TorqueComponents`)."""
@@ -148,7 +148,7 @@ def interval_columns(t) -> dict[str, np.ndarray]:
     none can be stated; docs/cli.md "Model-form interval"); heat columns with a speed only."""
     from analytic.friction.interval import model_form_interval, regime_of
     law = "solid_film" if t.model == "solid_film" else t.viscous_model
-    i = model_form_interval(regime_of(t.model, viscous_model=t.viscous_model), law)
+    i = model_form_interval(regime_of(t.model, t.lubrication_method), law)
     n = np.shape(t.torque_Nmm)
     out = dict(zip(INTERVAL_COLUMNS[:2], i.apply(t.torque_Nmm)))
     if t.heat_W is not None:

@@ -27,6 +27,7 @@ from infra.names import did_you_mean
 from studies.model.assembly import (Assembly, Clamp, Fits, Housing, Layer, Limits, Lubrication,
                                     Mesh, Operating, Preload, Shaft, Spacer, Thermal)
 from studies.model.config_checks import check_assembly, check_bearing, check_friction
+from studies.model.provenance import with_origin
 from studies.model.config_schema import (ASSEMBLY_KEYS, LAYERS, TOLERANCE_SURFACES, ConfigError,
                                          keys_of, parse_table, unit_hint)
 
@@ -59,24 +60,34 @@ def _section(path: str, raw: dict, name: str):
 def _read_toml(path: str) -> dict:
     """The parsed TOML file (UTF-8, with or without a byte order mark); ConfigError (one line
     naming the file) when it cannot be read."""
+    return _parse_toml(path, _read_bytes(path))
+
+
+def _read_bytes(path: str) -> bytes:
     try:
         with open(path, "rb") as fh:
-            data = fh.read()
-        # a UTF-8 byte order mark (Windows editors) is not TOML: read past it
-        return tomllib.loads(data.removeprefix(b"\xef\xbb\xbf").decode("utf-8"))
+            return fh.read()
     except FileNotFoundError:
         raise ConfigError(f"{path}: file not found") from None
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
-        raise ConfigError(f"{path}: not valid TOML: {exc}") from None
     except OSError as exc:
         raise ConfigError(f"{path}: cannot read ({exc.strerror})") from None
 
 
+def _parse_toml(path: str, data: bytes) -> dict:
+    try:
+        # a UTF-8 byte order mark (Windows editors) is not TOML: read past it
+        return tomllib.loads(data.removeprefix(b"\xef\xbb\xbf").decode("utf-8"))
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        raise ConfigError(f"{path}: not valid TOML: {exc}") from None
+
+
 def load_assembly(path: str | Path) -> Assembly:
-    """Read and validate an assembly TOML file. Raises ConfigError (one line) on any problem."""
+    """Read and validate an assembly TOML file. Raises ConfigError (one line) on any problem.
+    The assembly keeps its file's path, SHA-256 and text (`provenance.Origin`): what a report
+    of it lists as its source."""
     path = str(path)
-    raw = _read_toml(path)
-    return assembly_from_dict(raw, path)
+    data = _read_bytes(path)
+    return with_origin(assembly_from_dict(_parse_toml(path, data), path), path, data)
 
 
 @dataclass(frozen=True)

@@ -63,13 +63,20 @@ def _check_clamps(a: Assembly, path: str) -> None:
                               f'got clamp = "{c.clamp}"')
 
 
+#: the largest plausible interfacial shear strength of a solid film at zero pressure, MPa: the
+#: shear strength of the film cannot exceed its substrate's (a bearing steel's shear yield is
+#: about 1000 MPa); MoS2 is 20-25 MPa (Singer et al. 1990, analytic/friction/solid_film.py)
+TAU0_MAX_MPA = 1000.0
+
+
 def check_friction(lub, path: str) -> None:
     """The friction model's keys (analytic/friction/) belong to one kind of lubrication each:
     viscous_model and oil_quantity_mg to an oil, shear_strength and its tau0_MPa, alpha_shear to
-    a solid film; oil_quantity_mg only with viscous_model = "starved" or "minimal_oil" (which needs
-    it), tau0_MPa and alpha_shear
-    only with shear_strength = "pressure", which needs one of them > 0. lub: an assembly's or a
-    bearing file's `Lubrication`."""
+    a solid film; oil_quantity_mg only with viscous_model = "starved" or "minimal_oil" (which
+    needs it), tau0_MPa and alpha_shear only with shear_strength = "pressure", which needs one
+    of them > 0; lubrication_method to an oil, oil_level_mm to an oil bath with viscous_model =
+    "skf2004" (the law that has a drag term); tau0_MPa at most TAU0_MAX_MPA (a value in Pa
+    caught). lub: an assembly's or a bearing file's `Lubrication`."""
     def bad(key: str, msg: str):
         raise ConfigError(f"{path}: lubrication.{key}: {msg}")
     if lub.kind == "solid_film" and lub.viscous_model != "palmgren":
@@ -84,13 +91,26 @@ def check_friction(lub, path: str) -> None:
     for key in ("tau0_MPa", "alpha_shear"):
         if getattr(lub, key) > 0 and lub.shear_strength != "pressure":
             bad(key, f'only used with shear_strength = "pressure", got "{lub.shear_strength}"')
+    if lub.kind == "solid_film" and lub.lubrication_method:
+        bad("lubrication_method", f'"{lub.lubrication_method}" says how an oil reaches the '
+                                  'bearing, got kind = "solid_film"')
+    if lub.oil_level_mm > 0 and lub.lubrication_method != "oil_bath":
+        bad("oil_level_mm", 'an oil bath\'s level: only used with lubrication_method = '
+                            f'"oil_bath", got "{lub.lubrication_method}"')
+    if lub.oil_level_mm > 0 and lub.viscous_model != "skf2004":
+        bad("oil_level_mm", 'only used with viscous_model = "skf2004" (its drag term; '
+                            f"Palmgren's f0 already carries the bath), got \"{lub.viscous_model}\"")
+    if lub.tau0_MPa > TAU0_MAX_MPA:
+        bad("tau0_MPa", f"{lub.tau0_MPa:g} MPa is above any solid film's shear strength "
+                        f"(MoS2 about 20-25 MPa; limit {TAU0_MAX_MPA:g} MPa): typed in Pa? "
+                        f"({lub.tau0_MPa:g} Pa = {lub.tau0_MPa * 1e-6:g} MPa)")
     if lub.shear_strength == "pressure" and not (lub.tau0_MPa > 0 or lub.alpha_shear > 0):
         bad("shear_strength", '"pressure" needs tau0_MPa or alpha_shear > 0 (tau = tau0 + '
                               "alpha p)")
 
 
 def _check_units(a: Assembly, path: str) -> None:
-    """The whole assembly typed in inches (issue 24): ball, ring width and outside diameter all
+    """The whole assembly typed in inches: ball, ring width and outside diameter all
     below `INCH_SUSPECT_MM` -> one line naming inches, before any other geometry check (which
     would otherwise name a consequence: a fit beyond 2 per mille, a preload above C0)."""
     b = a.bearing

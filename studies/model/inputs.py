@@ -7,7 +7,7 @@ preload), and the pipeline evaluates it. Effects never touch outputs.
 
 All arrays have one entry per row. Units in names: C, um, N, rpm, s, 1/K^2.
 
-Conventions for the fields effects write (see studies/effects/__init__.py):
+Conventions for the fields effects write (see studies/model/effects/__init__.py):
 - `interference_inner_um` / `interference_outer_um`: offset from the config's nominal diametral
   fit at T_ref (um); zero in the baseline; offsets add up. `interference_sleeve_um` /
   `interference_cartridge_um`: the same for a sleeve's / cartridge's fit (None = zero; the

@@ -21,7 +21,7 @@ from __future__ import annotations
 from collections import deque
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable, Iterator
+from typing import Callable, Iterable, Iterator
 
 import numpy as np
 
@@ -95,21 +95,53 @@ def simulate_file(asm, conditions: Path, out: Path, effects: dict | None = None,
     """Evaluate the conditions file `conditions` chunk by chunk and write the output table `out`
     (condition columns, model outputs, flag and margin columns; with its provenance sidecar) as
     one atomic file: nothing is left at `out` on an error. `n_rows`: the file's row count when
-    known (`check_conditions`), else it is counted first. With `workers` (processes forked from
-    this one) or `scheduler` (an existing Dask cluster) the chunks are evaluated as tasks
-    (`run_block` on each worker's shared pipeline, `studies.model.parallel.Blocks.imap`), the
-    same chunks by the same function, so the same bytes. See the module docstring."""
-    from studies.model.parallel import Blocks
-
+    known (`check_conditions`), else it is counted first. The evaluation is `simulate_chunks`'
+    (see there for `workers` and `scheduler`). See the module docstring."""
     if asm.thermal.mode == "transient":
         raise ValueError("simulate_file: [thermal] mode = \"transient\" runs through "
                          "studies.model.transient_route.simulate_transient_file")
     total = check_conditions(conditions, chunk_rows) if n_rows is None else n_rows
+    with TableWriter(out, provenance) as w:
+        return simulate_chunks(asm, iter_table(conditions, set(CONDITION_COLUMNS), chunk_rows),
+                               total, w.write, str(conditions), effects, direct, pipeline,
+                               progress, workers, scheduler)
+
+
+def simulate_columns(asm, columns: dict[str, np.ndarray], effects: dict | None = None,
+                     direct: bool = False, pipeline: Pipeline | None = None,
+                     chunk_rows: int = CHUNK_ROWS, progress: Callable[[str], None] | None = None,
+                     workers: int | None = None,
+                     scheduler: str | None = None) -> tuple[SimulateRun, dict[str, np.ndarray]]:
+    """`simulate_file` of a table in memory (checked condition columns, `table.check_columns`):
+    the same chunks through `simulate_chunks`, the columns it would write collected instead
+    (condition columns first, then the outputs, flags and margins; full float precision)."""
+    n = _n_rows(columns)
+    chunks = ({k: v[i:i + chunk_rows] for k, v in columns.items()} for i in range(0, n, chunk_rows))
+    parts: list[dict] = []
+    run = simulate_chunks(asm, chunks, n, parts.append, "conditions", effects, direct, pipeline,
+                          progress, workers, scheduler)
+    return run, {k: np.concatenate([p[k] for p in parts]) for k in parts[0] if not k.startswith("_")}
+
+
+def simulate_chunks(asm, chunks: Iterable[dict], total: int, write: Callable[[dict], None],
+                    where: str, effects: dict | None = None, direct: bool = False,
+                    pipeline: Pipeline | None = None,
+                    progress: Callable[[str], None] | None = None, workers: int | None = None,
+                    scheduler: str | None = None) -> SimulateRun:
+    """The evaluation of `bearingfem simulate`: each chunk of condition columns (`_line`, the
+    file's line numbers, optional) through the one route, its columns (conditions, then
+    `columns.to_columns`) handed to `write`, the checks tallied and the warnings read over all
+    `total` rows. With `workers` (processes forked from this one) or `scheduler` (an existing
+    Dask cluster) the chunks are evaluated as tasks (`run_block` on each worker's shared
+    pipeline, `studies.model.parallel.Blocks.imap`), the same chunks by the same function, so
+    the same bytes. `where` names the table in errors."""
+    from studies.model.parallel import Blocks
+
     tally = CheckTally(assembly_checks(asm))
     kept: dict[str, np.ndarray] = {}
     n = 0
-    with TableWriter(out, provenance) as w, Blocks(workers, scheduler) as where:
-        if where.here:
+    with Blocks(workers, scheduler) as place:
+        if place.here:
             pl = pipeline or Pipeline.shared(asm)
             fn = lambda a, f, inputs, d, first: pl.run(inputs, direct=d,  # noqa: E731
                                                       first_row=first, remember=False)
@@ -119,20 +151,20 @@ def simulate_file(asm, conditions: Path, out: Path, effects: dict | None = None,
         conds: deque[dict] = deque()       # the condition columns of the blocks under way
 
         def blocks():
-            for cond, inputs, first in _inputs(asm, conditions, effects, chunk_rows):
+            for cond, inputs, first in _inputs(asm, chunks, effects):
                 conds.append(cond)
                 yield asm, factor, inputs, direct, first
 
-        for res in where.imap(fn, blocks()):
+        for res in place.imap(fn, blocks()):
             cond = conds.popleft()
-            m = len(cond["_line"])
+            m = _n_rows(cond)
             if n + m > total:
-                raise TableError(f"{conditions}: changed while it was read")
+                raise TableError(f"{where}: changed while it was read")
             cols = {k: v for k, v in cond.items() if not k.startswith("_")}
             out_cols = to_columns(res, friction_split=True)
             cols.update(out_cols)
             tally.add(res.checks, n)
-            w.write(cols)
+            write(cols)
             keep = [c for c in cols if c.startswith("T_") and c.endswith("_C")]
             for k in keep + [c for c in WARNING_OUTPUTS if c in out_cols]:
                 kept.setdefault(k, np.empty(total))[n:n + m] = cols[k]
@@ -140,10 +172,15 @@ def simulate_file(asm, conditions: Path, out: Path, effects: dict | None = None,
             if progress:
                 progress(f"simulate: {n} of {total} rows")
         if n != total:
-            raise TableError(f"{conditions}: changed while it was read")
+            raise TableError(f"{where}: changed while it was read")
     temps = {k: v for k, v in kept.items() if k not in WARNING_OUTPUTS}
     outputs = {k: v for k, v in kept.items() if k in WARNING_OUTPUTS}
     return SimulateRun(n, tally.violations(), plausibility_warnings(asm, temps, outputs), temps)
+
+
+def _n_rows(columns: dict) -> int:
+    """Rows of a table of equal-length columns."""
+    return len(next(iter(columns.values())))
 
 
 def run_block(asm, mesh_factor: float, inputs, direct: bool, first_row: int) -> SimulationResult:
@@ -154,19 +191,18 @@ def run_block(asm, mesh_factor: float, inputs, direct: bool, first_row: int) -> 
                                                  remember=False)
 
 
-def _inputs(asm, path: Path, effects: dict | None,
-            chunk_rows: int) -> Iterator[tuple[dict, object, int]]:
-    """(condition columns, `PhysicsInputs`, 0-based first row) per chunk of the conditions file."""
-    chunks = iter_table(path, set(CONDITION_COLUMNS), chunk_rows)
+def _inputs(asm, chunks: Iterable[dict],
+            effects: dict | None) -> Iterator[tuple[dict, object, int]]:
+    """(condition columns, `PhysicsInputs`, 0-based first row) per chunk of a conditions table."""
     first = 0
     if not effects:
         for cond in chunks:
             yield cond, table_inputs(asm, cond), first
-            first += len(cond["_line"])
+            first += _n_rows(cond)
         return
     parts = list(chunks)            # an effect may depend on earlier rows: the whole table's inputs
     whole = {c: np.concatenate([p[c] for p in parts]) for c in parts[0]}
-    sizes = [len(p["_line"]) for p in parts]
+    sizes = [_n_rows(p) for p in parts]
     del parts
     inputs = table_inputs(asm, whole, effects)
     for m in sizes:

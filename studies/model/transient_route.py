@@ -709,7 +709,7 @@ def _route(pl: Pipeline, inputs: PhysicsInputs, fe: FEState, ref: FEState, first
                  fe_options=FEOptions(states=(fe, ref)))
     if res.torque.model == "solid_film":       # the film's own dissipation (its friction coefficient)
         heat = solid_film_pair_heat_W(res.torque, inputs.speed_rpm)
-    elif res.torque.viscous_model != "palmgren":   # issue 33's models: the torque's located heat
+    elif res.torque.viscous_model != "palmgren":   # the other laws: the located heat
         heat = located_pair_heat_W(res.torque, inputs.speed_rpm)
     else:
         heat = pair_heat_W(pl.geom, res.pair, inputs.speed_rpm, MU_TRACTION,
@@ -734,21 +734,34 @@ def simulate_transient_file(asm: Assembly, conditions, out, effects: dict | None
                             workers: int | None = None, scheduler: str | None = None,
                             n_rows: int | None = None):
     """`bearingfem simulate` of an assembly in transient mode: the whole conditions file (rows
-    are successive instants, evaluated in order), the checks of `studies.model.checks` per row,
-    one atomic output file (`table.TableWriter`). Effects, direct solves and Dask workers are
-    refused (one line): the route has its own temperatures and runs in time order. n_rows: not
-    needed (the whole table is read at once), accepted as `stream.simulate_file` takes it."""
-    from studies.model.checks import assembly_checks, plausibility_warnings
-    from studies.model.stream import WARNING_OUTPUTS, CheckTally, SimulateRun
+    are successive instants, evaluated in order) through `simulate_transient_columns`, one
+    atomic output file (`table.TableWriter`). n_rows: not needed (the whole table is read at
+    once), accepted as `stream.simulate_file` takes it."""
     from studies.model.table import TableWriter, read_table
 
-    for bad, what in ((effects, "--effect"), (direct, "--direct"),
-                      (workers is not None or scheduler is not None, "--workers/--scheduler")):
-        if bad:
-            raise ConfigError(f"{what}: not available with [thermal] mode = \"transient\"")
+    _refuse(effects, direct, workers, scheduler)
     cols = read_table(conditions, allowed=condition_columns())
+    run, res = simulate_transient_columns(asm, cols, str(conditions), pipeline=pipeline,
+                                          progress=progress)
+    with TableWriter(out, provenance) as w:
+        w.write(res)
+    return run
+
+
+def simulate_transient_columns(asm: Assembly, cols: dict, where: str = "conditions",
+                               effects: dict | None = None, direct: bool = False,
+                               pipeline: Pipeline | None = None, progress=None,
+                               workers: int | None = None, scheduler: str | None = None):
+    """The transient `simulate` of a checked conditions table in memory: (`stream.SimulateRun`,
+    the columns `simulate_transient_file` writes: the conditions, then `TransientRun.columns`),
+    the checks of `studies.model.checks` per row. Effects, direct solves and Dask workers are
+    refused (one line): the route has its own temperatures and runs in time order."""
+    from studies.model.checks import assembly_checks, plausibility_warnings
+    from studies.model.stream import WARNING_OUTPUTS, CheckTally, SimulateRun
+
+    _refuse(effects, direct, workers, scheduler)
     cols = {k: v for k, v in cols.items() if not k.startswith("_")}
-    environment(asm, cols, str(conditions))           # bad input before any FE work
+    environment(asm, cols, where)                     # bad input before any FE work
     pl = pipeline or Pipeline.shared(asm, progress=progress)
     run = run_transient(pl, cols, progress)
     tally = CheckTally(assembly_checks(asm))
@@ -756,11 +769,18 @@ def simulate_transient_file(asm: Assembly, conditions, out, effects: dict | None
     tally.add(run.outputs.checks, 0)
     res = dict(cols)
     res.update(outputs)
-    with TableWriter(out, provenance) as w:
-        w.write(res)
     is_T = lambda k: k.startswith("T_") and k.endswith("_C")           # noqa: E731
     temps = {k: np.asarray(v, float) for k, v in res.items() if is_T(k)}
     given = {k: v for k, v in temps.items() if k in cols}     # the warnings read the inputs
     warn_cols = {k: outputs[k] for k in WARNING_OUTPUTS if k in outputs}
     n = len(cols["time_s"])
-    return SimulateRun(n, tally.violations(), plausibility_warnings(asm, given, warn_cols), temps)
+    return SimulateRun(n, tally.violations(), plausibility_warnings(asm, given, warn_cols),
+                       temps), res
+
+
+def _refuse(effects, direct, workers, scheduler) -> None:
+    """ConfigError (one line) for what the transient route cannot take."""
+    for bad, what in ((effects, "--effect"), (direct, "--direct"),
+                      (workers is not None or scheduler is not None, "--workers/--scheduler")):
+        if bad:
+            raise ConfigError(f"{what}: not available with [thermal] mode = \"transient\"")

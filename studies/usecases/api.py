@@ -24,6 +24,7 @@ from typing import Mapping
 
 import numpy as np
 
+from studies.usecases import defaults
 from studies.usecases.output_folder import check_output_file, output_folder
 
 
@@ -36,12 +37,10 @@ def _is_path(x) -> bool:
 
 
 def _assembly(assembly):
-    """An `Assembly`, and the path it came from (None for one built in memory)."""
+    """An `Assembly`: `assembly` itself, or loaded from its path (keeping its file's `Origin`)."""
     from studies.model.config import load_assembly
 
-    if _is_path(assembly):
-        return load_assembly(Path(assembly)), Path(assembly)
-    return assembly, None
+    return load_assembly(Path(assembly)) if _is_path(assembly) else assembly
 
 
 def table(source, allowed: set[str] | None, where: str) -> dict[str, np.ndarray]:
@@ -60,15 +59,21 @@ def table(source, allowed: set[str] | None, where: str) -> dict[str, np.ndarray]
     return cols
 
 
-def _provenance(command: str, **inputs) -> dict:
-    """`provenance` with the inputs given as files (an in-memory input is named, not hashed)."""
-    from studies.model.provenance import provenance
+def _provenance(command: str, asm=None, assembly=None, effects: dict | None = None,
+                **tables) -> dict:
+    """`provenance` of a command's inputs: the assembly `asm` as given (`assembly`: its path, or
+    the loaded or in-memory `Assembly`; `provenance.assembly_record`), each table as its file or
+    as an in-memory table (named, hashed by content), the effects switched on."""
+    from studies.model.provenance import assembly_record, provenance
 
-    prov = provenance(command, {k: Path(v) for k, v in inputs.items() if _is_path(v)})
-    prov["inputs"].update({k: {"path": "(in-memory table)", "sha256": _table_sha256(v)}
-                           for k, v in inputs.items()
-                           if v is not None and not _is_path(v) and k != "assembly"})
-    return prov
+    inputs: dict = {}
+    if asm is not None:
+        inputs["assembly"] = assembly_record(asm, Path(assembly) if _is_path(assembly) else None)
+    for k, v in tables.items():
+        if v is not None:
+            inputs[k] = (Path(v) if _is_path(v) else
+                         {"path": "(in-memory table)", "sha256": _table_sha256(v)})
+    return provenance(command, inputs, effects)
 
 
 def _table_sha256(cols) -> str:
@@ -102,6 +107,101 @@ def _check_workers(workers) -> None:
 
 # --- the commands --------------------------------------------------------------------------------
 
+def warning_lines(result) -> list[str]:
+    """The warning lines a command prints for its result (each after `bearingfem COMMAND:
+    warning: `), in the order it prints them: the result's `warnings` (plausibility warnings,
+    then the summaries of violated limits), and for `stiffness` the ROSS table's. The Python
+    API emits the same lines as `BearingfemWarning`s."""
+    lines = list(getattr(result, "warnings", ()))
+    ross = getattr(result, "ross", None)
+    if ross is not None and ross.warning:
+        lines.append(ross.warning)
+    return lines
+
+
+def simulate(assembly, conditions, effects: Mapping | None = None, out=None,
+             direct: bool = False, workers: int | None = None, scheduler: str | None = None,
+             progress=_quiet):
+    """`bearingfem simulate ASSEMBLY.toml CONDITIONS.csv -o OUT.csv [--effect NAME:k=v]...
+    [--direct] [--workers N | --scheduler ADDRESS]`: the model per row of `conditions` (the
+    condition columns of docs/cli.md: `T_ambient_C` and part temperatures `T_<part>_C` in C,
+    `speed_rpm`, `preload_assembled_N`, `axial_load_N`, `radial_load_N` in N, `moment_Nmm`,
+    `time_s`; in transient mode also `T_sink_C`, `film_scale`, `heat_W`).
+    effects: {effect name: {parameter: value}}, as `--effect`.  out: the CSV to write (None:
+    nothing written, the table kept in memory).  With a CSV path and `out` the file is streamed
+    chunk by chunk as by the command (memory independent of the rows); otherwise the table is
+    evaluated in memory, the same chunks through the same `stream.simulate_chunks`.
+    Returns `Simulation` (`.warnings` the lines the command prints; `.to_frame()` OUT.csv:
+    the condition columns first, then the outputs, flags and margins)."""
+    from studies.model import stream
+    from studies.model.inputs import CONDITION_COLUMNS
+    from studies.model.pipeline import Pipeline
+    from studies.model.table import write_table
+
+    _check_workers(workers)
+    if out is not None:                         # before any work: nothing the user has is lost
+        check_output_file(Path(out), tuple(Path(p) for p in (assembly, conditions) if _is_path(p)))
+    asm = _assembly(assembly)
+    transient = asm.thermal.mode == "transient"
+    if transient:         # part temperatures computed: rows in time order, one route
+        from studies.model import transient_route as tr
+    allowed = tr.condition_columns() if transient else set(CONDITION_COLUMNS)
+    effects = {k: dict(v) for k, v in (effects or {}).items()}
+    prov = _provenance("simulate", asm, assembly, effects, conditions=conditions)
+    streamed = out is not None and _is_path(conditions)     # the command's way
+    # all of the table is checked before any FE work (a bad row late in a file included)
+    if streamed:
+        n_rows = stream.check_conditions(Path(conditions), columns=allowed)
+    else:
+        cols = table(conditions, allowed, "conditions")
+    settings = dict(direct=direct, progress=progress, workers=workers, scheduler=scheduler,
+                    pipeline=(Pipeline.shared(asm, progress=progress)
+                              if workers is None and scheduler is None else None))
+    if streamed:
+        run = (tr.simulate_transient_file if transient else stream.simulate_file)(
+            asm, Path(conditions), Path(out), effects, provenance=prov, n_rows=n_rows, **settings)
+        return Simulation(run, None, Path(out))
+    if transient:
+        where = str(conditions) if _is_path(conditions) else "conditions"
+        run, columns = tr.simulate_transient_columns(asm, cols, where, effects, **settings)
+    else:
+        run, columns = stream.simulate_columns(asm, cols, effects, **settings)
+    if out is not None:
+        write_table(Path(out), columns, prov)
+    return Simulation(run, columns, None if out is None else Path(out))
+
+
+@dataclass(frozen=True)
+class Simulation:
+    """What `simulate` did. run: `stream.SimulateRun` (rows, violated checks, plausibility
+    warnings); columns: the output table in memory (None when streamed into `out`); out: the
+    file written, or None."""
+    run: object
+    columns: dict | None = field(repr=False)
+    out: Path | None = None
+
+    @property
+    def n_rows(self) -> int:
+        return self.run.n_rows
+
+    @property
+    def violations(self) -> list:
+        return self.run.violations
+
+    @property
+    def warnings(self) -> tuple[str, ...]:
+        """The lines the command prints as warnings: the plausibility warnings, then one
+        summary per violated check (`SimulateRun.summaries`)."""
+        return (*self.run.warnings, *self.run.summaries())
+
+    def to_frame(self):
+        """OUT.csv as a `pandas.DataFrame`: the condition columns, then the outputs (full
+        precision; a streamed run's file is read back, its 10 significant digits)."""
+        import pandas as pd
+
+        return pd.DataFrame(self.columns) if self.columns is not None else pd.read_csv(self.out)
+
+
 def diagnose(assembly, measured, out=None, progress=_quiet):
     """`bearingfem diagnose ASSEMBLY.toml MEASURED.csv --out DIR`: which named effect explains
     what the baseline model gets wrong on `measured` (condition columns and measured output
@@ -110,7 +210,7 @@ def diagnose(assembly, measured, out=None, progress=_quiet):
     parameters, held-out gain; `.json` is diagnosis.json as written)."""
     from studies.diagnosis.files import OUTPUT_NAMES, diagnose_tables, measured_columns, split_measured
 
-    asm, _ = _assembly(assembly)
+    asm = _assembly(assembly)
     cols = table(measured, measured_columns(OUTPUT_NAMES), "measured")
     conditions, meas = split_measured(cols, measured if _is_path(measured) else "measured")
     with _folder(out) as tmp:
@@ -134,7 +234,8 @@ class Diagnosis:
         return self.json.get("cause")
 
 
-def tolerance(assembly, conditions=None, samples: int = 1000, seed: int = 0, out=None,
+def tolerance(assembly, conditions=None, samples: int = defaults.TOLERANCE_SAMPLES,
+              seed: int = defaults.TOLERANCE_SEED, out=None,
               workers: int | None = None, scheduler: str | None = None, progress=_quiet,
               bar=None):
     """`bearingfem tolerance ASSEMBLY.toml [CONDITIONS.csv] --samples N --out DIR [--seed S]`:
@@ -148,16 +249,17 @@ def tolerance(assembly, conditions=None, samples: int = 1000, seed: int = 0, out
     if samples < 2:
         raise tolerance_report.ToleranceError(f"samples {samples}: need at least 2")
     _check_workers(workers)
-    asm, path = _assembly(assembly)
+    asm = _assembly(assembly)
     cond = None if conditions is None else table(conditions, set(CONDITION_COLUMNS), "conditions")
-    prov = _provenance("tolerance", assembly=path, conditions=conditions)
+    prov = _provenance("tolerance", asm, assembly, conditions=conditions)
     with _folder(out) as tmp:
         return tolerance_report.run(asm, cond, tmp, prov, samples=samples, seed=seed,
                                     progress=progress, workers=workers, scheduler=scheduler,
                                     bar=bar)
 
 
-def design(assembly, range_C: tuple[float, float], out=None, band: tuple[float, float] = (0.8, 1.2),
+def design(assembly, range_C: tuple[float, float], out=None,
+           band: tuple[float, float] = defaults.DESIGN_BAND,
            band_N: tuple[float, float] | None = None, clamps: bool = False,
            vary: Mapping[str, tuple] | None = None, workers: int | None = None,
            scheduler: str | None = None, progress=_quiet, bar=None):
@@ -185,11 +287,11 @@ def design(assembly, range_C: tuple[float, float], out=None, band: tuple[float, 
             raise ds.DesignError(f"band {lo:g}:{hi:g}: LOW must be below HIGH")
         the_band = ds.Band(lo, hi)
     _check_workers(workers)
-    asm, path = _assembly(assembly)
+    asm = _assembly(assembly)
     vary = {k: tuple(v) for k, v in (vary or {}).items()}
     ds.settings_of(asm, vary)                   # bad values: one line before any work
     with _folder(out) as tmp:
-        return ds.run(asm, T_min, T_max, tmp, _provenance("design", assembly=path),
+        return ds.run(asm, T_min, T_max, tmp, _provenance("design", asm, assembly),
                       band=the_band, clamps=clamps, progress=progress, workers=workers,
                       scheduler=scheduler, bar=bar, vary=vary)
 
@@ -211,7 +313,7 @@ def stiffness(assembly, conditions, out=None, per_bearing: bool = False, ross=No
         check_output_file(Path(out), inputs)
     if _is_path(ross):
         check_output_file(Path(ross), inputs + ((Path(out),) if out is not None else ()))
-    asm, path = _assembly(assembly)
+    asm = _assembly(assembly)
     cond = table(conditions, set(CONDITION_COLUMNS), "conditions")
     where = str(conditions) if _is_path(conditions) else "conditions"
     res = st.compute(asm, cond, where, per_bearing, ross is not None and ross is not False,
@@ -219,7 +321,7 @@ def stiffness(assembly, conditions, out=None, per_bearing: bool = False, ross=No
     if out is not None:
         ross_out = ross if _is_path(ross) else None
         st.write(res, Path(out), None if ross_out is None else Path(ross_out),
-                 _provenance("stiffness", assembly=path, conditions=conditions))
+                 _provenance("stiffness", asm, assembly, conditions=conditions))
     return res
 
 
@@ -231,9 +333,9 @@ def report(assembly, conditions=None, out=None, pdf: bool = False, progress=_qui
     from studies.model.inputs import CONDITION_COLUMNS
     from studies.usecases import assembly_report
 
-    asm, path = _assembly(assembly)
+    asm = _assembly(assembly)
     cond = None if conditions is None else table(conditions, set(CONDITION_COLUMNS), "conditions")
-    prov = _provenance("report", assembly=path, conditions=conditions)
+    prov = _provenance("report", asm, assembly, conditions=conditions)
     with _folder(out) as tmp:
         return assembly_report.run(asm, cond, tmp, prov, progress=progress, pdf=pdf,
                                    command=command)
@@ -245,12 +347,13 @@ def verify(out=None, assembly=None, progress=_quiet):
     verification.json.  Returns `verify.VerifyRun`."""
     from studies.usecases import verify as vf
 
-    asm = None if assembly is None else _assembly(assembly)[0]
+    asm = None if assembly is None else _assembly(assembly)
     with _folder(out) as tmp:
         return vf.run(tmp, progress=progress, assembly=asm)
 
 
-def bearing(bearing_file, loads, out=None, convention: str = "exact", control: str = "outer"):
+def bearing(bearing_file, loads, out=None, convention: str = defaults.BEARING_CONVENTION,
+            control: str = defaults.BEARING_CONTROL):
     """`bearingfem bearing BEARING.toml LOADS.csv -o OUT.csv [--convention exact|iso16281]
     [--control outer|inner|jones]`: one bearing, 5 DOF of its inner ring, per row of `loads`.
     bearing_file: the bearing's TOML path (or a loaded `BearingConfig`).  Returns

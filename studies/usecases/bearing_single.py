@@ -25,8 +25,7 @@ from analytic.thermal_speed import (ThermalReference, dissipated_heat_W,
                                     reference_heat_transfer_W_per_mm2_K, thermal_reference_speed,
                                     thermally_permissible_speed)
 from analytic.friction.pair import bearing_friction, single_bearing_contacts
-from analytic.friction.palmgren import (coulomb_load_torque_Nmm, palmgren_f1_angular_contact,
-                                        palmgren_load_torque_Nmm)
+from analytic.friction.palmgren import palmgren_f1_angular_contact, palmgren_load_torque_Nmm
 from studies.model.stages.torque import friction_options
 from studies.model.table import TableError, write_table
 
@@ -62,8 +61,9 @@ OUTPUT_COLUMNS = {
     "thermal_reference_speed_rpm": "thermal reference speed, ISO 15312:2018 (the same on every "
                                    "row; analytic/thermal_speed.py)",
     "thermal_permissible_speed_rpm": "thermally permissible speed, DIN 732:2010 with the friction "
-                                     "of ISO/TR 14179-2 at the row's load and oil viscosity "
-                                     "(empty without an oil [lubrication])",
+                                     "of ISO/TR 14179-2 at the row's load, the oil's viscosity "
+                                     "at the permissible temperature (empty without an oil "
+                                     "[lubrication])",
     "margin_speed_rpm": "thermal_permissible_speed_rpm - the row's speed",
 }
 
@@ -149,8 +149,7 @@ def solve(cfg, cols: dict, where: str = "loads", convention: str = "exact",
             cfg, st, speed, get("T_oil_C"))),
     })
     out_cols.update(_interval_columns(lub, out_cols["torque_Nmm"], speed))
-    ts = thermal_speeds(cfg.spec, cfg.geometry, lub, cfg.oil(), np.abs(b.loads[0]),
-                        get("T_oil_C"), speed)
+    ts = thermal_speeds(cfg.spec, cfg.geometry, lub, cfg.oil(), np.abs(b.loads[0]), speed)
     out_cols.update({"thermal_reference_speed_rpm": np.full(n, ts.reference.speed_rpm),
                      "thermal_permissible_speed_rpm": ts.permissible_speed_rpm,
                      "margin_speed_rpm": ts.margin_speed_rpm,
@@ -204,17 +203,6 @@ def bearing_torque_Nmm(cfg, st: SingleBearingState, speed_rpm, T_oil_C) -> np.nd
                             friction=friction_options(lub, oil, cfg.spec, nu)).total_Nmm
 
 
-def oil_load_torque_Nmm(g, lub, Fa_N) -> np.ndarray:
-    """The load term of an oil-lubricated bearing, N*mm: coulomb mu F_a dm/2, or palmgren
-    f1 F_a dm with f1 = 0.001 (F_a/C0)^0.33 (Palmgren 1959; the f1 of ISO/TR 14179-2 for
-    angular-contact ball bearings), C0 of ISO 76 from the geometry g; F_a (N) per row."""
-    Fa = np.asarray(Fa_N, float)
-    if lub.load_term == "palmgren":
-        C0 = static_load_rating_C0_N(g.Z, g.Dw_mm, g.dm_mm, g.alpha0_deg)
-        return palmgren_load_torque_Nmm(palmgren_f1_angular_contact(Fa, C0), Fa, g.dm_mm)
-    return coulomb_load_torque_Nmm(lub.friction_coefficient, Fa, 0.5 * g.dm_mm)
-
-
 #: the default f0r when [lubrication] reference_f0r is 0 or absent: Palmgren's oil-bath f0 of a
 #: single-row ball bearing (Harris & Kotzalas, Rolling Bearing Analysis 5th ed., Vol. 2 ch.
 #: "friction", table of f0; ball bearings range from about 1.3 to 3.3 with the type): the maker's
@@ -241,12 +229,17 @@ class ThermalSpeeds:
                 + " (docs/cli.md \"Thermal speed limits\"; set them in [lubrication])")
 
 
-def thermal_speeds(spec, g, lub, oil, axial_force_N, T_oil_C, speed_rpm) -> ThermalSpeeds:
+def thermal_speeds(spec, g, lub, oil, axial_force_N, speed_rpm) -> ThermalSpeeds:
     """ISO 15312 thermal reference speed and DIN 732 thermally permissible speed of the bearing
     `spec` (boundary dimensions; `g` its `BearingGeometry`: C0 of ISO 76) with the [lubrication]
     `lub` (None: every default) and its oil `oil` (None: no permissible speed). Per row: the
-    axial force the bearing carries (N; its load term by `oil_load_torque_Nmm`, the bearing's
-    own torque model), the oil temperature (C; its viscosity) and the speed (rpm).
+    axial force the bearing carries (N) and the speed (rpm).
+    DIN 732's heat balance puts the bearing at its permissible temperature: the oil's viscosity
+    is taken there ([lubrication] permissible_temperature_C, 70 C by default, the ISO 15312
+    reference), not at the row's temperature, so the permissible speed of a bearing does not
+    depend on the row's temperature; the load term is the standard's M1 = f1 P1 dm (ISO/TR
+    14179-2: f1 = 0.001 (P1/C0)^0.33, P1 = F_a for the axially loaded pair), whatever load
+    term the file's friction torque uses.
     f0r, f1r, k_q, the permissible and ambient temperatures from `lub` (0 or None: defaults,
     see `studies.model.assembly.Lubrication`); the heat-emitting surface pi B (D + d) from the
     boundary dimensions (ISO 15312 defines it so)."""
@@ -271,8 +264,9 @@ def thermal_speeds(spec, g, lub, oil, axial_force_N, T_oil_C, speed_rpm) -> Ther
         defaults.append(f"heat_transfer_W_per_mm2_K = {k_q:.3g}")
     Q = dissipated_heat_W(k_q, ref.surface_mm2, lub.permissible_temperature_C,
                           lub.ambient_temperature_C)
-    nu = oil.nu_mm2_s(np.asarray(T_oil_C, float))
-    perm = thermally_permissible_speed(ref.speed_rpm, lub.viscous_factor_f0, nu, g.dm_mm,
-                                       oil_load_torque_Nmm(g, lub, axial_force_N),
+    nu = float(oil.nu_mm2_s(lub.permissible_temperature_C))
+    Fa = np.asarray(axial_force_N, float)
+    M1 = palmgren_load_torque_Nmm(palmgren_f1_angular_contact(Fa, C0), Fa, g.dm_mm)
+    perm = thermally_permissible_speed(ref.speed_rpm, lub.viscous_factor_f0, nu, g.dm_mm, M1,
                                        Q * np.ones_like(speed)).speed_rpm
     return ThermalSpeeds(ref, perm, perm - np.abs(speed), tuple(defaults))

@@ -28,6 +28,7 @@ from pathlib import Path
 
 import numpy as np
 
+from studies.model.provenance import comments_in, origin_of
 from studies.usecases.report_tools import condition_text, md_table
 
 if TYPE_CHECKING:
@@ -238,9 +239,8 @@ def thermal_speed_rows(asm, cond: dict | None, res: dict) -> list[MarginRow]:
     """One margin row per bearing (A, B): the ISO 15312 thermal reference speed and the DIN 732
     thermally permissible speed (`studies.usecases.bearing_single.thermal_speeds`, the bearing
     command's route) at each operating point: the bearing's axial force (result
-    `axial_force_<J>_N`), its oil at the outer ring's temperature (T_outer_ring_C, else
-    T_ambient_C: the standards' bearing temperature is the stationary outer ring's) and the speed
-    (speed_rpm, else [lubrication] speed_rpm). margin_speed_rpm = permissible - speed at the
+    `axial_force_<J>_N`) and the speed (speed_rpm, else [lubrication] speed_rpm); the oil at the
+    permissible temperature (DIN 732's heat balance). margin_speed_rpm = permissible - speed at the
     governing point (the smallest margin); without an oil only the reference speed."""
     from analytic.bearing.geometry import BearingGeometry
     from studies.usecases.bearing_single import thermal_speeds
@@ -249,14 +249,12 @@ def thermal_speed_rows(asm, cond: dict | None, res: dict) -> list[MarginRow]:
     n = len(np.asarray(res["preload_N"]))
     lub = asm.lubrication
     speed = _row_values(cond, n, "speed_rpm", default=lub.speed_rpm)
-    T_oil = _row_values(cond, n, "T_outer_ring_C", "T_ambient_C", default=20.0)
     g = BearingGeometry.from_spec(asm.bearing, asm.materials)
     rows = []
     for J in ("A", "B"):
         if f"axial_force_{J}_N" not in res:
             continue
-        ts = thermal_speeds(asm.bearing, g, lub, asm.oil(), res[f"axial_force_{J}_N"], T_oil,
-                            speed)
+        ts = thermal_speeds(asm.bearing, g, lub, asm.oil(), res[f"axial_force_{J}_N"], speed)
         ref = f"reference {ts.reference.speed_rpm:.4g} rpm (ISO 15312)"
         src = "ISO 15312:2018; DIN 732:2010, friction ISO/TR 14179-2"
         if ts.defaults:
@@ -319,21 +317,11 @@ def margin_lines(rows: list[MarginRow], n_points: int, where: str) -> list[str]:
 # ------------------------------------------------------------------------------- pedigree
 def config_comments(path: Path) -> dict[tuple[str, str], str]:
     """(table, key) -> the comment on that key's line in the assembly file (its own pedigree:
-    the template asks for the source of every number in its comment)."""
-    out, table = {}, ""
+    the template asks for the source of every number in its comment; `provenance.comments_in`)."""
     try:
-        text = Path(path).read_text(encoding="utf-8-sig")
+        return comments_in(Path(path).read_text(encoding="utf-8-sig"))
     except OSError:
-        return out
-    for line in text.splitlines():
-        m = re.match(r"\s*\[([^\]]+)\]", line)
-        if m:
-            table = m.group(1).strip()
-            continue
-        m = re.match(r"\s*([A-Za-z0-9_]+)\s*=[^#]*#\s*(.*)$", line)
-        if m and m.group(2).strip():
-            out[(table, m.group(1))] = m.group(2).strip()
-    return out
+        return {}
 
 
 def material_references() -> dict[str, str]:
@@ -368,7 +356,9 @@ def pedigree_lines(asm, assembly_path: Path | None) -> list[str]:
     mat_rows = [[name, ", ".join(parts), f"{m.E_MPa:.6g}", f"{m.nu:g}", f"{m.alpha_per_K * 1e6:.4g}",
                  f"[{m.source}] {refs.get(m.source, '')}".strip()]
                 for name, (m, parts) in mats.items()]
-    comments = config_comments(assembly_path) if assembly_path else {}
+    origin = origin_of(asm)         # the text it was loaded from, else the file named
+    comments = (comments_in(origin.text) if origin is not None else
+                config_comments(assembly_path) if assembly_path else {})
     cat = CATALOGUE.get(asm.bearing.designation)
     key_rows = []
     for name in ("shaft", "housing", "nut", "cover", "inner_spacer", "outer_spacer", "bearing",

@@ -1,5 +1,5 @@
 """An independent conduction model of the bearing stack: thermal histories made another way
-than the tool's transient conduction FE (issue 42, "made another way").
+than the tool's transient conduction FE ("made another way").
 
 Nothing here uses `fem/`, `fem.transient`, `fem.reduced_thermal` or
 `studies.model.transient_route`: it is a radial finite-volume network of its own, with its own

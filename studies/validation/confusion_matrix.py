@@ -22,7 +22,7 @@ design), every listed effect the design can identify (before-data screening), an
 torque-sensor drift, each at the magnitudes `operating.MAGNITUDES` (RMS visible change in noise
 sigmas) with REPS trials. Method and rates: `studies.diagnosis.operating`.
 
-Second source (issue 23 item 1; `studies.validation.second_source`): beside the same-model matrix, the
+Second source (`studies.validation.second_source`): beside the same-model matrix, the
 same diagnosis on data made another way than the model it fits (finer mesh and direct FE, model
 forms the config lacks, transient-FE and network temperatures, two causes, strongly correlated
 noise, spikes, sensor drift and offsets), each trial judged against the case's truth label
@@ -156,13 +156,13 @@ def run_second_source(cases=None, trials: int = 2, mesh_factor: float = 1.0,
 #: reported on a null (alpha_structure + alpha_lr, `operating.stated_false_alarm_level`)
 CLAIM_LEVEL = DEFAULT_THRESHOLDS["alpha_lr"]
 ALARM_LEVEL = stated_false_alarm_level()
-#: the size of change (largest visible change, noise sigmas) from which issue 23 asks a listed
-#: cause to be named in 90 % of trials
+#: the size of change (largest visible change, noise sigmas) from which a listed
+#: cause must be named in 90 % of trials
 LISTED_HIT_SIGMA = 5.0
 
 
 def second_source_rates(trials: list[SecondTrial]) -> list[str]:
-    """The Done-when rates of issue 23 on second-source trials, one sentence each: wrong causes
+    """The stated rates on second-source trials, one sentence each: wrong causes
     over all trials (with the exact one-sided 95 % upper bound of the rate, Clopper & Pearson
     1934), claims and any discrepancy on the nulls against the binomial 99 % upper quantile at
     the stated levels (a count above it rejects the level at 1 %), and model-form truths
@@ -190,7 +190,7 @@ def second_source_rates(trials: list[SecondTrial]) -> list[str]:
     hits = sum(t.outcome == "right" for t in listed)
     forms = [t for t in trials if t.kind == "model_form" and t.truth != "none"]
     # a truth beyond its candidate's bound (`CaseSpec.lead`) is nameable too: right when not
-    # claimed and the candidate named in `at_bound` (issue 34)
+    # claimed and the candidate named in `at_bound`
     nameable = [t for t in forms if set(CASES[t.case].right) & claimable(t.design)
                 or CASES[t.case].lead]
     form_right = sum(t.outcome == "right" and (t.verdict in ("explained", "explained_partly")
@@ -225,7 +225,7 @@ def second_source_rates(trials: list[SecondTrial]) -> list[str]:
         + " (goal 85-95 %)"]
 
 
-#: issue 34's goal for two causes at once, each 5 sigma or more: both named in this share of
+#: the goal for two causes at once, each 5 sigma or more: both named in this share of
 #: the trials or more, a wrong cause in none
 TWO_CAUSE_GOAL = 0.8
 

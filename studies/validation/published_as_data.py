@@ -1,4 +1,4 @@
-"""Published measurements as data (issue 23 item 7): one model extension at a time, its one
+"""Published measurements as data: one model extension at a time, its one
 parameter fitted on ONE published number, the other published number held out and predicted.
 
 Seed 001 (flywheel hybrid pair, 7 N position preload, MAC oil): torque(-20 C)/torque(20 C) =
@@ -254,7 +254,7 @@ def ladder_candidates(asm: Assembly) -> list[Candidate]:
 
 def replaces_viscous_law(candidate: str) -> bool:
     """Whether a seed 001 candidate replaces Palmgren's viscous law (a friction rung of the
-    ladder, `studies.diagnosis.friction_rungs`, or a friction model of issue 33)."""
+    ladder, `studies.diagnosis.friction_rungs`, or a friction model of analytic/friction)."""
     from studies.diagnosis.friction_rungs import NEEDS
     return candidate.startswith("friction model") or any(
         candidate == f"ladder: {n}" or candidate.startswith(f"ladder: {n} (") for n in NEEDS)
@@ -362,18 +362,18 @@ def self_heating_unbounded(parts: str, mesh_factor: float = 1.0,
                                 float(o.preload_N[1]))
 
 
-# ------------------------------------------------------------ seed 001: friction models (issue 33)
+# ------------------------------------------------------------ seed 001: friction models
 #: the starved film's supply ratio r = h_oil / h_ff where its law is fitted (Chevalier et al.
 #: 1998, `analytic.friction.starved.R_RANGE`): the oil quantity's bounds follow from it at 20 C
 STARVED_R_RANGE = R_RANGE
-#: the friction models of issue 33 without a parameter of their own (`[lubrication]
+#: the friction models of analytic/friction without a parameter of their own (`[lubrication]
 #: viscous_model`): both published ratios are predictions
 FRICTION_FORMS = ("skf2004", "ehl_rolling")
 
 
 @dataclass(frozen=True)
 class FrictionScan:
-    """A friction model of issue 33 with its one parameter scanned over its bounds on seed 001
+    """A friction model (analytic/friction) with its one parameter scanned over its bounds on seed 001
     (through the pipeline: the assembly's `[lubrication]` key): the cold and hot ratios at every
     grid value, every value where the cold ratio meets the band's centre (each a fit, its hot
     ratio the held-out prediction, with its 90 % predictive interval), and the closest any value
@@ -407,7 +407,7 @@ class FrictionScan:
 
 @dataclass(frozen=True)
 class FrictionForm:
-    """A friction model of issue 33 without a parameter on seed 001: both ratios predicted
+    """A friction model of analytic/friction without a parameter on seed 001: both ratios predicted
     (NaN with `no_answer` the model's reason when it has none)."""
     viscous_model: str
     cold: float
@@ -494,7 +494,7 @@ def seed001_hot_interval(ratios: Callable[[float], tuple[float, float]], value: 
 
 def seed001_friction_models(mesh_factor: float = 1.0, n_grid: int = 61
                             ) -> tuple[tuple[FrictionScan, ...], tuple[FrictionForm, ...]]:
-    """The friction models of issue 33 on seed 001, all through the pipeline (`[lubrication]
+    """The friction models (analytic/friction) on seed 001, all through the pipeline (`[lubrication]
     viscous_model`): the starved film's oil quantity scanned over its bounds (log grid) and
     fitted on the cold ratio wherever it meets the band's centre; the models without a
     parameter with both ratios predicted."""
@@ -549,7 +549,7 @@ def friction_models_lines(models: tuple[tuple[FrictionScan, ...], tuple[Friction
             continue
         rows.append([name, "(no parameter)", f"{f.cold:.3f} (predicted)", f"{f.hot:.3f}",
                      f"{(f.hot - SEED001_HOT) / SEED001_HOT:+.1%}", "yes (its source's constants)"])
-    lines = ["#### The friction models of issue 33 (analytic/friction), fitted on the cold ratio", "",
+    lines = ["#### The friction models (analytic/friction), fitted on the cold ratio", "",
              "Each model through the pipeline (`[lubrication] viscous_model`, at each "
              "temperature's contact loads and oil viscosity). A model with a parameter has it "
              "scanned over its bounds; every value where the cold ratio meets the band's centre "
@@ -644,7 +644,7 @@ def seed000(fit_on: str = "max", mesh_factor: float = 1.0) -> PublishedAsData:
                            names[1 - i_fit], pub[1 - i_fit], SEED000_TOL_NMM, configured, fits)
 
 
-# ------------------------------------------------------------ seed 000: the torque trend (issue 33)
+# ------------------------------------------------------------ seed 000: the torque trend
 #: seed 000 (Fig. 10c): at the assembled 100 N the torque rises with the test temperature from
 #: 0 to 80 C in 10 K steps, faster when hot (the figure's numbers are lost in our copy: its shape
 #: is the datum)

@@ -1,4 +1,4 @@
-"""Rectangle vs grooved ring sections on the shipped stacks (issue 12): how much cutting the
+"""Rectangle vs grooved ring sections on the shipped stacks: how much cutting the
 raceway groove and lands into the FE rings changes the fit pressures, the groove-centre shifts
 and, through them, preload, contact angle and torque.
 

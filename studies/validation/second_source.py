@@ -1,5 +1,5 @@
-"""A second source of measured data: data made another way than the model the diagnosis fits
-(issue 23 item 1), for the tests and the confusion-matrix study.
+"""A second source of measured data: data made another way than the model the diagnosis fits,
+for the tests and the confusion-matrix study.
 
 Every hidden-effect test before this module built its "measured" data with the diagnosed model
 itself (the same pipeline, mesh and effect code), so its rates were those of a perfectly specified
@@ -12,8 +12,8 @@ mechanism (or two), with the label of the true cause kept beside the data:
   with another CTE, all of which the config lacks; a friction law of another form (exponential in
   the ring temperature where the listed effect is linear); a different inner groove curvature (the
   ladder's `groove_conformity` rung); an inner fit 2.5 um outside its ISO band (on the finer mesh
-  with direct solves: right when nothing is claimed and `at_bound` names the fit error, issue
-  34, `CaseSpec.lead`); issue 34's hidden case, a 3 mm 17-4PH sleeve in a 6061 housing the file
+  with direct solves: right when nothing is claimed and `at_bound` names the fit error,
+  `CaseSpec.lead`); a hidden sleeve, 3 mm 17-4PH sleeve in a 6061 housing the file
   has without a sleeve (finer mesh, direct solves);
 - listed (`"listed"`): a listed cause made on another model than the diagnosed one (the inner fit
   5 um tighter on a finer mesh with direct FE solves);
@@ -103,7 +103,7 @@ def steady_grid() -> dict[str, np.ndarray]:
 
 
 def thin_cycles(n: int = 240, dt: float = 120.0) -> dict[str, np.ndarray]:
-    """The thin-section rig's range (issue 36: -45..+60 C): from 20 C to +60, -45, +60, back to
+    """The thin-section rig's range (-45..+60 C): from 20 C to +60, -45, +60, back to
     20 C at 2 K/min with one-hour dwells, sampled every `dt` s (240 x 120 s = 8 h)."""
     t = np.arange(n) * dt
     leg = [(60.0, 20), (60.0, 60), (-45.0, 52), (-45.0, 60), (60.0, 52), (60.0, 60),
@@ -118,7 +118,7 @@ def thin_cycles(n: int = 240, dt: float = 120.0) -> dict[str, np.ndarray]:
 
 #: design -> (shipped assembly, conditions the diagnosis is given)
 DESIGNS: dict[str, tuple[str, Callable[[], dict]]] = {
-    "thin_cycles": ("rig_thin_section_hub.toml", thin_cycles),  # issue 36's rig
+    "thin_cycles": ("rig_thin_section_hub.toml", thin_cycles),  # the thin-section rig
     "cycles": ("seed000", cycles),             # -60 <-> 80 C, 240 rows x 120 s
     "steady_grid": ("seed000", steady_grid),   # T x preload, 64 rows, no time
     "speed_steps": ("seed001", speed_steps),   # 0..60 C steps at 6000/3000/9000 rpm, 240 x 120 s
@@ -217,7 +217,7 @@ def shaft_side_lag(time_s: np.ndarray, T_ambient_C: np.ndarray,
                    tau_shaft_s: float) -> dict[str, np.ndarray]:
     """Part temperatures with the housing side (housing, sleeve, outer rings, spacers) at the
     chamber and the shaft side (shaft, inner rings, balls) a first-order lag tau_shaft_s behind
-    it (issue 36), made another way than `thermal_lag.lag_response` (the exact solution for an
+    it, made another way than `thermal_lag.lag_response` (the exact solution for an
     ambient piecewise linear): the backward-Euler recursion on a 1 s grid (Incropera ch. 5.3
     lumped body), sampled at the rows. The spacers follow the housing side (the inner spacer
     lies on the shaft side in the stack, but one `T_spacer_C` column serves both)."""
@@ -251,7 +251,7 @@ def transient_fe_temperatures(asm, time_s: np.ndarray, T_ambient_C: np.ndarray,
     makes about 2 N mm x 6.3 rad/s = 0.013 W, against 15 W/(m^2 K) x 0.02 m^2 x 1 K = 0.3 W per
     kelvin of the stack above the chamber (a rise below 0.05 K). (The coupled route,
     `transient_route.run_transient`, cannot run seed 000 today: its pair solve fails at rest on a
-    stack with a clearance fit, see the issue 23 report.)"""
+    stack with a clearance fit, one line per row.)"""
     key = inputs_key({"asm": repr(asm), "mesh_factor": float(mesh_factor), "t": time_s,
                       "T": T_ambient_C})
     return {k: v.copy() for k, v in _TEMPERATURES.get_or_make(
@@ -296,7 +296,7 @@ class CaseSpec:
     right: tuple[str, ...]
     text: str
     #: a truth beyond its candidate's bounds: the candidate that must be named in `at_bound`
-    #: of a diagnosis that claims nothing (issue 34; `judge_result`)
+    #: of a diagnosis that claims nothing (`judge_result`)
     lead: str | None = None
 
 
@@ -432,18 +432,18 @@ CASES: dict[str, CaseSpec] = {
         "friction exponential in the ring temperature (6e-3 /K) where the listed law is linear"),
     "groove_curvature": CaseSpec(
         "model_form", "steady_grid", ("groove_conformity",), ("groove_conformity",),
-        "inner groove curvature ratio 0.54 instead of the file's 0.52 (issue 23), made on a finer "
+        "inner groove curvature ratio 0.54 instead of the file's 0.52, made on a finer "
         "mesh (0.7 x) with direct FE solves: the ladder's groove_conformity rung (inner ratio "
         "0.51..0.56)"),
     "fit_outside_band": CaseSpec(
         "model_form", "steady_grid", ("interference_error",), (),
-        "a config with ISO tolerance classes; the inner fit 2.5 um tighter than its band allows "
-        "(issue 23), made on a finer mesh (0.7 x) with direct FE solves: the fit error can reach "
-        "only the band's edge, so it may not be claimed and must be named in `at_bound` "
-        "(issue 34)", lead="interference_error"),
+        "a config with ISO tolerance classes; the inner fit 2.5 um tighter than its band allows, "
+        "made on a finer mesh (0.7 x) with direct FE solves: the fit error can reach "
+        "only the band's edge, so it may not be claimed and must be named in `at_bound`",
+        lead="interference_error"),
     "sleeve_in_aluminium": CaseSpec(
         "model_form", "cycles", ("sleeve",), ("sleeve",),
-        "issue 34's hidden case: a 3 mm 17-4PH sleeve between the outer rings and a 6061 "
+        "a hidden sleeve: 3 mm 17-4PH between the outer rings and a 6061 "
         "aluminium housing, the file has the aluminium housing and no sleeve; made on a finer "
         "mesh (0.7 x) with direct FE solves (a fit error would need more than its +-20 um)"),
     "fit_error_finer_mesh": CaseSpec(
@@ -461,8 +461,8 @@ CASES: dict[str, CaseSpec] = {
     "fit_error_and_lag": CaseSpec(
         "multiple", "cycles", ("interference_error", "thermal_lag"),
         ("interference_error", "thermal_lag", "fits_in_band"),
-        "two causes at once: the inner fit 4 um tighter and a 1500 s thermal lag (issue 23)"),
-    # two causes at once, made another way (issue 34): each pair on the finer mesh (0.7 x)
+        "two causes at once: the inner fit 4 um tighter and a 1500 s thermal lag"),
+    # two causes at once, made another way: each pair on the finer mesh (0.7 x)
     # with direct FE solves, each cause alone changing the data by 5 sigma or more
     # (`Case.cause_sigma`); the right names of each pair's causes only
     "fit_error_lag_finer": CaseSpec(
@@ -484,11 +484,11 @@ CASES: dict[str, CaseSpec] = {
         "(0.7 x) with direct FE solves"),
     "shaft_lag_numpy": CaseSpec(
         "history", "thin_cycles", ("thermal_lag",), ("thermal_lag",),
-        "issue 36: the shaft, inner rings and balls lag 900 s behind the hub, which follows "
+        "the shaft, inner rings and balls lag 900 s behind the hub, which follows "
         "the chamber; the lag made in numpy (a first-order filter, `shaft_side_lag`), the "
         "temperatures fed to the finer mesh (0.7 x) with direct FE solves"),
     "ar1_090_null": CaseSpec(
-        "noise", "cycles", (), (), "nothing hidden; AR(1) noise phi 0.9 at 120 s (issue 23)"),
+        "noise", "cycles", (), (), "nothing hidden; AR(1) noise phi 0.9 at 120 s"),
     "ar1_095_null": CaseSpec(
         "noise", "cycles", (), (), "nothing hidden; AR(1) noise phi 0.95 at 120 s"),
     "spikes_quantised_null": CaseSpec(
@@ -496,7 +496,7 @@ CASES: dict[str, CaseSpec] = {
         "nothing hidden; 6 torque spikes of 50..150 sigma, readings quantised to 1.5 sigma"),
     "torque_drift": CaseSpec(
         "sensor", "cycles", ("sensor_drift",), (),
-        "a torque-sensor zero drift linear in time, 6 sigma over the 8 h (issue 23)"),
+        "a torque-sensor zero drift linear in time, 6 sigma over the 8 h"),
     "chamber_offset": CaseSpec(
         "sensor", "cycles", ("sensor_offset",), (),
         "the chamber thermometer reads 0.5 K high (IEC 60751 class B: +-(0.3 + 0.005 |t|) K); made "
@@ -733,8 +733,8 @@ def interval_coverage(case: Case, result) -> tuple[int, int] | None:
 
 
 def named_causes(result) -> list[str]:
-    """The causes a `DiagnosisResult` names, in order: its `causes` (several accepted causes,
-    issue 23 item 5: names or entries with `.effect` / `.name`) when it has them, else `cause`."""
+    """The causes a `DiagnosisResult` names, in order: its `causes` (several accepted causes:
+    names or entries with `.effect` / `.name`) when it has them, else `cause`."""
     many = getattr(result, "causes", None)
     if many:
         return [c if isinstance(c, str) else getattr(c, "effect", None) or getattr(c, "name")
@@ -744,8 +744,8 @@ def named_causes(result) -> list[str]:
 
 def judge_result(case: Case, result) -> str:
     """`judge` of a `DiagnosisResult` (`named_causes`, its rivals); for a truth beyond its
-    candidate's bounds (`CaseSpec.lead`) `right` also needs the lead named in `at_bound`
-    (issue 34), else `unexplained`."""
+    candidate's bounds (`CaseSpec.lead`) `right` also needs the lead named in `at_bound`,
+    else `unexplained`."""
     out = judge(case, result.verdict, named_causes(result), result.indistinguishable)
     lead = CASES[case.name].lead if case.name in CASES else None
     if out == "right" and lead and not any(family(b.effect) == lead

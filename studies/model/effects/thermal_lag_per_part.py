@@ -22,7 +22,7 @@ the same inputs). Needs `time_s` and `T_ambient_C`.
 Source / rationale: lumped capacitance per body, tau = rho c V / (h A) (Incropera, Fundamentals of
 Heat and Mass Transfer, ch. 5): a part's time constant scales with its volume-to-surface ratio and
 its contact conductances, so housing and shaft differ by factors of 2-3 in thermal-vacuum and
-chamber tests of mechanisms (issue 11: housing 900 s, shaft 2400 s).
+chamber tests of mechanisms (housing 900 s, shaft 2400 s).
 """
 from __future__ import annotations
 

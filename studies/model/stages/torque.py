@@ -55,8 +55,8 @@ def friction_options(lub, lubricant, spec, nu_mm2_s) -> FrictionOptions:
     """The friction law's options (`analytic.friction.options.FrictionOptions`) of a
     `[lubrication]` section `lub` with its oil `lubricant` (None for a solid film) at the
     kinematic viscosity nu_mm2_s (per row): the oil's dynamic viscosity (its density), its
-    pressure-viscosity coefficient and density, the bearing `spec`'s bore and outside
-    diameter. The one place `simulate` and `bearing` turn the file's keys into the law."""
+    pressure-viscosity coefficient, density and family (mineral / synthetic), the bearing
+    `spec`'s bore and outside diameter, the lubrication method and a bath's oil level. The one place `simulate` and `bearing` turn the file's keys into the law."""
     if lub.kind == "solid_film":
         return FrictionOptions(shear_strength=lub.shear_strength, tau0_MPa=lub.tau0_MPa,
                                alpha_shear=lub.alpha_shear)
@@ -64,4 +64,6 @@ def friction_options(lub, lubricant, spec, nu_mm2_s) -> FrictionOptions:
                            eta_Pa_s=dynamic_viscosity_Pa_s(nu_mm2_s, lubricant.density_kg_m3),
                            alpha_per_Pa=lubricant.alpha_per_Pa,
                            density_kg_m3=lubricant.density_kg_m3, bore_mm=spec.bore_mm,
-                           outside_diameter_mm=spec.outside_diameter_mm)
+                           outside_diameter_mm=spec.outside_diameter_mm,
+                           lubrication_method=lub.lubrication_method,
+                           oil_level_mm=lub.oil_level_mm, oil_family=lubricant.oil_family)
