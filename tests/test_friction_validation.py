@@ -290,3 +290,38 @@ def test_interval_factors_meet_the_diagnosis_predictive_interval():
     sd = np.std(e, ddof=1)
     p = predictive_interval([e.mean()], [[1.0]], [[sd ** 2 / e.size]], 0.0, sd, iv.LEVEL)
     np.testing.assert_allclose(iv.interval_factors(e), np.exp([p.lo[0], p.hi[0]]), rtol=1e-12)
+
+
+def test_permissible_speed_at_the_interval_s_upper_end_closes_the_heat_balance():
+    """DIN 732 at the upper end of the friction interval: at the speed n_hi the friction
+    heat k_hi (M0(nu_perm, n_hi) + M1) omega equals the dissipated heat Q of the nominal balance
+    (each term recomputed here from Palmgren's closed forms, 1e-6 relative), and n_hi < n
+    (more friction, a lower permissible speed)."""
+    from analytic.bearing import BearingGeometry
+    from analytic.friction.palmgren import (palmgren_f1_angular_contact,
+                                            palmgren_load_torque_Nmm,
+                                            palmgren_viscous_torque_Nmm)
+    from analytic.safety import static_load_rating_C0_N
+    from analytic.thermal_speed import (dissipated_heat_W, reference_heat_transfer_W_per_mm2_K)
+    from analytic.torque import power_W
+    from studies.model.config import load_shipped
+    from studies.usecases.bearing_single import thermal_speeds
+    asm = load_shipped("seed001")
+    g = BearingGeometry.from_spec(asm.bearing, asm.materials)
+    lub, oil = asm.lubrication, asm.oil()
+    Fa = np.array([7.0, 50.0])
+    ts = thermal_speeds(asm.bearing, g, lub, oil, Fa, np.array([6000.0, 6000.0]))
+    k_hi = iv.lubrication_interval(lub).factor_hi
+    assert np.isfinite(k_hi) and k_hi > 1
+    n_hi = ts.permissible_speed_hi_rpm
+    assert np.all(n_hi < ts.permissible_speed_rpm)
+    C0 = static_load_rating_C0_N(g.Z, g.Dw_mm, g.dm_mm, g.alpha0_deg)
+    M1 = palmgren_load_torque_Nmm(palmgren_f1_angular_contact(Fa, C0), Fa, g.dm_mm)
+    nu = oil.nu_mm2_s(lub.permissible_temperature_C)
+    k_q = lub.heat_transfer_W_per_mm2_K or reference_heat_transfer_W_per_mm2_K(
+        ts.reference.surface_mm2)
+    Q = dissipated_heat_W(k_q, ts.reference.surface_mm2, lub.permissible_temperature_C,
+                          lub.ambient_temperature_C)
+    heat = k_hi * power_W(palmgren_viscous_torque_Nmm(lub.viscous_factor_f0, nu, n_hi, g.dm_mm)
+                          + M1, n_hi)
+    np.testing.assert_allclose(heat, Q, rtol=1e-6)

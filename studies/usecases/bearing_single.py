@@ -65,6 +65,9 @@ OUTPUT_COLUMNS = {
                                      "at the permissible temperature (empty without an oil "
                                      "[lubrication])",
     "margin_speed_rpm": "thermal_permissible_speed_rpm - the row's speed",
+    "thermal_permissible_speed_hi_rpm": "the DIN 732 speed at the upper end of the friction "
+                                        "law's model-form interval (torque_hi_Nmm's factor)",
+    "margin_speed_hi_rpm": "thermal_permissible_speed_hi_rpm - the row's speed",
 }
 
 
@@ -153,8 +156,21 @@ def solve(cfg, cols: dict, where: str = "loads", convention: str = "exact",
     out_cols.update({"thermal_reference_speed_rpm": np.full(n, ts.reference.speed_rpm),
                      "thermal_permissible_speed_rpm": ts.permissible_speed_rpm,
                      "margin_speed_rpm": ts.margin_speed_rpm,
+                     "thermal_permissible_speed_hi_rpm": _or_nan(ts.permissible_speed_hi_rpm, n),
+                     "margin_speed_hi_rpm": _or_nan(ts.margin_speed_hi_rpm, n),
                      "convention": np.full(n, convention)})
     return BearingRun(st, out_cols, (f"{bearing_name}: {ts.warning}",) if ts.warning else ())
+
+
+def _or_nan(v, n: int) -> np.ndarray:
+    return np.full(n, np.nan) if v is None else np.asarray(v, float)
+
+
+def lubrication_interval(lub):
+    """The friction law's model-form interval of a `[lubrication]`
+    (`analytic.friction.interval.lubrication_interval`)."""
+    from analytic.friction.interval import lubrication_interval as interval
+    return interval(lub)
 
 
 def _interval_columns(lub, torque_Nmm, speed_rpm) -> dict:
@@ -162,7 +178,6 @@ def _interval_columns(lub, torque_Nmm, speed_rpm) -> dict:
     (`analytic.friction.interval.lubrication_interval`, the factors `simulate` applies) on the
     torque and on its heat M omega (`analytic.torque.power_W`); NaN without a [lubrication] or
     where no interval is stated."""
-    from analytic.friction.interval import lubrication_interval
     from analytic.torque import power_W
     M = np.asarray(torque_Nmm, float)
     lo = hi = np.full(M.shape, np.nan)
@@ -214,11 +229,15 @@ DEFAULT_F0R = 2.0
 class ThermalSpeeds:
     """The thermal speed limits of one bearing (analytic/thermal_speed.py), arrays over rows:
     reference (ISO 15312, `ThermalReference`), permissible_speed_rpm (DIN 732; NaN without an
-    oil), margin_speed_rpm (permissible - speed), defaults: the keys whose default was used."""
+    oil), margin_speed_rpm (permissible - speed), defaults: the keys whose default was used;
+    permissible_speed_hi_rpm, margin_speed_hi_rpm: the same at the upper end of the friction
+    law's model-form interval (`analytic.friction.interval`; NaN where none is stated)."""
     reference: ThermalReference
     permissible_speed_rpm: np.ndarray
     margin_speed_rpm: np.ndarray
     defaults: tuple[str, ...]
+    permissible_speed_hi_rpm: np.ndarray | None = None
+    margin_speed_hi_rpm: np.ndarray | None = None
 
     @property
     def warning(self) -> str | None:
@@ -269,4 +288,11 @@ def thermal_speeds(spec, g, lub, oil, axial_force_N, speed_rpm) -> ThermalSpeeds
     M1 = palmgren_load_torque_Nmm(palmgren_f1_angular_contact(Fa, C0), Fa, g.dm_mm)
     perm = thermally_permissible_speed(ref.speed_rpm, lub.viscous_factor_f0, nu, g.dm_mm, M1,
                                        Q * np.ones_like(speed)).speed_rpm
-    return ThermalSpeeds(ref, perm, perm - np.abs(speed), tuple(defaults))
+    # the upper end of the friction law's interval: friction x factor_hi = Q is the balance
+    # friction = Q / factor_hi (both of DIN 732's terms scale alike)
+    k_hi = lubrication_interval(lub).factor_hi
+    perm_hi = (np.full(speed.shape, np.nan) if not np.isfinite(k_hi) else
+               thermally_permissible_speed(ref.speed_rpm, lub.viscous_factor_f0, nu, g.dm_mm, M1,
+                                           Q / k_hi * np.ones_like(speed)).speed_rpm)
+    return ThermalSpeeds(ref, perm, perm - np.abs(speed), tuple(defaults), perm_hi,
+                         perm_hi - np.abs(speed))

@@ -271,9 +271,20 @@ def thermal_speed_rows(asm, cond: dict | None, res: dict) -> list[MarginRow]:
             (f"{float(np.min(speed)):.4g} .. {float(np.max(speed)):.4g} rpm" if np.ptp(speed) > 0
              else f"{float(speed[0]):.4g} rpm") + f"; {ref}",
             f"<= {float(np.nanmin(perm)):.4g} .. {float(np.nanmax(perm)):.4g} rpm (DIN 732)",
-            f"{margin[i]:+.4g} rpm ({_at(cond, i)})",
+            f"{margin[i]:+.4g} rpm ({_at(cond, i)})" + _upper_end_text(ts.margin_speed_hi_rpm, n),
             "PASS" if margin[i] >= 0 else f"FAIL ({int(np.sum(margin < 0))} of {n})", None, src))
     return rows
+
+
+def _upper_end_text(margin_hi, n: int) -> str:
+    """The speed margin at the upper end of the friction law's model-form interval (the friction
+    heat times its upper factor), or nothing where no interval is stated."""
+    m = np.asarray(margin_hi if margin_hi is not None else np.nan, float)
+    if not np.any(np.isfinite(m)):
+        return ""
+    bad = int(np.sum(m < 0))
+    return (f"; at the friction interval's upper end {float(np.nanmin(m)):+.4g} rpm"
+            + (f" (below the speed in {bad} of {n} rows)" if bad else ""))
 
 
 def _clamp_text(asm, name: str) -> str:
