@@ -95,13 +95,6 @@ class MinimalOilFactor:
     supply_ratio_outer: np.ndarray
     h_in_um: np.ndarray
 
-    @property
-    def outside_source_range(self) -> np.ndarray:
-        """Rows whose supply ratio leaves Chevalier et al.'s 0.01..10 at either contact."""
-        lo, hi = SUPPLY_RATIO_RANGE
-        r = np.stack([self.supply_ratio_inner, self.supply_ratio_outer])
-        return np.any((r < lo) | (r > hi), axis=0)
-
 
 def contact_film_ratio(h_in_um, Rx_mm, Ry_mm, E_reduced_MPa, eta_Pa_s, alpha_per_Pa,
                        entrainment_speed_mm_s, load_N, gamma=GAMMA_CIRCULAR):
