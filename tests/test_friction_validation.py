@@ -24,7 +24,7 @@ def _factor(case, m, P=133.0, T=20.0, n=6000.0):
     lub = get_lubricant(case.lubricant)
     pair = solve_pair(case.g, "DB", preload_kind="spring", preload_assembled_N=np.array([P]))
     eta = dynamic_viscosity_Pa_s(lub.nu_mm2_s(np.array([T])), lub.density_kg_m3)
-    return mo.minimal_oil_pair_ratios(case.g, pair, n, eta, lub.alpha_per_Pa, lub.density_kg_m3,
+    return fv.minimal_oil_pair_ratios(case.g, pair, n, eta, lub.alpha_per_Pa, lub.density_kg_m3,
                                       m)[0], pair, eta
 
 

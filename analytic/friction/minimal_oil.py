@@ -155,17 +155,3 @@ def minimal_oil_bearing_ratio(g, c, speed_rpm, fr) -> np.ndarray:
                           speed_rpm, fr.eta_Pa_s, fr.alpha_per_Pa, fr.density_kg_m3,
                           fr.oil_quantity_mg, fr.oil_supply_share)
     return f.ratio.mean(axis=0) if c.per_ball else f.ratio
-
-
-def minimal_oil_pair_ratios(g, pair, speed_rpm, eta_Pa_s, alpha_per_Pa, density_kg_m3,
-                            oil_quantity_mg, supply_share=1.0) -> tuple[MinimalOilFactor, ...]:
-    """`minimal_oil_ratio` of bearings A and B of a `analytic.bearing.PairState` (each contact
-    at its own load and angle with quasi-dynamic balls)."""
-    from analytic.friction.pair import pair_bearing_contacts
-    out = []
-    for j in (0, 1):
-        c = pair_bearing_contacts(pair, j)
-        out.append(minimal_oil_ratio(g, (c.alpha_inner_rad, c.alpha_outer_rad),
-                                     (c.inner.Q_N, c.outer.Q_N), speed_rpm, eta_Pa_s,
-                                     alpha_per_Pa, density_kg_m3, oil_quantity_mg, supply_share))
-    return tuple(out)

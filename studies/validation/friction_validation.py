@@ -30,12 +30,12 @@ from scipy.optimize import brentq
 
 from analytic.bearing import BearingGeometry, solve_pair
 from analytic.friction.interval import LEVEL, interval_factors
-from analytic.friction.minimal_oil import minimal_oil_pair_ratios
+from analytic.friction.minimal_oil import minimal_oil_ratio
 from analytic.friction.options import FrictionOptions
 from analytic.lubrication import dynamic_viscosity_Pa_s, get_lubricant
 from analytic.materials import get_material
 from analytic.safety import static_load_rating_C0_N
-from analytic.friction.pair import pair_torque
+from analytic.friction.pair import pair_bearing_contacts, pair_torque
 from analytic.friction.palmgren import palmgren_f1_angular_contact, palmgren_viscous_torque_Nmm
 
 DATA = Path(__file__).resolve().parent / "data" / "friction_points.csv"
@@ -115,6 +115,20 @@ def case_torque_Nmm(case: Case, law: str, axial_N, speed_rpm, T_C, oil_quantity_
     t = pair_torque(g, pair, model="oil", speed_rpm=n, f0=F0_EXTERNAL, nu_mm2_s=nu,
                     load_term="palmgren", f1=f1, friction=fr)
     return np.asarray(t.torque_A_Nmm, float), 0.5 * np.asarray(t.viscous_Nmm, float)
+
+
+def minimal_oil_pair_ratios(g, pair, speed_rpm, eta_Pa_s, alpha_per_Pa, density_kg_m3,
+                            oil_quantity_mg, supply_share=1.0):
+    """`analytic.friction.minimal_oil.minimal_oil_ratio` of bearings A and B of a
+    `analytic.bearing.PairState` (each contact at its own load and angle; the contacts as the
+    pair route takes them, `pair_bearing_contacts`)."""
+    out = []
+    for j in (0, 1):
+        c = pair_bearing_contacts(pair, j)
+        out.append(minimal_oil_ratio(g, (c.alpha_inner_rad, c.alpha_outer_rad),
+                                     (c.inner.Q_N, c.outer.Q_N), speed_rpm, eta_Pa_s,
+                                     alpha_per_Pa, density_kg_m3, oil_quantity_mg, supply_share))
+    return tuple(out)
 
 
 # ------------------------------------------------------------------------- the matrix's rows
@@ -293,11 +307,11 @@ def matrix(mesh_factor: float = 1.0):
 
 
 def write_csv(path: Path, rows: list[dict], columns=CSV_COLUMNS) -> None:
-    with open(path, "w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(columns)
-        for r in rows:
-            w.writerow([_fmt(r[c]) for c in columns])
+    """The matrix as CSV through the project's one writer (`studies.model.table.write_table`):
+    numbers to 6 significant digits, an empty field where a value is not stated, in_interval
+    true / false / empty."""
+    from studies.model.table import write_table
+    write_table(path, {c: np.array([_fmt(r[c]) for r in rows], dtype=str) for c in columns})
 
 
 def _fmt(v):
@@ -305,21 +319,19 @@ def _fmt(v):
         return "true" if v else "false"
     if isinstance(v, float):
         return "" if not np.isfinite(v) else f"{v:.6g}"
-    return v
+    return str(v)
 
 
 def write_residuals(path: Path, rows: list[dict]) -> None:
     """The value rows' log residuals by (regime, law, source): the data of
-    `analytic.friction.interval` (analytic/data/friction_residuals.csv is this file)."""
+    `analytic.friction.interval` (analytic/data/friction_residuals.csv is this file with a
+    source line on top)."""
+    from studies.model.table import write_table
     keep = [r for r in rows if r["kind"] == "value" and np.isfinite(r["log_residual"])]
-    with open(path, "w", newline="") as fh:
-        fh.write("# ln(measured / predicted) of the published friction numbers (bearingfem study "
-                 "friction_validation; sources: studies/validation/data/friction_points.csv)\n")
-        w = csv.writer(fh)
-        w.writerow(("regime", "law", "source", "quantity", "log_residual"))
-        for r in keep:
-            w.writerow((r["regime"], r["law"], r["source"], r["quantity"],
-                        f"{r['log_residual']:.12g}"))
+    cols = {k: np.array([str(r[k]) for r in keep], dtype=str)
+            for k in ("regime", "law", "source", "quantity")}
+    cols["log_residual"] = np.array([f"{r['log_residual']:.12g}" for r in keep], dtype=str)
+    write_table(path, cols)
 
 
 def coverage(rows: list[dict]) -> dict:
