@@ -22,7 +22,7 @@ measured value lies inside it (empty where no interval can be stated).
 from __future__ import annotations
 
 import csv
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -43,8 +43,10 @@ LAWS = ("palmgren", "skf2004", "ehl_rolling", "starved", "minimal_oil")
 SOLID_FILM_LAWS = ("solid_film", "solid_film_pressure")
 OZ_IN_PER_LBF_IN_NMM_PER_N = 7.0615518 / 4.4482216   # 1 ozf in = 7.0616 N mm; 1 lbf = 4.4482 N
 #: Palmgren's f0 for the external cases: [assume] 2, the grease / oil-mist value of an
-#: angular-contact bearing (Harris & Kotzalas Vol. 2 ch. 2); the starting and slow-running points
-#: do not depend on it (viscous term < 1 % there), the LQF trends divide it out
+#: angular-contact bearing (Harris & Kotzalas Vol. 2 ch. 2). Below nu n = 2000 Palmgren's
+#: viscous term is the constant 160e-7 f0 dm^3, so the slow JPL and SN006 points carry it (about
+#: half of their predicted torque) and depend on this f0; the OCI slope (a difference of two
+#: preloads) and the LQF ratios do not
 F0_EXTERNAL = 2.0
 #: a trend row's ratio must exceed 1 by more than 1e-4 (0.01 %) to count as a rise: less is flat
 TREND_TOL = 1e-4
