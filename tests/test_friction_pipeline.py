@@ -13,6 +13,7 @@ from studies.model.pipeline import Pipeline, table_inputs
 MESH_FACTOR = 4.0            # the FE answer is the same for every friction model: coarse is enough
 SPLIT = ["torque_rolling_Nmm", "torque_sliding_Nmm", "torque_drag_Nmm", "heat_inner_W",
          "heat_outer_W", "heat_ball_W"]                 # docs/cli.md, spec "Added for turn 4"
+INTERVAL = ["torque_lo_Nmm", "torque_hi_Nmm", "heat_lo_W", "heat_hi_W"]   # spec "Added for turn 5"
 COND = {"T_ambient_C": np.array([-20.0, 20.0, 40.0]), "speed_rpm": np.array([3500.0, 3500.0, 9000.0])}
 
 
@@ -38,10 +39,10 @@ def test_palmgren_default_keeps_every_column_and_appends_the_split(seed001):
         assert np.array_equal(base[k], explicit[k]), k
     res = Pipeline.shared(seed001, mesh_factor=MESH_FACTOR).run(table_inputs(seed001, COND))
     plain = to_columns(res)
-    assert list(plain) == [k for k in base if k not in SPLIT]
+    assert list(plain) == [k for k in base if k not in SPLIT + INTERVAL]
     names = list(base)
     first_flag = next(i for i, k in enumerate(names) if k.startswith("flag_"))
-    assert names[first_flag - 6:first_flag] == SPLIT
+    assert names[first_flag - 10:first_flag] == SPLIT + INTERVAL
 
 
 @pytest.mark.parametrize("model", ["palmgren", "skf2004", "ehl_rolling", "starved"])

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-VISCOUS_MODELS = ("palmgren", "skf2004", "ehl_rolling", "starved")
+VISCOUS_MODELS = ("palmgren", "skf2004", "ehl_rolling", "starved", "minimal_oil")
 SHEAR_STRENGTHS = ("constant", "pressure")
 #: `[lubrication] lubrication_method` ("" = not stated)
 LUBRICATION_METHODS = ("oil_bath", "oil_jet", "oil_air", "grease", "minimal_oil")
@@ -20,9 +20,11 @@ OIL_FAMILIES = ("mineral", "synthetic")
 @dataclass(frozen=True)
 class FrictionOptions:
     """viscous_model: one of VISCOUS_MODELS (oil). oil_quantity_mg: oil in one bearing, mg
-    ("starved"; 0 = flooded). eta_Pa_s: the oil's dynamic viscosity at the rows' temperature,
-    Pa s, and alpha_per_Pa its pressure-viscosity coefficient, 1/Pa ("ehl_rolling", "starved").
-    density_kg_m3: the oil's density ("starved"). bore_mm, outside_diameter_mm: d and D of the
+    ("starved", "minimal_oil"; 0 = flooded). oil_supply_share: the inlet share of the oil's
+    layer ("minimal_oil", `analytic.friction.minimal_oil`; default 1). eta_Pa_s: the oil's
+    dynamic viscosity at the rows' temperature, Pa s, and alpha_per_Pa its pressure-viscosity
+    coefficient, 1/Pa ("ehl_rolling", "starved", "minimal_oil"). density_kg_m3: the oil's
+    density ("starved", "minimal_oil"). bore_mm, outside_diameter_mm: d and D of the
     bearing ("skf2004"). lubrication_method: one of LUBRICATION_METHODS or "" (not stated; the
     SKF K_rs), oil_level_mm: an oil bath's level above the lowest point of the outer raceway
     (0: no bath; the SKF drag), oil_family: one of OIL_FAMILIES (the SKF mu_EHL).
@@ -30,6 +32,7 @@ class FrictionOptions:
     tau = tau0 + alpha p ("pressure")."""
     viscous_model: str = "palmgren"
     oil_quantity_mg: float = 0.0
+    oil_supply_share: float = 1.0
     eta_Pa_s: np.ndarray | float = 0.0
     alpha_per_Pa: float = 0.0
     density_kg_m3: float = 0.0

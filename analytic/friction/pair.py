@@ -22,6 +22,7 @@ from analytic.friction.ranges import RangeNote, RangeRows, combine, notes, range
 from analytic.friction.skf2004 import NDM_LIMIT, constants_for, skf2004_torque
 from analytic.friction.solid_film import pressure_dependent_mu
 from analytic.friction.starved import R_RANGE as STARVED_R_RANGE
+from analytic.friction.minimal_oil import minimal_oil_bearing_ratio
 from analytic.friction.starved import starvation_ratio, supply_layer_um
 from analytic.hertz import ball_raceway_radii_mm
 from analytic.lubrication import (ellipticity_hamrock_dowson, hamrock_dowson_film,
@@ -103,6 +104,7 @@ class TorqueComponents:
     heat_ball_W: np.ndarray | None = None
     viscous_model: str = "palmgren"
     range_notes: tuple[RangeNote, ...] = ()
+    lubrication_method: str = ""
 
 
 @dataclass(frozen=True)
@@ -237,7 +239,8 @@ def pair_torque(g, pair, *, model: str = "solid_film", mu=0.02, hysteresis_loss=
     if heat is not None:
         split.update(_located_heat_W(located, split["drag_Nmm"], speed_rpm))
     return TorqueComponents(model, total, per[0], per[1], heat, **parts, **split,
-                            viscous_model=fr.viscous_model, range_notes=ranges)
+                            viscous_model=fr.viscous_model, range_notes=ranges,
+                            lubrication_method=fr.lubrication_method)
 
 
 def _located_heat_W(located, drag_Nmm, speed_rpm) -> dict:
@@ -312,6 +315,8 @@ def _oil_bearing(g, c: BearingContacts, mu, speed_rpm, f0, nu_mm2_s, f1, load_te
     if model == "starved" and fr.oil_quantity_mg > 0:
         ratio, ranges = _starvation_ratio(g, c, n, fr)
         visc = visc * ratio
+    elif model == "minimal_oil" and fr.oil_quantity_mg > 0:
+        visc = visc * minimal_oil_bearing_ratio(g, c, n, fr)
     elif model == "ehl_rolling":
         ti, to, qi, qo, ranges = _ehl_bearing(g, c, n, fr.eta_Pa_s, fr.alpha_per_Pa)
         visc = ti + to

@@ -26,7 +26,7 @@ from studies.model.inputs import CONDITION_COLUMNS, baseline_inputs
 from studies.model.parallel import available_workers
 from studies.model.pipeline import Pipeline
 from studies.model.checks import CHECK_COLUMNS
-from studies.model.columns import FRICTION_SPLIT_HEAT, FRICTION_SPLIT_TORQUE
+from studies.model.columns import FRICTION_SPLIT_HEAT, FRICTION_SPLIT_TORQUE, INTERVAL_COLUMNS
 from studies.model.table import TableError, read_table, write_table
 
 #: output columns `diagnose` can compare (what `simulate` writes and a rig can measure)
@@ -51,7 +51,8 @@ OUTPUT_NAMES = {
     "radial_force_A_N", "radial_force_B_N", "max_contact_pressure_A_MPa",
     "max_contact_pressure_B_MPa", "contact_angle_outer_A_deg", "contact_angle_outer_B_deg",
     "ball_load_outer_A_N", "ball_load_outer_B_N", "centrifugal_force_N",
-    "gyroscopic_moment_Nmm"} | CHECK_COLUMNS | {*FRICTION_SPLIT_TORQUE, *FRICTION_SPLIT_HEAT}
+    "gyroscopic_moment_Nmm"} | CHECK_COLUMNS | {*FRICTION_SPLIT_TORQUE, *FRICTION_SPLIT_HEAT,
+                                    *INTERVAL_COLUMNS}
 
 
 class ModelPredictor:

@@ -180,13 +180,14 @@ class Lubrication:
     load_term: str = choice("coulomb", "palmgren", default="coulomb",
                             doc='oil: "coulomb" (mu F dm/2) or "palmgren" (f1 F dm)')
     viscous_model: str = choice(
-        "palmgren", "skf2004", "ehl_rolling", "starved", default="palmgren",
+        "palmgren", "skf2004", "ehl_rolling", "starved", "minimal_oil", default="palmgren",
         doc='oil: "palmgren" (f0 (nu n)^(2/3) dm^3), "skf2004" (SKF four-component model: '
             'rolling, sliding, drag; replaces the load term too), "ehl_rolling" (EHL rolling '
             'resistance per contact on the ball loads), "starved" (Palmgren weakened by the '
-            'oil quantity); analytic/friction/')
+            'oil quantity), "minimal_oil" (Palmgren weakened by the oil quantity spread over the '
+            'wetted surfaces: follows the oil from a few mg to flooded); analytic/friction/')
     oil_quantity_mg: float = number("mg", 'oil: the oil in one bearing (viscous_model = '
-                                          '"starved")', sign=ZERO_OK, default=0.0,
+                                          '"starved" or "minimal_oil")', sign=ZERO_OK, default=0.0,
                                     default_text="0 = flooded (Palmgren)")
     lubrication_method: str = choice(
         "", "oil_bath", "oil_jet", "oil_air", "grease", "minimal_oil", default="",

@@ -64,6 +64,7 @@ def to_columns(result: SimulationResult, flags: bool = True, friction_split: boo
     out.update(_clamp_columns(result))
     if friction_split:
         out.update(friction_split_columns(result.torque))
+        out.update(interval_columns(result.torque))
     if flags:
         out.update(check_columns(result.checks))
     return out if only is None else {c: out[c] for c in only}
@@ -135,6 +136,24 @@ def friction_split_columns(t) -> dict[str, np.ndarray]:
         out.update(zip(FRICTION_SPLIT_HEAT, (t.heat_inner_W, t.heat_outer_W, t.heat_ball_W)))
     n = np.shape(t.torque_Nmm)
     return {k: np.broadcast_to(np.asarray(v, float), n) for k, v in out.items()}
+
+
+#: the model-form interval's columns (`interval_columns`), after the friction split
+INTERVAL_COLUMNS = ("torque_lo_Nmm", "torque_hi_Nmm", "heat_lo_W", "heat_hi_W")
+
+
+def interval_columns(t) -> dict[str, np.ndarray]:
+    """The friction law's model-form interval on the torque and the heat
+    (`analytic.friction.interval.model_form_interval` of the result's regime and law; NaN where
+    none can be stated; docs/cli.md "Model-form interval"); heat columns with a speed only."""
+    from analytic.friction.interval import model_form_interval, regime_of
+    law = "solid_film" if t.model == "solid_film" else t.viscous_model
+    i = model_form_interval(regime_of(t.model, t.lubrication_method), law)
+    n = np.shape(t.torque_Nmm)
+    out = dict(zip(INTERVAL_COLUMNS[:2], i.apply(t.torque_Nmm)))
+    if t.heat_W is not None:
+        out.update(zip(INTERVAL_COLUMNS[2:], i.apply(t.heat_W)))
+    return {k: np.broadcast_to(v, n) for k, v in out.items()}
 
 
 def lame_column_names(layer_names: tuple[str, ...]) -> tuple[str, ...]:

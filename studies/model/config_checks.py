@@ -72,20 +72,22 @@ TAU0_MAX_MPA = 1000.0
 def check_friction(lub, path: str) -> None:
     """The friction model's keys (analytic/friction/) belong to one kind of lubrication each:
     viscous_model and oil_quantity_mg to an oil, shear_strength and its tau0_MPa, alpha_shear to
-    a solid film; oil_quantity_mg only with viscous_model = "starved", tau0_MPa and alpha_shear
-    only with shear_strength = "pressure", which needs one of them > 0; lubrication_method to an
-    oil, oil_level_mm to an oil bath with viscous_model = "skf2004" (the law that has a drag
-    term); tau0_MPa at most TAU0_MAX_MPA (a value in Pa caught). lub: an assembly's or a
-    bearing file's `Lubrication`."""
+    a solid film; oil_quantity_mg only with viscous_model = "starved" or "minimal_oil" (which
+    needs it), tau0_MPa and alpha_shear only with shear_strength = "pressure", which needs one
+    of them > 0; lubrication_method to an oil, oil_level_mm to an oil bath with viscous_model =
+    "skf2004" (the law that has a drag term); tau0_MPa at most TAU0_MAX_MPA (a value in Pa
+    caught). lub: an assembly's or a bearing file's `Lubrication`."""
     def bad(key: str, msg: str):
         raise ConfigError(f"{path}: lubrication.{key}: {msg}")
     if lub.kind == "solid_film" and lub.viscous_model != "palmgren":
         bad("viscous_model", f'"{lub.viscous_model}" is an oil model, got kind = "solid_film"')
     if lub.kind == "oil" and lub.shear_strength != "constant":
         bad("shear_strength", f'"{lub.shear_strength}" is a solid-film law, got kind = "oil"')
-    if lub.oil_quantity_mg > 0 and lub.viscous_model != "starved":
-        bad("oil_quantity_mg", f'only used with viscous_model = "starved", got '
+    if lub.oil_quantity_mg > 0 and lub.viscous_model not in ("starved", "minimal_oil"):
+        bad("oil_quantity_mg", f'only used with viscous_model = "starved" or "minimal_oil", got '
                                f'"{lub.viscous_model}"')
+    if lub.viscous_model == "minimal_oil" and not lub.oil_quantity_mg > 0:
+        bad("viscous_model", '"minimal_oil" needs oil_quantity_mg > 0 (the oil in one bearing)')
     for key in ("tau0_MPa", "alpha_shear"):
         if getattr(lub, key) > 0 and lub.shear_strength != "pressure":
             bad(key, f'only used with shear_strength = "pressure", got "{lub.shear_strength}"')

@@ -54,6 +54,11 @@ OUTPUT_COLUMNS = {
                           "(--control; empty without a speed_rpm column)",
     "torque_Nmm": "friction torque of the bearing (the pair's torque model, one bearing; empty "
                   "without [lubrication] in BEARING.toml)",
+    "torque_lo_Nmm": "lower bound of the friction law's model-form interval on torque_Nmm "
+                     "(90 % nominal, study friction_validation; empty where none is stated)",
+    "torque_hi_Nmm": "its upper bound",
+    "heat_lo_W": "the same interval on the bearing's friction heat torque_Nmm x omega",
+    "heat_hi_W": "its upper bound",
     "thermal_reference_speed_rpm": "thermal reference speed, ISO 15312:2018 (the same on every "
                                    "row; analytic/thermal_speed.py)",
     "thermal_permissible_speed_rpm": "thermally permissible speed, DIN 732:2010 with the friction "
@@ -61,6 +66,9 @@ OUTPUT_COLUMNS = {
                                      "at the permissible temperature (empty without an oil "
                                      "[lubrication])",
     "margin_speed_rpm": "thermal_permissible_speed_rpm - the row's speed",
+    "thermal_permissible_speed_hi_rpm": "the DIN 732 speed at the upper end of the friction "
+                                        "law's model-form interval (torque_hi_Nmm's factor)",
+    "margin_speed_hi_rpm": "thermal_permissible_speed_hi_rpm - the row's speed",
 }
 
 
@@ -144,15 +152,44 @@ def solve(cfg, cols: dict, where: str = "loads", convention: str = "exact",
                                else np.full(n, np.nan)),
         "torque_Nmm": np.full(n, np.nan) if fric is None else fric.total_Nmm,
     })
+    out_cols.update(_interval_columns(lub, out_cols["torque_Nmm"], speed))
     ts = thermal_speeds(cfg.spec, cfg.geometry, lub, cfg.oil(), np.abs(b.loads[0]), speed)
     out_cols.update({"thermal_reference_speed_rpm": np.full(n, ts.reference.speed_rpm),
                      "thermal_permissible_speed_rpm": ts.permissible_speed_rpm,
                      "margin_speed_rpm": ts.margin_speed_rpm,
+                     "thermal_permissible_speed_hi_rpm": _or_nan(ts.permissible_speed_hi_rpm, n),
+                     "margin_speed_hi_rpm": _or_nan(ts.margin_speed_hi_rpm, n),
                      "convention": np.full(n, convention)})
     warnings = [f"{bearing_name}: {ts.warning}"] if ts.warning else []
     if fric is not None:
         warnings += [f"{bearing_name}: {r.message(n)}" for r in notes(fric.ranges)]
     return BearingRun(st, out_cols, tuple(warnings))
+
+
+def _or_nan(v, n: int) -> np.ndarray:
+    return np.full(n, np.nan) if v is None else np.asarray(v, float)
+
+
+def lubrication_interval(lub):
+    """The friction law's model-form interval of a `[lubrication]`
+    (`analytic.friction.interval.lubrication_interval`)."""
+    from analytic.friction.interval import lubrication_interval as interval
+    return interval(lub)
+
+
+def _interval_columns(lub, torque_Nmm, speed_rpm) -> dict:
+    """torque_lo/hi_Nmm and heat_lo/hi_W: the friction law's model-form interval
+    (`analytic.friction.interval.lubrication_interval`, the factors `simulate` applies) on the
+    torque and on its heat M omega (`analytic.torque.power_W`); NaN without a [lubrication] or
+    where no interval is stated."""
+    from analytic.torque import power_W
+    M = np.asarray(torque_Nmm, float)
+    lo = hi = np.full(M.shape, np.nan)
+    if lub is not None:
+        lo, hi = lubrication_interval(lub).apply(M)
+    n = np.broadcast_to(np.asarray(speed_rpm, float), M.shape)
+    return {"torque_lo_Nmm": lo, "torque_hi_Nmm": hi,
+            "heat_lo_W": power_W(lo, n), "heat_hi_W": power_W(hi, n)}
 
 
 def bearing_friction_of(cfg, st: SingleBearingState, speed_rpm, T_oil_C) -> BearingFriction:
@@ -197,11 +234,15 @@ DEFAULT_F0R = 2.0
 class ThermalSpeeds:
     """The thermal speed limits of one bearing (analytic/thermal_speed.py), arrays over rows:
     reference (ISO 15312, `ThermalReference`), permissible_speed_rpm (DIN 732; NaN without an
-    oil), margin_speed_rpm (permissible - speed), defaults: the keys whose default was used."""
+    oil), margin_speed_rpm (permissible - speed), defaults: the keys whose default was used;
+    permissible_speed_hi_rpm, margin_speed_hi_rpm: the same at the upper end of the friction
+    law's model-form interval (`analytic.friction.interval`; NaN where none is stated)."""
     reference: ThermalReference
     permissible_speed_rpm: np.ndarray
     margin_speed_rpm: np.ndarray
     defaults: tuple[str, ...]
+    permissible_speed_hi_rpm: np.ndarray | None = None
+    margin_speed_hi_rpm: np.ndarray | None = None
 
     @property
     def warning(self) -> str | None:
@@ -252,4 +293,11 @@ def thermal_speeds(spec, g, lub, oil, axial_force_N, speed_rpm) -> ThermalSpeeds
     M1 = palmgren_load_torque_Nmm(palmgren_f1_angular_contact(Fa, C0), Fa, g.dm_mm)
     perm = thermally_permissible_speed(ref.speed_rpm, lub.viscous_factor_f0, nu, g.dm_mm, M1,
                                        Q * np.ones_like(speed)).speed_rpm
-    return ThermalSpeeds(ref, perm, perm - np.abs(speed), tuple(defaults))
+    # the upper end of the friction law's interval: friction x factor_hi = Q is the balance
+    # friction = Q / factor_hi (both of DIN 732's terms scale alike)
+    k_hi = lubrication_interval(lub).factor_hi
+    perm_hi = (np.full(speed.shape, np.nan) if not np.isfinite(k_hi) else
+               thermally_permissible_speed(ref.speed_rpm, lub.viscous_factor_f0, nu, g.dm_mm, M1,
+                                           Q / k_hi * np.ones_like(speed)).speed_rpm)
+    return ThermalSpeeds(ref, perm, perm - np.abs(speed), tuple(defaults), perm_hi,
+                         perm_hi - np.abs(speed))

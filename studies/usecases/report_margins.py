@@ -182,10 +182,25 @@ def margin_rows(asm, res: dict, flags: dict, mesh_error: dict[str, float],
     rows += thermal_speed_rows(asm, cond, res)
     lo, hi = hl["torque_min"], hl["torque_max"]
     rows.append(MarginRow(
-        "friction torque", f"{lo.value:.4g} .. {hi.value:.4g} N mm", "none given", "",
+        "friction torque", f"{lo.value:.4g} .. {hi.value:.4g} N mm", "none given",
+        _torque_interval_text(asm, lo.value, hi.value),
         "no limit", _worst(mesh_error, "torque_min", "torque_max"), "no torque limit in the assembly",
         "torque_max_Nmm", hi.value))
     return rows
+
+
+def _torque_interval_text(asm, lo_Nmm: float, hi_Nmm: float) -> str:
+    """The friction law's model-form interval on the torque range (`analytic.friction.interval`,
+    from study friction_validation's published points), or why none is stated."""
+    from analytic.friction.interval import lubrication_interval
+    i = lubrication_interval(asm.lubrication)
+    if not i.stated:
+        return (f"no model-form interval ({i.regime}, {i.law}: {i.n_residuals} published "
+                "residuals; study friction_validation)")
+    a, b = i.apply(lo_Nmm)[0], i.apply(hi_Nmm)[1]
+    return (f"model-form interval {a:.4g} .. {b:.4g} N mm ({i.level:.0%} nominal, {i.regime}, "
+            f"{i.law}: {i.n_residuals} residuals of {len(i.sources)} sources; study "
+            "friction_validation)")
 
 
 def preload_limit_rows(asm, res: dict, cond: dict | None) -> list[MarginRow]:
@@ -273,10 +288,21 @@ def thermal_speed_rows(asm, cond: dict | None, res: dict) -> list[MarginRow]:
             (f"{float(np.min(speed)):.4g} .. {float(np.max(speed)):.4g} rpm" if np.ptp(speed) > 0
              else f"{float(speed[0]):.4g} rpm") + f"; {ref}",
             f"<= {float(np.nanmin(perm)):.4g} .. {float(np.nanmax(perm)):.4g} rpm (DIN 732)",
-            f"{margin[i]:+.4g} rpm ({_at(cond, i)})",
+            f"{margin[i]:+.4g} rpm ({_at(cond, i)})" + _upper_end_text(ts.margin_speed_hi_rpm, n),
             "PASS" if margin[i] >= 0 else f"FAIL ({int(np.sum(margin < 0))} of {n})", None, src,
             f"margin_thermal_speed_{J}_rpm", float(margin[i])))
     return rows
+
+
+def _upper_end_text(margin_hi, n: int) -> str:
+    """The speed margin at the upper end of the friction law's model-form interval (the friction
+    heat times its upper factor), or nothing where no interval is stated."""
+    m = np.asarray(margin_hi if margin_hi is not None else np.nan, float)
+    if not np.any(np.isfinite(m)):
+        return ""
+    bad = int(np.sum(m < 0))
+    return (f"; at the friction interval's upper end {float(np.nanmin(m)):+.4g} rpm"
+            + (f" (below the speed in {bad} of {n} rows)" if bad else ""))
 
 
 def _clamp_text(asm, name: str) -> str:

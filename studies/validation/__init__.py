@@ -19,6 +19,7 @@ STUDIES = {
     "ring_sections": "studies.validation.ring_section_compare",
     "heatup": "studies.validation.heatup",
     "tvac": "studies.validation.tvac",
+    "friction_validation": "studies.validation.friction_validation",
 }
 
 

@@ -1,0 +1,327 @@
+"""The minimal-oil law, the friction validation matrix and the model-form interval (issue 43
+items 2-4). References: the published numbers (studies/validation/data/friction_points.csv, each
+row's tolerance its source's scatter), Palmgren's closed form and Hamrock-Dowson's film as the
+flooded and starved limits, the normal predictive interval in closed form."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from analytic.bearing import solve_pair
+from analytic.friction import interval as iv
+from analytic.friction import minimal_oil as mo
+from analytic.lubrication import (ball_raceway_radii_mm, dynamic_viscosity_Pa_s, get_lubricant,
+                                  hamrock_dowson_film, reduced_modulus_MPa)
+from studies.validation import friction_validation as fv
+
+
+@pytest.fixture(scope="module")
+def lqf():
+    return fv.cases()["LQF2018"]
+
+
+def _factor(case, m, P=133.0, T=20.0, n=6000.0):
+    lub = get_lubricant(case.lubricant)
+    pair = solve_pair(case.g, "DB", preload_kind="spring", preload_assembled_N=np.array([P]))
+    eta = dynamic_viscosity_Pa_s(lub.nu_mm2_s(np.array([T])), lub.density_kg_m3)
+    return fv.minimal_oil_pair_ratios(case.g, pair, n, eta, lub.alpha_per_Pa, lub.density_kg_m3,
+                                      m)[0], pair, eta
+
+
+def test_minimal_oil_limits_are_palmgren_flooded_and_the_supply_layer_starved(lqf):
+    """Flooded: an unlimited charge gives Palmgren's term exactly (factor 1 to 1e-12). Starved:
+    for r << 1 Chevalier's h / h_ff -> r = h_in / h_ff, with h_ff recomputed here from
+    Hamrock-Dowson at the inner contact's load and radii, and h_in = m / (rho A_wet) from the
+    charge by hand: 0.01 mg on the 305 bearing, r ~ 1e-3, to 1e-3 relative (the next term of
+    the law is r^(1+gamma) / gamma)."""
+    f, _, _ = _factor(lqf, np.inf)
+    np.testing.assert_allclose(f.ratio, 1.0, rtol=1e-12)
+    m = 0.01
+    f, pair, eta = _factor(lqf, m)
+    g, lub = lqf.g, get_lubricant(lqf.lubricant)
+    area = np.pi * g.Dw_mm * g.Z * g.Dw_mm + 2 * np.pi * g.dm_mm * g.Dw_mm
+    h_in = 1e3 * (m / (lub.density_kg_m3 * 1e-3)) / area
+    np.testing.assert_allclose(f.h_in_um, h_in, rtol=1e-12)
+    a = float(pair.contact_angle_deg[0, 0])
+    Rx, Ry = ball_raceway_radii_mm(g.Dw_mm, g.dm_mm, a, g.f_i, "inner")
+    from analytic.torque import ball_kinematics   # contact kinematics stay in analytic.torque
+    kin = ball_kinematics(g.dm_mm, g.Dw_mm, np.radians(a))
+    u = 6000 * 2 * np.pi / 60 * 0.5 * g.dm_mm * kin.roll_inner
+    Ep = reduced_modulus_MPa(g.ring.E_MPa, g.ring.nu, g.ball.E_MPa, g.ball.nu)
+    h_ff = hamrock_dowson_film(Rx, Ry, Ep, eta, lub.alpha_per_Pa, u,
+                               pair.ball_load_N[0]).h_central_um
+    np.testing.assert_allclose(f.supply_ratio_inner, h_in / h_ff, rtol=1e-9)
+    assert f.supply_ratio_inner[0] < 2e-3
+    np.testing.assert_allclose(f.ratio, 0.5 * (f.supply_ratio_inner + f.supply_ratio_outer),
+                               rtol=1e-3)
+
+
+def test_305_pair_torque_rises_with_oil_quantity_and_is_flat_when_flooded(lqf):
+    """Issue 43 Done-when: on a 305-size pair (6000 rpm, 133 N, the Pennzane of the LQF rig,
+    20 C) the torque rises at every step 5 -> 20 -> 50 -> 100 -> 130 mg, by more than the load
+    term at 5 mg (the old `starved` law moved 0.1 % here), and beyond the charge of the rig it
+    is flat: 130 mg against 100x that within 0.5 % (relative to the flooded torque)."""
+    q = [5.0, 20.0, 50.0, 100.0, 130.0, 13000.0]
+    M = np.array([fv.case_torque_Nmm(lqf, "minimal_oil", 133.0, 6000.0, 20.0, m)[0][0]
+                  for m in q])
+    P = fv.case_torque_Nmm(lqf, "palmgren", 133.0, 6000.0, 20.0)[0][0]
+    assert np.all(np.diff(M[:5]) > 0), M
+    assert M[4] - M[0] > 0.3 * P
+    assert abs(M[4] - M[5]) < 5e-3 * M[5]
+    np.testing.assert_allclose(M[5], P, rtol=1e-3)     # flooded: Palmgren's
+
+
+def test_lqf_rig_drag_over_palmgren_rises_with_mean_temperature_and_load(lqf):
+    """Issue 43 Done-when, the LQF rig (Takeuchi et al., 44th AMS 2018): drag over Palmgren's
+    (n nu)^(2/3) dm^3 (their lubricant quantity factor) at 100 mg, 6000 rpm, rises with the mean
+    temperature over 12..35 C at every load 89..222 N, and with the load, as published; Palmgren's
+    own ratio is the constant f0 (the reference: closed form, to 1e-12)."""
+    T = np.array([12.0, 20.0, 28.0, 35.0])
+    nu = get_lubricant(lqf.lubricant).nu_mm2_s(T)
+    M0 = fv.palmgren_viscous_torque_Nmm(1.0, nu, 6000.0, lqf.g.dm_mm)
+    for P in (89.0, 133.0, 222.0):
+        _, V = fv.case_torque_Nmm(lqf, "minimal_oil", np.full(4, P), 6000.0, T)
+        assert np.all(np.diff(V / M0) > 0), (P, V / M0)
+        _, V0 = fv.case_torque_Nmm(lqf, "palmgren", np.full(4, P), 6000.0, T)
+        np.testing.assert_allclose(V0 / M0, fv.F0_EXTERNAL, rtol=1e-12)
+    _, V = fv.case_torque_Nmm(lqf, "minimal_oil", np.array([89.0, 133.0, 178.0, 222.0]), 6000.0,
+                              20.0)
+    assert np.all(np.diff(V) > 0)
+
+
+def test_lost_preload_keeps_the_minimal_oil_loss(lqf):
+    """A ball that lost its preload still rolls through the oil: at zero axial load the factor
+    is that of the centrifugal load (between 0 and 1, finite), not the flooded 1 of `starved`."""
+    f, _, _ = _factor(lqf, 5.0, P=0.0)
+    assert 0.0 < float(f.ratio[0]) < 1.0
+
+
+def test_interval_factors_are_the_normal_predictive_interval():
+    """Closed form: e = (0.1, 0.3, -0.2): mean 0.0667, sd 0.2517, half = 1.6449 sd sqrt(4/3);
+    fewer than two residuals state no interval."""
+    e = np.array([0.1, 0.3, -0.2])
+    half = 1.6448536269514722 * np.std(e, ddof=1) * np.sqrt(1 + 1 / 3)
+    np.testing.assert_allclose(iv.interval_factors(e), np.exp([e.mean() - half, e.mean() + half]),
+                               rtol=1e-12)
+    assert np.isnan(iv.interval_factors([0.2])).all()
+    assert iv.regime_of("solid_film") == "solid_film"
+    assert iv.regime_of("oil", "oil_jet") == "oil_bath_jet"
+    assert iv.regime_of("oil") == "minimal_oil"
+
+
+# ------------------------------------------------------------------ the matrix, row by row
+@pytest.fixture(scope="module")
+def external():
+    return fv.external_rows()
+
+
+def _external_params():
+    """(source, quantity, law) of the external rows, with the law-and-row pairs whose
+    prediction lies outside the source's scatter marked xfail (not strict: a better law passes)."""
+    misses = {("JPL2022", "*"): "every law's load term is 3-7x below the JPL torques",
+              ("OCI2018", "starting"): "Palmgren's f1 slope +55 %, SKF +150 %",
+              ("OCI2018", "running"): "the laws miss the cartridge's running torque by 20-60 %",
+              ("LQF2018", "palmgren"): "Palmgren's LQF is a constant",
+              ("LQF2018", "starved"): "the old starved law is flooded at 100 mg",
+              ("LQF2018", "skf2004"): None}
+    out = []
+    for p in fv.published_points():
+        if p["source"] not in ("JPL2022", "OCI2018", "LQF2018"):
+            continue
+        for law in fv.LAWS:
+            reason = (misses.get((p["source"], "*"))
+                      or misses.get((p["source"], p["quantity"].split()[0]))
+                      or misses.get((p["source"], law)))
+            if p["source"] == "LQF2018" and law == "ehl_rolling" and "35 C" in p["quantity"]:
+                reason = None
+            marks = [pytest.mark.xfail(reason=reason, strict=False)] if reason else []
+            out.append(pytest.param(p["source"], p["quantity"], law, marks=marks,
+                                    id=f"{p['source']}-{p['quantity'][:24]}-{law}"))
+    return out
+
+
+@pytest.mark.parametrize("source,quantity,law", _external_params())
+def test_published_point_within_its_scatter(external, source, quantity, law):
+    """Each published number against each law, tolerance the source's scatter (the CSV's
+    rel_scatter: JPL < 10 % of 6 repeats, OCI 10 % / 20 % hash width); trend rows: the law's
+    ratio must rise (> 1)."""
+    r = next(r for r in external if (r.source, r.quantity, r.law) == (source, quantity, law))
+    if r.kind == "trend":
+        assert r.predicted > 1.0 + fv.TREND_TOL, r.predicted
+    else:
+        assert abs(r.error_rel) <= r.rel_scatter, (r.predicted, r.measured)
+
+
+@pytest.fixture(scope="module")
+def seed001_fits():
+    return fv.seed001_minimal_oil_fit(mesh_factor=2.0)
+
+
+@pytest.mark.slow
+def test_seed001_minimal_oil_fitted_on_the_cold_ratio_predicts_the_hot_one(seed001_fits):
+    """Issue 43 Done-when (positive branch): the minimal-oil law, its one parameter (the oil on
+    the inlets) fitted on the cold ratio alone, predicts the held-out hot ratio within 5.9 % of
+    the published 0.75 (the relative half-width of the published cold band), and its 90 %
+    interval contains it, on the first root. The fit has a second root (the cold ratio has a
+    minimum in the oil quantity) that predicts outside: the cold ratio alone does not identify
+    the law's parameter (the report says so)."""
+    from studies.validation import published_as_data as pad
+    assert len(seed001_fits) == 2
+    m, cold, hot, (lo, hi) = seed001_fits[0]
+    np.testing.assert_allclose(cold, np.sqrt(np.prod(pad.SEED001_COLD_BAND)), rtol=1e-8)
+    assert abs(hot - pad.SEED001_HOT) <= pad.SEED001_REL_TOL * pad.SEED001_HOT
+    assert lo <= pad.SEED001_HOT <= hi
+    m2, _, hot2, _ = seed001_fits[1]
+    assert m2 > m and abs(hot2 - pad.SEED001_HOT) > pad.SEED001_REL_TOL * pad.SEED001_HOT
+    # the same law through the pipeline (`[lubrication] viscous_model = "minimal_oil"`,
+    # simulate's route) at the fitted quantity gives the same two ratios (1e-9)
+    from studies.model.config import load_shipped
+    asm = pad.seed001_with(load_shipped("seed001"), viscous_model="minimal_oil",
+                           oil_quantity_mg=m)
+    M = pad.seed001_torque_Nmm(asm, mesh_factor=2.0)
+    np.testing.assert_allclose([M[0] / M[1], M[2] / M[1]], [cold, hot], rtol=1e-9)
+
+
+def test_simulate_interval_columns_are_the_shipped_residuals_interval():
+    """simulate's torque_lo/hi and heat_lo/hi (seed 001, oil without a method: minimal-oil
+    regime, Palmgren's law) are the torque and heat times the normal predictive factors of the
+    shipped residuals of (minimal_oil, palmgren), recomputed here by hand from the CSV with the
+    standard normal quantile 1.6448536 (rtol 1e-9); a solid film (seed 000) has no interval
+    stated (NaN: seed 000's changes give no residual)."""
+    import csv
+    from studies.model.columns import to_columns
+    from studies.model.config import load_shipped
+    from studies.model.pipeline import Pipeline, table_inputs
+    with open(iv.RESIDUALS_CSV) as fh:
+        e = np.array([float(r["log_residual"]) for r in csv.DictReader(
+            x for x in fh if not x.startswith("#"))
+            if r["regime"] == "minimal_oil" and r["law"] == "palmgren"])
+    half = 1.6448536269514722 * np.std(e, ddof=1) * np.sqrt(1 + 1 / e.size)
+    cond = {"T_ambient_C": np.array([20.0, 40.0]), "speed_rpm": np.array([3500.0, 6000.0])}
+    asm = load_shipped("seed001")
+    c = to_columns(Pipeline.shared(asm, mesh_factor=4.0).run(table_inputs(asm, cond)),
+                   friction_split=True)
+    np.testing.assert_allclose(c["torque_lo_Nmm"], c["torque_Nmm"] * np.exp(e.mean() - half),
+                               rtol=1e-9)
+    np.testing.assert_allclose(c["heat_hi_W"], c["heat_W"] * np.exp(e.mean() + half), rtol=1e-9)
+    s0 = load_shipped("seed000")
+    c0 = to_columns(Pipeline.shared(s0, mesh_factor=4.0).run(
+        table_inputs(s0, {"T_ambient_C": np.array([20.0])})), friction_split=True)
+    assert np.isnan(c0["torque_lo_Nmm"]).all()
+
+
+@pytest.mark.slow
+def test_shipped_residuals_are_the_study_s():
+    """analytic/data/friction_residuals.csv is what the study computes (here on a coarser mesh:
+    the seed 001 ratios move by < 1e-4 relative with the mesh; the external rows do not use
+    the FE), to 1e-3 in the log."""
+    import csv
+    rows, _ = fv.matrix(mesh_factor=2.0)
+    got = {(r["regime"], r["law"], r["source"], r["quantity"]): r["log_residual"] for r in rows
+           if r["kind"] == "value" and np.isfinite(r["log_residual"])}
+    with open(iv.RESIDUALS_CSV) as fh:
+        shipped = {(r["regime"], r["law"], r["source"], r["quantity"]): float(r["log_residual"])
+                   for r in csv.DictReader(x for x in fh if not x.startswith("#"))}
+    assert set(got) == set(shipped)
+    for k, v in shipped.items():
+        assert abs(got[k] - v) < 1e-3, k
+
+
+def test_minimal_oil_every_ball_summed_is_z_times_the_representative_ball():
+    """`bearing` takes the law over every ball's own contacts, simulate's pair route a
+    representative ball: on the same state under a pure axial load (every ball alike) the
+    minimal-oil torque is the same both ways (1e-12 relative), and below Palmgren's with 5 mg
+    (the factor < 1) while the same law with an unlimited charge is Palmgren's exactly."""
+    from analytic.bearing import BearingGeometry
+    from analytic.bearing.single import solve_single
+    from analytic.friction.options import FrictionOptions
+    from analytic.friction.pair import BearingContacts, bearing_friction, single_bearing_contacts
+    from analytic.torque import ContactInput
+    from studies.model.config import load_shipped
+
+    asm = load_shipped("seed001")
+    g = BearingGeometry.from_spec(asm.bearing, asm.materials)
+    speed = np.array([3500.0, 9000.0])
+    st = solve_single(g, axial_load_N=np.array([50.0, 200.0]), speed_rpm=speed,
+                      ball_model="quasi_dynamic")
+    every = single_bearing_contacts(st)
+    first = lambda k: ContactInput(*(np.asarray(getattr(k, f))[0] for f in  # noqa: E731
+                                     ("Q_N", "a_mm", "b_mm", "E_ell", "Rx_mm")))
+    one = BearingContacts(first(every.inner), first(every.outer), every.alpha_inner_rad[0],
+                          every.alpha_outer_rad[0], every.axial_force_N, every.radial_force_N)
+    oil = asm.oil()
+    nu = oil.nu_mm2_s(np.array([20.0, 40.0]))
+    out = {}
+    for law, m in (("minimal_oil", 5.0), ("minimal_oil", np.inf), ("palmgren", 0.0)):
+        fr = FrictionOptions(viscous_model=law, oil_quantity_mg=m,
+                             eta_Pa_s=dynamic_viscosity_Pa_s(nu, oil.density_kg_m3),
+                             alpha_per_Pa=oil.alpha_per_Pa, density_kg_m3=oil.density_kg_m3)
+        args = dict(model="oil", mu=0.0029, speed_rpm=speed, f0=1.7, nu_mm2_s=nu, friction=fr)
+        a, b = bearing_friction(g, every, **args), bearing_friction(g, one, **args)
+        np.testing.assert_allclose(a.total_Nmm, b.total_Nmm, rtol=1e-12)
+        out[(law, m)] = a.total_Nmm
+    np.testing.assert_allclose(out[("minimal_oil", np.inf)], out[("palmgren", 0.0)], rtol=1e-12)
+    assert np.all(out[("minimal_oil", 5.0)] < out[("palmgren", 0.0)])
+
+
+def test_minimal_oil_needs_a_charge_and_its_key_is_refused_elsewhere(tmp_path):
+    """Config: viscous_model = "minimal_oil" without oil_quantity_mg is refused in one line
+    naming the key; with it, accepted; oil_quantity_mg with palmgren still refused."""
+    import tomllib
+    from studies.model.config import CONFIG_DIR, SHIPPED, ConfigError, assembly_from_dict
+    raw = tomllib.loads((CONFIG_DIR / SHIPPED["seed001"]).read_text())
+    raw["lubrication"]["viscous_model"] = "minimal_oil"
+    with pytest.raises(ConfigError, match=r"^x\.toml: lubrication\.viscous_model: .*oil_quantity_mg"):
+        assembly_from_dict(raw, "x.toml")
+    raw["lubrication"]["oil_quantity_mg"] = 20.0
+    assert assembly_from_dict(raw, "x.toml").lubrication.viscous_model == "minimal_oil"
+    raw["lubrication"]["viscous_model"] = "palmgren"
+    with pytest.raises(ConfigError, match=r"^x\.toml: lubrication\.oil_quantity_mg: "):
+        assembly_from_dict(raw, "x.toml")
+
+
+def test_interval_factors_meet_the_diagnosis_predictive_interval():
+    """Where the two interval routes meet they agree: the friction interval of n log residuals
+    is the diagnosis's predictive interval (`studies.diagnosis.interval.predictive_interval`)
+    of their mean as a one-parameter fit (Jacobian 1, parameter variance sd^2 / n) with the
+    residuals' spread as its discrepancy, exponentiated (1e-12)."""
+    from studies.diagnosis.interval import predictive_interval
+    e = np.array([0.4, -0.1, 0.25, -0.6, 0.05])
+    sd = np.std(e, ddof=1)
+    p = predictive_interval([e.mean()], [[1.0]], [[sd ** 2 / e.size]], 0.0, sd, iv.LEVEL)
+    np.testing.assert_allclose(iv.interval_factors(e), np.exp([p.lo[0], p.hi[0]]), rtol=1e-12)
+
+
+def test_permissible_speed_at_the_interval_s_upper_end_closes_the_heat_balance():
+    """DIN 732 at the upper end of the friction interval: at the speed n_hi the friction
+    heat k_hi (M0(nu_perm, n_hi) + M1) omega equals the dissipated heat Q of the nominal balance
+    (each term recomputed here from Palmgren's closed forms, 1e-6 relative), and n_hi < n
+    (more friction, a lower permissible speed)."""
+    from analytic.bearing import BearingGeometry
+    from analytic.friction.palmgren import (palmgren_f1_angular_contact,
+                                            palmgren_load_torque_Nmm,
+                                            palmgren_viscous_torque_Nmm)
+    from analytic.safety import static_load_rating_C0_N
+    from analytic.thermal_speed import (dissipated_heat_W, reference_heat_transfer_W_per_mm2_K)
+    from analytic.torque import power_W
+    from studies.model.config import load_shipped
+    from studies.usecases.bearing_single import thermal_speeds
+    asm = load_shipped("seed001")
+    g = BearingGeometry.from_spec(asm.bearing, asm.materials)
+    lub, oil = asm.lubrication, asm.oil()
+    Fa = np.array([7.0, 50.0])
+    ts = thermal_speeds(asm.bearing, g, lub, oil, Fa, np.array([6000.0, 6000.0]))
+    k_hi = iv.lubrication_interval(lub).factor_hi
+    assert np.isfinite(k_hi) and k_hi > 1
+    n_hi = ts.permissible_speed_hi_rpm
+    assert np.all(n_hi < ts.permissible_speed_rpm)
+    C0 = static_load_rating_C0_N(g.Z, g.Dw_mm, g.dm_mm, g.alpha0_deg)
+    M1 = palmgren_load_torque_Nmm(palmgren_f1_angular_contact(Fa, C0), Fa, g.dm_mm)
+    nu = oil.nu_mm2_s(lub.permissible_temperature_C)
+    k_q = lub.heat_transfer_W_per_mm2_K or reference_heat_transfer_W_per_mm2_K(
+        ts.reference.surface_mm2)
+    Q = dissipated_heat_W(k_q, ts.reference.surface_mm2, lub.permissible_temperature_C,
+                          lub.ambient_temperature_C)
+    heat = k_hi * power_W(palmgren_viscous_torque_Nmm(lub.viscous_factor_f0, nu, n_hi, g.dm_mm)
+                          + M1, n_hi)
+    np.testing.assert_allclose(heat, Q, rtol=1e-6)
