@@ -1,7 +1,8 @@
 """The "Done when" on thermal histories made another way (studies/validation/
 thermal_history.py: part temperatures from the independent conduction network of the stack,
 run through plain simulate, realistic noise, only time_s / T_ambient_C / speed_rpm given), slow
-(`make test-slow`; 20 diagnoses of 30-90 s each on 2 idle cores):
+(`make test-slow`; 9 cases x 2 draws = 18 diagnoses, 2-10 min each measured at load 14-22 on
+2 cores with the thermal_transient_fe rung):
 
 - the cause is named (explained, explained partly, or ambiguous with the thermal family among
   the rivals: `second_source.judge` right / named / partial) in most non-null draws;
