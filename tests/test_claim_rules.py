@@ -306,3 +306,42 @@ def test_final_rules():
     assert s.one_cause_leaves_structure(_search(2, leaves=True), sel) is None
     assert s.causes_claimed(_search(2, leaves=True), sel).verdict == "explained_partly"
     assert s.causes_claimed(_search(1, leaves=False), sel).verdict == "explained"
+
+
+def _pass_at(value_true: float):
+    """A stand-in pass whose cause, the inner fit error, is fitted by bounded least squares to
+    a truth of `value_true` um (+- 1 um) on [-20, 20] um."""
+    n = 20
+    A = np.full((n, 1), 1.0 / np.sqrt(n))
+    fit = _linear_fit(A, A[:, 0] * value_true + np.random.default_rng(1).normal(size=n),
+                      -20.0, 20.0)
+    eff = EFFECTS["interference_error"]
+    pb = SimpleNamespace(candidates=[eff], base=[], effect=lambda name: eff, noise=None)
+    return SimpleNamespace(chosen=None, pb=pb, fits={eff.name: fit}, heldout={eff.name: None},
+                           decision=SimpleNamespace(cause=eff.name, verdict="explained")), fit
+
+
+def test_stop_rule_after_a_cause_at_its_bound():
+    """No further cause is sought after a cause the data want beyond its bound (30 um on
+    [-20, 20]); after one inside (5 um) the rule does not stop the search."""
+    from studies.diagnosis import selection as s
+    for truth, stop in ((30.0, True), (5.0, False)):
+        cur, _ = _pass_at(truth)
+        search = _search()
+        search.cur = cur
+        assert s.last_cause_at_bound(search) == stop
+
+
+def test_final_rule_joint_model_at_a_bound():
+    """The model of the accepted causes pushed beyond a bound claims nothing (`unexplained`,
+    `at_bound` with the bound); inside its bounds the rule does not apply."""
+    from studies.diagnosis import selection as s
+    for truth, applies in ((30.0, True), (5.0, False)):
+        cur, fit = _pass_at(truth)
+        search = _search()
+        search.final_pb, search.final_fit = cur.pb, fit
+        search.first = SimpleNamespace(pb=cur.pb)
+        sel = s.joint_at_bound(search, s.Selection())
+        assert (sel is not None) == applies
+        if applies:
+            assert sel.verdict == "unexplained" and sel.at_bound[0].bound == 20.0

@@ -1,6 +1,6 @@
-"""A claim needs a detectable change: before any candidate is
-fitted, per compared column, the smallest change the data could show and the change the
-configured model leaves, both in noise units.
+"""A claim needs a detectable change: before any candidate is fitted, per compared column, the
+smallest change the data could show and the change the configured model leaves, both in noise
+units.
 
 - The change the configured model leaves (`change_sigma`): the RMS of the calibrated
   baseline's misfit beyond the noise, sqrt(max(chi2 / dof - 1, 0)) of the column's standardised
