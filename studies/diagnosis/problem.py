@@ -588,7 +588,7 @@ def with_stated_shape(noise: Noise, measured: Mapping[str, np.ndarray],
                       valid: Mapping[str, np.ndarray], reading: Mapping[str, np.ndarray]) -> Noise:
     """`noise` with the per-row shape and stated level of each stated column (`noise.stated`)
     evaluated at the readings `reading` (column -> values, column unit: the measured values for
-    the first estimate, the calibrated baseline's prediction after it; `noisemodel` module
+    the first estimate, `calibration.stated_readings` after it; `noisemodel` module
     docstring): the stated per-row uncertainty s (never below the round-off floor ROUND_OFF x
     the column's largest value), the level sqrt(mean s^2) over the compared rows, the shape
     s / level (1 on rows not compared)."""
