@@ -173,7 +173,7 @@ def baseline_noise(pb: Problem, pred: dict) -> Noise:
     for c in pb.columns:
         if c in pb.noise.given:
             continue
-        s, source[c] = data_sigma(pb, c, pb.scaled_residual(c, pred[c]))
+        s, source[c] = data_sigma(pb, c, pb.measured[c] - pred[c])
         floor = ROUND_OFF * max(np.nanmax(np.abs(pb.measured[c])), 1e-300)
         sigma[c] = sigma_w[c] = max(s, floor)
         rho[c] = 0.0
