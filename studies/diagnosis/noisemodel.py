@@ -2,7 +2,7 @@
 `sigma_<column>` columns of the measured file; docs/cli.md "diagnose"), and the check of a
 statement against the data.
 
-A stated noise model is a weight, not a verdict (DESIGN.md section 8): the per-row standard
+A stated noise model is a weight, not a verdict: the per-row standard
 uncertainties give the likelihood's weights (weighted least squares; the AR(1) and spike handling
 of the diagnosis act on the residual divided by them), while the overall level is still
 estimated from the data and compared with the statement (`consistency`); a statement the data
