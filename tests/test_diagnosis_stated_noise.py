@@ -77,9 +77,9 @@ def test_stated_weights_give_the_closed_form_weighted_least_squares_estimate():
 
 def test_calibration_checks_a_stated_level_against_the_data():
     """The calibrated noise of a column stated as 1.5 % + 0.2 (the truth) is consistent, its
-    level within 15 % of the stated one (120 entries: the estimate's standard deviation is
-    about 9 %); stated 3 x too low or too high it is reported inconsistent, the weights' shape
-    kept and the level the data's (within 15 % of the truth's)."""
+    level within 30 % of the stated one (120 entries: the estimate's standard deviation is
+    about 9 %, 30 % is 3 of them); stated 3 x too low or too high it is reported inconsistent,
+    the weights' shape kept and the level the data's (within 30 % of the truth's)."""
     x, y, s, cond, predict = _proportional(seed=3)
     truth = float(np.sqrt(np.mean(s ** 2)))
     for factor, ok in ((1.0, True), (1.0 / 3.0, False), (3.0, False)):
@@ -89,8 +89,8 @@ def test_calibration_checks_a_stated_level_against_the_data():
         pb, _ = calibrate(pb)
         chk = pb.noise.consistency["torque_Nmm"]
         assert chk.consistent is ok, (factor, chk)
-        assert chk.ratio == pytest.approx(1.0 / factor, rel=0.15)
-        assert pb.noise.sigma["torque_Nmm"] == pytest.approx(truth, rel=0.15)
+        assert chk.ratio == pytest.approx(1.0 / factor, rel=0.3)
+        assert pb.noise.sigma["torque_Nmm"] == pytest.approx(truth, rel=0.3)
         assert pb.row_sigma("torque_Nmm") == pytest.approx(s / s.mean() * pb.row_sigma(
             "torque_Nmm").mean(), rel=0.05)
 

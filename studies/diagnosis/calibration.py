@@ -46,9 +46,9 @@ def calibrate(pb: Problem) -> tuple[Problem, Baseline]:
     residuals), its residual description and held-out residuals."""
     bspace = pb.space([])
     base = pb.fit(bspace, np.zeros(bspace.lo.size))
-    if pb.noise.stated:     # a stated noise's readings: not the noisy data (`stated_readings`)
+    if pb.noise.stated:     # a stated noise's readings (`stated_readings`)
         pb = replace(pb, noise=with_stated_shape(pb.noise, pb.measured, pb.valid,
-                                                 stated_readings(pb, base.pred)))
+                                                 stated_readings(pb)))
         base = pb.fit(bspace, base.u)
     spiked = drop_spikes(pb, base.pred)
     if spiked is not pb:
@@ -66,17 +66,28 @@ def calibrate(pb: Problem) -> tuple[Problem, Baseline]:
                         orth(base.J))
 
 
-def stated_readings(pb: Problem, pred: dict) -> dict[str, np.ndarray]:
-    """The readings a stated noise is evaluated at (`noisemodel` module docstring): the
-    calibrated baseline's prediction plus the smooth part of its residual
-    (`Problem.smooth_residual`), every row (the prediction where a column is not compared).
-    Neither the noisy reading itself (its weights would correlate with the noise) nor the
-    baseline alone (a model missing a lag by a factor 5 in torque at the cold end would put the
-    weights there by that factor)."""
+#: rows of the running mean of the measured values a stated noise is evaluated at in a time
+#: series (`stated_readings`)
+READING_ROWS = 5
+
+
+def stated_readings(pb: Problem) -> dict[str, np.ndarray]:
+    """The readings a stated noise is evaluated at (`noisemodel` module docstring): in a time
+    series the running mean of READING_ROWS consecutive measured values of the column (centred;
+    fewer at the ends): a row's own noise then carries 1 / READING_ROWS of its weight, so the
+    weights' correlation with the noise, and the bias of about 2 REL^2 of the reading it gives a
+    weighted fit (Carroll & Ruppert 1988, ch. 2.3), shrinks that much; elsewhere the measured
+    values. Not the baseline's prediction: a model that misses a lag by a factor 5 in torque at
+    the cold end would put the weights wrong by that factor. Rows not compared: the measured
+    value (NaN)."""
     out = {}
     for c in pb.noise.stated:
-        y = np.asarray(pred[c], float).copy()
-        y[pb.valid[c]] += pb.smooth_residual(c, pred[c])[0]
+        y = np.asarray(pb.measured[c], float).copy()
+        m = pb.valid[c]
+        if pb.is_time_series and m.sum() >= READING_ROWS:
+            k = np.ones(READING_ROWS)
+            v = y[m]
+            y[m] = np.convolve(v, k, "same") / np.convolve(np.ones(v.size), k, "same")
         out[c] = y
     return out
 
@@ -162,7 +173,7 @@ def baseline_noise(pb: Problem, pred: dict) -> Noise:
     for c in pb.columns:
         if c in pb.noise.given:
             continue
-        s, source[c] = data_sigma(pb, c, pb.scaled_residual(c, pred[c]))
+        s, source[c] = data_sigma(pb, c, pb.measured[c] - pred[c])
         floor = ROUND_OFF * max(np.nanmax(np.abs(pb.measured[c])), 1e-300)
         sigma[c] = sigma_w[c] = max(s, floor)
         rho[c] = 0.0

@@ -11,11 +11,13 @@ contradict is reported, not trusted.
 A statement `REL%+ABS` is the standard uncertainty of one reading y: u(y) = REL/100 |y| + ABS
 (column unit), the two parts added as an instrument's data sheet adds "% of reading" and "% of
 range / counts" (the bound of the sum of two fully correlated parts; JCGM 100:2008, GUM, 5.2.2
-with correlation 1); `ABS` alone is an additive one. The reading is the configured model's
-calibrated prediction once it is known (the measured value only for the first estimate): weights
-taken from the noisy reading itself correlate with the noise and bias a weighted fit towards low
+with correlation 1); `ABS` alone is an additive one. The reading is the measured value, in a
+time series its running mean over a few rows (`calibration.stated_readings`): weights taken
+from the noisy reading itself correlate with the noise and bias a weighted fit towards low
 readings by about 2 REL^2 of the reading (Carroll & Ruppert, Transformation and Weighting in
-Regression, Chapman & Hall 1988, ch. 2.3: weights from the fitted mean, not the response).
+Regression, Chapman & Hall 1988, ch. 2.3), 0.05 % at 1.5 %; the model's prediction, the usual
+cure, is no reading when the model is what is in question (a baseline that misses a lag can be
+5 x off in torque where the data are).
 """
 from __future__ import annotations
 

@@ -575,7 +575,7 @@ def make_problem(predict: Callable, measured: Mapping[str, np.ndarray],
             sigma[c] = given[c]
             continue
         floor = ROUND_OFF * float(np.nanmax(np.abs(meas[c]), initial=0.0))
-        s, source[c] = data_sigma(pb, c, pb.scaled_residual(c, np.zeros(n)))
+        s, source[c] = data_sigma(pb, c, meas[c])
         s = max(s, floor)
         sigma[c] = s if s > 0 else 1.0     # a column of zeros
     noise = replace(first, sigma=sigma, sigma_w=dict(sigma), rho={c: 0.0 for c in cols},
@@ -588,7 +588,7 @@ def with_stated_shape(noise: Noise, measured: Mapping[str, np.ndarray],
                       valid: Mapping[str, np.ndarray], reading: Mapping[str, np.ndarray]) -> Noise:
     """`noise` with the per-row shape and stated level of each stated column (`noise.stated`)
     evaluated at the readings `reading` (column -> values, column unit: the measured values for
-    the first estimate, the calibrated baseline's prediction after it; `noisemodel` module
+    the first estimate, `calibration.stated_readings` after it; `noisemodel` module
     docstring): the stated per-row uncertainty s (never below the round-off floor ROUND_OFF x
     the column's largest value), the level sqrt(mean s^2) over the compared rows, the shape
     s / level (1 on rows not compared)."""
@@ -605,16 +605,21 @@ def with_stated_shape(noise: Noise, measured: Mapping[str, np.ndarray],
 
 
 def data_sigma(pb: Problem, c: str, r: np.ndarray) -> tuple[float, str]:
-    """Noise level of column c from residuals r, and how: in a time series from second
-    differences in time (within blocks); in a table of steady points from the design
-    (replicates, or second differences along each condition: `stats.noise_sigma_steady`)."""
+    """Noise level of column c from residuals r (column unit, every row), and how: in a time
+    series from second differences in time (within blocks; with a stated noise each divided by
+    its own stated standard deviation, `stats.noise_sigma`'s shape); in a table of steady
+    points from the design (replicates, or second differences along each condition:
+    `stats.noise_sigma_steady`, of r divided by the stated shape). With a stated noise the
+    level is that of a row of RMS stated uncertainty."""
     t = pb.conditions.get("time_s")
+    shape = pb.noise.shape.get(c)
     if t is None or not np.all(np.diff(t) > 0):
         m = pb.valid[c]
-        s, how = noise_sigma_steady(r[m], {k: v[m] for k, v in pb.conditions.items()})
+        rs = r if shape is None else r / shape
+        s, how = noise_sigma_steady(rs[m], {k: v[m] for k, v in pb.conditions.items()})
         if s > 0:
             return s, how
-    return noise_sigma(r, pb.blocks), "second differences of the baseline residuals"
+    return noise_sigma(r, pb.blocks, shape), "second differences of the baseline residuals"
 
 
 def _row_count(meas: Mapping[str, np.ndarray], cond: Mapping[str, np.ndarray]) -> int:
