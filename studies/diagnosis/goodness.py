@@ -247,7 +247,14 @@ def _effect(pb: Problem, name: str):
 #: against: the preload path's compliance at its soft bound, 5e4 um/kN, is the `preload_spring`
 #: rung (`ladder.ladder`: a spring preload is carried by preload_path_compliance, "as soft as a
 #: wave spring"); (effect, parameter) -> which bound (0 lower, 1 upper)
-FORM_LIMITS = {("preload_path_compliance", "extra_compliance_um_per_kN"): 1}
+FORM_LIMITS = {("preload_path_compliance", "extra_compliance_um_per_kN"): 1,
+               # the transient conduction rung (`transient_rung`): a shaft bore without a film
+               # (a closed cavity), and a mount joined as one body with the housing (the joint's
+               # bound, 1e4 W/(m^2 K) over the face, against the housing's own conduction across
+               # its wall: seed 000's titanium housing 2 pi k L / ln(r_o / r_i) = 5.2 W/K, the
+               # bound 55 W/K: beyond it the joint changes nothing)
+               ("thermal_transient_fe", "bore_film_ratio"): 0,
+               ("thermal_transient_fe", "G_face_W_K"): 1}
 
 
 def _is_form_itself(pb: Problem, name: str, p: str, side: int) -> bool:

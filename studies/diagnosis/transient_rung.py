@@ -438,7 +438,9 @@ class ThermalTransientFE(Effect):
                     "C_mount_J_K": C_MOUNT_MIN_J_K, "fit_conductance_factor": 1.0,
                     "heat_scale": 1.0}
         self.scale = {"film_resistance_m2K_W": (0.2 if vacuum else 0.01), "bore_film_ratio": 0.1,
-                      "G_face_W_K": 0.05 * G_face_max, "G_env_W_K": 1.0,
+                      # a power-of-two share: the bound round-trips exactly through the fit's
+                      # scaled coordinates (hi / s * s == hi), as the claim rules compare it
+                      "G_face_W_K": G_face_max / 16.0, "G_env_W_K": 1.0,
                       "C_mount_J_K": 2000.0, "fit_conductance_factor": 0.2, "heat_scale": 0.1}
         self._heat = Memo(4)
 
