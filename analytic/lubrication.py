@@ -229,9 +229,8 @@ class Lubricant:
     def oil_family(self) -> str:
         """"mineral" or "synthetic" (OIL_FAMILIES): a user table's `family` (default mineral),
         synthetic for the library's PFPE and MAC oils."""
-        if "oil_family" in self.extra:
-            return self.extra["oil_family"]
-        return "synthetic" if self.family in _SYNTHETIC_FAMILIES else "mineral"
+        return self.extra.get("oil_family", "synthetic" if self.family in _SYNTHETIC_FAMILIES
+                              else "mineral")
 
     @property
     def T_points_C(self) -> np.ndarray:
