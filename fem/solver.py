@@ -64,7 +64,14 @@ def single_thread_blas(fn):
 
 class SolveError(BearingfemError):
     """Singular system or an active set that does not settle; one-line message (the package's
-    own error, a ValueError: the command exits 2 with it)."""
+    own error, a ValueError: the inputs (a part not held, a fit the solver cannot settle) are
+    what to change, and the command exits 2 with it). `state`: the index of the state it failed
+    on among those solved together (None: not one state's), for the caller to name its row
+    (`studies.model.stages.fe.FEStage.solve_failure`)."""
+
+    def __init__(self, message: str, state: int | None = None):
+        super().__init__(message)
+        self.state = state
 
 
 @dataclass
@@ -233,14 +240,19 @@ class FitSolver:
             force, gap = (x[:, 0] for x in self.pair_values(u, f, delta))
             if self.bonded:
                 return Solution(u, force, np.zeros_like(gap), closed)
-            scale_f = 1e-9 * max(np.abs(force).max(), 1e-6)
-            scale_g = 1e-9 * max(np.abs(delta).max(), 1e-6)
+            scale_f = 1e-9 * max(np.abs(force).max(initial=0.0), 1e-6)
+            # the gap is a difference of displacements: zero to round-off within
+            # GAP_ROUNDOFF_REL of the largest displacement at a pair (a line-to-line fit)
+            moved = max(np.abs(u[self.slave]).max(initial=0.0),
+                        np.abs(u[self.master]).max(initial=0.0))
+            scale_g = max(1e-9 * max(np.abs(delta).max(initial=0.0), 1e-6),
+                          GAP_ROUNDOFF_REL * moved)
             open_bad = ~closed & (gap < -scale_g)
             closed_bad = closed & (force < -scale_f)
             if not open_bad.any() and not closed_bad.any():
                 return Solution(u, np.where(closed, force, 0.0), np.where(closed, 0.0, gap), closed)
             closed = (closed | open_bad) & ~closed_bad
-        raise SolveError(f"contact active set did not settle in {max_iter} iterations")
+        raise SolveError(f"contact active set did not settle in {max_iter} iterations", 0)
 
 
 class Superposition:
@@ -300,6 +312,11 @@ class Superposition:
         self.window = 64
         self.PU = c.probe_units if c.probe_units.shape[0] else None
         self._bonded_units = None
+        if not c.bonded:
+            #: per state column, the largest free gap it makes at any pair (mm per unit), and the
+            #: smallest flexibility of a pair (mm/N): the scales of `ContactTolerance`
+            self._column_reach_mm = np.abs(self.H).max(axis=0, initial=0.0)
+            self._stiffest_mm_per_N = float(np.diag(c.A).min(initial=np.inf)) if c.A.size else 1.0
 
     @functools.cached_property
     def solver(self) -> FitSolver:
@@ -335,11 +352,12 @@ class Superposition:
         """Forget the active sets met so far (their Cholesky factors and responses; benchmarks)."""
         self._chol.clear()
 
-    def _search(self, C: np.ndarray, scale_g: np.ndarray, closed: np.ndarray
+    def _search(self, C: np.ndarray, tol: "ContactTolerance", closed: np.ndarray
                 ) -> tuple[list, list]:
         """Every state's active set: (the `ActiveSet`s, the states of each, as positions in C).
         C (n, n_cols): the states' columns (`H`) in the order they are tried (`state_order`);
-        scale_g (n,): each state's largest free gap (mm); closed: the first set tried.
+        tol: their gap and force tolerances (`ContactTolerance`, same order); closed: the
+        first set tried.
 
         A set is tried on the next `window` states not yet placed, by its `response` (one small
         product per state); the states it satisfies (`ActiveSet.satisfied`) take it. The next
@@ -356,7 +374,7 @@ class Superposition:
             s = self._active_set(closed)
             tried = todo[:window]
             V = C[tried] @ s.response
-            ok = s.satisfied(V, 1e-8 * scale_g[tried])
+            ok = s.satisfied(V, tol.accept_gap_mm[tried], tol.force_N[tried])
             if ok.any():
                 k = found.setdefault(closed.tobytes(), len(sets))
                 if k == len(sets):
@@ -372,9 +390,9 @@ class Superposition:
             steps += 1
             if steps > MAX_ACTIVE_SET_STEPS:
                 raise SolveError(f"contact active set did not settle in {MAX_ACTIVE_SET_STEPS} "
-                                 "iterations")
+                                 "iterations", int(tried[np.argmin(ok)]))
             first = np.argmin(ok)                      # the first state left
-            closed = s.step(V[first], 1e-10 * scale_g[tried[first]])
+            closed = s.step(V[first], tol.step_gap_mm[tried[first]], tol.force_N[tried[first]])
         return sets, [np.sort(np.concatenate(m)) for m in members]
 
     @single_thread_blas
@@ -406,10 +424,13 @@ class Superposition:
         if n:
             # states alike in their overlap count and summed free gap mostly share an active set
             order = state_order(G0.T)
-            largest = np.maximum(G0.max(axis=1, initial=0.0), -G0.min(axis=1, initial=0.0))
-            scale_g = np.maximum(largest, 1e-12)            # each state's largest free gap, mm
-            sets, members = self._search(np.hstack([theta, delta])[order], scale_g[order],
-                                         G0[order[0]] < 0)
+            C = np.hstack([theta, delta])[order]
+            tol = ContactTolerance.of(G0[order], C, self._column_reach_mm, self._stiffest_mm_per_N)
+            try:
+                sets, members = self._search(C, tol, G0[order[0]] < -tol.step_gap_mm[0])
+            except SolveError as exc:       # the state by its place in the caller's rows
+                raise SolveError(str(exc), None if exc.state is None
+                                 else int(order[exc.state])) from None
             for k, (s, at) in enumerate(zip(sets, members)):
                 idx = order[at]
                 which[idx] = k
@@ -453,6 +474,51 @@ def state_order(G0: np.ndarray) -> np.ndarray:
 #: 2026-11-29, 274 states of 212 closed pairs 2.1 ms in blocks of 64, 3.0 ms at once, 3.2 ms in
 #: blocks of 16: large temporaries cost page faults on this machine)
 SOLVE_BLOCK = 64
+
+#: relative round-off of a gap: a free gap is a sum of displacements (the state columns times
+#: their unit responses) that cancel in a line-to-line fit (a 0 / 0 um fit in a one-material
+#: stack at a uniform temperature: free gaps up to 1.9e-15 mm at 0 C on the template's section
+#: in 440C, where the displacements summed reach 0.026 mm (`ContactTolerance.reach_mm`), 7e-14
+#: of them, the unit solutions' own round-off; measured 2026-12-01). Gaps and overlaps below
+#: GAP_ROUNDOFF_REL of those displacements are zero: 1e-10 of 0.026 mm is 2.6e-12 mm, over a
+#: thousand times the round-off and six decades below a micrometre
+GAP_ROUNDOFF_REL = 1e-10
+
+
+@dataclass(frozen=True)
+class ContactTolerance:
+    """What counts as zero in the contact conditions of n states (`Superposition.evaluate`).
+
+    reach_mm (n,): the displacement scale of each state, sum_j |c_j| max_i |H_ij| (mm): its
+    state columns c (thermal strains, omega^2, interferences) times the largest free gap each
+    makes at any pair (`Superposition.H`), an upper bound of every term its free gaps sum.
+    accept_gap_mm (n,): an open pair may overlap this much and the set still solves the state
+    (1e-8 of the state's largest free gap, as before, or GAP_ROUNDOFF_REL x reach, the larger);
+    step_gap_mm (n,): an open pair overlapping more closes in an active-set step (1e-10 of the
+    largest free gap or the same round-off floor; never above accept_gap_mm, so a state a set
+    does not solve always changes set). force_N (n,): closed pairs in tension below it are in
+    contact (the force closing the round-off gap at the stiffest pair, GAP_ROUNDOFF_REL x reach
+    / min_i A_ii; the relative tolerances of `ActiveSet` apply above it). Without these floors a
+    state whose free gaps are all round-off (a line-to-line fit) has no scale but its own noise,
+    and its active set cycles (issue: 0 / 0 um fits at 0, 40, 60 C)."""
+    reach_mm: np.ndarray
+    accept_gap_mm: np.ndarray
+    step_gap_mm: np.ndarray
+    force_N: np.ndarray
+
+    @classmethod
+    def of(cls, G0: np.ndarray, C: np.ndarray, column_reach_mm: np.ndarray,
+           flexibility_min_mm_per_N: float) -> "ContactTolerance":
+        """Tolerances of states with free gaps G0 (n, n_pairs, mm) and state columns C (n,
+        n_cols); column_reach_mm (n_cols,) = max_i |H_ij|; flexibility_min_mm_per_N: the
+        smallest diagonal of the flexibility A."""
+        largest = np.maximum(G0.max(axis=1, initial=0.0), -G0.min(axis=1, initial=0.0))
+        largest = np.maximum(largest, 1e-12)                # each state's largest free gap, mm
+        reach = np.abs(C) @ column_reach_mm
+        floor = GAP_ROUNDOFF_REL * reach
+        return cls(reach, np.maximum(1e-8 * largest, floor), np.maximum(1e-10 * largest, floor),
+                   floor / flexibility_min_mm_per_N)
+
 
 #: primal-dual steps of one state, with no state satisfied on the way, before
 #: `Superposition.evaluate` gives up (a one-state active set settles in a few)
@@ -505,27 +571,29 @@ class ActiveSet:
             R[:, C.size:] -= M.T @ A_C[:, O]            # A symmetric: (A_OC M)^T = M^T A_CO
         return cls(closed.copy(), np.concatenate([C, O]), C.size, factor, R)
 
-    def satisfied(self, V: np.ndarray, tol_gap_mm: np.ndarray) -> np.ndarray:
+    def satisfied(self, V: np.ndarray, tol_gap_mm: np.ndarray, tol_force_N: np.ndarray
+                  ) -> np.ndarray:
         """Which states this set solves, V (k, n_pairs) their forces and gaps under it (the
         state columns times `response`): no closed pair in tension beyond 1e-8 of the state's
-        largest force, no open pair overlapping beyond tol_gap_mm (k,)."""
+        largest force or beyond tol_force_N (k,, round-off: `ContactTolerance`), no open pair
+        overlapping beyond tol_gap_mm (k,)."""
         nc = self.n_closed
         ok = np.ones(V.shape[0], bool)
         if nc:
             lo, hi = np.minimum.reduce(V[:, :nc], axis=1), np.maximum.reduce(V[:, :nc], axis=1)
-            ok &= lo >= -1e-8 * np.maximum(np.maximum(hi, -lo), 1e-12)
+            ok &= lo >= -np.maximum(1e-8 * np.maximum(hi, -lo), tol_force_N)
         if nc < V.shape[1]:
             ok &= np.minimum.reduce(V[:, nc:], axis=1) >= -tol_gap_mm
         return ok
 
-    def step(self, v: np.ndarray, tol_gap_mm: float) -> np.ndarray:
+    def step(self, v: np.ndarray, tol_gap_mm: float, tol_force_N: float = 0.0) -> np.ndarray:
         """The next closed set of a state not solved by this one, v (n_pairs,) its forces and
         gaps under it: one primal-dual active-set step (Hueber & Wohlmuth 2005): an open pair
         overlapping beyond tol_gap_mm closes, a closed pair in tension beyond 1e-10 of the
-        state's largest force opens."""
+        state's largest force (and beyond tol_force_N, round-off) opens."""
         x = np.empty(v.size)
         x[self.rows] = v
-        tol_f = 1e-10 * max(np.abs(v[:self.n_closed]).max(initial=0.0), 1e-12)
+        tol_f = max(1e-10 * max(np.abs(v[:self.n_closed]).max(initial=0.0), 1e-12), tol_force_N)
         return np.where(self.closed, x >= -tol_f, x < -tol_gap_mm)
 
     def solve(self, G: np.ndarray, idx: np.ndarray, A: np.ndarray, lam: np.ndarray) -> None:

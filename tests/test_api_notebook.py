@@ -166,3 +166,26 @@ def test_a_solver_failure_is_the_packages_own_error(tmp_path, asm_path, capsys, 
     assert not (tmp_path / "o.csv").exists()
     # the diagnosis' failure of the model at some parameters, when it reaches the caller
     assert issubclass(ModelFailure, bearingfem.BearingfemError)
+
+
+def test_tolerance_warns_about_its_inputs_as_the_command_does(tmp_path, capsys, monkeypatch):
+    """`tolerance` (and `design`, `diagnose`) check their inputs as `simulate` does: Fahrenheit
+    in the conditions is one warning line from the command and the same BearingfemWarning from
+    the function. The Monte Carlo itself is replaced by a summary of nothing (only the warning
+    is under test; the twins' numbers: tests/test_api_commands.py)."""
+    from studies.usecases import tolerance_report
+
+    monkeypatch.setattr(tolerance_report, "run", lambda *a, **k: tolerance_report.ToleranceSummary(
+        samples=4, fit_leaves_design={}, preload_lost=0.0))
+    asm = tmp_path / "pair.toml"
+    asm.write_text(COARSE)
+    cond = tmp_path / "c.csv"
+    cond.write_text("T_ambient_C\n32\n176\n")
+    capsys.readouterr()
+    assert main(["tolerance", str(asm), str(cond), "--samples", "4", "--out",
+                 str(tmp_path / "t")]) == 0
+    prefix = "bearingfem tolerance: warning: "
+    cli = [ln[len(prefix):] for ln in capsys.readouterr().err.splitlines() if ln.startswith(prefix)]
+    assert len(cli) == 1 and "Fahrenheit" in cli[0]
+    res, emitted = _emitted(lambda: bearingfem.tolerance(asm, cond, samples=4))
+    assert emitted == cli and list(res.warnings) == cli

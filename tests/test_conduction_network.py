@@ -60,8 +60,8 @@ def test_series_steady_state_is_the_sum_of_resistances():
     assert T[0] == pytest.approx(Q * R, rel=1e-9)
     # and the integrator reaches it (tau about C R: 40 time constants)
     t = np.linspace(0.0, 40 * net.capacity_J_K.sum() * R, 41)
-    Tt, _ = net.integrate(t, np.zeros(t.size), Q, rtol=1e-9, atol_K=1e-10)
-    assert Tt[-1, 0] == pytest.approx(Q * R, rel=1e-6)
+    Tt, _ = net.integrate(t, np.zeros(t.size), Q, rtol=1e-7, atol_K=1e-8)
+    assert Tt[-1, 0] == pytest.approx(Q * R, rel=1e-5)
 
 
 def test_energy_is_conserved_on_the_stack(seed000):
@@ -88,50 +88,21 @@ def test_vacuum_steady_state_radiates_the_heat(seed000):
     assert lost == pytest.approx(1.0, rel=1e-4)
 
 
-def _annulus_in_contact_mean_C(shells: int) -> float:
-    """Volume mean (C) after 1 h of a TC4 annulus 12.5..17.5 mm (a shaft) with a still-air film in
-    its bore and on its ends, in contact (5000 W/(m^2 K)) with a 30 J/K body at its outer face,
-    the ambient ramped 1 K/min to 40 C then held."""
-    L, r0, r1 = 0.04, 0.0125, 0.0175
-    rc, cap, between, g_in, g_out = annulus_shells(r0, r1, L, 6.7, 4430.0 * 526.0, shells)
-    net = Network(np.concatenate([cap, [30.0]]), np.zeros((shells + 1, shells + 1)))
-    for k, g in enumerate(between):
-        net.link(k, k + 1, g)
-    net.link(shells - 1, shells, series(g_out, 5000.0 * 2 * math.pi * r1 * L))
-    edges = np.linspace(r0, r1, shells + 1)
-    net.surfaces = [Surface(0, 2 * math.pi * r0 * L,
-                            lambda dT: film_W_m2K("cylinder_natural", 2 * r0, 0.0, dT), 0.0, g_in)]
-    net.surfaces += [Surface(k, 2 * math.pi * (edges[k + 1] ** 2 - edges[k] ** 2), 20.0, 0.5)
-                     for k in range(shells)]
-    t = np.arange(0.0, 3601.0, 120.0)
-    T, _ = net.integrate(t, np.minimum(t / 60.0, 40.0), rtol=1e-11, atol_K=1e-12)
-    return float(T[-1, :shells] @ cap / cap.sum())
-
-
-def test_shells_converge_at_second_order():
-    """The annulus's mean temperature (`_annulus_in_contact_mean_C`) with 4, 8, 16 shells:
-    the observed order log2(|e8 - e4| / |e16 - e8|) of the cell-centred finite volumes (exact
-    log conductances, films at the face through the half shell, radiation) is 2 within 0.1."""
-    T = [_annulus_in_contact_mean_C(n) for n in (4, 8, 16)]
-    p = math.log2(abs(T[1] - T[0]) / abs(T[2] - T[1]))
-    assert abs(p - 2.0) < 0.1, (T, p)
-
-
-def test_stack_converges_in_the_shell_count(seed000):
+def test_stack_converges_at_second_order(seed000):
     """The whole stack (forced air, a ramp then a hold): the part means with 2, 4, 8 shells
-    converge, the observed order at least 0.9 (measured 1.0: the stack's links between parts of
-    unequal shells are first order), and 4 shells (the cases' default) within 0.02 K of the
-    Richardson extrapolation at that order, against differences between parts of some K."""
+    converge at the observed order 2 within 0.3 (the shared faces condensed exactly,
+    `conduction_network.condensed`), and 4 shells (the cases' default) lie within 1e-3 K of the
+    Richardson extrapolation, against differences between parts of some K."""
     t = np.arange(0.0, 3600.0 + 1, 120.0)
     amb = np.minimum(t / 60.0, 40.0)
-    runs = [conduction_temperatures(seed000, t, amb, "forced_air", shells=n, rtol=1e-9).columns
+    runs = [conduction_temperatures(seed000, t, amb, "forced_air", shells=n, rtol=1e-10).columns
             for n in (2, 4, 8)]
-    for col in ("T_shaft_C", "T_ball_C", "T_spacer_C"):
+    for col in ("T_shaft_C", "T_ball_C", "T_spacer_C", "T_housing_C"):
         T = [r[col][-1] for r in runs]
         p = math.log2(abs(T[1] - T[0]) / abs(T[2] - T[1]))
-        assert p > 0.9, (col, T, p)
+        assert abs(p - 2.0) < 0.3, (col, T, p)
         extrapolated = T[2] + (T[2] - T[1]) / (2.0 ** p - 1.0)
-        assert abs(T[1] - extrapolated) < 0.02, (col, T)
+        assert abs(T[1] - extrapolated) < 1e-3, (col, T)
 
 
 def test_films_against_handbook_numbers():

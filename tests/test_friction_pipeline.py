@@ -266,3 +266,65 @@ def test_lubricant_family_sets_skfs_full_film_coefficient():
     assert get_lubricant("Nye 2001a").oil_family == "synthetic"
     with pytest.raises(ValueError, match="lubricants.A.family"):
         lubricant_from_table("A", {**base, "family": "vegetable"})
+
+
+# ------------------------------------------------------------------ range warnings (one line)
+def test_a_law_outside_its_source_range_warns_once_through_simulate(seed001, tmp_path):
+    """skf2004 on seed001 at 3500 rpm (n dm = 1.1e5 mm/min) and at 40 000 rpm (1.24e6, beyond the
+    model's n dm <= 1e6): `simulate_file` (chunks of 1 row: the notes of separate chunks
+    merged) gives exactly one warning line naming the law, its bound and 1 row of 3; Palmgren
+    on the same rows none."""
+    from studies.model.stream import simulate_file
+    cond = tmp_path / "c.csv"
+    cond.write_text("T_ambient_C,speed_rpm\n20,3500\n20,40000\n40,3500\n")
+    runs = {}
+    for model in ("skf2004", "palmgren"):
+        a = replace(seed001, lubrication=replace(seed001.lubrication, viscous_model=model))
+        runs[model] = simulate_file(a, cond, tmp_path / f"{model}.csv", chunk_rows=1,
+                                    pipeline=Pipeline.shared(a, mesh_factor=MESH_FACTOR))
+    lines = [w for w in runs["skf2004"].warnings if w.startswith("friction law")]
+    assert len(lines) == 1 and "skf2004" in lines[0] and "1 of 3 rows" in lines[0], lines
+    assert "\n" not in lines[0] and "n dm <= 1e+06" in lines[0]
+    assert not [w for w in runs["palmgren"].warnings if w.startswith("friction law")]
+
+
+def test_range_notes_merge_rows_and_extremes():
+    """Two bearings of the same rows: a row outside in either counts once; two chunks of a
+    table: their rows add; the extremes are the extremes of all."""
+    from analytic.friction.ranges import combine, merge, notes, range_rows
+    a = range_rows("x", "q", "q <= 1", [0.5, 2.0, 3.0], [False, True, True])
+    b = range_rows("x", "q", "q <= 1", [[4.0, 0.1, 0.2], [0.1, 0.1, 1.5]],
+                   [[True, False, False], [False, False, True]])
+    (n,) = notes(combine((a,), (b,)))
+    assert (n.rows, n.lo, n.hi) == (3, 1.5, 4.0)
+    (m,) = merge((n,), (n,))
+    assert (m.rows, m.lo, m.hi) == (6, 1.5, 4.0)
+    assert notes((range_rows("x", "q", "q <= 1", [0.5], [False]),)) == ()
+
+
+def test_bearing_warns_when_ehl_rolling_leaves_its_ellipticity_range(tmp_path):
+    """`bearing` with ehl_rolling on seed001's bearing (groove ratios 0.52 / 0.53: the inner
+    contact's k = a/b is about 9, above Hamrock-Dowson's 8): one warning line naming the law
+    and the ellipticity, through the command's warning route."""
+    import pandas as pd
+
+    from studies.usecases.api import bearing
+    loads = tmp_path / "loads.csv"
+    pd.DataFrame({"axial_load_N": [50.0, 100.0], "speed_rpm": [3500.0, 6000.0],
+                  "T_oil_C": [20.0, 20.0]}).to_csv(loads, index=False)
+    res = bearing(_seed001_bearing_file(tmp_path, viscous_model="ehl_rolling"), loads,
+                  tmp_path / "o.csv")
+    lines = [w for w in res.warnings if "friction law" in w]
+    assert len(lines) == 1 and "ehl_rolling" in lines[0] and "ellipticity" in lines[0], res.warnings
+
+
+def test_a_bearing_files_friction_keys_are_checked_as_an_assemblys(tmp_path):
+    """`bearing` refuses a friction key without effect as `simulate` does (one line naming the
+    file and key): an oil quantity without the starved law, an oil level without a bath."""
+    from studies.model.config import ConfigError, load_bearing
+    for lub, key in (({"oil_quantity_mg": 5.0}, "oil_quantity_mg"),
+                     ({"viscous_model": "skf2004", "oil_level_mm": 4.0}, "oil_level_mm")):
+        path = _seed001_bearing_file(tmp_path, **lub)
+        with pytest.raises(ConfigError, match=rf"lubrication\.{key}: ") as e:
+            load_bearing(path)
+        assert str(path) in str(e.value) and "\n" not in str(e.value)

@@ -146,7 +146,7 @@ def test_seed001_ladder_rungs_are_its_model_forms(s001):
     asm = load_shipped("seed001")
     names = {f.candidate for f in s001.fits}
     for rung in ladder(asm):
-        if rung.candidate is None:
+        if rung.candidate is None or "time_s" in rung.candidate.requires:
             assert any(t.startswith(rung.name) for t in pad.ladder_not_tried(asm)), rung.name
             continue
         for p in rung.candidate.parameters:

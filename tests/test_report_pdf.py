@@ -204,10 +204,12 @@ def test_margins_name_the_governing_condition_and_the_thermal_speed():
     """A governing point is named by its condition (the row's
     temperature and speed, not the row number alone), and each bearing has a thermal speed row
     whose margin is DIN 732's permissible speed minus the speed at the governing row: there the
-    bearing's own oil torque (mu F_a dm/2 + 1e-7 f0 (nu n)^(2/3) dm^3, written out here) times
+    standard's friction torque (f1 P1 dm + 1e-7 f0 (nu n)^(2/3) dm^3 with f1 = 0.001 (P1/C0)^0.33,
+    P1 = F_a, C0 of ISO 76 and nu at the permissible temperature 70 C, written out here) times
     omega equals k_q pi B (D + d) (70 - 20) with k_q = 16e-3/50 W/(mm^2 K) (the default)."""
     from math import pi
 
+    from analytic.safety import static_load_rating_C0_N
     from studies.usecases.report_margins import margin_rows
 
     asm = load_assembly(TEMPLATE)
@@ -236,8 +238,11 @@ def test_margins_name_the_governing_condition_and_the_thermal_speed():
     b, lub = asm.bearing, asm.lubrication
     dm = 0.5 * (b.bore_mm + b.outside_diameter_mm)
     n = margin + cond["speed_rpm"][i]
-    nu = float(asm.oil().nu_mm2_s(cond["T_ambient_C"][i]))
-    M = (lub.friction_coefficient * res["axial_force_A_N"][i] * dm / 2
+    nu = float(asm.oil().nu_mm2_s(70.0))
+    P1 = res["axial_force_A_N"][i]
+    C0 = static_load_rating_C0_N(b.ball_count, b.ball_diameter_mm, b.pitch_diameter_mm,
+                                 b.contact_angle_free_deg)
+    M = (0.001 * (P1 / C0) ** 0.33 * P1 * dm
          + 1e-7 * lub.viscous_factor_f0 * (nu * n) ** (2 / 3) * dm ** 3)
     Q = 16e-3 / 50.0 * pi * b.width_mm * (b.outside_diameter_mm + b.bore_mm) * 50.0
     # the margin text carries 4 significant digits: n to +-0.05 %, the power (~ n^(5/3)) to 0.1 %

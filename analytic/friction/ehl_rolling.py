@@ -45,6 +45,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+#: the ellipticity range k = a/b of Hamrock-Dowson's fits, which the rolling force's groups follow
+K_RANGE = (1.0, 8.0)
 
 
 def ehl_rolling_force_N(Q_N, Rx_mm, k, E_reduced_MPa, eta0_Pa_s, alpha_per_Pa,

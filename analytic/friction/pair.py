@@ -12,13 +12,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from analytic.friction.ehl_rolling import K_RANGE as EHL_K_RANGE
 from analytic.friction.ehl_rolling import (CentrifugalFloor, EHLRollingTorque,
                                            centrifugal_force_N, ehl_rolling_bearing)
 from analytic.friction.options import FrictionOptions
 from analytic.friction.palmgren import (coulomb_load_torque_Nmm, palmgren_load_torque_Nmm,
                                         palmgren_viscous_torque_Nmm)
-from analytic.friction.skf2004 import constants_for, skf2004_torque
+from analytic.friction.ranges import RangeNote, RangeRows, combine, notes, range_rows
+from analytic.friction.skf2004 import NDM_LIMIT, constants_for, skf2004_torque
 from analytic.friction.solid_film import pressure_dependent_mu
+from analytic.friction.starved import R_RANGE as STARVED_R_RANGE
 from analytic.friction.minimal_oil import minimal_oil_bearing_ratio
 from analytic.friction.starved import starvation_ratio, supply_layer_um
 from analytic.hertz import ball_raceway_radii_mm
@@ -77,7 +80,9 @@ class TorqueComponents:
     contacts), heat_outer_W (the outer contacts), heat_ball_W (in the oil around the balls: the
     drag), summing to heat_W. A term without a location of its own (Palmgren's viscous and load
     terms, SKF's rolling and sliding terms) is shared equally by the inner and outer contacts,
-    as `analytic.heat.pair_heat_W` shares the viscous heat."""
+    as `analytic.heat.pair_heat_W` shares the viscous heat.
+    range_notes: the rows where the law left its source's range (`analytic.friction.ranges`;
+    one warning line each through the command's warnings)."""
     model: str
     torque_Nmm: np.ndarray
     torque_A_Nmm: np.ndarray
@@ -98,6 +103,7 @@ class TorqueComponents:
     heat_outer_W: np.ndarray | None = None
     heat_ball_W: np.ndarray | None = None
     viscous_model: str = "palmgren"
+    range_notes: tuple[RangeNote, ...] = ()
     lubrication_method: str = ""
 
 
@@ -152,7 +158,8 @@ class BearingFriction:
     drag in the oil around the balls; total_Nmm = load + viscous + drag. heat_inner_W,
     heat_outer_W: heat a law computes at the contacts from their own speeds (`ehl_rolling`),
     else None. solid: the solid-film components (`analytic.torque.ContactTorques`, per ball
-    where per_ball), else None."""
+    where per_ball), else None. ranges: where the law left its source's range
+    (`analytic.friction.ranges.RangeRows`, per row)."""
     total_Nmm: np.ndarray
     load_Nmm: np.ndarray
     viscous_Nmm: np.ndarray
@@ -160,6 +167,7 @@ class BearingFriction:
     heat_inner_W: np.ndarray | None = None
     heat_outer_W: np.ndarray | None = None
     solid: ContactTorques | None = None
+    ranges: tuple[RangeRows, ...] = ()
 
 
 def bearing_friction(g, c: BearingContacts, *, model: str = "solid_film", mu=0.02,
@@ -214,12 +222,13 @@ def pair_torque(g, pair, *, model: str = "solid_film", mu=0.02, hysteresis_loss=
                 nu_mm2_s=nu_mm2_s, f1=f1, load_term=load_term, friction=fr)
     if model == "solid_film":
         per, parts = _solid_film_pair(g, pair, args)
+        ranges = ()
         split = dict(rolling_Nmm=parts["hysteresis_Nmm"],
                      sliding_Nmm=parts["differential_Nmm"] + parts["spin_Nmm"],
                      drag_Nmm=np.zeros_like(parts["spin_Nmm"]))
         located = (parts["inner_contacts_Nmm"], parts["outer_contacts_Nmm"], None)
     elif model == "oil":
-        per, parts, located = _oil_pair(g, pair, args)
+        per, parts, located, ranges = _oil_pair(g, pair, args)
         parts["viscosity_mm2_s"] = nu_mm2_s
         split = dict(rolling_Nmm=parts["viscous_Nmm"], sliding_Nmm=parts["load_Nmm"],
                      drag_Nmm=parts.pop("drag_Nmm"))
@@ -230,7 +239,7 @@ def pair_torque(g, pair, *, model: str = "solid_film", mu=0.02, hysteresis_loss=
     if heat is not None:
         split.update(_located_heat_W(located, split["drag_Nmm"], speed_rpm))
     return TorqueComponents(model, total, per[0], per[1], heat, **parts, **split,
-                            viscous_model=fr.viscous_model,
+                            viscous_model=fr.viscous_model, range_notes=ranges,
                             lubrication_method=fr.lubrication_method)
 
 
@@ -295,15 +304,22 @@ def _oil_bearing(g, c: BearingContacts, mu, speed_rpm, f0, nu_mm2_s, f1, load_te
         t = skf2004_torque(fr.bore_mm, fr.outside_diameter_mm, c.radial_force_N,
                            c.axial_force_N, n, nu_mm2_s, oil_level_mm=fr.oil_level_mm,
                            **constants_for(fr.lubrication_method, fr.oil_family))
-        return BearingFriction(t.total_Nmm, t.sliding_Nmm, t.rolling_Nmm, t.drag_Nmm)
+        ndm = np.abs(np.asarray(n, float)) * g.dm_mm * np.ones_like(t.total_Nmm)
+        ranges = (range_rows("skf2004", "n dm", f"n dm <= {NDM_LIMIT:.3g} mm/min, the end of the "
+                             "catalogue's limiting speeds", ndm, ndm > NDM_LIMIT),)
+        return BearingFriction(t.total_Nmm, t.sliding_Nmm, t.rolling_Nmm, t.drag_Nmm,
+                               ranges=ranges)
     visc = palmgren_viscous_torque_Nmm(f0, nu_mm2_s, n, g.dm_mm)
     q_in = q_out = None
+    ranges = ()
     if model == "starved" and fr.oil_quantity_mg > 0:
-        visc = visc * _starvation_ratio(g, c, n, fr)
+        ratio, ranges = _starvation_ratio(g, c, n, fr)
+        visc = visc * ratio
     elif model == "minimal_oil" and fr.oil_quantity_mg > 0:
-        visc = visc * minimal_oil_bearing_ratio(g, c, n, fr)
+        ratio, ranges = minimal_oil_bearing_ratio(g, c, n, fr)
+        visc = visc * ratio
     elif model == "ehl_rolling":
-        ti, to, qi, qo = _ehl_bearing(g, c, n, fr.eta_Pa_s, fr.alpha_per_Pa)
+        ti, to, qi, qo, ranges = _ehl_bearing(g, c, n, fr.eta_Pa_s, fr.alpha_per_Pa)
         visc = ti + to
         if speed_rpm is not None:
             q_in, q_out = qi, qo
@@ -315,28 +331,32 @@ def _oil_bearing(g, c: BearingContacts, mu, speed_rpm, f0, nu_mm2_s, f1, load_te
     else:
         raise ValueError(f"load_term must be 'coulomb' or 'palmgren', got {load_term!r}")
     total = m1 + visc
-    return BearingFriction(total, m1, visc * np.ones_like(total), np.zeros_like(total), q_in, q_out)
+    return BearingFriction(total, m1, visc * np.ones_like(total), np.zeros_like(total), q_in, q_out,
+                           ranges=ranges)
 
 
 def _oil_pair(g, pair, args) -> tuple[list, dict, tuple]:
     """Per-bearing totals, the pair's load, viscous and drag terms (`pair_torque`), N*mm, and
     where they are made: (torque at the inner contacts, at the outer contacts, heat computed at
-    the contacts in W or None). A term without a location of its own is shared equally by the
-    inner and outer contacts."""
+    the contacts in W or None), and the notes of the rows outside the law's range. A term
+    without a location of its own is shared equally by the inner and outer contacts."""
     a, b = (bearing_friction(g, pair_bearing_contacts(pair, j), **args) for j in (0, 1))
-    load, viscous, drag = a.load_Nmm + b.load_Nmm, a.viscous_Nmm + b.viscous_Nmm, a.drag_Nmm + b.drag_Nmm
+    load, viscous = a.load_Nmm + b.load_Nmm, a.viscous_Nmm + b.viscous_Nmm
+    drag = a.drag_Nmm + b.drag_Nmm
     if a.heat_inner_W is not None:              # ehl_rolling: its heat located at each contact
         located = (0.5 * load, 0.5 * load, (a.heat_inner_W + b.heat_inner_W,
                                             a.heat_outer_W + b.heat_outer_W))
     else:
         located = (0.5 * (load + viscous), 0.5 * (load + viscous), None)
-    return [a.total_Nmm, b.total_Nmm], dict(load_Nmm=load, viscous_Nmm=viscous, drag_Nmm=drag), located
+    return ([a.total_Nmm, b.total_Nmm], dict(load_Nmm=load, viscous_Nmm=viscous, drag_Nmm=drag),
+            located, notes(combine(a.ranges, b.ranges)))
 
 
 def _ehl_bearing(g, c: BearingContacts, speed_rpm, eta0_Pa_s, alpha_per_Pa):
     """EHL rolling resistance of one bearing's contacts (`analytic.friction.ehl_rolling`):
     (inner-ring torque of the inner contacts, of the outer contacts) N mm and (heat at the
-    inner contacts, at the outer contacts) W, summed over the balls where c.per_ball. An
+    inner contacts, at the outer contacts) W, summed over the balls where c.per_ball, and the
+    rows whose rolling contacts leave Hamrock-Dowson's ellipticity range (`RangeRows`). An
     unloaded outer contact rolls under the ball's centrifugal force (`CentrifugalFloor`)."""
     Ep = reduced_modulus_MPa(g.ring.E_MPa, g.ring.nu, g.ball.E_MPa, g.ball.nu)
     kin = ball_kinematics(g.dm_mm, g.Dw_mm, c.alpha_inner_rad, c.alpha_outer_rad)
@@ -350,7 +370,20 @@ def _ehl_bearing(g, c: BearingContacts, speed_rpm, eta0_Pa_s, alpha_per_Pa):
                                              eta0_Pa_s, alpha_per_Pa, floor)
     if c.per_ball:
         ti, to, qi, qo = (x.sum(axis=0) for x in (ti, to, qi, qo))
-    return ti, to, qi, qo
+    ks, out = [], []
+    with np.errstate(divide="ignore", invalid="ignore"):
+        for k, fl in ((c.inner, None), (c.outer, floor)):
+            Q = np.asarray(k.Q_N, float)
+            kk = np.asarray(k.a_mm, float) / np.asarray(k.b_mm, float)
+            rolls = Q > 0
+            if fl is not None:         # an unloaded outer contact at the centrifugal load
+                kk, rolls = np.where(rolls, kk, fl.k), rolls | (fl.Q_N > 0)
+            kk = np.where(rolls, kk, 1.0) * np.ones_like(ti)
+            ks.append(kk)
+            out.append(rolls & ((kk < EHL_K_RANGE[0]) | (kk > EHL_K_RANGE[1])))
+    ranges = (range_rows("ehl_rolling", "ellipticity k", f"{EHL_K_RANGE[0]:g} <= k <= "
+                         f"{EHL_K_RANGE[1]:g}, Hamrock-Dowson's fits", np.stack(ks), np.stack(out)),)
+    return ti, to, qi, qo, ranges
 
 
 def ehl_rolling_pair(g, pair, speed_rpm, eta0_Pa_s, alpha_per_Pa):
@@ -364,8 +397,8 @@ def ehl_rolling_pair(g, pair, speed_rpm, eta0_Pa_s, alpha_per_Pa):
     t_in = t_out = q_in = q_out = 0.0
     per = []
     for j in (0, 1):
-        ti, to, qi, qo = _ehl_bearing(g, pair_bearing_contacts(pair, j), speed_rpm, eta0_Pa_s,
-                                      alpha_per_Pa)
+        ti, to, qi, qo, _ = _ehl_bearing(g, pair_bearing_contacts(pair, j), speed_rpm,
+                                         eta0_Pa_s, alpha_per_Pa)
         t_in, t_out, q_in, q_out = t_in + ti, t_out + to, q_in + qi, q_out + qo
         per.append(ti + to)
     return EHLRollingTorque(t_in, t_out, q_in, q_out, tuple(per))
@@ -375,11 +408,12 @@ def _starvation_ratio(g, c: BearingContacts, n_rpm, fr):
     """Mean over a bearing's inner and outer contacts (and over its balls where c.per_ball) of
     the starved-film ratio h / h_ff (`analytic.friction.starved`) of the oil quantity
     fr.oil_quantity_mg: the flooded central film h_ff by Hamrock-Dowson at each contact's load,
-    ellipticity a/b and entrainment speed."""
+    ellipticity a/b and entrainment speed; and where the supply ratio is below its source's
+    range (`RangeRows`)."""
     Ep = reduced_modulus_MPa(g.ring.E_MPa, g.ring.nu, g.ball.E_MPa, g.ball.nu)
     omega = np.abs(np.asarray(n_rpm, float)) * RPM_TO_RAD_S
     kin = ball_kinematics(g.dm_mm, g.Dw_mm, c.alpha_inner_rad, c.alpha_outer_rad)
-    ratios = []
+    ratios, supply, low = [], [], []
     with np.errstate(divide="ignore", invalid="ignore"):
         for k, roll in ((c.inner, kin.roll_inner), (c.outer, kin.roll_outer)):
             u = omega * 0.5 * g.dm_mm * roll
@@ -389,5 +423,10 @@ def _starvation_ratio(g, c: BearingContacts, n_rpm, fr):
             # an unloaded contact (no ellipse) or a bearing at rest: no film to starve
             loaded = (np.asarray(k.Q_N) > 0) & (h_ff > 0) & np.isfinite(h_ff)
             ratios.append(np.where(loaded, starvation_ratio(h_oil, h_ff), 1.0))
+            r = np.where(loaded, h_oil / h_ff, np.inf)
+            supply.append(r)
+            low.append(loaded & (r < STARVED_R_RANGE[0]))
     ratio = 0.5 * (ratios[0] + ratios[1])
-    return ratio.mean(axis=0) if c.per_ball else ratio
+    ranges = (range_rows("starved", "supply ratio h_oil/h_ff", f"r >= {STARVED_R_RANGE[0]:g}, "
+                         "Chevalier et al. 1998", np.stack(supply), np.stack(low)),)
+    return (ratio.mean(axis=0) if c.per_ball else ratio), ranges

@@ -59,6 +59,10 @@ def build_parser() -> argparse.ArgumentParser:
     d.add_argument("assembly", type=Path)
     d.add_argument("measured", type=Path)
     d.add_argument("--out", type=Path, required=True)
+    d.add_argument("--noise", action="append", default=[], metavar="COLUMN=REL%[+ABS]",
+                   help="a sensor's standard uncertainty, e.g. torque_Nmm=1.5%%+0.2 (1.5 %% of "
+                        "reading plus 0.2 N mm) or preload_N=0.5 (may repeat); the rows' weights, "
+                        "the level still checked against the data")
 
     v = sub.add_parser("verify", help="FE against closed forms, mesh convergence")
     v.add_argument("--out", type=Path, required=True)
@@ -71,6 +75,9 @@ def build_parser() -> argparse.ArgumentParser:
                    help="conditions table (default: the assembly's operating temperature range)")
     r.add_argument("--out", type=Path, required=True)
     r.add_argument("--pdf", action="store_true", help="also report.pdf (typst, no LaTeX)")
+    r.add_argument("--sensitivity", action="store_true",
+                   help="also the ring section and the [assume]-tagged numbers in "
+                        "\"Assumptions that decide the answer\", and sensitivity.csv")
 
     bb = sub.add_parser("bearing", help="one bearing under radial, axial and moment loads")
     bb.add_argument("bearing", type=Path, help="TOML file with a [bearing] table")

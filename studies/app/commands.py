@@ -1,4 +1,6 @@
-"""Implementations of `bearingfem simulate`, `study` and `diagnose` (argument parsing: cli.py).
+"""The commands' implementations (argument parsing: cli.py): each but `study` and `bench` turns
+its flags into a call of its use case (`studies.usecases.api`, the call the Python API makes) and
+prints the result, its warning lines (`api.warning_lines`) on stderr.
 
 Each command imports the model it needs inside its function, on purpose: the command line starts
 (and `--help`, `--version` and usage errors answer) without loading numpy, scipy, scikit-fem,
@@ -8,18 +10,10 @@ None of these deferred imports hides a cycle (tests/test_imports.py counts them 
 from __future__ import annotations
 
 import sys
-from pathlib import Path
-
 
 from studies.app.output import UserError, atomic_dir, progress, progress_bar
 from studies.usecases import defaults
 from studies.validation import STUDIES, study_module
-
-
-def _load(assembly_path: Path):
-    from studies.model.config import load_assembly
-
-    return load_assembly(assembly_path)
 
 
 def _user_errors():
@@ -47,6 +41,8 @@ def cmd_simulate(args) -> None:
     from studies.model.effects import parse_effect_arg
     from studies.usecases import api
 
+    if args.workers is not None and args.workers < 1:
+        raise UserError(f"--workers {args.workers}: need at least 1")
     effects = {}
     try:
         for text in args.effect:
@@ -103,14 +99,16 @@ def cmd_report(args) -> None:
 
     command = ["bearingfem", "report", str(args.assembly)] + \
         ([str(args.conditions)] if args.conditions is not None else []) + \
-        ["--out", str(args.out)] + (["--pdf"] if args.pdf else [])
+        ["--out", str(args.out)] + (["--pdf"] if args.pdf else []) + \
+        (["--sensitivity"] if args.sensitivity else [])
     try:
         res = api.report(args.assembly, args.conditions, args.out, pdf=args.pdf,
-                         progress=progress, command=command)
+                         progress=progress, command=command, sensitivity=args.sensitivity)
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
     _warn("report", res)
-    print(f"report: {args.out}/report.md, report.html" + (" and report.pdf" if args.pdf else ""))
+    print(f"report: {args.out}/report.md, report.html" + (" and report.pdf" if args.pdf else "")
+          + (", sensitivity.csv" if args.sensitivity else ""))
 
 
 def cmd_tolerance(args) -> None:
@@ -126,6 +124,7 @@ def cmd_tolerance(args) -> None:
                             progress=progress, bar=progress_bar("Monte Carlo"))
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
+    _warn("tolerance", res)
     fits = ", ".join(f"{f} {p:.3g}" for f, p in res.fit_leaves_design.items())
     print(f"tolerance: {res.samples} samples; P(fit leaves its designed state) {fits}, "
           f"P(preload lost) {res.preload_lost:.3g}; report in {args.out}/report.md")
@@ -188,6 +187,7 @@ def cmd_design(args) -> None:
                          bar=progress_bar("stacks", "stack"))
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
+    _warn("design", res)
     g, b = res.given.metrics, res.designs[0].metrics
     print(f"design: {res.n_designs} designs; as given {100 * g.preload_variation:.0f} % preload "
           f"variation, best {100 * b.preload_variation:.0f} %; report in {args.out}/report.md")
@@ -210,12 +210,16 @@ def cmd_study(args) -> None:
 
 
 def cmd_diagnose(args) -> None:
+    from studies.diagnosis.noisemodel import parse_noise_arg
     from studies.usecases import api
 
     try:
-        result = api.diagnose(args.assembly, args.measured, args.out, progress=progress)
+        noise = dict(parse_noise_arg(a) for a in args.noise)
+        result = api.diagnose(args.assembly, args.measured, args.out, progress=progress,
+                              noise=noise)
     except _user_errors() as exc:
         raise UserError(str(exc)) from None
+    _warn("diagnose", result)
     print(f"diagnosis: {result.verdict}" + (f" ({result.cause})" if result.cause else "")
           + f"; report in {args.out}/report.md", file=sys.stdout)
 

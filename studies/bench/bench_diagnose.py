@@ -18,7 +18,10 @@ two model forms of the ladder (grooved ring sections, a housing lot 3 % above th
 made through the ladder's own route (`ladder.FormRoute`); an unlogged load (a belt
 pulley's 30 N pull with its 3000 N mm moment on seed 001's flywheel pair, `flywheel_steps`: the
 speed steps with the assembled preload stepped 7 / 15 / 30 N, 1 % noise), which puts the pair's
-5-DOF solve in every call of the `unlogged_load` rung. The candidates are the CLI's
+5-DOF solve in every call of the `unlogged_load` rung; the `thermal_transient_fe` rung (issue
+42: seed 000 in a 20 W/(m^2 K) film bolted to a 5 kJ/K mount, a 14 h history whatever the rows),
+with the time of one of its trials (the reduced conduction alone and the whole model call). The
+candidates are the CLI's
 (`files.candidate_effects` and the ladder's `ladder.candidates`, after them), and so are the worker processes
 (`--workers`, default every CPU the process may use, `studies.model.parallel.parallel_map`).
 Last, one line per dataset kind, `<kind>: <rows> rows, wall <s> s` (docs/cli.md), the whole
@@ -55,6 +58,10 @@ import numpy as np  # noqa: E402
 from studies.diagnosis.designs import cycles, speed_steps  # noqa: E402
 
 N_ROWS = 500
+#: the thermal_transient_fe kind's history (s) and its hidden parameters
+HISTORY_S = 14 * 3600.0
+TRANSIENT_TRUTH = {"film_resistance_m2K_W": 0.05, "G_face_W_K": 5.0, "C_mount_J_K": 5000.0,
+                   "G_env_W_K": 1.0}
 SIGMA = {"torque_Nmm": 0.02, "preload_N": 0.5}
 MU_TRUE = 1.25
 
@@ -103,6 +110,10 @@ DATASETS = [
     # 1 % noise as the second source states it (the flywheel's torque is ~0.1 N mm)
     Kind("unlogged_load 30 N, 3000 N mm (flywheel)", assembly="seed001", design=flywheel_steps,
          hidden={"radial_load_N": 30.0, "moment_Nmm": 3000.0}, sigma={}),
+    # the thermal_transient_fe rung: a 14 h history whatever the rows, the stack in
+    # a 20 W/(m^2 K) film bolted to a 5 kJ/K mount
+    Kind("thermal_transient_fe (mount, 14 h)", design=lambda n: cycles(n, HISTORY_S / n),
+         effects={"thermal_transient_fe": TRANSIENT_TRUTH}),
 ]
 
 
@@ -191,6 +202,29 @@ def profiled(pl):
         problem.Problem.parallel = parallel
 
 
+def trial_times(pred, effects: dict, cond: dict, repeat: int = 5) -> str:
+    """One trial of the thermal_transient_fe rung: the reduced conduction alone
+    (`transient_rung.part_temperatures_C`) and the whole model call (the rung's temperatures
+    through the pipeline), best of `repeat` (ms), at parameters moved off the truth (no memo)."""
+    from studies.diagnosis.transient_rung import part_temperatures_C, rung_model
+
+    rung = pred.forms.rungs["thermal_transient_fe"].candidate
+    rm = rung_model(pred.pl)
+    p = rung.validate(effects["thermal_transient_fe"])
+    thermal, call = [], []
+    for k in range(repeat):
+        q = {**p, "film_resistance_m2K_W": p["film_resistance_m2K_W"] * (1.0 + 0.01 * (k + 1))}
+        t0 = time.perf_counter()
+        part_temperatures_C(rm, q, cond["time_s"], cond["T_ambient_C"], None)
+        thermal.append(time.perf_counter() - t0)
+        t0 = time.perf_counter()
+        pred({"thermal_transient_fe": q}, {"mu_scale": MU_TRUE})
+        call.append(time.perf_counter() - t0)
+    return (f"thermal_transient_fe trial ({len(cond['time_s'])} rows, {rm.m + 1} states): reduced "
+            f"conduction {1e3 * min(thermal):.1f} ms, whole model call {1e3 * min(call):.1f} ms "
+            f"(load {os.getloadavg()[0]:.1f})")
+
+
 def main(argv=None) -> None:
     from studies.model.config import CONFIG_DIR, SHIPPED, load_shipped
     from studies.diagnosis.files import (NUISANCE, ModelPredictor, candidate_effects,
@@ -274,6 +308,8 @@ def main(argv=None) -> None:
                 f"{k} {v['total']:.2f} ({v['predict']:.2f})"
                 for k, v in r["seconds_by_phase"].items() if v["total"] >= 0.005)
                 + f"; total {r['seconds']['total']:.2f} s ({r['seconds']['predict']:.2f} s)")
+            if "thermal_transient_fe" in kind.effects:
+                print("    " + trial_times(pred, kind.effects, cond))
             if args.profile:
                 pred = ModelPredictor(pl, cond, cols)
                 with profiled(pl) as prof:

@@ -16,7 +16,8 @@ from scipy import stats
 
 from studies.diagnosis.core import Baseline
 from studies.diagnosis.heldout import heldout_linear
-from studies.diagnosis.problem import ROUND_OFF, Noise, Problem, data_sigma
+from studies.diagnosis.noisemodel import CONSISTENCY_ALPHA, consistency
+from studies.diagnosis.problem import ROUND_OFF, Noise, Problem, data_sigma, with_stated_shape
 from studies.diagnosis.stats import (ar1_regression_reml, ar1_whiten, auto_blocks, noise_sigma,
                                      orth)
 from studies.model.effects.thermal_lag import lag_response
@@ -45,6 +46,10 @@ def calibrate(pb: Problem) -> tuple[Problem, Baseline]:
     residuals), its residual description and held-out residuals."""
     bspace = pb.space([])
     base = pb.fit(bspace, np.zeros(bspace.lo.size))
+    if pb.noise.stated:     # a stated noise's readings (`stated_readings`)
+        pb = replace(pb, noise=with_stated_shape(pb.noise, pb.measured, pb.valid,
+                                                 stated_readings(pb)))
+        base = pb.fit(bspace, base.u)
     spiked = drop_spikes(pb, base.pred)
     if spiked is not pb:
         pb = spiked
@@ -59,6 +64,46 @@ def calibrate(pb: Problem) -> tuple[Problem, Baseline]:
     structure = desc_base.p_min_adjusted < pb.th["alpha_structure"]
     return pb, Baseline(base, base_nuis, desc_base, bool(structure), heldout_linear(pb, base),
                         orth(base.J))
+
+
+#: rows of the running mean of the measured values a stated noise is evaluated at in a time
+#: series (`stated_readings`)
+READING_ROWS = 5
+
+
+def stated_readings(pb: Problem) -> dict[str, np.ndarray]:
+    """The readings a stated noise is evaluated at (`noisemodel` module docstring): in a time
+    series the running mean of READING_ROWS consecutive measured values of the column (centred;
+    fewer at the ends): a row's own noise then carries 1 / READING_ROWS of its weight, so the
+    weights' correlation with the noise, and the bias of about 2 REL^2 of the reading it gives a
+    weighted fit (Carroll & Ruppert 1988, ch. 2.3), shrinks that much; elsewhere the measured
+    values. Not the baseline's prediction: a model that misses a lag by a factor 5 in torque at
+    the cold end would put the weights wrong by that factor. Rows not compared: the measured
+    value (NaN)."""
+    out = {}
+    for c in pb.noise.stated:
+        y = np.asarray(pb.measured[c], float).copy()
+        m = pb.valid[c]
+        if pb.is_time_series and m.sum() >= READING_ROWS:
+            k = np.ones(READING_ROWS)
+            v = y[m]
+            y[m] = np.convolve(v, k, "same") / np.convolve(np.ones(v.size), k, "same")
+        out[c] = y
+    return out
+
+
+def stated_noise_notes(noise: Noise) -> tuple[str, ...]:
+    """One note per column whose stated noise the data contradict (`noisemodel.consistency`):
+    the data's level against the stated one; the weights keep the stated shape, the level used
+    is the data's."""
+    out = []
+    for c, chk in noise.consistency.items():
+        if not chk.consistent:
+            out.append(f"stated noise of {c} contradicted by the data: its level is "
+                       f"{chk.ratio:.3g} x the stated one ({100 * (1 - CONSISTENCY_ALPHA):g} % "
+                       f"interval {chk.ratio_lo:.3g}..{chk.ratio_hi:.3g}); the rows keep the "
+                       "stated weights, the level used is the data's")
+    return tuple(out)
 
 
 #: fewest automatic held-out blocks when their length follows the noise's correlation time
@@ -97,7 +142,7 @@ def drop_spikes(pb: Problem, pred: dict) -> Problem:
         rows = np.flatnonzero(m)
         if rows.size < 20:
             continue
-        r = (pb.measured[c] - pred[c])[m]
+        r = pb.scaled_residual(c, pred[c])[m]
         A = np.column_stack([np.ones(rows.size), X[m]])
         coef, *_ = np.linalg.lstsq(A, r, rcond=None)
         e = r - A @ coef
@@ -118,7 +163,9 @@ def baseline_noise(pb: Problem, pred: dict) -> Noise:
     """Each column's noise level from the baseline residuals (given levels kept), never below
     round-off (ROUND_OFF x its largest value), and its AR(1) coefficient (`noise_ar1`, with the
     history basis in its regression in every column when a history effect shows in one:
-    `history_in_residuals`)."""
+    `history_in_residuals`). A column with a stated noise: the same on the residual divided by
+    its per-row shape (the level at a row of RMS stated uncertainty), checked against the
+    stated level (`noisemodel.consistency`)."""
     sigma, sigma_w = dict(pb.noise.sigma), dict(pb.noise.sigma_w)
     rho, source = dict(pb.noise.rho), dict(pb.noise.source)
     rho_hi = {c: v for c, v in pb.noise.rho_hi.items() if c in pb.noise.given}
@@ -130,10 +177,26 @@ def baseline_noise(pb: Problem, pred: dict) -> Noise:
         floor = ROUND_OFF * max(np.nanmax(np.abs(pb.measured[c])), 1e-300)
         sigma[c] = sigma_w[c] = max(s, floor)
         rho[c] = 0.0
+        if c in pb.noise.stated and white_statement_holds(pb, c, sigma[c]):
+            continue
         ar1 = noise_ar1(pb, c, pred[c], floor, history)
         if ar1 is not None:
             rho[c], sigma_w[c], sigma[c], rho_hi[c] = ar1
-    return Noise(sigma, sigma_w, rho, source, pb.noise.given, rho_hi)
+    checks = {c: consistency(sigma[c] / pb.noise.stated_sigma[c], int(pb.valid[c].sum()), rho[c])
+              for c in pb.noise.stated}
+    return replace(pb.noise, sigma=sigma, sigma_w=sigma_w, rho=rho, source=source,
+                   rho_hi=rho_hi, consistency=checks)
+
+
+def white_statement_holds(pb: Problem, c: str, s_white: float) -> bool:
+    """Does the data's white-noise level `s_white` of stated column c (second differences of
+    the residual divided by the stated shape: blind to a smooth model error) agree with the
+    stated level (`noisemodel.consistency`)? Then the statement's white noise stands and no
+    AR(1) model is fitted: what the AR(1) test would see in the baseline residual beyond it is a
+    model error, not the sensor (a drifting sensor of stated marginal level shows a
+    second-difference level well below it, sqrt((1 - rho)(3 - rho) / 3) of it, 0.26 at rho
+    0.9: it fails this check and gets its AR(1) model)."""
+    return consistency(s_white / pb.noise.stated_sigma[c], int(pb.valid[c].sum())).consistent
 
 
 def history_basis(pb: Problem) -> np.ndarray:
@@ -207,7 +270,7 @@ def history_in_residuals(pb: Problem, pred: dict) -> bool:
         if c in pb.noise.given:
             continue
         m = pb.valid[c]
-        r = (pb.measured[c] - pred[c])[m]
+        r = pb.scaled_residual(c, pred[c])[m]
         A = ar1_regressors(pb, m, False)
         rho, lr, _ = ar1_regression_reml(r, A)
         if lr > AR1_LR and rho > 0.0 and history_explains(r, A, H[m], rho):
@@ -245,7 +308,7 @@ def noise_ar1(pb: Problem, c: str, pred: np.ndarray, floor: float, history: bool
     if not pb.is_time_series:
         return None
     m = pb.valid[c]
-    r = (pb.measured[c] - pred)[m]
+    r = pb.scaled_residual(c, pred)[m]
     whole = np.zeros(r.size, int)
     rho, lr, rho_hi = ar1_regression_reml(r, ar1_regressors(pb, m, history))
     if lr <= AR1_LR or rho <= 0.0:

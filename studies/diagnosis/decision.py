@@ -15,7 +15,7 @@ from studies.diagnosis.core import Baseline, Decision, Fit, JointFit, ModelFailu
 from studies.diagnosis.goodness import goodness
 from studies.diagnosis.ladder import is_lookalike
 from studies.diagnosis.problem import Problem
-from studies.diagnosis.stats import ar1_whiten, chibar_pvalue
+from studies.diagnosis.stats import chibar_pvalue
 
 
 #: the unlisted look-alike every claim must beat (`DecisionPhase.versus_sensor_drift`), as named
@@ -158,7 +158,7 @@ def versus_sensor_drift(pb: Problem, f: Fit, df: dict, b: Baseline) -> JointFit 
     for j, c in enumerate(pb.columns):
         m = pb.valid[c]
         k = int(m.sum())
-        D[i0:i0 + k, j] = ar1_whiten(ramp[m], pb.chain(c), pb.noise.rho[c]) / pb.noise.sigma_w[c]
+        D[i0:i0 + k, j] = pb.standardise(c, ramp[m])
         i0 += k
 
     def chi2_lin(fit: Fit, drift: bool) -> float:

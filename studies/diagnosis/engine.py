@@ -63,14 +63,14 @@ from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
-from studies.diagnosis.calibration import baseline_noise, calibrate
+from studies.diagnosis.calibration import baseline_noise, calibrate, stated_noise_notes
 from studies.diagnosis.candidate import Candidate
 from studies.diagnosis.core import Baseline, Decision, Fit, Screening
 from studies.diagnosis.decision import Separation, decide, separating
 from studies.diagnosis.fitting import fit_all
 from studies.diagnosis.generalised import ChosenForm, generalise
 from studies.diagnosis.heldout import validate
-from studies.diagnosis.interval import column_intervals
+from studies.diagnosis.interval import column_intervals, configured_intervals
 from studies.diagnosis.ladder import is_form
 from studies.diagnosis.openworld import characterise
 from studies.diagnosis.problem import Problem, make_problem
@@ -223,10 +223,11 @@ def _interval(first: Pass, sel: Selection, cause: str | None, ext_fit: Fit, ext_
     they are about: the selection's final model of the accepted causes, else the first pass's
     extended fit, under the noise re-estimated from that fit's own residual
     (`calibration.baseline_noise`: a first noise estimate inflated by the cause, AR(1) rho 0.99,
-    would give intervals many times too wide); (None, None) without a claimed cause (issue
-    34)."""
+    would give intervals many times too wide). Without a claimed cause: the configured model's
+    interval with the discrepancy the data show (`interval.configured_intervals` of the
+    calibrated baseline) and no fit."""
     if not cause or sel.verdict not in ("explained", "explained_partly"):
-        return None, None
+        return configured_intervals(first.pb, first.baseline.fit), None
     pb, fit, ho = ((sel.problem, sel.fit, sel.heldout_z) if sel.fit is not None
                    else (first.pb, ext_fit, ext_ho))
     return column_intervals(pb, fit, ho, noise=baseline_noise(pb, fit.pred)), fit
@@ -236,8 +237,9 @@ def assemble(first: Pass, sel: Selection, sep: Separation, cost: Cost) -> Diagno
     """The typed result of the phases and the forward selection."""
     pb, b, s, d = first.pb, first.baseline, first.screening, first.decision
     verdict = sel.verdict or d.verdict
-    # a first cause the selection turned down (it leaves structure it cannot own): no cause
-    cause = d.cause if verdict != "unexplained" else None
+    # a first cause the selection turned down (it leaves structure it cannot own, or the change
+    # is below what the data could show): no cause
+    cause = d.cause if verdict not in ("unexplained", "no_discrepancy") else None
     ext_fit, ext_ho = _extended(first, cause)
     params, unc, nuis_ext = _cause_values(first, cause)
     base = ModelRmse(pb.col_rmse(b.fit.z), pb.col_rmse(b.heldout_z))
@@ -257,7 +259,7 @@ def assemble(first: Pass, sel: Selection, sep: Separation, cost: Cost) -> Diagno
     reasons = list(d.reasons) + list(sel.reasons)
     best_partial = (None if verdict != "unexplained" or d.best is None else
                     BestPartial(d.best, first.candidates[d.best].parameters, d.best_residuals))
-    open_world = (characterise({c: pb.measured[c] - b.fit.pred[c] for c in pb.columns},
+    open_world = (characterise({c: pb.scaled_residual(c, b.fit.pred[c]) for c in pb.columns},
                                pb.valid, pb.conditions, pb.blocks, pb.noise.sigma_w,
                                pb.noise.rho, forms={e.name: e.acts_through
                                                     for e in pb.candidates if is_form(e)})
@@ -281,13 +283,14 @@ def assemble(first: Pass, sel: Selection, sep: Separation, cost: Cost) -> Diagno
         heldout_blocks=pb.n_blocks,
         heldout_untestable=(list(first.candidates[cause].heldout_untestable or [])
                             if cause else []),
-        thresholds=dict(pb.th), notes=list(pb.notes) + sep.notes, spikes=dict(pb.spikes),
+        thresholds=dict(pb.th),
+        notes=list(pb.notes) + sep.notes + list(stated_noise_notes(sel.noise or pb.noise)), spikes=dict(pb.spikes),
         n_rows=pb.n, cost=cost, open_world=open_world,
         causes=list(sel.causes), left=list(sel.left), at_bound=list(sel.at_bound),
         worse_columns=list(sel.worse_columns),
         interval=interval,
         row_blocks=np.asarray(pb.blocks, int).copy(),
-        goodness=sel.goodness, noise_final=sel.noise,
+        goodness=sel.goodness, noise_final=sel.noise, detection=dict(sel.detection),
         baseline_pred=b.fit.pred,
         extended_pred=(iv_fit.pred if iv_fit is not None else sel.pred if sel.pred
                        else ext_fit.pred),
@@ -301,7 +304,8 @@ def diagnose_full(predict: Callable[[dict, dict], Mapping[str, np.ndarray]],
                   noise_sigma: Mapping[str, float] | None = None, T_ref_C: float = 20.0,
                   predict_at: Callable | None = None, thresholds: Mapping | None = None,
                   seed: int = 0, columns: Sequence[str] | None = None,
-                  generalised: bool = True, workers: int = 1) -> DiagnosisResult:
+                  generalised: bool = True, workers: int = 1,
+                  noise_model: Mapping | None = None) -> DiagnosisResult:
     """Run the diagnosis (see the module docstring) and return the typed result.
 
     predict(effects, nuisance) -> {column: array(n_rows)} on the measured conditions.
@@ -312,6 +316,8 @@ def diagnose_full(predict: Callable[[dict, dict], Mapping[str, np.ndarray]],
     blocks: held-out block label per row (contiguous time or test segments); None -> n_blocks
         contiguous blocks in row order.
     noise_sigma: known noise levels per column (default: estimated from the data).
+    noise_model: {column: `noisemodel.StatedNoise`}: a sensor's stated noise (`--noise`,
+        `sigma_<column>`): the per-row weights, the level still estimated and checked.
     predict_at(effects, nuisance, conditions) -> outputs at other conditions (optional; used to
         find the separating test).
     generalised: try the generalised forms of the listed effects when the verdict would be
@@ -324,7 +330,7 @@ def diagnose_full(predict: Callable[[dict, dict], Mapping[str, np.ndarray]],
     pb = make_problem(predict, measured, conditions, candidates, nuisance, blocks,
                       noise_sigma=noise_sigma, T_ref_C=T_ref_C, predict_at=predict_at,
                       thresholds=thresholds, columns=columns, workers=workers,
-                      generalised=generalised)
+                      generalised=generalised, noise_model=noise_model)
     return run(pb, seed, t0)
 
 

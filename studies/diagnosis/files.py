@@ -16,6 +16,7 @@ import numpy as np
 from studies.model.config import load_assembly
 from studies.diagnosis.engine import diagnose_full
 from studies.diagnosis.ladder import FormRoute
+from studies.diagnosis.noisemodel import SIGMA_PREFIX, check_sigma_columns, stated_noise
 from studies.diagnosis.ladder import candidates as ladder_candidates
 from studies.diagnosis.report import write_report
 from studies.diagnosis.result import DiagnosisResult, to_json
@@ -96,8 +97,19 @@ def read_measured(path: Path, known_outputs: set[str] | None = None) -> tuple[di
 
 
 def measured_columns(known_outputs: set[str] | None = None) -> set[str]:
-    """The columns a measured table may hold: conditions, comparable outputs, `known_outputs`."""
-    return set(CONDITION_COLUMNS) | set(COMPARABLE) | set(known_outputs or ())
+    """The columns a measured table may hold: conditions, comparable outputs, their per-row
+    standard uncertainties `sigma_<column>` (`noisemodel`), `known_outputs`."""
+    return (set(CONDITION_COLUMNS) | set(COMPARABLE) | {SIGMA_PREFIX + c for c in COMPARABLE}
+            | set(known_outputs or ()))
+
+
+def measured_noise(cols: dict, measured: dict, noise, where) -> dict:
+    """The stated noise of a checked measured table's compared columns ({column:
+    `noisemodel.StatedNoise`}): the `sigma_<column>` columns of `cols` (`check_sigma_columns`)
+    and `noise` ({column: "REL%[+ABS]" or ABS}, `diagnose --noise`); one-line NoiseSpecError
+    (a TableError) naming the flag or the table, its line and column."""
+    sig = check_sigma_columns(cols, measured, where)
+    return stated_noise(noise, tuple(measured), sig, where)
 
 
 def split_measured(cols: dict, where) -> tuple[dict, dict]:
@@ -123,20 +135,26 @@ def candidate_effects(asm) -> list:
 
 
 def diagnose_files(assembly_path: Path, measured_path: Path, out_dir: Path, progress=print,
-                   pipeline: Pipeline | None = None, workers: int | None = None) -> dict:
-    """`bearingfem diagnose`: diagnosis.json and the report in `out_dir`; returns the JSON."""
+                   pipeline: Pipeline | None = None, workers: int | None = None,
+                   noise=None) -> dict:
+    """`bearingfem diagnose`: diagnosis.json and the report in `out_dir`; returns the JSON.
+    noise: {column: "REL%[+ABS]"} (`--noise`)."""
     asm = load_assembly(assembly_path)
-    conditions, measured = read_measured(measured_path, OUTPUT_NAMES)   # before the FE is built
-    return diagnose_tables(asm, conditions, measured, out_dir, progress, pipeline, workers)[1]
+    cols = read_table(measured_path, allowed=measured_columns(OUTPUT_NAMES))
+    conditions, measured = split_measured(cols, measured_path)     # before the FE is built
+    stated = measured_noise(cols, measured, noise, measured_path)
+    return diagnose_tables(asm, conditions, measured, out_dir, progress, pipeline, workers,
+                           noise_model=stated)[1]
 
 
 def diagnose_tables(asm, conditions: dict, measured: dict, out_dir: Path, progress=print,
-                    pipeline: Pipeline | None = None,
-                    workers: int | None = None) -> tuple[DiagnosisResult, dict]:
+                    pipeline: Pipeline | None = None, workers: int | None = None,
+                    noise_model: dict | None = None) -> tuple[DiagnosisResult, dict]:
     """The diagnosis of checked tables (`split_measured`): diagnosis.json and the report in
     `out_dir`; returns the typed result and the JSON written. workers: processes for the
     candidates' work (`diagnose_full`) and the report's plots (default every CPU this process
-    may use); the result does not depend on it."""
+    may use); the result does not depend on it. noise_model: the stated noise of some columns
+    (`measured_noise`)."""
     pl = pipeline or Pipeline.shared(asm, progress=progress)
     predict = ModelPredictor(pl, conditions, measured.keys())
     candidates = candidate_effects(asm) + ladder_candidates(asm)    # the model-form ladder last
@@ -144,7 +162,8 @@ def diagnose_tables(asm, conditions: dict, measured: dict, out_dir: Path, progre
              f"{', '.join(measured)}, {len(candidates)} candidate effects ...")
     workers = available_workers() if workers is None else workers
     result = diagnose_full(predict, measured, conditions, candidates, NUISANCE,
-                           T_ref_C=asm.T_ref_C, predict_at=predict.at, workers=workers)
+                           T_ref_C=asm.T_ref_C, predict_at=predict.at, workers=workers,
+                           noise_model=noise_model)
     doc = write_diagnosis_json(result, out_dir / "diagnosis.json")
     write_table(out_dir / "diagnosis.csv", diagnosis_columns(result, measured))
     write_report(result, conditions, measured, out_dir, workers=workers)
@@ -155,10 +174,11 @@ def diagnosis_columns(result: DiagnosisResult, measured) -> dict[str, np.ndarray
     """The columns of diagnosis.csv, one row per measured row (docs/cli.md): `row` (1-based, as
     in the file), `heldout_block` (1-based), then per compared column the measured value
     `<column>`, the calibrated baseline `baseline_<column>`, the extended model
-    `predicted_<column>` (the baseline's when nothing is claimed) and, for `explained` /
-    `explained_partly`, its predictive interval `predicted_lo_<column>` /
-    `predicted_hi_<column>` (`studies.diagnosis.interval`, level `interval.level` in
-    diagnosis.json; empty where the column is not measured)."""
+    `predicted_<column>` (the baseline's when nothing is claimed) and its predictive interval
+    `predicted_lo_<column>` / `predicted_hi_<column>` (`studies.diagnosis.interval`, level
+    `interval.level` in diagnosis.json: the claimed model's for `explained` /
+    `explained_partly`, else the configured model's with the discrepancy the data show;
+    empty where the column is not measured)."""
     n = result.n_rows
     out = {"row": np.arange(1, n + 1, dtype=float)}
     if result.row_blocks is not None:

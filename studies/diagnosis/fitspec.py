@@ -33,6 +33,7 @@ from studies.model.effects.preload_settling import excursion
 from studies.model.effects.solid_film_runin import revolutions
 from studies.diagnosis.ladder import UnloggedLoad, unlogged_load_starts
 from studies.diagnosis.sleeve_rung import SleeveForm, sleeve_grid
+from studies.diagnosis import transient_rung
 
 Conditions = Mapping[str, np.ndarray]
 
@@ -286,6 +287,8 @@ SPECS: dict[type, FitSpec] = {
     PreloadPathCompliance: FitSpec(starts=compliance_starts),
     UnloggedLoad: FitSpec(starts=unlogged_load_starts),          # the model-form ladder
     SleeveForm: FitSpec(profile=("variant",), grid=sleeve_grid),
+    transient_rung.ThermalTransientFE: FitSpec(starts=transient_rung.starts,
+                                               held_fixed=transient_rung.held_fixed),
 }
 
 

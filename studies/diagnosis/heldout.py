@@ -20,6 +20,7 @@ from dataclasses import dataclass, replace
 from typing import Mapping
 
 import numpy as np
+from scipy import special
 
 from studies.diagnosis import fitspec
 from studies.diagnosis.candidate import Candidate, HeldoutGain
@@ -339,17 +340,21 @@ def bootstrap_gain(pb: Problem, rng: np.random.Generator, z_base_ho, z_cand_ho,
                        bool(lo > 0))
 
 
-#: seed of the per-column bootstraps of `worse_columns` (their own random numbers: the engine's
-#: stream, and so every other bootstrap of a diagnosis, is left as it was)
-WORSE_SEED = 34
+#: the smallest held-out RMSE difference (noise units) by which a column counts as made worse
+#: (`worse_columns`): a column's held-out RMSE, about 1 noise unit at a good model, changed by
+#: less than a tenth moves its 90 % predictive interval by less than the tolerance that
+#: interval's coverage is held to (85-95 %: half-widths 1.44-1.96 sigma about 1.645, -12 % and
+#: +19 %)
+WORSE_MIN_SIGMA = 0.1
 
 
 @dataclass(frozen=True)
 class WorseColumn:
     """A measured column the candidate predicts worse on held-out blocks than the model before
     it, beyond the noise (`worse_columns`): its held-out RMSE ratio (`gain`, candidate / before,
-    column units), the paired block bootstrap of the held-out RMSE difference before minus
-    candidate (noise units, `HeldoutGain`: its interval lies below 0), one sentence."""
+    column units), the mean over held-out blocks of the RMSE difference before minus candidate
+    (noise units, `HeldoutGain`: its t interval at the column's Holm level lies below 0), one
+    sentence."""
     effect: str
     column: str
     gain: float
@@ -360,24 +365,63 @@ class WorseColumn:
 def worse_columns(pb: Problem, effect: str, z_base_ho: np.ndarray, z_cand_ho: np.ndarray,
                   keep=None) -> list[WorseColumn]:
     """The measured columns whose held-out residual the candidate `effect` makes worse than the
-    model before it beyond the noise: the held-out RMSE ratio (candidate / before,
-    column units) above 1 and the paired block bootstrap of the column's held-out RMSE
-    difference (`bootstrap_gain` on its entries, the same blocks, resamples and quantile
-    `heldout_quantile` as the gain a candidate must show: Kunsch 1989, The jackknife and the
-    bootstrap for general stationary observations, Ann. Statist. 17) entirely below zero, i.e.
-    the column is worse by more than its held-out noise lets chance make it. Held-out
-    standardised residuals of the same problem (noise model) for both."""
+    model before it beyond the noise, corrected for the number of columns and with a
+    minimum size. Per compared column and held-out block (over the blocks `keep`
+    that test the candidate), the held-out RMSE before minus with the candidate (noise units);
+    over the blocks, taken as independent as the block bootstrap takes them (Kunsch 1989, Ann.
+    Statist. 17), the one-sided paired t test of "not worse" (Student 1908, Biometrika 6; its
+    p values hold their level where the percentile bootstrap over 10 blocks does not: at a
+    nominal 2.5 % it called a column of a null worse in 4 % of 300 draws, so a correction for
+    several columns built on it kept the family near 9 % over 8 columns). Holm's step-down
+    over the m compared columns at the family level `heldout_quantile` (Holm 1979, A simple
+    sequentially rejective multiple test procedure, Scand. J. Statist. 6: the i-th smallest p
+    against level / (m - i + 1), stopping at the first that is not below) keeps the chance
+    that noise alone makes some column look worse at that level whatever the number of
+    columns. A column it rejects is worse when its held-out RMSE ratio (candidate / before,
+    column units) is above 1 and its mean difference is at least WORSE_MIN_SIGMA noise units
+    (the minimum size). The interval reported is the t interval at the level of the column's
+    Holm step (entirely below zero). Held-out standardised residuals of the same problem (noise
+    model) for both."""
     before, after = pb.col_rmse(z_base_ho), pb.col_rmse(z_cand_ho)
-    rng = np.random.default_rng(WORSE_SEED)
+    tests = {c: _block_t(pb, z_base_ho, z_cand_ho, keep, pb.entry_col == j)
+             for j, c in enumerate(pb.columns)}
+    level = float(pb.th["heldout_quantile"])
+    m = len(tests)
     out = []
-    for j, c in enumerate(pb.columns):
+    for i, c in enumerate(sorted(tests, key=lambda c: tests[c][0])):
+        a = level / (m - i)
+        p, mean, se, used = tests[c]
+        if not p < a:
+            break                    # Holm: no later (larger) p is rejected either
         ratio = after[c] / before[c] if before[c] > 0 else 1.0
-        if not ratio > 1.0:
+        half = float(special.stdtrit(used - 1, 1.0 - a)) * se
+        g = HeldoutGain(mean, [mean - half, mean + half], 0, used, False)
+        if not (ratio > 1.0 and -mean >= WORSE_MIN_SIGMA):
             continue
-        g = bootstrap_gain(pb, rng, z_base_ho, z_cand_ho, keep, entries=pb.entry_col == j)
-        if g.n_blocks and g.ci[1] < 0.0:
-            out.append(WorseColumn(effect, c, float(ratio), g, (
-                f"{effect} makes {c} worse on held-out blocks: held-out RMSE x {ratio:.4g} "
-                f"({-g.rmse_gain:.3g} noise units worse, bootstrap interval of the gain "
-                f"[{g.ci[0]:.3g}, {g.ci[1]:.3g}] below 0)")))
-    return out
+        out.append(WorseColumn(effect, c, float(ratio), g, (
+            f"{effect} makes {c} worse on held-out blocks: held-out RMSE x {ratio:.4g} "
+            f"({-mean:.3g} noise units worse per block, interval of the gain "
+            f"[{g.ci[0]:.3g}, {g.ci[1]:.3g}] below 0 at the Holm level {a:.3g} over {m} "
+            "columns)")))
+    return sorted(out, key=lambda w: list(pb.columns).index(w.column))
+
+
+def _block_t(pb: Problem, z_base_ho, z_cand_ho, keep, entries) -> tuple[float, float, float, int]:
+    """(p of "not worse", mean difference, its standard error, blocks used) of the paired t
+    test over held-out blocks of RMSE before minus RMSE with the candidate (noise units), on
+    the stacked `entries` over the blocks `keep` (`worse_columns`); p = 1 with fewer than 2
+    blocks or no spread."""
+    keep = np.ones(pb.n_blocks, bool) if keep is None else np.asarray(keep, bool)
+    w = np.asarray(entries, float)
+    nb = np.bincount(pb.entry_block, weights=w, minlength=pb.n_blocks)[keep]
+    sb = np.bincount(pb.entry_block, weights=w * z_base_ho ** 2, minlength=pb.n_blocks)[keep]
+    sc = np.bincount(pb.entry_block, weights=w * z_cand_ho ** 2, minlength=pb.n_blocks)[keep]
+    used = nb > 0
+    d = np.sqrt(sb[used] / nb[used]) - np.sqrt(sc[used] / nb[used])
+    k = int(d.size)
+    if k < 2:
+        return 1.0, float(d.mean()) if k else 0.0, math.inf, k
+    mean, se = float(d.mean()), float(d.std(ddof=1) / math.sqrt(k))
+    if not se > 0:
+        return (0.0 if mean < 0 else 1.0), mean, 0.0, k
+    return float(special.stdtr(k - 1, mean / se)), mean, se, k

@@ -19,6 +19,7 @@ config already uses is not on the ladder. The rungs (names of docs/cli.md, "kind
 | `preload_spring` | `[preload] kind = "spring"` | carried by the listed `preload_path_compliance` (the spring is its soft limit) | - |
 | `fits_in_band` | as-built fits anywhere in the `[fits]` tolerance band | carried by the listed `interference_error`, whose bounds are the band (`assembly_bounds`) | - |
 | `sleeve` | a `[sleeve]` the file lacks | not tried: its material and thickness are drawing data, not bounded by a data sheet | - |
+| `thermal_transient_fe` | the part temperatures from the stack's reduced transient conduction FE and a lumped mount (`studies.diagnosis.transient_rung`) | `film_resistance_m2K_W`, `G_face_W_K`, `G_env_W_K`, `C_mount_J_K`, `fit_conductance_factor`, `heat_scale` (handbook ranges, sourced there) | inputs (a reduced trial, then the pipeline) |
 | `torque_model_skf`, `rolling_ehl`, `starved_film`, `solid_film_pressure` | the friction laws of `analytic.friction` the file does not use (`studies.diagnosis.friction_rungs`: forms, and the speed / temperature / load variation each needs) | `share` (0..1) | pair |
 
 A parameter rung (`groove_conformity`) changes a number of the file's assembly that makers rarely
@@ -74,6 +75,7 @@ from studies.model.config_checks import check_assembly
 from studies.model.effects import Effect
 from studies.diagnosis import friction_rungs
 from studies.diagnosis.sleeve_rung import SleeveForm, sleeve_candidate
+from studies.diagnosis.transient_rung import ThermalTransientFE
 
 #: the kind of a ladder candidate in diagnosis.json (docs/cli.md); listed effects are "effect"
 KIND = "model_form"
@@ -434,6 +436,7 @@ def ladder(asm: Assembly) -> list[Rung]:
     if asm.sleeve is None:      # studies/diagnosis/sleeve_rung.py
         rungs.append(Rung("sleeve", SleeveForm.change, "fe_setup", SleeveForm.acts_through,
                           **sleeve_candidate(asm)))
+    rungs.append(_transient_rung(asm))      # studies/diagnosis/transient_rung.py
     for name, change, acts, hint, configure, why_not in friction_rungs.forms(asm):
         r = (Rung(name, change, "pair", acts, why_not=why_not) if configure is None
              else _switch(name, change, "pair", acts, hint, configure, asm))
@@ -459,6 +462,19 @@ def _groove_rung(asm: Assembly) -> Rung:
         return Rung(e.name, e.change, "pair", acts,
                     why_not=f"the assembly cannot hold the range: {exc}")
     return Rung(e.name, e.change, "pair", acts, e)
+
+
+def _transient_rung(asm: Assembly) -> Rung:
+    """The `thermal_transient_fe` rung (`transient_rung.ThermalTransientFE`): tried on every
+    assembly whose part temperatures the conditions do not give (it needs `time_s` and
+    `T_ambient_C`, `Effect.applicable`); not where the file computes them already
+    (`[thermal] mode = "transient"`)."""
+    e = ThermalTransientFE
+    if asm.thermal.mode == "transient":
+        return Rung(e.name, e.change, "inputs", e.acts_through,
+                    why_not='the file computes the part temperatures ([thermal] mode = '
+                            '"transient")')
+    return Rung(e.name, e.change, "inputs", e.acts_through, ThermalTransientFE(asm))
 
 
 def _bearing_span_mm(asm: Assembly) -> float:
@@ -508,7 +524,9 @@ class FormRoute:
 
     def __init__(self, pipeline):
         self.pl = pipeline
-        self.rungs = {r.name: r for r in ladder(pipeline.asm) if r.candidate is not None}
+        self.rungs = {r.name: (replace(r, candidate=r.candidate.bind(pipeline))
+                               if isinstance(r.candidate, ThermalTransientFE) else r)
+                      for r in ladder(pipeline.asm) if r.candidate is not None}
         # the sensor look-alikes, and the alloy look-alike a sleeve claim must beat
         self.lookalikes = {e.name: e for e in lookalikes() + [AlloyOffSheet()]}
         self._pipelines: dict = {}     # switch rung name -> its pipeline on the file
@@ -644,7 +662,7 @@ def indication(pb, b) -> Indication:
 
     if not b.structure:
         return Indication(False)
-    ow = characterise({c: pb.measured[c] - b.fit.pred[c] for c in pb.columns}, pb.valid,
+    ow = characterise({c: pb.scaled_residual(c, b.fit.pred[c]) for c in pb.columns}, pb.valid,
                       pb.conditions, pb.blocks, pb.noise.sigma_w, pb.noise.rho)
     feats: set[str] = set()
     for col in ow.columns:

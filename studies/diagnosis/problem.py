@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property, wraps
 from typing import Callable, Mapping, Sequence
 
@@ -66,7 +66,14 @@ class Nuisance:
 @dataclass(frozen=True)
 class Noise:
     """Noise model per compared column: marginal level `sigma`, AR(1) coefficient `rho` (0 for
-    white noise), innovation level `sigma_w` (= sigma for white noise), how it was obtained."""
+    white noise), innovation level `sigma_w` (= sigma for white noise), how it was obtained.
+
+    A column with a stated noise (`studies.diagnosis.noisemodel`: `--noise`, `sigma_<column>`)
+    has a per-row `shape` (dimensionless, every row; RMS 1 over the compared rows): the row's
+    standard uncertainty is `sigma` x `shape` (`row_sigma`), the residual divided by the shape
+    is what the AR(1) model and the spike test see (weighted least squares). Its `stated` level
+    (column unit, RMS over the compared rows) and the check of `sigma` against it
+    (`consistency`) are kept beside. Without a statement there is no shape (every row 1)."""
     sigma: Mapping[str, float]
     sigma_w: Mapping[str, float]
     rho: Mapping[str, float]
@@ -74,11 +81,36 @@ class Noise:
     given: frozenset[str] = frozenset()
     #: 99.9 % upper profile-likelihood bound of rho (AR(1) columns; `describe_column`'s bias test)
     rho_hi: Mapping[str, float] = field(default_factory=dict)
+    #: per-row relative standard uncertainty of a stated column (RMS 1 over its compared rows)
+    shape: Mapping[str, np.ndarray] = field(default_factory=dict)
+    #: the statement of a stated column (`noisemodel.StatedNoise`)
+    stated: Mapping[str, object] = field(default_factory=dict)
+    #: the stated level of a stated column (column unit, RMS over its compared rows)
+    stated_sigma: Mapping[str, float] = field(default_factory=dict)
+    #: the data's level against the stated one (`noisemodel.Consistency`), once estimated
+    consistency: Mapping[str, object] = field(default_factory=dict)
 
     def describe(self, c: str) -> str:
         if c in self.given:
             return "given"
-        return self.source[c] + (f", AR(1) rho {self.rho[c]:.2f}" if self.rho[c] else "")
+        what = self.source[c] + (f", AR(1) rho {self.rho[c]:.2f}" if self.rho[c] else "")
+        if c in self.stated:
+            what = f"weights from the {_STATED_TEXT[self.stated[c].source]}; level {what}"
+        return what
+
+    def row_shape(self, c: str, n: int) -> np.ndarray:
+        """Column c's per-row relative standard uncertainty (every row; ones without a
+        statement)."""
+        s = self.shape.get(c)
+        return np.ones(n) if s is None else np.asarray(s, float)
+
+    def row_sigma(self, c: str, n: int) -> np.ndarray:
+        """Column c's marginal standard uncertainty per row (column unit, every row of n):
+        `sigma` x the stated shape (`sigma` on every row without a statement)."""
+        return float(self.sigma[c]) * self.row_shape(c, n)
+
+
+_STATED_TEXT = {"stated": "stated noise (--noise)", "column": "sigma_ column"}
 
 
 @dataclass(frozen=True)
@@ -195,14 +227,81 @@ class Problem:
         a constant offset by up to twice at rho 0.9)."""
         return np.zeros(int(self.valid[c].sum()), int)
 
+    def row_sigma(self, c: str) -> np.ndarray:
+        """Column c's marginal noise level per row (column unit, every row): the estimated level
+        times the stated per-row shape (`Noise.row_sigma`; the same on every row without a
+        stated noise)."""
+        return self.noise.row_sigma(c, self.n)
+
+    def shape(self, c: str) -> np.ndarray:
+        """Column c's stated per-row relative uncertainty on its compared rows (ones without a
+        statement)."""
+        return self.noise.row_shape(c, self.n)[self.valid[c]]
+
+    def scaled_residual(self, c: str, pred_c: np.ndarray) -> np.ndarray:
+        """(measured - pred) / shape of column c on every row (column unit at a row of RMS
+        uncertainty; the plain residual without a stated noise): the heteroscedastic part of the
+        noise divided out, what the AR(1), spike and level estimates work on."""
+        r = self.measured[c] - np.asarray(pred_c, float)
+        s = self.noise.shape.get(c)
+        return r if s is None else r / s
+
+    def standardise(self, c: str, r: np.ndarray, noise: Noise | None = None) -> np.ndarray:
+        """Column c's residual-like values r (column unit, its compared rows, or rows x k) in
+        noise units: divided by the stated shape, whitened for the AR(1) noise (one chain,
+        `chain`), divided by the innovation level (generalised least squares: r / sigma for
+        white noise of one level). noise: another noise model than this problem's."""
+        nz = self.noise if noise is None else noise
+        r = np.asarray(r, float)
+        s = nz.shape.get(c)
+        if s is not None:
+            sh = np.asarray(s, float)[self.valid[c]]
+            r = r / (sh if r.ndim == 1 else sh[:, None])
+        return ar1_whiten(r, self.chain(c), nz.rho[c]) / nz.sigma_w[c]
+
+    def unstandardise(self, c: str, z: np.ndarray) -> np.ndarray:
+        """Inverse of `standardise` (column unit, column c's compared rows, or rows x k)."""
+        r = ar1_unwhiten(np.asarray(z, float) * self.noise.sigma_w[c], self.chain(c),
+                         self.noise.rho[c])
+        return self._times_shape(c, r)
+
+    def prediction_jacobian(self, c: str, J: np.ndarray) -> np.ndarray:
+        """d prediction / du of column c (column unit per scaled unit, its compared rows) from
+        the rows of the standardised residual's Jacobian J = dz/du that belong to it: z =
+        `standardise`(measured - prediction), so d prediction / du = -`unstandardise`(J)."""
+        G = -float(self.noise.sigma_w[c]) * ar1_unwhiten(np.asarray(J, float), self.chain(c),
+                                                         float(self.noise.rho[c]))
+        return self._times_shape(c, G)
+
+    def _times_shape(self, c: str, r: np.ndarray) -> np.ndarray:
+        s = self.noise.shape.get(c)
+        if s is None:
+            return r
+        sh = np.asarray(s, float)[self.valid[c]]
+        return r * (sh if r.ndim == 1 else sh[:, None])
+
+    def smoother(self, c: str) -> np.ndarray:
+        """The conditions' smoother on column c's compared rows, in the column's unit: a
+        constant and `features` (compared rows x (1 + features))."""
+        return np.column_stack([np.ones(self.n), self.features])[self.valid[c]]
+
+    def smooth_residual(self, c: str, pred_c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Column c's residual measured - pred_c on its compared rows as the conditions' smoother
+        shows it (`smoother`, fitted by generalised least squares under this noise model,
+        `standardise`): (the smooth part, column unit; the coefficients)."""
+        m = self.valid[c]
+        X = self.smoother(c)
+        r = self.measured[c][m] - np.asarray(pred_c, float)[m]
+        coef, *_ = np.linalg.lstsq(self.standardise(c, X), self.standardise(c, r), rcond=None)
+        return X @ coef, coef
+
     def zvec(self, pred: Mapping[str, np.ndarray]) -> np.ndarray:
-        """Standardised residuals, stacked: per column whitened for its AR(1) noise (one chain,
-        `chain`) and divided by the innovation level; plain r / sigma for white noise."""
+        """Standardised residuals, stacked (`standardise` per column: stated weights, AR(1)
+        whitening, innovation level; plain r / sigma for white noise without a statement)."""
         parts = []
         for c in self.columns:
             m = self.valid[c]
-            r = self.measured[c][m] - pred[c][m]
-            parts.append(ar1_whiten(r, self.chain(c), self.noise.rho[c]) / self.noise.sigma_w[c])
+            parts.append(self.standardise(c, self.measured[c][m] - pred[c][m]))
         z = np.concatenate(parts)
         if not np.all(np.isfinite(z)):
             raise ModelFailure("the model returned non-finite values")
@@ -212,9 +311,7 @@ class Problem:
         """RMSE per column in its own unit (the standardised residuals un-whitened)."""
         out = {}
         for j, c in enumerate(self.columns):
-            zz = z_stacked[self.entry_col == j]
-            r = ar1_unwhiten(zz * self.noise.sigma_w[c], self.chain(c),
-                             self.noise.rho[c])
+            r = self.unstandardise(c, z_stacked[self.entry_col == j])
             out[c] = float(np.sqrt(np.mean(r ** 2)))
         return out
 
@@ -314,13 +411,17 @@ class Problem:
         seg = self.blocks[m]
         rho = self.noise.rho[c]
         ch = self.chain(c)
-        z = ar1_whiten(r, ch, rho) / self.noise.sigma_w[c]
-        one = ar1_whiten(np.ones_like(r), ch, rho)
+        # a stated noise: residual and regressors divided by the per-row shape (weighted least
+        # squares; the bias and smoother are still a constant and a smooth curve in column unit)
+        inv = 1.0 / self.shape(c) if c in self.noise.shape else None
+        r_w = r if inv is None else r * inv
+        z = ar1_whiten(r_w, ch, rho) / self.noise.sigma_w[c]
+        one = ar1_whiten(np.ones_like(r) if inv is None else inv, ch, rho)
         nn = z.size
         b_hat = float(one @ z) / float(one @ one)
         bias_p = float(2 * stats.norm.sf(abs(b_hat) * math.sqrt(float(one @ one))))
         if rho > 0.0 and c in self.noise.rho_hi:
-            bias_p = _bias_p_bound(r, self.noise.rho_hi[c], bias_p)
+            bias_p = _bias_p_bound(r_w, self.noise.rho_hi[c], bias_p, inv)
         # lag-1 autocorrelation within blocks, in row order (of the whitened residuals)
         zc = z - one * b_hat
         same = seg[1:] == seg[:-1]
@@ -332,7 +433,8 @@ class Problem:
         # product sum in units of the noise level: structure far below the noise is none)
         auto_p = float(max(stats.norm.sf(r1 * math.sqrt(npairs)),
                            stats.norm.sf(num / math.sqrt(npairs))))
-        A = ar1_whiten(np.column_stack([np.ones(nn), self.features[m]]), ch, rho)
+        A = np.column_stack([np.ones(nn), self.features[m]])
+        A = ar1_whiten(A if inv is None else A * inv[:, None], ch, rho)
         Fst, F_p = _smoother_test(A, zc, den)
         cv_gain = _smoother_cv_gain(A, z, one, seg)
         # AR(1) noise: the smoother must also predict held-out blocks
@@ -346,17 +448,19 @@ class Problem:
 RHO_CI_GAMMA = 0.001
 
 
-def _bias_p_bound(r: np.ndarray, rho_hi: float, p_at_rho: float) -> float:
+def _bias_p_bound(r: np.ndarray, rho_hi: float, p_at_rho: float,
+                  inv_shape: np.ndarray | None = None) -> float:
     """The bias test's p under AR(1) noise maximised over rho's 1 - RHO_CI_GAMMA confidence set,
     plus RHO_CI_GAMMA (Berger & Boos 1994, P values maximized over a confidence set for the
     nuisance parameter, JASA 89): the variance of a mean grows with rho, so the largest p is at
     the set's upper bound `rho_hi`, where the test is the generalised-least-squares t test of a
     constant with the innovation variance estimated from the whitened residuals. Near rho = 1 an
     AR coefficient estimated 0.05 low halves the variance of the mean and a constant offset of the
-    noise looks like a bias (toy AR(1) nulls at phi 0.95)."""
+    noise looks like a bias (toy AR(1) nulls at phi 0.95). With a stated noise, r is the
+    residual divided by the per-row shape and the constant is `inv_shape` (1 / shape)."""
     ch = np.zeros(r.size, int)
     u = ar1_whiten(r, ch, rho_hi)
-    one = ar1_whiten(np.ones_like(r), ch, rho_hi)
+    one = ar1_whiten(np.ones_like(r) if inv_shape is None else inv_shape, ch, rho_hi)
     oo = float(one @ one)
     b = float(one @ u) / oo
     dof = max(r.size - 1, 1)
@@ -429,9 +533,13 @@ def make_problem(predict: Callable, measured: Mapping[str, np.ndarray],
                  noise_sigma: Mapping[str, float] | None = None, T_ref_C: float = 20.0,
                  predict_at: Callable | None = None, thresholds: Mapping | None = None,
                  columns: Sequence[str] | None = None, workers: int = 1,
-                 generalised: bool = True) -> Problem:
+                 generalised: bool = True,
+                 noise_model: Mapping[str, object] | None = None) -> Problem:
     """The problem as given (noise from the measured data, before the baseline calibration);
-    one-line `DiagnosisError` for unusable input. One model call (the columns it predicts)."""
+    one-line `DiagnosisError` for unusable input. One model call (the columns it predicts).
+    noise_model: {column: `noisemodel.StatedNoise`}, the stated noise of some columns (their
+    per-row weights; the level is still estimated: `Noise`); a column both in `noise_sigma`
+    and here, or not compared, is a DiagnosisError."""
     from studies.diagnosis.core import DEFAULT_THRESHOLDS
 
     th = dict(DEFAULT_THRESHOLDS)
@@ -450,9 +558,17 @@ def make_problem(predict: Callable, measured: Mapping[str, np.ndarray],
     meas = {c: meas[c] for c in cols}
     valid = {c: np.isfinite(meas[c]) for c in cols}
     given = {c: float(v) for c, v in (noise_sigma or {}).items()}
-    pb = Problem(model, cond, meas, cols, cands, nu, labels, valid,
-                 Noise({}, {}, {}, {}, frozenset(given)), th, float(T_ref_C), predict_at,
-                 int(workers), bool(generalised))
+    stated = dict(noise_model or {})
+    for c in stated:
+        if c not in cols:
+            raise DiagnosisError(f"stated noise of {c}: not a compared column "
+                                 f"({', '.join(cols)})")
+        if c in given:
+            raise DiagnosisError(f"stated noise of {c}: its noise level is given as well")
+    first = with_stated_shape(Noise({}, {}, {}, {}, frozenset(given), stated=stated), meas,
+                              valid, meas)
+    pb = Problem(model, cond, meas, cols, cands, nu, labels, valid, first, th, float(T_ref_C),
+                 predict_at, int(workers), bool(generalised))
     sigma, source = {}, {}
     for c in cols:
         if c in given:
@@ -462,22 +578,48 @@ def make_problem(predict: Callable, measured: Mapping[str, np.ndarray],
         s, source[c] = data_sigma(pb, c, meas[c])
         s = max(s, floor)
         sigma[c] = s if s > 0 else 1.0     # a column of zeros
-    noise = Noise(sigma, dict(sigma), {c: 0.0 for c in cols}, source, frozenset(given))
+    noise = replace(first, sigma=sigma, sigma_w=dict(sigma), rho={c: 0.0 for c in cols},
+                    source=source)
     return Problem(model, cond, meas, cols, cands, nu, labels, valid, noise, th, float(T_ref_C),
                    predict_at, int(workers), bool(generalised), auto_blocks=blocks is None)
 
 
+def with_stated_shape(noise: Noise, measured: Mapping[str, np.ndarray],
+                      valid: Mapping[str, np.ndarray], reading: Mapping[str, np.ndarray]) -> Noise:
+    """`noise` with the per-row shape and stated level of each stated column (`noise.stated`)
+    evaluated at the readings `reading` (column -> values, column unit: the measured values for
+    the first estimate, `calibration.stated_readings` after it; `noisemodel` module
+    docstring): the stated per-row uncertainty s (never below the round-off floor ROUND_OFF x
+    the column's largest value), the level sqrt(mean s^2) over the compared rows, the shape
+    s / level (1 on rows not compared)."""
+    if not noise.stated:
+        return noise
+    shape, level = dict(noise.shape), dict(noise.stated_sigma)
+    for c, st in noise.stated.items():
+        m = valid[c]
+        floor = ROUND_OFF * float(np.nanmax(np.abs(measured[c]), initial=0.0))
+        s = np.maximum(np.asarray(st.row_sigma(reading[c]), float), max(floor, 1e-300))
+        level[c] = float(np.sqrt(np.mean(s[m] ** 2)))
+        shape[c] = np.where(m, s / level[c], 1.0)
+    return replace(noise, shape=shape, stated_sigma=level)
+
+
 def data_sigma(pb: Problem, c: str, r: np.ndarray) -> tuple[float, str]:
-    """Noise level of column c from residuals r, and how: in a time series from second
-    differences in time (within blocks); in a table of steady points from the design
-    (replicates, or second differences along each condition: `stats.noise_sigma_steady`)."""
+    """Noise level of column c from residuals r (column unit, every row), and how: in a time
+    series from second differences in time (within blocks; with a stated noise each divided by
+    its own stated standard deviation, `stats.noise_sigma`'s shape); in a table of steady
+    points from the design (replicates, or second differences along each condition:
+    `stats.noise_sigma_steady`, of r divided by the stated shape). With a stated noise the
+    level is that of a row of RMS stated uncertainty."""
     t = pb.conditions.get("time_s")
+    shape = pb.noise.shape.get(c)
     if t is None or not np.all(np.diff(t) > 0):
         m = pb.valid[c]
-        s, how = noise_sigma_steady(r[m], {k: v[m] for k, v in pb.conditions.items()})
+        rs = r if shape is None else r / shape
+        s, how = noise_sigma_steady(rs[m], {k: v[m] for k, v in pb.conditions.items()})
         if s > 0:
             return s, how
-    return noise_sigma(r, pb.blocks), "second differences of the baseline residuals"
+    return noise_sigma(r, pb.blocks, shape), "second differences of the baseline residuals"
 
 
 def _row_count(meas: Mapping[str, np.ndarray], cond: Mapping[str, np.ndarray]) -> int:

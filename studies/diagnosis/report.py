@@ -331,16 +331,23 @@ def _causes_section(r: DiagnosisResult) -> list[str]:
 
 
 def _interval_section(r: DiagnosisResult) -> list[str]:
-    """The claimed model's predictive interval (`studies.diagnosis.interval`)."""
+    """The predictive interval (`studies.diagnosis.interval`): the claimed model's, or the
+    configured model's with the discrepancy the data show."""
     iv = r.interval
     if iv is None:
         return []
+    how = ("the parameters' covariance through the fit's Jacobian (delta method), the "
+           "noise (its AR(1) model's marginal level) and a discrepancy term, the excess of the "
+           "calibration residuals' variance over the noise (Kennedy & O'Hagan 2001 in spirit)"
+           if iv.model == "extended" else
+           "no cause is claimed, so it is the configured model's with the discrepancy the data "
+           "show: the calibrated baseline plus the conditions' smoother fitted to its residual, "
+           "the nuisance's and smoother's covariance (delta method), the noise and the "
+           "discrepancy variance the smoother leaves")
     L = ["## Predictive interval\n",
          f"{100 * iv.level:g} % predictive interval of every measured column on every row "
          "(diagnosis.csv `predicted_lo_<column>`, `predicted_hi_<column>`; the band in the "
-         "plots): the parameters' covariance through the fit's Jacobian (delta method), the "
-         "noise (its AR(1) model's marginal level) and a discrepancy term, the excess of the "
-         "calibration residuals' variance over the noise (Kennedy & O'Hagan 2001 in spirit). "
+         f"plots): {how}. "
          f"Inside: {100 * iv.coverage_calibration:.1f} % of the calibration rows, "
          f"{100 * iv.coverage_heldout:.1f} % of the held-out predictions.\n",
          "| column | noise sigma | discrepancy sigma | calibration rows inside | held-out rows "

@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from studies.diagnosis.candidate import Candidate
+from studies.diagnosis.noisemodel import CONSISTENCY_ALPHA
 from studies.diagnosis.core import JointFit, Residuals, jsonable
 from studies.diagnosis.generalised import FormEntry
 from studies.diagnosis.goodness import AtBound, GoodnessOfFit, Left
@@ -121,6 +122,9 @@ class DiagnosisResult:
     interval: Intervals | None = None
     goodness: GoodnessOfFit | None = None
     noise_final: Noise | None = None    # the noise model of the selection's last pass
+    #: per compared column, the smallest change the data could show and the change the
+    #: configured model leaves (`studies.diagnosis.detection`, noise units)
+    detection: dict = field(default_factory=dict)
     # the predictions (column arrays) behind the report's plots; not part of the file
     baseline_pred: dict[str, np.ndarray] = field(default_factory=dict, repr=False)
     extended_pred: dict[str, np.ndarray] = field(default_factory=dict, repr=False)
@@ -160,6 +164,7 @@ def to_json(r: DiagnosisResult) -> dict:
                            "text": w.text} for w in r.worse_columns],
         "interval": None if r.interval is None else r.interval.to_json(),
         "causes": r.causes,
+        "detection": {c: d.to_json() for c, d in r.detection.items()},
         # ---- extras
         "evidence": r.evidence,
         "goodness_of_fit": r.goodness,
@@ -171,6 +176,7 @@ def to_json(r: DiagnosisResult) -> dict:
         "generalised_forms": [f.to_json() for f in r.generalised_forms],
         "reasons": list(r.reasons),
         "columns": list(r.columns),
+        "noise_model": noise_model_json(r.noise_final or r.noise, r.columns),
         "noise_sigma": dict(r.noise.sigma),
         "noise_sigma_source": {c: r.noise.describe(c) for c in r.columns},
         "nuisance": {"names": list(r.nuisance.names),
@@ -199,3 +205,32 @@ def to_json(r: DiagnosisResult) -> dict:
         "open_world": None if r.open_world is None else r.open_world.to_json(),
     }
     return jsonable(out)
+
+
+def noise_model_json(noise, columns) -> dict:
+    """diagnosis.json `noise_model` (docs/cli.md) of the final noise model (the one
+    re-estimated from the residual of the accepted causes, else the baseline's): per compared
+    column its source ("stated":
+    `--noise`, "column": `sigma_<column>`, "estimated": from the data alone), the statement
+    (`rel`: share of the reading, 0.015 for 1.5 %; `abs`: column unit; null for a column
+    source), whether the data's level agrees with it (`consistent`, null when estimated), the
+    data's marginal level `sigma` (column unit; at a row of RMS stated uncertainty for a stated
+    column), the stated level `stated_sigma` (RMS over the compared rows) and their `ratio` with
+    its interval."""
+    out = {}
+    for c in columns:
+        st = noise.stated.get(c)
+        if st is None:
+            out[c] = {"source": "estimated", "rel": None, "abs": None, "consistent": None,
+                      "sigma": noise.sigma[c]}
+            continue
+        chk = noise.consistency.get(c)
+        out[c] = {"source": st.source,
+                  "rel": st.rel if st.source == "stated" else None,
+                  "abs": st.abs_unit if st.source == "stated" else None,
+                  "consistent": None if chk is None else chk.consistent,
+                  "sigma": noise.sigma[c], "stated_sigma": noise.stated_sigma.get(c),
+                  "ratio": None if chk is None else chk.ratio,
+                  "ratio_interval": None if chk is None else [chk.ratio_lo, chk.ratio_hi],
+                  "consistency_level": 1.0 - CONSISTENCY_ALPHA}
+    return out

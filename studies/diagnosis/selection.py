@@ -28,18 +28,22 @@ is left, but only when several causes were accepted; a single cause that leaves 
 a look-alike of a cause outside the list and the verdict is `unexplained` (with it as the best
 partial candidate), as on an unlisted groove curvature on steady points.
 
-Claim rules (`blocked`): a cause with a fitted parameter at its bound or within its
-standard uncertainty of one (`goodness.at_bound`: the data want more than the candidate allows,
-which is evidence against it, not a partial explanation: the sleeve in an aluminium housing
-was `explained_partly: interference_error` at its +-20 um), or one whose model predicts a measured
+Claim rules (`select` reads them as a table, one small function each, in order; their reasons:
+docs/diagnosis.md, "The claim rules"). Before any fit: below the detection threshold in every
+compared column (`detection.detection`: the change the calibrated baseline leaves against the
+smallest change the data could show) the verdict is `no_discrepancy`, whatever fits. A cause the
+data want at or beyond a bound (`goodness.at_bound`: the value on the bound, or the estimate
+with the bounds released beyond it; the data wanting more than the candidate allows is evidence
+against it, not a partial explanation: the sleeve in an aluminium housing was
+`explained_partly: interference_error` at its +-20 um), or one whose model predicts a measured
 column worse on held-out blocks than the model before it beyond the noise
-(`heldout.worse_columns`), is never claimed: the first such cause makes the verdict `unexplained`
-(`at_bound` / `worse_columns` say why), a later one is not accepted (the causes before it stay),
-and a final joint model that pushes an accepted cause to its bound claims nothing. A model form
-fitted at the edge of its stated scatter (`scatter_edge`: a material lot at +-5 %) is one case of
-the rule. Each
-accepted cause is listed in order with its own held-out gain: the held-out RMSE of the model with it against the model before it, per
-column, under the noise of its pass.
+(`heldout.worse_columns`: Holm over the columns, a minimum size), is never claimed: the first
+such cause makes the verdict `unexplained` (`at_bound` / `worse_columns` say why), a later one
+is not accepted (the causes before it stay), and a final joint model that pushes an accepted
+cause to its bound claims nothing. A model form fitted at the edge of its stated scatter
+(`scatter_edge`: a material lot at +-5 %) is one case of the rule. Each accepted cause is listed
+in order with its own held-out gain: the held-out RMSE of the model with it against the model
+before it, per column, under the noise of its pass.
 
 A further cause must fit every held-out block in the same amount (`compensates`,
 `blockscale.block_scale`): per block, the least-squares scale of its held-out change
@@ -73,6 +77,7 @@ from studies.diagnosis.blockscale import BlockScale, block_scale
 from studies.diagnosis.calibration import baseline_noise, calibrate
 from studies.diagnosis.candidate import HeldoutGain
 from studies.diagnosis.core import Fit, ModelFailure
+from studies.diagnosis.detection import ColumnDetection, below, detection
 from studies.diagnosis.goodness import AtBound, GoodnessOfFit, Left, at_bound, goodness
 from studies.diagnosis.heldout import WorseColumn, worse_columns
 from studies.diagnosis.ladder import AlloyOffSheet, FormShare, MaterialLot, is_form
@@ -133,6 +138,9 @@ class Selection:
     problem: Problem | None = None
     fit: Fit | None = None
     heldout_z: np.ndarray | None = None
+    #: per compared column, the smallest change the data could show and the change the
+    #: configured model leaves (`detection.detection`, noise units)
+    detection: dict[str, ColumnDetection] = field(default_factory=dict)
 
 
 def _extended(p) -> tuple[Fit, np.ndarray, object]:
@@ -252,7 +260,7 @@ def scatter_edge(pb: Problem, bound: list[AtBound]) -> list[AtBound]:
 
 def blocked(p) -> tuple[list[AtBound], list[WorseColumn]]:
     """Why the cause a pass would accept cannot be claimed (empty lists: it can): its
-    parameters at a bound or within their standard uncertainty of one (`goodness.at_bound`),
+    parameters the data want at or beyond a bound (`goodness.at_bound`),
     and the measured columns its extended model predicts worse on held-out blocks than the
     pass's baseline beyond the noise (`heldout.worse_columns`, over the blocks that test it)."""
     fit, ho, _ = _extended(p)
@@ -339,136 +347,320 @@ def not_claimed(name: str, bound: list[AtBound], worse: list[WorseColumn], form:
     return f"{name} carries the weight but is not claimed: " + " and ".join(why) + tail
 
 
-def select(first, run_pass: Callable) -> Selection:
-    """Forward selection after the first pass `first` (module docstring); `run_pass(problem,
-    step, calibrated)` runs phases 1-5b on a problem (phase 1 already done: `calibrated`) and
-    returns its pass. A further pass searches only when the model of the accepted causes, with
-    the noise re-estimated from its residual, still shows structure (the residual tests at
-    alpha_structure, or its chi-square or held-out RMSE against the noise) or its noise is
-    AR(1) (the residual tests are weak there: a further cause may be what looks like slowly
-    correlated noise)."""
-    if first.decision.verdict not in ("explained", "explained_partly"):
-        return Selection()
+# ============================================================================ the claim rules
+# `select` reads the rules below in order: first the rules on the first pass (FIRST_RULES: the
+# first that answers decides), then, while no stop rule holds (STOP_RULES), another pass and
+# the rules on its further cause (FURTHER_RULES: the first that answers decides whether the
+# search goes on), then the rules on the model of the accepted causes (FINAL_RULES). One small
+# function per rule; docs/diagnosis.md, "The claim rules", gives each one's reason.
+
+CLAIMS = ("explained", "explained_partly")
+
+
+def below_detection(first, det: dict[str, ColumnDetection]) -> Selection | None:
+    """Rule 1: the change the configured model leaves is below the smallest change the data
+    could show in every compared column (`detection`, computed from the calibration before any
+    fit): `no_discrepancy`, whatever fits."""
+    if not below(det):
+        return None
+    cols = "; ".join(f"{c} {d.change_sigma:.2g} sigma RMS (threshold {d.threshold_sigma:.2g})"
+                     for c, d in det.items())
+    return Selection(verdict="no_discrepancy", reasons=[
+        "the change the configured model leaves is below the smallest change these data could "
+        f"show in every column ({cols}): no discrepancy is claimed, whatever fits"],
+        goodness=first.decision.goodness, noise=first.pb.noise)
+
+
+def not_a_claim(first, det) -> Selection | None:
+    """Rule 2: the first pass claims nothing (`no_discrepancy`, `ambiguous`, `unexplained`):
+    its verdict stands (an empty selection)."""
+    return None if first.decision.verdict in CLAIMS else Selection()
+
+
+def claim_blocked(first, det) -> Selection | None:
+    """Rule 3: the first cause has a parameter the data want at or beyond its bound, or makes a
+    measured column worse on held-out blocks (`blocked`): `unexplained`, with why."""
     bound, worse = blocked(first)
-    if bound or worse:
-        # the claim rules: a cause at its bound or making a column worse is not one
-        name = first.decision.cause
-        return Selection(verdict="unexplained", reasons=[not_claimed(
-            name, bound, worse, is_form(first.pb.effect(name)))], at_bound=bound,
-            worse_columns=worse, goodness=first.decision.goodness, noise=first.pb.noise)
+    if not (bound or worse):
+        return None
+    name = first.decision.cause
+    return Selection(verdict="unexplained", reasons=[not_claimed(
+        name, bound, worse, is_form(first.pb.effect(name)))], at_bound=bound,
+        worse_columns=worse, goodness=first.decision.goodness, noise=first.pb.noise)
+
+
+def sleeve_not_clear(first, det) -> Selection | None:
+    """Rule 4: a sleeve rung that a housing alloy off its data sheet fits about as well
+    (`sleeve_lookalike`): `unexplained`."""
     alike = sleeve_lookalike(first)
-    if alike:
-        return Selection(verdict="unexplained", reasons=[alike],
-                         goodness=first.decision.goodness, noise=first.pb.noise)
-    cur, causes, reasons, passes = first, [_cause(first, 1)], [], 1
-    stopped_bound: list[AtBound] = []
-    stopped_worse: list[WorseColumn] = []
-    final: GoodnessOfFit = first.decision.goodness
-    final_pb, (final_fit, final_ho, _) = first.pb, _extended(first)
-    while True:
-        fit = _extended(cur)[0]
-        nxt_pb = _next_problem(cur)
-        if (len(causes) >= MAX_CAUSES or not nxt_pb.candidates or at_bound(cur.pb, fit)
-                or cur.chosen is not None
-                or isinstance(cur.pb.effect(cur.decision.cause), SleeveForm)):
-            # a sleeve: its variants are a short list of materials and two
-            # thicknesses; what it leaves is its own mismatch, which a material lot imitated as
-            # a second cause (a 2 mm 9Cr18 sleeve as a 1.5 mm 17-4PH one plus a housing lot)
-            # a generalised form chosen for the cause: its listed form left structure, and what
-            # the form leaves is its own mismatch, which other candidates imitate (a transient
-            # FE's part-by-part lags took a 0.6 um fit error as a second cause)
-            # a cause at its bound: what it leaves is the data wanting more of it, not a
-            # further cause (another candidate would only imitate its excess)
-            break
-        if cur.decision.verdict == "explained" and not noise_inflated(cur.pb, fit):
-            break
-        pb_c, b_c = calibrate(nxt_pb)
-        white = not any(v > 0.0 for v in pb_c.noise.rho.values())
-        if white and not (b_c.structure or _misfit(pb_c, b_c)):
-            # nothing beyond the re-estimated noise is left: no further search
-            final = goodness(pb_c, b_c.fit, b_c.heldout_z, _n_params(pb_c, b_c.fit),
-                             b_c.residuals)
-            final_pb, final_fit, final_ho = pb_c, b_c.fit, b_c.heldout_z
-            break
-        nxt = run_pass(nxt_pb, len(causes) + 1, (pb_c, b_c))
-        passes += 1
-        d = nxt.decision
-        form = (_own_form_fits_as_well(pb_c, nxt)
-                if d.verdict in ("explained", "explained_partly") else None)
-        if form is not None:
-            reasons.append(f"with {', '.join(c.effect for c in causes)} in the model, "
-                           f"{d.cause} fits what is left, but so does {form} in place of "
-                           f"{form.split('.')[0]}: the structure left is that cause's other "
-                           "form, not a further cause")
-            b = nxt.baseline
-            final = goodness(nxt.pb, b.fit, b.heldout_z, _n_params(nxt.pb, b.fit), b.residuals)
-            final_pb, final_fit, final_ho = nxt.pb, b.fit, b.heldout_z
-            break
-        nb, nw = blocked(nxt) if d.verdict in ("explained", "explained_partly") else ([], [])
-        comp = (compensates(nxt) if d.verdict in ("explained", "explained_partly")
-                and not (nb or nw) else None)
-        if nb or nw:
-            reasons.append(f"with {', '.join(c.effect for c in causes)} in the model, "
-                           + not_claimed(d.cause, nb, nw, is_form(nxt.pb.effect(d.cause))))
-            stopped_bound, stopped_worse = nb, nw
-        elif comp is not None:
-            reasons.append(f"with {', '.join(c.effect for c in causes)} in the model, "
-                           f"{d.cause} is not claimed as a further cause: {comp.text}")
-        elif d.verdict in ("explained", "explained_partly"):
-            causes.append(_cause(nxt, len(causes) + 1))
-            reasons.append(f"with {', '.join(c.effect for c in causes[:-1])} in the model "
-                           f"(noise re-estimated from its residual), {d.reasons[-1]}")
-            cur, final = nxt, d.goodness
-            final_pb, (final_fit, final_ho, _) = nxt.pb, _extended(nxt)
-            continue
-        b = nxt.baseline
-        final = goodness(nxt.pb, b.fit, b.heldout_z, _n_params(nxt.pb, b.fit), b.residuals)
-        final_pb, final_fit, final_ho = nxt.pb, b.fit, b.heldout_z
-        names = ", ".join(c.effect for c in causes)
-        if d.verdict == "ambiguous":
-            reasons.append(f"with {names} in the model a further cause is ambiguous: "
-                           f"{d.cause} or {', '.join(d.rivals)}")
-        elif d.verdict == "unexplained" and final.leaves_structure:
-            reasons.append(f"with {names} in the model (noise re-estimated from its residual) "
-                           "structure is left that no other candidate removes")
-        break
-    sel = Selection(passes=passes, worse_columns=stopped_worse, problem=final_pb, fit=final_fit)
-    if len(causes) > 1:
-        effects, _ = final_fit.space.unpack(final_fit.u)
-        fam = {c.effect: (c.form or c.effect) for c in causes}
-        causes = [replace(c, parameters={q: effects[fam[c.effect]][q] for q in c.parameters})
-                  for c in causes]
-        sel = replace(sel, rmse=final_pb.col_rmse(final_fit.z),
-                      heldout_rmse=final_pb.col_rmse(final_ho), pred=final_fit.pred)
-    bound = at_bound(final_pb, final_fit)
-    if bound:
-        # the model of the accepted causes, refitted together, pushes one to its bound: the
-        # data want more than it allows (never claimed)
-        return replace(sel, verdict="unexplained", reasons=reasons + [not_claimed(
-            ", ".join(c.effect for c in causes), bound, [], len(causes) == 1 and is_form(
-                first.pb.effect(causes[0].effect)))], goodness=final, noise=final_pb.noise,
-            at_bound=bound + stopped_bound)
-    verdict = "explained"
-    if final.leaves_structure:
-        verdict = "explained_partly" if len(causes) > 1 else "unexplained"
-    if verdict == "explained" and first.decision.verdict == "explained_partly":
+    if not alike:
+        return None
+    return Selection(verdict="unexplained", reasons=[alike],
+                     goodness=first.decision.goodness, noise=first.pb.noise)
+
+
+FIRST_RULES = (below_detection, not_a_claim, claim_blocked, sleeve_not_clear)
+
+
+@dataclass
+class _Search:
+    """The forward selection in progress: the pass whose cause was accepted last (`cur`), the
+    accepted causes, reasons, passes run, what stopped a further cause at a bound or for a
+    worse column, and the model the final rules judge (problem, fit, held-out residuals, its
+    goodness)."""
+    first: object
+    run_pass: Callable
+    cur: object
+    causes: list[AcceptedCause]
+    reasons: list[str] = field(default_factory=list)
+    passes: int = 1
+    stopped_bound: list[AtBound] = field(default_factory=list)
+    stopped_worse: list[WorseColumn] = field(default_factory=list)
+    final: GoodnessOfFit | None = None
+    final_pb: Problem | None = None
+    final_fit: Fit | None = None
+    final_ho: np.ndarray | None = None
+    _next: Problem | None = None
+
+    @classmethod
+    def start(cls, first, run_pass) -> "_Search":
+        fit, ho, _ = _extended(first)
+        return cls(first, run_pass, first, [_cause(first, 1)], final=first.decision.goodness,
+                   final_pb=first.pb, final_fit=fit, final_ho=ho)
+
+    @property
+    def next_problem(self) -> Problem:
+        """The problem of the next pass (`_next_problem` of `cur`, made once per cause)."""
+        if self._next is None:
+            self._next = _next_problem(self.cur)
+        return self._next
+
+    @property
+    def names(self) -> str:
+        return ", ".join(c.effect for c in self.causes)
+
+    def judge_baseline_of(self, p) -> None:
+        """The final model is pass `p`'s baseline (the accepted causes without its cause)."""
+        b = p.baseline
+        self.final = goodness(p.pb, b.fit, b.heldout_z, _n_params(p.pb, b.fit), b.residuals)
+        self.final_pb, self.final_fit, self.final_ho = p.pb, b.fit, b.heldout_z
+
+
+# ---------------------------------------------------------------- stop rules (before a pass)
+def enough_causes(s: _Search) -> bool:
+    """Stop after MAX_CAUSES causes."""
+    return len(s.causes) >= MAX_CAUSES
+
+
+def no_candidates_left(s: _Search) -> bool:
+    """Stop when no candidate is left for a further pass."""
+    return not s.next_problem.candidates
+
+
+def last_cause_at_bound(s: _Search) -> bool:
+    """Stop after a cause at its bound: what it leaves is the data wanting more of it, not a
+    further cause (another candidate would only imitate its excess)."""
+    return bool(at_bound(s.cur.pb, _extended(s.cur)[0]))
+
+
+def form_chosen(s: _Search) -> bool:
+    """Stop after a cause accepted in a generalised form: its listed form left structure, and
+    what the form leaves is its own mismatch, which other candidates imitate (a transient FE's
+    part-by-part lags took a 0.6 um fit error as a second cause)."""
+    return s.cur.chosen is not None
+
+
+def sleeve_accepted(s: _Search) -> bool:
+    """Stop after a sleeve: its variants are a short list of materials and two
+    thicknesses; what it leaves is its own mismatch, which a material lot imitated as a second
+    cause (a 2 mm 9Cr18 sleeve as a 1.5 mm 17-4PH one plus a housing lot)."""
+    return isinstance(s.cur.pb.effect(s.cur.decision.cause), SleeveForm)
+
+
+def explained_at_its_noise(s: _Search) -> bool:
+    """Stop when the cause was `explained` (no structure left) and the noise level estimated
+    from its residual is within NOISE_RTOL of the one its pass used (nothing was hiding under
+    an inflated noise)."""
+    return (s.cur.decision.verdict == "explained"
+            and not noise_inflated(s.cur.pb, _extended(s.cur)[0]))
+
+
+STOP_RULES = (enough_causes, no_candidates_left, last_cause_at_bound, form_chosen,
+              sleeve_accepted, explained_at_its_noise)
+
+
+def nothing_left(s: _Search, pb_c: Problem, b_c) -> bool:
+    """Stop when the model of the accepted causes, calibrated with the noise re-estimated from
+    its residual, shows no structure and white noise (no candidate is fitted again); it is then
+    the model the final rules judge."""
+    white = not any(v > 0.0 for v in pb_c.noise.rho.values())
+    if not white or b_c.structure or _misfit(pb_c, b_c):
+        return False
+    s.final = goodness(pb_c, b_c.fit, b_c.heldout_z, _n_params(pb_c, b_c.fit), b_c.residuals)
+    s.final_pb, s.final_fit, s.final_ho = pb_c, b_c.fit, b_c.heldout_z
+    return True
+
+
+# ---------------------------------------------------------------- rules on a further cause
+# each (search, pass, calibrated problem) -> None (does not apply), True (accepted: search on)
+# or False (not accepted: stop, the causes before it stay)
+def own_form_further(s: _Search, nxt, pb_c: Problem) -> bool | None:
+    """A generalised form of an accepted cause fits what is left about as well as the further
+    cause (`_own_form_fits_as_well`): the structure left is that cause's other form."""
+    d = nxt.decision
+    form = _own_form_fits_as_well(pb_c, nxt) if d.verdict in CLAIMS else None
+    if form is None:
+        return None
+    s.reasons.append(f"with {s.names} in the model, {d.cause} fits what is left, but so does "
+                     f"{form} in place of {form.split('.')[0]}: the structure left is that "
+                     "cause's other form, not a further cause")
+    s.judge_baseline_of(nxt)
+    return False
+
+
+def further_blocked(s: _Search, nxt, pb_c: Problem) -> bool | None:
+    """The further cause is at its bound or makes a column worse (`blocked`, as rule 3)."""
+    d = nxt.decision
+    if d.verdict not in CLAIMS:
+        return None
+    nb, nw = blocked(nxt)
+    if not (nb or nw):
+        return None
+    s.reasons.append(f"with {s.names} in the model, "
+                     + not_claimed(d.cause, nb, nw, is_form(nxt.pb.effect(d.cause))))
+    s.stopped_bound, s.stopped_worse = nb, nw
+    s.judge_baseline_of(nxt)
+    return False
+
+
+def further_compensates(s: _Search, nxt, pb_c: Problem) -> bool | None:
+    """The held-out blocks clearly want the further cause in different amounts
+    (`compensates`): it compensates the misfit of the causes before it."""
+    if nxt.decision.verdict not in CLAIMS:
+        return None
+    comp = compensates(nxt)
+    if comp is None:
+        return None
+    s.reasons.append(f"with {s.names} in the model, {nxt.decision.cause} is not claimed as a "
+                     f"further cause: {comp.text}")
+    s.judge_baseline_of(nxt)
+    return False
+
+
+def further_accepted(s: _Search, nxt, pb_c: Problem) -> bool | None:
+    """A further cause the pass explains (as the first) and no rule above stops: accepted."""
+    d = nxt.decision
+    if d.verdict not in CLAIMS:
+        return None
+    s.causes.append(_cause(nxt, len(s.causes) + 1))
+    s.reasons.append(f"with {', '.join(c.effect for c in s.causes[:-1])} in the model "
+                     f"(noise re-estimated from its residual), {d.reasons[-1]}")
+    s.cur, s.final, s._next = nxt, d.goodness, None
+    s.final_pb, (s.final_fit, s.final_ho, _) = nxt.pb, _extended(nxt)
+    return True
+
+
+def further_none(s: _Search, nxt, pb_c: Problem) -> bool:
+    """The pass accepts nothing (an ambiguous further cause, structure no candidate removes,
+    or nothing left): the search stops with the causes before it."""
+    s.judge_baseline_of(nxt)
+    d = nxt.decision
+    if d.verdict == "ambiguous":
+        s.reasons.append(f"with {s.names} in the model a further cause is ambiguous: "
+                         f"{d.cause} or {', '.join(d.rivals)}")
+    elif d.verdict == "unexplained" and s.final.leaves_structure:
+        s.reasons.append(f"with {s.names} in the model (noise re-estimated from its residual) "
+                         "structure is left that no other candidate removes")
+    return False
+
+
+FURTHER_RULES = (own_form_further, further_blocked, further_compensates, further_accepted,
+                 further_none)
+
+
+# ---------------------------------------------------------------- rules on the final model
+def _joint(s: _Search) -> Selection:
+    """The selection's common part; with several causes their parameters in the joint model
+    and its RMSE per column (in-sample, held-out) and predictions."""
+    sel = Selection(passes=s.passes, worse_columns=s.stopped_worse, problem=s.final_pb,
+                    fit=s.final_fit)
+    if len(s.causes) > 1:
+        effects, _ = s.final_fit.space.unpack(s.final_fit.u)
+        fam = {c.effect: (c.form or c.effect) for c in s.causes}
+        s.causes = [replace(c, parameters={q: effects[fam[c.effect]][q] for q in c.parameters})
+                    for c in s.causes]
+        sel = replace(sel, rmse=s.final_pb.col_rmse(s.final_fit.z),
+                      heldout_rmse=s.final_pb.col_rmse(s.final_ho), pred=s.final_fit.pred)
+    return sel
+
+
+def joint_at_bound(s: _Search, sel: Selection) -> Selection | None:
+    """The model of the accepted causes, refitted together, pushes one to its bound (as rule
+    3): nothing is claimed."""
+    bound = at_bound(s.final_pb, s.final_fit)
+    if not bound:
+        return None
+    form = len(s.causes) == 1 and is_form(s.first.pb.effect(s.causes[0].effect))
+    return replace(sel, verdict="unexplained", reasons=s.reasons + [not_claimed(
+        s.names, bound, [], form)], goodness=s.final, noise=s.final_pb.noise,
+        at_bound=bound + s.stopped_bound)
+
+
+def one_cause_leaves_structure(s: _Search, sel: Selection) -> Selection | None:
+    """A single cause that leaves structure, no parameter at a bound: it may be a look-alike
+    of a cause outside the list (`unexplained`, it is the best partial candidate)."""
+    if len(s.causes) > 1 or not s.final.leaves_structure:
+        return None
+    left = "; ".join(x.text for x in s.final.left)
+    return replace(sel, verdict="unexplained", reasons=s.reasons + [
+        f"{s.causes[0].effect} carries the weight but leaves structure ({left}) and none of "
+        "its parameters is at a bound: the structure may come from a cause outside the "
+        "list, which the best candidate only imitates"], goodness=s.final,
+        noise=s.final_pb.noise, at_bound=s.stopped_bound)
+
+
+def causes_claimed(s: _Search, sel: Selection) -> Selection:
+    """Otherwise the causes are claimed: `explained` when their model leaves no structure under
+    the last noise estimate, else `explained_partly` with what is left."""
+    reasons = list(s.reasons)
+    verdict = "explained_partly" if s.final.leaves_structure else "explained"
+    if verdict == "explained" and s.first.decision.verdict == "explained_partly":
         reasons.append("the structure left under the first noise estimate is noise once the "
                        "noise is estimated from the residual of the accepted causes")
-    left = "; ".join(x.text for x in final.left)
-    if verdict == "unexplained":
-        # one cause, structure left, no parameter at a bound: nothing says the structure is
-        # more of the same cause, so the cause may be a look-alike of one outside the list
-        return replace(sel, verdict=verdict, reasons=reasons + [
-            f"{causes[0].effect} carries the weight but leaves structure ({left}) and none of "
-            "its parameters is at a bound: the structure may come from a cause outside the "
-            "list, which the best candidate only imitates"], goodness=final,
-            noise=final_pb.noise, at_bound=stopped_bound)
-    if verdict == "explained_partly" and final.left:
-        reasons.append("left: " + left)
-    return replace(sel, verdict=verdict, causes=causes, reasons=reasons, left=list(final.left),
-                   at_bound=stopped_bound, goodness=final, noise=final_pb.noise,
-                   problem=final_pb, fit=final_fit, heldout_z=final_ho)
+    if verdict == "explained_partly" and s.final.left:
+        reasons.append("left: " + "; ".join(x.text for x in s.final.left))
+    return replace(sel, verdict=verdict, causes=s.causes, reasons=reasons,
+                   left=list(s.final.left), at_bound=s.stopped_bound, goodness=s.final,
+                   noise=s.final_pb.noise, problem=s.final_pb, fit=s.final_fit,
+                   heldout_z=s.final_ho)
 
+
+FINAL_RULES = (joint_at_bound, one_cause_leaves_structure, causes_claimed)
+
+
+def select(first, run_pass: Callable) -> Selection:
+    """Forward selection after the first pass `first` (module docstring), by the claim rules in
+    order (FIRST_RULES, STOP_RULES with `nothing_left`, FURTHER_RULES, FINAL_RULES);
+    `run_pass(problem, step, calibrated)` runs phases 1-5b on a problem (phase 1 already done:
+    `calibrated`) and returns its pass. The detection of the first pass's calibration
+    (`detection.detection`) is in the selection whatever the verdict."""
+    det = detection(first.pb, first.baseline.fit.z, len(first.pb.nuisance.names))
+    for rule in FIRST_RULES:
+        sel = rule(first, det)
+        if sel is not None:
+            return replace(sel, detection=det)
+    s = _Search.start(first, run_pass)
+    while not any(rule(s) for rule in STOP_RULES):
+        pb_c, b_c = calibrate(s.next_problem)
+        if nothing_left(s, pb_c, b_c):
+            break
+        nxt = run_pass(s.next_problem, len(s.causes) + 1, (pb_c, b_c))
+        s.passes += 1
+        if not next(r for r in (rule(s, nxt, pb_c) for rule in FURTHER_RULES) if r is not None):
+            break
+    sel = _joint(s)
+    return replace(next(r for r in (rule(s, sel) for rule in FINAL_RULES) if r is not None),
+                   detection=det)
 
 
 def refused_for_drift(first) -> bool:

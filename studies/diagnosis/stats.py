@@ -22,9 +22,13 @@ def chibar_pvalue(lr: float, n_free: int, n_bound: int) -> float:
     return float(min(p, 1.0))
 
 
-def noise_sigma(r: np.ndarray, seg: np.ndarray) -> float:
+def noise_sigma(r: np.ndarray, seg: np.ndarray, shape: np.ndarray | None = None) -> float:
     """Noise standard deviation from second differences within segments (robustly trimmed at 4
-    sigma; unbiased for white noise, blind to smooth structure, insensitive to a few steps)."""
+    sigma; unbiased for white noise, blind to smooth structure, insensitive to a few steps).
+    shape: per-row relative noise level (heteroscedastic white noise of standard deviation
+    sigma x shape): each second difference divided by its own standard deviation in units of
+    sigma, sqrt((s_a^2 + 4 s_b^2 + s_c^2) / 6), so the smooth structure is removed before the
+    division and a jitter of the shape cannot turn a large smooth residual into noise."""
     r = np.asarray(r, float)
     ok = np.isfinite(r)
     idx = np.flatnonzero(ok)
@@ -33,6 +37,9 @@ def noise_sigma(r: np.ndarray, seg: np.ndarray) -> float:
     a, b, c = idx[:-2], idx[1:-1], idx[2:]
     same = (seg[a] == seg[b]) & (seg[b] == seg[c])
     d2 = r[a[same]] - 2 * r[b[same]] + r[c[same]]
+    if shape is not None:
+        sh = np.asarray(shape, float)
+        d2 = d2 / np.sqrt((sh[a[same]] ** 2 + 4 * sh[b[same]] ** 2 + sh[c[same]] ** 2) / 6.0)
     if d2.size < 5:
         return float(np.std(r[ok], ddof=1))
     d2 = d2 - np.median(d2)            # a steady curvature of the residuals is not noise

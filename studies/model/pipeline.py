@@ -21,6 +21,7 @@ import numpy as np
 
 from analytic.axial_stack import uniform_growth_shifts_mm
 from analytic.bearing import PairState
+from fem.solver import SolveError
 from studies.model.checks import assembly_checks, evaluate_checks
 from studies.model.config import Assembly
 from studies.model.effects import resolve_friction_coefficient, resolve_interference_um
@@ -238,7 +239,10 @@ class Pipeline:
         "quasi_dynamic" in place of the assembly's `[operating] ball_model` (the FE does not
         depend on it). fe_options: how the FE answer is formed (`FEOptions`; default: as solved).
         Raises ModelError naming the first row without a converged, finite answer."""
-        fe, fe_ref = self.fe_states(inputs, fe_options or FEOptions(), direct, remember)
+        try:
+            fe, fe_ref = self.fe_states(inputs, fe_options or FEOptions(), direct, remember)
+        except SolveError as exc:           # named by its row and fits (one line)
+            raise self.fe_stage.solve_failure(exc, inputs, first_row) from None
         with np.errstate(all="ignore"):     # a row without an answer is reported below, by name
             pair = self._pair(inputs, fe, fe_ref, compliance_mm_per_N, ball_model, remember)
             mu = resolve_friction_coefficient(inputs, self.asm.lubrication.friction_coefficient)

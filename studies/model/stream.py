@@ -5,7 +5,9 @@ The conditions file is read a chunk of rows at a time (`studies.model.table.iter
 then `simulate_file` evaluates each chunk through the one route (`pipeline.table_inputs` ->
 `Pipeline.run` -> `columns.to_columns`) and streams its rows into the temporary output file
 (`table.TableWriter`),
-renamed onto the output only at the end. An effect may depend on earlier rows (a thermal lag, a
+renamed onto the output only at the end; `simulate_columns` hands the same chunks of a table in
+memory to the same evaluation (`simulate_chunks`) and keeps the columns it would write (the
+Python API's `simulate`). An effect may depend on earlier rows (a thermal lag, a
 settling after the first excursion): with effects switched on, the inputs of the whole table are
 formed first (the condition columns and `PhysicsInputs`, about 0.1 kB per row) and evaluated
 chunk by chunk.
@@ -25,6 +27,7 @@ from typing import Callable, Iterable, Iterator
 
 import numpy as np
 
+from analytic.friction.ranges import merge as merge_ranges
 from studies.model.checks import Check, Checks, Violation, assembly_checks, plausibility_warnings
 from studies.model.columns import to_columns
 from studies.model.inputs import CONDITION_COLUMNS
@@ -139,6 +142,7 @@ def simulate_chunks(asm, chunks: Iterable[dict], total: int, write: Callable[[di
 
     tally = CheckTally(assembly_checks(asm))
     kept: dict[str, np.ndarray] = {}
+    ranges: tuple = ()                 # the friction law's rows outside its source's range
     n = 0
     with Blocks(workers, scheduler) as place:
         if place.here:
@@ -164,6 +168,7 @@ def simulate_chunks(asm, chunks: Iterable[dict], total: int, write: Callable[[di
             out_cols = to_columns(res, friction_split=True)
             cols.update(out_cols)
             tally.add(res.checks, n)
+            ranges = merge_ranges(ranges, res.torque.range_notes)
             write(cols)
             keep = [c for c in cols if c.startswith("T_") and c.endswith("_C")]
             for k in keep + [c for c in WARNING_OUTPUTS if c in out_cols]:
@@ -175,7 +180,8 @@ def simulate_chunks(asm, chunks: Iterable[dict], total: int, write: Callable[[di
             raise TableError(f"{where}: changed while it was read")
     temps = {k: v for k, v in kept.items() if k not in WARNING_OUTPUTS}
     outputs = {k: v for k, v in kept.items() if k in WARNING_OUTPUTS}
-    return SimulateRun(n, tally.violations(), plausibility_warnings(asm, temps, outputs), temps)
+    return SimulateRun(n, tally.violations(), plausibility_warnings(asm, temps, outputs)
+                       + [r.message(n) for r in ranges], temps)
 
 
 def _n_rows(columns: dict) -> int:

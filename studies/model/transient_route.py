@@ -149,7 +149,7 @@ def fe_states(pl: Pipeline, ms: ModalStructure, q: np.ndarray, delta_mm: np.ndar
     return fe, _gap_um(pl, r.gap_mm)
 
 
-def _group_rows(tc: TransientConduction) -> np.ndarray:
+def group_rows(tc: TransientConduction) -> np.ndarray:
     """(len(PARTS), n_total) rows giving each PARTS group's volume mean (ring measure) of T."""
     m = tc.model
     b = m.sbasis
@@ -171,24 +171,38 @@ def _group_rows(tc: TransientConduction) -> np.ndarray:
     return out
 
 
-@single_thread_blas
-def thermal_model(pl: Pipeline, progress=None) -> ThermalModel:
-    """The reduced transient model of `pl`'s assembly (module docstring), built on first use and
-    kept on the pipeline."""
-    hit = getattr(pl, "_thermal_model", None)
-    if hit is not None:
-        return hit
-    say = progress or (lambda s: None)
-    asm, g, m = pl.asm, pl.geom, pl.model
-    th = asm.thermal
-    T_ref = asm.T_ref_C
-    say("transient conduction: the reduced model of the stack ...")
+def stack_conduction(pl: Pipeline) -> TransientConduction:
+    """The transient conduction FE of `pl`'s stack with one ball node per bearing (the ball
+    set's capacity, `analytic.thermal_network.heat_capacity_J_K`)."""
+    g = pl.geom
+    C_ball = float(tn.heat_capacity_J_K(tn.ball_set_mass_kg(g.Dw_mm, g.Z, g.ball), g.ball))
+    return TransientConduction(pl.model, ball_capacity_J_K=C_ball)
+
+
+@dataclass(frozen=True)
+class Contacts:
+    """The stack's contact coefficients at the assembled state (`contacts`): fit_W_m2K (n_fits,)
+    per fit (from its pressure or the file's value), ball_W_K (inner, outer) ball set to
+    raceway per bearing, bore_W_m2K the spacer bores', surfaces the fits' `SurfacePair`,
+    pressure: the fits' conductance follows their pressure."""
+    fit_W_m2K: np.ndarray
+    ball_W_K: tuple
+    bore_W_m2K: float
+    surfaces: SurfacePair
+    pressure: bool
+
+
+def contacts(pl: Pipeline, tc: TransientConduction) -> Contacts:
+    """The contact coefficients of `pl`'s stack at the assembled state at T_ref, as `[thermal]`
+    gives them (`fit_conductance`, `gas`): the ball-raceway conductances of the pair at the
+    configured speed (`ball_contacts`), the fits' from their pressure (Yovanovich,
+    `fem.transient.fit_conductances_W_m2K`) or the file's number; in vacuum no gas in the fits
+    and spacer bores."""
+    asm, m = pl.asm, pl.model
+    th, T_ref = asm.thermal, asm.T_ref_C
     inp0 = baseline_inputs({}, 1, T_ref, asm.preload.assembled_N, asm.lubrication.speed_rpm)
     pair0 = pl.run(inp0).pair
     G = [c.G_W_K for c in ball_contacts(pl, pair0, asm.lubrication.speed_rpm, T_ref)]
-    C_ball = float(tn.heat_capacity_J_K(tn.ball_set_mass_kg(g.Dw_mm, g.Z, g.ball), g.ball))
-    tc = TransientConduction(m, ball_capacity_J_K=C_ball)
-    films = resolve_films(th.films_W_m2K(), tc.groups)
     pressure = th.fit_conductance == "pressure"
     vacuum = th.gas == "vacuum"
     surf = SurfacePair(gas_conductivity_W_mK=0.0) if vacuum else SurfacePair()
@@ -199,19 +213,41 @@ def thermal_model(pl: Pipeline, progress=None) -> ThermalModel:
                                        _gap_um(pl, r0.gap_mm)[0], surf)
     else:
         h_fit = np.full(len(m.section.fits), float(th.fit_conductance))
+    bore = 0.0 if vacuum else ThermalParameters.bore_conductance_W_m2K
+    return Contacts(np.asarray(h_fit, float), (float(G[0]), float(G[1])), bore, surf, pressure)
+
+
+def heat_inputs(tc: TransientConduction) -> list[str]:
+    """The heat inputs of the stack's reduced basis: the raceways and the ball nodes."""
+    return ([f"raceway_{r}" for r in RINGS if f"raceway_{r}" in tc.a]
+            + [k for k in ("ball_A", "ball_B") if k in tc.a])
+
+
+@single_thread_blas
+def thermal_model(pl: Pipeline, progress=None) -> ThermalModel:
+    """The reduced transient model of `pl`'s assembly (module docstring), built on first use and
+    kept on the pipeline."""
+    hit = getattr(pl, "_thermal_model", None)
+    if hit is not None:
+        return hit
+    say = progress or (lambda s: None)
+    asm, m = pl.asm, pl.model
+    th = asm.thermal
+    T_ref = asm.T_ref_C
+    say("transient conduction: the reduced model of the stack ...")
+    tc = stack_conduction(pl)
+    films = resolve_films(th.films_W_m2K(), tc.groups)
+    c = contacts(pl, tc)
+    h_fit, G = c.fit_W_m2K, c.ball_W_K
     emis = ({k: th.emissivity for k in tc.groups if not k.startswith("raceway_")}
             if th.emissivity > 0 else {})
     nominal = ThermalParameters(film_W_m2K=films, fit_conductance_W_m2K=tuple(h_fit),
                                 ball_inner_W_K=G[0], ball_outer_W_K=G[1], emissivity=emis,
-                                T_rad_lin_C=T_ref,
-                                bore_conductance_W_m2K=0.0 if vacuum else
-                                ThermalParameters.bore_conductance_W_m2K)
+                                T_rad_lin_C=T_ref, bore_conductance_W_m2K=c.bore_W_m2K)
     training = [replace(nominal, film_W_m2K={k: s * v for k, v in films.items()},
-                        fit_conductance_W_m2K=tuple(h_fit * c), ball_inner_W_K=G[0] * b,
-                        ball_outer_W_K=G[1] * b) for s, c, b in TRAINING]
-    inputs = [f"raceway_{r}" for r in RINGS if f"raceway_{r}" in tc.a] + \
-             [k for k in ("ball_A", "ball_B") if k in tc.a]
-    rc = ReducedConduction(tc, cached_basis(pl, tc, training, inputs, say))
+                        fit_conductance_W_m2K=tuple(h_fit * f), ball_inner_W_K=G[0] * b,
+                        ball_outer_W_K=G[1] * b) for s, f, b in TRAINING]
+    rc = ReducedConduction(tc, cached_basis(pl, tc, training, heat_inputs(tc), say))
     half = rc.truncated(max(1, int(HALF * rc.m)))
     probe = pl.full_fe().probe
     try:
@@ -219,7 +255,8 @@ def thermal_model(pl: Pipeline, progress=None) -> ThermalModel:
     except ValueError as exc:     # a CTE slope or bonded fits: not linear in the modes
         raise ConfigError(f'thermal.mode = "transient": {exc}') from None
     ms_half = modal_structure(pl.solver, probe, half, T_ref, RINGS, pl.setup.condensed)
-    out = ThermalModel(tc, rc, half, ms, ms_half, nominal, _group_rows(tc), pressure, surf)
+    out = ThermalModel(tc, rc, half, ms, ms_half, nominal, group_rows(tc), c.pressure,
+                       c.surfaces)
     pl._thermal_model = out
     return out
 
@@ -613,11 +650,11 @@ def part_temperatures(asm: Assembly, time_s, T_environment_C, speed_rpm=None, *,
 
 
 def _with_extra(h: dict, extra_W: float) -> dict:
-    """The heat inputs h (input -> W) with the extra heat extra_W (W) split by `_extra_share`."""
-    return {key: v + extra_W * _extra_share(key, h) for key, v in h.items()}
+    """The heat inputs h (input -> W) with the extra heat extra_W (W) split by `extra_share`."""
+    return {key: v + extra_W * extra_share(key, h) for key, v in h.items()}
 
 
-def _extra_share(key: str, h: dict) -> float:
+def extra_share(key: str, h: dict) -> float:
     """Share of the extra heat (heat_W) of one heat input: like the pair's own split (half to
     the raceways, half to the balls, equally per bearing); without ball nodes all to the
     raceways."""
@@ -702,19 +739,22 @@ def _evaluate_rows(pl: Pipeline, tm: ThermalModel, rc: ReducedConduction, ms: Mo
 
 def _route(pl: Pipeline, inputs: PhysicsInputs, fe: FEState, ref: FEState, first_row: int = 0):
     """The one route from given FE states (rows, assembly states): (its outputs, the pair's heat
-    split `analytic.heat.PairHeat`: Palmgren's viscous heat with sliding and spin at
-    MU_TRACTION; a solid film's own dissipation; with any other `viscous_model` the torque's own
-    heat where it is made, `analytic.heat.located_pair_heat_W`)."""
+    split, `pair_heat`)."""
     res = pl.run(inputs, first_row=first_row, remember=False,
                  fe_options=FEOptions(states=(fe, ref)))
-    if res.torque.model == "solid_film":       # the film's own dissipation (its friction coefficient)
-        heat = solid_film_pair_heat_W(res.torque, inputs.speed_rpm)
-    elif res.torque.viscous_model != "palmgren":   # the other laws: the located heat
-        heat = located_pair_heat_W(res.torque, inputs.speed_rpm)
-    else:
-        heat = pair_heat_W(pl.geom, res.pair, inputs.speed_rpm, MU_TRACTION,
-                           res.torque.viscous_Nmm)
-    return res, heat
+    return res, pair_heat(pl, res, inputs)
+
+
+def pair_heat(pl: Pipeline, res: SimulationResult, inputs: PhysicsInputs):
+    """The pair's heat split (`analytic.heat.PairHeat`, W per row) of a route result at its
+    inputs: Palmgren's viscous heat with sliding and spin at MU_TRACTION; a solid film's own
+    dissipation (its friction coefficient); with any other `viscous_model` the torque's own
+    heat where it is made (`analytic.heat.located_pair_heat_W`)."""
+    if res.torque.model == "solid_film":
+        return solid_film_pair_heat_W(res.torque, inputs.speed_rpm)
+    if res.torque.viscous_model != "palmgren":
+        return located_pair_heat_W(res.torque, inputs.speed_rpm)
+    return pair_heat_W(pl.geom, res.pair, inputs.speed_rpm, MU_TRACTION, res.torque.viscous_Nmm)
 
 
 def _preload_N(out: SimulationResult) -> np.ndarray:
@@ -774,7 +814,8 @@ def simulate_transient_columns(asm: Assembly, cols: dict, where: str = "conditio
     given = {k: v for k, v in temps.items() if k in cols}     # the warnings read the inputs
     warn_cols = {k: outputs[k] for k in WARNING_OUTPUTS if k in outputs}
     n = len(cols["time_s"])
-    return SimulateRun(n, tally.violations(), plausibility_warnings(asm, given, warn_cols),
+    ranges = [r.message(n) for r in run.outputs.torque.range_notes]    # the friction law's
+    return SimulateRun(n, tally.violations(), plausibility_warnings(asm, given, warn_cols) + ranges,
                        temps), res
 
 

@@ -1,24 +1,28 @@
-"""Every command as a Python function: what the command line runs (studies/app/commands.py parses
-the flags, calls these and prints) and what `import bearingfem` offers (the facade re-exports
-them). One route: the command and its function are the same call, so their numbers are equal.
+"""Every command but `study` and `bench` as a use case: what the command line runs
+(studies/app/commands.py parses the flags, calls these and prints) and what `import bearingfem`
+offers (the facade wraps them and emits their warnings). One route: the command and its function
+are the same call with the same defaults (`studies.usecases.defaults`), so their checks, warnings
+and numbers are equal.
 
 Each function takes what its command takes: the assembly (an `Assembly` from `load_assembly`, or
-the path of its TOML file), tables as a CSV path or in memory (column name -> values: a dict of
-lists or arrays, or a pandas DataFrame; the same columns and checks as the file), and for the
-commands that write a folder an optional `out` (None: the files go to a temporary folder that is
-removed afterwards; the typed result holds the numbers). Results are typed (frozen dataclasses);
+the path of its TOML file), tables as a CSV path (str or Path) or in memory (column name ->
+values: a dict of lists or arrays, or a pandas DataFrame; the same columns and checks as the
+file), and for the commands that write a folder an optional `out` (None: the files go to a
+temporary folder that is removed afterwards; the typed result holds the numbers). Results are
+typed (frozen dataclasses) and carry the lines the command prints as warnings (`warning_lines`);
 `.to_frame()` gives the table the command writes as CSV, units in the column names (docs/cli.md).
 
 Bad input raises a ValueError subclass (ConfigError, TableError, EffectError, ModelError,
-ToleranceError, DesignError, StiffnessRunError, BearingRunError, OutputError, ...) whose message
-is the one line the command prints before exiting with code 2; nothing is written then.
+ToleranceError, DesignError, StiffnessRunError, BearingRunError, OutputError, and
+`infra.errors.BearingfemError` for the solver's failures, ...) whose message is the one line the
+command prints before exiting with code 2; nothing is written then.
 """
 from __future__ import annotations
 
 import os
 import tempfile
 from contextlib import contextmanager
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Mapping
 
@@ -96,6 +100,15 @@ def _folder(out):
         return
     with tempfile.TemporaryDirectory(prefix="bearingfem-") as tmp:
         yield Path(tmp)
+
+
+def _input_warnings(asm, conditions: dict | None) -> tuple[str, ...]:
+    """The plausibility warnings of an assembly and a conditions table (None: none given) before
+    any model output (`checks.plausibility_warnings`): what `tolerance`, `design` and
+    `diagnose` print, as `simulate` and `report` do with their outputs' checks added."""
+    from studies.model.checks import plausibility_warnings
+
+    return tuple(plausibility_warnings(asm, conditions))
 
 
 def _check_workers(workers) -> None:
@@ -202,28 +215,38 @@ class Simulation:
         return pd.DataFrame(self.columns) if self.columns is not None else pd.read_csv(self.out)
 
 
-def diagnose(assembly, measured, out=None, progress=_quiet):
-    """`bearingfem diagnose ASSEMBLY.toml MEASURED.csv --out DIR`: which named effect explains
-    what the baseline model gets wrong on `measured` (condition columns and measured output
-    columns, docs/cli.md "diagnose"; at least 8 rows).  Writes diagnosis.json and the report
-    into `out`.  Returns `studies.diagnosis.result.DiagnosisResult` (`verdict`, `cause`,
-    parameters, held-out gain; `.json` is diagnosis.json as written)."""
-    from studies.diagnosis.files import OUTPUT_NAMES, diagnose_tables, measured_columns, split_measured
+def diagnose(assembly, measured, out=None, progress=_quiet, noise: Mapping | None = None):
+    """`bearingfem diagnose ASSEMBLY.toml MEASURED.csv --out DIR [--noise COLUMN=REL%[+ABS]]`:
+    which named effect explains what the baseline model gets wrong on `measured` (condition
+    columns, measured output columns and optional per-row `sigma_<column>`, docs/cli.md
+    "diagnose"; at least 8 rows).  noise: a sensor's stated standard uncertainty per column,
+    {"torque_Nmm": "1.5%+0.2"} (1.5 % of reading plus 0.2 N mm; a number or "0.5": absolute).
+    Writes diagnosis.json and the report into `out`.  Returns `Diagnosis` (`verdict`, `cause`,
+    `.result` the typed `studies.diagnosis.result.DiagnosisResult`, `.json` diagnosis.json as
+    written)."""
+    from studies.diagnosis.files import (OUTPUT_NAMES, diagnose_tables, measured_columns,
+                                         measured_noise, split_measured)
 
     asm = _assembly(assembly)
     cols = table(measured, measured_columns(OUTPUT_NAMES), "measured")
-    conditions, meas = split_measured(cols, measured if _is_path(measured) else "measured")
+    where = measured if _is_path(measured) else "measured"
+    conditions, meas = split_measured(cols, where)
+    stated = measured_noise(cols, meas, noise, where)       # bad input: before any FE work
+    warnings = _input_warnings(asm, conditions)
     with _folder(out) as tmp:
-        result, doc = diagnose_tables(asm, conditions, meas, tmp, progress=progress)
-    return Diagnosis(result, doc)
+        result, doc = diagnose_tables(asm, conditions, meas, tmp, progress=progress,
+                                      noise_model=stated)
+    return Diagnosis(result, doc, warnings)
 
 
 @dataclass(frozen=True)
 class Diagnosis:
     """A diagnosis: the typed `DiagnosisResult` (`result`) and diagnosis.json as written
-    (`json`); `verdict` and `cause` as the command prints them."""
+    (`json`); `verdict` and `cause` as the command prints them; `warnings` the plausibility
+    warnings of the inputs."""
     result: object
     json: dict = field(repr=False)
+    warnings: tuple[str, ...] = ()
 
     @property
     def verdict(self) -> str:
@@ -252,10 +275,12 @@ def tolerance(assembly, conditions=None, samples: int = defaults.TOLERANCE_SAMPL
     asm = _assembly(assembly)
     cond = None if conditions is None else table(conditions, set(CONDITION_COLUMNS), "conditions")
     prov = _provenance("tolerance", asm, assembly, conditions=conditions)
+    warnings = _input_warnings(asm, cond)
     with _folder(out) as tmp:
-        return tolerance_report.run(asm, cond, tmp, prov, samples=samples, seed=seed,
-                                    progress=progress, workers=workers, scheduler=scheduler,
-                                    bar=bar)
+        res = tolerance_report.run(asm, cond, tmp, prov, samples=samples, seed=seed,
+                                   progress=progress, workers=workers, scheduler=scheduler,
+                                   bar=bar)
+    return replace(res, warnings=warnings)
 
 
 def design(assembly, range_C: tuple[float, float], out=None,
@@ -290,10 +315,12 @@ def design(assembly, range_C: tuple[float, float], out=None,
     asm = _assembly(assembly)
     vary = {k: tuple(v) for k, v in (vary or {}).items()}
     ds.settings_of(asm, vary)                   # bad values: one line before any work
+    warnings = _input_warnings(asm, None)
     with _folder(out) as tmp:
-        return ds.run(asm, T_min, T_max, tmp, _provenance("design", asm, assembly),
-                      band=the_band, clamps=clamps, progress=progress, workers=workers,
-                      scheduler=scheduler, bar=bar, vary=vary)
+        res = ds.run(asm, T_min, T_max, tmp, _provenance("design", asm, assembly),
+                     band=the_band, clamps=clamps, progress=progress, workers=workers,
+                     scheduler=scheduler, bar=bar, vary=vary)
+    return replace(res, warnings=warnings)
 
 
 def stiffness(assembly, conditions, out=None, per_bearing: bool = False, ross=None,
@@ -326,9 +353,10 @@ def stiffness(assembly, conditions, out=None, per_bearing: bool = False, ross=No
 
 
 def report(assembly, conditions=None, out=None, pdf: bool = False, progress=_quiet,
-           command: list[str] | None = None):
-    """`bearingfem report ASSEMBLY.toml [CONDITIONS.csv] --out DIR [--pdf]`: report.md and
-    report.html (and report.pdf), margins first.  Returns `assembly_report.ReportRun` (the
+           command: list[str] | None = None, sensitivity: bool = False):
+    """`bearingfem report ASSEMBLY.toml [CONDITIONS.csv] --out DIR [--pdf] [--sensitivity]`:
+    report.md and report.html (and report.pdf), margins first (with `sensitivity`: also
+    sensitivity.csv).  Returns `assembly_report.ReportRun` (the
     warnings; `.to_frame()` results.csv)."""
     from studies.model.inputs import CONDITION_COLUMNS
     from studies.usecases import assembly_report
@@ -338,7 +366,7 @@ def report(assembly, conditions=None, out=None, pdf: bool = False, progress=_qui
     prov = _provenance("report", asm, assembly, conditions=conditions)
     with _folder(out) as tmp:
         return assembly_report.run(asm, cond, tmp, prov, progress=progress, pdf=pdf,
-                                   command=command)
+                                   command=command, sensitivity=sensitivity)
 
 
 def verify(out=None, assembly=None, progress=_quiet):

@@ -29,6 +29,7 @@ from fem.fields import COLOUR_PERCENTILE
 from analytic.bearing.land import land_diameters_mm
 from studies.model.tolerances import fits_of, has_tolerances
 from studies.usecases import fit_naming, report_margins, report_pdf
+from studies.usecases import sensitivity as sensitivity_run
 from studies.usecases.report_tools import (condition_text, field_images, nice_step, line_plot, md_table, safety_section,
                                        significant, write_report_files)
 
@@ -48,10 +49,13 @@ def default_conditions(asm) -> dict[str, np.ndarray]:
 
 @dataclass(frozen=True)
 class ReportRun:
-    """What `report` wrote besides the files: the warning lines (also in the report) and
-    results.csv's columns (the conditions, then the output columns of `simulate`)."""
+    """What `report` wrote besides the files: the warning lines (also in the report; an
+    assumption whose alternative turns a PASS into a FAIL is one), results.csv's columns (the
+    conditions, then the output columns of `simulate`) and the assumptions that decide the
+    answer (`sensitivity.Sensitivity`; sensitivity.csv with --sensitivity)."""
     warnings: list
     columns: dict
+    sensitivity: "sensitivity_run.Sensitivity | None" = None
 
     def to_frame(self):
         """results.csv's columns as a `pandas.DataFrame` (units in the names)."""
@@ -63,7 +67,7 @@ class ReportRun:
 def run(asm, conditions: dict | None, out: Path, provenance: dict, progress=print,
         mesh_factor: float = 1.0, rig_sections: list[str] | None = None,
         field_temperatures_C: tuple[float, ...] | None = None, pdf: bool = False,
-        command: list[str] | None = None) -> list[str]:
+        command: list[str] | None = None, sensitivity: bool = False) -> list[str]:
     """Write the report into `out`; returns the warning lines (also in the report) and the
     results table (`ReportRun`).
 
@@ -72,7 +76,10 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, progress=prin
     field_temperatures_C: where to draw field images (default: coldest, reference, hottest).
     pdf: also report.pdf (studies/usecases/report_pdf.py); command: the command line that made it
     (the "Reproduce" section). The front sections (margins, pedigree, assumptions, credibility,
-    environment, command): studies/usecases/report_margins.py."""
+    environment, command): studies/usecases/report_margins.py. After the margins, "Assumptions
+    that decide the answer" (studies/usecases/sensitivity.py): the modelling choices at their
+    defaults; `sensitivity`: also the ring section and the `[assume]`-tagged numbers, and
+    sensitivity.csv."""
     from studies.usecases.verify import mesh_convergence_case
 
     cond = dict(conditions) if conditions is not None else default_conditions(asm)
@@ -110,6 +117,13 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, progress=prin
     # the columns view holds the flag and margin columns the margin table reads
     front = report_margins.front_lines(asm, cond, res, res, conv, provenance, command, pl,
                                        Pipeline.shared(asm, mesh_factor=0.5 * mesh_factor))
+    path = provenance.get("inputs", {}).get("assembly", {}).get("path")
+    sens = sensitivity_run.run(asm, cond, report_margins.margin_rows(asm, res, res, {}, cond),
+                               Path(path) if path else None, mesh_factor, sensitivity, progress)
+    if sensitivity:
+        sensitivity_run.write_csv(out / "sensitivity.csv", sens, provenance)
+    k = next(i for i, line in enumerate(front) if line == "## Inputs and their sources")
+    front = front[:k] + sensitivity_run.section_lines(sens) + front[k:]
     naming = fit_naming.report_lines(asm, out)      # which layer is which (with a layer only)
     lines = _text(asm, provenance, cond, res, result, violations, warnings, plots, images, conv, pl, x,
                   xlabel, naming + speed + (rig_sections or []))
@@ -118,7 +132,10 @@ def run(asm, conditions: dict | None, out: Path, provenance: dict, progress=prin
     write_report_files(out, lines, asm.name)
     if pdf:
         report_pdf.write_pdf(out, lines, f"Assembly report: {asm.name}")
-    return ReportRun(warnings + [v.summary(n, cond) for v in violations], {**cond, **res})
+    flips = [f"{r.assumption} -> {r.alternative} turns {r.item} from {r.status} to "
+             f"{r.status_alternative}" for r in sens.flips]
+    return ReportRun(warnings + [v.summary(n, cond) for v in violations] + flips,
+                     {**cond, **res}, sens)
 
 
 def design_rows(cond: dict, res: dict) -> list[int] | None:

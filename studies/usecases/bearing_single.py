@@ -10,7 +10,7 @@ moment_y_Nmm, speed_rpm, T_oil_C (the oil's temperature, for its viscosity: requ
 identical to the quasi-static one at speed 0), otherwise the quasi-static one.  Columns out: the input columns, then OUTPUT_COLUMNS,
 then `convention`.  Units in every name; displacements of the inner ring against the outer.
 With a [lubrication] section in BEARING.toml, `torque_Nmm` is the bearing's friction torque by the
-friction route `simulate` takes (analytic/friction/) on this bearing's balls (`bearing_torque_Nmm`).
+friction route `simulate` takes (analytic/friction/) on this bearing's balls (`bearing_friction_of`).
 """
 from __future__ import annotations
 
@@ -24,7 +24,8 @@ from analytic.safety import static_load_rating_C0_N
 from analytic.thermal_speed import (ThermalReference, dissipated_heat_W,
                                     reference_heat_transfer_W_per_mm2_K, thermal_reference_speed,
                                     thermally_permissible_speed)
-from analytic.friction.pair import bearing_friction, single_bearing_contacts
+from analytic.friction.pair import BearingFriction, bearing_friction, single_bearing_contacts
+from analytic.friction.ranges import notes
 from analytic.friction.palmgren import palmgren_f1_angular_contact, palmgren_load_torque_Nmm
 from studies.model.stages.torque import friction_options
 from studies.model.table import TableError, write_table
@@ -130,8 +131,8 @@ def solve(cfg, cols: dict, where: str = "loads", convention: str = "exact",
                               "clearance a bearing needs a load that seats its balls")
     b = st.balls
     speed = get("speed_rpm") if quasi else np.full(n, 0.0 if lub is None else lub.speed_rpm)
-    torque = (np.full(n, np.nan) if lub is None
-              else bearing_torque_Nmm(cfg, st, speed, get("T_oil_C")))
+    fric = None if lub is None else bearing_friction_of(cfg, st, speed, get("T_oil_C"))
+    torque = np.full(n, np.nan) if fric is None else fric.total_Nmm
     out_cols = {c: cols[c] for c in cols if not c.startswith("_")}
     out_cols.update({
         "radial_displacement_um": 1e3 * st.radial_mm,
@@ -160,7 +161,10 @@ def solve(cfg, cols: dict, where: str = "loads", convention: str = "exact",
                      "thermal_permissible_speed_hi_rpm": _or_nan(ts.permissible_speed_hi_rpm, n),
                      "margin_speed_hi_rpm": _or_nan(ts.margin_speed_hi_rpm, n),
                      "convention": np.full(n, convention)})
-    return BearingRun(st, out_cols, (f"{bearing_name}: {ts.warning}",) if ts.warning else ())
+    warnings = [f"{bearing_name}: {ts.warning}"] if ts.warning else []
+    if fric is not None:
+        warnings += [f"{bearing_name}: {r.message(n)}" for r in notes(fric.ranges)]
+    return BearingRun(st, out_cols, tuple(warnings))
 
 
 def _or_nan(v, n: int) -> np.ndarray:
@@ -189,8 +193,9 @@ def _interval_columns(lub, torque_Nmm, speed_rpm) -> dict:
             "heat_lo_W": power_W(lo, n), "heat_hi_W": power_W(hi, n)}
 
 
-def bearing_torque_Nmm(cfg, st: SingleBearingState, speed_rpm, T_oil_C) -> np.ndarray:
-    """Friction torque (N*mm) of one bearing in the state `st`, by the friction route of
+def bearing_friction_of(cfg, st: SingleBearingState, speed_rpm, T_oil_C) -> BearingFriction:
+    """Friction (`BearingFriction`: torque N*mm by term, the rows outside the law's range) of
+    one bearing in the state `st`, by the friction route of
     `simulate` (`analytic.friction.pair.bearing_friction` on every ball's own contacts,
     `single_bearing_contacts`; the law's options from the file's [lubrication] by
     `studies.model.stages.torque.friction_options`, as `simulate` builds them):
@@ -206,7 +211,7 @@ def bearing_torque_Nmm(cfg, st: SingleBearingState, speed_rpm, T_oil_C) -> np.nd
     if lub.kind == "solid_film":
         return bearing_friction(g, contacts, model="solid_film", mu=lub.friction_coefficient,
                                 hysteresis_loss=lub.hysteresis_loss_factor,
-                                friction=friction_options(lub, None, cfg.spec, None)).total_Nmm
+                                friction=friction_options(lub, None, cfg.spec, None))
     oil = cfg.oil()
     nu = oil.nu_mm2_s(np.asarray(T_oil_C, float))
     f1 = None
@@ -216,7 +221,7 @@ def bearing_torque_Nmm(cfg, st: SingleBearingState, speed_rpm, T_oil_C) -> np.nd
     return bearing_friction(g, contacts, model="oil", mu=lub.friction_coefficient,
                             speed_rpm=np.asarray(speed_rpm, float), f0=lub.viscous_factor_f0,
                             nu_mm2_s=nu, f1=f1, load_term=lub.load_term,
-                            friction=friction_options(lub, oil, cfg.spec, nu)).total_Nmm
+                            friction=friction_options(lub, oil, cfg.spec, nu))
 
 
 #: the default f0r when [lubrication] reference_f0r is 0 or absent: Palmgren's oil-bath f0 of a

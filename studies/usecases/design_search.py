@@ -628,6 +628,8 @@ class DesignResult:
     pareto: list[Design]
     why: Why | None
     provenance: dict
+    #: the plausibility warnings of the assembly (`checks.plausibility_warnings`), one line each
+    warnings: tuple[str, ...] = ()
 
     def to_frame(self):
         """The confirmed designs, ranked, as a `pandas.DataFrame` (the rows of design.json's

@@ -48,7 +48,9 @@ class MarginRow:
     """One line of the margin table. `value_text`: the range or governing value over the
     operating points; `margin_text`: the margin column of the check at its governing point (or
     the distance to a zero limit); `status`: "PASS", "FAIL" or "no limit"; `mesh_error`: the
-    relative discretisation error of the governing value (None: not an FE-dependent number)."""
+    relative discretisation error of the governing value (None: not an FE-dependent number).
+    `key`: the governing number's name, unit in it (the `margin` of sensitivity.csv); `value`:
+    that number (NaN: none)."""
     item: str
     value_text: str
     allowable_text: str
@@ -56,6 +58,14 @@ class MarginRow:
     status: str
     mesh_error: float | None
     source: str
+    key: str = ""
+    value: float = float("nan")
+
+    @property
+    def passes(self) -> bool | None:
+        """True for PASS, False for FAIL, None without a limit."""
+        return (True if self.status == "PASS" else False if self.status.startswith("FAIL")
+                else None)
 
 
 @dataclass(frozen=True)
@@ -130,12 +140,14 @@ def margin_rows(asm, res: dict, flags: dict, mesh_error: dict[str, float],
     rows.append(MarginRow(
         "preload band", f"{lo.value:.4g} .. {hi.value:.4g} N", "> 0 N",
         f"{lo.value:.4g} N above 0 ({_at(cond, lo.row)})", status("flag_preload_lost"),
-        _worst(mesh_error, "preload_min", "preload_max"), checks["preload_lost"].source))
+        _worst(mesh_error, "preload_min", "preload_max"), checks["preload_lost"].source,
+        "preload_min_N", lo.value))
     c, h = checks["max_contact_pressure_MPa"], hl["contact_pressure_max"]
     rows.append(MarginRow(
         "peak contact pressure", f"{h.value:.4g} MPa", f"<= {c.allowable:g} MPa",
         f"{float(np.asarray(flags['margin_max_contact_pressure_MPa'])[h.row]):+.3f} ({_at(cond, h.row)})",
-        status("flag_max_contact_pressure_MPa"), mesh_error.get("contact_pressure_max"), c.source))
+        status("flag_max_contact_pressure_MPa"), mesh_error.get("contact_pressure_max"), c.source,
+        "max_contact_pressure_MPa", h.value))
     rows += preload_limit_rows(asm, res, cond) + land_rows(asm, res, cond)
     for fit in FITS:
         if f"fit_{fit}_min" not in hl:
@@ -151,25 +163,29 @@ def margin_rows(asm, res: dict, flags: dict, mesh_error: dict[str, float],
             f"{h.value:.4g} MPa above 0 ({_at(cond, h.row)})" if chk else "",
             status(f"flag_fit_open_{fit}") if chk else "no limit",
             _worst(mesh_error, f"fit_{fit}_min", f"fit_{fit}_max"),
-            chk.source if chk else "designed with clearance"))
+            chk.source if chk else "designed with clearance", f"fit_pressure_{fit}_min_MPa",
+            h.value))
     if "clamp_margin_min" in hl:
         c, h = checks["clamp_open"], hl["clamp_margin_min"]
         lo, hi = hl["clamp_force_min"], hl["clamp_force_max"]
         rows.append(MarginRow(
             "clamp force", f"{lo.value:.4g} .. {hi.value:.4g} N", "> the axial load (N)",
             f"{h.value:.4g} N left ({_at(cond, h.row)})", status("flag_clamp_open"),
-            _worst(mesh_error, "clamp_force_min", "clamp_force_max"), c.source))
+            _worst(mesh_error, "clamp_force_min", "clamp_force_max"), c.source,
+            "margin_clamp_min_N", h.value))
     c, h = checks["static_safety"], hl["static_safety_min"]
     rows.append(MarginRow(
         "static safety s0", f"{h.value:.4g}", f">= {c.allowable:g}",
         f"{float(np.asarray(flags['margin_static_safety'])[h.row]):+.3f} ({_at(cond, h.row)})",
-        status("flag_static_safety"), mesh_error.get("static_safety_min"), c.source))
+        status("flag_static_safety"), mesh_error.get("static_safety_min"), c.source,
+        "static_safety_min", h.value))
     rows += thermal_speed_rows(asm, cond, res)
     lo, hi = hl["torque_min"], hl["torque_max"]
     rows.append(MarginRow(
         "friction torque", f"{lo.value:.4g} .. {hi.value:.4g} N mm", "none given",
         _torque_interval_text(asm, lo.value, hi.value),
-        "no limit", _worst(mesh_error, "torque_min", "torque_max"), "no torque limit in the assembly"))
+        "no limit", _worst(mesh_error, "torque_min", "torque_max"), "no torque limit in the assembly",
+        "torque_max_Nmm", hi.value))
     return rows
 
 
@@ -202,7 +218,8 @@ def preload_limit_rows(asm, res: dict, cond: dict | None) -> list[MarginRow]:
     return [MarginRow("preload upper limit (C0)", f"max {p[i]:.4g} N", f"<= C0 = {C0:.4g} N",
                       f"{C0 / p[i] - 1.0:+.3f} ({_at(cond, i)})" if p[i] > 0 else "",
                       "PASS" if n_over == 0 else f"FAIL ({n_over} of {p.size})", None,
-                      "ISO 76:2006 eq. 1 (C0 from the bearing's geometry)")]
+                      "ISO 76:2006 eq. 1 (C0 from the bearing's geometry)", "preload_max_N",
+                      float(p[i]))]
 
 
 def land_rows(asm, res: dict, cond: dict | None) -> list[MarginRow]:
@@ -223,7 +240,7 @@ def land_rows(asm, res: dict, cond: dict | None) -> list[MarginRow]:
             "> 0 deg (ellipse inside the groove)", f"{m[i]:.3g} deg ({_at(cond, i)})",
             "PASS" if bad == 0 else f"FAIL ({bad} of {m.size})", None,
             "analytic/bearing/land.py; land diameter "
-            + ("from [bearing]" if given else "inferred from the ring section")))
+            + ("from [bearing]" if given else "inferred from the ring section"), col, float(m[i])))
     return rows
 
 
@@ -262,7 +279,7 @@ def thermal_speed_rows(asm, cond: dict | None, res: dict) -> list[MarginRow]:
         margin = ts.margin_speed_rpm
         if not np.any(np.isfinite(margin)):
             rows.append(MarginRow(f"thermal speed, bearing {J}", ref, "no oil: no DIN 732 limit",
-                                  "", "no limit", None, src))
+                                  "", "no limit", None, src, f"margin_thermal_speed_{J}_rpm"))
             continue
         i = int(np.nanargmin(margin))
         perm = ts.permissible_speed_rpm
@@ -272,7 +289,8 @@ def thermal_speed_rows(asm, cond: dict | None, res: dict) -> list[MarginRow]:
              else f"{float(speed[0]):.4g} rpm") + f"; {ref}",
             f"<= {float(np.nanmin(perm)):.4g} .. {float(np.nanmax(perm)):.4g} rpm (DIN 732)",
             f"{margin[i]:+.4g} rpm ({_at(cond, i)})" + _upper_end_text(ts.margin_speed_hi_rpm, n),
-            "PASS" if margin[i] >= 0 else f"FAIL ({int(np.sum(margin < 0))} of {n})", None, src))
+            "PASS" if margin[i] >= 0 else f"FAIL ({int(np.sum(margin < 0))} of {n})", None, src,
+            f"margin_thermal_speed_{J}_rpm", float(margin[i])))
     return rows
 
 
@@ -335,6 +353,14 @@ def config_comments(path: Path) -> dict[tuple[str, str], str]:
         return {}
 
 
+def assembly_comments(asm, assembly_path: Path | None) -> dict[tuple[str, str], str]:
+    """The comments of the file `asm` was loaded from (its text as read then), else of the file
+    named (`config_comments`), else none."""
+    origin = origin_of(asm)
+    return (comments_in(origin.text) if origin is not None else
+            config_comments(assembly_path) if assembly_path else {})
+
+
 def material_references() -> dict[str, str]:
     """Material source key -> its full reference, from analytic/materials.py's source list."""
     from analytic import materials
@@ -367,9 +393,7 @@ def pedigree_lines(asm, assembly_path: Path | None) -> list[str]:
     mat_rows = [[name, ", ".join(parts), f"{m.E_MPa:.6g}", f"{m.nu:g}", f"{m.alpha_per_K * 1e6:.4g}",
                  f"[{m.source}] {refs.get(m.source, '')}".strip()]
                 for name, (m, parts) in mats.items()]
-    origin = origin_of(asm)         # the text it was loaded from, else the file named
-    comments = (comments_in(origin.text) if origin is not None else
-                config_comments(assembly_path) if assembly_path else {})
+    comments = assembly_comments(asm, assembly_path)
     cat = CATALOGUE.get(asm.bearing.designation)
     key_rows = []
     for name in ("shaft", "housing", "nut", "cover", "inner_spacer", "outer_spacer", "bearing",

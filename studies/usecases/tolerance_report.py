@@ -109,6 +109,8 @@ class ToleranceSummary:
     preload_lost: float
     json: dict = field(default_factory=dict, compare=False, repr=False)   # tolerance.json
     columns: dict = field(default_factory=dict, compare=False, repr=False)  # samples.csv
+    #: the plausibility warnings of the inputs (`checks.plausibility_warnings`), one line each
+    warnings: tuple[str, ...] = ()
 
     def to_frame(self):
         """samples.csv's columns (one row per sample and condition) as a `pandas.DataFrame`."""

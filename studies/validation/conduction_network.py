@@ -1,5 +1,5 @@
 """An independent conduction model of the bearing stack: thermal histories made another way
-than the tool's transient conduction FE ("made another way").
+than the tool's transient conduction FE.
 
 Nothing here uses `fem/`, `fem.transient`, `fem.reduced_thermal` or
 `studies.model.transient_route`: it is a radial finite-volume network of its own, with its own
@@ -334,6 +334,24 @@ def annulus_shells(r_in_m: float, r_out_m: float, length_m: float, conductivity_
     return rc, cap, between, to_inner, to_outer
 
 
+def condensed(net: Network, n_keep: int) -> Network:
+    """The network on its first n_keep nodes with the others (capacity 0: faces) eliminated by
+    static condensation: L_c = L_kk - L_kf L_ff^-1 L_fk, the Schur complement of the Laplacian
+    (the star-mesh transform of network theory, Kron reduction: Doerfler & Bullo, IEEE Trans.
+    Circuits Syst. I 60 (2013) 150-163), again symmetric with zero row sums, so the steady and
+    transient answers on the kept nodes are unchanged and heat is conserved."""
+    if np.any(net.capacity_J_K[n_keep:] != 0.0):
+        raise ValueError("condensed: only nodes without capacity can be eliminated")
+    L = net.laplacian_W_K()
+    k, f = slice(0, n_keep), slice(n_keep, net.n)
+    Lc = L[k, k] - L[k, f] @ np.linalg.solve(L[f, f], L[f, k])
+    G = -Lc
+    np.fill_diagonal(G, 0.0)
+    G = 0.5 * (G + G.T)
+    return Network(net.capacity_J_K[:n_keep].copy(), np.maximum(G, 0.0), list(net.surfaces),
+                   None if net.heat_share is None else net.heat_share[:n_keep].copy())
+
+
 def series(*G_W_K: float) -> float:
     """Conductances in series: 1 / sum(1 / G) (W/K; an infinite one adds nothing)."""
     return 1.0 / sum(1.0 / g for g in G_W_K if math.isfinite(g))
@@ -470,7 +488,13 @@ def stack_network(asm, env: Environment, shells: int = 4) -> StackNetwork:
     for part, c_J_K in extra.items():
         idx = parts[part]
         caps[idx] += c_J_K * caps[idx] / caps[idx].sum()
-    net = Network(caps, np.zeros((caps.size, caps.size)))
+    # the faces several links share (the shaft's seat, the housing's bore, the raceway faces of
+    # the rings) are nodes without capacity, condensed out at the end (`condensed`): a half
+    # shell shared by two links is then exact (two separate series links, or one scaled by a
+    # length share, would each carry a first-order error in the shell width)
+    n_real = caps.size
+    F_seat, F_bore, F_iro, F_ori = range(n_real, n_real + 4)
+    net = Network(np.concatenate([caps, np.zeros(4)]), np.zeros((n_real + 4, n_real + 4)))
     for part, (r0, r1, length, m, between, g_in, g_out) in blocks.items():
         idx = parts[part]
         for k, g in enumerate(between):
@@ -484,21 +508,24 @@ def stack_network(asm, env: Environment, shells: int = 4) -> StackNetwork:
 
     fit_in = "interference" if asm.fits.inner_interference_um > 0 else "clearance"
     fit_out = "interference" if asm.fits.outer_interference_um > 0 else "clearance"
-    # radial fits: the shaft's outer face carries the inner rings and the inner spacer
+    # radial fits: the shaft's seat carries the inner rings and the inner spacer, the housing's
+    # bore the outer rings and the outer spacer (the shaft and the housing axially uniform)
+    a, ga = outer_of("shaft")
+    net.link(a, F_seat, ga)
     for part, kind, length in (("inner_ring", fit_in, two_B), ("inner_spacer", "clearance", L_isp)):
-        (a, ga), (c, gc) = outer_of("shaft"), inner_of(part)
-        g_shaft = ga * length / L_shaft          # the shaft's half shell over this length
-        net.link(a, c, series(g_shaft, CONTACT_W_M2K[(kind, gas)] * 2 * math.pi * r_seat * length, gc))
+        c, gc = inner_of(part)
+        net.link(F_seat, c, series(CONTACT_W_M2K[(kind, gas)] * 2 * math.pi * r_seat * length, gc))
+    c, gc = inner_of("housing")
+    net.link(c, F_bore, gc)
     for part, kind, length in (("outer_ring", fit_out, two_B), ("outer_spacer", "clearance", L_osp)):
-        (a, ga), (c, gc) = outer_of(part), inner_of("housing")
-        g_house = gc * length / L_house
-        net.link(a, c, series(ga, CONTACT_W_M2K[(kind, gas)] * 2 * math.pi * r_hb * length, g_house))
+        a, ga = outer_of(part)
+        net.link(a, F_bore, series(ga, CONTACT_W_M2K[(kind, gas)] * 2 * math.pi * r_hb * length))
     # balls: Hertz constriction to each ring's raceway face
     g_bi, g_bo = ball_contact_conductance_W_K(asm)
-    a, ga = outer_of("inner_ring")
-    net.link(parts["ball"][0], a, series(g_bi, ga))
-    c, gc = inner_of("outer_ring")
-    net.link(parts["ball"][0], c, series(g_bo, gc))
+    net.link(outer_of("inner_ring")[0], F_iro, outer_of("inner_ring")[1])
+    net.link(inner_of("outer_ring")[0], F_ori, inner_of("outer_ring")[1])
+    net.link(parts["ball"][0], F_iro, g_bi)
+    net.link(parts["ball"][0], F_ori, g_bo)
     # axial faces ring / spacer (two on each side), shell by shell where the annuli overlap:
     # the face contact in series with the half lengths' axial conduction k A / (L / 2)
     for ring, spacer in (("inner_ring", "inner_spacer"), ("outer_ring", "outer_spacer")):
@@ -518,15 +545,11 @@ def stack_network(asm, env: Environment, shells: int = 4) -> StackNetwork:
                 net.link(parts[ring][i], parts[spacer][j], g)
     # gas layers in air: between the rings (the bearing's annular space) and between the spacers
     if gas == "air":
-        for inner, outer, length in (("inner_ring", "outer_ring", two_B),
-                                     ("inner_spacer", "outer_spacer", L_isp)):
-            (a, ga), (c, gc) = outer_of(inner), inner_of(outer)
-            r0, r1 = blocks[inner][1], blocks[outer][0]
-            if r1 > r0:
-                if inner == "inner_spacer":
-                    length = min(L_isp, L_osp)
-                g_air = 2.0 * math.pi * AIR_K_W_MK * length / math.log(r1 / r0)
-                net.link(a, c, series(ga, g_air, gc))
+        net.link(F_iro, F_ori, 2.0 * math.pi * AIR_K_W_MK * two_B / math.log(r_ori / r_iro))
+        if r_osp > r_isp:
+            (a, ga), (c, gc) = outer_of("inner_spacer"), inner_of("outer_spacer")
+            g_air = 2.0 * math.pi * AIR_K_W_MK * min(L_isp, L_osp) / math.log(r_osp / r_isp)
+            net.link(a, c, series(ga, g_air, gc))
     # the environment
     eps = env.emissivity
     D_ho = 2 * r_ho
@@ -573,6 +596,7 @@ def stack_network(asm, env: Environment, shells: int = 4) -> StackNetwork:
         else:
             h_plate = 0.0
         surfaces.append(Surface(mount_node, mt.area_m2(), h_plate, mt.emissivity))
+    net = condensed(net, n_real)
     net.surfaces = surfaces
     share = np.zeros(caps.size)
     # the friction heat: half into each ring's raceway shell (Harris & Kotzalas, Rolling Bearing

@@ -235,11 +235,13 @@ LADDER_BOUND_SOURCE = {
 def ladder_candidates(asm: Assembly) -> list[Candidate]:
     """The model-form ladder's candidates (`studies.diagnosis.ladder.ladder`) with one free
     parameter each: a switch rung fits its `share` (0: the file, 1: the form), a rung with
-    several parameters gives one candidate per parameter, the others at their off values."""
+    several parameters gives one candidate per parameter, the others at their off values. The
+    published points are steady states with no time: a rung that needs `time_s` (a thermal
+    history) has nothing to act on and is not a candidate."""
     out = []
     for rung in ladder(asm):
         e = rung.candidate
-        if e is None:
+        if e is None or "time_s" in e.requires:
             continue
         for p in e.parameters:
             label = rung.name if len(e.parameters) == 1 else f"{rung.name} ({p})"
@@ -261,9 +263,13 @@ def replaces_viscous_law(candidate: str) -> bool:
 
 
 def ladder_not_tried(asm: Assembly) -> list[str]:
-    """The ladder's rungs that are not candidates of their own, with the ladder's reason."""
+    """The ladder's rungs that are not candidates here, with the reason: the ladder's own, or
+    that the rung needs a time history the steady published points do not have."""
     return [f"{r.name} ({r.change}): " + (f"carried by {r.covered_by}: " if r.covered_by else "")
-            + str(r.why_not) for r in ladder(asm) if r.candidate is None]
+            + str(r.why_not) for r in ladder(asm) if r.candidate is None] + \
+        [f"{r.name} ({r.change}): needs time_s, a thermal history; the published points are "
+         "steady states" for r in ladder(asm)
+         if r.candidate is not None and "time_s" in r.candidate.requires]
 
 
 #: the ladder's route per pipeline (its switch rungs' pipelines are built once)

@@ -23,7 +23,7 @@ from analytic.materials import get_material
 from fem.post import mean_pressures_MPa
 from fem.setup import (CompliancePlan, FESetup, FullFE, SetupSpec, cached_setup, compute_setup,
                        full_fe)
-from fem.solver import Superposition
+from fem.solver import SolveError, Superposition
 from studies.model.inputs import PhysicsInputs
 from studies.model.stages.grooves import RINGS, GrooveCentres
 
@@ -411,7 +411,11 @@ class FEStage:
             force, probe = [], []
             m = self.model
             for i in range(n):
-                sol = self.solver.solve(m.unit_loads @ theta[i] + w2[i] * m.spin_load, delta[i])
+                try:
+                    sol = self.solver.solve(m.unit_loads @ theta[i] + w2[i] * m.spin_load,
+                                            delta[i])
+                except SolveError as exc:           # the row by its place among these
+                    raise SolveError(str(exc), None if exc.state is None else i) from None
                 force.append(sol.force_N)
                 probe.append(self.full_fe().probe @ sol.u)
             force, probe = np.array(force), np.array(probe)
@@ -430,6 +434,27 @@ class FEStage:
             loads.outer_um + (theta[:, idx["outer_ring_A"]] - theta[:, idx[seat]]) * d_bore * 1e3])
         return FEState(p, interf, dr, dz, probe[:, :8], faces,
                        self._layer_interference_um(loads, theta))
+
+    def solve_failure(self, exc: SolveError, inputs: PhysicsInputs, first_row: int = 0
+                      ) -> SolveError:
+        """The solver's failure on a state of the rows of `inputs` (0-based `first_row` of the
+        table) as the one line a user can act on: the row (1-based, as in the conditions table),
+        its fits (the `[fits]` keys, um at T_ref) and temperatures, and what to try."""
+        if exc.state is None:
+            return exc
+        i = int(exc.state)
+        inner, outer = (np.broadcast_to(np.asarray(v, float), (inputs.n_rows,))[i]
+                        for v in self.fits_um(inputs))
+        fits = [f"inner_interference_um = {inner:g}", f"outer_interference_um = {outer:g}"]
+        layers = self.layer_fits_um(inputs)
+        fits += [f"{name}_interference_um = {layers[i, k]:g}"
+                 for k, (name, _) in enumerate(self.asm.layers())]
+        temps = sorted({float(np.broadcast_to(np.asarray(t, float), (inputs.n_rows,))[i])
+                        for t in inputs.T_C.values()})
+        at = f"{temps[0]:g} C" if len(temps) == 1 else f"{temps[0]:g}..{temps[-1]:g} C"
+        return SolveError(f"row {first_row + i + 1} ({at}, {', '.join(fits)}): {exc}; try that "
+                          "fit 0.1 um either side (the answer is continuous across it), or "
+                          "`simulate --direct`", first_row + i)
 
     def _layer_interference_um(self, loads: FELoads, theta: np.ndarray) -> np.ndarray | None:
         """(n, n_layers) free diametral overlap of each layer's fit at the rows' temperatures

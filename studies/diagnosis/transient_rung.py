@@ -1,0 +1,552 @@
+"""The ladder rung `thermal_transient_fe`: the part temperatures of every row from the stack's
+own reduced transient conduction FE, with the mount it is bolted to, fitted to the data
+(docs/diagnosis.md "The transient conduction rung").
+
+Physics. The conduction FE of the assembly under diagnosis (`fem.transient.TransientConduction`,
+its geometry and materials, one ball node per bearing), reduced once per assembly
+(`fem.reduced_thermal.krylov_basis`, cached beside the FE set-ups, `transient_route.
+cached_basis`), plus one lumped state for the mount (bracket, base plate, machine bed):
+
+    M q' + A(p) q = b_env(p) T_amb(t) + a_heat s Q(t) + hm b_face T_m
+    C_mount T_m' = G_face (T_face - T_m) + G_env (T_amb - T_m)
+
+q the reduced coordinates of the field, A(p) = K + h sum_g F_g (the face groups to the
+surroundings, `face_kind`: housing, cover, shaft ends, nut; the shaft's bore at
+h x bore_film_ratio; the faces inside the housing none; film h = 1 / film_resistance: convection and, with an emissivity, the
+radiation linearised about the mean ambient, Incropera ch. 1.2.3 eq. 1.9; in vacuum the
+radiation alone) + f sum_k h_k C_k (the fits' contact conductances h_k from their assembled
+pressure, Yovanovich's plastic correlation, `fem.transient.contact_conductance_W_m2K`,
+scaled by f = fit_conductance_factor) + the spacer bores' and the ball links' terms (their
+values at the assembled state, `transient_route.contacts`) + hm F_face; the mount couples to
+the housing's outer face (`housing_outer`, a housing held in a bracket's bore or on its
+flange's rim) with hm = G_face / A_face uniformly over the face (W/(mm^2 K)); Q(t) the pair's
+friction heat at the row (the torque model's, `transient_route.pair_heat`, at the row's
+speed, preload and loads with the parts at the ambient), split half to the raceways and half to
+the ball nodes as the transient route splits an extra heat (`transient_route.extra_share`),
+scaled by s = heat_scale. The system is symmetric (conduction, films, contact and the mount's
+coupling are), so one generalised eigen-decomposition A phi = lambda M phi of the augmented
+(m + 1) system per trial diagonalises it; each mode then obeys z' = -lambda z + g(t) with g
+piecewise linear between the rows (the conditions' ambient and heat interpolated linearly in
+time, as `thermal_lag` takes the ambient), integrated exactly over each interval:
+
+    z_{k+1} = e^{-lambda h} z_k + g_k (1 - e^{-lambda h}) / lambda
+              + s_k (lambda h - 1 + e^{-lambda h}) / lambda^2
+
+(the variation-of-constants formula, e.g. Ogata, Modern Control Engineering ch. 9 for a
+first-order-hold input). Initial state: the steady state of the first row (the stack at rest
+at the first ambient, with the first row's heat). The rows' part temperatures are the volume
+means of the `inputs.PARTS` groups (`transient_route.group_rows`, the means the transient
+route writes as T_<part>_C) and go into the rows' inputs as every temperature does: the
+pipeline's one route (`studies.model.pipeline.Pipeline`) takes them, parts with a measured
+temperature of their own left as measured.
+
+Fast trial: within a trial the contact conductances are held (the fits' at
+their assembled pressure times the factor, the balls' at the assembled state), so the
+conduction is linear and a trial costs one (m + 1)^2 eigen-decomposition and the exact
+recursion over the rows, no time stepping between them (`bearingfem bench --diagnose`,
+kind "thermal_transient_fe", prints its time); the heat of the rows is computed once per
+conditions (memo) from the configured model.
+
+Parameters (bounds and sources):
+
+- film_resistance_m2K_W = 1 / h (m^2 K / W), off 0: the configured model (h infinite: every
+  part at the ambient, no heat rise; the limit of the form, returned exactly); up to
+  FILM_RESISTANCE_MAX_AIR = 1 / 1 (natural convection in air 2..25 W/(m^2 K), forced 25..250
+  in gases, Incropera & DeWitt, Fundamentals of Heat and Mass Transfer, 6th ed., Table 1.1;
+  forced air past a rotating shaft to ~500; 1 W/(m^2 K): small temperature differences, or
+  radiation alone in the cold, `FILM_RESISTANCE_MAX_AIR`) or in vacuum 1 / (EMISSIVITY_MIN 4 sigma T^3)
+  (radiation alone: emissivity from 0.03, polished aluminium / gold, to 0.95, black anodise,
+  Incropera Table A.11; the mean ambient as T).
+- bore_film_ratio (-), 0..1, off 1: the film in the shaft's bore / the outside one (a cavity
+  open at its ends sees still air or none: 0 a closed bore, 1 the outside film; natural
+  convection in a tube 1..5 W/(m^2 K) against 2..500 outside, Incropera Table 1.1).
+- G_face_W_K (W/K), off 0 (no mount): the mount's conductance to the housing's outer face,
+  up to JOINT_CONDUCTANCE_MAX_W_M2K x A_face (bolted and clamped metal joints 100..10^4
+  W/(m^2 K) in air, Madhusudana, Thermal Contact Conductance, 2nd ed. 2014, ch. 1 and 8;
+  Gilmore, Spacecraft Thermal Control Handbook Vol. 1, 2nd ed. 2002, ch. 7 for vacuum).
+- G_env_W_K (W/K), off 0: the mount's conductance to the environment, up to
+  MOUNT_AREA_MAX_M2 x 25 W/(m^2 K) (a plate of up to 1 m^2 of free face in natural
+  convection, Incropera Table 1.1; 0: the mount stores heat only).
+- C_mount_J_K (J/K), from C_MOUNT_MIN_J_K (no mount; off) to C_MOUNT_MAX_J_K = 2.5e5 J/K (500 kg
+  of cast iron or steel, c ~ 460..500 J/(kg K), Incropera Table A.1).
+- fit_conductance_factor (-), 1/3..3, off 1: the fits' contact conductance about Yovanovich's
+  correlation (the spread of measured conductances about the correlations for ground metal
+  joints, a factor of about 2..3: Madhusudana 2014 ch. 3; an assumption stated as such).
+- heat_scale (-), 0..3, off 1: the bearing's friction heat in the stack x heat_scale (the
+  friction laws' own spread about measured torques; `analytic.friction`); 1 is the torque
+  model's own heat, and at film resistance 0 the heat raises nothing, so off is still the
+  configured model. Fitted only where the speed varies (held at 1 otherwise,
+  `fitspec.held_fixed`: at constant speed the heat's steady rise is a constant the mount and
+  the films trade against each other, and the model's own heat is the best statement of it).
+
+Environment from the assembly's `[thermal]`: `gas = "vacuum"` makes the films radiation (their
+bound above) and takes the gas out of the fits and spacer bores (`transient_route.contacts`);
+an `emissivity` in air is part of the fitted film; a finite `sink_C` in vacuum is what the
+films (radiation) see, the mount's environment staying `T_ambient_C` (a thermal-vacuum
+chamber's shroud and its controlled base plate).
+
+A parameter whose effect vanishes at the off values of the others (the mount's capacity and
+G_env at G_face = 0) is found from the fit specification's starts (`starts`).
+
+Units: s, C, W, J, K; films in W/(m^2 K), areas in mm^2 inside (FE units, `fem.transient`).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg as sla
+
+from fem.reduced_thermal import ReducedConduction
+from fem.transient import PER_M2_TO_PER_MM2, ThermalParameters, radiation_h_W_mm2K
+from infra.memo import Memo
+from studies.model.effects import Effect
+from studies.model.inputs import PARTS
+
+NAME = "thermal_transient_fe"
+#: assembly -> the pipeline the last diagnosis of it bound the rung to (`ThermalTransientFE.bind`)
+_BOUND: Memo = Memo(4)
+#: the mount's face group (module docstring)
+MOUNT_FACE = "housing_outer"
+#: film resistance bound in air (m^2 K / W): a film of 1 W/(m^2 K), below natural convection's
+#: 2 W/(m^2 K) of Incropera Table 1.1 (given for differences of tens of K; laminar natural
+#: convection goes as dT^0.25, Incropera ch. 9.6, so a difference of a few K halves it) and
+#: below radiation alone at -60 C (eps 0.8: 4 eps sigma T^3 = 1.8 W/(m^2 K)): a file that
+#: says nothing of its gas may be run in vacuum
+FILM_RESISTANCE_MAX_AIR = 1.0 / 1.0
+#: the lowest emissivity of a technical surface in vacuum (polished aluminium, gold plate:
+#: 0.03..0.05, Incropera Table A.11)
+EMISSIVITY_MIN = 0.03
+#: bolted / clamped metal joints: up to 1e4 W/(m^2 K) (Madhusudana 2014 ch. 1)
+JOINT_CONDUCTANCE_MAX_W_M2K = 1.0e4
+#: the mount's free face (m^2) and its film (natural convection's top, W/(m^2 K))
+MOUNT_AREA_MAX_M2 = 1.0
+MOUNT_FILM_MAX_W_M2K = 25.0
+#: mount capacity bounds (J/K): none (a massless node) to 500 kg of cast iron
+C_MOUNT_MIN_J_K = 1.0
+C_MOUNT_MAX_J_K = 2.5e5
+FIT_FACTOR = (1.0 / 3.0, 3.0)
+HEAT_SCALE_MAX = 3.0
+#: training film coefficients of the reduction (W/(m^2 K)) on the exterior faces, with the fits'
+#: conductance factor, and the mount face's own film (the mount's coupling hm up to
+#: JOINT_CONDUCTANCE_MAX_W_M2K)
+TRAINING = ((2.0, 1.0 / 3.0, 0.0), (20.0, 1.0, 0.0), (200.0, 3.0, 0.0), (10.0, 1.0, 1.0e4),
+            (500.0, 1.0 / 3.0, 1.0e3))
+
+
+@dataclass(frozen=True)
+class RungModel:
+    """The reduced conduction of one assembly's stack, term by term, for the rung's trials.
+
+    M, K0 (m, m): capacity (J/K) and the conduction with the spacer bores' and ball links'
+    terms (W/K); F_ext, b_ext: the outside faces' film matrix and drive (mm^2), F_bore, b_bore
+    the shaft bore's (`face_kind`); C_fit: the
+    fits' term at their assembled conductances (W/K); F_face, b_face, area_face_mm2: the mount
+    face's; a_heat (m,): the load of 1 W of the pair's heat; groups (len(PARTS), m): the part
+    group means per coordinate (NaN rows: a group the stack lacks); h_rad_W_m2K: the file's
+    emissivity's linearised radiation (air; 0 without), vacuum: the films are radiation."""
+    M: np.ndarray
+    K0: np.ndarray
+    F_ext: np.ndarray
+    b_ext: np.ndarray
+    F_bore: np.ndarray
+    b_bore: np.ndarray
+    C_fit: np.ndarray
+    F_face: np.ndarray
+    b_face: np.ndarray
+    area_face_mm2: float
+    a_heat: np.ndarray
+    groups: np.ndarray
+    vacuum: bool
+    capacity_J_K: float
+    fit_matters: bool = True
+    rc: ReducedConduction | None = None
+    nominal: ThermalParameters | None = None
+    exterior: tuple = ()
+
+    @property
+    def m(self) -> int:
+        return self.M.shape[0]
+
+
+def rung_model(pl) -> RungModel:
+    """The `RungModel` of a pipeline's stack: kept on the pipeline; from the set-up cache when a
+    diagnosis of the same assembly built it before (`cached_rung_model`), else `build`."""
+    hit = getattr(pl, "_rung_model", None)
+    if hit is None:
+        hit = pl._rung_model = cached_rung_model(pl)
+    return hit
+
+
+#: format of the cached rung model (raise when its arrays or `TRAINING` change; 2: the faces
+#: by kind, `face_kind`)
+RUNG_FORMAT = 2
+#: the arrays of a cached `RungModel` (its scalars are stored as 0-d arrays)
+_ARRAYS = ("M", "K0", "F_ext", "b_ext", "F_bore", "b_bore", "C_fit", "F_face", "b_face",
+           "a_heat", "groups")
+_SCALARS = ("area_face_mm2", "vacuum", "capacity_J_K", "fit_matters")
+
+
+class RungCacheError(RuntimeError):
+    """A cached rung model that is not sound for its key (one line)."""
+
+
+def cached_rung_model(pl) -> RungModel:
+    """`build`'s arrays, cached beside the FE set-ups (`meshes.cache`: hash-named .npz, atomic
+    write, checked on read, rebuilt with a warning), keyed by the FE set-up's key, the whole
+    assembly (the contact state: preload, speed, lubricant, [thermal]), the mesh factor,
+    TRAINING and RUNG_FORMAT. A diagnosis then needs neither the full FE model nor the
+    conduction's assembly (seconds) once a diagnosis of the assembly has run."""
+    import hashlib
+    import json
+
+    from meshes.cache import cache_dir, cached_file
+
+    key = hashlib.sha256(json.dumps({"format": RUNG_FORMAT, "setup": pl.setup.key,
+                                     "asm": repr(pl.asm), "mesh_factor": pl.mesh_factor,
+                                     "training": repr(TRAINING)}).encode()).hexdigest()[:24]
+    path = cache_dir("setups", "transient rung model") / f"rung_{key}.npz"
+
+    def make(tmp):
+        rm = build(pl)
+        with open(tmp, "wb") as fh:
+            np.savez(fh, key=np.array(key), exterior=np.array(rm.exterior),
+                     **{k: getattr(rm, k) for k in _ARRAYS + _SCALARS})
+
+    def read(p):
+        try:
+            with np.load(p, allow_pickle=False) as z:
+                a = {k: z[k] for k in z.files}
+        except Exception as exc:       # a damaged or foreign file
+            raise RungCacheError(f"unreadable: {type(exc).__name__}") from None
+        if set(a) != {"key", "exterior", *_ARRAYS, *_SCALARS} or str(a["key"]) != key:
+            raise RungCacheError("not the rung model of this assembly")
+        m = a["M"].shape[0]
+        if (a["M"].shape != (m, m) or a["groups"].shape != (len(PARTS), m)
+                or not all(np.all(np.isfinite(a[k])) for k in _ARRAYS if k != "groups")):
+            raise RungCacheError("its arrays are not sound")
+        return RungModel(**{k: a[k] for k in _ARRAYS}, area_face_mm2=float(a["area_face_mm2"]),
+                         vacuum=bool(a["vacuum"]), capacity_J_K=float(a["capacity_J_K"]),
+                         fit_matters=bool(a["fit_matters"]),
+                         exterior=tuple(str(x) for x in a["exterior"]))
+
+    return cached_file(path, make, read, what="transient rung model", writer="bearingfem",
+                       error=RungCacheError)
+
+
+def build(pl) -> RungModel:
+    """The `RungModel` of `pl`'s stack (module docstring): the conduction FE, its contact
+    coefficients at the assembled state (`transient_route.contacts`), the reduction
+    (`transient_route.cached_basis`) and the sums the trials take."""
+    from dataclasses import replace
+
+    from fem.solver import single_thread_blas
+    from studies.model import transient_route as tr
+
+    @single_thread_blas
+    def make():
+        tc = tr.stack_conduction(pl)
+        c = tr.contacts(pl, tc)
+        ext = [g for g in tc.groups if face_kind(g) == "outside"]
+        bore = [g for g in tc.groups if face_kind(g) == "bore"]
+        filmed = [g for g in tc.groups if not g.startswith("raceway_")]
+        nominal = ThermalParameters(fit_conductance_W_m2K=tuple(c.fit_W_m2K),
+                                    ball_inner_W_K=c.ball_W_K[0], ball_outer_W_K=c.ball_W_K[1],
+                                    bore_conductance_W_m2K=c.bore_W_m2K,
+                                    T_rad_lin_C=pl.asm.T_ref_C)
+        training = []
+        for h, f, h_face in TRAINING:
+            films = {g: h for g in filmed}
+            if MOUNT_FACE in films:
+                films[MOUNT_FACE] = h + h_face
+            training.append(replace(nominal, film_W_m2K=films,
+                                    fit_conductance_W_m2K=tuple(c.fit_W_m2K * f)))
+        inputs = tr.heat_inputs(tc) + ([MOUNT_FACE] if MOUNT_FACE in tc.a else [])
+        rc = ReducedConduction(tc, tr.cached_basis(pl, tc, training, inputs))
+        K0 = rc.operator(nominal) - _fit_part(rc, c.fit_W_m2K)
+        keys = tr.heat_inputs(tc)
+        a_heat = sum(tr.extra_share(k, dict.fromkeys(keys, 0.0)) * rc.a[k] for k in keys)
+        face = MOUNT_FACE if MOUNT_FACE in rc.F else None
+        zero = np.zeros((rc.m, rc.m))
+        out = RungModel(
+            M=rc.M, K0=K0, F_ext=sum(rc.F[g] for g in ext), b_ext=sum(rc.b[g] for g in ext),
+            F_bore=sum((rc.F[g] for g in bore), zero), b_bore=sum((rc.b[g] for g in bore),
+                                                                  np.zeros(rc.m)),
+            C_fit=_fit_part(rc, c.fit_W_m2K), F_face=rc.F[face] if face else zero,
+            b_face=rc.b[face] if face else np.zeros(rc.m),
+            area_face_mm2=float(tc.b[face].sum()) if face else 0.0, a_heat=a_heat,
+            groups=tr.group_rows(tc) @ rc.V, vacuum=pl.asm.thermal.gas == "vacuum",
+            capacity_J_K=float(tc.M.sum()), rc=rc, nominal=nominal, exterior=tuple(ext))
+        return replace(out, fit_matters=_fit_matters(out))
+    return make()
+
+
+#: the fits' conductance factor is fitted when its range (FIT_FACTOR) moves one of the stack's
+#: FIT_MATTERS_MODES slowest time constants by more than this share (at a film of 20 W/(m^2 K),
+#: no mount); else it is held at 1 (`held_fixed`): the fits then conduct so much more than the
+#: films and ball contacts in series with them that no data can see their conductance
+FIT_MATTERS_REL = 0.01
+FIT_MATTERS_MODES = 4
+
+
+def _fit_matters(rm: RungModel) -> bool:
+    lam = []
+    for f in FIT_FACTOR:
+        A = rm.K0 + f * rm.C_fit + (20.0 * PER_M2_TO_PER_MM2) * (rm.F_ext + rm.F_bore)
+        lam.append(sla.eigh(0.5 * (A + A.T), rm.M, eigvals_only=True)[:FIT_MATTERS_MODES])
+    return bool(np.max(np.abs(lam[1] - lam[0]) / lam[1]) > FIT_MATTERS_REL)
+
+
+#: face groups inside the housing: the rings' and spacers' free faces face the bearing's annulus
+#: and the gap between the spacers, not the surroundings (their gas layers are left out, a few
+#: mW/K); the raceways take the bearing's heat
+INSIDE = ("raceway_", "free_inner_ring", "free_outer_ring", "free_inner_spacer",
+          "free_outer_spacer")
+
+
+def face_kind(group: str) -> str:
+    """The kind of a face group (`fem.transient.face_groups`): "inside" (INSIDE: no film),
+    "bore" (the shaft's bore, a cavity open at its ends: its own film, a share of the outside
+    one), "outside" (to the surroundings: the housing, the cover, the shaft's ends and free
+    faces, the nut)."""
+    if group.startswith(INSIDE):
+        return "inside"
+    return "bore" if group == "shaft_bore" else "outside"
+
+
+def _fit_part(rc: ReducedConduction, h_fit_W_m2K) -> np.ndarray:
+    """sum_k h_k C_k of the reduced fits' terms (W/K); zero with perfect contact."""
+    out = np.zeros((rc.m, rc.m))
+    if rc.tc.perfect_contact:
+        return out
+    for h, C in zip(np.asarray(h_fit_W_m2K, float), rc.C_fit):
+        out += (h * PER_M2_TO_PER_MM2) * C
+    return out
+
+
+# ====================================================================== a trial
+def _phi(x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(e^-x, (1 - e^-x) / x, (x - 1 + e^-x) / x^2) for x = lambda h >= 0, the last two by their
+    series where x < 1e-4 (cancellation)."""
+    E = np.exp(-x)
+    small = x < 1e-4
+    xs = np.where(small, 1.0, x)
+    f1 = np.where(small, 1.0 - x / 2.0 + x * x / 6.0, -np.expm1(-xs) / xs)
+    f2 = np.where(small, 0.5 - x / 6.0 + x * x / 24.0, (xs + np.expm1(-xs)) / (xs * xs))
+    return E, f1, f2
+
+
+def part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb_C: np.ndarray,
+                        heat_W: np.ndarray | None, T_film_C: np.ndarray | None = None
+                        ) -> np.ndarray:
+    """(n, len(PARTS)) part group mean temperatures (C) of one trial at parameters p (module
+    docstring), the ambient T_amb_C and the pair's heat heat_W (W; None: none) per row at
+    times t_s (s, strictly increasing); T_film_C: what the films see when it is not the ambient
+    (a radiation sink), the mount's environment staying the ambient. NaN columns: groups the
+    stack lacks."""
+    m = rm.m
+    h_W_m2K = 1.0 / p["film_resistance_m2K_W"]
+    h_bore = h_W_m2K * p["bore_film_ratio"]
+    G_face, G_env, C_m = p["G_face_W_K"], p["G_env_W_K"], p["C_mount_J_K"]
+    hm = G_face / rm.area_face_mm2 if rm.area_face_mm2 > 0 else 0.0
+    A = np.zeros((m + 1, m + 1))
+    A[:m, :m] = (rm.K0 + p["fit_conductance_factor"] * rm.C_fit
+                 + (h_W_m2K * PER_M2_TO_PER_MM2) * rm.F_ext
+                 + (h_bore * PER_M2_TO_PER_MM2) * rm.F_bore + hm * rm.F_face)
+    A[:m, m] = A[m, :m] = -hm * rm.b_face
+    A[m, m] = G_face + G_env
+    M = np.zeros((m + 1, m + 1))
+    M[:m, :m] = rm.M
+    M[m, m] = C_m
+    lam, Phi = sla.eigh(0.5 * (A + A.T), 0.5 * (M + M.T), check_finite=False)
+    lam = np.maximum(lam, 0.0)
+    e_film, e_env = np.zeros(m + 1), np.zeros(m + 1)
+    e_film[:m] = PER_M2_TO_PER_MM2 * (h_W_m2K * rm.b_ext + h_bore * rm.b_bore)
+    e_env[m] = G_env
+    amb = np.asarray(T_amb_C, float)
+    if T_film_C is None:
+        g = np.outer(amb, Phi.T @ (e_film + e_env))                   # (n, m + 1)
+    else:
+        g = (np.outer(np.broadcast_to(np.asarray(T_film_C, float), amb.shape), Phi.T @ e_film)
+             + np.outer(amb, Phi.T @ e_env))
+    s = p["heat_scale"]
+    if heat_W is not None and s > 0.0:
+        e_heat = np.zeros(m + 1)
+        e_heat[:m] = rm.a_heat
+        g = g + np.outer(s * np.asarray(heat_W, float), Phi.T @ e_heat)
+    t = np.asarray(t_s, float)
+    n = t.size
+    Z = np.empty((n, m + 1))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        Z[0] = np.where(lam > 0, g[0] / np.where(lam > 0, lam, 1.0), 0.0)   # steady first row
+    if n > 1:
+        h = np.diff(t)
+        E, f1, f2 = _phi(np.outer(h, lam))                          # (n - 1, m + 1)
+        slope = np.diff(g, axis=0) / h[:, None]
+        c = h[:, None] * (g[:-1] * f1 + slope * (h[:, None] * f2))
+        z = Z[0]
+        for k in range(n - 1):
+            z = E[k] * z + c[k]
+            Z[k + 1] = z
+    G = np.zeros((len(PARTS), m + 1))
+    G[:, :m] = rm.groups
+    return Z @ (G @ Phi).T
+
+
+# ====================================================================== the candidate
+class ThermalTransientFE(Effect):
+    """thermal_transient_fe: the part temperatures from the stack's own reduced transient
+    conduction FE and a lumped mount (module docstring), written into the rows' inputs for
+    every part without a measured temperature of its own."""
+    name = NAME
+    kind = "model_form"            # `ladder.KIND`
+    parameters = ("film_resistance_m2K_W", "bore_film_ratio", "G_face_W_K", "G_env_W_K",
+                  "C_mount_J_K", "fit_conductance_factor", "heat_scale")
+    units = {"film_resistance_m2K_W": "m2 K/W", "bore_film_ratio": "-", "G_face_W_K": "W/K",
+             "G_env_W_K": "W/K",
+             "C_mount_J_K": "J/K", "fit_conductance_factor": "-", "heat_scale": "-"}
+    requires = ("time_s", "T_ambient_C")
+    cost = "inputs"
+    acts_through = ("dTdt_K_per_s", "time_since_start_s", "temperature_C", "speed_rpm")
+    change = ("part temperatures from the stack's reduced transient conduction FE with a lumped "
+              "mount (films, mount, fit conductance and heat fitted)")
+    hint = ("measure a ring or the housing temperature beside the chamber's (or the mount's): "
+            "the stack's own conduction sets how each part lags the ambient and how far the "
+            "bearing's heat raises it")
+
+    def __init__(self, asm, pipeline=None):
+        self.asm, self.pipeline = asm, pipeline
+        vacuum = asm.thermal.gas == "vacuum"
+        self.vacuum = vacuum
+        # in vacuum the films are radiation: to the file's sink when it states one (the mount's
+        # environment, the chamber's controlled plate, stays T_ambient_C)
+        self.sink_C = (float(asm.thermal.sink_C) if vacuum and math.isfinite(asm.thermal.sink_C)
+                       else None)
+        area_face = _face_area_mm2(asm)
+        r_max = (1.0 / (EMISSIVITY_MIN * radiation_h_W_mm2K(asm.T_ref_C) / PER_M2_TO_PER_MM2)
+                 if vacuum else FILM_RESISTANCE_MAX_AIR)
+        G_face_max = JOINT_CONDUCTANCE_MAX_W_M2K * area_face * PER_M2_TO_PER_MM2
+        G_env_max = MOUNT_AREA_MAX_M2 * MOUNT_FILM_MAX_W_M2K
+        self.bounds = {"film_resistance_m2K_W": (0.0, r_max), "bore_film_ratio": (0.0, 1.0),
+                       "G_face_W_K": (0.0, G_face_max),
+                       "G_env_W_K": (0.0, G_env_max),
+                       "C_mount_J_K": (C_MOUNT_MIN_J_K, C_MOUNT_MAX_J_K),
+                       "fit_conductance_factor": FIT_FACTOR, "heat_scale": (0.0, HEAT_SCALE_MAX)}
+        self.off = {"film_resistance_m2K_W": 0.0, "bore_film_ratio": 1.0, "G_face_W_K": 0.0,
+                    "G_env_W_K": 0.0,
+                    "C_mount_J_K": C_MOUNT_MIN_J_K, "fit_conductance_factor": 1.0,
+                    "heat_scale": 1.0}
+        self.scale = {"film_resistance_m2K_W": (0.2 if vacuum else 0.01), "bore_film_ratio": 0.1,
+                      # a power-of-two share: the bound round-trips exactly through the fit's
+                      # scaled coordinates (hi / s * s == hi), as the claim rules compare it
+                      "G_face_W_K": G_face_max / 16.0, "G_env_W_K": 1.0,
+                      "C_mount_J_K": 2000.0, "fit_conductance_factor": 0.2, "heat_scale": 0.1}
+        self._heat = Memo(4)
+
+    def bind(self, pipeline) -> "ThermalTransientFE":
+        """The rung evaluated on `pipeline` (the diagnosis's, `ladder.FormRoute`); the rung of
+        the same assembly unbound (the engine's candidate object) then evaluates there too."""
+        out = ThermalTransientFE.__new__(ThermalTransientFE)
+        out.__dict__.update(self.__dict__)
+        out.pipeline, out._heat = pipeline, Memo(4)
+        _BOUND.put(self.asm, pipeline)
+        return out
+
+    def evaluated_on(self):
+        """The pipeline the rung evaluates on: its own, the last one bound for its assembly,
+        else the assembly's shared one (`Pipeline.shared`)."""
+        if self.pipeline is not None:
+            return self.pipeline
+        hit = _BOUND.get(self.asm)
+        if hit is None:
+            from studies.model.pipeline import Pipeline
+            hit = Pipeline.shared(self.asm)
+        return hit
+
+    _pl = evaluated_on
+
+    def _apply(self, inputs, p, T_ref_C):
+        if p["film_resistance_m2K_W"] == 0.0:       # the configured model: the form's limit
+            return inputs.copy()
+        pl = self._pl()
+        heat = self.row_heat_W(inputs) if p["heat_scale"] > 0.0 else None
+        T = part_temperatures_C(rung_model(pl), p, inputs.time_s, inputs.T_ambient_C, heat,
+                                self.sink_C)
+        Tc = dict(inputs.T_C)
+        for i, part in enumerate(PARTS):
+            if part in inputs.measured_parts:
+                continue
+            col = T[:, i] if not np.isnan(T[:, i]).any() else T[:, PARTS.index("shaft")]
+            Tc[part] = np.array(col, float)
+        return inputs.copy(T_C=Tc)
+
+    def row_heat_W(self, inputs) -> np.ndarray:
+        """The pair's friction heat per row (W) at the rows' speed, preload and loads with the
+        parts at the ambient (the configured model's, `transient_route.pair_heat`; kept per
+        conditions)."""
+        from studies.model import transient_route as tr
+
+        keys = ("speed_rpm", "preload_assembled_N", "axial_load_N", "radial_load_N",
+                "moment_Nmm", "T_ambient_C")
+        key = b"".join(np.ascontiguousarray(getattr(inputs, k), float).tobytes()
+                       for k in keys if getattr(inputs, k) is not None)
+
+        def make():
+            pl = self._pl()
+            amb = np.asarray(inputs.T_ambient_C, float)
+            at_amb = inputs.copy(T_C={q: amb.copy() for q in inputs.T_C})
+            res = pl.run(at_amb, remember=False)
+            return np.asarray(tr.pair_heat(pl, res, at_amb).total_W, float).reshape(-1)
+        return self._heat.get_or_make(key, make)
+
+    def describe(self) -> str:
+        return "model form: " + self.change
+
+
+def _face_area_mm2(asm) -> float:
+    """Area (mm^2) of the housing's outer face, 2 pi r L (`meshes.section.boundary_lines`)."""
+    from meshes.section import boundary_lines
+    from studies.model.stack import section_from_assembly
+
+    lines = boundary_lines(section_from_assembly(asm))
+    if MOUNT_FACE not in lines:
+        return 0.0
+    _, r, z0, z1 = lines[MOUNT_FACE]
+    return 2.0 * math.pi * float(r) * abs(float(z1) - float(z0))
+
+
+def speed_varies(conditions) -> bool:
+    """True when the conditions' speed column varies (the heat is then fitted)."""
+    v = conditions.get("speed_rpm")
+    return v is not None and float(np.ptp(np.asarray(v, float))) > 0.0
+
+
+def held_fixed(effect, conditions) -> tuple[str, ...]:
+    """`fitspec.held_fixed` of the rung: the heat scale at 1 when the speed is constant; the
+    fits' conductance factor at 1 where it cannot move the stack's time constants
+    (`RungModel.fit_matters`); the bore's film ratio where the shaft has no bore."""
+    held = () if speed_varies(conditions) else ("heat_scale",)
+    rm = rung_model(effect.evaluated_on())
+    if not rm.fit_matters:
+        held += ("fit_conductance_factor",)
+    if not np.any(rm.b_bore):
+        held += ("bore_film_ratio",)
+    return held
+
+
+def starts(effect, conditions, T_ref_C) -> list[dict]:
+    """Starting points (`fitspec.starts`): films from forced to natural convection (in vacuum
+    emissivities 0.8 to 0.1), each without and with a mount of one to ten stacks' capacity
+    well coupled to the face and the environment."""
+    lo, hi = effect.bounds["film_resistance_m2K_W"]
+    rs = ([1.0 / 100.0, 1.0 / 20.0, 1.0 / 5.0] if not effect.vacuum
+          else [hi * EMISSIVITY_MIN / e for e in (0.8, 0.3, 0.1)])
+    G = effect.bounds["G_face_W_K"][1]
+    out = []
+    for r in rs:
+        out.append({"film_resistance_m2K_W": r})
+        for C in (2000.0, 20000.0):
+            out.append({"film_resistance_m2K_W": r, "G_face_W_K": 0.1 * G, "G_env_W_K": 2.0,
+                        "C_mount_J_K": C})
+    return out

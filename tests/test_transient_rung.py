@@ -1,0 +1,241 @@
+"""The ladder rung `thermal_transient_fe` (studies/diagnosis/transient_rung.py).
+
+Fast: a trial's exact modal integration against the project's reduced BDF2 stepper (a second
+method, `fem.reduced_thermal.ReducedStepper`) on the same operator; the steady state's energy
+balance with the mount (heat in = film + mount to the environment: conservation); the lumped lag
+as the rung's limit for a nearly isothermal stack (one dominant time constant tau = C / (h A),
+Incropera ch. 5 lumped capacitance, `thermal_lag.lag_response`); the off values are the
+configured model exactly. The reduced model is built once for the module (the reduction is
+read from the set-up cache after the first run).
+
+Slow: plumbing (data made by the rung itself: its films and mount recovered, the cause
+explained; a 12 N preload loss beside it named as the second cause) and truth (data made by
+the independent conduction network, `studies.validation.conduction_network`: the thermal
+history named, no wrong claim).
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from fem.reduced_thermal import ReducedStepper
+from fem.transient import PER_M2_TO_PER_MM2, StepLoads
+from studies.diagnosis import transient_rung as tr
+from studies.diagnosis.designs import cycles
+from studies.model.config import load_shipped
+from studies.model.effects.thermal_lag import lag_response
+from studies.model.inputs import PARTS
+from studies.model.pipeline import Pipeline
+
+MESH_FACTOR = 2.0
+
+
+@pytest.fixture(scope="module")
+def pl():
+    return Pipeline(load_shipped("seed000"), mesh_factor=MESH_FACTOR)
+
+
+@pytest.fixture(scope="module")
+def rm(pl):
+    return tr.build(pl)          # with its reduced conduction (the cached one has only sums)
+
+
+def _params(**kw):
+    p = {"film_resistance_m2K_W": 0.05, "bore_film_ratio": 1.0, "G_face_W_K": 0.0, "G_env_W_K": 0.0,
+         "C_mount_J_K": tr.C_MOUNT_MIN_J_K, "fit_conductance_factor": 1.0, "heat_scale": 1.0}
+    p.update(kw)
+    return p
+
+
+def test_a_trial_equals_the_reduced_bdf2_stepper_on_the_same_operator(rm):
+    """The exact integration between rows (first-order hold) against BDF2 steps of 1 s on the
+    reduced model of the same coefficients (no mount: the stepper has none): a ramp and a dwell.
+    BDF2's error at 1 s on time constants of minutes is ~(dt / tau)^2 of the swing: 1e-3 K of a
+    40 K swing is far above it and far below the lag itself (several K)."""
+    from dataclasses import replace
+
+    from studies.model import transient_route as route
+
+    h = 20.0
+    rc = rm.rc
+    prm = replace(rm.nominal, film_W_m2K={g: h for g in rm.exterior + ("shaft_bore",)})
+    t = np.array([0.0, 600.0, 1200.0, 2400.0])
+    amb = np.array([20.0, 60.0, 60.0, 60.0])
+    T = tr.part_temperatures_C(rm, _params(film_resistance_m2K_W=1.0 / h), t, amb, None)
+    st = ReducedStepper(rc, prm, 1.0, 20.0)
+    out = [st.q.copy()]
+    for k in range(1, int(t[-1]) + 1):
+        st.step(StepLoads(float(np.interp(k, t, amb))))
+        out.append(st.q.copy())
+    Q = np.array(out)[t.astype(int)]
+    ref = Q @ (route.group_rows(rc.tc) @ rc.V).T
+    ok = ~np.isnan(ref[0])
+    assert np.max(np.abs(T[:, ok] - ref[:, ok])) < 1e-3
+    assert np.max(np.abs(T[1, ok] - amb[1])) > 2.0        # the lag is there to be compared
+
+
+def test_the_steady_state_with_heat_and_a_mount_balances_its_energy(rm):
+    """Held long at a constant ambient with a constant heat Q into the pair, the stack ends where
+    everything put in leaves through the films and the mount's path to the environment:
+    Q = h sum_ext int (T - T_amb) dA + G_env (T_m - T_amb). Checked on the reduced state
+    (the balance of the reduced system is exact: V^T applied to the uniform field)."""
+    p = _params(film_resistance_m2K_W=1.0 / 15.0, G_face_W_K=3.0, G_env_W_K=2.0,
+                C_mount_J_K=4000.0, heat_scale=1.0)
+    t = np.array([0.0, 1e6])
+    amb = np.array([20.0, 20.0])
+    Q = 2.5
+    # the steady state of the augmented system directly (no time stepping) from the trial's
+    # own matrices, then the balance; and the trial's temperatures at its steady first row
+    T = tr.part_temperatures_C(rm, p, t, amb, np.array([Q, Q]))
+    assert np.all(T[~np.isnan(T)] > 20.0)
+    m = rm.m
+    h = 15.0 * PER_M2_TO_PER_MM2
+    hm = p["G_face_W_K"] / rm.area_face_mm2
+    A = np.zeros((m + 1, m + 1))
+    A[:m, :m] = rm.K0 + rm.C_fit + h * (rm.F_ext + rm.F_bore) + hm * rm.F_face
+    A[:m, m] = A[m, :m] = -hm * rm.b_face
+    A[m, m] = p["G_face_W_K"] + p["G_env_W_K"]
+    f = np.zeros(m + 1)
+    f[:m] = h * (rm.b_ext + rm.b_bore) * 20.0 + Q * rm.a_heat
+    f[m] = p["G_env_W_K"] * 20.0
+    x = np.linalg.solve(A, f)
+    q, T_m = x[:m], x[m]
+    b = rm.b_ext + rm.b_bore
+    out_film = h * (b @ q - b @ (20.0 * _one(rm)))
+    out_mount = p["G_env_W_K"] * (T_m - 20.0)
+    assert out_film + out_mount == pytest.approx(Q, rel=1e-8)
+    G = rm.groups
+    ok = ~np.isnan(G[:, 0])
+    assert np.allclose(T[0, ok], (G @ q)[ok], atol=1e-9)
+
+
+def _one(rm):
+    """Reduced coordinates of the uniform field 1 (the first mode is uniform: its coordinate is
+    1 / its value)."""
+    q = np.zeros(rm.m)
+    ok = ~np.isnan(rm.groups[:, 0])
+    q[0] = 1.0 / rm.groups[ok, 0][0]
+    return q
+
+
+def test_the_lumped_lag_is_the_rung_s_limit_for_a_nearly_isothermal_stack(rm):
+    """A film of 1 W/(m^2 K) on a steel stack (Biot h L / k ~ 1e-3): every part follows the
+    ambient with the one time constant tau = C / (h A) of the lumped body (Incropera ch. 5.1),
+    the `thermal_lag` form's law; the parts agree with it to 1 % of the 140 K swing and with each
+    other to 0.5 % (the ball sets, linked by their contacts' ~0.1 W/K, trail most; the other
+    modes are two to three decades faster)."""
+    h = 1.0
+    cond = cycles(200, 252.0)
+    A_mm2 = float((rm.b_ext + rm.b_bore) @ _one(rm))
+    tau = rm.capacity_J_K / (h * PER_M2_TO_PER_MM2 * A_mm2)
+    T = tr.part_temperatures_C(rm, _params(film_resistance_m2K_W=1.0 / h), cond["time_s"],
+                               cond["T_ambient_C"], None)
+    lag = lag_response(cond["time_s"], cond["T_ambient_C"], tau)
+    ok = ~np.isnan(T[0])
+    swing = np.ptp(cond["T_ambient_C"])
+    assert np.max(np.abs(T[:, ok] - lag[:, None])) < 0.01 * swing
+    assert np.max(np.ptp(T[:, ok], axis=1)) < 0.005 * swing
+    assert np.max(np.abs(lag - cond["T_ambient_C"])) > 0.2 * swing    # a real lag
+
+
+def test_the_cached_rung_model_is_the_built_one(pl, rm):
+    cached = tr.cached_rung_model(pl)
+    for k in tr._ARRAYS:
+        assert np.array_equal(getattr(cached, k), getattr(rm, k), equal_nan=True), k
+    assert (cached.fit_matters, cached.exterior) == (rm.fit_matters, rm.exterior)
+
+
+def test_at_off_the_rung_is_the_configured_model(pl):
+    from studies.model.inputs import baseline_inputs
+
+    asm = pl.asm
+    cond = cycles(20, 120.0)
+    inp = baseline_inputs(cond, 20, asm.T_ref_C, asm.preload.assembled_N, asm.lubrication.speed_rpm)
+    e = tr.ThermalTransientFE(asm).bind(pl)
+    out = e.apply(inp, e.off, asm.T_ref_C)
+    for p in PARTS:
+        assert np.array_equal(out.T_C[p], inp.T_C[p])
+
+
+# ---------------------------------------------------------------------- diagnoses (slow)
+#: the plumbing truth: seed 000 in a 20 W/(m^2 K) film, bolted to a 5 kJ/K mount
+TRUTH = {"film_resistance_m2K_W": 0.05, "G_face_W_K": 5.0, "C_mount_J_K": 5000.0,
+         "G_env_W_K": 1.0}
+SIGMA = {"torque_Nmm": 0.02, "preload_N": 0.5}
+
+
+def _diagnose_own(pl, effects, seed=1):
+    """A 14 h history (240 rows) made through the rung's own route with `effects`, the rig's
+    friction 1.25 x the file's, white noise SIGMA; diagnosed with the CLI's candidates."""
+    from studies.diagnosis.engine import diagnose_full
+    from studies.diagnosis.files import NUISANCE, ModelPredictor, candidate_effects
+    from studies.diagnosis.ladder import candidates
+
+    cond = cycles(240, 14 * 3600.0 / 240)
+    cols = tuple(SIGMA)
+    truth = ModelPredictor(pl, cond, cols)(effects, {"mu_scale": 1.25})
+    rng = np.random.default_rng(seed)
+    meas = {c: truth[c] + rng.normal(0.0, s, truth[c].size) for c, s in SIGMA.items()}
+    pred = ModelPredictor(pl, cond, cols)
+    res = diagnose_full(pred, meas, cond, candidate_effects(pl.asm) + candidates(pl.asm),
+                        NUISANCE, T_ref_C=pl.asm.T_ref_C, predict_at=pred.at, workers=2)
+    return res, truth, pred
+
+
+@pytest.mark.slow
+def test_plumbing_the_rung_explains_its_own_history_and_recovers_film_and_mount(pl):
+    """Data from the rung's own route (checks plumbing, not truth): explained by the rung; the
+    film and the mount's face conductance within three standard uncertainties of the truth (the
+    mount's capacity and its path to the environment trade against each other on one history:
+    not asserted); the fitted model within 0.5 sigma RMS of the noise-free truth."""
+    res, truth, pred = _diagnose_own(pl, {"thermal_transient_fe": TRUTH})
+    assert res.verdict == "explained" and res.cause == "thermal_transient_fe"
+    p, u = res.parameters, res.parameter_uncertainty
+    for k in ("film_resistance_m2K_W", "G_face_W_K"):
+        assert abs(p[k] - TRUTH[k]) < 3.0 * u[k], (k, p[k], u[k])
+    fit = res.extended_pred
+    for c, s in SIGMA.items():
+        assert np.sqrt(np.mean((fit[c] - truth[c]) ** 2)) < 0.5 * s
+
+
+@pytest.mark.slow
+def test_a_preload_loss_beside_the_rung_s_history_is_named_as_the_second_cause(pl):
+    """A 12 N preload loss beyond a 50 K excursion (24 sigma of the preload's 0.5 N) on top of
+    the rung's history: the forward selection names both."""
+    res, _, _ = _diagnose_own(pl, {"thermal_transient_fe": TRUTH,
+                                   "preload_settling": {"loss_N": 12.0, "threshold_K": 50.0}})
+    from studies.validation.second_source import named_causes
+    names = {c.split(".")[0] for c in named_causes(res)}
+    assert {"thermal_transient_fe", "preload_settling"} <= names, (res.verdict, names)
+
+
+@pytest.mark.slow
+def test_on_a_history_made_by_the_independent_conduction_network_the_history_is_named():
+    """Truth made another way: seed 000 bolted to an aluminium plate in forced air,
+    its part temperatures from the independent radial finite-volume network
+    (`studies.validation.conduction_network`, not `fem/transient.py`), run through plain
+    `simulate`'s route, 1 % noise; given only time_s and T_ambient_C. The diagnosis names the
+    thermal history (the rung, or a lag of the thermal family) and claims nothing else."""
+    from studies.diagnosis.engine import diagnose_full
+    from studies.diagnosis.files import NUISANCE, ModelPredictor, candidate_effects
+    from studies.diagnosis.ladder import candidates
+    from studies.validation import second_source as ss
+    from studies.validation.conduction_network import ENVIRONMENTS, conduction_temperatures
+
+    asm = load_shipped("seed000")
+    cond = {k: np.asarray(v, float) for k, v in cycles(240, 120.0).items()}
+    hist = conduction_temperatures(asm, cond["time_s"], cond["T_ambient_C"],
+                                   ENVIRONMENTS["mount_forced_air"], 0.0, 4)
+    truth = ss._run(asm, MESH_FACTOR, {**cond, **hist.columns})
+    cols = ("torque_Nmm", "preload_N")
+    sigma = ss.stated_sigma({c: truth[c] for c in cols})
+    rng = np.random.default_rng(7)
+    meas = {c: truth[c] + rng.normal(0.0, sigma[c], truth[c].size) for c in cols}
+    pl = Pipeline.shared(asm, mesh_factor=MESH_FACTOR)
+    pred = ModelPredictor(pl, cond, cols)
+    res = diagnose_full(pred, meas, cond, candidate_effects(asm) + candidates(asm), NUISANCE,
+                        T_ref_C=asm.T_ref_C, predict_at=pred.at, workers=2)
+    thermal = {"thermal_lag", "radial_gradient", "thermal_transient_fe"}
+    named = {ss.family(c) for c in ss.named_causes(res)}
+    assert res.verdict in ("explained", "explained_partly", "ambiguous"), res.reasons
+    assert named and named <= thermal, (res.verdict, named)
