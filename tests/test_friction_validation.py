@@ -325,3 +325,23 @@ def test_permissible_speed_at_the_interval_s_upper_end_closes_the_heat_balance()
     heat = k_hi * power_W(palmgren_viscous_torque_Nmm(lub.viscous_factor_f0, nu, n_hi, g.dm_mm)
                           + M1, n_hi)
     np.testing.assert_allclose(heat, Q, rtol=1e-6)
+
+
+def test_minimal_oil_notes_rows_below_its_source_range(lqf):
+    """0.01 mg on the 305 bearing (supply ratio ~1e-3, below Chevalier et al.'s 0.01) is noted
+    as outside the law's range, row by row; 130 mg (r ~ 7) is not."""
+    from analytic.friction.options import FrictionOptions
+    from analytic.friction.pair import bearing_friction, pair_bearing_contacts
+    lub = get_lubricant(lqf.lubricant)
+    pair = solve_pair(lqf.g, "DB", preload_kind="spring", preload_assembled_N=np.array([133.0]))
+    eta = dynamic_viscosity_Pa_s(lub.nu_mm2_s(np.array([20.0])), lub.density_kg_m3)
+    outside = []
+    for m in (0.01, 130.0):
+        fr = FrictionOptions(viscous_model="minimal_oil", oil_quantity_mg=m, eta_Pa_s=eta,
+                             alpha_per_Pa=lub.alpha_per_Pa, density_kg_m3=lub.density_kg_m3)
+        b = bearing_friction(lqf.g, pair_bearing_contacts(pair, 0), model="oil", mu=0.0,
+                             speed_rpm=np.array([6000.0]), f0=2.0,
+                             nu_mm2_s=lub.nu_mm2_s(np.array([20.0])), friction=fr)
+        (r,) = b.ranges
+        outside.append(bool(r.outside[0]))
+    assert outside == [True, False]

@@ -23,6 +23,7 @@ from __future__ import annotations
 import csv
 from dataclasses import dataclass
 from functools import lru_cache
+from operator import itemgetter
 from pathlib import Path
 
 import numpy as np
@@ -101,9 +102,11 @@ def lubrication_interval(lubrication) -> ModelFormInterval:
 
 @lru_cache(maxsize=4)
 def _residuals(path: str) -> tuple[tuple[str, str, str, float], ...]:
+    """(regime, law, source, log residual) of every row of the residuals CSV."""
     with open(path, newline="") as fh:
-        rows = csv.DictReader(line for line in fh if not line.startswith("#"))
-        return tuple((r["regime"], r["law"], r["source"], float(r["log_residual"])) for r in rows)
+        rows = csv.reader(line for line in fh if not line.startswith("#"))
+        pick = itemgetter(*map(next(rows).index, ("regime", "law", "source", "log_residual")))
+        return tuple((reg, law, src, float(e)) for reg, law, src, e in map(pick, rows))
 
 
 def model_form_interval(regime: str, law: str, path: Path | None = None,

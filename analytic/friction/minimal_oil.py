@@ -145,13 +145,19 @@ def minimal_oil_ratio(g, contact_angles_rad, loads_N, speed_rpm, eta_Pa_s, alpha
     return MinimalOilFactor(0.5 * (s_i + s_o), r_i, r_o, np.broadcast_to(h_in, np.shape(s_i)))
 
 
-def minimal_oil_bearing_ratio(g, c, speed_rpm, fr) -> np.ndarray:
-    """The factor on Palmgren's viscous term of one bearing's contacts c
-    (`analytic.friction.pair.BearingContacts`; the mean over its balls where c.per_ball) with
-    the options fr (`analytic.friction.options.FrictionOptions`: the oil's eta_Pa_s,
-    alpha_per_Pa, density_kg_m3, oil_quantity_mg and oil_supply_share): the one route of the
-    law for `pair_torque` (simulate) and `bearing`."""
+def minimal_oil_bearing_ratio(g, c, speed_rpm, fr):
+    """(factor, range notes) of one bearing's contacts c (`analytic.friction.pair.
+    BearingContacts`; the factor the mean over its balls where c.per_ball) with the options fr
+    (`analytic.friction.options.FrictionOptions`: the oil's eta_Pa_s, alpha_per_Pa,
+    density_kg_m3, oil_quantity_mg and oil_supply_share): the factor on Palmgren's viscous term
+    and the rows whose supply ratio falls below the source's range (`analytic.friction.ranges`);
+    the one route of the law for `pair_torque` (simulate) and `bearing`."""
+    from analytic.friction.ranges import range_rows
     f = minimal_oil_ratio(g, (c.alpha_inner_rad, c.alpha_outer_rad), (c.inner.Q_N, c.outer.Q_N),
                           speed_rpm, fr.eta_Pa_s, fr.alpha_per_Pa, fr.density_kg_m3,
                           fr.oil_quantity_mg, fr.oil_supply_share)
-    return f.ratio.mean(axis=0) if c.per_ball else f.ratio
+    r = np.stack(np.broadcast_arrays(f.supply_ratio_inner, f.supply_ratio_outer))
+    ranges = (range_rows("minimal_oil", "supply ratio h_in/h_ff",
+                         f"r >= {SUPPLY_RATIO_RANGE[0]:g}, Chevalier et al. 1998", r,
+                         r < SUPPLY_RATIO_RANGE[0]),)
+    return (f.ratio.mean(axis=0) if c.per_ball else f.ratio), ranges

@@ -316,7 +316,8 @@ def _oil_bearing(g, c: BearingContacts, mu, speed_rpm, f0, nu_mm2_s, f1, load_te
         ratio, ranges = _starvation_ratio(g, c, n, fr)
         visc = visc * ratio
     elif model == "minimal_oil" and fr.oil_quantity_mg > 0:
-        visc = visc * minimal_oil_bearing_ratio(g, c, n, fr)
+        ratio, ranges = minimal_oil_bearing_ratio(g, c, n, fr)
+        visc = visc * ratio
     elif model == "ehl_rolling":
         ti, to, qi, qo, ranges = _ehl_bearing(g, c, n, fr.eta_Pa_s, fr.alpha_per_Pa)
         visc = ti + to

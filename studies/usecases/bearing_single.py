@@ -132,6 +132,7 @@ def solve(cfg, cols: dict, where: str = "loads", convention: str = "exact",
     b = st.balls
     speed = get("speed_rpm") if quasi else np.full(n, 0.0 if lub is None else lub.speed_rpm)
     fric = None if lub is None else bearing_friction_of(cfg, st, speed, get("T_oil_C"))
+    torque = np.full(n, np.nan) if fric is None else fric.total_Nmm
     out_cols = {c: cols[c] for c in cols if not c.startswith("_")}
     out_cols.update({
         "radial_displacement_um": 1e3 * st.radial_mm,
@@ -150,9 +151,9 @@ def solve(cfg, cols: dict, where: str = "loads", convention: str = "exact",
         "spin_to_roll": st.most_loaded("spin_to_roll"),
         "outer_race_control": (st.most_loaded("outer_control").astype(float) if quasi
                                else np.full(n, np.nan)),
-        "torque_Nmm": np.full(n, np.nan) if fric is None else fric.total_Nmm,
+        "torque_Nmm": torque,
     })
-    out_cols.update(_interval_columns(lub, out_cols["torque_Nmm"], speed))
+    out_cols.update(_interval_columns(lub, torque, speed))
     ts = thermal_speeds(cfg.spec, cfg.geometry, lub, cfg.oil(), np.abs(b.loads[0]), speed)
     out_cols.update({"thermal_reference_speed_rpm": np.full(n, ts.reference.speed_rpm),
                      "thermal_permissible_speed_rpm": ts.permissible_speed_rpm,
