@@ -93,7 +93,7 @@ Units: s, C, W, J, K; films in W/(m^2 K), areas in mm^2 inside (FE units, `fem.t
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
 import numpy as np
 import scipy.linalg as sla
@@ -186,6 +186,29 @@ RUNG_FORMAT = 2
 _ARRAYS = ("M", "K0", "F_ext", "b_ext", "F_bore", "b_bore", "C_fit", "F_face", "b_face",
            "a_heat", "groups")
 _SCALARS = ("area_face_mm2", "vacuum", "capacity_J_K", "fit_matters")
+_SCALAR_TYPES = {"area_face_mm2": float, "vacuum": bool, "capacity_J_K": float,
+                 "fit_matters": bool}
+
+
+@dataclass(frozen=True)
+class RungParameters:
+    """One trial's parameters of the rung (`ThermalTransientFE.parameters`, units there):
+    film_resistance_m2K_W (m2 K/W; 0: no film, the configured model), bore_film_ratio (-),
+    G_face_W_K, G_env_W_K (W/K), C_mount_J_K (J/K), fit_conductance_factor (-), heat_scale (-)."""
+    film_resistance_m2K_W: float
+    bore_film_ratio: float
+    G_face_W_K: float
+    G_env_W_K: float
+    C_mount_J_K: float
+    fit_conductance_factor: float
+    heat_scale: float
+
+    @classmethod
+    def of(cls, p) -> "RungParameters":
+        """From a parameter mapping (the fitting's dict) or a `RungParameters`."""
+        if isinstance(p, cls):
+            return p
+        return cls(**{f.name: float(p[f.name]) for f in fields(cls)})
 
 
 class RungCacheError(RuntimeError):
@@ -220,16 +243,17 @@ def cached_rung_model(pl) -> RungModel:
                 a = {k: z[k] for k in z.files}
         except Exception as exc:       # a damaged or foreign file
             raise RungCacheError(f"unreadable: {type(exc).__name__}") from None
-        if set(a) != {"key", "exterior", *_ARRAYS, *_SCALARS} or str(a["key"]) != key:
+        stored_key, exterior = (a.pop(k, None) for k in ("key", "exterior"))
+        if set(a) != {*_ARRAYS, *_SCALARS} or str(stored_key) != key or exterior is None:
             raise RungCacheError("not the rung model of this assembly")
-        m = a["M"].shape[0]
-        if (a["M"].shape != (m, m) or a["groups"].shape != (len(PARTS), m)
+        rm = RungModel(**{k: a[k] for k in _ARRAYS},
+                       **{k: _SCALAR_TYPES[k](a[k]) for k in _SCALARS},
+                       exterior=tuple(str(x) for x in exterior))
+        m = rm.m
+        if (rm.M.shape != (m, m) or rm.groups.shape != (len(PARTS), m)
                 or not all(np.all(np.isfinite(a[k])) for k in _ARRAYS if k != "groups")):
             raise RungCacheError("its arrays are not sound")
-        return RungModel(**{k: a[k] for k in _ARRAYS}, area_face_mm2=float(a["area_face_mm2"]),
-                         vacuum=bool(a["vacuum"]), capacity_J_K=float(a["capacity_J_K"]),
-                         fit_matters=bool(a["fit_matters"]),
-                         exterior=tuple(str(x) for x in a["exterior"]))
+        return rm
 
     return cached_file(path, make, read, what="transient rung model", writer="bearingfem",
                        error=RungCacheError)
@@ -346,12 +370,13 @@ def part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb_C: np.nda
     (a radiation sink), the mount's environment staying the ambient. NaN columns: groups the
     stack lacks."""
     m = rm.m
-    h_W_m2K = 1.0 / p["film_resistance_m2K_W"]
-    h_bore = h_W_m2K * p["bore_film_ratio"]
-    G_face, G_env, C_m = p["G_face_W_K"], p["G_env_W_K"], p["C_mount_J_K"]
+    q = RungParameters.of(p)
+    h_W_m2K = 1.0 / q.film_resistance_m2K_W
+    h_bore = h_W_m2K * q.bore_film_ratio
+    G_face, G_env, C_m = q.G_face_W_K, q.G_env_W_K, q.C_mount_J_K
     hm = G_face / rm.area_face_mm2 if rm.area_face_mm2 > 0 else 0.0
     A = np.zeros((m + 1, m + 1))
-    A[:m, :m] = (rm.K0 + p["fit_conductance_factor"] * rm.C_fit
+    A[:m, :m] = (rm.K0 + q.fit_conductance_factor * rm.C_fit
                  + (h_W_m2K * PER_M2_TO_PER_MM2) * rm.F_ext
                  + (h_bore * PER_M2_TO_PER_MM2) * rm.F_bore + hm * rm.F_face)
     A[:m, m] = A[m, :m] = -hm * rm.b_face
@@ -370,7 +395,7 @@ def part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb_C: np.nda
     else:
         g = (np.outer(np.broadcast_to(np.asarray(T_film_C, float), amb.shape), Phi.T @ e_film)
              + np.outer(amb, Phi.T @ e_env))
-    s = p["heat_scale"]
+    s = q.heat_scale
     if heat_W is not None and s > 0.0:
         e_heat = np.zeros(m + 1)
         e_heat[:m] = rm.a_heat
@@ -427,6 +452,7 @@ class ThermalTransientFE(Effect):
         r_max = (1.0 / (EMISSIVITY_MIN * radiation_h_W_mm2K(asm.T_ref_C) / PER_M2_TO_PER_MM2)
                  if vacuum else FILM_RESISTANCE_MAX_AIR)
         G_face_max = JOINT_CONDUCTANCE_MAX_W_M2K * area_face * PER_M2_TO_PER_MM2
+        self.film_resistance_max_m2K_W, self.G_face_max_W_K = r_max, G_face_max
         G_env_max = MOUNT_AREA_MAX_M2 * MOUNT_FILM_MAX_W_M2K
         self.bounds = {"film_resistance_m2K_W": (0.0, r_max), "bore_film_ratio": (0.0, 1.0),
                        "G_face_W_K": (0.0, G_face_max),
@@ -467,11 +493,12 @@ class ThermalTransientFE(Effect):
     _pl = evaluated_on
 
     def _apply(self, inputs, p, T_ref_C):
-        if p["film_resistance_m2K_W"] == 0.0:       # the configured model: the form's limit
+        q = RungParameters.of(p)
+        if q.film_resistance_m2K_W == 0.0:       # the configured model: the form's limit
             return inputs.copy()
         pl = self._pl()
-        heat = self.row_heat_W(inputs) if p["heat_scale"] > 0.0 else None
-        T = part_temperatures_C(rung_model(pl), p, inputs.time_s, inputs.T_ambient_C, heat,
+        heat = self.row_heat_W(inputs) if q.heat_scale > 0.0 else None
+        T = part_temperatures_C(rung_model(pl), q, inputs.time_s, inputs.T_ambient_C, heat,
                                 self.sink_C)
         Tc = dict(inputs.T_C)
         for i, part in enumerate(PARTS):
@@ -539,10 +566,10 @@ def starts(effect, conditions, T_ref_C) -> list[dict]:
     """Starting points (`fitspec.starts`): films from forced to natural convection (in vacuum
     emissivities 0.8 to 0.1), each without and with a mount of one to ten stacks' capacity
     well coupled to the face and the environment."""
-    lo, hi = effect.bounds["film_resistance_m2K_W"]
+    hi = effect.film_resistance_max_m2K_W
     rs = ([1.0 / 100.0, 1.0 / 20.0, 1.0 / 5.0] if not effect.vacuum
           else [hi * EMISSIVITY_MIN / e for e in (0.8, 0.3, 0.1)])
-    G = effect.bounds["G_face_W_K"][1]
+    G = effect.G_face_max_W_K
     out = []
     for r in rs:
         out.append({"film_resistance_m2K_W": r})
