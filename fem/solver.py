@@ -500,7 +500,7 @@ class ContactTolerance:
     contact (the force closing the round-off gap at the stiffest pair, GAP_ROUNDOFF_REL x reach
     / min_i A_ii; the relative tolerances of `ActiveSet` apply above it). Without these floors a
     state whose free gaps are all round-off (a line-to-line fit) has no scale but its own noise,
-    and its active set cycles (issue: 0 / 0 um fits at 0, 40, 60 C)."""
+    and its active set cycles (0 / 0 um fits of a single-material stack at 0, 40, 60 C)."""
     reach_mm: np.ndarray
     accept_gap_mm: np.ndarray
     step_gap_mm: np.ndarray

@@ -1,5 +1,4 @@
-"""The minimal-oil law, the friction validation matrix and the model-form interval (issue 43
-items 2-4). References: the published numbers (studies/validation/data/friction_points.csv, each
+"""The minimal-oil law, the friction validation matrix and the model-form interval. References: the published numbers (studies/validation/data/friction_points.csv, each
 row's tolerance its source's scatter), Palmgren's closed form and Hamrock-Dowson's film as the
 flooded and starved limits, the normal predictive interval in closed form."""
 from __future__ import annotations

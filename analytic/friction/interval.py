@@ -1,4 +1,4 @@
-"""Model-form interval of the friction torque and heat (issue 43 item 4; `simulate` and `bearing`
+"""Model-form interval of the friction torque and heat (`simulate` and `bearing`
 columns torque_lo_Nmm / torque_hi_Nmm / heat_lo_W / heat_hi_W).
 
 What it is. For each lubrication regime (REGIMES) and friction law, the published friction
@@ -29,7 +29,7 @@ from pathlib import Path
 import numpy as np
 from scipy.stats import norm
 
-#: lubrication regimes of the interval (issue 43): solid film, minimal oil, oil bath or jet
+#: lubrication regimes of the interval: solid film, minimal oil, oil bath or jet
 REGIMES = ("solid_film", "minimal_oil", "oil_bath_jet")
 #: nominal level of the interval
 LEVEL = 0.9

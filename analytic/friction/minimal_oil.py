@@ -1,6 +1,6 @@
 """Minimal-oil viscous (rolling) loss: Palmgren's viscous term weakened by the oil the bearing
-holds, from a few mg up to flooded (issue 43, `[lubrication] viscous_model = "minimal_oil"`,
-`oil_quantity_mg`, `oil_supply_share`).
+holds, from a few mg up to flooded (`[lubrication] viscous_model = "minimal_oil"`,
+`oil_quantity_mg`; the inlet share `supply_share` is an argument, not a file key).
 
 Law. Palmgren's viscous term M0 = 1e-7 f0 (nu n)^(2/3) dm^3 (Harris & Kotzalas, Rolling Bearing
 Analysis 5th ed., Vol. 2 ch. 2) is the hydrodynamic rolling loss of a flooded bearing; it grows
@@ -29,7 +29,7 @@ area
 (the Z ball surfaces pi Dw^2 and the two ring bands, inner and outer, of width Dw swept by the
 balls: an estimate of the surface within reach of the balls; the cage pockets and lands carry
 oil too and are left out, so A_wet is a lower bound and h_res an upper bound), and the inlet
-receives the share k of it, h_in = k h_res, with 0 < k <= 1 (`oil_supply_share`, default 1: the
+receives the share k of it, h_in = k h_res, with 0 < k <= 1 (`supply_share`, default 1: the
 whole layer at every inlet, the upper bound; a diagnosis fits k). Bounds of r as the source's:
 Chevalier et al. cover 0.01 <= r <= 10 (fully starved to flooded).
 

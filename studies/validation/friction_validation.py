@@ -1,6 +1,6 @@
 """Study `friction_validation`: every published friction number the project holds against every
-friction law, with each law's model-form interval left out the row's own source (issue 43
-items 3 and 4; docs/cli.md "friction_validation").
+friction law, with each law's model-form interval left out the row's own source
+(docs/cli.md "friction_validation").
 
 Data: studies/validation/data/friction_points.csv (copied with its sources from the project's
 reference data). Rows:
