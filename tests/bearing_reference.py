@@ -38,3 +38,32 @@ def flat(state) -> dict:
     walk(state, "")
     out["loaded_contact_angle_deg"] = state.loaded_contact_angle_deg
     return out
+
+
+def seed001_axial_contacts():
+    """Seed 001's bearing under a pure axial load (50 and 200 N, every ball alike) at 3500 and
+    9000 rpm with quasi-dynamic balls: (asm, geometry, speed_rpm, every ball's contacts, the first
+    ball's contacts as a representative one, the oil, its viscosity mm^2/s at 20 and 40 C), for
+    the tests that count the balls two ways (`bearing`'s every ball against the pair route's Z
+    times one)."""
+    from analytic.bearing import BearingGeometry
+    from analytic.bearing.single import solve_single
+    from analytic.friction.pair import BearingContacts, single_bearing_contacts
+    from analytic.torque import ContactInput
+    from studies.model.config import load_shipped
+
+    asm = load_shipped("seed001")
+    g = BearingGeometry.from_spec(asm.bearing, asm.materials)
+    speed = np.array([3500.0, 9000.0])
+    st = solve_single(g, axial_load_N=np.array([50.0, 200.0]), speed_rpm=speed,
+                      ball_model="quasi_dynamic")
+    every = single_bearing_contacts(st)
+
+    def first(k):
+        return ContactInput(*(np.asarray(getattr(k, f))[0]
+                              for f in ("Q_N", "a_mm", "b_mm", "E_ell", "Rx_mm")))
+
+    one = BearingContacts(first(every.inner), first(every.outer), every.alpha_inner_rad[0],
+                          every.alpha_outer_rad[0], every.axial_force_N, every.radial_force_N)
+    oil = asm.oil()
+    return asm, g, speed, every, one, oil, oil.nu_mm2_s(np.array([20.0, 40.0]))

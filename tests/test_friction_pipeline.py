@@ -170,25 +170,12 @@ def test_every_ball_summed_is_z_times_the_representative_ball(model):
     pair route takes Z times a representative ball (`pair_bearing_contacts`): on the same
     bearing state under a pure axial load (every ball alike) the two give the same torque for
     every law, to 1e-12 relative (the same state, the same law, two ways of counting balls)."""
-    from analytic.bearing.single import solve_single
     from analytic.friction.options import FrictionOptions
-    from analytic.friction.pair import BearingContacts, bearing_friction, single_bearing_contacts
+    from analytic.friction.pair import bearing_friction
     from analytic.lubrication import dynamic_viscosity_Pa_s
-    from analytic.torque import ContactInput
+    from bearing_reference import seed001_axial_contacts
 
-    asm = load_shipped("seed001")
-    from analytic.bearing import BearingGeometry
-    g = BearingGeometry.from_spec(asm.bearing, asm.materials)
-    speed = np.array([3500.0, 9000.0])
-    st = solve_single(g, axial_load_N=np.array([50.0, 200.0]), speed_rpm=speed,
-                      ball_model="quasi_dynamic")
-    every = single_bearing_contacts(st)
-    first = lambda k: ContactInput(*(np.asarray(getattr(k, f))[0] for f in  # noqa: E731
-                                     ("Q_N", "a_mm", "b_mm", "E_ell", "Rx_mm")))
-    one = BearingContacts(first(every.inner), first(every.outer), every.alpha_inner_rad[0],
-                          every.alpha_outer_rad[0], every.axial_force_N, every.radial_force_N)
-    oil = asm.oil()
-    nu = oil.nu_mm2_s(np.array([20.0, 40.0]))
+    asm, g, speed, every, one, oil, nu = seed001_axial_contacts()
     fr = FrictionOptions(viscous_model=model, oil_quantity_mg=5.0 if model == "starved" else 0.0,
                          eta_Pa_s=dynamic_viscosity_Pa_s(nu, oil.density_kg_m3),
                          alpha_per_Pa=oil.alpha_per_Pa, density_kg_m3=oil.density_kg_m3,

@@ -231,25 +231,11 @@ def test_minimal_oil_every_ball_summed_is_z_times_the_representative_ball():
     representative ball: on the same state under a pure axial load (every ball alike) the
     minimal-oil torque is the same both ways (1e-12 relative), and below Palmgren's with 5 mg
     (the factor < 1) while the same law with an unlimited charge is Palmgren's exactly."""
-    from analytic.bearing import BearingGeometry
-    from analytic.bearing.single import solve_single
     from analytic.friction.options import FrictionOptions
-    from analytic.friction.pair import BearingContacts, bearing_friction, single_bearing_contacts
-    from analytic.torque import ContactInput
-    from studies.model.config import load_shipped
+    from analytic.friction.pair import bearing_friction
+    from bearing_reference import seed001_axial_contacts
 
-    asm = load_shipped("seed001")
-    g = BearingGeometry.from_spec(asm.bearing, asm.materials)
-    speed = np.array([3500.0, 9000.0])
-    st = solve_single(g, axial_load_N=np.array([50.0, 200.0]), speed_rpm=speed,
-                      ball_model="quasi_dynamic")
-    every = single_bearing_contacts(st)
-    first = lambda k: ContactInput(*(np.asarray(getattr(k, f))[0] for f in  # noqa: E731
-                                     ("Q_N", "a_mm", "b_mm", "E_ell", "Rx_mm")))
-    one = BearingContacts(first(every.inner), first(every.outer), every.alpha_inner_rad[0],
-                          every.alpha_outer_rad[0], every.axial_force_N, every.radial_force_N)
-    oil = asm.oil()
-    nu = oil.nu_mm2_s(np.array([20.0, 40.0]))
+    asm, g, speed, every, one, oil, nu = seed001_axial_contacts()
     out = {}
     for law, m in (("minimal_oil", 5.0), ("minimal_oil", np.inf), ("palmgren", 0.0)):
         fr = FrictionOptions(viscous_model=law, oil_quantity_mg=m,
