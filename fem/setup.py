@@ -31,7 +31,7 @@ from fem.compliance import preload_path_compliance_mm_per_N
 from fem.model import StackModel, build_model, part_materials
 from fem.solver import Condensed, FitSolver, condense
 from infra.version import __version__
-from meshes.cache import cache_dir, cached_file
+from meshes.cache import cache_dir, cached_file, npz_arrays
 from meshes.section import Section
 
 if TYPE_CHECKING:
@@ -194,11 +194,7 @@ def read_setup(path: Path, spec: SetupSpec, key: str | None = None) -> FESetup:
     readable, its digest sound, its format, key, parts and fits this spec's, array shapes
     consistent, every number finite."""
     key = spec.key() if key is None else key
-    try:
-        with np.load(path, allow_pickle=False) as z:
-            a = {k: z[k] for k in z.files}
-    except Exception as exc:     # zipfile, OSError, ValueError ...: a damaged or foreign file
-        raise SetupError(f"unreadable: {type(exc).__name__}") from None
+    a = npz_arrays(path, SetupError)
     need = {"format", "key", "ndofs", "part_names", "fit_names", "fit_r_mm", "fit_length_mm",
             "compliance_mm_per_N", "bonded", "digest", *_ARRAYS}
     if set(a) != need:

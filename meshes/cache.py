@@ -73,6 +73,19 @@ def _sweep_legacy(d: Path) -> None:
                 pass
 
 
+def npz_arrays(path: Path, error: type[Exception]) -> dict:
+    """Every array of the numpy archive `path` by name (no pickles); `error` with a one-line
+    message where the file cannot be read as one (damaged or foreign: zipfile, OSError,
+    ValueError ...), for a cache entry's `read`."""
+    import numpy as np
+
+    try:
+        with np.load(path, allow_pickle=False) as z:
+            return {k: z[k] for k in z.files}
+    except Exception as exc:
+        raise error(f"unreadable: {type(exc).__name__}") from None
+
+
 def cached_file(path: Path, make: Callable[[Path], None], read: Callable[[Path], T], *,
                 what: str, writer: str, error: type[Exception], refresh: bool = False) -> T:
     """The checked content of the cache entry `path`, built when missing or unusable.

@@ -224,7 +224,7 @@ def cached_rung_model(pl) -> RungModel:
     import hashlib
     import json
 
-    from meshes.cache import cache_dir, cached_file
+    from meshes.cache import cache_dir, cached_file, npz_arrays
 
     key = hashlib.sha256(json.dumps({"format": RUNG_FORMAT, "setup": pl.setup.key,
                                      "asm": repr(pl.asm), "mesh_factor": pl.mesh_factor,
@@ -238,11 +238,7 @@ def cached_rung_model(pl) -> RungModel:
                      **{k: getattr(rm, k) for k in _ARRAYS + _SCALARS})
 
     def read(p):
-        try:
-            with np.load(p, allow_pickle=False) as z:
-                a = {k: z[k] for k in z.files}
-        except Exception as exc:       # a damaged or foreign file
-            raise RungCacheError(f"unreadable: {type(exc).__name__}") from None
+        a = npz_arrays(p, RungCacheError)
         stored_key, exterior = (a.pop(k, None) for k in ("key", "exterior"))
         if set(a) != {*_ARRAYS, *_SCALARS} or str(stored_key) != key or exterior is None:
             raise RungCacheError("not the rung model of this assembly")

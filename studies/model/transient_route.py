@@ -288,7 +288,7 @@ def cached_basis(pl: Pipeline, tc: TransientConduction, training, inputs, say=No
     """`fem.reduced_thermal.krylov_basis` of the stack, cached beside the FE set-ups
     (`meshes.cache`: hash-named .npz, atomic write, checked on read, rebuilt with a warning)."""
     from fem.reduced_thermal import ReducedBasis
-    from meshes.cache import cache_dir, cached_file
+    from meshes.cache import cache_dir, cached_file, npz_arrays
 
     d = cache_dir("setups", "reduced thermal basis")
     key = basis_key(pl, tc, training, inputs)
@@ -301,11 +301,7 @@ def cached_basis(pl: Pipeline, tc: TransientConduction, training, inputs, say=No
             np.savez(fh, key=np.array(key), V=b.V, energy=b.energy)
 
     def read(path):
-        try:
-            with np.load(path, allow_pickle=False) as z:
-                a = {k: z[k] for k in z.files}
-        except Exception as exc:       # a damaged or foreign file
-            raise BasisCacheError(f"unreadable: {type(exc).__name__}") from None
+        a = npz_arrays(path, BasisCacheError)
         if set(a) != {"key", "V", "energy"} or str(a["key"]) != key:
             raise BasisCacheError("not the basis of this stack")
         V, e = a["V"], a["energy"]
