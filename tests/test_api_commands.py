@@ -192,6 +192,26 @@ def _record(monkeypatch, module, name):
     return calls
 
 
+def _same_call(monkeypatch, module, name, argv, call, command) -> dict:
+    """Run the command line `argv` and the function `call`, each stopped where it calls
+    `module.name` (the one function that does the work), and hold the two calls' arguments
+    equal; the output folder, the one positional Path (a temporary folder beside --out, or the
+    function's own), aside. Returns the function's keyword arguments."""
+    calls = _record(monkeypatch, module, name)
+    with pytest.raises(_Stop):
+        main([str(a) for a in argv])
+    with pytest.raises(_Stop):
+        call()
+    (cli_args, cli_kw), (api_args, api_kw) = calls
+
+    def strip(args):
+        return [a for a in args if not hasattr(a, "is_dir")]
+
+    _equal_arguments(strip(cli_args), strip(api_args), command)
+    _equal_arguments(cli_kw, api_kw, command)
+    return api_kw
+
+
 def _equal_arguments(a, b, where="") -> None:
     """The arguments a command and its function hand to the shared work are equal: assemblies,
     tables (arrays to the last bit), numbers and flags; not the output folder (a temporary one
@@ -248,17 +268,7 @@ def test_command_and_function_make_the_same_call(tmp_path, asm_path, monkeypatch
         "verify": (verify, "run", ["verify", "--out", tmp_path / "o", "--assembly", asm_path],
                    lambda: bearingfem.verify(assembly=asm_path)),
     }[command]
-    calls = _record(monkeypatch, module, name)
-    with pytest.raises(_Stop):
-        main([str(a) for a in argv])
-    with pytest.raises(_Stop):
-        call()
-    (cli_args, cli_kw), (api_args, api_kw) = calls
-    # the output folder is the one positional Path (a temporary folder beside --out, or a
-    # temporary folder of the function's own)
-    strip = lambda args: [a for a in args if not hasattr(a, "is_dir")]  # noqa: E731
-    _equal_arguments(strip(cli_args), strip(api_args), command)
-    _equal_arguments(cli_kw, api_kw, command)
+    _same_call(monkeypatch, module, name, argv, call, command)
     assert not (tmp_path / "o").exists()                 # stopped: nothing left behind
 
 
@@ -324,15 +334,7 @@ def test_with_defaults_the_command_and_function_make_the_same_call(tmp_path, asm
                      lambda: bearingfem.diagnose(asm_path, f)),
         "verify": (verify, "run", ["verify", "--out", tmp_path / "o"], lambda: bearingfem.verify()),
     }[command]
-    calls = _record(monkeypatch, module, name)
-    with pytest.raises(_Stop):
-        main([str(a) for a in argv])
-    with pytest.raises(_Stop):
-        call()
-    (cli_args, cli_kw), (api_args, api_kw) = calls
-    strip = lambda args: [a for a in args if not hasattr(a, "is_dir")]  # noqa: E731
-    _equal_arguments(strip(cli_args), strip(api_args), command)
-    _equal_arguments(cli_kw, api_kw, command)
+    api_kw = _same_call(monkeypatch, module, name, argv, call, command)
     if command == "tolerance":
         assert (api_kw["samples"], api_kw["seed"]) == (2000, 1)
     if command == "design":
