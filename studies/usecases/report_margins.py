@@ -195,12 +195,12 @@ def _torque_interval_text(asm, lo_Nmm: float, hi_Nmm: float) -> str:
     from analytic.friction.interval import lubrication_interval
     i = lubrication_interval(asm.lubrication)
     if not i.stated:
-        return (f"no model-form interval ({i.regime}, {i.law}: {i.n_residuals} published "
-                "residuals; study friction_validation)")
+        return (f"no model-form interval (regime {i.regime}, law {i.law}: {i.n_residuals} "
+                "published residuals; study friction_validation)")
     a, b = i.apply(lo_Nmm)[0], i.apply(hi_Nmm)[1]
-    return (f"model-form interval {a:.4g} .. {b:.4g} N mm ({i.level:.0%} nominal, {i.regime}, "
-            f"{i.law}: {i.n_residuals} residuals of {len(i.sources)} sources; study "
-            "friction_validation)")
+    return (f"model-form interval {a:.4g} .. {b:.4g} N mm ({i.level:.0%} nominal, regime "
+            f"{i.regime}, law {i.law}: {i.n_residuals} residuals of {len(i.sources)} sources; "
+            "study friction_validation)")
 
 
 def preload_limit_rows(asm, res: dict, cond: dict | None) -> list[MarginRow]:
