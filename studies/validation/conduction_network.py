@@ -315,6 +315,18 @@ class Network:
         return T, np.column_stack([sol.y[n], sol.y[n + 1], stored])
 
 
+
+def _film(gas: str, air_speed_m_s: float, shape: str, length_m: float):
+    """The film of a face of `shape` ("cylinder": diameter, "plate": length `length_m`, m) for
+    `film_W_m2K`: forced convection (a number, W/(m^2 K)) where the air moves, natural convection
+    (a function of the face's temperature difference, K) in still air, 0 in vacuum."""
+    if gas != "air":
+        return 0.0
+    if air_speed_m_s > 0:
+        return film_W_m2K(f"{shape}_forced", length_m, air_speed_m_s)
+    return lambda dT: film_W_m2K(f"{shape}_natural", length_m, 0.0, dT)
+
+
 def annulus_shells(r_in_m: float, r_out_m: float, length_m: float, conductivity_W_mK: float,
                    rho_c_J_m3K: float, shells: int):
     """Finite volumes of an annulus r_in..r_out (m) of length length_m: (node radii m,
@@ -553,13 +565,7 @@ def stack_network(asm, env: Environment, shells: int = 4) -> StackNetwork:
     # the environment
     eps = env.emissivity
     D_ho = 2 * r_ho
-    if gas == "air" and env.air_speed_m_s > 0:
-        h_house = film_W_m2K("cylinder_forced", D_ho, env.air_speed_m_s)
-    elif gas == "air":
-        def h_house(dT, _D=D_ho):
-            return film_W_m2K("cylinder_natural", _D, 0.0, dT)
-    else:
-        h_house = 0.0
+    h_house = _film(gas, env.air_speed_m_s, "cylinder", D_ho)
     h_inside = ((lambda dT, _D=2 * max(r_bore, 1e-3): film_W_m2K("cylinder_natural", _D, 0.0, dT))
                 if gas == "air" else 0.0)
     surfaces = []
@@ -588,13 +594,7 @@ def stack_network(asm, env: Environment, shells: int = 4) -> StackNetwork:
             g_axial = hm.conductivity_W_mK * A / (L_house / 2)
             net.link(int(node), mount_node, series(g_axial, CONTACT_W_M2K[("bolted", gas)] * A))
         Lp = mt.length_mm * mm
-        if gas == "air" and env.air_speed_m_s > 0:
-            h_plate = film_W_m2K("plate_forced", Lp, env.air_speed_m_s)
-        elif gas == "air":
-            def h_plate(dT, _L=Lp):
-                return film_W_m2K("plate_natural", _L, 0.0, dT)
-        else:
-            h_plate = 0.0
+        h_plate = _film(gas, env.air_speed_m_s, "plate", Lp)
         surfaces.append(Surface(mount_node, mt.area_m2(), h_plate, mt.emissivity))
     net = condensed(net, n_real)
     net.surfaces = surfaces
