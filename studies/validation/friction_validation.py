@@ -140,6 +140,11 @@ def pair_slope(M_Nmm, P_N) -> float:
 
 
 BOUNDARY_DATA = Path(__file__).resolve().parent / "data" / "boundary_friction.csv"
+#: OCI2018 Table 5: the pair's load torque at zero speed predicted by two independent bearing
+#: codes (BRGS10, ORBIS; mN m) with the friction coefficient OCI_TABLE5_MU and 60 lb (267 N)
+#: preload [paper]
+OCI_TABLE5_LOAD_TORQUE_mNm = (6.9, 6.8)
+OCI_TABLE5_MU = 0.08
 
 
 def boundary_coefficient(source: str = "GXL320A") -> tuple[float, float, float]:
@@ -528,8 +533,18 @@ def slow_text(slow: list, mu_range: tuple[float, float]) -> str:
         need.setdefault(p.source, []).append(p.mu_needed)
     j, o = need["JPL2022"], need["OCI2018"]
     lo, hi = mu_range
+    dry = boundary_coefficient("BUCKLEY1962")[0]
+    M = [p.predicted * OCI_TABLE5_MU / p.mu_ref for p in slow
+         if p.source == "OCI2018" and p.quantity.startswith("running")]
+    codes = " / ".join(f"{x:g}" for x in OCI_TABLE5_LOAD_TORQUE_mNm)
     return (f"Over these inputs JPL2022 needs mu {min(j):.2f}-{max(j):.2f} and OCI2018 "
-            f"{min(o):.2f}-{max(o):.2f}; the published boundary range is {lo:g}-{hi:g}. "
+            f"{min(o):.2f}-{max(o):.2f}; the published boundary range is {lo:g}-{hi:g}"
+            + (f", and the dry 52100 value {dry:g} (BUCKLEY1962) lies inside JPL's "
+               "(consistent with contacts close to unlubricated, a hypothesis these data "
+               "cannot test)" if min(j) <= dry <= max(j) else "")
+            + f". The estimate itself agrees with OCI's own codes: at mu {OCI_TABLE5_MU:g} and "
+            f"267 N it gives {min(M):.1f}-{max(M):.1f} mN m over these geometries, against "
+            f"{codes} mN m (BRGS10 / ORBIS, Table 5). "
             + ("The two sources' boundary coefficients differ by more than the inputs' "
                "uncertainty (a 440C / 440C bearing in PFPE against a Si3N4 / 440C hybrid in a "
                "MAC oil): the slow torque is a property of the lubricant and material pair, "
