@@ -122,6 +122,8 @@ def _external_params():
                                 "torque no law carries (report, slow points)",
               ("OCI2018", "starting"): "Palmgren's f1 slope +55 %, SKF's M_sl +150 %",
               ("OCI2018", "running"): "the laws miss the cartridge's running torque by 20-60 %",
+              ("OCI2018", "360"): "at 360 rpm Palmgren's f0 = 2 is 5.6x high (the paper's own "
+                                  "design estimate takes LQF 0.3), SKF 2.8x, EHL +52 %",
               ("LQF2018", "palmgren"): "Palmgren's LQF is a constant",
               ("LQF2018", "starved"): "the old starved law is flooded at 100 mg",
               ("LQF2018", "skf2004"): None}
@@ -131,6 +133,7 @@ def _external_params():
             continue
         for law in fv.LAWS:
             reason = (misses.get((p["source"], "*"))
+                      or ("360 rpm" in p["quantity"] and misses.get((p["source"], "360")))
                       or misses.get((p["source"], p["quantity"].split()[0]))
                       or misses.get((p["source"], law)))
             if p["source"] == "LQF2018" and law == "ehl_rolling" and "35 C" in p["quantity"]:
@@ -400,10 +403,10 @@ def test_loso_coverage_counts_against_the_other_sources_interval():
 
 
 def _target_params():
-    measured = {"minimal_oil": "17 of 27 residuals (63 %) inside, median upper / lower 69 "
-                               "(palmgren 4/6 width 69; skf2004 5/6, 96; ehl_rolling 5/6, 3.9e3; "
-                               "starved 0/4, 9.9; minimal_oil 3/5, 41): JPL and OCI miss in "
-                               "opposite directions (report)",
+    measured = {"minimal_oil": "19 of 32 residuals (59 %) inside, median upper / lower 73 "
+                               "(palmgren 6/7 width 156; skf2004 4/7, 94; ehl_rolling 6/7, "
+                               "1.1e3; starved 0/5, 19; minimal_oil 3/6, 41): JPL and OCI miss "
+                               "in opposite directions (report)",
                 "solid_film": "no published value row of a solid film has a residual (seed 000's "
                               "cycle changes are predicted 0)",
                 "oil_bath_jet": "no published oil bath or jet point is held"}

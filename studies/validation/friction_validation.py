@@ -15,13 +15,19 @@ reference data). Rows:
            and each law through `analytic.friction.pair.pair_torque` (the route simulate takes).
 Laws: palmgren (f1 load term, Palmgren 1959), skf2004, ehl_rolling (+ f1 load term), starved
 (+ f1; the source's charge), minimal_oil (+ f1; the source's charge, or fitted where the source
-gives none). Trend rows are judged by their sign. Interval: `analytic.friction.interval`
+gives none). Starting torques are each law at rest (`case_starting_torque_Nmm`: SKF's M_start =
+M_sl, Palmgren's load term). Trend rows are judged by their sign. The boundary-regime points
+(JPL, OCI slow and starting) are also held against the Coulomb contact estimate at a published
+boundary coefficient (`slow_point_rows`, data/boundary_friction.csv), which says what
+coefficient each would need; the LQF rig's trend against the minimal-oil inlet share
+(`lqf_share_rows`). Interval: `analytic.friction.interval`
 (regime, law), estimated from the other sources' log residuals; `in_interval` says whether the
 measured value lies inside it (empty where no interval can be stated).
 """
 from __future__ import annotations
 
 import csv
+import dataclasses
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -198,11 +204,11 @@ def slow_point_rows() -> list[SlowPoint]:
     (raceway curvatures 0.52 / 0.53 [assume]) and with 0.56 / 0.56, the curvature of small
     low-torque bearings (Dynaroll, "Raceway curvature": 0.56 +- 0.03), the OCI pair also at the
     25 deg contact angle its paper considered for the cartridge."""
-    import dataclasses
     c = cases()
     mu, _, _ = boundary_coefficient()
     pts = {k: _point(*k) for k in (("JPL2022", "starting"), ("JPL2022", "running"),
-                                   ("OCI2018", "starting"), ("OCI2018", "running"))}
+                                   ("OCI2018", "starting"),
+                                   ("OCI2018", "running torque cartridge"))}
     out = []
     jg, og = c["JPL2022"].g, c["OCI2018"].g
     P_oci = np.array([44.5, 445.0])
@@ -222,7 +228,7 @@ def slow_point_rows() -> list[SlowPoint]:
             p = pts[("OCI2018", "starting")]
             out.append(SlowPoint(p["source"], p["quantity"], float(p["measured"]), p["unit"],
                                  geo, mu, pair_slope(Mo[[0, 2]], P_oci)))
-            p = pts[("OCI2018", "running")]
+            p = pts[("OCI2018", "running torque cartridge")]
             out.append(SlowPoint(p["source"], p["quantity"], float(p["measured"]), p["unit"],
                                  geo, mu, 2.0 * Mo[1]))
     return out
@@ -290,7 +296,8 @@ def external_rows() -> list[Row]:
     c = cases()
     rows = []
     jpl_s, jpl_r = _point("JPL2022", "starting"), _point("JPL2022", "running")
-    oci_s, oci_r = _point("OCI2018", "starting"), _point("OCI2018", "running")
+    oci_s, oci_r = _point("OCI2018", "starting"), _point("OCI2018", "running torque cartridge")
+    oci_360 = _point("OCI2018", "running torque at 360")
     lqf_T, lqf_P = _point("LQF2018", "LQF 35"), _point("LQF2018", "LQF 222")
     n_jpl = 0.45 / 360.0 * 60.0                       # 0.39-0.5 deg/s [paper] -> rpm
     P_oci = np.array([44.5, 445.0])                   # 10..100 lbf [paper's example range]
@@ -303,8 +310,10 @@ def external_rows() -> list[Row]:
                  _row(jpl_r, law, M[0], note=f"{n_jpl:.3g} rpm")]   # N mm = mN m
         Mo = case_starting_torque_Nmm(c["OCI2018"], law, P_oci)
         rows.append(_row(oci_s, law, pair_slope(Mo, P_oci), note="pair at rest, 10..100 lbf"))
-        Mr, _ = case_torque_Nmm(c["OCI2018"], law, 267.0, 1.25, 20.0)
-        rows.append(_row(oci_r, law, 2.0 * Mr[0], note="pair at 267 N, 1.25 rpm"))
+        Mr, _ = case_torque_Nmm(c["OCI2018"], law, np.array([267.0, 267.0]),
+                                np.array([1.25, 360.0]), 20.0)
+        rows += [_row(oci_r, law, 2.0 * Mr[0], note="pair at 267 N, 1.25 rpm"),
+                 _row(oci_360, law, 2.0 * Mr[1], note="pair at 267 N, 360 rpm, 20 C")]
         lqf = c["LQF2018"]
         nu = get_lubricant(lqf.lubricant).nu_mm2_s(np.array([12.0, 35.0, 20.0, 20.0]))
         M0 = palmgren_viscous_torque_Nmm(1.0, nu, 6000.0, lqf.g.dm_mm)
