@@ -138,6 +138,8 @@ def _external_params():
                       or misses.get((p["source"], law)))
             if p["source"] == "LQF2018" and law == "ehl_rolling" and "35 C" in p["quantity"]:
                 reason = None
+            if "hybrid" in p["quantity"] and law in ("palmgren", "skf2004", "starved"):
+                reason = "the law sees neither the ball material nor (flooded) the charge"
             marks = [pytest.mark.xfail(reason=reason, strict=False)] if reason else []
             out.append(pytest.param(p["source"], p["quantity"], law, marks=marks,
                                     id=f"{p['source']}-{p['quantity'][:24]}-{law}"))

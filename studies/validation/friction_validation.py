@@ -299,6 +299,9 @@ def external_rows() -> list[Row]:
     oci_s, oci_r = _point("OCI2018", "starting"), _point("OCI2018", "running torque cartridge")
     oci_360 = _point("OCI2018", "running torque at 360")
     lqf_T, lqf_P = _point("LQF2018", "LQF 35"), _point("LQF2018", "LQF 222")
+    lqf_H = _point("LQF2018", "LQF steel")
+    hybrid = dataclasses.replace(c["LQF2018"], g=dataclasses.replace(
+        c["LQF2018"].g, ball=get_material("Si3N4")), oil_quantity_mg=90.0)   # [paper]
     n_jpl = 0.45 / 360.0 * 60.0                       # 0.39-0.5 deg/s [paper] -> rpm
     P_oci = np.array([44.5, 445.0])                   # 10..100 lbf [paper's example range]
     for law in LAWS:
@@ -320,8 +323,11 @@ def external_rows() -> list[Row]:
         _, V = case_torque_Nmm(lqf, law, np.array([133.0, 133.0, 89.0, 222.0]), 6000.0,
                                np.array([12.0, 35.0, 20.0, 20.0]))
         q = V / M0                                       # drag over (n nu)^(2/3) dm^3 1e-7
+        _, Vs = case_torque_Nmm(lqf, law, 178.0, 6000.0, 20.0)
+        _, Vh = case_torque_Nmm(hybrid, law, 178.0, 6000.0, 20.0)
         rows += [_row(lqf_T, law, q[1] / q[0], note=f"LQF ratio {q[1] / q[0]:.4f}"),
-                 _row(lqf_P, law, q[3] / q[2], note=f"LQF ratio {q[3] / q[2]:.4f}")]
+                 _row(lqf_P, law, q[3] / q[2], note=f"LQF ratio {q[3] / q[2]:.4f}"),
+                 _row(lqf_H, law, Vs[0] / Vh[0], note=f"LQF ratio {Vs[0] / Vh[0]:.4f}")]
     return rows
 
 
