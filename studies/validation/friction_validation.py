@@ -685,7 +685,10 @@ def run(out: Path, progress=print, mesh_factor: float = 1.0) -> None:
              "measured, error, and the law's model-form interval for its regime, estimated from "
              f"the OTHER sources' log residuals (nominal level {LEVEL:.0%}: mean +- z sd "
              "sqrt(1 + 1/n) of ln(measured / predicted), analytic/friction/interval.py). Trend "
-             "rows are judged by their sign; change rows of opposite sign give no residual.", "",
+             "rows are judged by their sign; change rows of opposite sign give no residual. "
+             "Starting torques are each law at rest (SKF's M_start = M_sl at its boundary "
+             "coefficient; the Palmgren-based laws their load term, the viscous term vanishing "
+             "at rest).", "",
              md_table(["source", "quantity", "measured", "unit", "law", "predicted", "lo", "hi",
                        "error", "inside"], table), "",
              "![matrix](matrix.png)", "",
