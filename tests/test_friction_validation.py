@@ -427,3 +427,14 @@ def test_interval_covers_at_its_level_and_says_something(regime):
     inside = sum(c.inside for c in cov)
     width = float(np.median([w for c in cov for w in c.width_ratios]))
     assert inside / judged >= iv.LEVEL and width <= 3.0, (inside, judged, width)
+
+
+def test_matrix_in_interval_column_agrees_with_loso_coverage(external):
+    """The CSV's per-row `in_interval` (the study's `with_intervals`) and the coverage table
+    (`interval.loso_coverage`) count the same rows inside, law by law, on the external rows."""
+    rows = fv.with_intervals(external)
+    cov = fv.coverage(rows)
+    for (reg, law), c in cov.items():
+        mine = [r for r in rows if (r["regime"], r["law"]) == (reg, law) and r["kind"] == "value"
+                and np.isfinite(r["log_residual"]) and r["in_interval"] != ""]
+        assert (sum(bool(r["in_interval"]) for r in mine), len(mine)) == (c.inside, c.judged)
