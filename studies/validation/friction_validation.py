@@ -749,7 +749,9 @@ def run(out: Path, progress=print, mesh_factor: float = 1.0) -> None:
               "The share is what the data do not give: the paper prints normalised LQF only "
               "(its magnitude is not held here), and the other minimal-oil sources state no "
               "charge the share could be calibrated on (seed 001 states none; OCI's oil is in "
-              "the cage). The default stays the upper bound; a diagnosis fits k.", "",
+              "the cage). The default stays the upper bound; a diagnosis fits k. A replenishment law "
+              "that would set k from the conditions (surface tension, viscosity, time between "
+              "passes) was searched for and not reached (docs/friction_sources.md).", "",
               "Regimes without a published point here (oil bath or jet) have no interval: "
               "their columns are empty.", ""]
     (out / "report.md").write_text("\n".join(lines) + "\n")
