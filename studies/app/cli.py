@@ -163,6 +163,12 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--diagnose", action="store_true",
                    help="instead: time of a 500-row diagnosis with all candidates (seed000), per "
                         "phase in model calls and in the engine")
+    b.add_argument("--rows", type=int, nargs="+", default=None, metavar="N",
+                   help="with --diagnose: the rows per dataset kind (several: one run each; "
+                        "default 500)")
+    b.add_argument("--datasets", nargs="+", default=None, metavar="PART",
+                   help="with --diagnose: only the dataset kinds whose label contains one of "
+                        "these (e.g. thermal_transient_fe)")
     b.add_argument("--transient", action="store_true",
                    help="instead: seed 003's 30-minute heat-up (900 steps of 2 s): reduction, "
                         "reduced and full-FE transient times, preload error reduced vs full")

@@ -256,8 +256,11 @@ def cmd_bench(args) -> None:
     if args.diagnose:
         from studies.bench import bench_diagnose
 
-        bench_diagnose.main([])
+        bench_diagnose.main((["--rows", *map(str, args.rows)] if args.rows else [])
+                            + (["--datasets", *args.datasets] if args.datasets else []))
         return
+    if args.rows or args.datasets:
+        raise UserError("--rows, --datasets: only with --diagnose")
     if args.simulate:
         from studies.bench import bench_simulate
 

@@ -4,7 +4,8 @@ every candidate effect diagnosed in under 10 s on 2 cores). Prints, never assert
 Run: `bearingfem bench --diagnose` or `.venv/bin/python -m studies.bench.bench_diagnose` (add
 `--mesh-factor 2` for the coarser mesh of the tests, `--rows 240 500` for several sizes,
 `--workers 1` for one process). Per dataset it also prints the model calls and the wall seconds of
-each phase with the seconds spent in model calls (summed over the worker processes).
+each phase with the seconds spent in model calls (summed over the worker processes), and each
+fitted candidate's model calls and CPU seconds in its fit (phase 3), most calls first.
 
 Dataset: seed 000 (the shipped `seed000_71807C_TC4.toml`, full mesh as the CLI builds it),
 alternating -60 <-> 80 C cycles from 20 C (2 K/min ramps, one-hour dwells) sampled every 60 s,
@@ -308,6 +309,10 @@ def main(argv=None) -> None:
                 f"{k} {v['total']:.2f} ({v['predict']:.2f})"
                 for k, v in r["seconds_by_phase"].items() if v["total"] >= 0.005)
                 + f"; total {r['seconds']['total']:.2f} s ({r['seconds']['predict']:.2f} s)")
+            fitted = sorted((c for c in out.candidates if c.predict_calls_fit),
+                            key=lambda c: -c.predict_calls_fit)
+            print("    fit calls per candidate (CPU s): " + ", ".join(
+                f"{c.effect} {c.predict_calls_fit} ({c.fit_cpu_s or 0.0:.2f})" for c in fitted))
             if "thermal_transient_fe" in kind.effects:
                 print("    " + trial_times(pred, kind.effects, cond))
             if args.profile:

@@ -233,12 +233,14 @@ def fit_candidate(pb: Problem, e, info, base: Fit,
         scored = _score_starts(pb, space, _start_points(pb, e, info, base, space), base.J)
     # local optimisation from the two most promising starts (fits that open or close, lags
     # and thresholds make the problem non-convex)
-    # the Gauss-Newton step from "off" (index 0) is always refined too: a grid start can sit
-    # where a fit is open and the outputs do not depend on a parameter (a flat local minimum)
+    # the Gauss-Newton step from "off" (index 0) is refined too when the fits so far ended flat
+    # in an effect parameter (`_flat`: a grid start can sit where a fit is open and the
+    # outputs do not depend on a parameter, a flat local minimum), else when it is promising
     gn = [t for t in scored if t[1] == 0 and t not in scored[:2]]
     f = None
     for sse0, idx, uu in scored[:2] + gn:
-        if f is not None and idx != 0 and sse0 > f.chi2 + max(10.0, 0.2 * (base.chi2 - f.chi2)):
+        if (f is not None and not (idx == 0 and _flat(f))
+                and sse0 > f.chi2 + max(10.0, 0.2 * (base.chi2 - f.chi2))):
             continue                  # not promising enough
         try:
             fi = pb.fit(space, uu)
@@ -252,6 +254,19 @@ def fit_candidate(pb: Problem, e, info, base: Fit,
         f2 = pb.fit(space, np.concatenate([np.zeros(space.k), base.u]))
         f = f2 if f2.chi2 < f.chi2 else f
     return f
+
+
+#: an effect parameter's column of a fit's Jacobian (standardised residuals per scaled unit)
+#: whose norm is below this: the chi-square moves by less than FLAT_COLUMN^2 over a whole
+#: scaled unit (one `fitspec.steps` step), so the outputs do not depend on the parameter there
+FLAT_COLUMN = 1e-3
+
+
+def _flat(f: Fit) -> bool:
+    """Whether fit `f` ended where the outputs do not depend on one of its effect parameters
+    (a Jacobian column below FLAT_COLUMN: a fit left open, a lag far shorter than a row)."""
+    k = len(f.space.eff_params)
+    return bool(k and np.linalg.norm(f.J[:, :k], axis=0).min() < FLAT_COLUMN)
 
 
 def _linearised(pb: Problem, e, pp: str, value: float, base: Fit) -> Linearisation | None:
