@@ -10,7 +10,7 @@ H_B1 sliding, H_B2 viscous, H_B3 spin).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from functools import lru_cache
 
 import numpy as np
@@ -54,6 +54,11 @@ class PairHeat:
     @property
     def total_W(self) -> np.ndarray:
         return self.sliding_W + self.spin_W + self.viscous_W + self.hysteresis_W + self.drag_W
+
+    def scaled(self, factor: float) -> "PairHeat":
+        """Every term x factor (-): the heat of a torque x factor, e.g. at an end of its
+        model-form interval (`analytic.friction.interval`)."""
+        return PairHeat(*(factor * np.asarray(getattr(self, f.name), float) for f in fields(self)))
 
 
 def pair_heat_W(g, pair, speed_rpm, mu_traction: float, viscous_torque_Nmm) -> PairHeat:

@@ -114,6 +114,8 @@ def test_report_twin(tmp_path, asm_path):
     assert isinstance(res.warnings, list)
 
 
+@pytest.mark.slow      # ~8 s, two-thirds of it the report's 12 figures; the call itself is
+# test_command_and_function_make_the_same_call[tolerance], the command's numbers tests/test_tolerances.py
 def test_tolerance_twin(tmp_path, asm_path):
     f = tmp_path / "c.csv"
     f.write_text("T_ambient_C\n20\n60\n")

@@ -93,6 +93,9 @@ def test_a_change_below_the_detection_threshold_is_not_claimed(seed):
     doc = to_json(r)["detection"]
     assert set(doc) == {"torque_Nmm", "preload_N"}
     assert all(set(v) == {"threshold_sigma", "change_sigma"} for v in doc.values())
+    # nothing claimed, and still the configured model's interval in diagnosis.json and .csv
+    from test_configured_interval import assert_written
+    assert_written(r, meas)
 
 
 def test_a_change_well_above_the_detection_threshold_is_still_claimed():

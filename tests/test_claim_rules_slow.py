@@ -58,8 +58,9 @@ def _contact_angle_case(rms_sigma: float, seed: int):
 @pytest.mark.parametrize("seed", [0, 1])
 def test_an_unlisted_contact_angle_at_075_sigma_is_not_claimed(seed):
     """0.75 sigma RMS after the friction scale (below the cycles design's threshold, 0.97 sigma
-    on 240 rows; passed in about 6 % of draws): no cause is claimed (the hidden case was
-    `explained: interference_error`; seed 1 was `explained: material_lot` at the power 0.8)."""
+    on 240 rows; the change estimate passes it in about 9 % of draws): no cause is claimed (the
+    hidden case was `explained: interference_error`; seed 1 was `explained: material_lot` at the
+    power 0.8)."""
     from studies.validation import second_source as ss
 
     case = _contact_angle_case(0.75, seed)

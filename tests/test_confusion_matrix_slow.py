@@ -7,10 +7,11 @@ on the assembly the toy stands for), so the solid-film run-in is a candidate on 
 
 Asserts: the false-alarm count of the nulls is within the binomial 99 % upper quantile of the stated
 level (the union bound alpha_structure + alpha_lr of the engine's thresholds:
-`operating.stated_false_alarm_level`); every listed effect injected at the larger magnitude
-(RMS visible change 0.5 noise sigma) is named (explained, or ambiguous with it among the rivals),
-but for chance firings of the sensor-drift check on the true cause within their binomial bound
-(`_named_and_unlisted`);
+`operating.stated_false_alarm_level`); every listed effect injected at the largest magnitude
+(RMS visible change 2 noise sigma, above the detection threshold) is named (explained, or
+ambiguous with it among the rivals), but for chance firings of the sensor-drift check on the true
+cause within their binomial bound (`_named_and_unlisted`); nothing is claimed at the magnitude
+below the detection threshold (`operating.BELOW_DETECTION_SIGMA`, 0.25 sigma);
 the unlisted torque drift is never claimed as a listed cause, also in a design where the run-in
 (a history in revolutions) is a candidate at three speeds; the look-alike pairs the toy's physics
 implies. Prints the matrices."""
@@ -22,8 +23,8 @@ from scipy import stats
 from studies.diagnosis.core import DEFAULT_THRESHOLDS
 from studies.diagnosis.designs import cycles, speed_steps
 from studies.diagnosis.files import candidate_effects
-from studies.diagnosis.operating import (MAGNITUDES, NONE, UNLISTED, Design, markdown, run_matrix,
-                                         stated_false_alarm_level)
+from studies.diagnosis.operating import (BELOW_DETECTION_SIGMA, MAGNITUDES, NONE, UNLISTED, Design,
+                                         markdown, run_matrix, stated_false_alarm_level)
 
 from test_diagnosis_engine import NUISANCE, SIGMA, T_REF, ToyBearing
 
@@ -54,6 +55,14 @@ def _named_and_unlisted(mx):
             assert r.cause_claimed == 0, r
 
 
+def _nothing_claimed_below_detection(mx):
+    """At the magnitude below every design's detection threshold no cause is claimed, listed or
+    unlisted (the detection rule: `no_discrepancy` whatever fits)."""
+    below = [r for r in mx.rates if r.magnitude_sigma == BELOW_DETECTION_SIGMA]
+    assert below and all(r.cause_claimed == 0 and r.explained_partly == 0 for r in below), [
+        r for r in below if r.cause_claimed]
+
+
 def test_reduced_confusion_matrix():
     solid, oil = ToyBearing(), ToyBearing(c_visc=0.5, speed_rpm=6000.0)
     designs = [Design("cycles", cycles(300, 96.0), solid.predictor,
@@ -75,6 +84,7 @@ def test_reduced_confusion_matrix():
                                        "viscosity_temperature"}
     assert "solid_film_runin" not in mx.lookalike["speed_steps"]
     _named_and_unlisted(mx)
+    _nothing_claimed_below_detection(mx)
     # look-alikes the toy's physics implies: at one speed the radial gradient is a constant ring
     # temperature difference, i.e. a constant change of both fits, as an interference error
     # (cosine near 1, above the engine's 0.95); a lag (a history in the temperature rate) and a
@@ -90,10 +100,11 @@ def test_reduced_confusion_matrix():
 def test_unlisted_drift_is_not_run_in_at_several_speeds():
     """The run-in counts revolutions, the drift time: with 300, 60 and 600 rpm a third of the rows
     each they differ, and a torque drift linear in time is never claimed (as the run-in or any
-    listed cause) at 0.25 or 0.5 sigma. The injected run-in's rate is printed, not asserted: at
-    0.5 sigma a zero drift of the sensors explains most of it in this design (its revolutions
-    grow nearly linearly in time), and the engine then reports `unexplained` with the run-in as
-    the best partial candidate (docs/diagnosis.md)."""
+    listed cause) at any of `MAGNITUDES`. The injected run-in's rate is printed, not asserted:
+    near the threshold a zero drift of the sensors can explain it in this design (its
+    revolutions grow nearly linearly in time), and the engine then reports `unexplained` with
+    the run-in as the best partial candidate (docs/diagnosis.md); measured 2026-12-02: explained
+    in 4 of 4 at 1 sigma and at 2 sigma."""
     solid = ToyBearing()
     cond = cycles(300, 96.0, speeds_rpm=(300.0, 60.0, 600.0))
     d = Design("cycles_speeds", cond, solid.predictor, candidate_effects(solid.assembly()),
@@ -105,6 +116,7 @@ def test_unlisted_drift_is_not_run_in_at_several_speeds():
     assert sorted(r.magnitude_sigma for r in drift) == sorted(MAGNITUDES)
     for r in drift:
         assert r.cause_claimed == 0, r
+    _nothing_claimed_below_detection(mx)
 
 
 def test_real_model_lookalikes_stated_in_the_docs():

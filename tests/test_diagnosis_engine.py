@@ -233,6 +233,8 @@ def test_effect_outside_the_list_not_claimed(solid):
     assert res["verdict"] in ("unexplained", "no_discrepancy"), (res["verdict"], res["cause"],
                                                                   res["reasons"])
     assert res["cause"] is None
+    # nothing claimed: the configured model's interval (test_configured_interval.py)
+    assert res["interval"]["model"] == "configured" and res["interval"]["level"] == 0.9
 
 
 def test_requires_time_and_json_ready(solid):

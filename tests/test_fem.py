@@ -27,6 +27,15 @@ def _lame(ri, rf, ro, mi, mo, d_um, assumption):
     return float(lame.fit_pressure_MPa(ri, rf, ro, a.E_MPa, a.nu, b.E_MPa, b.nu, d_um, assumption))
 
 
+@pytest.fixture(scope="module")
+def seed000_coarse():
+    """Seed 000's section on a mesh coarsened 2x, its FE model and one solver shared by the
+    tests below (the solver keeps a factorisation per contact status: built once here)."""
+    sec = section_from_assembly(load_shipped("seed000")).scaled(2.0)
+    model = build_model(sec)
+    return sec, model, FitSolver(model)
+
+
 @pytest.mark.requirement("R-FE-LAME")
 def test_every_verify_lame_case_within_half_percent():
     for c in lame_cases(mesh_factor=2.0):   # coarser than the default mesh: still far inside
@@ -73,11 +82,8 @@ def test_short_ring_pressure_between_plane_stress_and_plane_strain():
     assert c.bounds.within_bounds, c
 
 
-def test_rigid_body_fix_adds_no_force():
-    asm = load_shipped("seed000")
-    sec = section_from_assembly(asm).scaled(2.0)
-    model = build_model(sec)
-    solver = FitSolver(model)
+def test_rigid_body_fix_adds_no_force(seed000_coarse):
+    sec, model, solver = seed000_coarse
     theta = np.array([model.materials[p].thermal_strain(80.0, 20.0) for p in model.part_names])
     f = model.unit_loads @ theta
     sol = solver.solve(f, [0.0025, 0.0025, -0.00075, -0.00075])
@@ -88,13 +94,10 @@ def test_rigid_body_fix_adds_no_force():
 
 
 @pytest.mark.requirement("R-FE-CONTACT")
-def test_superposition_equals_direct_across_fit_opening_and_closing():
+def test_superposition_equals_direct_across_fit_opening_and_closing(seed000_coarse):
     """TC4 shaft in a 9Cr18 ring (+5 um) opens near 120 C; the outer clearance (-1.5 um) closes
     near 41 C (CTE difference): sweep across both, superposed vs direct to 1e-8."""
-    asm = load_shipped("seed000")
-    sec = section_from_assembly(asm).scaled(2.0)
-    model = build_model(sec)
-    solver = FitSolver(model)
+    sec, model, solver = seed000_coarse
     probe = model.probe_matrix(np.array(list(sec.raceway_points.values())).T)
     sup = Superposition(solver, probe)
     T = np.linspace(-60.0, 160.0, 23)
@@ -115,16 +118,13 @@ def test_superposition_equals_direct_across_fit_opening_and_closing():
     assert np.abs(u_field - d.u).max() <= 1e-8 * np.abs(d.u).max()
 
 
-def test_superposition_of_a_shuffled_cycle_matches_direct_solves_in_any_order():
+def test_superposition_of_a_shuffled_cycle_matches_direct_solves_in_any_order(seed000_coarse):
     """The superposition tries its states sorted (`fem.solver.state_order`), not in row order:
     a shuffled -60..160 C programme (fits opening and closing, several active sets) gives each
     state the direct FE solve's contact forces (a second route) to 1e-8, and the same forces in
     any order of the rows to 1e-12 of the largest (only the rounding of the back-substitution
     may differ)."""
-    asm = load_shipped("seed000")
-    sec = section_from_assembly(asm).scaled(2.0)
-    model = build_model(sec)
-    solver = FitSolver(model)
+    sec, model, solver = seed000_coarse
     sup = Superposition(solver)
     T = np.random.default_rng(3).permutation(np.tile(np.linspace(-60.0, 160.0, 12), 3))
     theta = np.array([[model.materials[p].thermal_strain(t, 20.0) for p in model.part_names]

@@ -46,7 +46,7 @@ def sleeve_22C():
     a = assembly_from_dict(_with_layer(_template(sleeve_interference_um=1.0), "sleeve", 3.0,
                                        "17-4PH"))
     T = np.array([0.0, 20.0, 21.0, 22.0, 23.0, 40.0])
-    out = to_columns(Pipeline(a, cache=False).run(table_inputs(a, {"T_ambient_C": T})))
+    out = to_columns(Pipeline(a).run(table_inputs(a, {"T_ambient_C": T})))
     return a, T, out
 
 

@@ -117,9 +117,13 @@ def external():
 def _external_params():
     """(source, quantity, law) of the external rows, with the law-and-row pairs whose
     prediction lies outside the source's scatter marked xfail (not strict: a better law passes)."""
-    misses = {("JPL2022", "*"): "every law's load term is 3-7x below the JPL torques",
-              ("OCI2018", "starting"): "Palmgren's f1 slope +55 %, SKF +150 %",
+    misses = {("JPL2022", "*"): "every law is below the JPL torques (at rest 0.14-0.17 against "
+                                "0.92 mN m; at 0.075 rpm 0.14-0.26 against 0.64): a boundary "
+                                "torque no law carries (report, slow points)",
+              ("OCI2018", "starting"): "Palmgren's f1 slope +55 %, SKF's M_sl +150 %",
               ("OCI2018", "running"): "the laws miss the cartridge's running torque by 20-60 %",
+              ("OCI2018", "360"): "at 360 rpm Palmgren's f0 = 2 is 5.6x high (the paper's own "
+                                  "design estimate takes LQF 0.3), SKF 2.8x, EHL +52 %",
               ("LQF2018", "palmgren"): "Palmgren's LQF is a constant",
               ("LQF2018", "starved"): "the old starved law is flooded at 100 mg",
               ("LQF2018", "skf2004"): None}
@@ -129,10 +133,13 @@ def _external_params():
             continue
         for law in fv.LAWS:
             reason = (misses.get((p["source"], "*"))
+                      or ("360 rpm" in p["quantity"] and misses.get((p["source"], "360")))
                       or misses.get((p["source"], p["quantity"].split()[0]))
                       or misses.get((p["source"], law)))
             if p["source"] == "LQF2018" and law == "ehl_rolling" and "35 C" in p["quantity"]:
                 reason = None
+            if "hybrid" in p["quantity"] and law in ("palmgren", "skf2004", "starved"):
+                reason = "the law sees neither the ball material nor (flooded) the charge"
             marks = [pytest.mark.xfail(reason=reason, strict=False)] if reason else []
             out.append(pytest.param(p["source"], p["quantity"], law, marks=marks,
                                     id=f"{p['source']}-{p['quantity'][:24]}-{law}"))
@@ -330,3 +337,104 @@ def test_minimal_oil_notes_rows_below_its_source_range(lqf):
         (r,) = b.ranges
         outside.append(bool(r.outside[0]))
     assert outside == [True, False]
+
+
+# ------------------------------------------- starting torque, slow points, LOSO coverage target
+def test_skf_starting_torque_is_the_sliding_moment_at_rest():
+    """SKF's M_start = M_sl: by hand S1 dm^0.26 S2 F_a^(4/3) mu_bl (pure axial load, no F_g at
+    rest) with the single-row constants, and the limit of the running model's sliding moment
+    as n -> 0+ (1e-9 rpm: phi_bl = 1 to 1e-20), both to 1e-9."""
+    from analytic.friction import skf2004 as skf
+    d, D, Fa = 40.0, 68.0, np.array([44.5, 445.0])
+    c = skf.SKF_SINGLE_ROW
+    by_hand = c.S1 * (0.5 * (d + D)) ** 0.26 * c.S2 * Fa ** (4.0 / 3.0) * 0.15
+    np.testing.assert_allclose(skf.skf2004_starting_torque_Nmm(d, D, 0.0, Fa), by_hand,
+                               rtol=1e-9)
+    run = skf.skf2004_torque(d, D, 0.0, Fa, 1e-9, 100.0)
+    np.testing.assert_allclose(run.sliding_Nmm, by_hand, rtol=1e-9)
+
+
+def test_coulomb_contact_estimate_brackets_the_oci_papers_own_codes():
+    """Second method: OCI2018 Table 5 prints the load torque of its pair at mu = 0.08 and 60 lb
+    preload from two independent codes (BRGS10 6.9, ORBIS 6.8 mN m). The project's Coulomb
+    contact estimate (Heathcote slip + spin) at mu = 0.08 over the geometry the paper leaves
+    open (raceway curvature 0.52/0.53 or 0.56/0.56, contact angle 15 or 25 deg) brackets both
+    (the tolerance: that geometry's spread, 5.9..12.7 mN m)."""
+    pts = [p for p in fv.slow_point_rows()
+           if p.source == "OCI2018" and p.quantity.startswith("running")]
+    M = np.array([p.predicted * fv.OCI_TABLE5_MU / p.mu_ref for p in pts])
+    assert len(M) == 4
+    assert M.min() <= min(fv.OCI_TABLE5_LOAD_TORQUE_mNm), M
+    assert max(fv.OCI_TABLE5_LOAD_TORQUE_mNm) <= M.max(), M
+
+
+def _slow_params():
+    reasons = {"JPL2022": "the Coulomb estimate at the PFPE four-ball mu 0.11 gives 0.19-0.24 "
+                          "mN m; the JPL torques need mu 0.30-0.53 (report)",
+               "OCI2018": "the OCI slope needs mu 0.031-0.067 and SN006 0.071-0.15 against "
+                          "0.11 (report)"}
+    return [pytest.param(src, q, marks=pytest.mark.xfail(reason=reasons[src], strict=False),
+                         id=f"{src}-{q}") for src, q in (("JPL2022", "starting"),
+                                                         ("JPL2022", "running"),
+                                                         ("OCI2018", "starting"),
+                                                         ("OCI2018", "running"))]
+
+
+@pytest.mark.parametrize("source,start", _slow_params())
+def test_slow_point_within_its_scatter_at_the_published_boundary_coefficient(source, start):
+    """The boundary-regime points against the Coulomb contact estimate at the published PFPE
+    vacuum four-ball coefficient (GXL320A, 0.11) with the case's own inputs (curvature
+    0.52/0.53, 15 deg): within the source's scatter (the CSV's rel_scatter)."""
+    p = next(p for p in fv.slow_point_rows() if p.source == source
+             and p.quantity.startswith(start))
+    scatter = float(fv._point(source, start)["rel_scatter"])
+    assert abs(p.predicted / p.measured - 1.0) <= scatter, (p.predicted, p.measured)
+
+
+def test_loso_coverage_counts_against_the_other_sources_interval():
+    """Closed form: sources A (0.0), B (0.1), C (0.5, 0.6). C against A + B: mean 0.05, sd
+    0.0707, half 1.645 sd sqrt(3/2) = 0.142: both C rows outside; A against B + C: mean 0.4,
+    half 0.503: inside; B against A + C: mean 0.367, half 0.611: inside. 2 of 4 judged."""
+    res = [("r", "l", "A", 0.0), ("r", "l", "B", 0.1), ("r", "l", "C", 0.5),
+           ("r", "l", "C", 0.6), ("r", "l", "D", float("nan"))]
+    c = iv.loso_coverage(res)[("r", "l")]
+    assert (c.inside, c.judged) == (2, 4)
+    e = np.array([0.0, 0.1])
+    half = 1.6448536269514722 * np.std(e, ddof=1) * np.sqrt(1.5)
+    assert sum(np.isclose(w, np.exp(2 * half), rtol=1e-12) for w in c.width_ratios) == 2
+
+
+def _target_params():
+    measured = {"minimal_oil": "19 of 32 residuals (59 %) inside, median upper / lower 73 "
+                               "(palmgren 6/7 width 156; skf2004 4/7, 94; ehl_rolling 6/7, "
+                               "1.1e3; starved 0/5, 19; minimal_oil 3/6, 41): JPL and OCI miss "
+                               "in opposite directions (report)",
+                "solid_film": "no published value row of a solid film has a residual (seed 000's "
+                              "cycle changes are predicted 0)",
+                "oil_bath_jet": "no published oil bath or jet point is held"}
+    return [pytest.param(reg, marks=pytest.mark.xfail(reason=measured[reg], strict=False),
+                         id=reg) for reg in iv.REGIMES]
+
+
+@pytest.mark.parametrize("regime", _target_params())
+def test_interval_covers_at_its_level_and_says_something(regime):
+    """Issue 43 Done-when: per regime, the shipped residuals' leave-one-source-out coverage
+    (every law pooled) reaches the nominal level and the typical interval's upper over lower
+    bound is at most 3."""
+    cov = [c for (reg, _), c in iv.shipped_coverage().items() if reg == regime]
+    judged = sum(c.judged for c in cov)
+    assert judged > 0
+    inside = sum(c.inside for c in cov)
+    width = float(np.median([w for c in cov for w in c.width_ratios]))
+    assert inside / judged >= iv.LEVEL and width <= 3.0, (inside, judged, width)
+
+
+def test_matrix_in_interval_column_agrees_with_loso_coverage(external):
+    """The CSV's per-row `in_interval` (the study's `with_intervals`) and the coverage table
+    (`interval.loso_coverage`) count the same rows inside, law by law, on the external rows."""
+    rows = fv.with_intervals(external)
+    cov = fv.coverage(rows)
+    for (reg, law), c in cov.items():
+        mine = [r for r in rows if (r["regime"], r["law"]) == (reg, law) and r["kind"] == "value"
+                and np.isfinite(r["log_residual"]) and r["in_interval"] != ""]
+        assert (sum(bool(r["in_interval"]) for r in mine), len(mine)) == (c.inside, c.judged)

@@ -25,6 +25,7 @@ from test_effects import T_REF, assert_same_inputs, cycle_inputs
 ON = {
     "thermal_lag.per_part": {"tau_s": 900.0, "tau_shaft_s": 2400.0},
     "preload_settling.creep": {"loss_N": 12.0, "threshold_K": 30.0, "creep_N_per_h": 4.0},
+    "preload_settling.gradual": {"loss_N": 12.0, "threshold_K": 30.0, "tau_settle_s": 3600.0},
     "cte_nonlinearity.curvature": {"dalpha_per_K": 5e-9, "d2alpha_per_K3": 1e-10},
     "radial_gradient.lag": {"dT_K": 3.0, "dT_per_krpm_K": 1.5, "tau_gradient_s": 600.0},
     "thermal_lag.series": {"tau_s": 600.0, "tau_shaft_s": 240.0},
@@ -294,3 +295,18 @@ def test_friction_exponential_is_the_exponential_law():
         series = dmu * (x - b * x ** 2 / 2 + b ** 2 * x ** 3 / 6)
         tol = dmu * abs(b) ** 3 * np.max(np.abs(x)) ** 4 / 24 + 8 * np.finfo(float).eps * dmu * 80
         np.testing.assert_allclose(d, series, rtol=0, atol=tol)
+
+
+def test_settling_gradual_follows_its_first_order_approach():
+    """Stepped programme, 10 min samples: 20 C for 3 rows, then 80 C. Threshold 30 K: the loss
+    starts at row 3 (t_0 = 1800 s) and approaches 12 N as 1 - exp(-(t - t_0) / 3600 s), the
+    closed form of a first-order settling (e^-1 of the way left one time constant after t_0:
+    7.585 N at row 9); 0 before t_0."""
+    T = np.array([20.0] * 3 + [80.0] * 9)
+    t = np.arange(T.size) * 600.0
+    inp = baseline_inputs({"time_s": t, "T_ambient_C": T}, T.size, T_REF, 100.0, 0.0)
+    out = GENERALISED["preload_settling.gradual"].apply(
+        inp, {"loss_N": 12.0, "threshold_K": 30.0, "tau_settle_s": 3600.0}, T_REF)
+    expect = np.where(t >= 1800.0, 12.0 * (1.0 - np.exp(-(t - 1800.0) / 3600.0)), 0.0)
+    np.testing.assert_allclose(out.preload_loss_N, expect, rtol=0, atol=1e-12 * 12.0)
+    assert out.preload_loss_N[9] == pytest.approx(12.0 * (1.0 - math.exp(-1.0)), rel=1e-12)

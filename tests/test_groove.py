@@ -197,7 +197,7 @@ def test_grooved_pipeline_superposed_equals_direct_and_fits_its_own_field():
 
     a = grooved("seed000")
     a = dataclasses.replace(a, mesh=dataclasses.replace(a.mesh, target_error=1e-2))
-    pl = Pipeline(a, cache=False)
+    pl = Pipeline(a)
     inp = table_inputs(a, {"T_ambient_C": np.array([-60.0, 80.0])})
     sup, direct = pl.fe(inp), pl.fe(inp, direct=True)
     scale = np.abs(direct.dr_mm).max()

@@ -22,6 +22,9 @@ def test_heatup_is_a_registered_study_and_its_short_coarse_run_writes_its_report
     assert all(found[1500.0].T_end_C[p] > found[1000.0].T_end_C[p] for p in heatup.PARTS)
     for name in ("report.md", "preload.png", "torque.png", "heat.png"):
         assert (tmp_path / name).is_file(), name
+    up = found[1500.0].upper
+    assert "## At the upper end of the friction torque" in (tmp_path / "report.md").read_text()
+    assert all(up.T_C[p] > found[1500.0].T_equilibrium_C[p] for p in up.T_C)
 
 
 def test_the_equilibrium_meets_the_seeds_statements_and_loses_all_its_heat():
@@ -34,9 +37,6 @@ def test_the_equilibrium_meets_the_seeds_statements_and_loses_all_its_heat():
     h_g int (T - T_amb) dA = heat, to 1e-6 of the heat (the fixed point's 1e-6 K tolerance on a
     field ~20 K above ambient; the uniform field is in the reduced basis, so the balance holds in
     the reduced model)."""
-    import numpy as np
-
-    from fem.transient import PER_M2_TO_PER_MM2
     from studies.model.inputs import PARTS
     from studies.model.pipeline import Pipeline
     from studies.model.transient_route import coupling_at, equilibrium, thermal_model
@@ -54,10 +54,40 @@ def test_the_equilibrium_meets_the_seeds_statements_and_loses_all_its_heat():
     cold = coupling_at(pl, cols, heatup.AMBIENT_C * tm.rc.q_one)
     heat = float(e.coupling.heat.total_W[0])
     assert heat < float(cold.heat.total_W[0])
-    field = tm.rc.field(e.q)
-    out = sum(h * PER_M2_TO_PER_MM2 * (tm.tc.b[g] @ field - tm.tc.b[g].sum() * heatup.AMBIENT_C)
-              for g, h in tm.nominal.film_W_m2K.items())
-    assert out == pytest.approx(heat, rel=1e-6)
+    assert _film_loss_W(tm, e.q) == pytest.approx(heat, rel=1e-6)
+
+
+def _film_loss_W(tm, q) -> float:
+    """sum_g h_g int (T - T_amb) dA (W) of the reduced state q: what the films take away."""
+    from fem.transient import PER_M2_TO_PER_MM2
+
+    field = tm.rc.field(q)
+    return sum(h * PER_M2_TO_PER_MM2 * (tm.tc.b[g] @ field - tm.tc.b[g].sum() * heatup.AMBIENT_C)
+               for g, h in tm.nominal.film_W_m2K.items())
+
+
+def test_the_equilibrium_at_the_frictions_upper_end_loses_the_scaled_heat():
+    """The heat-up's end at the upper factor f of the friction's model-form interval
+    (`heatup.upper_end`; coarse mesh, 1500 rpm): the heat there is f x what the friction law
+    gives at that same state (P = M omega, the torque x f; 1e-12 relative), all of it leaves
+    through the films (the steady state's conservation law, 1e-6 as above), and with f > 1 every
+    part ends warmer than at the nominal fixed point."""
+    from studies.model.pipeline import Pipeline
+    from studies.model.transient_route import coupling_at, equilibrium, thermal_model
+
+    from analytic.friction.interval import lubrication_interval
+    from studies.model.inputs import PARTS
+
+    pl = Pipeline.shared(heatup.assembly(), mesh_factor=2.0, progress=lambda s: None)
+    cols = heatup.conditions(1500.0, 0.0)
+    f = lubrication_interval(pl.asm.lubrication).factor_hi
+    assert f > 1.0
+    e = equilibrium(pl, cols, heat_factor=f)
+    heat = float(e.coupling.heat.total_W[0])
+    assert heat == pytest.approx(f * float(coupling_at(pl, cols, e.q).heat.total_W[0]), rel=1e-12)
+    assert _film_loss_W(thermal_model(pl), e.q) == pytest.approx(heat, rel=1e-6)
+    nominal = heatup.equilibrium_C(pl, 1500.0)
+    assert all(e.T_parts_C[PARTS.index(p)] > T for p, T in nominal.items())
 
 
 @pytest.mark.slow

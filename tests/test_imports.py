@@ -9,6 +9,7 @@ packages `a` and `a.b` (their `__init__.py`) unless the importer lives in them.
 from __future__ import annotations
 
 import ast
+import functools
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -31,6 +32,18 @@ def modules(root: Path = ROOT) -> dict[str, Path]:
     return out
 
 
+@functools.lru_cache(maxsize=None)
+def parsed(path: Path) -> ast.Module:
+    """The syntax tree of one source file, parsed once per test process (three tests read them)."""
+    return ast.parse(path.read_text(), str(path))
+
+
+@functools.lru_cache(maxsize=None)
+def project_graph() -> dict[str, set[tuple[str, int]]]:
+    """`import_graph` of this tree, built once for the tests that read it."""
+    return import_graph()
+
+
 def import_graph(root: Path = ROOT) -> dict[str, set[tuple[str, int]]]:
     """module -> {(imported module, line)} over the project's modules (see the module docstring)."""
     mods = modules(root)
@@ -44,7 +57,7 @@ def import_graph(root: Path = ROOT) -> dict[str, set[tuple[str, int]]]:
     for mod, path in mods.items():
         is_pkg = path.name == "__init__.py"
         edges = set()
-        for node in ast.walk(ast.parse(path.read_text(), str(path))):
+        for node in ast.walk(parsed(path)):
             if isinstance(node, ast.Import):
                 targets = [a.name for a in node.names]
             elif isinstance(node, ast.ImportFrom):
@@ -113,12 +126,12 @@ def upward_imports(graph) -> list[str]:
 
 
 def test_no_import_cycle():
-    bad = cycles(import_graph())
+    bad = cycles(project_graph())
     assert not bad, "import cycles:\n" + "\n".join(" -> ".join(c) for c in bad)
 
 
 def test_no_upward_import():
-    bad = upward_imports(import_graph())
+    bad = upward_imports(project_graph())
     assert not bad, "imports against the layout table (README):\n" + "\n".join(bad)
 
 
@@ -155,7 +168,7 @@ def test_one_csv_writer():
     for mod, path in modules().items():
         if mod == "studies.model.table":
             continue
-        for node in ast.walk(ast.parse(path.read_text())):
+        for node in ast.walk(parsed(path)):
             if (isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name)
                     and node.value.id == "csv" and node.attr in ("writer", "DictWriter")):
                 writers.append(f"{mod}:{node.lineno} csv.{node.attr}")

@@ -50,7 +50,7 @@ def test_bonded_sleeve_of_housing_material_is_the_housing():
         if sleeve:
             raw = _with_sleeve(raw, 3.0, raw["housing"]["material"], sleeve_interference_um=0.0)
         a = assembly_from_dict(raw)
-        outs.append(to_columns(Pipeline(a, cache=False).run(table_inputs(a, T))))
+        outs.append(to_columns(Pipeline(a).run(table_inputs(a, T))))
     plain, sleeved = outs
     scale = np.abs(plain["fit_pressure_outer_MPa"]).max()
     for k in ("fit_pressure_outer_A_MPa", "fit_pressure_outer_B_MPa", "fit_pressure_inner_MPa"):
@@ -70,7 +70,7 @@ def test_one_material_stack_with_bonded_fits_and_a_sleeve_is_stress_free_when_he
     raw["bearing"]["ring_material"] = "52100"
     raw = _with_sleeve(raw, 2.0, "52100")
     a = assembly_from_dict(raw)
-    pl = Pipeline(a, cache=False, superpose=False)
+    pl = Pipeline(a, superpose=False)
     f = pl.field(table_inputs(a, {"T_ambient_C": np.array([80.0]), "speed_rpm": np.array([0.0])}))
     vm = element_stresses(pl.model, f.u_mm, theta_per_element(pl.model, f.theta))["von_mises_MPa"]
     E = get_material("52100").E_MPa
@@ -126,7 +126,7 @@ def test_sleeve_and_cartridge_together_mesh_and_report_their_fits():
     raw["housing"]["bore_diameter_mm"] = raw["bearing"]["outside_diameter_mm"] + 10.0
     raw["fits"]["sleeve_interference_um"] = 3.0
     a = assembly_from_dict(raw)
-    pl = Pipeline(a, cache=False)
+    pl = Pipeline(a)
     assert pl.setup.fit_names[-2:] == ("fit_sleeve", "fit_cartridge")
     out = to_columns(pl.run(table_inputs(a, {"T_ambient_C": np.array([20.0])})))
     assert out["fit_pressure_sleeve_MPa"][0] > 0          # 3 um interference: closed
@@ -147,9 +147,10 @@ def test_sleeve_fit_pressures_have_their_multilayer_lame_neighbours():
     """The closed-form neighbours `simulate` writes with a sleeve (17-4PH, +4 um in the 6061
     housing of the template): the three-layer Lamé solution opens and closes the sleeve fit
     where the FE contact does: closed at 20 C, open at 60 C (the aluminium grows away by
-    (23.6 - 10.8)e-6 /K x 40 K x 48 mm = 25 um)."""
+    (23.6 - 10.8)e-6 /K x 40 K x 48 mm = 25 um, six times the 4 um: on a mesh coarsened 2x)."""
     a = assembly_from_dict(_with_sleeve(_template(), 3.0, "17-4PH", sleeve_interference_um=4.0))
-    out = to_columns(Pipeline(a, cache=False).run(table_inputs(a, {"T_ambient_C": np.array([20.0, 60.0])})))
+    pl = Pipeline(a, mesh_factor=2.0)
+    out = to_columns(pl.run(table_inputs(a, {"T_ambient_C": np.array([20.0, 60.0])})))
     for k in ("outer", "sleeve"):
         assert np.all(np.isfinite(out[f"fit_pressure_{k}_lame_MPa"])), k
     fe, cf = out["fit_pressure_sleeve_MPa"], out["fit_pressure_sleeve_lame_MPa"]

@@ -2,7 +2,7 @@
 `ross.BearingElement`s (its constructor from the CSV columns and its own Excel reader
 `BearingElement.from_table`), and a small rotor's modes at the table's speeds (a Campbell
 diagram at those speeds) against closed-form bounds.  `make setup` installs ROSS (the extra
-'ross') and `make test` sets BEARINGFEM_REQUIRE_ROSS, under which a missing ROSS fails the module;
+'ross') and `make test` sets BEARINGFEM_REQUIRE_ROSS, under which a missing ROSS fails its tests;
 elsewhere skipped with the reason when ROSS is not installed (`pip install -e '.[ross]'`)."""
 import contextlib
 import io
@@ -30,11 +30,16 @@ def _import_ross():
                f"{type(exc).__name__}: {first}")
         if os.environ.get("BEARINGFEM_REQUIRE_ROSS"):      # `make test`: installed by its set-up
             pytest.fail(why, pytrace=False)
-        pytest.skip(why, allow_module_level=True)
+        pytest.skip(why)
     return ross
 
 
-rs = _import_ross()
+@pytest.fixture(scope="module")
+def rs():
+    """ROSS, imported by the first test that needs it, not at collection: its import (CoolProp,
+    plotly, numba) costs ~13 s of CPU, which every xdist worker would pay while collecting."""
+    return _import_ross()
+
 
 CFG = CONFIG_DIR / "seed000_71807C_TC4.toml"
 #: steel shaft of the test rotor (SI, as ROSS takes it)
@@ -53,7 +58,7 @@ def table(tmp_path_factory):
     return ross_csv
 
 
-def test_table_loads_into_ross_bearing_elements(table, tmp_path):
+def test_table_loads_into_ross_bearing_elements(rs, table, tmp_path):
     """The CSV's columns are BearingElement's arguments; the same table through ROSS's own
     reader (an .xlsx copy: `from_table` reads Excel) gives the same coefficients; ROSS's
     interpolation returns the table's stiffness at the table's speeds (1e-6: its smoothing
@@ -80,7 +85,7 @@ def first_mode_rad_s(rotor, speed_rad_s):
     return float(np.min(w[w > 1.0]))
 
 
-def test_small_rotor_first_mode_between_dunkerley_and_its_limits(table):
+def test_small_rotor_first_mode_between_dunkerley_and_its_limits(rs, table):
     """A steel shaft (0.1 m, diameter 60 mm, 4 Timoshenko elements) on one bearing pair at each
     end whose stiffness is the table's.  At each table speed its first mode (the bounce mode:
     the conical ones sit 1.5x higher, gyroscopic splitting a few %) must lie between Dunkerley's

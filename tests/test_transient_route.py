@@ -1,8 +1,6 @@
 """`simulate` in transient mode (studies/model/transient_route.py): the steady limit without heat
 against the given-temperature route, the coupling interval against every step, the `[thermal]`
 keys and the transient conditions' bad input (one line, exit 2)."""
-import subprocess
-import sys
 import tomllib
 from dataclasses import replace
 from pathlib import Path
@@ -129,16 +127,20 @@ def test_transient_conditions_refuse_given_part_temperatures_and_need_time():
     assert np.array_equal(env.T_ambient_C, [-20.0, -30.0]) and np.array_equal(env.heat_W, [0, 0])
 
 
-def test_simulate_command_refuses_a_part_temperature_in_transient_mode(tmp_path):
+def test_simulate_command_refuses_a_part_temperature_in_transient_mode(tmp_path, capsys):
+    """Through the command's entry point in this process (its return value is the exit code; the
+    real process's exit codes: tests/test_guard_rails.py)."""
+    from studies.app.cli import main
+
     cfg = tmp_path / "t.toml"
     cfg.write_text(CONFIG.read_text() + '\n[thermal]\nmode = "transient"\n')
     cond = tmp_path / "c.csv"
     cond.write_text("time_s,T_ambient_C,T_shaft_C\n0,25,25\n10,25,26\n")
     out = tmp_path / "o.csv"
-    p = subprocess.run([sys.executable, "-m", "studies.app.cli", "simulate", str(cfg), str(cond),
-                        "-o", str(out)], capture_output=True, text=True)
-    assert p.returncode == 2, p.stderr
-    assert p.stderr.strip().count("\n") == 0 and "T_shaft_C" in p.stderr
+    code = main(["simulate", str(cfg), str(cond), "-o", str(out)])
+    err = capsys.readouterr().err
+    assert code == 2, err
+    assert err.strip().count("\n") == 0 and "T_shaft_C" in err
     assert not out.exists()
 
 

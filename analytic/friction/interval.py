@@ -119,3 +119,49 @@ def model_form_interval(regime: str, law: str, path: Path | None = None,
             if r[0] == regime and r[1] == law and r[2] != exclude_source]
     lo, hi = interval_factors([r[3] for r in rows])
     return ModelFormInterval(regime, law, lo, hi, len(rows), tuple(sorted({r[2] for r in rows})))
+
+
+@dataclass(frozen=True)
+class Coverage:
+    """Leave-one-source-out coverage of one (regime, law) (`loso_coverage`): inside / judged
+    residuals (each judged against the interval of the OTHER sources' residuals; a residual
+    whose other sources state no interval is not judged) and the upper-over-lower ratio of each
+    judged interval (-)."""
+    regime: str
+    law: str
+    inside: int
+    judged: int
+    width_ratios: tuple[float, ...]
+
+    @property
+    def rate(self) -> float:
+        return self.inside / self.judged if self.judged else float("nan")
+
+    @property
+    def median_width_ratio(self) -> float:
+        return float(np.median(self.width_ratios)) if self.width_ratios else float("nan")
+
+
+def loso_coverage(residuals, level: float = LEVEL) -> dict[tuple[str, str], Coverage]:
+    """Per (regime, law): how many log residuals lie inside the interval `interval_factors`
+    builds from the other sources' residuals of the same regime and law (leave one source out),
+    and how wide those intervals are. residuals: (regime, law, source, log residual) tuples
+    (the shipped CSV's rows, `_residuals`, or a study's)."""
+    rows = [r for r in residuals if np.isfinite(r[3])]
+    out = {}
+    for key in sorted({(r[0], r[1]) for r in rows}):
+        mine = [r for r in rows if (r[0], r[1]) == key]
+        inside, widths = 0, []
+        for reg, law, src, e in mine:
+            lo, hi = interval_factors([r[3] for r in mine if r[2] != src], level)
+            if not np.isfinite(lo):
+                continue
+            widths.append(hi / lo)
+            inside += int(np.log(lo) <= e <= np.log(hi))
+        out[key] = Coverage(key[0], key[1], inside, len(widths), tuple(widths))
+    return out
+
+
+def shipped_coverage(path: Path | None = None) -> dict[tuple[str, str], Coverage]:
+    """`loso_coverage` of the shipped residuals (analytic/data/friction_residuals.csv)."""
+    return loso_coverage(_residuals(str(path or RESIDUALS_CSV)))

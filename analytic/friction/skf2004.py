@@ -234,3 +234,15 @@ def skf2004_torque(d_mm: float, D_mm: float, Fr_N, Fa_N, n_rpm, nu_mm2_s,
     M_sl = np.where(n > 0, sliding_variable(constants, dm, Fr_N, Fa_N, n) * mu, 0.0)
     M_drag = drag_torque_Nmm(oil_level_mm, d_mm, D_mm, n, nu, K_z) * np.ones_like(M_rr)
     return SkfTorque(M_rr, M_sl, M_drag, ish, rs, mu)
+
+
+def skf2004_starting_torque_Nmm(d_mm: float, D_mm: float, Fr_N, Fa_N,
+                                constants: SkfConstants = SKF_SINGLE_ROW, mu_bl: float = MU_BL):
+    """Starting torque of one angular-contact ball bearing by the SKF model, N mm: the
+    catalogue's rule M_start = M_sl + M_seal (SKF Rolling bearings catalogue, section Friction,
+    "Starting torque": only the sliding moment and the seals' at 20-30 C), with M_seal = 0 (open
+    bearings) and M_sl = G_sl mu_sl at n = 0, where phi_bl = 1 and mu_sl = mu_bl:
+    G_sl(n = 0) mu_bl (d, D mm, F_r, F_a N). The running torque `skf2004_torque` tends to this
+    sliding part as n -> 0 (its rolling part ~ (nu n)^0.6 vanishes)."""
+    dm = 0.5 * (d_mm + D_mm)
+    return sliding_variable(constants, dm, Fr_N, Fa_N, 0.0) * mu_bl

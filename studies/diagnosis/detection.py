@@ -25,9 +25,10 @@ that fits it fits noise and the model's form slop (a free contact angle 3 deg of
 0.75 sigma RMS after the friction scale, was claimed as an interference error). The power sets
 how far above the noise's own level the threshold lies: on 240 entries with the noise estimated
 the test's critical value is 0.72 sigma RMS, the threshold 0.97 (0.85 at Cohen's conventional
-power 0.8, which a 0.75 sigma change estimated at 0.87 passed on a second-source draw); a true
-change of 0.75 sigma then passes it in about 6 % of draws (the estimate of delta^2 has a
-standard deviation of about 0.24 there).
+power 0.8, which a 0.75 sigma change estimated at 0.87 passed on a second-source draw). The rule
+compares the estimate with the threshold, so a true change at the threshold passes in about half
+the draws: on 240 entries (the estimate's chi-square per degree of freedom a noncentral
+F(239, 120)) a true change of 0.75 sigma passes in 9 %, 0.97 in 52 %, 1.41 in 99.9 %.
 """
 from __future__ import annotations
 

@@ -38,8 +38,17 @@ from studies.diagnosis.core import DEFAULT_THRESHOLDS
 from studies.diagnosis.decision import SENSOR_DRIFT
 from studies.diagnosis.engine import diagnose_full, lookalike_matrix
 
-#: magnitudes of the injected causes: RMS visible change in noise sigmas
-MAGNITUDES = (0.25, 0.5)
+#: a magnitude below the detection threshold of every design (`detection.threshold_sigma`:
+#: 0.97 sigma per column on 240 rows, 0.90 on 300, 1.60 on 64): a cause changing one of two
+#: columns by this RMS over both changes that column by sqrt(2) x 0.25 = 0.35 sigma RMS, a
+#: quarter of the threshold's chi-square excess (delta^2 0.125 against 0.94), so nothing is claimed
+BELOW_DETECTION_SIGMA = 0.25
+#: magnitudes of the injected causes: RMS visible change in noise sigmas over the compared
+#: entries. The below-threshold one (nothing may be claimed), then 1 and 2 sigma, where a cause
+#: in one column changes it by 1.4 and 2.8 sigma RMS, above the threshold: the matrix measures
+#: naming there (at 1 sigma in both columns alike, at the threshold itself, the change
+#: estimate passes it in about half the draws)
+MAGNITUDES = (BELOW_DETECTION_SIGMA, 1.0, 2.0)
 #: the rig's friction coefficient relative to the configured one in every trial
 MU_TRUE = 1.2
 #: plausible settings of the listed effects (their shapes; the size is set by the noise scaling)

@@ -14,7 +14,8 @@ q the reduced coordinates of the field, A(p) = K + h sum_g F_g (the face groups 
 surroundings, `face_kind`: housing, cover, shaft ends, nut; the shaft's bore at
 h x bore_film_ratio; the faces inside the housing none; film h = 1 / film_resistance: convection and, with an emissivity, the
 radiation linearised about the mean ambient, Incropera ch. 1.2.3 eq. 1.9; in vacuum the
-radiation alone) + f sum_k h_k C_k (the fits' contact conductances h_k from their assembled
+radiation alone, its film per interval between rows the secant eps sigma (T + T_s)(T^2 + T_s^2)
+between the sink and the housing, `radiating_part_temperatures_C`) + f sum_k h_k C_k (the fits' contact conductances h_k from their assembled
 pressure, Yovanovich's plastic correlation, `fem.transient.contact_conductance_W_m2K`,
 scaled by f = fit_conductance_factor) + the spacer bores' and the ball links' terms (their
 values at the assembled state, `transient_route.contacts`) + hm F_face; the mount couples to
@@ -56,7 +57,8 @@ Parameters (bounds and sources):
   forced air past a rotating shaft to ~500; 1 W/(m^2 K): small temperature differences, or
   radiation alone in the cold, `FILM_RESISTANCE_MAX_AIR`) or in vacuum 1 / (EMISSIVITY_MIN 4 sigma T^3)
   (radiation alone: emissivity from 0.03, polished aluminium / gold, to 0.95, black anodise,
-  Incropera Table A.11; the mean ambient as T).
+  Incropera Table A.11; T the reference temperature: the parameter is the film at T_ref, each
+  interval's the secant at its sink and faces, `radiation_film_factor`).
 - bore_film_ratio (-), 0..1, off 1: the film in the shaft's bore / the outside one (a cavity
   open at its ends sees still air or none: 0 a closed bore, 1 the outside film; natural
   convection in a tube 1..5 W/(m^2 K) against 2..500 outside, Incropera Table 1.1).
@@ -80,7 +82,10 @@ Parameters (bounds and sources):
   the films trade against each other, and the model's own heat is the best statement of it).
 
 Environment from the assembly's `[thermal]`: `gas = "vacuum"` makes the films radiation (their
-bound above) and takes the gas out of the fits and spacer bores (`transient_route.contacts`);
+bound above; radiation alone changes threefold between -60 and 80 C, 4 eps sigma T^3, so each
+interval takes its own: the system is then piecewise constant, one eigen-decomposition per
+FILM_BIN_LN bin of the film, and the film is found by RADIATION_PASSES Picard passes, about the
+sink first, then at the housing's temperature of the pass before) and takes the gas out of the fits and spacer bores (`transient_route.contacts`);
 an `emissivity` in air is part of the fitted film; a finite `sink_C` in vacuum is what the
 films (radiation) see, the mount's environment staying `T_ambient_C` (a thermal-vacuum
 chamber's shroud and its controlled base plate).
@@ -357,62 +362,139 @@ def _phi(x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return E, f1, f2
 
 
+#: width of the bins of ln(film / the parameter's film) over which a radiation film is held
+#: constant in a trial (`film_levels`): +-2.5 %; each interval takes its bin's centre, so the
+#: error alternates over a ramp
+FILM_BIN_LN = 0.05
+
+
+def radiation_film_factor(T_sink_C: np.ndarray, T_face_C: np.ndarray | None,
+                          T_ref_C: float) -> np.ndarray:
+    """h_r / h_r(T_ref) of radiation between a face at T_face_C and its sink T_sink_C (-):
+    eps sigma (T^4 - T_s^4) = eps sigma (T + T_s)(T^2 + T_s^2)(T - T_s) (Incropera & DeWitt
+    6th ed. eq. 1.9, the secant), over 4 eps sigma T_ref^3; T_face_C None: linearised about
+    the sink, 4 eps sigma T_s^3. Temperatures in C, absolute inside."""
+    K = 273.15
+    Ts = np.asarray(T_sink_C, float) + K
+    T = Ts if T_face_C is None else np.asarray(T_face_C, float) + K
+    return (T + Ts) * (T * T + Ts * Ts) / (4.0 * (T_ref_C + K) ** 3)
+
+
+def film_levels(factor: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(factor per level, level of each interval): the film factor of each interval (-) held
+    at the centre of its FILM_BIN_LN bin of ln(factor)."""
+    bins = np.round(np.log(np.asarray(factor, float)) / FILM_BIN_LN)
+    centres, level = np.unique(bins, return_inverse=True)
+    return np.exp(centres * FILM_BIN_LN), level.reshape(-1)
+
+
 def part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb_C: np.ndarray,
-                        heat_W: np.ndarray | None, T_film_C: np.ndarray | None = None
-                        ) -> np.ndarray:
+                        heat_W: np.ndarray | None, T_film_C: np.ndarray | None = None,
+                        film_factor: np.ndarray | None = None) -> np.ndarray:
     """(n, len(PARTS)) part group mean temperatures (C) of one trial at parameters p (module
     docstring), the ambient T_amb_C and the pair's heat heat_W (W; None: none) per row at
     times t_s (s, strictly increasing); T_film_C: what the films see when it is not the ambient
-    (a radiation sink), the mount's environment staying the ambient. NaN columns: groups the
-    stack lacks."""
+    (a radiation sink), the mount's environment staying the ambient. film_factor (n - 1,): the
+    films of each interval between rows / the parameter's (radiation, `radiation_film_factor`),
+    held per bin (`film_levels`): the system is then piecewise constant, each piece exact; None:
+    the parameter's film throughout. NaN columns: groups the stack lacks."""
     m = rm.m
     q = RungParameters.of(p)
     h_W_m2K = 1.0 / q.film_resistance_m2K_W
     h_bore = h_W_m2K * q.bore_film_ratio
     G_face, G_env, C_m = q.G_face_W_K, q.G_env_W_K, q.C_mount_J_K
     hm = G_face / rm.area_face_mm2 if rm.area_face_mm2 > 0 else 0.0
-    A = np.zeros((m + 1, m + 1))
-    A[:m, :m] = (rm.K0 + q.fit_conductance_factor * rm.C_fit
-                 + (h_W_m2K * PER_M2_TO_PER_MM2) * rm.F_ext
-                 + (h_bore * PER_M2_TO_PER_MM2) * rm.F_bore + hm * rm.F_face)
-    A[:m, m] = A[m, :m] = -hm * rm.b_face
-    A[m, m] = G_face + G_env
+    A0 = np.zeros((m + 1, m + 1))
+    A0[:m, :m] = rm.K0 + q.fit_conductance_factor * rm.C_fit + hm * rm.F_face
+    A0[:m, m] = A0[m, :m] = -hm * rm.b_face
+    A0[m, m] = G_face + G_env
+    A_film = np.zeros((m + 1, m + 1))
+    A_film[:m, :m] = PER_M2_TO_PER_MM2 * (h_W_m2K * rm.F_ext + h_bore * rm.F_bore)
     M = np.zeros((m + 1, m + 1))
     M[:m, :m] = rm.M
     M[m, m] = C_m
-    lam, Phi = sla.eigh(0.5 * (A + A.T), 0.5 * (M + M.T), check_finite=False)
-    lam = np.maximum(lam, 0.0)
+    M = 0.5 * (M + M.T)
     e_film, e_env = np.zeros(m + 1), np.zeros(m + 1)
     e_film[:m] = PER_M2_TO_PER_MM2 * (h_W_m2K * rm.b_ext + h_bore * rm.b_bore)
     e_env[m] = G_env
     amb = np.asarray(T_amb_C, float)
-    if T_film_C is None:
-        g = np.outer(amb, Phi.T @ (e_film + e_env))                   # (n, m + 1)
-    else:
-        g = (np.outer(np.broadcast_to(np.asarray(T_film_C, float), amb.shape), Phi.T @ e_film)
-             + np.outer(amb, Phi.T @ e_env))
+    film = amb if T_film_C is None else np.broadcast_to(np.asarray(T_film_C, float), amb.shape)
+    drive = np.outer(film, e_film)                                     # (n, m + 1), per film 1
+    other = np.outer(amb, e_env)
     s = q.heat_scale
     if heat_W is not None and s > 0.0:
         e_heat = np.zeros(m + 1)
         e_heat[:m] = rm.a_heat
-        g = g + np.outer(s * np.asarray(heat_W, float), Phi.T @ e_heat)
+        other = other + np.outer(s * np.asarray(heat_W, float), e_heat)
     t = np.asarray(t_s, float)
     n = t.size
-    Z = np.empty((n, m + 1))
+    if film_factor is None or n < 2:
+        factors, level = np.ones(1), np.zeros(max(n - 1, 1), int)
+    else:
+        factors, level = film_levels(film_factor)
+
+    def modes(lv):
+        A = A0 + factors[lv] * A_film
+        lam, Phi = sla.eigh(0.5 * (A + A.T), M, check_finite=False)
+        return np.maximum(lam, 0.0), Phi
+
+    X = np.empty((n, m + 1))
+    lam, Phi = modes(int(level[0]))
+    g0 = Phi.T @ (factors[level[0]] * drive[0] + other[0])
     with np.errstate(divide="ignore", invalid="ignore"):
-        Z[0] = np.where(lam > 0, g[0] / np.where(lam > 0, lam, 1.0), 0.0)   # steady first row
+        z = np.where(lam > 0, g0 / np.where(lam > 0, lam, 1.0), 0.0)      # steady first row
+    X[0] = Phi @ z
     if n > 1:
+        # per level: its modes and, for its intervals, the exact step's decay and drive
         h = np.diff(t)
-        E, f1, f2 = _phi(np.outer(h, lam))                          # (n - 1, m + 1)
-        slope = np.diff(g, axis=0) / h[:, None]
-        c = h[:, None] * (g[:-1] * f1 + slope * (h[:, None] * f2))
-        z = Z[0]
+        steps, row = {}, np.empty(n - 1, int)
+        for lv in np.unique(level):
+            sel = np.flatnonzero(level == lv)
+            lam_l, Phi_l = (lam, Phi) if lv == level[0] else modes(int(lv))
+            E, f1, f2 = _phi(np.outer(h[sel], lam_l))
+            ga = (factors[lv] * drive[sel] + other[sel]) @ Phi_l
+            gb = (factors[lv] * drive[sel + 1] + other[sel + 1]) @ Phi_l
+            hs = h[sel, None]
+            steps[int(lv)] = (Phi_l, E, hs * (ga * f1 + (gb - ga) * f2))
+            row[sel] = np.arange(sel.size)
+        current = int(level[0])
         for k in range(n - 1):
-            z = E[k] * z + c[k]
-            Z[k + 1] = z
+            lv = int(level[k])
+            Phi_l, E, c = steps[lv]
+            if lv != current:                       # the state into the new level's modes
+                z = Phi_l.T @ (M @ X[k])            # M-orthonormal: Phi^T M Phi = I
+                current = lv
+            z = E[row[k]] * z + c[row[k]]
+            X[k + 1] = Phi_l @ z
     G = np.zeros((len(PARTS), m + 1))
     G[:, :m] = rm.groups
-    return Z @ (G @ Phi).T
+    return X @ G.T
+
+
+#: Picard passes of the radiation film (`radiating_part_temperatures_C`): the first about the
+#: sink, each further one the secant at the faces' temperatures of the one before
+RADIATION_PASSES = 2
+
+
+def radiating_part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb_C: np.ndarray,
+                                  heat_W: np.ndarray | None, T_film_C: np.ndarray | None,
+                                  T_ref_C: float) -> np.ndarray:
+    """`part_temperatures_C` with the films radiation (vacuum): the parameter's film is
+    4 eps sigma T_ref^3 (the emissivity's, at T_ref_C), each interval's the secant eps sigma
+    (T + T_s)(T^2 + T_s^2) (`radiation_film_factor`) between the sink T_s (T_film_C, else the
+    ambient) and the faces' temperature T: first linearised about the sink (T = T_s), then
+    (RADIATION_PASSES - 1 times) at the housing's mean temperature of the pass before (the
+    exterior faces are the housing's but for the shaft's ends), each interval at its mean."""
+    sink = np.broadcast_to(np.asarray(T_amb_C if T_film_C is None else T_film_C, float),
+                           np.shape(T_amb_C))
+    mid = 0.5 * (sink[:-1] + sink[1:])
+    T = None
+    for k in range(RADIATION_PASSES):
+        face = None if T is None else T[:, PARTS.index("housing")]
+        factor = radiation_film_factor(mid, None if face is None else 0.5 * (face[:-1] + face[1:]),
+                                       T_ref_C)
+        T = part_temperatures_C(rm, p, t_s, T_amb_C, heat_W, T_film_C, factor)
+    return T
 
 
 # ====================================================================== the candidate
@@ -494,8 +576,9 @@ class ThermalTransientFE(Effect):
             return inputs.copy()
         pl = self._pl()
         heat = self.row_heat_W(inputs) if q.heat_scale > 0.0 else None
-        T = part_temperatures_C(rung_model(pl), q, inputs.time_s, inputs.T_ambient_C, heat,
-                                self.sink_C)
+        args = (rung_model(pl), q, inputs.time_s, inputs.T_ambient_C, heat, self.sink_C)
+        T = (radiating_part_temperatures_C(*args, self.asm.T_ref_C) if self.vacuum
+             else part_temperatures_C(*args))
         Tc = dict(inputs.T_C)
         for i, part in enumerate(PARTS):
             if part in inputs.measured_parts:

@@ -491,12 +491,16 @@ class Coupling:
 
 
 def _couple(pl: Pipeline, tm: ThermalModel, q: np.ndarray, base: PhysicsInputs, delta, w2_1,
-            ref1: FEState, speed, preload, axial, radial, moment) -> Coupling:
-    """The coupling at reduced state q (m,) under one row's conditions (module docstring)."""
+            ref1: FEState, speed, preload, axial, radial, moment,
+            heat_factor: float = 1.0) -> Coupling:
+    """The coupling at reduced state q (m,) under one row's conditions (module docstring); the
+    bearing's heat x heat_factor (-; 1: as the friction law gives it)."""
     fe, gap = fe_states(pl, tm.ms, q[None, :], delta, w2_1)
     T3 = _groups_C(tm, tm.rc, q[None, :])
     inp = _inputs(base, T3, speed, preload, axial, radial, moment)
     res, heat = _route(pl, inp, fe, ref1)
+    if heat_factor != 1.0:
+        heat = heat.scaled(heat_factor)
     T_oil = float(np.mean(T3[0, [PARTS.index(p) for p in ("inner_ring", "outer_ring", "ball")]]))
     cc = ball_contacts(pl, res.pair, float(speed), T_oil)
     h = bearing_heat_inputs_W(heat, ring_share=(cc[0].ring_share, cc[1].ring_share),
@@ -518,12 +522,13 @@ def _row_setup(pl: Pipeline, cols: dict, row: int):
     return base, delta, ref1, base.take(np.array([row % n]))
 
 
-def _couple_row(pl, tm, q, setup) -> Coupling:
+def _couple_row(pl, tm, q, setup, heat_factor: float = 1.0) -> Coupling:
     base, delta, ref1, r = setup
     w2 = (np.asarray(r.speed_rpm, float) * (2.0 * np.pi / 60.0)) ** 2
     return _couple(pl, tm, np.asarray(q, float), base, delta, w2[:1], ref1,
                    float(r.speed_rpm[0]), float(r.preload_assembled_N[0]),
-                   float(r.axial_load_N[0]), float(r.radial_load_N[0]), float(r.moment_Nmm[0]))
+                   float(r.axial_load_N[0]), float(r.radial_load_N[0]), float(r.moment_Nmm[0]),
+                   heat_factor)
 
 
 def coupling_at(pl: Pipeline, cols: dict, q: np.ndarray, row: int = -1) -> Coupling:
@@ -549,7 +554,7 @@ class Equilibrium:
 
 @single_thread_blas
 def equilibrium(pl: Pipeline, cols: dict, row: int = -1, tol_K: float = 1e-6,
-                max_iter: int = 100) -> Equilibrium:
+                max_iter: int = 100, heat_factor: float = 1.0) -> Equilibrium:
     """Where the transient run under row `row` of cols, held for ever, ends: the steady state of
     the same reduced model and coupling, found without time stepping as the fixed point
 
@@ -560,7 +565,9 @@ def equilibrium(pl: Pipeline, cols: dict, row: int = -1, tol_K: float = 1e-6,
     operator and load (`fem.reduced_thermal.ReducedConduction`; radiation's remainder at the
     current iterate). Starts uniform at the row's ambient; stops when the field changes by less
     than tol_K (K) at every node, else after max_iter iterations (`change_K` says how far it
-    got). A second method for the end of a long run (tests/test_heatup.py)."""
+    got). A second method for the end of a long run (tests/test_heatup.py). heat_factor (-)
+    scales the bearing's heat at every iterate (the steady state at an end of the friction's
+    model-form interval: `analytic.friction.interval`); the extra heat_W is not scaled."""
     tm = thermal_model(pl)
     rc = tm.rc
     env = environment(pl.asm, cols)
@@ -572,7 +579,7 @@ def equilibrium(pl: Pipeline, cols: dict, row: int = -1, tol_K: float = 1e-6,
     change, it = np.inf, 0
     while it < max_iter:
         it += 1
-        c = _couple_row(pl, tm, q, setup)
+        c = _couple_row(pl, tm, q, setup, heat_factor)
         h = _with_extra(c.heat_inputs_W, extra)
         prm = _params(tm, scale, c.fit_conductance_W_m2K,
                       (c.contacts[0].G_W_K, c.contacts[1].G_W_K))
@@ -585,7 +592,7 @@ def equilibrium(pl: Pipeline, cols: dict, row: int = -1, tol_K: float = 1e-6,
         q = q_new
         if change < tol_K:
             break
-    c = _couple_row(pl, tm, q, setup)
+    c = _couple_row(pl, tm, q, setup, heat_factor)
     return Equilibrium(q, _groups_C(tm, rc, q[None, :])[0], c, it, change)
 
 

@@ -15,13 +15,19 @@ reference data). Rows:
            and each law through `analytic.friction.pair.pair_torque` (the route simulate takes).
 Laws: palmgren (f1 load term, Palmgren 1959), skf2004, ehl_rolling (+ f1 load term), starved
 (+ f1; the source's charge), minimal_oil (+ f1; the source's charge, or fitted where the source
-gives none). Trend rows are judged by their sign. Interval: `analytic.friction.interval`
+gives none). Starting torques are each law at rest (`case_starting_torque_Nmm`: SKF's M_start =
+M_sl, Palmgren's load term). Trend rows are judged by their sign. The boundary-regime points
+(JPL, OCI slow and starting) are also held against the Coulomb contact estimate at a published
+boundary coefficient (`slow_point_rows`, data/boundary_friction.csv), which says what
+coefficient each would need; the LQF rig's trend against the minimal-oil inlet share
+(`lqf_share_rows`). Interval: `analytic.friction.interval`
 (regime, law), estimated from the other sources' log residuals; `in_interval` says whether the
 measured value lies inside it (empty where no interval can be stated).
 """
 from __future__ import annotations
 
 import csv
+import dataclasses
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -29,7 +35,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from analytic.bearing import BearingGeometry, solve_pair
-from analytic.friction.interval import LEVEL, interval_factors
+from analytic.friction.interval import LEVEL, interval_factors, loso_coverage
 from analytic.friction.minimal_oil import minimal_oil_ratio
 from analytic.friction.options import FrictionOptions
 from analytic.lubrication import dynamic_viscosity_Pa_s, get_lubricant
@@ -37,6 +43,7 @@ from analytic.materials import get_material
 from analytic.safety import static_load_rating_C0_N
 from analytic.friction.pair import pair_bearing_contacts, pair_torque
 from analytic.friction.palmgren import palmgren_f1_angular_contact, palmgren_viscous_torque_Nmm
+from analytic.friction.skf2004 import skf2004_starting_torque_Nmm
 
 DATA = Path(__file__).resolve().parent / "data" / "friction_points.csv"
 LAWS = ("palmgren", "skf2004", "ehl_rolling", "starved", "minimal_oil")
@@ -96,6 +103,19 @@ def cases() -> dict[str, Case]:
     }
 
 
+def case_starting_torque_Nmm(case: Case, law: str, axial_N) -> np.ndarray:
+    """Starting torque of ONE bearing of the case under `axial_N` (N mm, arrays): each law's
+    static part as its source states it: SKF's M_start = M_sl at the boundary coefficient
+    (`skf2004_starting_torque_Nmm`); the Palmgren-based laws (palmgren, starved, minimal_oil,
+    ehl_rolling + f1) their load term f1 F_a dm, their viscous and rolling terms vanishing at
+    rest (`case_torque_Nmm` at n = 0)."""
+    if law == "skf2004":
+        P = np.atleast_1d(np.asarray(axial_N, float))
+        return np.asarray(skf2004_starting_torque_Nmm(case.bore_mm, case.outside_diameter_mm,
+                                                      0.0, P), float)
+    return case_torque_Nmm(case, law, axial_N, 0.0, 20.0)[0]
+
+
 def case_torque_Nmm(case: Case, law: str, axial_N, speed_rpm, T_C, oil_quantity_mg=None):
     """Torque of ONE bearing of the case (N mm, arrays over points) under `axial_N` (spring
     preload, each bearing), inner ring at speed_rpm, oil at T_C: the law's viscous term plus
@@ -117,6 +137,101 @@ def case_torque_Nmm(case: Case, law: str, axial_N, speed_rpm, T_C, oil_quantity_
     t = pair_torque(g, pair, model="oil", speed_rpm=n, f0=F0_EXTERNAL, nu_mm2_s=nu,
                     load_term="palmgren", f1=f1, friction=fr)
     return np.asarray(t.torque_A_Nmm, float), 0.5 * np.asarray(t.viscous_Nmm, float)
+
+
+def pair_slope(M_Nmm, P_N) -> float:
+    """Slope of a pair's torque over its preload, oz in / lbf (the unit OCI2018 prints), from
+    one bearing's torques M_Nmm (N mm) at the preloads P_N (first and last): 2 dM / dP."""
+    return float(2.0 * (M_Nmm[-1] - M_Nmm[0]) / (P_N[-1] - P_N[0]) / OZ_IN_PER_LBF_IN_NMM_PER_N)
+
+
+BOUNDARY_DATA = Path(__file__).resolve().parent / "data" / "boundary_friction.csv"
+#: OCI2018 Table 5: the pair's load torque at zero speed predicted by two independent bearing
+#: codes (BRGS10, ORBIS; mN m) with the friction coefficient OCI_TABLE5_MU and 60 lb (267 N)
+#: preload [paper]
+OCI_TABLE5_LOAD_TORQUE_mNm = (6.9, 6.8)
+OCI_TABLE5_MU = 0.08
+
+
+def boundary_coefficient(source: str = "GXL320A") -> tuple[float, float, float]:
+    """(mean, min, max) of a published boundary friction coefficient (-) of
+    studies/validation/data/boundary_friction.csv (GXL320A: a PFPE in vacuum, four-ball)."""
+    with open(BOUNDARY_DATA, newline="") as fh:
+        r = next(r for r in csv.DictReader(x for x in fh if not x.startswith("#"))
+                 if r["source"] == source)
+    return tuple(float(r[k]) if r[k] else float("nan") for k in ("mu_mean", "mu_min", "mu_max"))
+
+
+def coulomb_contacts_torque_Nmm(case: Case, axial_N, mu: float, geometry=None) -> np.ndarray:
+    """Coulomb (boundary) torque of ONE bearing of the case under `axial_N` (spring preload,
+    each bearing), N mm: the differential slip (Heathcote) and spin friction of every contact at
+    the boundary coefficient mu, no hysteresis, no viscous term: `analytic.torque.
+    solid_film_torque_Nmm` through the pair route (`pair_torque`, model "solid_film"), the
+    torque a ball bearing needs to start or to roll in the boundary regime, where the film is a
+    few nm (Todd & Johnson's starting-torque picture; SKF's starting torque M_start = M_sl, the
+    sliding moment at its boundary coefficient). Linear in mu. geometry: a
+    `BearingGeometry` in place of the case's (a sensitivity)."""
+    g = case.g if geometry is None else geometry
+    P = np.atleast_1d(np.asarray(axial_N, float))
+    pair = solve_pair(g, "DB", preload_kind="spring", preload_assembled_N=P)
+    t = pair_torque(g, pair, model="solid_film", mu=mu, hysteresis_loss=0.0,
+                    speed_rpm=np.ones_like(P))
+    return np.asarray(t.torque_A_Nmm, float)
+
+
+@dataclass(frozen=True)
+class SlowPoint:
+    """A slow or starting published torque against the Coulomb contact estimate: predicted at
+    the published boundary coefficient mu_ref, and the coefficient mu_needed (-) that would
+    reproduce the measured value (the torque is linear in mu). geometry: which inputs."""
+    source: str
+    quantity: str
+    measured: float
+    unit: str
+    geometry: str
+    mu_ref: float
+    predicted: float
+
+    @property
+    def mu_needed(self) -> float:
+        return self.mu_ref * self.measured / self.predicted
+
+
+def slow_point_rows() -> list[SlowPoint]:
+    """The boundary-regime points (JPL2022 starting and running at 0.075 rpm, OCI2018 starting
+    slope and the cartridge at 0.5-2 rpm: films of a few nm) against the Coulomb contact
+    estimate at the PFPE vacuum four-ball coefficient (GXL320A), with the case's geometry
+    (raceway curvatures 0.52 / 0.53 [assume]) and with 0.56 / 0.56, the curvature of small
+    low-torque bearings (Dynaroll, "Raceway curvature": 0.56 +- 0.03), the OCI pair also at the
+    25 deg contact angle its paper considered for the cartridge."""
+    c = cases()
+    mu, _, _ = boundary_coefficient()
+    pts = {k: _point(*k) for k in (("JPL2022", "starting"), ("JPL2022", "running"),
+                                   ("OCI2018", "starting"),
+                                   ("OCI2018", "running torque cartridge"))}
+    out = []
+    jg, og = c["JPL2022"].g, c["OCI2018"].g
+    P_oci = np.array([44.5, 445.0])
+    for label, f in (("f 0.52/0.53", (0.52, 0.53)), ("f 0.56/0.56", (0.56, 0.56))):
+        a0 = _radial_play_angle_deg(jg.Dw_mm, *f, 0.009)
+        gj = dataclasses.replace(jg, f_i=f[0], f_o=f[1], alpha0_deg=a0)
+        Mj = coulomb_contacts_torque_Nmm(c["JPL2022"], 22.6, mu, gj)[0]
+        for k in (("JPL2022", "starting"), ("JPL2022", "running")):
+            p = pts[k]
+            out.append(SlowPoint(p["source"], p["quantity"], float(p["measured"]), p["unit"],
+                                 f"{label}, free angle {a0:.1f} deg", mu, Mj))
+        for alpha in (15.0, 25.0):
+            go = dataclasses.replace(og, f_i=f[0], f_o=f[1], alpha0_deg=alpha)
+            Mo = coulomb_contacts_torque_Nmm(c["OCI2018"], np.array([44.5, 267.0, 445.0]),
+                                             mu, go)
+            geo = f"{label}, {alpha:.0f} deg"
+            p = pts[("OCI2018", "starting")]
+            out.append(SlowPoint(p["source"], p["quantity"], float(p["measured"]), p["unit"],
+                                 geo, mu, pair_slope(Mo[[0, 2]], P_oci)))
+            p = pts[("OCI2018", "running torque cartridge")]
+            out.append(SlowPoint(p["source"], p["quantity"], float(p["measured"]), p["unit"],
+                                 geo, mu, 2.0 * Mo[1]))
+    return out
 
 
 def minimal_oil_pair_ratios(g, pair, speed_rpm, eta_Pa_s, alpha_per_Pa, density_kg_m3,
@@ -181,28 +296,62 @@ def external_rows() -> list[Row]:
     c = cases()
     rows = []
     jpl_s, jpl_r = _point("JPL2022", "starting"), _point("JPL2022", "running")
-    oci_s, oci_r = _point("OCI2018", "starting"), _point("OCI2018", "running")
+    oci_s, oci_r = _point("OCI2018", "starting"), _point("OCI2018", "running torque cartridge")
+    oci_360 = _point("OCI2018", "running torque at 360")
     lqf_T, lqf_P = _point("LQF2018", "LQF 35"), _point("LQF2018", "LQF 222")
+    lqf_H = _point("LQF2018", "LQF steel")
+    hybrid = dataclasses.replace(c["LQF2018"], g=dataclasses.replace(
+        c["LQF2018"].g, ball=get_material("Si3N4")), oil_quantity_mg=90.0)   # [paper]
     n_jpl = 0.45 / 360.0 * 60.0                       # 0.39-0.5 deg/s [paper] -> rpm
     P_oci = np.array([44.5, 445.0])                   # 10..100 lbf [paper's example range]
     for law in LAWS:
+        # starting torques: each law at rest (n = 0), SKF's rule M_start = M_sl (+ M_seal)
+        # and Palmgren's viscous term vanishing at rest; running torques at the test speed
+        M0 = case_starting_torque_Nmm(c["JPL2022"], law, 22.6)
         M, _ = case_torque_Nmm(c["JPL2022"], law, 22.6, n_jpl, 20.0)
-        note = "the laws have no starting term: the running torque at the test speed"
-        rows += [_row(jpl_s, law, M[0], note=note), _row(jpl_r, law, M[0])]   # N mm = mN m
-        Mo, _ = case_torque_Nmm(c["OCI2018"], law, P_oci, 0.01, 20.0)
-        slope = 2.0 * (Mo[1] - Mo[0]) / (P_oci[1] - P_oci[0]) / OZ_IN_PER_LBF_IN_NMM_PER_N
-        rows.append(_row(oci_s, law, slope, note="pair, 10..100 lbf"))
-        Mr, _ = case_torque_Nmm(c["OCI2018"], law, 267.0, 1.25, 20.0)
-        rows.append(_row(oci_r, law, 2.0 * Mr[0], note="pair at 267 N, 1.25 rpm"))
+        rows += [_row(jpl_s, law, M0[0], note="the law at rest"),
+                 _row(jpl_r, law, M[0], note=f"{n_jpl:.3g} rpm")]   # N mm = mN m
+        Mo = case_starting_torque_Nmm(c["OCI2018"], law, P_oci)
+        rows.append(_row(oci_s, law, pair_slope(Mo, P_oci), note="pair at rest, 10..100 lbf"))
+        Mr, _ = case_torque_Nmm(c["OCI2018"], law, np.array([267.0, 267.0]),
+                                np.array([1.25, 360.0]), 20.0)
+        rows += [_row(oci_r, law, 2.0 * Mr[0], note="pair at 267 N, 1.25 rpm"),
+                 _row(oci_360, law, 2.0 * Mr[1], note="pair at 267 N, 360 rpm, 20 C")]
         lqf = c["LQF2018"]
         nu = get_lubricant(lqf.lubricant).nu_mm2_s(np.array([12.0, 35.0, 20.0, 20.0]))
         M0 = palmgren_viscous_torque_Nmm(1.0, nu, 6000.0, lqf.g.dm_mm)
         _, V = case_torque_Nmm(lqf, law, np.array([133.0, 133.0, 89.0, 222.0]), 6000.0,
                                np.array([12.0, 35.0, 20.0, 20.0]))
         q = V / M0                                       # drag over (n nu)^(2/3) dm^3 1e-7
+        _, Vs = case_torque_Nmm(lqf, law, 178.0, 6000.0, 20.0)
+        _, Vh = case_torque_Nmm(hybrid, law, 178.0, 6000.0, 20.0)
         rows += [_row(lqf_T, law, q[1] / q[0], note=f"LQF ratio {q[1] / q[0]:.4f}"),
-                 _row(lqf_P, law, q[3] / q[2], note=f"LQF ratio {q[3] / q[2]:.4f}")]
+                 _row(lqf_P, law, q[3] / q[2], note=f"LQF ratio {q[3] / q[2]:.4f}"),
+                 _row(lqf_H, law, Vs[0] / Vh[0], note=f"LQF ratio {Vs[0] / Vh[0]:.4f}")]
     return rows
+
+
+#: inlet shares k of the minimal-oil law swept on the LQF rig (`lqf_share_rows`)
+LQF_SHARES = (1.0, 0.3, 0.1, 0.03, 0.01)
+
+
+def lqf_share_rows(shares=LQF_SHARES, axial_N: float = 133.0, oil_mg: float = 100.0):
+    """The LQF rig (305 pair, 6000 rpm, Pennzane, 100 mg) under the minimal-oil law at inlet
+    shares k: per k (k, factor on Palmgren's viscous term at 12 / 20 / 35 C, LQF ratio 35 C /
+    12 C, supply ratio r = h_in / h_ff of the inner contact at 12 and 35 C). Their LQF is
+    this factor times f0 (the viscosity at the rings' mean temperature, as the paper takes it)."""
+    c = cases()["LQF2018"]
+    lub = get_lubricant(c.lubricant)
+    T = np.array([12.0, 20.0, 35.0])
+    eta = dynamic_viscosity_Pa_s(lub.nu_mm2_s(T), lub.density_kg_m3)
+    pair = solve_pair(c.g, "DB", preload_kind="spring", preload_assembled_N=np.full(3, axial_N))
+    out = []
+    for k in shares:
+        f = minimal_oil_pair_ratios(c.g, pair, 6000.0, eta, lub.alpha_per_Pa,
+                                    lub.density_kg_m3, oil_mg, k)[0]
+        out.append((k, f.ratio, float(f.ratio[2] / f.ratio[0]),
+                    (float(f.supply_ratio_inner[0]), float(f.supply_ratio_inner[2]))))
+    return out
 
 
 def seed001_minimal_oil_fit(mesh_factor: float = 1.0):
@@ -337,18 +486,86 @@ def write_residuals(path: Path, rows: list[dict]) -> None:
 
 
 def coverage(rows: list[dict]) -> dict:
-    """Per (regime, law): leave-one-source-out coverage (inside / judged) of the value rows and
-    the median upper-over-lower ratio of their intervals."""
+    """Per (regime, law): leave-one-source-out coverage of the value rows and the widths of their
+    intervals (`analytic.friction.interval.loso_coverage`, the one route: the same as the rows'
+    `in_interval`), as `Coverage`."""
+    return loso_coverage([(r["regime"], r["law"], r["source"], r["log_residual"]) for r in rows
+                          if r["kind"] == "value"])
+
+
+#: the issue's width target: upper over lower bound of the typical (median) point
+WIDTH_TARGET = 3.0
+
+
+def regime_summary(cov: dict) -> dict:
+    """Per regime, pooled over its laws: (inside, judged, median upper / lower or NaN)."""
     out = {}
-    for r in rows:
-        if r["kind"] != "value":
-            continue
-        d = out.setdefault((r["regime"], r["law"]), {"in": 0, "judged": 0, "ratios": []})
-        if r["in_interval"] != "" and r["predicted_lo"] > 0:
-            d["judged"] += 1
-            d["in"] += int(r["in_interval"])
-            d["ratios"].append(r["predicted_hi"] / r["predicted_lo"])
-    return out
+    for (reg, _), d in cov.items():
+        a = out.setdefault(reg, [0, 0, []])
+        a[0] += d.inside
+        a[1] += d.judged
+        a[2] += list(d.width_ratios)
+    return {reg: (i, j, float(np.median(r)) if r else float("nan"))
+            for reg, (i, j, r) in out.items()}
+
+
+def regime_rows(cov: dict) -> list[list]:
+    from analytic.friction.interval import REGIMES
+    summ = regime_summary(cov)
+    rows = []
+    for reg in REGIMES:
+        i, j, w = summ.get(reg, (0, 0, float("nan")))
+        met = j > 0 and i / j >= LEVEL and w <= WIDTH_TARGET
+        rows.append([reg, f"{i} / {j}", f"{i / j:.0%}" if j else "-",
+                     f"{w:.3g}" if np.isfinite(w) else "-",
+                     "met" if met else ("no published point" if j == 0 else "not met")])
+    return rows
+
+
+def target_text(cov: dict) -> str:
+    """Whether each regime meets the target, from the coverage table."""
+    from analytic.friction.interval import REGIMES
+    summ = regime_summary(cov)
+    parts = []
+    for reg in REGIMES:
+        i, j, w = summ.get(reg, (0, 0, float("nan")))
+        srcs = sorted({k[1] for k in cov if k[0] == reg})
+        if j == 0:
+            parts.append(f"{reg}: no interval can be judged (no value row with a residual from "
+                         "two sources), so none is stated")
+        elif i / j >= LEVEL and w <= WIDTH_TARGET:
+            parts.append(f"{reg}: met ({i}/{j}, median width {w:.3g})")
+        else:
+            parts.append(f"{reg}: not met ({i}/{j} inside = {i / j:.0%}, median upper / lower "
+                         f"{w:.3g} over {len(srcs)} laws)")
+    return "; ".join(parts) + "."
+
+
+def slow_text(slow: list, mu_range: tuple[float, float]) -> str:
+    """What the slow points' needed coefficients say (from the table)."""
+    need = {}
+    for p in slow:
+        need.setdefault(p.source, []).append(p.mu_needed)
+    j, o = need["JPL2022"], need["OCI2018"]
+    lo, hi = mu_range
+    dry = boundary_coefficient("BUCKLEY1962")[0]
+    M = [p.predicted * OCI_TABLE5_MU / p.mu_ref for p in slow
+         if p.source == "OCI2018" and p.quantity.startswith("running")]
+    codes = " / ".join(f"{x:g}" for x in OCI_TABLE5_LOAD_TORQUE_mNm)
+    return (f"Over these inputs JPL2022 needs mu {min(j):.2f}-{max(j):.2f} and OCI2018 "
+            f"{min(o):.2f}-{max(o):.2f}; the published boundary range is {lo:g}-{hi:g}"
+            + (f", and the dry 52100 value {dry:g} (BUCKLEY1962) lies inside JPL's "
+               "(consistent with contacts close to unlubricated, a hypothesis these data "
+               "cannot test)" if min(j) <= dry <= max(j) else "")
+            + f". The estimate itself agrees with OCI's own codes: at mu {OCI_TABLE5_MU:g} and "
+            f"267 N it gives {min(M):.1f}-{max(M):.1f} mN m over these geometries, against "
+            f"{codes} mN m (BRGS10 / ORBIS, Table 5). "
+            + ("The two sources' boundary coefficients differ by more than the inputs' "
+               "uncertainty (a 440C / 440C bearing in PFPE against a Si3N4 / 440C hybrid in a "
+               "MAC oil): the slow torque is a property of the lubricant and material pair, "
+               "which no law here carries as an input, and no one scale brings both in."
+               if min(j) > max(o) else
+               "One coefficient within the published range brings both in."))
 
 
 def _opposite_text(rows: list[dict]) -> str:
@@ -388,32 +605,50 @@ def _spread_rows(rows: list[dict]) -> list[list]:
     return out
 
 
-def _plot(path: Path, rows: list[dict]) -> None:
+def _plot(path: Path, rows: list[dict], slow: list | None = None) -> None:
+    """Predicted over measured per row and law (dots; x: the fitted row), each law's
+    leave-one-source-out interval as a line, and for the slow points the Coulomb contact
+    estimate at the published boundary coefficient over the geometry variants (black
+    diamonds); a row whose law predicts no value of the measured sign is written as such."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    from matplotlib.lines import Line2D
     vals = [r for r in rows if r["kind"] in ("value", "fitted")]
     laws = list(dict.fromkeys(r["law"] for r in vals))
     labels = list(dict.fromkeys(f"{r['source']}: {r['quantity']}" for r in vals))
-    fig, ax = plt.subplots(figsize=(9.0, 0.42 * len(labels) + 1.8))
+    fig, ax = plt.subplots(figsize=(11.0, 0.5 * len(labels) + 1.9))
+    handles = []
     for k, law in enumerate(laws):
+        if any(r["predicted"] / r["measured"] > 0 for r in vals if r["law"] == law):
+            handles.append(Line2D([], [], color=f"C{k}", marker="o", lw=1.0, label=law))
         for r in (r for r in vals if r["law"] == law):
             y = labels.index(f"{r['source']}: {r['quantity']}") + (k - len(laws) / 2) * 0.12
             ratio = r["predicted"] / r["measured"]
             if not ratio > 0:
-                ax.plot([], [])
                 continue
             lo, hi = r["predicted_lo"] / r["measured"], r["predicted_hi"] / r["measured"]
             if np.isfinite(lo) and lo > 0:
                 ax.plot([lo, hi], [y, y], color=f"C{k}", lw=1.0, alpha=0.6)
-            ax.plot(ratio, y, "o" if r["kind"] == "value" else "x", color=f"C{k}",
-                    label=law if r is next(x for x in vals if x["law"] == law) else None)
+            ax.plot(ratio, y, "o" if r["kind"] == "value" else "x", color=f"C{k}")
+    for i, lab in enumerate(labels):
+        if not any(r["predicted"] / r["measured"] > 0 for r in vals
+                   if f"{r['source']}: {r['quantity']}" == lab):
+            ax.text(1.0, i, "  every law predicts 0 (no change): no ratio", fontsize=7,
+                    va="center")
+    if slow:
+        for p in slow:
+            y = labels.index(f"{p.source}: {p.quantity}") + 0.36
+            ax.plot(p.predicted / p.measured, y, "D", color="k", ms=4)
+        handles.append(Line2D([], [], color="k", marker="D", ls="", ms=4,
+                              label=f"Coulomb contacts, mu {slow[0].mu_ref:g}"))
+    handles.append(Line2D([], [], color="0.4", marker="x", ls="", label="fitted row"))
     ax.axvline(1.0, color="k", lw=0.8)
     ax.set_xscale("log")
     ax.set_yticks(range(len(labels)))
     ax.set_yticklabels(labels, fontsize=7)
-    ax.set_xlabel("predicted / measured (line: the law's interval, its source left out; x: fitted)")
-    ax.legend(fontsize=7, loc="lower right")
+    ax.set_xlabel("predicted / measured (line: the law's interval, its source left out)")
+    ax.legend(handles=handles, fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     ax.set_title("Friction laws against the published numbers", fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
@@ -430,25 +665,30 @@ def run(out: Path, progress=print, mesh_factor: float = 1.0) -> None:
     rows, fits = matrix(mesh_factor)
     write_csv(out / "friction_validation.csv", rows)
     write_residuals(out / "friction_residuals.csv", rows)
-    _plot(out / "matrix.png", rows)
+    slow = slow_point_rows()
+    _plot(out / "matrix.png", rows, slow)
     cov = coverage(rows)
     table = [[r["source"], r["quantity"], _fmt(r["measured"]), r["unit"], r["law"],
               _fmt(r["predicted"]), _fmt(r["predicted_lo"]), _fmt(r["predicted_hi"]),
               "" if not np.isfinite(r["error_rel"]) else f"{100 * r['error_rel']:+.0f} %",
               _fmt(r["in_interval"]) if r["in_interval"] != "" else "no interval"]
              for r in rows]
-    cov_rows = [[reg, law, f"{d['in']} / {d['judged']}",
-                 f"{np.median(d['ratios']):.3g}" if d["ratios"] else "-"]
+    cov_rows = [[reg, law, f"{d.inside} / {d.judged}",
+                 f"{d.median_width_ratio:.3g}" if d.judged else "-"]
                 for (reg, law), d in sorted(cov.items())]
     m, c, h, (lo, hi) = fits[0]
     tol = pad.SEED001_REL_TOL
+    mu_ref, mu_lo, mu_hi = boundary_coefficient()
     lines = ["# Friction laws against the published numbers", "",
              "Every published friction number the project holds "
              "(studies/validation/data/friction_points.csv, with its sources), per law: predicted, "
              "measured, error, and the law's model-form interval for its regime, estimated from "
              f"the OTHER sources' log residuals (nominal level {LEVEL:.0%}: mean +- z sd "
              "sqrt(1 + 1/n) of ln(measured / predicted), analytic/friction/interval.py). Trend "
-             "rows are judged by their sign; change rows of opposite sign give no residual.", "",
+             "rows are judged by their sign; change rows of opposite sign give no residual. "
+             "Starting torques are each law at rest (SKF's M_start = M_sl at its boundary "
+             "coefficient; the Palmgren-based laws their load term, the viscous term vanishing "
+             "at rest).", "",
              md_table(["source", "quantity", "measured", "unit", "law", "predicted", "lo", "hi",
                        "error", "inside"], table), "",
              "![matrix](matrix.png)", "",
@@ -465,6 +705,26 @@ def run(out: Path, progress=print, mesh_factor: float = 1.0) -> None:
                   "alone cannot tell the two apart; the torque at two speeds would (the "
                   "starved viscous term barely moves with speed, the flooded one as n^(2/3)). "
                   "The matrix row keeps the first root."]
+    lines += ["", "## Leave-one-source-out coverage per regime", "",
+              md_table(["regime", "inside / judged (every law)", "coverage",
+                        "median upper / lower", "target"], regime_rows(cov)), "",
+              "Target (issue 43): coverage at the nominal level "
+              f"({LEVEL:.0%}) with the typical (median) upper / lower <= {WIDTH_TARGET:g}. "
+              + target_text(cov), "",
+              "## The slow and starting points: a boundary (Coulomb) torque", "",
+              "JPL2022 (0.075 rpm) and OCI2018 (at rest; the cartridge at 0.5-2 rpm) run with "
+              "films of a few nm: their torque is the Coulomb friction of the contacts' "
+              "differential slip and spin, which none of the oil laws carries (their load "
+              "terms are catalogue fits of running bearings, f1 P dm or SKF's G_sl mu_sl). "
+              "The Coulomb contact estimate (`coulomb_contacts_torque_Nmm`: Heathcote slip and "
+              f"spin, no hysteresis) at the published PFPE vacuum four-ball coefficient "
+              f"{mu_ref:g} (range {mu_lo:g}-{mu_hi:g}, GXL320A), and the coefficient each "
+              "measured value would need (the torque is linear in mu):", "",
+              md_table(["source", "quantity", "inputs", "predicted", "measured", "unit",
+                        "mu needed"],
+                       [[p.source, p.quantity, p.geometry, f"{p.predicted:.4g}",
+                         f"{p.measured:g}", p.unit, f"{p.mu_needed:.3f}"] for p in slow]), "",
+              slow_text(slow, (mu_lo, mu_hi)), ""]
     lines += ["", "## What makes the intervals wide", "",
               md_table(["regime", "law", "residuals", "mean ln(meas/pred)", "sd",
                         "largest miss (source: quantity, meas/pred)"], _spread_rows(rows)), "",
@@ -474,6 +734,24 @@ def run(out: Path, progress=print, mesh_factor: float = 1.0) -> None:
               "", "LQF rig trends (drag over Palmgren's (n nu)^(2/3), 100 mg, 6000 rpm): "
               + "; ".join(f"{r['law']} {r['note']} for {r['quantity'].split(' at ')[0]}"
                           for r in rows if r["source"] == "LQF2018") + ".", "",
+              "Why the minimal-oil law's LQF barely moves at the default inlet share k = 1 "
+              "(the whole wetted layer at every inlet, the law's upper bound): 100 mg over the "
+              "wetted area is a layer far thicker than the flooded film, so the contacts are "
+              "flooded and the factor on Palmgren's term is 1 at every temperature. The rise "
+              "the paper reports (its LQF in direct proportion to the mean temperature, which "
+              "it attributes to more oil reaching the contacts as the viscosity falls) is the "
+              "starved branch of the law (factor ~ h_in / h_ff ~ nu^-0.67 at fixed n): it "
+              "appears once the inlet share is small. At 133 N:", "",
+              md_table(["inlet share k", "factor 12 C", "factor 20 C", "factor 35 C",
+                        "LQF 35 C / 12 C", "r inner 12 C", "r inner 35 C"],
+                       [[f"{k:g}", *(f"{x:.3f}" for x in f), f"{q:.3f}", f"{r[0]:.3g}",
+                         f"{r[1]:.3g}"] for k, f, q, r in lqf_share_rows()]), "",
+              "The share is what the data do not give: the paper prints normalised LQF only "
+              "(its magnitude is not held here), and the other minimal-oil sources state no "
+              "charge the share could be calibrated on (seed 001 states none; OCI's oil is in "
+              "the cage). The default stays the upper bound; a diagnosis fits k. A replenishment law "
+              "that would set k from the conditions (surface tension, viscosity, time between "
+              "passes) was searched for and not reached (docs/friction_sources.md).", "",
               "Regimes without a published point here (oil bath or jet) have no interval: "
               "their columns are empty.", ""]
     (out / "report.md").write_text("\n".join(lines) + "\n")

@@ -78,6 +78,19 @@ class Findings:
     end_rate_K_per_h: float         # largest |dT/dt| of a part over the last 10 minutes
     balances: tuple = ()            # `BallBalance` per bearing at the end (set by `run`)
     T_equilibrium_C: dict | None = None   # the fixed point of the steady state (set by `run`)
+    upper: "UpperEnd | None" = None       # the same at the friction's upper end (set by `run`)
+
+
+@dataclass(frozen=True)
+class UpperEnd:
+    """The steady state with the bearing's heat at the upper end of its friction torque's
+    model-form interval (`analytic.friction.interval.lubrication_interval`): interval (its
+    `ModelFormInterval`; NaN factors: none stated, nothing computed), T_C (part -> C), preload_N
+    and heat_W (the pair's, both bearings) at that state."""
+    interval: object
+    T_C: dict
+    preload_N: float
+    heat_W: float
 
 
 def conditions(speed_rpm: float, duration_s: float = DURATION_S, row_s: float = ROW_S) -> dict:
@@ -89,13 +102,30 @@ def conditions(speed_rpm: float, duration_s: float = DURATION_S, row_s: float = 
             "preload_assembled_N": np.full(n, PRELOAD_N)}
 
 
+def _parts_C(e) -> dict[str, float]:
+    from studies.model.inputs import PARTS as GROUPS
+    return {p: float(e.T_parts_C[GROUPS.index(p)]) for p in PARTS
+            if np.isfinite(e.T_parts_C[GROUPS.index(p)])}
+
+
 def equilibrium_C(pl: Pipeline, speed_rpm: float) -> dict[str, float]:
     """The equilibrium part temperatures (C) at speed_rpm: the fixed point of the coupled
     steady state (`transient_route.equilibrium`), where the heat-up ends if run for ever."""
-    from studies.model.inputs import PARTS as GROUPS
-    e = equilibrium(pl, conditions(speed_rpm, 0.0))
-    return {p: float(e.T_parts_C[GROUPS.index(p)]) for p in PARTS
-            if np.isfinite(e.T_parts_C[GROUPS.index(p)])}
+    return _parts_C(equilibrium(pl, conditions(speed_rpm, 0.0)))
+
+
+def upper_end(pl: Pipeline, speed_rpm: float) -> UpperEnd | None:
+    """The equilibrium at speed_rpm with the bearing's heat x the upper factor of its friction
+    torque's model-form interval (the heat of a torque x f is the heat x f: P = M omega), through
+    the same fixed point (`transient_route.equilibrium(heat_factor=)`); None where the assembly's
+    regime and law have no stated interval."""
+    from analytic.friction.interval import lubrication_interval
+    iv = lubrication_interval(pl.asm.lubrication)
+    if not iv.stated:
+        return None
+    e = equilibrium(pl, conditions(speed_rpm, 0.0), heat_factor=iv.factor_hi)
+    return UpperEnd(iv, _parts_C(e), float(e.coupling.result.pair.preload_N[0]),
+                    float(e.coupling.heat.total_W[0]))
 
 
 def heat_up(pl: Pipeline, speed_rpm: float, duration_s: float = DURATION_S,
@@ -225,7 +255,7 @@ def run(out: Path, progress=print, mesh_factor: float = 1.0, duration_s: float =
         res[n] = rows
         balances[n] = ball_balance(pl, {k: rows[k] for k in TRANSIENT_COLUMNS if k in rows}, r)
         found[n] = replace(findings(rows, n), balances=tuple(balances[n]),
-                           T_equilibrium_C=equilibrium_C(pl, n))
+                           T_equilibrium_C=equilibrium_C(pl, n), upper=upper_end(pl, n))
         keep = ["time_s", *(f"T_{p}_C" for p in PARTS), "T_max_C", "T_min_C", "preload_N",
                 "torque_Nmm", "heat_bearing_W", "contact_angle_deg", "fit_pressure_inner_MPa",
                 "fit_pressure_outer_MPa", "reduction_error_est"]
@@ -270,6 +300,35 @@ def balance_lines(balances: dict) -> list[str]:
     return out
 
 
+def upper_end_lines(found: dict, res: dict) -> list[str]:
+    """The report's section on the equilibrium at the friction's upper end (`UpperEnd`), its
+    rise over the nominal equilibrium computed from the two fixed points."""
+    ups = {n: f.upper for n, f in found.items() if f.upper is not None}
+    if not ups:
+        return ["## At the upper end of the friction torque", "",
+                "No model-form interval is stated for this lubrication's regime and law "
+                "(`analytic.friction.interval`): no upper-end heat-up is computed.", ""]
+    iv = next(iter(ups.values())).interval
+    rows = []
+    for n, u in ups.items():
+        f = found[n]
+        rise = max(u.T_C[p] - f.T_equilibrium_C[p] for p in u.T_C)
+        rows.append([f"{n:.0f}", *(f"{u.T_C[p]:.2f}" for p in PARTS if p in u.T_C),
+                     f"{u.heat_W:.2f}", f"{u.preload_N:.0f}",
+                     f"{res[n]['preload_N'][-1]:.0f}", f"{rise:+.2f}"])
+    head = ["rpm", *(f"T_{p} (C)" for p in PARTS if p in next(iter(ups.values())).T_C),
+            "heat (W)", "preload (N)", "preload at the end of the run (N)",
+            "largest rise over the nominal fixed point (K)"]
+    return ["## At the upper end of the friction torque", "",
+            f"The same fixed point with the bearing's heat x {iv.factor_hi:.3g}, the upper factor of "
+            f"the friction torque's {100 * iv.level:.0f} % model-form interval for a "
+            f"{iv.regime.replace('_', ' ')} bearing with the {iv.law} law (x{iv.factor_lo:.3g} .. "
+            f"x{iv.factor_hi:.3g}, from {iv.n_residuals} published points of "
+            f"{', '.join(iv.sources)}: `analytic.friction.interval`). What the heat-up reaches if "
+            "the friction is as high as the published points allow:", "",
+            md_table(head, rows), ""]
+
+
 def _report(out: Path, found: dict, res: dict, modes: int, imgs: dict, balances: dict) -> None:
     rows = []
     for n, f in found.items():
@@ -311,6 +370,7 @@ def _report(out: Path, found: dict, res: dict, modes: int, imgs: dict, balances:
                                       if p in f.T_end_C),
                         f"{max(abs(f.T_end_C[p] - f.T_equilibrium_C[p]) for p in f.T_end_C):.1e}"]
                        for n, f in found.items()]), "",
+             *upper_end_lines(found, res),
              "## The seed's findings", "", *checks, "",
              "## Why the balls run hotter: the ball nodes' heat balance at the end of the run", "",
              "Each ball set takes its share of its contacts' heat (Blok's partition, one half "

@@ -693,10 +693,12 @@ def make_case(name: str, seed: int = 0, mesh_factor: float = 1.0) -> Case:
 
 
 # ============================================================================ diagnosis and judging
-def diagnose_case(case: Case, workers: int = 1):
+def diagnose_case(case: Case, workers: int = 1, noise_model=None):
     """Today's diagnosis of a case as `bearingfem diagnose` runs it: the diagnosed assembly's
     pipeline (`case.mesh_factor`), `files.ModelPredictor`, the CLI's candidates (the listed
-    effects, then the model-form ladder's rungs) and nuisance calibration, `engine.diagnose_full`. Returns its `DiagnosisResult`."""
+    effects, then the model-form ladder's rungs) and nuisance calibration, `engine.diagnose_full`;
+    noise_model: a sensor's stated noise ({column: `noisemodel.StatedNoise`}, as `--noise`).
+    Returns its `DiagnosisResult`."""
     from studies.diagnosis.engine import diagnose_full
     from studies.diagnosis.files import NUISANCE, ModelPredictor, candidate_effects
 
@@ -705,7 +707,7 @@ def diagnose_case(case: Case, workers: int = 1):
     pred = ModelPredictor(_pipeline(case.assembly, case.mesh_factor), case.conditions, case.columns)
     cands = candidate_effects(case.assembly) + ladder_candidates(case.assembly)   # as the CLI
     return diagnose_full(pred, case.measured, case.conditions, cands, NUISANCE, T_ref_C=case.assembly.T_ref_C, predict_at=pred.at,
-                         seed=case.seed, workers=workers)
+                         seed=case.seed, workers=workers, noise_model=noise_model)
 
 
 #: seed offset of the repeat draw of `interval_coverage` (another draw than the diagnosed one)

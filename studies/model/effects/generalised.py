@@ -20,6 +20,7 @@ from .base import GeneralisedForm
 from .thermal_lag_per_part import ThermalLagPerPart
 from .thermal_lag_series import ThermalLagSeries
 from .preload_settling_creep import PreloadSettlingCreep
+from .preload_settling_gradual import PreloadSettlingGradual
 from .cte_curvature import CteCurvature
 from .radial_gradient_lag import RadialGradientLag
 from .friction_temperature_exponential import FrictionTemperatureExponential
@@ -28,7 +29,7 @@ __all__ = ["GeneralisedForm", "GENERALISED", "forms_of"]
 
 GENERALISED: dict[str, GeneralisedForm] = {f.name: f for f in (
     ThermalLagPerPart(), PreloadSettlingCreep(), CteCurvature(), RadialGradientLag(),
-    ThermalLagSeries(), FrictionTemperatureExponential())}
+    ThermalLagSeries(), FrictionTemperatureExponential(), PreloadSettlingGradual())}
 
 
 def forms_of(family: str) -> list[GeneralisedForm]:
