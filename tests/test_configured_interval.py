@@ -5,11 +5,11 @@ data show (`interval.configured_intervals`): the `interval` block of diagnosis.j
 
 Its coverage is counted against what it predicts, independently of the code: fresh noise draws
 of the truth on the same rows (a repeat run of the rig), on the closed-form toy bearing of
-`test_diagnosis_engine.py` (a null and an unlisted torque-sensor drift linear in time). The default suite holds the
-block and the columns on a `no_discrepancy` run (`test_claim_rules.py`, below the detection
-threshold) and the block on an `unexplained` one (`test_diagnosis_engine.py`, a sensor drift).
-On data made another way (the second source) the same count is `second_source.interval_coverage`
-(docs/diagnosis.md, "An interval for every verdict").
+`test_diagnosis_engine.py` (a null and an unlisted torque-sensor drift linear in time). The
+default suite holds the block and the columns on a `no_discrepancy` run (`test_claim_rules.py`,
+below the detection threshold) and the block on an `unexplained` one (`test_diagnosis_engine.py`,
+a sensor drift). On data made another way (the second source) the same count is
+`second_source.interval_coverage` (docs/diagnosis.md, "An interval for every verdict").
 """
 from __future__ import annotations
 

@@ -94,8 +94,8 @@ def stated_columns_smoothed(pb: Problem) -> dict:
     1.5 % of each measured value as `sigma_torque_Nmm` divides a misfit of 4 readings by a
     weight 1.5 % noisy, which adds white noise of 4 stated sigma to the standardised residual
     there: the data's level contradicted the statement (13 x) and the lag came back
-    `unexplained`. The running mean divides that noise by sqrt(5). A step of the stated values (a range switch) is spread over the READING_ROWS - 1
-    rows about it."""
+    `unexplained`. The running mean divides that noise by sqrt(5). A step of the stated values
+    (a range switch) is spread over the READING_ROWS - 1 rows about it."""
     out = {}
     for c, st in pb.noise.stated.items():
         if st.rows is not None:

@@ -243,19 +243,17 @@ def probes(pb: Problem):
                 d[col] = c[col] * f
                 out.append((f"repeat at {f:g} x the {label} ({col} {_rng(d[col])})", d))
     if "T_ambient_C" in c:
-        d = dict(c)
-        d["T_ambient_C"] = T0 + 1.5 * (c["T_ambient_C"] - T0)
-        out.append(("extend the temperature range by 50 % about the reference temperature "
-                    f"(T_ambient_C {_rng(d['T_ambient_C'])})", d))
-        d = dict(c)
-        d["T_ambient_C"] = T0 - (c["T_ambient_C"] - T0)
-        out.append(("mirror the temperature programme about the reference temperature "
-                    f"(T_ambient_C {_rng(d['T_ambient_C'])})", d))
+        T = c["T_ambient_C"]
+        for text, T_new in (("extend the temperature range by 50 % about the reference "
+                             "temperature", T0 + 1.5 * (T - T0)),
+                            ("mirror the temperature programme about the reference temperature",
+                             T0 - (T - T0))):
+            out.append((f"{text} (T_ambient_C {_rng(T_new)})", {**c, "T_ambient_C": T_new}))
     if "time_s" in c:
+        t = c["time_s"]
         for f, txt in ((0.25, "4 x faster"), (4.0, "4 x slower")):
-            d = dict(c)
-            d["time_s"] = c["time_s"][0] + f * (c["time_s"] - c["time_s"][0])
-            out.append((f"run the temperature programme {txt} (time_s scaled by {f:g})", d))
+            out.append((f"run the temperature programme {txt} (time_s scaled by {f:g})",
+                        {**c, "time_s": t[0] + f * (t - t[0])}))
     return out
 
 

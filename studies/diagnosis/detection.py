@@ -12,10 +12,10 @@ units.
   (Cohen 1988, Statistical Power Analysis for the Behavioral Sciences, 2nd ed., ch. 9-10; Bloom
   1995, Minimum detectable effects, Evaluation Review 19(5)) of that chi-square: the RMS change
   delta which the column's test at alpha_structure (Bonferroni over the columns) finds with
-  probability DETECTION_POWER (0.95). The statistic is noncentral with lambda = n delta^2: chi-square
-  on dof degrees of freedom when the noise level is given, F(dof, nu) when it is estimated from
-  the data, nu = `goodness.NU_SHARE` x n (the second-difference estimator's degrees of freedom,
-  Satterthwaite 1946). It depends on the noise model and the number of entries only, not on any
+  probability DETECTION_POWER (0.95). The statistic is noncentral with lambda = n delta^2:
+  chi-square on dof degrees of freedom when the noise level is given, F(dof, nu) when it is
+  estimated from the data, nu = `goodness.NU_SHARE` x n (the second-difference estimator's
+  degrees of freedom, Satterthwaite 1946). It depends on the noise model and the number of entries only, not on any
   fit: it is stated before fitting.
 
 Below the threshold in every column the answer is `no_discrepancy` whatever fits

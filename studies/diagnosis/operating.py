@@ -40,8 +40,9 @@ from studies.diagnosis.engine import diagnose_full, lookalike_matrix
 
 #: a magnitude below the detection threshold of every design (`detection.threshold_sigma`:
 #: 0.97 sigma per column on 240 rows, 0.90 on 300, 1.60 on 64): a cause changing one of two
-#: columns by this RMS over both changes that column by sqrt(2) x 0.25 = 0.35 sigma RMS, a
-#: quarter of the threshold's chi-square excess (delta^2 0.125 against 0.94), so nothing is claimed
+#: columns by this RMS over both changes that column by sqrt(2) x 0.25 = 0.35 sigma RMS: its
+#: chi-square excess is an eighth of the threshold's (delta^2 0.125 against 0.94; the change
+#: estimate passes the threshold in 0.05 % of draws on 240 rows), so nothing may be claimed
 BELOW_DETECTION_SIGMA = 0.25
 #: magnitudes of the injected causes: RMS visible change in noise sigmas over the compared
 #: entries. The below-threshold one (nothing may be claimed), then 1 and 2 sigma, where a cause
