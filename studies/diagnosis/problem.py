@@ -378,7 +378,7 @@ class Problem:
 
         res = optimize.least_squares(fun, u0, bounds=(lo, hi), method="trf", diff_step=1e-3,
                                      x_scale=1.0, ftol=1e-8, xtol=1e-8, gtol=1e-8,
-                                     max_nfev=max_nfev or 40 * (dim + 1), callback=_Stall())
+                                     max_nfev=max_nfev or 40 * (dim + 1))
         z, pred = self.eval(space, res.x)
         return Fit(space, res.x, z, np.asarray(res.jac, float), float(z @ z), pred)
 
@@ -446,35 +446,6 @@ class Problem:
 
 #: confidence level spent on the AR coefficient in the bias test (`_bias_p_bound`)
 RHO_CI_GAMMA = 0.001
-
-
-#: a fit stops once STALL_ITER iterations in a row together lowered its chi-square by less
-#: than STALL_CHI2 (`_Stall`)
-STALL_ITER = 5
-STALL_CHI2 = 0.1
-
-
-class _Stall:
-    """`scipy.optimize.least_squares` callback: stop a fit that crawls along a flat valley
-    (e.g. the thermal_transient_fe rung's films and mount, whose 2-point finite-difference
-    Jacobian steers each step poorly) once STALL_ITER iterations together lowered the chi-square
-    (2 x the callback's `cost`) by less than STALL_CHI2: a tenth of the chi-square unit that one
-    standard uncertainty of a parameter and every test of the claim rules (likelihood ratio,
-    BIC margin, `clear_chi2`) are stated in. A fit that converges stops by scipy's own
-    tolerances as before. On seed 000's 14 h thermal history (`bench --diagnose --datasets
-    thermal_transient_fe`, 2026-12-02) the refit of the accepted rung under the re-estimated
-    noise stops after 277 model calls at a chi-square 0.18 above the 848.71 that scipy's ftol
-    reached after 529, and the rung's own fit after 99 calls instead of 149 (the same chi-square
-    to 1e-3), the verdict and cause the same."""
-
-    def __init__(self):
-        self.chi2: list[float] = []
-
-    def __call__(self, intermediate_result) -> None:
-        self.chi2.append(2.0 * float(intermediate_result.cost))
-        if (len(self.chi2) > STALL_ITER
-                and self.chi2[-1 - STALL_ITER] - self.chi2[-1] < STALL_CHI2):
-            raise StopIteration       # scipy's way to halt from a callback (status -2)
 
 
 def _bias_p_bound(r: np.ndarray, rho_hi: float, p_at_rho: float,
