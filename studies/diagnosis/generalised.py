@@ -70,6 +70,8 @@ THERMAL_KIN = ("thermal_lag", "radial_gradient", "thermal_transient_fe")
 def kin_of(name: str) -> tuple[str, ...]:
     """The other members of `name`'s kin (THERMAL_KIN), () when it has none."""
     return tuple(k for k in THERMAL_KIN if k != name) if name in THERMAL_KIN else ()
+
+
 #: local fits per form: from the listed fit and from the best other starting points
 N_RUNS = 3
 
