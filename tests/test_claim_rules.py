@@ -348,3 +348,54 @@ def test_final_rule_joint_model_at_a_bound():
         assert (sel is not None) == applies
         if applies:
             assert sel.verdict == "unexplained" and sel.at_bound[0].bound == 20.0
+
+
+def test_kin_alternatives_of_the_rung():
+    """The other forms of an accepted `thermal_transient_fe` (`selection._alternatives`) are its
+    kin's: the lag's series form from the listed lag's fit of the pass and over the series grid
+    (SERIES_GRID^2 starts), its per-part form, the radial gradient's lag (the speed changes);
+    an accepted cause outside the kin with no form of its own has none."""
+    from studies.diagnosis import fitspec
+    from studies.diagnosis import selection as s
+    from studies.diagnosis.problem import Accepted
+
+    t = np.linspace(0.0, 14 * 3600.0, 240)
+    cond = {"time_s": t, "T_ambient_C": 20.0 + 40.0 * np.sin(t / 3600.0),
+            "speed_rpm": np.where(t > 7 * 3600.0, 3000.0, 1500.0)}
+    listed = [EFFECTS[n] for n in ("thermal_lag", "radial_gradient", "interference_error")]
+    pb = SimpleNamespace(candidates=listed, conditions=cond)
+    nxt = SimpleNamespace(candidates={"thermal_lag": SimpleNamespace(parameters={"tau_s": 116.0})})
+    rung = Accepted(SimpleNamespace(name="thermal_transient_fe", bounds={}), {}, ())
+    alt = {f.name: starts for f, starts in s._alternatives(pb, rung, nxt)}
+    assert {"thermal_lag.series", "thermal_lag.per_part"} <= set(alt)
+    assert any(n.startswith("radial_gradient.") for n in alt)
+    series = alt["thermal_lag.series"]
+    assert series[0] == {"tau_s": 116.0, "tau_shaft_s": 0.0}
+    assert len(series) == 1 + fitspec.SERIES_GRID ** 2
+    fit_error = Accepted(EFFECTS["interference_error"], {"inner_um": 1.0, "outer_um": 0.0}, ())
+    assert s._alternatives(pb, fit_error, nxt) == []
+
+
+def test_further_cause_wanted_only_by_the_accepted_form():
+    """`_wanted_only_by_its_form` on stand-ins (chi-squares of `network_lag` seed 0): a further
+    cause that gains less than clear_chi2 beside another form of the accepted cause fitting as
+    well is stopped; one that gains clearly, or beside a form that fits worse, is not."""
+    from studies.diagnosis import selection as s
+
+    def alt(chi2_alone, chi2_with):
+        q = SimpleNamespace(space=lambda effects, fixed=None: SimpleNamespace(lo=np.zeros(2)),
+                            fit=lambda sp, u0: SimpleNamespace(chi2=chi2_with))
+        return ("thermal_lag.series", "thermal_transient_fe", q,
+                SimpleNamespace(chi2=chi2_alone, u=np.zeros(1)))
+
+    pb = SimpleNamespace(th={"clear_chi2": 25.0})
+    fit_c = SimpleNamespace(u=np.zeros(1), space=SimpleNamespace(k=1), profile_value=None)
+    nxt = SimpleNamespace(chosen=None, fits={"preload_path_compliance": fit_c},
+                          heldout={"preload_path_compliance": None},
+                          pb=SimpleNamespace(effect=lambda n: EFFECTS[n]),
+                          decision=SimpleNamespace(cause="preload_path_compliance"),
+                          baseline=SimpleNamespace(fit=SimpleNamespace(chi2=581.7)))
+    got = s._wanted_only_by_its_form(pb, nxt, [alt(572.5, 572.5)])
+    assert got[:2] == ("thermal_lag.series", "thermal_transient_fe") and got[2] == 0.0
+    assert s._wanted_only_by_its_form(pb, nxt, [alt(572.5, 500.0)]) is None   # gains 72.5
+    assert s._wanted_only_by_its_form(pb, nxt, [alt(620.0, 620.0)]) is None   # fits worse

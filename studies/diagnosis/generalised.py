@@ -58,6 +58,20 @@ from studies.model.effects.generalised import forms_of
 
 #: families (listed candidates, best BIC first) whose generalised forms are tried
 MAX_FAMILIES = 2
+#: the thermal kin: the listed effects and model forms whose change is the parts' temperatures
+#: differing from the measured ones (`thermal_lag` and its `.per_part` and `.series` forms,
+#: `radial_gradient` and its `.lag` form, the `thermal_transient_fe` rung). One member's form
+#: may describe what another carries the weight for (a two-node network's lags: the rung and
+#: `thermal_lag.series` within chi-square 10 of each other), so a further cause is held to the
+#: kin's forms too (`selection._alternatives`)
+THERMAL_KIN = ("thermal_lag", "radial_gradient", "thermal_transient_fe")
+
+
+def kin_of(name: str) -> tuple[str, ...]:
+    """The other members of `name`'s kin (THERMAL_KIN), () when it has none."""
+    return tuple(k for k in THERMAL_KIN if k != name) if name in THERMAL_KIN else ()
+
+
 #: local fits per form: from the listed fit and from the best other starting points
 N_RUNS = 3
 
