@@ -97,8 +97,9 @@ def test_friction_keys_of_the_wrong_kind_are_refused_in_one_line(name, lub, key)
     with pytest.raises(ConfigError, match=rf"^x\.toml: lubrication\.{key}: ") as e:
         assembly_from_dict(raw, "x.toml")
     assert "\n" not in str(e.value)
+    film = {k: v for k, v in shipped.items() if k != "friction_coefficient"}  # unused by "pressure"
     ok = dict(shipped, viscous_model="starved", oil_quantity_mg=5.0) if name == "seed001" \
-        else dict(shipped, shear_strength="pressure", tau0_MPa=20.0)
+        else dict(film, shear_strength="pressure", tau0_MPa=20.0)
     raw["lubrication"] = ok
     assembly_from_dict(raw, "x.toml")                 # the same keys where they belong: accepted
 
@@ -123,10 +124,16 @@ def _section_text(text: str, name: str) -> str:
 
 
 def _seed001_bearing_file(tmp_path, **lub):
-    """seed001's [bearing] and [lubrication] as a `bearing` file, with `lub` set in it."""
+    """seed001's [bearing] and [lubrication] as a `bearing` file, with `lub` set in it (with
+    skf2004 without the friction coefficient, which its sliding term replaces: refused)."""
+    import re
+
     from studies.model.config import CONFIG_DIR, SHIPPED
     text = (CONFIG_DIR / SHIPPED["seed001"]).read_text()
-    lubrication = _section_text(text, "lubrication") + "".join(
+    lubrication = _section_text(text, "lubrication")
+    if lub.get("viscous_model") == "skf2004":
+        lubrication = re.sub(r"^friction_coefficient = .*\n", "", lubrication, flags=re.M)
+    lubrication = lubrication + "".join(
         f'{k} = {v!r}\n'.replace("'", '"') for k, v in lub.items())
     b = tmp_path / "b.toml"
     b.write_text(_section_text(text, "bearing") + lubrication)
@@ -315,3 +322,42 @@ def test_a_bearing_files_friction_keys_are_checked_as_an_assemblys(tmp_path):
         with pytest.raises(ConfigError, match=rf"lubrication\.{key}: ") as e:
             load_bearing(path)
         assert str(path) in str(e.value) and "\n" not in str(e.value)
+
+
+@pytest.mark.parametrize("name, lub, key", [
+    ("seed001", {"viscous_model": "skf2004"}, "friction_coefficient"),     # SKF's sliding term
+    ("seed001", {"load_term": "palmgren"}, "friction_coefficient"),         # f1 F dm
+    ("seed001", {"hysteresis_loss_factor": 0.01}, "hysteresis_loss_factor"),
+    ("seed001", {"viscous_model": "starved"}, "viscous_model"),             # 0 mg: Palmgren's
+    ("seed000", {"shear_strength": "pressure", "tau0_MPa": 20.0}, "friction_coefficient"),
+    ("seed000", {"viscous_factor_f0": 1.5}, "viscous_factor_f0"),
+    ("seed000", {"load_term": "palmgren"}, "load_term"),
+    ("seed000", {"heat_transfer_W_per_mm2_K": 3e-4}, "heat_transfer_W_per_mm2_K"),
+])
+def test_a_typed_key_the_files_law_does_not_use_is_refused(name, lub, key, tmp_path):
+    """A key typed in a file that its own law does not use (docs/cli.md: "friction_coefficient
+    then unused", SKF "replaces the load term"): `simulate` exits 2 with one line naming file and
+    key and writes nothing."""
+    import contextlib
+    import io
+    import re
+
+    from studies.app.cli import main
+    from studies.model.config import CONFIG_DIR, SHIPPED
+    text = (CONFIG_DIR / SHIPPED[name]).read_text()
+    for k, v in lub.items():
+        line = f"{k} = {v!r}".replace("'", '"')
+        text, n = re.subn(rf"^{k} = .*$", line, text, count=1, flags=re.M)
+        if not n:
+            text = text.replace("[lubrication]\n", f"[lubrication]\n{line}\n", 1)
+    bad = tmp_path / "x.toml"
+    bad.write_text(text)
+    cond = tmp_path / "c.csv"
+    cond.write_text("T_ambient_C\n20\n")
+    out = tmp_path / "o.csv"
+    err = io.StringIO()
+    with contextlib.redirect_stderr(err):
+        assert main(["simulate", str(bad), str(cond), "-o", str(out)]) == 2
+    msg = err.getvalue().strip()
+    assert "\n" not in msg and f"x.toml: lubrication.{key}: " in msg, msg
+    assert not out.exists()

@@ -438,3 +438,50 @@ def test_matrix_in_interval_column_agrees_with_loso_coverage(external):
         mine = [r for r in rows if (r["regime"], r["law"]) == (reg, law) and r["kind"] == "value"
                 and np.isfinite(r["log_residual"]) and r["in_interval"] != ""]
         assert (sum(bool(r["in_interval"]) for r in mine), len(mine)) == (c.inside, c.judged)
+
+
+def test_bearing_sidecar_states_the_interval_level_and_its_measured_coverage(tmp_path):
+    """`bearing`'s OUT.csv.json names what its interval columns are: level 0.9, regime and law,
+    factors equal to the written columns' torque_hi / torque and torque_lo / torque (rtol 1e-9:
+    the CSV's printed digits),
+    and the leave-one-source-out coverage of that (regime, law) recounted here by hand from the
+    shipped residuals CSV (each residual against mean +- 1.6448536 sd sqrt(1 + 1/n) of the other
+    sources' residuals); and the report's interval line carries the same numbers."""
+    import csv
+    import json
+    import re
+
+    import pandas as pd
+
+    from studies.app.cli import main
+    from studies.model.config import CONFIG_DIR, SHIPPED
+    text = (CONFIG_DIR / SHIPPED["seed001"]).read_text()
+    part = {n: re.search(rf"^\[{n}\][^\n]*\n(.*?)(?=^\[|\Z)", text, re.S | re.M).group(0)
+            for n in ("bearing", "lubrication")}
+    b = tmp_path / "b.toml"
+    b.write_text(part["bearing"] + part["lubrication"])
+    loads = tmp_path / "loads.csv"
+    loads.write_text("axial_load_N,speed_rpm,T_oil_C\n50,6000,20\n")
+    out = tmp_path / "o.csv"
+    assert main(["bearing", str(b), str(loads), "-o", str(out)]) == 0
+    rec = json.loads((tmp_path / "o.csv.json").read_text())["friction_interval"]
+    o = pd.read_csv(out)
+    assert (rec["level"], rec["regime"], rec["law"]) == (0.9, "minimal_oil", "palmgren")
+    np.testing.assert_allclose([rec["factor_lo"], rec["factor_hi"]],
+                               [o.torque_lo_Nmm[0] / o.torque_Nmm[0],
+                                o.torque_hi_Nmm[0] / o.torque_Nmm[0]], rtol=1e-9)
+    with open(iv.RESIDUALS_CSV) as fh:
+        rows = [(r["source"], float(r["log_residual"])) for r in csv.DictReader(
+            x for x in fh if not x.startswith("#"))
+            if r["regime"] == "minimal_oil" and r["law"] == "palmgren"]
+    inside = judged = 0
+    for src, e in rows:
+        others = np.array([x for s, x in rows if s != src])
+        if others.size < 2:
+            continue
+        half = 1.6448536269514722 * np.std(others, ddof=1) * np.sqrt(1 + 1 / others.size)
+        judged += 1
+        inside += int(abs(e - others.mean()) <= half)
+    assert (rec["loso_inside"], rec["loso_judged"]) == (inside, judged)
+    line = iv.interval_text(iv.model_form_interval("minimal_oil", "palmgren"))
+    assert f"left one source out {inside} of {judged}" in line and "90% nominal" in line

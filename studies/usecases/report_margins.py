@@ -98,6 +98,9 @@ def headlines(res: dict) -> dict[str, Headline]:
     add("static_safety_min", "static_safety", False)
     add("torque_min", "torque_Nmm", False)
     add("torque_max", "torque_Nmm", True)
+    if "heat_W" in res:                                  # a speed: the friction heat
+        add("heat_min", "heat_W", False)
+        add("heat_max", "heat_W", True)
     return out
 
 
@@ -186,21 +189,27 @@ def margin_rows(asm, res: dict, flags: dict, mesh_error: dict[str, float],
         _torque_interval_text(asm, lo.value, hi.value),
         "no limit", _worst(mesh_error, "torque_min", "torque_max"), "no torque limit in the assembly",
         "torque_max_Nmm", hi.value))
+    if "heat_max" in hl:
+        lo, hi = hl["heat_min"], hl["heat_max"]
+        rows.append(MarginRow(
+            "friction heat", f"{lo.value:.4g} .. {hi.value:.4g} W", "none given",
+            _torque_interval_text(asm, lo.value, hi.value, "W"),
+            "no limit", _worst(mesh_error, "heat_min", "heat_max"), "no heat limit in the assembly",
+            "heat_max_W", hi.value))
     return rows
 
 
-def _torque_interval_text(asm, lo_Nmm: float, hi_Nmm: float) -> str:
+def _torque_interval_text(asm, lo_Nmm: float, hi_Nmm: float, unit: str = "N mm") -> str:
     """The friction law's model-form interval on the torque range (`analytic.friction.interval`,
-    from study friction_validation's published points), or why none is stated."""
-    from analytic.friction.interval import lubrication_interval
+    from study friction_validation's published points; the same factors on the heat, the torque
+    times the speed, with unit "W") with its level and measured leave-one-source-out coverage
+    (`interval_text`), or why none is stated."""
+    from analytic.friction.interval import interval_text, lubrication_interval
     i = lubrication_interval(asm.lubrication)
     if not i.stated:
-        return (f"no model-form interval (regime {i.regime}, law {i.law}: {i.n_residuals} "
-                "published residuals; study friction_validation)")
+        return interval_text(i)
     a, b = i.apply(lo_Nmm)[0], i.apply(hi_Nmm)[1]
-    return (f"model-form interval {a:.4g} .. {b:.4g} N mm ({i.level:.0%} nominal, regime "
-            f"{i.regime}, law {i.law}: {i.n_residuals} residuals of {len(i.sources)} sources; "
-            "study friction_validation)")
+    return f"{a:.4g} .. {b:.4g} {unit}: " + interval_text(i)
 
 
 def preload_limit_rows(asm, res: dict, cond: dict | None) -> list[MarginRow]:
