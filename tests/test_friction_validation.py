@@ -485,3 +485,29 @@ def test_bearing_sidecar_states_the_interval_level_and_its_measured_coverage(tmp
     assert (rec["loso_inside"], rec["loso_judged"]) == (inside, judged)
     line = iv.interval_text(iv.model_form_interval("minimal_oil", "palmgren"))
     assert f"left one source out {inside} of {judged}" in line and "90% nominal" in line
+
+
+def test_slow_points_flooded_film_follows_hamrock_dowson_speed_exponent():
+    """The slow points' flooded films (`boundary_films_nm`): OCI's cartridge at 2 rpm over 0.5
+    rpm is (2 / 0.5)^0.67 (Hamrock-Dowson's speed exponent, the ball loads unchanged at these
+    speeds) to 1e-3; every film is below 10 nm, the report's boundary-regime premise."""
+    films = fv.boundary_films_nm()
+    lo, hi = films["OCI2018"]
+    assert hi / lo == pytest.approx(4.0 ** 0.67, rel=1e-3)
+    assert max(max(v) for v in films.values()) < 10.0
+
+
+def test_report_sentences_follow_their_tables():
+    """The LQF and regime sentences of the study's report are computed from their tables: a
+    share table whose k = 1 supply ratio is below 1 says the contacts starve, one above says
+    flooded; the largest LQF rise and its share are the table's; a coverage in which every
+    regime has judged points says so."""
+    f = np.array([0.9, 0.95, 0.99])
+    flooded = [(1.0, f, 1.1, (5.6, 13.6)), (0.1, f, 1.76, (0.56, 1.36))]
+    starved = [(1.0, f, 1.3, (0.5, 0.9)), (0.1, f, 2.2, (0.05, 0.09))]
+    assert "flooded" in fv.lqf_share_text(flooded) and "x1.760 (k = 0.1" in fv.lqf_share_text(flooded)
+    assert "starve" in fv.lqf_share_text(starved) and "x2.200 (k = 0.1" in fv.lqf_share_text(starved)
+    cov = {(reg, "palmgren"): iv.Coverage(reg, "palmgren", 2, 3, (2.0, 4.0)) for reg in iv.REGIMES}
+    assert fv.no_interval_text(cov).startswith("Every regime")
+    del cov[("oil_bath_jet", "palmgren")]
+    assert "(oil_bath_jet)" in fv.no_interval_text(cov)
