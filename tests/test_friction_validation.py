@@ -511,3 +511,18 @@ def test_report_sentences_follow_their_tables():
     assert fv.no_interval_text(cov).startswith("Every regime")
     del cov[("oil_bath_jet", "palmgren")]
     assert "(oil_bath_jet)" in fv.no_interval_text(cov)
+
+
+def test_film_split_counts_the_two_parts_of_the_matrix():
+    """`film_split_coverage` on a hand-made matrix: two boundary sources whose residuals sit at
+    +1 and -1 (each judged against the other's interval alone: outside) and a running part of
+    one source (no interval judged): 0 / 4 and 0 / 0, two and one sources."""
+    def row(src, q, e):
+        return dict(kind="value", regime="minimal_oil", law="palmgren", source=src, quantity=q,
+                    log_residual=e)
+    rows = [row("JPL2022", "starting x", 1.0), row("JPL2022", "running x", 1.1),
+            row("OCI2018", "starting x", -1.0), row("OCI2018", "running torque cartridge", -1.1),
+            row("OCI2018", "running torque at 360 rpm", 0.3)]
+    split = fv.film_split_coverage(rows)
+    assert split["boundary"][:2] == (0, 4) and split["boundary"][3] == 2
+    assert split["running"][:2] == (0, 0) and split["running"][3] == 1
