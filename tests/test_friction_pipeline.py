@@ -1,6 +1,7 @@
 """`[lubrication] viscous_model` and `shear_strength` through the pipeline: the default
 keeps every existing column bit for bit, every model's torque and heat split adds up, and the
 split columns come after the model columns with the names of docs/cli.md."""
+import re
 from dataclasses import replace
 
 import numpy as np
@@ -361,3 +362,21 @@ def test_a_typed_key_the_files_law_does_not_use_is_refused(name, lub, key, tmp_p
     msg = err.getvalue().strip()
     assert "\n" not in msg and f"x.toml: lubrication.{key}: " in msg, msg
     assert not out.exists()
+
+
+@pytest.mark.parametrize("key, value, words, converted", [
+    ("pressure_viscosity_per_GPa", 2e-8, "typed in 1/Pa", "20 1/GPa"),
+    ("density_kg_m3", 0.86, "typed in g/cm^3", "860 kg/m^3"),
+])
+def test_a_lubricant_value_typed_in_another_unit_is_one_line(key, value, words, converted):
+    """A user oil's pressure-viscosity coefficient typed in 1/Pa (2e-8: a film law would take
+    alpha 2e-17 1/Pa, the minimal-oil film ~ alpha^0.49 some 4e4 times too thin) or its density
+    in g/cm^3 (0.86: the oil layer 1000 times too thick): one line naming the key, the unit
+    suspected and the value converted (1e9 and 1e3, the units' ratios)."""
+    from analytic.lubrication import lubricant_from_table
+    base = {"kinematic_viscosity_cSt": [[40.0, 100.0], [100.0, 10.0]], "density_kg_m3": 860.0,
+            "pressure_viscosity_per_GPa": 20.0}
+    with pytest.raises(ValueError, match=rf"lubricants\.A\.{key}: .*{re.escape(words)}") as e:
+        lubricant_from_table("A", {**base, key: value})
+    assert converted in str(e.value) and "\n" not in str(e.value)
+    assert lubricant_from_table("A", base).alpha_per_Pa == pytest.approx(2e-8)
