@@ -380,3 +380,21 @@ def test_a_lubricant_value_typed_in_another_unit_is_one_line(key, value, words, 
         lubricant_from_table("A", {**base, key: value})
     assert converted in str(e.value) and "\n" not in str(e.value)
     assert lubricant_from_table("A", base).alpha_per_Pa == pytest.approx(2e-8)
+
+
+def test_the_oil_bath_f0_warning_is_palmgren_s_only(seed001):
+    """The warning that Palmgren's f0 is an oil-bath value (viscous over load torque above
+    VISCOUS_TO_LOAD_WARN) is given on seed 001's Palmgren rows, where the ratio is above the
+    limit, and not where the law takes no f0 (skf2004: its rolling over sliding term is above the
+    same limit on the same rows) nor on a bearing that does run in an oil bath."""
+    from studies.model.checks import VISCOUS_TO_LOAD_WARN, plausibility_warnings
+
+    def warned(**lub):
+        a = replace(seed001, lubrication=replace(seed001.lubrication, **lub))
+        out = _columns(a)
+        ratio = np.max(out["torque_viscous_Nmm"] / out["torque_load_Nmm"])
+        return ratio, any("is an oil-bath value" in w for w in plausibility_warnings(a, COND, out))
+    for lub, expect in (({}, True), ({"viscous_model": "skf2004"}, False),
+                        ({"lubrication_method": "oil_bath"}, False)):
+        ratio, w = warned(**lub)
+        assert ratio > VISCOUS_TO_LOAD_WARN and w is expect, (lub, ratio)
