@@ -485,6 +485,11 @@ def test_bearing_sidecar_states_the_interval_level_and_its_measured_coverage(tmp
     assert (rec["loso_inside"], rec["loso_judged"]) == (inside, judged)
     line = iv.interval_text(iv.model_form_interval("minimal_oil", "palmgren"))
     assert f"left one source out {inside} of {judged}" in line and "90% nominal" in line
+    from studies.model.config import load_shipped
+    from studies.usecases.report_margins import _torque_interval_text
+    text = _torque_interval_text(load_shipped("seed001"), 40.0, 1000.0, np.array([20.0, 800.0]))
+    assert (f"heat {20.0 * rec['factor_lo']:.4g} .. {800.0 * rec['factor_hi']:.4g} W" in text
+            and line in text)
 
 
 def test_slow_points_flooded_film_follows_hamrock_dowson_speed_exponent():

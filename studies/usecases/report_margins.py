@@ -98,9 +98,6 @@ def headlines(res: dict) -> dict[str, Headline]:
     add("static_safety_min", "static_safety", False)
     add("torque_min", "torque_Nmm", False)
     add("torque_max", "torque_Nmm", True)
-    if "heat_W" in res:                                  # a speed: the friction heat
-        add("heat_min", "heat_W", False)
-        add("heat_max", "heat_W", True)
     return out
 
 
@@ -186,30 +183,29 @@ def margin_rows(asm, res: dict, flags: dict, mesh_error: dict[str, float],
     lo, hi = hl["torque_min"], hl["torque_max"]
     rows.append(MarginRow(
         "friction torque", f"{lo.value:.4g} .. {hi.value:.4g} N mm", "none given",
-        _torque_interval_text(asm, lo.value, hi.value),
+        _torque_interval_text(asm, lo.value, hi.value, res.get("heat_W")),
         "no limit", _worst(mesh_error, "torque_min", "torque_max"), "no torque limit in the assembly",
         "torque_max_Nmm", hi.value))
-    if "heat_max" in hl:
-        lo, hi = hl["heat_min"], hl["heat_max"]
-        rows.append(MarginRow(
-            "friction heat", f"{lo.value:.4g} .. {hi.value:.4g} W", "none given",
-            _torque_interval_text(asm, lo.value, hi.value, "W"),
-            "no limit", _worst(mesh_error, "heat_min", "heat_max"), "no heat limit in the assembly",
-            "heat_max_W", hi.value))
     return rows
 
 
-def _torque_interval_text(asm, lo_Nmm: float, hi_Nmm: float, unit: str = "N mm") -> str:
+def _torque_interval_text(asm, lo_Nmm: float, hi_Nmm: float, heat_W=None) -> str:
     """The friction law's model-form interval on the torque range (`analytic.friction.interval`,
-    from study friction_validation's published points; the same factors on the heat, the torque
-    times the speed, with unit "W") with its level and measured leave-one-source-out coverage
-    (`interval_text`), or why none is stated."""
+    from study friction_validation's published points) and, with the rows' friction heat
+    `heat_W` (W; the torque times the speed, the same factors), on the heat range, with its
+    level and measured leave-one-source-out coverage (`interval_text`), or why none is
+    stated."""
     from analytic.friction.interval import interval_text, lubrication_interval
     i = lubrication_interval(asm.lubrication)
     if not i.stated:
         return interval_text(i)
     a, b = i.apply(lo_Nmm)[0], i.apply(hi_Nmm)[1]
-    return f"{a:.4g} .. {b:.4g} {unit}: " + interval_text(i)
+    heat = ""
+    if heat_W is not None and np.size(heat_W):
+        q = np.asarray(heat_W, float)
+        heat = (f", heat {i.apply(np.nanmin(q))[0]:.4g} .. {i.apply(np.nanmax(q))[1]:.4g} W "
+                f"(nominal {np.nanmin(q):.4g} .. {np.nanmax(q):.4g} W)")
+    return f"{a:.4g} .. {b:.4g} N mm{heat}: " + interval_text(i)
 
 
 def preload_limit_rows(asm, res: dict, cond: dict | None) -> list[MarginRow]:
