@@ -426,7 +426,7 @@ def lubricant_from_table(name: str, table: dict) -> Lubricant:
         v = table[k]
         if not _finite(v) or v <= 0:
             raise ValueError(f"{pre}.{k}: must be a finite number > 0, got {v!r}")
-    rho, alpha = table["density_kg_m3"], table["pressure_viscosity_per_GPa"]
+    rho, alpha = (table[k] for k in ("density_kg_m3", "pressure_viscosity_per_GPa"))
     if rho < DENSITY_MIN_KG_M3:
         raise ValueError(f"{pre}.density_kg_m3: {rho:g} kg/m^3 is below any liquid lubricant's "
                          f"(limit {DENSITY_MIN_KG_M3:g}): typed in g/cm^3? ({rho:g} g/cm^3 = "

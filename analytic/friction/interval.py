@@ -194,15 +194,15 @@ def interval_record(i: ModelFormInterval, path: Path | None = None) -> dict:
 
 def interval_text(i: ModelFormInterval, path: Path | None = None) -> str:
     """One line on the interval for a report or a command's output: its level, regime, law,
-    what it rests on and its measured leave-one-source-out coverage (`interval_record`), or
-    why none is stated."""
-    r = interval_record(i, path)
+    what it rests on and its measured leave-one-source-out coverage (`shipped_coverage`, as
+    `interval_record`), or why none is stated."""
     if not i.stated:
         return (f"no model-form interval (regime {i.regime}, law {i.law}: {i.n_residuals} "
                 "published residuals; study friction_validation)")
-    loso = ("" if r["loso_judged"] is None else
-            f"; left one source out {r['loso_inside']} of {r['loso_judged']} published points "
-            f"inside, median upper / lower {r['loso_median_upper_over_lower']:.3g}")
+    c = shipped_coverage(path).get((i.regime, i.law))
+    loso = ("" if c is None or not c.judged else
+            f"; left one source out {c.inside} of {c.judged} published points inside, median "
+            f"upper / lower {c.median_width_ratio:.3g}")
     return (f"model-form interval x{i.factor_lo:.3g} .. x{i.factor_hi:.3g} ({i.level:.0%} "
             f"nominal, regime {i.regime}, law {i.law}: {i.n_residuals} residuals of "
             f"{len(i.sources)} sources{loso}; study friction_validation)")

@@ -411,6 +411,6 @@ def bearing(bearing_file, loads, out=None, convention: str = defaults.BEARING_CO
                           {"convention": {"name": convention},
                            "raceway_control": {"name": control}})
         if cfg.lubrication is not None:
-            prov["friction_interval"] = _interval_record(cfg.lubrication)
+            prov = {**prov, "friction_interval": _interval_record(cfg.lubrication)}
         bs.write(res, Path(out), prov)
     return res
