@@ -398,3 +398,30 @@ def test_the_oil_bath_f0_warning_is_palmgren_s_only(seed001):
                         ({"lubrication_method": "oil_bath"}, False)):
         ratio, w = warned(**lub)
         assert ratio > VISCOUS_TO_LOAD_WARN and w is expect, (lub, ratio)
+
+
+def test_an_oil_level_above_the_drag_formulas_range_warns_once_and_is_capped(seed001, tmp_path):
+    """skf2004 in an oil bath 2 dm deep (above the catalogue formula's H <= 1.2 dm): the drag is
+    the formula's at 1.2 dm (`drag_torque_Nmm` at the cap, both bearings, 1e-12) and `simulate`
+    says so in one warning line naming the law and the level, in every row; 1 dm: no line."""
+    from analytic.friction.skf2004 import DRAG_LEVEL_MAX_DM, drag_torque_Nmm
+    from studies.model.stream import simulate_file
+    b = seed001.bearing
+    dm = 0.5 * (b.bore_mm + b.outside_diameter_mm)
+    cond = tmp_path / "c.csv"
+    cond.write_text("T_ambient_C,speed_rpm\n20,3500\n40,3500\n")
+    lines = {}
+    for depth in (2.0, 1.0):
+        a = replace(seed001, lubrication=replace(seed001.lubrication, viscous_model="skf2004",
+                                                 lubrication_method="oil_bath",
+                                                 oil_level_mm=depth * dm))
+        run = simulate_file(a, cond, tmp_path / f"{depth}.csv", chunk_rows=1,
+                            pipeline=Pipeline.shared(a, mesh_factor=MESH_FACTOR))
+        lines[depth] = [w for w in run.warnings if "oil level" in w]
+        if depth == 2.0:
+            c = _columns(a)
+            cap = 2.0 * drag_torque_Nmm(DRAG_LEVEL_MAX_DM * dm, b.bore_mm, b.outside_diameter_mm,
+                                        COND["speed_rpm"], c["viscosity_mm2_s"])
+            np.testing.assert_allclose(c["torque_drag_Nmm"], cap, rtol=1e-12)
+    assert len(lines[2.0]) == 1 and "skf2004" in lines[2.0][0] and "2 of 2 rows" in lines[2.0][0]
+    assert lines[1.0] == []
