@@ -382,6 +382,16 @@ def _finite(v) -> bool:
             and abs(v) != float("inf"))
 
 
+#: a user oil's density below this (kg/m^3) is a value typed in g/cm^3: liquid lubricants are
+#: about 700 (light hydrocarbons) to 1900 (PFPE; the library's 840-1850), so the bound is a
+#: factor 7 below the lightest (the project's bound, a unit check, not a property)
+DENSITY_MIN_KG_M3 = 100.0
+#: a pressure-viscosity coefficient below this (1/GPa) is a value typed in 1/Pa (1e-8 1/Pa =
+#: 10 1/GPa): the library's oils are 10-15 1/GPa (`_FAMILY_DEFAULTS`, assumptions stated
+#: there); the project's bound, four decades below them (a unit check, not a property)
+ALPHA_MIN_PER_GPA = 1e-3
+
+
 def lubricant_from_table(name: str, table: dict) -> Lubricant:
     """A user's oil from a `[lubricants.NAME]` table:
     `kinematic_viscosity_cSt = [[T_C, nu], ...]` (at least two points at distinct temperatures,
@@ -416,6 +426,15 @@ def lubricant_from_table(name: str, table: dict) -> Lubricant:
         v = table[k]
         if not _finite(v) or v <= 0:
             raise ValueError(f"{pre}.{k}: must be a finite number > 0, got {v!r}")
+    rho, alpha = (table[k] for k in ("density_kg_m3", "pressure_viscosity_per_GPa"))
+    if rho < DENSITY_MIN_KG_M3:
+        raise ValueError(f"{pre}.density_kg_m3: {rho:g} kg/m^3 is below any liquid lubricant's "
+                         f"(limit {DENSITY_MIN_KG_M3:g}): typed in g/cm^3? ({rho:g} g/cm^3 = "
+                         f"{rho * 1e3:g} kg/m^3)")
+    if alpha < ALPHA_MIN_PER_GPA:
+        raise ValueError(f"{pre}.pressure_viscosity_per_GPa: {alpha:g} 1/GPa is below any "
+                         f"lubricant's (limit {ALPHA_MIN_PER_GPA:g}): typed in 1/Pa? ({alpha:g} "
+                         f"1/Pa = {alpha * 1e9:g} 1/GPa)")
     src = str(table.get("source", ""))
     fam = table.get("family", "mineral")
     if fam not in OIL_FAMILIES:

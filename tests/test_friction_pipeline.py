@@ -1,6 +1,7 @@
 """`[lubrication] viscous_model` and `shear_strength` through the pipeline: the default
 keeps every existing column bit for bit, every model's torque and heat split adds up, and the
 split columns come after the model columns with the names of docs/cli.md."""
+import re
 from dataclasses import replace
 
 import numpy as np
@@ -97,8 +98,9 @@ def test_friction_keys_of_the_wrong_kind_are_refused_in_one_line(name, lub, key)
     with pytest.raises(ConfigError, match=rf"^x\.toml: lubrication\.{key}: ") as e:
         assembly_from_dict(raw, "x.toml")
     assert "\n" not in str(e.value)
+    film = {k: v for k, v in shipped.items() if k != "friction_coefficient"}  # unused by "pressure"
     ok = dict(shipped, viscous_model="starved", oil_quantity_mg=5.0) if name == "seed001" \
-        else dict(shipped, shear_strength="pressure", tau0_MPa=20.0)
+        else dict(film, shear_strength="pressure", tau0_MPa=20.0)
     raw["lubrication"] = ok
     assembly_from_dict(raw, "x.toml")                 # the same keys where they belong: accepted
 
@@ -123,10 +125,16 @@ def _section_text(text: str, name: str) -> str:
 
 
 def _seed001_bearing_file(tmp_path, **lub):
-    """seed001's [bearing] and [lubrication] as a `bearing` file, with `lub` set in it."""
+    """seed001's [bearing] and [lubrication] as a `bearing` file, with `lub` set in it (with
+    skf2004 without the friction coefficient, which its sliding term replaces: refused)."""
+    import re
+
     from studies.model.config import CONFIG_DIR, SHIPPED
     text = (CONFIG_DIR / SHIPPED["seed001"]).read_text()
-    lubrication = _section_text(text, "lubrication") + "".join(
+    lubrication = _section_text(text, "lubrication")
+    if lub.get("viscous_model") == "skf2004":
+        lubrication = re.sub(r"^friction_coefficient = .*\n", "", lubrication, flags=re.M)
+    lubrication = lubrication + "".join(
         f'{k} = {v!r}\n'.replace("'", '"') for k, v in lub.items())
     b = tmp_path / "b.toml"
     b.write_text(_section_text(text, "bearing") + lubrication)
@@ -315,3 +323,105 @@ def test_a_bearing_files_friction_keys_are_checked_as_an_assemblys(tmp_path):
         with pytest.raises(ConfigError, match=rf"lubrication\.{key}: ") as e:
             load_bearing(path)
         assert str(path) in str(e.value) and "\n" not in str(e.value)
+
+
+@pytest.mark.parametrize("name, lub, key", [
+    ("seed001", {"viscous_model": "skf2004"}, "friction_coefficient"),     # SKF's sliding term
+    ("seed001", {"load_term": "palmgren"}, "friction_coefficient"),         # f1 F dm
+    ("seed001", {"hysteresis_loss_factor": 0.01}, "hysteresis_loss_factor"),
+    ("seed001", {"viscous_model": "starved"}, "viscous_model"),             # 0 mg: Palmgren's
+    ("seed000", {"shear_strength": "pressure", "tau0_MPa": 20.0}, "friction_coefficient"),
+    ("seed000", {"viscous_factor_f0": 1.5}, "viscous_factor_f0"),
+    ("seed000", {"load_term": "palmgren"}, "load_term"),
+    ("seed000", {"heat_transfer_W_per_mm2_K": 3e-4}, "heat_transfer_W_per_mm2_K"),
+])
+def test_a_typed_key_the_files_law_does_not_use_is_refused(name, lub, key, tmp_path):
+    """A key typed in a file that its own law does not use (docs/cli.md: "friction_coefficient
+    then unused", SKF "replaces the load term"): `simulate` exits 2 with one line naming file and
+    key and writes nothing."""
+    import contextlib
+    import io
+    import re
+
+    from studies.app.cli import main
+    from studies.model.config import CONFIG_DIR, SHIPPED
+    text = (CONFIG_DIR / SHIPPED[name]).read_text()
+    for k, v in lub.items():
+        line = f"{k} = {v!r}".replace("'", '"')
+        text, n = re.subn(rf"^{k} = .*$", line, text, count=1, flags=re.M)
+        if not n:
+            text = text.replace("[lubrication]\n", f"[lubrication]\n{line}\n", 1)
+    bad = tmp_path / "x.toml"
+    bad.write_text(text)
+    cond = tmp_path / "c.csv"
+    cond.write_text("T_ambient_C\n20\n")
+    out = tmp_path / "o.csv"
+    err = io.StringIO()
+    with contextlib.redirect_stderr(err):
+        assert main(["simulate", str(bad), str(cond), "-o", str(out)]) == 2
+    msg = err.getvalue().strip()
+    assert "\n" not in msg and f"x.toml: lubrication.{key}: " in msg, msg
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("key, value, words, converted", [
+    ("pressure_viscosity_per_GPa", 2e-8, "typed in 1/Pa", "20 1/GPa"),
+    ("density_kg_m3", 0.86, "typed in g/cm^3", "860 kg/m^3"),
+])
+def test_a_lubricant_value_typed_in_another_unit_is_one_line(key, value, words, converted):
+    """A user oil's pressure-viscosity coefficient typed in 1/Pa (2e-8: a film law would take
+    alpha 2e-17 1/Pa, the minimal-oil film ~ alpha^0.49 some 4e4 times too thin) or its density
+    in g/cm^3 (0.86: the oil layer 1000 times too thick): one line naming the key, the unit
+    suspected and the value converted (1e9 and 1e3, the units' ratios)."""
+    from analytic.lubrication import lubricant_from_table
+    base = {"kinematic_viscosity_cSt": [[40.0, 100.0], [100.0, 10.0]], "density_kg_m3": 860.0,
+            "pressure_viscosity_per_GPa": 20.0}
+    with pytest.raises(ValueError, match=rf"lubricants\.A\.{key}: .*{re.escape(words)}") as e:
+        lubricant_from_table("A", {**base, key: value})
+    assert converted in str(e.value) and "\n" not in str(e.value)
+    assert lubricant_from_table("A", base).alpha_per_Pa == pytest.approx(2e-8)
+
+
+def test_the_oil_bath_f0_warning_is_palmgren_s_only(seed001):
+    """The warning that Palmgren's f0 is an oil-bath value (viscous over load torque above
+    VISCOUS_TO_LOAD_WARN) is given on seed 001's Palmgren rows, where the ratio is above the
+    limit, and not where the law takes no f0 (skf2004: its rolling over sliding term is above the
+    same limit on the same rows) nor on a bearing that does run in an oil bath."""
+    from studies.model.checks import VISCOUS_TO_LOAD_WARN, plausibility_warnings
+
+    def warned(**lub):
+        a = replace(seed001, lubrication=replace(seed001.lubrication, **lub))
+        out = _columns(a)
+        ratio = np.max(out["torque_viscous_Nmm"] / out["torque_load_Nmm"])
+        return ratio, any("is an oil-bath value" in w for w in plausibility_warnings(a, COND, out))
+    for lub, expect in (({}, True), ({"viscous_model": "skf2004"}, False),
+                        ({"lubrication_method": "oil_bath"}, False)):
+        ratio, w = warned(**lub)
+        assert ratio > VISCOUS_TO_LOAD_WARN and w is expect, (lub, ratio)
+
+
+def test_an_oil_level_above_the_drag_formulas_range_warns_once_and_is_capped(seed001, tmp_path):
+    """skf2004 in an oil bath 2 dm deep (above the catalogue formula's H <= 1.2 dm): the drag is
+    the formula's at 1.2 dm (`drag_torque_Nmm` at the cap, both bearings, 1e-12) and `simulate`
+    says so in one warning line naming the law and the level, in every row; 1 dm: no line."""
+    from analytic.friction.skf2004 import DRAG_LEVEL_MAX_DM, drag_torque_Nmm
+    from studies.model.stream import simulate_file
+    b = seed001.bearing
+    dm = 0.5 * (b.bore_mm + b.outside_diameter_mm)
+    cond = tmp_path / "c.csv"
+    cond.write_text("T_ambient_C,speed_rpm\n20,3500\n40,3500\n")
+    lines = {}
+    for depth in (2.0, 1.0):
+        a = replace(seed001, lubrication=replace(seed001.lubrication, viscous_model="skf2004",
+                                                 lubrication_method="oil_bath",
+                                                 oil_level_mm=depth * dm))
+        run = simulate_file(a, cond, tmp_path / f"{depth}.csv", chunk_rows=1,
+                            pipeline=Pipeline.shared(a, mesh_factor=MESH_FACTOR))
+        lines[depth] = [w for w in run.warnings if "oil level" in w]
+        if depth == 2.0:
+            c = _columns(a)
+            cap = 2.0 * drag_torque_Nmm(DRAG_LEVEL_MAX_DM * dm, b.bore_mm, b.outside_diameter_mm,
+                                        COND["speed_rpm"], c["viscosity_mm2_s"])
+            np.testing.assert_allclose(c["torque_drag_Nmm"], cap, rtol=1e-12)
+    assert len(lines[2.0]) == 1 and "skf2004" in lines[2.0][0] and "2 of 2 rows" in lines[2.0][0]
+    assert lines[1.0] == []

@@ -438,3 +438,96 @@ def test_matrix_in_interval_column_agrees_with_loso_coverage(external):
         mine = [r for r in rows if (r["regime"], r["law"]) == (reg, law) and r["kind"] == "value"
                 and np.isfinite(r["log_residual"]) and r["in_interval"] != ""]
         assert (sum(bool(r["in_interval"]) for r in mine), len(mine)) == (c.inside, c.judged)
+
+
+def test_bearing_sidecar_states_the_interval_level_and_its_measured_coverage(tmp_path):
+    """`bearing`'s OUT.csv.json names what its interval columns are: level 0.9, regime and law,
+    factors equal to the written columns' torque_hi / torque and torque_lo / torque (rtol 1e-9:
+    the CSV's printed digits),
+    and the leave-one-source-out coverage of that (regime, law) recounted here by hand from the
+    shipped residuals CSV (each residual against mean +- 1.6448536 sd sqrt(1 + 1/n) of the other
+    sources' residuals); and the report's interval line carries the same numbers."""
+    import csv
+    import json
+    import re
+
+    import pandas as pd
+
+    from studies.app.cli import main
+    from studies.model.config import CONFIG_DIR, SHIPPED
+    text = (CONFIG_DIR / SHIPPED["seed001"]).read_text()
+    part = {n: re.search(rf"^\[{n}\][^\n]*\n(.*?)(?=^\[|\Z)", text, re.S | re.M).group(0)
+            for n in ("bearing", "lubrication")}
+    b = tmp_path / "b.toml"
+    b.write_text(part["bearing"] + part["lubrication"])
+    loads = tmp_path / "loads.csv"
+    loads.write_text("axial_load_N,speed_rpm,T_oil_C\n50,6000,20\n")
+    out = tmp_path / "o.csv"
+    assert main(["bearing", str(b), str(loads), "-o", str(out)]) == 0
+    rec = json.loads((tmp_path / "o.csv.json").read_text())["friction_interval"]
+    o = pd.read_csv(out)
+    assert (rec["level"], rec["regime"], rec["law"]) == (0.9, "minimal_oil", "palmgren")
+    np.testing.assert_allclose([rec["factor_lo"], rec["factor_hi"]],
+                               [o.torque_lo_Nmm[0] / o.torque_Nmm[0],
+                                o.torque_hi_Nmm[0] / o.torque_Nmm[0]], rtol=1e-9)
+    with open(iv.RESIDUALS_CSV) as fh:
+        rows = [(r["source"], float(r["log_residual"])) for r in csv.DictReader(
+            x for x in fh if not x.startswith("#"))
+            if r["regime"] == "minimal_oil" and r["law"] == "palmgren"]
+    inside = judged = 0
+    for src, e in rows:
+        others = np.array([x for s, x in rows if s != src])
+        if others.size < 2:
+            continue
+        half = 1.6448536269514722 * np.std(others, ddof=1) * np.sqrt(1 + 1 / others.size)
+        judged += 1
+        inside += int(abs(e - others.mean()) <= half)
+    assert (rec["loso_inside"], rec["loso_judged"]) == (inside, judged)
+    line = iv.interval_text(iv.model_form_interval("minimal_oil", "palmgren"))
+    assert f"left one source out {inside} of {judged}" in line and "90% nominal" in line
+    from studies.model.config import load_shipped
+    from studies.usecases.report_margins import _torque_interval_text
+    text = _torque_interval_text(load_shipped("seed001"), 40.0, 1000.0, np.array([20.0, 800.0]))
+    assert (f"heat {20.0 * rec['factor_lo']:.4g} .. {800.0 * rec['factor_hi']:.4g} W" in text
+            and line in text)
+
+
+def test_slow_points_flooded_film_follows_hamrock_dowson_speed_exponent():
+    """The slow points' flooded films (`boundary_films_nm`): OCI's cartridge at 2 rpm over 0.5
+    rpm is (2 / 0.5)^0.67 (Hamrock-Dowson's speed exponent, the ball loads unchanged at these
+    speeds) to 1e-3; every film is below 10 nm, the report's boundary-regime premise."""
+    films = fv.boundary_films_nm()
+    lo, hi = films["OCI2018"]
+    assert hi / lo == pytest.approx(4.0 ** 0.67, rel=1e-3)
+    assert max(max(v) for v in films.values()) < 10.0
+
+
+def test_report_sentences_follow_their_tables():
+    """The LQF and regime sentences of the study's report are computed from their tables: a
+    share table whose k = 1 supply ratio is below 1 says the contacts starve, one above says
+    flooded; the largest LQF rise and its share are the table's; a coverage in which every
+    regime has judged points says so."""
+    f = np.array([0.9, 0.95, 0.99])
+    flooded = [(1.0, f, 1.1, (5.6, 13.6)), (0.1, f, 1.76, (0.56, 1.36))]
+    starved = [(1.0, f, 1.3, (0.5, 0.9)), (0.1, f, 2.2, (0.05, 0.09))]
+    assert "flooded" in fv.lqf_share_text(flooded) and "x1.760 (k = 0.1" in fv.lqf_share_text(flooded)
+    assert "starve" in fv.lqf_share_text(starved) and "x2.200 (k = 0.1" in fv.lqf_share_text(starved)
+    cov = {(reg, "palmgren"): iv.Coverage(reg, "palmgren", 2, 3, (2.0, 4.0)) for reg in iv.REGIMES}
+    assert fv.no_interval_text(cov).startswith("Every regime")
+    del cov[("oil_bath_jet", "palmgren")]
+    assert "(oil_bath_jet)" in fv.no_interval_text(cov)
+
+
+def test_film_split_counts_the_two_parts_of_the_matrix():
+    """`film_split_coverage` on a hand-made matrix: two boundary sources whose residuals sit at
+    +1 and -1 (each judged against the other's interval alone: outside) and a running part of
+    one source (no interval judged): 0 / 4 and 0 / 0, two and one sources."""
+    def row(src, q, e):
+        return dict(kind="value", regime="minimal_oil", law="palmgren", source=src, quantity=q,
+                    log_residual=e)
+    rows = [row("JPL2022", "starting x", 1.0), row("JPL2022", "running x", 1.1),
+            row("OCI2018", "starting x", -1.0), row("OCI2018", "running torque cartridge", -1.1),
+            row("OCI2018", "running torque at 360 rpm", 0.3)]
+    split = fv.film_split_coverage(rows)
+    assert split["boundary"][:2] == (0, 4) and split["boundary"][3] == 2
+    assert split["running"][:2] == (0, 0) and split["running"][3] == 1

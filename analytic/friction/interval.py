@@ -165,3 +165,44 @@ def loso_coverage(residuals, level: float = LEVEL) -> dict[tuple[str, str], Cove
 def shipped_coverage(path: Path | None = None) -> dict[tuple[str, str], Coverage]:
     """`loso_coverage` of the shipped residuals (analytic/data/friction_residuals.csv)."""
     return loso_coverage(_residuals(str(path or RESIDUALS_CSV)))
+
+
+#: how the interval is obtained, as the outputs state it (module docstring)
+METHOD = ("normal predictive interval mean +- z sd sqrt(1 + 1/n) of the log residuals "
+          "ln(measured / predicted) of the published friction points of this regime and law "
+          "(bearingfem study friction_validation; analytic/data/friction_residuals.csv); its "
+          "coverage measured leaving one source out at a time")
+
+
+def interval_record(i: ModelFormInterval, path: Path | None = None) -> dict:
+    """What the interval columns (torque_lo_Nmm .. heat_hi_W) of `simulate` and `bearing` are,
+    for their provenance sidecar: regime, law, nominal level, the factors on the torque and
+    heat (-, None where no interval is stated), the residuals and sources it rests on, how it
+    is obtained (METHOD) and its measured leave-one-source-out coverage on the shipped
+    residuals (`shipped_coverage`: inside / judged and the median upper over lower bound; None
+    where no residual of the (regime, law) could be judged)."""
+    c = shipped_coverage(path).get((i.regime, i.law))
+    judged = c is not None and c.judged > 0
+    return {"regime": i.regime, "law": i.law, "level": i.level,
+            "factor_lo": i.factor_lo if i.stated else None,
+            "factor_hi": i.factor_hi if i.stated else None,
+            "n_residuals": i.n_residuals, "sources": list(i.sources), "method": METHOD,
+            "loso_inside": c.inside if judged else None,
+            "loso_judged": c.judged if judged else None,
+            "loso_median_upper_over_lower": c.median_width_ratio if judged else None}
+
+
+def interval_text(i: ModelFormInterval, path: Path | None = None) -> str:
+    """One line on the interval for a report or a command's output: its level, regime, law,
+    what it rests on and its measured leave-one-source-out coverage (`shipped_coverage`, as
+    `interval_record`), or why none is stated."""
+    if not i.stated:
+        return (f"no model-form interval (regime {i.regime}, law {i.law}: {i.n_residuals} "
+                "published residuals; study friction_validation)")
+    c = shipped_coverage(path).get((i.regime, i.law))
+    loso = ("" if c is None or not c.judged else
+            f"; left one source out {c.inside} of {c.judged} published points inside, median "
+            f"upper / lower {c.median_width_ratio:.3g}")
+    return (f"model-form interval x{i.factor_lo:.3g} .. x{i.factor_hi:.3g} ({i.level:.0%} "
+            f"nominal, regime {i.regime}, law {i.law}: {i.n_residuals} residuals of "
+            f"{len(i.sources)} sources{loso}; study friction_validation)")

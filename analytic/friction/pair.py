@@ -19,7 +19,8 @@ from analytic.friction.options import FrictionOptions
 from analytic.friction.palmgren import (coulomb_load_torque_Nmm, palmgren_load_torque_Nmm,
                                         palmgren_viscous_torque_Nmm)
 from analytic.friction.ranges import RangeNote, RangeRows, combine, notes, range_rows
-from analytic.friction.skf2004 import NDM_LIMIT, constants_for, skf2004_torque
+from analytic.friction.skf2004 import (DRAG_LEVEL_MAX_DM, NDM_LIMIT, constants_for,
+                                       skf2004_torque)
 from analytic.friction.solid_film import pressure_dependent_mu
 from analytic.friction.starved import R_RANGE as STARVED_R_RANGE
 from analytic.friction.minimal_oil import minimal_oil_bearing_ratio
@@ -305,8 +306,13 @@ def _oil_bearing(g, c: BearingContacts, mu, speed_rpm, f0, nu_mm2_s, f1, load_te
                            c.axial_force_N, n, nu_mm2_s, oil_level_mm=fr.oil_level_mm,
                            **constants_for(fr.lubrication_method, fr.oil_family))
         ndm = np.abs(np.asarray(n, float)) * g.dm_mm * np.ones_like(t.total_Nmm)
+        level = (fr.oil_level_mm / (0.5 * (fr.bore_mm + fr.outside_diameter_mm))
+                 * np.ones_like(t.total_Nmm))
         ranges = (range_rows("skf2004", "n dm", f"n dm <= {NDM_LIMIT:.3g} mm/min, the end of the "
-                             "catalogue's limiting speeds", ndm, ndm > NDM_LIMIT),)
+                             "catalogue's limiting speeds", ndm, ndm > NDM_LIMIT),
+                  range_rows("skf2004", "oil level H / dm", f"H <= {DRAG_LEVEL_MAX_DM:g} dm, the "
+                             "drag formula's; taken as that level", level,
+                             level > DRAG_LEVEL_MAX_DM))
         return BearingFriction(t.total_Nmm, t.sliding_Nmm, t.rolling_Nmm, t.drag_Nmm,
                                ranges=ranges)
     visc = palmgren_viscous_torque_Nmm(f0, nu_mm2_s, n, g.dm_mm)

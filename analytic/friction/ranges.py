@@ -2,7 +2,8 @@
 rows outside, reduced to one warning line per law and quantity for a whole run (`RangeNote`).
 
 Ranges (each stated in its law's module): skf2004, n dm above `skf2004.NDM_LIMIT` (the
-catalogue model ends at the bearing's limiting speed); ehl_rolling, the ellipticity k = a/b of a
+catalogue model ends at the bearing's limiting speed) and an oil level above
+`skf2004.DRAG_LEVEL_MAX_DM` pitch diameters (the drag formula's range, the level taken there); ehl_rolling, the ellipticity k = a/b of a
 loaded contact outside 1..8 (Hamrock-Dowson's fits, which the rolling force's groups follow);
 starved, the supply ratio r = h_oil / h_ff below 0.01 (Chevalier et al. 1998's range, a film of
 a few nm below it). Units: those of the quantity (mm/min, -).

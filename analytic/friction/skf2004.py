@@ -85,9 +85,10 @@ K_RS_BY_METHOD = {"oil_bath": K_RS_OIL, "oil_jet": K_RS_OIL, "oil_air": K_RS_GRE
 #: the model's speed range, n dm in mm/min (rpm mm) (module docstring: stated)
 NDM_LIMIT = 1.0e6
 #: drag of the rolling elements in an oil bath (catalogue 17000): coefficient, exponent, the
-#: level above which the bath is taken as 1.2 dm
+#: the drag formula's coefficient and exponent (module docstring)
 DRAG_COEFF = 1.093e-7
 DRAG_EXPONENT = -1.379
+#: oil level (in units of dm) above which the bath is taken as 1.2 dm: the formula's range
 DRAG_LEVEL_MAX_DM = 1.2
 #: bearing type constant K_z, single-row angular-contact ball bearings
 K_Z_ANGULAR_CONTACT = 4.4

@@ -203,6 +203,10 @@ def evaluate_checks(result, checks: list[Check]) -> Checks:
 #: 4+ (oil bath) (Harris & Kotzalas Vol. 1 ch. 9), a factor ~6 in the viscous term; a ratio this
 #: large means the viscous term decides everything and the lubrication amount must be known
 VISCOUS_TO_LOAD_WARN = 50.0
+#: lubrication methods for which the oil-bath f0 is the right one (no warning on it); the warning
+#: is Palmgren's f0's only (the other laws' viscous terms do not take f0 as stated: skf2004 its
+#: own rolling term, ehl_rolling the contacts', starved and minimal_oil f0 times the oil's factor)
+BATH_OR_JET = ("oil_bath", "oil_jet", "oil_air")
 
 #: a clamp's given spring below this fraction of its thread's own stiffness (VDI 2230 default)
 #: is warned about: the force clamp is then the compliant limit, tightened by an overlap of
@@ -300,7 +304,9 @@ def plausibility_warnings(asm, conditions: dict | None = None, out: dict | None 
         msgs.append("thermal: no [thermal.films] and emissivity 0: the stack is adiabatic outside; "
                     "T_ambient_C sets only its starting temperature and every watt of the "
                     "bearing's heat stays in it (the temperatures rise without bound)")
-    if out is not None and "torque_viscous_Nmm" in out and "torque_load_Nmm" in out:
+    lub = asm.lubrication
+    f0_law = lub.viscous_model == "palmgren" and lub.lubrication_method not in BATH_OR_JET
+    if f0_law and out is not None and "torque_viscous_Nmm" in out and "torque_load_Nmm" in out:
         visc = np.asarray(out["torque_viscous_Nmm"], float)
         load = np.asarray(out["torque_load_Nmm"], float)
         loaded = load > 0.0                 # rows with preload lost are flagged elsewhere

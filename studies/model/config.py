@@ -26,7 +26,8 @@ from analytic.materials import Material, get_material, material_from_table
 from infra.names import did_you_mean
 from studies.model.assembly import (Assembly, Clamp, Fits, Housing, Layer, Limits, Lubrication,
                                     Mesh, Operating, Preload, Shaft, Spacer, Thermal)
-from studies.model.config_checks import check_assembly, check_bearing, check_friction
+from studies.model.config_checks import (check_assembly, check_bearing, check_friction,
+                                         check_friction_keys_used)
 from studies.model.provenance import with_origin
 from studies.model.config_schema import (ASSEMBLY_KEYS, LAYERS, TOLERANCE_SURFACES, ConfigError,
                                          keys_of, parse_table, unit_hint)
@@ -152,6 +153,7 @@ def load_bearing(path: str | Path) -> SingleBearingConfig:
     lubrication = _section(path, raw, "lubrication") if "lubrication" in raw else None
     if lubrication is not None:
         check_friction(lubrication, path)
+        check_friction_keys_used(lubrication, path)
     cfg = SingleBearingConfig(spec, materials, None if clearance is None else float(clearance),
                               lubrication, parse_lubricants(raw, path))
     if lubrication is not None and lubrication.kind == "oil":   # an oil needs a Walther law
@@ -199,6 +201,7 @@ def assembly_from_dict(raw: dict, path: str = "<config>") -> Assembly:
     asm = Assembly(**top, materials=parse_materials(raw, path),
                    lubricants=parse_lubricants(raw, path), **parts)
     check_assembly(asm, path)
+    check_friction_keys_used(asm.lubrication, path)
     return asm
 
 

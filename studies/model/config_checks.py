@@ -11,7 +11,7 @@ from analytic.bearing.geometry import BearingGeometry, BearingSpec
 from analytic.bearing.land import groove_bottom_diameter_mm
 from analytic.materials import Material, get_material
 from analytic.safety import static_load_rating_C0_N
-from studies.model.assembly import Assembly
+from studies.model.assembly import Assembly, Lubrication
 from studies.model.config_schema import (LAYERS, MATERIAL_T_RANGE_C, MESH_TARGET_RANGE,
                                          TOLERANCE_SURFACES, ConfigError)
 
@@ -107,6 +107,52 @@ def check_friction(lub, path: str) -> None:
     if lub.shear_strength == "pressure" and not (lub.tau0_MPa > 0 or lub.alpha_shear > 0):
         bad("shear_strength", '"pressure" needs tau0_MPa or alpha_shear > 0 (tau = tau0 + '
                               "alpha p)")
+
+
+def check_friction_keys_used(lub, path: str) -> None:
+    """A friction key typed in a file that the file's own law does not use is refused (one
+    line naming the file and the key), as `check_friction` refuses the friction model's own
+    keys: a key is judged by its value (a default value is no key given). Checked where a file
+    is read (an assembly, a bearing file), not on the variants a command makes of a loaded
+    assembly (`report --sensitivity`, `design --vary`: a law swapped in keeps the other law's
+    numbers). Not used (docs/cli.md "Friction models and the heat by location"):
+    viscous_model "starved" without oil_quantity_mg (the flooded limit, Palmgren's law);
+    friction_coefficient with viscous_model "skf2004" (SKF's sliding term G_sl mu_sl replaces
+    the load term), with load_term "palmgren" (f1 F dm) or with shear_strength "pressure"
+    (tau0 / p_mean + alpha per contact); hysteresis_loss_factor with an oil (a solid film's
+    elastic hysteresis); viscous_factor_f0, load_term "palmgren", heat_transfer_W_per_mm2_K,
+    permissible_temperature_C and ambient_temperature_C with a solid film (Palmgren's oil
+    terms and DIN 732's permissible speed, an oil bearing's)."""
+    def bad(key: str, msg: str):
+        raise ConfigError(f"{path}: lubrication.{key}: {msg}")
+    if lub.friction_coefficient > 0 and lub.kind == "oil":
+        if lub.viscous_model == "skf2004":
+            bad("friction_coefficient", 'not used with viscous_model = "skf2004" (its sliding '
+                                        "term G_sl mu_sl replaces the load term): remove it")
+        if lub.load_term == "palmgren":
+            bad("friction_coefficient", 'not used with load_term = "palmgren" (f1 F dm): '
+                                        "remove it")
+    if lub.friction_coefficient > 0 and lub.shear_strength == "pressure":
+        bad("friction_coefficient", 'not used with shear_strength = "pressure" (each '
+                                    "contact's tau0 / p_mean + alpha): remove it")
+    if lub.viscous_model == "starved" and not lub.oil_quantity_mg > 0:
+        bad("viscous_model", '"starved" without oil_quantity_mg is Palmgren\'s flooded law: '
+                             "give the oil in one bearing (oil_quantity_mg > 0)")
+    if lub.kind == "oil" and lub.hysteresis_loss_factor > 0:
+        bad("hysteresis_loss_factor", 'a solid film\'s elastic hysteresis, not used with '
+                                      'kind = "oil"')
+    if lub.kind == "solid_film":
+        default = Lubrication(kind="solid_film")
+        for key, used in (("viscous_factor_f0", lub.viscous_factor_f0 == 0),
+                          ("load_term", lub.load_term == default.load_term),
+                          ("heat_transfer_W_per_mm2_K", lub.heat_transfer_W_per_mm2_K == 0),
+                          ("permissible_temperature_C",
+                           lub.permissible_temperature_C == default.permissible_temperature_C),
+                          ("ambient_temperature_C",
+                           lub.ambient_temperature_C == default.ambient_temperature_C)):
+            if not used:
+                bad(key, 'an oil bearing\'s (Palmgren\'s terms, DIN 732), not used with '
+                         'kind = "solid_film"')
 
 
 def _check_units(a: Assembly, path: str) -> None:

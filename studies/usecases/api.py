@@ -63,6 +63,14 @@ def table(source, allowed: set[str] | None, where: str) -> dict[str, np.ndarray]
     return cols
 
 
+def _interval_record(lubrication) -> dict:
+    """What the friction interval columns of `simulate` and `bearing` are (level, regime, law,
+    factors, how obtained, measured leave-one-source-out coverage), for the sidecar JSON
+    (`analytic.friction.interval.interval_record`)."""
+    from analytic.friction.interval import interval_record, lubrication_interval
+    return interval_record(lubrication_interval(lubrication))
+
+
 def _provenance(command: str, asm=None, assembly=None, effects: dict | None = None,
                 **tables) -> dict:
     """`provenance` of a command's inputs: the assembly `asm` as given (`assembly`: its path, or
@@ -160,7 +168,8 @@ def simulate(assembly, conditions, effects: Mapping | None = None, out=None,
         from studies.model import transient_route as tr
     allowed = tr.condition_columns() if transient else set(CONDITION_COLUMNS)
     effects = {k: dict(v) for k, v in (effects or {}).items()}
-    prov = _provenance("simulate", asm, assembly, effects, conditions=conditions)
+    prov = {**_provenance("simulate", asm, assembly, effects, conditions=conditions),
+            "friction_interval": _interval_record(asm.lubrication)}
     streamed = out is not None and _is_path(conditions)     # the command's way
     # all of the table is checked before any FE work (a bad row late in a file included)
     if streamed:
@@ -401,5 +410,7 @@ def bearing(bearing_file, loads, out=None, convention: str = defaults.BEARING_CO
                                       (("bearing", bearing_file), ("loads", loads)) if _is_path(v)},
                           {"convention": {"name": convention},
                            "raceway_control": {"name": control}})
+        if cfg.lubrication is not None:
+            prov = {**prov, "friction_interval": _interval_record(cfg.lubrication)}
         bs.write(res, Path(out), prov)
     return res

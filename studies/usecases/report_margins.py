@@ -183,24 +183,29 @@ def margin_rows(asm, res: dict, flags: dict, mesh_error: dict[str, float],
     lo, hi = hl["torque_min"], hl["torque_max"]
     rows.append(MarginRow(
         "friction torque", f"{lo.value:.4g} .. {hi.value:.4g} N mm", "none given",
-        _torque_interval_text(asm, lo.value, hi.value),
+        _torque_interval_text(asm, lo.value, hi.value, res.get("heat_W")),
         "no limit", _worst(mesh_error, "torque_min", "torque_max"), "no torque limit in the assembly",
         "torque_max_Nmm", hi.value))
     return rows
 
 
-def _torque_interval_text(asm, lo_Nmm: float, hi_Nmm: float) -> str:
+def _torque_interval_text(asm, lo_Nmm: float, hi_Nmm: float, heat_W=None) -> str:
     """The friction law's model-form interval on the torque range (`analytic.friction.interval`,
-    from study friction_validation's published points), or why none is stated."""
-    from analytic.friction.interval import lubrication_interval
+    from study friction_validation's published points) and, with the rows' friction heat
+    `heat_W` (W; the torque times the speed, the same factors), on the heat range, with its
+    level and measured leave-one-source-out coverage (`interval_text`), or why none is
+    stated."""
+    from analytic.friction.interval import interval_text, lubrication_interval
     i = lubrication_interval(asm.lubrication)
     if not i.stated:
-        return (f"no model-form interval (regime {i.regime}, law {i.law}: {i.n_residuals} "
-                "published residuals; study friction_validation)")
+        return interval_text(i)
     a, b = i.apply(lo_Nmm)[0], i.apply(hi_Nmm)[1]
-    return (f"model-form interval {a:.4g} .. {b:.4g} N mm ({i.level:.0%} nominal, regime "
-            f"{i.regime}, law {i.law}: {i.n_residuals} residuals of {len(i.sources)} sources; "
-            "study friction_validation)")
+    heat = ""
+    if heat_W is not None and np.size(heat_W):
+        q = np.asarray(heat_W, float)
+        heat = (f", heat {i.apply(np.nanmin(q))[0]:.4g} .. {i.apply(np.nanmax(q))[1]:.4g} W "
+                f"(nominal {np.nanmin(q):.4g} .. {np.nanmax(q):.4g} W)")
+    return f"{a:.4g} .. {b:.4g} N mm{heat}: " + interval_text(i)
 
 
 def preload_limit_rows(asm, res: dict, cond: dict | None) -> list[MarginRow]:

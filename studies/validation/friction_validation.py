@@ -197,18 +197,22 @@ class SlowPoint:
         return self.mu_ref * self.measured / self.predicted
 
 
+#: the boundary-regime points, (source, start of the quantity): slow or at rest, films below
+#: 10 nm (`boundary_films_nm`)
+BOUNDARY_POINTS = (("JPL2022", "starting"), ("JPL2022", "running"), ("OCI2018", "starting"),
+                   ("OCI2018", "running torque cartridge"))
+
+
 def slow_point_rows() -> list[SlowPoint]:
     """The boundary-regime points (JPL2022 starting and running at 0.075 rpm, OCI2018 starting
-    slope and the cartridge at 0.5-2 rpm: films of a few nm) against the Coulomb contact
+    slope and the cartridge at 0.5-2 rpm: flooded films of 0.5-10 nm, `boundary_films_nm`) against the Coulomb contact
     estimate at the PFPE vacuum four-ball coefficient (GXL320A), with the case's geometry
     (raceway curvatures 0.52 / 0.53 [assume]) and with 0.56 / 0.56, the curvature of small
     low-torque bearings (Dynaroll, "Raceway curvature": 0.56 +- 0.03), the OCI pair also at the
     25 deg contact angle its paper considered for the cartridge."""
     c = cases()
     mu, _, _ = boundary_coefficient()
-    pts = {k: _point(*k) for k in (("JPL2022", "starting"), ("JPL2022", "running"),
-                                   ("OCI2018", "starting"),
-                                   ("OCI2018", "running torque cartridge"))}
+    pts = {k: _point(*k) for k in BOUNDARY_POINTS}
     out = []
     jg, og = c["JPL2022"].g, c["OCI2018"].g
     P_oci = np.array([44.5, 445.0])
@@ -231,6 +235,32 @@ def slow_point_rows() -> list[SlowPoint]:
             p = pts[("OCI2018", "running torque cartridge")]
             out.append(SlowPoint(p["source"], p["quantity"], float(p["measured"]), p["unit"],
                                  geo, mu, 2.0 * Mo[1]))
+    return out
+
+
+#: the slow points' conditions for their flooded film (`boundary_films_nm`): (source, axial
+#: load per bearing N, speeds rpm): JPL2022's 0.39-0.5 deg/s (0.075 rpm), OCI2018's cartridge
+#: at 0.5-2 rpm under 267 N (friction_points.csv); 20 C (room temperature; JPL's not stated)
+SLOW_CONDITIONS = (("JPL2022", 22.6, (0.075,)), ("OCI2018", 267.0, (0.5, 2.0)))
+
+
+def boundary_films_nm(T_C: float = 20.0) -> dict[str, tuple[float, float]]:
+    """The fully flooded central film of the inner contact (Hamrock-Dowson, as the minimal-oil
+    law takes it: `minimal_oil_ratio`'s h_ff = h_in / r) at the slow points' speeds
+    (SLOW_CONDITIONS), nm: source -> (lowest, highest) over its speeds. The most film any law
+    here can give these points: a starved film is thinner."""
+    c = cases()
+    out = {}
+    for src, P, speeds in SLOW_CONDITIONS:
+        case = c[src]
+        lub = get_lubricant(case.lubricant)
+        n = np.asarray(speeds, float)
+        pair = solve_pair(case.g, "DB", preload_kind="spring", preload_assembled_N=np.full(n.shape, P))
+        eta = dynamic_viscosity_Pa_s(lub.nu_mm2_s(np.full(n.shape, T_C)), lub.density_kg_m3)
+        f = minimal_oil_pair_ratios(case.g, pair, n, eta, lub.alpha_per_Pa, lub.density_kg_m3,
+                                    1.0)[0]
+        h_nm = 1e3 * np.asarray(f.h_in_um, float) / np.asarray(f.supply_ratio_inner, float)
+        out[src] = (float(h_nm.min()), float(h_nm.max()))
     return out
 
 
@@ -493,6 +523,22 @@ def coverage(rows: list[dict]) -> dict:
                           if r["kind"] == "value"])
 
 
+def film_split_coverage(rows: list[dict]) -> dict[str, tuple[int, int, float]]:
+    """The leave-one-source-out coverage if the minimal-oil regime were split by its film: the
+    boundary points (BOUNDARY_POINTS, films below 10 nm) and the running ones, each with its own
+    interval per law (`loso_coverage`, the one route). Per part, pooled over the laws:
+    (inside, judged, median upper / lower or NaN, sources with a residual). What a regime split can reach on the held
+    data, not an interval the outputs use."""
+    def part(r):
+        return "boundary" if any(r["source"] == s and r["quantity"].startswith(q)
+                                 for s, q in BOUNDARY_POINTS) else "running"
+    res = [(part(r), r["law"], r["source"], r["log_residual"]) for r in rows
+           if r["kind"] == "value" and r["regime"] == "minimal_oil"]
+    summary = regime_summary(loso_coverage(res))
+    return {name: (*v, len({x[2] for x in res if x[0] == name and np.isfinite(x[3])}))
+            for name, v in summary.items()}
+
+
 #: the issue's width target: upper over lower bound of the typical (median) point
 WIDTH_TARGET = 3.0
 
@@ -566,6 +612,59 @@ def slow_text(slow: list, mu_range: tuple[float, float]) -> str:
                "which no law here carries as an input, and no one scale brings both in."
                if min(j) > max(o) else
                "One coefficient within the published range brings both in."))
+
+
+def split_text(split: dict) -> str:
+    """What a split of the minimal-oil regime by film would reach (`film_split_coverage`)."""
+    parts = [f"{name}: {i} / {j} inside" + (f", median upper / lower {w:.3g}" if j else "")
+             + f" ({n} sources)" for name, (i, j, w, n) in sorted(split.items())]
+    few = max(n for *_, n in split.values()) <= 2
+    return ("Split by film (the boundary points, films below 10 nm, apart from the running "
+            "ones), each part with its own interval per law: " + "; ".join(parts) + "."
+            + (" With two sources or fewer in a part, each point is judged against the other "
+               "source's interval alone." if few else ""))
+
+
+def slow_film_text(films: dict) -> str:
+    """The slow points' conditions and the flooded film they allow (`boundary_films_nm`)."""
+    speeds = {src: n for src, _, n in SLOW_CONDITIONS}
+    rng = {src: f"{lo:.2g} nm" if np.isclose(lo, hi) else f"{lo:.2g}-{hi:.2g} nm"
+           for src, (lo, hi) in films.items()}
+    return ("JPL2022 (" + "-".join(f"{n:g}" for n in speeds["JPL2022"]) + " rpm) and OCI2018 "
+            "(at rest; the cartridge at " + "-".join(f"{n:g}" for n in speeds["OCI2018"])
+            + f" rpm) run with flooded central films of at most {rng['JPL2022']} and "
+            f"{rng['OCI2018']} (Hamrock-Dowson, inner contact, 20 C; a starved film is thinner)")
+
+
+def lqf_share_text(shares: list) -> str:
+    """What the LQF rig's inlet-share table says (`lqf_share_rows`): at the default share k = 1
+    whether the contacts are flooded (r > 1 at 12 and 35 C) and how far the factor moves, and
+    the largest LQF rise 35 C / 12 C over the shares and where."""
+    by_k = {k: (f, q, r) for k, f, q, r in shares}
+    f1, q1, r1 = by_k[1.0]
+    kq, (fq, qq, rq) = max(by_k.items(), key=lambda kv: kv[1][1])
+    state = ("a layer thicker than the flooded film, so the contacts are flooded"
+             if min(r1) > 1.0 else "a layer thinner than the flooded film: the contacts starve")
+    return (f"At the default inlet share k = 1 (the whole wetted layer at every inlet, the law's "
+            f"upper bound) the minimal-oil law's LQF moves by x{q1:.3f} from 12 to 35 C: 100 mg "
+            f"over the wetted area is {min(r1):.3g}-{max(r1):.3g} times the inner contact's "
+            f"flooded film (r), {state}, and the factor on Palmgren's term is {min(f1):.3f}-"
+            f"{max(f1):.3f}. The rise the paper reports (its LQF in direct proportion to the mean "
+            "temperature, which it attributes to more oil reaching the contacts as the viscosity "
+            "falls) is the law's starved branch (factor ~ h_in / h_ff ~ nu^-0.67 at fixed n): "
+            f"over the shares below it reaches x{qq:.3f} (k = {kq:g}, r {min(rq):.3g}-"
+            f"{max(rq):.3g}). At 133 N:")
+
+
+def no_interval_text(cov: dict) -> str:
+    """Which regimes have no judged published point, hence no interval (from the coverage)."""
+    from analytic.friction.interval import REGIMES
+    summ = regime_summary(cov)
+    none = [reg for reg in REGIMES if summ.get(reg, (0, 0, 0))[1] == 0]
+    if not none:
+        return "Every regime has an interval judged on the published points."
+    return (f"Regimes without a judged published point here ({', '.join(none)}) have no "
+            "interval: their columns are empty.")
 
 
 def _opposite_text(rows: list[dict]) -> str:
@@ -671,12 +770,14 @@ def run(out: Path, progress=print, mesh_factor: float = 1.0) -> None:
     table = [[r["source"], r["quantity"], _fmt(r["measured"]), r["unit"], r["law"],
               _fmt(r["predicted"]), _fmt(r["predicted_lo"]), _fmt(r["predicted_hi"]),
               "" if not np.isfinite(r["error_rel"]) else f"{100 * r['error_rel']:+.0f} %",
-              _fmt(r["in_interval"]) if r["in_interval"] != "" else "no interval"]
+              _fmt(r["in_interval"]) if r["in_interval"] != "" else
+              "fitted, not judged" if r["kind"] == "fitted" else "no interval"]
              for r in rows]
     cov_rows = [[reg, law, f"{d.inside} / {d.judged}",
                  f"{d.median_width_ratio:.3g}" if d.judged else "-"]
                 for (reg, law), d in sorted(cov.items())]
     m, c, h, (lo, hi) = fits[0]
+    shares = lqf_share_rows()
     tol = pad.SEED001_REL_TOL
     mu_ref, mu_lo, mu_hi = boundary_coefficient()
     lines = ["# Friction laws against the published numbers", "",
@@ -710,10 +811,9 @@ def run(out: Path, progress=print, mesh_factor: float = 1.0) -> None:
                         "median upper / lower", "target"], regime_rows(cov)), "",
               "Target (issue 43): coverage at the nominal level "
               f"({LEVEL:.0%}) with the typical (median) upper / lower <= {WIDTH_TARGET:g}. "
-              + target_text(cov), "",
+              + target_text(cov), "", split_text(film_split_coverage(rows)), "",
               "## The slow and starting points: a boundary (Coulomb) torque", "",
-              "JPL2022 (0.075 rpm) and OCI2018 (at rest; the cartridge at 0.5-2 rpm) run with "
-              "films of a few nm: their torque is the Coulomb friction of the contacts' "
+              slow_film_text(boundary_films_nm()) + ": their torque is the Coulomb friction of the contacts' "
               "differential slip and spin, which none of the oil laws carries (their load "
               "terms are catalogue fits of running bearings, f1 P dm or SKF's G_sl mu_sl). "
               "The Coulomb contact estimate (`coulomb_contacts_torque_Nmm`: Heathcote slip and "
@@ -734,24 +834,16 @@ def run(out: Path, progress=print, mesh_factor: float = 1.0) -> None:
               "", "LQF rig trends (drag over Palmgren's (n nu)^(2/3), 100 mg, 6000 rpm): "
               + "; ".join(f"{r['law']} {r['note']} for {r['quantity'].split(' at ')[0]}"
                           for r in rows if r["source"] == "LQF2018") + ".", "",
-              "Why the minimal-oil law's LQF barely moves at the default inlet share k = 1 "
-              "(the whole wetted layer at every inlet, the law's upper bound): 100 mg over the "
-              "wetted area is a layer far thicker than the flooded film, so the contacts are "
-              "flooded and the factor on Palmgren's term is 1 at every temperature. The rise "
-              "the paper reports (its LQF in direct proportion to the mean temperature, which "
-              "it attributes to more oil reaching the contacts as the viscosity falls) is the "
-              "starved branch of the law (factor ~ h_in / h_ff ~ nu^-0.67 at fixed n): it "
-              "appears once the inlet share is small. At 133 N:", "",
+              lqf_share_text(shares), "",
               md_table(["inlet share k", "factor 12 C", "factor 20 C", "factor 35 C",
                         "LQF 35 C / 12 C", "r inner 12 C", "r inner 35 C"],
                        [[f"{k:g}", *(f"{x:.3f}" for x in f), f"{q:.3f}", f"{r[0]:.3g}",
-                         f"{r[1]:.3g}"] for k, f, q, r in lqf_share_rows()]), "",
+                         f"{r[1]:.3g}"] for k, f, q, r in shares]), "",
               "The share is what the data do not give: the paper prints normalised LQF only "
               "(its magnitude is not held here), and the other minimal-oil sources state no "
               "charge the share could be calibrated on (seed 001 states none; OCI's oil is in "
               "the cage). The default stays the upper bound; a diagnosis fits k. A replenishment law "
               "that would set k from the conditions (surface tension, viscosity, time between "
               "passes) was searched for and not reached (docs/friction_sources.md).", "",
-              "Regimes without a published point here (oil bath or jet) have no interval: "
-              "their columns are empty.", ""]
+              no_interval_text(cov), ""]
     (out / "report.md").write_text("\n".join(lines) + "\n")
