@@ -37,9 +37,10 @@ def assembled_closed_set(condensed: Condensed, solver: FitSolver,
                          delta_assembled_mm: np.ndarray) -> np.ndarray | None:
     """The contact status at assembly (no load, the fits' interferences) by the condensed
     problem (`fem.solver.Superposition`: a small dense active set on the set-up's flexibility,
-    no FE factorisation): the start of the full FE's active-set iteration, which then needs one
-    factorisation instead of one per iteration (10 of them on the shipped rigs with a clamp
-    force). None for bonded fits (their status never changes)."""
+    no FE factorisation): the start of the full FE's active-set iteration, which then factorises
+    that one state instead of one per iteration (the compliance: 2 factorisations instead of 10
+    on the shipped rigs with a clamp force, measured). None for bonded fits (their status never
+    changes)."""
     if condensed.bonded:
         return None
     sup = Superposition.from_condensed(condensed, lambda: solver)
