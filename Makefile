@@ -24,8 +24,8 @@ verify: setup
 	$(BIN)/bearingfem verify --out $(OUT)/verify
 
 # the suite on every core up to 4, one test module per worker (module fixtures built once; on 2
-# workers the modules' CPU split 145 / 140 s, 2026-11-26: loadscope balances, worksteal would
-# only build the modules' pipelines twice)
+# workers the modules' CPU split 109 / 107 s with a cold FE cache, 82 / 85 s warm, 2026-12-02,
+# docs/benchmarks.md: loadscope balances, worksteal would only build the modules' pipelines twice)
 PYTEST_PAR := -n auto --maxprocesses 4 --dist loadscope
 
 # bytecode caches on even where the environment turns them off (PYTHONDONTWRITEBYTECODE): the

@@ -27,7 +27,7 @@ from typing import TYPE_CHECKING, Callable
 import numpy as np
 
 from analytic.materials import Material
-from fem.compliance import preload_path_compliance_mm_per_N
+from fem.compliance import assembled_closed_set, preload_path_compliance_mm_per_N
 from fem.model import StackModel, build_model, part_materials
 from fem.solver import Condensed, FitSolver, condense
 from infra.version import __version__
@@ -135,15 +135,17 @@ def full_fe(spec: SetupSpec) -> FullFE:
 
 def compute_setup(spec: SetupSpec, fe: FullFE) -> FESetup:
     """The set-up of `spec` from its full FE (the uncached route; `cached_setup` stores its
-    result): condensation (`fem.solver.condense`) and, when planned, the compliance."""
+    result): condensation (`fem.solver.condense`) and, when planned, the compliance, whose
+    assembled contact state starts from the condensed problem's (`assembled_closed_set`)."""
     m = fe.model
     c = spec.compliance
+    condensed = condense(fe.solver, fe.probe)
     comp = (np.nan if c is None else preload_path_compliance_mm_per_N(
-        fe.solver, fe.probe, np.array(c.signs), np.array(c.delta_assembled_mm)))
+        fe.solver, fe.probe, np.array(c.signs), np.array(c.delta_assembled_mm),
+        assembled_closed_set(condensed, fe.solver, np.array(c.delta_assembled_mm))))
     return FESetup(spec.key(), int(m.ndofs), tuple(m.part_names), tuple(f.name for f in m.fits),
                    np.array([f.r_mm for f in m.fits], float),
-                   np.array([f.length_mm for f in m.fits], float),
-                   condense(fe.solver, fe.probe), float(comp))
+                   np.array([f.length_mm for f in m.fits], float), condensed, float(comp))
 
 
 def cached_setup(spec: SetupSpec, fe: Callable[[], FullFE], progress=None) -> FESetup:

@@ -176,8 +176,8 @@ def test_a_clamp_force_used_up_opens_the_stack_and_the_fit_returns_to_lame():
     from studies.model.columns import to_columns
     from studies.model.pipeline import Pipeline, simulate_table
 
-    def run(asm, direct=False):      # on a mesh coarsened 2x: what is asserted is exact on any mesh
-        return simulate_table(asm, cond, direct=direct, pipeline=Pipeline.shared(asm, mesh_factor=2.0))
+    def run(asm, direct=False):      # on a mesh coarsened 4x: what is asserted is exact on any mesh
+        return simulate_table(asm, cond, direct=direct, pipeline=Pipeline.shared(asm, mesh_factor=4.0))
 
     cond = {"T_ambient_C": np.array([20.0, 60.0, 20.0]), "axial_load_N": np.array([0.0, 0.0, 600.0])}
     rigid = run(assembly_from_dict(_sleeved("rigid"), "rigid.toml"))
@@ -219,16 +219,20 @@ def test_a_clamp_without_force_or_stiffness_is_the_compliant_cover():
     stack of about 1e6 N/mm: the force ratio 1e-5). The compliant cover keeps the stack's own
     faces tied; under a force clamp they are contacts (tests/test_stack_faces.py), so at 80 C,
     where the fits dish the ring faces and part of each opens, the two differ (by 2e-3 here:
-    the tied faces' tension, the artefact of tied faces)."""
+    the tied faces' tension, the artefact of tied faces). Both on one mesh coarsened 4x: the
+    two clamps are compared on the same mesh, and the limit holds on any."""
     from studies.model.columns import to_columns
-    from studies.model.pipeline import simulate_table
+    from studies.model.pipeline import Pipeline, simulate_table
+
+    def run(asm):
+        return to_columns(simulate_table(asm, cond, pipeline=Pipeline.shared(asm, mesh_factor=4.0)))
 
     cond = {"T_ambient_C": np.array([-60.0, 20.0, 80.0])}
     raw = _raw()
-    comp = to_columns(simulate_table(assembly_from_dict(raw, "c.toml"), cond))
+    comp = run(assembly_from_dict(raw, "c.toml"))
     raw = copy.deepcopy(raw)
     raw["cover"].update(clamp="force", clamp_force_N=1e-3, clamp_stiffness_N_per_um=1e-6)
-    force = to_columns(simulate_table(assembly_from_dict(raw, "f.toml"), cond))
+    force = run(assembly_from_dict(raw, "f.toml"))
     worst_hot = 0.0
     for k, v in comp.items():
         scale = max(np.abs(v).max(), 1e-30)
@@ -287,14 +291,19 @@ def test_design_search_family_holds_the_clamp_spring():
 
 def test_the_shipped_rig_runs_with_its_clamp_force():
     """studies/configs/rig_cartridge_sleeve.toml (the rig): tightened to 3.89 kN at T_ref;
-    at +60 C its aluminium housing has outgrown the stack and used the force up (flagged)."""
+    at +60 C its aluminium housing has outgrown the stack and used the force up (flagged). On a
+    mesh coarsened 4x (its set-up on the file's mesh costs ~6 s of CPU): at T_ref the clamp
+    carries its tightening force on any mesh (nothing else loads the face yet), and +60 C is far
+    past the opening: the force falls to ~430 N at 30 C and to 0 by 40 C on the file's mesh and on
+    this one alike (measured: 440 and 420 N at 30 C)."""
     from studies.model.columns import to_columns
     from studies.model.config import load_assembly
-    from studies.model.pipeline import simulate_table
+    from studies.model.pipeline import Pipeline, simulate_table
 
     asm = load_assembly(CONFIG_DIR / "rig_cartridge_sleeve.toml")
     assert asm.cover.clamp == "force" and asm.cover.clamp_force_N == 3890.0
-    out = to_columns(simulate_table(asm, {"T_ambient_C": np.array([20.0, 60.0])}))
+    out = to_columns(simulate_table(asm, {"T_ambient_C": np.array([20.0, 60.0])},
+                                    pipeline=Pipeline.shared(asm, mesh_factor=4.0)))
     assert out["clamp_force_N"][0] == pytest.approx(3890.0, rel=1e-9)
     assert out["flag_clamp_open"].tolist() == [0.0, 1.0]
 

@@ -141,6 +141,11 @@ def _uniform_sum_cdf(t, w1, w2):
     return (g(t) - g(t - w1) - g(t - w2) + g(t - w1 - w2)) / (w1 * w2)
 
 
+#: the `fits_only` tests' mesh, coarsened 4x: at the reference temperature the fit opens where
+#: its interference reaches 0 and the mid-band preload is the assembled one, on any mesh
+FITS_ONLY_MESH = 4.0
+
+
 @pytest.fixture(scope="module")
 def fits_only(tmp_path_factory):
     d = tmp_path_factory.mktemp("tol")
@@ -158,7 +163,7 @@ def test_monte_carlo_fit_opening_agrees_with_the_closed_form(fits_only, dist):
     from studies.model.pipeline import Pipeline
 
     asm = fits_only[dist]
-    pl = Pipeline.shared(asm)
+    pl = Pipeline.shared(asm, mesh_factor=FITS_ONLY_MESH)
     S = 3000
     dev = tol.sample_deviations_um(asm, S, seed=7)
     di, do = tol.interference_offsets_um(dev, S)
@@ -179,8 +184,8 @@ def test_mid_band_fits_give_the_assembled_preload(fits_only):
     asm = fits_only["uniform"]
     mid_i, mid_o = tol.mid_band_offsets_um(asm)
     assert (mid_i, mid_o) == (4.0, 0.0)                  # 1 - (-3)
-    r = tsm.evaluate(Pipeline.shared(asm), {"T_ambient_C": np.array([asm.T_ref_C]),
-                                            "speed_rpm": np.array([0.0])},
+    r = tsm.evaluate(Pipeline.shared(asm, mesh_factor=FITS_ONLY_MESH),
+                     {"T_ambient_C": np.array([asm.T_ref_C]), "speed_rpm": np.array([0.0])},
                      np.array([mid_i, mid_i + 2.0]), np.array([mid_o, mid_o]))
     assert r.preload_N[0, 0] == pytest.approx(asm.preload.assembled_N, rel=1e-9)
     assert r.preload_N[1, 0] > asm.preload.assembled_N     # a tighter inner fit adds preload
