@@ -132,10 +132,10 @@ def one_pass(pb: Problem, rng: np.random.Generator, clock: "_Clock", tag: str = 
     held = staging.held(pb)
     s = screen(pb, b, held=held)
     clock.phase("sensitivities" + tag)
-    fitted = fit_all(pb, s, b)
+    pending = [n for n in s.held if held[n] == staging.PENDING]
+    fitted = fit_all(pb, s, b, later=len(pending))
     clock.phase("fits" + tag)
     first = _judged(pb, b, s, fitted, rng, clock, tag)
-    pending = [n for n in s.held if held[n] == staging.PENDING]
     if not pending:
         return first
     why = staging.lumped_explains(first)

@@ -18,13 +18,14 @@ from studies.diagnosis.stats import blsq, chibar_pvalue
 
 
 def fit_all(pb: Problem, s: Screening, b: Baseline,
-            done: tuple[dict[str, Fit], dict[str, Candidate]] | None = None
+            done: tuple[dict[str, Fit], dict[str, Candidate]] | None = None, later: int = 0
             ) -> tuple[dict[str, Fit], dict[str, Candidate]]:
     """Fit the identifiable candidates: their fits (those whose fit fails are left out) and
     every candidate, the fitted ones with their fit's numbers (new records). `done`: the fits
     and records of an earlier `fit_all` on the same calibrated problem (a staged pass,
     `studies.diagnosis.staging`): its candidates are taken as they are, the others fitted,
-    and Holm's correction is made over all of them."""
+    and Holm's correction is made over all of them. `later`: candidates held for a later stage
+    of the pass, counted in Holm's number of tests (a union bound over the stages)."""
     th = pb.th
     base, cands = b.fit, dict(s.candidates)
     lnN = math.log(pb.N)
@@ -89,7 +90,7 @@ def fit_all(pb: Problem, s: Screening, b: Baseline,
     fits = {n: fits[n] for n in s.identifiable if n in fits}      # in the candidates' order
     # Holm over the identifiable candidates
     order = sorted(fits, key=lambda n: cands[n].p_lr)
-    m = len(order)
+    m = len(order) + later
     still = True
     for j, name in enumerate(order):
         ok = still and cands[name].p_lr <= th["alpha_lr"] / (m - j)

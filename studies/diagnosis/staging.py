@@ -8,7 +8,8 @@ A pass (`engine.one_pass`) whose residual indicates a staged rung (`ladder.Indic
 two stages on the same calibration:
 
 1. every other candidate is screened, fitted, validated, decided and generalised as in any
-   pass; the staged rung is held (`PENDING`);
+   pass; the staged rung is held (`PENDING`), counted in Holm's number of tests (a union bound
+   over the two stages);
 2. unless a rule below gives a reason not to (then the rung is `not_applicable` with that
    reason in diagnosis.json), the rung is screened and fitted, the first stage's screening and
    fits reused, and the pass is validated, decided and generalised again with it (Holm over
