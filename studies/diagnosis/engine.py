@@ -135,7 +135,8 @@ def one_pass(pb: Problem, rng: np.random.Generator, clock: "_Clock", tag: str = 
     pending = [n for n in s.held if held[n] == staging.PENDING]
     fitted = fit_all(pb, s, b, later=len(pending))
     clock.phase("fits" + tag)
-    first = _judged(pb, b, s, fitted, rng, clock, tag)
+    refits: dict = {}
+    first = _judged(pb, b, s, fitted, rng, clock, tag, refits)
     if not pending:
         return first
     why = staging.lumped_explains(first)
@@ -146,7 +147,7 @@ def one_pass(pb: Problem, rng: np.random.Generator, clock: "_Clock", tag: str = 
     clock.phase("sensitivities_staged" + tag)
     fitted2 = fit_all(pb, s2, b, done=fitted)
     clock.phase("fits_staged" + tag)
-    second = _judged(pb, b, s2, fitted2, rng, clock, tag + "_staged")
+    second = _judged(pb, b, s2, fitted2, rng, clock, tag + "_staged", refits)
     tie = staging.lumped_tie(second, pending)
     if tie is None:
         return second
@@ -156,10 +157,12 @@ def one_pass(pb: Problem, rng: np.random.Generator, clock: "_Clock", tag: str = 
 
 
 def _judged(pb: Problem, b: Baseline, s: Screening, fitted: tuple[dict, dict],
-            rng: np.random.Generator, clock: "_Clock", tag: str) -> Pass:
-    """Phases 4-5b on the screening `s` and the fits `fitted` (`fitting.fit_all`)."""
+            rng: np.random.Generator, clock: "_Clock", tag: str,
+            refits: dict | None = None) -> Pass:
+    """Phases 4-5b on the screening `s` and the fits `fitted` (`fitting.fit_all`); `refits`:
+    the held-out refits of an earlier stage of the pass (`heldout.validate`)."""
     fits, cands = fitted
-    ho, passing, cands = validate(pb, cands, fits, b, rng)
+    ho, passing, cands = validate(pb, cands, fits, b, rng, refits)
     clock.phase("heldout" + tag)
     d = decide(pb, cands, fits, passing, b, ho)
     clock.phase("compare" + tag)
