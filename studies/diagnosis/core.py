@@ -243,6 +243,11 @@ class Screening:
     #: CPU seconds per model call of each screened candidate's sensitivities (the cost the fits
     #: are scheduled by, `fitting.fit_all`; not part of the result)
     call_seconds: dict[str, float] = dataclasses.field(default_factory=dict)
+    #: orthonormal bases of the identifiable candidates' projected sensitivities (the
+    #: look-alike cosines of a candidate screened later, `screening.screen`'s `done`)
+    bases: dict[str, np.ndarray] = dataclasses.field(default_factory=dict)
+    #: candidates held for a later stage of the pass (`studies.diagnosis.staging`)
+    held: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)

@@ -63,6 +63,7 @@ from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
+from studies.diagnosis import staging
 from studies.diagnosis.calibration import baseline_noise, calibrate, stated_noise_notes
 from studies.diagnosis.candidate import Candidate
 from studies.diagnosis.core import Baseline, Decision, Fit, Screening
@@ -122,15 +123,46 @@ class Pass:
 def one_pass(pb: Problem, rng: np.random.Generator, clock: "_Clock", tag: str = "",
              calibrated: tuple[Problem, Baseline] | None = None) -> Pass:
     """Phases 1-5b (module docstring) on `pb` (`calibrated`: phase 1's result when already
-    computed); `tag` suffixes the clock's phase labels."""
+    computed); `tag` suffixes the clock's phase labels. A staged rung the residual indicates
+    (`staging`) is held in a first stage and screened in a second only when the staging rules
+    call for it."""
     pb, b = calibrated or calibrate(pb)
     clock.pb = pb
     clock.phase("baseline" + tag)
-    s = screen(pb, b)
+    held = staging.held(pb)
+    s = screen(pb, b, held=held)
     clock.phase("sensitivities" + tag)
-    fits, cands = fit_all(pb, s, b)
+    pending = [n for n in s.held if held[n] == staging.PENDING]
+    fitted = fit_all(pb, s, b, later=len(pending))
     clock.phase("fits" + tag)
-    ho, passing, cands = validate(pb, cands, fits, b, rng)
+    refits: dict = {}
+    first = _judged(pb, b, s, fitted, rng, clock, tag, refits)
+    if not pending:
+        return first
+    why = staging.lumped_explains(first)
+    if why is not None:
+        return staging.with_reasons(first, {n: first.candidates[n].with_status(
+            "not_applicable", why) for n in pending})
+    s2 = screen(pb, b, held={n: r for n, r in held.items() if n not in pending}, done=s)
+    clock.phase("sensitivities_staged" + tag)
+    fitted2 = fit_all(pb, s2, b, done=fitted)
+    clock.phase("fits_staged" + tag)
+    second = _judged(pb, b, s2, fitted2, rng, clock, tag + "_staged", refits)
+    tie = staging.lumped_tie(second, pending)
+    if tie is None:
+        return second
+    records = {n: second.candidates[n] for n in pending}
+    return staging.with_reasons(first, {n: c.with_status("rejected", f"{c.reason}; but {tie}")
+                                        if c.fitted else c for n, c in records.items()})
+
+
+def _judged(pb: Problem, b: Baseline, s: Screening, fitted: tuple[dict, dict],
+            rng: np.random.Generator, clock: "_Clock", tag: str,
+            refits: dict | None = None) -> Pass:
+    """Phases 4-5b on the screening `s` and the fits `fitted` (`fitting.fit_all`); `refits`:
+    the held-out refits of an earlier stage of the pass (`heldout.validate`)."""
+    fits, cands = fitted
+    ho, passing, cands = validate(pb, cands, fits, b, rng, refits)
     clock.phase("heldout" + tag)
     d = decide(pb, cands, fits, passing, b, ho)
     clock.phase("compare" + tag)

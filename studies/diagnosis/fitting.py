@@ -17,14 +17,26 @@ from studies.diagnosis.problem import Problem, cpu_timed, longest_first
 from studies.diagnosis.stats import blsq, chibar_pvalue
 
 
-def fit_all(pb: Problem, s: Screening, b: Baseline
+def fit_all(pb: Problem, s: Screening, b: Baseline,
+            done: tuple[dict[str, Fit], dict[str, Candidate]] | None = None, later: int = 0
             ) -> tuple[dict[str, Fit], dict[str, Candidate]]:
     """Fit the identifiable candidates: their fits (those whose fit fails are left out) and
-    every candidate, the fitted ones with their fit's numbers (new records)."""
+    every candidate, the fitted ones with their fit's numbers (new records). `done`: the fits
+    and records of an earlier `fit_all` on the same calibrated problem (a staged pass,
+    `studies.diagnosis.staging`): its candidates are taken as they are, the others fitted,
+    and Holm's correction is made over all of them. `later`: candidates held for a later stage
+    of the pass, counted in Holm's number of tests (a union bound over the stages)."""
     th = pb.th
     base, cands = b.fit, dict(s.candidates)
     lnN = math.log(pb.N)
     fits: dict[str, Fit] = {}
+    prior_fits, prior = done or ({}, {})
+    reused = [n for n in s.identifiable if n in prior_fits
+              or (n in prior and prior[n].status == "model_failed")]
+    for n in reused:
+        cands[n] = prior[n]
+        if n in prior_fits:
+            fits[n] = prior_fits[n]
 
     def fit_one(name):
         """(fit or None, profile summary, failure message or None, model calls)."""
@@ -45,7 +57,7 @@ def fit_all(pb: Problem, s: Screening, b: Baseline
 
     # the candidates' fits are independent: on the engine's workers, the longest first; a
     # global search's starting points scored on the workers before (`searched_starts`)
-    names = list(s.identifiable)
+    names = [n for n in s.identifiable if n not in reused]
     searched = searched_starts(pb, s, b, names)
     done = pb.parallel(cpu_timed(fit_one), names,
                        first=longest_first([fit_cost(pb, pb.effect(n), cands[n], s,
@@ -75,9 +87,10 @@ def fit_all(pb: Problem, s: Screening, b: Baseline
             held_at_off={p: e.off[p] for p in held} if held else None,
             nuisance=nuis_vals, uncertainty=uncertainty(pb, f, e), rmse=pb.col_rmse(f.z),
             fit_cpu_s=seconds[name])
+    fits = {n: fits[n] for n in s.identifiable if n in fits}      # in the candidates' order
     # Holm over the identifiable candidates
     order = sorted(fits, key=lambda n: cands[n].p_lr)
-    m = len(order)
+    m = len(order) + later
     still = True
     for j, name in enumerate(order):
         ok = still and cands[name].p_lr <= th["alpha_lr"] / (m - j)

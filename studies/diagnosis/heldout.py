@@ -61,11 +61,13 @@ MIN_TESTABLE_BLOCKS = 3
 
 
 def validate(pb: Problem, cands: Mapping[str, Candidate], fits: dict[str, Fit], b: Baseline,
-             rng: np.random.Generator
+             rng: np.random.Generator, refits: dict | None = None
              ) -> tuple[dict[str, np.ndarray], list[str], dict[str, Candidate]]:
     """Held-out residuals per fitted candidate, the names of the candidates that pass, and
     every candidate (the fitted ones with their held-out numbers, status and reason: new
-    records)."""
+    records). `refits`: {name: (fit, its refit)} of an earlier stage of the same pass
+    (`studies.diagnosis.staging`), filled here: a candidate with the same fit is not refitted
+    (the refits draw no random numbers; the bootstraps are drawn again)."""
     th = pb.th
     base_ho, names_id = b.heldout_z, list(fits)
     cands = dict(cands)
@@ -85,8 +87,12 @@ def validate(pb: Problem, cands: Mapping[str, Candidate], fits: dict[str, Fit], 
     # the candidates' refits are independent: on the engine's workers; the bootstraps below
     # draw from the engine's random numbers in the candidates' order
     names = list(names_id)
-    done = pb.parallel(refit, names,            # the longest fits first: their refits too
-                       first=longest_first([cands[n].fit_cpu_s for n in names]))
+    refits = {} if refits is None else refits
+    todo = [n for n in names if n not in refits or refits[n][0] is not fits[n]]
+    got = pb.parallel(refit, todo,              # the longest fits first: their refits too
+                      first=longest_first([cands[n].fit_cpu_s for n in todo]))
+    refits.update({n: (fits[n], r) for n, r in zip(todo, got)})
+    done = [refits[n][1] for n in names]
     passing = []
     for name, (z_ho, chosen, untestable, failed) in zip(names, done):
         e = pb.effect(name)

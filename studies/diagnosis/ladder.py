@@ -57,7 +57,9 @@ first time, then from the cache). `FormRoute` holds those pipelines for one diag
 Cost control (`Indication`): rungs are screened only when the baseline leaves structure and the
 open-world characterisation of the baseline residual selects a feature the rung acts through
 (or one not separable from it); the others are reported `not_applicable` with the reason. The
-CLI's candidate list puts the rungs after the listed effects, the FE set-up rungs last.
+`thermal_transient_fe` rung is further staged (`studies.diagnosis.staging`): screened only where
+no lumped thermal form explains the pass without it. The CLI's candidate list puts the rungs
+after the listed effects, the FE set-up rungs last.
 
 Units: N, N mm, mm, C; factors and shares dimensionless.
 """

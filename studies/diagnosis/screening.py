@@ -6,6 +6,8 @@ candidates (module docstring of `studies.diagnosis.engine`, step 2). A model for
 it acts through (`ladder.indication`), else it is not applicable with the reason."""
 from __future__ import annotations
 
+from typing import Mapping
+
 import numpy as np
 
 from studies.diagnosis import fitspec, ladder
@@ -15,16 +17,25 @@ from studies.diagnosis.problem import Problem, cpu_timed
 from studies.diagnosis.stats import max_cosine, orth
 
 
-def screen(pb: Problem, b: Baseline) -> Screening:
+def screen(pb: Problem, b: Baseline, held: Mapping[str, str] | None = None,
+           done: Screening | None = None) -> Screening:
     """Every candidate with its identifiability (module docstring); the identifiable ones in
-    the candidates' order with their projected sensitivities' look-alike cosines."""
+    the candidates' order with their projected sensitivities' look-alike cosines. `held`:
+    {name: reason} of candidates held for a later stage of the pass
+    (`studies.diagnosis.staging`): not applicable with that reason when the indication would
+    screen them (an earlier reason stands). `done`: an earlier screening of the same
+    calibrated problem whose records (all but the ones it held) are taken as they are."""
+    held = dict(held or {})
+    reuse = ({n: (c, done.bases.get(n)) for n, c in done.candidates.items()
+              if n not in done.held} if done is not None else {})
     cands = {}
     proj = {}
     gate = ladder.indication(pb, b) if any(map(ladder.is_form, pb.candidates)) else None
     # the candidates' sensitivities are independent model calls: on the engine's workers
     # (`Problem.parallel`, the results those of a serial run), those that call the model only;
     # a profiled one (up to three grid points) first
-    todo = [e for e in pb.candidates if _needs_model(pb, e, gate)]
+    todo = [e for e in pb.candidates
+            if e.name not in reuse and e.name not in held and _needs_model(pb, e, gate)]
 
     def one(e):
         """(candidate, basis), CPU seconds per model call of its sensitivities."""
@@ -33,25 +44,38 @@ def screen(pb: Problem, b: Baseline) -> Screening:
         return out, seconds / max(pb.model.calls - calls0, 1)
 
     got = pb.parallel(one, todo, first=[i for i, e in enumerate(todo) if fitspec.profile(e)])
-    done = {e.name: r for e, (r, _) in zip(todo, got)}
-    call_seconds = {e.name: t for e, (_, t) in zip(todo, got)}
+    done_now = {e.name: r for e, (r, _) in zip(todo, got)}
+    call_seconds = {**(done.call_seconds if done is not None else {}),
+                    **{e.name: t for e, (_, t) in zip(todo, got)}}
+    kept = []
     for e in pb.candidates:
-        cands[e.name], Q = done[e.name] if e.name in done else _screen_one(pb, e, b, gate)
+        if e.name in reuse:
+            cands[e.name], Q = reuse[e.name]
+        elif e.name in done_now:
+            cands[e.name], Q = done_now[e.name]
+        else:
+            cands[e.name], Q = _screen_one(pb, e, b, gate, held.get(e.name))
+            if e.name in held and cands[e.name].reason == held[e.name]:
+                kept.append(e.name)
         if Q is not None:
             proj[e.name] = Q
     names_id = list(proj)
     look = {a: {c: max_cosine(proj[a], proj[c]) for c in names_id} for a in names_id}
-    return Screening(cands, names_id, look, call_seconds)
+    return Screening(cands, names_id, look, call_seconds, proj, tuple(kept))
 
 
-def _screen_one(pb: Problem, e, b: Baseline, gate=None) -> tuple[Candidate, np.ndarray | None]:
+def _screen_one(pb: Problem, e, b: Baseline, gate=None, held: str | None = None
+                ) -> tuple[Candidate, np.ndarray | None]:
     """The candidate of effect `e` after screening and, when identifiable, the orthonormal basis
     of its projected sensitivity (else None); `gate`: the model-form ladder's indication
-    (`ladder.indication`), a model form only where the residual points."""
+    (`ladder.indication`), a model form only where the residual points; `held`: the reason
+    it is not applicable when nothing before stops it (a later stage of the pass)."""
     kind = getattr(e, "kind", "effect")
     why, grid = _applicability(pb, e)
     if why is None and gate is not None:
         why = gate.why_not(e)
+    if why is None:
+        why = held
     if why is not None:
         return Candidate(e.name, kind, status="not_applicable", reason=why), None
     best = _sensitivity_kept(pb, e, grid, b)

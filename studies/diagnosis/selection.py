@@ -572,12 +572,31 @@ STOP_RULES = (enough_causes, no_candidates_left, last_cause_at_bound, form_chose
               sleeve_accepted, explained_at_its_noise)
 
 
+def leaves_nothing(pb_c: Problem, b_c) -> bool:
+    """Does the model of the accepted causes, calibrated with the noise re-estimated from its
+    residual (`pb_c`, `b_c`: `calibration.calibrate` of the next problem), show no structure,
+    white noise and no misfit?"""
+    white = not any(v > 0.0 for v in pb_c.noise.rho.values())
+    return white and not b_c.structure and not _misfit(pb_c, b_c)
+
+
+def cause_explains_at_its_noise(p) -> bool:
+    """Does the cause of pass `p` (its decision's cause, the chosen form when there is one),
+    which leaves no structure under the pass's noise, leave none under the noise re-estimated
+    from its own residual? Yes when that noise is not NOISE_RTOL below the pass's
+    (`noise_inflated`), else when the model with the cause accepted, calibrated under it, leaves
+    nothing (`leaves_nothing`): a lag's misfit taken for noise (AR(1) rho 0.99) hides what the
+    lag leaves."""
+    if not noise_inflated(p.pb, _extended(p)[0]):
+        return True
+    return leaves_nothing(*calibrate(_next_problem(p)))
+
+
 def nothing_left(s: _Search, pb_c: Problem, b_c) -> bool:
     """Stop when the model of the accepted causes, calibrated with the noise re-estimated from
     its residual, shows no structure and white noise (no candidate is fitted again); it is then
     the model the final rules judge."""
-    white = not any(v > 0.0 for v in pb_c.noise.rho.values())
-    if not white or b_c.structure or _misfit(pb_c, b_c):
+    if not leaves_nothing(pb_c, b_c):
         return False
     s.final = goodness(pb_c, b_c.fit, b_c.heldout_z, _n_params(pb_c, b_c.fit), b_c.residuals)
     s.final_pb, s.final_fit, s.final_ho = pb_c, b_c.fit, b_c.heldout_z
