@@ -28,7 +28,10 @@ candidates are the CLI's
 Last, one line per dataset kind, `<kind>: <rows> rows, wall <s> s` (docs/cli.md), the whole
 `diagnose`'s wall seconds, slowest last, with the load average after it. Times: the FE set-up (mesh from the cache, unit solutions) once; per dataset the engine alone
 (`diagnose_full`, what the goal is about) and the whole `diagnose_files` (reading the CSV, the
-engine, JSON and the report with its plots), with the set-up pipeline passed in; wall seconds
+engine, JSON and the report with its plots), with the set-up pipeline passed in, both on the
+measured CSV's numbers (the engine's read back with `files.read_measured`: the file holds 10
+digits, and a fit can end elsewhere on numbers 1e-10 apart; a CLI verdict other than the
+engine's is printed); wall seconds
 and CPU seconds (this process and its workers: on a loaded machine the CPU seconds move less).
 
 `--profile` (where the time goes; `--datasets` picks datasets by a part of their label): each
@@ -228,8 +231,8 @@ def trial_times(pred, effects: dict, cond: dict, repeat: int = 5) -> str:
 
 def main(argv=None) -> None:
     from studies.model.config import CONFIG_DIR, SHIPPED, load_shipped
-    from studies.diagnosis.files import (NUISANCE, ModelPredictor, candidate_effects,
-                                         diagnose_files)
+    from studies.diagnosis.files import (NUISANCE, OUTPUT_NAMES, ModelPredictor,
+                                         candidate_effects, diagnose_files, read_measured)
     from studies.validation.second_source import NOISE_SHARE
     from studies.diagnosis.engine import diagnose_full
     from studies.diagnosis.ladder import candidates as ladder_candidates
@@ -287,22 +290,27 @@ def main(argv=None) -> None:
             meas = {c: truth[c] + rng.normal(0.0, s, truth[c].size) for c, s in sigma.items()}
             if args.datasets and not any(d in label for d in args.datasets):
                 continue                      # the noise draws stay those of the full list
-            pred = ModelPredictor(pl, cond, cols)
-            with Clock() as engine:
-                out = diagnose_full(pred, meas, cond, cands, NUISANCE, T_ref_C=asm.T_ref_C,
-                                    predict_at=pred.at, workers=workers)
-            r = to_json(out)
             with tempfile.TemporaryDirectory() as tmp:
                 csv = Path(tmp) / "measured.csv"
                 write_table(csv, {**cond, **meas})
+                # the engine on the numbers the CLI reads back (10 digits): the two diagnose
+                # the same data, and the CLI's extra seconds are the files and the report
+                cond, meas = read_measured(csv, OUTPUT_NAMES)
+                pred = ModelPredictor(pl, cond, cols)
+                with Clock() as engine:
+                    out = diagnose_full(pred, meas, cond, cands, NUISANCE, T_ref_C=asm.T_ref_C,
+                                        predict_at=pred.at, workers=workers)
+                r = to_json(out)
                 with Clock() as cli:
-                    diagnose_files(CONFIG_DIR / SHIPPED[kind.assembly], csv, Path(tmp),
-                                   progress=lambda s: None, pipeline=pl, workers=workers)
+                    doc = diagnose_files(CONFIG_DIR / SHIPPED[kind.assembly], csv, Path(tmp),
+                                         progress=lambda s: None, pipeline=pl, workers=workers)
             walls.append((cli.wall_s, label, cli.load_after))
             form = (r.get("extended_form") or {}).get("name", "-")
             print(f"{label:<42} {r['verdict']:<15} {str(r['cause']):<18} {engine.wall_s:8.2f} "
                   f"{engine.cpu_s:6.2f} {r['n_predict_calls']:6d} {r['seconds']['predict']:8.2f} "
                   f"{cli.wall_s:6.2f} {cli.cpu_s:6.2f}  {form}  (load {cli.load_after:.1f})")
+            if (doc["verdict"], doc["cause"]) != (r["verdict"], r["cause"]):
+                print(f"    the CLI's verdict differs: {doc['verdict']} {doc['cause']}")
             print(f"    model calls by phase: {r['predict_calls_by_phase']}")
             # with workers the model seconds are summed over the processes (may exceed the wall)
             print("    wall seconds by phase (model seconds, summed over the workers): " + ", ".join(
