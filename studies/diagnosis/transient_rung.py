@@ -185,8 +185,9 @@ def rung_model(pl) -> RungModel:
 
 
 #: format of the cached rung model (raise when its arrays or `TRAINING` change; 2: the faces
-#: by kind, `face_kind`)
-RUNG_FORMAT = 2
+#: by kind, `face_kind`; 3: open fits and spacer bores with their solid spots,
+#: `transient_route.contacts`)
+RUNG_FORMAT = 3
 #: the arrays of a cached `RungModel` (its scalars are stored as 0-d arrays)
 _ARRAYS = ("M", "K0", "F_ext", "b_ext", "F_bore", "b_bore", "C_fit", "F_face", "b_face",
            "a_heat", "groups")
