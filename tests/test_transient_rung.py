@@ -42,7 +42,8 @@ def rm(pl):
 
 def _params(**kw):
     p = {"film_resistance_m2K_W": 0.05, "bore_film_ratio": 1.0, "G_face_W_K": 0.0, "G_env_W_K": 0.0,
-         "C_mount_J_K": tr.C_MOUNT_MIN_J_K, "fit_conductance_factor": 1.0, "heat_scale": 1.0}
+         "C_mount_J_K": tr.C_MOUNT_MIN_J_K, "fit_conductance_factor": 1.0,
+         "ball_conductance_factor": 1.0, "heat_scale": 1.0}
     p.update(kw)
     return p
 
