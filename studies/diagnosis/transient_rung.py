@@ -465,7 +465,7 @@ class HeatCurve:
             return 0.0
         if f(hi) <= 0.0:
             return hi
-        return float(brentq(f, 0.0, hi, xtol=1e-12 + 1e-9 * hi, rtol=1e-10))
+        return float(brentq(f, 0.0, hi, xtol=1e-12, rtol=1e-11))
 
 
 def part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb_C: np.ndarray,
