@@ -22,10 +22,18 @@ term at the assembled state, `transient_route.contacts`, scaled by f_b =
 ball_conductance_factor) + the spacer bores' term + hm F_face; the mount couples to
 the housing's outer face (`housing_outer`, a housing held in a bracket's bore or on its
 flange's rim) with hm = G_face / A_face uniformly over the face (W/(mm^2 K)); Q(t) the pair's
-friction heat at the row (the torque model's, `transient_route.pair_heat`, at the row's
-speed, preload and loads with the parts at the ambient), split half to the raceways and half to
-the ball nodes as the transient route splits an extra heat (`transient_route.extra_share`),
-scaled by s = heat_scale. The system is symmetric (conduction, films, contact and the mount's
+friction heat at the bearing's own temperature (the mean of its rings and balls, as the
+transient route couples its heat at the state, `transient_route.run_transient`): the torque
+model's heat (`transient_route.pair_heat` through the one route) at the row's speed,
+assembled preload and loads with every part at that temperature, tabulated once per
+conditions over the temperature (`HeatCurve`, `ThermalTransientFE.heat_curve`; an oil's
+viscous heat falls tenfold or more from -60 C to 20 C, so a heat taken at the ambient is far
+from the bearing's); split half to the raceways and half to the ball nodes as the transient
+route splits an extra heat (`transient_route.extra_share`), scaled by s = heat_scale. Each
+interval's heat is held at its value at the interval's end, where it balances the bearing's
+temperature it makes (`HeatCurve.solve`, a scalar root per row: stable however steeply the
+heat falls; the listed effects' changes of the friction coefficient or the preload do not
+move it). The system is symmetric (conduction, films, contact and the mount's
 coupling are), so one generalised eigen-decomposition A phi = lambda M phi of the augmented
 (m + 1) system per trial diagonalises it; each mode then obeys z' = -lambda z + g(t) with g
 piecewise linear between the rows (the conditions' ambient and heat interpolated linearly in
@@ -35,8 +43,9 @@ time, as `thermal_lag` takes the ambient), integrated exactly over each interval
               + s_k (lambda h - 1 + e^{-lambda h}) / lambda^2
 
 (the variation-of-constants formula, e.g. Ogata, Modern Control Engineering ch. 9 for a
-first-order-hold input). Initial state: the steady state of the first row (the stack at rest
-at the first ambient, with the first row's heat). The rows' part temperatures are the volume
+first-order-hold input; the heat held over the interval adds Q w (1 - e^{-lambda h}) / lambda).
+Initial state: the steady state of the first row (the stack at rest at the first ambient,
+with the heat that balances it). The rows' part temperatures are the volume
 means of the `inputs.PARTS` groups (`transient_route.group_rows`, the means the transient
 route writes as T_<part>_C) and go into the rows' inputs as every temperature does: the
 pipeline's one route (`studies.model.pipeline.Pipeline`) takes them, parts with a measured
@@ -46,8 +55,8 @@ Fast trial: within a trial the contact conductances are held (the fits' at
 their assembled pressure times the factor, the balls' at the assembled state), so the
 conduction is linear and a trial costs one (m + 1)^2 eigen-decomposition and the exact
 recursion over the rows, no time stepping between them (`bearingfem bench --diagnose`,
-kind "thermal_transient_fe", prints its time); the heat of the rows is computed once per
-conditions (memo) from the configured model.
+kind "thermal_transient_fe", prints its time); the heat curve of the rows is computed once
+per conditions (memo) from the configured model.
 
 Parameters (bounds and sources):
 
@@ -412,6 +421,19 @@ def radiation_film_factor(T_sink_C: np.ndarray, T_face_C: np.ndarray | None,
     return (T + Ts) * (T * T + Ts * Ts) / (4.0 * (T_ref_C + K) ** 3)
 
 
+def _levels(film_factor, ball_factor, n: int):
+    """(film factor per level, ball factor per level, level of each interval): the intervals'
+    distinct pairs of the film's bin (`film_levels`) and the ball links' factor."""
+    k = max(n - 1, 1)
+    if film_factor is None or n < 2:
+        f_lv, f_of = np.ones(1), np.zeros(k, int)
+    else:
+        f_lv, f_of = film_levels(film_factor)
+    b = np.ones(k) if ball_factor is None or n < 2 else np.asarray(ball_factor, float)
+    pairs, level = np.unique(np.column_stack([f_of, b]), axis=0, return_inverse=True)
+    return f_lv[pairs[:, 0].astype(int)], pairs[:, 1], level.reshape(-1)
+
+
 def film_levels(factor: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(factor per level, level of each interval): the film factor of each interval (-) held
     at the centre of its FILM_BIN_LN bin of ln(factor)."""
@@ -470,13 +492,17 @@ class HeatCurve:
 
 def part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb_C: np.ndarray,
                         heat_W, T_film_C: np.ndarray | None = None,
-                        film_factor: np.ndarray | None = None) -> np.ndarray:
+                        film_factor: np.ndarray | None = None,
+                        ball_factor: np.ndarray | None = None) -> np.ndarray:
     """(n, len(PARTS)) part group mean temperatures (C) of one trial at parameters p (module
     docstring), the ambient T_amb_C and the pair's heat heat_W per row at times t_s (s,
     strictly increasing): an array (W per row, interpolated linearly between rows), a
     `HeatCurve` (the heat at the bearing's own temperature, each interval's held at its end,
     times heat_scale) or None (no heat); T_film_C: what the films see when it is not the ambient
-    (a radiation sink), the mount's environment staying the ambient. film_factor (n - 1,): the
+    (a radiation sink), the mount's environment staying the ambient. ball_factor (n - 1,): the
+    ball links' conductance of each interval / the model's (B_ball's: at the assembly's speed;
+    the rows' speed moves the rolling contacts' constriction and film,
+    `ThermalTransientFE.ball_factors`), times ball_conductance_factor; None: 1. film_factor (n - 1,): the
     films of each interval between rows / the parameter's (radiation, `radiation_film_factor`),
     held per bin (`film_levels`): the system is then piecewise constant, each piece exact; None:
     the parameter's film throughout. NaN columns: groups the stack lacks."""
@@ -487,8 +513,9 @@ def part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb_C: np.nda
     G_face, G_env, C_m = q.G_face_W_K, q.G_env_W_K, q.C_mount_J_K
     hm = G_face / rm.area_face_mm2 if rm.area_face_mm2 > 0 else 0.0
     A0 = np.zeros((m + 1, m + 1))
-    A0[:m, :m] = (rm.K0 + q.fit_conductance_factor * rm.C_fit
-                  + (q.ball_conductance_factor - 1.0) * rm.B_ball + hm * rm.F_face)
+    A0[:m, :m] = rm.K0 + q.fit_conductance_factor * rm.C_fit + hm * rm.F_face
+    B = np.zeros((m + 1, m + 1))
+    B[:m, :m] = rm.B_ball
     A0[:m, m] = A0[m, :m] = -hm * rm.b_face
     A0[m, m] = G_face + G_env
     A_film = np.zeros((m + 1, m + 1))
@@ -514,13 +541,10 @@ def part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb_C: np.nda
     g_oil[:m] = rm.groups[[PARTS.index(k) for k in OIL_PARTS]].mean(axis=0)
     t = np.asarray(t_s, float)
     n = t.size
-    if film_factor is None or n < 2:
-        factors, level = np.ones(1), np.zeros(max(n - 1, 1), int)
-    else:
-        factors, level = film_levels(film_factor)
+    factors, balls, level = _levels(film_factor, ball_factor, n)
 
     def modes(lv):
-        A = A0 + factors[lv] * A_film
+        A = A0 + factors[lv] * A_film + (q.ball_conductance_factor * balls[lv] - 1.0) * B
         lam, Phi = sla.eigh(0.5 * (A + A.T), M, check_finite=False)
         return np.maximum(lam, 0.0), Phi
 
@@ -573,7 +597,8 @@ RADIATION_PASSES = 2
 
 def radiating_part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb_C: np.ndarray,
                                   heat_W: np.ndarray | None, T_film_C: np.ndarray | None,
-                                  T_ref_C: float) -> np.ndarray:
+                                  T_ref_C: float, ball_factor: np.ndarray | None = None
+                                  ) -> np.ndarray:
     """`part_temperatures_C` with the films radiation (vacuum): the parameter's film is
     4 eps sigma T_ref^3 (the emissivity's, at T_ref_C), each interval's the secant eps sigma
     (T + T_s)(T^2 + T_s^2) (`radiation_film_factor`) between the sink T_s (T_film_C, else the
@@ -588,7 +613,7 @@ def radiating_part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb
         face = None if T is None else T[:, PARTS.index("housing")]
         factor = radiation_film_factor(mid, None if face is None else 0.5 * (face[:-1] + face[1:]),
                                        T_ref_C)
-        T = part_temperatures_C(rm, p, t_s, T_amb_C, heat_W, T_film_C, factor)
+        T = part_temperatures_C(rm, p, t_s, T_amb_C, heat_W, T_film_C, factor, ball_factor)
     return T
 
 
@@ -647,14 +672,14 @@ class ThermalTransientFE(Effect):
                       "G_face_W_K": G_face_max / 16.0, "G_env_W_K": 1.0,
                       "C_mount_J_K": 2000.0, "fit_conductance_factor": 0.2,
                       "ball_conductance_factor": 0.2, "heat_scale": 0.1}
-        self._heat = Memo(4)
+        self._heat, self._balls = Memo(4), Memo(4)
 
     def bind(self, pipeline) -> "ThermalTransientFE":
         """The rung evaluated on `pipeline` (the diagnosis's, `ladder.FormRoute`); the rung of
         the same assembly unbound (the engine's candidate object) then evaluates there too."""
         out = ThermalTransientFE.__new__(ThermalTransientFE)
         out.__dict__.update(self.__dict__)
-        out.pipeline, out._heat = pipeline, Memo(4)
+        out.pipeline, out._heat, out._balls = pipeline, Memo(4), Memo(4)
         _BOUND.put(self.asm, pipeline)
         return out
 
@@ -678,8 +703,9 @@ class ThermalTransientFE(Effect):
         pl = self._pl()
         heat = self.heat_curve(inputs) if q.heat_scale > 0.0 else None
         args = (rung_model(pl), q, inputs.time_s, inputs.T_ambient_C, heat, self.sink_C)
-        T = (radiating_part_temperatures_C(*args, self.asm.T_ref_C) if self.vacuum
-             else part_temperatures_C(*args))
+        balls = self.ball_factors(inputs)
+        T = (radiating_part_temperatures_C(*args, self.asm.T_ref_C, balls) if self.vacuum
+             else part_temperatures_C(*args, None, balls))
         Tc = dict(inputs.T_C)
         for i, part in enumerate(PARTS):
             if part in inputs.measured_parts:
@@ -687,6 +713,34 @@ class ThermalTransientFE(Effect):
             col = T[:, i] if not np.isnan(T[:, i]).any() else T[:, PARTS.index("shaft")]
             Tc[part] = np.array(col, float)
         return inputs.copy(T_C=Tc)
+
+    def ball_factors(self, inputs) -> np.ndarray | None:
+        """(n - 1,) the ball links' conductance of each interval between rows over the rung
+        model's (at the assembly's speed, `transient_route.contacts`): the rolling contacts'
+        conductance at the speed of the interval's end row (`transient_route.ball_contacts`,
+        the pair at that speed at the reference temperature, as `contacts` takes it), the sum
+        of the inner and outer links'; None with one row. Kept per speeds."""
+        from studies.model import transient_route as tr
+        from studies.model.inputs import baseline_inputs
+
+        speed = np.broadcast_to(np.asarray(inputs.speed_rpm, float), np.shape(inputs.T_ambient_C))
+        if speed.size < 2:
+            return None
+
+        def make():
+            asm, pl = self.asm, self._pl()
+            T_ref = asm.T_ref_C
+            speeds, at = np.unique(np.concatenate([[asm.lubrication.speed_rpm], speed[1:]]),
+                                   return_inverse=True)
+            base = baseline_inputs({"speed_rpm": speeds}, speeds.size, T_ref,
+                                   asm.preload.assembled_N, asm.lubrication.speed_rpm)
+            pair = pl.run(base, remember=False).pair
+            G = np.array([sum(c.G_W_K for c in tr.ball_contacts(pl, _row_of(pair, j),
+                                                                float(v), T_ref))
+                          for j, v in enumerate(speeds)])
+            at = at.reshape(-1)
+            return G[at[1:]] / G[at[0]]
+        return self._balls.get_or_make(speed.tobytes(), make)
 
     def heat_curve(self, inputs) -> HeatCurve:
         """The pair's friction heat per row as a function of the bearing's temperature
@@ -725,6 +779,13 @@ class ThermalTransientFE(Effect):
 
     def describe(self) -> str:
         return "model form: " + self.change
+
+
+def _row_of(pair, j: int):
+    """Point j of a pair state (`analytic.bearing.state.take_rows`) as a one-point state."""
+    from analytic.bearing.state import take_rows
+
+    return take_rows(pair, np.array([j]))
 
 
 def _face_area_mm2(asm) -> float:
