@@ -285,6 +285,25 @@ def test_in_vacuum_the_outer_rings_clearance_fits_conduct_through_their_spots():
     assert tr.FIT_FACTOR[0] * spot <= lo and tr.FIT_FACTOR[1] * spot >= hi
 
 
+def test_the_ball_links_follow_the_rows_speed(pl):
+    """The rung's ball links at the rows' speed over its model's (at the assembly's speed): 1
+    on rows at the assembly's speed, and rising with the speed (a moving heat source's
+    constriction falls as the Peclet number rises: the surface passes through the contact
+    before a deep thermal layer forms, Carslaw & Jaeger sec. 10.7; the transient route's
+    `ball_contacts` at each speed, the route it couples its steps with)."""
+    from studies.model.inputs import baseline_inputs
+
+    asm = pl.asm
+    v0 = asm.lubrication.speed_rpm
+    cond = {"time_s": np.arange(5) * 120.0, "T_ambient_C": np.full(5, 20.0),
+            "speed_rpm": np.array([v0, v0, 10.0 * v0, 30.0 * v0, v0])}
+    inp = baseline_inputs(cond, 5, asm.T_ref_C, asm.preload.assembled_N, v0)
+    f = tr.ThermalTransientFE(asm).bind(pl).ball_factors(inp)
+    assert f.shape == (4,)
+    assert f[0] == pytest.approx(1.0, rel=1e-12) and f[3] == pytest.approx(1.0, rel=1e-12)
+    assert 1.0 < f[1] < f[2]
+
+
 def test_the_cached_rung_model_is_the_built_one(pl, rm):
     cached = tr.cached_rung_model(pl)
     for k in tr._ARRAYS:
