@@ -806,11 +806,45 @@ def speed_varies(conditions) -> bool:
     return v is not None and float(np.ptp(np.asarray(v, float))) > 0.0
 
 
+#: the heat scale is fitted at a constant speed where the pair's heat at the lowest ambient
+#: would raise the stack by more than this (K) in a film of HEAT_MATTERS_FILM_W_M2K on its
+#: outside faces: the heat then changes with the bearing's temperature over the record (an
+#: oil's viscous heat) and shapes the history; below it the heat's rise is a constant the
+#: films and the mount trade against each other
+HEAT_MATTERS_K = 1.0
+HEAT_MATTERS_FILM_W_M2K = 20.0
+
+
+def heat_matters(effect, conditions) -> bool:
+    """Whether the pair's heat at the conditions' lowest ambient (`ThermalTransientFE.
+    heat_curve`) raises the stack by more than HEAT_MATTERS_K in a HEAT_MATTERS_FILM_W_M2K film
+    over its outside faces (Q / (h A), the steady rise of a lumped body, Incropera eq. 1.3a)."""
+    from studies.model.inputs import baseline_inputs
+
+    amb = conditions.get("T_ambient_C")
+    if amb is None:
+        return False
+    asm = effect.asm
+    n = len(amb)
+    inputs = baseline_inputs(dict(conditions), n, asm.T_ref_C, asm.preload.assembled_N,
+                             asm.lubrication.speed_rpm)
+    curve = effect.heat_curve(inputs)
+    k = int(np.argmin(np.asarray(amb, float)))
+    rm = rung_model(effect.evaluated_on())
+    ok = ~np.isnan(rm.groups[:, 0])
+    # the reduction's first vector is the uniform field (`fem.reduced_thermal.krylov_basis`):
+    # every part's mean the same per unit of its coordinate
+    area_mm2 = float((rm.b_ext[0] + rm.b_bore[0]) / rm.groups[ok, 0][0])
+    G_W_K = HEAT_MATTERS_FILM_W_M2K * PER_M2_TO_PER_MM2 * area_mm2
+    return curve.heat_W(k, float(amb[k])) / G_W_K > HEAT_MATTERS_K
+
+
 def held_fixed(effect, conditions) -> tuple[str, ...]:
-    """`fitspec.held_fixed` of the rung: the heat scale at 1 when the speed is constant; the
+    """`fitspec.held_fixed` of the rung: the heat scale at 1 when the speed is constant and the
+    heat does not matter (`heat_matters`); the
     fits' conductance factor at 1 where it cannot move the stack's time constants
     (`RungModel.fit_matters`); the bore's film ratio where the shaft has no bore."""
-    held = () if speed_varies(conditions) else ("heat_scale",)
+    held = () if speed_varies(conditions) or heat_matters(effect, conditions) else ("heat_scale",)
     rm = rung_model(effect.evaluated_on())
     if not rm.fit_matters:
         held += ("fit_conductance_factor",)
