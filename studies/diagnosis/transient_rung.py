@@ -93,9 +93,11 @@ Parameters (bounds and sources):
 - heat_scale (-), 0..3, off 1: the bearing's friction heat in the stack x heat_scale (the
   friction laws' own spread about measured torques; `analytic.friction`); 1 is the torque
   model's own heat, and at film resistance 0 the heat raises nothing, so off is still the
-  configured model. Fitted only where the speed varies (held at 1 otherwise,
-  `fitspec.held_fixed`: at constant speed the heat's steady rise is a constant the mount and
-  the films trade against each other, and the model's own heat is the best statement of it).
+  configured model. Fitted where the speed varies or where the heat shapes the history
+  (`heat_matters`: an oil's viscous heat at the lowest ambient raising the stack by more than
+  HEAT_MATTERS_K); held at 1 otherwise (`fitspec.held_fixed`: a small heat's steady rise is
+  a constant the mount and the films trade against each other, and the model's own heat is the
+  best statement of it).
 
 Environment from the assembly's `[thermal]`: `gas = "vacuum"` makes the films radiation (their
 bound above; radiation alone changes threefold between -60 and 80 C, 4 eps sigma T^3, so each
