@@ -89,7 +89,10 @@ Parameters (bounds and sources):
   the assembled state; Holm's 1/(4 k a) of a static contact at the free contact angle differs
   from it by tens of per cent, and the surface films and the contact angle's change with
   temperature spread measured ball-bearing conductances by a factor of about 2..3: an
-  assumption stated as such). In vacuum the balls are the rotor's path to the housing.
+  assumption stated as such). Fitted in vacuum only, where the balls are the rotor's one path
+  to the housing (`RungModel.ball_matters`); in a gas the shaft's faces exchange with the air
+  beside them and the films and the balls trade against each other (seed 000's speed
+  staircase in still air: 3 +- 14), so it is held at 1 there.
 - heat_scale (-), 0..3, off 1: the bearing's friction heat in the stack x heat_scale (the
   friction laws' own spread about measured torques; `analytic.friction`); 1 is the torque
   model's own heat, and at film resistance 0 the heat raises nothing, so off is still the
@@ -186,6 +189,7 @@ class RungModel:
     vacuum: bool
     capacity_J_K: float
     fit_matters: bool = True
+    #: the ball links' factor is fitted (in vacuum, where it moves the time constants)
     ball_matters: bool = True
     rc: ReducedConduction | None = None
     nominal: ThermalParameters | None = None
@@ -207,8 +211,9 @@ def rung_model(pl) -> RungModel:
 
 #: format of the cached rung model (raise when its arrays or `TRAINING` change; 2: the faces
 #: by kind, `face_kind`; 3: open fits and spacer bores with their solid spots,
-#: `transient_route.contacts`, and the ball links' term B_ball)
-RUNG_FORMAT = 3
+#: `transient_route.contacts`, and the ball links' term B_ball; 4: the ball factor fitted in
+#: vacuum only)
+RUNG_FORMAT = 4
 #: the arrays of a cached `RungModel` (its scalars are stored as 0-d arrays)
 _ARRAYS = ("M", "K0", "F_ext", "b_ext", "F_bore", "b_bore", "C_fit", "B_ball", "F_face",
            "b_face",
@@ -331,7 +336,7 @@ def build(pl) -> RungModel:
             groups=tr.group_rows(tc) @ rc.V, vacuum=pl.asm.thermal.gas == "vacuum",
             capacity_J_K=float(tc.M.sum()), rc=rc, nominal=nominal, exterior=tuple(ext))
         return replace(out, fit_matters=_term_matters(out, "fit"),
-                       ball_matters=_term_matters(out, "ball"))
+                       ball_matters=out.vacuum and _term_matters(out, "ball"))
     return make()
 
 
