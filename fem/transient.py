@@ -68,6 +68,14 @@ SIGMA_W_MM2_K4 = 5.670374419e-14
 KELVIN = 273.15
 #: W/(m^2 K) -> W/(mm^2 K)
 PER_M2_TO_PER_MM2 = 1e-6
+#: solid-spot conductance of a clearance / slip fit's metallic contact at light pressure
+#: (W/(m^2 K)): Incropera & DeWitt, Fundamentals of Heat and Mass Transfer, 6th ed., Table
+#: 3.1, stainless steel interfaces in vacuum at 100 kN/m^2 (0.1 MPa, a light contact):
+#: R'' = 6..25e-4 m^2 K/W, h = 400..1670 W/(m^2 K) (OPEN_FIT_SPOT_RANGE_W_M2K); the nominal
+#: is the range's geometric mean, 816 W/(m^2 K). A clearance fit's spots carry no more than
+#: that light pressure; the aluminium and magnesium of that table (R'' 1.5..5e-4) conduct more
+OPEN_FIT_SPOT_RANGE_W_M2K = (1.0 / 25e-4, 1.0 / 6e-4)
+OPEN_FIT_SPOT_W_M2K = float(np.sqrt(OPEN_FIT_SPOT_RANGE_W_M2K[0] * OPEN_FIT_SPOT_RANGE_W_M2K[1]))
 
 
 # ------------------------------------------------------------------------ contact conductance
@@ -86,12 +94,18 @@ class SurfacePair:
     gas_conductivity_W_mK: the interstitial gas (air 0.026 at 20 C, Incropera Table A.4;
     0 in vacuum). gas_jump_um: the gas rarefaction parameter M = alpha beta Lambda (air at
     1 atm ~ 0.37 um, Madhusudana ch. 5).
+    spot_W_m2K: the solid-spot conductance of an open (clearance, slip) fit (W/(m^2 K)): the
+    ring or spacer rests on its seat at contact spots (its weight, the radial load, the
+    fit's out-of-roundness), which the axisymmetric mean gap does not hold; in parallel with
+    the gas across the gap. 0: no spots (the mean gap's gas alone); a stack's fits take
+    OPEN_FIT_SPOT_W_M2K (`studies.model.transient_route.contacts`).
     """
     roughness_um: float = 0.5
     slope: float | None = None
     microhardness_MPa: float = 3.4e3
     gas_conductivity_W_mK: float = 0.026
     gas_jump_um: float = 0.37
+    spot_W_m2K: float = 0.0
 
     @property
     def m(self) -> float:
@@ -108,11 +122,15 @@ def contact_conductance_W_m2K(pressure_MPa, gap_um, k1_W_mK: float, k2_W_mK: flo
 
         h_s = 1.25 k_s (m / sigma) (p / H_c)^0.95,   k_s = 2 k1 k2 / (k1 + k2)
 
+    (no less than the spots of a light contact, `SurfacePair.spot_W_m2K`)
+
     plus the gas in the gaps between the asperities (Yovanovich 1981, the mean plane separation
     Y = 1.53 sigma (p / H_c)^-0.097, Madhusudana eq. 5.12): h_g = k_g / (Y + M).
     Open (p <= 0): conduction across the gas gap, h = k_g / (g + M) (Incropera ch. 3.1.4; the
-    temperature jump M as above); radiation across the gap is left out (a few W/(m^2 K) below
-    150 C). Vacuum (k_g = 0): an open fit conducts nothing. Units: sigma and M in um -> m inside.
+    temperature jump M as above), plus the solid spots the open fit rests on
+    (`SurfacePair.spot_W_m2K`, in parallel); radiation across the gap is left out (a few
+    W/(m^2 K) below 150 C). Vacuum (k_g = 0): an open fit conducts through its spots alone
+    (nothing without them). Units: sigma and M in um -> m inside.
     """
     p = np.asarray(pressure_MPa, float)
     g = np.maximum(np.asarray(gap_um, float), 0.0)
@@ -121,8 +139,9 @@ def contact_conductance_W_m2K(pressure_MPa, gap_um, k1_W_mK: float, k2_W_mK: flo
     ratio = np.maximum(p, 1e-12) / surf.microhardness_MPa
     h_solid = 1.25 * ks * surf.m / sig_m * ratio ** 0.95
     h_gas_closed = surf.gas_conductivity_W_mK / (1.53 * sig_m * ratio ** -0.097 + M_m)
-    h_open = surf.gas_conductivity_W_mK / (g * 1e-6 + M_m)
-    return np.where(p > 0, h_solid + h_gas_closed, h_open)
+    h_open = surf.gas_conductivity_W_mK / (g * 1e-6 + M_m) + surf.spot_W_m2K
+    # a closed fit conducts at least as the light contact of its spots: continuous where it opens
+    return np.where(p > 0, np.maximum(h_solid, surf.spot_W_m2K) + h_gas_closed, h_open)
 
 
 def fit_conductances_W_m2K(model: StackModel, pressure_MPa, gap_um,

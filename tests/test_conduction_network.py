@@ -10,7 +10,8 @@ import pytest
 
 from studies.model.config import load_shipped
 from studies.validation.conduction_network import (
-    ENVIRONMENTS, AIR_K_W_MK, AIR_PR, Network, Surface, annulus_shells, conduction_temperatures,
+    ENVIRONMENTS, AIR_K_W_MK, AIR_PR, BearingHeat, Network, Surface, annulus_shells,
+    conduction_temperatures,
     film_W_m2K, series, stack_network)
 
 
@@ -76,6 +77,54 @@ def test_energy_is_conserved_on_the_stack(seed000):
                 np.abs(h.energy_stored_J).max())
     assert np.max(np.abs(h.energy_balance_J())) < 1e-6 * scale
     assert h.energy_in_J[-1] == pytest.approx(2.0 * t[-1], rel=1e-9)
+
+
+def _viscous_law(H0_W, T0_C, a_K, n_rows, weights):
+    """A `BearingHeat` of H0 exp(-(T - T0) / a) (W; the viscous heat of an oil as it warms) on a
+    5 K grid: interpolated in ln(heat), it is that law exactly."""
+    grid = np.arange(-100.0, 300.0, 5.0)
+    return BearingHeat(grid, (np.log(H0_W) - (grid - T0_C) / a_K)[None, :],
+                       np.zeros(n_rows, int), np.asarray(weights, float))
+
+
+def test_a_heat_at_the_body_s_own_temperature_settles_at_the_lambert_w_balance():
+    """One node (C, film h A to an ambient u) heated by H0 exp(-(T - T0) / a) at its own
+    temperature: it settles where h A (T - u) = H(T), x = (T - u) / a = W(H0 e^{-(u - T0)/a} /
+    (h A a)) (Lambert's W, scipy.special.lambertw); BDF within 1e-6 of the rise after 20 time
+    constants; the energy put in is the heat at the node's temperature, integrated
+    (put in = stored + lost, 1e-7 of the largest)."""
+    from scipy.special import lambertw
+
+    C, hA, u, H0, T0, a = 500.0, 0.4, -40.0, 30.0, 20.0, 12.0
+    net = Network(np.array([C]), np.zeros((1, 1)), [Surface(0, 1.0, hA)])
+    net.heat_share = np.array([1.0])
+    t = np.linspace(0.0, 20 * C / hA, 201)
+    law = _viscous_law(H0, T0, a, t.size, [1.0])
+    T, ledger = net.integrate(t, np.full(t.size, u), law, rtol=1e-10, atol_K=1e-10)
+    x = float(np.real(lambertw(H0 * np.exp(-(u - T0) / a) / (hA * a))))
+    rise = a * x
+    assert abs(T[-1, 0] - (u + rise)) < 1e-6 * rise
+    assert rise > 20.0                                    # the heat warms it far off the ambient
+    bal = ledger[:, 0] - ledger[:, 1] - ledger[:, 2]
+    assert np.max(np.abs(bal)) < 1e-7 * np.abs(ledger).max()
+
+
+def test_a_heat_at_the_bearing_s_temperature_conserves_energy_on_the_stack(seed000):
+    """Seed 000 in forced air over a -60..80 C cycle with a heat falling steeply as its rings and
+    balls warm (H0 exp(-(T - 20 C) / 10 K), 5 W at 20 C): put in = stored + lost (1e-6 of the
+    largest) and the heat put in over each row interval is the law at the bearing's
+    temperature (the rows' trapezoid within 2 % of the ledger's increment)."""
+    t = np.arange(0.0, 4 * 3600.0 + 1, 120.0)
+    amb = 20.0 + 60.0 * np.sin(2 * np.pi * t / 14400.0)
+    law = _viscous_law(5.0, 20.0, 10.0, t.size, np.zeros(0))
+    h = conduction_temperatures(seed000, t, amb, "forced_air", heat_W=law, rtol=1e-7)
+    scale = max(np.abs(h.energy_in_J).max(), np.abs(h.energy_lost_J).max(),
+                np.abs(h.energy_stored_J).max())
+    assert np.max(np.abs(h.energy_balance_J())) < 1e-6 * scale
+    oil = np.mean([h.columns[c] for c in ("T_inner_ring_C", "T_ball_C", "T_outer_ring_C")], axis=0)
+    Q = 5.0 * np.exp(-(oil - 20.0) / 10.0)
+    trap = 0.5 * (Q[1:] + Q[:-1]) * np.diff(t)
+    assert np.max(np.abs(np.diff(h.energy_in_J) - trap)) < 0.02 * trap.max()
 
 
 def test_vacuum_steady_state_radiates_the_heat(seed000):

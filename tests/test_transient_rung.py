@@ -42,7 +42,8 @@ def rm(pl):
 
 def _params(**kw):
     p = {"film_resistance_m2K_W": 0.05, "bore_film_ratio": 1.0, "G_face_W_K": 0.0, "G_env_W_K": 0.0,
-         "C_mount_J_K": tr.C_MOUNT_MIN_J_K, "fit_conductance_factor": 1.0, "heat_scale": 1.0}
+         "C_mount_J_K": tr.C_MOUNT_MIN_J_K, "fit_conductance_factor": 1.0,
+         "ball_conductance_factor": 1.0, "heat_scale": 1.0}
     p.update(kw)
     return p
 
@@ -178,6 +179,129 @@ def test_in_vacuum_the_film_linearised_about_the_sink_follows_full_radiation(rm)
     lag = np.max(np.abs(ref[:, ok] - sink[:, None]))
     assert lag > 20.0                                     # a real lag to linearise
     assert err < 0.2 * err_one and err < 0.03 * lag, (err, err_one, lag)
+
+
+def _exp_curve(H0_W, T0_C, a_K, n=1):
+    """A `HeatCurve` of the law H0 exp(-(T - T0) / a) (W; the form of a viscous heat as the oil
+    warms) on a 5 K grid: interpolated in ln(heat), it is that law exactly on the grid's span
+    (but for HEAT_FLOOR_W)."""
+    grid = np.arange(-100.0, 300.0, 5.0)
+    ln = np.log(H0_W * np.exp(-(grid - T0_C) / a_K) + tr.HEAT_FLOOR_W)
+    return tr.HeatCurve(grid, ln[None, :], np.zeros(n, int))
+
+
+def _steady(rm, p, amb, Q):
+    """The steady state (reduced coordinates, mount) of the augmented system at ambient amb and
+    a heat Q (W), solved directly (no time stepping) from the rung model's matrices."""
+    m = rm.m
+    h = PER_M2_TO_PER_MM2 / p["film_resistance_m2K_W"]
+    hm = p["G_face_W_K"] / rm.area_face_mm2
+    A = np.zeros((m + 1, m + 1))
+    A[:m, :m] = rm.K0 + rm.C_fit + h * (rm.F_ext + rm.F_bore) + hm * rm.F_face
+    A[:m, m] = A[m, :m] = -hm * rm.b_face
+    A[m, m] = p["G_face_W_K"] + p["G_env_W_K"]
+    f = np.zeros(m + 1)
+    f[:m] = h * (rm.b_ext + rm.b_bore) * amb + Q * rm.a_heat
+    f[m] = p["G_env_W_K"] * amb
+    return np.linalg.solve(A, f)
+
+
+def test_a_heat_that_falls_as_the_bearing_warms_settles_where_it_balances_the_losses(rm):
+    """A heat following the bearing's own temperature, H(T) = H0 exp(-(T - 20 C) / 15 K) (the
+    viscous heat of an oil whose viscosity halves every ~10 K), at a constant ambient: the stack
+    settles where the heat the bearing makes at its temperature is what the films and the mount
+    carry away. Closed form beside the trial: the linear system's steady state is affine in Q,
+    T_b = T_b(0) + Q dT_b/dQ (solved directly), and the scalar balance
+    Q = H(T_b(0) + Q dT_b/dQ) by bisection; the trial's first row (its steady start) and its
+    last row 1e6 s after a step of the ambient agree with it to 1e-6 W, and energy is conserved
+    (heat in = films + mount out, 1e-8 relative)."""
+    p = _params(film_resistance_m2K_W=1.0 / 8.0, G_face_W_K=2.0, G_env_W_K=1.0,
+                C_mount_J_K=3000.0)
+    H0, a = 40.0, 15.0
+    curve = _exp_curve(H0, 20.0, a, n=3)
+    t = np.array([0.0, 1.0, 1e6])                  # the ambient a step at 1 s, then held
+    amb = np.array([-40.0, 10.0, 10.0])
+    T = tr.part_temperatures_C(rm, p, t, amb, curve)
+    oil = [PARTS.index(k) for k in tr.OIL_PARTS]
+    G = rm.groups[oil].mean(axis=0)
+    for row, T_amb in ((0, -40.0), (2, 10.0)):
+        x0, x1 = _steady(rm, p, T_amb, 0.0), _steady(rm, p, T_amb, 1.0)
+        Tb0, dT = G @ x0[:-1], G @ (x1 - x0)[:-1]
+        lo, hi = 0.0, H0 * np.exp((20.0 - T_amb) / a)
+        for _ in range(200):                                 # bisection on the balance
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if mid < H0 * np.exp(-(Tb0 + dT * mid - 20.0) / a) else (lo, mid)
+        Q = 0.5 * (lo + hi)
+        x = x0 + Q * (x1 - x0)
+        assert abs(np.mean(T[row, oil]) - (Tb0 + dT * Q)) < 1e-6 * dT * max(Q, 1.0)
+        # conservation at the balance: what the bearing makes leaves through films and mount
+        h = PER_M2_TO_PER_MM2 / p["film_resistance_m2K_W"]
+        b = rm.b_ext + rm.b_bore
+        out = h * (b @ x[:-1] - T_amb * (b @ _one(rm))) + p["G_env_W_K"] * (x[-1] - T_amb)
+        assert out == pytest.approx(Q, rel=1e-8)
+    # the cold start makes a heat far above the warm one's, and the bearing warms to cut it
+    assert np.mean(T[0, oil]) > -40.0 + 5.0
+
+
+def test_the_ball_links_factor_is_the_fe_s_ball_conductances_scaled(rm):
+    """The rung's operator at ball_conductance_factor f against the conduction's own reduced
+    operator (`fem.reduced_thermal.ReducedConduction.operator`, a second assembly) with both
+    ball conductances times f: equal to 1e-12 of the operator's largest entry."""
+    from dataclasses import replace
+
+    f = 0.4
+    prm = replace(rm.nominal, ball_inner_W_K=f * rm.nominal.ball_inner_W_K,
+                  ball_outer_W_K=f * rm.nominal.ball_outer_W_K)
+    ref = rm.rc.operator(prm)
+    mine = rm.K0 + rm.C_fit + (f - 1.0) * rm.B_ball
+    assert np.max(np.abs(mine - ref)) < 1e-12 * np.max(np.abs(ref))
+    assert np.max(np.abs(rm.B_ball)) > 0.0
+
+
+def test_in_vacuum_the_outer_rings_clearance_fits_conduct_through_their_spots():
+    """Seed 000 in vacuum: its outer rings sit in clearance fits (open at the assembled state).
+    The handbook's metallic interfaces in vacuum (Incropera & DeWitt 6th ed. Table 3.1,
+    stainless steel at 0.1 MPa: R'' 6..25e-4 m^2 K/W) hold them at 400..1670 W/(m^2 K), the
+    independent conduction network's 670 among them
+    (`conduction_network.CONTACT_W_M2K`); the rung's contact model lands in that range and its
+    fit factor's range covers the table's (no gas: the spots are the only path)."""
+    from dataclasses import replace
+
+    from studies.model import transient_route as route
+    from studies.validation.conduction_network import CONTACT_W_M2K
+
+    asm = load_shipped("seed000")
+    vac = replace(asm, thermal=replace(asm.thermal, gas="vacuum"))
+    plv = Pipeline(vac, mesh_factor=MESH_FACTOR)
+    c = route.contacts(plv, route.stack_conduction(plv))
+    names = [f.name for f in plv.model.section.fits]
+    lo, hi = 1.0 / 25e-4, 1.0 / 6e-4
+    assert lo < CONTACT_W_M2K[("clearance", "vacuum")] < hi
+    for name, h in zip(names, c.fit_W_m2K):
+        if name.startswith("fit_outer"):
+            assert lo <= h <= hi, (name, h)
+    assert lo <= c.bore_W_m2K <= hi
+    spot = c.bore_W_m2K                    # the spacer bores' conductance: the spots alone
+    assert tr.FIT_FACTOR[0] * spot <= lo and tr.FIT_FACTOR[1] * spot >= hi
+
+
+def test_the_ball_links_follow_the_rows_speed(pl):
+    """The rung's ball links at the rows' speed over its model's (at the assembly's speed): 1
+    on rows at the assembly's speed, and rising with the speed (a moving heat source's
+    constriction falls as the Peclet number rises: the surface passes through the contact
+    before a deep thermal layer forms, Carslaw & Jaeger sec. 10.7; the transient route's
+    `ball_contacts` at each speed, the route it couples its steps with)."""
+    from studies.model.inputs import baseline_inputs
+
+    asm = pl.asm
+    v0 = asm.lubrication.speed_rpm
+    cond = {"time_s": np.arange(5) * 120.0, "T_ambient_C": np.full(5, 20.0),
+            "speed_rpm": np.array([v0, v0, 10.0 * v0, 30.0 * v0, v0])}
+    inp = baseline_inputs(cond, 5, asm.T_ref_C, asm.preload.assembled_N, v0)
+    f = tr.ThermalTransientFE(asm).bind(pl).ball_factors(inp)
+    assert f.shape == (4,)
+    assert f[0] == pytest.approx(1.0, rel=1e-12) and f[3] == pytest.approx(1.0, rel=1e-12)
+    assert 1.0 < f[1] < f[2]
 
 
 def test_the_cached_rung_model_is_the_built_one(pl, rm):

@@ -16,15 +16,24 @@ h x bore_film_ratio; the faces inside the housing none; film h = 1 / film_resist
 radiation linearised about the mean ambient, Incropera ch. 1.2.3 eq. 1.9; in vacuum the
 radiation alone, its film per interval between rows the secant eps sigma (T + T_s)(T^2 + T_s^2)
 between the sink and the housing, `radiating_part_temperatures_C`) + f sum_k h_k C_k (the fits' contact conductances h_k from their assembled
-pressure, Yovanovich's plastic correlation, `fem.transient.contact_conductance_W_m2K`,
-scaled by f = fit_conductance_factor) + the spacer bores' and the ball links' terms (their
-values at the assembled state, `transient_route.contacts`) + hm F_face; the mount couples to
+pressure, Yovanovich's plastic correlation, `fem.transient.contact_conductance_W_m2K`, open
+fits through their solid spots, scaled by f = fit_conductance_factor) + f_b B (the ball links'
+term at the assembled state, `transient_route.contacts`, scaled by f_b =
+ball_conductance_factor) + the spacer bores' term + hm F_face; the mount couples to
 the housing's outer face (`housing_outer`, a housing held in a bracket's bore or on its
 flange's rim) with hm = G_face / A_face uniformly over the face (W/(mm^2 K)); Q(t) the pair's
-friction heat at the row (the torque model's, `transient_route.pair_heat`, at the row's
-speed, preload and loads with the parts at the ambient), split half to the raceways and half to
-the ball nodes as the transient route splits an extra heat (`transient_route.extra_share`),
-scaled by s = heat_scale. The system is symmetric (conduction, films, contact and the mount's
+friction heat at the bearing's own temperature (the mean of its rings and balls, as the
+transient route couples its heat at the state, `transient_route.run_transient`): the torque
+model's heat (`transient_route.pair_heat` through the one route) at the row's speed,
+assembled preload and loads with every part at that temperature, tabulated once per
+conditions over the temperature (`HeatCurve`, `ThermalTransientFE.heat_curve`; an oil's
+viscous heat falls tenfold or more from -60 C to 20 C, so a heat taken at the ambient is far
+from the bearing's); split half to the raceways and half to the ball nodes as the transient
+route splits an extra heat (`transient_route.extra_share`), scaled by s = heat_scale. Each
+interval's heat is held at its value at the interval's end, where it balances the bearing's
+temperature it makes (`HeatCurve.solve`, a scalar root per row: stable however steeply the
+heat falls; the listed effects' changes of the friction coefficient or the preload do not
+move it). The system is symmetric (conduction, films, contact and the mount's
 coupling are), so one generalised eigen-decomposition A phi = lambda M phi of the augmented
 (m + 1) system per trial diagonalises it; each mode then obeys z' = -lambda z + g(t) with g
 piecewise linear between the rows (the conditions' ambient and heat interpolated linearly in
@@ -34,8 +43,9 @@ time, as `thermal_lag` takes the ambient), integrated exactly over each interval
               + s_k (lambda h - 1 + e^{-lambda h}) / lambda^2
 
 (the variation-of-constants formula, e.g. Ogata, Modern Control Engineering ch. 9 for a
-first-order-hold input). Initial state: the steady state of the first row (the stack at rest
-at the first ambient, with the first row's heat). The rows' part temperatures are the volume
+first-order-hold input; the heat held over the interval adds Q w (1 - e^{-lambda h}) / lambda).
+Initial state: the steady state of the first row (the stack at rest at the first ambient,
+with the heat that balances it). The rows' part temperatures are the volume
 means of the `inputs.PARTS` groups (`transient_route.group_rows`, the means the transient
 route writes as T_<part>_C) and go into the rows' inputs as every temperature does: the
 pipeline's one route (`studies.model.pipeline.Pipeline`) takes them, parts with a measured
@@ -45,8 +55,8 @@ Fast trial: within a trial the contact conductances are held (the fits' at
 their assembled pressure times the factor, the balls' at the assembled state), so the
 conduction is linear and a trial costs one (m + 1)^2 eigen-decomposition and the exact
 recursion over the rows, no time stepping between them (`bearingfem bench --diagnose`,
-kind "thermal_transient_fe", prints its time); the heat of the rows is computed once per
-conditions (memo) from the configured model.
+kind "thermal_transient_fe", prints its time); the heat curve of the rows is computed once
+per conditions (memo) from the configured model.
 
 Parameters (bounds and sources):
 
@@ -74,12 +84,23 @@ Parameters (bounds and sources):
 - fit_conductance_factor (-), 1/3..3, off 1: the fits' contact conductance about Yovanovich's
   correlation (the spread of measured conductances about the correlations for ground metal
   joints, a factor of about 2..3: Madhusudana 2014 ch. 3; an assumption stated as such).
+- ball_conductance_factor (-), 1/3..3, off 1: the ball-raceway conductances about the rolling
+  contacts' constriction (`analytic.heat.rolling_contact_conductance`: the Hertz ellipse at
+  the assembled state; Holm's 1/(4 k a) of a static contact at the free contact angle differs
+  from it by tens of per cent, and the surface films and the contact angle's change with
+  temperature spread measured ball-bearing conductances by a factor of about 2..3: an
+  assumption stated as such). Fitted in vacuum only, where the balls are the rotor's one path
+  to the housing (`RungModel.ball_matters`); in a gas the shaft's faces exchange with the air
+  beside them and the films and the balls trade against each other (seed 000's speed
+  staircase in still air: 3 +- 14), so it is held at 1 there.
 - heat_scale (-), 0..3, off 1: the bearing's friction heat in the stack x heat_scale (the
   friction laws' own spread about measured torques; `analytic.friction`); 1 is the torque
   model's own heat, and at film resistance 0 the heat raises nothing, so off is still the
-  configured model. Fitted only where the speed varies (held at 1 otherwise,
-  `fitspec.held_fixed`: at constant speed the heat's steady rise is a constant the mount and
-  the films trade against each other, and the model's own heat is the best statement of it).
+  configured model. Fitted where the speed varies or where the heat shapes the history
+  (`heat_matters`: an oil's viscous heat at the lowest ambient raising the stack by more than
+  HEAT_MATTERS_K); held at 1 otherwise (`fitspec.held_fixed`: a small heat's steady rise is
+  a constant the mount and the films trade against each other, and the model's own heat is the
+  best statement of it).
 
 Environment from the assembly's `[thermal]`: `gas = "vacuum"` makes the films radiation (their
 bound above; radiation alone changes threefold between -60 and 80 C, 4 eps sigma T^3, so each
@@ -132,12 +153,13 @@ MOUNT_FILM_MAX_W_M2K = 25.0
 C_MOUNT_MIN_J_K = 1.0
 C_MOUNT_MAX_J_K = 2.5e5
 FIT_FACTOR = (1.0 / 3.0, 3.0)
+BALL_FACTOR = (1.0 / 3.0, 3.0)
 HEAT_SCALE_MAX = 3.0
 #: training film coefficients of the reduction (W/(m^2 K)) on the exterior faces, with the fits'
-#: conductance factor, and the mount face's own film (the mount's coupling hm up to
-#: JOINT_CONDUCTANCE_MAX_W_M2K)
-TRAINING = ((2.0, 1.0 / 3.0, 0.0), (20.0, 1.0, 0.0), (200.0, 3.0, 0.0), (10.0, 1.0, 1.0e4),
-            (500.0, 1.0 / 3.0, 1.0e3))
+#: conductance factor, the mount face's own film (the mount's coupling hm up to
+#: JOINT_CONDUCTANCE_MAX_W_M2K) and the ball links' factor
+TRAINING = ((2.0, 1.0 / 3.0, 0.0, 3.0), (20.0, 1.0, 0.0, 1.0), (200.0, 3.0, 0.0, 1.0 / 3.0),
+            (10.0, 1.0, 1.0e4, 1.0 / 3.0), (500.0, 1.0 / 3.0, 1.0e3, 3.0))
 
 
 @dataclass(frozen=True)
@@ -147,7 +169,7 @@ class RungModel:
     M, K0 (m, m): capacity (J/K) and the conduction with the spacer bores' and ball links'
     terms (W/K); F_ext, b_ext: the outside faces' film matrix and drive (mm^2), F_bore, b_bore
     the shaft bore's (`face_kind`); C_fit: the
-    fits' term at their assembled conductances (W/K); F_face, b_face, area_face_mm2: the mount
+    fits' term at their assembled conductances (W/K); B_ball: the ball links' (W/K, in K0); F_face, b_face, area_face_mm2: the mount
     face's; a_heat (m,): the load of 1 W of the pair's heat; groups (len(PARTS), m): the part
     group means per coordinate (NaN rows: a group the stack lacks); h_rad_W_m2K: the file's
     emissivity's linearised radiation (air; 0 without), vacuum: the films are radiation."""
@@ -158,6 +180,7 @@ class RungModel:
     F_bore: np.ndarray
     b_bore: np.ndarray
     C_fit: np.ndarray
+    B_ball: np.ndarray
     F_face: np.ndarray
     b_face: np.ndarray
     area_face_mm2: float
@@ -166,6 +189,8 @@ class RungModel:
     vacuum: bool
     capacity_J_K: float
     fit_matters: bool = True
+    #: the ball links' factor is fitted (in vacuum, where it moves the time constants)
+    ball_matters: bool = True
     rc: ReducedConduction | None = None
     nominal: ThermalParameters | None = None
     exterior: tuple = ()
@@ -185,27 +210,32 @@ def rung_model(pl) -> RungModel:
 
 
 #: format of the cached rung model (raise when its arrays or `TRAINING` change; 2: the faces
-#: by kind, `face_kind`)
-RUNG_FORMAT = 2
+#: by kind, `face_kind`; 3: open fits and spacer bores with their solid spots,
+#: `transient_route.contacts`, and the ball links' term B_ball; 4: the ball factor fitted in
+#: vacuum only)
+RUNG_FORMAT = 4
 #: the arrays of a cached `RungModel` (its scalars are stored as 0-d arrays)
-_ARRAYS = ("M", "K0", "F_ext", "b_ext", "F_bore", "b_bore", "C_fit", "F_face", "b_face",
+_ARRAYS = ("M", "K0", "F_ext", "b_ext", "F_bore", "b_bore", "C_fit", "B_ball", "F_face",
+           "b_face",
            "a_heat", "groups")
-_SCALARS = ("area_face_mm2", "vacuum", "capacity_J_K", "fit_matters")
+_SCALARS = ("area_face_mm2", "vacuum", "capacity_J_K", "fit_matters", "ball_matters")
 _SCALAR_TYPES = {"area_face_mm2": float, "vacuum": bool, "capacity_J_K": float,
-                 "fit_matters": bool}
+                 "fit_matters": bool, "ball_matters": bool}
 
 
 @dataclass(frozen=True)
 class RungParameters:
     """One trial's parameters of the rung (`ThermalTransientFE.parameters`, units there):
     film_resistance_m2K_W (m2 K/W; 0: no film, the configured model), bore_film_ratio (-),
-    G_face_W_K, G_env_W_K (W/K), C_mount_J_K (J/K), fit_conductance_factor (-), heat_scale (-)."""
+    G_face_W_K, G_env_W_K (W/K), C_mount_J_K (J/K), fit_conductance_factor (-),
+    ball_conductance_factor (-), heat_scale (-)."""
     film_resistance_m2K_W: float
     bore_film_ratio: float
     G_face_W_K: float
     G_env_W_K: float
     C_mount_J_K: float
     fit_conductance_factor: float
+    ball_conductance_factor: float
     heat_scale: float
 
     @classmethod
@@ -281,12 +311,14 @@ def build(pl) -> RungModel:
                                     bore_conductance_W_m2K=c.bore_W_m2K,
                                     T_rad_lin_C=pl.asm.T_ref_C)
         training = []
-        for h, f, h_face in TRAINING:
+        for h, f, h_face, f_b in TRAINING:
             films = {g: h for g in filmed}
             if MOUNT_FACE in films:
                 films[MOUNT_FACE] = h + h_face
             training.append(replace(nominal, film_W_m2K=films,
-                                    fit_conductance_W_m2K=tuple(c.fit_W_m2K * f)))
+                                    fit_conductance_W_m2K=tuple(c.fit_W_m2K * f),
+                                    ball_inner_W_K=c.ball_W_K[0] * f_b,
+                                    ball_outer_W_K=c.ball_W_K[1] * f_b))
         inputs = tr.heat_inputs(tc) + ([MOUNT_FACE] if MOUNT_FACE in tc.a else [])
         rc = ReducedConduction(tc, tr.cached_basis(pl, tc, training, inputs))
         K0 = rc.operator(nominal) - _fit_part(rc, c.fit_W_m2K)
@@ -298,27 +330,34 @@ def build(pl) -> RungModel:
             M=rc.M, K0=K0, F_ext=sum(rc.F[g] for g in ext), b_ext=sum(rc.b[g] for g in ext),
             F_bore=sum((rc.F[g] for g in bore), zero), b_bore=sum((rc.b[g] for g in bore),
                                                                   np.zeros(rc.m)),
-            C_fit=_fit_part(rc, c.fit_W_m2K), F_face=rc.F[face] if face else zero,
+            C_fit=_fit_part(rc, c.fit_W_m2K), B_ball=_ball_part(rc, c.ball_W_K), F_face=rc.F[face] if face else zero,
             b_face=rc.b[face] if face else np.zeros(rc.m),
             area_face_mm2=float(tc.b[face].sum()) if face else 0.0, a_heat=a_heat,
             groups=tr.group_rows(tc) @ rc.V, vacuum=pl.asm.thermal.gas == "vacuum",
             capacity_J_K=float(tc.M.sum()), rc=rc, nominal=nominal, exterior=tuple(ext))
-        return replace(out, fit_matters=_fit_matters(out))
+        return replace(out, fit_matters=_term_matters(out, "fit"),
+                       ball_matters=out.vacuum and _term_matters(out, "ball"))
     return make()
 
 
-#: the fits' conductance factor is fitted when its range (FIT_FACTOR) moves one of the stack's
-#: FIT_MATTERS_MODES slowest time constants by more than this share (at a film of 20 W/(m^2 K),
-#: no mount); else it is held at 1 (`held_fixed`): the fits then conduct so much more than the
-#: films and ball contacts in series with them that no data can see their conductance
+#: the fits' (the ball links') conductance factor is fitted when its range (FIT_FACTOR,
+#: BALL_FACTOR) moves one of the stack's FIT_MATTERS_MODES slowest time constants by more than
+#: this share (at a film of 20 W/(m^2 K), no mount); else it is held at 1 (`held_fixed`): the
+#: term then conducts so much more than the films and contacts in series with it that no data
+#: can see its conductance
 FIT_MATTERS_REL = 0.01
 FIT_MATTERS_MODES = 4
 
 
-def _fit_matters(rm: RungModel) -> bool:
+def _term_matters(rm: RungModel, which: str) -> bool:
+    """Whether the fits' (which "fit", over FIT_FACTOR) or the ball links' ("ball", over
+    BALL_FACTOR) conductance factor moves one of the FIT_MATTERS_MODES slowest time constants
+    by more than FIT_MATTERS_REL, the other factor at 1."""
     lam = []
-    for f in FIT_FACTOR:
-        A = rm.K0 + f * rm.C_fit + (20.0 * PER_M2_TO_PER_MM2) * (rm.F_ext + rm.F_bore)
+    for f in (FIT_FACTOR if which == "fit" else BALL_FACTOR):
+        fit, ball = (f, 1.0) if which == "fit" else (1.0, f)
+        A = (rm.K0 + fit * rm.C_fit + (ball - 1.0) * rm.B_ball
+             + (20.0 * PER_M2_TO_PER_MM2) * (rm.F_ext + rm.F_bore))
         lam.append(sla.eigh(0.5 * (A + A.T), rm.M, eigvals_only=True)[:FIT_MATTERS_MODES])
     return bool(np.max(np.abs(lam[1] - lam[0]) / lam[1]) > FIT_MATTERS_REL)
 
@@ -338,6 +377,15 @@ def face_kind(group: str) -> str:
     if group.startswith(INSIDE):
         return "inside"
     return "bore" if group == "shaft_bore" else "outside"
+
+
+def _ball_part(rc: ReducedConduction, ball_W_K) -> np.ndarray:
+    """The reduced ball links' term (W/K) at the (inner, outer) conductances ball_W_K (W/K per
+    bearing, ball nodes), as `fem.transient.TransientConduction` sums it."""
+    out = np.zeros((rc.m, rc.m))
+    for Ci, Co in zip(rc.ball_inner, rc.ball_outer):
+        out += ball_W_K[0] * Ci + ball_W_K[1] * Co
+    return out
 
 
 def _fit_part(rc: ReducedConduction, h_fit_W_m2K) -> np.ndarray:
@@ -380,6 +428,19 @@ def radiation_film_factor(T_sink_C: np.ndarray, T_face_C: np.ndarray | None,
     return (T + Ts) * (T * T + Ts * Ts) / (4.0 * (T_ref_C + K) ** 3)
 
 
+def _levels(film_factor, ball_factor, n: int):
+    """(film factor per level, ball factor per level, level of each interval): the intervals'
+    distinct pairs of the film's bin (`film_levels`) and the ball links' factor."""
+    k = max(n - 1, 1)
+    if film_factor is None or n < 2:
+        f_lv, f_of = np.ones(1), np.zeros(k, int)
+    else:
+        f_lv, f_of = film_levels(film_factor)
+    b = np.ones(k) if ball_factor is None or n < 2 else np.asarray(ball_factor, float)
+    pairs, level = np.unique(np.column_stack([f_of, b]), axis=0, return_inverse=True)
+    return f_lv[pairs[:, 0].astype(int)], pairs[:, 1], level.reshape(-1)
+
+
 def film_levels(factor: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(factor per level, level of each interval): the film factor of each interval (-) held
     at the centre of its FILM_BIN_LN bin of ln(factor)."""
@@ -388,13 +449,67 @@ def film_levels(factor: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return np.exp(centres * FILM_BIN_LN), level.reshape(-1)
 
 
+#: the parts whose mean temperature is the bearing's (its oil's, as `transient_route` takes
+#: it for the torque and the EHL film): the rings and the balls
+OIL_PARTS = ("inner_ring", "outer_ring", "ball")
+#: the grid of the heat curve (`heat_curve`): from HEAT_GRID_BELOW_K under the lowest ambient
+#: to HEAT_GRID_ABOVE_K over the highest, every HEAT_GRID_STEP_K (the heat held beyond it)
+HEAT_GRID_BELOW_K, HEAT_GRID_ABOVE_K, HEAT_GRID_STEP_K = 20.0, 120.0, 5.0
+#: the heat curve is interpolated in ln(heat + HEAT_FLOOR_W) (a viscous heat goes nearly as
+#: exp(-T / a few tens of K) with the oil's viscosity; the floor keeps a zero heat finite)
+HEAT_FLOOR_W = 1e-9
+
+
+@dataclass(frozen=True)
+class HeatCurve:
+    """The pair's friction heat as a function of the bearing's own temperature, per row:
+    T_C (n_T,) the grid of the bearing's (rings' and balls' mean) temperature (C), increasing;
+    ln_heat (n_cond, n_T) ln(heat (W) + HEAT_FLOOR_W) of each distinct set of the rows'
+    conditions (speed, preload, loads) at every grid temperature (the one route's heat of the
+    pair with every part at that temperature, `ThermalTransientFE.heat_curve`); row (n,) the
+    condition set of each row. A trial holds each interval's heat at its value at the
+    interval's end, at the bearing's temperature there (`solve`: backward in the coupling,
+    stable however steeply the heat falls as the oil warms, as `transient_route`'s steady
+    `equilibrium` is a fixed point of the same coupling)."""
+    T_C: np.ndarray
+    ln_heat: np.ndarray
+    row: np.ndarray
+
+    def heat_W(self, k: int, T_C: float) -> float:
+        """The heat (W) of row k's conditions with the bearing at T_C (C)."""
+        return float(np.exp(np.interp(T_C, self.T_C, self.ln_heat[self.row[k]])) - HEAT_FLOOR_W)
+
+    def solve(self, k: int, T0_C: float, dT_per_W: float) -> float:
+        """The heat Q (W) of row k that is consistent with the bearing's temperature it makes,
+        T = T0_C + dT_per_W Q (K/W: the trial's linear response): the root of
+        Q - heat(T0 + dT_per_W Q) in [0, the curve's largest heat] (it exists: the left end is
+        <= 0, the right >= 0; unique where the heat falls with the temperature or rises slower
+        than 1 / dT_per_W)."""
+        from scipy.optimize import brentq
+
+        hi = float(np.exp(self.ln_heat[self.row[k]].max()) - HEAT_FLOOR_W)
+        f = lambda Q: Q - self.heat_W(k, T0_C + dT_per_W * Q)        # noqa: E731
+        lo_v = f(0.0)
+        if lo_v >= 0.0 or hi <= 0.0:
+            return 0.0
+        if f(hi) <= 0.0:
+            return hi
+        return float(brentq(f, 0.0, hi, xtol=1e-12, rtol=1e-11))
+
+
 def part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb_C: np.ndarray,
-                        heat_W: np.ndarray | None, T_film_C: np.ndarray | None = None,
-                        film_factor: np.ndarray | None = None) -> np.ndarray:
+                        heat_W, T_film_C: np.ndarray | None = None,
+                        film_factor: np.ndarray | None = None,
+                        ball_factor: np.ndarray | None = None) -> np.ndarray:
     """(n, len(PARTS)) part group mean temperatures (C) of one trial at parameters p (module
-    docstring), the ambient T_amb_C and the pair's heat heat_W (W; None: none) per row at
-    times t_s (s, strictly increasing); T_film_C: what the films see when it is not the ambient
-    (a radiation sink), the mount's environment staying the ambient. film_factor (n - 1,): the
+    docstring), the ambient T_amb_C and the pair's heat heat_W per row at times t_s (s,
+    strictly increasing): an array (W per row, interpolated linearly between rows), a
+    `HeatCurve` (the heat at the bearing's own temperature, each interval's held at its end,
+    times heat_scale) or None (no heat); T_film_C: what the films see when it is not the ambient
+    (a radiation sink), the mount's environment staying the ambient. ball_factor (n - 1,): the
+    ball links' conductance of each interval / the model's (B_ball's: at the assembly's speed;
+    the rows' speed moves the rolling contacts' constriction and film,
+    `ThermalTransientFE.ball_factors`), times ball_conductance_factor; None: 1. film_factor (n - 1,): the
     films of each interval between rows / the parameter's (radiation, `radiation_film_factor`),
     held per bin (`film_levels`): the system is then piecewise constant, each piece exact; None:
     the parameter's film throughout. NaN columns: groups the stack lacks."""
@@ -406,6 +521,8 @@ def part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb_C: np.nda
     hm = G_face / rm.area_face_mm2 if rm.area_face_mm2 > 0 else 0.0
     A0 = np.zeros((m + 1, m + 1))
     A0[:m, :m] = rm.K0 + q.fit_conductance_factor * rm.C_fit + hm * rm.F_face
+    B = np.zeros((m + 1, m + 1))
+    B[:m, :m] = rm.B_ball
     A0[:m, m] = A0[m, :m] = -hm * rm.b_face
     A0[m, m] = G_face + G_env
     A_film = np.zeros((m + 1, m + 1))
@@ -422,19 +539,19 @@ def part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb_C: np.nda
     drive = np.outer(film, e_film)                                     # (n, m + 1), per film 1
     other = np.outer(amb, e_env)
     s = q.heat_scale
-    if heat_W is not None and s > 0.0:
-        e_heat = np.zeros(m + 1)
-        e_heat[:m] = rm.a_heat
+    e_heat = np.zeros(m + 1)
+    e_heat[:m] = rm.a_heat
+    curve = heat_W if isinstance(heat_W, HeatCurve) and s > 0.0 else None
+    if heat_W is not None and curve is None and s > 0.0:
         other = other + np.outer(s * np.asarray(heat_W, float), e_heat)
+    g_oil = np.zeros(m + 1)                  # the bearing's (oil's) temperature of a state
+    g_oil[:m] = rm.groups[[PARTS.index(k) for k in OIL_PARTS]].mean(axis=0)
     t = np.asarray(t_s, float)
     n = t.size
-    if film_factor is None or n < 2:
-        factors, level = np.ones(1), np.zeros(max(n - 1, 1), int)
-    else:
-        factors, level = film_levels(film_factor)
+    factors, balls, level = _levels(film_factor, ball_factor, n)
 
     def modes(lv):
-        A = A0 + factors[lv] * A_film
+        A = A0 + factors[lv] * A_film + (q.ball_conductance_factor * balls[lv] - 1.0) * B
         lam, Phi = sla.eigh(0.5 * (A + A.T), M, check_finite=False)
         return np.maximum(lam, 0.0), Phi
 
@@ -442,7 +559,11 @@ def part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb_C: np.nda
     lam, Phi = modes(int(level[0]))
     g0 = Phi.T @ (factors[level[0]] * drive[0] + other[0])
     with np.errstate(divide="ignore", invalid="ignore"):
-        z = np.where(lam > 0, g0 / np.where(lam > 0, lam, 1.0), 0.0)      # steady first row
+        inv = np.where(lam > 0, 1.0 / np.where(lam > 0, lam, 1.0), 0.0)
+    z = g0 * inv                                                      # steady first row
+    if curve is not None:            # with the heat that row's steady bearing temperature makes
+        dz = s * inv * (Phi.T @ e_heat)
+        z = z + curve.solve(0, g_oil @ Phi @ z, g_oil @ Phi @ dz) * dz
     X[0] = Phi @ z
     if n > 1:
         # per level: its modes and, for its intervals, the exact step's decay and drive
@@ -455,16 +576,21 @@ def part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb_C: np.nda
             ga = (factors[lv] * drive[sel] + other[sel]) @ Phi_l
             gb = (factors[lv] * drive[sel + 1] + other[sel + 1]) @ Phi_l
             hs = h[sel, None]
-            steps[int(lv)] = (Phi_l, E, hs * (ga * f1 + (gb - ga) * f2))
+            # a held heat of 1 W over the interval (the heat at its end, `HeatCurve`)
+            dh = (s * hs * f1) * (Phi_l.T @ e_heat) if curve is not None else None
+            steps[int(lv)] = (Phi_l, E, hs * (ga * f1 + (gb - ga) * f2), dh, g_oil @ Phi_l)
             row[sel] = np.arange(sel.size)
         current = int(level[0])
         for k in range(n - 1):
             lv = int(level[k])
-            Phi_l, E, c = steps[lv]
+            Phi_l, E, c, dh, oil = steps[lv]
             if lv != current:                       # the state into the new level's modes
                 z = Phi_l.T @ (M @ X[k])            # M-orthonormal: Phi^T M Phi = I
                 current = lv
             z = E[row[k]] * z + c[row[k]]
+            if dh is not None:
+                d = dh[row[k]]
+                z = z + curve.solve(k + 1, oil @ z, oil @ d) * d
             X[k + 1] = Phi_l @ z
     G = np.zeros((len(PARTS), m + 1))
     G[:, :m] = rm.groups
@@ -478,7 +604,8 @@ RADIATION_PASSES = 2
 
 def radiating_part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb_C: np.ndarray,
                                   heat_W: np.ndarray | None, T_film_C: np.ndarray | None,
-                                  T_ref_C: float) -> np.ndarray:
+                                  T_ref_C: float, ball_factor: np.ndarray | None = None
+                                  ) -> np.ndarray:
     """`part_temperatures_C` with the films radiation (vacuum): the parameter's film is
     4 eps sigma T_ref^3 (the emissivity's, at T_ref_C), each interval's the secant eps sigma
     (T + T_s)(T^2 + T_s^2) (`radiation_film_factor`) between the sink T_s (T_film_C, else the
@@ -493,7 +620,7 @@ def radiating_part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb
         face = None if T is None else T[:, PARTS.index("housing")]
         factor = radiation_film_factor(mid, None if face is None else 0.5 * (face[:-1] + face[1:]),
                                        T_ref_C)
-        T = part_temperatures_C(rm, p, t_s, T_amb_C, heat_W, T_film_C, factor)
+        T = part_temperatures_C(rm, p, t_s, T_amb_C, heat_W, T_film_C, factor, ball_factor)
     return T
 
 
@@ -505,10 +632,12 @@ class ThermalTransientFE(Effect):
     name = NAME
     kind = "model_form"            # `ladder.KIND`
     parameters = ("film_resistance_m2K_W", "bore_film_ratio", "G_face_W_K", "G_env_W_K",
-                  "C_mount_J_K", "fit_conductance_factor", "heat_scale")
+                  "C_mount_J_K", "fit_conductance_factor", "ball_conductance_factor",
+                  "heat_scale")
     units = {"film_resistance_m2K_W": "m2 K/W", "bore_film_ratio": "-", "G_face_W_K": "W/K",
              "G_env_W_K": "W/K",
-             "C_mount_J_K": "J/K", "fit_conductance_factor": "-", "heat_scale": "-"}
+             "C_mount_J_K": "J/K", "fit_conductance_factor": "-",
+             "ball_conductance_factor": "-", "heat_scale": "-"}
     requires = ("time_s", "T_ambient_C")
     cost = "inputs"
     acts_through = ("dTdt_K_per_s", "time_since_start_s", "temperature_C", "speed_rpm")
@@ -536,24 +665,28 @@ class ThermalTransientFE(Effect):
                        "G_face_W_K": (0.0, G_face_max),
                        "G_env_W_K": (0.0, G_env_max),
                        "C_mount_J_K": (C_MOUNT_MIN_J_K, C_MOUNT_MAX_J_K),
-                       "fit_conductance_factor": FIT_FACTOR, "heat_scale": (0.0, HEAT_SCALE_MAX)}
+                       "fit_conductance_factor": FIT_FACTOR,
+                       "ball_conductance_factor": BALL_FACTOR,
+                       "heat_scale": (0.0, HEAT_SCALE_MAX)}
         self.off = {"film_resistance_m2K_W": 0.0, "bore_film_ratio": 1.0, "G_face_W_K": 0.0,
                     "G_env_W_K": 0.0,
                     "C_mount_J_K": C_MOUNT_MIN_J_K, "fit_conductance_factor": 1.0,
+                    "ball_conductance_factor": 1.0,
                     "heat_scale": 1.0}
         self.scale = {"film_resistance_m2K_W": (0.2 if vacuum else 0.01), "bore_film_ratio": 0.1,
                       # a power-of-two share: the bound round-trips exactly through the fit's
                       # scaled coordinates (hi / s * s == hi), as the claim rules compare it
                       "G_face_W_K": G_face_max / 16.0, "G_env_W_K": 1.0,
-                      "C_mount_J_K": 2000.0, "fit_conductance_factor": 0.2, "heat_scale": 0.1}
-        self._heat = Memo(4)
+                      "C_mount_J_K": 2000.0, "fit_conductance_factor": 0.2,
+                      "ball_conductance_factor": 0.2, "heat_scale": 0.1}
+        self._heat, self._balls = Memo(4), Memo(4)
 
     def bind(self, pipeline) -> "ThermalTransientFE":
         """The rung evaluated on `pipeline` (the diagnosis's, `ladder.FormRoute`); the rung of
         the same assembly unbound (the engine's candidate object) then evaluates there too."""
         out = ThermalTransientFE.__new__(ThermalTransientFE)
         out.__dict__.update(self.__dict__)
-        out.pipeline, out._heat = pipeline, Memo(4)
+        out.pipeline, out._heat, out._balls = pipeline, Memo(4), Memo(4)
         _BOUND.put(self.asm, pipeline)
         return out
 
@@ -575,10 +708,11 @@ class ThermalTransientFE(Effect):
         if q.film_resistance_m2K_W == 0.0:       # the configured model: the form's limit
             return inputs.copy()
         pl = self._pl()
-        heat = self.row_heat_W(inputs) if q.heat_scale > 0.0 else None
+        heat = self.heat_curve(inputs) if q.heat_scale > 0.0 else None
         args = (rung_model(pl), q, inputs.time_s, inputs.T_ambient_C, heat, self.sink_C)
-        T = (radiating_part_temperatures_C(*args, self.asm.T_ref_C) if self.vacuum
-             else part_temperatures_C(*args))
+        balls = self.ball_factors(inputs)
+        T = (radiating_part_temperatures_C(*args, self.asm.T_ref_C, balls) if self.vacuum
+             else part_temperatures_C(*args, None, balls))
         Tc = dict(inputs.T_C)
         for i, part in enumerate(PARTS):
             if part in inputs.measured_parts:
@@ -587,27 +721,78 @@ class ThermalTransientFE(Effect):
             Tc[part] = np.array(col, float)
         return inputs.copy(T_C=Tc)
 
-    def row_heat_W(self, inputs) -> np.ndarray:
-        """The pair's friction heat per row (W) at the rows' speed, preload and loads with the
-        parts at the ambient (the configured model's, `transient_route.pair_heat`; kept per
-        conditions)."""
+    def ball_factors(self, inputs) -> np.ndarray | None:
+        """(n - 1,) the ball links' conductance of each interval between rows over the rung
+        model's (at the assembly's speed, `transient_route.contacts`): the rolling contacts'
+        conductance at the speed of the interval's end row (`transient_route.ball_contacts`,
+        the pair at that speed at the reference temperature, as `contacts` takes it), the sum
+        of the inner and outer links'; None with one row. Kept per speeds."""
+        from studies.model import transient_route as tr
+        from studies.model.inputs import baseline_inputs
+
+        speed = np.broadcast_to(np.asarray(inputs.speed_rpm, float), np.shape(inputs.T_ambient_C))
+        if speed.size < 2:
+            return None
+
+        def make():
+            asm, pl = self.asm, self._pl()
+            T_ref = asm.T_ref_C
+            speeds, at = np.unique(np.concatenate([[asm.lubrication.speed_rpm], speed[1:]]),
+                                   return_inverse=True)
+            base = baseline_inputs({"speed_rpm": speeds}, speeds.size, T_ref,
+                                   asm.preload.assembled_N, asm.lubrication.speed_rpm)
+            pair = pl.run(base, remember=False).pair
+            G = np.array([sum(c.G_W_K for c in tr.ball_contacts(pl, _row_of(pair, j),
+                                                                float(v), T_ref))
+                          for j, v in enumerate(speeds)])
+            at = at.reshape(-1)
+            return G[at[1:]] / G[at[0]]
+        return self._balls.get_or_make(speed.tobytes(), make)
+
+    def heat_curve(self, inputs) -> HeatCurve:
+        """The pair's friction heat per row as a function of the bearing's temperature
+        (`HeatCurve`): the one route (`Pipeline.run`, `transient_route.pair_heat`) at each
+        distinct set of the rows' speed, preload and loads with every part at each temperature
+        of the grid (HEAT_GRID_*: the lowest ambient - 20 K .. the highest + 120 K, every 5 K);
+        the configured model's friction law, its viscosity at the bearing's temperature. Kept
+        per conditions."""
         from studies.model import transient_route as tr
 
         keys = ("speed_rpm", "preload_assembled_N", "axial_load_N", "radial_load_N",
-                "moment_Nmm", "T_ambient_C")
-        key = b"".join(np.ascontiguousarray(getattr(inputs, k), float).tobytes()
-                       for k in keys if getattr(inputs, k) is not None)
+                "moment_Nmm")
+        amb = np.asarray(inputs.T_ambient_C, float)
+        cond = np.column_stack([np.broadcast_to(np.asarray(getattr(inputs, k), float), amb.shape)
+                                for k in keys if getattr(inputs, k) is not None])
+        key = cond.tobytes() + amb.tobytes()
 
         def make():
+            sets, row = np.unique(cond, axis=0, return_inverse=True)
+            lo = float(amb.min()) - HEAT_GRID_BELOW_K
+            n_T = int(np.ceil((float(amb.max()) + HEAT_GRID_ABOVE_K - lo) / HEAT_GRID_STEP_K)) + 1
+            grid = lo + HEAT_GRID_STEP_K * np.arange(n_T)
+            first = np.array([int(np.flatnonzero(row.reshape(-1) == j)[0])
+                              for j in range(sets.shape[0])])
+            take = np.repeat(first, n_T)                   # (set, temperature) rows
+            T = np.tile(grid, sets.shape[0])
+            at = inputs.take(take)
+            at = at.copy(T_C={p: T.copy() for p in at.T_C}, T_ambient_C=T.copy())
             pl = self._pl()
-            amb = np.asarray(inputs.T_ambient_C, float)
-            at_amb = inputs.copy(T_C={q: amb.copy() for q in inputs.T_C})
-            res = pl.run(at_amb, remember=False)
-            return np.asarray(tr.pair_heat(pl, res, at_amb).total_W, float).reshape(-1)
+            res = pl.run(at, remember=False)
+            heat = np.asarray(tr.pair_heat(pl, res, at).total_W, float).reshape(sets.shape[0],
+                                                                               n_T)
+            return HeatCurve(grid, np.log(np.maximum(heat, 0.0) + HEAT_FLOOR_W),
+                             row.reshape(-1))
         return self._heat.get_or_make(key, make)
 
     def describe(self) -> str:
         return "model form: " + self.change
+
+
+def _row_of(pair, j: int):
+    """Point j of a pair state (`analytic.bearing.state.take_rows`) as a one-point state."""
+    from analytic.bearing.state import take_rows
+
+    return take_rows(pair, np.array([j]))
 
 
 def _face_area_mm2(asm) -> float:
@@ -628,14 +813,50 @@ def speed_varies(conditions) -> bool:
     return v is not None and float(np.ptp(np.asarray(v, float))) > 0.0
 
 
+#: the heat scale is fitted at a constant speed where the pair's heat at the lowest ambient
+#: would raise the stack by more than this (K) in a film of HEAT_MATTERS_FILM_W_M2K on its
+#: outside faces: the heat then changes with the bearing's temperature over the record (an
+#: oil's viscous heat) and shapes the history; below it the heat's rise is a constant the
+#: films and the mount trade against each other
+HEAT_MATTERS_K = 1.0
+HEAT_MATTERS_FILM_W_M2K = 20.0
+
+
+def heat_matters(effect, conditions) -> bool:
+    """Whether the pair's heat at the conditions' lowest ambient (`ThermalTransientFE.
+    heat_curve`) raises the stack by more than HEAT_MATTERS_K in a HEAT_MATTERS_FILM_W_M2K film
+    over its outside faces (Q / (h A), the steady rise of a lumped body, Incropera eq. 1.3a)."""
+    from studies.model.inputs import baseline_inputs
+
+    amb = conditions.get("T_ambient_C")
+    if amb is None:
+        return False
+    asm = effect.asm
+    n = len(amb)
+    inputs = baseline_inputs(dict(conditions), n, asm.T_ref_C, asm.preload.assembled_N,
+                             asm.lubrication.speed_rpm)
+    curve = effect.heat_curve(inputs)
+    k = int(np.argmin(np.asarray(amb, float)))
+    rm = rung_model(effect.evaluated_on())
+    ok = ~np.isnan(rm.groups[:, 0])
+    # the reduction's first vector is the uniform field (`fem.reduced_thermal.krylov_basis`):
+    # every part's mean the same per unit of its coordinate
+    area_mm2 = float((rm.b_ext[0] + rm.b_bore[0]) / rm.groups[ok, 0][0])
+    G_W_K = HEAT_MATTERS_FILM_W_M2K * PER_M2_TO_PER_MM2 * area_mm2
+    return curve.heat_W(k, float(amb[k])) / G_W_K > HEAT_MATTERS_K
+
+
 def held_fixed(effect, conditions) -> tuple[str, ...]:
-    """`fitspec.held_fixed` of the rung: the heat scale at 1 when the speed is constant; the
+    """`fitspec.held_fixed` of the rung: the heat scale at 1 when the speed is constant and the
+    heat does not matter (`heat_matters`); the
     fits' conductance factor at 1 where it cannot move the stack's time constants
     (`RungModel.fit_matters`); the bore's film ratio where the shaft has no bore."""
-    held = () if speed_varies(conditions) else ("heat_scale",)
+    held = () if speed_varies(conditions) or heat_matters(effect, conditions) else ("heat_scale",)
     rm = rung_model(effect.evaluated_on())
     if not rm.fit_matters:
         held += ("fit_conductance_factor",)
+    if not rm.ball_matters:
+        held += ("ball_conductance_factor",)
     if not np.any(rm.b_bore):
         held += ("bore_film_ratio",)
     return held

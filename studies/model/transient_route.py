@@ -53,8 +53,8 @@ from analytic.heat import (ContactConductance, located_pair_heat_W, pair_heat_W,
 from fem.reduced_thermal import (ModalStructure, ReducedConduction, ReducedStepper, krylov_basis,
                                  modal_structure)
 from fem.solver import single_thread_blas
-from fem.transient import (StepLoads, SurfacePair, ThermalParameters, TransientConduction,
-                           bearing_heat_inputs_W, fit_conductances_W_m2K,
+from fem.transient import (OPEN_FIT_SPOT_W_M2K, StepLoads, SurfacePair, ThermalParameters,
+                           TransientConduction, bearing_heat_inputs_W, fit_conductances_W_m2K,
                            radiation_remainder_W_mm2)
 from studies.model.config import Assembly, ConfigError
 from studies.model.inputs import PARTS, PhysicsInputs, baseline_inputs
@@ -197,7 +197,8 @@ def contacts(pl: Pipeline, tc: TransientConduction) -> Contacts:
     gives them (`fit_conductance`, `gas`): the ball-raceway conductances of the pair at the
     configured speed (`ball_contacts`), the fits' from their pressure (Yovanovich,
     `fem.transient.fit_conductances_W_m2K`) or the file's number; in vacuum no gas in the fits
-    and spacer bores."""
+    and spacer bores; open fits and the spacer bores conduct through their solid spots as well
+    (`fem.transient.OPEN_FIT_SPOT_W_M2K`, Incropera Table 3.1: in vacuum their only path)."""
     asm, m = pl.asm, pl.model
     th, T_ref = asm.thermal, asm.T_ref_C
     inp0 = baseline_inputs({}, 1, T_ref, asm.preload.assembled_N, asm.lubrication.speed_rpm)
@@ -205,7 +206,10 @@ def contacts(pl: Pipeline, tc: TransientConduction) -> Contacts:
     G = [c.G_W_K for c in ball_contacts(pl, pair0, asm.lubrication.speed_rpm, T_ref)]
     pressure = th.fit_conductance == "pressure"
     vacuum = th.gas == "vacuum"
-    surf = SurfacePair(gas_conductivity_W_mK=0.0) if vacuum else SurfacePair()
+    # open fits and spacer bores rest on their solid spots in any gas (`SurfacePair.spot_W_m2K`)
+    spot = OPEN_FIT_SPOT_W_M2K
+    surf = SurfacePair(gas_conductivity_W_mK=0.0 if vacuum else SurfacePair.gas_conductivity_W_mK,
+                       spot_W_m2K=spot)
     if pressure:
         delta0 = pl.deltas_mm(*pl.fits_um(inp0))
         r0 = pl.sup.evaluate(pl.thetas(inp0), delta0, np.zeros(1))
@@ -213,7 +217,7 @@ def contacts(pl: Pipeline, tc: TransientConduction) -> Contacts:
                                        _gap_um(pl, r0.gap_mm)[0], surf)
     else:
         h_fit = np.full(len(m.section.fits), float(th.fit_conductance))
-    bore = 0.0 if vacuum else ThermalParameters.bore_conductance_W_m2K
+    bore = (0.0 if vacuum else ThermalParameters.bore_conductance_W_m2K) + spot
     return Contacts(np.asarray(h_fit, float), (float(G[0]), float(G[1])), bore, surf, pressure)
 
 

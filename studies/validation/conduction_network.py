@@ -46,7 +46,7 @@ Public API:
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Callable
 
 import numpy as np
@@ -268,29 +268,39 @@ class Network:
                   atol_K: float = 1e-5) -> tuple[np.ndarray, np.ndarray]:
         """Node temperatures (rows x nodes, C) and the energy ledger (rows x 3: put in, lost to
         the environment, stored; J) at time_s, for the ambient linear between the rows and the
-        heat (a number or one per row) held from each row to the next. Starts at T0_C (default:
-        uniform at the first row's ambient). C dT/dt = -L T - losses(T) + share Q(t), by
-        solve_ivp BDF (Hairer & Wanner, Solving ODEs II, ch. IV.1: stiff; Shampine & Reichelt
-        1997) with steps no longer than the shortest row interval."""
+        heat (a number or one per row, held from each row to the next; or a `BearingHeat`,
+        the heat at the bearing's own temperature at every instant, each row's conditions
+        held to the next). Starts at T0_C (default: uniform at the first row's ambient).
+        C dT/dt = -L T - losses(T) + share Q(t, T), by solve_ivp BDF (Hairer & Wanner, Solving
+        ODEs II, ch. IV.1: stiff; Shampine & Reichelt 1997) with steps no longer than the
+        shortest row interval."""
         t = np.asarray(time_s, float)
         u = np.asarray(T_ambient_C, float)
         if t.ndim != 1 or t.size < 2 or np.any(np.diff(t) <= 0):
             raise ValueError("Network.integrate: time_s must hold 2 or more increasing values")
-        q = np.broadcast_to(np.asarray(heat_W, float), t.shape)
+        law = heat_W if isinstance(heat_W, BearingHeat) else None
+        q = np.zeros(t.shape) if law else np.broadcast_to(np.asarray(heat_W, float), t.shape)
         share = self.heat_share if self.heat_share is not None else np.zeros(self.n)
         C = np.asarray(self.capacity_J_K, float)
         L = self.laplacian_W_K()
         n = self.n
         T0 = np.full(n, u[0]) if T0_C is None else np.broadcast_to(np.asarray(T0_C, float), (n,)).copy()
 
-        def heat_at(tt):
-            k = min(max(int(np.searchsorted(t, tt, side="right")) - 1, 0), t.size - 1)
-            return q[k]
+        def row_at(tt):
+            return min(max(int(np.searchsorted(t, tt, side="right")) - 1, 0), t.size - 1)
+
+        def heat_at(tt, T):
+            """(Q (W), dQ/dT (W/K per node)) at time tt and node temperatures T."""
+            k = row_at(tt)
+            if law is None:
+                return q[k], None
+            Q, dQ = law.at(k, float(law.oil_weights @ T))
+            return Q, dQ * law.oil_weights
 
         def rhs(tt, y):
             T = y[:n]
             amb = float(np.interp(tt, t, u))
-            Q = heat_at(tt)
+            Q, _ = heat_at(tt, T)
             loss = self.losses_W(T, amb)
             dT = (-L @ T - loss + share * Q) / C
             return np.concatenate([dT, [Q, loss.sum()]])
@@ -303,6 +313,10 @@ class Network:
             #                                                 approximate Jacobian steers Newton
             J[:n, :n] = -(L + np.diag(dl)) / C[:, None]
             J[n + 1, :n] = dl
+            _, dQ = heat_at(tt, T)
+            if dQ is not None:                               # the heat's own slope
+                J[:n, :n] += np.outer(share, dQ) / C[:, None]
+                J[n, :n] = dQ
             return J
 
         sol = solve_ivp(rhs, (t[0], t[-1]), np.concatenate([T0, [0.0, 0.0]]), method="BDF",
@@ -314,6 +328,30 @@ class Network:
         stored = (T - T0) @ C
         return T, np.column_stack([sol.y[n], sol.y[n + 1], stored])
 
+
+
+@dataclass(frozen=True)
+class BearingHeat:
+    """The bearing's friction heat at its own temperature (`Network.integrate`): T_C (n_T,) an
+    increasing grid of the bearing's temperature (C), ln_heat (n_sets, n_T) ln of the heat (W)
+    of each set of conditions at the grid's temperatures (interpolated linearly in between,
+    held beyond), row_set (n_rows,) each row's set, oil_weights (n_nodes,) the bearing's
+    temperature as a weighted mean of the nodes (the rings' and balls' volume means, summing
+    to 1). P = M omega at the bearing's temperature: the heat the rows' torque dissipates
+    (Harris & Kotzalas vol. 2 ch. 7), so the energy put in is the torque's own."""
+    T_C: np.ndarray
+    ln_heat: np.ndarray
+    row_set: np.ndarray
+    oil_weights: np.ndarray
+
+    def at(self, k: int, T_C: float) -> tuple[float, float]:
+        """(heat (W), its slope dQ/dT (W/K)) of row k's conditions with the bearing at T_C."""
+        y = self.ln_heat[self.row_set[k]]
+        j = int(np.clip(np.searchsorted(self.T_C, T_C) - 1, 0, self.T_C.size - 2))
+        slope = (y[j + 1] - y[j]) / (self.T_C[j + 1] - self.T_C[j])
+        inside = self.T_C[0] <= T_C <= self.T_C[-1]
+        Q = float(np.exp(np.interp(T_C, self.T_C, y)))
+        return Q, (Q * slope if inside else 0.0)
 
 
 def _film(gas: str, air_speed_m_s: float, shape: str, length_m: float):
@@ -415,6 +453,15 @@ class StackNetwork:
     volume_m3: np.ndarray
     mount_node: int | None
     env: Environment
+
+    def oil_weights(self) -> np.ndarray:
+        """(n_nodes,) weights of the bearing's temperature: the mean of the inner rings', the
+        balls' and the outer rings' volume means (as the tool takes its oil temperature)."""
+        w = np.zeros(self.volume_m3.size)
+        for part in ("inner_ring", "ball", "outer_ring"):
+            idx = self.parts[part]
+            w[idx] += self.volume_m3[idx] / self.volume_m3[idx].sum() / 3.0
+        return w
 
     def part_means_C(self, T_C: np.ndarray) -> dict[str, np.ndarray]:
         """Volume means (rows) of the pipeline's part columns (`PART_COLUMN`) of node
@@ -631,13 +678,16 @@ def conduction_temperatures(asm, time_s, T_ambient_C, env: Environment | str, he
                             shells: int = 4, rtol: float = 1e-7) -> NetworkHistory:
     """The part temperatures of the assembly's stack in `env` (an `Environment` or a key of
     ENVIRONMENTS) following T_ambient_C at time_s, with the bearing heat heat_W (W: a number or
-    one per row, held to the next row) fed half to each ring's raceway; starts in equilibrium
-    at the first row's ambient (`stack_network`, `Network.integrate`)."""
+    one per row, held to the next row; or a `BearingHeat`, at the bearing's own temperature,
+    its weights set here) fed half to each ring's raceway; starts in equilibrium at the first
+    row's ambient (`stack_network`, `Network.integrate`)."""
     if isinstance(env, str):
         if env not in ENVIRONMENTS:
             raise ValueError(f"unknown environment {env!r} (known: {', '.join(ENVIRONMENTS)})")
         env = ENVIRONMENTS[env]
     sn = stack_network(asm, env, shells)
+    if isinstance(heat_W, BearingHeat):
+        heat_W = replace(heat_W, oil_weights=sn.oil_weights())
     T, ledger = sn.network.integrate(time_s, T_ambient_C, heat_W, rtol=rtol)
     cols = sn.part_means_C(T)
     order = ("T_shaft_C", "T_inner_ring_C", "T_ball_C", "T_outer_ring_C", "T_housing_C", "T_spacer_C")

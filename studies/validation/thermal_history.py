@@ -34,7 +34,8 @@ import numpy as np
 
 from studies.diagnosis.designs import cycles, speed_steps
 from studies.validation import second_source as ss
-from studies.validation.conduction_network import ENVIRONMENTS, conduction_temperatures
+from studies.validation.conduction_network import (ENVIRONMENTS, BearingHeat,
+                                                   conduction_temperatures)
 
 #: the thermal family: a diagnosis that names any of these names the thermal history
 #: (`second_source.family` of the cause: `thermal_lag.per_part` is `thermal_lag`)
@@ -58,7 +59,7 @@ SHELLS = 4
 #: speeds of seed 000's staircase (rpm): a space mechanism run up in steps, not monotone in time
 #: (`designs.SPEEDS_RPM`'s reason); its MoS2 pair makes 0.15..0.47 W there
 STAIRCASE_RPM = (2000.0, 1000.0, 3000.0)
-#: seed 001's constant speed in its thermal cycles (rpm): 0.67 W of friction heat
+#: seed 001's constant speed in its thermal cycles (rpm): 0.67 W of friction heat at 20 C
 SEED001_RPM = 300.0
 
 #: design -> (shipped assembly key, the conditions given): seed 000's cycles; seed 000's speed
@@ -124,16 +125,30 @@ CASES: dict[str, HistoryCase] = {
 }
 
 
-def bearing_heat_W(asm, speed_rpm: np.ndarray, mesh_factor: float = 1.0) -> np.ndarray:
-    """The pair's friction heat (W) per row: torque (N mm, the project's own friction model
-    through the one route, `second_source._run`, the rig's friction MU_TRUE, every part at the
-    reference temperature) x omega, P = M omega (Harris & Kotzalas vol. 2 ch. 7), evaluated once
-    per distinct speed."""
-    speeds = np.unique(np.asarray(speed_rpm, float))
-    cond = {"T_ambient_C": np.full(speeds.size, asm.T_ref_C), "speed_rpm": speeds}
+#: the grid of the bearing's temperature for its heat (`bearing_heat`): from HEAT_BELOW_K under
+#: the lowest ambient to HEAT_ABOVE_K over the highest, every HEAT_STEP_K (held beyond)
+HEAT_BELOW_K, HEAT_ABOVE_K, HEAT_STEP_K = 20.0, 120.0, 5.0
+
+
+def bearing_heat(asm, speed_rpm: np.ndarray, T_ambient_C: np.ndarray,
+                 mesh_factor: float = 1.0) -> BearingHeat:
+    """The pair's friction heat (W) at the bearing's own temperature
+    (`conduction_network.BearingHeat`): torque (N mm, the project's own friction model through
+    the one route, `second_source._run`, the rig's friction MU_TRUE, every part at the grid's
+    temperature) x omega, P = M omega (Harris & Kotzalas vol. 2 ch. 7), at each distinct speed
+    and each temperature of the grid (HEAT_*_K). The network feeds it at its rings' and balls'
+    temperature at every instant: the energy put into the stack is what the rows' torque
+    dissipates (an oil's viscous heat falls tenfold or more from -60 C to 20 C)."""
+    speeds, row_set = np.unique(np.asarray(speed_rpm, float), return_inverse=True)
+    amb = np.asarray(T_ambient_C, float)
+    lo = float(amb.min()) - HEAT_BELOW_K
+    grid = lo + HEAT_STEP_K * np.arange(int(np.ceil((float(amb.max()) + HEAT_ABOVE_K - lo)
+                                                    / HEAT_STEP_K)) + 1)
+    cond = {"T_ambient_C": np.tile(grid, speeds.size), "speed_rpm": np.repeat(speeds, grid.size)}
     torque = ss._run(asm, mesh_factor, cond)["torque_Nmm"]
-    heat = torque * 1e-3 * speeds * 2.0 * math.pi / 60.0
-    return heat[np.searchsorted(speeds, speed_rpm)]
+    heat = torque * 1e-3 * cond["speed_rpm"] * 2.0 * math.pi / 60.0
+    return BearingHeat(grid, np.log(np.maximum(heat, 1e-12)).reshape(speeds.size, grid.size),
+                       row_set.reshape(-1), np.zeros(0))
 
 
 def _preload_history(spec: HistoryCase, asm, cond) -> np.ndarray | None:
@@ -161,7 +176,8 @@ def _truth(name: str, mesh_factor: float):
     key, make = DESIGNS[spec.design]
     asm = load_shipped(key)
     cond = {k: np.asarray(v, float) for k, v in make().items()}
-    heat = bearing_heat_W(asm, cond["speed_rpm"], mesh_factor) if spec.heat else 0.0
+    heat = (bearing_heat(asm, cond["speed_rpm"], cond["T_ambient_C"], mesh_factor) if spec.heat
+            else 0.0)
     # (without heat the pair turns at the configured speed: seed 000's 60 rpm make 0.01 W)
     hist = conduction_temperatures(asm, cond["time_s"], cond["T_ambient_C"], ENVIRONMENTS[spec.env],
                                    heat, SHELLS)
