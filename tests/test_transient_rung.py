@@ -89,18 +89,9 @@ def test_the_steady_state_with_heat_and_a_mount_balances_its_energy(rm):
     # own matrices, then the balance; and the trial's temperatures at its steady first row
     T = tr.part_temperatures_C(rm, p, t, amb, np.array([Q, Q]))
     assert np.all(T[~np.isnan(T)] > 20.0)
-    m = rm.m
-    h = 15.0 * PER_M2_TO_PER_MM2
-    hm = p["G_face_W_K"] / rm.area_face_mm2
-    A = np.zeros((m + 1, m + 1))
-    A[:m, :m] = rm.K0 + rm.C_fit + h * (rm.F_ext + rm.F_bore) + hm * rm.F_face
-    A[:m, m] = A[m, :m] = -hm * rm.b_face
-    A[m, m] = p["G_face_W_K"] + p["G_env_W_K"]
-    f = np.zeros(m + 1)
-    f[:m] = h * (rm.b_ext + rm.b_bore) * 20.0 + Q * rm.a_heat
-    f[m] = p["G_env_W_K"] * 20.0
-    x = np.linalg.solve(A, f)
-    q, T_m = x[:m], x[m]
+    h = PER_M2_TO_PER_MM2 / p["film_resistance_m2K_W"]
+    x = _steady(rm, p, 20.0, Q)
+    q, T_m = x[:rm.m], x[rm.m]
     b = rm.b_ext + rm.b_bore
     out_film = h * (b @ q - b @ (20.0 * _one(rm)))
     out_mount = p["G_env_W_K"] * (T_m - 20.0)
