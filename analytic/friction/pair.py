@@ -379,8 +379,8 @@ def _oil_pair(g, pair, args) -> tuple[list, dict, tuple]:
     if a.heat_inner_W is not None:              # ehl_rolling: its heat located at each contact
         located = (0.5 * load + s_in, 0.5 * load + s_out, (a.heat_inner_W + b.heat_inner_W,
                                                           a.heat_outer_W + b.heat_outer_W))
-    else:
-        located = (0.5 * (load + viscous) + s_in, 0.5 * (load + viscous) + s_out, None)
+    else:                                       # no law but ehl_rolling has a spin term
+        located = (0.5 * (load + viscous), 0.5 * (load + viscous), None)
     return ([a.total_Nmm, b.total_Nmm], parts, located, notes(combine(a.ranges, b.ranges)))
 
 
