@@ -248,8 +248,10 @@ def pair_torque(g, pair, *, model: str = "solid_film", mu=0.02, hysteresis_loss=
     elif model == "oil":
         per, parts, located, ranges = _oil_pair(g, pair, args)
         parts["viscosity_mm2_s"] = nu_mm2_s
-        split = dict(rolling_Nmm=parts["viscous_Nmm"],
-                     sliding_Nmm=parts["load_Nmm"] + parts.get("spin_Nmm", 0.0),
+        sliding = parts["load_Nmm"]
+        if "spin_Nmm" in parts:                 # ehl_rolling: its spin sliding
+            sliding = sliding + parts["spin_Nmm"]
+        split = dict(rolling_Nmm=parts["viscous_Nmm"], sliding_Nmm=sliding,
                      drag_Nmm=parts.pop("drag_Nmm"))
     else:
         raise ValueError(f"model must be 'solid_film' or 'oil', got {model!r}")
