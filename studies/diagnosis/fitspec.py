@@ -13,7 +13,10 @@ to fit it to measured data, lives here:
 - `extra_starts(form, listed, conditions)`: starting values of a generalised form's extra
   parameters for a fit that begins at the listed fit;
 - `held_fixed(effect, conditions)`: parameters these conditions cannot separate from the others,
-  held at `off` in a fit.
+  held at `off` in a fit;
+- `even`: parameters whose response is even about `off` (a symmetry of the physics): `off` is a
+  stationary point of every fit's chi-square in them, so a fit that reaches it stops there
+  whatever the data; a fit ending there is restarted off it (`fitting.restart_even`).
 
 An effect class without an entry has the defaults (no profile, steps = scale, no extra starts,
 nothing held).
@@ -67,6 +70,7 @@ class FitSpec:
     grid: Callable[..., dict[str, list]] = _no_grid
     extra_starts: Callable[..., list[dict]] = _no_extra_starts
     held_fixed: Callable[..., tuple[str, ...]] = _nothing_held
+    even: tuple[str, ...] = ()
 
 
 # ---------------------------------------------------------------------- thermal lag
@@ -285,7 +289,9 @@ SPECS: dict[type, FitSpec] = {
     SolidFilmRunin: FitSpec(profile=("runin_krev",), steps=runin_steps, grid=runin_grid),
     InterferenceError: FitSpec(starts=interference_starts),
     PreloadPathCompliance: FitSpec(starts=compliance_starts),
-    UnloggedLoad: FitSpec(starts=unlogged_load_starts),          # the model-form ladder
+    # the model-form ladder; a symmetric pair's response is even in the radial load and in the
+    # moment (its mirror image about the mid-plane and half a turn about the axis)
+    UnloggedLoad: FitSpec(starts=unlogged_load_starts, even=("radial_load_N", "moment_Nmm")),
     SleeveForm: FitSpec(profile=("variant",), grid=sleeve_grid),
     transient_rung.ThermalTransientFE: FitSpec(starts=transient_rung.starts,
                                                held_fixed=transient_rung.held_fixed),
@@ -320,3 +326,7 @@ def extra_starts(form, listed: Mapping[str, float], conditions: Conditions) -> l
 
 def held_fixed(effect, conditions: Conditions) -> tuple[str, ...]:
     return spec(effect).held_fixed(effect, conditions)
+
+
+def even(effect) -> tuple[str, ...]:
+    return spec(effect).even

@@ -266,7 +266,51 @@ def fit_candidate(pb: Problem, e, info, base: Fit,
     if f.chi2 > base.chi2:           # never worse than the baseline (off is admissible)
         f2 = pb.fit(space, np.concatenate([np.zeros(space.k), base.u]))
         f = f2 if f2.chi2 < f.chi2 else f
-    return f
+    return restart_even(pb, e, f)
+
+
+#: restart values of a parameter whose response is even about off (`fitspec.even`), as
+#: fractions of the distance from off to its bound (the bound on the side of the larger one),
+#: log-spaced as `ladder.unlogged_load_starts`' starts
+EVEN_RESTARTS = (1e-3, 1e-2, 1e-1)
+#: a fitted parameter within this many scaled units of off (`fitspec.steps`) is at off
+AT_OFF_U = 1e-3
+
+
+def restart_even(pb: Problem, e, f: Fit) -> Fit:
+    """Fit `f`, or a better one restarted off a stationary point of symmetry: for each effect
+    parameter whose response is even about off (`fitspec.even`) and that ended at off
+    (within AT_OFF_U scaled units), the fit's point with that parameter moved to each of
+    EVEN_RESTARTS (scored with the nuisance corrected linearly, one model call each) and one
+    bounded least-squares fit from the best of them, kept where its chi-square is lower.
+
+    Why: where the response is even in p about off, d chi2 / d p = 0 at off whatever the data
+    (the chi-square is a function of (p - off)^2 there), so a gradient fit that reaches off
+    stops there as at a minimum even where the chi-square falls away from it (a maximum in p:
+    a true nonzero value). Moving off it is the only way out for a local method."""
+    even = [i for i, (_, p) in enumerate(f.space.eff_params)
+            if p in fitspec.even(e) and abs(f.u[i]) < AT_OFF_U]
+    if not even:
+        return f
+    space = f.space
+    k = space.k
+    Jn = f.J[:, k:]
+    best = f
+    for i in even:
+        side = space.hi[i] if abs(space.hi[i]) >= abs(space.lo[i]) else space.lo[i]
+        starts = []
+        for x in EVEN_RESTARTS:
+            uu = best.u.copy()
+            uu[i] = x * side
+            starts.append(uu)
+        try:
+            _, _, uu = _score_starts(pb, space, starts, Jn)[0]
+            fi = pb.fit(space, uu)
+        except ModelFailure:
+            continue
+        if fi.chi2 < best.chi2:
+            best = fi
+    return best
 
 
 #: an effect parameter's column of a fit's Jacobian (standardised residuals per scaled unit)
