@@ -232,5 +232,7 @@ def narrowest_loso_ratio(residuals) -> dict[tuple[str, str, str, str], float]:
 def shipped_residual_rows(path: Path | None = None) -> list[tuple[str, str, str, str, float]]:
     """(regime, law, source, quantity, log residual) of the shipped residuals CSV."""
     with open(path or RESIDUALS_CSV, newline="") as fh:
-        return [(r["regime"], r["law"], r["source"], r["quantity"], float(r["log_residual"]))
-                for r in csv.DictReader(x for x in fh if not x.startswith("#"))]
+        rows = csv.reader(line for line in fh if not line.startswith("#"))
+        pick = itemgetter(*map(next(rows).index,
+                               ("regime", "law", "source", "quantity", "log_residual")))
+        return [(reg, law, src, q, float(e)) for reg, law, src, q, e in map(pick, rows)]
