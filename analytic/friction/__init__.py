@@ -6,7 +6,8 @@ file (the one place they are listed):
   skf2004      SKF four-component model (rolling with inlet shear heating and replenishment
                reductions, sliding with boundary / full-film weighting, oil-bath drag)
   ehl_rolling  hydrodynamic rolling resistance per ball-raceway contact (EHL), located heat;
-               an unloaded contact rolls under the ball's centrifugal force
+               an unloaded contact rolls under the ball's centrifugal force; each contact's
+               spin sliding (full-slip pivoting moment, traction bounded by SKF's mu_EHL)
   starved      Palmgren's viscous term weakened by a finite oil quantity (starved EHL inlet)
   solid_film   pressure-dependent interfacial shear strength of a solid film (MoS2)
 

@@ -35,6 +35,35 @@ k = 1.03 (Ry/Rx)^0.64 of the groove, no Hertz ellipse at zero load), the inner c
 (open) has none. Where a contact carries load the law is unchanged (the limit where it reduces
 to the loaded law: identical bits). At rest F_c = 0 and u = 0: no loss. This W is far below the
 Hamrock-Dowson fits' loads at low speed (the range warning says so).
+Spin (pivoting) sliding, a loss term of this route (issue 43): a ball whose contact spins about
+the contact normal at omega_s slides over its whole ellipse; with a uniform traction coefficient
+mu over the Hertz pressure the moment resisting the spin is the full-slip pivoting moment
+
+    M_s = (3/8) mu Q a E(m)                                                  [N mm]
+
+(Harris & Kotzalas, Rolling Bearing Analysis 5th ed., Vol. 2 ch. "Friction in rolling
+element-raceway contacts", spinning moment of an elliptical contact; Johnson, Contact Mechanics
+1985 ch. 8; a the semi-major axis, E(m) the complete elliptic integral of the second kind; a
+circle, E = pi/2, gives 3 pi mu Q a / 16), `analytic.torque.spin_moment_Nmm`. Its power is
+M_s |omega_s| and the inner-ring torque that balances it M_s |omega_s| / omega, per contact, Z
+balls per bearing. The spin rates per unit ring speed |omega_s,j| / omega are the ball
+kinematics' (`analytic.torque.ball_kinematics`) at the contact angles the balls solved for
+(quasi-dynamic balls: both angles and each ball's raceway control; the controlling contact does
+not spin). Traction coefficient: no traction measurement of the space oils (Pennzane, PFPE) is
+reachable from here, so mu is bounded by SKF's full-film coefficient mu_EHL (SKF General
+Catalogue 2004, "friction": 0.05 mineral, 0.04 synthetic; `skf2004.MU_EHL`, by the oil's
+family), the coefficient of the full-film sliding that the SKF model charges against the same
+contacts. At rest (no entrainment, no film) the term is 0 and the starting torque stays the
+route's load term. Full slip at mu over the whole ellipse: an upper bound of the spin loss for that mu
+(at low spin the micro-slip zone carries less). Zero where the kinematics give no spin (a
+contact under its own raceway control; a contact angle of 0 under outer control: omega_s,i =
+omega_R sin(a_i - beta) = 0 at a = beta = 0).
+Gyroscopic sliding: the quasi-dynamic balls take the gyroscopic moment M_g on the controlling
+contact's friction 2 M_g / Dw without pivoting (`analytic.bearing.ball_dynamics`, Harris Vol. 2
+ch. 3), which dissipates nothing while the traction can supply it, 2 M_g / Dw <= mu_EHL Q
+(Harris's condition for no gyroscopic pivoting). Beyond it the ball pivots at a rate the
+quasi-dynamic model does not give, so that loss is not computed: those rows are reported
+(`GYRO_NOTE`, one warning line).
 Limits: isothermal, fully flooded (use `starved` for a finite oil quantity), Newtonian inlet;
 k, U, W in the ranges of Hamrock-Dowson's fits (1 <= k <= 8). Units: E' MPa (N/mm^2), R_x mm,
 eta0 Pa s (1e-6 N s/mm^2), alpha 1/Pa (1e6 1/MPa), u mm/s, Q N, F_R N, powers W.
@@ -44,6 +73,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+
+from analytic.friction.skf2004 import MU_EHL
+from analytic.torque import spin_moment_Nmm
 
 #: the ellipticity range k = a/b of Hamrock-Dowson's fits, which the rolling force's groups follow
 K_RANGE = (1.0, 8.0)
@@ -124,3 +156,42 @@ def ehl_rolling_bearing(Z: int, dm_mm: float, E_reduced_MPa, inner, outer, roll_
         torques.append(Z * F * half_dm * roll)
         heats.append(1e-3 * Z * F * u)
     return tuple(torques), tuple(heats)
+
+
+#: where the gyroscopic moment exceeds what the controlling contact's traction supplies
+#: (module docstring): the gyroscopic pivoting loss is not computed there
+GYRO_NOTE = ("2 M_g / (Dw Q) <= mu_EHL at the controlling contact (Harris: no gyroscopic "
+             "pivoting); beyond it the pivoting loss is not computed")
+
+
+def spin_traction_coefficient(oil_family: str) -> float:
+    """Traction coefficient of the spin sliding (-): SKF's full-film mu_EHL of the oil's family
+    (`skf2004.MU_EHL`, SKF 2004 catalogue; module docstring)."""
+    return MU_EHL[oil_family]
+
+
+def spin_torque_bearing(Z: int, inner, outer, spin_inner, spin_outer, mu):
+    """Inner-ring torque of one bearing's spin sliding, (inner contacts, outer contacts) N mm:
+    Z M_s,j |omega_s,j| / omega with M_s = (3/8) mu Q a E(m) (`analytic.torque.spin_moment_Nmm`;
+    module docstring), inner, outer the contacts' Hertz states (`analytic.torque.ContactInput`),
+    spin_inner, spin_outer the spin rates per unit inner-ring speed (`ball_kinematics`), mu the
+    traction coefficient (-). The power is this torque times the ring speed (`power_W`). An
+    unloaded contact (Q = 0) has none."""
+    out = []
+    for c, s in ((inner, spin_inner), (outer, spin_outer)):
+        Q = np.asarray(c.Q_N, float)
+        M = spin_moment_Nmm(mu, np.maximum(Q, 0.0), np.where(Q > 0, c.a_mm, 0.0),
+                            np.where(Q > 0, c.E_ell, 0.0))
+        out.append(Z * np.nan_to_num(M) * np.asarray(s, float))
+    return tuple(out)
+
+
+def gyroscopic_traction_ratio(gyroscopic_moment_Nmm, Dw_mm, Q_control_N):
+    """Traction the controlling contact must supply to hold the gyroscopic moment without
+    pivoting, over its load: 2 M_g / (Dw Q) (-; `ball_dynamics`: lam = 2 at the controlling
+    contact). inf where that contact is unloaded and M_g > 0, 0 where M_g = 0."""
+    Mg = np.abs(np.asarray(gyroscopic_moment_Nmm, float))
+    Q = np.asarray(Q_control_N, float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r = 2.0 * Mg / (Dw_mm * Q)
+    return np.where(Mg > 0, np.where(Q > 0, r, np.inf), 0.0)

@@ -13,8 +13,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from analytic.friction.ehl_rolling import K_RANGE as EHL_K_RANGE
-from analytic.friction.ehl_rolling import (CentrifugalFloor, EHLRollingTorque,
-                                           centrifugal_force_N, ehl_rolling_bearing)
+from analytic.friction.ehl_rolling import (GYRO_NOTE, CentrifugalFloor, EHLRollingTorque,
+                                           centrifugal_force_N, ehl_rolling_bearing,
+                                           gyroscopic_traction_ratio, spin_torque_bearing,
+                                           spin_traction_coefficient)
 from analytic.friction.options import FrictionOptions
 from analytic.friction.palmgren import (coulomb_load_torque_Nmm, palmgren_load_torque_Nmm,
                                         palmgren_viscous_torque_Nmm)
@@ -116,7 +118,10 @@ class BearingContacts:
     ball's own contacts (arrays (Z, n), one ball each, summed over the first axis).
     alpha_outer_rad None: the outer contact angle equals the inner one (quasi-static balls).
     axial_force_N, radial_force_N: the loads the bearing carries (N, (n,)), for the bearing-level
-    laws (Palmgren's and SKF's load terms)."""
+    laws (Palmgren's and SKF's load terms). outer_control: True where the outer raceway
+    controls the ball (quasi-static balls: always; quasi-dynamic balls: their hypothesis), for
+    the kinematics of `ehl_rolling`; gyroscopic_moment_Nmm: the quasi-dynamic balls' M_g per
+    ball (N mm; None for quasi-static balls)."""
     inner: ContactInput
     outer: ContactInput
     alpha_inner_rad: np.ndarray
@@ -124,16 +129,20 @@ class BearingContacts:
     axial_force_N: np.ndarray
     radial_force_N: np.ndarray | float = 0.0
     per_ball: bool = False
+    outer_control: np.ndarray | bool = True
+    gyroscopic_moment_Nmm: np.ndarray | None = None
 
 
 def pair_bearing_contacts(pair, j: int) -> BearingContacts:
     """Bearing j (0 = A, 1 = B) of a `bearing.PairState` as its representative ball
     (`contact_inputs`, `contact_angles_rad`), with its axial force and its share of a radial
     load (0 without one)."""
-    r = pair.radial
+    r, d = pair.radial, pair.dynamic
     Fr = 0.0 if r is None else np.abs(r.radial_force_N[j])
+    dyn = {} if d is None else dict(outer_control=d.outer_control[j],
+                                    gyroscopic_moment_Nmm=d.gyroscopic_moment_Nmm[j])
     return BearingContacts(*contact_inputs(pair, j), *contact_angles_rad(pair, j),
-                           pair.axial_force_N[j], Fr)
+                           pair.axial_force_N[j], Fr, **dyn)
 
 
 def single_bearing_contacts(st) -> BearingContacts:
@@ -146,9 +155,13 @@ def single_bearing_contacts(st) -> BearingContacts:
     inner = ContactInput(b.load_inner_N, e_i.a_mm, e_i.b_mm, e_i.E_ell, e_i.Rx_mm)
     outer = ContactInput(b.load_outer_N, e_o.a_mm, e_o.b_mm, e_o.E_ell, e_o.Rx_mm)
     dynamic = st.ball_model == "quasi_dynamic"
+    dyn = {} if not dynamic else dict(
+        outer_control=True if b.outer_control is None else b.outer_control,
+        gyroscopic_moment_Nmm=b.gyroscopic_moment_Nmm)
     return BearingContacts(inner, outer, np.radians(b.contact_angle_inner_deg),
                            np.radians(b.contact_angle_outer_deg) if dynamic else None,
-                           np.abs(b.loads[0]), np.hypot(b.loads[1], b.loads[2]), per_ball=True)
+                           np.abs(b.loads[0]), np.hypot(b.loads[1], b.loads[2]), per_ball=True,
+                           **dyn)
 
 
 @dataclass(frozen=True)
@@ -160,7 +173,9 @@ class BearingFriction:
     heat_outer_W: heat a law computes at the contacts from their own speeds (`ehl_rolling`),
     else None. solid: the solid-film components (`analytic.torque.ContactTorques`, per ball
     where per_ball), else None. ranges: where the law left its source's range
-    (`analytic.friction.ranges.RangeRows`, per row)."""
+    (`analytic.friction.ranges.RangeRows`, per row). spin_inner_Nmm, spin_outer_Nmm: the spin
+    sliding of the inner and outer contacts (`ehl_rolling`; in total_Nmm beside the load and
+    viscous terms), else None."""
     total_Nmm: np.ndarray
     load_Nmm: np.ndarray
     viscous_Nmm: np.ndarray
@@ -169,6 +184,8 @@ class BearingFriction:
     heat_outer_W: np.ndarray | None = None
     solid: ContactTorques | None = None
     ranges: tuple[RangeRows, ...] = ()
+    spin_inner_Nmm: np.ndarray | None = None
+    spin_outer_Nmm: np.ndarray | None = None
 
 
 def bearing_friction(g, c: BearingContacts, *, model: str = "solid_film", mu=0.02,
@@ -231,7 +248,10 @@ def pair_torque(g, pair, *, model: str = "solid_film", mu=0.02, hysteresis_loss=
     elif model == "oil":
         per, parts, located, ranges = _oil_pair(g, pair, args)
         parts["viscosity_mm2_s"] = nu_mm2_s
-        split = dict(rolling_Nmm=parts["viscous_Nmm"], sliding_Nmm=parts["load_Nmm"],
+        sliding = parts["load_Nmm"]
+        if "spin_Nmm" in parts:                 # ehl_rolling: its spin sliding
+            sliding = sliding + parts["spin_Nmm"]
+        split = dict(rolling_Nmm=parts["viscous_Nmm"], sliding_Nmm=sliding,
                      drag_Nmm=parts.pop("drag_Nmm"))
     else:
         raise ValueError(f"model must be 'solid_film' or 'oil', got {model!r}")
@@ -316,7 +336,7 @@ def _oil_bearing(g, c: BearingContacts, mu, speed_rpm, f0, nu_mm2_s, f1, load_te
         return BearingFriction(t.total_Nmm, t.sliding_Nmm, t.rolling_Nmm, t.drag_Nmm,
                                ranges=ranges)
     visc = palmgren_viscous_torque_Nmm(f0, nu_mm2_s, n, g.dm_mm)
-    q_in = q_out = None
+    q_in = q_out = s_in = s_out = None
     ranges = ()
     if model == "starved" and fr.oil_quantity_mg > 0:
         ratio, ranges = _starvation_ratio(g, c, n, fr)
@@ -329,6 +349,8 @@ def _oil_bearing(g, c: BearingContacts, mu, speed_rpm, f0, nu_mm2_s, f1, load_te
         visc = ti + to
         if speed_rpm is not None:
             q_in, q_out = qi, qo
+        s_in, s_out, gyro = _ehl_spin(g, c, n, spin_traction_coefficient(fr.oil_family))
+        ranges = ranges + gyro
     Fa = c.axial_force_N
     if load_term == "coulomb":
         m1 = coulomb_load_torque_Nmm(mu, Fa, 0.5 * g.dm_mm)
@@ -337,8 +359,10 @@ def _oil_bearing(g, c: BearingContacts, mu, speed_rpm, f0, nu_mm2_s, f1, load_te
     else:
         raise ValueError(f"load_term must be 'coulomb' or 'palmgren', got {load_term!r}")
     total = m1 + visc
+    if s_in is not None:
+        total = total + s_in + s_out
     return BearingFriction(total, m1, visc * np.ones_like(total), np.zeros_like(total), q_in, q_out,
-                           ranges=ranges)
+                           ranges=ranges, spin_inner_Nmm=s_in, spin_outer_Nmm=s_out)
 
 
 def _oil_pair(g, pair, args) -> tuple[list, dict, tuple]:
@@ -349,13 +373,17 @@ def _oil_pair(g, pair, args) -> tuple[list, dict, tuple]:
     a, b = (bearing_friction(g, pair_bearing_contacts(pair, j), **args) for j in (0, 1))
     load, viscous = a.load_Nmm + b.load_Nmm, a.viscous_Nmm + b.viscous_Nmm
     drag = a.drag_Nmm + b.drag_Nmm
+    parts = dict(load_Nmm=load, viscous_Nmm=viscous, drag_Nmm=drag)
+    s_in = s_out = 0.0
+    if a.spin_inner_Nmm is not None:            # ehl_rolling: the spin sliding at each contact
+        s_in, s_out = a.spin_inner_Nmm + b.spin_inner_Nmm, a.spin_outer_Nmm + b.spin_outer_Nmm
+        parts["spin_Nmm"] = s_in + s_out
     if a.heat_inner_W is not None:              # ehl_rolling: its heat located at each contact
-        located = (0.5 * load, 0.5 * load, (a.heat_inner_W + b.heat_inner_W,
-                                            a.heat_outer_W + b.heat_outer_W))
-    else:
+        located = (0.5 * load + s_in, 0.5 * load + s_out, (a.heat_inner_W + b.heat_inner_W,
+                                                          a.heat_outer_W + b.heat_outer_W))
+    else:                                       # no law but ehl_rolling has a spin term
         located = (0.5 * (load + viscous), 0.5 * (load + viscous), None)
-    return ([a.total_Nmm, b.total_Nmm], dict(load_Nmm=load, viscous_Nmm=viscous, drag_Nmm=drag),
-            located, notes(combine(a.ranges, b.ranges)))
+    return ([a.total_Nmm, b.total_Nmm], parts, located, notes(combine(a.ranges, b.ranges)))
 
 
 def _ehl_bearing(g, c: BearingContacts, speed_rpm, eta0_Pa_s, alpha_per_Pa):
@@ -365,7 +393,8 @@ def _ehl_bearing(g, c: BearingContacts, speed_rpm, eta0_Pa_s, alpha_per_Pa):
     rows whose rolling contacts leave Hamrock-Dowson's ellipticity range (`RangeRows`). An
     unloaded outer contact rolls under the ball's centrifugal force (`CentrifugalFloor`)."""
     Ep = reduced_modulus_MPa(g.ring.E_MPa, g.ring.nu, g.ball.E_MPa, g.ball.nu)
-    kin = ball_kinematics(g.dm_mm, g.Dw_mm, c.alpha_inner_rad, c.alpha_outer_rad)
+    kin = ball_kinematics(g.dm_mm, g.Dw_mm, c.alpha_inner_rad, c.alpha_outer_rad,
+                          c.outer_control)
     a_o = c.alpha_inner_rad if c.alpha_outer_rad is None else c.alpha_outer_rad
     Rx, Ry = ball_raceway_radii_mm(g.Dw_mm, g.dm_mm, np.degrees(a_o), g.f_o, "outer")
     omega_c = np.abs(np.asarray(speed_rpm, float)) * RPM_TO_RAD_S * kin.cage
@@ -390,6 +419,29 @@ def _ehl_bearing(g, c: BearingContacts, speed_rpm, eta0_Pa_s, alpha_per_Pa):
     ranges = (range_rows("ehl_rolling", "ellipticity k", f"{EHL_K_RANGE[0]:g} <= k <= "
                          f"{EHL_K_RANGE[1]:g}, Hamrock-Dowson's fits", np.stack(ks), np.stack(out)),)
     return ti, to, qi, qo, ranges
+
+
+def _ehl_spin(g, c: BearingContacts, speed_rpm, mu):
+    """Spin sliding of one bearing's contacts (`analytic.friction.ehl_rolling.spin_torque_bearing`
+    with traction coefficient mu, the kinematics of `ball_kinematics` at the contacts' angles and
+    raceway control): (inner contacts, outer contacts) inner-ring torque N mm, summed over the
+    balls where c.per_ball, 0 at rest (speed_rpm 0: no entrainment, no EHL film whose traction
+    mu bounds; the law's starting torque is its load term); and, with quasi-dynamic balls, the rows where the controlling
+    contact's traction cannot hold the gyroscopic moment (`RangeRows`; `GYRO_NOTE`)."""
+    kin = ball_kinematics(g.dm_mm, g.Dw_mm, c.alpha_inner_rad, c.alpha_outer_rad,
+                          c.outer_control)
+    si, so = spin_torque_bearing(1 if c.per_ball else g.Z, c.inner, c.outer, kin.spin_inner,
+                                 kin.spin_outer, mu)
+    if c.per_ball:
+        si, so = si.sum(axis=0), so.sum(axis=0)
+    turning = np.abs(np.asarray(speed_rpm, float)) > 0
+    si, so = np.where(turning, si, 0.0), np.where(turning, so, 0.0)
+    if c.gyroscopic_moment_Nmm is None:
+        return si, so, ()
+    Q_ctl = np.where(c.outer_control, c.outer.Q_N, c.inner.Q_N)
+    r = gyroscopic_traction_ratio(c.gyroscopic_moment_Nmm, g.Dw_mm, Q_ctl)
+    return si, so, (range_rows("ehl_rolling", "gyroscopic traction 2 M_g / (Dw Q)", GYRO_NOTE,
+                               r, r > mu),)
 
 
 def ehl_rolling_pair(g, pair, speed_rpm, eta0_Pa_s, alpha_per_Pa):

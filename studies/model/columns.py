@@ -104,7 +104,7 @@ def _clamp_columns(result: SimulationResult) -> dict[str, np.ndarray]:
 
 def _torque_columns(t) -> dict[str, np.ndarray]:
     """The torque components after `torque_Nmm`: solid film, the dissipations and the contact
-    sums; oil, the load and viscous terms; then per bearing, the heat and (oil) the viscosity."""
+    sums; oil, the load and viscous terms (ehl_rolling: and the spin sliding); then per bearing, the heat and (oil) the viscosity."""
     if t.model == "solid_film":
         out = {"torque_hysteresis_Nmm": t.hysteresis_Nmm,
                "torque_differential_Nmm": t.differential_Nmm, "torque_spin_Nmm": t.spin_Nmm,
@@ -112,6 +112,8 @@ def _torque_columns(t) -> dict[str, np.ndarray]:
                "torque_outer_contacts_Nmm": t.outer_contacts_Nmm}
     else:
         out = {"torque_load_Nmm": t.load_Nmm, "torque_viscous_Nmm": t.viscous_Nmm}
+        if t.spin_Nmm is not None:          # ehl_rolling: the contacts' spin sliding
+            out["torque_spin_Nmm"] = t.spin_Nmm
     out["torque_A_Nmm"], out["torque_B_Nmm"] = t.torque_A_Nmm, t.torque_B_Nmm
     if t.heat_W is not None:
         out["heat_W"] = t.heat_W
