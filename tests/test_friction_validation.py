@@ -404,29 +404,85 @@ def test_loso_coverage_counts_against_the_other_sources_interval():
     assert sum(np.isclose(w, np.exp(2 * half), rtol=1e-12) for w in c.width_ratios) == 2
 
 
-def _target_params():
-    measured = {"minimal_oil": "18 of 32 residuals (56 %) inside, median upper / lower 73 "
-                               "(palmgren 6/7 width 156; skf2004 4/7, 94; ehl_rolling 5/7, "
-                               "1.1e3; starved 0/5, 19; minimal_oil 3/6, 41): JPL and OCI miss "
-                               "in opposite directions (report)",
-                "solid_film": "no published value row of a solid film has a residual (seed 000's "
-                              "cycle changes are predicted 0)",
-                "oil_bath_jet": "no published oil bath or jet point is held"}
-    return [pytest.param(reg, marks=pytest.mark.xfail(reason=measured[reg], strict=False),
-                         id=reg) for reg in iv.REGIMES]
+def test_narrowest_loso_ratio_is_the_spread_with_the_other_sources():
+    """Closed form: sources A (0.0), B (0.1), C (0.5, 0.6): C's rows need exp(0.5 - 0.0) and
+    exp(0.6 - 0.0); A's exp(0.6 - 0.0); B's likewise; D (NaN) is not judged; a source whose
+    others give one residual is not judged."""
+    res = [("r", "l", "A", "a", 0.0), ("r", "l", "B", "b", 0.1), ("r", "l", "C", "c1", 0.5),
+           ("r", "l", "C", "c2", 0.6), ("r", "l", "D", "d", float("nan")),
+           ("s", "l", "A", "a", 0.0), ("s", "l", "B", "b", 5.0)]
+    need = iv.narrowest_loso_ratio(res)
+    np.testing.assert_allclose([need[("r", "l", "C", "c1")], need[("r", "l", "C", "c2")],
+                                need[("r", "l", "A", "a")], need[("r", "l", "B", "b")]],
+                               np.exp([0.5, 0.6, 0.6, 0.6]), rtol=1e-12)
+    assert ("r", "l", "D", "d") not in need and not any(k[0] == "s" for k in need)
 
 
-@pytest.mark.parametrize("regime", _target_params())
-def test_interval_covers_at_its_level_and_says_something(regime):
-    """Issue 43 Done-when: per regime, the shipped residuals' leave-one-source-out coverage
-    (every law pooled) reaches the nominal level and the typical interval's upper over lower
-    bound is at most 3."""
-    cov = [c for (reg, _), c in iv.shipped_coverage().items() if reg == regime]
-    judged = sum(c.judged for c in cov)
-    assert judged > 0
-    inside = sum(c.inside for c in cov)
-    width = float(np.median([w for c in cov for w in c.width_ratios]))
-    assert inside / judged >= iv.LEVEL and width <= 3.0, (inside, judged, width)
+def test_no_interval_from_the_held_sources_reaches_coverage_and_width():
+    """Issue 43 Done-when, negative branch with its proof: leaving one source out, no interval
+    from the other sources can hold the held-out points at the stated rate with upper / lower
+    <= 3. Premise: a 90 % interval estimated from fewer than 10 residuals holds all of them
+    (checked here for the study's own rule, `interval_factors`, on every judged (regime, law,
+    source): lo <= every residual of the others <= hi). Then an interval that holds a held-out
+    residual too spans at least exp(max - min) of the two (`narrowest_loso_ratio`), and for every
+    published point under EVERY law (the law chosen per point with hindsight) that exceeds 3, so
+    fewer than 90 % (none) of the points can be inside an interval that says something; and
+    every interval of upper / lower <= 3 misses its point, so with the median <= 3 at least half
+    miss: coverage <= 50 %. Reason:
+    the sources' log errors differ by more than ln 3 from source to source (JPL2022 +0.9 .. +1.9
+    for every law, OCI2018 -1.7 .. -0.2; the report's table)."""
+    res = iv.shipped_residual_rows()
+    for reg, law, src, q, e in res:
+        others = [r[4] for r in res if (r[0], r[1]) == (reg, law) and r[2] != src]
+        if len(others) < iv.MIN_RESIDUALS:
+            continue
+        assert len(others) < 10
+        lo, hi = iv.interval_factors(others)
+        assert np.log(lo) <= min(others) and max(others) <= np.log(hi), (law, src)
+    need = iv.narrowest_loso_ratio(res)
+    best = {}
+    for (reg, law, src, q), w in need.items():
+        best[(src, q)] = min(best.get((src, q), np.inf), w)
+    assert len(best) == 7
+    narrow = sum(w <= fv.WIDTH_TARGET for w in best.values())
+    assert narrow < iv.LEVEL * len(best), best
+    # and what the shipped coverage measures is consistent with the bound: every point that is
+    # inside its LOSO interval is inside one wider than 3
+    for c in iv.shipped_coverage().values():
+        assert sum(w > fv.WIDTH_TARGET for w in c.width_ratios) >= c.inside
+
+
+def test_a_boundary_shear_law_cannot_bring_jpl_and_oci_together():
+    """The slow and starting points are the only boundary-regime points held (JPL2022, OCI2018).
+    A boundary shear strength tau = tau0 + alpha p over each contact's Hertz area (Coulomb at
+    tau0 = 0, Briscoe-Tabor's constant shear at alpha = 0) does not reconcile them: for every
+    tau0 / alpha and every pairing of the geometry variants, the narrowest interval holding all
+    four points' log residuals has upper / lower > 3. Why (second check): the contacts' mean Hertz
+    pressures Q / (pi a b) are alike (JPL's lies inside OCI's range over its slope), so an area
+    law scales both sources alike. The torque is linear in (tau0, alpha): at (2 MPa, 0.05) it is
+    0.05 C + 2 S of the unit torques (1e-9)."""
+    spans = fv.boundary_law_spans()
+    assert len(spans) == 8
+    assert min(np.exp(sp) for *_, sp, _ in spans) > fv.WIDTH_TARGET
+    pr = fv.boundary_pressures_MPa()
+    assert pr["OCI2018"][0] <= pr["JPL2022"][0] <= pr["JPL2022"][1] <= pr["OCI2018"][1]
+    c = fv.cases()
+    gj, go = c["JPL2022"].g, c["OCI2018"].g
+    C = fv._boundary_unit_torques(gj, go, 1.0, 0.0)
+    S = fv._boundary_unit_torques(gj, go, 0.0, 1.0)
+    np.testing.assert_allclose(fv._boundary_unit_torques(gj, go, 0.05, 2.0), 0.05 * C + 2.0 * S,
+                               rtol=1e-9)
+
+
+@pytest.mark.parametrize("regime", ["solid_film", "oil_bath_jet"])
+def test_regimes_without_published_points_state_no_interval(regime):
+    """No published value row of a solid film has a residual (seed 000's cycle changes are
+    predicted 0) and no oil bath or jet point is held: those regimes state no interval (NaN
+    factors), rather than one borrowed from another regime."""
+    law = "solid_film" if regime == "solid_film" else "palmgren"
+    i = iv.model_form_interval(regime, law)
+    assert not i.stated and i.n_residuals == 0
+    assert not any(reg == regime for reg, *_ in iv.shipped_residual_rows())
 
 
 def test_matrix_in_interval_column_agrees_with_loso_coverage(external):

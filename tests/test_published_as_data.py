@@ -118,18 +118,28 @@ def test_seed000_settling_cannot_move_the_minimum(s000):
     assert abs(f.predicted) <= 1e-9
 
 
-def test_seed000_no_history_candidate_predicts_the_held_out_change(s000):
-    """Against the published pair (-1.7, +0.9 N mm; tolerance half the last digit): no candidate
-    fitted on one change predicts the other. Fitted on the maximum, only the softened preload path
-    predicts a rise of the minimum at all; fitted on the minimum, nothing predicts the fall of
-    the maximum."""
-    on_max, on_min = s000
-    for r in (on_max, on_min):
-        assert not any(f.fit_in_band and f.predicted_ok for f in r.fits)
-    rising = [f.candidate for f in on_max.fits if f.fit_in_band and f.predicted > 1e-9]
-    assert rising == ["preload path softened after the first cycle"]
-    assert all(f.predicted > pad.SEED000_MAX_CHANGE_NMM + pad.SEED000_TOL_NMM
-               for f in on_min.fits if f.fit_in_band)
+def test_seed000_history_candidates_move_the_cycle_extremes_as_their_physics_says(s000):
+    """Each history candidate's (max, min) cycle changes, fitted on either published change,
+    have the signs its physics dictates (a solid-film torque rises with the contact loads, hence
+    with the preload, and is linear in the film's coefficient): creep only loses preload, so
+    both extremes fall or stay (<= 0); a run-in change dmu moves both extremes with the sign of
+    dmu; a softer preload path in series (k_eff = 1 / (1/k + c) < k) shrinks the thermal preload
+    swing, so the maximum falls and the minimum rises (the sign pattern published, -1.7 / +0.9
+    N mm). Whether the held-out value is reached is measured in the study's report, not locked
+    in here (round-off 1e-9 N mm)."""
+    tol = 1e-9
+    for r, i_fit in zip(s000, (0, 1)):
+        for f in r.fits:
+            ch = [0.0, 0.0]
+            ch[i_fit], ch[1 - i_fit] = f.fitted, f.predicted
+            if f.candidate.startswith("preload_settling.creep"):
+                assert ch[0] <= tol and ch[1] <= tol, (f.candidate, ch)
+            elif f.candidate.startswith("solid_film_runin"):
+                assert all(np.sign(c) in (0.0, np.sign(f.value)) for c in ch), (f.candidate, ch)
+            elif f.candidate.startswith("preload path softened"):
+                assert ch[0] <= tol and ch[1] >= -tol, (f.candidate, ch)
+                if f.value > 0:
+                    assert ch[0] < 0 < ch[1], (f.candidate, ch)
 
 
 def test_seed001_ladder_rungs_are_its_model_forms(s001):

@@ -206,3 +206,33 @@ def interval_text(i: ModelFormInterval, path: Path | None = None) -> str:
     return (f"model-form interval x{i.factor_lo:.3g} .. x{i.factor_hi:.3g} ({i.level:.0%} "
             f"nominal, regime {i.regime}, law {i.law}: {i.n_residuals} residuals of "
             f"{len(i.sources)} sources{loso}; study friction_validation)")
+
+
+def narrowest_loso_ratio(residuals) -> dict[tuple[str, str, str, str], float]:
+    """Per judged residual (regime, law, source, quantity): the smallest upper over lower bound
+    (-) of ANY interval that holds both that residual and every residual of the other sources
+    of its (regime, law): exp(max - min) over the held-out residual and the others'. An
+    interval estimated from fewer than 10 residuals that leaves one of them out holds less than
+    90 % of its own data, so no 90 % interval from the held sources can hold the point with a
+    smaller ratio (the normal predictive interval of `interval_factors` holds all of its
+    residuals for n <= 5: the largest standardised deviation of n values is (n - 1) / sqrt(n) =
+    1.79 < 1.645 sqrt(6/5) = 1.80). residuals: (regime, law, source, quantity, log residual)
+    tuples; a residual whose other sources give fewer than MIN_RESIDUALS residuals is not
+    judged (as `loso_coverage`)."""
+    rows = [r for r in residuals if np.isfinite(r[4])]
+    out = {}
+    for reg, law, src, q, e in rows:
+        others = [r[4] for r in rows if (r[0], r[1]) == (reg, law) and r[2] != src]
+        if len(others) < MIN_RESIDUALS:
+            continue
+        out[(reg, law, src, q)] = float(np.exp(max(others + [e]) - min(others + [e])))
+    return out
+
+
+def shipped_residual_rows(path: Path | None = None) -> list[tuple[str, str, str, str, float]]:
+    """(regime, law, source, quantity, log residual) of the shipped residuals CSV."""
+    with open(path or RESIDUALS_CSV, newline="") as fh:
+        rows = csv.reader(line for line in fh if not line.startswith("#"))
+        pick = itemgetter(*map(next(rows).index,
+                               ("regime", "law", "source", "quantity", "log_residual")))
+        return [(reg, law, src, q, float(e)) for reg, law, src, q, e in map(pick, rows)]
