@@ -248,9 +248,7 @@ def pair_torque(g, pair, *, model: str = "solid_film", mu=0.02, hysteresis_loss=
     elif model == "oil":
         per, parts, located, ranges = _oil_pair(g, pair, args)
         parts["viscosity_mm2_s"] = nu_mm2_s
-        sliding = parts["load_Nmm"]
-        if "spin_Nmm" in parts:                 # ehl_rolling: its spin sliding
-            sliding = sliding + parts["spin_Nmm"]
+        sliding = parts["load_Nmm"] + parts.get("spin_Nmm", 0.0)   # ehl_rolling's spin
         split = dict(rolling_Nmm=parts["viscous_Nmm"], sliding_Nmm=sliding,
                      drag_Nmm=parts.pop("drag_Nmm"))
     else:
