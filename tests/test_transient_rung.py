@@ -396,3 +396,21 @@ def test_on_a_history_made_by_the_independent_conduction_network_the_history_is_
     named = {ss.family(c) for c in ss.named_causes(res)}
     assert res.verdict in ("explained", "explained_partly", "ambiguous"), res.reasons
     assert named and named <= thermal, (res.verdict, named)
+
+
+def test_the_mount_s_upper_bounds_are_its_sources_and_limits_of_the_form_not_refusals(pl):
+    """The mount's capacity bound is 500 kg of cast iron at c = 500 J/(kg K) (Incropera Table
+    A.1, 420..500 J/(kg K)), its conductance to the environment 1 m^2 at natural convection's top
+    25 W/(m^2 K) (Incropera Table 1.1); both upper bounds, and only the upper ones, are limits of
+    the form for the claim rules (`goodness.FORM_LIMITS`): a fit that wants a heavier mount or one
+    more tied to the ambient is refused by the rules that look at the fit, not by the bound."""
+    from studies.diagnosis.goodness import FORM_LIMITS
+
+    e = tr.ThermalTransientFE(pl.asm, pl)
+    assert e.bounds["C_mount_J_K"][1] == pytest.approx(500.0 * 500.0, rel=1e-12)
+    assert e.bounds["G_env_W_K"][1] == pytest.approx(1.0 * 25.0, rel=1e-12)
+    for p in ("C_mount_J_K", "G_env_W_K"):
+        assert FORM_LIMITS.get((tr.NAME, p)) == 1
+    # the other parameters' bounds stay refusals where they were (film, fit, heat)
+    for p in ("film_resistance_m2K_W", "fit_conductance_factor", "heat_scale"):
+        assert (tr.NAME, p) not in FORM_LIMITS
