@@ -35,7 +35,8 @@ import numpy as np
 from scipy.optimize import brentq
 
 from analytic.bearing import BearingGeometry, solve_pair
-from analytic.friction.interval import LEVEL, interval_factors, loso_coverage
+from analytic.friction.interval import (LEVEL, REGIMES, interval_factors, loso_coverage,
+                                       narrowest_loso_ratio)
 from analytic.friction.minimal_oil import minimal_oil_ratio
 from analytic.friction.options import FrictionOptions
 from analytic.lubrication import dynamic_viscosity_Pa_s, get_lubricant
@@ -609,7 +610,6 @@ def regime_summary(cov: dict) -> dict:
 
 
 def regime_rows(cov: dict) -> list[list]:
-    from analytic.friction.interval import REGIMES
     summ = regime_summary(cov)
     rows = []
     for reg in REGIMES:
@@ -623,7 +623,6 @@ def regime_rows(cov: dict) -> list[list]:
 
 def target_text(cov: dict) -> str:
     """Whether each regime meets the target, from the coverage table."""
-    from analytic.friction.interval import REGIMES
     summ = regime_summary(cov)
     parts = []
     for reg in REGIMES:
@@ -671,7 +670,6 @@ def narrowest_rows(rows: list[dict]) -> list[list]:
     """Per judged value row: (law, source, quantity, its log residual, the other sources'
     range, the narrowest upper / lower any interval holding both needs,
     `interval.narrowest_loso_ratio`)."""
-    from analytic.friction.interval import narrowest_loso_ratio
     res = [(r["regime"], r["law"], r["source"], r["quantity"], r["log_residual"]) for r in rows
            if r["kind"] == "value"]
     need = narrowest_loso_ratio(res)
@@ -737,7 +735,6 @@ def impossibility_text(rows: list[dict], spans: list, slow: list | None = None,
         [r["log_residual"] for r in rows if r["source"] == "SEED001" and r["law"] == law
          and r["kind"] == "value" and np.isfinite(r["log_residual"])] for law in LAWS)
         if len(e) > 1]
-    from analytic.friction.interval import narrowest_loso_ratio
     need = narrowest_loso_ratio([(r["regime"], r["law"], r["source"], r["quantity"],
                                   r["log_residual"]) for r in rows if r["kind"] == "value"])
     best = {}
@@ -812,7 +809,6 @@ def lqf_share_text(shares: list) -> str:
 
 def no_interval_text(cov: dict) -> str:
     """Which regimes have no judged published point, hence no interval (from the coverage)."""
-    from analytic.friction.interval import REGIMES
     summ = regime_summary(cov)
     none = [reg for reg in REGIMES if summ.get(reg, (0, 0, 0))[1] == 0]
     if not none:
