@@ -119,7 +119,9 @@ Units: s, C, W, J, K; films in W/(m^2 K), areas in mm^2 inside (FE units, `fem.t
 from __future__ import annotations
 
 import math
+from bisect import bisect_right
 from dataclasses import dataclass, fields
+from functools import cached_property
 
 import numpy as np
 import scipy.linalg as sla
@@ -470,31 +472,119 @@ class HeatCurve:
     condition set of each row. A trial holds each interval's heat at its value at the
     interval's end, at the bearing's temperature there (`solve`: backward in the coupling,
     stable however steeply the heat falls as the oil warms, as `transient_route`'s steady
-    `equilibrium` is a fixed point of the same coupling)."""
+    `equilibrium` is a fixed point of the same coupling). Between grid points ln(heat) is
+    linear in T (np.interp's formula), held at the ends beyond the grid."""
     T_C: np.ndarray
     ln_heat: np.ndarray
     row: np.ndarray
 
+    @cached_property
+    def _tables(self) -> list["_HeatTable"]:
+        """Per condition set its `_HeatTable` (plain floats: a trial evaluates the curve a few
+        times per row, where numpy's per-call overhead would dominate)."""
+        grid = [float(x) for x in self.T_C]
+        out = []
+        for ln in np.asarray(self.ln_heat, float):
+            ln_l = [float(x) for x in ln]
+            slope = [(ln_l[i + 1] - ln_l[i]) / (grid[i + 1] - grid[i])
+                     for i in range(len(grid) - 1)]
+            # the largest rates of rise and fall of the heat with T (W/K) on each segment: at
+            # its end of the larger heat (ln(heat) is linear there, d heat / dT = slope heat)
+            big = [math.exp(max(ln_l[i], ln_l[i + 1])) for i in range(len(slope))]
+            rise = max([s * b for s, b in zip(slope, big) if s > 0.0], default=0.0)
+            fall = max([-s * b for s, b in zip(slope, big) if s < 0.0], default=0.0)
+            out.append(_HeatTable(grid, ln_l, slope, math.exp(max(ln_l)) - HEAT_FLOOR_W,
+                                  rise, fall))
+        return out
+
     def heat_W(self, k: int, T_C: float) -> float:
         """The heat (W) of row k's conditions with the bearing at T_C (C)."""
-        return float(np.exp(np.interp(T_C, self.T_C, self.ln_heat[self.row[k]])) - HEAT_FLOOR_W)
+        return self._tables[int(self.row[k])].heat(float(T_C))[0]
 
-    def solve(self, k: int, T0_C: float, dT_per_W: float) -> float:
+    def solve(self, k: int, T0_C: float, dT_per_W: float, guess: float = 0.0) -> float:
         """The heat Q (W) of row k that is consistent with the bearing's temperature it makes,
         T = T0_C + dT_per_W Q (K/W: the trial's linear response): the root of
-        Q - heat(T0 + dT_per_W Q) in [0, the curve's largest heat] (it exists: the left end is
-        <= 0, the right >= 0; unique where the heat falls with the temperature or rises slower
-        than 1 / dT_per_W)."""
-        from scipy.optimize import brentq
-
-        hi = float(np.exp(self.ln_heat[self.row[k]].max()) - HEAT_FLOOR_W)
-        f = lambda Q: Q - self.heat_W(k, T0_C + dT_per_W * Q)        # noqa: E731
-        lo_v = f(0.0)
+        f(Q) = Q - heat(T0 + dT_per_W Q) in [0, the curve's largest heat] (it exists: the left
+        end is <= 0, the right >= 0). Where f rises over the whole bracket (f' = 1 -
+        dT_per_W d heat / dT > 0: always where the heat falls with the temperature and the
+        response is positive, else where |dT_per_W| times the curve's largest rate of the
+        wrong sign is below 1) the root is unique and a safeguarded Newton iteration from
+        `guess` (the row before's heat) finds it (`_HeatTable.newton`); otherwise Brent's method
+        on the bracket (scipy's brentq), the same tolerances (xtol 1e-12 W, rtol 1e-11)."""
+        tab = self._tables[int(self.row[k])]
+        T0, d = float(T0_C), float(dT_per_W)
+        hi = tab.largest_W
+        lo_v = -tab.heat(T0)[0]
         if lo_v >= 0.0 or hi <= 0.0:
             return 0.0
-        if f(hi) <= 0.0:
+        hi_v = hi - tab.heat(T0 + d * hi)[0]
+        if hi_v <= 0.0:
             return hi
-        return float(brentq(f, 0.0, hi, xtol=1e-12, rtol=1e-11))
+        if (tab.rise if d >= 0.0 else tab.fall) * abs(d) < 1.0:
+            Q = tab.newton(T0, d, 0.0, hi, guess)
+            if Q is not None:
+                return Q
+        from scipy.optimize import brentq
+
+        f = lambda Q: Q - tab.heat(T0 + d * Q)[0]        # noqa: E731
+        return float(brentq(f, 0.0, hi, xtol=HEAT_XTOL_W, rtol=HEAT_RTOL))
+
+
+#: tolerances of the heat's root (`HeatCurve.solve`): W and relative
+HEAT_XTOL_W, HEAT_RTOL = 1e-12, 1e-11
+#: Newton iterations of `_HeatTable.newton` before it gives the root to Brent's method
+HEAT_NEWTON_MAX = 60
+
+
+@dataclass(frozen=True)
+class _HeatTable:
+    """One condition set's heat curve as plain floats (`HeatCurve`): the grid (C), ln(heat +
+    HEAT_FLOOR_W) at its points, the slope of ln(heat) per segment (1/K), the largest heat (W)
+    and the largest rates of rise and of fall of the heat with the temperature (W/K)."""
+    grid: list
+    ln: list
+    slope: list
+    largest_W: float
+    rise: float
+    fall: float
+
+    def heat(self, T: float) -> tuple[float, float]:
+        """(heat (W), d heat / dT (W/K)) at T (C): ln(heat) interpolated linearly between the
+        grid points as np.interp does, held beyond them (rate 0 there)."""
+        g = self.grid
+        if T <= g[0]:
+            return math.exp(self.ln[0]) - HEAT_FLOOR_W, 0.0
+        if T >= g[-1]:
+            return math.exp(self.ln[-1]) - HEAT_FLOOR_W, 0.0
+        i = bisect_right(g, T) - 1
+        e = math.exp(self.slope[i] * (T - g[i]) + self.ln[i])
+        return e - HEAT_FLOOR_W, self.slope[i] * e
+
+    def newton(self, T0: float, d: float, a: float, b: float, guess: float) -> float | None:
+        """The root of f(Q) = Q - heat(T0 + d Q) in [a, b] (f(a) < 0 < f(b), f rising: one
+        root) by Newton's method kept inside the bracket (a step leaving it bisects it), each
+        value of f narrowing the bracket; converged when a step is below HEAT_XTOL_W +
+        HEAT_RTOL |Q| or the bracket narrower; None after HEAT_NEWTON_MAX iterations."""
+        Q = guess if a < guess < b else 0.5 * (a + b)
+        for _ in range(HEAT_NEWTON_MAX):
+            H, dH = self.heat(T0 + d * Q)
+            f = Q - H
+            if f == 0.0:
+                return Q
+            if f < 0.0:
+                a = Q
+            else:
+                b = Q
+            slope = 1.0 - d * dH
+            step = f / slope if slope > 0.0 else math.inf
+            new = Q - step
+            if not a < new < b:
+                new, step = 0.5 * (a + b), Q - 0.5 * (a + b)
+            tol = HEAT_XTOL_W + HEAT_RTOL * abs(new)
+            if abs(step) <= tol or b - a <= tol:
+                return new
+            Q = new
+        return None
 
 
 def part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb_C: np.ndarray,
@@ -555,15 +645,19 @@ def part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb_C: np.nda
         lam, Phi = sla.eigh(0.5 * (A + A.T), M, check_finite=False)
         return np.maximum(lam, 0.0), Phi
 
-    X = np.empty((n, m + 1))
     lam, Phi = modes(int(level[0]))
     g0 = Phi.T @ (factors[level[0]] * drive[0] + other[0])
     with np.errstate(divide="ignore", invalid="ignore"):
         inv = np.where(lam > 0, 1.0 / np.where(lam > 0, lam, 1.0), 0.0)
     z = g0 * inv                                                      # steady first row
+    Q = 0.0
     if curve is not None:            # with the heat that row's steady bearing temperature makes
         dz = s * inv * (Phi.T @ e_heat)
-        z = z + curve.solve(0, g_oil @ Phi @ z, g_oil @ Phi @ dz) * dz
+        Q = curve.solve(0, g_oil @ Phi @ z, g_oil @ Phi @ dz)
+        z = z + Q * dz
+    Z = np.empty((n, m + 1))            # the states, each in the modes of its interval's level
+    Z[0] = z
+    X = np.empty((n, m + 1))
     X[0] = Phi @ z
     if n > 1:
         # per level: its modes and, for its intervals, the exact step's decay and drive
@@ -576,22 +670,27 @@ def part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb_C: np.nda
             ga = (factors[lv] * drive[sel] + other[sel]) @ Phi_l
             gb = (factors[lv] * drive[sel + 1] + other[sel + 1]) @ Phi_l
             hs = h[sel, None]
-            # a held heat of 1 W over the interval (the heat at its end, `HeatCurve`)
+            oil = g_oil @ Phi_l
+            # a held heat of 1 W over the interval (the heat at its end, `HeatCurve`) and the
+            # bearing's temperature it makes
             dh = (s * hs * f1) * (Phi_l.T @ e_heat) if curve is not None else None
-            steps[int(lv)] = (Phi_l, E, hs * (ga * f1 + (gb - ga) * f2), dh, g_oil @ Phi_l)
+            steps[int(lv)] = (Phi_l, E, hs * (ga * f1 + (gb - ga) * f2), dh, oil,
+                              None if dh is None else (dh @ oil).tolist())
             row[sel] = np.arange(sel.size)
-        current = int(level[0])
-        for k in range(n - 1):
-            lv = int(level[k])
-            Phi_l, E, c, dh, oil = steps[lv]
+        current, Phi_c = int(level[0]), Phi
+        for k, (lv, r) in enumerate(zip(level.tolist(), row.tolist())):
+            Phi_l, E, c, dh, oil, oil_d = steps[lv]
             if lv != current:                       # the state into the new level's modes
-                z = Phi_l.T @ (M @ X[k])            # M-orthonormal: Phi^T M Phi = I
-                current = lv
-            z = E[row[k]] * z + c[row[k]]
+                z = Phi_l.T @ (M @ (Phi_c @ z))      # M-orthonormal: Phi^T M Phi = I
+                current, Phi_c = lv, Phi_l
+            z = E[r] * z + c[r]
             if dh is not None:
-                d = dh[row[k]]
-                z = z + curve.solve(k + 1, oil @ z, oil @ d) * d
-            X[k + 1] = Phi_l @ z
+                Q = curve.solve(k + 1, float(oil @ z), oil_d[r], Q)
+                z = z + Q * dh[r]
+            Z[k + 1] = z
+        for lv, (Phi_l, *_) in steps.items():       # the states' fields, level by level
+            sel = np.flatnonzero(level == lv) + 1
+            X[sel] = Z[sel] @ Phi_l.T
     G = np.zeros((len(PARTS), m + 1))
     G[:, :m] = rm.groups
     return X @ G.T
