@@ -439,6 +439,8 @@ def _levels(film_factor, ball_factor, n: int):
     else:
         f_lv, f_of = film_levels(film_factor)
     b = np.ones(k) if ball_factor is None or n < 2 else np.asarray(ball_factor, float)
+    if np.all(f_of == f_of[0]) and np.all(b == b[0]):           # one level
+        return f_lv[f_of[:1]], b[:1].copy(), np.zeros(k, int)
     pairs, level = np.unique(np.column_stack([f_of, b]), axis=0, return_inverse=True)
     return f_lv[pairs[:, 0].astype(int)], pairs[:, 1], level.reshape(-1)
 
@@ -626,16 +628,19 @@ def part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb_C: np.nda
     e_env[m] = G_env
     amb = np.asarray(T_amb_C, float)
     film = amb if T_film_C is None else np.broadcast_to(np.asarray(T_film_C, float), amb.shape)
-    drive = np.outer(film, e_film)                                     # (n, m + 1), per film 1
-    other = np.outer(amb, e_env)
     s = q.heat_scale
     e_heat = np.zeros(m + 1)
     e_heat[:m] = rm.a_heat
     curve = heat_W if isinstance(heat_W, HeatCurve) and s > 0.0 else None
+    # the drive of each row, sum_j column_j (n,) x load_j (m + 1,) (the film's times its
+    # level's factor): the ambient and the heat given per row (W)
+    loads = [(amb, e_env)]
     if heat_W is not None and curve is None and s > 0.0:
-        other = other + np.outer(s * np.asarray(heat_W, float), e_heat)
+        loads.append((s * np.asarray(heat_W, float), e_heat))
     g_oil = np.zeros(m + 1)                  # the bearing's (oil's) temperature of a state
     g_oil[:m] = rm.groups[[PARTS.index(k) for k in OIL_PARTS]].mean(axis=0)
+    G = np.zeros((len(PARTS), m + 1))        # the part means of a state
+    G[:, :m] = rm.groups
     t = np.asarray(t_s, float)
     n = t.size
     factors, balls, level = _levels(film_factor, ball_factor, n)
@@ -645,11 +650,19 @@ def part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb_C: np.nda
         lam, Phi = sla.eigh(0.5 * (A + A.T), M, check_finite=False)
         return np.maximum(lam, 0.0), Phi
 
-    lam, Phi = modes(int(level[0]))
-    g0 = Phi.T @ (factors[level[0]] * drive[0] + other[0])
+    def modal_drive(lv, Phi_l):
+        """(n, m + 1) every row's drive in level lv's modes."""
+        out = np.outer(film, factors[lv] * (e_film @ Phi_l))
+        for col, load in loads:
+            out += np.outer(col, load @ Phi_l)
+        return out
+
+    lv0 = int(level[0])
+    lam, Phi = modes(lv0)
+    g_all = modal_drive(lv0, Phi)
     with np.errstate(divide="ignore", invalid="ignore"):
         inv = np.where(lam > 0, 1.0 / np.where(lam > 0, lam, 1.0), 0.0)
-    z = g0 * inv                                                      # steady first row
+    z = g_all[0] * inv                                                # steady first row
     Q = 0.0
     if curve is not None:            # with the heat that row's steady bearing temperature makes
         dz = s * inv * (Phi.T @ e_heat)
@@ -657,43 +670,47 @@ def part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb_C: np.nda
         z = z + Q * dz
     Z = np.empty((n, m + 1))            # the states, each in the modes of its interval's level
     Z[0] = z
-    X = np.empty((n, m + 1))
-    X[0] = Phi @ z
+    out = np.empty((n, len(PARTS)))
+    out[0] = (G @ Phi) @ z
     if n > 1:
-        # per level: its modes and, for its intervals, the exact step's decay and drive
+        # per level: its modes and, for its intervals, the exact step's decay and drive (the
+        # decay factors once per distinct interval length)
         h = np.diff(t)
         steps, row = {}, np.empty(n - 1, int)
-        for lv in np.unique(level):
+        for lv in np.unique(level).tolist():
             sel = np.flatnonzero(level == lv)
-            lam_l, Phi_l = (lam, Phi) if lv == level[0] else modes(int(lv))
-            E, f1, f2 = _phi(np.outer(h[sel], lam_l))
-            ga = (factors[lv] * drive[sel] + other[sel]) @ Phi_l
-            gb = (factors[lv] * drive[sel + 1] + other[sel + 1]) @ Phi_l
+            lam_l, Phi_l, g = (lam, Phi, g_all) if lv == lv0 else (*modes(lv), None)
+            g = modal_drive(lv, Phi_l) if g is None else g
+            h_u, of = np.unique(h[sel], return_inverse=True)
+            E_u, f1, f2 = _phi(np.outer(h_u, lam_l))
+            of = of.reshape(-1)
+            if h_u.size > 1:
+                f1, f2 = f1[of], f2[of]
+            ga, gb = g[sel], g[sel + 1]
             hs = h[sel, None]
             oil = g_oil @ Phi_l
             # a held heat of 1 W over the interval (the heat at its end, `HeatCurve`) and the
             # bearing's temperature it makes
             dh = (s * hs * f1) * (Phi_l.T @ e_heat) if curve is not None else None
-            steps[int(lv)] = (Phi_l, E, hs * (ga * f1 + (gb - ga) * f2), dh, oil,
-                              None if dh is None else (dh @ oil).tolist())
+            steps[lv] = (Phi_l, [E_u[i] for i in of], hs * (ga * f1 + (gb - ga) * f2), dh,
+                         oil, None if dh is None else (dh @ oil).tolist(), sel)
             row[sel] = np.arange(sel.size)
-        current, Phi_c = int(level[0]), Phi
+        current, Phi_c = lv0, Phi
         for k, (lv, r) in enumerate(zip(level.tolist(), row.tolist())):
-            Phi_l, E, c, dh, oil, oil_d = steps[lv]
+            Phi_l, E, c, dh, oil, oil_d, _ = steps[lv]
+            z = Z[k]
             if lv != current:                       # the state into the new level's modes
                 z = Phi_l.T @ (M @ (Phi_c @ z))      # M-orthonormal: Phi^T M Phi = I
                 current, Phi_c = lv, Phi_l
-            z = E[r] * z + c[r]
+            nxt = Z[k + 1]                          # z_{k+1} = E z_k + c (+ Q d), in place
+            np.multiply(E[r], z, out=nxt)
+            nxt += c[r]
             if dh is not None:
-                Q = curve.solve(k + 1, float(oil @ z), oil_d[r], Q)
-                z = z + Q * dh[r]
-            Z[k + 1] = z
-        for lv, (Phi_l, *_) in steps.items():       # the states' fields, level by level
-            sel = np.flatnonzero(level == lv) + 1
-            X[sel] = Z[sel] @ Phi_l.T
-    G = np.zeros((len(PARTS), m + 1))
-    G[:, :m] = rm.groups
-    return X @ G.T
+                Q = curve.solve(k + 1, float(oil @ nxt), oil_d[r], Q)
+                nxt += Q * dh[r]
+        for Phi_l, *_, sel in steps.values():      # the part means, level by level
+            out[sel + 1] = Z[sel + 1] @ (G @ Phi_l).T
+    return out
 
 
 #: Picard passes of the radiation film (`radiating_part_temperatures_C`): the first about the
