@@ -741,6 +741,11 @@ def radiating_part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb
 
 
 # ====================================================================== the candidate
+#: trials kept per rung object (`ThermalTransientFE._apply`): a fit's Jacobian columns of the
+#: nuisance repeat the trial at its centre
+TRIALS_KEPT = 4
+
+
 class ThermalTransientFE(Effect):
     """thermal_transient_fe: the part temperatures from the stack's own reduced transient
     conduction FE and a lumped mount (module docstring), written into the rows' inputs for
@@ -795,7 +800,7 @@ class ThermalTransientFE(Effect):
                       "G_face_W_K": G_face_max / 16.0, "G_env_W_K": 1.0,
                       "C_mount_J_K": 2000.0, "fit_conductance_factor": 0.2,
                       "ball_conductance_factor": 0.2, "heat_scale": 0.1}
-        self._heat, self._balls = Memo(4), Memo(4)
+        self._heat, self._balls, self._trials = Memo(4), Memo(4), Memo(TRIALS_KEPT, read_only=True)
 
     def bind(self, pipeline) -> "ThermalTransientFE":
         """The rung evaluated on `pipeline` (the diagnosis's, `ladder.FormRoute`); the rung of
@@ -803,6 +808,7 @@ class ThermalTransientFE(Effect):
         out = ThermalTransientFE.__new__(ThermalTransientFE)
         out.__dict__.update(self.__dict__)
         out.pipeline, out._heat, out._balls = pipeline, Memo(4), Memo(4)
+        out._trials = Memo(TRIALS_KEPT, read_only=True)
         _BOUND.put(self.asm, pipeline)
         return out
 
@@ -824,11 +830,8 @@ class ThermalTransientFE(Effect):
         if q.film_resistance_m2K_W == 0.0:       # the configured model: the form's limit
             return inputs.copy()
         pl = self._pl()
-        heat = self.heat_curve(inputs) if q.heat_scale > 0.0 else None
-        args = (rung_model(pl), q, inputs.time_s, inputs.T_ambient_C, heat, self.sink_C)
-        balls = self.ball_factors(inputs)
-        T = (radiating_part_temperatures_C(*args, self.asm.T_ref_C, balls) if self.vacuum
-             else part_temperatures_C(*args, None, balls))
+        T = self._trials.get_or_make((pl,) + self._trial_key(inputs, q),
+                                     lambda: self.part_temperatures(inputs, q))
         Tc = dict(inputs.T_C)
         for i, part in enumerate(PARTS):
             if part in inputs.measured_parts:
@@ -836,6 +839,26 @@ class ThermalTransientFE(Effect):
             col = T[:, i] if not np.isnan(T[:, i]).any() else T[:, PARTS.index("shaft")]
             Tc[part] = np.array(col, float)
         return inputs.copy(T_C=Tc)
+
+    def part_temperatures(self, inputs, q: RungParameters) -> np.ndarray:
+        """(n, len(PARTS)) the trial's part means (`part_temperatures_C`, in vacuum
+        `radiating_part_temperatures_C`) at the rows of `inputs`."""
+        heat = self.heat_curve(inputs) if q.heat_scale > 0.0 else None
+        args = (rung_model(self._pl()), q, inputs.time_s, inputs.T_ambient_C, heat, self.sink_C)
+        balls = self.ball_factors(inputs)
+        return (radiating_part_temperatures_C(*args, self.asm.T_ref_C, balls) if self.vacuum
+                else part_temperatures_C(*args, None, balls))
+
+    @staticmethod
+    def _trial_key(inputs, q: RungParameters) -> tuple:
+        """What a trial's temperatures depend on besides the pipeline: its parameters, the
+        rows' times and the conditions of the heat and the ball links (`heat_curve`,
+        `ball_factors`). Fits of the nuisance (a friction scale, a sensor's offset) with the
+        rung's parameters held repeat it."""
+        speed = np.broadcast_to(np.asarray(inputs.speed_rpm, float), np.shape(inputs.T_ambient_C))
+        return (tuple(getattr(q, f.name) for f in fields(q)),
+                np.asarray(inputs.time_s, float).tobytes(), _conditions_key(inputs),
+                speed.tobytes())
 
     def ball_factors(self, inputs) -> np.ndarray | None:
         """(n - 1,) the ball links' conductance of each interval between rows over the rung
@@ -874,12 +897,9 @@ class ThermalTransientFE(Effect):
         per conditions."""
         from studies.model import transient_route as tr
 
-        keys = ("speed_rpm", "preload_assembled_N", "axial_load_N", "radial_load_N",
-                "moment_Nmm")
         amb = np.asarray(inputs.T_ambient_C, float)
-        cond = np.column_stack([np.broadcast_to(np.asarray(getattr(inputs, k), float), amb.shape)
-                                for k in keys if getattr(inputs, k) is not None])
-        key = cond.tobytes() + amb.tobytes()
+        cond = _heat_conditions(inputs)
+        key = _conditions_key(inputs)
 
         def make():
             sets, row = np.unique(cond, axis=0, return_inverse=True)
@@ -902,6 +922,23 @@ class ThermalTransientFE(Effect):
 
     def describe(self) -> str:
         return "model form: " + self.change
+
+
+#: the rows' conditions the pair's heat depends on besides the temperature (`heat_curve`)
+HEAT_CONDITIONS = ("speed_rpm", "preload_assembled_N", "axial_load_N", "radial_load_N",
+                   "moment_Nmm")
+
+
+def _heat_conditions(inputs) -> np.ndarray:
+    """(n, k) the rows' HEAT_CONDITIONS that the inputs give."""
+    shape = np.shape(inputs.T_ambient_C)
+    return np.column_stack([np.broadcast_to(np.asarray(getattr(inputs, k), float), shape)
+                            for k in HEAT_CONDITIONS if getattr(inputs, k) is not None])
+
+
+def _conditions_key(inputs) -> bytes:
+    """The key of a `heat_curve`: the rows' heat conditions and ambient."""
+    return _heat_conditions(inputs).tobytes() + np.asarray(inputs.T_ambient_C, float).tobytes()
 
 
 def _row_of(pair, j: int):
