@@ -372,6 +372,31 @@ def test_at_off_the_rung_is_the_configured_model(pl):
         assert np.array_equal(out.T_C[p], inp.T_C[p])
 
 
+def test_a_kept_trial_is_one_of_the_same_parameters_rows_and_conditions(pl):
+    """The rung keeps its last trials (`ThermalTransientFE._apply`): asked again at the same
+    parameters and rows it answers the same temperatures; rows at another speed (another heat
+    and ball links), another time step or other parameters answer what a fresh rung object
+    computes for them, not the kept trial."""
+    from studies.model.inputs import baseline_inputs
+
+    asm = pl.asm
+    v0 = asm.lubrication.speed_rpm
+    cond = cycles(20, 600.0)
+    inp = baseline_inputs(cond, 20, asm.T_ref_C, asm.preload.assembled_N, v0)
+    p = _params(film_resistance_m2K_W=0.05, G_face_W_K=2.0, G_env_W_K=1.0, C_mount_J_K=3000.0)
+    e = tr.ThermalTransientFE(asm).bind(pl)
+    first = e.apply(inp, p, asm.T_ref_C).T_C["inner_ring"]
+    assert np.array_equal(e.apply(inp, p, asm.T_ref_C).T_C["inner_ring"], first)
+    others = [(inp.copy(speed_rpm=np.full(20, 3.0 * v0)), p),
+              (inp.copy(time_s=2.0 * np.asarray(inp.time_s)), p),
+              (inp, {**p, "G_env_W_K": 2.0})]
+    for other, q in others:
+        kept = e.apply(other, q, asm.T_ref_C).T_C["inner_ring"]
+        fresh = tr.ThermalTransientFE(asm).bind(pl).apply(other, q, asm.T_ref_C).T_C["inner_ring"]
+        assert np.array_equal(kept, fresh)
+        assert np.max(np.abs(kept - first)) > 1e-3
+
+
 # ---------------------------------------------------------------------- diagnoses (slow)
 #: the plumbing truth: seed 000 in a 20 W/(m^2 K) film, bolted to a 5 kJ/K mount
 TRUTH = {"film_resistance_m2K_W": 0.05, "G_face_W_K": 5.0, "C_mount_J_K": 5000.0,
