@@ -125,6 +125,7 @@ from functools import cached_property
 
 import numpy as np
 import scipy.linalg as sla
+from scipy.optimize import brentq
 
 from fem.reduced_thermal import ReducedConduction
 from fem.transient import PER_M2_TO_PER_MM2, ThermalParameters, radiation_h_W_mm2K
@@ -526,8 +527,6 @@ class HeatCurve:
             Q = tab.newton(T0, d, 0.0, hi, guess)
             if Q is not None:
                 return Q
-        from scipy.optimize import brentq
-
         f = lambda Q: Q - tab.heat(T0 + d * Q)[0]        # noqa: E731
         return float(brentq(f, 0.0, hi, xtol=HEAT_XTOL_W, rtol=HEAT_RTOL))
 
