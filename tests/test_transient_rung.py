@@ -234,6 +234,64 @@ def test_a_heat_that_falls_as_the_bearing_warms_settles_where_it_balances_the_lo
     assert np.mean(T[0, oil]) > -40.0 + 5.0
 
 
+def _root_by_bisection(curve, T0, d):
+    """The heat Q in [0, the curve's largest] with Q = heat(T0 + d Q), by 200 bisections of the
+    balance on np.interp of the curve's own table (a second evaluation of the curve and a
+    second root method beside `HeatCurve.solve`'s Newton iteration); None when the balance
+    does not change sign once over 400 points of the bracket (several roots)."""
+    g, ln = curve.T_C, curve.ln_heat[0]
+    hi = float(np.exp(ln.max()) - tr.HEAT_FLOOR_W)
+    f = lambda Q: Q - (np.exp(np.interp(T0 + d * Q, g, ln)) - tr.HEAT_FLOOR_W)  # noqa: E731
+    if f(0.0) >= 0.0:
+        return 0.0
+    if f(hi) <= 0.0:
+        return hi
+    signs = np.sign([f(Q) for Q in np.linspace(0.0, hi, 400)])
+    if np.count_nonzero(np.diff(signs)) != 1:
+        return None
+    lo, up = 0.0, hi
+    for _ in range(200):
+        mid = 0.5 * (lo + up)
+        lo, up = (mid, up) if f(mid) < 0.0 else (lo, mid)
+    return 0.5 * (lo + up)
+
+
+#: heats (W) of the bearing's temperature T (C) for the root's test: an oil's viscous heat
+#: falling as it warms, one rising slowly, and one rising steeply about 30 C (up to 6 W/K,
+#: where a response d > 1/6 K/W makes the balance's slope 1 - d dH/dT negative: several
+#: roots may exist)
+HEATS = {"falling": lambda T: 40.0 * np.exp(-(T - 20.0) / 15.0),
+         "rising slowly": lambda T: 5.0 * np.exp((T - 20.0) / 40.0),
+         "rising steeply": lambda T: 1.0 + 49.0 / (1.0 + np.exp(-(T - 30.0) / 2.0))}
+
+
+@pytest.mark.parametrize("law", sorted(HEATS))
+def test_the_heat_balance_of_a_row_is_the_root_bisection_finds(law):
+    """`HeatCurve.solve` (a safeguarded Newton iteration where the balance has one root, Brent's
+    method where it may have several) against bisection on np.interp of the same table
+    (`_root_by_bisection`) for each law of HEATS on the rung's 5 K grid, over responses d from
+    -2 to 2 K/W and starting temperatures across and beyond the grid: equal to 1e-9 of the
+    heat where the balance has one root (the solve's tolerances are 1e-12 W + 1e-11
+    relative), and every answer balances its row to the same share."""
+    grid = np.arange(-100.0, 300.0, 5.0)
+    curve = tr.HeatCurve(grid, np.log(HEATS[law](grid) + tr.HEAT_FLOOR_W)[None, :],
+                         np.zeros(1, int))
+    largest = float(np.exp(curve.ln_heat.max()) - tr.HEAT_FLOOR_W)
+    worst, n_unique = 0.0, 0
+    for T0 in (-150.0, -40.0, 3.0, 20.0, 29.0, 77.0, 350.0):
+        for d in (-2.0, -0.3, 0.0, 0.05, 0.5, 2.0):
+            Q = curve.solve(0, T0, d, guess=1.0)
+            assert 0.0 <= Q <= largest * (1.0 + 1e-12)
+            assert abs(Q - curve.heat_W(0, T0 + d * Q)) <= 1e-9 * max(Q, 1.0)
+            ref = _root_by_bisection(curve, T0, d)
+            if ref is None:
+                continue
+            n_unique += 1
+            worst = max(worst, abs(Q - ref) / max(ref, 1.0))
+    assert worst < 1e-9
+    assert n_unique >= 20                          # most cases have one root to compare
+
+
 def test_the_ball_links_factor_is_the_fe_s_ball_conductances_scaled(rm):
     """The rung's operator at ball_conductance_factor f against the conduction's own reduced
     operator (`fem.reduced_thermal.ReducedConduction.operator`, a second assembly) with both
@@ -312,6 +370,31 @@ def test_at_off_the_rung_is_the_configured_model(pl):
     out = e.apply(inp, e.off, asm.T_ref_C)
     for p in PARTS:
         assert np.array_equal(out.T_C[p], inp.T_C[p])
+
+
+def test_a_kept_trial_is_one_of_the_same_parameters_rows_and_conditions(pl):
+    """The rung keeps its last trials (`ThermalTransientFE._apply`): asked again at the same
+    parameters and rows it answers the same temperatures; rows at another speed (another heat
+    and ball links), another time step or other parameters answer what a fresh rung object
+    computes for them, not the kept trial."""
+    from studies.model.inputs import baseline_inputs
+
+    asm = pl.asm
+    v0 = asm.lubrication.speed_rpm
+    cond = cycles(20, 600.0)
+    inp = baseline_inputs(cond, 20, asm.T_ref_C, asm.preload.assembled_N, v0)
+    p = _params(film_resistance_m2K_W=0.05, G_face_W_K=2.0, G_env_W_K=1.0, C_mount_J_K=3000.0)
+    e = tr.ThermalTransientFE(asm).bind(pl)
+    first = e.apply(inp, p, asm.T_ref_C).T_C["inner_ring"]
+    assert np.array_equal(e.apply(inp, p, asm.T_ref_C).T_C["inner_ring"], first)
+    others = [(inp.copy(speed_rpm=np.full(20, 3.0 * v0)), p),
+              (inp.copy(time_s=2.0 * np.asarray(inp.time_s)), p),
+              (inp, {**p, "G_env_W_K": 2.0})]
+    for other, q in others:
+        kept = e.apply(other, q, asm.T_ref_C).T_C["inner_ring"]
+        fresh = tr.ThermalTransientFE(asm).bind(pl).apply(other, q, asm.T_ref_C).T_C["inner_ring"]
+        assert np.array_equal(kept, fresh)
+        assert np.max(np.abs(kept - first)) > 1e-3
 
 
 # ---------------------------------------------------------------------- diagnoses (slow)

@@ -21,7 +21,7 @@ pulley's 30 N pull with its 3000 N mm moment on seed 001's flywheel pair, `flywh
 speed steps with the assembled preload stepped 7 / 15 / 30 N, 1 % noise), which puts the pair's
 5-DOF solve in every call of the `unlogged_load` rung; the `thermal_transient_fe` rung (issue
 42: seed 000 in a 20 W/(m^2 K) film bolted to a 5 kJ/K mount, a 14 h history whatever the rows),
-with the time of one of its trials (the reduced conduction alone and the whole model call). The
+with the time of one of its trials (the reduced conduction alone, with its heat curve, and the whole model call). The
 candidates are the CLI's
 (`files.candidate_effects` and the ladder's `ladder.candidates`, after them), and so are the worker processes
 (`--workers`, default every CPU the process may use, `studies.model.parallel.parallel_map`).
@@ -208,24 +208,35 @@ def profiled(pl):
 
 def trial_times(pred, effects: dict, cond: dict, repeat: int = 5) -> str:
     """One trial of the thermal_transient_fe rung: the reduced conduction alone
-    (`transient_rung.part_temperatures_C`) and the whole model call (the rung's temperatures
-    through the pipeline), best of `repeat` (ms), at parameters moved off the truth (no memo)."""
+    (`transient_rung.part_temperatures_C`), with the pair's heat at the bearing's temperature
+    (its `HeatCurve`, each row's heat balance solved, as a model call takes it) and the whole
+    model call (the rung's temperatures through the pipeline), best of `repeat` (ms), at
+    parameters moved off the truth (no memo)."""
     from studies.diagnosis.transient_rung import part_temperatures_C, rung_model
+    from studies.model.inputs import baseline_inputs
 
     rung = pred.forms.rungs["thermal_transient_fe"].candidate
     rm = rung_model(pred.pl)
     p = rung.validate(effects["thermal_transient_fe"])
-    thermal, call = [], []
+    asm = pred.pl.asm
+    n = len(cond["time_s"])
+    curve = rung.heat_curve(baseline_inputs(dict(cond), n, asm.T_ref_C, asm.preload.assembled_N,
+                                            asm.lubrication.speed_rpm))
+    thermal, heated, call = [], [], []
     for k in range(repeat):
         q = {**p, "film_resistance_m2K_W": p["film_resistance_m2K_W"] * (1.0 + 0.01 * (k + 1))}
         t0 = time.perf_counter()
         part_temperatures_C(rm, q, cond["time_s"], cond["T_ambient_C"], None)
         thermal.append(time.perf_counter() - t0)
         t0 = time.perf_counter()
+        part_temperatures_C(rm, q, cond["time_s"], cond["T_ambient_C"], curve)
+        heated.append(time.perf_counter() - t0)
+        t0 = time.perf_counter()
         pred({"thermal_transient_fe": q}, {"mu_scale": MU_TRUE})
         call.append(time.perf_counter() - t0)
-    return (f"thermal_transient_fe trial ({len(cond['time_s'])} rows, {rm.m + 1} states): reduced "
-            f"conduction {1e3 * min(thermal):.1f} ms, whole model call {1e3 * min(call):.1f} ms "
+    return (f"thermal_transient_fe trial ({n} rows, {rm.m + 1} states): reduced "
+            f"conduction {1e3 * min(thermal):.1f} ms, with its heat curve "
+            f"{1e3 * min(heated):.1f} ms, whole model call {1e3 * min(call):.1f} ms "
             f"(load {os.getloadavg()[0]:.1f})")
 
 

@@ -119,10 +119,13 @@ Units: s, C, W, J, K; films in W/(m^2 K), areas in mm^2 inside (FE units, `fem.t
 from __future__ import annotations
 
 import math
+from bisect import bisect_right
 from dataclasses import dataclass, fields
+from functools import cached_property
 
 import numpy as np
 import scipy.linalg as sla
+from scipy.optimize import brentq
 
 from fem.reduced_thermal import ReducedConduction
 from fem.transient import PER_M2_TO_PER_MM2, ThermalParameters, radiation_h_W_mm2K
@@ -437,6 +440,8 @@ def _levels(film_factor, ball_factor, n: int):
     else:
         f_lv, f_of = film_levels(film_factor)
     b = np.ones(k) if ball_factor is None or n < 2 else np.asarray(ball_factor, float)
+    if np.all(f_of == f_of[0]) and np.all(b == b[0]):           # one level
+        return f_lv[f_of[:1]], b[:1].copy(), np.zeros(k, int)
     pairs, level = np.unique(np.column_stack([f_of, b]), axis=0, return_inverse=True)
     return f_lv[pairs[:, 0].astype(int)], pairs[:, 1], level.reshape(-1)
 
@@ -470,31 +475,117 @@ class HeatCurve:
     condition set of each row. A trial holds each interval's heat at its value at the
     interval's end, at the bearing's temperature there (`solve`: backward in the coupling,
     stable however steeply the heat falls as the oil warms, as `transient_route`'s steady
-    `equilibrium` is a fixed point of the same coupling)."""
+    `equilibrium` is a fixed point of the same coupling). Between grid points ln(heat) is
+    linear in T (np.interp's formula), held at the ends beyond the grid."""
     T_C: np.ndarray
     ln_heat: np.ndarray
     row: np.ndarray
 
+    @cached_property
+    def _tables(self) -> list["_HeatTable"]:
+        """Per condition set its `_HeatTable` (plain floats: a trial evaluates the curve a few
+        times per row, where numpy's per-call overhead would dominate)."""
+        grid = [float(x) for x in self.T_C]
+        out = []
+        for ln in np.asarray(self.ln_heat, float):
+            ln_l = [float(x) for x in ln]
+            slope = [(ln_l[i + 1] - ln_l[i]) / (grid[i + 1] - grid[i])
+                     for i in range(len(grid) - 1)]
+            # the largest rates of rise and fall of the heat with T (W/K) on each segment: at
+            # its end of the larger heat (ln(heat) is linear there, d heat / dT = slope heat)
+            big = [math.exp(max(ln_l[i], ln_l[i + 1])) for i in range(len(slope))]
+            rise = max([s * b for s, b in zip(slope, big) if s > 0.0], default=0.0)
+            fall = max([-s * b for s, b in zip(slope, big) if s < 0.0], default=0.0)
+            out.append(_HeatTable(grid, ln_l, slope, math.exp(max(ln_l)) - HEAT_FLOOR_W,
+                                  rise, fall))
+        return out
+
     def heat_W(self, k: int, T_C: float) -> float:
         """The heat (W) of row k's conditions with the bearing at T_C (C)."""
-        return float(np.exp(np.interp(T_C, self.T_C, self.ln_heat[self.row[k]])) - HEAT_FLOOR_W)
+        return self._tables[int(self.row[k])].heat(float(T_C))[0]
 
-    def solve(self, k: int, T0_C: float, dT_per_W: float) -> float:
+    def solve(self, k: int, T0_C: float, dT_per_W: float, guess: float = 0.0) -> float:
         """The heat Q (W) of row k that is consistent with the bearing's temperature it makes,
         T = T0_C + dT_per_W Q (K/W: the trial's linear response): the root of
-        Q - heat(T0 + dT_per_W Q) in [0, the curve's largest heat] (it exists: the left end is
-        <= 0, the right >= 0; unique where the heat falls with the temperature or rises slower
-        than 1 / dT_per_W)."""
-        from scipy.optimize import brentq
-
-        hi = float(np.exp(self.ln_heat[self.row[k]].max()) - HEAT_FLOOR_W)
-        f = lambda Q: Q - self.heat_W(k, T0_C + dT_per_W * Q)        # noqa: E731
-        lo_v = f(0.0)
+        f(Q) = Q - heat(T0 + dT_per_W Q) in [0, the curve's largest heat] (it exists: the left
+        end is <= 0, the right >= 0). Where f rises over the whole bracket (f' = 1 -
+        dT_per_W d heat / dT > 0: always where the heat falls with the temperature and the
+        response is positive, else where |dT_per_W| times the curve's largest rate of the
+        wrong sign is below 1) the root is unique and a safeguarded Newton iteration from
+        `guess` (the row before's heat) finds it (`_HeatTable.newton`); otherwise Brent's method
+        on the bracket (scipy's brentq), the same tolerances (xtol 1e-12 W, rtol 1e-11)."""
+        tab = self._tables[int(self.row[k])]
+        T0, d = float(T0_C), float(dT_per_W)
+        hi = tab.largest_W
+        lo_v = -tab.heat(T0)[0]
         if lo_v >= 0.0 or hi <= 0.0:
             return 0.0
-        if f(hi) <= 0.0:
+        hi_v = hi - tab.heat(T0 + d * hi)[0]
+        if hi_v <= 0.0:
             return hi
-        return float(brentq(f, 0.0, hi, xtol=1e-12, rtol=1e-11))
+        if (tab.rise if d >= 0.0 else tab.fall) * abs(d) < 1.0:
+            Q = tab.newton(T0, d, 0.0, hi, guess)
+            if Q is not None:
+                return Q
+        f = lambda Q: Q - tab.heat(T0 + d * Q)[0]        # noqa: E731
+        return float(brentq(f, 0.0, hi, xtol=HEAT_XTOL_W, rtol=HEAT_RTOL))
+
+
+#: tolerances of the heat's root (`HeatCurve.solve`): W and relative
+HEAT_XTOL_W, HEAT_RTOL = 1e-12, 1e-11
+#: Newton iterations of `_HeatTable.newton` before it gives the root to Brent's method
+HEAT_NEWTON_MAX = 60
+
+
+@dataclass(frozen=True)
+class _HeatTable:
+    """One condition set's heat curve as plain floats (`HeatCurve`): the grid (C), ln(heat +
+    HEAT_FLOOR_W) at its points, the slope of ln(heat) per segment (1/K), the largest heat (W)
+    and the largest rates of rise and of fall of the heat with the temperature (W/K)."""
+    grid: list
+    ln: list
+    slope: list
+    largest_W: float
+    rise: float
+    fall: float
+
+    def heat(self, T: float) -> tuple[float, float]:
+        """(heat (W), d heat / dT (W/K)) at T (C): ln(heat) interpolated linearly between the
+        grid points as np.interp does, held beyond them (rate 0 there)."""
+        g = self.grid
+        if T <= g[0]:
+            return math.exp(self.ln[0]) - HEAT_FLOOR_W, 0.0
+        if T >= g[-1]:
+            return math.exp(self.ln[-1]) - HEAT_FLOOR_W, 0.0
+        i = bisect_right(g, T) - 1
+        e = math.exp(self.slope[i] * (T - g[i]) + self.ln[i])
+        return e - HEAT_FLOOR_W, self.slope[i] * e
+
+    def newton(self, T0: float, d: float, a: float, b: float, guess: float) -> float | None:
+        """The root of f(Q) = Q - heat(T0 + d Q) in [a, b] (f(a) < 0 < f(b), f rising: one
+        root) by Newton's method kept inside the bracket (a step leaving it bisects it), each
+        value of f narrowing the bracket; converged when a step is below HEAT_XTOL_W +
+        HEAT_RTOL |Q| or the bracket narrower; None after HEAT_NEWTON_MAX iterations."""
+        Q = guess if a < guess < b else 0.5 * (a + b)
+        for _ in range(HEAT_NEWTON_MAX):
+            H, dH = self.heat(T0 + d * Q)
+            f = Q - H
+            if f == 0.0:
+                return Q
+            if f < 0.0:
+                a = Q
+            else:
+                b = Q
+            slope = 1.0 - d * dH
+            step = f / slope if slope > 0.0 else math.inf
+            new = Q - step
+            if not a < new < b:
+                new, step = 0.5 * (a + b), Q - 0.5 * (a + b)
+            tol = HEAT_XTOL_W + HEAT_RTOL * abs(new)
+            if abs(step) <= tol or b - a <= tol:
+                return new
+            Q = new
+        return None
 
 
 def part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb_C: np.ndarray,
@@ -536,16 +627,19 @@ def part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb_C: np.nda
     e_env[m] = G_env
     amb = np.asarray(T_amb_C, float)
     film = amb if T_film_C is None else np.broadcast_to(np.asarray(T_film_C, float), amb.shape)
-    drive = np.outer(film, e_film)                                     # (n, m + 1), per film 1
-    other = np.outer(amb, e_env)
     s = q.heat_scale
     e_heat = np.zeros(m + 1)
     e_heat[:m] = rm.a_heat
     curve = heat_W if isinstance(heat_W, HeatCurve) and s > 0.0 else None
+    # the drive of each row, sum_j column_j (n,) x load_j (m + 1,) (the film's times its
+    # level's factor): the ambient and the heat given per row (W)
+    loads = [(amb, e_env)]
     if heat_W is not None and curve is None and s > 0.0:
-        other = other + np.outer(s * np.asarray(heat_W, float), e_heat)
+        loads.append((s * np.asarray(heat_W, float), e_heat))
     g_oil = np.zeros(m + 1)                  # the bearing's (oil's) temperature of a state
     g_oil[:m] = rm.groups[[PARTS.index(k) for k in OIL_PARTS]].mean(axis=0)
+    G = np.zeros((len(PARTS), m + 1))        # the part means of a state
+    G[:, :m] = rm.groups
     t = np.asarray(t_s, float)
     n = t.size
     factors, balls, level = _levels(film_factor, ball_factor, n)
@@ -555,46 +649,67 @@ def part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb_C: np.nda
         lam, Phi = sla.eigh(0.5 * (A + A.T), M, check_finite=False)
         return np.maximum(lam, 0.0), Phi
 
-    X = np.empty((n, m + 1))
-    lam, Phi = modes(int(level[0]))
-    g0 = Phi.T @ (factors[level[0]] * drive[0] + other[0])
+    def modal_drive(lv, Phi_l):
+        """(n, m + 1) every row's drive in level lv's modes."""
+        out = np.outer(film, factors[lv] * (e_film @ Phi_l))
+        for col, load in loads:
+            out += np.outer(col, load @ Phi_l)
+        return out
+
+    lv0 = int(level[0])
+    lam, Phi = modes(lv0)
+    g_all = modal_drive(lv0, Phi)
     with np.errstate(divide="ignore", invalid="ignore"):
         inv = np.where(lam > 0, 1.0 / np.where(lam > 0, lam, 1.0), 0.0)
-    z = g0 * inv                                                      # steady first row
+    z = g_all[0] * inv                                                # steady first row
+    Q = 0.0
     if curve is not None:            # with the heat that row's steady bearing temperature makes
         dz = s * inv * (Phi.T @ e_heat)
-        z = z + curve.solve(0, g_oil @ Phi @ z, g_oil @ Phi @ dz) * dz
-    X[0] = Phi @ z
+        Q = curve.solve(0, g_oil @ Phi @ z, g_oil @ Phi @ dz)
+        z = z + Q * dz
+    Z = np.empty((n, m + 1))            # the states, each in the modes of its interval's level
+    Z[0] = z
+    out = np.empty((n, len(PARTS)))
+    out[0] = (G @ Phi) @ z
     if n > 1:
-        # per level: its modes and, for its intervals, the exact step's decay and drive
+        # per level: its modes and, for its intervals, the exact step's decay and drive (the
+        # decay factors once per distinct interval length)
         h = np.diff(t)
         steps, row = {}, np.empty(n - 1, int)
-        for lv in np.unique(level):
+        for lv in np.unique(level).tolist():
             sel = np.flatnonzero(level == lv)
-            lam_l, Phi_l = (lam, Phi) if lv == level[0] else modes(int(lv))
-            E, f1, f2 = _phi(np.outer(h[sel], lam_l))
-            ga = (factors[lv] * drive[sel] + other[sel]) @ Phi_l
-            gb = (factors[lv] * drive[sel + 1] + other[sel + 1]) @ Phi_l
+            lam_l, Phi_l, g = (lam, Phi, g_all) if lv == lv0 else (*modes(lv), None)
+            g = modal_drive(lv, Phi_l) if g is None else g
+            h_u, of = np.unique(h[sel], return_inverse=True)
+            E_u, f1, f2 = _phi(np.outer(h_u, lam_l))
+            of = of.reshape(-1)
+            if h_u.size > 1:
+                f1, f2 = f1[of], f2[of]
+            ga, gb = g[sel], g[sel + 1]
             hs = h[sel, None]
-            # a held heat of 1 W over the interval (the heat at its end, `HeatCurve`)
+            oil = g_oil @ Phi_l
+            # a held heat of 1 W over the interval (the heat at its end, `HeatCurve`) and the
+            # bearing's temperature it makes
             dh = (s * hs * f1) * (Phi_l.T @ e_heat) if curve is not None else None
-            steps[int(lv)] = (Phi_l, E, hs * (ga * f1 + (gb - ga) * f2), dh, g_oil @ Phi_l)
+            steps[lv] = (Phi_l, [E_u[i] for i in of], hs * (ga * f1 + (gb - ga) * f2), dh,
+                         oil, None if dh is None else (dh @ oil).tolist(), sel)
             row[sel] = np.arange(sel.size)
-        current = int(level[0])
-        for k in range(n - 1):
-            lv = int(level[k])
-            Phi_l, E, c, dh, oil = steps[lv]
+        current, Phi_c = lv0, Phi
+        for k, (lv, r) in enumerate(zip(level.tolist(), row.tolist())):
+            Phi_l, E, c, dh, oil, oil_d, _ = steps[lv]
+            z = Z[k]
             if lv != current:                       # the state into the new level's modes
-                z = Phi_l.T @ (M @ X[k])            # M-orthonormal: Phi^T M Phi = I
-                current = lv
-            z = E[row[k]] * z + c[row[k]]
+                z = Phi_l.T @ (M @ (Phi_c @ z))      # M-orthonormal: Phi^T M Phi = I
+                current, Phi_c = lv, Phi_l
+            nxt = Z[k + 1]                          # z_{k+1} = E z_k + c (+ Q d), in place
+            np.multiply(E[r], z, out=nxt)
+            nxt += c[r]
             if dh is not None:
-                d = dh[row[k]]
-                z = z + curve.solve(k + 1, oil @ z, oil @ d) * d
-            X[k + 1] = Phi_l @ z
-    G = np.zeros((len(PARTS), m + 1))
-    G[:, :m] = rm.groups
-    return X @ G.T
+                Q = curve.solve(k + 1, float(oil @ nxt), oil_d[r], Q)
+                nxt += Q * dh[r]
+        for Phi_l, *_, sel in steps.values():      # the part means, level by level
+            out[sel + 1] = Z[sel + 1] @ (G @ Phi_l).T
+    return out
 
 
 #: Picard passes of the radiation film (`radiating_part_temperatures_C`): the first about the
@@ -625,6 +740,11 @@ def radiating_part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb
 
 
 # ====================================================================== the candidate
+#: trials kept per rung object (`ThermalTransientFE._apply`): a fit's Jacobian columns of the
+#: nuisance repeat the trial at its centre
+TRIALS_KEPT = 4
+
+
 class ThermalTransientFE(Effect):
     """thermal_transient_fe: the part temperatures from the stack's own reduced transient
     conduction FE and a lumped mount (module docstring), written into the rows' inputs for
@@ -679,7 +799,7 @@ class ThermalTransientFE(Effect):
                       "G_face_W_K": G_face_max / 16.0, "G_env_W_K": 1.0,
                       "C_mount_J_K": 2000.0, "fit_conductance_factor": 0.2,
                       "ball_conductance_factor": 0.2, "heat_scale": 0.1}
-        self._heat, self._balls = Memo(4), Memo(4)
+        self._heat, self._balls, self._trials = Memo(4), Memo(4), Memo(TRIALS_KEPT, read_only=True)
 
     def bind(self, pipeline) -> "ThermalTransientFE":
         """The rung evaluated on `pipeline` (the diagnosis's, `ladder.FormRoute`); the rung of
@@ -687,6 +807,7 @@ class ThermalTransientFE(Effect):
         out = ThermalTransientFE.__new__(ThermalTransientFE)
         out.__dict__.update(self.__dict__)
         out.pipeline, out._heat, out._balls = pipeline, Memo(4), Memo(4)
+        out._trials = Memo(TRIALS_KEPT, read_only=True)
         _BOUND.put(self.asm, pipeline)
         return out
 
@@ -708,11 +829,8 @@ class ThermalTransientFE(Effect):
         if q.film_resistance_m2K_W == 0.0:       # the configured model: the form's limit
             return inputs.copy()
         pl = self._pl()
-        heat = self.heat_curve(inputs) if q.heat_scale > 0.0 else None
-        args = (rung_model(pl), q, inputs.time_s, inputs.T_ambient_C, heat, self.sink_C)
-        balls = self.ball_factors(inputs)
-        T = (radiating_part_temperatures_C(*args, self.asm.T_ref_C, balls) if self.vacuum
-             else part_temperatures_C(*args, None, balls))
+        T = self._trials.get_or_make((pl,) + self._trial_key(inputs, q),
+                                     lambda: self.part_temperatures(inputs, q))
         Tc = dict(inputs.T_C)
         for i, part in enumerate(PARTS):
             if part in inputs.measured_parts:
@@ -720,6 +838,26 @@ class ThermalTransientFE(Effect):
             col = T[:, i] if not np.isnan(T[:, i]).any() else T[:, PARTS.index("shaft")]
             Tc[part] = np.array(col, float)
         return inputs.copy(T_C=Tc)
+
+    def part_temperatures(self, inputs, q: RungParameters) -> np.ndarray:
+        """(n, len(PARTS)) the trial's part means (`part_temperatures_C`, in vacuum
+        `radiating_part_temperatures_C`) at the rows of `inputs`."""
+        heat = self.heat_curve(inputs) if q.heat_scale > 0.0 else None
+        args = (rung_model(self._pl()), q, inputs.time_s, inputs.T_ambient_C, heat, self.sink_C)
+        balls = self.ball_factors(inputs)
+        return (radiating_part_temperatures_C(*args, self.asm.T_ref_C, balls) if self.vacuum
+                else part_temperatures_C(*args, None, balls))
+
+    @staticmethod
+    def _trial_key(inputs, q: RungParameters) -> tuple:
+        """What a trial's temperatures depend on besides the pipeline: its parameters, the
+        rows' times and the conditions of the heat and the ball links (`heat_curve`,
+        `ball_factors`). Fits of the nuisance (a friction scale, a sensor's offset) with the
+        rung's parameters held repeat it."""
+        speed = np.broadcast_to(np.asarray(inputs.speed_rpm, float), np.shape(inputs.T_ambient_C))
+        return (tuple(getattr(q, f.name) for f in fields(q)),
+                np.asarray(inputs.time_s, float).tobytes(), _conditions_key(inputs),
+                speed.tobytes())
 
     def ball_factors(self, inputs) -> np.ndarray | None:
         """(n - 1,) the ball links' conductance of each interval between rows over the rung
@@ -758,12 +896,9 @@ class ThermalTransientFE(Effect):
         per conditions."""
         from studies.model import transient_route as tr
 
-        keys = ("speed_rpm", "preload_assembled_N", "axial_load_N", "radial_load_N",
-                "moment_Nmm")
         amb = np.asarray(inputs.T_ambient_C, float)
-        cond = np.column_stack([np.broadcast_to(np.asarray(getattr(inputs, k), float), amb.shape)
-                                for k in keys if getattr(inputs, k) is not None])
-        key = cond.tobytes() + amb.tobytes()
+        cond = _heat_conditions(inputs)
+        key = _conditions_key(inputs)
 
         def make():
             sets, row = np.unique(cond, axis=0, return_inverse=True)
@@ -786,6 +921,23 @@ class ThermalTransientFE(Effect):
 
     def describe(self) -> str:
         return "model form: " + self.change
+
+
+#: the rows' conditions the pair's heat depends on besides the temperature (`heat_curve`)
+HEAT_CONDITIONS = ("speed_rpm", "preload_assembled_N", "axial_load_N", "radial_load_N",
+                   "moment_Nmm")
+
+
+def _heat_conditions(inputs) -> np.ndarray:
+    """(n, k) the rows' HEAT_CONDITIONS that the inputs give."""
+    shape = np.shape(inputs.T_ambient_C)
+    return np.column_stack([np.broadcast_to(np.asarray(getattr(inputs, k), float), shape)
+                            for k in HEAT_CONDITIONS if getattr(inputs, k) is not None])
+
+
+def _conditions_key(inputs) -> bytes:
+    """The key of a `heat_curve`: the rows' heat conditions and ambient."""
+    return _heat_conditions(inputs).tobytes() + np.asarray(inputs.T_ambient_C, float).tobytes()
 
 
 def _row_of(pair, j: int):

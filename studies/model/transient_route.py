@@ -692,11 +692,11 @@ def ball_contacts(pl: Pipeline, pair, speed_rpm: float, T_oil_C: float
     g = pl.geom
     alpha = float(np.mean(np.asarray(pair.contact_angle_deg)[:, 0]))
     u = float(lub.entrainment_speed_mm_s(speed_rpm, g.Dw_mm, g.dm_mm, alpha))
-    ring = pl.model.materials["inner_ring_A"]
+    ring = pl.materials["inner_ring_A"]
     oil = pl.lubricant if pl.asm.lubrication.kind == "oil" else None
     out = []
     for c, side, f, r in ((pair.inner, "inner", g.f_i, ring),
-                          (pair.outer, "outer", g.f_o, pl.model.materials["outer_ring_A"])):
+                          (pair.outer, "outer", g.f_o, pl.materials["outer_ring_A"])):
         a, b = float(np.mean(c.a_mm[:, 0])), float(np.mean(c.b_mm[:, 0]))
         h = 0.0
         if oil is not None and u > 0:
