@@ -201,9 +201,10 @@ def _scored_here(pb: Problem, space, Jn: np.ndarray):
 
 
 #: a candidate with at least this many starting points (a global search: `interference_error`'s
-#: ~100 over its band, `fitspec.interference_starts`) has them scored on the workers before the
-#: fits (`searched_starts`), SCORE_CHUNK starts a task: alone in one fit task its search was the
-#: longest task of the fits (4-6 CPU s of 8-12 on seed 000's cycles, 2026-11-29)
+#: ~40 in its first round and ~25 in its second over its band, `fitspec.interference_starts`)
+#: has them scored on the workers before the fits (`searched_starts`), SCORE_CHUNK starts a
+#: task: alone in one fit task its search was the longest task of the fits (4-6 CPU s of 8-12
+#: on seed 000's cycles, 2026-11-29, when it scored ~100 starts in one round)
 GLOBAL_SEARCH_STARTS = 20
 SCORE_CHUNK = 8
 
