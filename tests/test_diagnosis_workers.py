@@ -75,14 +75,14 @@ def test_diagnosis_on_two_workers_equals_one_process():
 
 @needs_fork
 def test_global_search_on_workers_scores_as_its_fit_task():
-    """`fitting.searched_starts` (a global search's starts scored on two workers before the
-    fits) against the route it replaced, `fitting._score_starts` in one process: the same ranked
-    (chi-square, index, start) list to the last bit, and as many model calls (the starts the
-    grid and the lines share scored once, as the one task's cache did). Toy model: the torque of
-    an inner fit that opens in the heat (its interference 4 um + inner_um - 0.1 um/K above
-    20 C), so the scores are piecewise smooth over the band as on the real pipeline."""
+    """`fitting.searched_starts` (a global search's rounds scored on two workers before the
+    fits) against the route of its fit task, `fitting._search` scoring in one process: the same
+    ranked (chi-square, index, start) list to the last bit, and as many model calls (the starts
+    the grid and the lines share scored once, as the one task's cache does). Toy model: the
+    torque of an inner fit that opens in the heat (its interference 4 um + inner_um - 0.1 um/K
+    above 20 C), so the scores are piecewise smooth over the band as on the real pipeline."""
     from studies.diagnosis.calibration import calibrate
-    from studies.diagnosis.fitting import _score_starts, _start_points, searched_starts
+    from studies.diagnosis.fitting import _scored_here, _search, searched_starts
     from studies.diagnosis.problem import make_problem
     from studies.diagnosis.screening import screen
     from studies.model.effects import EFFECTS
@@ -112,11 +112,11 @@ def test_global_search_on_workers_scores_as_its_fit_task():
         else:
             e = pb.effect("interference_error")
             space = pb.space([e])
-            starts = _start_points(pb, e, s.candidates["interference_error"], b.fit, space)
-            got[1] = (_score_starts(pb, space, starts, b.fit.J), pb.model.calls - calls0,
-                      len(starts))
-    (scored2, calls2, counted2), (scored1, calls1, n_starts) = got[2], got[1]
-    assert calls2 == counted2 == calls1 < n_starts          # repeated starts: one call each
-    assert len(scored2) == len(scored1) == n_starts
+            ranked = _search(pb, e, s.candidates["interference_error"], b.fit, space,
+                             _scored_here(pb, space, b.fit.J))
+            got[1] = (ranked, pb.model.calls - calls0)
+    (scored2, calls2, counted2), (scored1, calls1) = got[2], got[1]
+    assert calls2 == counted2 == calls1 < len(scored1)        # repeated starts: one call each
+    assert len(scored2) == len(scored1)
     for (sse2, i2, u2), (sse1, i1, u1) in zip(scored2, scored1):
         assert sse2 == sse1 and i2 == i1 and np.array_equal(u2, u1)

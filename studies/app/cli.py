@@ -169,6 +169,12 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--datasets", nargs="+", default=None, metavar="PART",
                    help="with --diagnose: only the dataset kinds whose label contains one of "
                         "these (e.g. thermal_transient_fe)")
+    b.add_argument("--fresh", action="store_true",
+                   help="with --diagnose: also each kind's whole diagnose in a new process (what "
+                        "a user's command costs: imports, set-ups read from the cache)")
+    b.add_argument("--cold", action="store_true",
+                   help="with --diagnose --fresh: that process on an empty cache folder (every "
+                        "mesh and FE set-up built, as on a first run)")
     b.add_argument("--transient", action="store_true",
                    help="instead: seed 003's 30-minute heat-up (900 steps of 2 s): reduction, "
                         "reduced and full-FE transient times, preload error reduced vs full")

@@ -256,11 +256,15 @@ def cmd_bench(args) -> None:
     if args.diagnose:
         from studies.bench import bench_diagnose
 
+        if args.cold and not args.fresh:
+            raise UserError("--cold: only with --fresh")
         bench_diagnose.main((["--rows", *map(str, args.rows)] if args.rows else [])
-                            + (["--datasets", *args.datasets] if args.datasets else []))
+                            + (["--datasets", *args.datasets] if args.datasets else [])
+                            + (["--fresh"] if args.fresh else [])
+                            + (["--cold"] if args.cold else []))
         return
-    if args.rows or args.datasets:
-        raise UserError("--rows, --datasets: only with --diagnose")
+    if args.rows or args.datasets or args.fresh or args.cold:
+        raise UserError("--rows, --datasets, --fresh, --cold: only with --diagnose")
     if args.simulate:
         from studies.bench import bench_simulate
 

@@ -42,6 +42,14 @@ outside the model; and per parallel map of the engine (`Problem.parallel`, in ph
 items' CPU seconds, the longest item and the greedy schedule on `--workers` processes in the
 order `parallel_map` starts them: the engine's CPU critical path on that many workers (a lower
 bound of its wall time on idle cores, fork and pickling costs not counted).
+
+`--fresh` (what a user's `bearingfem diagnose` costs): per dataset also the whole command in a
+new Python process (`python -m studies.app.cli diagnose` on the same CSV, the same code), wall
+and CPU seconds (the process and its workers), so imports, the assembly's FE set-up and the
+ladder's set-ups read from the on-disk cache count, which the in-process CLI column reuses or
+has in memory; `--cold` with it: that process on an empty cache folder (`BEARINGFEM_CACHE`),
+so every mesh and FE set-up is built as on a machine's first run. The last lines then give
+the fresh process's wall beside the in-process CLI's.
 """
 from __future__ import annotations
 
@@ -50,6 +58,8 @@ import os
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")   # as the CLI: small dense solves, no threads
 
 import argparse  # noqa: E402
+import subprocess  # noqa: E402
+import sys  # noqa: E402
 import tempfile  # noqa: E402
 import time  # noqa: E402
 from contextlib import contextmanager  # noqa: E402
@@ -240,6 +250,28 @@ def trial_times(pred, effects: dict, cond: dict, repeat: int = 5) -> str:
             f"(load {os.getloadavg()[0]:.1f})")
 
 
+def fresh_cli(config: Path, csv: Path, out: Path, cold: bool):
+    """`bearingfem diagnose config csv --out out` in a new Python process importing this code
+    (`--fresh`), timed (`bench_clock.Clock`: the process and its workers); on an empty cache
+    folder when `cold`. Returns (Clock, the command's last output line)."""
+    import studies
+    from studies.bench.bench_clock import Clock
+
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(
+        [str(Path(studies.__file__).resolve().parents[1])]
+        + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p]))
+    with tempfile.TemporaryDirectory() as cache:
+        if cold:
+            env["BEARINGFEM_CACHE"] = cache
+        with Clock() as clock:
+            done = subprocess.run([sys.executable, "-m", "studies.app.cli", "diagnose",
+                                   str(config), str(csv), "--out", str(out)], env=env,
+                                  capture_output=True, text=True)
+    if done.returncode:
+        raise RuntimeError(f"fresh diagnose failed ({done.returncode}): {done.stderr[-500:]}")
+    return clock, (done.stdout.strip().splitlines() or [""])[-1]
+
+
 def main(argv=None) -> None:
     from studies.model.config import CONFIG_DIR, SHIPPED, load_shipped
     from studies.diagnosis.files import (NUISANCE, OUTPUT_NAMES, ModelPredictor,
@@ -262,7 +294,13 @@ def main(argv=None) -> None:
                     help="only the datasets whose label contains one of these")
     ap.add_argument("--profile", action="store_true",
                     help="also where the CPU time goes, in one process (module docstring)")
+    ap.add_argument("--fresh", action="store_true",
+                    help="also the whole diagnose in a new process per dataset (module docstring)")
+    ap.add_argument("--cold", action="store_true",
+                    help="with --fresh: that process on an empty cache folder")
     args = ap.parse_args(argv)
+    if args.cold and not args.fresh:
+        ap.error("--cold: only with --fresh")
     workers = available_workers() if args.workers is None else args.workers
 
     setups: dict = {}
@@ -315,13 +353,20 @@ def main(argv=None) -> None:
                 with Clock() as cli:
                     doc = diagnose_files(CONFIG_DIR / SHIPPED[kind.assembly], csv, Path(tmp),
                                          progress=lambda s: None, pipeline=pl, workers=workers)
-            walls.append((cli.wall_s, label, cli.load_after))
+                fresh = (fresh_cli(CONFIG_DIR / SHIPPED[kind.assembly], csv, Path(tmp) / "fresh",
+                                   args.cold) if args.fresh else None)
+            walls.append((cli.wall_s, label, cli.load_after, fresh))
             form = (r.get("extended_form") or {}).get("name", "-")
             print(f"{label:<42} {r['verdict']:<15} {str(r['cause']):<18} {engine.wall_s:8.2f} "
                   f"{engine.cpu_s:6.2f} {r['n_predict_calls']:6d} {r['seconds']['predict']:8.2f} "
                   f"{cli.wall_s:6.2f} {cli.cpu_s:6.2f}  {form}  (load {cli.load_after:.1f})")
             if (doc["verdict"], doc["cause"]) != (r["verdict"], r["cause"]):
                 print(f"    the CLI's verdict differs: {doc['verdict']} {doc['cause']}")
+            if fresh is not None:
+                clock, said = fresh
+                print(f"    fresh process{' (empty cache)' if args.cold else ''}: wall "
+                      f"{clock.wall_s:.2f} s, CPU {clock.cpu_s:.2f} s (load "
+                      f"{clock.load_after:.1f}); {said}")
             print(f"    model calls by phase: {r['predict_calls_by_phase']}")
             # with workers the model seconds are summed over the processes (may exceed the wall)
             print("    wall seconds by phase (model seconds, summed over the workers): " + ", ".join(
@@ -344,8 +389,11 @@ def main(argv=None) -> None:
                 print("\n".join(prof.lines(workers)))
         # docs/cli.md ("Added for turn 4"): one line per kind, the whole `diagnose` (CLI) wall,
         # slowest last; the load after each run beside it
-        for wall, label, load in sorted(walls):
-            print(f"{label}: {n_rows} rows, wall {wall:.2f} s (load {load:.1f})")
+        for wall, label, load, fresh in sorted(walls, key=lambda t: t[0]):
+            print(f"{label}: {n_rows} rows, wall {wall:.2f} s (load {load:.1f})" + (
+                "" if fresh is None else f"; fresh process{' (empty cache)' if args.cold else ''}"
+                f" {fresh[0].wall_s:.2f} s, CPU {fresh[0].cpu_s:.2f} s (load "
+                f"{fresh[0].load_after:.1f})"))
 
 
 if __name__ == "__main__":

@@ -10,6 +10,8 @@ to fit it to measured data, lives here:
 - `steps(effect, conditions)`: finite-difference step per gradient-fitted parameter, in
   parameter units (default: the effect's `scale`);
 - `starts(effect, conditions, T_ref_C)`: extra starting points of a fit (nonlinear parameters);
+- `refine(effect, scored, sse_off)`: a search in two rounds: after `starts` are scored, the
+  whole list of starts to rank (those and the further points their scores call for);
 - `extra_starts(form, listed, conditions)`: starting values of a generalised form's extra
   parameters for a fit that begins at the listed fit;
 - `held_fixed(effect, conditions)`: parameters these conditions cannot separate from the others,
@@ -71,6 +73,7 @@ class FitSpec:
     extra_starts: Callable[..., list[dict]] = _no_extra_starts
     held_fixed: Callable[..., tuple[str, ...]] = _nothing_held
     even: tuple[str, ...] = ()
+    refine: Callable[..., list[dict]] | None = None
 
 
 # ---------------------------------------------------------------------- thermal lag
@@ -246,21 +249,77 @@ def runin_grid(effect, conditions, T_ref_C) -> dict[str, list]:
 #: step (um) of the global search along each parameter, and the coarse 2-D grid per side
 SEARCH_STEP_UM = 1.0
 SEARCH_GRID = 5
+#: the lines are scored every SEARCH_COARSE steps first (and at their ends), then refined
+#: around the REFINE_PER_LINE best of those points on each line (`interference_refine`)
+SEARCH_COARSE = 4
+REFINE_PER_LINE = 2
 
 
-def interference_starts(effect, conditions, T_ref_C) -> list[dict]:
-    """A global search over the bounds (the assembly's, when narrowed by its tolerances):
-    each fit alone on a SEARCH_STEP_UM line (the residual of a fit that opens or closes inside
-    the test is piecewise smooth with narrow valleys: at 2 % noise a 1 um error is tens of
-    sigma), and a coarse SEARCH_GRID x SEARCH_GRID grid of both. The diagnosis scores every
-    point (with the nuisance corrected linearly) and refines the best by a local fit."""
+def _interference_lines(effect) -> tuple[np.ndarray, np.ndarray]:
+    """The SEARCH_STEP_UM lattice of each fit's line over its bounds (um): inner, outer."""
     (a0, a1), (b0, b1) = effect.bounds["inner_um"], effect.bounds["outer_um"]
     h = SEARCH_STEP_UM
-    out = [{"inner_um": float(a), "outer_um": 0.0} for a in np.arange(a0, a1 + h / 2, h)]
-    out += [{"inner_um": 0.0, "outer_um": float(b)} for b in np.arange(b0, b1 + h / 2, h)]
+    return np.arange(a0, a1 + h / 2, h), np.arange(b0, b1 + h / 2, h)
+
+
+def interference_search(effect) -> list[dict]:
+    """Every point of the global search over the bounds (the assembly's, when narrowed by its
+    tolerances), in its order: each fit alone on a SEARCH_STEP_UM line (the residual of a fit
+    that opens or closes inside the test is piecewise smooth with narrow valleys: at 2 % noise
+    a 1 um error is tens of sigma), then a coarse SEARCH_GRID x SEARCH_GRID grid of both; not
+    the origin (the baseline)."""
+    (a0, a1), (b0, b1) = effect.bounds["inner_um"], effect.bounds["outer_um"]
+    inner, outer = _interference_lines(effect)
+    out = [{"inner_um": float(a), "outer_um": 0.0} for a in inner]
+    out += [{"inner_um": 0.0, "outer_um": float(b)} for b in outer]
     out += [{"inner_um": float(a), "outer_um": float(b)}
             for a in np.linspace(a0, a1, SEARCH_GRID) for b in np.linspace(b0, b1, SEARCH_GRID)]
     return [p for p in out if (p["inner_um"], p["outer_um"]) != (0.0, 0.0)]
+
+
+def _coarse(line: np.ndarray) -> set[float]:
+    """The points of a line scored first: every SEARCH_COARSE-th from its lower bound, and its
+    upper end."""
+    k = np.arange(line.size)
+    return {float(v) for v in line[(k % SEARCH_COARSE == 0) | (k == line.size - 1)]}
+
+
+def interference_starts(effect, conditions, T_ref_C) -> list[dict]:
+    """The first round of the global search (`interference_search`'s points in its order): the
+    lines' coarse points (`_coarse`) and the whole grid. The diagnosis scores each (with the
+    nuisance corrected linearly), adds the points `interference_refine` names, and refines the
+    best by a local fit."""
+    inner, outer = (_coarse(v) for v in _interference_lines(effect))
+    return [p for p in interference_search(effect)
+            if (p["outer_um"] != 0.0 or p["inner_um"] in inner)
+            and (p["inner_um"] != 0.0 or p["outer_um"] in outer)]
+
+
+def interference_refine(effect, scored: list[tuple[dict, float | None]], sse_off: float
+                        ) -> list[dict]:
+    """The whole search after its first round (`interference_starts`, each with its score,
+    None where the model failed; sse_off: the baseline's chi-square, the origin's score):
+    `interference_search`'s points in its order that are in the first round or, on a line,
+    closer than SEARCH_COARSE steps to one of the REFINE_PER_LINE best first-round points of
+    that line (the origin one of them, at sse_off).
+
+    Why this finds the best points of the whole 1 um line: along a line whose chi-square has one
+    minimum (falling to it, rising after), the best coarse point is within SEARCH_COARSE steps
+    of the line's best lattice point (a coarse point between them would score lower), and the
+    second best lattice point is next to the best or a coarse point; the second window keeps a
+    second valley whose coarse point ranks second."""
+    lines = dict(zip(("inner_um", "outer_um"), _interference_lines(effect)))
+    near: set[tuple[float, float]] = set()
+    for name, line in lines.items():
+        other = "outer_um" if name == "inner_um" else "inner_um"
+        on = [(sse, i, p[name]) for i, (p, sse) in enumerate(scored)
+              if p[other] == 0.0 and sse is not None] + [(sse_off, -1, 0.0)]
+        for _, _, v in sorted(on)[:REFINE_PER_LINE]:
+            for x in line[np.abs(line - v) < SEARCH_COARSE * SEARCH_STEP_UM - 1e-9]:
+                near.add((float(x), 0.0) if name == "inner_um" else (0.0, float(x)))
+    first = {(p["inner_um"], p["outer_um"]) for p, _ in scored}
+    return [p for p in interference_search(effect)
+            if (p["inner_um"], p["outer_um"]) in first | near]
 
 
 # ---------------------------------------------------------------------- preload-path compliance
@@ -287,7 +346,7 @@ SPECS: dict[type, FitSpec] = {
                                   grid=settling_creep_grid,
                                   extra_starts=settling_creep_extra_starts),
     SolidFilmRunin: FitSpec(profile=("runin_krev",), steps=runin_steps, grid=runin_grid),
-    InterferenceError: FitSpec(starts=interference_starts),
+    InterferenceError: FitSpec(starts=interference_starts, refine=interference_refine),
     PreloadPathCompliance: FitSpec(starts=compliance_starts),
     # the model-form ladder; a symmetric pair's response is even in the radial load and in the
     # moment (its mirror image about the mid-plane and half a turn about the axis)
@@ -314,6 +373,14 @@ def steps(effect, conditions: Conditions) -> dict[str, float]:
 
 def starts(effect, conditions: Conditions, T_ref_C: float) -> list[dict]:
     return spec(effect).starts(effect, conditions, T_ref_C)
+
+
+def refine(effect, scored: list[tuple[dict, float | None]], sse_off: float
+           ) -> list[dict] | None:
+    """The whole list of a search's starts after its first round (`starts`, scored; None: the
+    spec has no second round)."""
+    r = spec(effect).refine
+    return None if r is None else r(effect, scored, sse_off)
 
 
 def grid(effect, conditions: Conditions, T_ref_C: float) -> dict[str, list]:

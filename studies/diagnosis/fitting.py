@@ -121,19 +121,43 @@ def fit_cost(pb: Problem, e, info: Candidate, s: Screening, scored: bool = False
     return t * (n_starts + n_grid + 3 * CALLS_PER_COORDINATE * k)
 
 
-def _start_points(pb: Problem, e, info, base: Fit, space) -> list[np.ndarray]:
+def _start_points(pb: Problem, e, info, base: Fit, space, points: list[dict] | None = None
+                  ) -> list[np.ndarray]:
     """Starting points of a candidate's fit (scaled coordinates): the Gauss-Newton step from off
-    (first), then the fit specification's starts with the baseline's nuisance."""
+    (first), then `points` (default the fit specification's starts, `fitspec.starts`) with the
+    baseline's nuisance."""
     k = space.k
     Jc = -info.sensitivity            # d z / d u_effect at off (sensitivity is -dz)
     A = np.column_stack([Jc, base.J])
     d, *_ = np.linalg.lstsq(A, -base.z, rcond=None)
     starts = [np.concatenate([d[:k], base.u + d[k:]])]
-    for s in fitspec.starts(e, pb.conditions, pb.T_ref_C):
+    for s in (fitspec.starts(e, pb.conditions, pb.T_ref_C) if points is None else points):
         vals = [s.get(p, e.off[p]) for (_, p) in space.eff_params]
         starts.append(np.concatenate([(np.array(vals) - space.origin[:k]) / space.scale[:k],
                                       base.u]))
     return starts
+
+
+def _search(pb: Problem, e, info, base: Fit, space, score) -> list[tuple]:
+    """The ranked starts of a candidate's fit (`_ranked`): the Gauss-Newton step and the fit
+    specification's starts, scored by `score` (a list of starts, clipped to the bounds -> their
+    `_start_score`s in order; a start repeated is asked for once); for a search in two rounds
+    (`fitspec.refine`), then the further starts the first round's scores call for, the whole
+    list ranked in the order the specification gives it (the Gauss-Newton step first)."""
+    pts = fitspec.starts(e, pb.conditions, pb.T_ref_C)
+    known: dict[bytes, tuple | None] = {}
+
+    def scored(points):
+        us = [space.clip(u) for u in _start_points(pb, e, info, base, space, points)]
+        keys = [u.tobytes() for u in us]
+        new = {k: u for k, u in zip(keys, us) if k not in known}
+        known.update(zip(new, score(list(new.values()))))
+        return [known[k] for k in keys]
+
+    got = scored(pts)
+    more = fitspec.refine(e, [(p, None if g is None else g[0]) for p, g in zip(pts, got[1:])],
+                          base.chi2)
+    return _ranked(got if more is None else scored(more))
 
 
 def _start_score(pb: Problem, space, uu: np.ndarray, Jn: np.ndarray
@@ -171,57 +195,55 @@ def _score_starts(pb: Problem, space, starts: list[np.ndarray], Jn: np.ndarray) 
     return _ranked([_start_score(pb, space, uu, Jn) for uu in starts])
 
 
+def _scored_here(pb: Problem, space, Jn: np.ndarray):
+    """A `_search` scorer in this process: each start's `_start_score` in turn."""
+    return lambda starts: [_start_score(pb, space, uu, Jn) for uu in starts]
+
+
 #: a candidate with at least this many starting points (a global search: `interference_error`'s
-#: ~100 over its band, `fitspec.interference_starts`) has them scored on the workers before the
-#: fits (`searched_starts`), SCORE_CHUNK starts a task: alone in one fit task its search was the
-#: longest task of the fits (4-6 CPU s of 8-12 on seed 000's cycles, 2026-11-29)
+#: ~40 in its first round and ~25 in its second over its band, `fitspec.interference_starts`)
+#: has them scored on the workers before the fits (`searched_starts`), SCORE_CHUNK starts a
+#: task: alone in one fit task its search was the longest task of the fits (4-6 CPU s of 8-12
+#: on seed 000's cycles, 2026-11-29, when it scored ~100 starts in one round)
 GLOBAL_SEARCH_STARTS = 20
 SCORE_CHUNK = 8
 
 
 def searched_starts(pb: Problem, s: Screening, b: Baseline, names: list[str]
                     ) -> dict[str, "Searched"]:
-    """The scored starts (`_score_starts`, best first; or the ModelFailure of a model that
-    fails at every start) of the candidates among `names` whose fit is a global search (at
-    least GLOBAL_SEARCH_STARTS starting points, no profiled parameter), scored in one map on
-    the engine's workers: the same scores, in the same order, as in their fit task."""
-    plans = {}
+    """The ranked starts (`_search`, best first; or the ModelFailure of a model that fails at
+    every start) of the candidates among `names` whose fit is a global search (at least
+    GLOBAL_SEARCH_STARTS starting points, no profiled parameter), each round of each search
+    scored in one map on the engine's workers, SCORE_CHUNK starts a task: the same scores, in
+    the same order, as in their fit task (`_scored_here`)."""
+    out: dict[str, Searched] = {}
     for n in names:
         e = pb.effect(n)
         if fitspec.profile(e) or 1 + len(fitspec.starts(e, pb.conditions,
                                                         pb.T_ref_C)) < GLOBAL_SEARCH_STARTS:
             continue
         space = pb.space([e])
-        # a start repeated (the grid's points on the lines) is scored once, as the model's
-        # cache does in one task
-        starts = [space.clip(u) for u in _start_points(pb, e, s.candidates[n], b.fit, space)]
-        keys = [u.tobytes() for u in starts]
-        distinct = list(dict.fromkeys(keys))
-        plans[n] = (space, [starts[keys.index(k)] for k in distinct],
-                    [distinct.index(k) for k in keys])
-    items = [(n, i0) for n, (_, starts, _) in plans.items()
-             for i0 in range(0, len(starts), SCORE_CHUNK)]
+        cost = [0, 0.0]
 
-    def score(item):
-        n, i0 = item
-        space, starts, _ = plans[n]
-        calls0 = pb.model.calls
-        got = [_start_score(pb, space, uu, b.fit.J) for uu in starts[i0:i0 + SCORE_CHUNK]]
-        return got, pb.model.calls - calls0
+        def score(starts, space=space, cost=cost):
+            def chunk(i0):
+                calls0 = pb.model.calls
+                got = [_start_score(pb, space, uu, b.fit.J) for uu in starts[i0:i0 + SCORE_CHUNK]]
+                return got, pb.model.calls - calls0
 
-    got: dict[str, list] = {n: [] for n in plans}
-    cost = {n: [0, 0.0] for n in plans}
-    for (n, _), ((chunk, calls), t) in zip(items, pb.parallel(cpu_timed(score), items)):
-        got[n] += chunk
-        cost[n][0] += calls
-        cost[n][1] += t
-    out: dict[str, Searched] = {}
-    for n, distinct_scores in got.items():
-        scores = [distinct_scores[i] for i in plans[n][2]]
+            got = []
+            for (part, calls), t in pb.parallel(cpu_timed(chunk),
+                                                list(range(0, len(starts), SCORE_CHUNK))):
+                got += part
+                cost[0] += calls
+                cost[1] += t
+            return got
+
         try:
-            out[n] = Searched(_ranked(scores), *cost[n])
+            ranked = _search(pb, e, s.candidates[n], b.fit, space, score)
         except ModelFailure as exc:
-            out[n] = Searched(exc, *cost[n])
+            ranked = exc
+        out[n] = Searched(ranked, *cost)
     return out
 
 
@@ -237,13 +259,13 @@ class Searched:
 def fit_candidate(pb: Problem, e, info, base: Fit,
                   scored: list[tuple] | ModelFailure | None = None) -> Fit:
     """A candidate without a profiled parameter: bounded least squares from the two most
-    promising starts (`_score_starts`; `scored`: already scored, `searched_starts`) and from
+    promising starts (`_search`; `scored`: already scored, `searched_starts`) and from
     the Gauss-Newton step; never worse than the baseline."""
     space = pb.space([e])
     if isinstance(scored, ModelFailure):
         raise scored
     if scored is None:
-        scored = _score_starts(pb, space, _start_points(pb, e, info, base, space), base.J)
+        scored = _search(pb, e, info, base, space, _scored_here(pb, space, base.J))
     # local optimisation from the two most promising starts (fits that open or close, lags
     # and thresholds make the problem non-convex)
     # the Gauss-Newton step from "off" (index 0) is refined too when the fits so far ended flat
