@@ -255,9 +255,14 @@ SEARCH_COARSE = 4
 REFINE_PER_LINE = 2
 
 
+def _inner_outer(p: dict):
+    """A search point's (or the bounds') values of the inner and the outer fit's error (um)."""
+    return p["inner_um"], p["outer_um"]
+
+
 def _interference_lines(effect) -> tuple[np.ndarray, np.ndarray]:
     """The SEARCH_STEP_UM lattice of each fit's line over its bounds (um): inner, outer."""
-    (a0, a1), (b0, b1) = effect.bounds["inner_um"], effect.bounds["outer_um"]
+    (a0, a1), (b0, b1) = _inner_outer(effect.bounds)
     h = SEARCH_STEP_UM
     return np.arange(a0, a1 + h / 2, h), np.arange(b0, b1 + h / 2, h)
 
@@ -268,13 +273,13 @@ def interference_search(effect) -> list[dict]:
     that opens or closes inside the test is piecewise smooth with narrow valleys: at 2 % noise
     a 1 um error is tens of sigma), then a coarse SEARCH_GRID x SEARCH_GRID grid of both; not
     the origin (the baseline)."""
-    (a0, a1), (b0, b1) = effect.bounds["inner_um"], effect.bounds["outer_um"]
+    (a0, a1), (b0, b1) = _inner_outer(effect.bounds)
     inner, outer = _interference_lines(effect)
     out = [{"inner_um": float(a), "outer_um": 0.0} for a in inner]
     out += [{"inner_um": 0.0, "outer_um": float(b)} for b in outer]
     out += [{"inner_um": float(a), "outer_um": float(b)}
             for a in np.linspace(a0, a1, SEARCH_GRID) for b in np.linspace(b0, b1, SEARCH_GRID)]
-    return [p for p in out if (p["inner_um"], p["outer_um"]) != (0.0, 0.0)]
+    return [p for p in out if _inner_outer(p) != (0.0, 0.0)]
 
 
 def _coarse(line: np.ndarray) -> set[float]:
@@ -290,9 +295,8 @@ def interference_starts(effect, conditions, T_ref_C) -> list[dict]:
     nuisance corrected linearly), adds the points `interference_refine` names, and refines the
     best by a local fit."""
     inner, outer = (_coarse(v) for v in _interference_lines(effect))
-    return [p for p in interference_search(effect)
-            if (p["outer_um"] != 0.0 or p["inner_um"] in inner)
-            and (p["inner_um"] != 0.0 or p["outer_um"] in outer)]
+    return [p for p, (a, b) in ((p, _inner_outer(p)) for p in interference_search(effect))
+            if (b != 0.0 or a in inner) and (a != 0.0 or b in outer)]
 
 
 def interference_refine(effect, scored: list[tuple[dict, float | None]], sse_off: float
@@ -308,18 +312,15 @@ def interference_refine(effect, scored: list[tuple[dict, float | None]], sse_off
     of the line's best lattice point (a coarse point between them would score lower), and the
     second best lattice point is next to the best or a coarse point; the second window keeps a
     second valley whose coarse point ranks second."""
-    lines = dict(zip(("inner_um", "outer_um"), _interference_lines(effect)))
     near: set[tuple[float, float]] = set()
-    for name, line in lines.items():
-        other = "outer_um" if name == "inner_um" else "inner_um"
-        on = [(sse, i, p[name]) for i, (p, sse) in enumerate(scored)
-              if p[other] == 0.0 and sse is not None] + [(sse_off, -1, 0.0)]
+    for axis, line in enumerate(_interference_lines(effect)):     # 0 inner, 1 outer
+        on = [(sse, i, _inner_outer(p)[axis]) for i, (p, sse) in enumerate(scored)
+              if _inner_outer(p)[1 - axis] == 0.0 and sse is not None] + [(sse_off, -1, 0.0)]
         for _, _, v in sorted(on)[:REFINE_PER_LINE]:
             for x in line[np.abs(line - v) < SEARCH_COARSE * SEARCH_STEP_UM - 1e-9]:
-                near.add((float(x), 0.0) if name == "inner_um" else (0.0, float(x)))
-    first = {(p["inner_um"], p["outer_um"]) for p, _ in scored}
-    return [p for p in interference_search(effect)
-            if (p["inner_um"], p["outer_um"]) in first | near]
+                near.add((float(x), 0.0) if axis == 0 else (0.0, float(x)))
+    first = {_inner_outer(p) for p, _ in scored}
+    return [p for p in interference_search(effect) if _inner_outer(p) in first | near]
 
 
 # ---------------------------------------------------------------------- preload-path compliance

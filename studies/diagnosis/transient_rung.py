@@ -482,7 +482,7 @@ class HeatCurve:
     row: np.ndarray
 
     @cached_property
-    def _tables(self) -> list["_HeatTable"]:
+    def _tables(self) -> list[_HeatTable]:
         """Per condition set its `_HeatTable` (plain floats: a trial evaluates the curve a few
         times per row, where numpy's per-call overhead would dominate)."""
         grid = [float(x) for x in self.T_C]
