@@ -9,7 +9,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from studies.diagnosis.core import Fit, Space
-from studies.diagnosis.fitting import OFF_JUMP_CHI2, fit_from_off
+from studies.diagnosis.fitting import OFF_JUMP_CHI2, fit_from_off, jumps_at_off
 from studies.diagnosis.problem import Problem
 
 N = 40
@@ -58,6 +58,7 @@ def test_a_form_that_jumps_at_off_answers_off_without_a_local_fit():
     pb = Toy(jumping, np.zeros(N))                # data the configured model makes
     base = pb.base()
     info = pb.info(base)
+    assert jumps_at_off(pb, pb.space, base)
     calls = pb.calls
     f = fit_from_off(pb, pb.space, info, base)
     assert N * JUMP ** 2 > OFF_JUMP_CHI2          # a jump the rule sees
@@ -74,6 +75,7 @@ def test_a_form_continuous_at_off_is_fitted_from_off():
     form = lambda p: p * X                       # noqa: E731
     pb = Toy(form, form(P_TRUE))
     base = pb.base()
+    assert not jumps_at_off(pb, pb.space, base)
     f = fit_from_off(pb, pb.space, pb.info(base), base)
     ref = pb.fit(pb.space, np.zeros(1))
     assert np.array_equal(f.u, ref.u) and f.chi2 == ref.chi2
