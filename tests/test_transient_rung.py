@@ -110,6 +110,38 @@ def _one(rm):
     return q
 
 
+def test_a_stack_held_at_a_constant_ambient_without_heat_stays_at_it(rm):
+    """Without heat, at a constant ambient, the stack with its mount is in equilibrium at the
+    ambient (nothing drives a difference; the first law): every part at the ambient to 1e-12 K
+    at every film down to 1e10 W/(m^2 K), where the films' modes are ten decades faster than
+    the conduction's (before the trial integrated the deviation from the ambient, it kept
+    2.4e-7 K of their round-off there)."""
+    t = 600.0 * np.arange(6)
+    amb = np.full(6, 37.5)
+    for R in (1e-10, 1e-4, 0.05, 1.0):
+        p = _params(film_resistance_m2K_W=R, G_face_W_K=3.0, G_env_W_K=2.0, C_mount_J_K=4000.0)
+        T = tr.part_temperatures_C(rm, p, t, amb, None)
+        ok = ~np.isnan(T[0])
+        assert np.max(np.abs(T[:, ok] - 37.5)) <= 1e-12, R
+
+
+def test_near_film_resistance_zero_a_trial_is_free_of_the_films_round_off(rm):
+    """At a film of 1e10 W/(m^2 K) the faces follow the ambient and the bore's film ratio
+    changed by 1e-12 moves nothing a measurement sees; the trial's temperatures over seed 000's
+    cycles move by under 1e-8 K of a 0.3 K lag (the interior's conduction behind its faces; a
+    fit's finite-difference column at its start near off is this difference over a 1e-12 step:
+    it was 1.7e-6 K of round-off, a random column), while the lag itself is there."""
+    cond = cycles(200, 252.0)
+    args = (cond["time_s"], cond["T_ambient_C"], None)
+    T = tr.part_temperatures_C(rm, _params(film_resistance_m2K_W=1e-10), *args)
+    T2 = tr.part_temperatures_C(rm, _params(film_resistance_m2K_W=1e-10,
+                                            bore_film_ratio=1.0 - 1e-12), *args)
+    ok = ~np.isnan(T[0])
+    lag = np.max(np.abs(T[:, ok] - cond["T_ambient_C"][:, None]))
+    assert lag > 0.1
+    assert np.max(np.abs(T2[:, ok] - T[:, ok])) < 1e-8
+
+
 def test_the_lumped_lag_is_the_rung_s_limit_for_a_nearly_isothermal_stack(rm):
     """A film of 1 W/(m^2 K) on a steel stack (Biot h L / k ~ 1e-3): every part follows the
     ambient with the one time constant tau = C / (h A) of the lumped body (Incropera ch. 5.1),

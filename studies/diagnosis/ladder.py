@@ -612,7 +612,24 @@ class FormRoute:
                 columns: tuple[str, ...]) -> dict[str, np.ndarray]:
         """The named columns of the inputs (inputs rungs already applied) through the pipeline
         of the parameter rungs' assembly (the config's without them), each switch rung's share
-        of its form's change added (module docstring)."""
+        of its form's change added (module docstring). Rows repeating another row's inputs
+        (`PhysicsInputs.distinct_rows`) are evaluated once: the route is row by row, so each
+        row's numbers are its own (the same to round-off, ~1e-14 of a column: the FE's
+        active-set groups and the pair's vectorised iterations hold other rows); where that
+        evaluation fails, the whole table is evaluated, so a failure names its table row."""
+        rows = inputs.distinct_rows()
+        if rows is None:
+            return self._columns(inputs, forms, columns)
+        first, inverse = rows
+        try:
+            sub = self._columns(inputs.take(first), forms, columns)
+        except Exception:              # the failure as the whole table's evaluation gives it
+            return self._columns(inputs, forms, columns)
+        return {c: v[inverse] for c, v in sub.items()}
+
+    def _columns(self, inputs, forms: Mapping[str, Mapping[str, float]],
+                 columns: tuple[str, ...]) -> dict[str, np.ndarray]:
+        """`columns` on every row of `inputs`."""
         from studies.model.columns import to_columns
 
         asm = self.assembly(forms)

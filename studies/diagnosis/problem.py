@@ -355,9 +355,11 @@ class Problem:
         pred = self.model(*space.unpack(space.clip(u)))
         return self.zvec(pred), pred
 
-    def fit(self, space: Space, u0, max_nfev=None) -> Fit:
-        """Bounded least squares (trust-region reflective) from u0; a model failure during the
-        search steers it back (a large residual), at the start it is raised."""
+    @staticmethod
+    def start(space: Space, u0) -> np.ndarray:
+        """Where a fit from u0 starts (`fit`): u0 clipped to the bounds, coordinates below TINY_U
+        at 0, then 1e-10 of each span (at least 1e-10) inside the bounds (the trust-region
+        method starts strictly inside)."""
         u0 = space.clip(np.asarray(u0, float))
         # scipy's relative finite-difference step is relative to |u| (exactly 0 excepted): at
         # |u| ~ 1e-14 it is below the model's resolution and the Jacobian column vanishes;
@@ -365,7 +367,13 @@ class Problem:
         u0 = np.where(np.abs(u0) < TINY_U, 0.0, u0)
         lo, hi = space.lo, space.hi
         span = hi - lo
-        u0 = np.clip(u0, lo + 1e-10 * np.maximum(span, 1), hi - 1e-10 * np.maximum(span, 1))
+        return np.clip(u0, lo + 1e-10 * np.maximum(span, 1), hi - 1e-10 * np.maximum(span, 1))
+
+    def fit(self, space: Space, u0, max_nfev=None) -> Fit:
+        """Bounded least squares (trust-region reflective) from u0; a model failure during the
+        search steers it back (a large residual), at the start it is raised."""
+        u0 = Problem.start(space, u0)
+        lo, hi = space.lo, space.hi
         dim = u0.size
         big = np.full(self.N, 1e6)
         self.eval(space, u0)              # the start must evaluate (else ModelFailure)

@@ -99,6 +99,32 @@ class PhysicsInputs:
                        d2alpha_per_K3=dict(self.d2alpha_per_K3), cte_factor=dict(self.cte_factor))
 
 
+    def distinct_rows(self) -> tuple[np.ndarray, np.ndarray] | None:
+        """(rows, inverse) when some rows repeat another's inputs, else None: `rows` the first
+        row of each distinct set of per-row inputs, in row order, and `inverse` (n_rows,) the
+        position in `rows` of every row's set, so that `take(rows)` evaluated and indexed by
+        `inverse` gives every row. Compared: every per-row field the model route reads (part
+        temperatures, speed, preloads, loads, fit and friction offsets), bit for bit; not
+        `time_s` and `T_ambient_C`, which `studies.model.pipeline.Pipeline.run` does not read
+        (the effects that act through time, a thermal lag or a run-in, have written what they
+        do into the part temperatures or the friction by then). A table of cycles sampled
+        every minute repeats its temperatures (seed 000's 500-row cycles: 71 distinct rows)."""
+        n = self.n_rows
+        cols = [*(self.T_C[k] for k in sorted(self.T_C)), self.speed_rpm,
+                self.preload_assembled_N, self.axial_load_N, self.interference_inner_um,
+                self.interference_outer_um, self.friction_coefficient, self.preload_loss_N,
+                *(v for v in (self.radial_load_N, self.moment_Nmm, self.interference_sleeve_um,
+                              self.interference_cartridge_um) if v is not None)]
+        M = np.column_stack([np.broadcast_to(np.asarray(c, float), (n,)) for c in cols])
+        _, first, inverse = np.unique(M, axis=0, return_index=True, return_inverse=True)
+        if first.size == n:
+            return None
+        order = np.argsort(first)                  # the distinct sets in row order
+        rank = np.empty_like(order)
+        rank[order] = np.arange(order.size)
+        return first[order], rank[inverse.ravel()]
+
+
 def baseline_inputs(columns: dict[str, np.ndarray], n_rows: int, T_ref_C: float,
                     preload_N: float, speed_rpm: float) -> PhysicsInputs:
     """Baseline: uniform temperature, no lag. A part column overrides the ambient for that part
