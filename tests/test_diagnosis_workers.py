@@ -73,6 +73,19 @@ def test_diagnosis_on_two_workers_equals_one_process():
     assert out[2] == out[1]
 
 
+def opening_fit_toy(T_C):
+    """A toy model of the torque of an inner fit that opens in the heat (its interference
+    4 um + inner_um - 0.1 um/K above 20 C, the torque 1 + 0.05 per um of it, times mu_scale,
+    plus a small outer-fit term): scores piecewise smooth over the band as on the real
+    pipeline. T_C: the rows' ambient (C)."""
+    def toy(effects, nuisance):
+        p = effects.get("interference_error", {"inner_um": 0.0, "outer_um": 0.0})
+        d = np.maximum(4.0 + p["inner_um"] - 0.1 * (T_C - 20.0), 0.0)
+        return {"torque_Nmm": nuisance["mu_scale"] * (1.0 + 0.05 * d
+                                                      + 1e-4 * p["outer_um"] * T_C)}
+    return toy
+
+
 @needs_fork
 def test_global_search_on_workers_scores_as_its_fit_task():
     """`fitting.searched_starts` (a global search's rounds scored on two workers before the
@@ -89,12 +102,7 @@ def test_global_search_on_workers_scores_as_its_fit_task():
 
     cond = cycles(n=120)
     T = cond["T_ambient_C"]
-
-    def toy(effects, nuisance):
-        p = effects.get("interference_error", {"inner_um": 0.0, "outer_um": 0.0})
-        d = np.maximum(4.0 + p["inner_um"] - 0.1 * (T - 20.0), 0.0)
-        return {"torque_Nmm": nuisance["mu_scale"] * (1.0 + 0.05 * d
-                                                      + 1e-4 * p["outer_um"] * T)}
+    toy = opening_fit_toy(T)
 
     truth = toy({"interference_error": {"inner_um": -3.0, "outer_um": 0.0}}, {"mu_scale": 1.2})
     meas = {"torque_Nmm": truth["torque_Nmm"]

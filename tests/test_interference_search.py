@@ -1,7 +1,7 @@
 """The interference error's global search in two rounds (`fitspec.interference_starts`, then
 `fitspec.interference_refine`) against the search it replaced, every point of the 1 um lines
 and the grid (`fitspec.interference_search`) scored: the same best starts, bit for bit, in
-fewer model calls. Toy model as tests/test_diagnosis_workers.py's: the torque of an inner fit
+fewer model calls. Toy model tests/test_diagnosis_workers.py's `opening_fit_toy`: the torque of an inner fit
 that opens in the heat, so the scores are piecewise smooth over the band as on the real
 pipeline; the hidden error at three places (inside a coarse interval, on a coarse point, near
 the origin), and in a band narrowed by the assembly's tolerances off the lattice of whole um
@@ -11,6 +11,7 @@ import pytest
 
 from studies.diagnosis.designs import cycles
 from studies.diagnosis.files import NUISANCE
+from test_diagnosis_workers import opening_fit_toy
 
 
 @pytest.mark.parametrize("inner_um, band", [(-3.0, None), (6.4, None), (0.6, None),
@@ -26,12 +27,7 @@ def test_two_rounds_find_the_full_searchs_best_starts(inner_um, band):
 
     cond = cycles(n=120)
     T = cond["T_ambient_C"]
-
-    def toy(effects, nuisance):
-        p = effects.get("interference_error", {"inner_um": 0.0, "outer_um": 0.0})
-        d = np.maximum(4.0 + p["inner_um"] - 0.1 * (T - 20.0), 0.0)
-        return {"torque_Nmm": nuisance["mu_scale"] * (1.0 + 0.05 * d
-                                                      + 1e-4 * p["outer_um"] * T)}
+    toy = opening_fit_toy(T)
 
     truth = toy({"interference_error": {"inner_um": inner_um, "outer_um": 0.0}},
                 {"mu_scale": 1.2})
