@@ -162,38 +162,46 @@ def test_the_lumped_lag_is_the_rung_s_limit_for_a_nearly_isothermal_stack(rm):
     assert np.max(np.abs(lag - cond["T_ambient_C"])) > 0.2 * swing    # a real lag
 
 
-def test_in_vacuum_the_film_linearised_about_the_sink_follows_full_radiation(rm):
-    """Radiation alone (emissivity 0.5 on every filmed face, no convection) against the project's
-    reduced BDF2 stepper with the full eps sigma (T^4 - T_s^4) (its nonlinear remainder
-    explicit, `fem.reduced_thermal.ReducedStepper`, a second method) on a shroud stepping from
-    20 C to -60 C and on to 80 C: the rung's radiation film per interval (the secant between the
-    sink and the housing of a first pass about the sink,
-    `transient_rung.radiating_part_temperatures_C`) stays within a fifth of the error of one
-    film at 20 C and within 3 % of the largest lag (measured: 2.0 K against 16.1 K, the parts up
-    to 73 K behind the shroud; what is left: the housing's temperature for every face, the
-    film's bins)."""
+def _full_radiation_C(rm, eps: float, t: np.ndarray, sink: np.ndarray, T_ref: float):
+    """Part means (C) at times t of the project's reduced BDF2 stepper with the full
+    eps sigma (T^4 - T_s^4) on the rung's outside faces (its nonlinear remainder explicit,
+    `fem.reduced_thermal.ReducedStepper`, a second method; 5 s steps, the shroud sink linear
+    between the times), and the rung's parameters of that emissivity (its film at T_ref, the
+    bore closed)."""
     from dataclasses import replace
 
     from fem.transient import radiation_h_W_mm2K
     from studies.model import transient_route as route
 
-    eps, T_ref = 0.5, 20.0
     rc = rm.rc
-    faces = rm.exterior + ("shaft_bore",)
-    prm = replace(rm.nominal, film_W_m2K={}, emissivity={g: eps for g in faces},
+    prm = replace(rm.nominal, film_W_m2K={}, emissivity={g: eps for g in rm.exterior},
                   T_rad_lin_C=T_ref)
     dt = 5.0
-    t = np.arange(0.0, 6 * 3600.0 + dt / 2, 600.0)
-    sink = np.interp(t, [0.0, 2400.0, 3 * 3600.0, 3 * 3600.0 + 4800.0], [20.0, -60.0, -60.0, 80.0])
     st = ReducedStepper(rc, prm, dt, T_ref)
+    keep = set(np.round(t / dt).astype(int).tolist())
     out = [st.q.copy()]
-    for k in range(1, int(t[-1] / dt) + 1):
+    for k in range(1, int(round(t[-1] / dt)) + 1):
         st.step(StepLoads(float(np.interp(k * dt, t, sink))))
-        if (k * dt) % 600.0 == 0.0:
+        if k in keep:
             out.append(st.q.copy())
     ref = np.array(out) @ (route.group_rows(rc.tc) @ rc.V).T
     r = 1.0 / (eps * radiation_h_W_mm2K(T_ref) / PER_M2_TO_PER_MM2)
-    p = _params(film_resistance_m2K_W=r)
+    return ref, _params(film_resistance_m2K_W=r, bore_film_ratio=0.0)
+
+
+def test_in_vacuum_the_film_linearised_about_the_sink_follows_full_radiation(rm):
+    """Radiation alone (emissivity 0.5 on every outside face, no convection) against the
+    project's reduced BDF2 stepper with the full T^4 (`_full_radiation_C`) on a shroud stepping
+    from 20 C to -60 C and on to 80 C: the rung's radiation film per interval (the secant
+    between the sink and the housing, iterated to its fixed point,
+    `transient_rung.radiating_part_temperatures_C`) stays within a twentieth of the error of
+    one film at 20 C and within 3 % of the largest lag (measured: 0.22 K against 16.3 K, the
+    parts up to 79 K behind the shroud; two passes gave 1.7 K; what is left: the housing's
+    temperature for every face, the film's bins)."""
+    eps, T_ref = 0.5, 20.0
+    t = np.arange(0.0, 6 * 3600.0 + 1.0, 600.0)
+    sink = np.interp(t, [0.0, 2400.0, 3 * 3600.0, 3 * 3600.0 + 4800.0], [20.0, -60.0, -60.0, 80.0])
+    ref, p = _full_radiation_C(rm, eps, t, sink, T_ref)
     per_row = tr.radiating_part_temperatures_C(rm, p, t, sink, None, None, T_ref)
     one_film = tr.part_temperatures_C(rm, p, t, sink, None)
     ok = ~np.isnan(ref[0])
@@ -201,7 +209,31 @@ def test_in_vacuum_the_film_linearised_about_the_sink_follows_full_radiation(rm)
     err_one = np.max(np.abs(one_film[:, ok] - ref[:, ok]))
     lag = np.max(np.abs(ref[:, ok] - sink[:, None]))
     assert lag > 20.0                                     # a real lag to linearise
-    assert err < 0.2 * err_one and err < 0.03 * lag, (err, err_one, lag)
+    assert err < 0.05 * err_one and err < 0.03 * lag, (err, err_one, lag)
+
+
+def test_in_vacuum_the_radiation_film_is_iterated_to_its_fixed_point(rm, monkeypatch):
+    """Requirement (issue 42, th_vacuum): on seed 000's -60..80 C cycles (`designs.cycles`,
+    240 rows x 120 s) with emissivity 0.8 on the outside faces (the thermal-vacuum case's
+    black anodise), the rung's radiation film per interval at its Picard fixed point
+    (`radiating_part_temperatures_C`) is within 0.3 K of the reduced BDF2 stepper with the
+    full T^4 (`_full_radiation_C`; measured 0.20 K, the parts up to 77 K behind the shroud),
+    and two passes, stopped short of it, are not (measured 3.0 K: a 1 % torque noise sees
+    1 K as some 20 sigma)."""
+    eps, T_ref = 0.8, 20.0
+    cond = cycles()
+    t, sink = (np.asarray(cond[k], float) for k in ("time_s", "T_ambient_C"))
+    ref, p = _full_radiation_C(rm, eps, t, sink, T_ref)
+    ok = ~np.isnan(ref[0])
+
+    def err():
+        T = tr.radiating_part_temperatures_C(rm, p, t, sink, None, None, T_ref)
+        return float(np.max(np.abs(T[:, ok] - ref[:, ok])))
+
+    assert np.max(np.abs(ref[:, ok] - sink[:, None])) > 50.0      # a real lag
+    assert err() < 0.3
+    monkeypatch.setattr(tr, "RADIATION_PASSES_MAX", 2)
+    assert err() > 1.0
 
 
 def _exp_curve(H0_W, T0_C, a_K, n=1):

@@ -107,8 +107,9 @@ Parameters (bounds and sources):
 Environment from the assembly's `[thermal]`: `gas = "vacuum"` makes the films radiation (their
 bound above; radiation alone changes threefold between -60 and 80 C, 4 eps sigma T^3, so each
 interval takes its own: the system is then piecewise constant, one eigen-decomposition per
-FILM_BIN_LN bin of the film, and the film is found by RADIATION_PASSES Picard passes, about the
-sink first, then at the housing's temperature of the pass before) and takes the gas out of the fits and spacer bores (`transient_route.contacts`);
+FILM_BIN_LN bin of the film, and the film is found by Picard passes, about the sink first,
+then at the housing's temperature of the pass before, to their fixed point: until a pass's bins
+are the pass before's, at most RADIATION_PASSES_MAX) and takes the gas out of the fits and spacer bores (`transient_route.contacts`);
 an `emissivity` in air is part of the fitted film; a finite `sink_C` in vacuum is what the
 films (radiation) see, the mount's environment staying `T_ambient_C` (a thermal-vacuum
 chamber's shroud and its controlled base plate).
@@ -448,11 +449,16 @@ def _levels(film_factor, ball_factor, n: int):
     return f_lv[pairs[:, 0].astype(int)], pairs[:, 1], level.reshape(-1)
 
 
+def film_bins(factor: np.ndarray) -> np.ndarray:
+    """The FILM_BIN_LN bin (an integer-valued float) of each interval's film factor (-):
+    round(ln(factor) / FILM_BIN_LN)."""
+    return np.round(np.log(np.asarray(factor, float)) / FILM_BIN_LN)
+
+
 def film_levels(factor: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(factor per level, level of each interval): the film factor of each interval (-) held
-    at the centre of its FILM_BIN_LN bin of ln(factor)."""
-    bins = np.round(np.log(np.asarray(factor, float)) / FILM_BIN_LN)
-    centres, level = np.unique(bins, return_inverse=True)
+    at the centre of its FILM_BIN_LN bin of ln(factor) (`film_bins`)."""
+    centres, level = np.unique(film_bins(factor), return_inverse=True)
     return np.exp(centres * FILM_BIN_LN), level.reshape(-1)
 
 
@@ -742,9 +748,11 @@ def _uniform(rm: RungModel) -> np.ndarray:
     return out
 
 
-#: Picard passes of the radiation film (`radiating_part_temperatures_C`): the first about the
-#: sink, each further one the secant at the faces' temperatures of the one before
-RADIATION_PASSES = 2
+#: the most Picard passes of the radiation film (`radiating_part_temperatures_C`): the first
+#: about the sink, each further one the secant at the faces' temperatures of the one before,
+#: until the film's bins repeat (seed 000's cycles in vacuum: 4-5 passes at emissivity 0.3-0.8;
+#: two passes left the parts 2.5-3.1 K from the fixed point)
+RADIATION_PASSES_MAX = 12
 
 
 def radiating_part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb_C: np.ndarray,
@@ -755,16 +763,22 @@ def radiating_part_temperatures_C(rm: RungModel, p: dict, t_s: np.ndarray, T_amb
     4 eps sigma T_ref^3 (the emissivity's, at T_ref_C), each interval's the secant eps sigma
     (T + T_s)(T^2 + T_s^2) (`radiation_film_factor`) between the sink T_s (T_film_C, else the
     ambient) and the faces' temperature T: first linearised about the sink (T = T_s), then
-    (RADIATION_PASSES - 1 times) at the housing's mean temperature of the pass before (the
-    exterior faces are the housing's but for the shaft's ends), each interval at its mean."""
+    at the housing's mean temperature of the pass before (the exterior faces are the housing's
+    but for the shaft's ends), each interval at its mean: Picard iteration to its fixed point,
+    reached when a pass's film bins (`film_bins`) are those of the pass before (the next pass
+    would repeat it exactly), at most RADIATION_PASSES_MAX passes."""
     sink = np.broadcast_to(np.asarray(T_amb_C if T_film_C is None else T_film_C, float),
                            np.shape(T_amb_C))
     mid = 0.5 * (sink[:-1] + sink[1:])
-    T = None
-    for k in range(RADIATION_PASSES):
+    T, bins = None, None
+    for _ in range(RADIATION_PASSES_MAX):
         face = None if T is None else T[:, PARTS.index("housing")]
         factor = radiation_film_factor(mid, None if face is None else 0.5 * (face[:-1] + face[1:]),
                                        T_ref_C)
+        now = film_bins(factor)
+        if bins is not None and np.array_equal(now, bins):
+            break
+        bins = now
         T = part_temperatures_C(rm, p, t_s, T_amb_C, heat_W, T_film_C, factor, ball_factor)
     return T
 

@@ -196,10 +196,7 @@ def second_source_rates(trials: list[SecondTrial]) -> list[str]:
     form_right = sum(t.outcome == "right" and (t.verdict in ("explained", "explained_partly")
                                                or CASES[t.case].lead is not None)
                      for t in nameable)
-    iv = [t for t in trials if t.interval_entries]
-    inside = sum(t.interval_inside for t in iv)
-    entries = sum(t.interval_entries for t in iv)
-    per = [t.interval_inside / t.interval_entries for t in iv]
+    iv, inside, entries, per = interval_totals(trials)
     return [
         f"wrong causes: {wrong} of {n} trials (95 % upper bound of the rate {100 * ub:.1f} %)",
         f"nulls (nothing hidden, {m} trials): cause claimed {claims} (stated level "
@@ -216,13 +213,48 @@ def second_source_rates(trials: list[SecondTrial]) -> list[str]:
         "trials of truths no candidate names (" + ", ".join(
             f"`{c}`" for c in dict.fromkeys(t.case for t in forms if t not in nameable))
         + ") are right only when not claimed",
-        f"90 % predictive interval of the claimed model ({len(iv)} trials with a claim): a "
+        f"90 % predictive interval ({len(iv)} trials with an interval): a "
         f"repeat draw of the truth inside {inside} of {entries} entries "
         f"({100 * inside / max(entries, 1):.1f} %; per trial "
         + (f"{100 * min(per):.0f}-{100 * max(per):.0f} %" if per else "-")
         + "); held-out rows inside "
         + (f"{100 * float(np.mean([t.interval_heldout for t in iv])):.1f} %" if iv else "-")
         + " (goal 85-95 %)"]
+
+
+def interval_totals(trials: list[SecondTrial]) -> tuple[list[SecondTrial], int, int,
+                                                          list[float]]:
+    """The trials with a predictive interval (`SecondTrial.interval_entries`), their entries of a
+    repeat draw inside and in all (summed) and each one's share inside."""
+    iv = [t for t in trials if t.interval_entries]
+    return (iv, sum(t.interval_inside for t in iv), sum(t.interval_entries for t in iv),
+            [t.interval_inside / t.interval_entries for t in iv])
+
+
+def interval_coverage_markdown(trials: list[SecondTrial]) -> list[str]:
+    """The 90 % predictive interval's coverage per case (docs/diagnosis.md, "An interval for
+    every verdict"): the verdicts, the share of a repeat draw's entries inside
+    (`second_source.interval_coverage`) and of the held-out rows inside
+    (`Intervals.coverage_heldout`, block cross-validation), per draw in seed order; then all
+    draws: entries inside of all entries (and the range per draw), held-out rows inside on
+    average (and the range). Trials without an interval are left out."""
+    iv, inside, entries, per = interval_totals(trials)
+    if not iv:
+        return []
+    L = ["| case | verdict (draws) | entries of a repeat draw inside, per draw | held-out rows "
+         "inside (`coverage_heldout`), per draw |", "| --- | --- | --- | --- |"]
+    for name in dict.fromkeys(t.case for t in iv):
+        sub = sorted((t for t in iv if t.case == name), key=lambda t: t.seed)
+        verdicts = Counter(t.verdict for t in sub)
+        L.append(f"| `{name}` | " + ", ".join(f"`{v}` x {k}" for v, k in verdicts.items())
+                 + " | " + ", ".join(f"{100 * t.interval_inside / t.interval_entries:.1f}"
+                                     for t in sub)
+                 + " % | " + ", ".join(f"{100 * t.interval_heldout:.1f}" for t in sub) + " % |")
+    held = [t.interval_heldout for t in iv]
+    L.append(f"| all {len(iv)} draws | | {100 * inside / entries:.1f} % ({inside} of {entries}; "
+             f"{100 * min(per):.1f} to {100 * max(per):.1f} %) | {100 * float(np.mean(held)):.1f} "
+             f"% (mean; {100 * min(held):.1f} to {100 * max(held):.1f} %) |")
+    return L + [""]
 
 
 #: the goal for two causes at once, each 5 sigma or more: both named in this share of
@@ -263,6 +295,9 @@ def second_source_markdown(trials: list[SecondTrial]) -> list[str]:
     L.append("Outcomes over all second-source trials: " + ", ".join(
         f"{o} {tot.get(o, 0)}" for o in OUTCOMES) + f" (of {len(trials)}).\n")
     L += [f"- {line}" for line in second_source_rates(trials) + two_cause_rates(trials)] + [""]
+    cov = interval_coverage_markdown(trials)
+    if cov:
+        L += ["### The 90 % predictive interval per case\n"] + cov
     for dn in dict.fromkeys(t.design for t in trials):
         ts = [t for t in trials if t.design == dn]
         cols = sorted({(f"explained: {t.cause}" if t.verdict == "explained" else t.verdict)
