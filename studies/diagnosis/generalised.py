@@ -30,12 +30,19 @@ network, where it explains at chi-square 492 against the series form's 249.)
    clearly beats every other fitted candidate (the sensor look-alikes included) by joint fits
    and the unlisted sensor drift. Before 2026-11-25 a form could turn an `unexplained` that the
    drift check had decided into `explained` (a 0.5 K thermometer offset as a CTE curvature).
+6. a form that passes every test but the held-out gain over its listed form
+   (`unresolved_from_listed`) names its family only when the decision refused the listed form
+   for the sensor drift alone and the form carries the weight by step 5's rules
+   (`_family_past_drift`: the drift took up what separates the forms, and a difference
+   confined to the hour after an onset lies in one held-out block, which the block bootstrap
+   cannot resolve).
 
 A form that explains the data turns the verdict into `explained` with `cause` = the family (the
 listed cause) and `extended_form` = the form, its parameters, uncertainties, its one-line text
 ("thermal_lag, per-part time constants: housing 900 s, shaft 2400 s") and its gains. Data that a
 listed form explains never reach this phase (the verdict is not `unexplained`), and a form must
-beat its listed form out of sample, so a listed effect is never reported as an extended one.
+beat its listed form out of sample (under 6: the listed form cannot be claimed at all), so a
+listed effect that explains the data is never reported as an extended one.
 """
 from __future__ import annotations
 
