@@ -10,8 +10,8 @@ run through plain simulate, realistic noise, only time_s / T_ambient_C / speed_r
 - a preload loss or settling beside the history is named as the second cause in at least 80 %
   of the two-cause draws.
 
-Measured: docs/thermal_histories.md "Measured" (main 11dd958, seed 0: named 7 of 9; second
-cause in 8 of 12 two-cause draws over seeds 0-5, 3 of 4 over this test's seeds 0 and 1).
+Measured: docs/thermal_histories.md "Measured" (main 11dd958, seed 0: named 7 of 9; h-settle,
+the family named past the drift: second cause in 12 of 12 two-cause draws over seeds 0-5).
 """
 from __future__ import annotations
 
@@ -29,15 +29,6 @@ def trials():
     return [th.run_trial(name, seed) for name in th.CASES for seed in range(DRAWS)]
 
 
-#: measured (2026-12-02 15:56-16:08 UTC, main 11dd958, docs/thermal_histories.md "Measured"):
-#: the second cause in 8 of the 12 two-cause draws of seeds 0-5 (the preload loss 6 of 6; the
-#: settling's seeds 1, 2, 4, 5 unexplained: beside the rung the listed step does not beat the
-#: sensor drift linear in time, and its gradual form, the truth's, is not resolved from the step
-#: on held-out blocks), 3 of 4 over this test's two seeds: 75 % against the 80 % required
-NOT_YET = pytest.mark.xfail(reason="not yet met: second cause in 8 of 12 two-cause draws (67 %)",
-                            strict=False)
-
-
 def test_the_cause_is_named_in_most_draws(trials):
     named = sum(t.outcome in th.NAMED for t in trials)
     assert named > len(trials) / 2, th.table(trials)
@@ -48,6 +39,5 @@ def test_no_wrong_claim_and_no_claimed_null(trials):
     assert not bad, th.table(trials)
 
 
-@NOT_YET
 def test_a_preload_loss_beside_a_history_is_the_second_cause(trials):
     assert th.second_cause_rate(trials) >= 0.8, th.table(trials)

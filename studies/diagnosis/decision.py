@@ -100,6 +100,20 @@ def unlisted_lookalike(pb: Problem, best: str, rivals: list[str],
     return None
 
 
+def refused_for_drift(d: Decision, alpha: float) -> bool:
+    """Was decision `d` `unexplained` only because its best candidate did not clearly beat the
+    unlisted sensor drift (`versus_sensor_drift`): no rival, adding it to the drift significant
+    at `alpha` while adding the drift to it is too? That is what a second cause that changes in
+    time does to a first one (a run-in at constant speed), and what a listed form does to a
+    cause of the same family in another form (a step for a settling over an hour: the drift
+    takes up the difference)."""
+    j = d.joint_fits.get(SENSOR_DRIFT)
+    return (d.verdict == "unexplained" and d.best is not None and not d.rivals
+            and j is not None and not j.best_carries_weight and j.p is not None
+            and j.p < alpha and j.p_add_other_to_best is not None
+            and j.p_add_other_to_best < alpha)
+
+
 def form_carries_weight(pb: Problem, family: str, form, f_form: Fit, df: dict,
                         cands: Mapping[str, Candidate], fits: dict[str, Fit],
                         b: Baseline) -> tuple[str | None, dict[str, JointFit]]:

@@ -32,8 +32,9 @@ import numpy as np
 
 from studies.model.effects import (InterferenceError, PreloadPathCompliance, PreloadSettling,
                                    RadialGradient, SolidFilmRunin, ThermalLag)
-from studies.model.effects.generalised import (PreloadSettlingCreep, RadialGradientLag,
-                                               ThermalLagPerPart, ThermalLagSeries)
+from studies.model.effects.generalised import (PreloadSettlingCreep, PreloadSettlingGradual,
+                                               RadialGradientLag, ThermalLagPerPart,
+                                               ThermalLagSeries)
 from studies.model.effects.preload_settling import excursion
 from studies.model.effects.solid_film_runin import revolutions
 from studies.diagnosis.ladder import UnloggedLoad, unlogged_load_starts
@@ -161,10 +162,15 @@ def gradient_lag_steps(effect, conditions) -> dict[str, float]:
     return {"dT_K": 1.0, "dT_per_krpm_K": 1.0, "tau_gradient_s": s}
 
 
-def gradient_lag_extra_starts(form, listed, conditions) -> list[dict]:
+def span_shares(conditions, shares: tuple[float, ...]) -> list[float]:
+    """Shares of the table's time span (s; 600 s without a time column)."""
     t = np.asarray(conditions.get("time_s", [0.0, 600.0]), float)
     span = float(t[-1] - t[0]) if t.size > 1 else 600.0
-    return [{"tau_gradient_s": span * f} for f in (0.01, 0.03, 0.1)]
+    return [span * f for f in shares]
+
+
+def gradient_lag_extra_starts(form, listed, conditions) -> list[dict]:
+    return [{"tau_gradient_s": v} for v in span_shares(conditions, (0.01, 0.03, 0.1))]
 
 
 # ---------------------------------------------------------------------- preload settling
@@ -196,6 +202,14 @@ def settling_grid(effect, conditions, T_ref_C, min_rows: int = 3) -> dict[str, l
         if keep <= onset <= n - keep:
             out.append(float(thr))
     return {"threshold_K": out}
+
+
+def settling_gradual_extra_starts(form, listed, conditions) -> list[dict]:
+    """Settling time constants of 3, 10 and 30 % of the table's span (an hour of an 8 h test
+    is 12 %): the reducing value tau_settle_s = 0 is a flat start, the loss's derivative in tau,
+    (dt / tau^2) exp(-dt / tau), vanishing there, and a local fit from it stays at the step
+    (th_mount_settling seed 5: tau 3.6e-6 s, the truth's 3600 s)."""
+    return [{"tau_settle_s": v} for v in span_shares(conditions, (0.03, 0.1, 0.3))]
 
 
 def settling_creep_steps(effect, conditions) -> dict[str, float]:
@@ -343,6 +357,7 @@ SPECS: dict[type, FitSpec] = {
     RadialGradientLag: FitSpec(steps=gradient_lag_steps, extra_starts=gradient_lag_extra_starts,
                                held_fixed=gradient_held_fixed),
     PreloadSettling: FitSpec(profile=("threshold_K",), steps=settling_steps, grid=settling_grid),
+    PreloadSettlingGradual: FitSpec(extra_starts=settling_gradual_extra_starts),
     PreloadSettlingCreep: FitSpec(profile=("threshold_K",), steps=settling_creep_steps,
                                   grid=settling_creep_grid,
                                   extra_starts=settling_creep_extra_starts),

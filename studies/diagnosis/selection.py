@@ -787,15 +787,10 @@ def refused_for_drift(first) -> bool:
     alpha_joint) while it adds to the drift (p below alpha_joint), and no rival? That is what a
     second cause that changes in time (a run-in at constant speed, a settling on the first
     excursion) does to the first: the drift takes up the second cause."""
-    from studies.diagnosis.decision import SENSOR_DRIFT
+    from studies.diagnosis.decision import refused_for_drift as refused
 
     d = first.decision
-    j = d.joint_fits.get(SENSOR_DRIFT)
-    a = first.pb.th["alpha_joint"]
-    return (d.verdict == "unexplained" and d.best is not None and not d.rivals
-            and j is not None and not j.best_carries_weight and j.p is not None
-            and j.p < a and j.p_add_other_to_best is not None
-            and j.p_add_other_to_best < a and first.candidates[d.best].fitted
+    return (refused(d, first.pb.th["alpha_joint"]) and first.candidates[d.best].fitted
             and d.best in first.passing)
 
 
