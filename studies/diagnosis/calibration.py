@@ -165,7 +165,8 @@ def drop_spikes(pb: Problem, pred: dict) -> Problem:
     conditions' smoother, lies beyond SPIKE_SIGMA robust standard deviations (1.4826 MAD) are
     left out of every fit and test and reported; a model error is smooth in the conditions
     and stays, and in a time series so does a run of more than MAX_SPIKE_RUN consecutive such
-    entries (`without_runs`: a spike is one reading). Returns the problem without them (the same object when there are none)."""
+    entries (`without_runs`: a spike is one reading). Returns the problem without them (the
+    same object when there are none)."""
     X = pb.features
     valid, spikes = dict(pb.valid), {}
     for c in pb.columns:
