@@ -38,7 +38,7 @@ class Toy:
     def __init__(self, residuals, names, lo, hi):
         self.residuals, self.calls = residuals, 0
         self.space = space_of(names, lo, hi)
-        self.N = residuals(*np.zeros(len(names))).size
+        self.N = residuals(*lo).size
         self.nuisance = SimpleNamespace(names=())
 
     def eval(self, space, u):
@@ -74,7 +74,7 @@ def test_a_well_conditioned_fit_ends_where_the_optimiser_ends():
     y = 50.0 * np.exp(-t) + 50.0 * np.exp(-t / 3.0) + np.random.default_rng(2).standard_normal(200)
 
     def decay(a1, t1, a2, t2):
-        return a1 * np.exp(-t / max(t1, 1e-3)) + a2 * np.exp(-t / max(t2, 1e-3)) - y
+        return a1 * np.exp(-t / t1) + a2 * np.exp(-t / t2) - y
 
     lo, hi = [0.0, 0.1, 0.0, 0.1], [200.0, 20.0, 200.0, 20.0]
     pb = Toy(decay, ["a1", "t1", "a2", "t2"], lo, hi)

@@ -34,8 +34,8 @@ TINY_U = 1e-9
 #: Press et al., Numerical Recipes, 3rd ed., ch. 15.5.2 (stop after the first or second time chi2
 #: decreases by a negligible amount, less than 0.01 absolutely: the parameters' confidence
 #: regions are set by changes of chi2 of order 1, so further steps move them by a small share of
-#: a standard uncertainty). On the 14 h transient-FE history 290 of the baseline refit's 311
-#: model calls gained 0.28 chi2 in all.
+#: a standard uncertainty). On the 14 h transient-FE history of `bench --diagnose` 290 of the
+#: selection's recalibration's 311 model calls gained 0.28 chi2 in all.
 DCHI2_STOP = 0.01
 STOP_AFTER = 2
 
